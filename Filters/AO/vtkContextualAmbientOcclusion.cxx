@@ -1,0 +1,523 @@
+#include "vtkContextualAmbientOcclusion.h"
+
+#include "vtkCAOFilterUtilities.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkLinearTransform.h"
+#include "vtkMath.h"
+#include "vtkMatrix3x3.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkTransform.h"
+#include "vtkUnsignedCharArray.h"
+
+#include "caoClassify.h"
+#include "caoLAO.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <utility>
+#include <vector>
+
+vtkStandardNewMacro(vtkContextualAmbientOcclusion);
+vtkCxxSetObjectMacro(vtkContextualAmbientOcclusion, PoseTransform, vtkLinearTransform);
+
+namespace
+{
+vtkFloatArray* FloatArray(vtkDataSetAttributes* pd, const char* name)
+{
+  return vtkFloatArray::SafeDownCast(pd->GetAbstractArray(name));
+}
+
+/// Field-data tuple 0 of a named double array, or false when absent/short.
+bool FieldTuple(vtkFieldData* fd, const char* name, int components, double* out)
+{
+  auto* a = vtkDoubleArray::SafeDownCast(fd ? fd->GetAbstractArray(name) : nullptr);
+  if (!a || a->GetNumberOfTuples() < 1 || a->GetNumberOfComponents() != components)
+  {
+    return false;
+  }
+  a->GetTuple(0, out);
+  return true;
+}
+}
+
+//------------------------------------------------------------------------------
+vtkContextualAmbientOcclusion::vtkContextualAmbientOcclusion()
+{
+  vtkCAO::EnsureThreadedBackend();
+  this->SetNumberOfInputPorts(2);
+  this->Precompute = vtkSmartPointer<vtkLocalAmbientOcclusion>::New();
+  this->Precompute->SetContainerAlgorithm(this);
+}
+
+//------------------------------------------------------------------------------
+vtkContextualAmbientOcclusion::~vtkContextualAmbientOcclusion()
+{
+  this->SetPoseTransform(nullptr);
+}
+
+//------------------------------------------------------------------------------
+void vtkContextualAmbientOcclusion::SetPoseMatrix(vtkMatrix4x4* matrix)
+{
+  vtkNew<vtkTransform> t;
+  if (matrix)
+  {
+    t->SetMatrix(matrix);
+  }
+  this->SetPoseTransform(t);
+}
+
+//------------------------------------------------------------------------------
+vtkMTimeType vtkContextualAmbientOcclusion::GetMTime()
+{
+  vtkMTimeType t = std::max(this->Superclass::GetMTime(), this->Precompute->GetMTime());
+  if (this->PoseTransform)
+  {
+    t = std::max(t, this->PoseTransform->GetMTime());
+  }
+  return t;
+}
+
+//------------------------------------------------------------------------------
+int vtkContextualAmbientOcclusion::FillInputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  (void)port;
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkContextualAmbientOcclusion::RequestInformation(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(),
+      inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkContextualAmbientOcclusion::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
+      inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkContextualAmbientOcclusion::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* input = vtkImageData::GetData(inputVector[0]);
+  vtkImageData* maps = vtkImageData::GetData(inputVector[1]);
+  vtkImageData* output = vtkImageData::GetData(outputVector);
+  if (!input || !output)
+  {
+    vtkErrorMacro("Input 0 must be the volume (vtkImageData).");
+    return 0;
+  }
+  if (!maps)
+  {
+    vtkErrorMacro("Input 1 must be the clip depth maps (vtkClipDepthMaps output).");
+    return 0;
+  }
+  int dims[3];
+  input->GetDimensions(dims);
+  const std::int64_t voxels = static_cast<std::int64_t>(dims[0]) * dims[1] * dims[2];
+  if (dims[0] < 1 || dims[1] < 1 || dims[2] < 1 || voxels < 1)
+  {
+    vtkErrorMacro("The input volume has an empty extent.");
+    return 0;
+  }
+  if (voxels > cao::MaxVoxels)
+  {
+    vtkErrorMacro("The input volume has " << voxels << " voxels; at most 2^31-1 are supported.");
+    return 0;
+  }
+
+  // 1. Precomputed, unclipped LAO: from the input, or computed and cached.
+  vtkImageData* source = input;
+  vtkFloatArray* precomputed = FloatArray(input->GetPointData(), vtkCAO::AmbientOcclusionName);
+  vtkFloatArray* opacity = FloatArray(input->GetPointData(), vtkCAO::OpacityName);
+  double lao[8];
+  bool haveLAO = precomputed && opacity &&
+    FieldTuple(input->GetFieldData(), vtkCAO::LAOParametersName, 8, lao);
+  if (!haveLAO)
+  {
+    const vtkMTimeType inputTime = input->GetMTime();
+    const vtkMTimeType filterTime = this->Precompute->GetMTime();
+    if (!this->PrecomputeCache || this->PrecomputeCacheInput != input ||
+      this->PrecomputeCacheInputTime != inputTime || this->PrecomputeCacheFilterTime != filterTime)
+    {
+      vtkNew<vtkImageData> copy;
+      copy->ShallowCopy(input);
+      this->Precompute->SetInputData(copy);
+      this->Precompute->SetNumberOfThreads(this->NumberOfThreads);
+      this->Precompute->OutputOpacityOn();
+      this->Precompute->Update();
+      this->Precompute->SetInputData(nullptr);
+      vtkImageData* out = this->Precompute->GetOutput();
+      if (!FloatArray(out->GetPointData(), vtkCAO::AmbientOcclusionName))
+      {
+        vtkErrorMacro("The LAO precompute failed; see the previous error.");
+        this->PrecomputeCache = nullptr;
+        return 0;
+      }
+      this->PrecomputeCache = vtkSmartPointer<vtkImageData>::New();
+      this->PrecomputeCache->ShallowCopy(out);
+      this->PrecomputeCacheInput = input;
+      this->PrecomputeCacheInputTime = inputTime;
+      this->PrecomputeCacheFilterTime = this->Precompute->GetMTime();
+      ++this->PrecomputeCount;
+    }
+    source = this->PrecomputeCache;
+    precomputed = FloatArray(source->GetPointData(), vtkCAO::AmbientOcclusionName);
+    opacity = FloatArray(source->GetPointData(), vtkCAO::OpacityName);
+    haveLAO = precomputed && opacity &&
+      FieldTuple(source->GetFieldData(), vtkCAO::LAOParametersName, 8, lao);
+    if (!haveLAO)
+    {
+      vtkErrorMacro("The LAO precompute produced no usable output.");
+      return 0;
+    }
+  }
+  if (precomputed->GetNumberOfTuples() != voxels || opacity->GetNumberOfTuples() != voxels ||
+    precomputed->GetNumberOfComponents() != 1 || opacity->GetNumberOfComponents() != 1)
+  {
+    vtkErrorMacro("The precomputed LAO arrays do not match the volume's extent.");
+    return 0;
+  }
+
+  // 2. The LAO plan: the same settings and geometry give the same taps.
+  double spacing[3];
+  input->GetSpacing(spacing);
+  cao::VolumeGeometry geometry;
+  for (int d = 0; d < 3; ++d)
+  {
+    geometry.dims[d] = dims[d];
+    geometry.spacing[d] = spacing[d];
+  }
+  const double* dm = input->GetDirectionMatrix()->GetData();
+  std::copy(dm, dm + 9, geometry.direction);
+  cao::LAOSettings settings;
+  settings.pattern = static_cast<cao::RayPattern>(static_cast<int>(lao[0]));
+  settings.samples = static_cast<int>(lao[2]);
+  settings.reach = lao[3];
+  settings.fibonacciRays = static_cast<int>(lao[6]);
+  cao::LAOPlan plan;
+  std::string error;
+  if (!cao::BuildLAOPlan(geometry, settings, plan, error))
+  {
+    vtkErrorMacro("Cannot rebuild the LAO plan from LAOParameters: " << error << ".");
+    return 0;
+  }
+
+  // 3. Depth maps and their camera.
+  double camera[17], dilation[5], region[6];
+  if (!FieldTuple(maps->GetFieldData(), "ClipCamera", 17, camera) ||
+    !FieldTuple(maps->GetFieldData(), "DilationRadius", 5, dilation) ||
+    !FieldTuple(maps->GetFieldData(), "ClipRegionBounds", 6, region))
+  {
+    vtkErrorMacro("Input 1 is not the output of vtkClipDepthMaps (no ClipCamera, "
+                  "DilationRadius or ClipRegionBounds field arrays).");
+    return 0;
+  }
+  const int width = static_cast<int>(camera[14]), height = static_cast<int>(camera[15]),
+            layers = static_cast<int>(camera[16]);
+  const char* mapNames[4] = { "FrontDepth", "BackDepth",
+    this->Mode == SUBTRACTION ? "DilatedFrontDepth" : "ErodedFrontDepth",
+    this->Mode == SUBTRACTION ? "DilatedBackDepth" : "ErodedBackDepth" };
+  vtkFloatArray* mapArrays[4];
+  for (int i = 0; i < 4; ++i)
+  {
+    mapArrays[i] = FloatArray(maps->GetPointData(), mapNames[i]);
+    if (!mapArrays[i] || mapArrays[i]->GetNumberOfComponents() != layers ||
+      mapArrays[i]->GetNumberOfTuples() != static_cast<vtkIdType>(width) * height)
+    {
+      vtkErrorMacro("Depth map array '" << mapNames[i] << "' is missing or has the wrong size.");
+      return 0;
+    }
+  }
+
+  // 4. Pose: local -> world. The maps must be dilated enough for this pose.
+  vtkNew<vtkMatrix4x4> pose;
+  if (this->PoseTransform)
+  {
+    this->PoseTransform->Update();
+    pose->DeepCopy(this->PoseTransform->GetMatrix());
+  }
+  double linear[3][3];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      linear[r][c] = pose->GetElement(r, c);
+  double U[3][3], W[3], VT[3][3];
+  vtkMath::SingularValueDecomposition3x3(linear, U, W, VT);
+  const double sigmaMin = std::min({ std::fabs(W[0]), std::fabs(W[1]), std::fabs(W[2]) });
+  if (!(sigmaMin > 0.0) || !std::isfinite(sigmaMin) ||
+    pose->GetElement(3, 0) != 0.0 || pose->GetElement(3, 1) != 0.0 ||
+    pose->GetElement(3, 2) != 0.0 || pose->GetElement(3, 3) != 1.0)
+  {
+    vtkErrorMacro("The clip pose must be an invertible affine transform.");
+    return 0;
+  }
+  const double voxelDiagonal =
+    std::sqrt(spacing[0] * spacing[0] + spacing[1] * spacing[1] + spacing[2] * spacing[2]);
+  const double required = dilation[4] * (plan.reach + 1.5 * voxelDiagonal) / sigmaMin;
+  if (dilation[0] < required)
+  {
+    vtkErrorMacro("The depth maps are dilated by " << dilation[0]
+      << " (local units) but this pose and volume need " << required
+      << " (reach " << plan.reach << ", voxel diagonal " << voxelDiagonal
+      << ", pose scale " << sigmaMin << "). Set the depth-map filter's Reach, VoxelSpacing "
+      "and MinimumPoseScale to match.");
+    return 0;
+  }
+
+  // 5. Index -> camera affine: camera(local) * pose^-1 * index-to-physical.
+  vtkNew<vtkMatrix4x4> worldToLocal;
+  vtkMatrix4x4::Invert(pose, worldToLocal);
+  vtkNew<vtkMatrix4x4> localToCamera;
+  localToCamera->Identity();
+  const double* origin = camera;
+  for (int c = 0; c < 3; ++c)
+  {
+    localToCamera->SetElement(0, c, camera[3 + c] / camera[12]);
+    localToCamera->SetElement(1, c, camera[6 + c] / camera[13]);
+    localToCamera->SetElement(2, c, camera[9 + c]);
+  }
+  localToCamera->SetElement(0, 3, -vtkMath::Dot(origin, camera + 3) / camera[12]);
+  localToCamera->SetElement(1, 3, -vtkMath::Dot(origin, camera + 6) / camera[13]);
+  localToCamera->SetElement(2, 3, -vtkMath::Dot(origin, camera + 9));
+  vtkNew<vtkMatrix4x4> indexToLocal, indexToCamera;
+  vtkMatrix4x4::Multiply4x4(worldToLocal, input->GetIndexToPhysicalMatrix(), indexToLocal);
+  vtkMatrix4x4::Multiply4x4(localToCamera, indexToLocal, indexToCamera);
+  // The index used by the kernels starts at 0 at the extent's first voxel.
+  int extent[6];
+  input->GetExtent(extent);
+  double affine[12];
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      affine[4 * r + c] = indexToCamera->GetElement(r, c);
+    }
+    affine[4 * r + 3] += affine[4 * r] * extent[0] + affine[4 * r + 1] * extent[2] +
+      affine[4 * r + 2] * extent[4];
+  }
+
+  cao::shared::ClipParams clip{};
+  for (int r = 0; r < 3; ++r)
+  {
+    clip.toCamera[r] = { static_cast<float>(affine[4 * r]), static_cast<float>(affine[4 * r + 1]),
+      static_cast<float>(affine[4 * r + 2]), static_cast<float>(affine[4 * r + 3]) };
+  }
+  clip.map = { width, height, layers,
+    this->Mode == SUBTRACTION ? cao::shared::CAO_MODE_SUBTRACT : cao::shared::CAO_MODE_PROBE };
+  cao::SetAntiAliasingSamples(clip, this->AntiAliasingSamples);
+  int boxMin[3], boxMax[3];
+  const bool nonEmptyRegion = region[0] <= region[1];
+  if (nonEmptyRegion && cao::CandidateBox(affine, region, dims, boxMin, boxMax))
+  {
+    clip.boxMin = { boxMin[0], boxMin[1], boxMin[2], 0 };
+    clip.boxMax = { boxMax[0], boxMax[1], boxMax[2], 0 };
+  }
+  else
+  {
+    clip.boxMin = { 1, 1, 1, 0 }; // empty: no voxel is near the mesh
+    clip.boxMax = { 0, 0, 0, 0 };
+  }
+
+  // 6. Outputs.
+  vtkNew<vtkFloatArray> ao;
+  ao->SetName(vtkCAO::AmbientOcclusionName);
+  ao->SetNumberOfTuples(voxels);
+  vtkNew<vtkFloatArray> clipped;
+  clipped->SetName(vtkCAO::ClippedOpacityName);
+  clipped->SetNumberOfTuples(voxels);
+  vtkNew<vtkUnsignedCharArray> category;
+  category->SetName(vtkCAO::CategoryName);
+  category->SetNumberOfTuples(voxels);
+
+  cao::ClipMapsView view;
+  view.front = mapArrays[0]->GetPointer(0);
+  view.back = mapArrays[1]->GetPointer(0);
+  view.candFront = mapArrays[2]->GetPointer(0);
+  view.candBack = mapArrays[3]->GetPointer(0);
+
+  double classifyMs = 0.0, copyMs = 0.0, recomputeMs = 0.0, fullMs = -1.0;
+  double maxDifference = -1.0;
+  std::int64_t differing = 0;
+  cao::CategoryCounts counts;
+  std::vector<std::int64_t> affected;
+  bool ok = true;
+  const auto startAll = std::chrono::steady_clock::now();
+  vtkCAO::WithThreads(this->NumberOfThreads, [&] {
+    // Classification, slab by slab; the affected lists are concatenated in
+    // slab order, so the list is sorted whatever the thread count.
+    auto t0 = std::chrono::steady_clock::now();
+    std::mutex mutex;
+    std::vector<std::pair<std::int64_t, std::vector<std::int64_t>>> lists;
+    const float* a = opacity->GetPointer(0);
+    float* ac = clipped->GetPointer(0);
+    std::uint8_t* cat = category->GetPointer(0);
+    ok = vtkCAO::ParallelFor(this, dims[2], 1, 0.0, 0.2, [&](std::int64_t b, std::int64_t e) {
+      std::vector<std::int64_t> list;
+      cao::CategoryCounts local;
+      cao::ClassifySlices(clip, dims, view, a, ac, cat, static_cast<int>(b),
+        static_cast<int>(e), list, local);
+      std::lock_guard<std::mutex> lock(mutex);
+      counts.Add(local);
+      lists.emplace_back(b, std::move(list));
+    });
+    if (!ok)
+      return;
+    std::sort(lists.begin(), lists.end(),
+      [](const auto& l, const auto& r) { return l.first < r.first; });
+    affected.reserve(static_cast<std::size_t>(counts.affected));
+    for (auto& l : lists)
+      affected.insert(affected.end(), l.second.begin(), l.second.end());
+    classifyMs = vtkCAO::MillisecondsSince(t0);
+
+    // Copy the precomputed LAO (categories a and c keep it).
+    t0 = std::chrono::steady_clock::now();
+    const float* pre = precomputed->GetPointer(0);
+    float* out = ao->GetPointer(0);
+    ok = vtkCAO::ParallelFor(this, voxels, 1 << 16, 0.2, 0.25,
+      [&](std::int64_t b, std::int64_t e) { std::copy(pre + b, pre + e, out + b); }, 4);
+    if (!ok)
+      return;
+    copyMs = vtkCAO::MillisecondsSince(t0);
+
+    // Recompute the affected voxels on the clipped opacity.
+    t0 = std::chrono::steady_clock::now();
+    const std::int64_t* list = affected.data();
+    ok = vtkCAO::ParallelFor(this, static_cast<std::int64_t>(affected.size()), 256, 0.25,
+      this->Verify ? 0.5 : 1.0,
+      [&](std::int64_t b, std::int64_t e) { cao::LAOList(plan, ac, out, list, b, e); });
+    if (!ok)
+      return;
+    recomputeMs = vtkCAO::MillisecondsSince(t0);
+
+    if (this->Verify)
+    {
+      t0 = std::chrono::steady_clock::now();
+      std::vector<float> full(static_cast<std::size_t>(voxels));
+      ok = vtkCAO::ParallelFor(this, voxels, 1024, 0.5, 1.0,
+        [&](std::int64_t b, std::int64_t e) { cao::LAORange(plan, ac, full.data(), b, e); });
+      if (!ok)
+        return;
+      fullMs = vtkCAO::MillisecondsSince(t0);
+      maxDifference = 0.0;
+      for (std::int64_t v = 0; v < voxels; ++v)
+      {
+        if (cat[v] == cao::shared::CAO_CATEGORY_CLIPPED)
+          continue;
+        // Bitwise comparison: equal floats (and no NaN) or a difference.
+        if (!(full[v] == out[v]))
+        {
+          ++differing;
+          const double d = std::fabs(static_cast<double>(full[v]) - out[v]);
+          maxDifference = std::max(maxDifference, std::isnan(d) ? 1.0 : d);
+        }
+      }
+    }
+  });
+  if (!ok)
+  {
+    return 1; // aborted; the executive flags the output
+  }
+  const double totalMs = vtkCAO::MillisecondsSince(startAll) - fullMs * (fullMs > 0.0);
+
+  output->ShallowCopy(input);
+  vtkPointData* pd = output->GetPointData();
+  pd->RemoveArray(vtkCAO::AmbientOcclusionName);
+  pd->AddArray(ao);
+  if (source != input)
+  {
+    pd->AddArray(opacity);
+    output->GetFieldData()->AddArray(source->GetFieldData()->GetAbstractArray(vtkCAO::LAOParametersName));
+  }
+  pd->AddArray(clipped);
+  pd->AddArray(category);
+
+  vtkNew<vtkIdTypeArray> countArray;
+  countArray->SetName("CategoryCounts");
+  countArray->SetNumberOfComponents(3);
+  countArray->SetComponentName(0, "Clipped");
+  countArray->SetComponentName(1, "Affected");
+  countArray->SetComponentName(2, "Unaffected");
+  const vtkIdType countValues[3] = { counts.clipped, counts.affected, counts.unaffected };
+  countArray->InsertNextTypedTuple(countValues);
+  output->GetFieldData()->AddArray(countArray);
+
+  vtkNew<vtkDoubleArray> timing;
+  timing->SetName("StageMilliseconds");
+  timing->SetNumberOfComponents(4);
+  const char* stageNames[] = { "Classify", "CopyUnaffected", "RecomputeAffected", "Total" };
+  for (int c = 0; c < 4; ++c)
+  {
+    timing->SetComponentName(c, stageNames[c]);
+  }
+  const double timingValues[4] = { classifyMs, copyMs, recomputeMs, totalMs };
+  timing->InsertNextTuple(timingValues);
+  output->GetFieldData()->AddArray(timing);
+
+  if (this->Verify)
+  {
+    vtkNew<vtkDoubleArray> verification;
+    verification->SetName("Verification");
+    verification->SetNumberOfComponents(3);
+    verification->SetComponentName(0, "MaxAbsDifference");
+    verification->SetComponentName(1, "DifferingVoxels");
+    verification->SetComponentName(2, "FullRecomputeMilliseconds");
+    const double values[3] = { maxDifference, static_cast<double>(differing), fullMs };
+    verification->InsertNextTuple(values);
+    output->GetFieldData()->AddArray(verification);
+  }
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkContextualAmbientOcclusion::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Mode: " << (this->Mode == SUBTRACTION ? "Subtraction" : "Probing") << "\n";
+  os << indent << "PoseTransform: ";
+  if (this->PoseTransform)
+  {
+    os << "\n";
+    this->PoseTransform->PrintSelf(os, indent.GetNextIndent());
+  }
+  else
+  {
+    os << "(identity)\n";
+  }
+  os << indent << "AntiAliasingSamples: " << this->AntiAliasingSamples << "\n";
+  os << indent << "Verify: " << (this->Verify ? "On" : "Off") << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "PrecomputeCount: " << this->PrecomputeCount << "\n";
+  os << indent << "Precompute (LAO settings when the input has none):\n";
+  this->Precompute->PrintSelf(os, indent.GetNextIndent());
+}

@@ -1,0 +1,312 @@
+#include "vtkLocalAmbientOcclusion.h"
+
+#include "vtkCAOFilterUtilities.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkMatrix3x3.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkSMPThreadLocal.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+
+#include "caoLAO.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+vtkStandardNewMacro(vtkLocalAmbientOcclusion);
+vtkCxxSetObjectMacro(vtkLocalAmbientOcclusion, OpacityFunction, vtkPiecewiseFunction);
+
+namespace
+{
+/// Evaluate the transfer function for every voxel, corrected for the step.
+/// Integer arrays with at most 65536 distinct values use an exact table.
+bool ComputeOpacity(vtkAlgorithm* self, vtkDataArray* scalars, int component,
+  vtkPiecewiseFunction* tf, double stepOverUnit, float* opacity, std::int64_t& nonFinite)
+{
+  const std::int64_t n = scalars->GetNumberOfTuples();
+  std::atomic<std::int64_t> bad{ 0 };
+  const int type = scalars->GetDataType();
+  const bool integer = type != VTK_FLOAT && type != VTK_DOUBLE;
+  double range[2] = { 0, 0 };
+  scalars->GetRange(range, component);
+  if (integer && range[1] - range[0] < 65536.0)
+  {
+    const long long lo = static_cast<long long>(range[0]);
+    const std::size_t size = static_cast<std::size_t>(range[1] - range[0]) + 1;
+    std::vector<float> table(size);
+    for (std::size_t i = 0; i < size; ++i)
+    {
+      table[i] = cao::CorrectOpacity(tf->GetValue(static_cast<double>(lo + i)), stepOverUnit);
+    }
+    return vtkCAO::ParallelFor(self, n, 4096, 0.0, 0.1, [&](std::int64_t b, std::int64_t e) {
+      for (std::int64_t i = b; i < e; ++i)
+      {
+        const long long s = static_cast<long long>(scalars->GetComponent(i, component));
+        opacity[i] = table[static_cast<std::size_t>(s - lo)];
+      }
+    });
+  }
+  // Floating point (or wide integer) data: evaluate the function per voxel.
+  // vtkPiecewiseFunction::GetValue is not documented thread safe: serial.
+  const std::int64_t blocks = 20;
+  const std::int64_t per = (n + blocks - 1) / blocks;
+  for (std::int64_t start = 0; start < n; start += per)
+  {
+    const std::int64_t stop = std::min(n, start + per);
+    for (std::int64_t i = start; i < stop; ++i)
+    {
+      const double s = scalars->GetComponent(i, component);
+      if (!std::isfinite(s))
+      {
+        ++bad;
+        opacity[i] = 0.0f;
+        continue;
+      }
+      opacity[i] = cao::CorrectOpacity(tf->GetValue(s), stepOverUnit);
+    }
+    self->UpdateProgress(0.1 * static_cast<double>(stop) / static_cast<double>(n));
+    if (self->CheckAbort())
+    {
+      return false;
+    }
+  }
+  nonFinite = bad.load();
+  return true;
+}
+}
+
+//------------------------------------------------------------------------------
+vtkLocalAmbientOcclusion::vtkLocalAmbientOcclusion()
+{
+  vtkCAO::EnsureThreadedBackend();
+  this->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
+}
+
+//------------------------------------------------------------------------------
+vtkLocalAmbientOcclusion::~vtkLocalAmbientOcclusion()
+{
+  this->SetOpacityFunction(nullptr);
+}
+
+//------------------------------------------------------------------------------
+vtkMTimeType vtkLocalAmbientOcclusion::GetMTime()
+{
+  vtkMTimeType t = this->Superclass::GetMTime();
+  if (this->OpacityFunction)
+  {
+    t = std::max(t, this->OpacityFunction->GetMTime());
+  }
+  return t;
+}
+
+//------------------------------------------------------------------------------
+double vtkLocalAmbientOcclusion::GetEffectiveReach(const double spacing[3]) const
+{
+  if (this->Reach > 0.0)
+  {
+    return this->Reach;
+  }
+  return 8.0 * std::min(spacing[0], std::min(spacing[1], spacing[2]));
+}
+
+//------------------------------------------------------------------------------
+int vtkLocalAmbientOcclusion::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  // LAO reads neighbours up to the reach away: ask for the whole extent.
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
+    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkLocalAmbientOcclusion::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* input = vtkImageData::GetData(inputVector[0]);
+  vtkImageData* output = vtkImageData::GetData(outputVector);
+  if (!input || !output)
+  {
+    vtkErrorMacro("Input and output must be vtkImageData.");
+    return 0;
+  }
+  output->ShallowCopy(input);
+
+  int dims[3];
+  input->GetDimensions(dims);
+  const std::int64_t voxels = static_cast<std::int64_t>(dims[0]) * dims[1] * dims[2];
+  if (dims[0] < 1 || dims[1] < 1 || dims[2] < 1 || voxels < 1)
+  {
+    vtkErrorMacro("The input volume has an empty extent.");
+    return 0;
+  }
+  if (voxels > cao::MaxVoxels)
+  {
+    vtkErrorMacro("The input volume has " << voxels
+                                          << " voxels; at most 2^31-1 are supported.");
+    return 0;
+  }
+  vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector);
+  if (!scalars)
+  {
+    vtkErrorMacro("The input has no point scalars to compute opacity from "
+                  "(set the input array to process).");
+    return 0;
+  }
+  if (scalars->GetNumberOfTuples() != voxels)
+  {
+    vtkErrorMacro("Array '" << (scalars->GetName() ? scalars->GetName() : "")
+                            << "' is not a point array of the volume.");
+    return 0;
+  }
+  const int nc = scalars->GetNumberOfComponents();
+  int component = this->Component;
+  if (component < 0)
+  {
+    if (nc != 1)
+    {
+      vtkErrorMacro("Array '" << (scalars->GetName() ? scalars->GetName() : "") << "' has "
+                              << nc << " components; choose one with SetComponent().");
+      return 0;
+    }
+    component = 0;
+  }
+  else if (component >= nc)
+  {
+    vtkErrorMacro("Component " << component << " requested but the array has " << nc
+                               << " components.");
+    return 0;
+  }
+
+  double spacing[3];
+  input->GetSpacing(spacing);
+  cao::VolumeGeometry geometry;
+  for (int d = 0; d < 3; ++d)
+  {
+    geometry.dims[d] = dims[d];
+    geometry.spacing[d] = spacing[d];
+  }
+  const double* dm = input->GetDirectionMatrix()->GetData();
+  std::copy(dm, dm + 9, geometry.direction);
+
+  cao::LAOSettings settings;
+  settings.pattern = static_cast<cao::RayPattern>(this->RayPattern);
+  settings.fibonacciRays = this->NumberOfRays;
+  settings.reach = this->GetEffectiveReach(spacing);
+  settings.samples = this->NumberOfSamples;
+  cao::LAOPlan plan;
+  std::string error;
+  if (!cao::BuildLAOPlan(geometry, settings, plan, error))
+  {
+    vtkErrorMacro("Cannot compute LAO: " << error << ".");
+    return 0;
+  }
+
+  vtkNew<vtkPiecewiseFunction> ramp;
+  vtkPiecewiseFunction* tf = this->OpacityFunction;
+  if (!tf)
+  {
+    double range[2];
+    scalars->GetRange(range, component);
+    if (!std::isfinite(range[0]) || !std::isfinite(range[1]))
+    {
+      range[0] = 0.0;
+      range[1] = 1.0;
+    }
+    ramp->AddPoint(range[0], 0.0);
+    ramp->AddPoint(range[1] > range[0] ? range[1] : range[0] + 1.0, 1.0);
+    tf = ramp;
+  }
+
+  const auto start = std::chrono::steady_clock::now();
+  vtkNew<vtkFloatArray> opacity;
+  opacity->SetName(vtkCAO::OpacityName);
+  opacity->SetNumberOfTuples(voxels);
+  vtkNew<vtkFloatArray> ao;
+  ao->SetName(vtkCAO::AmbientOcclusionName);
+  ao->SetNumberOfTuples(voxels);
+
+  bool ok = true;
+  std::int64_t nonFinite = 0;
+  vtkCAO::WithThreads(this->NumberOfThreads, [&] {
+    ok = ComputeOpacity(this, scalars, component, tf,
+      plan.step / this->ScalarOpacityUnitDistance, opacity->GetPointer(0), nonFinite);
+    if (!ok)
+      return;
+    const float* a = opacity->GetPointer(0);
+    float* out = ao->GetPointer(0);
+    ok = vtkCAO::ParallelFor(this, voxels, 1024, 0.1, 1.0,
+      [&](std::int64_t b, std::int64_t e) { cao::LAORange(plan, a, out, b, e); });
+  });
+  if (nonFinite > 0)
+  {
+    vtkWarningMacro(<< nonFinite << " NaN or Inf scalar value(s) treated as transparent.");
+  }
+  if (!ok)
+  {
+    // Aborted: the executive flags the output; leave no partial AO behind.
+    return 1;
+  }
+  const double ms = vtkCAO::MillisecondsSince(start);
+
+  output->GetPointData()->AddArray(ao);
+  if (this->OutputOpacity)
+  {
+    output->GetPointData()->AddArray(opacity);
+  }
+  vtkNew<vtkDoubleArray> params;
+  params->SetName(vtkCAO::LAOParametersName);
+  const char* names[] = { "RayPattern", "Rays", "Samples", "Reach", "Step", "UnitDistance",
+    "FibonacciRays", "Milliseconds" };
+  params->SetNumberOfComponents(8);
+  for (int c = 0; c < 8; ++c)
+  {
+    params->SetComponentName(c, names[c]);
+  }
+  const double values[8] = { static_cast<double>(this->RayPattern),
+    static_cast<double>(plan.rays), static_cast<double>(plan.samples), plan.reach, plan.step,
+    this->ScalarOpacityUnitDistance, static_cast<double>(this->NumberOfRays), ms };
+  params->InsertNextTuple(values);
+  output->GetFieldData()->AddArray(params);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkLocalAmbientOcclusion::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "OpacityFunction: ";
+  if (this->OpacityFunction)
+  {
+    os << "\n";
+    this->OpacityFunction->PrintSelf(os, indent.GetNextIndent());
+  }
+  else
+  {
+    os << "(none: linear ramp over the scalar range)\n";
+  }
+  os << indent << "ScalarOpacityUnitDistance: " << this->ScalarOpacityUnitDistance << "\n";
+  os << indent << "RayPattern: "
+     << cao::RayPatternName(static_cast<cao::RayPattern>(this->RayPattern)) << "\n";
+  os << indent << "NumberOfRays: " << this->NumberOfRays << "\n";
+  os << indent << "NumberOfSamples: " << this->NumberOfSamples
+     << (this->NumberOfSamples == 0 ? " (one per voxel)" : "") << "\n";
+  os << indent << "Reach: " << this->Reach << (this->Reach == 0.0 ? " (8 voxels)" : "") << "\n";
+  os << indent << "Component: " << this->Component << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "OutputOpacity: " << (this->OutputOpacity ? "On" : "Off") << "\n";
+}

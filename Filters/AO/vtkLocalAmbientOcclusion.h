@@ -1,0 +1,149 @@
+/**
+ * @class   vtkLocalAmbientOcclusion
+ * @brief   Local ambient occlusion (LAO) of a scalar volume, CPU backend.
+ *
+ * For every voxel, K rays of length Reach are cast over the sphere and the
+ * opacity volume is sampled M times along each (trilinear, transparent
+ * outside the volume). A ray's value is A_k = (1/M) sum_{m=1..M}
+ * prod_{i<m} (1 - a_i); the voxel's value is the mean over the rays.
+ *
+ * The opacity of a scalar s is OpacityFunction(s), corrected for the sample
+ * step like vtkVolumeProperty's scalar opacity unit distance u:
+ * a = 1 - (1 - OpacityFunction(s))^(step / u). NaN and Inf scalars are
+ * transparent (one warning per execution).
+ *
+ * Output: the input plus the float point arrays "AmbientOcclusion" in [0,1]
+ * and, unless OutputOpacity is off, "AmbientOcclusionOpacity" (the corrected
+ * opacity, which vtkContextualAmbientOcclusion reuses), and the field array
+ * "LAOParameters" recording pattern, rays, samples, reach, step, unit
+ * distance and milliseconds.
+ *
+ * The work runs in the VTK-free kernel caoLAO through vtkSMPTools (STDThread
+ * unless VTK_SMP_BACKEND_IN_USE says otherwise); the result does not depend
+ * on the number of threads.
+ */
+#ifndef vtkLocalAmbientOcclusion_h
+#define vtkLocalAmbientOcclusion_h
+
+#include "caoFiltersAOModule.h" // For export macro
+#include "vtkImageAlgorithm.h"
+
+class vtkPiecewiseFunction;
+
+class CAOFILTERSAO_EXPORT vtkLocalAmbientOcclusion : public vtkImageAlgorithm
+{
+public:
+  static vtkLocalAmbientOcclusion* New();
+  vtkTypeMacro(vtkLocalAmbientOcclusion, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Ray patterns: the quasi-uniform 6/14/26/54 sets, or NumberOfRays
+  /// directions of a spherical Fibonacci lattice.
+  enum RayPatterns
+  {
+    RAYS_6 = 0,
+    RAYS_14 = 1,
+    RAYS_26 = 2,
+    RAYS_54 = 3,
+    FIBONACCI = 4
+  };
+
+  ///@{
+  /**
+   * Scalar-to-opacity transfer function. When null, a linear ramp from 0 at
+   * the array's minimum to 1 at its maximum is used.
+   */
+  virtual void SetOpacityFunction(vtkPiecewiseFunction*);
+  vtkGetObjectMacro(OpacityFunction, vtkPiecewiseFunction);
+  ///@}
+
+  ///@{
+  /**
+   * The distance (world units) over which OpacityFunction's opacity applies,
+   * as vtkVolumeProperty::SetScalarOpacityUnitDistance. Default 1.
+   */
+  vtkSetClampMacro(ScalarOpacityUnitDistance, double, 1e-12, VTK_DOUBLE_MAX);
+  vtkGetMacro(ScalarOpacityUnitDistance, double);
+  ///@}
+
+  ///@{
+  /// Ray pattern (RayPatterns). Default RAYS_26.
+  vtkSetClampMacro(RayPattern, int, RAYS_6, FIBONACCI);
+  vtkGetMacro(RayPattern, int);
+  ///@}
+
+  ///@{
+  /// Number of rays of the FIBONACCI pattern. Default 64.
+  vtkSetClampMacro(NumberOfRays, int, 1, 65536);
+  vtkGetMacro(NumberOfRays, int);
+  ///@}
+
+  ///@{
+  /**
+   * Samples per ray M. 0 (default) means one sample per smallest voxel
+   * spacing: max(1, round(Reach / h_min)).
+   */
+  vtkSetClampMacro(NumberOfSamples, int, 0, 65536);
+  vtkGetMacro(NumberOfSamples, int);
+  ///@}
+
+  ///@{
+  /**
+   * Ray length R in world units. 0 (default) means 8 times the smallest
+   * voxel spacing.
+   */
+  vtkSetClampMacro(Reach, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(Reach, double);
+  ///@}
+
+  ///@{
+  /**
+   * Component of a multi-component input array to use. -1 (default) accepts
+   * single-component arrays only.
+   */
+  vtkSetClampMacro(Component, int, -1, VTK_INT_MAX);
+  vtkGetMacro(Component, int);
+  ///@}
+
+  ///@{
+  /// Maximum number of threads; 0 (default) lets vtkSMPTools decide.
+  vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
+  ///@{
+  /// Also output the corrected opacity ("AmbientOcclusionOpacity"). Default on.
+  vtkSetMacro(OutputOpacity, bool);
+  vtkGetMacro(OutputOpacity, bool);
+  vtkBooleanMacro(OutputOpacity, bool);
+  ///@}
+
+  /// The reach actually used for an input spacing (resolves Reach == 0).
+  double GetEffectiveReach(const double spacing[3]) const;
+
+  /// Includes the opacity function's modification time.
+  vtkMTimeType GetMTime() override;
+
+protected:
+  vtkLocalAmbientOcclusion();
+  ~vtkLocalAmbientOcclusion() override;
+
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  vtkPiecewiseFunction* OpacityFunction = nullptr;
+  double ScalarOpacityUnitDistance = 1.0;
+  int RayPattern = RAYS_26;
+  int NumberOfRays = 64;
+  int NumberOfSamples = 0;
+  double Reach = 0.0;
+  int Component = -1;
+  int NumberOfThreads = 0;
+  bool OutputOpacity = true;
+
+private:
+  vtkLocalAmbientOcclusion(const vtkLocalAmbientOcclusion&) = delete;
+  void operator=(const vtkLocalAmbientOcclusion&) = delete;
+};
+
+#endif

@@ -1,0 +1,679 @@
+/**
+ * cao — command-line front end of ContextualAO.
+ *
+ *   cao lao   VOLUME [options]            local ambient occlusion
+ *   cao carve VOLUME [options]            contextual AO along a clip path
+ *
+ * Run `cao --help` for the options. Exit codes: 0 success, 1 runtime error,
+ * 2 bad arguments or unreadable input, 3 `--verify` found a difference.
+ */
+#include "caoInput.h"
+
+#include "vtkClipDepthMaps.h"
+#include "vtkContextualAmbientOcclusion.h"
+#include "vtkLocalAmbientOcclusion.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkSMPTools.h"
+#include "vtkTransform.h"
+#include "vtkXMLImageDataWriter.h"
+
+#include "caoRayPattern.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+const char* Usage = R"(usage:
+  cao lao   VOLUME [common options] [-o OUT.vti]
+  cao carve VOLUME [common options] [clip options] [--verify] [-o OUT.vti]
+
+VOLUME: .vti, .mhd/.mha, .slc, legacy .vtk, .nii/.nii.gz
+
+common options:
+  --rays LIST          ray patterns: 6, 14, 26, 54 or fib:K; carve takes a
+                       comma list and runs each (default 26)
+  --reach R            ray length in world units (default 8 voxels)
+  --samples M          samples per ray (default: one per voxel)
+  --opacity S,A,...    opacity transfer function points (scalar, opacity);
+                       default: 0 up to 25% of the scalar range, then a ramp
+                       to 0.8 at its maximum
+  --unit-distance U    scalar opacity unit distance (default 1)
+  --array NAME         point array to use (default: the active scalars)
+  --component C        component of a multi-component array
+  --threads N          at most N threads (default: all cores)
+  --json               print a JSON summary instead of tables
+  -o, --output FILE    write the (last) AO volume as .vti
+
+clip options (carve):
+  --shape NAME         sphere, cube or torus (default sphere)
+  --size S             shape size in world units (default: 1/4 of the
+                       volume's smallest extent)
+  --mesh FILE          clip mesh (.vtp, .stl, .ply, .obj) instead of a shape
+  --pose "tx ty tz [rx ry rz [s]]"   a pose (repeatable); rotation in degrees
+  --poses FILE         one pose per line
+  --path N             N poses along the volume diagonal (default 24)
+  --mode MODE          subtract (default) or probe
+  --layers L           depth-peel layers (default 2)
+  --aa N               extra anti-aliasing samples (default 16)
+  --pixel-size P       depth-map pixel size (default: half a voxel)
+  --direction X,Y,Z    clipping camera direction in the mesh frame (default 0,0,1)
+  --verify             recompute the full LAO at every pose and require the
+                       CAO result to equal it bit for bit (exit 3 otherwise)
+)";
+
+struct Options
+{
+  std::string command, volume, output, arrayName, mesh, posesFile, shape = "sphere",
+                                                                    mode = "subtract";
+  std::vector<std::string> rays{ "26" };
+  std::vector<double> opacity;
+  std::vector<std::string> poseTexts;
+  double reach = 0.0, unitDistance = 1.0, size = 0.0, pixelSize = 0.0;
+  double direction[3] = { 0, 0, 1 };
+  int samples = 0, component = -1, threads = 0, path = 24, layers = 2, aa = 16;
+  bool json = false, verify = false;
+};
+
+int Fail(int code, const std::string& message)
+{
+  std::cerr << "cao: error: " << message << "\n";
+  return code;
+}
+
+std::vector<std::string> Split(const std::string& s, char sep)
+{
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  std::string item;
+  while (std::getline(in, item, sep))
+    if (!item.empty())
+      out.push_back(item);
+  return out;
+}
+
+bool ToDouble(const std::string& s, double& v)
+{
+  char* end = nullptr;
+  v = std::strtod(s.c_str(), &end);
+  return !s.empty() && *end == '\0' && std::isfinite(v);
+}
+
+bool ToInt(const std::string& s, int& v)
+{
+  char* end = nullptr;
+  const long x = std::strtol(s.c_str(), &end, 10);
+  v = static_cast<int>(x);
+  return !s.empty() && *end == '\0' && x >= -1000000000L && x <= 1000000000L;
+}
+
+bool Parse(int argc, char* argv[], Options& o, std::string& error)
+{
+  if (argc < 2)
+  {
+    error = "missing command";
+    return false;
+  }
+  o.command = argv[1];
+  if (o.command != "lao" && o.command != "carve")
+  {
+    error = "unknown command '" + o.command + "' (expected lao or carve)";
+    return false;
+  }
+  for (int i = 2; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    auto value = [&](std::string& out) {
+      if (i + 1 >= argc)
+      {
+        error = "option " + a + " needs a value";
+        return false;
+      }
+      out = argv[++i];
+      return true;
+    };
+    std::string v;
+    auto number = [&](double& out, double lo) {
+      if (!value(v))
+        return false;
+      if (!ToDouble(v, out) || out < lo)
+      {
+        error = "bad value '" + v + "' for " + a;
+        return false;
+      }
+      return true;
+    };
+    auto integer = [&](int& out, int lo) {
+      if (!value(v))
+        return false;
+      if (!ToInt(v, out) || out < lo)
+      {
+        error = "bad value '" + v + "' for " + a;
+        return false;
+      }
+      return true;
+    };
+    bool ok = true;
+    if (a == "--rays")
+    {
+      ok = value(v);
+      if (ok)
+      {
+        o.rays = Split(v, ',');
+        for (const auto& r : o.rays)
+        {
+          cao::RayPattern p;
+          int k = 0;
+          if (!cao::ParseRayPattern(r, p, k))
+          {
+            error = "bad ray pattern '" + r + "' (expected 6, 14, 26, 54 or fib:K)";
+            return false;
+          }
+        }
+        if (o.rays.empty())
+        {
+          error = "--rays needs at least one pattern";
+          return false;
+        }
+      }
+    }
+    else if (a == "--reach")
+      ok = number(o.reach, 1e-300);
+    else if (a == "--samples")
+      ok = integer(o.samples, 1);
+    else if (a == "--unit-distance")
+      ok = number(o.unitDistance, 1e-300);
+    else if (a == "--size")
+      ok = number(o.size, 1e-300);
+    else if (a == "--pixel-size")
+      ok = number(o.pixelSize, 1e-300);
+    else if (a == "--component")
+      ok = integer(o.component, 0);
+    else if (a == "--threads")
+      ok = integer(o.threads, 1);
+    else if (a == "--path")
+      ok = integer(o.path, 1);
+    else if (a == "--layers")
+      ok = integer(o.layers, 1);
+    else if (a == "--aa")
+      ok = integer(o.aa, 0) && (o.aa <= 32 || (error = "--aa is at most 32", false));
+    else if (a == "--opacity")
+    {
+      ok = value(v);
+      if (ok)
+      {
+        for (const auto& s : Split(v, ','))
+        {
+          double x;
+          if (!ToDouble(s, x))
+          {
+            error = "bad number '" + s + "' in --opacity";
+            return false;
+          }
+          o.opacity.push_back(x);
+        }
+        if (o.opacity.size() < 2 || o.opacity.size() % 2 != 0)
+        {
+          error = "--opacity needs scalar,opacity pairs";
+          return false;
+        }
+      }
+    }
+    else if (a == "--direction")
+    {
+      ok = value(v);
+      const auto parts = Split(v, ',');
+      if (ok && (parts.size() != 3 || !ToDouble(parts[0], o.direction[0]) ||
+                  !ToDouble(parts[1], o.direction[1]) || !ToDouble(parts[2], o.direction[2])))
+      {
+        error = "--direction needs X,Y,Z";
+        return false;
+      }
+    }
+    else if (a == "--array")
+      ok = value(o.arrayName);
+    else if (a == "--shape")
+      ok = value(o.shape);
+    else if (a == "--mesh")
+      ok = value(o.mesh);
+    else if (a == "--pose")
+    {
+      ok = value(v);
+      if (ok)
+        o.poseTexts.push_back(v);
+    }
+    else if (a == "--poses")
+      ok = value(o.posesFile);
+    else if (a == "--mode")
+    {
+      ok = value(o.mode);
+      if (ok && o.mode != "subtract" && o.mode != "probe")
+      {
+        error = "--mode is subtract or probe";
+        return false;
+      }
+    }
+    else if (a == "-o" || a == "--output")
+      ok = value(o.output);
+    else if (a == "--json")
+      o.json = true;
+    else if (a == "--verify")
+      o.verify = true;
+    else if (!a.empty() && a[0] == '-')
+    {
+      error = "unknown option '" + a + "'";
+      return false;
+    }
+    else if (o.volume.empty())
+      o.volume = a;
+    else
+    {
+      error = "unexpected argument '" + a + "'";
+      return false;
+    }
+    if (!ok)
+      return false;
+  }
+  if (o.volume.empty())
+  {
+    error = "missing VOLUME";
+    return false;
+  }
+  if (o.command == "lao" && o.rays.size() != 1)
+  {
+    error = "lao takes a single ray pattern";
+    return false;
+  }
+  return true;
+}
+
+/// Collects VTK errors raised by the filters so that they become CLI errors.
+struct ErrorLog
+{
+  std::vector<std::string> messages;
+  vtkNew<vtkCallbackCommand> callback;
+  ErrorLog()
+  {
+    callback->SetClientData(this);
+    callback->SetCallback([](vtkObject*, unsigned long, void* self, void* data) {
+      std::string m = data ? static_cast<const char*>(data) : "unknown error";
+      while (!m.empty() && (m.back() == '\n' || m.back() == ' '))
+        m.pop_back();
+      static_cast<ErrorLog*>(self)->messages.push_back(m);
+    });
+  }
+  void Watch(vtkObject* o) { o->AddObserver(vtkCommand::ErrorEvent, callback); }
+  std::string Last() const { return messages.empty() ? "" : messages.back(); }
+};
+
+void ConfigureLAO(const Options& o, const std::string& rays, vtkLocalAmbientOcclusion* lao,
+  vtkPiecewiseFunction* tf)
+{
+  cao::RayPattern pattern = cao::RayPattern::Rays26;
+  int k = 64;
+  cao::ParseRayPattern(rays, pattern, k);
+  lao->SetRayPattern(static_cast<int>(pattern));
+  lao->SetNumberOfRays(k);
+  lao->SetReach(o.reach);
+  lao->SetNumberOfSamples(o.samples);
+  lao->SetScalarOpacityUnitDistance(o.unitDistance);
+  lao->SetComponent(o.component);
+  lao->SetNumberOfThreads(o.threads);
+  lao->SetOpacityFunction(tf);
+  if (!o.arrayName.empty())
+    lao->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, o.arrayName.c_str());
+}
+
+void BuildTransferFunction(const Options& o, vtkImageData* volume, vtkPiecewiseFunction* tf)
+{
+  if (!o.opacity.empty())
+  {
+    for (std::size_t i = 0; i < o.opacity.size(); i += 2)
+      tf->AddPoint(o.opacity[i], o.opacity[i + 1]);
+    return;
+  }
+  vtkDataArray* s = o.arrayName.empty() ? volume->GetPointData()->GetScalars()
+                                        : volume->GetPointData()->GetArray(o.arrayName.c_str());
+  double range[2] = { 0.0, 1.0 };
+  if (s)
+    s->GetRange(range, std::max(0, o.component));
+  if (!(range[1] > range[0]))
+    range[1] = range[0] + 1.0;
+  tf->AddPoint(range[0], 0.0);
+  tf->AddPoint(range[0] + 0.25 * (range[1] - range[0]), 0.0);
+  tf->AddPoint(range[1], 0.8);
+}
+
+double FieldValue(vtkDataObject* d, const char* name, int component)
+{
+  vtkDataArray* a = d->GetFieldData()->GetArray(name);
+  return a ? a->GetComponent(0, component) : -1.0;
+}
+
+bool Write(vtkImageData* image, const std::string& path, std::string& error)
+{
+  vtkNew<vtkXMLImageDataWriter> w;
+  w->SetFileName(path.c_str());
+  w->SetInputData(image);
+  ErrorLog log;
+  log.Watch(w);
+  if (!w->Write() || !log.messages.empty())
+  {
+    error = "cannot write '" + path + "': " + log.Last();
+    return false;
+  }
+  return true;
+}
+
+int RunLAO(const Options& o, vtkImageData* volume)
+{
+  vtkNew<vtkPiecewiseFunction> tf;
+  BuildTransferFunction(o, volume, tf);
+  vtkNew<vtkLocalAmbientOcclusion> lao;
+  ErrorLog log;
+  log.Watch(lao);
+  ConfigureLAO(o, o.rays[0], lao, tf);
+  lao->SetInputData(volume);
+  lao->Update();
+  if (!log.messages.empty())
+    return Fail(1, log.Last());
+  vtkImageData* out = lao->GetOutput();
+  double range[2];
+  out->GetPointData()->GetArray("AmbientOcclusion")->GetRange(range);
+  const double ms = FieldValue(out, "LAOParameters", 7);
+  int dims[3];
+  out->GetDimensions(dims);
+  if (o.json)
+  {
+    std::printf("{\"command\": \"lao\", \"volume\": \"%s\", \"dims\": [%d, %d, %d], "
+                "\"rays\": %d, \"samples\": %d, \"reach\": %.9g, \"milliseconds\": %.3f, "
+                "\"ao_range\": [%.9g, %.9g], \"threads\": %d}\n",
+      o.volume.c_str(), dims[0], dims[1], dims[2], static_cast<int>(FieldValue(out, "LAOParameters", 1)),
+      static_cast<int>(FieldValue(out, "LAOParameters", 2)), FieldValue(out, "LAOParameters", 3), ms,
+      range[0], range[1], vtkSMPTools::GetEstimatedNumberOfThreads());
+  }
+  else
+  {
+    std::printf("LAO of %s (%d x %d x %d): %d rays x %d samples, reach %g: %.1f ms, AO in [%.4f, %.4f]\n",
+      o.volume.c_str(), dims[0], dims[1], dims[2], static_cast<int>(FieldValue(out, "LAOParameters", 1)),
+      static_cast<int>(FieldValue(out, "LAOParameters", 2)), FieldValue(out, "LAOParameters", 3), ms,
+      range[0], range[1]);
+  }
+  std::string error;
+  if (!o.output.empty() && !Write(out, o.output, error))
+    return Fail(1, error);
+  return 0;
+}
+
+struct PoseResult
+{
+  caocli::Pose pose;
+  double counts[3];
+  double ms[4];
+  double fullMs = -1.0, maxDiff = -1.0, differing = -1.0;
+};
+
+struct RunResult
+{
+  std::string rays;
+  int numRays = 0, samples = 0;
+  double reach = 0.0, precomputeMs = 0.0, depthMs = 0.0;
+  std::vector<PoseResult> poses;
+};
+
+int RunCarve(const Options& o, vtkImageData* volume)
+{
+  std::string error;
+  vtkSmartPointer<vtkPolyData> mesh;
+  double bounds[6];
+  volume->GetBounds(bounds);
+  const double smallest = std::min({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] });
+  if (!o.mesh.empty())
+    mesh = caocli::ReadMesh(o.mesh, error);
+  else
+    mesh = caocli::MakeShape(o.shape, o.size > 0.0 ? o.size : std::max(0.25 * smallest, 1e-6), error);
+  if (!mesh)
+    return Fail(2, error);
+
+  std::vector<caocli::Pose> poses;
+  for (const auto& t : o.poseTexts)
+  {
+    caocli::Pose p;
+    if (!caocli::ParsePose(t, p, error))
+      return Fail(2, error);
+    poses.push_back(p);
+  }
+  if (!o.posesFile.empty() && !caocli::ReadPoses(o.posesFile, poses, error))
+    return Fail(2, error);
+  if (poses.empty())
+    poses = caocli::DefaultPath(bounds, o.path);
+  double minScale = 1.0;
+  for (const auto& p : poses)
+    minScale = std::min(minScale, p.scale);
+
+  vtkNew<vtkPiecewiseFunction> tf;
+  BuildTransferFunction(o, volume, tf);
+  const long long voxels = volume->GetNumberOfPoints();
+  int dims[3];
+  volume->GetDimensions(dims);
+  std::vector<RunResult> runs;
+  vtkSmartPointer<vtkImageData> last;
+  bool verifyFailed = false;
+
+  for (const std::string& rays : o.rays)
+  {
+    ErrorLog log;
+    vtkNew<vtkLocalAmbientOcclusion> lao;
+    log.Watch(lao);
+    ConfigureLAO(o, rays, lao, tf);
+    lao->SetInputData(volume);
+    lao->Update();
+    if (!log.messages.empty())
+      return Fail(1, log.Last());
+    RunResult run;
+    run.rays = rays;
+    vtkImageData* laoOut = lao->GetOutput();
+    run.numRays = static_cast<int>(FieldValue(laoOut, "LAOParameters", 1));
+    run.samples = static_cast<int>(FieldValue(laoOut, "LAOParameters", 2));
+    run.reach = FieldValue(laoOut, "LAOParameters", 3);
+    run.precomputeMs = FieldValue(laoOut, "LAOParameters", 7);
+
+    vtkNew<vtkClipDepthMaps> maps;
+    log.Watch(maps);
+    maps->SetInputData(mesh);
+    maps->SetReach(run.reach);
+    maps->SetVoxelSpacing(volume->GetSpacing());
+    maps->SetMinimumPoseScale(minScale);
+    maps->SetNumberOfLayers(o.layers);
+    maps->SetPixelSize(o.pixelSize);
+    maps->SetDirection(o.direction);
+    maps->SetNumberOfThreads(o.threads);
+    auto t0 = std::chrono::steady_clock::now();
+    maps->Update();
+    run.depthMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    if (!log.messages.empty())
+      return Fail(2, log.Last());
+
+    vtkNew<vtkContextualAmbientOcclusion> cao;
+    log.Watch(cao);
+    cao->SetInputConnection(0, lao->GetOutputPort());
+    cao->SetInputConnection(1, maps->GetOutputPort());
+    cao->SetMode(o.mode == "probe" ? vtkContextualAmbientOcclusion::PROBING
+                                   : vtkContextualAmbientOcclusion::SUBTRACTION);
+    cao->SetAntiAliasingSamples(o.aa);
+    cao->SetVerify(o.verify);
+    cao->SetNumberOfThreads(o.threads);
+    vtkNew<vtkTransform> pose;
+    cao->SetPoseTransform(pose);
+    for (const auto& p : poses)
+    {
+      caocli::PoseToTransform(p, pose);
+      cao->Update();
+      if (!log.messages.empty())
+        return Fail(1, log.Last());
+      vtkImageData* out = cao->GetOutput();
+      PoseResult r;
+      r.pose = p;
+      for (int c = 0; c < 3; ++c)
+        r.counts[c] = FieldValue(out, "CategoryCounts", c);
+      for (int c = 0; c < 4; ++c)
+        r.ms[c] = FieldValue(out, "StageMilliseconds", c);
+      if (o.verify)
+      {
+        r.maxDiff = FieldValue(out, "Verification", 0);
+        r.differing = FieldValue(out, "Verification", 1);
+        r.fullMs = FieldValue(out, "Verification", 2);
+        verifyFailed = verifyFailed || r.maxDiff != 0.0;
+      }
+      run.poses.push_back(r);
+    }
+    last = vtkSmartPointer<vtkImageData>::New();
+    last->ShallowCopy(cao->GetOutput());
+    runs.push_back(run);
+  }
+
+  // Reports.
+  auto fullOf = [](const RunResult& run, const PoseResult& r) {
+    return r.fullMs >= 0.0 ? r.fullMs : run.precomputeMs;
+  };
+  if (o.json)
+  {
+    std::printf("{\"command\": \"carve\", \"volume\": \"%s\", \"dims\": [%d, %d, %d], "
+                "\"voxels\": %lld, \"mode\": \"%s\", \"threads\": %d, \"runs\": [",
+      o.volume.c_str(), dims[0], dims[1], dims[2], voxels, o.mode.c_str(),
+      vtkSMPTools::GetEstimatedNumberOfThreads());
+    for (std::size_t i = 0; i < runs.size(); ++i)
+    {
+      const RunResult& run = runs[i];
+      std::printf("%s\n {\"rays\": %d, \"pattern\": \"%s\", \"samples\": %d, \"reach\": %.9g, "
+                  "\"precompute_ms\": %.3f, \"depth_maps_ms\": %.3f, \"poses\": [",
+        i ? "," : "", run.numRays, run.rays.c_str(), run.samples, run.reach, run.precomputeMs, run.depthMs);
+      double sumFull = 0, sumCao = 0, sumB = 0, maxDiff = o.verify ? 0.0 : -1.0;
+      for (std::size_t j = 0; j < run.poses.size(); ++j)
+      {
+        const PoseResult& r = run.poses[j];
+        const double full = fullOf(run, r);
+        sumFull += full;
+        sumCao += r.ms[3];
+        sumB += r.counts[1];
+        maxDiff = std::max(maxDiff, r.maxDiff);
+        std::printf("%s\n  {\"pose\": [%g, %g, %g, %g, %g, %g, %g], "
+                    "\"counts\": {\"clipped\": %.0f, \"affected\": %.0f, \"unaffected\": %.0f}, "
+                    "\"ms\": {\"classify\": %.3f, \"copy\": %.3f, \"recompute\": %.3f, \"cao_total\": %.3f}, "
+                    "\"full_lao_ms\": %.3f, \"full_lao_measured_at_pose\": %s, \"speedup\": %.4f",
+          j ? "," : "", r.pose.translation[0], r.pose.translation[1], r.pose.translation[2],
+          r.pose.rotation[0], r.pose.rotation[1], r.pose.rotation[2], r.pose.scale, r.counts[0],
+          r.counts[1], r.counts[2], r.ms[0], r.ms[1], r.ms[2], r.ms[3], full,
+          r.fullMs >= 0.0 ? "true" : "false", full / std::max(r.ms[3], 1e-9));
+        if (o.verify)
+          std::printf(", \"max_abs_difference\": %.9g, \"differing_voxels\": %.0f", r.maxDiff, r.differing);
+        std::printf("}");
+      }
+      const double n = static_cast<double>(run.poses.size());
+      std::printf("],\n  \"summary\": {\"full_lao_ms\": %.3f, \"cao_ms\": %.3f, \"speedup\": %.4f, "
+                  "\"affected_percent\": %.4f, \"physical_limit\": %.4f, \"max_abs_difference\": %.9g}}",
+        sumFull / n, sumCao / n, sumFull / std::max(sumCao, 1e-9), 100.0 * sumB / (n * voxels),
+        sumB > 0 ? n * voxels / sumB : 0.0, maxDiff);
+    }
+    std::printf("]}\n");
+  }
+  else
+  {
+    for (const RunResult& run : runs)
+    {
+      std::printf("\n%s (%d x %d x %d = %lld voxels), %s mode, %d rays x %d samples, reach %g\n",
+        o.volume.c_str(), dims[0], dims[1], dims[2], voxels, o.mode.c_str(), run.numRays,
+        run.samples, run.reach);
+      std::printf("LAO precompute %.1f ms; depth maps %.1f ms (computed once)\n", run.precomputeMs, run.depthMs);
+      std::printf("%4s %10s %10s %10s %6s %9s %8s %10s %9s %9s %8s%s\n", "pose", "clipped(a)",
+        "affected(b)", "unaff.(c)", "%b", "classify", "copy", "recompute", "CAO ms", "full ms",
+        "speedup", o.verify ? "  max|diff|" : "");
+      for (std::size_t j = 0; j < run.poses.size(); ++j)
+      {
+        const PoseResult& r = run.poses[j];
+        const double full = fullOf(run, r);
+        std::printf("%4zu %10.0f %10.0f %10.0f %6.2f %9.2f %8.2f %10.2f %9.2f %9.2f %8.2f", j,
+          r.counts[0], r.counts[1], r.counts[2], 100.0 * r.counts[1] / voxels, r.ms[0], r.ms[1],
+          r.ms[2], r.ms[3], full, full / std::max(r.ms[3], 1e-9));
+        if (o.verify)
+          std::printf("  %g", r.maxDiff);
+        std::printf("\n");
+      }
+    }
+    if (runs.size() > 1 || true)
+    {
+      std::printf("\nSummary (means over %zu poses; full LAO %s):\n", runs[0].poses.size(),
+        o.verify ? "recomputed on the clipped opacity at every pose" : "= the unclipped precompute");
+      std::printf("| rays | full-LAO ms | CAO update ms | speed-up | %% voxels in b | physical limit | speed-up / limit |%s\n",
+        o.verify ? " max abs diff |" : "");
+      std::printf("|---:|---:|---:|---:|---:|---:|---:|%s\n", o.verify ? "---:|" : "");
+      for (const RunResult& run : runs)
+      {
+        double sumFull = 0, sumCao = 0, sumB = 0, maxDiff = 0;
+        for (const auto& r : run.poses)
+        {
+          sumFull += fullOf(run, r);
+          sumCao += r.ms[3];
+          sumB += r.counts[1];
+          maxDiff = std::max(maxDiff, r.maxDiff);
+        }
+        const double n = static_cast<double>(run.poses.size());
+        const double speedup = sumFull / std::max(sumCao, 1e-9);
+        const double limit = sumB > 0 ? n * voxels / sumB : 0.0;
+        std::printf("| %d | %.1f | %.1f | %.2fx | %.2f | %.2fx | %.0f%% |", run.numRays, sumFull / n,
+          sumCao / n, speedup, 100.0 * sumB / (n * voxels), limit, limit > 0 ? 100.0 * speedup / limit : 0.0);
+        if (o.verify)
+          std::printf(" %g |", maxDiff);
+        std::printf("\n");
+      }
+    }
+  }
+  if (!o.output.empty() && last && !Write(last, o.output, error))
+    return Fail(1, error);
+  if (verifyFailed)
+    return Fail(3, "--verify: the contextual AO differs from the full LAO recompute");
+  return 0;
+}
+}
+
+int main(int argc, char* argv[])
+{
+  if (argc >= 2 && (std::string(argv[1]) == "-h" || std::string(argv[1]) == "--help" ||
+                     std::string(argv[1]) == "help"))
+  {
+    std::cout << Usage;
+    return 0;
+  }
+  Options o;
+  std::string error;
+  if (!Parse(argc, argv, o, error))
+  {
+    std::cerr << "cao: error: " << error << "\n" << Usage;
+    return 2;
+  }
+  if (o.threads > 0)
+    vtkSMPTools::Initialize(o.threads);
+  vtkSmartPointer<vtkImageData> volume = caocli::ReadVolume(o.volume, error);
+  if (!volume)
+    return Fail(2, error);
+  return o.command == "lao" ? RunLAO(o, volume) : RunCarve(o, volume);
+}

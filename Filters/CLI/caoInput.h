@@ -1,0 +1,54 @@
+/**
+ * caoInput — what the `cao` tool reads: volumes in any format VTK reads,
+ * clip meshes (files or built-in shapes) and clip poses. Every function
+ * reports failures as a message instead of crashing.
+ */
+#ifndef caoInput_h
+#define caoInput_h
+
+#include "vtkSmartPointer.h"
+
+#include <array>
+#include <string>
+#include <vector>
+
+class vtkImageData;
+class vtkPolyData;
+class vtkTransform;
+
+namespace caocli
+{
+/// .vti, .mhd/.mha, .slc, legacy .vtk, .nii/.nii.gz.
+vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path, std::string& error);
+
+/// .vtp, .stl, .ply, .obj.
+vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, std::string& error);
+
+/// Built-in closed shapes centred on the origin: "sphere" (radius = size),
+/// "cube" (half edge = size), "torus" (ring radius = size, tube = size / 3).
+vtkSmartPointer<vtkPolyData> MakeShape(const std::string& name, double size, std::string& error);
+
+/// A pose: translation, rotation in degrees (applied as VTK's props do:
+/// Z, then X, then Y) and a uniform scale.
+struct Pose
+{
+  std::array<double, 3> translation{ { 0, 0, 0 } };
+  std::array<double, 3> rotation{ { 0, 0, 0 } };
+  double scale = 1.0;
+};
+
+/// Parse "tx ty tz [rx ry rz [s]]" (spaces or commas).
+bool ParsePose(const std::string& text, Pose& pose, std::string& error);
+
+/// One pose per line; blank lines and lines starting with '#' are skipped.
+bool ReadPoses(const std::string& path, std::vector<Pose>& poses, std::string& error);
+
+/// Pose matrix T * Rz * Rx * Ry * S.
+void PoseToTransform(const Pose& pose, vtkTransform* transform);
+
+/// The default path: `count` poses along the volume's diagonal, starting
+/// and ending outside it and crossing its centre, rotating as they go.
+std::vector<Pose> DefaultPath(const double bounds[6], int count);
+}
+
+#endif

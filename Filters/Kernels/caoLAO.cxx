@@ -1,0 +1,374 @@
+#include "caoLAO.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+namespace cao
+{
+namespace
+{
+inline float Lerp(float a, float b, float t)
+{
+  return a + t * (b - a);
+}
+
+/// Trilinear blend of the 8 corners, x first, then y, then z. GLSL mirrors it.
+inline float Blend(const float c[8], const shared::vec4& f)
+{
+  const float c00 = Lerp(c[0], c[1], f.x);
+  const float c10 = Lerp(c[2], c[3], f.x);
+  const float c01 = Lerp(c[4], c[5], f.x);
+  const float c11 = Lerp(c[6], c[7], f.x);
+  const float c0 = Lerp(c00, c10, f.y);
+  const float c1 = Lerp(c01, c11, f.y);
+  return Lerp(c0, c1, f.z);
+}
+
+inline float SampleInterior(
+  const shared::LAOParams& p, const float* a, std::int64_t base, const shared::LAOTap& t)
+{
+  const std::int64_t o = base + t.cell.w;
+  const std::int64_t sy = p.strides.y;
+  const std::int64_t sz = p.strides.z;
+  const float c[8] = { a[o], a[o + 1], a[o + sy], a[o + sy + 1], a[o + sz], a[o + sz + 1],
+    a[o + sz + sy], a[o + sz + sy + 1] };
+  return Blend(c, t.frac);
+}
+
+inline float SampleBounded(
+  const shared::LAOParams& p, const float* a, int i, int j, int k, const shared::LAOTap& t)
+{
+  const int x0 = i + t.cell.x, y0 = j + t.cell.y, z0 = k + t.cell.z;
+  float c[8];
+  for (int n = 0; n < 8; ++n)
+  {
+    const int x = x0 + (n & 1), y = y0 + ((n >> 1) & 1), z = z0 + ((n >> 2) & 1);
+    const bool inside =
+      x >= 0 && y >= 0 && z >= 0 && x < p.dims.x && y < p.dims.y && z < p.dims.z;
+    c[n] = inside ? a[x + static_cast<std::int64_t>(p.strides.y) * y +
+                      static_cast<std::int64_t>(p.strides.z) * z]
+                  : 0.0f;
+  }
+  return Blend(c, t.frac);
+}
+
+template <bool Interior>
+inline float March(const LAOPlan& plan, const float* a, int i, int j, int k, std::int64_t base)
+{
+  const shared::LAOParams& p = plan.params;
+  const int rays = p.rays.x;
+  const int samples = p.rays.y;
+  const int tapsPerRay = p.rays.z;
+  const shared::LAOTap* taps = plan.taps.data();
+  float total = 0.0f;
+  for (int r = 0; r < rays; ++r)
+  {
+    const shared::LAOTap* rayTaps = taps + static_cast<std::ptrdiff_t>(r) * tapsPerRay;
+    float transmittance = 1.0f;
+    float sum = 0.0f;
+    for (int m = 0; m < samples; ++m)
+    {
+      sum += transmittance;
+      if (m == tapsPerRay)
+        break;
+      const float alpha = Interior ? SampleInterior(p, a, base, rayTaps[m])
+                                   : SampleBounded(p, a, i, j, k, rayTaps[m]);
+      transmittance = transmittance * (1.0f - alpha);
+      if (transmittance == 0.0f)
+        break; // every later term adds exactly 0
+    }
+    total += sum;
+  }
+  return total / p.norm.x;
+}
+
+inline float VoxelAt(const LAOPlan& plan, const float* a, int i, int j, int k, std::int64_t base)
+{
+  const shared::LAOParams& p = plan.params;
+  const bool interior = i >= p.interiorMin.x && j >= p.interiorMin.y && k >= p.interiorMin.z &&
+    i <= p.interiorMax.x && j <= p.interiorMax.y && k <= p.interiorMax.z;
+  return interior ? March<true>(plan, a, i, j, k, base) : March<false>(plan, a, i, j, k, base);
+}
+
+/// Scratch rows of one run (allocated per call, reused across rows).
+struct RunScratch
+{
+  std::vector<float> total, transmittance, sum, zeros;
+};
+
+/**
+ * LAO of the voxels i in [i0, i1) of row (j, k), tap-major: for each ray and
+ * each sample, the whole run is advanced at once. A tap's trilinear cell is
+ * the same for every voxel of the run, shifted by one per voxel, so its four
+ * source rows are read contiguously and the loop vectorises. Per voxel the
+ * operations and their order are exactly those of March (scalar path):
+ * S += T, then T *= 1 - alpha, ray after ray; a voxel whose T reached 0 keeps
+ * adding 0 and multiplying 0 by a finite factor, which changes no bit.
+ * Out-of-bounds corners read 0, as in SampleBounded.
+ */
+void MarchRun(const LAOPlan& plan, const float* a, float* ao, int j, int k, int i0, int i1,
+  RunScratch& s)
+{
+  const shared::LAOParams& p = plan.params;
+  const int n = i1 - i0;
+  const int nx = p.dims.x;
+  const std::int64_t sy = p.strides.y, sz = p.strides.z;
+  const int rays = p.rays.x, samples = p.rays.y, tapsPerRay = p.rays.z;
+  s.total.assign(n, 0.0f);
+  s.transmittance.resize(n);
+  s.sum.resize(n);
+  if (s.zeros.size() < static_cast<std::size_t>(nx) + 1)
+    s.zeros.assign(static_cast<std::size_t>(nx) + 1, 0.0f);
+  float* T = s.transmittance.data();
+  float* S = s.sum.data();
+  float* total = s.total.data();
+  const float* zeroRow = s.zeros.data();
+  for (int r = 0; r < rays; ++r)
+  {
+    const shared::LAOTap* rayTaps = plan.taps.data() + static_cast<std::ptrdiff_t>(r) * tapsPerRay;
+    std::fill(T, T + n, 1.0f);
+    std::fill(S, S + n, 0.0f);
+    for (int m = 0; m < samples; ++m)
+    {
+      for (int i = 0; i < n; ++i)
+        S[i] += T[i];
+      if (m == tapsPerRay)
+        break;
+      const shared::LAOTap& t = rayTaps[m];
+      const int y0 = j + t.cell.y, z0 = k + t.cell.z;
+      auto row = [&](int y, int z) -> const float* {
+        return (y >= 0 && z >= 0 && y < p.dims.y && z < p.dims.z) ? a + y * sy + z * sz : zeroRow;
+      };
+      const float* r00 = row(y0, z0);
+      const float* r10 = row(y0 + 1, z0);
+      const float* r01 = row(y0, z0 + 1);
+      const float* r11 = row(y0 + 1, z0 + 1);
+      const float fx = t.frac.x, fy = t.frac.y, fz = t.frac.z;
+      const int cx = t.cell.x;
+      // Voxels whose two x corners are both in bounds: [lo, hi).
+      const int lo = std::max(i0, -cx) - i0;
+      const int hi = std::max(lo, std::min(i1, nx - 1 - cx) - i0);
+      auto edge = [&](int i) {
+        const int x0 = i0 + i + cx, x1 = x0 + 1;
+        const bool in0 = x0 >= 0 && x0 < nx, in1 = x1 >= 0 && x1 < nx;
+        const float c00 = Lerp(in0 ? r00[x0] : 0.0f, in1 ? r00[x1] : 0.0f, fx);
+        const float c10 = Lerp(in0 ? r10[x0] : 0.0f, in1 ? r10[x1] : 0.0f, fx);
+        const float c01 = Lerp(in0 ? r01[x0] : 0.0f, in1 ? r01[x1] : 0.0f, fx);
+        const float c11 = Lerp(in0 ? r11[x0] : 0.0f, in1 ? r11[x1] : 0.0f, fx);
+        const float alpha = Lerp(Lerp(c00, c10, fy), Lerp(c01, c11, fy), fz);
+        T[i] = T[i] * (1.0f - alpha);
+      };
+      for (int i = 0; i < std::min(lo, n); ++i)
+        edge(i);
+      {
+        const int off = i0 + cx;
+        const float* q00 = r00 + off;
+        const float* q10 = r10 + off;
+        const float* q01 = r01 + off;
+        const float* q11 = r11 + off;
+        for (int i = lo; i < hi; ++i)
+        {
+          const float c00 = Lerp(q00[i], q00[i + 1], fx);
+          const float c10 = Lerp(q10[i], q10[i + 1], fx);
+          const float c01 = Lerp(q01[i], q01[i + 1], fx);
+          const float c11 = Lerp(q11[i], q11[i + 1], fx);
+          const float alpha = Lerp(Lerp(c00, c10, fy), Lerp(c01, c11, fy), fz);
+          T[i] = T[i] * (1.0f - alpha);
+        }
+      }
+      for (int i = std::max(hi, lo); i < n; ++i)
+        edge(i);
+    }
+    for (int i = 0; i < n; ++i)
+      total[i] += S[i];
+  }
+  const std::int64_t base = i0 + std::int64_t(j) * sy + std::int64_t(k) * sz;
+  for (int i = 0; i < n; ++i)
+    ao[base + i] = total[i] / p.norm.x;
+}
+}
+
+int DefaultSampleCount(double reach, const double spacing[3])
+{
+  const double h = std::min(spacing[0], std::min(spacing[1], spacing[2]));
+  if (!(h > 0.0) || !(reach > 0.0) || !std::isfinite(reach / h))
+    return 1;
+  const double m = std::round(reach / h);
+  return static_cast<int>(std::max(1.0, std::min(m, 4096.0)));
+}
+
+bool BuildLAOPlan(
+  const VolumeGeometry& g, const LAOSettings& s, LAOPlan& plan, std::string& error)
+{
+  for (int d = 0; d < 3; ++d)
+  {
+    if (g.dims[d] < 1)
+    {
+      error = "the volume has an empty extent";
+      return false;
+    }
+    if (!(g.spacing[d] > 0.0) || !std::isfinite(g.spacing[d]))
+    {
+      error = "the volume spacing must be positive and finite";
+      return false;
+    }
+  }
+  if (g.NumberOfVoxels() > MaxVoxels)
+  {
+    error = "the volume has more than 2^31-1 voxels";
+    return false;
+  }
+  if (!(s.reach > 0.0) || !std::isfinite(s.reach))
+  {
+    error = "the reach must be positive and finite";
+    return false;
+  }
+  plan.directions = MakeRayPattern(s.pattern, s.fibonacciRays);
+  if (plan.directions.empty())
+  {
+    error = "the ray pattern has no rays (a Fibonacci count must be >= 1)";
+    return false;
+  }
+  const int samples = s.samples > 0 ? s.samples : DefaultSampleCount(s.reach, g.spacing);
+  if (samples > 65536)
+  {
+    error = "more than 65536 samples per ray";
+    return false;
+  }
+  const int rays = static_cast<int>(plan.directions.size());
+  plan.reach = s.reach;
+  plan.samples = samples;
+  plan.rays = rays;
+  plan.step = s.reach / samples;
+
+  shared::LAOParams& p = plan.params;
+  p = shared::LAOParams{};
+  p.dims = { g.dims[0], g.dims[1], g.dims[2], 0 };
+  p.strides = { 1, g.dims[0], static_cast<std::int32_t>(std::int64_t(g.dims[0]) * g.dims[1]), 0 };
+  p.rays = { rays, samples, samples - 1, 0 };
+  p.norm = { static_cast<float>(static_cast<double>(rays) * samples), 0.f, 0.f, 0.f };
+
+  // Tap offsets in index space: world offset m*s*d mapped through the
+  // inverse direction matrix (its transpose) and divided by the spacing.
+  const double* D = g.direction;
+  plan.taps.clear();
+  plan.taps.reserve(static_cast<std::size_t>(rays) * (samples - 1));
+  int lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 };
+  for (const Direction& dir : plan.directions)
+  {
+    const double w[3] = { dir.x, dir.y, dir.z };
+    const double idx[3] = { (D[0] * w[0] + D[3] * w[1] + D[6] * w[2]) / g.spacing[0],
+      (D[1] * w[0] + D[4] * w[1] + D[7] * w[2]) / g.spacing[1],
+      (D[2] * w[0] + D[5] * w[1] + D[8] * w[2]) / g.spacing[2] };
+    for (int m = 1; m < samples; ++m)
+    {
+      const double dist = m * plan.step;
+      shared::LAOTap tap{};
+      int cell[3];
+      float frac[3];
+      for (int d = 0; d < 3; ++d)
+      {
+        double o = idx[d] * dist;
+        // Offsets beyond any volume are clamped: every corner is then out of
+        // bounds for every voxel, as the unclamped offset would be.
+        o = std::max(-4.0e9, std::min(4.0e9, o));
+        const double fl = std::floor(o);
+        double f = o - fl;
+        cell[d] = static_cast<int>(std::max(-2.0e9, std::min(2.0e9, fl)));
+        frac[d] = static_cast<float>(f);
+        if (frac[d] >= 1.0f) // rounding of f up to 1.0f: move to the next cell
+        {
+          frac[d] = 0.0f;
+          cell[d] += 1;
+        }
+        lo[d] = std::min(lo[d], cell[d]);
+        hi[d] = std::max(hi[d], cell[d] + 1);
+      }
+      const std::int64_t linear = cell[0] + std::int64_t(p.strides.y) * cell[1] +
+        std::int64_t(p.strides.z) * cell[2];
+      tap.cell = { cell[0], cell[1], cell[2],
+        static_cast<std::int32_t>(std::max<std::int64_t>(INT32_MIN, std::min<std::int64_t>(INT32_MAX, linear))) };
+      tap.frac = { frac[0], frac[1], frac[2], 0.0f };
+      plan.taps.push_back(tap);
+    }
+  }
+  // Voxel i is interior along an axis when i + lo >= 0 and i + hi <= n - 1.
+  // An empty interior (min > max) sends every voxel down the bounded path.
+  p.interiorMin = { -lo[0], -lo[1], -lo[2], 0 };
+  p.interiorMax = { g.dims[0] - 1 - hi[0], g.dims[1] - 1 - hi[1], g.dims[2] - 1 - hi[2], 0 };
+  for (const auto& t : plan.taps)
+  {
+    // A clamped linear offset would be wrong on the fast path: disable it.
+    const std::int64_t linear = t.cell.x + std::int64_t(p.strides.y) * t.cell.y +
+      std::int64_t(p.strides.z) * t.cell.z;
+    if (linear != t.cell.w)
+    {
+      p.interiorMin = { 1, 1, 1, 0 };
+      p.interiorMax = { 0, 0, 0, 0 };
+      break;
+    }
+  }
+  return true;
+}
+
+float LAOVoxel(const LAOPlan& plan, const float* opacity, int i, int j, int k)
+{
+  const shared::LAOParams& p = plan.params;
+  const std::int64_t base =
+    i + std::int64_t(p.strides.y) * j + std::int64_t(p.strides.z) * k;
+  return VoxelAt(plan, opacity, i, j, k, base);
+}
+
+void LAORange(
+  const LAOPlan& plan, const float* opacity, float* ao, std::int64_t begin, std::int64_t end)
+{
+  const shared::LAOParams& p = plan.params;
+  const std::int64_t nx = p.dims.x, nxy = std::int64_t(p.dims.x) * p.dims.y;
+  RunScratch scratch;
+  std::int64_t v = begin;
+  while (v < end)
+  {
+    const int k = static_cast<int>(v / nxy);
+    const std::int64_t rem = v - k * nxy;
+    const int j = static_cast<int>(rem / nx);
+    const int i = static_cast<int>(rem - j * nx);
+    const int i1 = static_cast<int>(std::min<std::int64_t>(nx, i + (end - v)));
+    MarchRun(plan, opacity, ao, j, k, i, i1, scratch);
+    v += i1 - i;
+  }
+}
+
+void LAOList(const LAOPlan& plan, const float* opacity, float* ao, const std::int64_t* list,
+  std::int64_t begin, std::int64_t end)
+{
+  const shared::LAOParams& p = plan.params;
+  const std::int64_t nx = p.dims.x, nxy = std::int64_t(p.dims.x) * p.dims.y;
+  RunScratch scratch;
+  std::int64_t n = begin;
+  while (n < end)
+  {
+    // A run: consecutive linear indices within one row.
+    const std::int64_t v = list[n];
+    const int k = static_cast<int>(v / nxy);
+    const std::int64_t rem = v - k * nxy;
+    const int j = static_cast<int>(rem / nx);
+    const int i = static_cast<int>(rem - j * nx);
+    std::int64_t last = n;
+    while (last + 1 < end && list[last + 1] == list[last] + 1 && i + (last + 1 - n) < nx)
+      ++last;
+    MarchRun(plan, opacity, ao, j, k, i, i + static_cast<int>(last - n) + 1, scratch);
+    n = last + 1;
+  }
+}
+
+float CorrectOpacity(double alpha, double stepOverUnit)
+{
+  if (!(alpha > 0.0)) // also NaN
+    return 0.0f;
+  if (alpha >= 1.0)
+    return 1.0f;
+  return static_cast<float>(1.0 - std::pow(1.0 - alpha, stepOverUnit));
+}
+}

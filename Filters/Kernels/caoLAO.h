@@ -1,0 +1,95 @@
+/**
+ * caoLAO — the local ambient occlusion ray march (Hernell et al.), no VTK.
+ *
+ * For voxel v, ray k and sample m = 1..M at distance m*s (s = R/M):
+ *   A_k = (1/M) * sum_{m=1..M} prod_{i<m} (1 - a_i),
+ * with a_i the opacity trilinearly interpolated at sample i (samples outside
+ * the volume are transparent). The voxel's value is the mean of A_k over the
+ * K rays, computed as (sum_k sum_m T_{k,m}) / (K*M) in float.
+ *
+ * Because every voxel uses the same ray offsets, the plan precomputes, per
+ * (ray, sample), the integer cell offset and the trilinear fractions
+ * (caoShared.h's LAOTap). The march is then a fixed stencil; the CPU code
+ * here and the GLSL compute shader run the same arithmetic in the same order
+ * (nested lerps x + t*(y - x), x first), so one plan drives both backends.
+ *
+ * Bit-exactness contract: LAOVoxel's result depends only on the plan and on
+ * the opacity values it reads. Voxels whose taps are all in bounds take a
+ * fast path without bounds checks; the others substitute 0 for out-of-bounds
+ * corners in the same operation order, so both paths give identical bits.
+ * Compile with -ffp-contract=off (CMake does) so no FMA changes rounding.
+ */
+#ifndef caoLAO_h
+#define caoLAO_h
+
+#include "caoRayPattern.h"
+#include "caoShared.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace cao
+{
+/// Grid geometry of a volume: voxel counts, spacing and the 3x3 direction
+/// matrix (row-major, index axes as columns) of the image.
+struct VolumeGeometry
+{
+  int dims[3] = { 0, 0, 0 };
+  double spacing[3] = { 1, 1, 1 };
+  double direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  std::int64_t NumberOfVoxels() const
+  {
+    return static_cast<std::int64_t>(dims[0]) * dims[1] * dims[2];
+  }
+};
+
+/// User-facing LAO settings; reach in world units. samples <= 0 selects the
+/// default: one sample per (smallest) voxel spacing, max(1, round(R / h_min)).
+struct LAOSettings
+{
+  RayPattern pattern = RayPattern::Rays26;
+  int fibonacciRays = 64;
+  double reach = 0.0;
+  int samples = 0;
+};
+
+/// Everything the march needs; uploadable as-is to a GPU (params + taps).
+struct LAOPlan
+{
+  shared::LAOParams params{};
+  std::vector<shared::LAOTap> taps; ///< K * (M-1) taps, ray-major
+  std::vector<Direction> directions;
+  double reach = 0.0;
+  double step = 0.0; ///< world distance between samples, R / M
+  int rays = 0;
+  int samples = 0;
+};
+
+/// Largest volume the kernels index with 32-bit strides (GPU-compatible).
+constexpr std::int64_t MaxVoxels = (std::int64_t(1) << 31) - 1;
+
+/// Default number of samples for a reach: one per smallest voxel spacing.
+int DefaultSampleCount(double reach, const double spacing[3]);
+
+/// Build a plan; returns false with a message for invalid settings.
+bool BuildLAOPlan(
+  const VolumeGeometry& geometry, const LAOSettings& settings, LAOPlan& plan, std::string& error);
+
+/// LAO of one voxel (i, j, k) over an opacity volume laid out x-fastest.
+float LAOVoxel(const LAOPlan& plan, const float* opacity, int i, int j, int k);
+
+/// LAO of the voxels with linear index in [begin, end).
+void LAORange(
+  const LAOPlan& plan, const float* opacity, float* ao, std::int64_t begin, std::int64_t end);
+
+/// LAO of the listed voxels (linear indices list[begin..end)), written in place.
+void LAOList(const LAOPlan& plan, const float* opacity, float* ao, const std::int64_t* list,
+  std::int64_t begin, std::int64_t end);
+
+/// Step-length correction of an opacity for samples `stepOverUnit` unit
+/// distances apart: 1 - (1 - a)^(step/unit), computed in double, exact at 0 and 1.
+float CorrectOpacity(double alpha, double stepOverUnit);
+}
+
+#endif

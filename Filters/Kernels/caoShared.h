@@ -1,0 +1,96 @@
+/*
+ * caoShared.h — the one definition of ContextualAO's parameter blocks and
+ * buffer layouts, compiled both as C++ (kernels, filters) and as GLSL
+ * (compute shaders, via #include after vtk_encode_string embedding).
+ *
+ * Rules that keep the two sides identical:
+ *  - every member is a 16-byte vec4/ivec4, so std140 and std430 agree with
+ *    the C++ layout (checked by static_asserts at the end);
+ *  - no bool, no vec3, no implicit padding;
+ *  - constants are plain ints usable from both languages.
+ */
+#ifndef CAO_SHARED_H
+#define CAO_SHARED_H
+
+#ifdef __cplusplus
+#include <cstdint>
+namespace cao
+{
+namespace shared
+{
+struct vec4
+{
+  float x, y, z, w;
+};
+struct ivec4
+{
+  std::int32_t x, y, z, w;
+};
+#define CAO_CONST static constexpr int
+#else
+#define CAO_CONST const int
+#endif
+
+/* Voxel categories written to the ClipCategory mask (paper: a, b, c). */
+CAO_CONST CAO_CATEGORY_CLIPPED = 0;    /* a: fully clipped, not recomputed */
+CAO_CONST CAO_CATEGORY_AFFECTED = 1;   /* b: LAO recomputed on the clipped opacity */
+CAO_CONST CAO_CATEGORY_UNAFFECTED = 2; /* c: precomputed LAO copied */
+
+/* Clip modes (paper: subtraction and probing). */
+CAO_CONST CAO_MODE_SUBTRACT = 0; /* remove what is inside the mesh */
+CAO_CONST CAO_MODE_PROBE = 1;    /* keep only what is inside the mesh */
+
+/* Anti-aliased clipping: centre + 8 corners, then up to this many extra
+ * samples where those 9 disagree. */
+CAO_CONST CAO_MAX_AA_EXTRA_SAMPLES = 32;
+
+/*
+ * One tap of the LAO ray march: the position of sample m of ray k relative
+ * to the voxel, in index space, split into the lower corner of the
+ * trilinear cell (integer) and the position inside that cell (fraction).
+ * The fraction is the same for every voxel, which is what makes the march
+ * a fixed 8-tap stencil per sample.
+ */
+struct LAOTap
+{
+  ivec4 cell; /* xyz: lower-corner offset in voxels; w: linear offset of that corner */
+  vec4 frac;  /* xyz: trilinear fractions in [0,1); w: unused (0) */
+};
+
+struct LAOParams
+{
+  ivec4 dims;        /* xyz: voxels per axis; w: 0 */
+  ivec4 strides;     /* xyz: linear strides (1, nx, nx*ny); w: 0 */
+  ivec4 rays;        /* x: rays K; y: samples per ray M; z: taps per ray (M-1); w: 0 */
+  ivec4 interiorMin; /* xyz: first voxel index whose every tap is in bounds */
+  ivec4 interiorMax; /* xyz: last voxel index whose every tap is in bounds */
+  vec4 norm;         /* x: float(K*M), the divisor of the summed transmittances */
+};
+
+/*
+ * Per-pose clipping parameters. toCamera maps a continuous voxel index
+ * (x, y, z, 1) to the clipping camera's (u, v, depth): u and v in depth-map
+ * pixels, depth in the mesh's local length unit along the view direction.
+ * Each row is evaluated as ((r.x*x + r.y*y) + r.z*z) + r.w, in that order.
+ */
+struct ClipParams
+{
+  vec4 toCamera[3];
+  ivec4 map;    /* x: width; y: height; z: layers; w: mode (CAO_MODE_*) */
+  ivec4 aa;     /* x: extra AA samples N; yzw: 0 */
+  ivec4 boxMin; /* xyz: first voxel of the candidate box (inclusive) */
+  ivec4 boxMax; /* xyz: last voxel of the candidate box (inclusive) */
+  vec4 aaOffsets[CAO_MAX_AA_EXTRA_SAMPLES]; /* xyz in [-0.5,0.5]: extra AA positions */
+};
+
+#ifdef __cplusplus
+static_assert(sizeof(LAOTap) == 32, "LAOTap must match std430");
+static_assert(sizeof(LAOParams) == 96, "LAOParams must match std140/std430");
+static_assert(sizeof(ClipParams) == 3 * 16 + 4 * 16 + CAO_MAX_AA_EXTRA_SAMPLES * 16,
+  "ClipParams must match std140/std430");
+} // namespace shared
+} // namespace cao
+#endif
+
+#undef CAO_CONST
+#endif
