@@ -357,8 +357,11 @@ int vtkClipDepthMaps::RequestData(
     }
     else
     {
-      pw = ph = this->PixelSize > 0.0 ? this->PixelSize
-                                      : 0.5 * std::min({ h[0], h[1], h[2] }) / this->MinimumPoseScale;
+      // Auto: half the smallest voxel, but no finer than radius / 32 so that
+      // the brute-force dilation window stays at most ~65 x 65 pixels.
+      pw = ph = this->PixelSize > 0.0
+        ? this->PixelSize
+        : std::max(0.5 * std::min({ h[0], h[1], h[2] }) / this->MinimumPoseScale, radius / 32.0);
       const double margin = this->Margin >= 0.0 ? this->Margin : radius + 2.0 * pw;
       const double span = std::max(umax - umin, vmax - vmin) + 2.0 * margin;
       if (this->PixelSize <= 0.0 && span / pw > 4096.0)
@@ -392,6 +395,15 @@ int vtkClipDepthMaps::RequestData(
   if (!(pw > 0.0) || !(ph > 0.0) || width < 1 || height < 1 || !std::isfinite(pw * ph))
   {
     vtkErrorMacro("The clipping camera has zero area.");
+    return 0;
+  }
+  // The dilation visits (2 r + 3)^2 window pixels per pixel, r = radius / pixel.
+  const double window = (2.0 * std::ceil(radius / pw) + 3.0) * (2.0 * std::ceil(radius / ph) + 3.0);
+  if (static_cast<double>(width) * height * this->NumberOfLayers * window > 2.0e10)
+  {
+    vtkErrorMacro("The dilation radius " << radius << " spans " << std::ceil(radius / pw)
+      << " pixels of size " << pw << ": too many for the 2D dilation. Increase PixelSize "
+      "(or leave it at 0 to derive it).");
     return 0;
   }
   if (static_cast<double>(width) * height * this->NumberOfLayers > 1.0e9)

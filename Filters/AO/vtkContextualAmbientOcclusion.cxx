@@ -122,6 +122,18 @@ int vtkContextualAmbientOcclusion::RequestUpdateExtent(
     inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
       inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
   }
+  // The depth maps are produced whole and their extent is known only once
+  // they exist: ask for exactly the extent already held, so a pose change
+  // (which changes only this filter) never re-executes them. The pipeline
+  // would otherwise forward the volume's extent here and force a rerun.
+  vtkInformation* mapsInfo = inputVector[1]->GetInformationObject(0);
+  vtkImageData* maps = vtkImageData::GetData(mapsInfo);
+  int held[6] = { 0, -1, 0, -1, 0, -1 };
+  if (maps && maps->GetNumberOfPoints() > 0)
+  {
+    maps->GetExtent(held);
+  }
+  mapsInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), held, 6);
   return 1;
 }
 

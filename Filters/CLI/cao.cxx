@@ -373,6 +373,9 @@ bool Write(vtkImageData* image, const std::string& path, std::string& error)
 {
   vtkNew<vtkXMLImageDataWriter> w;
   w->SetFileName(path.c_str());
+  // Inline binary arrays: the default appended-base64 mode produced files
+  // that ParaView 5.11's reader rejected (offsets past the data).
+  w->SetDataModeToBinary();
   w->SetInputData(image);
   ErrorLog log;
   log.Watch(w);

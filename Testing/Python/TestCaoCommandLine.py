@@ -1,0 +1,146 @@
+"""The `cao` tool end to end: every volume and mesh format it promises,
+poses from the command line and from a file, --json, --verify (exact at
+every pose), the .vti it writes, and clear errors with non-zero exit codes
+for unreadable files, bad arguments and bad clip meshes."""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+from vtkmodules.vtkCommonDataModel import vtkPolyData
+from vtkmodules.vtkFiltersSources import vtkSphereSource
+from vtkmodules.vtkIOGeometry import vtkSTLWriter
+from vtkmodules.vtkIOImage import vtkNIFTIImageWriter, vtkSLCReader
+from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLPolyDataWriter
+
+tool = os.environ["CAO_TOOL"]
+data = os.environ["CAO_DATA_DIR"]
+tmp = tempfile.mkdtemp(prefix="cao-cli-")
+failures = []
+passed = 0
+
+
+def run(*args):
+    p = subprocess.run([tool, *args], capture_output=True, text=True, timeout=600)
+    return p.returncode, p.stdout, p.stderr
+
+
+def check(condition, what):
+    global passed
+    if condition:
+        passed += 1
+    else:
+        failures.append(what)
+        print("FAIL:", what)
+
+
+def expect_error(args, code, words, what):
+    rc, out, err = run(*args)
+    check(rc == code and words in err and "Segmentation" not in err,
+          f"{what}: rc={rc} stderr={err.strip()[:200]!r}")
+
+
+# lao on three formats: .slc, .mhd, .vti, legacy .vtk, and a .nii we write.
+nii = os.path.join(tmp, "neghip.nii.gz")
+r = vtkSLCReader()
+r.SetFileName(os.path.join(data, "neghip.slc"))
+w = vtkNIFTIImageWriter()
+w.SetInputConnection(r.GetOutputPort())
+w.SetFileName(nii)
+w.Write()
+for volume in ("neghip.slc", "HeadMRVolume.mhd", "hydrogen.vti", "ironProt.vtk", nii):
+    path = volume if os.path.isabs(volume) else os.path.join(data, volume)
+    rc, out, err = run("lao", path, "--rays", "6", "--json")
+    ok = rc == 0
+    if ok:
+        summary = json.loads(out)
+        ok = 0.0 <= summary["ao_range"][0] <= summary["ao_range"][1] <= 1.0
+    check(ok, f"lao {volume}: rc={rc} {err.strip()[:200]}")
+
+# lao writes a .vti with the AO array.
+out_vti = os.path.join(tmp, "lao.vti")
+rc, out, err = run("lao", os.path.join(data, "neghip.slc"), "--rays", "fib:20", "-o", out_vti)
+reader = vtkXMLImageDataReader()
+reader.SetFileName(out_vti)
+reader.Update()
+ao = reader.GetOutput().GetPointData().GetArray("AmbientOcclusion")
+check(rc == 0 and ao is not None and ao.GetNumberOfTuples() == 66 ** 3, "lao -o writes AO")
+
+# carve with a torus along the default path, verified, JSON summary.
+carve_vti = os.path.join(tmp, "carve.vti")
+rc, out, err = run("carve", os.path.join(data, "HeadMRVolume.mhd"), "--shape", "torus",
+                   "--rays", "14", "--path", "20", "--verify", "--json", "-o", carve_vti)
+check(rc == 0, f"carve torus --verify: rc={rc} {err.strip()[:300]}")
+if rc == 0:
+    summary = json.loads(out)
+    run0 = summary["runs"][0]
+    check(len(run0["poses"]) == 20, "20 poses reported")
+    check(all(p["max_abs_difference"] == 0 for p in run0["poses"]), "verify exact at every pose")
+    check(all(sum(p["counts"].values()) == summary["voxels"] for p in run0["poses"]),
+          "category counts partition the volume")
+    check(any(p["counts"]["affected"] > 0 for p in run0["poses"]), "the path affects voxels")
+    check(all(k in run0["poses"][0]["ms"] for k in ("classify", "copy", "recompute", "cao_total"))
+          and "speedup" in run0["poses"][0] and "full_lao_ms" in run0["poses"][0],
+          "per-stage milliseconds, full LAO and speed-up in JSON")
+    reader.SetFileName(carve_vti)
+    reader.Update()
+    pd = reader.GetOutput().GetPointData()
+    check(all(pd.GetArray(n) is not None for n in ("AmbientOcclusion", "ClipCategory", "ClippedOpacity")),
+          "carve -o writes AO, categories and clipped opacity")
+
+# Poses from a file and from the command line; meshes from .vtp and .stl.
+poses = os.path.join(tmp, "poses.txt")
+with open(poses, "w") as f:
+    f.write("# tx ty tz rx ry rz scale\n33 33 33\n\n20 30 40 10 20 30 1.2\n40,25,30,0,90,0,0.8\n")
+sphere = vtkSphereSource()
+sphere.SetRadius(10)
+sphere.Update()
+vtp = os.path.join(tmp, "sphere.vtp")
+wv = vtkXMLPolyDataWriter()
+wv.SetInputData(sphere.GetOutput())
+wv.SetFileName(vtp)
+wv.Write()
+stl = os.path.join(tmp, "sphere.stl")
+ws = vtkSTLWriter()
+ws.SetInputData(sphere.GetOutput())
+ws.SetFileName(stl)
+ws.Write()
+for mesh in (vtp, stl):
+    rc, out, err = run("carve", os.path.join(data, "neghip.slc"), "--mesh", mesh, "--poses", poses,
+                       "--rays", "6", "--verify", "--json")
+    check(rc == 0 and len(json.loads(out)["runs"][0]["poses"]) == 3,
+          f"carve --mesh {os.path.basename(mesh)} --poses: rc={rc} {err.strip()[:200]}")
+rc, out, err = run("carve", os.path.join(data, "neghip.slc"), "--shape", "cube", "--pose", "30 30 30 45 0 0",
+                   "--pose", "10,10,10", "--rays", "6,26", "--mode", "probe", "--verify")
+check(rc == 0 and "| 6 |" in out and "| 26 |" in out, f"carve --pose, two ray sets, probe: rc={rc}")
+
+# Errors: clear message, non-zero exit, no crash.
+garbage = os.path.join(tmp, "garbage.slc")
+with open(garbage, "wb") as f:
+    f.write(b"\x00\x01not a volume at all" * 10)
+open_mesh = os.path.join(tmp, "open.vtp")
+cut = vtkPolyData()
+cut.DeepCopy(sphere.GetOutput())
+cut.DeleteCell(3)
+cut.RemoveDeletedCells()
+wv.SetInputData(cut)
+wv.SetFileName(open_mesh)
+wv.Write()
+neghip = os.path.join(data, "neghip.slc")
+expect_error(["lao", os.path.join(tmp, "missing.vti")], 2, "cannot open", "missing file")
+expect_error(["lao", garbage], 2, "cannot read", "unreadable volume")
+expect_error(["lao", os.path.join(tmp, "poses.txt")], 2, "unknown volume format", "unknown format")
+expect_error(["lao", neghip, "--rays", "7"], 2, "bad ray pattern", "bad ray pattern")
+expect_error(["lao", neghip, "--bogus"], 2, "unknown option", "unknown option")
+expect_error(["lao", neghip, "--reach", "-3"], 2, "bad value", "negative reach")
+expect_error(["frobnicate", neghip], 2, "unknown command", "unknown command")
+expect_error(["carve", neghip, "--pose", "1 2"], 2, "a pose is", "malformed pose")
+expect_error(["carve", neghip, "--mesh", open_mesh], 2, "open", "open clip mesh")
+expect_error(["carve", neghip, "--shape", "teapot"], 2, "unknown shape", "unknown shape")
+expect_error(["carve", neghip, "--poses", os.path.join(tmp, "nope.txt")], 2, "cannot open", "missing pose file")
+rc, out, err = run("--help")
+check(rc == 0 and "cao carve" in out, "--help")
+
+print(f"{passed} passed, {len(failures)} failed")
+sys.exit(1 if failures else 0)
