@@ -8,6 +8,10 @@
 #define vtkCAOFilterUtilities_h
 
 #include "vtkAlgorithm.h"
+#include "vtkImageData.h"
+#include "vtkMatrix3x3.h"
+
+#include "caoLAO.h"
 #include "vtkSMPTools.h"
 
 #include <algorithm>
@@ -84,6 +88,17 @@ inline double MillisecondsSince(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
     .count();
+}
+
+/// The kernels' view of an image's grid: voxel counts, spacing, direction.
+inline cao::VolumeGeometry GeometryOf(vtkImageData* image)
+{
+  cao::VolumeGeometry g;
+  image->GetDimensions(g.dims);
+  image->GetSpacing(g.spacing);
+  const double* dm = image->GetDirectionMatrix()->GetData();
+  std::copy(dm, dm + 9, g.direction);
+  return g;
 }
 
 /// Names of the arrays the filters exchange.

@@ -191,16 +191,8 @@ int vtkLocalAmbientOcclusion::RequestData(
     return 0;
   }
 
-  double spacing[3];
-  input->GetSpacing(spacing);
-  cao::VolumeGeometry geometry;
-  for (int d = 0; d < 3; ++d)
-  {
-    geometry.dims[d] = dims[d];
-    geometry.spacing[d] = spacing[d];
-  }
-  const double* dm = input->GetDirectionMatrix()->GetData();
-  std::copy(dm, dm + 9, geometry.direction);
+  const cao::VolumeGeometry geometry = vtkCAO::GeometryOf(input);
+  const double* spacing = geometry.spacing;
 
   cao::LAOSettings settings;
   settings.pattern = static_cast<cao::RayPattern>(this->RayPattern);

@@ -17,17 +17,7 @@
 #include <cstring>
 #include <string>
 
-#define CAO_CHECK(cond, ...)                                                                       \
-  do                                                                                               \
-  {                                                                                                \
-    if (!(cond))                                                                                   \
-    {                                                                                              \
-      std::fprintf(stderr, "%s:%d: check failed: %s: ", __FILE__, __LINE__, #cond);               \
-      std::fprintf(stderr, __VA_ARGS__);                                                           \
-      std::fprintf(stderr, "\n");                                                                  \
-      return 1;                                                                                    \
-    }                                                                                              \
-  } while (0)
+#include "caoTestUtilities.h" // CAO_CHECK, shared with the kernel tests
 
 namespace caotest
 {
