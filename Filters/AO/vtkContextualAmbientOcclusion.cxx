@@ -1,6 +1,7 @@
 #include "vtkContextualAmbientOcclusion.h"
 
 #include "vtkCAOFilterUtilities.h"
+#include "vtkCAOGPUSession.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -17,6 +18,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkStringArray.h"
 #include "vtkTransform.h"
 #include "vtkUnsignedCharArray.h"
 
@@ -55,6 +57,7 @@ bool FieldTuple(vtkFieldData* fd, const char* name, int components, double* out)
 
 //------------------------------------------------------------------------------
 vtkContextualAmbientOcclusion::vtkContextualAmbientOcclusion()
+  : GPU(new vtkCAO::GPUSession)
 {
   vtkCAO::EnsureThreadedBackend();
   this->SetNumberOfInputPorts(2);
@@ -66,6 +69,13 @@ vtkContextualAmbientOcclusion::vtkContextualAmbientOcclusion()
 vtkContextualAmbientOcclusion::~vtkContextualAmbientOcclusion()
 {
   this->SetPoseTransform(nullptr);
+}
+
+//------------------------------------------------------------------------------
+void vtkContextualAmbientOcclusion::ReleaseGraphicsResources()
+{
+  this->GPU->Release();
+  this->Precompute->ReleaseGraphicsResources();
 }
 
 //------------------------------------------------------------------------------
@@ -168,6 +178,13 @@ int vtkContextualAmbientOcclusion::RequestData(
     return 0;
   }
 
+  bool gpuFailed = false;
+  const bool gpu = this->GPU->Resolve(this, this->Backend, gpuFailed);
+  if (gpuFailed)
+  {
+    return 0;
+  }
+
   // 1. Precomputed, unclipped LAO: from the input, or computed and cached.
   vtkImageData* source = input;
   vtkFloatArray* precomputed = FloatArray(input->GetPointData(), vtkCAO::AmbientOcclusionName);
@@ -186,6 +203,7 @@ int vtkContextualAmbientOcclusion::RequestData(
       copy->ShallowCopy(input);
       this->Precompute->SetInputData(copy);
       this->Precompute->SetNumberOfThreads(this->NumberOfThreads);
+      this->Precompute->SetBackend(gpu ? vtkLocalAmbientOcclusion::OPENGL : vtkLocalAmbientOcclusion::CPU);
       this->Precompute->OutputOpacityOn();
       this->Precompute->Update();
       this->Precompute->SetInputData(nullptr);
@@ -376,6 +394,118 @@ int vtkContextualAmbientOcclusion::RequestData(
   std::vector<std::int64_t> affected;
   bool ok = true;
   const auto startAll = std::chrono::steady_clock::now();
+  std::int64_t gpuResident = 0;
+  if (gpu)
+  {
+    // The same plan, opacity, maps and ClipParams on the GPU. The engine
+    // keeps the volume, the precomputed AO and the maps between poses; only
+    // a new volume, opacity or plan re-runs the precompute, and only new
+    // maps are re-uploaded.
+    cao::gl::AOEngine& engine = this->GPU->Engine();
+    vtkDataArray* scalars = input->GetPointData()->GetScalars();
+    const std::vector<double> volumeKey = { static_cast<double>(reinterpret_cast<std::uintptr_t>(opacity)),
+      static_cast<double>(opacity->GetMTime()), static_cast<double>(dims[0]),
+      static_cast<double>(dims[1]), static_cast<double>(dims[2]), lao[0], lao[2], lao[3], lao[6],
+      spacing[0], spacing[1], spacing[2],
+      scalars ? static_cast<double>(scalars->GetMTime()) : -1.0 };
+    if (volumeKey != this->GPU->Key || !engine.HasPrecomputed())
+    {
+      std::vector<std::uint8_t> packed;
+      const cao::gl::VolumeUpload upload = vtkCAO::MakeVolumeUpload(scalars,
+        scalars && scalars->GetNumberOfComponents() == 1 ? 0 : -1, opacity->GetPointer(0), dims,
+        packed);
+      bool aborted = false;
+      const bool done = engine.SetVolume(upload, error) && engine.SetPlan(plan, error) &&
+        engine.Precompute(error, [&](double f) {
+          this->UpdateProgress(0.5 * f);
+          aborted = this->CheckAbort();
+          return !aborted;
+        });
+      this->GPU->Key.clear();
+      this->GPUMapsKey.clear();
+      if (aborted)
+      {
+        return 1;
+      }
+      if (!done)
+      {
+        vtkErrorMacro("The OpenGL LAO precompute failed: " << error << ".");
+        return 0;
+      }
+      this->GPU->Key = volumeKey;
+    }
+    const std::vector<double> mapsKey = { static_cast<double>(reinterpret_cast<std::uintptr_t>(maps)),
+      static_cast<double>(maps->GetMTime()), static_cast<double>(this->Mode) };
+    if (mapsKey != this->GPUMapsKey)
+    {
+      if (!engine.SetMaps(width, height, layers, view.front, view.back, view.candFront,
+            view.candBack, error))
+      {
+        vtkErrorMacro("The depth-map upload failed: " << error << ".");
+        return 0;
+      }
+      this->GPUMapsKey = mapsKey;
+    }
+    cao::gl::UpdateStats stats;
+    std::vector<std::uint16_t> stored;
+    std::vector<std::uint8_t> state;
+    if (!engine.Update(clip, stats, error) || !engine.ReadCurrentAO(stored, error) ||
+      !engine.ReadState(state, error))
+    {
+      vtkErrorMacro("The OpenGL pose update failed: " << error << ".");
+      return 0;
+    }
+    counts.clipped = stats.clipped;
+    counts.affected = stats.affected;
+    counts.unaffected = stats.unaffected;
+    const cao::gl::StageTimes& t = engine.Times();
+    classifyMs = t.classify;
+    copyMs = t.copy;
+    recomputeMs = t.recompute;
+    // Outputs: the AO as stored, the category, and the clipped opacity the
+    // state implies (caoClassify's arithmetic: a * (1 - c) or a * c).
+    const float* a = opacity->GetPointer(0);
+    float* out = ao->GetPointer(0);
+    float* ac = clipped->GetPointer(0);
+    std::uint8_t* cat = category->GetPointer(0);
+    const int total = 9 + clip.aa.x;
+    const bool subtract = clip.map.w == cao::shared::CAO_MODE_SUBTRACT;
+    for (std::int64_t v = 0; v < voxels; ++v)
+    {
+      const std::uint8_t sv = state[static_cast<std::size_t>(v)];
+      const int k = std::min<int>(sv & cao::shared::CAO_STATE_COUNT_MASK, total);
+      const float coverage = static_cast<float>(k) / static_cast<float>(total);
+      cat[v] = static_cast<std::uint8_t>(sv >> cao::shared::CAO_STATE_CATEGORY_SHIFT);
+      ac[v] = cat[v] == cao::shared::CAO_CATEGORY_CLIPPED
+        ? 0.0f
+        : a[v] * (subtract ? 1.0f - coverage : coverage);
+      out[v] = cao::gl::AOEngine::Dequantize(stored[static_cast<std::size_t>(v)]);
+    }
+    if (this->Verify)
+    {
+      // GPU CAO against the GPU full recompute, on the stored 16-bit values.
+      std::vector<std::uint16_t> full;
+      if (!engine.FullRecompute(full, error))
+      {
+        vtkErrorMacro("The OpenGL full recompute failed: " << error << ".");
+        return 0;
+      }
+      fullMs = engine.Times().full;
+      maxDifference = 0.0;
+      for (std::int64_t v = 0; v < voxels; ++v)
+      {
+        const std::size_t i = static_cast<std::size_t>(v);
+        if (cat[v] != cao::shared::CAO_CATEGORY_CLIPPED && full[i] != stored[i])
+        {
+          ++differing;
+          maxDifference = std::max(maxDifference,
+            std::fabs(double(full[i]) - double(stored[i])) / cao::shared::CAO_AO_SCALE);
+        }
+      }
+    }
+    gpuResident = engine.ResidentBytes();
+  }
+  else
   vtkCAO::WithThreads(this->NumberOfThreads, [&] {
     // Classification, slab by slab; the affected lists are concatenated in
     // slab order, so the list is sorted whatever the thread count.
@@ -451,7 +581,8 @@ int vtkContextualAmbientOcclusion::RequestData(
   {
     return 1; // aborted; the executive flags the output
   }
-  const double totalMs = vtkCAO::MillisecondsSince(startAll) - fullMs * (fullMs > 0.0);
+  const double totalMs = gpu ? classifyMs + copyMs + recomputeMs
+                            : vtkCAO::MillisecondsSince(startAll) - fullMs * (fullMs > 0.0);
 
   output->ShallowCopy(input);
   vtkPointData* pd = output->GetPointData();
@@ -487,6 +618,24 @@ int vtkContextualAmbientOcclusion::RequestData(
   timing->InsertNextTuple(timingValues);
   output->GetFieldData()->AddArray(timing);
 
+  vtkNew<vtkStringArray> backend;
+  backend->SetName("ComputeBackend");
+  backend->InsertNextValue(
+    gpu ? "OpenGL (" + this->GPU->ContextKind() + ": " + this->GPU->Description() + ")"
+        : (this->GPU->Note.empty() ? std::string("CPU") : "CPU (" + this->GPU->Note + ")"));
+  output->GetFieldData()->AddArray(backend);
+  if (gpu)
+  {
+    vtkNew<vtkDoubleArray> gpuInfo;
+    gpuInfo->SetName("GPUStatistics");
+    gpuInfo->SetNumberOfComponents(2);
+    gpuInfo->SetComponentName(0, "ResidentBytes");
+    gpuInfo->SetComponentName(1, "ResidentBytesPerVoxel");
+    const double info[2] = { static_cast<double>(gpuResident),
+      static_cast<double>(gpuResident) / static_cast<double>(voxels) };
+    gpuInfo->InsertNextTuple(info);
+    output->GetFieldData()->AddArray(gpuInfo);
+  }
   if (this->Verify)
   {
     vtkNew<vtkDoubleArray> verification;
@@ -520,6 +669,7 @@ void vtkContextualAmbientOcclusion::PrintSelf(ostream& os, vtkIndent indent)
   }
   os << indent << "AntiAliasingSamples: " << this->AntiAliasingSamples << "\n";
   os << indent << "Verify: " << (this->Verify ? "On" : "Off") << "\n";
+  os << indent << "Backend: " << vtkCAO::BackendName(this->Backend) << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "PrecomputeCount: " << this->PrecomputeCount << "\n";
   os << indent << "Precompute (LAO settings when the input has none):\n";

@@ -30,6 +30,14 @@
 
 #include "caoFiltersAOModule.h" // For export macro
 #include "vtkImageAlgorithm.h"
+
+#include <memory> // For the GPU session
+#include <vector> // For the GPU maps key
+
+namespace vtkCAO
+{
+class GPUSession;
+}
 #include "vtkLocalAmbientOcclusion.h" // For the forwarded LAO settings
 #include "vtkSmartPointer.h"          // For members
 
@@ -122,6 +130,32 @@ public:
   /// Includes the pose transform's and the LAO settings' modification times.
   vtkMTimeType GetMTime() override;
 
+  /// Where the work runs (see Backend).
+  enum Backends
+  {
+    AUTO = 0,
+    CPU = 1,
+    OPENGL = 2
+  };
+
+  ///@{
+  /**
+   * Backend: CPU, OPENGL (compute shaders in a headless EGL or OSMesa
+   * OpenGL >= 4.3 context; an error when there is none) or AUTO (default:
+   * OpenGL on a hardware GPU; otherwise, including Mesa's software
+   * llvmpipe, the CPU, with one warning). The output's field array
+   * "ComputeBackend" says what ran and on which context.
+   */
+  vtkSetClampMacro(Backend, int, AUTO, OPENGL);
+  vtkGetMacro(Backend, int);
+  void SetBackendToAuto() { this->SetBackend(AUTO); }
+  void SetBackendToCPU() { this->SetBackend(CPU); }
+  void SetBackendToOpenGL() { this->SetBackend(OPENGL); }
+  ///@}
+
+  /// Free the GPU objects and the OpenGL context this filter holds.
+  void ReleaseGraphicsResources();
+
 protected:
   vtkContextualAmbientOcclusion();
   ~vtkContextualAmbientOcclusion() override;
@@ -136,6 +170,9 @@ protected:
   int AntiAliasingSamples = 16;
   bool Verify = false;
   int NumberOfThreads = 0;
+  int Backend = AUTO;
+  std::unique_ptr<vtkCAO::GPUSession> GPU;
+  std::vector<double> GPUMapsKey; // what the engine holds as maps
   int PrecomputeCount = 0;
 
   vtkSmartPointer<vtkLocalAmbientOcclusion> Precompute;

@@ -1,6 +1,7 @@
 #include "vtkLocalAmbientOcclusion.h"
 
 #include "vtkCAOFilterUtilities.h"
+#include "vtkCAOGPUSession.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -15,6 +16,7 @@
 #include "vtkPointData.h"
 #include "vtkSMPThreadLocal.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkStringArray.h"
 
 #include "caoLAO.h"
 
@@ -88,6 +90,7 @@ bool ComputeOpacity(vtkAlgorithm* self, vtkDataArray* scalars, int component,
 
 //------------------------------------------------------------------------------
 vtkLocalAmbientOcclusion::vtkLocalAmbientOcclusion()
+  : GPU(new vtkCAO::GPUSession)
 {
   vtkCAO::EnsureThreadedBackend();
   this->SetInputArrayToProcess(
@@ -98,6 +101,12 @@ vtkLocalAmbientOcclusion::vtkLocalAmbientOcclusion()
 vtkLocalAmbientOcclusion::~vtkLocalAmbientOcclusion()
 {
   this->SetOpacityFunction(nullptr);
+}
+
+//------------------------------------------------------------------------------
+void vtkLocalAmbientOcclusion::ReleaseGraphicsResources()
+{
+  this->GPU->Release();
 }
 
 //------------------------------------------------------------------------------
@@ -223,6 +232,13 @@ int vtkLocalAmbientOcclusion::RequestData(
     tf = ramp;
   }
 
+  bool gpuFailed = false;
+  const bool gpu = this->GPU->Resolve(this, this->Backend, gpuFailed);
+  if (gpuFailed)
+  {
+    return 0;
+  }
+
   const auto start = std::chrono::steady_clock::now();
   vtkNew<vtkFloatArray> opacity;
   opacity->SetName(vtkCAO::OpacityName);
@@ -236,7 +252,7 @@ int vtkLocalAmbientOcclusion::RequestData(
   vtkCAO::WithThreads(this->NumberOfThreads, [&] {
     ok = ComputeOpacity(this, scalars, component, tf,
       plan.step / this->ScalarOpacityUnitDistance, opacity->GetPointer(0), nonFinite);
-    if (!ok)
+    if (!ok || gpu)
       return;
     const float* a = opacity->GetPointer(0);
     float* out = ao->GetPointer(0);
@@ -246,6 +262,42 @@ int vtkLocalAmbientOcclusion::RequestData(
   if (nonFinite > 0)
   {
     vtkWarningMacro(<< nonFinite << " NaN or Inf scalar value(s) treated as transparent.");
+  }
+  double gpuMs = -1.0;
+  if (ok && gpu)
+  {
+    // The same plan and opacity on the GPU: scalars + an exact opacity
+    // table when the data allow it, else float opacity.
+    cao::gl::AOEngine& engine = this->GPU->Engine();
+    std::vector<std::uint8_t> packed;
+    const cao::gl::VolumeUpload upload =
+      vtkCAO::MakeVolumeUpload(scalars, component, opacity->GetPointer(0), dims, packed);
+    std::vector<std::uint16_t> stored;
+    bool aborted = false;
+    const bool done = engine.SetVolume(upload, error) && engine.SetPlan(plan, error) &&
+      engine.Precompute(error,
+        [&](double f) {
+          this->UpdateProgress(0.1 + 0.85 * f);
+          aborted = this->CheckAbort();
+          return !aborted;
+        }) &&
+      engine.ReadPrecomputedAO(stored, error);
+    this->GPU->Key.clear(); // the engine now holds this filter's volume
+    if (aborted)
+    {
+      return 1;
+    }
+    if (!done)
+    {
+      vtkErrorMacro("The OpenGL LAO failed: " << error << ".");
+      return 0;
+    }
+    float* out = ao->GetPointer(0);
+    for (std::int64_t v = 0; v < voxels; ++v)
+    {
+      out[v] = cao::gl::AOEngine::Dequantize(stored[static_cast<std::size_t>(v)]);
+    }
+    gpuMs = engine.Times().precompute;
   }
   if (!ok)
   {
@@ -273,6 +325,24 @@ int vtkLocalAmbientOcclusion::RequestData(
     this->ScalarOpacityUnitDistance, static_cast<double>(this->NumberOfRays), ms };
   params->InsertNextTuple(values);
   output->GetFieldData()->AddArray(params);
+  vtkNew<vtkStringArray> backend;
+  backend->SetName("ComputeBackend");
+  backend->InsertNextValue(
+    gpu ? "OpenGL (" + this->GPU->ContextKind() + ": " + this->GPU->Description() + ")"
+        : (this->GPU->Note.empty() ? std::string("CPU") : "CPU (" + this->GPU->Note + ")"));
+  output->GetFieldData()->AddArray(backend);
+  if (gpu)
+  {
+    vtkNew<vtkDoubleArray> gpuInfo;
+    gpuInfo->SetName("GPUStatistics");
+    gpuInfo->SetNumberOfComponents(2);
+    gpuInfo->SetComponentName(0, "PrecomputeMilliseconds");
+    gpuInfo->SetComponentName(1, "ResidentBytesPerVoxel");
+    const double info[2] = { gpuMs,
+      static_cast<double>(this->GPU->Engine().ResidentBytes()) / static_cast<double>(voxels) };
+    gpuInfo->InsertNextTuple(info);
+    output->GetFieldData()->AddArray(gpuInfo);
+  }
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -301,4 +371,5 @@ void vtkLocalAmbientOcclusion::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Component: " << this->Component << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "OutputOpacity: " << (this->OutputOpacity ? "On" : "Off") << "\n";
+  os << indent << "Backend: " << vtkCAO::BackendName(this->Backend) << "\n";
 }

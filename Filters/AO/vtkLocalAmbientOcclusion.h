@@ -28,6 +28,13 @@
 #include "caoFiltersAOModule.h" // For export macro
 #include "vtkImageAlgorithm.h"
 
+#include <memory> // For the GPU session
+
+namespace vtkCAO
+{
+class GPUSession;
+}
+
 class vtkPiecewiseFunction;
 
 class CAOFILTERSAO_EXPORT vtkLocalAmbientOcclusion : public vtkImageAlgorithm
@@ -124,6 +131,32 @@ public:
   /// Includes the opacity function's modification time.
   vtkMTimeType GetMTime() override;
 
+  /// Where the work runs (see Backend).
+  enum Backends
+  {
+    AUTO = 0,
+    CPU = 1,
+    OPENGL = 2
+  };
+
+  ///@{
+  /**
+   * Backend: CPU, OPENGL (compute shaders in a headless EGL or OSMesa
+   * OpenGL >= 4.3 context; an error when there is none) or AUTO (default:
+   * OpenGL on a hardware GPU; otherwise, including Mesa's software
+   * llvmpipe, the CPU, with one warning). The output's field array
+   * "ComputeBackend" says what ran and on which context.
+   */
+  vtkSetClampMacro(Backend, int, AUTO, OPENGL);
+  vtkGetMacro(Backend, int);
+  void SetBackendToAuto() { this->SetBackend(AUTO); }
+  void SetBackendToCPU() { this->SetBackend(CPU); }
+  void SetBackendToOpenGL() { this->SetBackend(OPENGL); }
+  ///@}
+
+  /// Free the GPU objects and the OpenGL context this filter holds.
+  void ReleaseGraphicsResources();
+
 protected:
   vtkLocalAmbientOcclusion();
   ~vtkLocalAmbientOcclusion() override;
@@ -139,6 +172,8 @@ protected:
   double Reach = 0.0;
   int Component = -1;
   int NumberOfThreads = 0;
+  int Backend = AUTO;
+  std::unique_ptr<vtkCAO::GPUSession> GPU;
   bool OutputOpacity = true;
 
 private:

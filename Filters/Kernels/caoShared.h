@@ -1,5 +1,5 @@
 /*
- * caoShared.h — the one definition of ContextualAO's parameter blocks and
+ * caoShared.h - the one definition of ContextualAO's parameter blocks and
  * buffer layouts, compiled both as C++ (kernels, filters) and as GLSL
  * (compute shaders, via #include after vtk_encode_string embedding).
  *
@@ -82,6 +82,36 @@ struct ClipParams
   ivec4 boxMax; /* xyz: last voxel of the candidate box (inclusive) */
   vec4 aaOffsets[CAO_MAX_AA_EXTRA_SAMPLES]; /* xyz in [-0.5,0.5]: extra AA positions */
 };
+
+/*
+ * Binding points, shared so that the C++ side binds what the GLSL declares.
+ * Plain #defines: GLSL 4.30 layout qualifiers need literal-like constants.
+ */
+#define CAO_BINDING_LAO_PARAMS 0    /* uniform block: LAOParams */
+#define CAO_BINDING_CLIP_PARAMS 1   /* uniform block: ClipParams */
+#define CAO_BINDING_TAPS 0          /* storage: LAOTap[K*(M-1)] */
+#define CAO_BINDING_OPACITY_TABLE 1 /* storage: float opacity per scalar value */
+#define CAO_BINDING_CLIP_FACTORS 2  /* storage: float clip factor per coverage count */
+#define CAO_BINDING_MAPS 3          /* storage: front, back, candidate front, candidate back */
+#define CAO_BINDING_COUNTERS 4      /* storage: uint category counts (a, b, c) */
+#define CAO_BINDING_FRAGMENTS 5     /* storage: depth-map fragment lists */
+#define CAO_BINDING_TRIANGLES 6     /* storage: per-triangle depth planes */
+#define CAO_BINDING_WINDOW 7        /* storage: dilation window offsets */
+#define CAO_IMAGE_VOLUME 0          /* scalars (r8ui/r16ui) or opacity (r32f) */
+#define CAO_IMAGE_STATE 1           /* r8ui: category << 6 | coverage count */
+#define CAO_IMAGE_AO_IN 2           /* r16ui: precomputed AO */
+#define CAO_IMAGE_AO_OUT 3          /* r16ui: current AO */
+
+/*
+ * The per-voxel clip state the GPU keeps (one byte): the category in the
+ * top two bits and the anti-aliasing coverage count (0 .. 9 + N) in the low
+ * six. The clipped opacity is opacity * clipFactor[count], with the factor
+ * table computed on the CPU exactly as caoClassify computes 1 - c or c.
+ */
+CAO_CONST CAO_STATE_CATEGORY_SHIFT = 6;
+CAO_CONST CAO_STATE_COUNT_MASK = 63;
+/* AO is stored on the GPU as 16-bit unsigned normalised: q = uint(ao * 65535 + 0.5). */
+CAO_CONST CAO_AO_SCALE = 65535;
 
 #ifdef __cplusplus
 static_assert(sizeof(LAOTap) == 32, "LAOTap must match std430");

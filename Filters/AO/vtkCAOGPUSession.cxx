@@ -1,0 +1,177 @@
+#include "vtkCAOGPUSession.h"
+
+#include "vtkAlgorithm.h"
+#include "vtkDataArray.h"
+#include "vtkObject.h"
+#include "vtkSetGet.h"
+
+#include <cstdlib>
+#include <cstring>
+
+namespace vtkCAO
+{
+namespace
+{
+bool SoftwareRenderer(const std::string& description)
+{
+  for (const char* s : { "llvmpipe", "softpipe", "SwiftShader", "swrast", "Software Rasterizer" })
+    if (description.find(s) != std::string::npos)
+      return true;
+  return false;
+}
+}
+
+const char* BackendName(int backend)
+{
+  switch (backend)
+  {
+    case BACKEND_CPU:
+      return "CPU";
+    case BACKEND_OPENGL:
+      return "OpenGL";
+    default:
+      return "Auto";
+  }
+}
+
+GPUSession::GPUSession() = default;
+
+GPUSession::~GPUSession()
+{
+  this->Release();
+}
+
+bool GPUSession::Resolve(vtkAlgorithm* self, int backend, bool& failed)
+{
+  failed = false;
+  this->Note.clear();
+  if (backend == BACKEND_CPU)
+    return false;
+  if (backend == BACKEND_AUTO)
+  {
+    // What the machine offers is probed once per process: a throw-away
+    // headless context tells whether OpenGL 4.3 exists and on what.
+    static std::string probeFailure;
+    static std::string probeDescription = [] {
+      auto probe = cao::gl::Context::CreateHeadless(cao::gl::ContextKind::Auto, probeFailure);
+      return probe ? probe->Description() : std::string();
+    }();
+    if (probeDescription.empty())
+    {
+      if (!this->Warned)
+      {
+        vtkWarningWithObjectMacro(
+          self, "No OpenGL 4.3 context (" << probeFailure << "); using the CPU backend.");
+        this->Warned = true;
+      }
+      this->Note = "no OpenGL 4.3 context";
+      return false;
+    }
+    const char* allow = std::getenv("CAO_GL_ALLOW_SOFTWARE");
+    if (SoftwareRenderer(probeDescription) && !(allow && *allow && std::strcmp(allow, "0") != 0))
+    {
+      // Not a failure but a choice: the CPU backend is faster than a
+      // software rasteriser. Reported in ComputeBackend, no warning.
+      this->Note = "Auto: OpenGL is the software rasteriser " + probeDescription;
+      return false;
+    }
+  }
+  if (!this->Context && !this->Tried)
+  {
+    this->Tried = true;
+    this->Context = cao::gl::Context::CreateHeadless(cao::gl::ContextKind::Auto, this->Failure);
+  }
+  if (!this->Context)
+  {
+    if (backend == BACKEND_OPENGL)
+    {
+      vtkErrorWithObjectMacro(self, "Backend is OpenGL but " << this->Failure << ".");
+      failed = true;
+    }
+    else if (!this->Warned)
+    {
+      vtkWarningWithObjectMacro(
+        self, "No OpenGL 4.3 context (" << this->Failure << "); using the CPU backend.");
+      this->Warned = true;
+    }
+    return false;
+  }
+  if (!this->AOEngine)
+    this->AOEngine.reset(new cao::gl::AOEngine(*this->Context));
+  return true;
+}
+
+cao::gl::AOEngine& GPUSession::Engine()
+{
+  return *this->AOEngine;
+}
+
+std::string GPUSession::ContextKind() const
+{
+  return this->Context ? cao::gl::ContextKindName(this->Context->Kind()) : "none";
+}
+
+std::string GPUSession::Description() const
+{
+  return this->Context ? this->Context->Description() : std::string();
+}
+
+void GPUSession::Release()
+{
+  this->AOEngine.reset(); // deletes its GL objects with the context current
+  if (this->Context)
+    this->Context->Release();
+  this->Context.reset();
+  this->Tried = false;
+  this->Key.clear();
+}
+
+cao::gl::VolumeUpload MakeVolumeUpload(vtkDataArray* scalars, int component, const float* opacity,
+  const int dims[3], std::vector<std::uint8_t>& storage)
+{
+  cao::gl::VolumeUpload upload;
+  std::copy(dims, dims + 3, upload.dims);
+  upload.source = cao::gl::OpacitySource::Float32;
+  upload.data = opacity;
+  const std::int64_t n = static_cast<std::int64_t>(dims[0]) * dims[1] * dims[2];
+  if (!scalars || scalars->GetNumberOfTuples() != n || component < 0 ||
+    component >= scalars->GetNumberOfComponents())
+    return upload;
+  const int type = scalars->GetDataType();
+  if (type == VTK_FLOAT || type == VTK_DOUBLE)
+    return upload;
+  double range[2];
+  scalars->GetRange(range, component);
+  if (range[0] < 0.0 || range[1] > 65535.0)
+    return upload;
+  const bool eight = range[1] <= 255.0;
+  const std::size_t size = eight ? 256 : 65536;
+  std::vector<float> table(size, 0.0f);
+  std::vector<bool> seen(size, false);
+  storage.resize(static_cast<std::size_t>(n) * (eight ? 1 : 2));
+  std::uint8_t* s8 = storage.data();
+  std::uint16_t* s16 = reinterpret_cast<std::uint16_t*>(storage.data());
+  for (std::int64_t v = 0; v < n; ++v)
+  {
+    const auto s = static_cast<std::size_t>(scalars->GetComponent(v, component));
+    if (!seen[s])
+    {
+      seen[s] = true;
+      table[s] = opacity[v];
+    }
+    else if (std::memcmp(&table[s], &opacity[v], sizeof(float)) != 0)
+    {
+      storage.clear();
+      return upload; // opacity is not a function of this scalar: keep floats
+    }
+    if (eight)
+      s8[v] = static_cast<std::uint8_t>(s);
+    else
+      s16[v] = static_cast<std::uint16_t>(s);
+  }
+  upload.source = eight ? cao::gl::OpacitySource::Scalars8 : cao::gl::OpacitySource::Scalars16;
+  upload.data = storage.data();
+  upload.opacityTable = std::move(table);
+  return upload;
+}
+}

@@ -1,0 +1,85 @@
+/**
+ * vtkCAOGPUSession — private glue between the ContextualAO filters and the
+ * VTK-free GL compute layer (Rendering/GL): choosing the backend, owning a
+ * headless context and an AO engine per filter, and packing a volume for
+ * the GPU. Not wrapped; not installed as public API.
+ *
+ * Backend choice:
+ *  - CPU: never touches OpenGL.
+ *  - OpenGL: any OpenGL >= 4.3 context (EGL, then OSMesa); none is an error.
+ *  - Auto: OpenGL on a hardware device. With no OpenGL 4.3 context at all,
+ *    the CPU backend with one warning per filter. With only a software
+ *    rasteriser (Mesa's llvmpipe, which runs these shaders slower than the
+ *    CPU backend), the CPU backend by choice: no warning, and the reason in
+ *    Note (the filters put it in ComputeBackend). CAO_GL_ALLOW_SOFTWARE=1
+ *    lets Auto use a software rasteriser.
+ */
+#ifndef vtkCAOGPUSession_h
+#define vtkCAOGPUSession_h
+
+#include "caoAOEngine.h"
+#include "caoGLContext.h"
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+class vtkAlgorithm;
+class vtkDataArray;
+
+namespace vtkCAO
+{
+/// The filters' Backend property values.
+enum BackendChoice
+{
+  BACKEND_AUTO = 0,
+  BACKEND_CPU = 1,
+  BACKEND_OPENGL = 2
+};
+const char* BackendName(int backend);
+
+class GPUSession
+{
+public:
+  GPUSession();
+  ~GPUSession();
+
+  /// Decide where this execution runs. Returns true for the GPU. Sets
+  /// `failed` (after a vtkErrorMacro-style error on `self`) when OpenGL was
+  /// forced and no context fits; warns once and returns false for Auto.
+  bool Resolve(vtkAlgorithm* self, int backend, bool& failed);
+
+  cao::gl::AOEngine& Engine();
+  /// "egl", "osmesa" or "window", and the renderer/version.
+  std::string ContextKind() const;
+  std::string Description() const;
+  /// Drop the engine's GL objects and the context.
+  void Release();
+
+  /// Why the last Resolve chose the CPU under Auto (empty otherwise).
+  std::string Note;
+
+  /// Cache key of what the engine holds (volume, opacity, plan).
+  std::vector<double> Key;
+
+private:
+  std::unique_ptr<cao::gl::Context> Context;
+  std::unique_ptr<cao::gl::AOEngine> AOEngine;
+  std::string Failure; // why no context could be had (kept: tried once)
+  bool Tried = false;
+  bool Warned = false;
+};
+
+/**
+ * Pack a volume for the GPU. When `scalars` (component `component`) holds
+ * integers in [0, 255] or [0, 65535] and every voxel's opacity equals one
+ * value per scalar (bit for bit), the upload is those scalars and that table
+ * (1 or 2 bytes per voxel); otherwise it is the float opacity (4 bytes).
+ * `storage` keeps the packed scalars alive for the upload.
+ */
+cao::gl::VolumeUpload MakeVolumeUpload(vtkDataArray* scalars, int component, const float* opacity,
+  const int dims[3], std::vector<std::uint8_t>& storage);
+}
+
+#endif

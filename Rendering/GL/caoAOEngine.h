@@ -1,0 +1,126 @@
+/**
+ * caoAOEngine — contextual ambient occlusion on the GPU, with no VTK: the
+ * LAO precompute, the per-pose classification, the copy of category a/c
+ * values and the category-b recompute, as compute passes over GPU-resident
+ * volumes. The arithmetic mirrors the CPU kernels (caoLAO, caoClassify) on
+ * the same caoShared.h blocks, so the two backends agree.
+ *
+ * Resident storage, per voxel (the paper keeps five float volumes):
+ *  - the input: 8- or 16-bit scalars with an opacity table (exact: the CPU
+ *    evaluates the transfer function per scalar value too), or float opacity;
+ *  - the clip state: one byte, category << 6 | anti-aliasing coverage count;
+ *    the clipped opacity is recomputed on the fly as opacity * factor[count];
+ *  - the precomputed and the current AO: 16-bit unsigned normalised each.
+ * For an 8-bit input that is 1 + 1 + 2 + 2 = 6 bytes per voxel.
+ *
+ * Only the region that can change is touched per pose: the union of this
+ * pose's candidate box and the previous one. Outside it every voxel already
+ * holds the outside state (c in subtraction, a in probing) and the
+ * precomputed AO.
+ *
+ * Every call needs the engine's context current (MakeCurrent is called for
+ * headless contexts). Each stage is timed with GL_TIME_ELAPSED queries.
+ */
+#ifndef caoAOEngine_h
+#define caoAOEngine_h
+
+#include "caoGLContext.h"
+#include "caoLAO.h"
+#include "caoShared.h"
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace cao
+{
+namespace gl
+{
+enum class OpacitySource
+{
+  Float32 = 0,   ///< float opacity per voxel
+  Scalars8 = 1,  ///< uint8 scalars + a 256-entry opacity table
+  Scalars16 = 2, ///< uint16 scalars + a 65536-entry opacity table
+};
+
+struct VolumeUpload
+{
+  int dims[3] = { 0, 0, 0 };
+  OpacitySource source = OpacitySource::Float32;
+  const void* data = nullptr;      ///< x-fastest, matching `source`
+  std::vector<float> opacityTable; ///< Scalars8/16: corrected opacity per value
+};
+
+/// GPU milliseconds of the last run of each stage (timer queries); -1 = not run.
+struct StageTimes
+{
+  double precompute = -1, depthMaps = -1, dilate = -1, classify = -1, copy = -1,
+         recompute = -1, full = -1;
+};
+
+struct UpdateStats
+{
+  std::int64_t clipped = 0, affected = 0, unaffected = 0; ///< whole volume
+  std::int64_t regionVoxels = 0;                          ///< voxels classified this pose
+};
+
+class AOEngine
+{
+public:
+  /// The engine borrows the context; it must outlive the engine.
+  explicit AOEngine(Context& context);
+  ~AOEngine();
+  AOEngine(const AOEngine&) = delete;
+  AOEngine& operator=(const AOEngine&) = delete;
+
+  /// Upload the volume (replaces any previous one; the AO must be recomputed).
+  bool SetVolume(const VolumeUpload& volume, std::string& error);
+  /// Upload the LAO plan (taps, parameters) and build the programs.
+  bool SetPlan(const LAOPlan& plan, std::string& error);
+  /// Full, unclipped LAO into the precomputed AO; current AO = precomputed,
+  /// every voxel unclipped. `progress(fraction)` may return false to abort.
+  bool Precompute(std::string& error, const std::function<bool(double)>& progress = nullptr);
+  bool HasPrecomputed() const;
+
+  /// Upload clip depth maps (raw and candidate layers, caoDepthMaps layout).
+  bool SetMaps(int width, int height, int layers, const float* front, const float* back,
+    const float* candidateFront, const float* candidateBack, std::string& error);
+
+  /// One pose: classify, copy categories a/c, recompute category b.
+  bool Update(const shared::ClipParams& clip, UpdateStats& stats, std::string& error);
+
+  /// The full recompute on the current clip state, for verification: the
+  /// clipped LAO of every voxel not in category a (others are left 0).
+  bool FullRecompute(std::vector<std::uint16_t>& ao, std::string& error);
+
+  bool ReadCurrentAO(std::vector<std::uint16_t>& ao, std::string& error);
+  bool ReadPrecomputedAO(std::vector<std::uint16_t>& ao, std::string& error);
+  bool ReadState(std::vector<std::uint8_t>& state, std::string& error);
+
+  const StageTimes& Times() const;
+  /// Bytes resident on the GPU now: volumes, tables, maps, parameters.
+  std::int64_t ResidentBytes() const;
+  /// Bytes of the per-voxel volumes only (input, state, two AO volumes).
+  std::int64_t VolumeBytes() const;
+  /// GL objects (buffers, textures, programs, queries) this engine owns.
+  int LiveObjects() const;
+  /// Names of those objects, as (kind, name) with kind 'b', 't', 'p' or 'q'.
+  std::vector<std::pair<char, unsigned int>> ObjectNames() const;
+  /// Delete every GL object; the engine can be set up again afterwards.
+  void ReleaseGraphicsResources();
+
+  Context& GetContext();
+
+  /// AO as stored on the GPU (q / 65535) back to float.
+  static float Dequantize(std::uint16_t q) { return static_cast<float>(q) / 65535.0f; }
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> P;
+};
+}
+}
+
+#endif

@@ -1,0 +1,51 @@
+/**
+ * caoGLProgram — a GLSL program built from embedded sources, specialised
+ * with #defines. The sources are handed to glShaderSource as separate
+ * strings (version line, defines, caoShared.h, the stage's file): GL
+ * concatenates them, and no shader text is edited. No VTK.
+ */
+#ifndef caoGLProgram_h
+#define caoGLProgram_h
+
+#include "caoGLFunctions.h"
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace cao
+{
+namespace gl
+{
+using Defines = std::vector<std::pair<std::string, std::string>>;
+
+class Program
+{
+public:
+  Program() = default;
+  ~Program() = default; // Release() must run with the context current
+  Program(const Program&) = delete;
+  Program& operator=(const Program&) = delete;
+
+  /// Build a compute program; false with the compiler log in `error`.
+  bool BuildCompute(const Functions& gl, const char* source, const Defines& defines,
+    std::string& error);
+  /// Build a vertex + fragment program.
+  bool BuildRaster(const Functions& gl, const char* vertex, const char* fragment,
+    const Defines& defines, std::string& error);
+  void Release(const Functions& gl);
+
+  GLuint Id() const { return this->Handle; }
+  bool Valid() const { return this->Handle != 0; }
+  GLint Uniform(const Functions& gl, const char* name) const
+  {
+    return gl.GetUniformLocation(this->Handle, name);
+  }
+
+private:
+  GLuint Handle = 0;
+};
+}
+}
+
+#endif

@@ -1,0 +1,70 @@
+#include "caoGLStateGuard.h"
+
+namespace cao
+{
+namespace gl
+{
+StateGuard::StateGuard(const Functions& gl, bool active)
+  : GL(gl)
+  , Active(active)
+{
+  if (!active)
+    return;
+  gl.GetIntegerv(GL_CURRENT_PROGRAM, &this->Program);
+  gl.GetIntegerv(GL_VERTEX_ARRAY_BINDING, &this->VertexArray);
+  gl.GetIntegerv(GL_ARRAY_BUFFER_BINDING, &this->ArrayBuffer);
+  gl.GetIntegerv(GL_UNIFORM_BUFFER_BINDING, &this->UniformBuffer);
+  gl.GetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &this->StorageBuffer);
+  gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &this->DrawFramebuffer);
+  gl.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &this->ReadFramebuffer);
+  gl.GetIntegerv(GL_VIEWPORT, this->Viewport);
+  gl.GetIntegerv(GL_ACTIVE_TEXTURE, &this->ActiveTexture);
+  gl.GetIntegerv(GL_TEXTURE_BINDING_3D, &this->Texture3D);
+  gl.GetIntegerv(GL_UNPACK_ALIGNMENT, &this->UnpackAlignment);
+  gl.GetIntegerv(GL_PACK_ALIGNMENT, &this->PackAlignment);
+  for (int i = 0; i < StorageBindings; ++i)
+    gl.GetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, static_cast<GLuint>(i),
+      &this->StorageIndexed[i]);
+  for (int i = 0; i < UniformBindings; ++i)
+    gl.GetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, static_cast<GLuint>(i), &this->UniformIndexed[i]);
+  this->DepthTest = gl.IsEnabled(GL_DEPTH_TEST);
+  this->Blend = gl.IsEnabled(GL_BLEND);
+  this->CullFace = gl.IsEnabled(GL_CULL_FACE);
+  this->ScissorTest = gl.IsEnabled(GL_SCISSOR_TEST);
+  gl.GetBooleanv(GL_DEPTH_WRITEMASK, &this->DepthWrite);
+  gl.GetBooleanv(GL_COLOR_WRITEMASK, this->ColorWrite);
+}
+
+StateGuard::~StateGuard()
+{
+  if (!this->Active)
+    return;
+  const Functions& gl = this->GL;
+  auto enable = [&gl](GLenum cap, GLboolean on) { on ? gl.Enable(cap) : gl.Disable(cap); };
+  gl.UseProgram(static_cast<GLuint>(this->Program));
+  gl.BindVertexArray(static_cast<GLuint>(this->VertexArray));
+  for (int i = 0; i < StorageBindings; ++i)
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, static_cast<GLuint>(i),
+      static_cast<GLuint>(this->StorageIndexed[i]));
+  for (int i = 0; i < UniformBindings; ++i)
+    gl.BindBufferBase(
+      GL_UNIFORM_BUFFER, static_cast<GLuint>(i), static_cast<GLuint>(this->UniformIndexed[i]));
+  gl.BindBuffer(GL_ARRAY_BUFFER, static_cast<GLuint>(this->ArrayBuffer));
+  gl.BindBuffer(GL_UNIFORM_BUFFER, static_cast<GLuint>(this->UniformBuffer));
+  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, static_cast<GLuint>(this->StorageBuffer));
+  gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(this->DrawFramebuffer));
+  gl.BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(this->ReadFramebuffer));
+  gl.Viewport(this->Viewport[0], this->Viewport[1], this->Viewport[2], this->Viewport[3]);
+  gl.ActiveTexture(static_cast<GLenum>(this->ActiveTexture));
+  gl.BindTexture(GL_TEXTURE_3D, static_cast<GLuint>(this->Texture3D));
+  gl.PixelStorei(GL_UNPACK_ALIGNMENT, this->UnpackAlignment);
+  gl.PixelStorei(GL_PACK_ALIGNMENT, this->PackAlignment);
+  enable(GL_DEPTH_TEST, this->DepthTest);
+  enable(GL_BLEND, this->Blend);
+  enable(GL_CULL_FACE, this->CullFace);
+  enable(GL_SCISSOR_TEST, this->ScissorTest);
+  gl.DepthMask(this->DepthWrite);
+  gl.ColorMask(this->ColorWrite[0], this->ColorWrite[1], this->ColorWrite[2], this->ColorWrite[3]);
+}
+}
+}

@@ -1,0 +1,43 @@
+/**
+ * caoGLStateGuard — saves, on construction, the OpenGL state the compute
+ * layer may change, and restores it on destruction, so that running inside
+ * a VTK render window leaves vtkOpenGLState's cached view of the context
+ * true. Covers: program, vertex array, array/uniform/storage buffer generic
+ * and indexed bindings used by caoShared.h, framebuffers, viewport, the
+ * enables and masks the depth-map raster pass touches, pixel-store
+ * alignment, and the active texture unit with its 3D binding. No VTK.
+ */
+#ifndef caoGLStateGuard_h
+#define caoGLStateGuard_h
+
+#include "caoGLFunctions.h"
+
+namespace cao
+{
+namespace gl
+{
+class StateGuard
+{
+public:
+  /// `active` false makes the guard a no-op (contexts we own).
+  StateGuard(const Functions& gl, bool active);
+  ~StateGuard();
+  StateGuard(const StateGuard&) = delete;
+  StateGuard& operator=(const StateGuard&) = delete;
+
+private:
+  static constexpr int StorageBindings = 8;
+  static constexpr int UniformBindings = 2;
+  const Functions& GL;
+  bool Active;
+  GLint Program = 0, VertexArray = 0, ArrayBuffer = 0, UniformBuffer = 0, StorageBuffer = 0;
+  GLint DrawFramebuffer = 0, ReadFramebuffer = 0, Viewport[4] = { 0, 0, 0, 0 };
+  GLint ActiveTexture = 0, Texture3D = 0, UnpackAlignment = 4, PackAlignment = 4;
+  GLint StorageIndexed[StorageBindings] = {}, UniformIndexed[UniformBindings] = {};
+  GLboolean DepthTest = 0, Blend = 0, CullFace = 0, ScissorTest = 0, DepthWrite = 1;
+  GLboolean ColorWrite[4] = { 1, 1, 1, 1 };
+};
+}
+}
+
+#endif

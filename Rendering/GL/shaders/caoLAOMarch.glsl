@@ -1,0 +1,133 @@
+// caoLAOMarch.glsl - the LAO ray march (Hernell et al.), one invocation per
+// voxel of a box [regionMin, regionMax]. The GLSL twin of caoLAO.cxx: the
+// same taps, the same trilinear blend (x, then y, then z; a + t * (b - a)),
+// the same loop order; `precise` forbids FMA contraction and reassociation.
+//
+// Specialisation (prepended #defines; the defaults let the file compile alone):
+//   CAO_OPACITY_SOURCE  0: float opacity image (r32f)
+//                       1: 8-bit scalars + opacity table
+//                       2: 16-bit scalars + opacity table
+//   CAO_CLIPPED         0: unclipped opacity (the precompute)
+//                       1: opacity * clipFactor[coverage count] (the clipped volume)
+//   CAO_SELECT          0: every voxel of the box
+//                       1: only category-b voxels (the CAO recompute)
+//                       2: every voxel not in category a (the full recompute)
+//   CAO_LOCAL_X/Y/Z     workgroup size
+#ifndef CAO_OPACITY_SOURCE
+#define CAO_OPACITY_SOURCE 1
+#endif
+#ifndef CAO_CLIPPED
+#define CAO_CLIPPED 0
+#endif
+#ifndef CAO_SELECT
+#define CAO_SELECT 0
+#endif
+#ifndef CAO_LOCAL_X
+#define CAO_LOCAL_X 8
+#define CAO_LOCAL_Y 8
+#define CAO_LOCAL_Z 1
+#endif
+
+layout(local_size_x = CAO_LOCAL_X, local_size_y = CAO_LOCAL_Y, local_size_z = CAO_LOCAL_Z) in;
+
+layout(std140, binding = CAO_BINDING_LAO_PARAMS) uniform LAOBlock
+{
+  LAOParams lao;
+};
+layout(std430, binding = CAO_BINDING_TAPS) readonly buffer TapBlock
+{
+  LAOTap taps[];
+};
+layout(std430, binding = CAO_BINDING_OPACITY_TABLE) readonly buffer OpacityTableBlock
+{
+  float opacityTable[];
+};
+layout(std430, binding = CAO_BINDING_CLIP_FACTORS) readonly buffer ClipFactorBlock
+{
+  float clipFactor[];
+};
+
+#if CAO_OPACITY_SOURCE == 0
+layout(binding = CAO_IMAGE_VOLUME, r32f) uniform readonly image3D volumeImage;
+#elif CAO_OPACITY_SOURCE == 1
+layout(binding = CAO_IMAGE_VOLUME, r8ui) uniform readonly uimage3D volumeImage;
+#else
+layout(binding = CAO_IMAGE_VOLUME, r16ui) uniform readonly uimage3D volumeImage;
+#endif
+#if CAO_CLIPPED || CAO_SELECT != 0
+layout(binding = CAO_IMAGE_STATE, r8ui) uniform readonly uimage3D stateImage;
+#endif
+layout(binding = CAO_IMAGE_AO_OUT, r16ui) uniform writeonly uimage3D aoImage;
+
+uniform ivec3 regionMin;
+uniform ivec3 regionMax;
+
+/// Opacity at a voxel; 0 outside the volume (as the CPU march).
+float OpacityAt(ivec3 p)
+{
+  if (any(lessThan(p, ivec3(0))) || any(greaterThanEqual(p, lao.dims.xyz)))
+    return 0.0;
+#if CAO_OPACITY_SOURCE == 0
+  float a = imageLoad(volumeImage, p).r;
+#else
+  float a = opacityTable[imageLoad(volumeImage, p).r];
+#endif
+#if CAO_CLIPPED
+  precise float clipped = a * clipFactor[imageLoad(stateImage, p).r & uint(CAO_STATE_COUNT_MASK)];
+  return clipped;
+#else
+  return a;
+#endif
+}
+
+float Lerp(float a, float b, float t)
+{
+  precise float r = a + t * (b - a);
+  return r;
+}
+
+void main()
+{
+  ivec3 p = regionMin + ivec3(gl_GlobalInvocationID);
+  if (any(greaterThan(p, regionMax)))
+    return;
+#if CAO_SELECT != 0
+  int category = int(imageLoad(stateImage, p).r) >> CAO_STATE_CATEGORY_SHIFT;
+#if CAO_SELECT == 1
+  if (category != CAO_CATEGORY_AFFECTED)
+    return;
+#else
+  if (category == CAO_CATEGORY_CLIPPED)
+    return;
+#endif
+#endif
+  const int rays = lao.rays.x;
+  const int samples = lao.rays.y;
+  const int tapsPerRay = lao.rays.z;
+  precise float total = 0.0;
+  for (int r = 0; r < rays; ++r)
+  {
+    precise float transmittance = 1.0;
+    precise float sum = 0.0;
+    for (int m = 0; m < samples; ++m)
+    {
+      sum += transmittance;
+      if (m == tapsPerRay)
+        break;
+      LAOTap t = taps[r * tapsPerRay + m];
+      ivec3 c = p + t.cell.xyz;
+      float c00 = Lerp(OpacityAt(c), OpacityAt(c + ivec3(1, 0, 0)), t.frac.x);
+      float c10 = Lerp(OpacityAt(c + ivec3(0, 1, 0)), OpacityAt(c + ivec3(1, 1, 0)), t.frac.x);
+      float c01 = Lerp(OpacityAt(c + ivec3(0, 0, 1)), OpacityAt(c + ivec3(1, 0, 1)), t.frac.x);
+      float c11 = Lerp(OpacityAt(c + ivec3(0, 1, 1)), OpacityAt(c + ivec3(1, 1, 1)), t.frac.x);
+      float alpha = Lerp(Lerp(c00, c10, t.frac.y), Lerp(c01, c11, t.frac.y), t.frac.z);
+      transmittance = transmittance * (1.0 - alpha);
+      if (transmittance == 0.0)
+        break; // every later term adds exactly 0
+    }
+    total += sum;
+  }
+  precise float ao = total / lao.norm.x;
+  precise float scaled = ao * float(CAO_AO_SCALE) + 0.5;
+  imageStore(aoImage, p, uvec4(uint(scaled)));
+}
