@@ -414,13 +414,34 @@ int vtkContextualAmbientOcclusion::RequestData(
       const cao::gl::VolumeUpload upload = vtkCAO::MakeVolumeUpload(scalars,
         scalars && scalars->GetNumberOfComponents() == 1 ? 0 : -1, opacity->GetPointer(0), dims,
         packed);
+      // An LAO computed by the OpenGL backend on this same driver holds
+      // exactly the values this engine's precompute would store: upload it
+      // instead of marching again. Anything else is recomputed here, so the
+      // category-c values come from the same march as the recompute.
+      vtkStringArray* laoBackend = vtkStringArray::SafeDownCast(
+        source->GetFieldData()->GetAbstractArray("ComputeBackend"));
+      const bool reuse = laoBackend && laoBackend->GetNumberOfValues() == 1 &&
+        laoBackend->GetValue(0) ==
+          "OpenGL (" + this->GPU->ContextKind() + ": " + this->GPU->Description() + ")";
       bool aborted = false;
-      const bool done = engine.SetVolume(upload, error) && engine.SetPlan(plan, error) &&
-        engine.Precompute(error, [&](double f) {
+      bool done = engine.SetVolume(upload, error) && engine.SetPlan(plan, error);
+      if (done && reuse)
+      {
+        std::vector<std::uint16_t> q(static_cast<std::size_t>(voxels));
+        const float* pre = precomputed->GetPointer(0);
+        for (std::int64_t v = 0; v < voxels; ++v)
+          q[static_cast<std::size_t>(v)] =
+            static_cast<std::uint16_t>(pre[v] * float(cao::shared::CAO_AO_SCALE) + 0.5f);
+        done = engine.SetPrecomputed(q.data(), error);
+      }
+      else if (done)
+      {
+        done = engine.Precompute(error, [&](double f) {
           this->UpdateProgress(0.5 * f);
           aborted = this->CheckAbort();
           return !aborted;
         });
+      }
       this->GPU->Key.clear();
       this->GPUMapsKey.clear();
       if (aborted)

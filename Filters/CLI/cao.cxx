@@ -25,6 +25,7 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
+#include "vtkStringArray.h"
 #include "vtkTransform.h"
 #include "vtkXMLImageDataWriter.h"
 
@@ -61,6 +62,10 @@ common options:
   --array NAME         point array to use (default: the active scalars)
   --component C        component of a multi-component array
   --threads N          at most N threads (default: all cores)
+  --backend B          auto (default: OpenGL on a hardware GPU, else CPU),
+                       cpu, or gl (OpenGL 4.3 compute, headless EGL or
+                       OSMesa; an error when there is no such context);
+                       carve takes a comma list (cpu,gl) and runs each
   --json               print a JSON summary instead of tables
   -o, --output FILE    write the (last) AO volume as .vti
 
@@ -92,6 +97,8 @@ struct Options
   double direction[3] = { 0, 0, 1 };
   int samples = 0, component = -1, threads = 0, path = 24, layers = 2, aa = 16;
   bool json = false, verify = false;
+  int backend = 0;                    // vtkLocalAmbientOcclusion::AUTO
+  std::vector<int> backends{ 0 };     // carve: each is run, side by side
 };
 
 int Fail(int code, const std::string& message)
@@ -276,6 +283,31 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
       ok = value(o.output);
     else if (a == "--json")
       o.json = true;
+    else if (a == "--backend")
+    {
+      const std::string list = i + 1 < argc ? argv[++i] : "";
+      o.backends.clear();
+      for (const std::string& b : Split(list, ','))
+      {
+        if (b == "auto")
+          o.backends.push_back(vtkLocalAmbientOcclusion::AUTO);
+        else if (b == "cpu")
+          o.backends.push_back(vtkLocalAmbientOcclusion::CPU);
+        else if (b == "gl" || b == "opengl")
+          o.backends.push_back(vtkLocalAmbientOcclusion::OPENGL);
+        else
+        {
+          error = "--backend must be auto, cpu or gl (carve: a comma list), not '" + b + "'";
+          return false;
+        }
+      }
+      if (o.backends.empty())
+      {
+        error = "--backend needs a value";
+        return false;
+      }
+      o.backend = o.backends[0];
+    }
     else if (a == "--verify")
       o.verify = true;
     else if (!a.empty() && a[0] == '-')
@@ -338,6 +370,7 @@ void ConfigureLAO(const Options& o, const std::string& rays, vtkLocalAmbientOccl
   lao->SetScalarOpacityUnitDistance(o.unitDistance);
   lao->SetComponent(o.component);
   lao->SetNumberOfThreads(o.threads);
+  lao->SetBackend(o.backend);
   lao->SetOpacityFunction(tf);
   if (!o.arrayName.empty())
     lao->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, o.arrayName.c_str());
@@ -361,6 +394,34 @@ void BuildTransferFunction(const Options& o, vtkImageData* volume, vtkPiecewiseF
   tf->AddPoint(range[0], 0.0);
   tf->AddPoint(range[0] + 0.25 * (range[1] - range[0]), 0.0);
   tf->AddPoint(range[1], 0.8);
+}
+
+std::string FieldString(vtkDataObject* d, const char* name)
+{
+  auto* a = vtkStringArray::SafeDownCast(d->GetFieldData()->GetAbstractArray(name));
+  return a && a->GetNumberOfValues() > 0 ? a->GetValue(0) : std::string();
+}
+
+/// The context kind inside a ComputeBackend string ("OpenGL (egl: ...)").
+std::string ContextOf(const std::string& backend)
+{
+  const std::size_t open = backend.find("OpenGL (");
+  if (open != 0)
+    return "none";
+  const std::size_t colon = backend.find(':', 8);
+  return colon == std::string::npos ? "?" : backend.substr(8, colon - 8);
+}
+
+std::string JsonEscape(const std::string& text)
+{
+  std::string out;
+  for (char c : text)
+  {
+    if (c == '"' || c == '\\')
+      out += '\\';
+    out += c;
+  }
+  return out;
 }
 
 double FieldValue(vtkDataObject* d, const char* name, int component)
@@ -440,6 +501,8 @@ struct RunResult
   std::string rays;
   int numRays = 0, samples = 0;
   double reach = 0.0, precomputeMs = 0.0, depthMs = 0.0;
+  std::string backend;          ///< the CAO output's ComputeBackend
+  double gpuBytesPerVoxel = -1; ///< resident on the GPU (OpenGL backend)
   std::vector<PoseResult> poses;
 };
 
@@ -483,11 +546,14 @@ int RunCarve(const Options& o, vtkImageData* volume)
   bool verifyFailed = false;
 
   for (const std::string& rays : o.rays)
+  for (int backend : o.backends)
   {
+    Options ob = o;
+    ob.backend = backend;
     ErrorLog log;
     vtkNew<vtkLocalAmbientOcclusion> lao;
     log.Watch(lao);
-    ConfigureLAO(o, rays, lao, tf);
+    ConfigureLAO(ob, rays, lao, tf);
     lao->SetInputData(volume);
     lao->Update();
     if (!log.messages.empty())
@@ -525,6 +591,7 @@ int RunCarve(const Options& o, vtkImageData* volume)
     cao->SetAntiAliasingSamples(o.aa);
     cao->SetVerify(o.verify);
     cao->SetNumberOfThreads(o.threads);
+    cao->SetBackend(backend);
     vtkNew<vtkTransform> pose;
     cao->SetPoseTransform(pose);
     for (const auto& p : poses)
@@ -549,6 +616,8 @@ int RunCarve(const Options& o, vtkImageData* volume)
       }
       run.poses.push_back(r);
     }
+    run.backend = FieldString(cao->GetOutput(), "ComputeBackend");
+    run.gpuBytesPerVoxel = FieldValue(cao->GetOutput(), "GPUStatistics", 1);
     last = vtkSmartPointer<vtkImageData>::New();
     last->ShallowCopy(cao->GetOutput());
     runs.push_back(run);
@@ -567,9 +636,16 @@ int RunCarve(const Options& o, vtkImageData* volume)
     for (std::size_t i = 0; i < runs.size(); ++i)
     {
       const RunResult& run = runs[i];
+      const bool gl = ContextOf(run.backend) != "none";
       std::printf("%s\n {\"rays\": %d, \"pattern\": \"%s\", \"samples\": %d, \"reach\": %.9g, "
+                  "\"backend\": \"%s\", \"context\": \"%s\", \"backend_detail\": \"%s\", "
+                  "\"stage_timing\": \"%s\", \"gpu_bytes_per_voxel\": %.4f, "
                   "\"precompute_ms\": %.3f, \"depth_maps_ms\": %.3f, \"poses\": [",
-        i ? "," : "", run.numRays, run.rays.c_str(), run.samples, run.reach, run.precomputeMs, run.depthMs);
+        i ? "," : "", run.numRays, run.rays.c_str(), run.samples, run.reach, gl ? "gl" : "cpu",
+        ContextOf(run.backend).c_str(), JsonEscape(run.backend).c_str(),
+        gl ? (ContextOf(run.backend) == "osmesa" ? "host clock around glFinish" : "GL timestamp queries")
+           : "host clock",
+        run.gpuBytesPerVoxel, run.precomputeMs, run.depthMs);
       double sumFull = 0, sumCao = 0, sumB = 0, maxDiff = o.verify ? 0.0 : -1.0;
       for (std::size_t j = 0; j < run.poses.size(); ++j)
       {
@@ -606,6 +682,7 @@ int RunCarve(const Options& o, vtkImageData* volume)
       std::printf("\n%s (%d x %d x %d = %lld voxels), %s mode, %d rays x %d samples, reach %g\n",
         o.volume.c_str(), dims[0], dims[1], dims[2], voxels, o.mode.c_str(), run.numRays,
         run.samples, run.reach);
+      std::printf("backend: %s\n", run.backend.c_str());
       std::printf("LAO precompute %.1f ms; depth maps %.1f ms (computed once)\n", run.precomputeMs, run.depthMs);
       std::printf("%4s %10s %10s %10s %6s %9s %8s %10s %9s %9s %8s%s\n", "pose", "clipped(a)",
         "affected(b)", "unaff.(c)", "%b", "classify", "copy", "recompute", "CAO ms", "full ms",
@@ -626,9 +703,9 @@ int RunCarve(const Options& o, vtkImageData* volume)
     {
       std::printf("\nSummary (means over %zu poses; full LAO %s):\n", runs[0].poses.size(),
         o.verify ? "recomputed on the clipped opacity at every pose" : "= the unclipped precompute");
-      std::printf("| rays | full-LAO ms | CAO update ms | speed-up | %% voxels in b | physical limit | speed-up / limit |%s\n",
+      std::printf("| rays | backend | full-LAO ms | CAO update ms | speed-up | %% voxels in b | physical limit | speed-up / limit |%s\n",
         o.verify ? " max abs diff |" : "");
-      std::printf("|---:|---:|---:|---:|---:|---:|---:|%s\n", o.verify ? "---:|" : "");
+      std::printf("|---:|---|---:|---:|---:|---:|---:|---:|%s\n", o.verify ? "---:|" : "");
       for (const RunResult& run : runs)
       {
         double sumFull = 0, sumCao = 0, sumB = 0, maxDiff = 0;
@@ -642,7 +719,9 @@ int RunCarve(const Options& o, vtkImageData* volume)
         const double n = static_cast<double>(run.poses.size());
         const double speedup = sumFull / std::max(sumCao, 1e-9);
         const double limit = sumB > 0 ? n * voxels / sumB : 0.0;
-        std::printf("| %d | %.1f | %.1f | %.2fx | %.2f | %.2fx | %.0f%% |", run.numRays, sumFull / n,
+        const std::string context = ContextOf(run.backend);
+        std::printf("| %d | %s | %.1f | %.1f | %.2fx | %.2f | %.2fx | %.0f%% |", run.numRays,
+          context == "none" ? "CPU" : ("GL " + context).c_str(), sumFull / n,
           sumCao / n, speedup, 100.0 * sumB / (n * voxels), limit, limit > 0 ? 100.0 * speedup / limit : 0.0);
         if (o.verify)
           std::printf(" %g |", maxDiff);

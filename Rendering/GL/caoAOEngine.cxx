@@ -300,6 +300,30 @@ struct AOEngine::Impl
     factorTotal = total;
   }
 
+  /// Unclipped state everywhere and current AO = precomputed: a pose with
+  /// an empty box over the whole volume, in subtraction mode.
+  void InitialiseState()
+  {
+    shared::ClipParams none{};
+    none.map = { 1, 1, 1, shared::CAO_MODE_SUBTRACT };
+    none.boxMin = { 1, 1, 1, 0 };
+    none.boxMax = { 0, 0, 0, 0 };
+    this->BufferUpload(clipParams, GL_UNIFORM_BUFFER, sizeof(none), &none);
+    bytes[8] = sizeof(none);
+    if (!maps)
+    {
+      const float empty[4] = { INFINITY, -INFINITY, INFINITY, -INFINITY };
+      this->BufferUpload(maps, GL_SHADER_STORAGE_BUFFER, sizeof(empty), empty);
+      bytes[9] = sizeof(empty);
+    }
+    this->UploadFactors(shared::CAO_MODE_SUBTRACT, 9);
+    this->ClassifyAndCopy(this->WholeVolume());
+    gl.Finish();
+    havePrecomputed = true;
+    previous = Box();
+    previousMode = shared::CAO_MODE_SUBTRACT;
+  }
+
   bool ReadVolume(GLuint texture, GLenum format, GLenum type, std::size_t elementSize,
     void* out, std::string& error)
   {
@@ -518,26 +542,33 @@ bool AOEngine::Precompute(std::string& error, const std::function<bool(double)>&
   gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   p.times = StageTimes();
   p.times.precompute = total;
-  // Unclipped state everywhere and current AO = precomputed: a pose with an
-  // empty box over the whole volume, in subtraction mode.
-  shared::ClipParams none{};
-  none.map = { 1, 1, 1, shared::CAO_MODE_SUBTRACT };
-  none.boxMin = { 1, 1, 1, 0 };
-  none.boxMax = { 0, 0, 0, 0 };
-  p.BufferUpload(p.clipParams, GL_UNIFORM_BUFFER, sizeof(none), &none);
-  p.bytes[8] = sizeof(none);
-  if (!p.maps)
-  {
-    const float empty[4] = { INFINITY, -INFINITY, INFINITY, -INFINITY };
-    p.BufferUpload(p.maps, GL_SHADER_STORAGE_BUFFER, sizeof(empty), empty);
-    p.bytes[9] = sizeof(empty);
-  }
-  p.ClassifyAndCopy(p.WholeVolume());
-  gl.Finish();
-  p.havePrecomputed = true;
-  p.previous = Box();
-  p.previousMode = shared::CAO_MODE_SUBTRACT;
+  p.InitialiseState();
   return p.CheckError("the LAO precompute", error);
+}
+
+bool AOEngine::SetPrecomputed(const std::uint16_t* ao, std::string& error)
+{
+  Impl& p = *this->P;
+  if (!p.havePlan || !ao)
+  {
+    error = "SetVolume and SetPlan must come before SetPrecomputed";
+    return false;
+  }
+  if (!p.Ctx.MakeCurrent())
+  {
+    error = "the OpenGL context cannot be made current";
+    return false;
+  }
+  StateGuard guard(p.gl, p.External());
+  p.gl.BindTexture(GL_TEXTURE_3D, p.aoPre);
+  p.gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  p.gl.TexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, p.dims[0], p.dims[1], p.dims[2], GL_RED_INTEGER,
+    GL_UNSIGNED_SHORT, ao);
+  p.gl.BindTexture(GL_TEXTURE_3D, 0);
+  p.gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  p.times = StageTimes();
+  p.InitialiseState();
+  return p.CheckError("the precomputed AO upload", error);
 }
 
 bool AOEngine::HasPrecomputed() const

@@ -82,6 +82,10 @@ public:
   /// Full, unclipped LAO into the precomputed AO; current AO = precomputed,
   /// every voxel unclipped. `progress(fraction)` may return false to abort.
   bool Precompute(std::string& error, const std::function<bool(double)>& progress = nullptr);
+  /// Upload a precomputed AO instead (stored values, q = ao * 65535 + 0.5),
+  /// e.g. what this engine's Precompute produced in another filter on the
+  /// same driver; the CAO exactness holds only for such values.
+  bool SetPrecomputed(const std::uint16_t* ao, std::string& error);
   bool HasPrecomputed() const;
 
   /// Upload clip depth maps (raw and candidate layers, caoDepthMaps layout).
