@@ -14,6 +14,9 @@ packages=(
   libavcodec-dev libavutil-dev libswscale-dev libgl2ps-dev libpng-dev libnetcdf-dev
   libgdal-dev libx11-dev libpython3-dev libexpat1-dev liblzma-dev liblz4-dev
   libdouble-conversion-dev libjpeg-dev libtiff-dev libfreetype-dev zlib1g-dev
+  # the GL compute layer: headers, GLM, and headless OpenGL at run time
+  # (EGL and OSMesa on Mesa's llvmpipe when there is no GPU)
+  libgl-dev libegl-dev libglm-dev libosmesa6-dev libegl1 libegl-mesa0 libgl1-mesa-dri libosmesa6
   # toolchain
   cmake g++ ninja-build
 )

@@ -504,25 +504,21 @@ int vtkContextualAmbientOcclusion::RequestData(
     }
     if (this->Verify)
     {
-      // GPU CAO against the GPU full recompute, on the stored 16-bit values.
-      std::vector<std::uint16_t> full;
-      if (!engine.FullRecompute(full, error))
+      // GPU CAO against the GPU full recompute: the stored 16-bit values of
+      // every voxel not clipped, and, below that storage step, the float
+      // LAO of every category-c voxel on the clipped against the unclipped
+      // opacity (what the copy assumes), bit for bit.
+      cao::gl::AOEngine::Verification check;
+      if (!engine.Verify(check, error))
       {
-        vtkErrorMacro("The OpenGL full recompute failed: " << error << ".");
+        vtkErrorMacro("The OpenGL verification failed: " << error << ".");
         return 0;
       }
       fullMs = engine.Times().full;
-      maxDifference = 0.0;
-      for (std::int64_t v = 0; v < voxels; ++v)
-      {
-        const std::size_t i = static_cast<std::size_t>(v);
-        if (cat[v] != cao::shared::CAO_CATEGORY_CLIPPED && full[i] != stored[i])
-        {
-          ++differing;
-          maxDifference = std::max(maxDifference,
-            std::fabs(double(full[i]) - double(stored[i])) / cao::shared::CAO_AO_SCALE);
-        }
-      }
+      differing = check.storedMismatches + check.floatMismatches;
+      maxDifference = differing > 0
+        ? std::max(check.maxFloatDifference, check.storedMismatches > 0 ? 1.0 / cao::shared::CAO_AO_SCALE : 0.0)
+        : 0.0;
     }
     gpuResident = engine.ResidentBytes();
   }

@@ -70,7 +70,7 @@ struct AOEngine::Impl
   GLuint laoParams = 0, taps = 0, opacityTable = 0, factors = 0, clipParams = 0, maps = 0,
          counters = 0;
   GLuint queries[2 * QCount] = {}; // begin and end timestamps per stage
-  Program lao, laoAffected, laoFull, classify, copy;
+  Program lao, laoAffected, laoFull, laoVerify, classify, copy;
   int dims[3] = { 0, 0, 0 };
   OpacitySource source = OpacitySource::Float32;
   bool havePlan = false, havePrecomputed = false, haveMaps = false;
@@ -159,7 +159,7 @@ struct AOEngine::Impl
     for (GLuint* b : { &laoParams, &taps, &opacityTable, &factors, &clipParams, &maps, &counters })
       this->FreeBuffer(*b);
     this->ReleaseQueries();
-    for (Program* p : { &lao, &laoAffected, &laoFull, &classify, &copy })
+    for (Program* p : { &lao, &laoAffected, &laoFull, &laoVerify, &classify, &copy })
       p->Release(gl);
     havePlan = havePrecomputed = haveMaps = false;
     std::fill(bytes, bytes + 16, 0);
@@ -493,6 +493,9 @@ bool AOEngine::SetPlan(const LAOPlan& plan, std::string& error)
     !p.laoFull.BuildCompute(p.gl, caoLAOMarch_glsl,
       with({ { "CAO_OPACITY_SOURCE", src }, { "CAO_CLIPPED", "1" }, { "CAO_SELECT", "2" } }),
       error) ||
+    !p.laoVerify.BuildCompute(p.gl, caoLAOMarch_glsl,
+      with({ { "CAO_OPACITY_SOURCE", src }, { "CAO_CLIPPED", "1" }, { "CAO_SELECT", "3" } }),
+      error) ||
     !p.classify.BuildCompute(p.gl, caoClassify_glsl, with({}), error) ||
     !p.copy.BuildCompute(p.gl, caoCopyUnaffected_glsl, with({}), error))
   {
@@ -710,6 +713,46 @@ bool AOEngine::FullRecompute(std::vector<std::uint16_t>& ao, std::string& error)
   return ok && p.CheckError("the full recompute", error);
 }
 
+bool AOEngine::Verify(Verification& result, std::string& error)
+{
+  Impl& p = *this->P;
+  if (!p.havePrecomputed)
+  {
+    error = "Precompute must come before Verify";
+    return false;
+  }
+  if (!p.Ctx.MakeCurrent())
+  {
+    error = "the OpenGL context cannot be made current";
+    return false;
+  }
+  StateGuard guard(p.gl, p.External());
+  const Functions& gl = p.gl;
+  const std::uint32_t zero[4] = { 0, 0, 0, 0 };
+  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, p.counters);
+  gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(zero), zero);
+  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+  p.BindLAOBuffers();
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_COUNTERS, p.counters);
+  p.BindImages(true, true, false, false, 0);
+  gl.BindImageTexture(CAO_IMAGE_AO_OUT, p.aoCur, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R16UI);
+  p.Begin(QFull);
+  p.Dispatch(p.laoVerify, p.WholeVolume());
+  p.End(QFull);
+  gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::uint32_t counts[4] = { 0, 0, 0, 0 };
+  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, p.counters);
+  gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(counts), counts);
+  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+  p.times.full = p.QueryMs(QFull);
+  float maxDiff = 0.0f;
+  std::memcpy(&maxDiff, &counts[2], sizeof(float));
+  result.storedMismatches = counts[0];
+  result.floatMismatches = counts[1];
+  result.maxFloatDifference = maxDiff;
+  return p.CheckError("the verification", error);
+}
+
 bool AOEngine::ReadCurrentAO(std::vector<std::uint16_t>& ao, std::string& error)
 {
   Impl& p = *this->P;
@@ -784,7 +827,8 @@ std::vector<std::pair<char, unsigned int>> AOEngine::ObjectNames() const
          p.counters })
     if (b)
       names.emplace_back('b', b);
-  for (const Program* prog : { &p.lao, &p.laoAffected, &p.laoFull, &p.classify, &p.copy })
+  for (const Program* prog :
+    { &p.lao, &p.laoAffected, &p.laoFull, &p.laoVerify, &p.classify, &p.copy })
     if (prog->Valid())
       names.emplace_back('p', prog->Id());
   for (GLuint q : p.queries)

@@ -99,6 +99,19 @@ public:
   /// clipped LAO of every voxel not in category a (others are left 0).
   bool FullRecompute(std::vector<std::uint16_t>& ao, std::string& error);
 
+  struct Verification
+  {
+    std::int64_t storedMismatches = 0; ///< voxels whose stored AO != the full recompute's
+    std::int64_t floatMismatches = 0;  ///< category-c voxels whose clipped LAO != unclipped, in float
+    double maxFloatDifference = 0.0;
+  };
+  /// Verify the current AO without any extra volume: every voxel not in
+  /// category a is recomputed on the clipped opacity and compared with the
+  /// stored value; every category-c voxel is also marched on the unclipped
+  /// opacity and compared in float, bit for bit, which checks the
+  /// classification itself below the 16-bit storage step.
+  bool Verify(Verification& result, std::string& error);
+
   bool ReadCurrentAO(std::vector<std::uint16_t>& ao, std::string& error);
   bool ReadPrecomputedAO(std::vector<std::uint16_t>& ao, std::string& error);
   bool ReadState(std::vector<std::uint8_t>& state, std::string& error);

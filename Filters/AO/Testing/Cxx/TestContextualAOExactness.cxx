@@ -86,52 +86,6 @@ int RunPoses(vtkImageData* volume, vtkPolyData* mesh, const std::vector<caocli::
   return 0;
 }
 
-std::vector<caocli::Pose> MakePoses(const double bounds[6], double size, unsigned seed, int count)
-{
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> uni(0.0, 1.0);
-  const double c[3] = { 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]),
-    0.5 * (bounds[4] + bounds[5]) };
-  const double e[3] = { bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] };
-  std::vector<caocli::Pose> poses;
-  for (int i = 0; i < count; ++i)
-  {
-    caocli::Pose p;
-    for (int d = 0; d < 3; ++d)
-    {
-      p.translation[d] = bounds[2 * d] - 0.35 * e[d] + 1.7 * e[d] * uni(rng);
-      p.rotation[d] = 360.0 * uni(rng);
-    }
-    p.scale = 0.5 + 1.1 * uni(rng);
-    poses.push_back(p);
-  }
-  // Special poses. Grazing: the shape's extreme point at the volume's face.
-  caocli::Pose graze;
-  graze.translation = { bounds[1] + size, c[1], c[2] };
-  poses.push_back(graze);
-  // Touching a corner region diagonally, half a voxel away.
-  caocli::Pose touch;
-  touch.translation = { bounds[0] - size + 0.5, bounds[2] - 0.5, c[2] };
-  poses.push_back(touch);
-  // In the camera margin: the mesh is outside, its dilation reaches inside.
-  caocli::Pose margin;
-  margin.translation = { c[0], bounds[3] + size + 2.0, c[2] };
-  poses.push_back(margin);
-  // Leaving: far away.
-  caocli::Pose away;
-  away.translation = { bounds[1] + 3 * e[0], c[1], c[2] };
-  poses.push_back(away);
-  // Covering the whole volume.
-  caocli::Pose cover;
-  cover.translation = { c[0], c[1], c[2] };
-  cover.scale = 3.0 * std::max({ e[0], e[1], e[2] }) / size;
-  poses.push_back(cover);
-  // Centred, unrotated, unit scale.
-  caocli::Pose centre;
-  centre.translation = { c[0], c[1], c[2] };
-  poses.push_back(centre);
-  return poses;
-}
 }
 
 int TestContextualAOExactness(int argc, char* argv[])
@@ -162,7 +116,7 @@ int TestContextualAOExactness(int argc, char* argv[])
     CAO_CHECK(mesh, "%s", error.c_str());
     double bounds[6];
     shape.volume->GetBounds(bounds);
-    const auto poses = MakePoses(bounds, shape.size, seed++, 200);
+    const auto poses = caotest::MakePoses(bounds, shape.size, seed++, 200);
     Outcome out;
     if (RunPoses(shape.volume, mesh, poses, shape.pattern,
           vtkContextualAmbientOcclusion::SUBTRACTION, 1.0, out))
@@ -185,7 +139,7 @@ int TestContextualAOExactness(int argc, char* argv[])
     double bounds[6];
     neghip->GetBounds(bounds);
     Outcome out;
-    if (RunPoses(neghip, mesh, MakePoses(bounds, 20.0, 99, 60), vtkLocalAmbientOcclusion::RAYS_26,
+    if (RunPoses(neghip, mesh, caotest::MakePoses(bounds, 20.0, 99, 60), vtkLocalAmbientOcclusion::RAYS_26,
           vtkContextualAmbientOcclusion::PROBING, 1.0, out))
       return 1;
     std::printf("probing torus: %d poses, max |diff| %g\n", out.poses, out.maxDifference);
@@ -200,7 +154,7 @@ int TestContextualAOExactness(int argc, char* argv[])
     double bounds[6];
     neghip->GetBounds(bounds);
     Outcome out;
-    if (RunPoses(neghip, mesh, MakePoses(bounds, 14.0, 5, 20), vtkLocalAmbientOcclusion::RAYS_6,
+    if (RunPoses(neghip, mesh, caotest::MakePoses(bounds, 14.0, 5, 20), vtkLocalAmbientOcclusion::RAYS_6,
           vtkContextualAmbientOcclusion::SUBTRACTION, 0.3, out))
       return 1;
     std::printf("undersized dilation: %d of %d poses differ (max %g)\n", out.differingPoses,
