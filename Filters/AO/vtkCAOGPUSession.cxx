@@ -116,6 +116,13 @@ std::string GPUSession::Description() const
   return this->Context ? this->Context->Description() : std::string();
 }
 
+std::string GPUSession::BackendLabel(bool gpu) const
+{
+  if (gpu)
+    return "OpenGL (" + this->ContextKind() + ": " + this->Description() + ")";
+  return this->Note.empty() ? std::string("CPU") : "CPU (" + this->Note + ")";
+}
+
 void GPUSession::Release()
 {
   this->AOEngine.reset(); // deletes its GL objects with the context current

@@ -54,6 +54,9 @@ public:
   /// "egl", "osmesa" or "window", and the renderer/version.
   std::string ContextKind() const;
   std::string Description() const;
+  /// What ran, for the outputs' "ComputeBackend" field: "OpenGL (kind:
+  /// renderer, version)" or "CPU", with Note when Auto chose the CPU.
+  std::string BackendLabel(bool gpu) const;
   /// Drop the engine's GL objects and the context.
   void Release();
 

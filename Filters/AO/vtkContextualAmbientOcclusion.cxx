@@ -421,8 +421,7 @@ int vtkContextualAmbientOcclusion::RequestData(
       vtkStringArray* laoBackend = vtkStringArray::SafeDownCast(
         source->GetFieldData()->GetAbstractArray("ComputeBackend"));
       const bool reuse = laoBackend && laoBackend->GetNumberOfValues() == 1 &&
-        laoBackend->GetValue(0) ==
-          "OpenGL (" + this->GPU->ContextKind() + ": " + this->GPU->Description() + ")";
+        laoBackend->GetValue(0) == this->GPU->BackendLabel(true);
       bool aborted = false;
       bool done = engine.SetVolume(upload, error) && engine.SetPlan(plan, error);
       if (done && reuse)
@@ -490,16 +489,13 @@ int vtkContextualAmbientOcclusion::RequestData(
     float* ac = clipped->GetPointer(0);
     std::uint8_t* cat = category->GetPointer(0);
     const int total = 9 + clip.aa.x;
-    const bool subtract = clip.map.w == cao::shared::CAO_MODE_SUBTRACT;
     for (std::int64_t v = 0; v < voxels; ++v)
     {
       const std::uint8_t sv = state[static_cast<std::size_t>(v)];
-      const int k = std::min<int>(sv & cao::shared::CAO_STATE_COUNT_MASK, total);
-      const float coverage = static_cast<float>(k) / static_cast<float>(total);
       cat[v] = static_cast<std::uint8_t>(sv >> cao::shared::CAO_STATE_CATEGORY_SHIFT);
       ac[v] = cat[v] == cao::shared::CAO_CATEGORY_CLIPPED
         ? 0.0f
-        : a[v] * (subtract ? 1.0f - coverage : coverage);
+        : a[v] * cao::ClipFactor(sv & cao::shared::CAO_STATE_COUNT_MASK, total, clip.map.w);
       out[v] = cao::gl::AOEngine::Dequantize(stored[static_cast<std::size_t>(v)]);
     }
     if (this->Verify)
@@ -637,9 +633,7 @@ int vtkContextualAmbientOcclusion::RequestData(
 
   vtkNew<vtkStringArray> backend;
   backend->SetName("ComputeBackend");
-  backend->InsertNextValue(
-    gpu ? "OpenGL (" + this->GPU->ContextKind() + ": " + this->GPU->Description() + ")"
-        : (this->GPU->Note.empty() ? std::string("CPU") : "CPU (" + this->GPU->Note + ")"));
+  backend->InsertNextValue(this->GPU->BackendLabel(gpu));
   output->GetFieldData()->AddArray(backend);
   if (gpu)
   {

@@ -282,7 +282,6 @@ int vtkLocalAmbientOcclusion::RequestData(
           return !aborted;
         }) &&
       engine.ReadPrecomputedAO(stored, error);
-    this->GPU->Key.clear(); // the engine now holds this filter's volume
     if (aborted)
     {
       return 1;
@@ -327,9 +326,7 @@ int vtkLocalAmbientOcclusion::RequestData(
   output->GetFieldData()->AddArray(params);
   vtkNew<vtkStringArray> backend;
   backend->SetName("ComputeBackend");
-  backend->InsertNextValue(
-    gpu ? "OpenGL (" + this->GPU->ContextKind() + ": " + this->GPU->Description() + ")"
-        : (this->GPU->Note.empty() ? std::string("CPU") : "CPU (" + this->GPU->Note + ")"));
+  backend->InsertNextValue(this->GPU->BackendLabel(gpu));
   output->GetFieldData()->AddArray(backend);
   if (gpu)
   {

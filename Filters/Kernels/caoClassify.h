@@ -49,6 +49,18 @@ struct CategoryCounts
   }
 };
 
+/// The factor a voxel's opacity is multiplied by when `count` of its
+/// `total` = 9 + N inside samples fall in the clip (counts above total are
+/// clamped): 1 - c in subtraction, c in probing, with c = count / total in
+/// float, exactly the arithmetic ClassifySlices uses. The GPU keeps `count`
+/// per voxel and this factor in a table.
+inline float ClipFactor(int count, int total, int mode)
+{
+  const float coverage =
+    static_cast<float>(count < total ? count : total) / static_cast<float>(total);
+  return mode == shared::CAO_MODE_SUBTRACT ? 1.0f - coverage : coverage;
+}
+
 /// Fill the deterministic extra anti-aliasing sample offsets (an R3
 /// low-discrepancy sequence in the voxel) and the count.
 void SetAntiAliasingSamples(shared::ClipParams& params, int extraSamples);

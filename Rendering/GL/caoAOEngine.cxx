@@ -3,6 +3,8 @@
 #include "caoGLProgram.h"
 #include "caoGLStateGuard.h"
 
+#include "caoClassify.h"
+
 #include "caoClassify_glsl.h"
 #include "caoCopyUnaffected_glsl.h"
 #include "caoLAOMarch_glsl.h"
@@ -89,6 +91,15 @@ struct AOEngine::Impl
   }
 
   bool External() const { return this->Ctx.Kind() == ContextKind::External; }
+
+  /// Make the context current, or explain why not.
+  bool Current(std::string& error)
+  {
+    if (this->Ctx.MakeCurrent())
+      return true;
+    error = "the OpenGL context cannot be made current";
+    return false;
+  }
   std::int64_t Voxels() const { return std::int64_t(dims[0]) * dims[1] * dims[2]; }
 
   GLuint NewBuffer()
@@ -284,16 +295,9 @@ struct AOEngine::Impl
   {
     if (mode == factorMode && total == factorTotal)
       return;
-    // Exactly caoClassify's arithmetic: coverage = float(count) / float(total),
-    // clipped = opacity * (1 - coverage) or opacity * coverage.
     float f[64];
     for (int k = 0; k < 64; ++k)
-    {
-      const int c = std::min(k, total);
-      const float coverage = static_cast<float>(c) / static_cast<float>(total);
-      f[k] = mode == shared::CAO_MODE_SUBTRACT ? 1.0f - coverage : coverage;
-    }
-    f[0] = mode == shared::CAO_MODE_SUBTRACT ? 1.0f : 0.0f;
+      f[k] = ClipFactor(k, total, mode);
     this->BufferUpload(factors, GL_SHADER_STORAGE_BUFFER, sizeof(f), f);
     bytes[10] = sizeof(f);
     factorMode = mode;
@@ -324,14 +328,24 @@ struct AOEngine::Impl
     previousMode = shared::CAO_MODE_SUBTRACT;
   }
 
-  bool ReadVolume(GLuint texture, GLenum format, GLenum type, std::size_t elementSize,
-    void* out, std::string& error)
+  /// Read a whole volume back (after Precompute or SetPrecomputed).
+  template <typename T>
+  bool ReadVolume(GLuint texture, std::vector<T>& out, std::string& error)
   {
+    if (!havePrecomputed)
+    {
+      error = "nothing computed on the GPU yet";
+      return false;
+    }
+    if (!this->Current(error))
+      return false;
+    StateGuard guard(gl, this->External());
+    out.resize(static_cast<std::size_t>(this->Voxels()));
     gl.BindTexture(GL_TEXTURE_3D, texture);
     gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
-    gl.GetTexImage(GL_TEXTURE_3D, 0, format, type, out);
+    gl.GetTexImage(GL_TEXTURE_3D, 0, GL_RED_INTEGER,
+      sizeof(T) == 1 ? GL_UNSIGNED_BYTE : GL_UNSIGNED_SHORT, out.data());
     gl.BindTexture(GL_TEXTURE_3D, 0);
-    (void)elementSize;
     return this->CheckError("a volume read-back", error);
   }
 };
@@ -358,11 +372,8 @@ Context& AOEngine::GetContext()
 bool AOEngine::SetVolume(const VolumeUpload& v, std::string& error)
 {
   Impl& p = *this->P;
-  if (!p.Ctx.MakeCurrent())
-  {
-    error = "the OpenGL context cannot be made current";
+  if (!p.Current(error))
     return false;
-  }
   StateGuard guard(p.gl, p.External());
   const Functions& gl = p.gl;
   for (int d = 0; d < 3; ++d)
@@ -435,11 +446,7 @@ bool AOEngine::SetVolume(const VolumeUpload& v, std::string& error)
   }
   if (!p.queries[0])
     gl.GenQueries(2 * QCount, p.queries);
-  // Programs depend on the opacity source: rebuild with the plan.
-  if (p.havePlan)
-  {
-    p.havePlan = false;
-  }
+  p.havePlan = false; // the programs depend on the opacity source: SetPlan again
   return p.CheckError("the volume upload", error);
 }
 
@@ -460,11 +467,8 @@ bool AOEngine::SetPlan(const LAOPlan& plan, std::string& error)
       return false;
     }
   }
-  if (!p.Ctx.MakeCurrent())
-  {
-    error = "the OpenGL context cannot be made current";
+  if (!p.Current(error))
     return false;
-  }
   StateGuard guard(p.gl, p.External());
   p.params = plan.params;
   p.BufferUpload(p.laoParams, GL_UNIFORM_BUFFER, sizeof(shared::LAOParams), &plan.params);
@@ -514,11 +518,8 @@ bool AOEngine::Precompute(std::string& error, const std::function<bool(double)>&
     error = "SetVolume and SetPlan must come before Precompute";
     return false;
   }
-  if (!p.Ctx.MakeCurrent())
-  {
-    error = "the OpenGL context cannot be made current";
+  if (!p.Current(error))
     return false;
-  }
   StateGuard guard(p.gl, p.External());
   const Functions& gl = p.gl;
   p.BindLAOBuffers();
@@ -557,11 +558,8 @@ bool AOEngine::SetPrecomputed(const std::uint16_t* ao, std::string& error)
     error = "SetVolume and SetPlan must come before SetPrecomputed";
     return false;
   }
-  if (!p.Ctx.MakeCurrent())
-  {
-    error = "the OpenGL context cannot be made current";
+  if (!p.Current(error))
     return false;
-  }
   StateGuard guard(p.gl, p.External());
   p.gl.BindTexture(GL_TEXTURE_3D, p.aoPre);
   p.gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
@@ -588,11 +586,8 @@ bool AOEngine::SetMaps(int width, int height, int layers, const float* front, co
     error = "the depth maps are empty";
     return false;
   }
-  if (!p.Ctx.MakeCurrent())
-  {
-    error = "the OpenGL context cannot be made current";
+  if (!p.Current(error))
     return false;
-  }
   StateGuard guard(p.gl, p.External());
   const std::size_t n = static_cast<std::size_t>(width) * height * layers;
   std::vector<float> all(4 * n);
@@ -624,11 +619,8 @@ bool AOEngine::Update(const shared::ClipParams& clip, UpdateStats& stats, std::s
     error = "too many anti-aliasing samples";
     return false;
   }
-  if (!p.Ctx.MakeCurrent())
-  {
-    error = "the OpenGL context cannot be made current";
+  if (!p.Current(error))
     return false;
-  }
   StateGuard guard(p.gl, p.External());
   const Functions& gl = p.gl;
   Box current;
@@ -684,11 +676,8 @@ bool AOEngine::FullRecompute(std::vector<std::uint16_t>& ao, std::string& error)
     error = "Precompute must come before FullRecompute";
     return false;
   }
-  if (!p.Ctx.MakeCurrent())
-  {
-    error = "the OpenGL context cannot be made current";
+  if (!p.Current(error))
     return false;
-  }
   StateGuard guard(p.gl, p.External());
   const Functions& gl = p.gl;
   // A scratch volume for the duration of the call only.
@@ -707,8 +696,7 @@ bool AOEngine::FullRecompute(std::vector<std::uint16_t>& ao, std::string& error)
   p.End(QFull);
   gl.MemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   p.times.full = p.QueryMs(QFull);
-  ao.resize(static_cast<std::size_t>(p.Voxels()));
-  const bool ok = p.ReadVolume(scratch, GL_RED_INTEGER, GL_UNSIGNED_SHORT, 2, ao.data(), error);
+  const bool ok = p.ReadVolume(scratch, ao, error);
   p.FreeTexture(scratch);
   return ok && p.CheckError("the full recompute", error);
 }
@@ -721,11 +709,8 @@ bool AOEngine::Verify(Verification& result, std::string& error)
     error = "Precompute must come before Verify";
     return false;
   }
-  if (!p.Ctx.MakeCurrent())
-  {
-    error = "the OpenGL context cannot be made current";
+  if (!p.Current(error))
     return false;
-  }
   StateGuard guard(p.gl, p.External());
   const Functions& gl = p.gl;
   const std::uint32_t zero[4] = { 0, 0, 0, 0 };
@@ -755,41 +740,17 @@ bool AOEngine::Verify(Verification& result, std::string& error)
 
 bool AOEngine::ReadCurrentAO(std::vector<std::uint16_t>& ao, std::string& error)
 {
-  Impl& p = *this->P;
-  if (!p.havePrecomputed || !p.Ctx.MakeCurrent())
-  {
-    error = "no AO on the GPU";
-    return false;
-  }
-  StateGuard guard(p.gl, p.External());
-  ao.resize(static_cast<std::size_t>(p.Voxels()));
-  return p.ReadVolume(p.aoCur, GL_RED_INTEGER, GL_UNSIGNED_SHORT, 2, ao.data(), error);
+  return this->P->ReadVolume(this->P->aoCur, ao, error);
 }
 
 bool AOEngine::ReadPrecomputedAO(std::vector<std::uint16_t>& ao, std::string& error)
 {
-  Impl& p = *this->P;
-  if (!p.havePrecomputed || !p.Ctx.MakeCurrent())
-  {
-    error = "no AO on the GPU";
-    return false;
-  }
-  StateGuard guard(p.gl, p.External());
-  ao.resize(static_cast<std::size_t>(p.Voxels()));
-  return p.ReadVolume(p.aoPre, GL_RED_INTEGER, GL_UNSIGNED_SHORT, 2, ao.data(), error);
+  return this->P->ReadVolume(this->P->aoPre, ao, error);
 }
 
 bool AOEngine::ReadState(std::vector<std::uint8_t>& state, std::string& error)
 {
-  Impl& p = *this->P;
-  if (!p.havePrecomputed || !p.Ctx.MakeCurrent())
-  {
-    error = "no clip state on the GPU";
-    return false;
-  }
-  StateGuard guard(p.gl, p.External());
-  state.resize(static_cast<std::size_t>(p.Voxels()));
-  return p.ReadVolume(p.state, GL_RED_INTEGER, GL_UNSIGNED_BYTE, 1, state.data(), error);
+  return this->P->ReadVolume(this->P->state, state, error);
 }
 
 const StageTimes& AOEngine::Times() const
