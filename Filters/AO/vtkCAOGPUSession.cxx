@@ -96,14 +96,21 @@ bool GPUSession::Resolve(vtkAlgorithm* self, int backend, bool& failed)
     }
     return false;
   }
-  if (!this->AOEngine)
-    this->AOEngine.reset(new cao::gl::AOEngine(*this->Context));
   return true;
 }
 
 cao::gl::AOEngine& GPUSession::Engine()
 {
+  if (!this->AOEngine)
+    this->AOEngine.reset(new cao::gl::AOEngine(*this->Context));
   return *this->AOEngine;
+}
+
+cao::gl::DepthRaster& GPUSession::Raster()
+{
+  if (!this->DepthRaster)
+    this->DepthRaster.reset(new cao::gl::DepthRaster(*this->Context));
+  return *this->DepthRaster;
 }
 
 std::string GPUSession::ContextKind() const
@@ -126,6 +133,7 @@ std::string GPUSession::BackendLabel(bool gpu) const
 void GPUSession::Release()
 {
   this->AOEngine.reset(); // deletes its GL objects with the context current
+  this->DepthRaster.reset();
   if (this->Context)
     this->Context->Release();
   this->Context.reset();

@@ -18,6 +18,7 @@
 #define vtkCAOGPUSession_h
 
 #include "caoAOEngine.h"
+#include "caoDepthRaster.h"
 #include "caoGLContext.h"
 
 #include <cstdint>
@@ -50,7 +51,10 @@ public:
   /// forced and no context fits; warns once and returns false for Auto.
   bool Resolve(vtkAlgorithm* self, int backend, bool& failed);
 
+  /// The engine and the depth-map raster on this session's context, made
+  /// on first use (only after Resolve returned true).
   cao::gl::AOEngine& Engine();
+  cao::gl::DepthRaster& Raster();
   /// "egl", "osmesa" or "window", and the renderer/version.
   std::string ContextKind() const;
   std::string Description() const;
@@ -69,6 +73,7 @@ public:
 private:
   std::unique_ptr<cao::gl::Context> Context;
   std::unique_ptr<cao::gl::AOEngine> AOEngine;
+  std::unique_ptr<cao::gl::DepthRaster> DepthRaster;
   std::string Failure; // why no context could be had (kept: tried once)
   bool Tried = false;
   bool Warned = false;

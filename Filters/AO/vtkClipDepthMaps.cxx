@@ -1,6 +1,7 @@
 #include "vtkClipDepthMaps.h"
 
 #include "vtkCAOFilterUtilities.h"
+#include "vtkCAOGPUSession.h"
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkCleanPolyData.h"
@@ -17,6 +18,7 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataNormals.h"
+#include "vtkStringArray.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTriangleFilter.h"
 
@@ -47,8 +49,18 @@ vtkSmartPointer<vtkFloatArray> MakeLayerArray(
 
 //------------------------------------------------------------------------------
 vtkClipDepthMaps::vtkClipDepthMaps()
+  : GPU(new vtkCAO::GPUSession)
 {
   vtkCAO::EnsureThreadedBackend();
+}
+
+//------------------------------------------------------------------------------
+vtkClipDepthMaps::~vtkClipDepthMaps() = default;
+
+//------------------------------------------------------------------------------
+void vtkClipDepthMaps::ReleaseGraphicsResources()
+{
+  this->GPU->Release();
 }
 
 //------------------------------------------------------------------------------
@@ -421,8 +433,7 @@ int vtkClipDepthMaps::RequestData(
     cam.origin[d] = eu0 * right[d] + ev0 * up[d];
   }
 
-  // Rasterise and peel.
-  auto t0 = std::chrono::steady_clock::now();
+  // Rasterise and peel, then dilate and erode: on the GPU or the CPU.
   cao::TriangleMesh tm;
   tm.points = points.data();
   tm.numberOfPoints = mesh->GetNumberOfPoints();
@@ -430,12 +441,39 @@ int vtkClipDepthMaps::RequestData(
   tm.numberOfTriangles = static_cast<std::int64_t>(tris.size() / 3);
   cao::DepthMaps raw, dilated, eroded;
   std::string error;
-  if (!cao::RasterizeDepthLayers(cam, tm, raw, error))
+  bool gpuFailed = false;
+  const bool gpu = this->GPU->Resolve(this, this->Backend, gpuFailed);
+  if (gpuFailed)
   {
-    vtkErrorMacro("Cannot rasterise the clip mesh: " << error << ".");
     return 0;
   }
-  const double rasterMs = vtkCAO::MillisecondsSince(t0);
+  double rasterMs = 0.0, dilateMs = 0.0;
+  if (gpu)
+  {
+    cao::gl::DepthRasterStats gpuStats;
+    cao::gl::DepthRaster& raster = this->GPU->Raster();
+    if (!raster.Build(cam, tm, radius, gpuStats, error) ||
+      !raster.Read(raw, dilated, eroded, error))
+    {
+      vtkErrorMacro("Cannot build the depth maps on the GPU: " << error << ".");
+      return 0;
+    }
+    raw.coveredPixels = gpuStats.coveredPixels;
+    raw.overflowPixels = gpuStats.overflowPixels;
+    raw.unmatchedPixels = gpuStats.unmatchedPixels;
+    rasterMs = gpuStats.rasterMs;
+    dilateMs = gpuStats.dilateMs;
+  }
+  else
+  {
+    auto t0 = std::chrono::steady_clock::now();
+    if (!cao::RasterizeDepthLayers(cam, tm, raw, error))
+    {
+      vtkErrorMacro("Cannot rasterise the clip mesh: " << error << ".");
+      return 0;
+    }
+    rasterMs = vtkCAO::MillisecondsSince(t0);
+  }
   this->UpdateProgress(0.2);
   if (raw.coveredPixels == 0)
   {
@@ -455,21 +493,24 @@ int vtkClipDepthMaps::RequestData(
                        "layer. Increase NumberOfLayers to clip this mesh exactly.");
   }
 
-  t0 = std::chrono::steady_clock::now();
-  dilated.Allocate(width, height, cam.layers);
-  eroded.Allocate(width, height, cam.layers);
-  bool ok = true;
-  vtkCAO::WithThreads(this->NumberOfThreads, [&] {
-    ok = vtkCAO::ParallelFor(this, height, 1, 0.2, 1.0, [&](std::int64_t b, std::int64_t e) {
-      cao::DilateErodeRows(raw, cam, radius, dilated, eroded, static_cast<int>(b),
-        static_cast<int>(e));
-    });
-  });
-  if (!ok)
+  if (!gpu)
   {
-    return 1;
+    auto t0 = std::chrono::steady_clock::now();
+    dilated.Allocate(width, height, cam.layers);
+    eroded.Allocate(width, height, cam.layers);
+    bool ok = true;
+    vtkCAO::WithThreads(this->NumberOfThreads, [&] {
+      ok = vtkCAO::ParallelFor(this, height, 1, 0.2, 1.0, [&](std::int64_t b, std::int64_t e) {
+        cao::DilateErodeRows(raw, cam, radius, dilated, eroded, static_cast<int>(b),
+          static_cast<int>(e));
+      });
+    });
+    if (!ok)
+    {
+      return 1;
+    }
+    dilateMs = vtkCAO::MillisecondsSince(t0);
   }
-  const double dilateMs = vtkCAO::MillisecondsSince(t0);
 
   // Camera-space bounds of the dilated region: the candidate box.
   double region[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
@@ -549,6 +590,10 @@ int vtkClipDepthMaps::RequestData(
     dilateMs };
   stats->InsertNextTuple(statValues);
   fd->AddArray(stats);
+  vtkNew<vtkStringArray> backend;
+  backend->SetName("ComputeBackend");
+  backend->InsertNextValue(this->GPU->BackendLabel(gpu));
+  fd->AddArray(backend);
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -574,4 +619,5 @@ void vtkClipDepthMaps::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DilationScale: " << this->DilationScale << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "DilationRadius: " << this->DilationRadius << "\n";
+  os << indent << "Backend: " << vtkCAO::BackendName(this->Backend) << "\n";
 }

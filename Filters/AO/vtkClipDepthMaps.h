@@ -25,12 +25,25 @@
  * size enters in the dilation itself (see caoDepthMaps.h).
  *
  * Bad input (empty, open, degenerate meshes, a zero-area camera) is an error.
+ *
+ * Backend OPENGL rasterises, peels, dilates and erodes on the GPU (see
+ * Rendering/GL/caoDepthRaster.h): the GL pipeline draws the triangles and a
+ * fragment shader applies the CPU's exact coverage rule in double, so the
+ * maps are the CPU backend's bit for bit. "ComputeBackend" (field data)
+ * says what ran; the DepthMapStatistics times are then GPU milliseconds.
  */
 #ifndef vtkClipDepthMaps_h
 #define vtkClipDepthMaps_h
 
 #include "caoFiltersAOModule.h" // For export macro
 #include "vtkImageAlgorithm.h"
+
+#include <memory> // For the GPU session
+
+namespace vtkCAO
+{
+class GPUSession;
+}
 
 class CAOFILTERSAO_EXPORT vtkClipDepthMaps : public vtkImageAlgorithm
 {
@@ -127,12 +140,37 @@ public:
   vtkGetMacro(NumberOfThreads, int);
   ///@}
 
+  /// Where the work runs: as vtkLocalAmbientOcclusion's Backend.
+  enum Backends
+  {
+    AUTO = 0,
+    CPU = 1,
+    OPENGL = 2
+  };
+
+  ///@{
+  /**
+   * Backend: CPU, OPENGL (a headless EGL or OSMesa OpenGL >= 4.3 context;
+   * an error when there is none) or AUTO (default: OpenGL on a hardware
+   * GPU; the CPU on a software rasteriser, or with one warning when there
+   * is no OpenGL 4.3 at all). Both give the same maps, bit for bit.
+   */
+  vtkSetClampMacro(Backend, int, AUTO, OPENGL);
+  vtkGetMacro(Backend, int);
+  void SetBackendToAuto() { this->SetBackend(AUTO); }
+  void SetBackendToCPU() { this->SetBackend(CPU); }
+  void SetBackendToOpenGL() { this->SetBackend(OPENGL); }
+  ///@}
+
+  /// Free the GPU objects and the OpenGL context this filter holds.
+  void ReleaseGraphicsResources();
+
   /// Radius the output maps are dilated by (local units), after an update.
   vtkGetMacro(DilationRadius, double);
 
 protected:
   vtkClipDepthMaps();
-  ~vtkClipDepthMaps() override = default;
+  ~vtkClipDepthMaps() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
@@ -152,6 +190,8 @@ protected:
   double DilationScale = 1.0;
   int NumberOfThreads = 0;
   double DilationRadius = 0.0;
+  int Backend = AUTO;
+  std::unique_ptr<vtkCAO::GPUSession> GPU;
 
 private:
   vtkClipDepthMaps(const vtkClipDepthMaps&) = delete;

@@ -76,8 +76,7 @@ void LocalToCamera(const ClipCamera& c, const double q[3], double uvz[3])
   uvz[2] = Dot(d, c.direction);
 }
 
-bool RasterizeDepthLayers(
-  const ClipCamera& cam, const TriangleMesh& mesh, DepthMaps& out, std::string& error)
+bool ValidateRasterInput(const ClipCamera& cam, const TriangleMesh& mesh, std::string& error)
 {
   if (cam.width < 1 || cam.height < 1 || !(cam.pixelSize[0] > 0.0) ||
     !(cam.pixelSize[1] > 0.0) || !std::isfinite(cam.pixelSize[0] * cam.pixelSize[1]))
@@ -100,6 +99,57 @@ bool RasterizeDepthLayers(
     error = "the clip mesh has no triangles";
     return false;
   }
+  for (std::int64_t i = 0; i < 3 * mesh.numberOfPoints; ++i)
+  {
+    if (!std::isfinite(mesh.points[i]))
+    {
+      error = "the clip mesh has non-finite point coordinates";
+      return false;
+    }
+  }
+  for (std::int64_t i = 0; i < 3 * mesh.numberOfTriangles; ++i)
+  {
+    if (mesh.triangles[i] < 0 || mesh.triangles[i] >= mesh.numberOfPoints)
+    {
+      error = "the clip mesh references a point id out of range";
+      return false;
+    }
+  }
+  return true;
+}
+
+void PixelSpan(double lo, double hi, int size, int& x0, int& x1)
+{
+  // Clamped in double first: a far-away vertex must not overflow the int.
+  x0 = static_cast<int>(std::max(0.0, std::min(double(size), std::ceil(lo - 0.5))));
+  x1 = static_cast<int>(std::max(-1.0, std::min(size - 1.0, std::floor(hi - 0.5))));
+}
+
+std::vector<DilationOffset> DilationWindow(const ClipCamera& cam, double radius, int& rx, int& ry)
+{
+  const double pw = cam.pixelSize[0], ph = cam.pixelSize[1];
+  rx = static_cast<int>(std::ceil(radius / pw)) + 1;
+  ry = static_cast<int>(std::ceil(radius / ph)) + 1;
+  std::vector<DilationOffset> window;
+  for (int dy = -ry; dy <= ry; ++dy)
+  {
+    for (int dx = -rx; dx <= rx; ++dx)
+    {
+      const double gx = std::max(0, std::abs(dx) - 1) * pw;
+      const double gy = std::max(0, std::abs(dy) - 1) * ph;
+      const double g2 = gx * gx + gy * gy;
+      if (g2 <= radius * radius)
+        window.push_back(DilationOffset{ dx, dy, std::sqrt(radius * radius - g2) });
+    }
+  }
+  return window;
+}
+
+bool RasterizeDepthLayers(
+  const ClipCamera& cam, const TriangleMesh& mesh, DepthMaps& out, std::string& error)
+{
+  if (!ValidateRasterInput(cam, mesh, error))
+    return false;
   std::vector<Projected> pts(static_cast<std::size_t>(mesh.numberOfPoints));
   for (std::int64_t i = 0; i < mesh.numberOfPoints; ++i)
   {
@@ -108,7 +158,7 @@ bool RasterizeDepthLayers(
     pts[i] = Projected{ uvz[0], uvz[1], uvz[2] };
     if (!std::isfinite(uvz[0]) || !std::isfinite(uvz[1]) || !std::isfinite(uvz[2]))
     {
-      error = "the clip mesh has non-finite point coordinates";
+      error = "the clip mesh's projection overflows";
       return false;
     }
   }
@@ -143,14 +193,6 @@ bool RasterizeDepthLayers(
     {
       std::int64_t id[3] = { mesh.triangles[3 * t], mesh.triangles[3 * t + 1],
         mesh.triangles[3 * t + 2] };
-      for (std::int64_t i : id)
-      {
-        if (i < 0 || i >= mesh.numberOfPoints)
-        {
-          error = "the clip mesh references a point id out of range";
-          return false;
-        }
-      }
       const double area = Edge(pts.data(), id[0], id[1], pts[id[2]].u, pts[id[2]].v);
       if (area == 0.0)
         continue; // edge-on: covers no pixel centre consistently; neighbours do
@@ -164,10 +206,9 @@ bool RasterizeDepthLayers(
       const Projected& c = pts[id[2]];
       const double umin = std::min({ a.u, b.u, c.u }), umax = std::max({ a.u, b.u, c.u });
       const double vmin = std::min({ a.v, b.v, c.v }), vmax = std::max({ a.v, b.v, c.v });
-      const int x0 = std::max(0, static_cast<int>(std::ceil(umin - 0.5)));
-      const int x1 = std::min(cam.width - 1, static_cast<int>(std::floor(umax - 0.5)));
-      const int y0 = std::max(0, static_cast<int>(std::ceil(vmin - 0.5)));
-      const int y1 = std::min(cam.height - 1, static_cast<int>(std::floor(vmax - 0.5)));
+      int x0, x1, y0, y1;
+      PixelSpan(umin, umax, cam.width, x0, x1);
+      PixelSpan(vmin, vmax, cam.height, y0, y1);
       const bool tl0 = TopLeft(b, c), tl1 = TopLeft(c, a), tl2 = TopLeft(a, b);
       for (int y = y0; y <= y1; ++y)
       {
@@ -253,26 +294,8 @@ bool RasterizeDepthLayers(
 void DilateErodeRows(const DepthMaps& in, const ClipCamera& cam, double radius,
   DepthMaps& dil, DepthMaps& ero, int rowBegin, int rowEnd)
 {
-  const double pw = cam.pixelSize[0], ph = cam.pixelSize[1];
-  const int rx = static_cast<int>(std::ceil(radius / pw)) + 1;
-  const int ry = static_cast<int>(std::ceil(radius / ph)) + 1;
-  struct Offset
-  {
-    int dx, dy;
-    double h;
-  };
-  std::vector<Offset> window;
-  for (int dy = -ry; dy <= ry; ++dy)
-  {
-    for (int dx = -rx; dx <= rx; ++dx)
-    {
-      const double gx = std::max(0, std::abs(dx) - 1) * pw;
-      const double gy = std::max(0, std::abs(dy) - 1) * ph;
-      const double g2 = gx * gx + gy * gy;
-      if (g2 <= radius * radius)
-        window.push_back(Offset{ dx, dy, std::sqrt(radius * radius - g2) });
-    }
-  }
+  int rx = 0, ry = 0;
+  const std::vector<DilationOffset> window = DilationWindow(cam, radius, rx, ry);
   const double inf = std::numeric_limits<double>::infinity();
   for (int l = 0; l < in.layers; ++l)
   {
@@ -297,7 +320,7 @@ void DilateErodeRows(const DepthMaps& in, const ClipCamera& cam, double radius,
       {
         double dFront = inf, dBack = -inf, eFront = -inf, eBack = inf;
         bool erodedEmpty = false;
-        for (const Offset& o : window)
+        for (const DilationOffset& o : window)
         {
           const int sx = x + o.dx, sy = y + o.dy;
           if (sx < 0 || sy < 0 || sx >= in.width || sy >= in.height)

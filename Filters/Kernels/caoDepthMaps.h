@@ -74,6 +74,26 @@ struct TriangleMesh
 /// Local-frame point to camera (u, v, depth) as defined in ClipCamera.
 void LocalToCamera(const ClipCamera& camera, const double q[3], double uvz[3]);
 
+/// The checks RasterizeDepthLayers makes before any work (camera, layers,
+/// size, ids, finite points), shared with the GPU rasteriser so that both
+/// reject the same input with the same message.
+bool ValidateRasterInput(const ClipCamera& camera, const TriangleMesh& mesh, std::string& error);
+
+/// Pixel range [x0, x1] whose centres may lie in [lo, hi] (pixel units),
+/// clamped to [0, size - 1] (empty when x0 > x1). Shared with the GPU.
+void PixelSpan(double lo, double hi, int size, int& x0, int& x1);
+
+/// One offset of the dilation window (see DilateErodeRows): h is the depth
+/// slack sqrt(radius^2 - gap^2) at that offset.
+struct DilationOffset
+{
+  int dx, dy;
+  double h;
+};
+/// The window of DilateErodeRows, in its scan order; rx, ry its half sizes.
+std::vector<DilationOffset> DilationWindow(
+  const ClipCamera& camera, double radius, int& rx, int& ry);
+
 /// Rasterise and depth-peel the mesh. Returns false with a message for an
 /// invalid camera (zero area) or mesh (no triangles, bad ids).
 bool RasterizeDepthLayers(

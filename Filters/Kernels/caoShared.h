@@ -26,6 +26,7 @@ struct ivec4
 {
   std::int32_t x, y, z, w;
 };
+using uint = std::uint32_t;
 #define CAO_CONST static constexpr int
 #else
 #define CAO_CONST const int
@@ -94,9 +95,16 @@ struct ClipParams
 #define CAO_BINDING_CLIP_FACTORS 2  /* storage: float clip factor per coverage count */
 #define CAO_BINDING_MAPS 3          /* storage: front, back, candidate front, candidate back */
 #define CAO_BINDING_COUNTERS 4      /* storage: uint category counts (a, b, c) */
-#define CAO_BINDING_FRAGMENTS 5     /* storage: depth-map fragment lists */
-#define CAO_BINDING_TRIANGLES 6     /* storage: per-triangle depth planes */
-#define CAO_BINDING_WINDOW 7        /* storage: dilation window offsets */
+/* The depth-map programs (caoDepthRaster) are separate programs with their
+ * own storage bindings, kept within the 8 that GL 4.3 guarantees. */
+#define CAO_BINDING_DM_POINTS 0    /* storage: double xyz per mesh point (local frame) */
+#define CAO_BINDING_DM_IDS 1       /* storage: int, 3 point ids per triangle */
+#define CAO_BINDING_DM_TRIANGLES 2 /* storage: DMTriangle per triangle */
+#define CAO_BINDING_DM_HEADS 3     /* storage: uint per pixel, first hit of its list */
+#define CAO_BINDING_DM_HITS 4      /* storage: DMHit per covered (pixel, triangle) */
+#define CAO_BINDING_DM_MAPS 5      /* storage: six maps (see caoDepthRaster.h) */
+#define CAO_BINDING_DM_WINDOW 6    /* storage: DMOffset per dilation window pixel */
+#define CAO_BINDING_DM_STATS 7     /* storage: int counters (CAO_DM_STAT_*), layer boxes */
 #define CAO_IMAGE_VOLUME 0          /* scalars (r8ui/r16ui) or opacity (r32f) */
 #define CAO_IMAGE_STATE 1           /* r8ui: category << 6 | coverage count */
 #define CAO_IMAGE_AO_IN 2           /* r16ui: precomputed AO */
@@ -113,7 +121,43 @@ CAO_CONST CAO_STATE_COUNT_MASK = 63;
 /* AO is stored on the GPU as 16-bit unsigned normalised: q = uint(ao * 65535 + 0.5). */
 CAO_CONST CAO_AO_SCALE = 65535;
 
+/*
+ * Depth maps on the GPU. caoDepthMaps.cxx works in double; so do these
+ * records and the shaders that use them, operation for operation, so that
+ * the GPU maps are the CPU maps bit for bit. Doubles are 8-byte aligned in
+ * both std430 and C++; each struct is padded to a multiple of 16 by hand.
+ */
+struct DMTriangle
+{
+  double u[4]; /* pixel coordinates of the corners (counter-clockwise); [3] unused */
+  double v[4];
+  double z[4]; /* depths of the corners */
+  ivec4 ids;   /* xyz: the corners' point ids (canonical edge order); w: winding (+1/-1) */
+  ivec4 box;   /* pixels [x, z] x [y, w] whose centres may be covered; empty if x > z */
+};
+struct DMHit
+{
+  double z;          /* depth of the crossing */
+  int winding;       /* +1 entering, -1 leaving */
+  uint next;         /* next hit of the same pixel, CAO_DM_END at the end */
+};
+struct DMOffset
+{
+  int dx, dy; /* window offset in pixels */
+  double h;   /* sqrt(radius^2 - gap^2): the depth slack at that offset */
+};
+CAO_CONST CAO_DM_STAT_COVERED = 0;   /* pixels with an interval */
+CAO_CONST CAO_DM_STAT_OVERFLOW = 1;  /* pixels with more intervals than layers */
+CAO_CONST CAO_DM_STAT_UNMATCHED = 2; /* pixels whose winding did not return to 0 */
+CAO_CONST CAO_DM_STAT_NONFINITE = 3; /* triangles with a non-finite projection */
+CAO_CONST CAO_DM_STAT_HITS = 4;      /* hits appended (the allocation counter) */
+CAO_CONST CAO_DM_STAT_BOXES = 8;     /* then per layer: covered x0, y0, x1, y1 */
+#define CAO_DM_END 0xFFFFFFFFu
+
 #ifdef __cplusplus
+static_assert(sizeof(DMTriangle) == 128, "DMTriangle must match std430");
+static_assert(sizeof(DMHit) == 16, "DMHit must match std430");
+static_assert(sizeof(DMOffset) == 16, "DMOffset must match std430");
 static_assert(sizeof(LAOTap) == 32, "LAOTap must match std430");
 static_assert(sizeof(LAOParams) == 96, "LAOParams must match std140/std430");
 static_assert(sizeof(ClipParams) == 3 * 16 + 4 * 16 + CAO_MAX_AA_EXTRA_SAMPLES * 16,

@@ -2,6 +2,7 @@
 
 #include "caoGLProgram.h"
 #include "caoGLStateGuard.h"
+#include "caoGLTimer.h"
 
 #include "caoClassify.h"
 
@@ -71,7 +72,7 @@ struct AOEngine::Impl
   // buffers
   GLuint laoParams = 0, taps = 0, opacityTable = 0, factors = 0, clipParams = 0, maps = 0,
          counters = 0;
-  GLuint queries[2 * QCount] = {}; // begin and end timestamps per stage
+  StageTimer timer{ QCount };
   Program lao, laoAffected, laoFull, laoVerify, classify, copy;
   int dims[3] = { 0, 0, 0 };
   OpacitySource source = OpacitySource::Float32;
@@ -153,13 +154,6 @@ struct AOEngine::Impl
     return false;
   }
 
-  void ReleaseQueries()
-  {
-    if (queries[0])
-      gl.DeleteQueries(2 * QCount, queries);
-    std::fill(queries, queries + 2 * QCount, 0u);
-  }
-
   void ReleaseAll()
   {
     // A program in use is only flagged by glDeleteProgram: unbind ours first
@@ -169,7 +163,7 @@ struct AOEngine::Impl
       this->FreeTexture(*t);
     for (GLuint* b : { &laoParams, &taps, &opacityTable, &factors, &clipParams, &maps, &counters })
       this->FreeBuffer(*b);
-    this->ReleaseQueries();
+    timer.Release(gl);
     for (Program* p : { &lao, &laoAffected, &laoFull, &laoVerify, &classify, &copy })
       p->Release(gl);
     havePlan = havePrecomputed = haveMaps = false;
@@ -216,45 +210,9 @@ struct AOEngine::Impl
       static_cast<GLuint>((n[2] + LocalZ - 1) / LocalZ));
   }
 
-  // GPU time of a stage from two GL_TIMESTAMP queries around it (llvmpipe
-  // reports 0 for GL_TIME_ELAPSED around compute dispatches). OSMesa's
-  // llvmpipe stamps queries when they are queued, not when the work before
-  // them ends, so there the stage is bracketed by glFinish and timed on the
-  // host clock instead (the "GPU" is the CPU there; the numbers are exact,
-  // at the price of a synchronisation per stage).
-  bool HostTiming() const { return this->Ctx.Kind() == ContextKind::OSMesa; }
-  std::chrono::steady_clock::time_point hostBegin[QCount];
-  double hostMs[QCount] = {};
-  void Begin(Query q)
-  {
-    if (this->HostTiming())
-    {
-      gl.Finish();
-      hostBegin[q] = std::chrono::steady_clock::now();
-      return;
-    }
-    gl.QueryCounter(queries[2 * q], GL_TIMESTAMP);
-  }
-  void End(Query q)
-  {
-    if (this->HostTiming())
-    {
-      gl.Finish();
-      hostMs[q] = std::chrono::duration<double, std::milli>(
-        std::chrono::steady_clock::now() - hostBegin[q]).count();
-      return;
-    }
-    gl.QueryCounter(queries[2 * q + 1], GL_TIMESTAMP);
-  }
-  double QueryMs(Query q)
-  {
-    if (this->HostTiming())
-      return hostMs[q];
-    GLuint64 t0 = 0, t1 = 0;
-    gl.GetQueryObjectui64v(queries[2 * q], GL_QUERY_RESULT, &t0);
-    gl.GetQueryObjectui64v(queries[2 * q + 1], GL_QUERY_RESULT, &t1);
-    return t1 > t0 ? static_cast<double>(t1 - t0) * 1e-6 : 0.0;
-  }
+  void Begin(Query q) { timer.Begin(gl, q); }
+  void End(Query q) { timer.End(gl, q); }
+  double QueryMs(Query q) { return timer.Milliseconds(gl, q); }
 
   Box WholeVolume() const
   {
@@ -444,8 +402,7 @@ bool AOEngine::SetVolume(const VolumeUpload& v, std::string& error)
     p.BufferUpload(p.counters, GL_SHADER_STORAGE_BUFFER, sizeof(zero), zero);
     p.bytes[5] = sizeof(zero);
   }
-  if (!p.queries[0])
-    gl.GenQueries(2 * QCount, p.queries);
+  p.timer.Allocate(gl, p.Ctx.Kind() == ContextKind::OSMesa);
   p.havePlan = false; // the programs depend on the opacity source: SetPlan again
   return p.CheckError("the volume upload", error);
 }
@@ -599,6 +556,33 @@ bool AOEngine::SetMaps(int width, int height, int layers, const float* front, co
   p.bytes[9] = static_cast<std::int64_t>(all.size() * sizeof(float));
   p.haveMaps = true;
   return p.CheckError("the depth-map upload", error);
+}
+
+bool AOEngine::SetMaps(const DepthRaster& raster, int mode, std::string& error)
+{
+  Impl& p = *this->P;
+  if (!raster.MapBuffer() || raster.Width() < 1)
+  {
+    error = "the depth maps are empty";
+    return false;
+  }
+  if (!p.Current(error))
+    return false;
+  StateGuard guard(p.gl, p.External());
+  const Functions& gl = p.gl;
+  const GLsizeiptr n = static_cast<GLsizeiptr>(raster.Width()) * raster.Height() *
+    raster.Layers() * static_cast<GLsizeiptr>(sizeof(float));
+  p.BufferUpload(p.maps, GL_SHADER_STORAGE_BUFFER, static_cast<std::size_t>(4 * n), nullptr);
+  gl.BindBuffer(GL_COPY_READ_BUFFER, raster.MapBuffer());
+  gl.BindBuffer(GL_COPY_WRITE_BUFFER, p.maps);
+  gl.CopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, 2 * n);
+  gl.CopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER,
+    (mode == shared::CAO_MODE_SUBTRACT ? 2 : 4) * n, 2 * n, 2 * n);
+  gl.BindBuffer(GL_COPY_READ_BUFFER, 0);
+  gl.BindBuffer(GL_COPY_WRITE_BUFFER, 0);
+  p.bytes[9] = static_cast<std::int64_t>(4 * n);
+  p.haveMaps = true;
+  return p.CheckError("the depth-map copy", error);
 }
 
 bool AOEngine::Update(const shared::ClipParams& clip, UpdateStats& stats, std::string& error)
@@ -792,7 +776,7 @@ std::vector<std::pair<char, unsigned int>> AOEngine::ObjectNames() const
     { &p.lao, &p.laoAffected, &p.laoFull, &p.laoVerify, &p.classify, &p.copy })
     if (prog->Valid())
       names.emplace_back('p', prog->Id());
-  for (GLuint q : p.queries)
+  for (GLuint q : p.timer.Names())
     if (q)
       names.emplace_back('q', q);
   return names;

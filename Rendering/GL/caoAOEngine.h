@@ -24,6 +24,7 @@
 #ifndef caoAOEngine_h
 #define caoAOEngine_h
 
+#include "caoDepthRaster.h"
 #include "caoGLContext.h"
 #include "caoLAO.h"
 #include "caoShared.h"
@@ -91,6 +92,12 @@ public:
   /// Upload clip depth maps (raw and candidate layers, caoDepthMaps layout).
   bool SetMaps(int width, int height, int layers, const float* front, const float* back,
     const float* candidateFront, const float* candidateBack, std::string& error);
+
+  /// Take the maps a DepthRaster built on this engine's context, without a
+  /// CPU round trip: raw layers plus the dilated (subtraction) or eroded
+  /// (probing) pair, chosen by `mode` (CAO_MODE_*). A pose of the other mode
+  /// needs this call again.
+  bool SetMaps(const DepthRaster& raster, int mode, std::string& error);
 
   /// One pose: classify, copy categories a/c, recompute category b.
   bool Update(const shared::ClipParams& clip, UpdateStats& stats, std::string& error);

@@ -30,6 +30,7 @@
   X(ClearBufferData, CLEARBUFFERDATA)                                                            \
   X(ColorMask, COLORMASK)                                                                        \
   X(CompileShader, COMPILESHADER)                                                                \
+  X(CopyBufferSubData, COPYBUFFERSUBDATA)                                                        \
   X(CreateProgram, CREATEPROGRAM)                                                                \
   X(CreateShader, CREATESHADER)                                                                  \
   X(DeleteBuffers, DELETEBUFFERS)                                                                \
@@ -41,8 +42,10 @@
   X(DeleteVertexArrays, DELETEVERTEXARRAYS)                                                      \
   X(DepthMask, DEPTHMASK)                                                                        \
   X(Disable, DISABLE)                                                                            \
+  X(DisableVertexAttribArray, DISABLEVERTEXATTRIBARRAY)                                          \
   X(DispatchCompute, DISPATCHCOMPUTE)                                                            \
   X(DrawArrays, DRAWARRAYS)                                                                      \
+  X(DrawArraysInstanced, DRAWARRAYSINSTANCED)                                                    \
   X(Enable, ENABLE)                                                                              \
   X(EnableVertexAttribArray, ENABLEVERTEXATTRIBARRAY)                                            \
   X(EndQuery, ENDQUERY)                                                                          \
@@ -84,9 +87,15 @@
   X(TexSubImage3D, TEXSUBIMAGE3D)                                                                \
   X(Uniform1f, UNIFORM1F)                                                                        \
   X(Uniform1i, UNIFORM1I)                                                                        \
+  X(Uniform1ui, UNIFORM1UI)                                                                      \
+  X(Uniform2d, UNIFORM2D)                                                                        \
+  X(Uniform2i, UNIFORM2I)                                                                        \
+  X(Uniform3d, UNIFORM3D)                                                                        \
   X(Uniform3i, UNIFORM3I)                                                                        \
   X(Uniform4f, UNIFORM4F)                                                                        \
   X(UseProgram, USEPROGRAM)                                                                      \
+  X(VertexAttribDivisor, VERTEXATTRIBDIVISOR)                                                    \
+  X(VertexAttribIPointer, VERTEXATTRIBIPOINTER)                                                  \
   X(VertexAttribPointer, VERTEXATTRIBPOINTER)                                                    \
   X(Viewport, VIEWPORT)
 

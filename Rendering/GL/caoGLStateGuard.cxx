@@ -15,6 +15,8 @@ StateGuard::StateGuard(const Functions& gl, bool active)
   gl.GetIntegerv(GL_ARRAY_BUFFER_BINDING, &this->ArrayBuffer);
   gl.GetIntegerv(GL_UNIFORM_BUFFER_BINDING, &this->UniformBuffer);
   gl.GetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &this->StorageBuffer);
+  gl.GetIntegerv(GL_COPY_READ_BUFFER_BINDING, &this->CopyRead);
+  gl.GetIntegerv(GL_COPY_WRITE_BUFFER_BINDING, &this->CopyWrite);
   gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &this->DrawFramebuffer);
   gl.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &this->ReadFramebuffer);
   gl.GetIntegerv(GL_VIEWPORT, this->Viewport);
@@ -31,6 +33,7 @@ StateGuard::StateGuard(const Functions& gl, bool active)
   this->Blend = gl.IsEnabled(GL_BLEND);
   this->CullFace = gl.IsEnabled(GL_CULL_FACE);
   this->ScissorTest = gl.IsEnabled(GL_SCISSOR_TEST);
+  this->RasterizerDiscard = gl.IsEnabled(GL_RASTERIZER_DISCARD);
   gl.GetBooleanv(GL_DEPTH_WRITEMASK, &this->DepthWrite);
   gl.GetBooleanv(GL_COLOR_WRITEMASK, this->ColorWrite);
 }
@@ -52,6 +55,8 @@ StateGuard::~StateGuard()
   gl.BindBuffer(GL_ARRAY_BUFFER, static_cast<GLuint>(this->ArrayBuffer));
   gl.BindBuffer(GL_UNIFORM_BUFFER, static_cast<GLuint>(this->UniformBuffer));
   gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, static_cast<GLuint>(this->StorageBuffer));
+  gl.BindBuffer(GL_COPY_READ_BUFFER, static_cast<GLuint>(this->CopyRead));
+  gl.BindBuffer(GL_COPY_WRITE_BUFFER, static_cast<GLuint>(this->CopyWrite));
   gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(this->DrawFramebuffer));
   gl.BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(this->ReadFramebuffer));
   gl.Viewport(this->Viewport[0], this->Viewport[1], this->Viewport[2], this->Viewport[3]);
@@ -63,6 +68,7 @@ StateGuard::~StateGuard()
   enable(GL_BLEND, this->Blend);
   enable(GL_CULL_FACE, this->CullFace);
   enable(GL_SCISSOR_TEST, this->ScissorTest);
+  enable(GL_RASTERIZER_DISCARD, this->RasterizerDiscard);
   gl.DepthMask(this->DepthWrite);
   gl.ColorMask(this->ColorWrite[0], this->ColorWrite[1], this->ColorWrite[2], this->ColorWrite[3]);
 }

@@ -31,10 +31,12 @@ private:
   const Functions& GL;
   bool Active;
   GLint Program = 0, VertexArray = 0, ArrayBuffer = 0, UniformBuffer = 0, StorageBuffer = 0;
+  GLint CopyRead = 0, CopyWrite = 0;
   GLint DrawFramebuffer = 0, ReadFramebuffer = 0, Viewport[4] = { 0, 0, 0, 0 };
   GLint ActiveTexture = 0, Texture3D = 0, UnpackAlignment = 4, PackAlignment = 4;
   GLint StorageIndexed[StorageBindings] = {}, UniformIndexed[UniformBindings] = {};
   GLboolean DepthTest = 0, Blend = 0, CullFace = 0, ScissorTest = 0, DepthWrite = 1;
+  GLboolean RasterizerDiscard = 0;
   GLboolean ColorWrite[4] = { 1, 1, 1, 1 };
 };
 }

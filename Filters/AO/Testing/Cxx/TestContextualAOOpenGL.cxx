@@ -11,6 +11,8 @@
 //    0.5 / 65535 = 7.63e-6. The march runs the CPU's operations in the same
 //    order with `precise` (no FMA contraction, no reassociation), so what a
 //    GPU's own division or summation rounding adds is ~1e-7; 1e-5 covers both.
+//  - the depth maps the OpenGL pipeline rasterised, peeled, dilated and
+//    eroded on the GPU are the CPU's, bit for bit (all six arrays);
 //  - a dilation at 0.3 of the derived radius makes the GPU verification
 //    fail, so this test can fail.
 // Exits 125 when there is no OpenGL 4.3 context.
@@ -31,6 +33,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace
 {
@@ -58,6 +61,7 @@ void Configure(Pipeline& p, vtkImageData* volume, vtkPolyData* mesh, vtkPiecewis
   p.maps->SetMinimumPoseScale(minScale);
   p.maps->SetDilationScale(dilationScale);
   p.maps->SetNumberOfLayers(2);
+  p.maps->SetBackend(backend);
   p.cao->SetInputConnection(0, p.lao->GetOutputPort());
   p.cao->SetInputConnection(1, p.maps->GetOutputPort());
   p.cao->SetMode(mode);
@@ -69,6 +73,7 @@ void Configure(Pipeline& p, vtkImageData* volume, vtkPolyData* mesh, vtkPiecewis
 struct Outcome
 {
   int poses = 0, affectedPoses = 0, differingPoses = 0, cpuDifferingPoses = 0;
+  vtkIdType mapPixels = 0; // depth-map pixels compared bit for bit
   double maxGpuCpu = 0.0;
 };
 
@@ -111,6 +116,25 @@ int Run(vtkImageData* volume, vtkPolyData* mesh, const std::vector<caocli::Pose>
     out.affectedPoses += caotest::Field(g, "CategoryCounts", 1) > 0;
     if (!requireExact)
       continue;
+    if (out.poses == 1)
+    {
+      vtkImageData* cm = cpu.maps->GetOutput();
+      vtkImageData* gm = gpu.maps->GetOutput();
+      auto* mapsBackend =
+        vtkStringArray::SafeDownCast(gm->GetFieldData()->GetAbstractArray("ComputeBackend"));
+      CAO_CHECK(mapsBackend && mapsBackend->GetValue(0).rfind("OpenGL", 0) == 0,
+        "the GPU depth maps ran on %s", mapsBackend ? mapsBackend->GetValue(0).c_str() : "?");
+      for (const char* name : { "FrontDepth", "BackDepth", "DilatedFrontDepth", "DilatedBackDepth",
+             "ErodedFrontDepth", "ErodedBackDepth" })
+      {
+        auto* a = vtkFloatArray::SafeDownCast(cm->GetPointData()->GetArray(name));
+        auto* b = vtkFloatArray::SafeDownCast(gm->GetPointData()->GetArray(name));
+        CAO_CHECK(a && b && a->GetNumberOfValues() == b->GetNumberOfValues() &&
+            std::memcmp(a->GetPointer(0), b->GetPointer(0), a->GetNumberOfValues() * sizeof(float)) == 0,
+          "the GPU's %s differs from the CPU's", name);
+      }
+      out.mapPixels = cm->GetNumberOfPoints();
+    }
     auto* cc = vtkUnsignedCharArray::SafeDownCast(c->GetPointData()->GetArray("ClipCategory"));
     auto* gc = vtkUnsignedCharArray::SafeDownCast(g->GetPointData()->GetArray("ClipCategory"));
     auto* co = vtkFloatArray::SafeDownCast(c->GetPointData()->GetArray("ClippedOpacity"));
@@ -181,10 +205,11 @@ int TestContextualAOOpenGL(int argc, char* argv[])
     if (Run(shape.volume, mesh, caotest::MakePoses(bounds, shape.size, seed++, shape.poses),
           shape.pattern, shape.mode, 1.0, true, out))
       return 1;
-    std::printf("%s (%s): %d poses, %d with affected voxels, GPU CAO == GPU full at all, "
-                "masks identical, max |GPU - CPU| %.3g\n",
+    std::printf("%s (%s): GPU depth maps == CPU's (%lld pixels x 2 layers x 6 maps), %d poses, "
+                "%d with affected voxels, GPU CAO == GPU full at all, masks identical, "
+                "max |GPU - CPU| %.3g\n",
       shape.name, shape.mode == vtkContextualAmbientOcclusion::PROBING ? "probing" : "subtraction",
-      out.poses, out.affectedPoses, out.maxGpuCpu);
+      static_cast<long long>(out.mapPixels), out.poses, out.affectedPoses, out.maxGpuCpu);
     CAO_CHECK(out.affectedPoses >= shape.poses / 2, "too few poses affect the volume (%d)",
       out.affectedPoses);
   }
