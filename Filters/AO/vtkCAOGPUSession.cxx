@@ -1,4 +1,5 @@
 #include "vtkCAOGPUSession.h"
+#include "vtkCAOWindowGL.h"
 
 #include "vtkAlgorithm.h"
 #include "vtkDataArray.h"
@@ -41,12 +42,21 @@ GPUSession::~GPUSession()
   this->Release();
 }
 
-bool GPUSession::Resolve(vtkAlgorithm* self, int backend, bool& failed)
+bool GPUSession::Resolve(vtkAlgorithm* self, int backend, bool& failed, vtkRenderWindow* window)
 {
   failed = false;
   this->Note.clear();
   if (backend == BACKEND_CPU)
     return false;
+  if (window != this->Window)
+  {
+    this->Release(); // objects of another context (or headless) are not usable here
+    this->Window = window;
+  }
+  if (window)
+  {
+    return this->ResolveWindow(self, backend, failed);
+  }
   if (backend == BACKEND_AUTO)
   {
     // What the machine offers is probed once per process: a throw-away
@@ -99,6 +109,60 @@ bool GPUSession::Resolve(vtkAlgorithm* self, int backend, bool& failed)
   return true;
 }
 
+bool GPUSession::ResolveWindow(vtkAlgorithm* self, int backend, bool& failed)
+{
+  std::string why;
+  if (!MakeWindowCurrent(this->Window, why))
+  {
+    this->Abandon(); // its context is gone, and our objects with it
+  }
+  else if (!this->Context && !this->Tried)
+  {
+    this->Tried = true;
+    this->Context = WrapWindowContext(this->Window, this->Failure);
+  }
+  if (this->Context && why.empty())
+  {
+    const char* allow = std::getenv("CAO_GL_ALLOW_SOFTWARE");
+    if (backend == BACKEND_AUTO && SoftwareRenderer(this->Context->Description()) &&
+      !(allow && *allow && std::strcmp(allow, "0") != 0))
+    {
+      this->Note = "Auto: the render window's OpenGL is the software rasteriser " +
+        this->Context->Description();
+      return false;
+    }
+    return true;
+  }
+  if (why.empty())
+    why = this->Failure;
+  if (backend == BACKEND_OPENGL)
+  {
+    vtkErrorWithObjectMacro(self, "Backend is OpenGL but the render window cannot be used: "
+        << why << ".");
+    failed = true;
+  }
+  else if (!this->Warned)
+  {
+    vtkWarningWithObjectMacro(
+      self, "The render window cannot be used (" << why << "); using the CPU backend.");
+    this->Warned = true;
+  }
+  this->Note = "render window unusable";
+  return false;
+}
+
+void GPUSession::Abandon()
+{
+  if (this->AOEngine)
+    this->AOEngine->AbandonGraphicsResources();
+  if (this->DepthRaster)
+    this->DepthRaster->AbandonGraphicsResources();
+  this->AOEngine.reset();
+  this->DepthRaster.reset();
+  this->Context.reset();
+  this->Key.clear();
+}
+
 cao::gl::AOEngine& GPUSession::Engine()
 {
   if (!this->AOEngine)
@@ -132,6 +196,11 @@ std::string GPUSession::BackendLabel(bool gpu) const
 
 void GPUSession::Release()
 {
+  std::string why;
+  if (this->Window && this->Context && !MakeWindowCurrent(this->Window, why))
+  {
+    this->Abandon(); // never delete names in whatever other context is current
+  }
   this->AOEngine.reset(); // deletes its GL objects with the context current
   this->DepthRaster.reset();
   if (this->Context)

@@ -28,6 +28,7 @@
 
 class vtkAlgorithm;
 class vtkDataArray;
+class vtkRenderWindow;
 
 namespace vtkCAO
 {
@@ -49,7 +50,10 @@ public:
   /// Decide where this execution runs. Returns true for the GPU. Sets
   /// `failed` (after a vtkErrorMacro-style error on `self`) when OpenGL was
   /// forced and no context fits; warns once and returns false for Auto.
-  bool Resolve(vtkAlgorithm* self, int backend, bool& failed);
+  /// With a `window`, the GPU work runs in that render window's context
+  /// (made current here) instead of a headless one; a different window than
+  /// last time releases what the old one held first.
+  bool Resolve(vtkAlgorithm* self, int backend, bool& failed, vtkRenderWindow* window = nullptr);
 
   /// The engine and the depth-map raster on this session's context, made
   /// on first use (only after Resolve returned true).
@@ -61,7 +65,8 @@ public:
   /// What ran, for the outputs' "ComputeBackend" field: "OpenGL (kind:
   /// renderer, version)" or "CPU", with Note when Auto chose the CPU.
   std::string BackendLabel(bool gpu) const;
-  /// Drop the engine's GL objects and the context.
+  /// Drop the engine's GL objects and the context (with a window: making
+  /// it current first, so the objects are deleted in the right context).
   void Release();
 
   /// Why the last Resolve chose the CPU under Auto (empty otherwise).
@@ -71,9 +76,13 @@ public:
   std::vector<double> Key;
 
 private:
+  bool ResolveWindow(vtkAlgorithm* self, int backend, bool& failed);
+  /// Forget every GL object without a GL call (their context is gone).
+  void Abandon();
   std::unique_ptr<cao::gl::Context> Context;
   std::unique_ptr<cao::gl::AOEngine> AOEngine;
   std::unique_ptr<cao::gl::DepthRaster> DepthRaster;
+  vtkRenderWindow* Window = nullptr; // wrapped by Context (the filter holds a reference)
   std::string Failure; // why no context could be had (kept: tried once)
   bool Tried = false;
   bool Warned = false;

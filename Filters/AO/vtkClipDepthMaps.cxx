@@ -2,6 +2,7 @@
 
 #include "vtkCAOFilterUtilities.h"
 #include "vtkCAOGPUSession.h"
+#include "vtkRenderWindow.h"
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkCleanPolyData.h"
@@ -32,6 +33,7 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkClipDepthMaps);
+vtkCxxSetObjectMacro(vtkClipDepthMaps, RenderWindow, vtkRenderWindow);
 
 namespace
 {
@@ -55,7 +57,11 @@ vtkClipDepthMaps::vtkClipDepthMaps()
 }
 
 //------------------------------------------------------------------------------
-vtkClipDepthMaps::~vtkClipDepthMaps() = default;
+vtkClipDepthMaps::~vtkClipDepthMaps()
+{
+  this->GPU->Release(); // in the window's context, while we still hold the window
+  this->SetRenderWindow(nullptr);
+}
 
 //------------------------------------------------------------------------------
 void vtkClipDepthMaps::ReleaseGraphicsResources()
@@ -442,7 +448,7 @@ int vtkClipDepthMaps::RequestData(
   cao::DepthMaps raw, dilated, eroded;
   std::string error;
   bool gpuFailed = false;
-  const bool gpu = this->GPU->Resolve(this, this->Backend, gpuFailed);
+  const bool gpu = this->GPU->Resolve(this, this->Backend, gpuFailed, this->RenderWindow);
   if (gpuFailed)
   {
     return 0;
@@ -620,4 +626,5 @@ void vtkClipDepthMaps::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "DilationRadius: " << this->DilationRadius << "\n";
   os << indent << "Backend: " << vtkCAO::BackendName(this->Backend) << "\n";
+  os << indent << "RenderWindow: " << static_cast<void*>(this->RenderWindow) << "\n";
 }

@@ -40,6 +40,7 @@
 
 #include <memory> // For the GPU session
 
+class vtkRenderWindow;
 namespace vtkCAO
 {
 class GPUSession;
@@ -165,6 +166,19 @@ public:
   /// Free the GPU objects and the OpenGL context this filter holds.
   void ReleaseGraphicsResources();
 
+  ///@{
+  /**
+   * A VTK OpenGL render window whose context the OpenGL backend uses
+   * instead of a headless one (null, the default: headless EGL or OSMesa).
+   * The filter makes it current when it executes, uses the window's GLEW,
+   * and restores every OpenGL state it changes. Call
+   * ReleaseGraphicsResources() before the window's context is destroyed;
+   * if it is gone first, the filter forgets its objects without GL calls.
+   */
+  virtual void SetRenderWindow(vtkRenderWindow* window);
+  vtkGetObjectMacro(RenderWindow, vtkRenderWindow);
+  ///@}
+
   /// Radius the output maps are dilated by (local units), after an update.
   vtkGetMacro(DilationRadius, double);
 
@@ -192,6 +206,7 @@ protected:
   double DilationRadius = 0.0;
   int Backend = AUTO;
   std::unique_ptr<vtkCAO::GPUSession> GPU;
+  vtkRenderWindow* RenderWindow = nullptr;
 
 private:
   vtkClipDepthMaps(const vtkClipDepthMaps&) = delete;

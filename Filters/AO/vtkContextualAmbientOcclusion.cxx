@@ -2,6 +2,7 @@
 
 #include "vtkCAOFilterUtilities.h"
 #include "vtkCAOGPUSession.h"
+#include "vtkRenderWindow.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -33,6 +34,7 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkContextualAmbientOcclusion);
+vtkCxxSetObjectMacro(vtkContextualAmbientOcclusion, RenderWindow, vtkRenderWindow);
 vtkCxxSetObjectMacro(vtkContextualAmbientOcclusion, PoseTransform, vtkLinearTransform);
 
 namespace
@@ -69,6 +71,8 @@ vtkContextualAmbientOcclusion::vtkContextualAmbientOcclusion()
 vtkContextualAmbientOcclusion::~vtkContextualAmbientOcclusion()
 {
   this->SetPoseTransform(nullptr);
+  this->GPU->Release(); // in the window's context, while we still hold the window
+  this->SetRenderWindow(nullptr);
 }
 
 //------------------------------------------------------------------------------
@@ -179,7 +183,7 @@ int vtkContextualAmbientOcclusion::RequestData(
   }
 
   bool gpuFailed = false;
-  const bool gpu = this->GPU->Resolve(this, this->Backend, gpuFailed);
+  const bool gpu = this->GPU->Resolve(this, this->Backend, gpuFailed, this->RenderWindow);
   if (gpuFailed)
   {
     return 0;
@@ -681,6 +685,7 @@ void vtkContextualAmbientOcclusion::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "AntiAliasingSamples: " << this->AntiAliasingSamples << "\n";
   os << indent << "Verify: " << (this->Verify ? "On" : "Off") << "\n";
   os << indent << "Backend: " << vtkCAO::BackendName(this->Backend) << "\n";
+  os << indent << "RenderWindow: " << static_cast<void*>(this->RenderWindow) << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "PrecomputeCount: " << this->PrecomputeCount << "\n";
   os << indent << "Precompute (LAO settings when the input has none):\n";

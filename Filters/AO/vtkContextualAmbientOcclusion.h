@@ -34,6 +34,7 @@
 #include <memory> // For the GPU session
 #include <vector> // For the GPU maps key
 
+class vtkRenderWindow;
 namespace vtkCAO
 {
 class GPUSession;
@@ -156,6 +157,19 @@ public:
   /// Free the GPU objects and the OpenGL context this filter holds.
   void ReleaseGraphicsResources();
 
+  ///@{
+  /**
+   * A VTK OpenGL render window whose context the OpenGL backend uses
+   * instead of a headless one (null, the default: headless EGL or OSMesa).
+   * The filter makes it current when it executes, uses the window's GLEW,
+   * and restores every OpenGL state it changes. Call
+   * ReleaseGraphicsResources() before the window's context is destroyed;
+   * if it is gone first, the filter forgets its objects without GL calls.
+   */
+  virtual void SetRenderWindow(vtkRenderWindow* window);
+  vtkGetObjectMacro(RenderWindow, vtkRenderWindow);
+  ///@}
+
 protected:
   vtkContextualAmbientOcclusion();
   ~vtkContextualAmbientOcclusion() override;
@@ -172,6 +186,7 @@ protected:
   int NumberOfThreads = 0;
   int Backend = AUTO;
   std::unique_ptr<vtkCAO::GPUSession> GPU;
+  vtkRenderWindow* RenderWindow = nullptr;
   std::vector<double> GPUMapsKey; // what the engine holds as maps
   int PrecomputeCount = 0;
 

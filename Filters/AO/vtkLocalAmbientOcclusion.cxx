@@ -2,6 +2,7 @@
 
 #include "vtkCAOFilterUtilities.h"
 #include "vtkCAOGPUSession.h"
+#include "vtkRenderWindow.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -27,6 +28,7 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkLocalAmbientOcclusion);
+vtkCxxSetObjectMacro(vtkLocalAmbientOcclusion, RenderWindow, vtkRenderWindow);
 vtkCxxSetObjectMacro(vtkLocalAmbientOcclusion, OpacityFunction, vtkPiecewiseFunction);
 
 namespace
@@ -101,6 +103,8 @@ vtkLocalAmbientOcclusion::vtkLocalAmbientOcclusion()
 vtkLocalAmbientOcclusion::~vtkLocalAmbientOcclusion()
 {
   this->SetOpacityFunction(nullptr);
+  this->GPU->Release(); // in the window's context, while we still hold the window
+  this->SetRenderWindow(nullptr);
 }
 
 //------------------------------------------------------------------------------
@@ -233,7 +237,7 @@ int vtkLocalAmbientOcclusion::RequestData(
   }
 
   bool gpuFailed = false;
-  const bool gpu = this->GPU->Resolve(this, this->Backend, gpuFailed);
+  const bool gpu = this->GPU->Resolve(this, this->Backend, gpuFailed, this->RenderWindow);
   if (gpuFailed)
   {
     return 0;
@@ -369,4 +373,5 @@ void vtkLocalAmbientOcclusion::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "OutputOpacity: " << (this->OutputOpacity ? "On" : "Off") << "\n";
   os << indent << "Backend: " << vtkCAO::BackendName(this->Backend) << "\n";
+  os << indent << "RenderWindow: " << static_cast<void*>(this->RenderWindow) << "\n";
 }

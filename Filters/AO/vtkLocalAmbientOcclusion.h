@@ -30,6 +30,7 @@
 
 #include <memory> // For the GPU session
 
+class vtkRenderWindow;
 namespace vtkCAO
 {
 class GPUSession;
@@ -143,8 +144,9 @@ public:
   /**
    * Backend: CPU, OPENGL (compute shaders in a headless EGL or OSMesa
    * OpenGL >= 4.3 context; an error when there is none) or AUTO (default:
-   * OpenGL on a hardware GPU; otherwise, including Mesa's software
-   * llvmpipe, the CPU, with one warning). The output's field array
+   * OpenGL on a hardware GPU; the CPU on a software rasteriser such as
+   * Mesa's llvmpipe, and with one warning when there is no OpenGL 4.3 at
+   * all). With RenderWindow set, the window's context. The output's field array
    * "ComputeBackend" says what ran and on which context.
    */
   vtkSetClampMacro(Backend, int, AUTO, OPENGL);
@@ -156,6 +158,19 @@ public:
 
   /// Free the GPU objects and the OpenGL context this filter holds.
   void ReleaseGraphicsResources();
+
+  ///@{
+  /**
+   * A VTK OpenGL render window whose context the OpenGL backend uses
+   * instead of a headless one (null, the default: headless EGL or OSMesa).
+   * The filter makes it current when it executes, uses the window's GLEW,
+   * and restores every OpenGL state it changes. Call
+   * ReleaseGraphicsResources() before the window's context is destroyed;
+   * if it is gone first, the filter forgets its objects without GL calls.
+   */
+  virtual void SetRenderWindow(vtkRenderWindow* window);
+  vtkGetObjectMacro(RenderWindow, vtkRenderWindow);
+  ///@}
 
 protected:
   vtkLocalAmbientOcclusion();
@@ -174,6 +189,7 @@ protected:
   int NumberOfThreads = 0;
   int Backend = AUTO;
   std::unique_ptr<vtkCAO::GPUSession> GPU;
+  vtkRenderWindow* RenderWindow = nullptr;
   bool OutputOpacity = true;
 
 private:

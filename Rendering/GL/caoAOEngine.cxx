@@ -315,7 +315,7 @@ AOEngine::AOEngine(Context& context)
 
 AOEngine::~AOEngine()
 {
-  if (this->P->Ctx.MakeCurrent())
+  if (this->LiveObjects() > 0 && this->P->Ctx.MakeCurrent())
   {
     StateGuard guard(this->P->gl, this->P->External());
     this->P->ReleaseAll();
@@ -785,10 +785,25 @@ std::vector<std::pair<char, unsigned int>> AOEngine::ObjectNames() const
 void AOEngine::ReleaseGraphicsResources()
 {
   Impl& p = *this->P;
-  if (!p.Ctx.MakeCurrent())
+  if (this->LiveObjects() == 0 || !p.Ctx.MakeCurrent())
     return;
   StateGuard guard(p.gl, p.External());
   p.ReleaseAll();
+}
+
+void AOEngine::AbandonGraphicsResources()
+{
+  Impl& p = *this->P;
+  for (GLuint* t : { &p.volume, &p.state, &p.aoPre, &p.aoCur, &p.laoParams, &p.taps,
+         &p.opacityTable, &p.factors, &p.clipParams, &p.maps, &p.counters })
+    *t = 0;
+  p.timer.Abandon();
+  for (Program* prog : { &p.lao, &p.laoAffected, &p.laoFull, &p.laoVerify, &p.classify, &p.copy })
+    prog->Abandon();
+  p.havePlan = p.havePrecomputed = p.haveMaps = false;
+  std::fill(p.bytes, p.bytes + 16, 0);
+  p.previous = Box();
+  p.previousMode = p.factorMode = p.factorTotal = -1;
 }
 }
 }

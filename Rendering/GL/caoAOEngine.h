@@ -134,6 +134,10 @@ public:
   std::vector<std::pair<char, unsigned int>> ObjectNames() const;
   /// Delete every GL object; the engine can be set up again afterwards.
   void ReleaseGraphicsResources();
+  /// Forget every GL object without a GL call, for when the context that
+  /// held them is gone (a destroyed render window); the destructor then
+  /// touches no GL either.
+  void AbandonGraphicsResources();
 
   Context& GetContext();
 

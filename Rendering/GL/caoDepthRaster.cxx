@@ -133,6 +133,19 @@ DepthRaster::~DepthRaster()
   this->ReleaseGraphicsResources();
 }
 
+void DepthRaster::AbandonGraphicsResources()
+{
+  Impl& p = *this->P;
+  for (GLuint* b : p.Buffers)
+    *b = 0;
+  p.vertexArray = p.framebuffer = 0;
+  for (Program* prog : { &p.setup, &p.count, &p.fill, &p.resolve, &p.dilate })
+    prog->Abandon();
+  p.timer.Abandon();
+  p.width = p.height = p.layers = 0;
+  p.bytes = 0;
+}
+
 bool DepthRaster::Build(const ClipCamera& cam, const TriangleMesh& mesh, double radius,
   DepthRasterStats& stats, std::string& error)
 {
@@ -401,7 +414,7 @@ int DepthRaster::LiveObjects() const
 void DepthRaster::ReleaseGraphicsResources()
 {
   Impl& p = *this->P;
-  if (!p.Ctx.MakeCurrent())
+  if (this->LiveObjects() == 0 || !p.Ctx.MakeCurrent())
     return;
   StateGuard guard(p.gl, p.Ctx.Kind() == ContextKind::External);
   p.Release();

@@ -82,6 +82,10 @@ public:
   int LiveObjects() const;
   /// Delete every GL object; Build sets them up again.
   void ReleaseGraphicsResources();
+  /// Forget every GL object without a GL call, for when the context that
+  /// held them is gone (a destroyed render window); the destructor then
+  /// touches no GL either.
+  void AbandonGraphicsResources();
 
 private:
   struct Impl;

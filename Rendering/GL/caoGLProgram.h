@@ -34,6 +34,8 @@ public:
   bool BuildRaster(const Functions& gl, const char* vertex, const char* fragment,
     const Defines& defines, std::string& error);
   void Release(const Functions& gl);
+  /// Forget the program without a GL call (its context is gone).
+  void Abandon() { this->Handle = 0; }
 
   GLuint Id() const { return this->Handle; }
   bool Valid() const { return this->Handle != 0; }

@@ -32,6 +32,8 @@ public:
   double Milliseconds(const Functions& gl, int stage);
   /// Delete the queries (the context must be current).
   void Release(const Functions& gl);
+  /// Forget the queries without a GL call (their context is gone).
+  void Abandon() { this->Queries.clear(); }
   /// The query names, for resource accounting (empty when released).
   const std::vector<GLuint>& Names() const { return this->Queries; }
 
