@@ -3,6 +3,9 @@
 
 #include "vtkAlgorithm.h"
 #include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkNew.h"
+#include "vtkStringArray.h"
 #include "vtkObject.h"
 #include "vtkSetGet.h"
 
@@ -13,8 +16,13 @@ namespace vtkCAO
 {
 namespace
 {
-bool SoftwareRenderer(const std::string& description)
+/// Whether Auto should avoid this renderer: a software rasteriser, unless
+/// CAO_GL_ALLOW_SOFTWARE is set (and not "0").
+bool AvoidSoftware(const std::string& description)
 {
+  const char* allow = std::getenv("CAO_GL_ALLOW_SOFTWARE");
+  if (allow && *allow && std::strcmp(allow, "0") != 0)
+    return false;
   for (const char* s : { "llvmpipe", "softpipe", "SwiftShader", "swrast", "Software Rasterizer" })
     if (description.find(s) != std::string::npos)
       return true;
@@ -77,8 +85,7 @@ bool GPUSession::Resolve(vtkAlgorithm* self, int backend, bool& failed, vtkRende
       this->Note = "no OpenGL 4.3 context";
       return false;
     }
-    const char* allow = std::getenv("CAO_GL_ALLOW_SOFTWARE");
-    if (SoftwareRenderer(probeDescription) && !(allow && *allow && std::strcmp(allow, "0") != 0))
+    if (AvoidSoftware(probeDescription))
     {
       // Not a failure but a choice: the CPU backend is faster than a
       // software rasteriser. Reported in ComputeBackend, no warning.
@@ -123,9 +130,7 @@ bool GPUSession::ResolveWindow(vtkAlgorithm* self, int backend, bool& failed)
   }
   if (this->Context && why.empty())
   {
-    const char* allow = std::getenv("CAO_GL_ALLOW_SOFTWARE");
-    if (backend == BACKEND_AUTO && SoftwareRenderer(this->Context->Description()) &&
-      !(allow && *allow && std::strcmp(allow, "0") != 0))
+    if (backend == BACKEND_AUTO && AvoidSoftware(this->Context->Description()))
     {
       this->Note = "Auto: the render window's OpenGL is the software rasteriser " +
         this->Context->Description();
@@ -192,6 +197,14 @@ std::string GPUSession::BackendLabel(bool gpu) const
   if (gpu)
     return "OpenGL (" + this->ContextKind() + ": " + this->Description() + ")";
   return this->Note.empty() ? std::string("CPU") : "CPU (" + this->Note + ")";
+}
+
+void GPUSession::AddBackendLabel(vtkFieldData* fd, bool gpu) const
+{
+  vtkNew<vtkStringArray> label;
+  label->SetName("ComputeBackend");
+  label->InsertNextValue(this->BackendLabel(gpu));
+  fd->AddArray(label);
 }
 
 void GPUSession::Release()

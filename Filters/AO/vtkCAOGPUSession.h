@@ -28,6 +28,7 @@
 
 class vtkAlgorithm;
 class vtkDataArray;
+class vtkFieldData;
 class vtkRenderWindow;
 
 namespace vtkCAO
@@ -65,6 +66,8 @@ public:
   /// What ran, for the outputs' "ComputeBackend" field: "OpenGL (kind:
   /// renderer, version)" or "CPU", with Note when Auto chose the CPU.
   std::string BackendLabel(bool gpu) const;
+  /// Add that label to `fd` as the string array "ComputeBackend".
+  void AddBackendLabel(vtkFieldData* fd, bool gpu) const;
   /// Drop the engine's GL objects and the context (with a window: making
   /// it current first, so the objects are deleted in the right context).
   void Release();

@@ -19,7 +19,6 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataNormals.h"
-#include "vtkStringArray.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTriangleFilter.h"
 
@@ -596,10 +595,7 @@ int vtkClipDepthMaps::RequestData(
     dilateMs };
   stats->InsertNextTuple(statValues);
   fd->AddArray(stats);
-  vtkNew<vtkStringArray> backend;
-  backend->SetName("ComputeBackend");
-  backend->InsertNextValue(this->GPU->BackendLabel(gpu));
-  fd->AddArray(backend);
+  this->GPU->AddBackendLabel(fd, gpu);
   this->UpdateProgress(1.0);
   return 1;
 }

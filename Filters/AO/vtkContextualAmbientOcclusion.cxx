@@ -635,10 +635,7 @@ int vtkContextualAmbientOcclusion::RequestData(
   timing->InsertNextTuple(timingValues);
   output->GetFieldData()->AddArray(timing);
 
-  vtkNew<vtkStringArray> backend;
-  backend->SetName("ComputeBackend");
-  backend->InsertNextValue(this->GPU->BackendLabel(gpu));
-  output->GetFieldData()->AddArray(backend);
+  this->GPU->AddBackendLabel(output->GetFieldData(), gpu);
   if (gpu)
   {
     vtkNew<vtkDoubleArray> gpuInfo;

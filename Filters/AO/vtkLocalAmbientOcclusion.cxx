@@ -17,7 +17,6 @@
 #include "vtkPointData.h"
 #include "vtkSMPThreadLocal.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
-#include "vtkStringArray.h"
 
 #include "caoLAO.h"
 
@@ -328,10 +327,7 @@ int vtkLocalAmbientOcclusion::RequestData(
     this->ScalarOpacityUnitDistance, static_cast<double>(this->NumberOfRays), ms };
   params->InsertNextTuple(values);
   output->GetFieldData()->AddArray(params);
-  vtkNew<vtkStringArray> backend;
-  backend->SetName("ComputeBackend");
-  backend->InsertNextValue(this->GPU->BackendLabel(gpu));
-  output->GetFieldData()->AddArray(backend);
+  this->GPU->AddBackendLabel(output->GetFieldData(), gpu);
   if (gpu)
   {
     vtkNew<vtkDoubleArray> gpuInfo;

@@ -71,6 +71,18 @@ struct TriangleMesh
   std::int64_t numberOfTriangles = 0;
 };
 
+/// A view of a mesh held as flat vectors (xyz per point, 3 ids per triangle).
+inline TriangleMesh ViewMesh(
+  const std::vector<double>& points, const std::vector<std::int64_t>& triangles)
+{
+  TriangleMesh m;
+  m.points = points.data();
+  m.numberOfPoints = static_cast<std::int64_t>(points.size() / 3);
+  m.triangles = triangles.data();
+  m.numberOfTriangles = static_cast<std::int64_t>(triangles.size() / 3);
+  return m;
+}
+
 /// Local-frame point to camera (u, v, depth) as defined in ClipCamera.
 void LocalToCamera(const ClipCamera& camera, const double q[3], double uvz[3]);
 

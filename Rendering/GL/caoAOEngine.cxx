@@ -12,9 +12,7 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 
 namespace cao
@@ -141,18 +139,7 @@ struct AOEngine::Impl
     return t;
   }
 
-  bool CheckError(const char* what, std::string& error)
-  {
-    const GLenum e = gl.GetError();
-    if (e == GL_NO_ERROR)
-      return true;
-    char code[16];
-    std::snprintf(code, sizeof(code), "0x%04x", e);
-    error = std::string("OpenGL error ") + code + " in " + what;
-    if (e == GL_OUT_OF_MEMORY)
-      error += " (out of GPU memory)";
-    return false;
-  }
+  bool CheckError(const char* what, std::string& error) { return gl::CheckError(gl, what, error); }
 
   void ReleaseAll()
   {

@@ -47,11 +47,7 @@ bool ClipScene::BuildSphere(
   camera.pixelSize[0] = camera.pixelSize[1] = pixel;
   camera.width = camera.height = static_cast<int>(std::ceil(2.0 * half / pixel));
   camera.layers = layers;
-  TriangleMesh mesh;
-  mesh.points = points.data();
-  mesh.numberOfPoints = static_cast<std::int64_t>(points.size() / 3);
-  mesh.triangles = triangles.data();
-  mesh.numberOfTriangles = static_cast<std::int64_t>(triangles.size() / 3);
+  const TriangleMesh mesh = ViewMesh(points, triangles);
   if (!RasterizeDepthLayers(camera, mesh, maps, error))
     return false;
   dilated.Allocate(camera.width, camera.height, layers);

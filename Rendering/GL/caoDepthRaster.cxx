@@ -10,7 +10,6 @@
 
 #include <algorithm>
 #include <cstddef>
-#include <cstdio>
 #include <limits>
 
 namespace cao
@@ -62,18 +61,7 @@ struct DepthRaster::Impl
     gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
   }
 
-  bool CheckError(const char* what, std::string& error)
-  {
-    const GLenum e = gl.GetError();
-    if (e == GL_NO_ERROR)
-      return true;
-    char code[16];
-    std::snprintf(code, sizeof(code), "0x%04x", e);
-    error = std::string("OpenGL error ") + code + " in " + what;
-    if (e == GL_OUT_OF_MEMORY)
-      error += " (out of GPU memory)";
-    return false;
-  }
+  bool CheckError(const char* what, std::string& error) { return gl::CheckError(gl, what, error); }
 
   bool BuildPrograms(std::string& error)
   {

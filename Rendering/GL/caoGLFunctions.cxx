@@ -1,5 +1,7 @@
 #include "caoGLFunctions.h"
 
+#include <cstdio>
+
 namespace cao
 {
 namespace gl
@@ -14,6 +16,19 @@ bool Functions::Load(ProcLoader loader, void* userData, std::string& missing)
   CAO_GL_FUNCTIONS(CAO_GL_LOAD)
 #undef CAO_GL_LOAD
   return missing.empty();
+}
+
+bool CheckError(const Functions& gl, const char* what, std::string& error)
+{
+  const GLenum e = gl.GetError();
+  if (e == GL_NO_ERROR)
+    return true;
+  char code[16];
+  std::snprintf(code, sizeof(code), "0x%04x", e);
+  error = std::string("OpenGL error ") + code + " in " + what;
+  if (e == GL_OUT_OF_MEMORY)
+    error += " (out of GPU memory)";
+  return false;
 }
 }
 }

@@ -31,6 +31,10 @@ struct Functions
   /// and lists the missing names when any entry is missing.
   bool Load(ProcLoader loader, void* userData, std::string& missing);
 };
+
+/// glGetError after a step: false with "OpenGL error 0x.... in `what`"
+/// (and a note for GL_OUT_OF_MEMORY) when the step raised one.
+bool CheckError(const Functions& gl, const char* what, std::string& error);
 }
 }
 

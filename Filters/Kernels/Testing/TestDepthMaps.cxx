@@ -14,15 +14,7 @@ struct Mesh
 {
   std::vector<double> points;
   std::vector<std::int64_t> tris;
-  cao::TriangleMesh View() const
-  {
-    cao::TriangleMesh m;
-    m.points = points.data();
-    m.numberOfPoints = static_cast<std::int64_t>(points.size() / 3);
-    m.triangles = tris.data();
-    m.numberOfTriangles = static_cast<std::int64_t>(tris.size() / 3);
-    return m;
-  }
+  cao::TriangleMesh View() const { return cao::ViewMesh(points, tris); }
 };
 
 Mesh Cube()

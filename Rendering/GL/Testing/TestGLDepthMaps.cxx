@@ -27,15 +27,7 @@ struct Mesh
 {
   std::vector<double> points;
   std::vector<std::int64_t> triangles;
-  cao::TriangleMesh View() const
-  {
-    cao::TriangleMesh m;
-    m.points = points.data();
-    m.numberOfPoints = static_cast<std::int64_t>(points.size() / 3);
-    m.triangles = triangles.data();
-    m.numberOfTriangles = static_cast<std::int64_t>(triangles.size() / 3);
-    return m;
-  }
+  cao::TriangleMesh View() const { return cao::ViewMesh(points, triangles); }
   void Append(const Mesh& other)
   {
     const std::int64_t base = static_cast<std::int64_t>(points.size() / 3);
@@ -344,7 +336,7 @@ int TestGLDepthMaps(int argc, char* argv[])
     for (cao::gl::AOEngine* e : { &fromCPU, &fromGPU })
       ready = ready && e->SetVolume(upload, error) && e->SetPlan(plan, error) && e->Precompute(error);
     cao::gl::DepthRasterStats stats;
-    ready = ready && raster.Build(scene.camera, Mesh{ scene.points, scene.triangles }.View(),
+    ready = ready && raster.Build(scene.camera, cao::ViewMesh(scene.points, scene.triangles),
                        scene.dilation, stats, error);
     if (!ready)
     {

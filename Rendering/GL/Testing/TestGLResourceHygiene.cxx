@@ -100,22 +100,12 @@ bool Prepare(Setup& s, std::string& error)
     s.scene.BuildSphere(4.0, 1.0, 2, settings.reach, error);
 }
 
-cao::TriangleMesh Mesh(const Setup& s)
-{
-  cao::TriangleMesh m;
-  m.points = s.scene.points.data();
-  m.numberOfPoints = static_cast<std::int64_t>(s.scene.points.size() / 3);
-  m.triangles = s.scene.triangles.data();
-  m.numberOfTriangles = static_cast<std::int64_t>(s.scene.triangles.size() / 3);
-  return m;
-}
-
 /// Rebuild the maps on the GPU and give the engine the pair `mode` needs.
 bool Remap(cao::gl::DepthRaster& raster, cao::gl::AOEngine& engine, const Setup& s, int mode,
   std::string& error)
 {
   cao::gl::DepthRasterStats stats;
-  return raster.Build(s.scene.camera, Mesh(s), s.scene.dilation, stats, error) &&
+  return raster.Build(s.scene.camera, cao::ViewMesh(s.scene.points, s.scene.triangles), s.scene.dilation, stats, error) &&
     engine.SetMaps(raster, mode, error);
 }
 
