@@ -18,7 +18,7 @@ packages=(
   # (EGL and OSMesa on Mesa's llvmpipe when there is no GPU)
   libgl-dev libegl-dev libglm-dev libosmesa6-dev libegl1 libegl-mesa0 libgl1-mesa-dri libosmesa6
   # an X server for the tests that run inside an ordinary VTK window
-  xvfb xauth
+  xvfb
   # toolchain
   cmake g++ ninja-build
 )
