@@ -19,6 +19,8 @@ packages=(
   libgl-dev libegl-dev libglm-dev libosmesa6-dev libegl1 libegl-mesa0 libgl1-mesa-dri libosmesa6
   # an X server for the tests that run inside an ordinary VTK window
   xvfb
+  # image regression tests: OpenImageIO's library (comparison) and idiff
+  libopenimageio-dev openimageio-tools
   # toolchain
   cmake g++ ninja-build
 )

@@ -17,6 +17,7 @@
 #ifndef vtkCAOGPUSession_h
 #define vtkCAOGPUSession_h
 
+#include "caoFiltersAOModule.h" // For export macro
 #include "caoAOEngine.h"
 #include "caoDepthRaster.h"
 #include "caoGLContext.h"
@@ -40,9 +41,9 @@ enum BackendChoice
   BACKEND_CPU = 1,
   BACKEND_OPENGL = 2
 };
-const char* BackendName(int backend);
+CAOFILTERSAO_EXPORT const char* BackendName(int backend);
 
-class GPUSession
+class CAOFILTERSAO_EXPORT GPUSession
 {
 public:
   GPUSession();
@@ -98,7 +99,7 @@ private:
  * (1 or 2 bytes per voxel); otherwise it is the float opacity (4 bytes).
  * `storage` keeps the packed scalars alive for the upload.
  */
-cao::gl::VolumeUpload MakeVolumeUpload(vtkDataArray* scalars, int component, const float* opacity,
+CAOFILTERSAO_EXPORT cao::gl::VolumeUpload MakeVolumeUpload(vtkDataArray* scalars, int component, const float* opacity,
   const int dims[3], std::vector<std::uint8_t>& storage);
 }
 

@@ -1,5 +1,6 @@
 #include "vtkContextualAmbientOcclusion.h"
 
+#include "vtkCAOClipPose.h"
 #include "vtkCAOFilterUtilities.h"
 #include "vtkCAOGPUSession.h"
 #include "vtkRenderWindow.h"
@@ -259,119 +260,30 @@ int vtkContextualAmbientOcclusion::RequestData(
     return 0;
   }
 
-  // 3. Depth maps and their camera.
-  double camera[17], dilation[5], region[6];
-  if (!FieldTuple(maps->GetFieldData(), "ClipCamera", 17, camera) ||
-    !FieldTuple(maps->GetFieldData(), "DilationRadius", 5, dilation) ||
-    !FieldTuple(maps->GetFieldData(), "ClipRegionBounds", 6, region))
+  // 3. Depth maps and their camera; 4. the pose's ClipParams (the maps
+  // must be dilated enough for it).
+  const int mode = this->Mode == SUBTRACTION ? cao::shared::CAO_MODE_SUBTRACT
+                                             : cao::shared::CAO_MODE_PROBE;
+  vtkCAO::ClipMaps clipMaps;
+  if (!vtkCAO::ReadClipMaps(maps, mode, clipMaps, error))
   {
-    vtkErrorMacro("Input 1 is not the output of vtkClipDepthMaps (no ClipCamera, "
-                  "DilationRadius or ClipRegionBounds field arrays).");
+    vtkErrorMacro(<< error);
     return 0;
   }
-  const int width = static_cast<int>(camera[14]), height = static_cast<int>(camera[15]),
-            layers = static_cast<int>(camera[16]);
-  const char* mapNames[4] = { "FrontDepth", "BackDepth",
-    this->Mode == SUBTRACTION ? "DilatedFrontDepth" : "ErodedFrontDepth",
-    this->Mode == SUBTRACTION ? "DilatedBackDepth" : "ErodedBackDepth" };
-  vtkFloatArray* mapArrays[4];
-  for (int i = 0; i < 4; ++i)
-  {
-    mapArrays[i] = FloatArray(maps->GetPointData(), mapNames[i]);
-    if (!mapArrays[i] || mapArrays[i]->GetNumberOfComponents() != layers ||
-      mapArrays[i]->GetNumberOfTuples() != static_cast<vtkIdType>(width) * height)
-    {
-      vtkErrorMacro("Depth map array '" << mapNames[i] << "' is missing or has the wrong size.");
-      return 0;
-    }
-  }
-
-  // 4. Pose: local -> world. The maps must be dilated enough for this pose.
+  const int width = clipMaps.width, height = clipMaps.height, layers = clipMaps.layers;
+  vtkFloatArray* const* mapArrays = clipMaps.arrays;
   vtkNew<vtkMatrix4x4> pose;
   if (this->PoseTransform)
   {
     this->PoseTransform->Update();
     pose->DeepCopy(this->PoseTransform->GetMatrix());
   }
-  double linear[3][3];
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c)
-      linear[r][c] = pose->GetElement(r, c);
-  double U[3][3], W[3], VT[3][3];
-  vtkMath::SingularValueDecomposition3x3(linear, U, W, VT);
-  const double sigmaMin = std::min({ std::fabs(W[0]), std::fabs(W[1]), std::fabs(W[2]) });
-  if (!(sigmaMin > 0.0) || !std::isfinite(sigmaMin) ||
-    pose->GetElement(3, 0) != 0.0 || pose->GetElement(3, 1) != 0.0 ||
-    pose->GetElement(3, 2) != 0.0 || pose->GetElement(3, 3) != 1.0)
-  {
-    vtkErrorMacro("The clip pose must be an invertible affine transform.");
-    return 0;
-  }
-  const double voxelDiagonal =
-    std::sqrt(spacing[0] * spacing[0] + spacing[1] * spacing[1] + spacing[2] * spacing[2]);
-  const double required = dilation[4] * (plan.reach + 1.5 * voxelDiagonal) / sigmaMin;
-  if (dilation[0] < required)
-  {
-    vtkErrorMacro("The depth maps are dilated by " << dilation[0]
-      << " (local units) but this pose and volume need " << required
-      << " (reach " << plan.reach << ", voxel diagonal " << voxelDiagonal
-      << ", pose scale " << sigmaMin << "). Set the depth-map filter's Reach, VoxelSpacing "
-      "and MinimumPoseScale to match.");
-    return 0;
-  }
-
-  // 5. Index -> camera affine: camera(local) * pose^-1 * index-to-physical.
-  vtkNew<vtkMatrix4x4> worldToLocal;
-  vtkMatrix4x4::Invert(pose, worldToLocal);
-  vtkNew<vtkMatrix4x4> localToCamera;
-  localToCamera->Identity();
-  const double* origin = camera;
-  for (int c = 0; c < 3; ++c)
-  {
-    localToCamera->SetElement(0, c, camera[3 + c] / camera[12]);
-    localToCamera->SetElement(1, c, camera[6 + c] / camera[13]);
-    localToCamera->SetElement(2, c, camera[9 + c]);
-  }
-  localToCamera->SetElement(0, 3, -vtkMath::Dot(origin, camera + 3) / camera[12]);
-  localToCamera->SetElement(1, 3, -vtkMath::Dot(origin, camera + 6) / camera[13]);
-  localToCamera->SetElement(2, 3, -vtkMath::Dot(origin, camera + 9));
-  vtkNew<vtkMatrix4x4> indexToLocal, indexToCamera;
-  vtkMatrix4x4::Multiply4x4(worldToLocal, input->GetIndexToPhysicalMatrix(), indexToLocal);
-  vtkMatrix4x4::Multiply4x4(localToCamera, indexToLocal, indexToCamera);
-  // The index used by the kernels starts at 0 at the extent's first voxel.
-  int extent[6];
-  input->GetExtent(extent);
-  double affine[12];
-  for (int r = 0; r < 3; ++r)
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      affine[4 * r + c] = indexToCamera->GetElement(r, c);
-    }
-    affine[4 * r + 3] += affine[4 * r] * extent[0] + affine[4 * r + 1] * extent[2] +
-      affine[4 * r + 2] * extent[4];
-  }
-
   cao::shared::ClipParams clip{};
-  for (int r = 0; r < 3; ++r)
+  if (!vtkCAO::MakeClipParams(
+        input, clipMaps, pose, plan.reach, mode, this->AntiAliasingSamples, clip, error))
   {
-    clip.toCamera[r] = { static_cast<float>(affine[4 * r]), static_cast<float>(affine[4 * r + 1]),
-      static_cast<float>(affine[4 * r + 2]), static_cast<float>(affine[4 * r + 3]) };
-  }
-  clip.map = { width, height, layers,
-    this->Mode == SUBTRACTION ? cao::shared::CAO_MODE_SUBTRACT : cao::shared::CAO_MODE_PROBE };
-  cao::SetAntiAliasingSamples(clip, this->AntiAliasingSamples);
-  int boxMin[3], boxMax[3];
-  const bool nonEmptyRegion = region[0] <= region[1];
-  if (nonEmptyRegion && cao::CandidateBox(affine, region, dims, boxMin, boxMax))
-  {
-    clip.boxMin = { boxMin[0], boxMin[1], boxMin[2], 0 };
-    clip.boxMax = { boxMax[0], boxMax[1], boxMax[2], 0 };
-  }
-  else
-  {
-    clip.boxMin = { 1, 1, 1, 0 }; // empty: no voxel is near the mesh
-    clip.boxMax = { 0, 0, 0, 0 };
+    vtkErrorMacro(<< error);
+    return 0;
   }
 
   // 6. Outputs.

@@ -85,6 +85,34 @@ struct ClipParams
 };
 
 /*
+ * One frame of the ray caster (caoRayCaster, caoRayCastFS.glsl). Matrices
+ * are column-major, as GLSL's mat4(c0, c1, c2, c3): ndcToWorld takes a
+ * window's normalised device coordinates to world space, worldToIndex takes
+ * world space to the volume's 0-based voxel index (x, y, z), and
+ * normalToWorld (3 columns) takes an index-space gradient to a world-space
+ * normal (the inverse transpose of index-to-world's linear part).
+ */
+struct RenderParams
+{
+  vec4 ndcToWorld[4];
+  vec4 worldToIndex[4];
+  vec4 normalToWorld[3];
+  vec4 viewport;  /* x, y: first pixel; z, w: 1 / width, 1 / height */
+  vec4 light;     /* xyz: world direction towards the light; w: 1 = headlight */
+  vec4 shading;   /* x: ambient, y: diffuse, z: specular, w: specular power */
+  vec4 sampling;  /* x: step (world units); y, z: table coordinate = texel * y + z; w: AO strength */
+  vec4 invDims;   /* xyz: 1 / voxels per axis (texture coordinate = (index + 0.5) * invDims) */
+  ivec4 dims;     /* xyz: voxels per axis; w: CAO_RENDER_* flags */
+  ivec4 limits;   /* x: maximum samples per ray; yzw: 0 */
+  vec4 boxMax;    /* xyz: the last voxel index (the box is [0, boxMax]); w: early termination alpha */
+};
+CAO_CONST CAO_RENDER_SHADE = 1;        /* gradient Blinn-Phong */
+CAO_CONST CAO_RENDER_AO = 2;           /* the AO volume scales the ambient term */
+CAO_CONST CAO_RENDER_CLIP = 4;         /* shadow-test clipping against the depth maps */
+CAO_CONST CAO_RENDER_JITTER = 8;       /* per-pixel ray-start offset */
+CAO_CONST CAO_RENDER_OPAQUE_DEPTH = 16; /* stop at the opaque geometry's depth */
+
+/*
  * Binding points, shared so that the C++ side binds what the GLSL declares.
  * Plain #defines: GLSL 4.30 layout qualifiers need literal-like constants.
  */
@@ -95,6 +123,11 @@ struct ClipParams
 #define CAO_BINDING_CLIP_FACTORS 2  /* storage: float clip factor per coverage count */
 #define CAO_BINDING_MAPS 3          /* storage: front, back, candidate front, candidate back */
 #define CAO_BINDING_COUNTERS 4      /* storage: uint category counts (a, b, c) */
+#define CAO_BINDING_RENDER_PARAMS 2 /* uniform block: RenderParams */
+#define CAO_UNIT_SCALARS 0          /* sampler3D: scalars (normalised integer view or float) */
+#define CAO_UNIT_AO 1               /* sampler3D: AO (16-bit normalised view) */
+#define CAO_UNIT_TABLE 2            /* sampler2D: RGBA transfer-function table, 1 row */
+#define CAO_UNIT_DEPTH 3            /* sampler2D: the opaque geometry's depth */
 /* The depth-map programs (caoDepthRaster) are separate programs with their
  * own storage bindings, kept within the 8 that GL 4.3 guarantees. */
 #define CAO_BINDING_DM_POINTS 0    /* storage: double xyz per mesh point (local frame) */
@@ -158,6 +191,7 @@ CAO_CONST CAO_DM_STAT_BOXES = 8;     /* then per layer: covered x0, y0, x1, y1 *
 static_assert(sizeof(DMTriangle) == 128, "DMTriangle must match std430");
 static_assert(sizeof(DMHit) == 16, "DMHit must match std430");
 static_assert(sizeof(DMOffset) == 16, "DMOffset must match std430");
+static_assert(sizeof(RenderParams) == 19 * 16, "RenderParams must match std140");
 static_assert(sizeof(LAOTap) == 32, "LAOTap must match std430");
 static_assert(sizeof(LAOParams) == 96, "LAOParams must match std140/std430");
 static_assert(sizeof(ClipParams) == 3 * 16 + 4 * 16 + CAO_MAX_AA_EXTRA_SAMPLES * 16,

@@ -7,6 +7,7 @@
 #include "caoClassify.h"
 
 #include "caoClassify_glsl.h"
+#include "caoClipTest_glsl.h"
 #include "caoCopyUnaffected_glsl.h"
 #include "caoLAOMarch_glsl.h"
 
@@ -82,6 +83,7 @@ struct AOEngine::Impl
   int factorMode = -1, factorTotal = -1;
   StageTimes times;
   shared::LAOParams params{};
+  std::uint64_t generation = 0;
 
   Impl(Context& c)
     : Ctx(c)
@@ -371,6 +373,7 @@ bool AOEngine::SetVolume(const VolumeUpload& v, std::string& error)
   gl.TexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, p.dims[0], p.dims[1], p.dims[2], format, type, v.data);
   gl.BindTexture(GL_TEXTURE_3D, 0);
   p.state = p.NewVolume(GL_R8UI);
+  ++p.generation;
   p.aoPre = p.NewVolume(GL_R16UI);
   p.aoCur = p.NewVolume(GL_R16UI);
   const std::int64_t n = p.Voxels();
@@ -389,7 +392,7 @@ bool AOEngine::SetVolume(const VolumeUpload& v, std::string& error)
     p.BufferUpload(p.counters, GL_SHADER_STORAGE_BUFFER, sizeof(zero), zero);
     p.bytes[5] = sizeof(zero);
   }
-  p.timer.Allocate(gl, p.Ctx.Kind() == ContextKind::OSMesa);
+  p.timer.Allocate(gl, p.Ctx.UsesHostClock());
   p.havePlan = false; // the programs depend on the opacity source: SetPlan again
   return p.CheckError("the volume upload", error);
 }
@@ -432,20 +435,20 @@ bool AOEngine::SetPlan(const LAOPlan& plan, std::string& error)
     extra.insert(extra.end(), local.begin(), local.end());
     return extra;
   };
-  if (!p.lao.BuildCompute(p.gl, caoLAOMarch_glsl,
+  if (!p.lao.BuildCompute(p.gl, { caoLAOMarch_glsl },
         with({ { "CAO_OPACITY_SOURCE", src }, { "CAO_CLIPPED", "0" }, { "CAO_SELECT", "0" } }),
         error) ||
-    !p.laoAffected.BuildCompute(p.gl, caoLAOMarch_glsl,
+    !p.laoAffected.BuildCompute(p.gl, { caoLAOMarch_glsl },
       with({ { "CAO_OPACITY_SOURCE", src }, { "CAO_CLIPPED", "1" }, { "CAO_SELECT", "1" } }),
       error) ||
-    !p.laoFull.BuildCompute(p.gl, caoLAOMarch_glsl,
+    !p.laoFull.BuildCompute(p.gl, { caoLAOMarch_glsl },
       with({ { "CAO_OPACITY_SOURCE", src }, { "CAO_CLIPPED", "1" }, { "CAO_SELECT", "2" } }),
       error) ||
-    !p.laoVerify.BuildCompute(p.gl, caoLAOMarch_glsl,
+    !p.laoVerify.BuildCompute(p.gl, { caoLAOMarch_glsl },
       with({ { "CAO_OPACITY_SOURCE", src }, { "CAO_CLIPPED", "1" }, { "CAO_SELECT", "3" } }),
       error) ||
-    !p.classify.BuildCompute(p.gl, caoClassify_glsl, with({}), error) ||
-    !p.copy.BuildCompute(p.gl, caoCopyUnaffected_glsl, with({}), error))
+    !p.classify.BuildCompute(p.gl, { caoClipTest_glsl, caoClassify_glsl }, with({}), error) ||
+    !p.copy.BuildCompute(p.gl, { caoCopyUnaffected_glsl }, with({}), error))
   {
     return false;
   }
@@ -572,7 +575,8 @@ bool AOEngine::SetMaps(const DepthRaster& raster, int mode, std::string& error)
   return p.CheckError("the depth-map copy", error);
 }
 
-bool AOEngine::Update(const shared::ClipParams& clip, UpdateStats& stats, std::string& error)
+bool AOEngine::Update(
+  const shared::ClipParams& clip, UpdateStats& stats, std::string& error, UpdateMode mode)
 {
   Impl& p = *this->P;
   if (!p.havePrecomputed)
@@ -603,7 +607,7 @@ bool AOEngine::Update(const shared::ClipParams& clip, UpdateStats& stats, std::s
   if ((&clip.boxMin.x)[0] > (&clip.boxMax.x)[0])
     current = Box();
   Box region = Box::Union(current, p.previous);
-  if (clip.map.w != p.previousMode)
+  if (clip.map.w != p.previousMode || mode == UpdateMode::Full)
     region = p.WholeVolume(); // every voxel's outside state changes
   p.UploadFactors(clip.map.w, 9 + clip.aa.x);
   p.BufferUpload(p.clipParams, GL_UNIFORM_BUFFER, sizeof(clip), &clip);
@@ -611,7 +615,9 @@ bool AOEngine::Update(const shared::ClipParams& clip, UpdateStats& stats, std::s
   p.BindLAOBuffers();
   p.BindImages(true, true, false, false, p.aoCur);
   p.Begin(QRecompute);
-  if (!current.Empty())
+  if (mode == UpdateMode::Full)
+    p.Dispatch(p.laoFull, region);
+  else if (!current.Empty())
     p.Dispatch(p.laoAffected, current);
   p.End(QRecompute);
   gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
@@ -637,6 +643,36 @@ bool AOEngine::Update(const shared::ClipParams& clip, UpdateStats& stats, std::s
   else
     stats.clipped += outside;
   return p.CheckError("the pose update", error);
+}
+
+bool AOEngine::ResetClip(std::string& error)
+{
+  Impl& p = *this->P;
+  if (!p.havePrecomputed)
+  {
+    error = "Precompute must come before ResetClip";
+    return false;
+  }
+  if (!p.Current(error))
+    return false;
+  StateGuard guard(p.gl, p.External());
+  p.InitialiseState();
+  return p.CheckError("the clip reset", error);
+}
+
+AOEngine::Resources AOEngine::GetResources() const
+{
+  const Impl& p = *this->P;
+  Resources r;
+  r.volume = p.volume;
+  r.currentAO = p.aoCur;
+  r.precomputedAO = p.aoPre;
+  r.maps = p.maps;
+  r.clipParams = p.clipParams;
+  r.source = p.source;
+  std::copy(p.dims, p.dims + 3, r.dims);
+  r.generation = p.generation;
+  return r;
 }
 
 bool AOEngine::FullRecompute(std::vector<std::uint16_t>& ao, std::string& error)

@@ -99,8 +99,20 @@ public:
   /// needs this call again.
   bool SetMaps(const DepthRaster& raster, int mode, std::string& error);
 
-  /// One pose: classify, copy categories a/c, recompute category b.
-  bool Update(const shared::ClipParams& clip, UpdateStats& stats, std::string& error);
+  /// How a pose's AO is produced.
+  enum class UpdateMode
+  {
+    Contextual, ///< the paper's: classify the candidate region, recompute category b
+    Full,       ///< classify every voxel, recompute every voxel not in category a
+  };
+  /// One pose: classify, copy categories a/c, recompute category b. With
+  /// UpdateMode::Full, the reference the contextual update must equal: the
+  /// same state and the same category-a values (the precomputed AO), and
+  /// the clipped LAO of every other voxel, recomputed.
+  bool Update(const shared::ClipParams& clip, UpdateStats& stats, std::string& error,
+    UpdateMode mode = UpdateMode::Contextual);
+  /// Back to the unclipped state: current AO = precomputed everywhere.
+  bool ResetClip(std::string& error);
 
   /// The full recompute on the current clip state, for verification: the
   /// clipped LAO of every voxel not in category a (others are left 0).
@@ -124,6 +136,18 @@ public:
   bool ReadState(std::vector<std::uint8_t>& state, std::string& error);
 
   const StageTimes& Times() const;
+
+  /// What a renderer on the same context samples (GL names; 0 when absent).
+  /// `generation` changes whenever the volumes are re-created, so that a
+  /// renderer's texture views of them can tell they are stale.
+  struct Resources
+  {
+    unsigned int volume = 0, currentAO = 0, precomputedAO = 0, maps = 0, clipParams = 0;
+    OpacitySource source = OpacitySource::Float32;
+    int dims[3] = { 0, 0, 0 };
+    std::uint64_t generation = 0;
+  };
+  Resources GetResources() const;
   /// Bytes resident on the GPU now: volumes, tables, maps, parameters.
   std::int64_t ResidentBytes() const;
   /// Bytes of the per-voxel volumes only (input, state, two AO volumes).

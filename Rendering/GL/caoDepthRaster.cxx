@@ -71,11 +71,11 @@ struct DepthRaster::Impl
     Defines countDefines = stage(1), fillDefines = stage(1);
     countDefines.emplace_back("CAO_DM_PASS", "0");
     fillDefines.emplace_back("CAO_DM_PASS", "1");
-    return this->setup.BuildCompute(gl, caoDepthMaps_glsl, stage(0), error) &&
-      this->count.BuildRaster(gl, caoDepthRasterVS_glsl, caoDepthMaps_glsl, countDefines, error) &&
-      this->fill.BuildRaster(gl, caoDepthRasterVS_glsl, caoDepthMaps_glsl, fillDefines, error) &&
-      this->resolve.BuildCompute(gl, caoDepthMaps_glsl, stage(2), error) &&
-      this->dilate.BuildCompute(gl, caoDepthMaps_glsl, stage(3), error);
+    return this->setup.BuildCompute(gl, { caoDepthMaps_glsl }, stage(0), error) &&
+      this->count.BuildRaster(gl, { caoDepthRasterVS_glsl }, { caoDepthMaps_glsl }, countDefines, error) &&
+      this->fill.BuildRaster(gl, { caoDepthRasterVS_glsl }, { caoDepthMaps_glsl }, fillDefines, error) &&
+      this->resolve.BuildCompute(gl, { caoDepthMaps_glsl }, stage(2), error) &&
+      this->dilate.BuildCompute(gl, { caoDepthMaps_glsl }, stage(3), error);
   }
 
   void MapSize(const Program& program)
@@ -171,7 +171,7 @@ bool DepthRaster::Build(const ClipCamera& cam, const TriangleMesh& mesh, double 
   }
   if (!p.BuildPrograms(error))
     return false;
-  p.timer.Allocate(gl, p.Ctx.Kind() == ContextKind::OSMesa);
+  p.timer.Allocate(gl, p.Ctx.UsesHostClock());
   p.width = cam.width;
   p.height = cam.height;
   p.layers = cam.layers;

@@ -478,6 +478,13 @@ bool Context::MakeCurrent()
   return true;
 }
 
+bool Context::IsCurrent() const
+{
+  if (this->P->context != EGL_NO_CONTEXT)
+    return EGLLibrary::Get().GetCurrentContext() == this->P->context;
+  return this->P->kind == ContextKind::External;
+}
+
 void Context::Release()
 {
   if (this->P->context != EGL_NO_CONTEXT)
@@ -486,6 +493,13 @@ void Context::Release()
     if (egl.GetCurrentContext() == this->P->context)
       egl.MakeCurrent(this->P->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   }
+}
+
+bool Context::UsesHostClock() const
+{
+  const std::string& d = this->P->description;
+  return this->P->kind == ContextKind::OSMesa || d.find("llvmpipe") != std::string::npos ||
+    d.find("softpipe") != std::string::npos;
 }
 
 ContextKind Context::Kind() const

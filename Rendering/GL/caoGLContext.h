@@ -53,10 +53,17 @@ public:
   /// Make this context current on the calling thread (headless kinds); for
   /// External it checks nothing and returns true: the caller owns currency.
   bool MakeCurrent();
+  /// Whether this EGL context is current on the calling thread (External:
+  /// true, the caller owns currency; OSMesa: false, not tracked).
+  bool IsCurrent() const;
   /// Release a headless context from the calling thread (no-op for External).
   void Release();
 
   ContextKind Kind() const;
+  /// Whether stage timings should use the host clock around glFinish
+  /// rather than GL_TIMESTAMP queries: OSMesa, and software rasterisers
+  /// (llvmpipe, softpipe), whose timestamps do not bracket the work.
+  bool UsesHostClock() const;
   /// What ran: platform, renderer and version strings.
   const std::string& Description() const;
   const Functions& GL() const;

@@ -19,6 +19,8 @@
   X(BindImageTexture, BINDIMAGETEXTURE)                                                          \
   X(BindTexture, BINDTEXTURE)                                                                    \
   X(BindVertexArray, BINDVERTEXARRAY)                                                            \
+  X(BlendEquationSeparate, BLENDEQUATIONSEPARATE)                                                \
+  X(BlendFuncSeparate, BLENDFUNCSEPARATE)                                                        \
   X(BufferData, BUFFERDATA)                                                                      \
   X(BufferSubData, BUFFERSUBDATA)                                                                \
   X(CheckFramebufferStatus, CHECKFRAMEBUFFERSTATUS)                                              \
@@ -26,6 +28,7 @@
   X(ColorMask, COLORMASK)                                                                        \
   X(CompileShader, COMPILESHADER)                                                                \
   X(CopyBufferSubData, COPYBUFFERSUBDATA)                                                        \
+  X(CopyTexSubImage2D, COPYTEXSUBIMAGE2D)                                                        \
   X(CreateProgram, CREATEPROGRAM)                                                                \
   X(CreateShader, CREATESHADER)                                                                  \
   X(DeleteBuffers, DELETEBUFFERS)                                                                \
@@ -77,15 +80,21 @@
   X(PixelStorei, PIXELSTOREI)                                                                    \
   X(QueryCounter, QUERYCOUNTER)                                                                  \
   X(ShaderSource, SHADERSOURCE)                                                                  \
+  X(TexImage2D, TEXIMAGE2D)                                                                      \
   X(TexParameteri, TEXPARAMETERI)                                                                \
+  X(TexStorage2D, TEXSTORAGE2D)                                                                  \
   X(TexStorage3D, TEXSTORAGE3D)                                                                  \
+  X(TexSubImage2D, TEXSUBIMAGE2D)                                                                \
   X(TexSubImage3D, TEXSUBIMAGE3D)                                                                \
+  X(TextureView, TEXTUREVIEW)                                                                    \
   X(Uniform1f, UNIFORM1F)                                                                        \
   X(Uniform1i, UNIFORM1I)                                                                        \
   X(Uniform1ui, UNIFORM1UI)                                                                      \
   X(Uniform2d, UNIFORM2D)                                                                        \
+  X(Uniform2f, UNIFORM2F)                                                                        \
   X(Uniform2i, UNIFORM2I)                                                                        \
   X(Uniform3d, UNIFORM3D)                                                                        \
+  X(Uniform3f, UNIFORM3F)                                                                        \
   X(Uniform3i, UNIFORM3I)                                                                        \
   X(Uniform4f, UNIFORM4F)                                                                        \
   X(UseProgram, USEPROGRAM)                                                                      \

@@ -8,17 +8,25 @@ namespace gl
 {
 namespace
 {
-GLuint Compile(const Functions& gl, GLenum stage, const char* body, const Defines& defines,
+GLuint Compile(const Functions& gl, GLenum stage, const Sources& bodies, const Defines& defines,
   std::string& error)
 {
   std::string header = "#version 430 core\n";
   for (const auto& d : defines)
     header += "#define " + d.first + " " + d.second + "\n";
   header += "#line 1 1\n"; // caoShared.h is source string 1 in compiler logs
-  const std::string bodyLine = "\n#line 1 2\n";
-  const char* strings[4] = { header.c_str(), caoShared_glsl, bodyLine.c_str(), body };
+  // Each body file is source string 2, 3, ... in compiler logs.
+  std::vector<std::string> lines;
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    lines.push_back("\n#line 1 " + std::to_string(i + 2) + "\n");
+  std::vector<const char*> strings = { header.c_str(), caoShared_glsl };
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+  {
+    strings.push_back(lines[i].c_str());
+    strings.push_back(bodies[i]);
+  }
   GLuint shader = gl.CreateShader(stage);
-  gl.ShaderSource(shader, 4, strings, nullptr);
+  gl.ShaderSource(shader, static_cast<GLsizei>(strings.size()), strings.data(), nullptr);
   gl.CompileShader(shader);
   GLint ok = GL_FALSE;
   gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
@@ -28,7 +36,7 @@ GLuint Compile(const Functions& gl, GLenum stage, const char* body, const Define
     gl.GetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
     std::string log(static_cast<std::size_t>(length > 0 ? length : 1), '\0');
     gl.GetShaderInfoLog(shader, length, nullptr, &log[0]);
-    error = "shader compilation failed (string 1 = caoShared.h, 2 = the stage's file):\n" + log;
+    error = "shader compilation failed (string 1 = caoShared.h, 2.. = the stage's files):\n" + log;
     gl.DeleteShader(shader);
     return 0;
   }
@@ -52,7 +60,7 @@ bool Link(const Functions& gl, GLuint program, std::string& error)
 }
 
 bool Program::BuildCompute(
-  const Functions& gl, const char* source, const Defines& defines, std::string& error)
+  const Functions& gl, const Sources& source, const Defines& defines, std::string& error)
 {
   this->Release(gl);
   GLuint cs = Compile(gl, GL_COMPUTE_SHADER, source, defines, error);
@@ -71,7 +79,7 @@ bool Program::BuildCompute(
   return true;
 }
 
-bool Program::BuildRaster(const Functions& gl, const char* vertex, const char* fragment,
+bool Program::BuildRaster(const Functions& gl, const Sources& vertex, const Sources& fragment,
   const Defines& defines, std::string& error)
 {
   this->Release(gl);

@@ -18,6 +18,9 @@ namespace cao
 namespace gl
 {
 using Defines = std::vector<std::pair<std::string, std::string>>;
+/// The files of one stage, in order (shared snippets first): each is its
+/// own source string, numbered from 2 in compiler logs (1 is caoShared.h).
+using Sources = std::vector<const char*>;
 
 class Program
 {
@@ -28,10 +31,10 @@ public:
   Program& operator=(const Program&) = delete;
 
   /// Build a compute program; false with the compiler log in `error`.
-  bool BuildCompute(const Functions& gl, const char* source, const Defines& defines,
+  bool BuildCompute(const Functions& gl, const Sources& source, const Defines& defines,
     std::string& error);
   /// Build a vertex + fragment program.
-  bool BuildRaster(const Functions& gl, const char* vertex, const char* fragment,
+  bool BuildRaster(const Functions& gl, const Sources& vertex, const Sources& fragment,
     const Defines& defines, std::string& error);
   void Release(const Functions& gl);
   /// Forget the program without a GL call (its context is gone).

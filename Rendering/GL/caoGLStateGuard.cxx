@@ -21,7 +21,19 @@ StateGuard::StateGuard(const Functions& gl, bool active)
   gl.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &this->ReadFramebuffer);
   gl.GetIntegerv(GL_VIEWPORT, this->Viewport);
   gl.GetIntegerv(GL_ACTIVE_TEXTURE, &this->ActiveTexture);
-  gl.GetIntegerv(GL_TEXTURE_BINDING_3D, &this->Texture3D);
+  for (int u = 0; u < TextureUnits; ++u)
+  {
+    gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + u));
+    gl.GetIntegerv(GL_TEXTURE_BINDING_3D, &this->Texture3D[u]);
+    gl.GetIntegerv(GL_TEXTURE_BINDING_2D, &this->Texture2D[u]);
+  }
+  gl.ActiveTexture(static_cast<GLenum>(this->ActiveTexture));
+  gl.GetIntegerv(GL_BLEND_SRC_RGB, &this->BlendFunc[0]);
+  gl.GetIntegerv(GL_BLEND_DST_RGB, &this->BlendFunc[1]);
+  gl.GetIntegerv(GL_BLEND_SRC_ALPHA, &this->BlendFunc[2]);
+  gl.GetIntegerv(GL_BLEND_DST_ALPHA, &this->BlendFunc[3]);
+  gl.GetIntegerv(GL_BLEND_EQUATION_RGB, &this->BlendEquation[0]);
+  gl.GetIntegerv(GL_BLEND_EQUATION_ALPHA, &this->BlendEquation[1]);
   gl.GetIntegerv(GL_UNPACK_ALIGNMENT, &this->UnpackAlignment);
   gl.GetIntegerv(GL_PACK_ALIGNMENT, &this->PackAlignment);
   for (int i = 0; i < StorageBindings; ++i)
@@ -60,8 +72,18 @@ StateGuard::~StateGuard()
   gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(this->DrawFramebuffer));
   gl.BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(this->ReadFramebuffer));
   gl.Viewport(this->Viewport[0], this->Viewport[1], this->Viewport[2], this->Viewport[3]);
+  for (int u = 0; u < TextureUnits; ++u)
+  {
+    gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + u));
+    gl.BindTexture(GL_TEXTURE_3D, static_cast<GLuint>(this->Texture3D[u]));
+    gl.BindTexture(GL_TEXTURE_2D, static_cast<GLuint>(this->Texture2D[u]));
+  }
   gl.ActiveTexture(static_cast<GLenum>(this->ActiveTexture));
-  gl.BindTexture(GL_TEXTURE_3D, static_cast<GLuint>(this->Texture3D));
+  gl.BlendFuncSeparate(static_cast<GLenum>(this->BlendFunc[0]),
+    static_cast<GLenum>(this->BlendFunc[1]), static_cast<GLenum>(this->BlendFunc[2]),
+    static_cast<GLenum>(this->BlendFunc[3]));
+  gl.BlendEquationSeparate(
+    static_cast<GLenum>(this->BlendEquation[0]), static_cast<GLenum>(this->BlendEquation[1]));
   gl.PixelStorei(GL_UNPACK_ALIGNMENT, this->UnpackAlignment);
   gl.PixelStorei(GL_PACK_ALIGNMENT, this->PackAlignment);
   enable(GL_DEPTH_TEST, this->DepthTest);

@@ -4,8 +4,9 @@
  * a VTK render window leaves vtkOpenGLState's cached view of the context
  * true. Covers: program, vertex array, array/uniform/storage buffer generic
  * and indexed bindings used by caoShared.h, framebuffers, viewport, the
- * enables and masks the depth-map raster pass touches, pixel-store
- * alignment, and the active texture unit with its 3D binding. No VTK.
+ * enables, masks and blend function the raster passes touch, pixel-store
+ * alignment, the active texture unit, and the 2D and 3D bindings of the
+ * texture units the ray caster uses. No VTK.
  */
 #ifndef caoGLStateGuard_h
 #define caoGLStateGuard_h
@@ -27,16 +28,18 @@ public:
 
 private:
   static constexpr int StorageBindings = 8;
-  static constexpr int UniformBindings = 2;
+  static constexpr int UniformBindings = 3;
+  static constexpr int TextureUnits = 4; // CAO_UNIT_*
   const Functions& GL;
   bool Active;
   GLint Program = 0, VertexArray = 0, ArrayBuffer = 0, UniformBuffer = 0, StorageBuffer = 0;
   GLint CopyRead = 0, CopyWrite = 0;
   GLint DrawFramebuffer = 0, ReadFramebuffer = 0, Viewport[4] = { 0, 0, 0, 0 };
-  GLint ActiveTexture = 0, Texture3D = 0, UnpackAlignment = 4, PackAlignment = 4;
+  GLint ActiveTexture = 0, Texture3D[TextureUnits] = {}, Texture2D[TextureUnits] = {}, UnpackAlignment = 4, PackAlignment = 4;
   GLint StorageIndexed[StorageBindings] = {}, UniformIndexed[UniformBindings] = {};
   GLboolean DepthTest = 0, Blend = 0, CullFace = 0, ScissorTest = 0, DepthWrite = 1;
   GLboolean RasterizerDiscard = 0;
+  GLint BlendFunc[4] = { GL_ONE, GL_ZERO, GL_ONE, GL_ZERO }, BlendEquation[2] = { 0, 0 };
   GLboolean ColorWrite[4] = { 1, 1, 1, 1 };
 };
 }

@@ -1,5 +1,5 @@
-// caoClassify.glsl - anti-aliased clipping and the three categories, one
-// invocation per voxel of the region [regionMin, regionMax] (the union of
+// caoClassify.glsl (after caoClipTest.glsl) - anti-aliased clipping and
+// the three categories, one invocation per voxel of the region [regionMin, regionMax] (the union of
 // this pose's and the previous pose's candidate boxes). The GLSL twin of
 // caoClassify.cxx: the same projection (float, documented order), the same
 // inside test, the same 9 + N samples. It writes the clip state byte
@@ -13,16 +13,6 @@
 #endif
 layout(local_size_x = CAO_LOCAL_X, local_size_y = CAO_LOCAL_Y, local_size_z = CAO_LOCAL_Z) in;
 
-layout(std140, binding = CAO_BINDING_CLIP_PARAMS) uniform ClipBlock
-{
-  ClipParams clip;
-};
-// Four maps of width * height * layers floats each, pixel-major with the
-// layers of a pixel adjacent: front, back, candidate front, candidate back.
-layout(std430, binding = CAO_BINDING_MAPS) readonly buffer MapBlock
-{
-  float maps[];
-};
 layout(std430, binding = CAO_BINDING_COUNTERS) buffer CounterBlock
 {
   uint counters[4];
@@ -33,47 +23,6 @@ uniform ivec3 regionMin;
 uniform ivec3 regionMax;
 
 shared uint localCounts[3];
-
-/// Returns the map pixel index, or -1 when the point projects outside the map.
-int Project(vec3 q, out float depth)
-{
-  precise float u = ((clip.toCamera[0].x * q.x + clip.toCamera[0].y * q.y) +
-                      clip.toCamera[0].z * q.z) + clip.toCamera[0].w;
-  precise float v = ((clip.toCamera[1].x * q.x + clip.toCamera[1].y * q.y) +
-                      clip.toCamera[1].z * q.z) + clip.toCamera[1].w;
-  precise float d = ((clip.toCamera[2].x * q.x + clip.toCamera[2].y * q.y) +
-                      clip.toCamera[2].z * q.z) + clip.toCamera[2].w;
-  depth = d;
-  // Written so that NaN fails the test.
-  if (u >= 0.0 && v >= 0.0 && u < float(clip.map.x) && v < float(clip.map.y))
-  {
-    int px = min(int(u), clip.map.x - 1);
-    int py = min(int(v), clip.map.y - 1);
-    return py * clip.map.x + px;
-  }
-  return -1;
-}
-
-bool InLayers(int mapOffset, int pixel, float depth)
-{
-  if (pixel < 0)
-    return false;
-  int base = mapOffset + pixel * clip.map.z;
-  int layerSize = clip.map.x * clip.map.y * clip.map.z;
-  for (int l = 0; l < clip.map.z; ++l)
-  {
-    if (maps[base + l] <= depth && depth <= maps[base + layerSize + l])
-      return true;
-  }
-  return false;
-}
-
-bool Inside(vec3 q)
-{
-  float depth;
-  int pixel = Project(q, depth);
-  return InLayers(0, pixel, depth);
-}
 
 void main()
 {

@@ -1,0 +1,70 @@
+#include "vtkCAOOpacity.h"
+
+#include "vtkCAOFilterUtilities.h"
+#include "vtkDataArray.h"
+#include "vtkPiecewiseFunction.h"
+
+#include "caoLAO.h"
+
+#include <atomic>
+#include <cmath>
+#include <vector>
+
+namespace vtkCAO
+{
+/// Evaluate the transfer function for every voxel, corrected for the step.
+/// Integer arrays with at most 65536 distinct values use an exact table.
+bool ComputeOpacity(vtkAlgorithm* self, vtkDataArray* scalars, int component,
+  vtkPiecewiseFunction* tf, double stepOverUnit, float* opacity, std::int64_t& nonFinite)
+{
+  const std::int64_t n = scalars->GetNumberOfTuples();
+  std::atomic<std::int64_t> bad{ 0 };
+  const int type = scalars->GetDataType();
+  const bool integer = type != VTK_FLOAT && type != VTK_DOUBLE;
+  double range[2] = { 0, 0 };
+  scalars->GetRange(range, component);
+  if (integer && range[1] - range[0] < 65536.0)
+  {
+    const long long lo = static_cast<long long>(range[0]);
+    const std::size_t size = static_cast<std::size_t>(range[1] - range[0]) + 1;
+    std::vector<float> table(size);
+    for (std::size_t i = 0; i < size; ++i)
+    {
+      table[i] = cao::CorrectOpacity(tf->GetValue(static_cast<double>(lo + i)), stepOverUnit);
+    }
+    return vtkCAO::ParallelFor(self, n, 4096, 0.0, 0.1, [&](std::int64_t b, std::int64_t e) {
+      for (std::int64_t i = b; i < e; ++i)
+      {
+        const long long s = static_cast<long long>(scalars->GetComponent(i, component));
+        opacity[i] = table[static_cast<std::size_t>(s - lo)];
+      }
+    });
+  }
+  // Floating point (or wide integer) data: evaluate the function per voxel.
+  // vtkPiecewiseFunction::GetValue is not documented thread safe: serial.
+  const std::int64_t blocks = 20;
+  const std::int64_t per = (n + blocks - 1) / blocks;
+  for (std::int64_t start = 0; start < n; start += per)
+  {
+    const std::int64_t stop = std::min(n, start + per);
+    for (std::int64_t i = start; i < stop; ++i)
+    {
+      const double s = scalars->GetComponent(i, component);
+      if (!std::isfinite(s))
+      {
+        ++bad;
+        opacity[i] = 0.0f;
+        continue;
+      }
+      opacity[i] = cao::CorrectOpacity(tf->GetValue(s), stepOverUnit);
+    }
+    self->UpdateProgress(0.1 * static_cast<double>(stop) / static_cast<double>(n));
+    if (self->CheckAbort())
+    {
+      return false;
+    }
+  }
+  nonFinite = bad.load();
+  return true;
+}
+}

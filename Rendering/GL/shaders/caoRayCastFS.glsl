@@ -1,0 +1,132 @@
+// caoRayCastFS.glsl (after caoClipTest.glsl) - the volume ray caster.
+//
+// Per pixel: the ray through the pixel centre, from the near plane, in
+// world units; clipped to the volume's box [0, dims - 1] (voxel index space)
+// and to the opaque geometry's depth. Samples are `sampling.x` world units
+// apart, from a per-pixel jittered start. At each sample:
+//  - the scalar (trilinear) looks up colour and step-corrected opacity in
+//    the transfer-function table;
+//  - the shadow test against the clip mesh's depth maps (caoClipTest.glsl)
+//    removes the sample when it is inside the mesh (subtraction) or outside
+//    it (probing);
+//  - the AO (trilinear) scales the ambient term: 1 - strength * (1 - AO);
+//  - with shading, gradient Blinn-Phong (two-sided, one directional light)
+//    adds the diffuse and specular terms as vtkVolumeProperty defines them.
+// Front-to-back compositing, premultiplied output, early termination.
+layout(std140, binding = CAO_BINDING_RENDER_PARAMS) uniform RenderBlock
+{
+  RenderParams rp;
+};
+layout(binding = CAO_UNIT_SCALARS) uniform sampler3D scalarTexture;
+layout(binding = CAO_UNIT_AO) uniform sampler3D aoTexture;
+layout(binding = CAO_UNIT_TABLE) uniform sampler2D tableTexture;
+layout(binding = CAO_UNIT_DEPTH) uniform sampler2D depthTexture;
+
+layout(location = 0) out vec4 fragColor;
+
+/// A deterministic per-pixel offset in [0, 1) (integer hash of the pixel):
+/// the same pixel gets the same jitter in every frame, so images repeat.
+float Jitter(ivec2 pixel)
+{
+  uint h = uint(pixel.x) * 1973u + uint(pixel.y) * 9277u + 26699u;
+  h = (h ^ (h >> 16u)) * 0x7feb352du;
+  h = (h ^ (h >> 15u)) * 0x846ca68bu;
+  h ^= h >> 16u;
+  return float(h >> 8u) * (1.0 / 16777216.0);
+}
+
+vec3 Unproject(vec2 ndc, float z)
+{
+  mat4 m = mat4(rp.ndcToWorld[0], rp.ndcToWorld[1], rp.ndcToWorld[2], rp.ndcToWorld[3]);
+  vec4 p = m * vec4(ndc, z, 1.0);
+  return p.xyz / p.w;
+}
+
+float Scalar(vec3 tc)
+{
+  return texture(scalarTexture, tc).r;
+}
+
+void main()
+{
+  int flags = rp.dims.w;
+  ivec2 pixel = ivec2(gl_FragCoord.xy - rp.viewport.xy);
+  vec2 ndc = (gl_FragCoord.xy - rp.viewport.xy) * rp.viewport.zw * 2.0 - 1.0;
+  vec3 nearWorld = Unproject(ndc, -1.0);
+  vec3 farWorld = Unproject(ndc, 1.0);
+  vec3 dirWorld = normalize(farWorld - nearWorld);
+
+  mat4 toIndex = mat4(rp.worldToIndex[0], rp.worldToIndex[1], rp.worldToIndex[2],
+    rp.worldToIndex[3]);
+  vec3 origin = (toIndex * vec4(nearWorld, 1.0)).xyz;
+  vec3 dir = mat3(toIndex) * dirWorld; // index units per world unit
+
+  // Slab test against [0, boxMax]; t in world units from the near plane.
+  vec3 inv = 1.0 / dir;
+  vec3 t0 = (vec3(0.0) - origin) * inv;
+  vec3 t1 = (rp.boxMax.xyz - origin) * inv;
+  vec3 tLow = min(t0, t1), tHigh = max(t0, t1);
+  float tEnter = max(max(max(tLow.x, tLow.y), tLow.z), 0.0);
+  float tExit = min(min(tHigh.x, tHigh.y), tHigh.z);
+  if ((flags & CAO_RENDER_OPAQUE_DEPTH) != 0)
+  {
+    float depth = texelFetch(depthTexture, pixel, 0).r;
+    if (depth < 1.0)
+      tExit = min(tExit, dot(Unproject(ndc, depth * 2.0 - 1.0) - nearWorld, dirWorld));
+  }
+  if (!(tExit > tEnter))
+    discard;
+
+  float step = rp.sampling.x;
+  float t = tEnter + step * ((flags & CAO_RENDER_JITTER) != 0 ? Jitter(pixel) : 0.5);
+  vec3 lightDir = rp.light.w > 0.5 ? -dirWorld : normalize(rp.light.xyz);
+  vec3 halfway = normalize(lightDir - dirWorld);
+  mat3 normalMatrix = mat3(rp.normalToWorld[0].xyz, rp.normalToWorld[1].xyz,
+    rp.normalToWorld[2].xyz);
+  vec3 texel = rp.invDims.xyz;
+  vec4 sum = vec4(0.0);
+  for (int i = 0; i < rp.limits.x && t <= tExit; ++i, t += step)
+  {
+    vec3 p = origin + t * dir;
+    vec3 tc = (p + 0.5) * rp.invDims.xyz;
+    float s = Scalar(tc);
+    vec4 c = texture(tableTexture, vec2(s * rp.sampling.y + rp.sampling.z, 0.5));
+    if (c.a <= 0.0)
+      continue;
+    if ((flags & CAO_RENDER_CLIP) != 0 && Inside(p) == (clip.map.w == CAO_MODE_SUBTRACT))
+      continue;
+    float ambient = 1.0;
+    if ((flags & CAO_RENDER_AO) != 0)
+      ambient = 1.0 - rp.sampling.w * (1.0 - texture(aoTexture, tc).r);
+    vec3 color;
+    if ((flags & CAO_RENDER_SHADE) != 0)
+    {
+      vec3 g = vec3(Scalar(tc + vec3(texel.x, 0, 0)) - Scalar(tc - vec3(texel.x, 0, 0)),
+        Scalar(tc + vec3(0, texel.y, 0)) - Scalar(tc - vec3(0, texel.y, 0)),
+        Scalar(tc + vec3(0, 0, texel.z)) - Scalar(tc - vec3(0, 0, texel.z)));
+      vec3 n = normalMatrix * g;
+      float len = length(n);
+      float diffuse = 0.0, specular = 0.0;
+      if (len > 1e-8)
+      {
+        n /= len;
+        if (dot(n, dirWorld) > 0.0)
+          n = -n; // two-sided: the normal faces the viewer
+        diffuse = max(dot(n, lightDir), 0.0);
+        specular = pow(max(dot(n, halfway), 0.0), rp.shading.w);
+      }
+      color = c.rgb * (rp.shading.x * ambient + rp.shading.y * diffuse) +
+        vec3(rp.shading.z * specular);
+    }
+    else
+    {
+      color = c.rgb * ambient;
+    }
+    float a = c.a * (1.0 - sum.a);
+    sum.rgb += a * color;
+    sum.a += a;
+    if (sum.a >= rp.boxMax.w)
+      break;
+  }
+  fragColor = sum;
+}

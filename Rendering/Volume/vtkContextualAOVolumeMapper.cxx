@@ -1,0 +1,587 @@
+#include "vtkContextualAOVolumeMapper.h"
+
+#include "vtkActor.h"
+#include "vtkAlgorithm.h"
+#include "vtkCamera.h"
+#include "vtkClipDepthMaps.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkDataArray.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkMapper.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkProp3D.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+
+#include "vtkCAOClipPose.h"
+#include "vtkCAOFilterUtilities.h"
+#include "vtkCAOGPUSession.h"
+#include "vtkCAOOpacity.h"
+
+#include "caoLAO.h"
+#include "caoRayCaster.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+vtkStandardNewMacro(vtkContextualAOVolumeMapper);
+vtkCxxSetObjectMacro(vtkContextualAOVolumeMapper, ClipShape, vtkProp3D);
+vtkCxxSetObjectMacro(vtkContextualAOVolumeMapper, ClipMesh, vtkPolyData);
+
+namespace
+{
+/// Entries of the transfer-function table.
+constexpr int TableEntries = 1024;
+/// Accumulated opacity at which a ray stops.
+constexpr float EarlyTermination = 0.995f;
+
+struct Stage
+{
+  std::string name;
+  double ms;
+};
+
+/// One frame's work, for the report.
+struct FrameReport
+{
+  int frame = 0;
+  std::vector<Stage> stages;
+  std::vector<std::string> reasons;
+  vtkIdType recomputed = 0;
+  std::int64_t clipped = -1, affected = -1, unaffected = -1;
+  std::string backend;
+  double sampleDistance = 0.0;
+
+  std::string Json() const
+  {
+    std::ostringstream o;
+    o.precision(6);
+    o << "{\"frame\": " << frame << ", \"stages\": [";
+    for (std::size_t i = 0; i < stages.size(); ++i)
+      o << (i ? ", " : "") << "{\"name\": \"" << stages[i].name << "\", \"gpu_ms\": "
+        << stages[i].ms << "}";
+    o << "], \"recomputed_voxels\": " << recomputed;
+    if (clipped >= 0)
+      o << ", \"categories\": {\"clipped\": " << clipped << ", \"affected\": " << affected
+        << ", \"unaffected\": " << unaffected << "}";
+    o << ", \"reasons\": [";
+    for (std::size_t i = 0; i < reasons.size(); ++i)
+      o << (i ? ", " : "") << "\"" << reasons[i] << "\"";
+    o << "], \"sample_distance\": " << sampleDistance << ", \"context\": \"" << backend
+      << "\"}";
+    return o.str();
+  }
+};
+
+/// Column-major copy of a VTK (row-major) matrix, for caoShared.h's vec4 columns.
+void Columns(vtkMatrix4x4* m, cao::shared::vec4* out, int columns, int rows = 4)
+{
+  for (int c = 0; c < columns; ++c)
+  {
+    float v[4] = { 0, 0, 0, 0 };
+    for (int r = 0; r < rows; ++r)
+      v[r] = static_cast<float>(m->GetElement(r, c));
+    out[c] = { v[0], v[1], v[2], v[3] };
+  }
+}
+
+std::vector<double> MatrixKey(vtkMatrix4x4* m)
+{
+  return std::vector<double>(m->GetData(), m->GetData() + 16);
+}
+}
+
+struct vtkContextualAOVolumeMapper::Internals
+{
+  vtkCAO::GPUSession GPU;
+  std::unique_ptr<cao::gl::RayCaster> Caster;
+  vtkSmartPointer<vtkClipDepthMaps> DepthMaps;
+  cao::LAOPlan Plan;
+  std::vector<double> VolumeKey, MeshKey, MapsUploadKey, PoseKey, TableKey;
+  double BuiltPoseScale = 0.0;
+  int PrecomputeGeneration = 0, MapsGeneration = 0;
+  double ScalarRange[2] = { 0, 1 };
+  double TexelScale = 1.0; // texel value -> scalar value
+  FrameReport Last;
+  std::string LastError;
+  bool ClipStateApplied = false; // the engine's current AO holds a clipped pose
+
+  void ForgetGPU()
+  {
+    this->VolumeKey.clear();
+    this->MeshKey.clear();
+    this->MapsUploadKey.clear();
+    this->PoseKey.clear();
+    this->TableKey.clear();
+    this->ClipStateApplied = false;
+  }
+};
+
+//------------------------------------------------------------------------------
+vtkContextualAOVolumeMapper::vtkContextualAOVolumeMapper()
+  : Internal(new Internals)
+{
+  vtkCAO::EnsureThreadedBackend();
+  this->Internal->DepthMaps = vtkSmartPointer<vtkClipDepthMaps>::New();
+}
+
+//------------------------------------------------------------------------------
+vtkContextualAOVolumeMapper::~vtkContextualAOVolumeMapper()
+{
+  this->ReleaseGraphicsResources(nullptr);
+  this->SetClipShape(nullptr);
+  this->SetClipMesh(nullptr);
+}
+
+//------------------------------------------------------------------------------
+int vtkContextualAOVolumeMapper::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkContextualAOVolumeMapper::ReleaseGraphicsResources(vtkWindow*)
+{
+  Internals& in = *this->Internal;
+  if (in.Caster)
+  {
+    in.Caster->ReleaseGraphicsResources();
+    in.Caster.reset();
+  }
+  in.DepthMaps->ReleaseGraphicsResources();
+  in.GPU.Release();
+  in.ForgetGPU();
+}
+
+//------------------------------------------------------------------------------
+std::string vtkContextualAOVolumeMapper::GetLastFrameReport() const
+{
+  return this->FrameCount > 0 ? this->Internal->Last.Json() : std::string();
+}
+
+std::string vtkContextualAOVolumeMapper::GetLastFrameStages() const
+{
+  std::string s;
+  for (const Stage& st : this->Internal->Last.stages)
+    s += (s.empty() ? "" : ",") + st.name;
+  return s;
+}
+
+double vtkContextualAOVolumeMapper::GetLastFrameStageMilliseconds(const char* stage) const
+{
+  for (const Stage& st : this->Internal->Last.stages)
+    if (stage && st.name == stage)
+      return st.ms;
+  return -1.0;
+}
+
+vtkIdType vtkContextualAOVolumeMapper::GetLastFrameRecomputedVoxels() const
+{
+  return this->Internal->Last.recomputed;
+}
+
+//------------------------------------------------------------------------------
+void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
+{
+  Internals& in = *this->Internal;
+  auto fail = [&](const std::string& why) {
+    // One message per distinct failure, not one per frame.
+    if (why != in.LastError)
+      vtkErrorMacro(<< why);
+    in.LastError = why;
+  };
+
+  // 1. Input.
+  if (vtkAlgorithm* upstream = this->GetInputAlgorithm())
+    upstream->Update();
+  vtkImageData* input = vtkImageData::SafeDownCast(this->GetInputDataObject(0, 0));
+  if (!input)
+    return fail("No input image.");
+  int dims[3];
+  input->GetDimensions(dims);
+  const std::int64_t voxels = std::int64_t(dims[0]) * dims[1] * dims[2];
+  if (dims[0] < 2 || dims[1] < 2 || dims[2] < 2)
+    return fail("The input must have at least 2 voxels along each axis.");
+  if (voxels > cao::MaxVoxels)
+    return fail("The input has more voxels than the GPU kernels index (2^31 - 1).");
+  int cellFlag = 0;
+  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(input, this->ScalarMode,
+    this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+  if (!scalars || cellFlag != 0)
+    return fail("The input has no point scalars (cell scalars are not supported).");
+  if (scalars->GetNumberOfComponents() != 1)
+    return fail("The scalars must have 1 component (they have " +
+      std::to_string(scalars->GetNumberOfComponents()) + ").");
+  double range[2];
+  scalars->GetRange(range, 0);
+  if (!std::isfinite(range[0]) || !std::isfinite(range[1]))
+    return fail("The scalars contain NaN or infinite values.");
+  vtkVolumeProperty* property = vol->GetProperty();
+  vtkPiecewiseFunction* opacityFunction = property->GetScalarOpacity(0);
+  const double unitDistance = property->GetScalarOpacityUnitDistance(0);
+  if (!(unitDistance > 0.0))
+    return fail("The scalar opacity unit distance must be positive.");
+
+  // 2. The render window's OpenGL 4.3 context.
+  vtkRenderWindow* window = ren->GetRenderWindow();
+  bool failed = false;
+  if (!in.GPU.Resolve(this, vtkCAO::BACKEND_OPENGL, failed, window) || failed)
+  {
+    in.ForgetGPU();
+    in.Caster.reset();
+    return fail("The render window has no usable OpenGL 4.3 context; nothing is drawn.");
+  }
+  cao::gl::AOEngine& engine = in.GPU.Engine();
+  if (!in.Caster || &engine.GetContext() == nullptr)
+    in.Caster.reset(new cao::gl::RayCaster(engine.GetContext()));
+  std::string error;
+
+  FrameReport report;
+  report.frame = this->FrameCount + 1;
+  report.backend = in.GPU.Description();
+  const double* spacing = input->GetSpacing();
+  const double minSpacing = std::min({ spacing[0], spacing[1], spacing[2] });
+
+  // 3. The LAO precompute, when the opacity or the scalars changed.
+  const std::vector<double> volumeKey = { static_cast<double>(reinterpret_cast<std::uintptr_t>(input)),
+    static_cast<double>(input->GetMTime()),
+    static_cast<double>(reinterpret_cast<std::uintptr_t>(scalars)),
+    static_cast<double>(scalars->GetMTime()),
+    static_cast<double>(reinterpret_cast<std::uintptr_t>(opacityFunction)),
+    static_cast<double>(opacityFunction->GetMTime()), unitDistance,
+    static_cast<double>(this->RayPattern), static_cast<double>(this->NumberOfRays), this->Reach,
+    static_cast<double>(this->NumberOfSamples), static_cast<double>(this->ScalarMode),
+    static_cast<double>(this->ArrayId) };
+  if (volumeKey != in.VolumeKey || !engine.HasPrecomputed())
+  {
+    in.VolumeKey.clear();
+    cao::LAOSettings settings;
+    settings.pattern = static_cast<cao::RayPattern>(this->RayPattern);
+    settings.fibonacciRays = this->NumberOfRays;
+    settings.reach = this->Reach > 0.0 ? this->Reach : 8.0 * minSpacing;
+    settings.samples = this->NumberOfSamples;
+    if (!cao::BuildLAOPlan(vtkCAO::GeometryOf(input), settings, in.Plan, error))
+      return fail("Cannot plan the LAO: " + error + ".");
+    std::vector<float> opacity(static_cast<std::size_t>(voxels));
+    std::int64_t nonFinite = 0;
+    if (!vtkCAO::ComputeOpacity(this, scalars, 0, opacityFunction,
+          in.Plan.step / unitDistance, opacity.data(), nonFinite))
+      return; // aborted
+    std::vector<std::uint8_t> packed;
+    const cao::gl::VolumeUpload upload =
+      vtkCAO::MakeVolumeUpload(scalars, 0, opacity.data(), dims, packed);
+    if (!engine.SetVolume(upload, error) || !engine.SetPlan(in.Plan, error) ||
+      !engine.Precompute(error))
+      return fail("The LAO precompute failed: " + error + ".");
+    if (upload.source == cao::gl::OpacitySource::Float32)
+    {
+      std::vector<float> values(static_cast<std::size_t>(voxels));
+      for (std::int64_t v = 0; v < voxels; ++v)
+        values[static_cast<std::size_t>(v)] = static_cast<float>(scalars->GetComponent(v, 0));
+      if (!in.Caster->SetScalars(values.data(), dims, error))
+        return fail("The scalar upload failed: " + error + ".");
+      in.TexelScale = 1.0;
+    }
+    else
+    {
+      in.TexelScale = upload.source == cao::gl::OpacitySource::Scalars8 ? 255.0 : 65535.0;
+    }
+    in.ScalarRange[0] = range[0];
+    in.ScalarRange[1] = range[1] > range[0] ? range[1] : range[0] + 1.0;
+    report.stages.push_back({ "precompute", engine.Times().precompute });
+    report.reasons.emplace_back("scalar opacity, scalars or LAO settings changed");
+    report.recomputed += voxels;
+    ++this->PrecomputeCount;
+    ++in.PrecomputeGeneration;
+    in.PoseKey.clear();
+    in.ClipStateApplied = false;
+    in.VolumeKey = volumeKey;
+  }
+
+  // 4. The clip shape: depth maps when the mesh changed, the AO update
+  // when the pose changed.
+  vtkPolyData* mesh = this->ClipMesh;
+  if (this->ClipShape && !mesh)
+  {
+    if (vtkActor* actor = vtkActor::SafeDownCast(this->ClipShape))
+    {
+      if (vtkMapper* m = actor->GetMapper())
+      {
+        if (vtkAlgorithm* a = m->GetInputAlgorithm())
+          a->Update();
+        mesh = vtkPolyData::SafeDownCast(m->GetInputDataObject(0, 0));
+      }
+    }
+    if (!mesh)
+      return fail("The clip shape has no mesh: give it a vtkPolyDataMapper input or set ClipMesh.");
+  }
+  const bool clipping = this->ClipShape != nullptr;
+  const int mode =
+    this->Mode == SUBTRACTION ? cao::shared::CAO_MODE_SUBTRACT : cao::shared::CAO_MODE_PROBE;
+  if (clipping)
+  {
+    // Pose: the mesh's local frame to the volume's physical frame.
+    vtkNew<vtkMatrix4x4> worldToVolume, pose;
+    vtkMatrix4x4::Invert(vol->GetMatrix(), worldToVolume);
+    vtkMatrix4x4::Multiply4x4(worldToVolume, this->ClipShape->GetMatrix(), pose);
+    const double scale = vtkCAO::MinimumScale(pose);
+    if (!(scale > 0.0))
+      return fail("The clip pose must be an invertible affine transform.");
+    const double pixel =
+      this->ClipMapPixelSize > 0.0 ? this->ClipMapPixelSize : 0.5 * minSpacing / scale;
+    const std::vector<double> meshKey = { static_cast<double>(reinterpret_cast<std::uintptr_t>(mesh)),
+      static_cast<double>(mesh->GetMTime()), static_cast<double>(this->NumberOfClipLayers), pixel,
+      in.Plan.reach, spacing[0], spacing[1], spacing[2] };
+    // A pose that shrinks the mesh below the scale the maps were dilated
+    // for needs new maps; other scale changes keep them.
+    if (meshKey != in.MeshKey || scale < in.BuiltPoseScale)
+    {
+      in.MeshKey.clear();
+      vtkClipDepthMaps* maps = in.DepthMaps;
+      maps->SetInputData(mesh);
+      maps->SetNumberOfLayers(this->NumberOfClipLayers);
+      maps->SetPixelSize(pixel);
+      maps->SetReach(in.Plan.reach);
+      maps->SetVoxelSpacing(spacing[0], spacing[1], spacing[2]);
+      maps->SetMinimumPoseScale(scale);
+      maps->SetRenderWindow(window);
+      maps->SetBackend(vtkClipDepthMaps::AUTO);
+      const auto start = std::chrono::steady_clock::now();
+      maps->Update();
+      vtkImageData* out = maps->GetOutput();
+      vtkCAO::ClipMaps check;
+      if (!vtkCAO::ReadClipMaps(out, mode, check, error))
+        return fail("The clip mesh's depth maps could not be made (see the errors above).");
+      report.stages.push_back({ "depth_maps", vtkCAO::MillisecondsSince(start) });
+      report.reasons.emplace_back("clip mesh changed");
+      ++this->DepthMapsCount;
+      ++in.MapsGeneration;
+      in.BuiltPoseScale = scale;
+      in.MeshKey = meshKey;
+    }
+    vtkCAO::ClipMaps clipMaps;
+    vtkImageData* mapsImage = in.DepthMaps->GetOutput();
+    if (!vtkCAO::ReadClipMaps(mapsImage, mode, clipMaps, error))
+      return fail(error);
+    const std::vector<double> uploadKey = { static_cast<double>(in.MapsGeneration),
+      static_cast<double>(mode), static_cast<double>(in.PrecomputeGeneration) };
+    if (uploadKey != in.MapsUploadKey)
+    {
+      if (!engine.SetMaps(clipMaps.width, clipMaps.height, clipMaps.layers,
+            clipMaps.arrays[0]->GetPointer(0), clipMaps.arrays[1]->GetPointer(0),
+            clipMaps.arrays[2]->GetPointer(0), clipMaps.arrays[3]->GetPointer(0), error))
+        return fail("The depth-map upload failed: " + error + ".");
+      in.MapsUploadKey = uploadKey;
+      in.PoseKey.clear();
+    }
+    cao::shared::ClipParams clip{};
+    if (!vtkCAO::MakeClipParams(input, clipMaps, pose, in.Plan.reach, mode,
+          this->AntiAliasingSamples, clip, error))
+      return fail(error);
+    std::vector<double> poseKey = MatrixKey(pose);
+    poseKey.insert(poseKey.end(), { static_cast<double>(mode),
+      static_cast<double>(this->AntiAliasingSamples), static_cast<double>(this->AOUpdate),
+      static_cast<double>(in.MapsGeneration), static_cast<double>(in.PrecomputeGeneration) });
+    if (poseKey != in.PoseKey)
+    {
+      cao::gl::UpdateStats stats;
+      const auto updateMode = this->AOUpdate == FULL_RECOMPUTE
+        ? cao::gl::AOEngine::UpdateMode::Full
+        : cao::gl::AOEngine::UpdateMode::Contextual;
+      if (!engine.Update(clip, stats, error, updateMode))
+        return fail("The AO update failed: " + error + ".");
+      const cao::gl::StageTimes& t = engine.Times();
+      report.stages.push_back({ "classify", t.classify });
+      report.stages.push_back({ "copy", t.copy });
+      report.stages.push_back({ this->AOUpdate == FULL_RECOMPUTE ? "full_recompute" : "recompute",
+        t.recompute });
+      report.reasons.emplace_back(in.PoseKey.empty() ? "clip shape set" : "clip pose changed");
+      report.recomputed += this->AOUpdate == FULL_RECOMPUTE ? stats.affected + stats.unaffected
+                                                            : stats.affected;
+      report.clipped = stats.clipped;
+      report.affected = stats.affected;
+      report.unaffected = stats.unaffected;
+      ++this->ClassifyCount;
+      in.PoseKey = poseKey;
+      in.ClipStateApplied = true;
+    }
+  }
+  else
+  {
+    in.PoseKey.clear(); // a clip shape set again is a new pose
+  }
+
+  // 5. The transfer-function table: colour and opacity, step-corrected.
+  const bool interactive = window->GetDesiredUpdateRate() > 1.0;
+  double step = this->SampleDistance > 0.0 ? this->SampleDistance : 0.5 * minSpacing;
+  if (interactive)
+    step = this->InteractiveSampleDistance > 0.0 ? this->InteractiveSampleDistance : 2.0 * step;
+  report.sampleDistance = step;
+  // Ask for the kind of function the property has: asking for the other
+  // one would create it and switch the property's colour channels.
+  const bool rgb = property->GetColorChannels(0) == 3;
+  vtkColorTransferFunction* color = rgb ? property->GetRGBTransferFunction(0) : nullptr;
+  vtkPiecewiseFunction* gray = rgb ? nullptr : property->GetGrayTransferFunction(0);
+  const std::vector<double> tableKey = { static_cast<double>(opacityFunction->GetMTime()),
+    static_cast<double>(rgb ? color->GetMTime() : gray->GetMTime()), static_cast<double>(rgb),
+    unitDistance, step, in.ScalarRange[0], in.ScalarRange[1],
+    static_cast<double>(in.PrecomputeGeneration) };
+  if (tableKey != in.TableKey)
+  {
+    std::vector<float> table(4 * TableEntries);
+    const double lo = in.ScalarRange[0], hi = in.ScalarRange[1];
+    for (int i = 0; i < TableEntries; ++i)
+    {
+      const double s = lo + (hi - lo) * i / (TableEntries - 1);
+      double c[3] = { 1, 1, 1 };
+      if (rgb)
+        color->GetColor(s, c);
+      else
+        c[0] = c[1] = c[2] = gray->GetValue(s);
+      table[4 * i] = static_cast<float>(c[0]);
+      table[4 * i + 1] = static_cast<float>(c[1]);
+      table[4 * i + 2] = static_cast<float>(c[2]);
+      table[4 * i + 3] = cao::CorrectOpacity(opacityFunction->GetValue(s), step / unitDistance);
+    }
+    if (!in.Caster->SetTable(table.data(), TableEntries, error))
+      return fail("The transfer-function upload failed: " + error + ".");
+    in.TableKey = tableKey;
+  }
+
+  // 6. The frame: camera, volume placement, lighting, flags.
+  cao::shared::RenderParams params{};
+  int size[2], origin[2];
+  ren->GetTiledSizeAndOrigin(&size[0], &size[1], &origin[0], &origin[1]);
+  const int viewport[4] = { origin[0], origin[1], size[0], size[1] };
+  vtkCamera* camera = ren->GetActiveCamera();
+  vtkNew<vtkMatrix4x4> worldToNDC, ndcToWorld;
+  worldToNDC->DeepCopy(camera->GetCompositeProjectionTransformMatrix(
+    ren->GetTiledAspectRatio(), -1.0, 1.0));
+  vtkMatrix4x4::Invert(worldToNDC, ndcToWorld);
+  Columns(ndcToWorld, params.ndcToWorld, 4);
+  int extent[6];
+  input->GetExtent(extent);
+  vtkNew<vtkMatrix4x4> shift, indexToPhysical, indexToWorld, worldToIndex;
+  shift->Identity();
+  shift->SetElement(0, 3, extent[0]);
+  shift->SetElement(1, 3, extent[2]);
+  shift->SetElement(2, 3, extent[4]);
+  vtkMatrix4x4::Multiply4x4(input->GetIndexToPhysicalMatrix(), shift, indexToPhysical);
+  vtkMatrix4x4::Multiply4x4(vol->GetMatrix(), indexToPhysical, indexToWorld);
+  vtkMatrix4x4::Invert(indexToWorld, worldToIndex);
+  Columns(worldToIndex, params.worldToIndex, 4);
+  // Normal matrix: the inverse transpose of index-to-world's linear part;
+  // its columns are worldToIndex's rows.
+  vtkNew<vtkMatrix4x4> normal;
+  vtkMatrix4x4::Transpose(worldToIndex, normal);
+  Columns(normal, params.normalToWorld, 3, 3);
+  params.viewport = { static_cast<float>(viewport[0]), static_cast<float>(viewport[1]),
+    1.0f / static_cast<float>(viewport[2]), 1.0f / static_cast<float>(viewport[3]) };
+  params.light = { 0, 0, 1, 1 };
+  vtkLightCollection* lights = ren->GetLights();
+  lights->InitTraversal();
+  while (vtkLight* light = lights->GetNextItem())
+  {
+    if (!light->GetSwitch())
+      continue;
+    if (!light->LightTypeIsHeadlight() && !light->LightTypeIsCameraLight())
+    {
+      double p[3], f[3];
+      light->GetTransformedPosition(p);
+      light->GetTransformedFocalPoint(f);
+      params.light = { static_cast<float>(p[0] - f[0]), static_cast<float>(p[1] - f[1]),
+        static_cast<float>(p[2] - f[2]), 0.0f };
+    }
+    break;
+  }
+  params.shading = { static_cast<float>(property->GetAmbient(0)),
+    static_cast<float>(property->GetDiffuse(0)), static_cast<float>(property->GetSpecular(0)),
+    static_cast<float>(property->GetSpecularPower(0)) };
+  const double lo = in.ScalarRange[0], hi = in.ScalarRange[1];
+  const double n = TableEntries;
+  params.sampling = { static_cast<float>(step),
+    static_cast<float>(in.TexelScale / (hi - lo) * (n - 1) / n),
+    static_cast<float>((-lo / (hi - lo) * (n - 1) + 0.5) / n),
+    static_cast<float>(this->AOStrength) };
+  params.invDims = { 1.0f / dims[0], 1.0f / dims[1], 1.0f / dims[2], 0.0f };
+  int flags = cao::shared::CAO_RENDER_OPAQUE_DEPTH;
+  if (property->GetShade(0))
+    flags |= cao::shared::CAO_RENDER_SHADE;
+  if (this->AmbientOcclusion)
+    flags |= cao::shared::CAO_RENDER_AO;
+  if (clipping)
+    flags |= cao::shared::CAO_RENDER_CLIP;
+  if (this->UseJittering)
+    flags |= cao::shared::CAO_RENDER_JITTER;
+  params.dims = { dims[0], dims[1], dims[2], flags };
+  double diagonal = 0.0;
+  const double* b = input->GetBounds();
+  for (int d = 0; d < 3; ++d)
+    diagonal += (b[2 * d + 1] - b[2 * d]) * (b[2 * d + 1] - b[2 * d]);
+  // World length of the longest ray through the box, allowing for a scaled prop.
+  vtkNew<vtkMatrix4x4> linear;
+  linear->DeepCopy(vol->GetMatrix());
+  const double propScale = std::max({ std::hypot(linear->GetElement(0, 0), linear->GetElement(1, 0),
+                                        linear->GetElement(2, 0)),
+    std::hypot(linear->GetElement(0, 1), linear->GetElement(1, 1), linear->GetElement(2, 1)),
+    std::hypot(linear->GetElement(0, 2), linear->GetElement(1, 2), linear->GetElement(2, 2)) });
+  params.limits = { static_cast<int>(std::ceil(std::sqrt(diagonal) * propScale / step)) + 2, 0, 0,
+    0 };
+  params.boxMax = { static_cast<float>(dims[0] - 1), static_cast<float>(dims[1] - 1),
+    static_cast<float>(dims[2] - 1), EarlyTermination };
+
+  // 7. Draw over what the opaque geometry left.
+  if (!in.Caster->CaptureDepth(viewport, error) ||
+    !in.Caster->Draw(engine, !clipping, params, error))
+    return fail("The ray cast failed: " + error + ".");
+  report.stages.push_back({ "raycast", in.Caster->LastMilliseconds() });
+  in.LastError.clear();
+  in.Last = report;
+  ++this->FrameCount;
+}
+
+//------------------------------------------------------------------------------
+void vtkContextualAOVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "AmbientOcclusion: " << (this->AmbientOcclusion ? "On" : "Off") << "\n";
+  os << indent << "AOStrength: " << this->AOStrength << "\n";
+  os << indent << "RayPattern: " << this->RayPattern << "\n";
+  os << indent << "NumberOfRays: " << this->NumberOfRays << "\n";
+  os << indent << "Reach: " << this->Reach << "\n";
+  os << indent << "NumberOfSamples: " << this->NumberOfSamples << "\n";
+  os << indent << "ClipShape: " << this->ClipShape << "\n";
+  os << indent << "ClipMesh: " << this->ClipMesh << "\n";
+  os << indent << "Mode: " << (this->Mode == SUBTRACTION ? "Subtraction" : "Probing") << "\n";
+  os << indent << "NumberOfClipLayers: " << this->NumberOfClipLayers << "\n";
+  os << indent << "ClipMapPixelSize: " << this->ClipMapPixelSize << "\n";
+  os << indent << "AntiAliasingSamples: " << this->AntiAliasingSamples << "\n";
+  os << indent << "AOUpdate: " << (this->AOUpdate == CONTEXTUAL ? "Contextual" : "FullRecompute")
+     << "\n";
+  os << indent << "SampleDistance: " << this->SampleDistance << "\n";
+  os << indent << "InteractiveSampleDistance: " << this->InteractiveSampleDistance << "\n";
+  os << indent << "UseJittering: " << (this->UseJittering ? "On" : "Off") << "\n";
+  os << indent << "FrameCount: " << this->FrameCount << "\n";
+  os << indent << "PrecomputeCount: " << this->PrecomputeCount << "\n";
+  os << indent << "DepthMapsCount: " << this->DepthMapsCount << "\n";
+  os << indent << "ClassifyCount: " << this->ClassifyCount << "\n";
+  os << indent << "LastFrameReport: " << this->GetLastFrameReport() << "\n";
+}

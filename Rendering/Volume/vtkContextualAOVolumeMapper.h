@@ -1,0 +1,251 @@
+/**
+ * @class   vtkContextualAOVolumeMapper
+ * @brief   Ray-cast volume mapper with contextual ambient occlusion.
+ *
+ * A vtkVolumeMapper with its own GLSL ray caster (OpenGL 4.3) that draws a
+ * vtkImageData with:
+ *  - the colour and scalar-opacity transfer functions and the opacity unit
+ *    distance of the vtkVolumeProperty (component 0);
+ *  - local ambient occlusion (Hernell et al.) scaling the ambient term, by
+ *    AOStrength; AmbientOcclusionOff() draws the plain ("solid colour")
+ *    image of the CAO paper's comparison;
+ *  - the property's gradient Blinn-Phong shading when Shade is on
+ *    (Ambient, Diffuse, Specular, SpecularPower; the renderer's first
+ *    light, a headlight when it is one);
+ *  - shadow-test clipping at every sample against a clip shape's depth
+ *    maps (L peel layers, subtraction or probing).
+ *
+ * The clip shape is an ordinary prop: SetClipShape(actor). Its pose is the
+ * prop's matrix (position, orientation, scale, user matrix), relative to
+ * the vtkVolume's; its mesh is the actor's mapper input (or ClipMesh).
+ * Moving the prop is all it takes to carve, and the AO follows exactly:
+ * the contextual AO (Titov et al. 2023) re-classifies the voxels near the
+ * mesh and recomputes only the affected ones, on the GPU, in the render
+ * window's context; the result equals a full recompute (AOUpdate FULL)
+ * bit for bit, so the images are identical too.
+ *
+ * Only the work a change calls for is done:
+ *  - the clip pose: re-classify, recompute category b;
+ *  - the scalar-opacity function, its unit distance, the scalars or the
+ *    LAO settings: the full LAO precompute;
+ *  - the clip mesh's geometry (or the map settings): new depth maps;
+ *  - the camera, the colour function, the lighting: no AO work at all;
+ *  - no clip shape: the precomputed AO only (no maps, no classification);
+ *  - an invisible volume: nothing (VTK does not render it).
+ * Each rendered frame leaves a report (GetLastFrameReport, JSON) of the
+ * stages that ran, the voxels recomputed and the GPU milliseconds per
+ * stage from timer queries.
+ *
+ * Needs an OpenGL 4.3 render window (an X window, or a
+ * vtkGenericOpenGLRenderWindow around an EGL context); with less it
+ * reports an error and draws nothing.
+ */
+#ifndef vtkContextualAOVolumeMapper_h
+#define vtkContextualAOVolumeMapper_h
+
+#include "caoRenderingVolumeModule.h" // For export macro
+#include "vtkVolumeMapper.h"
+
+#include <memory> // For the private state
+#include <string> // For the report
+
+class vtkPolyData;
+class vtkProp3D;
+
+class CAORENDERINGVOLUME_EXPORT vtkContextualAOVolumeMapper : public vtkVolumeMapper
+{
+public:
+  static vtkContextualAOVolumeMapper* New();
+  vtkTypeMacro(vtkContextualAOVolumeMapper, vtkVolumeMapper);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// Ambient occlusion on (default) or off (the plain image).
+  vtkSetMacro(AmbientOcclusion, bool);
+  vtkGetMacro(AmbientOcclusion, bool);
+  vtkBooleanMacro(AmbientOcclusion, bool);
+  ///@}
+
+  ///@{
+  /// How much the AO darkens the ambient term: 1 - strength * (1 - AO). Default 1.
+  vtkSetClampMacro(AOStrength, double, 0.0, 1.0);
+  vtkGetMacro(AOStrength, double);
+  ///@}
+
+  /// Ray patterns, as vtkLocalAmbientOcclusion's.
+  enum RayPatterns
+  {
+    RAYS_6 = 0,
+    RAYS_14 = 1,
+    RAYS_26 = 2,
+    RAYS_54 = 3,
+    FIBONACCI = 4
+  };
+
+  ///@{
+  /// LAO ray pattern. Default RAYS_26.
+  vtkSetClampMacro(RayPattern, int, RAYS_6, FIBONACCI);
+  vtkGetMacro(RayPattern, int);
+  ///@}
+
+  ///@{
+  /// Rays of the FIBONACCI pattern. Default 64.
+  vtkSetClampMacro(NumberOfRays, int, 1, 4096);
+  vtkGetMacro(NumberOfRays, int);
+  ///@}
+
+  ///@{
+  /// LAO reach R in world units; 0 (default) means 8 times the smallest spacing.
+  vtkSetClampMacro(Reach, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(Reach, double);
+  ///@}
+
+  ///@{
+  /// Samples per LAO ray M; 0 (default) means one per smallest spacing.
+  vtkSetClampMacro(NumberOfSamples, int, 0, 4096);
+  vtkGetMacro(NumberOfSamples, int);
+  ///@}
+
+  ///@{
+  /**
+   * The clip shape: a prop whose matrix is the clip mesh's pose. When it is
+   * a vtkActor, its mapper's input is the mesh unless ClipMesh is set. Null
+   * (default): no clipping, the precomputed AO.
+   */
+  virtual void SetClipShape(vtkProp3D* shape);
+  vtkGetObjectMacro(ClipShape, vtkProp3D);
+  ///@}
+
+  ///@{
+  /// The clip mesh (closed triangles, in the shape's local frame); overrides the actor's.
+  virtual void SetClipMesh(vtkPolyData* mesh);
+  vtkGetObjectMacro(ClipMesh, vtkPolyData);
+  ///@}
+
+  enum Modes
+  {
+    SUBTRACTION = 0, ///< remove what is inside the clip mesh (default)
+    PROBING = 1      ///< keep only what is inside it
+  };
+
+  ///@{
+  /// Clip mode. Default SUBTRACTION.
+  vtkSetClampMacro(Mode, int, SUBTRACTION, PROBING);
+  vtkGetMacro(Mode, int);
+  void SetModeToSubtraction() { this->SetMode(SUBTRACTION); }
+  void SetModeToProbing() { this->SetMode(PROBING); }
+  ///@}
+
+  ///@{
+  /// Depth-peel layers of the clip mesh's maps (concave meshes need more). Default 2.
+  vtkSetClampMacro(NumberOfClipLayers, int, 1, 16);
+  vtkGetMacro(NumberOfClipLayers, int);
+  ///@}
+
+  ///@{
+  /// Depth-map pixel size in the mesh's local units; 0 (default): half the smallest spacing.
+  vtkSetClampMacro(ClipMapPixelSize, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(ClipMapPixelSize, double);
+  ///@}
+
+  ///@{
+  /// Extra anti-aliasing samples of the classification. Default 16, at most 32.
+  vtkSetClampMacro(AntiAliasingSamples, int, 0, 32);
+  vtkGetMacro(AntiAliasingSamples, int);
+  ///@}
+
+  enum AOUpdates
+  {
+    CONTEXTUAL = 0,    ///< recompute only category b (default)
+    FULL_RECOMPUTE = 1 ///< recompute every voxel not clipped (the reference)
+  };
+
+  ///@{
+  /// How the AO follows a pose change. Default CONTEXTUAL.
+  vtkSetClampMacro(AOUpdate, int, CONTEXTUAL, FULL_RECOMPUTE);
+  vtkGetMacro(AOUpdate, int);
+  ///@}
+
+  ///@{
+  /// Ray-cast sample distance in world units; 0 (default): half the smallest spacing.
+  vtkSetClampMacro(SampleDistance, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(SampleDistance, double);
+  ///@}
+
+  ///@{
+  /**
+   * Sample distance while the user interacts (the render window's desired
+   * update rate is above 1 frame per second, as an interactor sets it);
+   * 0 (default): twice SampleDistance.
+   */
+  vtkSetClampMacro(InteractiveSampleDistance, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(InteractiveSampleDistance, double);
+  ///@}
+
+  ///@{
+  /// Per-pixel jittered ray starts (deterministic per pixel). Default on.
+  vtkSetMacro(UseJittering, bool);
+  vtkGetMacro(UseJittering, bool);
+  vtkBooleanMacro(UseJittering, bool);
+  ///@}
+
+  ///@{
+  /**
+   * The last rendered frame's work report, as JSON: frame number, the
+   * stages that ran with GPU milliseconds each, the voxels recomputed, the
+   * category counts and why AO work was done. Empty before the first frame.
+   */
+  std::string GetLastFrameReport() const;
+  /// Stage names of the last frame, comma-separated (e.g. "classify,copy,recompute,raycast").
+  std::string GetLastFrameStages() const;
+  /// GPU milliseconds of a stage of the last frame; -1 when it did not run.
+  double GetLastFrameStageMilliseconds(const char* stage) const;
+  /// Voxels whose AO was computed in the last frame (0: none).
+  vtkIdType GetLastFrameRecomputedVoxels() const;
+  /// Frames rendered so far (Render calls that drew).
+  vtkGetMacro(FrameCount, int);
+  /// Times each AO stage ran, over the mapper's life.
+  vtkGetMacro(PrecomputeCount, int);
+  vtkGetMacro(DepthMapsCount, int);
+  vtkGetMacro(ClassifyCount, int);
+  ///@}
+
+  void Render(vtkRenderer* ren, vtkVolume* vol) override;
+  void ReleaseGraphicsResources(vtkWindow* window) override;
+
+protected:
+  vtkContextualAOVolumeMapper();
+  ~vtkContextualAOVolumeMapper() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+
+  bool AmbientOcclusion = true;
+  double AOStrength = 1.0;
+  int RayPattern = RAYS_26;
+  int NumberOfRays = 64;
+  double Reach = 0.0;
+  int NumberOfSamples = 0;
+  vtkProp3D* ClipShape = nullptr;
+  vtkPolyData* ClipMesh = nullptr;
+  int Mode = SUBTRACTION;
+  int NumberOfClipLayers = 2;
+  double ClipMapPixelSize = 0.0;
+  int AntiAliasingSamples = 16;
+  int AOUpdate = CONTEXTUAL;
+  double SampleDistance = 0.0;
+  double InteractiveSampleDistance = 0.0;
+  bool UseJittering = true;
+  int FrameCount = 0;
+  int PrecomputeCount = 0;
+  int DepthMapsCount = 0;
+  int ClassifyCount = 0;
+
+private:
+  vtkContextualAOVolumeMapper(const vtkContextualAOVolumeMapper&) = delete;
+  void operator=(const vtkContextualAOVolumeMapper&) = delete;
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+};
+
+#endif
