@@ -128,6 +128,7 @@ CAO_CONST CAO_RENDER_OPAQUE_DEPTH = 16; /* stop at the opaque geometry's depth *
 #define CAO_UNIT_AO 1               /* sampler3D: AO (16-bit normalised view) */
 #define CAO_UNIT_TABLE 2            /* sampler2D: RGBA transfer-function table, 1 row */
 #define CAO_UNIT_DEPTH 3            /* sampler2D: the opaque geometry's depth */
+#define CAO_UNIT_STATE 4            /* usampler3D: the clip state (category << 6 | count) */
 /* The depth-map programs (caoDepthRaster) are separate programs with their
  * own storage bindings, kept within the 8 that GL 4.3 guarantees. */
 #define CAO_BINDING_DM_POINTS 0    /* storage: double xyz per mesh point (local frame) */

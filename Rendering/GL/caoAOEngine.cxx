@@ -665,6 +665,7 @@ AOEngine::Resources AOEngine::GetResources() const
   const Impl& p = *this->P;
   Resources r;
   r.volume = p.volume;
+  r.state = p.state;
   r.currentAO = p.aoCur;
   r.precomputedAO = p.aoPre;
   r.maps = p.maps;

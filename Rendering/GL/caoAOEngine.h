@@ -142,7 +142,7 @@ public:
   /// renderer's texture views of them can tell they are stale.
   struct Resources
   {
-    unsigned int volume = 0, currentAO = 0, precomputedAO = 0, maps = 0, clipParams = 0;
+    unsigned int volume = 0, state = 0, currentAO = 0, precomputedAO = 0, maps = 0, clipParams = 0;
     OpacitySource source = OpacitySource::Float32;
     int dims[3] = { 0, 0, 0 };
     std::uint64_t generation = 0;

@@ -29,7 +29,7 @@ public:
 private:
   static constexpr int StorageBindings = 8;
   static constexpr int UniformBindings = 3;
-  static constexpr int TextureUnits = 4; // CAO_UNIT_*
+  static constexpr int TextureUnits = 5; // CAO_UNIT_*
   const Functions& GL;
   bool Active;
   GLint Program = 0, VertexArray = 0, ArrayBuffer = 0, UniformBuffer = 0, StorageBuffer = 0;

@@ -255,13 +255,14 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
   gl.BindBufferBase(GL_UNIFORM_BUFFER, CAO_BINDING_RENDER_PARAMS, block);
   gl.BindBufferBase(GL_UNIFORM_BUFFER, CAO_BINDING_CLIP_PARAMS, r.clipParams);
   gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_MAPS, r.maps);
-  const GLuint units[4][2] = {
+  const GLuint units[5][2] = {
     { GL_TEXTURE_3D, p.scalars ? p.scalars : p.scalarView },
     { GL_TEXTURE_3D, precomputedAO ? p.precomputedView : p.currentView },
     { GL_TEXTURE_2D, p.table },
     { GL_TEXTURE_2D, p.depth },
+    { GL_TEXTURE_3D, r.state },
   };
-  for (int u = 0; u < 4; ++u)
+  for (int u = 0; u < 5; ++u)
   {
     gl.ActiveTexture(GL_TEXTURE0 + u);
     gl.BindTexture(units[u][0], units[u][1]);

@@ -9,7 +9,8 @@
 //  - the shadow test against the clip mesh's depth maps (caoClipTest.glsl)
 //    removes the sample when it is inside the mesh (subtraction) or outside
 //    it (probing);
-//  - the AO (trilinear) scales the ambient term: 1 - strength * (1 - AO);
+//  - the AO (trilinear; with clipping, over the unclipped voxels only)
+//    scales the ambient term: 1 - strength * (1 - AO);
 //  - with shading, gradient Blinn-Phong (two-sided, one directional light)
 //    adds the diffuse and specular terms as vtkVolumeProperty defines them.
 // Front-to-back compositing, premultiplied output, early termination.
@@ -21,6 +22,7 @@ layout(binding = CAO_UNIT_SCALARS) uniform sampler3D scalarTexture;
 layout(binding = CAO_UNIT_AO) uniform sampler3D aoTexture;
 layout(binding = CAO_UNIT_TABLE) uniform sampler2D tableTexture;
 layout(binding = CAO_UNIT_DEPTH) uniform sampler2D depthTexture;
+layout(binding = CAO_UNIT_STATE) uniform usampler3D stateTexture;
 
 layout(location = 0) out vec4 fragColor;
 
@@ -40,6 +42,31 @@ vec3 Unproject(vec2 ndc, float z)
   mat4 m = mat4(rp.ndcToWorld[0], rp.ndcToWorld[1], rp.ndcToWorld[2], rp.ndcToWorld[3]);
   vec4 p = m * vec4(ndc, z, 1.0);
   return p.xyz / p.w;
+}
+
+/// The AO at index-space point p, trilinear over the voxels that are not
+/// clipped (category a) only: a clipped voxel holds an AO that no longer
+/// means anything (its matter is gone), and blending it in would darken
+/// the cut surfaces. Weights are renormalised; 1 when all 8 are clipped.
+float ClippedAO(vec3 p)
+{
+  vec3 q = clamp(p, vec3(0.0), rp.boxMax.xyz);
+  ivec3 base = min(ivec3(floor(q)), rp.dims.xyz - 2);
+  vec3 f = q - vec3(base);
+  float sum = 0.0, weight = 0.0;
+  for (int n = 0; n < 8; ++n)
+  {
+    ivec3 o = ivec3(n & 1, (n >> 1) & 1, (n >> 2) & 1);
+    ivec3 v = base + o;
+    int category = int(texelFetch(stateTexture, v, 0).r) >> CAO_STATE_CATEGORY_SHIFT;
+    if (category == CAO_CATEGORY_CLIPPED)
+      continue;
+    vec3 t = mix(1.0 - f, f, vec3(o));
+    float w = t.x * t.y * t.z;
+    sum += w * texelFetch(aoTexture, v, 0).r;
+    weight += w;
+  }
+  return weight > 0.0 ? sum / weight : 1.0;
 }
 
 float Scalar(vec3 tc)
@@ -97,24 +124,28 @@ void main()
       continue;
     float ambient = 1.0;
     if ((flags & CAO_RENDER_AO) != 0)
-      ambient = 1.0 - rp.sampling.w * (1.0 - texture(aoTexture, tc).r);
+    {
+      float ao = (flags & CAO_RENDER_CLIP) != 0 ? ClippedAO(p) : texture(aoTexture, tc).r;
+      ambient = 1.0 - rp.sampling.w * (1.0 - ao);
+    }
     vec3 color;
     if ((flags & CAO_RENDER_SHADE) != 0)
     {
       vec3 g = vec3(Scalar(tc + vec3(texel.x, 0, 0)) - Scalar(tc - vec3(texel.x, 0, 0)),
         Scalar(tc + vec3(0, texel.y, 0)) - Scalar(tc - vec3(0, texel.y, 0)),
         Scalar(tc + vec3(0, 0, texel.z)) - Scalar(tc - vec3(0, 0, texel.z)));
+      // Where the field is flat (inside matter, and so on the faces the
+      // clip cuts through it) the gradient has no direction: blend towards
+      // a normal facing the viewer, as a cut face would be lit.
       vec3 n = normalMatrix * g;
       float len = length(n);
-      float diffuse = 0.0, specular = 0.0;
-      if (len > 1e-8)
-      {
-        n /= len;
-        if (dot(n, dirWorld) > 0.0)
-          n = -n; // two-sided: the normal faces the viewer
-        diffuse = max(dot(n, lightDir), 0.0);
-        specular = pow(max(dot(n, halfway), 0.0), rp.shading.w);
-      }
+      vec3 facing = -dirWorld;
+      n = len > 0.0 ? n / len : facing;
+      if (dot(n, dirWorld) > 0.0)
+        n = -n; // two-sided: the normal faces the viewer
+      n = normalize(mix(facing, n, smoothstep(0.0, 0.02, len)));
+      float diffuse = max(dot(n, lightDir), 0.0);
+      float specular = pow(max(dot(n, halfway), 0.0), rp.shading.w);
       color = c.rgb * (rp.shading.x * ambient + rp.shading.y * diffuse) +
         vec3(rp.shading.z * specular);
     }
