@@ -3,11 +3,13 @@
  *
  *   cao lao   VOLUME [options]            local ambient occlusion
  *   cao carve VOLUME [options]            contextual AO along a clip path
+ *   cao render VOLUME [options]           PNG frames of the clipped volume (the mapper)
  *
  * Run `cao --help` for the options. Exit codes: 0 success, 1 runtime error,
  * 2 bad arguments or unreadable input, 3 `--verify` found a difference.
  */
 #include "caoInput.h"
+#include "caoRender.h"
 
 #include "vtkClipDepthMaps.h"
 #include "vtkContextualAmbientOcclusion.h"
@@ -143,7 +145,7 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
   o.command = argv[1];
   if (o.command != "lao" && o.command != "carve")
   {
-    error = "unknown command '" + o.command + "' (expected lao or carve)";
+    error = "unknown command '" + o.command + "' (expected lao, carve or render)";
     return false;
   }
   for (int i = 2; i < argc; ++i)
@@ -338,25 +340,6 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
   return true;
 }
 
-/// Collects VTK errors raised by the filters so that they become CLI errors.
-struct ErrorLog
-{
-  std::vector<std::string> messages;
-  vtkNew<vtkCallbackCommand> callback;
-  ErrorLog()
-  {
-    callback->SetClientData(this);
-    callback->SetCallback([](vtkObject*, unsigned long, void* self, void* data) {
-      std::string m = data ? static_cast<const char*>(data) : "unknown error";
-      while (!m.empty() && (m.back() == '\n' || m.back() == ' '))
-        m.pop_back();
-      static_cast<ErrorLog*>(self)->messages.push_back(m);
-    });
-  }
-  void Watch(vtkObject* o) { o->AddObserver(vtkCommand::ErrorEvent, callback); }
-  std::string Last() const { return messages.empty() ? "" : messages.back(); }
-};
-
 void ConfigureLAO(const Options& o, const std::string& rays, vtkLocalAmbientOcclusion* lao,
   vtkPiecewiseFunction* tf)
 {
@@ -438,7 +421,7 @@ bool Write(vtkImageData* image, const std::string& path, std::string& error)
   // that ParaView 5.11's reader rejected (offsets past the data).
   w->SetDataModeToBinary();
   w->SetInputData(image);
-  ErrorLog log;
+  caocli::ErrorLog log;
   log.Watch(w);
   if (!w->Write() || !log.messages.empty())
   {
@@ -453,7 +436,7 @@ int RunLAO(const Options& o, vtkImageData* volume)
   vtkNew<vtkPiecewiseFunction> tf;
   BuildTransferFunction(o, volume, tf);
   vtkNew<vtkLocalAmbientOcclusion> lao;
-  ErrorLog log;
+  caocli::ErrorLog log;
   log.Watch(lao);
   ConfigureLAO(o, o.rays[0], lao, tf);
   lao->SetInputData(volume);
@@ -550,7 +533,7 @@ int RunCarve(const Options& o, vtkImageData* volume)
   {
     Options ob = o;
     ob.backend = backend;
-    ErrorLog log;
+    caocli::ErrorLog log;
     vtkNew<vtkLocalAmbientOcclusion> lao;
     log.Watch(lao);
     ConfigureLAO(ob, rays, lao, tf);
@@ -739,10 +722,12 @@ int RunCarve(const Options& o, vtkImageData* volume)
 
 int main(int argc, char* argv[])
 {
+  if (argc >= 2 && std::string(argv[1]) == "render")
+    return caocli::RunRender(argc, argv);
   if (argc >= 2 && (std::string(argv[1]) == "-h" || std::string(argv[1]) == "--help" ||
                      std::string(argv[1]) == "help"))
   {
-    std::cout << Usage;
+    std::cout << Usage << "\n" << caocli::RenderUsage;
     return 0;
   }
   Options o;

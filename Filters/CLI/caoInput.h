@@ -6,6 +6,10 @@
 #ifndef caoInput_h
 #define caoInput_h
 
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
+#include "vtkNew.h"
+
 #include "vtkSmartPointer.h"
 
 #include <array>
@@ -18,6 +22,26 @@ class vtkTransform;
 
 namespace caocli
 {
+/// Collects the VTK errors raised by watched objects, so that they become CLI errors.
+struct ErrorLog
+{
+  std::vector<std::string> messages;
+  vtkNew<vtkCallbackCommand> callback;
+  ErrorLog()
+  {
+    callback->SetClientData(this);
+    callback->SetCallback([](vtkObject*, unsigned long, void* self, void* data) {
+      std::string m = data ? static_cast<const char*>(data) : "unknown error";
+      while (!m.empty() && (m.back() == '\n' || m.back() == ' '))
+        m.pop_back();
+      static_cast<ErrorLog*>(self)->messages.push_back(m);
+    });
+  }
+  void Watch(vtkObject* o) { o->AddObserver(vtkCommand::ErrorEvent, callback); }
+  std::string Last() const { return messages.empty() ? "" : messages.back(); }
+};
+
+
 /// .vti, .mhd/.mha, .slc, legacy .vtk, .nii/.nii.gz.
 vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path, std::string& error);
 

@@ -645,6 +645,22 @@ bool AOEngine::Update(
   return p.CheckError("the pose update", error);
 }
 
+bool AOEngine::SetClipParams(const shared::ClipParams& clip, std::string& error)
+{
+  Impl& p = *this->P;
+  if (!p.volume)
+  {
+    error = "SetVolume must come before SetClipParams";
+    return false;
+  }
+  if (!p.Current(error))
+    return false;
+  StateGuard guard(p.gl, p.External());
+  p.BufferUpload(p.clipParams, GL_UNIFORM_BUFFER, sizeof(clip), &clip);
+  p.bytes[8] = sizeof(clip);
+  return p.CheckError("the clip parameters upload", error);
+}
+
 bool AOEngine::ResetClip(std::string& error)
 {
   Impl& p = *this->P;

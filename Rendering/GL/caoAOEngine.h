@@ -111,6 +111,9 @@ public:
   /// the clipped LAO of every other voxel, recomputed.
   bool Update(const shared::ClipParams& clip, UpdateStats& stats, std::string& error,
     UpdateMode mode = UpdateMode::Contextual);
+  /// Upload a pose's ClipParams for a renderer's shadow test only: no
+  /// classification, no AO (for rendering with the AO off). Needs SetVolume.
+  bool SetClipParams(const shared::ClipParams& clip, std::string& error);
   /// Back to the unclipped state: current AO = precomputed everywhere.
   bool ResetClip(std::string& error);
 

@@ -214,9 +214,15 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
 {
   Impl& p = *this->P;
   const AOEngine::Resources r = engine.GetResources();
-  if (!r.volume || !r.currentAO || !r.clipParams || !r.maps)
+  const bool clip = (params.dims.w & shared::CAO_RENDER_CLIP) != 0;
+  if (!r.volume || !r.currentAO)
   {
     error = "the AO engine holds no volume";
+    return false;
+  }
+  if (clip && (!r.clipParams || !r.maps))
+  {
+    error = "clipping needs the engine's depth maps and clip parameters";
     return false;
   }
   if (!p.table)

@@ -56,6 +56,7 @@ struct Stage
 {
   std::string name;
   double ms;
+  const char* timer; // "gl_timestamp", "host_glfinish" (software GL) or "host" (CPU work)
 };
 
 /// One frame's work, for the report.
@@ -75,8 +76,8 @@ struct FrameReport
     o.precision(6);
     o << "{\"frame\": " << frame << ", \"stages\": [";
     for (std::size_t i = 0; i < stages.size(); ++i)
-      o << (i ? ", " : "") << "{\"name\": \"" << stages[i].name << "\", \"gpu_ms\": "
-        << stages[i].ms << "}";
+      o << (i ? ", " : "") << "{\"name\": \"" << stages[i].name << "\", \"ms\": "
+        << stages[i].ms << ", \"timer\": \"" << stages[i].timer << "\"}";
     o << "], \"recomputed_voxels\": " << recomputed;
     if (clipped >= 0)
       o << ", \"categories\": {\"clipped\": " << clipped << ", \"affected\": " << affected
@@ -121,7 +122,6 @@ struct vtkContextualAOVolumeMapper::Internals
   double TexelScale = 1.0; // texel value -> scalar value
   FrameReport Last;
   std::string LastError;
-  bool ClipStateApplied = false; // the engine's current AO holds a clipped pose
 
   void ForgetGPU()
   {
@@ -130,7 +130,6 @@ struct vtkContextualAOVolumeMapper::Internals
     this->MapsUploadKey.clear();
     this->PoseKey.clear();
     this->TableKey.clear();
-    this->ClipStateApplied = false;
   }
 };
 
@@ -253,6 +252,10 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   if (!in.Caster || &engine.GetContext() == nullptr)
     in.Caster.reset(new cao::gl::RayCaster(engine.GetContext()));
   std::string error;
+  // GPU stages are timed with GL_TIMESTAMP queries; on a software
+  // rasteriser (whose timestamps do not bracket the work) with the host
+  // clock around glFinish.
+  const char* glTimer = engine.GetContext().UsesHostClock() ? "host_glfinish" : "gl_timestamp";
 
   FrameReport report;
   report.frame = this->FrameCount + 1;
@@ -260,17 +263,24 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   const double* spacing = input->GetSpacing();
   const double minSpacing = std::min({ spacing[0], spacing[1], spacing[2] });
 
-  // 3. The LAO precompute, when the opacity or the scalars changed.
-  const std::vector<double> volumeKey = { static_cast<double>(reinterpret_cast<std::uintptr_t>(input)),
+  // 3. The volume on the GPU, and the LAO precompute when the AO is on and
+  // the opacity, the scalars or the LAO settings changed. With the AO off
+  // no LAO is computed at all.
+  const bool ao = this->AmbientOcclusion;
+  std::vector<double> volumeKey = { static_cast<double>(reinterpret_cast<std::uintptr_t>(input)),
     static_cast<double>(input->GetMTime()),
     static_cast<double>(reinterpret_cast<std::uintptr_t>(scalars)),
-    static_cast<double>(scalars->GetMTime()),
-    static_cast<double>(reinterpret_cast<std::uintptr_t>(opacityFunction)),
-    static_cast<double>(opacityFunction->GetMTime()), unitDistance,
-    static_cast<double>(this->RayPattern), static_cast<double>(this->NumberOfRays), this->Reach,
-    static_cast<double>(this->NumberOfSamples), static_cast<double>(this->ScalarMode),
-    static_cast<double>(this->ArrayId) };
-  if (volumeKey != in.VolumeKey || !engine.HasPrecomputed())
+    static_cast<double>(scalars->GetMTime()), static_cast<double>(this->ScalarMode),
+    static_cast<double>(this->ArrayId), static_cast<double>(ao) };
+  if (ao)
+  {
+    volumeKey.insert(volumeKey.end(),
+      { static_cast<double>(reinterpret_cast<std::uintptr_t>(opacityFunction)),
+        static_cast<double>(opacityFunction->GetMTime()), unitDistance,
+        static_cast<double>(this->RayPattern), static_cast<double>(this->NumberOfRays),
+        this->Reach, static_cast<double>(this->NumberOfSamples) });
+  }
+  if (volumeKey != in.VolumeKey || (ao && !engine.HasPrecomputed()))
   {
     in.VolumeKey.clear();
     cao::LAOSettings settings;
@@ -280,6 +290,7 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     settings.samples = this->NumberOfSamples;
     if (!cao::BuildLAOPlan(vtkCAO::GeometryOf(input), settings, in.Plan, error))
       return fail("Cannot plan the LAO: " + error + ".");
+    const auto start = std::chrono::steady_clock::now();
     std::vector<float> opacity(static_cast<std::size_t>(voxels));
     std::int64_t nonFinite = 0;
     if (!vtkCAO::ComputeOpacity(this, scalars, 0, opacityFunction,
@@ -288,9 +299,8 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     std::vector<std::uint8_t> packed;
     const cao::gl::VolumeUpload upload =
       vtkCAO::MakeVolumeUpload(scalars, 0, opacity.data(), dims, packed);
-    if (!engine.SetVolume(upload, error) || !engine.SetPlan(in.Plan, error) ||
-      !engine.Precompute(error))
-      return fail("The LAO precompute failed: " + error + ".");
+    if (!engine.SetVolume(upload, error))
+      return fail("The volume upload failed: " + error + ".");
     if (upload.source == cao::gl::OpacitySource::Float32)
     {
       std::vector<float> values(static_cast<std::size_t>(voxels));
@@ -306,13 +316,22 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     }
     in.ScalarRange[0] = range[0];
     in.ScalarRange[1] = range[1] > range[0] ? range[1] : range[0] + 1.0;
-    report.stages.push_back({ "precompute", engine.Times().precompute });
-    report.reasons.emplace_back("scalar opacity, scalars or LAO settings changed");
-    report.recomputed += voxels;
-    ++this->PrecomputeCount;
+    report.stages.push_back({ "volume_upload", vtkCAO::MillisecondsSince(start), "host" });
+    if (ao)
+    {
+      if (!engine.SetPlan(in.Plan, error) || !engine.Precompute(error))
+        return fail("The LAO precompute failed: " + error + ".");
+      report.stages.push_back({ "precompute", engine.Times().precompute, glTimer });
+      report.reasons.emplace_back("scalar opacity, scalars or LAO settings changed");
+      report.recomputed += voxels;
+      ++this->PrecomputeCount;
+    }
+    else
+    {
+      report.reasons.emplace_back("scalars changed (AO off: no LAO)");
+    }
     ++in.PrecomputeGeneration;
     in.PoseKey.clear();
-    in.ClipStateApplied = false;
     in.VolumeKey = volumeKey;
   }
 
@@ -348,10 +367,13 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     const double pixel =
       this->ClipMapPixelSize > 0.0 ? this->ClipMapPixelSize : 0.5 * minSpacing / scale;
     const std::vector<double> meshKey = { static_cast<double>(reinterpret_cast<std::uintptr_t>(mesh)),
-      static_cast<double>(mesh->GetMTime()), static_cast<double>(this->NumberOfClipLayers), pixel,
+      static_cast<double>(mesh->GetMTime()), static_cast<double>(this->NumberOfClipLayers),
+      this->ClipMapPixelSize,
       in.Plan.reach, spacing[0], spacing[1], spacing[2] };
     // A pose that shrinks the mesh below the scale the maps were dilated
-    // for needs new maps; other scale changes keep them.
+    // for needs new maps; other scale changes keep them. The maps are made
+    // for 0.1% below this pose's scale, so that a rotation's singular
+    // values (1 - a few ulps) do not count as shrinking.
     if (meshKey != in.MeshKey || scale < in.BuiltPoseScale)
     {
       in.MeshKey.clear();
@@ -361,7 +383,7 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       maps->SetPixelSize(pixel);
       maps->SetReach(in.Plan.reach);
       maps->SetVoxelSpacing(spacing[0], spacing[1], spacing[2]);
-      maps->SetMinimumPoseScale(scale);
+      maps->SetMinimumPoseScale(0.999 * scale);
       maps->SetRenderWindow(window);
       maps->SetBackend(vtkClipDepthMaps::AUTO);
       const auto start = std::chrono::steady_clock::now();
@@ -370,11 +392,11 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       vtkCAO::ClipMaps check;
       if (!vtkCAO::ReadClipMaps(out, mode, check, error))
         return fail("The clip mesh's depth maps could not be made (see the errors above).");
-      report.stages.push_back({ "depth_maps", vtkCAO::MillisecondsSince(start) });
+      report.stages.push_back({ "depth_maps", vtkCAO::MillisecondsSince(start), "host" });
       report.reasons.emplace_back("clip mesh changed");
       ++this->DepthMapsCount;
       ++in.MapsGeneration;
-      in.BuiltPoseScale = scale;
+      in.BuiltPoseScale = 0.999 * scale;
       in.MeshKey = meshKey;
     }
     vtkCAO::ClipMaps clipMaps;
@@ -400,7 +422,15 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     poseKey.insert(poseKey.end(), { static_cast<double>(mode),
       static_cast<double>(this->AntiAliasingSamples), static_cast<double>(this->AOUpdate),
       static_cast<double>(in.MapsGeneration), static_cast<double>(in.PrecomputeGeneration) });
-    if (poseKey != in.PoseKey)
+    poseKey.push_back(static_cast<double>(ao));
+    if (poseKey != in.PoseKey && !ao)
+    {
+      // Only the shadow test needs the pose: no classification, no AO.
+      if (!engine.SetClipParams(clip, error))
+        return fail("The clip parameters upload failed: " + error + ".");
+      in.PoseKey = poseKey;
+    }
+    else if (poseKey != in.PoseKey)
     {
       cao::gl::UpdateStats stats;
       const auto updateMode = this->AOUpdate == FULL_RECOMPUTE
@@ -409,10 +439,10 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       if (!engine.Update(clip, stats, error, updateMode))
         return fail("The AO update failed: " + error + ".");
       const cao::gl::StageTimes& t = engine.Times();
-      report.stages.push_back({ "classify", t.classify });
-      report.stages.push_back({ "copy", t.copy });
+      report.stages.push_back({ "classify", t.classify, glTimer });
+      report.stages.push_back({ "copy", t.copy, glTimer });
       report.stages.push_back({ this->AOUpdate == FULL_RECOMPUTE ? "full_recompute" : "recompute",
-        t.recompute });
+        t.recompute, glTimer });
       report.reasons.emplace_back(in.PoseKey.empty() ? "clip shape set" : "clip pose changed");
       report.recomputed += this->AOUpdate == FULL_RECOMPUTE ? stats.affected + stats.unaffected
                                                             : stats.affected;
@@ -421,7 +451,6 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       report.unaffected = stats.unaffected;
       ++this->ClassifyCount;
       in.PoseKey = poseKey;
-      in.ClipStateApplied = true;
     }
   }
   else
@@ -552,7 +581,7 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   if (!in.Caster->CaptureDepth(viewport, error) ||
     !in.Caster->Draw(engine, !clipping, params, error))
     return fail("The ray cast failed: " + error + ".");
-  report.stages.push_back({ "raycast", in.Caster->LastMilliseconds() });
+  report.stages.push_back({ "raycast", in.Caster->LastMilliseconds(), glTimer });
   in.LastError.clear();
   in.Last = report;
   ++this->FrameCount;

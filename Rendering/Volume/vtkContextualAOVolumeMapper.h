@@ -192,7 +192,7 @@ public:
   ///@{
   /**
    * The last rendered frame's work report, as JSON: frame number, the
-   * stages that ran with GPU milliseconds each, the voxels recomputed, the
+   * stages that ran with milliseconds each (and the timer used), the voxels recomputed, the
    * category counts and why AO work was done. Empty before the first frame.
    */
   std::string GetLastFrameReport() const;

@@ -140,7 +140,48 @@ expect_error(["carve", neghip, "--mesh", open_mesh], 2, "open", "open clip mesh"
 expect_error(["carve", neghip, "--shape", "teapot"], 2, "unknown shape", "unknown shape")
 expect_error(["carve", neghip, "--poses", os.path.join(tmp, "nope.txt")], 2, "cannot open", "missing pose file")
 rc, out, err = run("--help")
-check(rc == 0 and "cao carve" in out, "--help")
+check(rc == 0 and "cao carve" in out and "cao render" in out, "--help")
+
+# render: PNG frames of a moving clip sphere with the contextual-AO mapper
+# (EGL window, no X), each frame's work report as JSON.
+frames = os.path.join(tmp, "frame_%02d.png")
+rc, out, err = run("render", neghip, "--image", "96x80", "--path", "3", "--window", "egl",
+                   "--rays", "6", "--json", "-o", frames)
+if rc == 125 or "no EGL" in err:
+    print("render: skipped, no EGL context:", err.strip())
+else:
+    check(rc == 0, "render exits 0: " + err)
+    reports = json.loads(out) if rc == 0 else []
+    check(len(reports) == 3, "render: one report per frame")
+    for i, r in enumerate(reports):
+        png = frames % i
+        check(os.path.exists(png) and open(png, "rb").read(8) == b"\x89PNG\r\n\x1a\n",
+              "render: frame %d is a PNG" % i)
+        names = [s["name"] for s in r["report"]["stages"]]
+        check("raycast" in names, "render: frame %d ray cast" % i)
+    if len(reports) == 3:
+        first = [s["name"] for s in reports[0]["report"]["stages"]]
+        check("precompute" in first and "depth_maps" in first, "render: frame 0 precomputes")
+        later = [s["name"] for s in reports[1]["report"]["stages"]]
+        check("precompute" not in later and "depth_maps" not in later and "classify" in later,
+              "render: a pose change only re-classifies and recomputes: %s" % later)
+    # A ParaView preset file, and the built-in ones by name.
+    preset = os.path.join(tmp, "preset.json")
+    with open(preset, "w") as f:
+        json.dump([{"Name": "mine", "ColorSpace": "RGB",
+                    "RGBPoints": [0, 0, 0, 1, 255, 1, 1, 0],
+                    "Points": [0, 0, 0.5, 0, 60, 0, 0.5, 0, 255, 0.9, 0.5, 0]}], f)
+    rc, out, err = run("render", neghip, "--image", "64x64", "--no-clip", "--window", "egl",
+                       "--rays", "6", "--preset-file", preset, "--preset", "mine", "-o",
+                       os.path.join(tmp, "p_%d.png"))
+    check(rc == 0 and os.path.exists(os.path.join(tmp, "p_0.png")), "render with a ParaView preset: " + err)
+expect_error(["render", neghip, "--preset", "nope", "-o", os.path.join(tmp, "x_%d.png")], 2,
+             "no preset named", "unknown preset")
+expect_error(["render", neghip, "--preset-file", os.path.join(tmp, "none.json"), "-o",
+              os.path.join(tmp, "x_%d.png")], 2, "cannot read the preset", "missing preset file")
+expect_error(["render", neghip, "-o", os.path.join(tmp, "x.png")], 2, "printf pattern",
+             "output without a frame pattern")
+expect_error(["render", neghip, "--image", "5x5"], 2, "--image", "tiny image")
 
 print(f"{passed} passed, {len(failures)} failed")
 sys.exit(1 if failures else 0)

@@ -346,7 +346,8 @@ void Report(const Options& o)
 
   // No clip shape: the precomputed AO only, never maps or classification.
   auto st = frame("first frame, no clip shape");
-  CHECK(st == (std::set<std::string>{ "precompute", "raycast" }), "%s", Join(st).c_str());
+  CHECK(st == (std::set<std::string>{ "volume_upload", "precompute", "raycast" }), "%s",
+    Join(st).c_str());
   CHECK(m->GetLastFrameRecomputedVoxels() == 66 * 66 * 66, "%lld",
     static_cast<long long>(m->GetLastFrameRecomputedVoxels()));
   CHECK(m->GetLastFrameStageMilliseconds("raycast") > 0.0, "no ray-cast time");
@@ -418,6 +419,23 @@ void Report(const Options& o)
       m->GetDepthMapsCount() == maps && m->GetClassifyCount() == cls,
     "work done for an invisible volume");
   s.volume->VisibilityOn();
+
+  // AO off: no LAO work for any change; the clip still carves.
+  m->AmbientOcclusionOff();
+  st = frame("AO turned off");
+  CHECK(!Has(st, "precompute") && !Has(st, "classify") && Has(st, "raycast"), "%s",
+    Join(st).c_str());
+  s.clip->SetPosition(32.0, 28.0, 40.0);
+  st = frame("AO off, clip pose moved");
+  CHECK(st == onlyRaycast, "%s", Join(st).c_str());
+  s.opacity->AddPoint(90.0, 0.3);
+  m->SetRayPattern(vtkContextualAOVolumeMapper::RAYS_54);
+  st = frame("AO off, opacity and rays edited");
+  CHECK(st == onlyRaycast, "%s", Join(st).c_str());
+  m->AmbientOcclusionOn();
+  st = frame("AO turned on again");
+  CHECK(Has(st, "precompute") && Has(st, "classify") && !Has(st, "depth_maps"), "%s",
+    Join(st).c_str());
 
   // The clip shape removed: the precomputed AO, no clip work.
   s.window->Render();
