@@ -73,6 +73,10 @@ public:
   /// it current first, so the objects are deleted in the right context).
   void Release();
 
+  /// Forget every GL object without a GL call, and the window, for when
+  /// the window (and its context) is gone.
+  void Abandon();
+
   /// Why the last Resolve chose the CPU under Auto (empty otherwise).
   std::string Note;
 
@@ -81,8 +85,6 @@ public:
 
 private:
   bool ResolveWindow(vtkAlgorithm* self, int backend, bool& failed);
-  /// Forget every GL object without a GL call (their context is gone).
-  void Abandon();
   std::unique_ptr<cao::gl::Context> Context;
   std::unique_ptr<cao::gl::AOEngine> AOEngine;
   std::unique_ptr<cao::gl::DepthRaster> DepthRaster;

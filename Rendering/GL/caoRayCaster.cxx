@@ -18,7 +18,7 @@ struct RayCaster::Impl
   const Functions& gl;
   Program program;
   StageTimer timer{ 1 };
-  GLuint vertexArray = 0, table = 0, scalars = 0, depth = 0;
+  GLuint vertexArray = 0, table = 0, scalars = 0, depth = 0, block = 0;
   // Normalised views of the engine's integer volumes, and what they view.
   GLuint scalarView = 0, currentView = 0, precomputedView = 0;
   std::uint64_t viewGeneration = 0;
@@ -98,6 +98,9 @@ struct RayCaster::Impl
     if (vertexArray)
       gl.DeleteVertexArrays(1, &vertexArray);
     vertexArray = 0;
+    if (block)
+      gl.DeleteBuffers(1, &block);
+    block = 0;
     program.Release(gl);
     timer.Release(gl);
     depthSize[0] = depthSize[1] = 0;
@@ -253,12 +256,12 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
   p.timer.Allocate(gl, p.Ctx.UsesHostClock());
   p.SyncViews(r);
 
-  // The frame's parameters, in a uniform buffer bound for this draw only.
-  GLuint block = 0;
-  gl.GenBuffers(1, &block);
-  gl.BindBuffer(GL_UNIFORM_BUFFER, block);
+  // The frame's parameters: one uniform buffer, rewritten per draw.
+  if (!p.block)
+    gl.GenBuffers(1, &p.block);
+  gl.BindBuffer(GL_UNIFORM_BUFFER, p.block);
   gl.BufferData(GL_UNIFORM_BUFFER, sizeof(params), &params, GL_STREAM_DRAW);
-  gl.BindBufferBase(GL_UNIFORM_BUFFER, CAO_BINDING_RENDER_PARAMS, block);
+  gl.BindBufferBase(GL_UNIFORM_BUFFER, CAO_BINDING_RENDER_PARAMS, p.block);
   gl.BindBufferBase(GL_UNIFORM_BUFFER, CAO_BINDING_CLIP_PARAMS, r.clipParams);
   gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_MAPS, r.maps);
   const GLuint units[5][2] = {
@@ -285,7 +288,6 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
   gl.DrawArrays(GL_TRIANGLES, 0, 3);
   p.timer.End(gl, 0);
   p.timed = true;
-  gl.DeleteBuffers(1, &block);
   return CheckError(gl, "the ray cast", error);
 }
 
@@ -306,6 +308,8 @@ std::vector<std::pair<char, unsigned int>> RayCaster::ObjectNames() const
       names.emplace_back('t', t);
   if (p.vertexArray)
     names.emplace_back('v', p.vertexArray);
+  if (p.block)
+    names.emplace_back('b', p.block);
   if (p.program.Valid())
     names.emplace_back('p', p.program.Id());
   for (GLuint q : p.timer.Names())
@@ -332,7 +336,7 @@ void RayCaster::AbandonGraphicsResources()
 {
   Impl& p = *this->P;
   for (GLuint* t : { &p.table, &p.scalars, &p.depth, &p.scalarView, &p.currentView,
-         &p.precomputedView, &p.vertexArray })
+         &p.precomputedView, &p.vertexArray, &p.block })
     *t = 0;
   p.program.Abandon();
   p.timer.Abandon();

@@ -2,7 +2,9 @@
 
 #include "vtkActor.h"
 #include "vtkAlgorithm.h"
+#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
+#include "vtkCommand.h"
 #include "vtkClipDepthMaps.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
@@ -24,6 +26,7 @@
 #include "vtkSmartPointer.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
+#include "vtkWeakPointer.h"
 
 #include "vtkCAOClipPose.h"
 #include "vtkCAOFilterUtilities.h"
@@ -114,6 +117,12 @@ struct vtkContextualAOVolumeMapper::Internals
   vtkCAO::GPUSession GPU;
   std::unique_ptr<cao::gl::RayCaster> Caster;
   vtkSmartPointer<vtkClipDepthMaps> DepthMaps;
+  vtkNew<vtkCallbackCommand> DepthMapsErrors; // keeps the filter's last error
+  std::string DepthMapsError;
+  // The window whose context holds our objects; weak, so that a window
+  // destroyed first is noticed (its objects are then forgotten, not deleted).
+  vtkWeakPointer<vtkRenderWindow> Window;
+  bool HaveWindow = false;
   cao::LAOPlan Plan;
   std::vector<double> VolumeKey, MeshKey, MapsUploadKey, PoseKey, TableKey;
   double BuiltPoseScale = 0.0;
@@ -138,7 +147,19 @@ vtkContextualAOVolumeMapper::vtkContextualAOVolumeMapper()
   : Internal(new Internals)
 {
   vtkCAO::EnsureThreadedBackend();
-  this->Internal->DepthMaps = vtkSmartPointer<vtkClipDepthMaps>::New();
+  Internals& in = *this->Internal;
+  in.DepthMaps = vtkSmartPointer<vtkClipDepthMaps>::New();
+  in.DepthMapsErrors->SetClientData(&in.DepthMapsError);
+  in.DepthMapsErrors->SetCallback([](vtkObject*, unsigned long, void* out, void* text) {
+    std::string m = text ? static_cast<const char*>(text) : "";
+    const std::size_t colon = m.find("): "); // drop VTK's "vtkClass (0x...): " prefix
+    if (colon != std::string::npos)
+      m = m.substr(colon + 3);
+    while (!m.empty() && (m.back() == '\n' || m.back() == ' '))
+      m.pop_back();
+    *static_cast<std::string*>(out) = m;
+  });
+  in.DepthMaps->AddObserver(vtkCommand::ErrorEvent, in.DepthMapsErrors);
 }
 
 //------------------------------------------------------------------------------
@@ -160,14 +181,23 @@ int vtkContextualAOVolumeMapper::FillInputPortInformation(int, vtkInformation* i
 void vtkContextualAOVolumeMapper::ReleaseGraphicsResources(vtkWindow*)
 {
   Internals& in = *this->Internal;
+  if (in.HaveWindow && !in.Window)
+  {
+    // The window went first, and its context with our objects in it.
+    if (in.Caster)
+      in.Caster->AbandonGraphicsResources();
+    in.GPU.Abandon();
+  }
   if (in.Caster)
   {
     in.Caster->ReleaseGraphicsResources();
     in.Caster.reset();
   }
   in.DepthMaps->ReleaseGraphicsResources();
+  in.DepthMaps->SetRenderWindow(nullptr);
   in.GPU.Release();
   in.ForgetGPU();
+  in.HaveWindow = false;
 }
 
 //------------------------------------------------------------------------------
@@ -241,6 +271,10 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 
   // 2. The render window's OpenGL 4.3 context.
   vtkRenderWindow* window = ren->GetRenderWindow();
+  if (in.HaveWindow && in.Window != window)
+    this->ReleaseGraphicsResources(nullptr); // another window's (or a destroyed one's) objects
+  in.Window = window;
+  in.HaveWindow = true;
   bool failed = false;
   if (!in.GPU.Resolve(this, vtkCAO::BACKEND_OPENGL, failed, window) || failed)
   {
@@ -296,6 +330,9 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     if (!vtkCAO::ComputeOpacity(this, scalars, 0, opacityFunction,
           in.Plan.step / unitDistance, opacity.data(), nonFinite))
       return; // aborted
+    if (nonFinite > 0) // (GetRange skips NaN, so they are counted here)
+      return fail("The scalars contain " + std::to_string(nonFinite) +
+        " NaN or infinite value(s); nothing is drawn.");
     std::vector<std::uint8_t> packed;
     const cao::gl::VolumeUpload upload =
       vtkCAO::MakeVolumeUpload(scalars, 0, opacity.data(), dims, packed);
@@ -387,11 +424,13 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       maps->SetRenderWindow(window);
       maps->SetBackend(vtkClipDepthMaps::AUTO);
       const auto start = std::chrono::steady_clock::now();
+      in.DepthMapsError.clear();
       maps->Update();
       vtkImageData* out = maps->GetOutput();
       vtkCAO::ClipMaps check;
-      if (!vtkCAO::ReadClipMaps(out, mode, check, error))
-        return fail("The clip mesh's depth maps could not be made (see the errors above).");
+      if (!in.DepthMapsError.empty() || !vtkCAO::ReadClipMaps(out, mode, check, error))
+        return fail("The clip mesh's depth maps could not be made: " +
+          (in.DepthMapsError.empty() ? error : in.DepthMapsError));
       report.stages.push_back({ "depth_maps", vtkCAO::MillisecondsSince(start), "host" });
       report.reasons.emplace_back("clip mesh changed");
       ++this->DepthMapsCount;

@@ -9,8 +9,13 @@
 //   contextual update equals, pixel for pixel, the frame rendered after a
 //   full LAO recompute of the same pose.
 // report: the per-frame work report for each kind of change.
+// badinput: clear errors, no frame and no crash for bad volumes and clip
+//   shapes, then recovery.
 // Exits 125 (skip) when the window kind is not available here.
 #include "vtkActor.h"
+#include "vtkCallbackCommand.h"
+#include "vtkFloatArray.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkConeSource.h"
@@ -36,11 +41,13 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <cmath>
 #include <cstring>
 #include <functional>
 #include <set>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -383,6 +390,18 @@ void Report(const Options& o)
   st = frame("lighting edited");
   CHECK(st == onlyRaycast, "%s", Join(st).c_str());
 
+  // Interacting (the rate an interactor sets while the user drags): the
+  // interactive sample distance (twice the still one), no AO work.
+  s.window->SetDesiredUpdateRate(15.0);
+  st = frame("interacting");
+  CHECK(st == onlyRaycast, "%s", Join(st).c_str());
+  CHECK(m->GetLastFrameReport().find("\"sample_distance\": 1,") != std::string::npos,
+    "the interactive sample distance is not 2 x 0.5");
+  s.window->SetDesiredUpdateRate(0.0001);
+  st = frame("still again");
+  CHECK(m->GetLastFrameReport().find("\"sample_distance\": 0.5,") != std::string::npos,
+    "the still sample distance is not half a voxel");
+
   // The clip pose: re-classify and recompute category b only.
   s.clip->SetPosition(36.0, 30.0, 44.0);
   st = frame("clip pose moved");
@@ -446,6 +465,103 @@ void Report(const Options& o)
 }
 }
 
+/// A small volume of `components` components; `nan` puts a NaN in a float one.
+vtkSmartPointer<vtkImageData> Small(int nx, int ny, int nz, int components, bool nan)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(nx, ny, nz);
+  vtkSmartPointer<vtkDataArray> a;
+  if (nan)
+    a = vtkSmartPointer<vtkFloatArray>::New();
+  else
+    a = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  a->SetNumberOfComponents(components);
+  a->SetNumberOfTuples(static_cast<vtkIdType>(nx) * ny * nz);
+  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+    for (int c = 0; c < components; ++c)
+      a->SetComponent(i, c, static_cast<double>(i % 200));
+  if (nan)
+    a->SetComponent(5, 0, std::nan(""));
+  a->SetName("s");
+  image->GetPointData()->SetScalars(a);
+  return image;
+}
+
+void BadInput(const Options& o)
+{
+  Scene s;
+  if (!s.Open(o.window) || !s.Load(o.data + "/neghip.slc"))
+    return;
+  vtkContextualAOVolumeMapper* m = s.mapper;
+  std::vector<std::string> errors;
+  vtkNew<vtkCallbackCommand> catcher;
+  catcher->SetClientData(&errors);
+  catcher->SetCallback([](vtkObject*, unsigned long, void* list, void* text) {
+    static_cast<std::vector<std::string>*>(list)->push_back(text ? static_cast<char*>(text) : "");
+  });
+  m->AddObserver(vtkCommand::ErrorEvent, catcher);
+  auto expect = [&](const char* what, const char* words) {
+    errors.clear();
+    const int frames = m->GetFrameCount();
+    s.window->Render();
+    bool found = false;
+    for (const auto& e : errors)
+      found = found || e.find(words) != std::string::npos;
+    std::printf("%-28s -> %s\n", what, errors.empty() ? "(no error)" : errors.back().c_str());
+    CHECK(found, "%s: no error mentioning '%s'", what, words);
+    CHECK(m->GetFrameCount() == frames, "%s: a frame was drawn", what);
+  };
+  m->SetInputData(Small(8, 8, 8, 2, false));
+  expect("two-component scalars", "1 component");
+  m->SetInputData(Small(8, 8, 8, 1, true));
+  expect("a NaN scalar", "NaN");
+  m->SetInputData(Small(8, 8, 1, 1, false));
+  expect("one voxel thick", "at least 2 voxels");
+  m->SetInputData(s.image);
+  vtkNew<vtkActor> bare; // a clip shape with no mesh
+  m->SetClipShape(bare);
+  expect("clip shape without a mesh", "no mesh");
+  vtkNew<vtkSphereSource> cup; // an open mesh: a hemisphere
+  cup->SetRadius(12.0);
+  cup->SetEndPhi(90.0);
+  vtkNew<vtkPolyDataMapper> cupMapper;
+  cupMapper->SetInputConnection(cup->GetOutputPort());
+  vtkNew<vtkActor> open;
+  open->SetMapper(cupMapper);
+  open->SetPosition(33.0, 33.0, 33.0);
+  m->SetClipShape(open);
+  expect("an open clip mesh", "depth maps");
+  // Recovery: a valid scene draws again.
+  s.Shape("sphere", 12.0);
+  s.clip->SetPosition(33.0, 30.0, 40.0);
+  errors.clear();
+  const int frames = m->GetFrameCount();
+  s.window->Render();
+  CHECK(errors.empty() && m->GetFrameCount() == frames + 1, "no recovery after bad input");
+
+  // Lifecycle: the window (and its context) is destroyed while the mapper
+  // still holds objects in it; the mapper then draws in a new window.
+  Scene first;
+  if (!first.Open(o.window) || !first.Load(o.data + "/neghip.slc"))
+    return;
+  first.window->Render();
+  vtkSmartPointer<vtkContextualAOVolumeMapper> kept = first.mapper.Get();
+  first.renderer->RemoveVolume(first.volume); // VTK will not release the mapper now
+  first.window = nullptr;
+  Scene second;
+  if (!second.Open(o.window) || !second.Load(o.data + "/neghip.slc"))
+    return;
+  second.volume->SetMapper(kept);
+  kept->AddObserver(vtkCommand::ErrorEvent, catcher);
+  errors.clear();
+  const int before = kept->GetFrameCount();
+  second.window->Render();
+  CHECK(errors.empty() && kept->GetFrameCount() == before + 1,
+    "the mapper does not draw in a new window after its first window was destroyed");
+  std::printf("drew in a new window after the first was destroyed: %s\n",
+    kept->GetLastFrameStages().c_str());
+}
+
 int TestContextualAOVolumeMapper(int argc, char* argv[])
 {
   Options o;
@@ -463,10 +579,11 @@ int TestContextualAOVolumeMapper(int argc, char* argv[])
     else
       o.mode = a;
   }
-  if ((o.window != "egl" && o.window != "x") || (o.mode != "images" && o.mode != "report") ||
+  if ((o.window != "egl" && o.window != "x") ||
+    (o.mode != "images" && o.mode != "report" && o.mode != "badinput") ||
     o.data.empty() || o.baselines.empty() || o.output.empty())
   {
-    std::printf("usage: TestContextualAOVolumeMapper <egl|x> <images|report> -D data -B "
+    std::printf("usage: TestContextualAOVolumeMapper <egl|x> <images|report|badinput> -D data -B "
                 "baselines -T output\n");
     return 1;
   }
@@ -477,8 +594,10 @@ int TestContextualAOVolumeMapper(int argc, char* argv[])
   }
   if (o.mode == "images")
     Images(o);
-  else
+  else if (o.mode == "report")
     Report(o);
+  else
+    BadInput(o);
   std::printf("%s: %d failure(s)\n", failures ? "FAILED" : "PASSED", failures);
   return failures ? 1 : 0;
 }
