@@ -116,6 +116,8 @@ struct vtkContextualAOVolumeMapper::Internals
 {
   vtkCAO::GPUSession GPU;
   std::unique_ptr<cao::gl::RayCaster> Caster;
+  const cao::gl::Context* CasterContext = nullptr; // the context the caster's objects live in
+  bool WarnedBlend = false;
   vtkSmartPointer<vtkClipDepthMaps> DepthMaps;
   vtkNew<vtkCallbackCommand> DepthMapsErrors; // keeps the filter's last error
   std::string DepthMapsError;
@@ -193,6 +195,7 @@ void vtkContextualAOVolumeMapper::ReleaseGraphicsResources(vtkWindow*)
     in.Caster->ReleaseGraphicsResources();
     in.Caster.reset();
   }
+  in.CasterContext = nullptr;
   in.DepthMaps->ReleaseGraphicsResources();
   in.DepthMaps->SetRenderWindow(nullptr);
   in.GPU.Release();
@@ -276,15 +279,32 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   in.Window = window;
   in.HaveWindow = true;
   bool failed = false;
+  auto dropCaster = [&in] {
+    // Its context may be gone (the session abandons a lost one): no GL calls.
+    if (in.Caster)
+      in.Caster->AbandonGraphicsResources();
+    in.Caster.reset();
+    in.CasterContext = nullptr;
+  };
   if (!in.GPU.Resolve(this, vtkCAO::BACKEND_OPENGL, failed, window) || failed)
   {
     in.ForgetGPU();
-    in.Caster.reset();
+    dropCaster();
     return fail("The render window has no usable OpenGL 4.3 context; nothing is drawn.");
   }
   cao::gl::AOEngine& engine = in.GPU.Engine();
-  if (!in.Caster || &engine.GetContext() == nullptr)
+  if (in.Caster && in.CasterContext != &engine.GetContext())
+    dropCaster(); // the session made a new context: the old objects went with the old one
+  if (!in.Caster)
+  {
     in.Caster.reset(new cao::gl::RayCaster(engine.GetContext()));
+    in.CasterContext = &engine.GetContext();
+  }
+  if (this->BlendMode != vtkVolumeMapper::COMPOSITE_BLEND && !in.WarnedBlend)
+  {
+    vtkWarningMacro("Only the composite blend mode is supported; rendering with it.");
+    in.WarnedBlend = true;
+  }
   std::string error;
   // GPU stages are timed with GL_TIMESTAMP queries; on a software
   // rasteriser (whose timestamps do not bracket the work) with the host
