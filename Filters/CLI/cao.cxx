@@ -312,18 +312,8 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
     }
     else if (a == "--verify")
       o.verify = true;
-    else if (!a.empty() && a[0] == '-')
-    {
-      error = "unknown option '" + a + "'";
-      return false;
-    }
-    else if (o.volume.empty())
-      o.volume = a;
     else
-    {
-      error = "unexpected argument '" + a + "'";
-      return false;
-    }
+      ok = caocli::TakeArgument(a, o.volume, error);
     if (!ok)
       return false;
   }

@@ -391,4 +391,20 @@ std::vector<Pose> DefaultPath(const double b[6], int count)
   }
   return poses;
 }
+
+bool TakeArgument(const std::string& a, std::string& volume, std::string& error)
+{
+  if (!a.empty() && a[0] == '-')
+  {
+    error = "unknown option '" + a + "'";
+    return false;
+  }
+  if (!volume.empty())
+  {
+    error = "unexpected argument '" + a + "'";
+    return false;
+  }
+  volume = a;
+  return true;
+}
 }

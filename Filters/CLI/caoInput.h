@@ -42,6 +42,11 @@ struct ErrorLog
 };
 
 
+/// The part of a command line that is not an option: `a` is an unknown
+/// option (an error), the volume (the first plain argument) or one too many.
+/// Returns false with the reason in `error`.
+bool TakeArgument(const std::string& a, std::string& volume, std::string& error);
+
 /// .vti, .mhd/.mha, .slc, legacy .vtk, .nii/.nii.gz.
 vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path, std::string& error);
 

@@ -200,18 +200,8 @@ bool Parse(int argc, char* argv[], RenderOptions& o, std::string& error)
       o.clip = false;
     else if (a == "-o" || a == "--output")
       ok = value(o.output);
-    else if (!a.empty() && a[0] == '-')
-    {
-      error = "unknown option '" + a + "' for render";
-      return false;
-    }
-    else if (o.volume.empty())
-      o.volume = a;
     else
-    {
-      error = "unexpected argument '" + a + "'";
-      return false;
-    }
+      ok = TakeArgument(a, o.volume, error);
     if (!ok)
       return false;
   }

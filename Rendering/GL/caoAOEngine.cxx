@@ -93,14 +93,7 @@ struct AOEngine::Impl
 
   bool External() const { return this->Ctx.Kind() == ContextKind::External; }
 
-  /// Make the context current, or explain why not.
-  bool Current(std::string& error)
-  {
-    if (this->Ctx.MakeCurrent())
-      return true;
-    error = "the OpenGL context cannot be made current";
-    return false;
-  }
+  bool Current(std::string& error) { return this->Ctx.MakeCurrent(error); }
   std::int64_t Voxels() const { return std::int64_t(dims[0]) * dims[1] * dims[2]; }
 
   GLuint NewBuffer()

@@ -152,11 +152,8 @@ bool DepthRaster::Build(const ClipCamera& cam, const TriangleMesh& mesh, double 
     error = "the clip mesh is too large for the GPU depth maps";
     return false;
   }
-  if (!p.Ctx.MakeCurrent())
-  {
-    error = "the OpenGL context cannot be made current";
+  if (!p.Ctx.MakeCurrent(error))
     return false;
-  }
   const Functions& gl = p.gl;
   StateGuard guard(gl, p.Ctx.Kind() == ContextKind::External);
   GLint maxWidth = 0, maxHeight = 0;
@@ -330,11 +327,8 @@ bool DepthRaster::Read(DepthMaps& raw, DepthMaps& dilated, DepthMaps& eroded, st
     error = "no depth maps have been built";
     return false;
   }
-  if (!p.Ctx.MakeCurrent())
-  {
-    error = "the OpenGL context cannot be made current";
+  if (!p.Ctx.MakeCurrent(error))
     return false;
-  }
   StateGuard guard(p.gl, p.Ctx.Kind() == ContextKind::External);
   const std::size_t n = static_cast<std::size_t>(p.width) * p.height * p.layers;
   DepthMaps* outs[3] = { &raw, &dilated, &eroded };

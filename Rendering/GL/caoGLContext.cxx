@@ -478,6 +478,14 @@ bool Context::MakeCurrent()
   return true;
 }
 
+bool Context::MakeCurrent(std::string& error)
+{
+  if (this->MakeCurrent())
+    return true;
+  error = "the OpenGL context cannot be made current";
+  return false;
+}
+
 bool Context::IsCurrent() const
 {
   if (this->P->context != EGL_NO_CONTEXT)

@@ -53,6 +53,8 @@ public:
   /// Make this context current on the calling thread (headless kinds); for
   /// External it checks nothing and returns true: the caller owns currency.
   bool MakeCurrent();
+  /// MakeCurrent, with the reason in `error` when it fails.
+  bool MakeCurrent(std::string& error);
   /// Whether this EGL context is current on the calling thread (External:
   /// true, the caller owns currency; OSMesa: false, not tracked).
   bool IsCurrent() const;

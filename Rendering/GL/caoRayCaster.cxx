@@ -33,13 +33,7 @@ struct RayCaster::Impl
   {
   }
   bool External() const { return this->Ctx.Kind() == ContextKind::External; }
-  bool Current(std::string& error)
-  {
-    if (this->Ctx.MakeCurrent())
-      return true;
-    error = "the OpenGL context cannot be made current";
-    return false;
-  }
+  bool Current(std::string& error) { return this->Ctx.MakeCurrent(error); }
   void Free(GLuint& t)
   {
     if (t)
