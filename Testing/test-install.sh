@@ -3,7 +3,8 @@
 #  - a downstream CMake project finds the package (find_package(ContextualAO)),
 #    links the filters, builds and runs on a real volume;
 #  - the installed `cao` tool runs;
-#  - /usr/bin/python3 imports the installed `contextualao` package.
+#  - /usr/bin/python3 imports the installed `contextualao` package;
+#  - the installed ParaView plugin loads through PV_PLUGIN_PATH.
 #   test-install.sh BUILD_DIR SOURCE_DIR
 set -euo pipefail
 build=$1
@@ -32,3 +33,20 @@ import contextualao, sys
 assert contextualao.__file__.startswith('$prefix/usr/python'), contextualao.__file__
 m = contextualao.vtkContextualAOVolumeMapper()
 print('installed python package: ok,', contextualao.__file__, m.GetClassName())"
+# The installed ParaView plugin: it resolves the installed libraries, and
+# pvpython finds it through PV_PLUGIN_PATH and runs its filter.
+plugin="$prefix/usr/lib/paraview-5.11/plugins/ContextualAO/ContextualAO.so"
+[ -f "$plugin" ] || { echo "FAIL: the plugin is not installed"; exit 1; }
+resolved=$(ldd "$plugin" | awk '/libcaoFiltersAO/ {print $3}')
+[[ "$resolved" == "$prefix/usr/lib/"* ]] \
+  || { echo "FAIL: the installed plugin loads $resolved, not the installed library"; exit 1; }
+if command -v pvpython >/dev/null; then
+  PV_PLUGIN_PATH="$(dirname "$plugin")" pvpython -c "
+from paraview.simple import *
+lao = LocalAmbientOcclusion(Input=Wavelet())
+lao.RayPattern = '6 rays (faces)'
+lao.Backend = 'CPU'
+lao.UpdatePipeline()
+assert 'AmbientOcclusion' in lao.PointData.keys(), lao.PointData.keys()
+print('installed plugin in pvpython: ok')"
+fi

@@ -114,6 +114,14 @@ int vtkLocalAmbientOcclusion::RequestData(
     return 0;
   }
   vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector);
+  vtkInformation* request = this->GetInputArrayInformation(0);
+  if (!scalars && request->Has(vtkDataObject::FIELD_NAME()) &&
+    std::string(request->Get(vtkDataObject::FIELD_NAME())).empty())
+  {
+    // An empty array name (ParaView's array selection before it has a
+    // choice) means the active point scalars, as the default does.
+    scalars = input->GetPointData()->GetScalars();
+  }
   if (!scalars)
   {
     vtkErrorMacro("The input has no point scalars to compute opacity from "
