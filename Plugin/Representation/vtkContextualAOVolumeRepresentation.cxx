@@ -1,0 +1,109 @@
+#include "vtkContextualAOVolumeRepresentation.h"
+
+#include "vtkActor.h"
+#include "vtkContextualAOVolumeMapper.h"
+#include "vtkObjectFactory.h"
+#include "vtkPVLODVolume.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkSmartPointer.h"
+
+#include "caoInput.h"
+
+#include <string>
+
+vtkStandardNewMacro(vtkContextualAOVolumeRepresentation);
+
+//------------------------------------------------------------------------------
+vtkContextualAOVolumeRepresentation::vtkContextualAOVolumeRepresentation()
+{
+  // The project's mapper in place of the smart volume mapper; the
+  // superclass feeds it the delivered data and the array to render.
+  this->VolumeMapper = vtkSmartPointer<vtkContextualAOVolumeMapper>::New();
+  this->Actor->SetMapper(this->VolumeMapper);
+  this->ClipActor->SetMapper(this->ClipMapper);
+}
+
+//------------------------------------------------------------------------------
+vtkContextualAOVolumeRepresentation::~vtkContextualAOVolumeRepresentation() = default;
+
+//------------------------------------------------------------------------------
+vtkContextualAOVolumeMapper* vtkContextualAOVolumeRepresentation::GetAOMapper()
+{
+  return vtkContextualAOVolumeMapper::SafeDownCast(this->VolumeMapper);
+}
+
+void vtkContextualAOVolumeRepresentation::SetAmbientOcclusion(bool on)
+{
+  this->GetAOMapper()->SetAmbientOcclusion(on);
+}
+void vtkContextualAOVolumeRepresentation::SetAOStrength(double s)
+{
+  this->GetAOMapper()->SetAOStrength(s);
+}
+void vtkContextualAOVolumeRepresentation::SetRayPattern(int p)
+{
+  this->GetAOMapper()->SetRayPattern(p);
+}
+void vtkContextualAOVolumeRepresentation::SetNumberOfRays(int n)
+{
+  this->GetAOMapper()->SetNumberOfRays(n);
+}
+void vtkContextualAOVolumeRepresentation::SetReach(double r)
+{
+  this->GetAOMapper()->SetReach(r);
+}
+void vtkContextualAOVolumeRepresentation::SetMode(int m)
+{
+  this->GetAOMapper()->SetMode(m);
+}
+void vtkContextualAOVolumeRepresentation::SetNumberOfClipLayers(int l)
+{
+  this->GetAOMapper()->SetNumberOfClipLayers(l);
+}
+
+//------------------------------------------------------------------------------
+void vtkContextualAOVolumeRepresentation::UpdateMapperParameters()
+{
+  this->Superclass::UpdateMapperParameters();
+  vtkContextualAOVolumeMapper* mapper = this->GetAOMapper();
+  if (this->ClipShape == NONE)
+  {
+    mapper->SetClipShape(nullptr);
+    return;
+  }
+  if (this->ClipShape != this->BuiltShape || this->ClipShapeSize != this->BuiltSize)
+  {
+    static const char* names[] = { "", "sphere", "cube", "torus" };
+    std::string error;
+    vtkSmartPointer<vtkPolyData> mesh =
+      caocli::MakeShape(names[this->ClipShape], this->ClipShapeSize, error);
+    if (!mesh)
+    {
+      vtkErrorMacro("Cannot make the clip shape: " << error);
+      mapper->SetClipShape(nullptr);
+      return;
+    }
+    this->ClipMapper->SetInputData(mesh);
+    this->BuiltShape = this->ClipShape;
+    this->BuiltSize = this->ClipShapeSize;
+  }
+  this->ClipActor->SetPosition(this->ClipPosition);
+  this->ClipActor->SetOrientation(this->ClipOrientation);
+  this->ClipActor->SetScale(this->ClipScale);
+  mapper->SetClipShape(this->ClipActor);
+}
+
+//------------------------------------------------------------------------------
+void vtkContextualAOVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "ClipShape: " << this->ClipShape << "\n";
+  os << indent << "ClipShapeSize: " << this->ClipShapeSize << "\n";
+  os << indent << "ClipPosition: " << this->ClipPosition[0] << " " << this->ClipPosition[1] << " "
+     << this->ClipPosition[2] << "\n";
+  os << indent << "ClipOrientation: " << this->ClipOrientation[0] << " "
+     << this->ClipOrientation[1] << " " << this->ClipOrientation[2] << "\n";
+  os << indent << "ClipScale: " << this->ClipScale << "\n";
+  os << indent << "AOMapper: " << this->VolumeMapper << "\n";
+}

@@ -1,0 +1,94 @@
+/**
+ * @class   vtkContextualAOVolumeRepresentation
+ * @brief   ParaView's uniform-grid volume representation, drawn by
+ *          vtkContextualAOVolumeMapper.
+ *
+ * The "Contextual AO Volume" representation type: everything of ParaView's
+ * Volume representation (colour and opacity maps, shading, the array to
+ * render), with the project's mapper instead of vtkSmartVolumeMapper, so
+ * the volume is lit by local ambient occlusion that a clip shape carves
+ * exactly. The clip shape is built here from ClipShape (none, sphere, cube,
+ * torus) and ClipShapeSize, and posed by ClipPosition, ClipOrientation and
+ * ClipScale, as a vtkProp3D would be.
+ */
+#ifndef vtkContextualAOVolumeRepresentation_h
+#define vtkContextualAOVolumeRepresentation_h
+
+#include "caoParaViewRepresentationModule.h" // For export macro
+#include "vtkImageVolumeRepresentation.h"
+#include "vtkNew.h" // For members
+
+class vtkActor;
+class vtkContextualAOVolumeMapper;
+class vtkPolyDataMapper;
+
+class CAOPARAVIEWREPRESENTATION_EXPORT vtkContextualAOVolumeRepresentation
+  : public vtkImageVolumeRepresentation
+{
+public:
+  static vtkContextualAOVolumeRepresentation* New();
+  vtkTypeMacro(vtkContextualAOVolumeRepresentation, vtkImageVolumeRepresentation);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// Forwarded to the mapper (see vtkContextualAOVolumeMapper).
+  void SetAmbientOcclusion(bool on);
+  void SetAOStrength(double strength);
+  void SetRayPattern(int pattern);
+  void SetNumberOfRays(int rays);
+  void SetReach(double reach);
+  void SetMode(int mode);
+  void SetNumberOfClipLayers(int layers);
+  ///@}
+
+  enum ClipShapes
+  {
+    NONE = 0,
+    SPHERE = 1,
+    CUBE = 2,
+    TORUS = 3
+  };
+
+  ///@{
+  /// The clip shape: NONE (default), SPHERE (radius), CUBE (half edge) or TORUS (ring radius).
+  vtkSetClampMacro(ClipShape, int, NONE, TORUS);
+  vtkGetMacro(ClipShape, int);
+  vtkSetClampMacro(ClipShapeSize, double, 1e-9, VTK_DOUBLE_MAX);
+  vtkGetMacro(ClipShapeSize, double);
+  ///@}
+
+  ///@{
+  /// The clip shape's pose, as a prop's: position, orientation (degrees), uniform scale.
+  vtkSetVector3Macro(ClipPosition, double);
+  vtkGetVector3Macro(ClipPosition, double);
+  vtkSetVector3Macro(ClipOrientation, double);
+  vtkGetVector3Macro(ClipOrientation, double);
+  vtkSetClampMacro(ClipScale, double, 1e-9, VTK_DOUBLE_MAX);
+  vtkGetMacro(ClipScale, double);
+  ///@}
+
+  /// The mapper, for its work report.
+  vtkContextualAOVolumeMapper* GetAOMapper();
+
+protected:
+  vtkContextualAOVolumeRepresentation();
+  ~vtkContextualAOVolumeRepresentation() override;
+
+  void UpdateMapperParameters() override;
+
+  int ClipShape = NONE;
+  double ClipShapeSize = 10.0;
+  double ClipPosition[3] = { 0.0, 0.0, 0.0 };
+  double ClipOrientation[3] = { 0.0, 0.0, 0.0 };
+  double ClipScale = 1.0;
+  int BuiltShape = -1;
+  double BuiltSize = 0.0;
+  vtkNew<vtkActor> ClipActor;
+  vtkNew<vtkPolyDataMapper> ClipMapper;
+
+private:
+  vtkContextualAOVolumeRepresentation(const vtkContextualAOVolumeRepresentation&) = delete;
+  void operator=(const vtkContextualAOVolumeRepresentation&) = delete;
+};
+
+#endif
