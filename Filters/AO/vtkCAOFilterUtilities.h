@@ -9,12 +9,17 @@
 
 #include "vtkAlgorithm.h"
 #include "vtkImageData.h"
+#include "vtkExtentTranslator.h"
+#include "vtkInformation.h"
+#include "vtkNew.h"
 #include "vtkMatrix3x3.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 
 #include "caoLAO.h"
 #include "vtkSMPTools.h"
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <cstdint>
 #include <cstdlib>
@@ -99,6 +104,71 @@ inline cao::VolumeGeometry GeometryOf(vtkImageData* image)
   const double* dm = image->GetDirectionMatrix()->GetData();
   std::copy(dm, dm + 9, g.direction);
   return g;
+}
+
+/**
+ * The input extent a piece needs: the output piece `out` grown, per axis,
+ * by the voxels a march of `reach` world units can touch (ceil(reach /
+ * spacing)), plus `footprint` voxels (1 for the trilinear cell of the last
+ * sample, 1 more for the anti-aliasing samples of the classification), and
+ * clamped to `whole`. An empty `out` asks for the whole extent.
+ */
+inline void GhostedExtent(const int out[6], const int whole[6], const double spacing[3],
+  double reach, int footprint, int in[6])
+{
+  if (out[0] > out[1] || out[2] > out[3] || out[4] > out[5])
+  {
+    std::copy(whole, whole + 6, in);
+    return;
+  }
+  for (int d = 0; d < 3; ++d)
+  {
+    const double s = spacing[d] != 0.0 ? std::abs(spacing[d]) : 1.0;
+    const double g = std::ceil(reach / s) + footprint;
+    const int ghost = g < 1e9 ? static_cast<int>(g) : 1000000000;
+    in[2 * d] = std::max(whole[2 * d], out[2 * d] - ghost);
+    in[2 * d + 1] = std::min(whole[2 * d + 1], out[2 * d + 1] + ghost);
+  }
+}
+
+/**
+ * Ask the input for the output's piece grown by the ghost margin of
+ * GhostedExtent. A piece request (UPDATE_PIECE_NUMBER of
+ * UPDATE_NUMBER_OF_PIECES, as ParaView's parallel pipelines send) is
+ * turned into its extent here, with the executive's own extent
+ * translator, and the input is asked for that ghosted extent as one
+ * piece: a structured reader would otherwise split by the piece number
+ * and ignore the extent.
+ */
+inline void RequestGhostedExtent(vtkInformation* inInfo, vtkInformation* outInfo,
+  const double spacing[3], double reach, int footprint)
+{
+  int whole[6], piece[6] = { 0, -1, 0, -1, 0, -1 }, request[6];
+  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), piece);
+  const int pieces = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    : 1;
+  if (pieces > 1)
+  {
+    const int number = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER());
+    vtkNew<vtkExtentTranslator> translator;
+    int split[6];
+    translator->PieceToExtentThreadSafe(
+      number, pieces, 0, whole, split, translator->GetSplitMode(), 0);
+    // Within the extent asked for (the whole one unless narrowed).
+    for (int d = 0; d < 3; ++d)
+    {
+      piece[2 * d] = std::max(piece[2 * d], split[2 * d]);
+      piece[2 * d + 1] = std::min(piece[2 * d + 1], split[2 * d + 1]);
+    }
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  }
+  GhostedExtent(piece, whole, spacing, reach, footprint, request);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), request, 6);
 }
 
 /// Names of the arrays the filters exchange.

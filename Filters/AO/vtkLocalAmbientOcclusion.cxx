@@ -76,13 +76,35 @@ double vtkLocalAmbientOcclusion::GetEffectiveReach(const double spacing[3]) cons
 }
 
 //------------------------------------------------------------------------------
-int vtkLocalAmbientOcclusion::RequestUpdateExtent(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+int vtkLocalAmbientOcclusion::RequestInformation(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  // LAO reads neighbours up to the reach away: ask for the whole extent.
+  // Any sub-extent can be produced (from a ghosted input extent), so a
+  // parallel pipeline splits the volume into pieces here.
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
-    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(),
+      inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+  }
+  outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkLocalAmbientOcclusion::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  // LAO reads neighbours up to the reach away: the requested piece grown by
+  // the reach and the trilinear footprint (ghost voxels), within the whole
+  // extent. A piece's AO then equals the serial AO of the same voxels.
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  double spacing[3] = { 1.0, 1.0, 1.0 };
+  if (inInfo->Has(vtkDataObject::SPACING()))
+    inInfo->Get(vtkDataObject::SPACING(), spacing);
+  vtkCAO::RequestGhostedExtent(inInfo, outInfo, spacing, this->GetEffectiveReach(spacing), 2);
   return 1;
 }
 
@@ -289,6 +311,15 @@ int vtkLocalAmbientOcclusion::RequestData(
       static_cast<double>(this->GPU->Engine().ResidentBytes()) / static_cast<double>(voxels) };
     gpuInfo->InsertNextTuple(info);
     output->GetFieldData()->AddArray(gpuInfo);
+  }
+  // The ghost voxels served their purpose: keep the requested piece.
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
+  {
+    int piece[6];
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), piece);
+    if (piece[0] <= piece[1] && piece[2] <= piece[3] && piece[4] <= piece[5])
+      output->Crop(piece);
   }
   this->UpdateProgress(1.0);
   return 1;

@@ -176,6 +176,7 @@ protected:
   vtkLocalAmbientOcclusion();
   ~vtkLocalAmbientOcclusion() override;
 
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
