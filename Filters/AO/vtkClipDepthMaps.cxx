@@ -88,8 +88,14 @@ int vtkClipDepthMaps::RequestInformation(
 }
 
 //------------------------------------------------------------------------------
-int vtkClipDepthMaps::RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*)
+int vtkClipDepthMaps::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
+  // The whole mesh on every process: a piece of a closed mesh is open.
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
   return 1;
 }
 

@@ -124,18 +124,29 @@ int vtkContextualAmbientOcclusion::RequestInformation(
     outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(),
       inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
   }
+  outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
   return 1;
 }
 
 //------------------------------------------------------------------------------
 int vtkContextualAmbientOcclusion::RequestUpdateExtent(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  // Input 0: the requested piece grown by the LAO reach (known when the
+  // input comes straight from vtkLocalAmbientOcclusion, through its REACH
+  // key) plus the trilinear and anti-aliasing footprints; without the key,
+  // the whole extent.
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
   if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
   {
-    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
-      inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+    double spacing[3] = { 1.0, 1.0, 1.0 };
+    if (inInfo->Has(vtkDataObject::SPACING()))
+      inInfo->Get(vtkDataObject::SPACING(), spacing);
+    const double reach = inInfo->Has(vtkLocalAmbientOcclusion::REACH())
+      ? inInfo->Get(vtkLocalAmbientOcclusion::REACH())
+      : VTK_DOUBLE_MAX;
+    vtkCAO::RequestGhostedExtent(inInfo, outInfo, spacing, reach, 3);
   }
   // The depth maps are produced whole and their extent is known only once
   // they exist: ask for exactly the extent already held, so a pose change
@@ -149,6 +160,10 @@ int vtkContextualAmbientOcclusion::RequestUpdateExtent(
     maps->GetExtent(held);
   }
   mapsInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), held, 6);
+  // The whole maps on every process, whatever piece this one produces.
+  mapsInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+  mapsInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+  mapsInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
   return 1;
 }
 
@@ -571,6 +586,15 @@ int vtkContextualAmbientOcclusion::RequestData(
     const double values[3] = { maxDifference, static_cast<double>(differing), fullMs };
     verification->InsertNextTuple(values);
     output->GetFieldData()->AddArray(verification);
+  }
+  // The ghost voxels served their purpose: keep the requested piece.
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
+  {
+    int piece[6];
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), piece);
+    if (piece[0] <= piece[1] && piece[2] <= piece[3] && piece[4] <= piece[5])
+      output->Crop(piece);
   }
   this->UpdateProgress(1.0);
   return 1;

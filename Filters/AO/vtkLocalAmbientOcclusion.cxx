@@ -10,6 +10,7 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkInformationDoubleKey.h"
 #include "vtkInformationVector.h"
 #include "vtkMatrix3x3.h"
 #include "vtkNew.h"
@@ -30,6 +31,7 @@
 vtkStandardNewMacro(vtkLocalAmbientOcclusion);
 vtkCxxSetObjectMacro(vtkLocalAmbientOcclusion, RenderWindow, vtkRenderWindow);
 vtkCxxSetObjectMacro(vtkLocalAmbientOcclusion, OpacityFunction, vtkPiecewiseFunction);
+vtkInformationKeyMacro(vtkLocalAmbientOcclusion, REACH, Double);
 
 //------------------------------------------------------------------------------
 vtkLocalAmbientOcclusion::vtkLocalAmbientOcclusion()
@@ -89,6 +91,10 @@ int vtkLocalAmbientOcclusion::RequestInformation(
       inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
   }
   outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+  double spacing[3] = { 1.0, 1.0, 1.0 };
+  if (inInfo->Has(vtkDataObject::SPACING()))
+    inInfo->Get(vtkDataObject::SPACING(), spacing);
+  outInfo->Set(REACH(), this->GetEffectiveReach(spacing));
   return 1;
 }
 

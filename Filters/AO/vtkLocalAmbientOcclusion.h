@@ -36,12 +36,21 @@ namespace vtkCAO
 class GPUSession;
 }
 
+class vtkInformationDoubleKey;
 class vtkPiecewiseFunction;
 
 class CAOFILTERSAO_EXPORT vtkLocalAmbientOcclusion : public vtkImageAlgorithm
 {
 public:
   static vtkLocalAmbientOcclusion* New();
+
+  /**
+   * Pipeline information key on this filter's output: the reach (world
+   * units) its AO was computed with, so that a downstream filter
+   * (vtkContextualAmbientOcclusion) can ask for exactly the ghost voxels it
+   * needs around a piece.
+   */
+  static vtkInformationDoubleKey* REACH();
   vtkTypeMacro(vtkLocalAmbientOcclusion, vtkImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 

@@ -1,4 +1,4 @@
-"""Distributed LAO on ParaView's MPI engine:
+"""Distributed LAO and CAO on ParaView's MPI engine:
 
     mpirun -np 2 pvbatch TestMPILAO.py PLUGIN.so OUTPUT_DIR
 
@@ -42,16 +42,33 @@ path = os.path.join(outdir, "hydrogen-lao.pvti")
 # Inline binary: the default appended mode wrote files ParaView 5.11's
 # reader rejected (see the cao tool's writer).
 SaveData(path, proxy=lao, PointDataArrays=["AmbientOcclusion"], DataMode="Binary")
-# The other rank may still be writing its piece: wait until every piece
-# file is complete.
 import time  # noqa: E402
-piece_dir = os.path.join(outdir, "hydrogen-lao")
-deadline = time.time() + 60
-while time.time() < deadline:
-    files = [os.path.join(piece_dir, f) for f in os.listdir(piece_dir)] if os.path.isdir(piece_dir) else []
-    if len(files) == ranks and all(open(f, "rb").read().rstrip().endswith(b"</VTKFile>") for f in files):
-        break
-    time.sleep(0.2)
+
+
+def wait_for_pieces(name):
+    """The other rank may still be writing its piece: wait until all are complete."""
+    piece_dir = os.path.join(outdir, name)
+    deadline = time.time() + 60
+    while time.time() < deadline:
+        files = [os.path.join(piece_dir, f) for f in os.listdir(piece_dir)] \
+            if os.path.isdir(piece_dir) else []
+        if len(files) == ranks and all(open(f, "rb").read().rstrip().endswith(b"</VTKFile>")
+                                       for f in files):
+            return
+        time.sleep(0.2)
+
+
+wait_for_pieces("hydrogen-lao")
+# Contextual AO downstream, distributed the same way (the depth maps whole
+# on every rank).
+sphere = Sphere(Radius=14.0, ThetaResolution=32, PhiResolution=16)
+maps = ClipDepthMaps(Input=sphere, Reach=8.0)
+cao = ContextualAmbientOcclusion(Input=lao, DepthMaps=maps)
+cao.PoseTransform.Translate = [32.0, 30.0, 36.0]
+cao.Backend = "CPU"
+cao_path = os.path.join(outdir, "hydrogen-cao.pvti")
+SaveData(cao_path, proxy=cao, PointDataArrays=["AmbientOcclusion", "ClipCategory"], DataMode="Binary")
+wait_for_pieces("hydrogen-cao")
 
 from vtkmodules.vtkIOXML import vtkXMLPImageDataReader, vtkXMLImageDataReader  # noqa: E402
 
@@ -95,6 +112,35 @@ if a is not None and b is not None:
     differing = sum(1 for i in range(b.GetNumberOfTuples()) if a.GetValue(i) != b.GetValue(i))
     check(differing == 0, "distributed LAO == serial LAO at every voxel (%d of %d differ)"
           % (differing, b.GetNumberOfTuples()))
+# CAO: the same comparison.
+from vtkmodules.vtkFiltersSources import vtkSphereSource  # noqa: E402
+from vtkmodules.vtkCommonTransforms import vtkTransform  # noqa: E402
+cao_pieces = vtkXMLPImageDataReader()
+cao_pieces.SetFileName(cao_path)
+cao_pieces.Update()
+s = vtkSphereSource()
+s.SetRadius(14.0)
+s.SetThetaResolution(32)
+s.SetPhiResolution(16)
+v_maps = contextualao.vtkClipDepthMaps()
+v_maps.SetInputConnection(s.GetOutputPort())
+v_maps.SetReach(8.0)
+v_cao = contextualao.vtkContextualAmbientOcclusion()
+v_cao.SetInputConnection(serial.GetOutputPort())
+v_cao.SetDepthMapsConnection(v_maps.GetOutputPort())
+t = vtkTransform()
+t.Translate(32.0, 30.0, 36.0)
+v_cao.SetPoseTransform(t)
+v_cao.SetBackendToCPU()
+v_cao.Update()
+for name in ("AmbientOcclusion", "ClipCategory"):
+    a = cao_pieces.GetOutput().GetPointData().GetArray(name)
+    b = v_cao.GetOutput().GetPointData().GetArray(name)
+    ok = a is not None and b is not None and a.GetNumberOfTuples() == b.GetNumberOfTuples()
+    differing = sum(1 for i in range(b.GetNumberOfTuples()) if a.GetValue(i) != b.GetValue(i)) if ok else -1
+    check(ok and differing == 0, "distributed CAO %s == serial at every voxel (%d differ)" % (name, differing))
+check(v_cao.GetOutput().GetPointData().GetArray("ClipCategory").GetRange() == (0.0, 2.0),
+      "the pose clips, affects and leaves voxels")
 print("%d failure(s)" % len(failures))
 sys.stdout.flush()
 if failures:

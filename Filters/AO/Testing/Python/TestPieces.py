@@ -82,5 +82,48 @@ for piece in range(3):
     check(got == ghosted(out.GetExtent()), "piece %d: the input read is %s (expected %s)"
           % (piece, got, ghosted(out.GetExtent())))
 
+# The contextual AO downstream: it asks the LAO for its piece grown by the
+# reach (from the LAO's REACH key) plus the trilinear and anti-aliasing
+# footprints; the LAO grows that again for itself.
+from vtkmodules.vtkFiltersSources import vtkSphereSource  # noqa: E402
+from vtkmodules.vtkCommonTransforms import vtkTransform  # noqa: E402
+
+
+def cao_pipeline():
+    reader, lao, tf = pipeline()
+    sphere = vtkSphereSource()
+    sphere.SetRadius(14.0)
+    sphere.SetThetaResolution(32)
+    sphere.SetPhiResolution(16)
+    maps = cao.vtkClipDepthMaps()
+    maps.SetInputConnection(sphere.GetOutputPort())
+    maps.SetReach(8.0)
+    c = cao.vtkContextualAmbientOcclusion()
+    c.SetInputConnection(lao.GetOutputPort())
+    c.SetDepthMapsConnection(maps.GetOutputPort())
+    pose = vtkTransform()
+    pose.Translate(32.0, 30.0, 36.0)
+    c.SetPoseTransform(pose)
+    c.SetBackendToCPU()
+    return reader, lao, c, (tf, sphere, maps, pose)
+
+
+_, _, serial_cao, keep = cao_pipeline()
+serial_cao.Update()
+ref = serial_cao.GetOutput().GetPointData().GetArray("AmbientOcclusion")
+categories = serial_cao.GetOutput().GetPointData().GetArray("ClipCategory").GetRange()
+check(categories == (0.0, 2.0), "the pose clips, affects and leaves voxels")
+CAO_GHOST = [g + 1 for g in GHOST]  # one more voxel: the anti-aliasing footprint
+for piece in range(3):
+    reader, lao, c, keep = cao_pipeline()
+    c.UpdatePiece(piece, 3, 0)
+    out = c.GetOutput()
+    compare(out, "CAO piece %d of 3" % piece)
+    e = out.GetExtent()
+    expected = tuple(max(0, e[2 * d] - CAO_GHOST[d]) if i == 0 else min(63, e[2 * d + 1] + CAO_GHOST[d])
+                     for d in range(3) for i in (0, 1))
+    got = lao.GetOutput().GetExtent()
+    check(got == expected, "CAO piece %d: the LAO produced %s (expected %s)" % (piece, got, expected))
+
 print("%d failure(s)" % len(failures))
 sys.exit(1 if failures else 0)
