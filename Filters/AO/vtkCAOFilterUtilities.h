@@ -138,7 +138,9 @@ inline void GhostedExtent(const int out[6], const int whole[6], const double spa
  * turned into its extent here, with the executive's own extent
  * translator, and the input is asked for that ghosted extent as one
  * piece: a structured reader would otherwise split by the piece number
- * and ignore the extent.
+ * and ignore the extent. An input that cannot produce sub-extents is asked
+ * for the whole extent (each process then reads it all, and the output is
+ * still the piece).
  */
 inline void RequestGhostedExtent(vtkInformation* inInfo, vtkInformation* outInfo,
   const double spacing[3], double reach, int footprint)
@@ -168,7 +170,19 @@ inline void RequestGhostedExtent(vtkInformation* inInfo, vtkInformation* outInfo
     inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
   }
   GhostedExtent(piece, whole, spacing, reach, footprint, request);
+  // A source that cannot produce sub-extents (vtkMetaImageReader, for one,
+  // overruns its buffer when asked for one) is asked for everything.
+  if (!inInfo->Has(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT()) ||
+    !inInfo->Get(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT()))
+    std::copy(whole, whole + 6, request);
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), request, 6);
+}
+
+/// Whether the output is requested as one piece of several (a parallel run).
+inline bool IsOneOfSeveralPieces(vtkInformation* outInfo)
+{
+  return outInfo && outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()) &&
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()) > 1;
 }
 
 /// Names of the arrays the filters exchange.

@@ -132,6 +132,13 @@ int vtkLocalAmbientOcclusion::RequestData(
   const std::int64_t voxels = static_cast<std::int64_t>(dims[0]) * dims[1] * dims[2];
   if (dims[0] < 1 || dims[1] < 1 || dims[2] < 1 || voxels < 1)
   {
+    if (vtkCAO::IsOneOfSeveralPieces(outputVector->GetInformationObject(0)))
+    {
+      // A process of a parallel run that holds no data (a reader that does
+      // not split its volume gives it all to one process): nothing to do.
+      output->Initialize();
+      return 1;
+    }
     vtkErrorMacro("The input volume has an empty extent.");
     return 0;
   }

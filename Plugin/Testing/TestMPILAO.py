@@ -112,6 +112,31 @@ if a is not None and b is not None:
     differing = sum(1 for i in range(b.GetNumberOfTuples()) if a.GetValue(i) != b.GetValue(i))
     check(differing == 0, "distributed LAO == serial LAO at every voxel (%d of %d differ)"
           % (differing, b.GetNumberOfTuples()))
+# A reader that cannot produce sub-extents (MetaImage): each rank reads the
+# whole volume, and the output is still distributed and equal to serial.
+mr = OpenDataFile(os.path.join(data, "HeadMRVolume.mhd"))
+mr_lao = LocalAmbientOcclusion(Input=mr)
+mr_lao.Backend = "CPU"
+mr_path = os.path.join(outdir, "headmr-lao.pvti")
+SaveData(mr_path, proxy=mr_lao, PointDataArrays=["AmbientOcclusion"], DataMode="Binary")
+wait_for_pieces("headmr-lao")
+from vtkmodules.vtkIOImage import vtkMetaImageReader  # noqa: E402
+mr_pieces = vtkXMLPImageDataReader()
+mr_pieces.SetFileName(mr_path)
+mr_pieces.Update()
+mr_reader = vtkMetaImageReader()
+mr_reader.SetFileName(os.path.join(data, "HeadMRVolume.mhd"))
+mr_serial = contextualao.vtkLocalAmbientOcclusion()
+mr_serial.SetInputConnection(mr_reader.GetOutputPort())
+mr_serial.SetBackendToCPU()
+mr_serial.Update()
+a = mr_pieces.GetOutput().GetPointData().GetArray("AmbientOcclusion")
+b = mr_serial.GetOutput().GetPointData().GetArray("AmbientOcclusion")
+ok = a is not None and b is not None and a.GetNumberOfTuples() == b.GetNumberOfTuples()
+differing = sum(1 for i in range(b.GetNumberOfTuples()) if a.GetValue(i) != b.GetValue(i)) if ok else -1
+check(ok and differing == 0 and mr_pieces.GetNumberOfPieces() == ranks,
+      "HeadMR (a reader without sub-extents): distributed LAO == serial (%d differ)" % differing)
+
 # CAO: the same comparison.
 from vtkmodules.vtkFiltersSources import vtkSphereSource  # noqa: E402
 from vtkmodules.vtkCommonTransforms import vtkTransform  # noqa: E402
