@@ -41,7 +41,7 @@ resolved=$(ldd "$plugin" | awk '/libcaoFiltersAO/ {print $3}')
 [[ "$resolved" == "$prefix/usr/lib/"* ]] \
   || { echo "FAIL: the installed plugin loads $resolved, not the installed library"; exit 1; }
 if command -v pvpython >/dev/null; then
-  PV_PLUGIN_PATH="$(dirname "$plugin")" pvpython -c "
+  PV_PLUGIN_PATH="$(dirname "$plugin")" pvpython --dr -c "
 from paraview.simple import *
 lao = LocalAmbientOcclusion(Input=Wavelet())
 lao.RayPattern = '6 rays (faces)'

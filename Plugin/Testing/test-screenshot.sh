@@ -15,9 +15,9 @@ command -v "$exe" >/dev/null || { echo "SKIP: no $exe executable"; exit 125; }
 script="$here/render_representation.py"
 if [ "$exe" = paraview ]; then
   export CAO_GUI=1
-  args=(--script="$script")
+  args=(--dr --script="$script")
 else
-  args=("$script")
+  args=(--dr "$script")
 fi
 timeout 300 bash "$here/../../Testing/run-with-xvfb.sh" "$exe" "${args[@]}" >"$CAO_SCREENSHOT.log" 2>&1 || true
 [ -f "$CAO_SCREENSHOT.done" ] || { echo "FAIL: the $exe script did not finish:"; cat "$CAO_SCREENSHOT.log"; exit 1; }

@@ -91,7 +91,7 @@ if "paraview.simple" in blocks:
     else:
         env["PV_PLUGIN_PATH"] = os.environ["CAO_PLUGIN_DIR"]
         p, work = run("paraview.simple",
-                      ["bash", os.path.join(root, "Testing", "run-with-xvfb.sh"), pvpython])
+                      ["bash", os.path.join(root, "Testing", "run-with-xvfb.sh"), pvpython, "--dr"])
         check(p.returncode == 0, "the paraview.simple example runs")
         ranges = [l for l in p.stdout.splitlines() if re.match(r"^\d+ \(", l)]
         check(len(ranges) == 3 and all(l.endswith("(0.0, 2.0)") for l in ranges),
