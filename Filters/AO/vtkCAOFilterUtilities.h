@@ -178,6 +178,28 @@ inline void RequestGhostedExtent(vtkInformation* inInfo, vtkInformation* outInfo
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), request, 6);
 }
 
+/// The output's information: the input's whole extent, any sub-extent of
+/// which can be produced (from a ghosted input extent), so that parallel
+/// pipelines split the volume into pieces here.
+inline void ProduceSubExtents(vtkInformation* inInfo, vtkInformation* outInfo)
+{
+  if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(),
+      inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+  outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+}
+
+/// The ghost voxels served their purpose: crop `output` to the requested piece.
+inline void CropToRequestedPiece(vtkInformation* outInfo, vtkImageData* output)
+{
+  if (!outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
+    return;
+  int piece[6];
+  outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), piece);
+  if (piece[0] <= piece[1] && piece[2] <= piece[3] && piece[4] <= piece[5])
+    output->Crop(piece);
+}
+
 /// Whether the output is requested as one piece of several (a parallel run).
 inline bool IsOneOfSeveralPieces(vtkInformation* outInfo)
 {

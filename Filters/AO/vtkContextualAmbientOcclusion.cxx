@@ -117,14 +117,8 @@ int vtkContextualAmbientOcclusion::FillInputPortInformation(int port, vtkInforma
 int vtkContextualAmbientOcclusion::RequestInformation(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
-  {
-    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(),
-      inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
-  }
-  outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+  vtkCAO::ProduceSubExtents(
+    inputVector[0]->GetInformationObject(0), outputVector->GetInformationObject(0));
   return 1;
 }
 
@@ -594,15 +588,7 @@ int vtkContextualAmbientOcclusion::RequestData(
     verification->InsertNextTuple(values);
     output->GetFieldData()->AddArray(verification);
   }
-  // The ghost voxels served their purpose: keep the requested piece.
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
-  {
-    int piece[6];
-    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), piece);
-    if (piece[0] <= piece[1] && piece[2] <= piece[3] && piece[4] <= piece[5])
-      output->Crop(piece);
-  }
+  vtkCAO::CropToRequestedPiece(outputVector->GetInformationObject(0), output);
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -81,16 +81,9 @@ double vtkLocalAmbientOcclusion::GetEffectiveReach(const double spacing[3]) cons
 int vtkLocalAmbientOcclusion::RequestInformation(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  // Any sub-extent can be produced (from a ghosted input extent), so a
-  // parallel pipeline splits the volume into pieces here.
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
-  {
-    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(),
-      inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
-  }
-  outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+  vtkCAO::ProduceSubExtents(inInfo, outInfo);
   double spacing[3] = { 1.0, 1.0, 1.0 };
   if (inInfo->Has(vtkDataObject::SPACING()))
     inInfo->Get(vtkDataObject::SPACING(), spacing);
@@ -325,15 +318,7 @@ int vtkLocalAmbientOcclusion::RequestData(
     gpuInfo->InsertNextTuple(info);
     output->GetFieldData()->AddArray(gpuInfo);
   }
-  // The ghost voxels served their purpose: keep the requested piece.
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
-  {
-    int piece[6];
-    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), piece);
-    if (piece[0] <= piece[1] && piece[2] <= piece[3] && piece[4] <= piece[5])
-      output->Crop(piece);
-  }
+  vtkCAO::CropToRequestedPiece(outputVector->GetInformationObject(0), output);
   this->UpdateProgress(1.0);
   return 1;
 }
