@@ -95,11 +95,16 @@ inline double MillisecondsSince(std::chrono::steady_clock::time_point start)
     .count();
 }
 
-/// The kernels' view of an image's grid: voxel counts, spacing, direction.
+/// The kernels' view of an image's grid: voxel counts, spacing, direction,
+/// and the global index of its first voxel (the extent's minimum).
 inline cao::VolumeGeometry GeometryOf(vtkImageData* image)
 {
   cao::VolumeGeometry g;
   image->GetDimensions(g.dims);
+  const int* extent = image->GetExtent();
+  g.origin[0] = extent[0];
+  g.origin[1] = extent[2];
+  g.origin[2] = extent[4];
   image->GetSpacing(g.spacing);
   const double* dm = image->GetDirectionMatrix()->GetData();
   std::copy(dm, dm + 9, g.direction);

@@ -54,6 +54,23 @@ inline float SampleBounded(
   return Blend(c, t.frac);
 }
 
+/// The variant of voxel (i, j, k): 0 without variation, else the parity
+/// of its global index (origin parity in dims.w) as 3 bits, x lowest.
+inline int VariantOf(const shared::LAOParams& p, int i, int j, int k)
+{
+  if (p.rays.w == 1)
+    return 0;
+  const int o = p.dims.w;
+  return ((i ^ o) & 1) | (((j ^ (o >> 1)) & 1) << 1) | (((k ^ (o >> 2)) & 1) << 2);
+}
+
+/// First tap of variant v.
+inline const shared::LAOTap* VariantTaps(const LAOPlan& plan, int v)
+{
+  return plan.taps.data() +
+    static_cast<std::ptrdiff_t>(v) * plan.params.rays.x * plan.params.rays.z;
+}
+
 template <bool Interior>
 inline float March(const LAOPlan& plan, const float* a, int i, int j, int k, std::int64_t base)
 {
@@ -61,7 +78,7 @@ inline float March(const LAOPlan& plan, const float* a, int i, int j, int k, std
   const int rays = p.rays.x;
   const int samples = p.rays.y;
   const int tapsPerRay = p.rays.z;
-  const shared::LAOTap* taps = plan.taps.data();
+  const shared::LAOTap* taps = VariantTaps(plan, VariantOf(p, i, j, k));
   float total = 0.0f;
   for (int r = 0; r < rays; ++r)
   {
@@ -98,21 +115,33 @@ struct RunScratch
   std::vector<float> total, transmittance, sum, zeros;
 };
 
+/// floor(a / b) and ceil(a / b) for b > 0 and any sign of a.
+inline int FloorDiv(int a, int b)
+{
+  return a >= 0 ? a / b : -((-a + b - 1) / b);
+}
+inline int CeilDiv(int a, int b)
+{
+  return -FloorDiv(-a, b);
+}
+
 /**
- * LAO of the voxels i in [i0, i1) of row (j, k), tap-major: for each ray and
+ * LAO of the voxels x = i0 + first + q * Stride (q = 0 .. n-1) of row
+ * (j, k), all of one variant (`rayTapsBase`), tap-major: for each ray and
  * each sample, the whole run is advanced at once. A tap's trilinear cell is
- * the same for every voxel of the run, shifted by one per voxel, so its four
- * source rows are read contiguously and the loop vectorises. Per voxel the
+ * the same for every voxel of the run, shifted by Stride per voxel, so its
+ * four source rows are read in order and the loop vectorises. Per voxel the
  * operations and their order are exactly those of March (scalar path):
  * S += T, then T *= 1 - alpha, ray after ray; a voxel whose T reached 0 keeps
  * adding 0 and multiplying 0 by a finite factor, which changes no bit.
- * Out-of-bounds corners read 0, as in SampleBounded.
+ * Out-of-bounds corners read 0, as in SampleBounded. Stride is 1 without
+ * variation, 2 with one (the x parity alternates the variant).
  */
-void MarchRun(const LAOPlan& plan, const float* a, float* ao, int j, int k, int i0, int i1,
-  RunScratch& s)
+template <int Stride>
+void MarchRunOf(const LAOPlan& plan, const shared::LAOTap* rayTapsBase, const float* a,
+  float* ao, int j, int k, int i0, int first, int n, RunScratch& s)
 {
   const shared::LAOParams& p = plan.params;
-  const int n = i1 - i0;
   const int nx = p.dims.x;
   const std::int64_t sy = p.strides.y, sz = p.strides.z;
   const int rays = p.rays.x, samples = p.rays.y, tapsPerRay = p.rays.z;
@@ -125,15 +154,16 @@ void MarchRun(const LAOPlan& plan, const float* a, float* ao, int j, int k, int 
   float* S = s.sum.data();
   float* total = s.total.data();
   const float* zeroRow = s.zeros.data();
+  const int x0 = i0 + first; // x of voxel q = 0
   for (int r = 0; r < rays; ++r)
   {
-    const shared::LAOTap* rayTaps = plan.taps.data() + static_cast<std::ptrdiff_t>(r) * tapsPerRay;
+    const shared::LAOTap* rayTaps = rayTapsBase + static_cast<std::ptrdiff_t>(r) * tapsPerRay;
     std::fill(T, T + n, 1.0f);
     std::fill(S, S + n, 0.0f);
     for (int m = 0; m < samples; ++m)
     {
-      for (int i = 0; i < n; ++i)
-        S[i] += T[i];
+      for (int q = 0; q < n; ++q)
+        S[q] += T[q];
       if (m == tapsPerRay)
         break;
       const shared::LAOTap& t = rayTaps[m];
@@ -147,55 +177,140 @@ void MarchRun(const LAOPlan& plan, const float* a, float* ao, int j, int k, int 
       const float* r11 = row(y0 + 1, z0 + 1);
       const float fx = t.frac.x, fy = t.frac.y, fz = t.frac.z;
       const int cx = t.cell.x;
-      // Voxels whose two x corners are both in bounds: [lo, hi).
-      const int lo = std::max(i0, -cx) - i0;
-      const int hi = std::max(lo, std::min(i1, nx - 1 - cx) - i0);
-      auto edge = [&](int i) {
-        const int x0 = i0 + i + cx, x1 = x0 + 1;
-        const bool in0 = x0 >= 0 && x0 < nx, in1 = x1 >= 0 && x1 < nx;
-        const float c00 = Lerp(in0 ? r00[x0] : 0.0f, in1 ? r00[x1] : 0.0f, fx);
-        const float c10 = Lerp(in0 ? r10[x0] : 0.0f, in1 ? r10[x1] : 0.0f, fx);
-        const float c01 = Lerp(in0 ? r01[x0] : 0.0f, in1 ? r01[x1] : 0.0f, fx);
-        const float c11 = Lerp(in0 ? r11[x0] : 0.0f, in1 ? r11[x1] : 0.0f, fx);
+      // Voxels whose two x corners are both in bounds: q in [lo, hi), i.e.
+      // 0 <= x0 + q * Stride + cx and x0 + q * Stride + cx + 1 <= nx - 1.
+      const int lo = std::min(n, std::max(0, CeilDiv(-cx - x0, Stride)));
+      const int hi = std::max(lo, std::min(n, FloorDiv(nx - 2 - cx - x0, Stride) + 1));
+      auto edge = [&](int q) {
+        const int xa = x0 + q * Stride + cx, xb = xa + 1;
+        const bool in0 = xa >= 0 && xa < nx, in1 = xb >= 0 && xb < nx;
+        const float c00 = Lerp(in0 ? r00[xa] : 0.0f, in1 ? r00[xb] : 0.0f, fx);
+        const float c10 = Lerp(in0 ? r10[xa] : 0.0f, in1 ? r10[xb] : 0.0f, fx);
+        const float c01 = Lerp(in0 ? r01[xa] : 0.0f, in1 ? r01[xb] : 0.0f, fx);
+        const float c11 = Lerp(in0 ? r11[xa] : 0.0f, in1 ? r11[xb] : 0.0f, fx);
         const float alpha = Lerp(Lerp(c00, c10, fy), Lerp(c01, c11, fy), fz);
-        T[i] = T[i] * (1.0f - alpha);
+        T[q] = T[q] * (1.0f - alpha);
       };
-      for (int i = 0; i < std::min(lo, n); ++i)
-        edge(i);
+      for (int q = 0; q < lo; ++q)
+        edge(q);
       {
-        const int off = i0 + cx;
+        const int off = x0 + cx;
         const float* q00 = r00 + off;
         const float* q10 = r10 + off;
         const float* q01 = r01 + off;
         const float* q11 = r11 + off;
-        for (int i = lo; i < hi; ++i)
+        for (int q = lo; q < hi; ++q)
         {
-          const float c00 = Lerp(q00[i], q00[i + 1], fx);
-          const float c10 = Lerp(q10[i], q10[i + 1], fx);
-          const float c01 = Lerp(q01[i], q01[i + 1], fx);
-          const float c11 = Lerp(q11[i], q11[i + 1], fx);
+          const int x = q * Stride;
+          const float c00 = Lerp(q00[x], q00[x + 1], fx);
+          const float c10 = Lerp(q10[x], q10[x + 1], fx);
+          const float c01 = Lerp(q01[x], q01[x + 1], fx);
+          const float c11 = Lerp(q11[x], q11[x + 1], fx);
           const float alpha = Lerp(Lerp(c00, c10, fy), Lerp(c01, c11, fy), fz);
-          T[i] = T[i] * (1.0f - alpha);
+          T[q] = T[q] * (1.0f - alpha);
         }
       }
-      for (int i = std::max(hi, lo); i < n; ++i)
-        edge(i);
+      for (int q = hi; q < n; ++q)
+        edge(q);
     }
-    for (int i = 0; i < n; ++i)
-      total[i] += S[i];
+    for (int q = 0; q < n; ++q)
+      total[q] += S[q];
   }
-  const std::int64_t base = i0 + std::int64_t(j) * sy + std::int64_t(k) * sz;
-  for (int i = 0; i < n; ++i)
-    ao[base + i] = total[i] / p.norm.x;
+  const std::int64_t base = x0 + std::int64_t(j) * sy + std::int64_t(k) * sz;
+  for (int q = 0; q < n; ++q)
+    ao[base + std::int64_t(q) * Stride] = total[q] / p.norm.x;
+}
+
+/// LAO of the voxels i in [i0, i1) of row (j, k): one run, or, with a
+/// variation, one run per x parity (each of a single variant).
+void MarchRun(const LAOPlan& plan, const float* a, float* ao, int j, int k, int i0, int i1,
+  RunScratch& s)
+{
+  const shared::LAOParams& p = plan.params;
+  if (p.rays.w == 1)
+  {
+    MarchRunOf<1>(plan, plan.taps.data(), a, ao, j, k, i0, 0, i1 - i0, s);
+    return;
+  }
+  for (int first = 0; first < 2 && i0 + first < i1; ++first)
+  {
+    const int n = (i1 - i0 - first + 1) / 2;
+    MarchRunOf<2>(plan, VariantTaps(plan, VariantOf(p, i0 + first, j, k)), a, ao, j, k, i0,
+      first, n, s);
+  }
 }
 }
 
-int DefaultSampleCount(double reach, const double spacing[3])
+int RayVariationCount(RayVariation variation)
+{
+  return variation == RayVariation::None ? 1 : 8;
+}
+
+const char* RayVariationName(RayVariation variation)
+{
+  switch (variation)
+  {
+    case RayVariation::None:
+      return "none";
+    case RayVariation::Rotate:
+      return "rotate";
+    case RayVariation::Jitter:
+      return "jitter";
+    case RayVariation::RotateJitter:
+      return "rotate+jitter";
+  }
+  return "unknown";
+}
+
+bool ParseRayVariation(const std::string& text, RayVariation& variation)
+{
+  for (RayVariation v : { RayVariation::None, RayVariation::Rotate, RayVariation::Jitter,
+         RayVariation::RotateJitter })
+  {
+    if (text == RayVariationName(v))
+    {
+      variation = v;
+      return true;
+    }
+  }
+  return false;
+}
+
+void VariationRotation(int v, double R[9])
+{
+  // Eight fixed rotations: unit quaternions from a fixed-seed splitmix64
+  // stream (Shoemake's uniform construction). Fixed, so plans are
+  // reproducible; the GPU receives the CPU's taps, so nothing can drift.
+  std::uint64_t state = 0x243F6A8885A308D3ull + 0x9E3779B97F4A7C15ull * (v + 1);
+  auto next = [&state]() {
+    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    z ^= z >> 31;
+    return static_cast<double>(z >> 11) * (1.0 / 9007199254740992.0);
+  };
+  const double twoPi = 6.283185307179586476925;
+  const double u1 = next(), u2 = next(), u3 = next();
+  const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1);
+  const double w = a * std::sin(twoPi * u2), x = a * std::cos(twoPi * u2);
+  const double y = b * std::sin(twoPi * u3), z = b * std::cos(twoPi * u3);
+  R[0] = 1 - 2 * (y * y + z * z);
+  R[1] = 2 * (x * y - z * w);
+  R[2] = 2 * (x * z + y * w);
+  R[3] = 2 * (x * y + z * w);
+  R[4] = 1 - 2 * (x * x + z * z);
+  R[5] = 2 * (y * z - x * w);
+  R[6] = 2 * (x * z - y * w);
+  R[7] = 2 * (y * z + x * w);
+  R[8] = 1 - 2 * (x * x + y * y);
+}
+
+int DefaultSampleCount(double reach, const double spacing[3], double density)
 {
   const double h = std::min(spacing[0], std::min(spacing[1], spacing[2]));
-  if (!(h > 0.0) || !(reach > 0.0) || !std::isfinite(reach / h))
+  if (!(h > 0.0) || !(reach > 0.0) || !(density > 0.0) || !std::isfinite(density * reach / h))
     return 1;
-  const double m = std::round(reach / h);
+  const double m = std::round(density * reach / h);
   return static_cast<int>(std::max(1.0, std::min(m, 4096.0)));
 }
 
@@ -225,13 +340,29 @@ bool BuildLAOPlan(
     error = "the reach must be positive and finite";
     return false;
   }
+  if (!(s.startOffset >= 0.0 && s.startOffset < 1.0))
+  {
+    error = "the start offset must be in [0, 1) steps";
+    return false;
+  }
+  if (s.samples <= 0 && !(s.sampleDensity > 0.0 && std::isfinite(s.sampleDensity)))
+  {
+    error = "the sample density must be positive and finite";
+    return false;
+  }
+  if (static_cast<int>(s.variation) < 0 || static_cast<int>(s.variation) > 3)
+  {
+    error = "unknown ray variation";
+    return false;
+  }
   plan.directions = MakeRayPattern(s.pattern, s.fibonacciRays);
   if (plan.directions.empty())
   {
     error = "the ray pattern has no rays (a Fibonacci count must be >= 1)";
     return false;
   }
-  const int samples = s.samples > 0 ? s.samples : DefaultSampleCount(s.reach, g.spacing);
+  const int samples =
+    s.samples > 0 ? s.samples : DefaultSampleCount(s.reach, g.spacing, s.sampleDensity);
   if (samples > 65536)
   {
     error = "more than 65536 samples per ray";
@@ -245,26 +376,43 @@ bool BuildLAOPlan(
 
   shared::LAOParams& p = plan.params;
   p = shared::LAOParams{};
-  p.dims = { g.dims[0], g.dims[1], g.dims[2], 0 };
+  const int variants = RayVariationCount(s.variation);
+  plan.variants = variants;
+  p.dims = { g.dims[0], g.dims[1], g.dims[2],
+    (g.origin[0] & 1) | ((g.origin[1] & 1) << 1) | ((g.origin[2] & 1) << 2) };
   p.strides = { 1, g.dims[0], static_cast<std::int32_t>(std::int64_t(g.dims[0]) * g.dims[1]), 0 };
-  p.rays = { rays, samples, samples - 1, 0 };
+  p.rays = { rays, samples, samples - 1, variants };
   p.norm = { static_cast<float>(static_cast<double>(rays) * samples), 0.f, 0.f, 0.f };
 
   // Tap offsets in index space: world offset m*s*d mapped through the
   // inverse direction matrix (its transpose) and divided by the spacing.
   const double* D = g.direction;
   plan.taps.clear();
-  plan.taps.reserve(static_cast<std::size_t>(rays) * (samples - 1));
+  plan.taps.reserve(static_cast<std::size_t>(variants) * rays * (samples - 1));
   int lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 };
+  const bool rotate =
+    s.variation == RayVariation::Rotate || s.variation == RayVariation::RotateJitter;
+  const bool jitter =
+    s.variation == RayVariation::Jitter || s.variation == RayVariation::RotateJitter;
+  for (int v = 0; v < variants; ++v)
   for (const Direction& dir : plan.directions)
   {
-    const double w[3] = { dir.x, dir.y, dir.z };
+    double w[3] = { dir.x, dir.y, dir.z };
+    if (rotate)
+    {
+      double Rv[9];
+      VariationRotation(v, Rv);
+      const double r[3] = { Rv[0] * w[0] + Rv[1] * w[1] + Rv[2] * w[2],
+        Rv[3] * w[0] + Rv[4] * w[1] + Rv[5] * w[2], Rv[6] * w[0] + Rv[7] * w[1] + Rv[8] * w[2] };
+      std::copy(r, r + 3, w);
+    }
+    const double offset = jitter ? (v + 0.5) / variants : s.startOffset;
     const double idx[3] = { (D[0] * w[0] + D[3] * w[1] + D[6] * w[2]) / g.spacing[0],
       (D[1] * w[0] + D[4] * w[1] + D[7] * w[2]) / g.spacing[1],
       (D[2] * w[0] + D[5] * w[1] + D[8] * w[2]) / g.spacing[2] };
     for (int m = 1; m < samples; ++m)
     {
-      const double dist = m * plan.step;
+      const double dist = (m - offset) * plan.step;
       shared::LAOTap tap{};
       int cell[3];
       float frac[3];
@@ -361,6 +509,40 @@ void LAOList(const LAOPlan& plan, const float* opacity, float* ao, const std::in
     MarchRun(plan, opacity, ao, j, k, i, i + static_cast<int>(last - n) + 1, scratch);
     n = last + 1;
   }
+}
+
+double LAOVoxelDouble(const LAOPlan& plan, const float* a, int i, int j, int k)
+{
+  const shared::LAOParams& p = plan.params;
+  const int rays = p.rays.x, samples = p.rays.y, tapsPerRay = p.rays.z;
+  const shared::LAOTap* taps = VariantTaps(plan, VariantOf(p, i, j, k));
+  auto at = [&](int x, int y, int z) -> double {
+    const bool inside =
+      x >= 0 && y >= 0 && z >= 0 && x < p.dims.x && y < p.dims.y && z < p.dims.z;
+    return inside ? a[x + std::int64_t(p.strides.y) * y + std::int64_t(p.strides.z) * z] : 0.0;
+  };
+  auto lerp = [](double u, double v, double t) { return u + t * (v - u); };
+  double total = 0.0;
+  for (int r = 0; r < rays; ++r)
+  {
+    double transmittance = 1.0, sum = 0.0;
+    for (int m = 0; m < samples; ++m)
+    {
+      sum += transmittance;
+      if (m == tapsPerRay)
+        break;
+      const shared::LAOTap& t = taps[static_cast<std::ptrdiff_t>(r) * tapsPerRay + m];
+      const int x = i + t.cell.x, y = j + t.cell.y, z = k + t.cell.z;
+      const double fx = t.frac.x, fy = t.frac.y, fz = t.frac.z;
+      const double c00 = lerp(at(x, y, z), at(x + 1, y, z), fx);
+      const double c10 = lerp(at(x, y + 1, z), at(x + 1, y + 1, z), fx);
+      const double c01 = lerp(at(x, y, z + 1), at(x + 1, y, z + 1), fx);
+      const double c11 = lerp(at(x, y + 1, z + 1), at(x + 1, y + 1, z + 1), fx);
+      transmittance *= 1.0 - lerp(lerp(c00, c10, fy), lerp(c01, c11, fy), fz);
+    }
+    total += sum;
+  }
+  return total / (static_cast<double>(rays) * samples);
 }
 
 float CorrectOpacity(double alpha, double stepOverUnit)

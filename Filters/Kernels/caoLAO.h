@@ -36,6 +36,10 @@ namespace cao
 struct VolumeGeometry
 {
   int dims[3] = { 0, 0, 0 };
+  /// Global index of voxel (0, 0, 0): the extent's minimum. Interleaved ray
+  /// variations pick a voxel's variant from the parity of its global index,
+  /// so a piece of a volume gets the values the whole volume gets.
+  int origin[3] = { 0, 0, 0 };
   double spacing[3] = { 1, 1, 1 };
   double direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
   std::int64_t NumberOfVoxels() const
@@ -44,22 +48,59 @@ struct VolumeGeometry
   }
 };
 
+/**
+ * How the ray pattern varies from voxel to voxel: interleaved sampling
+ * (Keller & Heidrich 2001, used for volumetric AO by Szirmay-Kalos et al.
+ * 2010). The voxels of each 2x2x2 block, told apart by the parity of their
+ * global index, use 8 different variants of the pattern, so that neighbours
+ * (blended by the renderer's trilinear interpolation) see 8x the directions
+ * or start offsets at the cost of one. Every variant is fixed, so the march
+ * stays deterministic and the contextual update stays exact.
+ *  - Rotate: variant v is the pattern under a fixed rotation R_v;
+ *  - Jitter: variant v starts its samples at offset (v + 0.5) / 8 of a step;
+ *  - RotateJitter: both.
+ */
+enum class RayVariation : int
+{
+  None = 0,
+  Rotate = 1,
+  Jitter = 2,
+  RotateJitter = 3
+};
+
+/// Number of pattern variants a variation uses (1 or 8).
+int RayVariationCount(RayVariation variation);
+
+/// "none", "rotate", "jitter" or "rotate+jitter"; Parse accepts the same.
+const char* RayVariationName(RayVariation variation);
+bool ParseRayVariation(const std::string& text, RayVariation& variation);
+
 /// User-facing LAO settings; reach in world units. samples <= 0 selects the
-/// default: one sample per (smallest) voxel spacing, max(1, round(R / h_min)).
+/// default: `sampleDensity` samples per (smallest) voxel spacing,
+/// max(1, round(density * R / h_min)).
+///
+/// Sample m (1 .. M-1) of a ray lies at distance (m - startOffset) * R / M:
+/// the paper's march has startOffset 0; 0.5 puts each sample in the middle
+/// of the step whose transmittance it decides. Jitter variations replace
+/// startOffset with their own per-variant offsets.
 struct LAOSettings
 {
   RayPattern pattern = RayPattern::Rays26;
   int fibonacciRays = 64;
   double reach = 0.0;
   int samples = 0;
+  double sampleDensity = 1.0;
+  double startOffset = 0.0;
+  RayVariation variation = RayVariation::None;
 };
 
 /// Everything the march needs; uploadable as-is to a GPU (params + taps).
 struct LAOPlan
 {
   shared::LAOParams params{};
-  std::vector<shared::LAOTap> taps; ///< K * (M-1) taps, ray-major
-  std::vector<Direction> directions;
+  std::vector<shared::LAOTap> taps; ///< V * K * (M-1) taps: variant-major, then ray-major
+  std::vector<Direction> directions; ///< variant 0's K directions
+  int variants = 1;                  ///< V: 1, or 8 for an interleaved variation
   double reach = 0.0;
   double step = 0.0; ///< world distance between samples, R / M
   int rays = 0;
@@ -69,8 +110,11 @@ struct LAOPlan
 /// Largest volume the kernels index with 32-bit strides (GPU-compatible).
 constexpr std::int64_t MaxVoxels = (std::int64_t(1) << 31) - 1;
 
-/// Default number of samples for a reach: one per smallest voxel spacing.
-int DefaultSampleCount(double reach, const double spacing[3]);
+/// Default number of samples for a reach: `density` per smallest voxel spacing.
+int DefaultSampleCount(double reach, const double spacing[3], double density = 1.0);
+
+/// The fixed rotation (row-major 3x3) of interleaved variant v in [0, 8).
+void VariationRotation(int v, double rotation[9]);
 
 /// Build a plan; returns false with a message for invalid settings.
 bool BuildLAOPlan(
@@ -82,6 +126,11 @@ float LAOVoxel(const LAOPlan& plan, const float* opacity, int i, int j, int k);
 /// LAO of the voxels with linear index in [begin, end).
 void LAORange(
   const LAOPlan& plan, const float* opacity, float* ao, std::int64_t begin, std::int64_t end);
+
+/// LAO of one voxel like LAOVoxel, from the same plan and opacities, but
+/// with every operation in double: the reference for the float
+/// accumulation error (same sample positions, same order).
+double LAOVoxelDouble(const LAOPlan& plan, const float* opacity, int i, int j, int k);
 
 /// LAO of the listed voxels (linear indices list[begin..end)), written in place.
 void LAOList(const LAOPlan& plan, const float* opacity, float* ao, const std::int64_t* list,

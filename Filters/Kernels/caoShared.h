@@ -60,9 +60,10 @@ struct LAOTap
 
 struct LAOParams
 {
-  ivec4 dims;        /* xyz: voxels per axis; w: 0 */
+  ivec4 dims;        /* xyz: voxels per axis; w: parity of the global origin (bit d: axis d) */
   ivec4 strides;     /* xyz: linear strides (1, nx, nx*ny); w: 0 */
-  ivec4 rays;        /* x: rays K; y: samples per ray M; z: taps per ray (M-1); w: 0 */
+  ivec4 rays;        /* x: rays K; y: samples per ray M; z: taps per ray (M-1);
+                        w: variants V (1, or 8 interleaved over 2x2x2 voxels) */
   ivec4 interiorMin; /* xyz: first voxel index whose every tap is in bounds */
   ivec4 interiorMax; /* xyz: last voxel index whose every tap is in bounds */
   vec4 norm;         /* x: float(K*M), the divisor of the summed transmittances */

@@ -106,6 +106,15 @@ float March(ivec3 p, bool clippedOpacity)
   const int rays = lao.rays.x;
   const int samples = lao.rays.y;
   const int tapsPerRay = lao.rays.z;
+  // Interleaved variation: the variant is the parity of the global voxel
+  // index (the origin's parity bits are in dims.w), as VariantOf in caoLAO.cxx.
+  int variant = 0;
+  if (lao.rays.w != 1)
+  {
+    ivec3 parity = (p ^ ivec3(lao.dims.w, lao.dims.w >> 1, lao.dims.w >> 2)) & 1;
+    variant = parity.x | (parity.y << 1) | (parity.z << 2);
+  }
+  const int variantBase = variant * rays * tapsPerRay;
   precise float total = 0.0;
   for (int r = 0; r < rays; ++r)
   {
@@ -116,7 +125,7 @@ float March(ivec3 p, bool clippedOpacity)
       sum += transmittance;
       if (m == tapsPerRay)
         break;
-      LAOTap t = taps[r * tapsPerRay + m];
+      LAOTap t = taps[variantBase + r * tapsPerRay + m];
       ivec3 c = p + t.cell.xyz;
       bool k = clippedOpacity;
       float c00 = Lerp(OpacityAt(c, k), OpacityAt(c + ivec3(1, 0, 0), k), t.frac.x);

@@ -1,0 +1,67 @@
+/**
+ * caoReference — the reference local ambient occlusion, no VTK.
+ *
+ * The same LAO integral as caoLAO (A = mean over rays of
+ * (1/M) sum_{m=1..M} prod_{i<m} (1 - a_i), samples m*s, s = R/M, trilinear
+ * opacity, transparent outside), but computed to convergence instead of for
+ * speed: many stratified directions, short steps, every operation in double,
+ * and no early exit but an exact zero transmittance. The accuracy benchmark
+ * (`cao bench accuracy`) measures every configuration against it.
+ *
+ * The opacity it reads is corrected for the reference's own step (the
+ * caller applies CorrectOpacity with step / unit distance), so the
+ * reference and a configuration describe the same medium.
+ */
+#ifndef caoReference_h
+#define caoReference_h
+
+#include "caoLAO.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace cao
+{
+/**
+ * `count` directions stratified over the unit sphere: the sphere is cut
+ * into a x b cells of equal area (a bands of equal height in z, by
+ * Archimedes equal area, times b sectors in azimuth; a is the largest
+ * divisor of count not above sqrt(count)) and one direction is drawn
+ * uniformly inside each cell from a splitmix64 stream seeded by `seed`.
+ * Two sets with different seeds together are again stratified (two
+ * directions per cell), which is how the benchmark doubles 4096 to 8192.
+ */
+std::vector<Direction> StratifiedSphere(int count, std::uint64_t seed);
+
+/// The reference march's precomputed taps (double fractions).
+struct ReferencePlan
+{
+  int dims[3] = { 0, 0, 0 };
+  std::int64_t strides[3] = { 1, 0, 0 };
+  int rays = 0;
+  int samples = 0;     ///< M
+  double step = 0.0;   ///< world units, reach / M
+  double reach = 0.0;
+  std::vector<int> cells;          ///< xyz per tap (rays * (M-1) taps, ray-major)
+  std::vector<std::int64_t> linear; ///< linear offset of each tap's cell
+  std::vector<double> fracs;       ///< xyz per tap
+  int interiorMin[3] = { 0, 0, 0 }, interiorMax[3] = { -1, -1, -1 };
+};
+
+/**
+ * Plan a reference march with `directions` (world space) and the largest
+ * step not above `maxStepVoxels` times the smallest spacing:
+ * M = ceil(reach / (maxStepVoxels * h_min)). False with a message for
+ * invalid input.
+ */
+bool BuildReferencePlan(const VolumeGeometry& geometry, const std::vector<Direction>& directions,
+  double reach, double maxStepVoxels, ReferencePlan& plan, std::string& error);
+
+/// Reference LAO, in double, of the voxels voxels[begin..end) (linear
+/// indices) over `opacity` (double, x-fastest, corrected for plan.step).
+void ReferenceLAO(const ReferencePlan& plan, const double* opacity, const std::int64_t* voxels,
+  std::int64_t begin, std::int64_t end, double* out);
+}
+
+#endif
