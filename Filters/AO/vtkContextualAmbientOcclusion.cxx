@@ -56,6 +56,23 @@ bool FieldTuple(vtkFieldData* fd, const char* name, int components, double* out)
   a->GetTuple(0, out);
   return true;
 }
+
+/// Components of the "LAOParameters" array vtkLocalAmbientOcclusion writes:
+/// RayPattern, Rays, Samples, Reach, Step, UnitDistance, FibonacciRays,
+/// Milliseconds, then StartOffset, RayVariation and QualityPreset.
+constexpr int LAOParameterCount = 11;
+/// Arrays written before the start offset and the variation existed.
+constexpr int LegacyLAOParameterCount = 8;
+
+/// Tuple 0 of the "LAOParameters" field array: the current 11 components,
+/// or the 8 of older outputs with the defaults (start offset 0, no
+/// variation, custom) for the rest.
+bool LAOParametersTuple(vtkFieldData* fd, double out[LAOParameterCount])
+{
+  std::fill(out, out + LAOParameterCount, 0.0);
+  return FieldTuple(fd, vtkCAO::LAOParametersName, LAOParameterCount, out) ||
+    FieldTuple(fd, vtkCAO::LAOParametersName, LegacyLAOParameterCount, out);
+}
 }
 
 //------------------------------------------------------------------------------
@@ -210,9 +227,8 @@ int vtkContextualAmbientOcclusion::RequestData(
   vtkImageData* source = input;
   vtkFloatArray* precomputed = FloatArray(input->GetPointData(), vtkCAO::AmbientOcclusionName);
   vtkFloatArray* opacity = FloatArray(input->GetPointData(), vtkCAO::OpacityName);
-  double lao[8];
-  bool haveLAO = precomputed && opacity &&
-    FieldTuple(input->GetFieldData(), vtkCAO::LAOParametersName, 8, lao);
+  double lao[LAOParameterCount];
+  bool haveLAO = precomputed && opacity && LAOParametersTuple(input->GetFieldData(), lao);
   if (!haveLAO)
   {
     const vtkMTimeType inputTime = input->GetMTime();
@@ -245,8 +261,7 @@ int vtkContextualAmbientOcclusion::RequestData(
     source = this->PrecomputeCache;
     precomputed = FloatArray(source->GetPointData(), vtkCAO::AmbientOcclusionName);
     opacity = FloatArray(source->GetPointData(), vtkCAO::OpacityName);
-    haveLAO = precomputed && opacity &&
-      FieldTuple(source->GetFieldData(), vtkCAO::LAOParametersName, 8, lao);
+    haveLAO = precomputed && opacity && LAOParametersTuple(source->GetFieldData(), lao);
     if (!haveLAO)
     {
       vtkErrorMacro("The LAO precompute produced no usable output.");
@@ -268,6 +283,8 @@ int vtkContextualAmbientOcclusion::RequestData(
   settings.samples = static_cast<int>(lao[2]);
   settings.reach = lao[3];
   settings.fibonacciRays = static_cast<int>(lao[6]);
+  settings.startOffset = lao[8];
+  settings.variation = static_cast<cao::RayVariation>(static_cast<int>(lao[9]));
   cao::LAOPlan plan;
   std::string error;
   if (!cao::BuildLAOPlan(geometry, settings, plan, error))
@@ -338,6 +355,8 @@ int vtkContextualAmbientOcclusion::RequestData(
     const std::vector<double> volumeKey = { static_cast<double>(reinterpret_cast<std::uintptr_t>(opacity)),
       static_cast<double>(opacity->GetMTime()), static_cast<double>(dims[0]),
       static_cast<double>(dims[1]), static_cast<double>(dims[2]), lao[0], lao[2], lao[3], lao[6],
+      lao[8], lao[9], static_cast<double>(geometry.origin[0]),
+      static_cast<double>(geometry.origin[1]), static_cast<double>(geometry.origin[2]),
       spacing[0], spacing[1], spacing[2],
       scalars ? static_cast<double>(scalars->GetMTime()) : -1.0 };
     if (volumeKey != this->GPU->Key || !engine.HasPrecomputed())

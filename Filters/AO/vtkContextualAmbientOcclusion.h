@@ -4,7 +4,10 @@
  *
  * Input 0 is the volume. When it carries "AmbientOcclusion",
  * "AmbientOcclusionOpacity" and the "LAOParameters" field array (the output
- * of vtkLocalAmbientOcclusion), those are the precomputed unclipped LAO;
+ * of vtkLocalAmbientOcclusion), those are the precomputed unclipped LAO,
+ * and the LAO plan (pattern, samples, reach, start offset, ray variation)
+ * is rebuilt from that array, so a quality preset set upstream applies here
+ * too (an array of the older 8 components means no offset, no variation);
  * otherwise the filter computes them with its own LAO settings (forwarded
  * below) and caches them until the input or those settings change.
  *
@@ -119,6 +122,14 @@ public:
   int GetNumberOfRays() { return this->Precompute->GetNumberOfRays(); }
   void SetNumberOfSamples(int v) { this->Precompute->SetNumberOfSamples(v); }
   int GetNumberOfSamples() { return this->Precompute->GetNumberOfSamples(); }
+  void SetSampleDensity(double v) { this->Precompute->SetSampleDensity(v); }
+  double GetSampleDensity() { return this->Precompute->GetSampleDensity(); }
+  void SetStartOffset(double v) { this->Precompute->SetStartOffset(v); }
+  double GetStartOffset() { return this->Precompute->GetStartOffset(); }
+  void SetRayVariation(int v) { this->Precompute->SetRayVariation(v); }
+  int GetRayVariation() { return this->Precompute->GetRayVariation(); }
+  void SetQualityPreset(int v) { this->Precompute->SetQualityPreset(v); }
+  int GetQualityPreset() { return this->Precompute->GetQualityPreset(); }
   void SetReach(double v) { this->Precompute->SetReach(v); }
   double GetReach() { return this->Precompute->GetReach(); }
   void SetComponent(int v) { this->Precompute->SetComponent(v); }

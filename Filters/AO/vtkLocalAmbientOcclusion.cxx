@@ -21,6 +21,7 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include "caoLAO.h"
+#include "caoQualityPreset.h"
 
 #include <algorithm>
 #include <atomic>
@@ -189,6 +190,10 @@ int vtkLocalAmbientOcclusion::RequestData(
   settings.fibonacciRays = this->NumberOfRays;
   settings.reach = this->GetEffectiveReach(spacing);
   settings.samples = this->NumberOfSamples;
+  settings.sampleDensity = this->SampleDensity;
+  settings.startOffset = this->StartOffset;
+  settings.variation = static_cast<cao::RayVariation>(this->RayVariation);
+  cao::ApplyQualityPreset(static_cast<cao::QualityPreset>(this->QualityPreset), settings);
   cao::LAOPlan plan;
   std::string error;
   if (!cao::BuildLAOPlan(geometry, settings, plan, error))
@@ -293,16 +298,21 @@ int vtkLocalAmbientOcclusion::RequestData(
   }
   vtkNew<vtkDoubleArray> params;
   params->SetName(vtkCAO::LAOParametersName);
+  // The settings actually used (after the quality preset): enough for
+  // vtkContextualAmbientOcclusion to rebuild the identical plan.
   const char* names[] = { "RayPattern", "Rays", "Samples", "Reach", "Step", "UnitDistance",
-    "FibonacciRays", "Milliseconds" };
-  params->SetNumberOfComponents(8);
-  for (int c = 0; c < 8; ++c)
+    "FibonacciRays", "Milliseconds", "StartOffset", "RayVariation", "QualityPreset" };
+  constexpr int count = static_cast<int>(sizeof(names) / sizeof(names[0]));
+  params->SetNumberOfComponents(count);
+  for (int c = 0; c < count; ++c)
   {
     params->SetComponentName(c, names[c]);
   }
-  const double values[8] = { static_cast<double>(this->RayPattern),
+  const double values[count] = { static_cast<double>(settings.pattern),
     static_cast<double>(plan.rays), static_cast<double>(plan.samples), plan.reach, plan.step,
-    this->ScalarOpacityUnitDistance, static_cast<double>(this->NumberOfRays), ms };
+    this->ScalarOpacityUnitDistance, static_cast<double>(settings.fibonacciRays), ms,
+    settings.startOffset, static_cast<double>(settings.variation),
+    static_cast<double>(this->QualityPreset) };
   params->InsertNextTuple(values);
   output->GetFieldData()->AddArray(params);
   this->GPU->AddBackendLabel(output->GetFieldData(), gpu);
@@ -342,7 +352,13 @@ void vtkLocalAmbientOcclusion::PrintSelf(ostream& os, vtkIndent indent)
      << cao::RayPatternName(static_cast<cao::RayPattern>(this->RayPattern)) << "\n";
   os << indent << "NumberOfRays: " << this->NumberOfRays << "\n";
   os << indent << "NumberOfSamples: " << this->NumberOfSamples
-     << (this->NumberOfSamples == 0 ? " (one per voxel)" : "") << "\n";
+     << (this->NumberOfSamples == 0 ? " (SampleDensity per voxel)" : "") << "\n";
+  os << indent << "SampleDensity: " << this->SampleDensity << "\n";
+  os << indent << "StartOffset: " << this->StartOffset << "\n";
+  os << indent << "RayVariation: "
+     << cao::RayVariationName(static_cast<cao::RayVariation>(this->RayVariation)) << "\n";
+  os << indent << "QualityPreset: "
+     << cao::QualityPresetName(static_cast<cao::QualityPreset>(this->QualityPreset)) << "\n";
   os << indent << "Reach: " << this->Reach << (this->Reach == 0.0 ? " (8 voxels)" : "") << "\n";
   os << indent << "Component: " << this->Component << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";

@@ -15,8 +15,11 @@
  * Output: the input plus the float point arrays "AmbientOcclusion" in [0,1]
  * and, unless OutputOpacity is off, "AmbientOcclusionOpacity" (the corrected
  * opacity, which vtkContextualAmbientOcclusion reuses), and the field array
- * "LAOParameters" recording pattern, rays, samples, reach, step, unit
- * distance and milliseconds.
+ * "LAOParameters" recording the settings actually used (after a
+ * QualityPreset): pattern, rays, samples, reach, step, unit distance,
+ * Fibonacci ray count, milliseconds, start offset, ray variation and
+ * quality preset (11 named components; vtkContextualAmbientOcclusion
+ * rebuilds the identical plan from them).
  *
  * The work runs in the VTK-free kernel caoLAO through vtkSMPTools (STDThread
  * unless VTK_SMP_BACKEND_IN_USE says otherwise); the result does not depend
@@ -97,11 +100,86 @@ public:
 
   ///@{
   /**
-   * Samples per ray M. 0 (default) means one sample per smallest voxel
-   * spacing: max(1, round(Reach / h_min)).
+   * Samples per ray M. 0 (default) means SampleDensity samples per
+   * smallest voxel spacing: max(1, round(SampleDensity * Reach / h_min)).
    */
   vtkSetClampMacro(NumberOfSamples, int, 0, 65536);
   vtkGetMacro(NumberOfSamples, int);
+  ///@}
+
+  ///@{
+  /**
+   * Samples per smallest voxel spacing when NumberOfSamples is 0. Default 1
+   * (one sample per voxel); at least 0.001.
+   */
+  vtkSetClampMacro(SampleDensity, double, 0.001, 1000.0);
+  vtkGetMacro(SampleDensity, double);
+  ///@}
+
+  ///@{
+  /**
+   * Where the samples of a ray start, in steps: sample m lies at distance
+   * (m - StartOffset) * R / M. 0 (default) is the paper's march; 0.5 puts
+   * each sample in the middle of the step it decides. In [0, 0.999]. The
+   * JITTER variations replace it with their own per-variant offsets.
+   */
+  vtkSetClampMacro(StartOffset, double, 0.0, 0.999);
+  vtkGetMacro(StartOffset, double);
+  ///@}
+
+  /**
+   * How the ray pattern varies from voxel to voxel (interleaved sampling):
+   * the 8 voxels of each 2x2x2 block, told apart by the parity of their
+   * global index, use 8 fixed variants of the pattern, rotated (ROTATE),
+   * with staggered start offsets (JITTER), or both (ROTATE_JITTER).
+   */
+  enum RayVariations
+  {
+    NONE = 0,
+    ROTATE = 1,
+    JITTER = 2,
+    ROTATE_JITTER = 3
+  };
+
+  ///@{
+  /**
+   * Ray variation (RayVariations). Default NONE: every voxel uses the same
+   * rays. The variant follows the global voxel index, so a piece of a
+   * volume gets the values the whole volume gets.
+   */
+  vtkSetClampMacro(RayVariation, int, NONE, ROTATE_JITTER);
+  vtkGetMacro(RayVariation, int);
+  void SetRayVariationToNone() { this->SetRayVariation(NONE); }
+  void SetRayVariationToRotate() { this->SetRayVariation(ROTATE); }
+  void SetRayVariationToJitter() { this->SetRayVariation(JITTER); }
+  void SetRayVariationToRotateJitter() { this->SetRayVariation(ROTATE_JITTER); }
+  ///@}
+
+  /// Quality presets: fixed accuracy/time trade-offs (see QualityPreset).
+  enum QualityPresets
+  {
+    CUSTOM = 0,
+    INTERACTIVE = 1,
+    BALANCED = 2,
+    REFERENCE = 3
+  };
+
+  ///@{
+  /**
+   * Quality preset (QualityPresets). CUSTOM (default): RayPattern,
+   * NumberOfRays, NumberOfSamples, SampleDensity, StartOffset and
+   * RayVariation apply. Any other preset replaces the ray pattern, the
+   * Fibonacci ray count, the sample density, the start offset and the
+   * variation with the preset's (NumberOfSamples is then ignored: the
+   * sample count follows the density); Reach stays this filter's. The
+   * "LAOParameters" field array records the settings actually used.
+   */
+  vtkSetClampMacro(QualityPreset, int, CUSTOM, REFERENCE);
+  vtkGetMacro(QualityPreset, int);
+  void SetQualityPresetToCustom() { this->SetQualityPreset(CUSTOM); }
+  void SetQualityPresetToInteractive() { this->SetQualityPreset(INTERACTIVE); }
+  void SetQualityPresetToBalanced() { this->SetQualityPreset(BALANCED); }
+  void SetQualityPresetToReference() { this->SetQualityPreset(REFERENCE); }
   ///@}
 
   ///@{
@@ -194,6 +272,10 @@ protected:
   int RayPattern = RAYS_26;
   int NumberOfRays = 64;
   int NumberOfSamples = 0;
+  double SampleDensity = 1.0;
+  double StartOffset = 0.0;
+  int RayVariation = NONE;
+  int QualityPreset = CUSTOM;
   double Reach = 0.0;
   int Component = -1;
   int NumberOfThreads = 0;

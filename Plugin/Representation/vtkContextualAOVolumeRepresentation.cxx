@@ -53,6 +53,22 @@ void vtkContextualAOVolumeRepresentation::SetReach(double r)
 {
   this->GetAOMapper()->SetReach(r);
 }
+void vtkContextualAOVolumeRepresentation::SetSampleDensity(double d)
+{
+  this->GetAOMapper()->SetSampleDensity(d);
+}
+void vtkContextualAOVolumeRepresentation::SetStartOffset(double o)
+{
+  this->GetAOMapper()->SetStartOffset(o);
+}
+void vtkContextualAOVolumeRepresentation::SetRayVariation(int v)
+{
+  this->GetAOMapper()->SetRayVariation(v);
+}
+void vtkContextualAOVolumeRepresentation::SetQualityPreset(int p)
+{
+  this->GetAOMapper()->SetQualityPreset(p);
+}
 void vtkContextualAOVolumeRepresentation::SetMode(int m)
 {
   this->GetAOMapper()->SetMode(m);

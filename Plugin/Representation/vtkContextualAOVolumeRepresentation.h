@@ -37,6 +37,10 @@ public:
   void SetRayPattern(int pattern);
   void SetNumberOfRays(int rays);
   void SetReach(double reach);
+  void SetSampleDensity(double density);
+  void SetStartOffset(double offset);
+  void SetRayVariation(int variation);
+  void SetQualityPreset(int preset);
   void SetMode(int mode);
   void SetNumberOfClipLayers(int layers);
   ///@}

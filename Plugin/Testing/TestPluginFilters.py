@@ -54,6 +54,57 @@ check(len(lao.GetProperty("RayPattern").Available) == 5 and
       lao.GetProperty("RayPattern").Available[2].startswith("26"), "ray patterns are an enumeration")
 check(cao.GetProperty("Mode").Available == ["Subtraction", "Probing"], "the clip modes")
 
+# The LAO quality settings: defaults and domains as the VTK filter's.
+PRESETS = ["Custom", "Interactive", "Balanced", "Reference"]
+VARIATIONS = ["None", "Rotate", "Jitter", "Rotate + Jitter"]
+
+
+def range_domain(proxy, name):
+    return proxy.GetProperty(name).SMProperty.FindDomain("vtkSMDoubleRangeDomain")
+
+
+check(list(lao.GetProperty("QualityPreset").Available) == PRESETS and lao.QualityPreset == "Custom",
+      "QualityPreset: Custom, Interactive, Balanced, Reference; default Custom (%s)"
+      % lao.QualityPreset)
+check(list(lao.GetProperty("RayVariation").Available) == VARIATIONS and lao.RayVariation == "None",
+      "RayVariation: None, Rotate, Jitter, Rotate + Jitter; default None (%s)" % lao.RayVariation)
+density, offset = range_domain(lao, "SampleDensity"), range_domain(lao, "StartOffset")
+check(lao.SampleDensity == 1.0 and density is not None and density.GetMinimum(0) == 0.001,
+      "SampleDensity: default 1, at least 0.001 (%s)" % lao.SampleDensity)
+check(lao.StartOffset == 0.0 and offset is not None and offset.GetMinimum(0) == 0.0 and
+      offset.GetMaximum(0) == 0.999, "StartOffset: default 0, in [0, 0.999] (%s)" % lao.StartOffset)
+
+# The representation's LAO settings: documented, with the same enumerations,
+# and forwarded to the mapper.
+rep = servermanager.ProxyManager().SMProxyManager.NewProxy(
+    "representations", "ContextualAOVolumeRepresentation")
+check(rep is not None, "the ContextualAOVolumeRepresentation proxy exists")
+if rep is not None:
+    def entries(name):
+        d = rep.GetProperty(name).FindDomain("vtkSMEnumerationDomain")
+        return [d.GetEntryText(i) for i in range(d.GetNumberOfEntries())] if d else None
+    names = ("AOQualityPreset", "AOSampleDensity", "AOStartOffset", "AORayVariation")
+    check(all(rep.GetProperty(n) is not None and rep.GetProperty(n).GetDocumentation() for n in names),
+          "the representation has documented %s" % (names,))
+    check(entries("AOQualityPreset") == PRESETS and entries("AORayVariation") == VARIATIONS and
+          rep.GetProperty("AOQualityPreset").GetElement(0) == 0 and
+          rep.GetProperty("AORayVariation").GetElement(0) == 0 and
+          rep.GetProperty("AOSampleDensity").GetElement(0) == 1.0 and
+          rep.GetProperty("AOStartOffset").GetElement(0) == 0.0,
+          "the representation's quality enumerations and defaults")
+    rep.GetProperty("AOQualityPreset").SetElement(0, 2)
+    rep.GetProperty("AORayVariation").SetElement(0, 3)
+    rep.GetProperty("AOSampleDensity").SetElement(0, 1.5)
+    rep.GetProperty("AOStartOffset").SetElement(0, 0.25)
+    rep.UpdateVTKObjects()
+    # (The plugin's representation class is not wrapped: reach the mapper,
+    # which is, through its wrapped superclass's volume actor.)
+    import contextualao  # noqa: E402,F401  (wraps vtkContextualAOVolumeMapper)
+    mapper = rep.GetClientSideObject().GetActor().GetMapper()
+    check((mapper.GetQualityPreset(), mapper.GetRayVariation(), mapper.GetSampleDensity(),
+           mapper.GetStartOffset()) == (2, 3, 1.5, 0.25),
+          "the representation forwards the quality settings to the mapper")
+
 # The same results as the VTK filters.
 lao.RayPattern = "14 rays (faces + corners)"
 lao.Backend = "CPU"
@@ -107,6 +158,33 @@ for name in ("AmbientOcclusion", "ClipCategory", "ClippedOpacity"):
           % (name, a.GetNumberOfTuples() if a else 0))
 cats = pv_out.GetPointData().GetArray("ClipCategory").GetRange()
 check(cats == (0.0, 2.0), "the pose clips some voxels, affects some, leaves some (%s)" % (cats,))
+
+
+# A quality preset on the LAO proxy: the same settings in effect
+# (LAOParameters) and the same AO as the VTK filter with that preset.
+def lao_parameters(image):
+    a = image.GetFieldData().GetArray("LAOParameters")
+    return {a.GetComponentName(c): a.GetComponent(0, c) for c in range(a.GetNumberOfComponents())
+            if a.GetComponentName(c) != "Milliseconds"} if a else {}
+
+
+custom_params = lao_parameters(servermanager.Fetch(lao))
+check(len(custom_params) == 10 and custom_params["QualityPreset"] == 0,
+      "the LAO proxy's LAOParameters: 11 components, custom (%s)" % custom_params)
+lao.QualityPreset = "Interactive"
+lao.UpdatePipeline()
+pv_preset = servermanager.Fetch(lao)
+v_lao.SetQualityPresetToInteractive()
+v_lao.Update()
+pv_params, v_params = lao_parameters(pv_preset), lao_parameters(v_lao.GetOutput())
+check(pv_params == v_params and pv_params["QualityPreset"] == 1 and pv_params != custom_params,
+      "QualityPreset Interactive changes the proxy's LAOParameters as the VTK filter's: %s"
+      % pv_params)
+a = pv_preset.GetPointData().GetArray("AmbientOcclusion")
+b = v_lao.GetOutput().GetPointData().GetArray("AmbientOcclusion")
+check(a is not None and a.GetNumberOfTuples() == b.GetNumberOfTuples() and
+      all(a.GetValue(i) == b.GetValue(i) for i in range(a.GetNumberOfTuples())),
+      "the Interactive AO equals the VTK filter's value for value")
 
 print("%d failure(s)" % len(failures))
 sys.exit(1 if failures else 0)

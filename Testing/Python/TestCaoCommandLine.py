@@ -8,6 +8,8 @@ import subprocess
 import sys
 import tempfile
 
+import numpy as np
+from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import vtkPolyData
 from vtkmodules.vtkFiltersSources import vtkSphereSource
 from vtkmodules.vtkIOGeometry import vtkSTLWriter
@@ -141,6 +143,75 @@ expect_error(["carve", neghip, "--shape", "teapot"], 2, "unknown shape", "unknow
 expect_error(["carve", neghip, "--poses", os.path.join(tmp, "nope.txt")], 2, "cannot open", "missing pose file")
 rc, out, err = run("--help")
 check(rc == 0 and "cao carve" in out and "cao render" in out, "--help")
+check(all(o in out for o in ("--quality", "--density", "--offset", "--variation")),
+      "--help lists --quality, --density, --offset and --variation")
+
+# Quality presets: `--quality interactive` runs, reports (JSON) and records
+# (LAOParameters in the .vti) the settings in effect, and its AO equals the
+# AO of those settings given as explicit options.
+def lao_field(path):
+    reader.SetFileName(path)
+    reader.Update()
+    image = reader.GetOutput()
+    a = image.GetFieldData().GetArray("LAOParameters")
+    params = {a.GetComponentName(c): a.GetComponent(0, c) for c in range(a.GetNumberOfComponents())}
+    return params, vtk_to_numpy(image.GetPointData().GetArray("AmbientOcclusion")).copy()
+
+
+preset_vti = os.path.join(tmp, "interactive.vti")
+rc, out, err = run("lao", neghip, "--quality", "interactive", "--reach", "4", "--json", "-o", preset_vti)
+check(rc == 0, f"lao --quality interactive: rc={rc} {err.strip()[:200]}")
+if rc == 0:
+    q = json.loads(out)
+    params, preset_ao = lao_field(preset_vti)
+    check(q["quality"] == "interactive" and params["QualityPreset"] == 1 and
+          all(k in q for k in ("pattern", "samples", "start_offset", "variation")),
+          f"--quality interactive: the JSON and the field data name the preset: {q}")
+    pattern = q["pattern"]
+    check(params["RayPattern"] == {"6": 0, "14": 1, "26": 2, "54": 3}.get(pattern, 4) and
+          (not pattern.startswith("fib:") or params["FibonacciRays"] == int(pattern[4:])) and
+          params["Samples"] == q["samples"] and params["StartOffset"] == q["start_offset"],
+          f"--quality interactive: the field data holds the pattern in effect ({pattern}): {params}")
+    hand_vti = os.path.join(tmp, "by-hand.vti")
+    rc, out, err = run("lao", neghip, "--rays", pattern, "--samples", str(q["samples"]),
+                       "--offset", repr(q["start_offset"]), "--variation", q["variation"],
+                       "--reach", "4", "--json", "-o", hand_vti)
+    check(rc == 0, f"lao with the preset's settings by hand: rc={rc} {err.strip()[:200]}")
+    if rc == 0:
+        h = json.loads(out)
+        hand_params, hand_ao = lao_field(hand_vti)
+        check(h["quality"] == "custom" and hand_params["QualityPreset"] == 0 and
+              all(h[k] == q[k] for k in ("pattern", "rays", "samples", "start_offset", "variation")),
+              "the explicit options give the preset's settings")
+        check(np.array_equal(preset_ao, hand_ao),
+              "--quality interactive equals its settings given by hand, voxel for voxel")
+    rc, out, err = run("lao", neghip, "--reach", "4", "-o", os.path.join(tmp, "default.vti"))
+    check(rc == 0 and not np.array_equal(preset_ao, lao_field(os.path.join(tmp, "default.vti"))[1]),
+          "--quality interactive differs from the default settings")
+# carve with a preset: the contextual AO is still exact.
+rc, out, err = run("carve", neghip, "--quality", "balanced", "--reach", "4", "--path", "3",
+                   "--verify", "--json")
+check(rc == 0 and json.loads(out)["runs"][0]["quality"] == "balanced" and
+      all(p["max_abs_difference"] == 0 for p in json.loads(out)["runs"][0]["poses"]),
+      f"carve --quality balanced --verify: rc={rc} {err.strip()[:200]}")
+# Explicit offset, density and variation are accepted and recorded.
+rc, out, err = run("lao", neghip, "--reach", "4", "--rays", "6", "--density", "2", "--offset", "0.5",
+                   "--variation", "rotate+jitter", "--json")
+check(rc == 0 and json.loads(out)["samples"] == 8 and json.loads(out)["start_offset"] == 0.5 and
+      json.loads(out)["variation"] == "rotate+jitter",
+      f"lao --density 2 --offset 0.5 --variation rotate+jitter: rc={rc} {out.strip()[:300]}")
+expect_error(["lao", neghip, "--quality", "bogus"], 2, "bad quality preset", "unknown quality preset")
+expect_error(["carve", neghip, "--variation", "bogus"], 2, "bad ray variation", "unknown variation")
+expect_error(["lao", neghip, "--offset", "1.5"], 2, "--offset", "offset out of range")
+expect_error(["lao", neghip, "--density", "0"], 2, "--density", "zero density")
+expect_error(["lao", neghip, "--quality", "reference", "--rays", "6"], 2, "cannot be combined",
+             "a preset and an explicit ray pattern")
+expect_error(["render", neghip, "--quality", "bogus", "-o", os.path.join(tmp, "x_%d.png")], 2,
+             "bad quality preset", "render: unknown quality preset")
+expect_error(["render", neghip, "--variation", "spin", "-o", os.path.join(tmp, "x_%d.png")], 2,
+             "bad ray variation", "render: unknown variation")
+expect_error(["render", neghip, "--offset", "1.5", "-o", os.path.join(tmp, "x_%d.png")], 2,
+             "--offset", "render: offset out of range")
 
 # render: PNG frames of a moving clip sphere with the contextual-AO mapper
 # (EGL window, no X), each frame's work report as JSON.
@@ -175,6 +246,12 @@ else:
                        "--rays", "6", "--preset-file", preset, "--preset", "mine", "-o",
                        os.path.join(tmp, "p_%d.png"))
     check(rc == 0 and os.path.exists(os.path.join(tmp, "p_0.png")), "render with a ParaView preset: " + err)
+    # A quality preset (not a colour preset) for the mapper's LAO.
+    rc, out, err = run("render", neghip, "--image", "64x64", "--no-clip", "--window", "egl",
+                       "--quality", "interactive", "--reach", "4", "--json", "-o",
+                       os.path.join(tmp, "q_%d.png"))
+    check(rc == 0 and "precompute" in [s["name"] for s in json.loads(out)[0]["report"]["stages"]],
+          "render --quality interactive: " + err)
 expect_error(["render", neghip, "--preset", "nope", "-o", os.path.join(tmp, "x_%d.png")], 2,
              "no preset named", "unknown preset")
 expect_error(["render", neghip, "--preset-file", os.path.join(tmp, "none.json"), "-o",

@@ -421,6 +421,28 @@ void Report(const Options& o)
   st = frame("scalars modified");
   CHECK(Has(st, "precompute") && !Has(st, "depth_maps"), "%s", Join(st).c_str());
 
+  // A quality preset: the full LAO. A setting the preset fixes changes
+  // nothing; back to the individual settings, the full LAO again.
+  m->SetQualityPresetToInteractive();
+  st = frame("quality preset set");
+  CHECK(Has(st, "precompute") && Has(st, "classify") && !Has(st, "depth_maps"), "%s",
+    Join(st).c_str());
+  m->SetStartOffset(0.25);
+  m->SetRayVariationToJitter();
+  st = frame("settings the preset fixes");
+  CHECK(!Has(st, "precompute") && !Has(st, "depth_maps"), "%s", Join(st).c_str());
+  m->SetQualityPresetToCustom();
+  st = frame("quality preset custom");
+  CHECK(Has(st, "precompute") && !Has(st, "depth_maps"), "%s", Join(st).c_str());
+  m->SetSampleDensity(2.0);
+  st = frame("sample density edited");
+  CHECK(Has(st, "precompute") && !Has(st, "depth_maps"), "%s", Join(st).c_str());
+  m->SetSampleDensity(1.0);
+  m->SetStartOffset(0.0);
+  m->SetRayVariationToNone();
+  st = frame("LAO settings restored");
+  CHECK(Has(st, "precompute") && !Has(st, "depth_maps"), "%s", Join(st).c_str());
+
   // The clip mesh's geometry: new depth maps, no LAO precompute.
   ball->SetRadius(11.0);
   st = frame("clip mesh geometry changed");

@@ -1,0 +1,303 @@
+"""Quality presets, start offsets and ray variations, end to end through the
+VTK filters (CPU backend, small reach so it runs in seconds):
+
+ - for each preset, vtkLocalAmbientOcclusion with QualityPreset=P gives
+   bit for bit the AO of the same filter with the preset's settings set by
+   hand (read back from the LAOParameters field array, which records the
+   settings in effect), and differs from the CUSTOM defaults;
+ - changing QualityPreset re-executes the filter, setting it again does not;
+ - vtkContextualAmbientOcclusion downstream of an LAO with RayVariation
+   ROTATE_JITTER and StartOffset 0.5 rebuilds the same plan from
+   LAOParameters: its Verify (a full recompute) finds no difference at any
+   pose; with the variation stripped from the array (an old 8-component
+   array) the same check does find differences, so it is not vacuous; the
+   CAO filter's own LAO (no upstream) honours a forwarded preset;
+ - a piece of an LAO with RayVariation ROTATE whose input starts at odd
+   indices equals the whole volume's values at those voxels (the variant
+   follows the global voxel index)."""
+import os
+import sys
+
+import numpy as np
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkCommonCore import vtkDoubleArray
+from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPiecewiseFunction
+from vtkmodules.vtkCommonTransforms import vtkTransform
+from vtkmodules.vtkFiltersSources import vtkSphereSource
+from vtkmodules.vtkIOImage import vtkMetaImageReader, vtkSLCReader
+from vtkmodules.vtkIOXML import vtkXMLImageDataReader
+
+from contextualao import (vtkClipDepthMaps, vtkContextualAmbientOcclusion,
+                          vtkLocalAmbientOcclusion as LAO)
+
+data = os.environ.get("CAO_DATA_DIR", "Data")
+failures = []
+
+
+def check(ok, what):
+    print(("ok: " if ok else "FAIL: ") + what)
+    if not ok:
+        failures.append(what)
+
+
+def ao_of(image):
+    return vtk_to_numpy(image.GetPointData().GetArray("AmbientOcclusion")).copy()
+
+
+def parameters(image):
+    """LAOParameters as a dict of component name -> value."""
+    a = image.GetFieldData().GetArray("LAOParameters")
+    return {a.GetComponentName(c): a.GetComponent(0, c) for c in range(a.GetNumberOfComponents())}
+
+
+# HeadMR: 48 x 62 x 42 voxels of spacing 4; a reach of 4 voxels.
+head = vtkMetaImageReader()
+head.SetFileName(os.path.join(data, "HeadMRVolume.mhd"))
+head.Update()
+volume = head.GetOutput()
+tf = vtkPiecewiseFunction()
+tf.AddPoint(0, 0.0)
+tf.AddPoint(40, 0.0)
+tf.AddPoint(90, 0.4)
+tf.AddPoint(255, 0.9)
+REACH = 16.0
+
+
+def lao_filter(**settings):
+    f = LAO()
+    f.SetInputData(volume)
+    f.SetOpacityFunction(tf)
+    f.SetReach(REACH)
+    f.SetBackendToCPU()
+    for name, value in settings.items():
+        getattr(f, "Set" + name)(value)
+    return f
+
+
+# Defaults and clamps of the new properties.
+f = LAO()
+check((f.GetSampleDensity(), f.GetStartOffset(), f.GetRayVariation(), f.GetQualityPreset())
+      == (1.0, 0.0, LAO.NONE, LAO.CUSTOM), "defaults: density 1, offset 0, no variation, custom")
+f.SetStartOffset(1.5)
+f.SetSampleDensity(-1.0)
+f.SetRayVariation(7)
+f.SetQualityPreset(9)
+check((f.GetStartOffset(), f.GetSampleDensity(), f.GetRayVariation(), f.GetQualityPreset())
+      == (0.999, 0.001, LAO.ROTATE_JITTER, LAO.REFERENCE), "out-of-range values are clamped")
+f.SetRayVariationToRotate()
+f.SetQualityPresetToBalanced()
+check((f.GetRayVariation(), f.GetQualityPreset()) == (LAO.ROTATE, LAO.BALANCED),
+      "SetRayVariationTo... and SetQualityPresetTo...")
+
+custom = lao_filter()
+custom.Update()
+custom_ao = ao_of(custom.GetOutput())
+p = parameters(custom.GetOutput())
+check(custom.GetOutput().GetFieldData().GetArray("LAOParameters").GetNumberOfComponents() == 11
+      and list(p)[8:] == ["StartOffset", "RayVariation", "QualityPreset"]
+      and (p["RayPattern"], p["StartOffset"], p["RayVariation"], p["QualityPreset"])
+      == (LAO.RAYS_26, 0.0, LAO.NONE, LAO.CUSTOM),
+      "LAOParameters has 11 components, the custom settings in effect: %s" % p)
+
+# Each preset equals its own settings set by hand, and is not the default.
+for preset, name in ((LAO.INTERACTIVE, "interactive"), (LAO.BALANCED, "balanced"),
+                     (LAO.REFERENCE, "reference")):
+    # NumberOfSamples and the other individual settings are ignored under a preset.
+    f = lao_filter(QualityPreset=preset, NumberOfSamples=3, StartOffset=0.25,
+                   RayVariation=LAO.JITTER, SampleDensity=3.0)
+    f.Update()
+    got = ao_of(f.GetOutput())
+    p = parameters(f.GetOutput())
+    check(p["QualityPreset"] == preset and p["Reach"] == REACH,
+          "%s: LAOParameters records the preset and the user's reach" % name)
+    by_hand = lao_filter(RayPattern=int(p["RayPattern"]), NumberOfRays=int(p["FibonacciRays"]),
+                         NumberOfSamples=int(p["Samples"]), StartOffset=p["StartOffset"],
+                         RayVariation=int(p["RayVariation"]))
+    by_hand.Update()
+    q = parameters(by_hand.GetOutput())
+    same = {k: q[k] for k in ("RayPattern", "Rays", "Samples", "Step", "FibonacciRays",
+                              "StartOffset", "RayVariation")} == \
+        {k: p[k] for k in ("RayPattern", "Rays", "Samples", "Step", "FibonacciRays",
+                           "StartOffset", "RayVariation")}
+    check(same and np.array_equal(got, ao_of(by_hand.GetOutput())),
+          "%s: bit-identical to its settings by hand (pattern %d, %d rays, %d samples, offset %g, "
+          "variation %d)" % (name, p["RayPattern"], p["Rays"], p["Samples"], p["StartOffset"],
+                             p["RayVariation"]))
+    check(not np.array_equal(got, custom_ao), "%s: differs from the custom defaults" % name)
+
+# Re-execution: a new preset re-executes the filter, the same one does not.
+runs = [0]
+f = lao_filter()
+f.AddObserver("StartEvent", lambda *_: runs.__setitem__(0, runs[0] + 1))
+f.Update()
+f.SetQualityPreset(LAO.INTERACTIVE)
+f.Update()
+interactive = ao_of(f.GetOutput())
+f.SetQualityPreset(LAO.INTERACTIVE)
+f.Update()
+check(runs[0] == 2, "a preset change re-executes the LAO, the same preset again does not (%d runs)"
+      % runs[0])
+f.SetQualityPresetToCustom()
+f.Update()
+check(runs[0] == 3 and np.array_equal(ao_of(f.GetOutput()), custom_ao)
+      and not np.array_equal(interactive, custom_ao), "back to custom: the custom AO again")
+
+# The contextual update stays exact with a variation and a start offset.
+neghip = vtkSLCReader()
+neghip.SetFileName(os.path.join(data, "neghip.slc"))
+ntf = vtkPiecewiseFunction()
+ntf.AddPoint(0, 0.0)
+ntf.AddPoint(40, 0.0)
+ntf.AddPoint(255, 0.8)
+lao = LAO()
+lao.SetInputConnection(neghip.GetOutputPort())
+lao.SetOpacityFunction(ntf)
+lao.SetReach(4.0)
+lao.SetRayPattern(LAO.RAYS_14)
+lao.SetRayVariation(LAO.ROTATE_JITTER)
+lao.SetStartOffset(0.5)
+lao.SetBackendToCPU()
+sphere = vtkSphereSource()
+sphere.SetRadius(12)
+sphere.SetThetaResolution(32)
+sphere.SetPhiResolution(32)
+maps = vtkClipDepthMaps()
+maps.SetInputConnection(sphere.GetOutputPort())
+maps.SetReach(4.0)
+cao = vtkContextualAmbientOcclusion()
+cao.SetInputConnection(0, lao.GetOutputPort())
+cao.SetInputConnection(1, maps.GetOutputPort())
+cao.SetBackendToCPU()
+cao.VerifyOn()
+pose = vtkTransform()
+pose.Translate(20, 30, 33)
+cao.SetPoseTransform(pose)
+worst, affected = 0.0, 0
+for step in range(3):
+    pose.Translate(4, 1, 0)
+    cao.Update()
+    v = cao.GetOutput().GetFieldData().GetArray("Verification")
+    worst = max(worst, v.GetComponent(0, 0), v.GetComponent(0, 1))
+    affected += cao.GetOutput().GetFieldData().GetArray("CategoryCounts").GetComponent(0, 1)
+check(worst == 0.0 and affected > 0, "CAO after an LAO with ROTATE_JITTER and offset 0.5 equals "
+      "the full recompute at 3 poses (%d affected voxels)" % affected)
+
+# The same LAO output with the variation and offset stripped from
+# LAOParameters (an old 8-component array): the CAO filter then rebuilds a
+# plan without them, and its verification sees the difference.
+legacy = vtkImageData()
+legacy.ShallowCopy(lao.GetOutput())
+old = vtkDoubleArray()
+old.SetName("LAOParameters")
+old.SetNumberOfComponents(8)
+full = lao.GetOutput().GetFieldData().GetArray("LAOParameters")
+old.InsertNextTuple([full.GetComponent(0, c) for c in range(8)])
+legacy.GetFieldData().RemoveArray("LAOParameters")
+legacy.GetFieldData().AddArray(old)
+cao_legacy = vtkContextualAmbientOcclusion()
+cao_legacy.SetInputData(0, legacy)
+cao_legacy.SetInputConnection(1, maps.GetOutputPort())
+cao_legacy.SetBackendToCPU()
+cao_legacy.VerifyOn()
+cao_legacy.SetPoseTransform(pose)
+cao_legacy.Update()
+v = cao_legacy.GetOutput().GetFieldData().GetArray("Verification")
+check(v is not None and v.GetComponent(0, 1) > 0,
+      "an 8-component LAOParameters is read with the defaults (the stripped variation shows: "
+      "%s differing voxels)" % (v.GetComponent(0, 1) if v else None))
+# An 8-component array of an LAO without offset or variation is still exact.
+plain = LAO()
+plain.SetInputConnection(neghip.GetOutputPort())
+plain.SetOpacityFunction(ntf)
+plain.SetReach(4.0)
+plain.SetRayPattern(LAO.RAYS_14)
+plain.SetBackendToCPU()
+plain.Update()
+legacy.ShallowCopy(plain.GetOutput())
+full = plain.GetOutput().GetFieldData().GetArray("LAOParameters")
+old = vtkDoubleArray()
+old.SetName("LAOParameters")
+old.SetNumberOfComponents(8)
+old.InsertNextTuple([full.GetComponent(0, c) for c in range(8)])
+legacy.GetFieldData().RemoveArray("LAOParameters")
+legacy.GetFieldData().AddArray(old)
+cao_legacy.SetInputData(0, legacy)
+cao_legacy.Update()
+v = cao_legacy.GetOutput().GetFieldData().GetArray("Verification")
+check(v is not None and v.GetComponent(0, 0) == 0.0 and
+      cao_legacy.GetOutput().GetFieldData().GetArray("CategoryCounts").GetComponent(0, 1) > 0,
+      "an 8-component LAOParameters without variation: CAO exact")
+
+# The CAO filter's own LAO (no upstream LAO) takes the forwarded settings.
+direct = vtkContextualAmbientOcclusion()
+direct.SetInputConnection(0, neghip.GetOutputPort())
+direct.SetInputConnection(1, maps.GetOutputPort())
+direct.SetOpacityFunction(ntf)
+direct.SetReach(4.0)
+direct.SetQualityPreset(LAO.BALANCED)
+direct.SetBackendToCPU()
+direct.VerifyOn()
+direct.SetPoseTransform(pose)
+direct.Update()
+p = parameters(direct.GetOutput())
+ref = LAO()
+ref.SetInputConnection(neghip.GetOutputPort())
+ref.SetOpacityFunction(ntf)
+ref.SetReach(4.0)
+ref.SetQualityPreset(LAO.BALANCED)
+ref.SetBackendToCPU()
+ref.Update()
+v = direct.GetOutput().GetFieldData().GetArray("Verification")
+check(p == {**parameters(ref.GetOutput()), "Milliseconds": p["Milliseconds"]}
+      and v.GetComponent(0, 0) == 0.0,
+      "the CAO filter's internal LAO follows a forwarded QualityPreset, exactly")
+direct.SetStartOffset(0.5)  # overridden by the preset: the settings in effect are unchanged
+direct.SetQualityPreset(LAO.CUSTOM)
+direct.SetRayVariation(LAO.ROTATE)
+direct.Update()
+p = parameters(direct.GetOutput())
+check((direct.GetStartOffset(), direct.GetRayVariation(), direct.GetSampleDensity()) ==
+      (0.5, LAO.ROTATE, 1.0) and (p["StartOffset"], p["RayVariation"], p["QualityPreset"]) ==
+      (0.5, LAO.ROTATE, LAO.CUSTOM) and direct.GetPrecomputeCount() == 2,
+      "forwarded StartOffset and RayVariation reach the internal LAO")
+
+# A piece whose input starts at odd global indices equals the whole volume.
+def hydrogen_lao():
+    reader = vtkXMLImageDataReader()
+    reader.SetFileName(os.path.join(data, "hydrogen.vti"))
+    htf = vtkPiecewiseFunction()
+    htf.AddPoint(0.0, 0.0)
+    htf.AddPoint(0.05, 0.1)
+    htf.AddPoint(0.4, 0.9)
+    f = LAO()
+    f.SetInputConnection(reader.GetOutputPort())
+    f.SetOpacityFunction(htf)
+    f.SetReach(4.0)
+    f.SetRayPattern(LAO.RAYS_6)
+    f.SetRayVariationToRotate()
+    f.SetBackendToCPU()
+    return reader, f, htf
+
+
+_, whole_lao, _ = hydrogen_lao()
+whole_lao.Update()
+whole = ao_of(whole_lao.GetOutput()).reshape(64, 64, 64)  # k, j, i
+_, none_lao, _ = hydrogen_lao()
+none_lao.SetRayVariationToNone()
+none_lao.Update()
+check(not np.array_equal(whole, ao_of(none_lao.GetOutput()).reshape(64, 64, 64)),
+      "ROTATE changes the AO of hydrogen")
+for ext in ((11, 40, 7, 50, 21, 52), (0, 63, 0, 63, 13, 30)):
+    reader, piece_lao, _ = hydrogen_lao()
+    piece_lao.UpdateExtent(ext)
+    out = piece_lao.GetOutput()
+    e = out.GetExtent()
+    got = ao_of(out).reshape(e[5] - e[4] + 1, e[3] - e[2] + 1, e[1] - e[0] + 1)
+    read = reader.GetOutput().GetExtent()
+    check(any(read[2 * d] % 2 == 1 for d in range(3)),
+          "the piece's input starts at an odd index on some axis (%s)" % (read,))
+    check(e == ext and np.array_equal(got, whole[e[4]:e[5] + 1, e[2]:e[3] + 1, e[0]:e[1] + 1]),
+          "ROTATE piece %s equals the whole volume's AO" % (ext,))
+
+print("%d failure(s)" % len(failures))
+sys.exit(1 if failures else 0)
