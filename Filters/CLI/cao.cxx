@@ -4,11 +4,14 @@
  *   cao lao   VOLUME [options]            local ambient occlusion
  *   cao carve VOLUME [options]            contextual AO along a clip path
  *   cao render VOLUME [options]           PNG frames of the clipped volume (the mapper)
+ *   cao bench accuracy VOLUME [options]   accuracy against time (caoBench.h)
  *
  * Run `cao --help` for the options. Exit codes: 0 success, 1 runtime error,
  * 2 bad arguments or unreadable input, 3 `--verify` found a difference.
  */
+#include "caoBench.h"
 #include "caoInput.h"
+#include "caoLAOOptions.h"
 #include "caoRender.h"
 
 #include "vtkClipDepthMaps.h"
@@ -56,7 +59,18 @@ common options:
   --rays LIST          ray patterns: 6, 14, 26, 54 or fib:K; carve takes a
                        comma list and runs each (default 26)
   --reach R            ray length in world units (default 8 voxels)
-  --samples M          samples per ray (default: one per voxel)
+  --samples M          samples per ray (default: --density per voxel)
+  --density D          samples per smallest voxel spacing when --samples is
+                       not given (default 1; 0.001..1000)
+  --offset F           start offset of the samples along a ray, in steps,
+                       0..0.999 (default 0; 0.5: mid-step)
+  --variation NAME     per-voxel ray variation: none (default), rotate,
+                       jitter or rotate+jitter (interleaved 2x2x2)
+  --quality NAME       LAO quality preset: custom (default: the options
+                       above apply), interactive, balanced or reference; a
+                       preset sets the rays, samples, density, offset and
+                       variation (so it is not combined with those options);
+                       --reach still applies
   --opacity S,A,...    opacity transfer function points (scalar, opacity);
                        default: 0 up to 25% of the scalar range, then a ramp
                        to 0.8 at its maximum
@@ -96,6 +110,7 @@ struct Options
   std::vector<double> opacity;
   std::vector<std::string> poseTexts;
   double reach = 0.0, unitDistance = 1.0, size = 0.0, pixelSize = 0.0;
+  caocli::LAOOptions lao;             // --quality, --density, --offset, --variation
   double direction[3] = { 0, 0, 1 };
   int samples = 0, component = -1, threads = 0, path = 24, layers = 2, aa = 16;
   bool json = false, verify = false;
@@ -145,7 +160,7 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
   o.command = argv[1];
   if (o.command != "lao" && o.command != "carve")
   {
-    error = "unknown command '" + o.command + "' (expected lao, carve or render)";
+    error = "unknown command '" + o.command + "' (expected lao, carve, render or bench)";
     return false;
   }
   for (int i = 2; i < argc; ++i)
@@ -182,8 +197,11 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
       return true;
     };
     bool ok = true;
-    if (a == "--rays")
+    if (caocli::TakeLAOOption(a, argc, argv, i, o.lao, error))
+      ok = error.empty();
+    else if (a == "--rays")
     {
+      caocli::NoteOverridden(o.lao, a);
       ok = value(v);
       if (ok)
       {
@@ -208,7 +226,10 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
     else if (a == "--reach")
       ok = number(o.reach, 1e-300);
     else if (a == "--samples")
+    {
+      caocli::NoteOverridden(o.lao, a);
       ok = integer(o.samples, 1);
+    }
     else if (a == "--unit-distance")
       ok = number(o.unitDistance, 1e-300);
     else if (a == "--size")
@@ -327,7 +348,7 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
     error = "lao takes a single ray pattern";
     return false;
   }
-  return true;
+  return caocli::CheckLAOOptions(o.lao, error);
 }
 
 void ConfigureLAO(const Options& o, const std::string& rays, vtkLocalAmbientOcclusion* lao,
@@ -340,6 +361,10 @@ void ConfigureLAO(const Options& o, const std::string& rays, vtkLocalAmbientOccl
   lao->SetNumberOfRays(k);
   lao->SetReach(o.reach);
   lao->SetNumberOfSamples(o.samples);
+  lao->SetSampleDensity(o.lao.density);
+  lao->SetStartOffset(o.lao.offset);
+  lao->SetRayVariation(static_cast<int>(o.lao.variation));
+  lao->SetQualityPreset(static_cast<int>(o.lao.quality));
   lao->SetScalarOpacityUnitDistance(o.unitDistance);
   lao->SetComponent(o.component);
   lao->SetNumberOfThreads(o.threads);
@@ -403,6 +428,41 @@ double FieldValue(vtkDataObject* d, const char* name, int component)
   return a ? a->GetComponent(0, component) : -1.0;
 }
 
+/// The settings an LAO output was computed with (its LAOParameters, after
+/// any quality preset), as a JSON fragment or as text: the ray pattern as
+/// --rays spells it, the start offset, the variation and the preset.
+struct LAOUsed
+{
+  std::string pattern, variation, quality;
+  double offset = 0.0;
+  explicit LAOUsed(vtkDataObject* out)
+  {
+    const auto p = static_cast<cao::RayPattern>(static_cast<int>(FieldValue(out, "LAOParameters", 0)));
+    pattern = p == cao::RayPattern::Fibonacci
+      ? "fib:" + std::to_string(static_cast<int>(FieldValue(out, "LAOParameters", 6)))
+      : cao::RayPatternName(p);
+    offset = FieldValue(out, "LAOParameters", 8);
+    variation = cao::RayVariationName(
+      static_cast<cao::RayVariation>(static_cast<int>(FieldValue(out, "LAOParameters", 9))));
+    quality = cao::QualityPresetName(
+      static_cast<cao::QualityPreset>(static_cast<int>(FieldValue(out, "LAOParameters", 10))));
+  }
+  std::string Json() const
+  {
+    char offsetText[32];
+    std::snprintf(offsetText, sizeof(offsetText), "%.9g", offset);
+    return "\"pattern\": \"" + pattern + "\", \"start_offset\": " + offsetText +
+      ", \"variation\": \"" + variation + "\", \"quality\": \"" + quality + "\"";
+  }
+  std::string Text() const
+  {
+    char offsetText[32];
+    std::snprintf(offsetText, sizeof(offsetText), "%g", offset);
+    return "pattern " + pattern + ", offset " + offsetText + ", variation " + variation +
+      ", quality " + quality;
+  }
+};
+
 bool Write(vtkImageData* image, const std::string& path, std::string& error)
 {
   vtkNew<vtkXMLImageDataWriter> w;
@@ -439,21 +499,22 @@ int RunLAO(const Options& o, vtkImageData* volume)
   const double ms = FieldValue(out, "LAOParameters", 7);
   int dims[3];
   out->GetDimensions(dims);
+  const LAOUsed used(out);
   if (o.json)
   {
     std::printf("{\"command\": \"lao\", \"volume\": \"%s\", \"dims\": [%d, %d, %d], "
-                "\"rays\": %d, \"samples\": %d, \"reach\": %.9g, \"milliseconds\": %.3f, "
+                "\"rays\": %d, \"samples\": %d, \"reach\": %.9g, %s, \"milliseconds\": %.3f, "
                 "\"ao_range\": [%.9g, %.9g], \"threads\": %d}\n",
       o.volume.c_str(), dims[0], dims[1], dims[2], static_cast<int>(FieldValue(out, "LAOParameters", 1)),
-      static_cast<int>(FieldValue(out, "LAOParameters", 2)), FieldValue(out, "LAOParameters", 3), ms,
-      range[0], range[1], vtkSMPTools::GetEstimatedNumberOfThreads());
+      static_cast<int>(FieldValue(out, "LAOParameters", 2)), FieldValue(out, "LAOParameters", 3),
+      used.Json().c_str(), ms, range[0], range[1], vtkSMPTools::GetEstimatedNumberOfThreads());
   }
   else
   {
-    std::printf("LAO of %s (%d x %d x %d): %d rays x %d samples, reach %g: %.1f ms, AO in [%.4f, %.4f]\n",
+    std::printf("LAO of %s (%d x %d x %d): %d rays x %d samples, reach %g (%s): %.1f ms, AO in [%.4f, %.4f]\n",
       o.volume.c_str(), dims[0], dims[1], dims[2], static_cast<int>(FieldValue(out, "LAOParameters", 1)),
-      static_cast<int>(FieldValue(out, "LAOParameters", 2)), FieldValue(out, "LAOParameters", 3), ms,
-      range[0], range[1]);
+      static_cast<int>(FieldValue(out, "LAOParameters", 2)), FieldValue(out, "LAOParameters", 3),
+      used.Text().c_str(), ms, range[0], range[1]);
   }
   std::string error;
   if (!o.output.empty() && !Write(out, o.output, error))
@@ -472,6 +533,7 @@ struct PoseResult
 struct RunResult
 {
   std::string rays;
+  std::string used; ///< the LAO settings used (LAOUsed::Json)
   int numRays = 0, samples = 0;
   double reach = 0.0, precomputeMs = 0.0, depthMs = 0.0;
   std::string backend;          ///< the CAO output's ComputeBackend
@@ -538,6 +600,7 @@ int RunCarve(const Options& o, vtkImageData* volume)
     run.samples = static_cast<int>(FieldValue(laoOut, "LAOParameters", 2));
     run.reach = FieldValue(laoOut, "LAOParameters", 3);
     run.precomputeMs = FieldValue(laoOut, "LAOParameters", 7);
+    run.used = LAOUsed(laoOut).Json();
 
     vtkNew<vtkClipDepthMaps> maps;
     log.Watch(maps);
@@ -610,11 +673,11 @@ int RunCarve(const Options& o, vtkImageData* volume)
     {
       const RunResult& run = runs[i];
       const bool gl = ContextOf(run.backend) != "none";
-      std::printf("%s\n {\"rays\": %d, \"pattern\": \"%s\", \"samples\": %d, \"reach\": %.9g, "
+      std::printf("%s\n {\"rays\": %d, %s, \"samples\": %d, \"reach\": %.9g, "
                   "\"backend\": \"%s\", \"context\": \"%s\", \"backend_detail\": \"%s\", "
                   "\"stage_timing\": \"%s\", \"gpu_bytes_per_voxel\": %.4f, "
                   "\"precompute_ms\": %.3f, \"depth_maps_ms\": %.3f, \"poses\": [",
-        i ? "," : "", run.numRays, run.rays.c_str(), run.samples, run.reach, gl ? "gl" : "cpu",
+        i ? "," : "", run.numRays, run.used.c_str(), run.samples, run.reach, gl ? "gl" : "cpu",
         ContextOf(run.backend).c_str(), JsonEscape(run.backend).c_str(),
         gl ? (ContextOf(run.backend) == "osmesa" ? "host clock around glFinish" : "GL timestamp queries")
            : "host clock",
@@ -714,10 +777,12 @@ int main(int argc, char* argv[])
 {
   if (argc >= 2 && std::string(argv[1]) == "render")
     return caocli::RunRender(argc, argv);
+  if (argc >= 2 && std::string(argv[1]) == "bench")
+    return caocli::RunBench(argc, argv);
   if (argc >= 2 && (std::string(argv[1]) == "-h" || std::string(argv[1]) == "--help" ||
                      std::string(argv[1]) == "help"))
   {
-    std::cout << Usage << "\n" << caocli::RenderUsage;
+    std::cout << Usage << "\n" << caocli::RenderUsage << "\n" << caocli::BenchUsage;
     return 0;
   }
   Options o;

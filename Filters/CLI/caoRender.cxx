@@ -1,6 +1,7 @@
 #include "caoRender.h"
 
 #include "caoInput.h"
+#include "caoLAOOptions.h"
 #include "caoPresets.h"
 
 #include "vtkActor.h"
@@ -50,6 +51,14 @@ render options:
   --absolute           use the preset's values as they are (default: rescale to the data)
   --rays P             LAO ray pattern: 6, 14, 26 (default), 54 or fib:K
   --reach R            LAO reach in world units (default 8 voxels)
+  --density D          LAO samples per smallest voxel spacing (default 1)
+  --offset F           LAO sample start offset in steps, 0..0.999 (default 0)
+  --variation NAME     LAO ray variation: none (default), rotate, jitter or
+                       rotate+jitter
+  --quality NAME       LAO quality preset: custom (default), interactive,
+                       balanced or reference (sets the rays, density, offset
+                       and variation; not combined with those options).
+                       Not to be confused with --preset, the colours
   --ao-strength S      0..1 (default 1); --no-ao renders without AO
   --no-shade           no gradient shading (ambient only)
   --sample-distance D  ray-cast sample distance, world units (default half a voxel)
@@ -71,6 +80,7 @@ struct RenderOptions
   double azimuth = 30, elevation = 20, zoom = 1.4, reach = 0, strength = 1, size = 0,
          sampleDistance = 0;
   bool absolute = false, ao = true, shade = true, json = false, clip = true, full = false;
+  LAOOptions lao; // --quality, --density, --offset, --variation
 };
 
 int Fail(int code, const std::string& message)
@@ -119,7 +129,9 @@ bool Parse(int argc, char* argv[], RenderOptions& o, std::string& error)
       return true;
     };
     bool ok = true;
-    if (a == "--image")
+    if (TakeLAOOption(a, argc, argv, i, o.lao, error))
+      ok = error.empty();
+    else if (a == "--image")
     {
       std::string v;
       ok = value(v);
@@ -143,7 +155,10 @@ bool Parse(int argc, char* argv[], RenderOptions& o, std::string& error)
     else if (a == "--absolute")
       o.absolute = true;
     else if (a == "--rays")
+    {
+      NoteOverridden(o.lao, a);
       ok = value(o.rays);
+    }
     else if (a == "--reach")
       ok = number(o.reach, 0, 1e300);
     else if (a == "--ao-strength")
@@ -215,7 +230,7 @@ bool Parse(int argc, char* argv[], RenderOptions& o, std::string& error)
     error = "-o needs a printf pattern for the frame number, e.g. frame_%03d.png";
     return false;
   }
-  return true;
+  return CheckLAOOptions(o.lao, error);
 }
 
 }
@@ -294,6 +309,10 @@ int RunRender(int argc, char* argv[])
   mapper->SetRayPattern(pattern);
   mapper->SetNumberOfRays(fib);
   mapper->SetReach(o.reach);
+  mapper->SetSampleDensity(o.lao.density);
+  mapper->SetStartOffset(o.lao.offset);
+  mapper->SetRayVariation(static_cast<int>(o.lao.variation));
+  mapper->SetQualityPreset(static_cast<int>(o.lao.quality));
   mapper->SetAOStrength(o.strength);
   mapper->SetAmbientOcclusion(o.ao);
   mapper->SetSampleDistance(o.sampleDistance);

@@ -86,12 +86,12 @@ bool BuildReferencePlan(const VolumeGeometry& g, const std::vector<Direction>& d
     const double idx[3] = { (D[0] * w[0] + D[3] * w[1] + D[6] * w[2]) / g.spacing[0],
       (D[1] * w[0] + D[4] * w[1] + D[7] * w[2]) / g.spacing[1],
       (D[2] * w[0] + D[5] * w[1] + D[8] * w[2]) / g.spacing[2] };
-    for (int m = 1; m < plan.samples; ++m)
+    for (int m = 1; m <= plan.samples; ++m)
     {
       std::int64_t linear = 0;
       for (int d = 0; d < 3; ++d)
       {
-        const double o = idx[d] * (m * plan.step);
+        const double o = idx[d] * ((m - 0.5) * plan.step);
         const double fl = std::floor(o);
         const int c = static_cast<int>(fl);
         plan.cells.push_back(c);
@@ -114,7 +114,7 @@ bool BuildReferencePlan(const VolumeGeometry& g, const std::vector<Direction>& d
 void ReferenceLAO(const ReferencePlan& plan, const double* a, const std::int64_t* voxels,
   std::int64_t begin, std::int64_t end, double* out)
 {
-  const int taps = plan.samples - 1;
+  const int taps = plan.samples;
   const std::int64_t sy = plan.strides[1], sz = plan.strides[2];
   const double norm = static_cast<double>(plan.rays) * plan.samples;
   for (std::int64_t n = begin; n < end; ++n)
@@ -135,12 +135,10 @@ void ReferenceLAO(const ReferencePlan& plan, const double* a, const std::int64_t
     double total = 0.0;
     for (int r = 0; r < plan.rays; ++r)
     {
-      double transmittance = 1.0, sum = 0.0;
-      for (int m = 0; m < plan.samples; ++m)
+      // Trapezoid over the step ends: 1/2 + T_1 + ... + T_{M-1} + T_M / 2.
+      double transmittance = 1.0, sum = 0.5;
+      for (int m = 0; m < taps && transmittance != 0.0; ++m)
       {
-        sum += transmittance;
-        if (m == taps || transmittance == 0.0)
-          break;
         const std::size_t t = static_cast<std::size_t>(r) * taps + m;
         const double* f = &plan.fracs[3 * t];
         double c[8];
@@ -160,6 +158,7 @@ void ReferenceLAO(const ReferencePlan& plan, const double* a, const std::int64_t
         const double alpha = Lerp(Lerp(Lerp(c[0], c[1], f[0]), Lerp(c[2], c[3], f[0]), f[1]),
           Lerp(Lerp(c[4], c[5], f[0]), Lerp(c[6], c[7], f[0]), f[1]), f[2]);
         transmittance *= 1.0 - alpha;
+        sum += m + 1 < taps ? transmittance : 0.5 * transmittance;
       }
       total += sum;
     }

@@ -1,12 +1,20 @@
 /**
  * caoReference — the reference local ambient occlusion, no VTK.
  *
- * The same LAO integral as caoLAO (A = mean over rays of
- * (1/M) sum_{m=1..M} prod_{i<m} (1 - a_i), samples m*s, s = R/M, trilinear
- * opacity, transparent outside), but computed to convergence instead of for
- * speed: many stratified directions, short steps, every operation in double,
- * and no early exit but an exact zero transmittance. The accuracy benchmark
- * (`cao bench accuracy`) measures every configuration against it.
+ * The integral that caoLAO's march discretises, computed to convergence
+ * instead of for speed: the mean over directions of (1/R) * int_0^R T(t) dt,
+ * with T the transmittance of the trilinearly interpolated opacity
+ * (transparent outside the volume). caoLAO's march,
+ * (1/M) sum_{m=1..M} prod_{i<m} (1 - a_i), is a first-order (Riemann)
+ * quadrature of it; the reference uses many stratified directions, steps of
+ * at most 1/4 voxel, every operation in double, and a second-order rule:
+ * the trapezoid rule over the step ends, T at a step's end being the
+ * product over the steps so far of (1 - a) sampled at each step's middle:
+ *   A_ray = (1/M) * (1/2 + sum_{m=1..M-1} T_m + T_M / 2),
+ *   T_m = prod_{i=1..m} (1 - a((i - 1/2) s)),  s = R / M.
+ * The benchmark reports its convergence in directions and in step. The
+ * accuracy benchmark (`cao bench accuracy`) measures every configuration
+ * against it, so the first-order bias of the march is part of what it shows.
  *
  * The opacity it reads is corrected for the reference's own step (the
  * caller applies CorrectOpacity with step / unit distance), so the
@@ -43,7 +51,7 @@ struct ReferencePlan
   int samples = 0;     ///< M
   double step = 0.0;   ///< world units, reach / M
   double reach = 0.0;
-  std::vector<int> cells;          ///< xyz per tap (rays * (M-1) taps, ray-major)
+  std::vector<int> cells;          ///< xyz per tap (rays * M taps, ray-major; tap i at (i - 1/2) s)
   std::vector<std::int64_t> linear; ///< linear offset of each tap's cell
   std::vector<double> fracs;       ///< xyz per tap
   int interiorMin[3] = { 0, 0, 0 }, interiorMax[3] = { -1, -1, -1 };

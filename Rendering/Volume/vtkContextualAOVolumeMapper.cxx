@@ -34,6 +34,7 @@
 #include "vtkCAOOpacity.h"
 
 #include "caoLAO.h"
+#include "caoQualityPreset.h"
 #include "caoRayCaster.h"
 
 #include <algorithm>
@@ -170,6 +171,7 @@ vtkContextualAOVolumeMapper::~vtkContextualAOVolumeMapper()
   this->ReleaseGraphicsResources(nullptr);
   this->SetClipShape(nullptr);
   this->SetClipMesh(nullptr);
+  this->SetAmbientOcclusionArrayName(nullptr);
 }
 
 //------------------------------------------------------------------------------
@@ -321,6 +323,27 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   // the opacity, the scalars or the LAO settings changed. With the AO off
   // no LAO is computed at all.
   const bool ao = this->AmbientOcclusion;
+  // The LAO settings in effect: a quality preset overrides the individual
+  // ones (the reach stays the mapper's).
+  cao::LAOSettings settings;
+  settings.pattern = static_cast<cao::RayPattern>(this->RayPattern);
+  settings.fibonacciRays = this->NumberOfRays;
+  settings.reach = this->Reach > 0.0 ? this->Reach : 8.0 * minSpacing;
+  settings.samples = this->NumberOfSamples;
+  settings.sampleDensity = this->SampleDensity;
+  settings.startOffset = this->StartOffset;
+  settings.variation = static_cast<cao::RayVariation>(this->RayVariation);
+  cao::ApplyQualityPreset(static_cast<cao::QualityPreset>(this->QualityPreset), settings);
+  // A given AO array replaces the precompute.
+  vtkDataArray* givenAO = nullptr;
+  if (ao && this->AmbientOcclusionArrayName && *this->AmbientOcclusionArrayName)
+  {
+    givenAO = input->GetPointData()->GetArray(this->AmbientOcclusionArrayName);
+    if (!givenAO || givenAO->GetNumberOfComponents() != 1 ||
+      givenAO->GetNumberOfTuples() != voxels)
+      return fail(std::string("The input has no one-component point array '") +
+        this->AmbientOcclusionArrayName + "' to use as the AO.");
+  }
   std::vector<double> volumeKey = { static_cast<double>(reinterpret_cast<std::uintptr_t>(input)),
     static_cast<double>(input->GetMTime()),
     static_cast<double>(reinterpret_cast<std::uintptr_t>(scalars)),
@@ -331,17 +354,17 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     volumeKey.insert(volumeKey.end(),
       { static_cast<double>(reinterpret_cast<std::uintptr_t>(opacityFunction)),
         static_cast<double>(opacityFunction->GetMTime()), unitDistance,
-        static_cast<double>(this->RayPattern), static_cast<double>(this->NumberOfRays),
-        this->Reach, static_cast<double>(this->NumberOfSamples) });
+        static_cast<double>(settings.pattern), static_cast<double>(settings.fibonacciRays),
+        settings.reach, static_cast<double>(settings.samples), settings.sampleDensity,
+        settings.startOffset, static_cast<double>(settings.variation) });
+    if (givenAO)
+      volumeKey.insert(volumeKey.end(),
+        { static_cast<double>(reinterpret_cast<std::uintptr_t>(givenAO)),
+          static_cast<double>(givenAO->GetMTime()) });
   }
   if (volumeKey != in.VolumeKey || (ao && !engine.HasPrecomputed()))
   {
     in.VolumeKey.clear();
-    cao::LAOSettings settings;
-    settings.pattern = static_cast<cao::RayPattern>(this->RayPattern);
-    settings.fibonacciRays = this->NumberOfRays;
-    settings.reach = this->Reach > 0.0 ? this->Reach : 8.0 * minSpacing;
-    settings.samples = this->NumberOfSamples;
     if (!cao::BuildLAOPlan(vtkCAO::GeometryOf(input), settings, in.Plan, error))
       return fail("Cannot plan the LAO: " + error + ".");
     const auto start = std::chrono::steady_clock::now();
@@ -374,7 +397,25 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     in.ScalarRange[0] = range[0];
     in.ScalarRange[1] = range[1] > range[0] ? range[1] : range[0] + 1.0;
     report.stages.push_back({ "volume_upload", vtkCAO::MillisecondsSince(start), "host" });
-    if (ao)
+    if (ao && givenAO)
+    {
+      const auto uploadStart = std::chrono::steady_clock::now();
+      std::vector<std::uint16_t> quantized(static_cast<std::size_t>(voxels));
+      for (std::int64_t v = 0; v < voxels; ++v)
+      {
+        const double x = givenAO->GetComponent(v, 0);
+        if (!(x >= 0.0 && x <= 1.0)) // also NaN
+          return fail(std::string("The AO array '") + this->AmbientOcclusionArrayName +
+            "' has a value outside [0, 1] at voxel " + std::to_string(v) + ".");
+        quantized[static_cast<std::size_t>(v)] =
+          static_cast<std::uint16_t>(static_cast<float>(x) * 65535.0f + 0.5f);
+      }
+      if (!engine.SetPlan(in.Plan, error) || !engine.SetPrecomputed(quantized.data(), error))
+        return fail("The AO upload failed: " + error + ".");
+      report.stages.push_back({ "ao_upload", vtkCAO::MillisecondsSince(uploadStart), "host" });
+      report.reasons.emplace_back("the input AO array changed");
+    }
+    else if (ao)
     {
       if (!engine.SetPlan(in.Plan, error) || !engine.Precompute(error))
         return fail("The LAO precompute failed: " + error + ".");
@@ -656,6 +697,14 @@ void vtkContextualAOVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfRays: " << this->NumberOfRays << "\n";
   os << indent << "Reach: " << this->Reach << "\n";
   os << indent << "NumberOfSamples: " << this->NumberOfSamples << "\n";
+  os << indent << "AmbientOcclusionArrayName: "
+     << (this->AmbientOcclusionArrayName ? this->AmbientOcclusionArrayName : "(none)") << "\n";
+  os << indent << "SampleDensity: " << this->SampleDensity << "\n";
+  os << indent << "StartOffset: " << this->StartOffset << "\n";
+  os << indent << "RayVariation: "
+     << cao::RayVariationName(static_cast<cao::RayVariation>(this->RayVariation)) << "\n";
+  os << indent << "QualityPreset: "
+     << cao::QualityPresetName(static_cast<cao::QualityPreset>(this->QualityPreset)) << "\n";
   os << indent << "ClipShape: " << this->ClipShape << "\n";
   os << indent << "ClipMesh: " << this->ClipMesh << "\n";
   os << indent << "Mode: " << (this->Mode == SUBTRACTION ? "Subtraction" : "Probing") << "\n";

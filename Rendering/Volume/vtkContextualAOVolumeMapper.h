@@ -27,7 +27,7 @@
  * Only the work a change calls for is done:
  *  - the clip pose: re-classify, recompute category b;
  *  - the scalar-opacity function, its unit distance, the scalars or the
- *    LAO settings: the full LAO precompute;
+ *    LAO settings (QualityPreset included): the full LAO precompute;
  *  - the clip mesh's geometry (or the map settings): new depth maps;
  *  - the camera, the colour function, the lighting: no AO work at all;
  *  - no clip shape: the precomputed AO only (no maps, no classification);
@@ -67,6 +67,19 @@ public:
   ///@}
 
   ///@{
+  /**
+   * A point array of the input to draw as the precomputed AO instead of
+   * computing it: one component, values in [0, 1] (e.g. the
+   * "AmbientOcclusion" array of vtkLocalAmbientOcclusion, or a reference
+   * AO). Empty (default): the mapper computes the LAO itself. The array is
+   * stored as 16-bit, like the mapper's own AO. With a clip shape, the
+   * affected voxels are recomputed with the mapper's ray settings.
+   */
+  vtkSetStringMacro(AmbientOcclusionArrayName);
+  vtkGetStringMacro(AmbientOcclusionArrayName);
+  ///@}
+
+  ///@{
   /// How much the AO darkens the ambient term: 1 - strength * (1 - AO). Default 1.
   vtkSetClampMacro(AOStrength, double, 0.0, 1.0);
   vtkGetMacro(AOStrength, double);
@@ -101,9 +114,70 @@ public:
   ///@}
 
   ///@{
-  /// Samples per LAO ray M; 0 (default) means one per smallest spacing.
+  /// Samples per LAO ray M; 0 (default) means SampleDensity per smallest spacing.
   vtkSetClampMacro(NumberOfSamples, int, 0, 4096);
   vtkGetMacro(NumberOfSamples, int);
+  ///@}
+
+  ///@{
+  /// LAO samples per smallest voxel spacing when NumberOfSamples is 0. Default 1.
+  vtkSetClampMacro(SampleDensity, double, 0.001, 1000.0);
+  vtkGetMacro(SampleDensity, double);
+  ///@}
+
+  ///@{
+  /**
+   * Where the LAO samples of a ray start, in steps (sample m at distance
+   * (m - StartOffset) * R / M). Default 0, in [0, 0.999].
+   */
+  vtkSetClampMacro(StartOffset, double, 0.0, 0.999);
+  vtkGetMacro(StartOffset, double);
+  ///@}
+
+  /// LAO ray variations, as vtkLocalAmbientOcclusion's.
+  enum RayVariations
+  {
+    NONE = 0,
+    ROTATE = 1,
+    JITTER = 2,
+    ROTATE_JITTER = 3
+  };
+
+  ///@{
+  /**
+   * How the LAO rays vary from voxel to voxel (interleaved over 2x2x2
+   * blocks, see vtkLocalAmbientOcclusion::SetRayVariation). Default NONE.
+   */
+  vtkSetClampMacro(RayVariation, int, NONE, ROTATE_JITTER);
+  vtkGetMacro(RayVariation, int);
+  void SetRayVariationToNone() { this->SetRayVariation(NONE); }
+  void SetRayVariationToRotate() { this->SetRayVariation(ROTATE); }
+  void SetRayVariationToJitter() { this->SetRayVariation(JITTER); }
+  void SetRayVariationToRotateJitter() { this->SetRayVariation(ROTATE_JITTER); }
+  ///@}
+
+  /// LAO quality presets, as vtkLocalAmbientOcclusion's.
+  enum QualityPresets
+  {
+    CUSTOM = 0,
+    INTERACTIVE = 1,
+    BALANCED = 2,
+    REFERENCE = 3
+  };
+
+  ///@{
+  /**
+   * LAO quality preset. CUSTOM (default): the individual LAO settings
+   * apply; any other preset replaces the ray pattern, the Fibonacci ray
+   * count, the sample density, the start offset and the ray variation with
+   * the preset's (NumberOfSamples is ignored); Reach stays the mapper's.
+   */
+  vtkSetClampMacro(QualityPreset, int, CUSTOM, REFERENCE);
+  vtkGetMacro(QualityPreset, int);
+  void SetQualityPresetToCustom() { this->SetQualityPreset(CUSTOM); }
+  void SetQualityPresetToInteractive() { this->SetQualityPreset(INTERACTIVE); }
+  void SetQualityPresetToBalanced() { this->SetQualityPreset(BALANCED); }
+  void SetQualityPresetToReference() { this->SetQualityPreset(REFERENCE); }
   ///@}
 
   ///@{
@@ -221,10 +295,15 @@ protected:
 
   bool AmbientOcclusion = true;
   double AOStrength = 1.0;
+  char* AmbientOcclusionArrayName = nullptr;
   int RayPattern = RAYS_26;
   int NumberOfRays = 64;
   double Reach = 0.0;
   int NumberOfSamples = 0;
+  double SampleDensity = 1.0;
+  double StartOffset = 0.0;
+  int RayVariation = NONE;
+  int QualityPreset = CUSTOM;
   vtkProp3D* ClipShape = nullptr;
   vtkPolyData* ClipMesh = nullptr;
   int Mode = SUBTRACTION;

@@ -1,7 +1,10 @@
 // The reference LAO (caoReference) and the float32 accumulation bound.
 //  - Stratified directions: one per equal-area cell, unit length, balanced.
-//  - A homogeneous medium has the closed form A = (1 - (1-a)^M) / (M a):
-//    the reference and the double march reach it to 1e-12.
+//  - A homogeneous medium has closed forms: the reference's trapezoid rule
+//    (1/M)(1/2 + sum_{m=1..M-1} q^m + q^M/2), q = 1 - a, and the march's
+//    (1 - q^M) / (M a); the reference and the double march reach them to
+//    1e-12, and the reference converges to the integral (1 - e^{-sR})/(sR)
+//    at second order in the step, the march at first order.
 //  - Float32 accumulation against double for long rays (M = 512) and many
 //    rays (K = 1024), the same taps and opacities: the error must stay
 //    below 1e-5 (issue 6). Measured here, naive summation stays at
@@ -60,8 +63,37 @@ int TestReferenceLAO(int, char*[])
     double out = 0.0;
     cao::ReferenceLAO(plan, opacity.data(), centre.data(), 0, 1, &out);
     const int M = plan.samples;
-    const double exact = (1.0 - std::pow(1.0 - a, M)) / (M * a);
+    const double q = 1.0 - a;
+    const double exact = (0.5 + q * (1.0 - std::pow(q, M - 1)) / a + 0.5 * std::pow(q, M)) / M;
     CAO_CHECK(std::abs(out - exact) < 1e-12, "reference %.15g, closed form %.15g", out, exact);
+    // Convergence to the integral: a per-step opacity of a medium of
+    // extinction k is 1 - e^{-k s}; the exact LAO is (1 - e^{-kR}) / (kR).
+    {
+      const double k = 0.4;
+      const double integral = (1.0 - std::exp(-k * reach)) / (k * reach);
+      double previousRef = 0.0, previousMarch = 0.0;
+      for (double stepVoxels : { 0.5, 0.25, 0.125 })
+      {
+        cao::ReferencePlan p2;
+        CAO_CHECK(cao::BuildReferencePlan(g, cao::StratifiedSphere(16, 3), reach, stepVoxels, p2, error),
+          "%s", error.c_str());
+        std::vector<double> medium(opacity.size(), 1.0 - std::exp(-k * p2.step));
+        double r = 0.0;
+        cao::ReferenceLAO(p2, medium.data(), centre.data(), 0, 1, &r);
+        const int n = p2.samples;
+        const double qq = std::exp(-k * p2.step);
+        const double march = (1.0 - std::pow(qq, n)) / (n * (1.0 - qq));
+        const double eRef = std::abs(r - integral), eMarch = std::abs(march - integral);
+        std::printf("step %.3f voxel: reference error %.3g, march error %.3g\n", stepVoxels, eRef, eMarch);
+        if (previousRef > 0.0)
+        {
+          CAO_CHECK(eRef < 0.3 * previousRef, "reference not second order: %g after %g", eRef, previousRef);
+          CAO_CHECK(eMarch > 0.4 * previousMarch, "march better than first order?");
+        }
+        previousRef = eRef;
+        previousMarch = eMarch;
+      }
+    }
     // Out of the volume is transparent: a corner voxel sees more light.
     std::vector<std::int64_t> corner = { 0 };
     cao::ReferenceLAO(plan, opacity.data(), corner.data(), 0, 1, &out);
