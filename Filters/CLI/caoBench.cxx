@@ -669,8 +669,9 @@ int RunBench(int argc, char* argv[])
       a[v] = medium[v] >= 1.0 ? 1.0 : 1.0 - std::pow(1.0 - medium[v], plan.step / 1.0);
     std::vector<double> values(list.size());
     const auto t0 = std::chrono::steady_clock::now();
+    const std::vector<double> padded = cao::PadReferenceMedium(plan, a.data());
     vtkSMPTools::For(0, static_cast<vtkIdType>(list.size()), 64, [&](vtkIdType b, vtkIdType e2) {
-      cao::ReferenceLAO(plan, a.data(), list.data(), b, e2, values.data());
+      cao::ReferenceLAO(plan, padded, list.data(), b, e2, values.data());
     });
     ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     out.assign(medium.size(), 1.0);

@@ -60,9 +60,10 @@ bool BuildReferencePlan(const VolumeGeometry& g, const std::vector<Direction>& d
   }
   const double h = std::min({ g.spacing[0], g.spacing[1], g.spacing[2] });
   if (!(reach > 0.0) || !std::isfinite(reach) || !(maxStepVoxels > 0.0) ||
-    reach / (maxStepVoxels * h) > 65536.0)
+    reach / (maxStepVoxels * h) > 65536.0 || reach / h > 4096.0)
   {
-    error = "the reach and the step must be positive, with at most 65536 samples";
+    error = "the reach and the step must be positive, with at most 65536 samples and a reach "
+            "of at most 4096 voxels";
     return false;
   }
   if (directions.empty())
@@ -72,14 +73,17 @@ bool BuildReferencePlan(const VolumeGeometry& g, const std::vector<Direction>& d
   }
   plan = ReferencePlan{};
   std::copy(g.dims, g.dims + 3, plan.dims);
-  plan.strides[1] = g.dims[0];
-  plan.strides[2] = std::int64_t(g.dims[0]) * g.dims[1];
   plan.rays = static_cast<int>(directions.size());
   plan.samples = std::max(1, static_cast<int>(std::ceil(reach / (maxStepVoxels * h) - 1e-9)));
   plan.reach = reach;
   plan.step = reach / plan.samples;
+  // Every tap lies within reach: its cell's corners within ceil(reach / h) + 1.
+  plan.pad = static_cast<int>(std::ceil(reach / h)) + 2;
+  const std::int64_t px = g.dims[0] + 2 * plan.pad, py = g.dims[1] + 2 * plan.pad;
+  plan.strides[1] = px;
+  plan.strides[2] = px * py;
   const double* D = g.direction;
-  int lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 };
+  plan.taps.reserve(static_cast<std::size_t>(plan.rays) * plan.samples);
   for (const Direction& dir : directions)
   {
     const double w[3] = { dir.x, dir.y, dir.z };
@@ -88,75 +92,59 @@ bool BuildReferencePlan(const VolumeGeometry& g, const std::vector<Direction>& d
       (D[2] * w[0] + D[5] * w[1] + D[8] * w[2]) / g.spacing[2] };
     for (int m = 1; m <= plan.samples; ++m)
     {
-      std::int64_t linear = 0;
+      ReferenceTap tap{};
       for (int d = 0; d < 3; ++d)
       {
         const double o = idx[d] * ((m - 0.5) * plan.step);
         const double fl = std::floor(o);
-        const int c = static_cast<int>(fl);
-        plan.cells.push_back(c);
-        plan.fracs.push_back(o - fl);
-        linear += c * plan.strides[d];
-        lo[d] = std::min(lo[d], c);
-        hi[d] = std::max(hi[d], c + 1);
+        tap.linear += static_cast<std::int64_t>(fl) * plan.strides[d];
+        tap.frac[d] = o - fl;
       }
-      plan.linear.push_back(linear);
+      plan.taps.push_back(tap);
     }
-  }
-  for (int d = 0; d < 3; ++d)
-  {
-    plan.interiorMin[d] = -lo[d];
-    plan.interiorMax[d] = g.dims[d] - 1 - hi[d];
   }
   return true;
 }
 
-void ReferenceLAO(const ReferencePlan& plan, const double* a, const std::int64_t* voxels,
-  std::int64_t begin, std::int64_t end, double* out)
+std::vector<double> PadReferenceMedium(const ReferencePlan& plan, const double* opacity)
+{
+  const std::int64_t px = plan.strides[1], pxy = plan.strides[2];
+  std::vector<double> padded(static_cast<std::size_t>(pxy * (plan.dims[2] + 2 * plan.pad)), 0.0);
+  for (int k = 0; k < plan.dims[2]; ++k)
+    for (int j = 0; j < plan.dims[1]; ++j)
+    {
+      const double* src = opacity + (std::int64_t(k) * plan.dims[1] + j) * plan.dims[0];
+      double* dst = padded.data() + (k + plan.pad) * pxy + (j + plan.pad) * px + plan.pad;
+      std::copy(src, src + plan.dims[0], dst);
+    }
+  return padded;
+}
+
+void ReferenceLAO(const ReferencePlan& plan, const std::vector<double>& padded,
+  const std::int64_t* voxels, std::int64_t begin, std::int64_t end, double* out)
 {
   const int taps = plan.samples;
   const std::int64_t sy = plan.strides[1], sz = plan.strides[2];
+  const std::int64_t nx = plan.dims[0], nxy = std::int64_t(plan.dims[0]) * plan.dims[1];
   const double norm = static_cast<double>(plan.rays) * plan.samples;
   for (std::int64_t n = begin; n < end; ++n)
   {
     const std::int64_t v = voxels[n];
-    const int k = static_cast<int>(v / sz);
-    const int j = static_cast<int>((v - k * sz) / sy);
-    const int i = static_cast<int>(v - k * sz - j * sy);
-    const bool interior = i >= plan.interiorMin[0] && j >= plan.interiorMin[1] &&
-      k >= plan.interiorMin[2] && i <= plan.interiorMax[0] && j <= plan.interiorMax[1] &&
-      k <= plan.interiorMax[2];
-    auto at = [&](int x, int y, int z) -> double {
-      return (x >= 0 && y >= 0 && z >= 0 && x < plan.dims[0] && y < plan.dims[1] &&
-               z < plan.dims[2])
-        ? a[x + y * sy + z * sz]
-        : 0.0;
-    };
+    const std::int64_t k = v / nxy, j = (v - k * nxy) / nx, i = v - k * nxy - j * nx;
+    const double* base = padded.data() + (k + plan.pad) * sz + (j + plan.pad) * sy + i + plan.pad;
     double total = 0.0;
     for (int r = 0; r < plan.rays; ++r)
     {
+      const ReferenceTap* rayTaps = plan.taps.data() + static_cast<std::size_t>(r) * taps;
       // Trapezoid over the step ends: 1/2 + T_1 + ... + T_{M-1} + T_M / 2.
       double transmittance = 1.0, sum = 0.5;
       for (int m = 0; m < taps && transmittance != 0.0; ++m)
       {
-        const std::size_t t = static_cast<std::size_t>(r) * taps + m;
-        const double* f = &plan.fracs[3 * t];
-        double c[8];
-        if (interior)
-        {
-          const double* o = a + v + plan.linear[t];
-          c[0] = o[0], c[1] = o[1], c[2] = o[sy], c[3] = o[sy + 1];
-          c[4] = o[sz], c[5] = o[sz + 1], c[6] = o[sz + sy], c[7] = o[sz + sy + 1];
-        }
-        else
-        {
-          const int x = i + plan.cells[3 * t], y = j + plan.cells[3 * t + 1],
-                    z = k + plan.cells[3 * t + 2];
-          for (int q = 0; q < 8; ++q)
-            c[q] = at(x + (q & 1), y + ((q >> 1) & 1), z + ((q >> 2) & 1));
-        }
-        const double alpha = Lerp(Lerp(Lerp(c[0], c[1], f[0]), Lerp(c[2], c[3], f[0]), f[1]),
-          Lerp(Lerp(c[4], c[5], f[0]), Lerp(c[6], c[7], f[0]), f[1]), f[2]);
+        const ReferenceTap& t = rayTaps[m];
+        const double* o = base + t.linear;
+        const double fx = t.frac[0], fy = t.frac[1], fz = t.frac[2];
+        const double alpha = Lerp(Lerp(Lerp(o[0], o[1], fx), Lerp(o[sy], o[sy + 1], fx), fy),
+          Lerp(Lerp(o[sz], o[sz + 1], fx), Lerp(o[sz + sy], o[sz + sy + 1], fx), fy), fz);
         transmittance *= 1.0 - alpha;
         sum += m + 1 < taps ? transmittance : 0.5 * transmittance;
       }

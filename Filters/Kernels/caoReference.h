@@ -42,20 +42,33 @@ namespace cao
  */
 std::vector<Direction> StratifiedSphere(int count, std::uint64_t seed);
 
-/// The reference march's precomputed taps (double fractions).
+/// One tap of the reference march: the lower corner of its trilinear cell
+/// as a linear offset in the padded medium, and the fractions in that cell.
+struct ReferenceTap
+{
+  std::int64_t linear;
+  double frac[3];
+};
+
+/**
+ * The reference march's precomputed taps. The march reads a padded copy of
+ * the medium (PadReferenceMedium: `pad` transparent voxels on every side,
+ * enough for the longest tap), so every voxel takes the same unchecked path.
+ */
 struct ReferencePlan
 {
-  int dims[3] = { 0, 0, 0 };
-  std::int64_t strides[3] = { 1, 0, 0 };
+  int dims[3] = { 0, 0, 0 };       ///< the volume's voxels per axis
+  int pad = 0;                     ///< transparent voxels added on every side
+  std::int64_t strides[3] = { 1, 0, 0 }; ///< of the padded medium
   int rays = 0;
   int samples = 0;     ///< M
   double step = 0.0;   ///< world units, reach / M
   double reach = 0.0;
-  std::vector<int> cells;          ///< xyz per tap (rays * M taps, ray-major; tap i at (i - 1/2) s)
-  std::vector<std::int64_t> linear; ///< linear offset of each tap's cell
-  std::vector<double> fracs;       ///< xyz per tap
-  int interiorMin[3] = { 0, 0, 0 }, interiorMax[3] = { -1, -1, -1 };
+  std::vector<ReferenceTap> taps; ///< rays * M taps, ray-major; tap i at (i - 1/2) s
 };
+
+/// The padded copy of `opacity` (x-fastest, plan.dims) the march reads.
+std::vector<double> PadReferenceMedium(const ReferencePlan& plan, const double* opacity);
 
 /**
  * Plan a reference march with `directions` (world space) and the largest
@@ -67,9 +80,10 @@ bool BuildReferencePlan(const VolumeGeometry& geometry, const std::vector<Direct
   double reach, double maxStepVoxels, ReferencePlan& plan, std::string& error);
 
 /// Reference LAO, in double, of the voxels voxels[begin..end) (linear
-/// indices) over `opacity` (double, x-fastest, corrected for plan.step).
-void ReferenceLAO(const ReferencePlan& plan, const double* opacity, const std::int64_t* voxels,
-  std::int64_t begin, std::int64_t end, double* out);
+/// indices of the unpadded volume) over `padded`, the PadReferenceMedium of
+/// the opacity (corrected for plan.step).
+void ReferenceLAO(const ReferencePlan& plan, const std::vector<double>& padded,
+  const std::int64_t* voxels, std::int64_t begin, std::int64_t end, double* out);
 }
 
 #endif

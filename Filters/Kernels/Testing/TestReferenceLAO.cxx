@@ -61,7 +61,8 @@ int TestReferenceLAO(int, char*[])
     std::vector<double> opacity(25 * 25 * 25, a);
     std::vector<std::int64_t> centre = { 12 + 25 * (12 + 25 * 12) };
     double out = 0.0;
-    cao::ReferenceLAO(plan, opacity.data(), centre.data(), 0, 1, &out);
+    const std::vector<double> padded = cao::PadReferenceMedium(plan, opacity.data());
+    cao::ReferenceLAO(plan, padded, centre.data(), 0, 1, &out);
     const int M = plan.samples;
     const double q = 1.0 - a;
     const double exact = (0.5 + q * (1.0 - std::pow(q, M - 1)) / a + 0.5 * std::pow(q, M)) / M;
@@ -79,7 +80,7 @@ int TestReferenceLAO(int, char*[])
           "%s", error.c_str());
         std::vector<double> medium(opacity.size(), 1.0 - std::exp(-k * p2.step));
         double r = 0.0;
-        cao::ReferenceLAO(p2, medium.data(), centre.data(), 0, 1, &r);
+        cao::ReferenceLAO(p2, cao::PadReferenceMedium(p2, medium.data()), centre.data(), 0, 1, &r);
         const int n = p2.samples;
         const double qq = std::exp(-k * p2.step);
         const double march = (1.0 - std::pow(qq, n)) / (n * (1.0 - qq));
@@ -96,7 +97,7 @@ int TestReferenceLAO(int, char*[])
     }
     // Out of the volume is transparent: a corner voxel sees more light.
     std::vector<std::int64_t> corner = { 0 };
-    cao::ReferenceLAO(plan, opacity.data(), corner.data(), 0, 1, &out);
+    cao::ReferenceLAO(plan, padded, corner.data(), 0, 1, &out);
     CAO_CHECK(out > exact + 0.05, "corner %.6g not brighter than the interior %.6g", out, exact);
 
     cao::LAOSettings s;
