@@ -119,8 +119,10 @@ public:
   ///@{
   /**
    * Where the samples of a ray start, in steps: sample m lies at distance
-   * (m - StartOffset) * R / M. 0 (default) is the paper's march; 0.5 puts
-   * each sample in the middle of the step it decides. In [0, 0.999]. The
+   * (m - StartOffset) * R / M. 0 is the paper's march; 0.5 (default) puts
+   * each sample in the middle of the step it decides: against the reference
+   * AO it measured a third less error at the same cost, on every pattern
+   * and density (README.md, "Accuracy versus time"). In [0, 0.999]. The
    * JITTER variations replace it with their own per-variant offsets.
    */
   vtkSetClampMacro(StartOffset, double, 0.0, 0.999);
@@ -273,7 +275,7 @@ protected:
   int NumberOfRays = 64;
   int NumberOfSamples = 0;
   double SampleDensity = 1.0;
-  double StartOffset = 0.0;
+  double StartOffset = 0.5;
   int RayVariation = NONE;
   int QualityPreset = CUSTOM;
   double Reach = 0.0;

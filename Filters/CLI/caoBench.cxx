@@ -4,6 +4,7 @@
 #include "caoInput.h"
 #include "caoPresets.h"
 
+#include "vtkCAOFilterUtilities.h"
 #include "vtkClipDepthMaps.h"
 #include "vtkContextualAOEGLWindow.h"
 #include "vtkContextualAOVolumeMapper.h"
@@ -600,6 +601,9 @@ int RunBench(int argc, char* argv[])
   const double reach = o.reach > 0 ? o.reach : 8.0 * h;
   if (mkdir(o.output.c_str(), 0755) != 0 && errno != EEXIST)
     return Fail(2, "cannot create the output directory '" + o.output + "'");
+  // The reference runs on vtkSMPTools before any filter exists: select the
+  // threaded backend the filters select.
+  vtkCAO::EnsureThreadedBackend();
   if (o.threads > 0)
     vtkSMPTools::Initialize(o.threads);
 

@@ -21,7 +21,7 @@ struct LAOOptions
 {
   cao::QualityPreset quality = cao::QualityPreset::Custom;
   double density = 1.0;
-  double offset = 0.0;
+  double offset = 0.5;
   cao::RayVariation variation = cao::RayVariation::None;
   /// The first option given that a quality preset overrides (--rays,
   /// --samples, --density, --offset, --variation), for the conflict check.

@@ -10,23 +10,26 @@ void ApplyQualityPreset(QualityPreset preset, LAOSettings& s)
     case QualityPreset::Custom:
       return;
     case QualityPreset::Interactive:
-      s.pattern = RayPattern::Rays14;
-      s.fibonacciRays = 14;
-      s.sampleDensity = 0.5;
+      // 6 axes, rotated per voxel (interleaved), 2 samples per voxel, mid-step.
+      s.pattern = RayPattern::Rays6;
+      s.fibonacciRays = 6;
+      s.sampleDensity = 2.0;
       s.startOffset = 0.5;
       s.variation = RayVariation::Rotate;
       break;
     case QualityPreset::Balanced:
-      s.pattern = RayPattern::Rays26;
-      s.fibonacciRays = 26;
-      s.sampleDensity = 1.0;
+      // 14 rays, 4 samples per voxel, mid-step.
+      s.pattern = RayPattern::Rays14;
+      s.fibonacciRays = 14;
+      s.sampleDensity = 4.0;
       s.startOffset = 0.5;
-      s.variation = RayVariation::Rotate;
+      s.variation = RayVariation::None;
       break;
     case QualityPreset::Reference:
+      // 100 Fibonacci rays, 4 samples per voxel, mid-step.
       s.pattern = RayPattern::Fibonacci;
-      s.fibonacciRays = 256;
-      s.sampleDensity = 2.0;
+      s.fibonacciRays = 100;
+      s.sampleDensity = 4.0;
       s.startOffset = 0.5;
       s.variation = RayVariation::None;
       break;

@@ -71,8 +71,8 @@ check(list(lao.GetProperty("RayVariation").Available) == VARIATIONS and lao.RayV
 density, offset = range_domain(lao, "SampleDensity"), range_domain(lao, "StartOffset")
 check(lao.SampleDensity == 1.0 and density is not None and density.GetMinimum(0) == 0.001,
       "SampleDensity: default 1, at least 0.001 (%s)" % lao.SampleDensity)
-check(lao.StartOffset == 0.0 and offset is not None and offset.GetMinimum(0) == 0.0 and
-      offset.GetMaximum(0) == 0.999, "StartOffset: default 0, in [0, 0.999] (%s)" % lao.StartOffset)
+check(lao.StartOffset == 0.5 and offset is not None and offset.GetMinimum(0) == 0.0 and
+      offset.GetMaximum(0) == 0.999, "StartOffset: default 0.5, in [0, 0.999] (%s)" % lao.StartOffset)
 
 # The representation's LAO settings: documented, with the same enumerations,
 # and forwarded to the mapper.
@@ -90,7 +90,7 @@ if rep is not None:
           rep.GetProperty("AOQualityPreset").GetElement(0) == 0 and
           rep.GetProperty("AORayVariation").GetElement(0) == 0 and
           rep.GetProperty("AOSampleDensity").GetElement(0) == 1.0 and
-          rep.GetProperty("AOStartOffset").GetElement(0) == 0.0,
+          rep.GetProperty("AOStartOffset").GetElement(0) == 0.5,
           "the representation's quality enumerations and defaults")
     rep.GetProperty("AOQualityPreset").SetElement(0, 2)
     rep.GetProperty("AORayVariation").SetElement(0, 3)

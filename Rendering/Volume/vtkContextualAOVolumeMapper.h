@@ -128,7 +128,8 @@ public:
   ///@{
   /**
    * Where the LAO samples of a ray start, in steps (sample m at distance
-   * (m - StartOffset) * R / M). Default 0, in [0, 0.999].
+   * (m - StartOffset) * R / M). Default 0.5 (mid-step; 0 is the paper's
+   * march), in [0, 0.999]; see vtkLocalAmbientOcclusion.
    */
   vtkSetClampMacro(StartOffset, double, 0.0, 0.999);
   vtkGetMacro(StartOffset, double);
@@ -301,7 +302,7 @@ protected:
   double Reach = 0.0;
   int NumberOfSamples = 0;
   double SampleDensity = 1.0;
-  double StartOffset = 0.0;
+  double StartOffset = 0.5;
   int RayVariation = NONE;
   int QualityPreset = CUSTOM;
   vtkProp3D* ClipShape = nullptr;

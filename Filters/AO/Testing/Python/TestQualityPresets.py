@@ -77,7 +77,7 @@ def lao_filter(**settings):
 # Defaults and clamps of the new properties.
 f = LAO()
 check((f.GetSampleDensity(), f.GetStartOffset(), f.GetRayVariation(), f.GetQualityPreset())
-      == (1.0, 0.0, LAO.NONE, LAO.CUSTOM), "defaults: density 1, offset 0, no variation, custom")
+      == (1.0, 0.5, LAO.NONE, LAO.CUSTOM), "defaults: density 1, offset 0.5, no variation, custom")
 f.SetStartOffset(1.5)
 f.SetSampleDensity(-1.0)
 f.SetRayVariation(7)
@@ -96,7 +96,7 @@ p = parameters(custom.GetOutput())
 check(custom.GetOutput().GetFieldData().GetArray("LAOParameters").GetNumberOfComponents() == 11
       and list(p)[8:] == ["StartOffset", "RayVariation", "QualityPreset"]
       and (p["RayPattern"], p["StartOffset"], p["RayVariation"], p["QualityPreset"])
-      == (LAO.RAYS_26, 0.0, LAO.NONE, LAO.CUSTOM),
+      == (LAO.RAYS_26, 0.5, LAO.NONE, LAO.CUSTOM),
       "LAOParameters has 11 components, the custom settings in effect: %s" % p)
 
 # Each preset equals its own settings set by hand, and is not the default.
@@ -211,6 +211,7 @@ plain.SetInputConnection(neghip.GetOutputPort())
 plain.SetOpacityFunction(ntf)
 plain.SetReach(4.0)
 plain.SetRayPattern(LAO.RAYS_14)
+plain.SetStartOffset(0.0)  # as every LAO did before the offset existed
 plain.SetBackendToCPU()
 plain.Update()
 legacy.ShallowCopy(plain.GetOutput())

@@ -553,6 +553,32 @@ void BadInput(const Options& o)
   open->SetPosition(33.0, 33.0, 33.0);
   m->SetClipShape(open);
   expect("an open clip mesh", "depth maps");
+  // A given AO array (AmbientOcclusionArrayName): missing or out of [0, 1]
+  // is an error; a valid one is uploaded instead of a precompute.
+  m->SetClipShape(nullptr);
+  m->SetAmbientOcclusionArrayName("GivenAO");
+  expect("a missing AO array", "to use as the AO");
+  vtkNew<vtkFloatArray> given;
+  given->SetName("GivenAO");
+  given->SetNumberOfTuples(s.image->GetNumberOfPoints());
+  given->FillValue(0.5f);
+  given->SetValue(7, 1.5f);
+  s.image->GetPointData()->AddArray(given);
+  expect("an AO value above 1", "outside [0, 1]");
+  given->SetValue(7, 0.5f);
+  given->Modified();
+  {
+    errors.clear();
+    const int precomputes = m->GetPrecomputeCount();
+    s.window->Render();
+    const std::string stages = m->GetLastFrameStages();
+    std::printf("given AO array: %s\n", stages.c_str());
+    CHECK(errors.empty() && stages.find("ao_upload") != std::string::npos &&
+        stages.find("precompute") == std::string::npos && m->GetPrecomputeCount() == precomputes,
+      "a given AO array was not uploaded in place of the precompute: %s", stages.c_str());
+  }
+  m->SetAmbientOcclusionArrayName(nullptr);
+  s.image->GetPointData()->RemoveArray("GivenAO");
   // Recovery: a valid scene draws again.
   s.Shape("sphere", 12.0);
   s.clip->SetPosition(33.0, 30.0, 40.0);
