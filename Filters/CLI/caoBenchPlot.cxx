@@ -10,6 +10,7 @@
  * label, the legend or the front line, if it can.
  */
 #include "caoBenchPlot.h"
+#include "caoWindow.h"
 
 #include "vtkAxis.h"
 #include "vtkBrush.h"
@@ -19,12 +20,10 @@
 #include "vtkContextItem.h"
 #include "vtkContextScene.h"
 #include "vtkContextView.h"
-#include "vtkContextualAOEGLWindow.h"
 #include "vtkDoubleArray.h"
 #include "vtkImageShrink3D.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
-#include "vtkOpenGLRenderWindow.h"
 #include "vtkPNGWriter.h"
 #include "vtkPen.h"
 #include "vtkPlotLine.h"
@@ -510,29 +509,10 @@ bool WriteErrorTimePlot(const std::vector<PlotPoint>& points,
     return false;
   }
   // The window: X when there is a display, else EGL (as `cao render`).
-  const char* display = std::getenv("DISPLAY");
-  vtkSmartPointer<vtkRenderWindow> window;
-  if (display && *display)
-  {
-    window = vtkSmartPointer<vtkRenderWindow>::New();
-    if (!vtkOpenGLRenderWindow::SafeDownCast(window) || !window->SupportsOpenGL())
-    {
-      error = "the X display has no usable OpenGL";
-      return false;
-    }
-    window->SetOffScreenRendering(true);
-  }
-  else
-  {
-    auto egl = vtkSmartPointer<vtkContextualAOEGLWindow>::New();
-    if (!egl->IsUsable())
-    {
-      error = std::string("no EGL OpenGL 4.3 context: ") + egl->GetContextError();
-      return false;
-    }
-    window = egl;
-  }
-  window->SetMultiSamples(0);
+  std::string description;
+  vtkSmartPointer<vtkRenderWindow> window = MakeOffscreenWindow("auto", description, error);
+  if (!window)
+    return false;
 
   // The PNG can be written (before the work, and without VTK's own error
   // message if it cannot).

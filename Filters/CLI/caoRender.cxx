@@ -1,4 +1,7 @@
 #include "caoRender.h"
+#include "caoWindow.h"
+
+#include "vtkRenderWindow.h"
 
 #include "caoInput.h"
 #include "caoLAOOptions.h"
@@ -9,12 +12,10 @@
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkCommand.h"
-#include "vtkContextualAOEGLWindow.h"
 #include "vtkContextualAOVolumeMapper.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
-#include "vtkOpenGLRenderWindow.h"
 #include "vtkPNGWriter.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
@@ -262,30 +263,11 @@ int RunRender(int argc, char* argv[])
     return Fail(2, error);
 
   // The window: X when there is a display (or asked for), else EGL.
-  const char* display = std::getenv("DISPLAY");
-  const bool useX = o.window == "x" || (o.window == "auto" && display && *display);
-  vtkSmartPointer<vtkRenderWindow> window;
   std::string windowKind;
-  if (useX)
-  {
-    if (!display || !*display)
-      return Fail(1, "--window x needs an X display (DISPLAY is not set)");
-    window = vtkSmartPointer<vtkRenderWindow>::New();
-    if (!vtkOpenGLRenderWindow::SafeDownCast(window) || !window->SupportsOpenGL())
-      return Fail(1, "the X display has no usable OpenGL");
-    window->SetOffScreenRendering(true);
-    windowKind = "X window (offscreen)";
-  }
-  else
-  {
-    auto egl = vtkSmartPointer<vtkContextualAOEGLWindow>::New();
-    if (!egl->IsUsable())
-      return Fail(1, std::string("no EGL OpenGL 4.3 context: ") + egl->GetContextError());
-    window = egl;
-    windowKind = "EGL window";
-  }
+  vtkSmartPointer<vtkRenderWindow> window = MakeOffscreenWindow(o.window, windowKind, error);
+  if (!window)
+    return Fail(1, error);
   window->SetSize(o.width, o.height);
-  window->SetMultiSamples(0);
   vtkNew<vtkRenderer> renderer;
   renderer->SetBackground(1.0, 1.0, 1.0);
   window->AddRenderer(renderer);
