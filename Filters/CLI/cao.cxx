@@ -49,6 +49,10 @@
 
 namespace
 {
+using caocli::FieldValue;
+using caocli::Split;
+using caocli::ToDouble;
+
 const char* Usage = R"(usage:
   cao lao   VOLUME [common options] [-o OUT.vti]
   cao carve VOLUME [common options] [clip options] [--verify] [-o OUT.vti]
@@ -122,24 +126,6 @@ int Fail(int code, const std::string& message)
 {
   std::cerr << "cao: error: " << message << "\n";
   return code;
-}
-
-std::vector<std::string> Split(const std::string& s, char sep)
-{
-  std::vector<std::string> out;
-  std::stringstream in(s);
-  std::string item;
-  while (std::getline(in, item, sep))
-    if (!item.empty())
-      out.push_back(item);
-  return out;
-}
-
-bool ToDouble(const std::string& s, double& v)
-{
-  char* end = nullptr;
-  v = std::strtod(s.c_str(), &end);
-  return !s.empty() && *end == '\0' && std::isfinite(v);
 }
 
 bool ToInt(const std::string& s, int& v)
@@ -387,11 +373,7 @@ void BuildTransferFunction(const Options& o, vtkImageData* volume, vtkPiecewiseF
   double range[2] = { 0.0, 1.0 };
   if (s)
     s->GetRange(range, std::max(0, o.component));
-  if (!(range[1] > range[0]))
-    range[1] = range[0] + 1.0;
-  tf->AddPoint(range[0], 0.0);
-  tf->AddPoint(range[0] + 0.25 * (range[1] - range[0]), 0.0);
-  tf->AddPoint(range[1], 0.8);
+  caocli::DefaultOpacityRamp(range, tf);
 }
 
 std::string FieldString(vtkDataObject* d, const char* name)
@@ -420,12 +402,6 @@ std::string JsonEscape(const std::string& text)
     out += c;
   }
   return out;
-}
-
-double FieldValue(vtkDataObject* d, const char* name, int component)
-{
-  vtkDataArray* a = d->GetFieldData()->GetArray(name);
-  return a ? a->GetComponent(0, component) : -1.0;
 }
 
 /// The settings an LAO output was computed with (its LAOParameters, after

@@ -126,13 +126,7 @@ struct BenchOptions
 
 std::vector<std::string> SplitList(const std::string& s)
 {
-  std::vector<std::string> out;
-  std::stringstream in(s);
-  std::string item;
-  while (std::getline(in, item, ','))
-    if (!item.empty())
-      out.push_back(item);
-  return out;
+  return Split(s, ',');
 }
 
 bool ParseNumbers(const std::string& s, std::vector<double>& out)
@@ -140,9 +134,8 @@ bool ParseNumbers(const std::string& s, std::vector<double>& out)
   out.clear();
   for (const std::string& item : SplitList(s))
   {
-    char* end = nullptr;
-    const double x = std::strtod(item.c_str(), &end);
-    if (*end != '\0' || !std::isfinite(x))
+    double x = 0.0;
+    if (!ToDouble(item, x))
       return false;
     out.push_back(x);
   }
@@ -415,14 +408,6 @@ double Median(std::vector<double> v)
   return v.empty() ? 0.0 : v[v.size() / 2];
 }
 
-double FieldValue(vtkDataObject* d, const char* name, int component)
-{
-  vtkDataArray* a = vtkArrayDownCast<vtkDataArray>(d->GetFieldData()->GetAbstractArray(name));
-  return a && a->GetNumberOfTuples() > 0 && component < a->GetNumberOfComponents()
-    ? a->GetComponent(0, component)
-    : std::numeric_limits<double>::quiet_NaN();
-}
-
 /// One row of the results.
 struct Row
 {
@@ -594,11 +579,7 @@ int RunBench(int argc, char* argv[])
     for (std::size_t i = 0; i < o.opacity.size(); i += 2)
       tf->AddPoint(o.opacity[i], o.opacity[i + 1]);
   else
-  {
-    tf->AddPoint(range[0], 0.0);
-    tf->AddPoint(range[0] + 0.25 * (range[1] - range[0]), 0.0);
-    tf->AddPoint(range[1], 0.8);
-  }
+    DefaultOpacityRamp(range, tf);
 
   // 1. Unit-distance opacity (double), the visible voxels and the voxels
   // the reference covers (the visible ones and their 26 neighbours: every
@@ -643,16 +624,23 @@ int RunBench(int argc, char* argv[])
     std::copy(spacing, spacing + 3, g.spacing);
     return g;
   }();
+  // The reference at `list` over the unit opacity corrected for its own
+  // step, times (1 - coverage) when clipped, as the classification scales
+  // the per-step opacity.
   auto runReference = [&](const std::vector<cao::Direction>& dirs, double stepVoxels,
-                        const std::vector<double>& medium, const std::vector<std::int64_t>& list,
+                        const std::vector<double>* coverage, const std::vector<std::int64_t>& list,
                         std::vector<double>& out, double& ms) {
     cao::ReferencePlan plan;
     std::string e;
     if (!cao::BuildReferencePlan(geometry, dirs, reach, stepVoxels, plan, e))
       return e;
-    std::vector<double> a(medium.size());
-    for (std::size_t v = 0; v < medium.size(); ++v)
-      a[v] = medium[v] >= 1.0 ? 1.0 : 1.0 - std::pow(1.0 - medium[v], plan.step / 1.0);
+    std::vector<double> a(unit.size());
+    for (std::size_t v = 0; v < unit.size(); ++v)
+    {
+      a[v] = unit[v] >= 1.0 ? 1.0 : 1.0 - std::pow(1.0 - unit[v], plan.step / 1.0);
+      if (coverage)
+        a[v] *= 1.0 - (*coverage)[v];
+    }
     std::vector<double> values(list.size());
     const auto t0 = std::chrono::steady_clock::now();
     const std::vector<double> padded = cao::PadReferenceMedium(plan, a.data());
@@ -660,7 +648,7 @@ int RunBench(int argc, char* argv[])
       cao::ReferenceLAO(plan, padded, list.data(), b, e2, values.data());
     });
     ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    out.assign(medium.size(), 1.0);
+    out.assign(unit.size(), 1.0);
     for (std::size_t n = 0; n < list.size(); ++n)
       out[static_cast<std::size_t>(list[n])] = values[n];
     return std::string();
@@ -669,9 +657,9 @@ int RunBench(int argc, char* argv[])
   const auto setB = cao::StratifiedSphere(o.referenceRays, 2);
   std::vector<double> refA, refB, reference(static_cast<std::size_t>(voxels), 1.0);
   double msA = 0, msB = 0;
-  error = runReference(setA, o.referenceStep, unit, covered, refA, msA);
+  error = runReference(setA, o.referenceStep, nullptr, covered, refA, msA);
   if (error.empty())
-    error = runReference(setB, o.referenceStep, unit, covered, refB, msB);
+    error = runReference(setB, o.referenceStep, nullptr, covered, refB, msB);
   if (!error.empty())
     return Fail(2, "reference: " + error);
   for (std::size_t v = 0; v < reference.size(); ++v)
@@ -688,7 +676,7 @@ int RunBench(int argc, char* argv[])
   if (o.stepCheck)
   {
     std::vector<double> half;
-    error = runReference(setA, 0.5 * o.referenceStep, unit, covered, half, msStep);
+    error = runReference(setA, 0.5 * o.referenceStep, nullptr, covered, half, msStep);
     if (!error.empty())
       return Fail(2, "reference step check: " + error);
     stepError = Compare(refA, half, visible);
@@ -805,8 +793,11 @@ int RunBench(int argc, char* argv[])
           if (!timeRun(glFilter, glLog, row.glMs))
             return Fail(1, glLog.Last());
         }
+        cao::RayVariation variation;
+        double offset;
+        ParseVariant(variant, variation, offset);
         const std::int64_t taps = std::int64_t(row.rays) * (row.samples - 1) *
-          (variant == "paper" || variant == "offset" ? 1 : 8);
+          cao::RayVariationCount(variation);
         for (const std::string& storage : o.storage)
         {
           Row r = row;
@@ -862,7 +853,7 @@ int RunBench(int argc, char* argv[])
       0.5 * (bounds[4] + bounds[5]) };
     sphereRadius = 0.25 * std::min({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] });
     // Exact coverage of each voxel cell by the sphere (8^3 sub-samples).
-    std::vector<double> clippedUnit(unit), coverage(static_cast<std::size_t>(voxels), 0.0);
+    std::vector<double> coverage(static_cast<std::size_t>(voxels), 0.0);
     std::vector<std::int64_t> region, regionVisible;
     const double* origin = image->GetOrigin();
     for (int k = 0; k < dims[2]; ++k)
@@ -897,25 +888,11 @@ int RunBench(int argc, char* argv[])
           }
         }
     clipRegion = static_cast<std::int64_t>(regionVisible.size());
-    // The clipped medium: the per-step opacity times (1 - coverage), as the
-    // classification scales it; the reference applies its own step first.
     std::vector<double> refClipA, refClipB, clipRef(reference);
     double ms1 = 0, ms2 = 0;
-    {
-      cao::ReferencePlan plan;
-      cao::BuildReferencePlan(geometry, setA, reach, o.referenceStep, plan, error);
-      for (std::size_t v = 0; v < clippedUnit.size(); ++v)
-      {
-        // Scale the step-corrected opacity and convert back to a unit
-        // opacity, so that runReference's correction reproduces it.
-        const double stepped = unit[v] >= 1.0 ? 1.0 : 1.0 - std::pow(1.0 - unit[v], plan.step);
-        const double scaled = stepped * (1.0 - coverage[v]);
-        clippedUnit[v] = scaled >= 1.0 ? 1.0 : 1.0 - std::pow(1.0 - scaled, 1.0 / plan.step);
-      }
-    }
-    error = runReference(setA, o.referenceStep, clippedUnit, region, refClipA, ms1);
+    error = runReference(setA, o.referenceStep, &coverage, region, refClipA, ms1);
     if (error.empty())
-      error = runReference(setB, o.referenceStep, clippedUnit, region, refClipB, ms2);
+      error = runReference(setB, o.referenceStep, &coverage, region, refClipB, ms2);
     if (!error.empty())
       return Fail(2, "clipped reference: " + error);
     for (std::int64_t v : region)

@@ -6,14 +6,17 @@
 #include "vtkCleanPolyData.h"
 #include "vtkCommand.h"
 #include "vtkCubeSource.h"
+#include "vtkDataArray.h"
 #include "vtkDataSetReader.h"
 #include "vtkExecutive.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkMetaImageReader.h"
 #include "vtkNIFTIImageReader.h"
 #include "vtkNew.h"
 #include "vtkOBJReader.h"
 #include "vtkPLYReader.h"
+#include "vtkPiecewiseFunction.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSLCReader.h"
@@ -27,6 +30,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -90,6 +94,41 @@ bool Run(Reader* reader, const std::string& path, std::string& error)
   }
   return true;
 }
+}
+
+std::vector<std::string> Split(const std::string& s, char sep)
+{
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  std::string item;
+  while (std::getline(in, item, sep))
+    if (!item.empty())
+      out.push_back(item);
+  return out;
+}
+
+bool ToDouble(const std::string& s, double& v)
+{
+  char* end = nullptr;
+  v = std::strtod(s.c_str(), &end);
+  return !s.empty() && *end == '\0' && std::isfinite(v);
+}
+
+double FieldValue(vtkDataObject* d, const char* name, int component, double missing)
+{
+  vtkDataArray* a = d ? d->GetFieldData()->GetArray(name) : nullptr;
+  return a && a->GetNumberOfTuples() > 0 && component >= 0 &&
+      component < a->GetNumberOfComponents()
+    ? a->GetComponent(0, component)
+    : missing;
+}
+
+void DefaultOpacityRamp(const double range[2], vtkPiecewiseFunction* tf)
+{
+  const double lo = range[0], hi = range[1] > range[0] ? range[1] : range[0] + 1.0;
+  tf->AddPoint(lo, 0.0);
+  tf->AddPoint(lo + 0.25 * (hi - lo), 0.0);
+  tf->AddPoint(hi, 0.8);
 }
 
 vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path, std::string& error)

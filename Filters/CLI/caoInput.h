@@ -16,7 +16,9 @@
 #include <string>
 #include <vector>
 
+class vtkDataObject;
 class vtkImageData;
+class vtkPiecewiseFunction;
 class vtkPolyData;
 class vtkTransform;
 
@@ -46,6 +48,20 @@ struct ErrorLog
 /// option (an error), the volume (the first plain argument) or one too many.
 /// Returns false with the reason in `error`.
 bool TakeArgument(const std::string& a, std::string& volume, std::string& error);
+
+/// The non-empty items of `s` between separators `sep`.
+std::vector<std::string> Split(const std::string& s, char sep);
+
+/// A whole string as a finite double; false otherwise.
+bool ToDouble(const std::string& s, double& v);
+
+/// Component `component` of the first tuple of field array `name` of `d`;
+/// `missing` when there is no such array or component.
+double FieldValue(vtkDataObject* d, const char* name, int component, double missing = -1.0);
+
+/// The tools' default opacity function over a scalar range: 0 up to 25% of
+/// the range, then a ramp to 0.8 at its maximum.
+void DefaultOpacityRamp(const double range[2], vtkPiecewiseFunction* tf);
 
 /// .vti, .mhd/.mha, .slc, legacy .vtk, .nii/.nii.gz.
 vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path, std::string& error);

@@ -395,51 +395,50 @@ bool BuildLAOPlan(
   const bool jitter =
     s.variation == RayVariation::Jitter || s.variation == RayVariation::RotateJitter;
   for (int v = 0; v < variants; ++v)
-  for (const Direction& dir : plan.directions)
   {
-    double w[3] = { dir.x, dir.y, dir.z };
+    double Rv[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
     if (rotate)
-    {
-      double Rv[9];
       VariationRotation(v, Rv);
-      const double r[3] = { Rv[0] * w[0] + Rv[1] * w[1] + Rv[2] * w[2],
-        Rv[3] * w[0] + Rv[4] * w[1] + Rv[5] * w[2], Rv[6] * w[0] + Rv[7] * w[1] + Rv[8] * w[2] };
-      std::copy(r, r + 3, w);
-    }
     const double offset = jitter ? (v + 0.5) / variants : s.startOffset;
-    const double idx[3] = { (D[0] * w[0] + D[3] * w[1] + D[6] * w[2]) / g.spacing[0],
-      (D[1] * w[0] + D[4] * w[1] + D[7] * w[2]) / g.spacing[1],
-      (D[2] * w[0] + D[5] * w[1] + D[8] * w[2]) / g.spacing[2] };
-    for (int m = 1; m < samples; ++m)
+    for (const Direction& dir : plan.directions)
     {
-      const double dist = (m - offset) * plan.step;
-      shared::LAOTap tap{};
-      int cell[3];
-      float frac[3];
-      for (int d = 0; d < 3; ++d)
+      const double w[3] = { rotate ? Rv[0] * dir.x + Rv[1] * dir.y + Rv[2] * dir.z : dir.x,
+        rotate ? Rv[3] * dir.x + Rv[4] * dir.y + Rv[5] * dir.z : dir.y,
+        rotate ? Rv[6] * dir.x + Rv[7] * dir.y + Rv[8] * dir.z : dir.z };
+      const double idx[3] = { (D[0] * w[0] + D[3] * w[1] + D[6] * w[2]) / g.spacing[0],
+        (D[1] * w[0] + D[4] * w[1] + D[7] * w[2]) / g.spacing[1],
+        (D[2] * w[0] + D[5] * w[1] + D[8] * w[2]) / g.spacing[2] };
+      for (int m = 1; m < samples; ++m)
       {
-        double o = idx[d] * dist;
-        // Offsets beyond any volume are clamped: every corner is then out of
-        // bounds for every voxel, as the unclamped offset would be.
-        o = std::max(-4.0e9, std::min(4.0e9, o));
-        const double fl = std::floor(o);
-        double f = o - fl;
-        cell[d] = static_cast<int>(std::max(-2.0e9, std::min(2.0e9, fl)));
-        frac[d] = static_cast<float>(f);
-        if (frac[d] >= 1.0f) // rounding of f up to 1.0f: move to the next cell
+        const double dist = (m - offset) * plan.step;
+        shared::LAOTap tap{};
+        int cell[3];
+        float frac[3];
+        for (int d = 0; d < 3; ++d)
         {
-          frac[d] = 0.0f;
-          cell[d] += 1;
+          double o = idx[d] * dist;
+          // Offsets beyond any volume are clamped: every corner is then out of
+          // bounds for every voxel, as the unclamped offset would be.
+          o = std::max(-4.0e9, std::min(4.0e9, o));
+          const double fl = std::floor(o);
+          double f = o - fl;
+          cell[d] = static_cast<int>(std::max(-2.0e9, std::min(2.0e9, fl)));
+          frac[d] = static_cast<float>(f);
+          if (frac[d] >= 1.0f) // rounding of f up to 1.0f: move to the next cell
+          {
+            frac[d] = 0.0f;
+            cell[d] += 1;
+          }
+          lo[d] = std::min(lo[d], cell[d]);
+          hi[d] = std::max(hi[d], cell[d] + 1);
         }
-        lo[d] = std::min(lo[d], cell[d]);
-        hi[d] = std::max(hi[d], cell[d] + 1);
+        const std::int64_t linear = cell[0] + std::int64_t(p.strides.y) * cell[1] +
+          std::int64_t(p.strides.z) * cell[2];
+        tap.cell = { cell[0], cell[1], cell[2],
+          static_cast<std::int32_t>(std::max<std::int64_t>(INT32_MIN, std::min<std::int64_t>(INT32_MAX, linear))) };
+        tap.frac = { frac[0], frac[1], frac[2], 0.0f };
+        plan.taps.push_back(tap);
       }
-      const std::int64_t linear = cell[0] + std::int64_t(p.strides.y) * cell[1] +
-        std::int64_t(p.strides.z) * cell[2];
-      tap.cell = { cell[0], cell[1], cell[2],
-        static_cast<std::int32_t>(std::max<std::int64_t>(INT32_MIN, std::min<std::int64_t>(INT32_MAX, linear))) };
-      tap.frac = { frac[0], frac[1], frac[2], 0.0f };
-      plan.taps.push_back(tap);
     }
   }
   // Voxel i is interior along an axis when i + lo >= 0 and i + hi <= n - 1.

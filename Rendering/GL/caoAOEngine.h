@@ -170,6 +170,12 @@ public:
 
   /// AO as stored on the GPU (q / 65535) back to float.
   static float Dequantize(std::uint16_t q) { return static_cast<float>(q) / 65535.0f; }
+  /// AO in [0, 1] as the GPU stores it, q = ao * 65535 + 0.5 in float (the
+  /// shaders' Quantize).
+  static std::uint16_t Quantize(float ao)
+  {
+    return static_cast<std::uint16_t>(ao * static_cast<float>(shared::CAO_AO_SCALE) + 0.5f);
+  }
 
 private:
   struct Impl;

@@ -408,7 +408,7 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
           return fail(std::string("The AO array '") + this->AmbientOcclusionArrayName +
             "' has a value outside [0, 1] at voxel " + std::to_string(v) + ".");
         quantized[static_cast<std::size_t>(v)] =
-          static_cast<std::uint16_t>(static_cast<float>(x) * 65535.0f + 0.5f);
+          cao::gl::AOEngine::Quantize(static_cast<float>(x));
       }
       if (!engine.SetPlan(in.Plan, error) || !engine.SetPrecomputed(quantized.data(), error))
         return fail("The AO upload failed: " + error + ".");
