@@ -67,6 +67,15 @@ bool GPUSession::Resolve(vtkAlgorithm* self, int backend, bool& failed, vtkRende
   }
   if (backend == BACKEND_AUTO)
   {
+    // Inside an application that renders on this thread (ParaView's view, a
+    // VTK window), Auto does not bring in a second context: the CPU runs,
+    // unless RenderWindow names the window whose context to use.
+    if (const char* api = cao::gl::CurrentContextAPI())
+    {
+      this->Note = std::string("Auto: this thread renders with an application's ") + api +
+        " OpenGL context; set RenderWindow to run in it";
+      return false;
+    }
     // What the machine offers is probed once per process: a throw-away
     // headless context tells whether OpenGL 4.3 exists and on what.
     static std::string probeFailure;

@@ -7,7 +7,13 @@
  * Backend choice:
  *  - CPU: never touches OpenGL.
  *  - OpenGL: any OpenGL >= 4.3 context (EGL, then OSMesa); none is an error.
- *  - Auto: OpenGL on a hardware device. With no OpenGL 4.3 context at all,
+ *    A headless context is current only inside the GL layer's calls
+ *    (cao::gl::CurrentScope): an application context current on the thread
+ *    is released meanwhile and made current again, never left stale.
+ *  - Auto: OpenGL on a hardware device, but the CPU when the calling thread
+ *    already has an application's OpenGL context current (ParaView's view, a
+ *    VTK window): the filter then never brings in a second context, unless
+ *    it is given that RenderWindow to run in. With no OpenGL 4.3 context at all,
  *    the CPU backend with one warning per filter. With only a software
  *    rasteriser (Mesa's llvmpipe, which runs these shaders slower than the
  *    CPU backend), the CPU backend by choice: no warning, and the reason in

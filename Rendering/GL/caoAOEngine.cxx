@@ -93,7 +93,6 @@ struct AOEngine::Impl
 
   bool External() const { return this->Ctx.Kind() == ContextKind::External; }
 
-  bool Current(std::string& error) { return this->Ctx.MakeCurrent(error); }
   std::int64_t Voxels() const { return std::int64_t(dims[0]) * dims[1] * dims[2]; }
 
   GLuint NewBuffer()
@@ -277,7 +276,8 @@ struct AOEngine::Impl
       error = "nothing computed on the GPU yet";
       return false;
     }
-    if (!this->Current(error))
+    CurrentScope scope(this->Ctx);
+    if (!scope.Ok(error))
       return false;
     StateGuard guard(gl, this->External());
     out.resize(static_cast<std::size_t>(this->Voxels()));
@@ -297,7 +297,10 @@ AOEngine::AOEngine(Context& context)
 
 AOEngine::~AOEngine()
 {
-  if (this->LiveObjects() > 0 && this->P->Ctx.MakeCurrent())
+  if (this->LiveObjects() == 0)
+    return; // nothing to delete; the context may be gone (abandoned)
+  CurrentScope scope(this->P->Ctx);
+  if (scope.Ok())
   {
     StateGuard guard(this->P->gl, this->P->External());
     this->P->ReleaseAll();
@@ -312,7 +315,8 @@ Context& AOEngine::GetContext()
 bool AOEngine::SetVolume(const VolumeUpload& v, std::string& error)
 {
   Impl& p = *this->P;
-  if (!p.Current(error))
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
     return false;
   StateGuard guard(p.gl, p.External());
   const Functions& gl = p.gl;
@@ -407,7 +411,8 @@ bool AOEngine::SetPlan(const LAOPlan& plan, std::string& error)
       return false;
     }
   }
-  if (!p.Current(error))
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
     return false;
   StateGuard guard(p.gl, p.External());
   p.params = plan.params;
@@ -458,7 +463,8 @@ bool AOEngine::Precompute(std::string& error, const std::function<bool(double)>&
     error = "SetVolume and SetPlan must come before Precompute";
     return false;
   }
-  if (!p.Current(error))
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
     return false;
   StateGuard guard(p.gl, p.External());
   const Functions& gl = p.gl;
@@ -498,7 +504,8 @@ bool AOEngine::SetPrecomputed(const std::uint16_t* ao, std::string& error)
     error = "SetVolume and SetPlan must come before SetPrecomputed";
     return false;
   }
-  if (!p.Current(error))
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
     return false;
   StateGuard guard(p.gl, p.External());
   p.gl.BindTexture(GL_TEXTURE_3D, p.aoPre);
@@ -526,7 +533,8 @@ bool AOEngine::SetMaps(int width, int height, int layers, const float* front, co
     error = "the depth maps are empty";
     return false;
   }
-  if (!p.Current(error))
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
     return false;
   StateGuard guard(p.gl, p.External());
   const std::size_t n = static_cast<std::size_t>(width) * height * layers;
@@ -549,7 +557,8 @@ bool AOEngine::SetMaps(const DepthRaster& raster, int mode, std::string& error)
     error = "the depth maps are empty";
     return false;
   }
-  if (!p.Current(error))
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
     return false;
   StateGuard guard(p.gl, p.External());
   const Functions& gl = p.gl;
@@ -587,7 +596,8 @@ bool AOEngine::Update(
     error = "too many anti-aliasing samples";
     return false;
   }
-  if (!p.Current(error))
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
     return false;
   StateGuard guard(p.gl, p.External());
   const Functions& gl = p.gl;
@@ -646,7 +656,8 @@ bool AOEngine::SetClipParams(const shared::ClipParams& clip, std::string& error)
     error = "SetVolume must come before SetClipParams";
     return false;
   }
-  if (!p.Current(error))
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
     return false;
   StateGuard guard(p.gl, p.External());
   p.BufferUpload(p.clipParams, GL_UNIFORM_BUFFER, sizeof(clip), &clip);
@@ -662,7 +673,8 @@ bool AOEngine::ResetClip(std::string& error)
     error = "Precompute must come before ResetClip";
     return false;
   }
-  if (!p.Current(error))
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
     return false;
   StateGuard guard(p.gl, p.External());
   p.InitialiseState();
@@ -693,7 +705,8 @@ bool AOEngine::FullRecompute(std::vector<std::uint16_t>& ao, std::string& error)
     error = "Precompute must come before FullRecompute";
     return false;
   }
-  if (!p.Current(error))
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
     return false;
   StateGuard guard(p.gl, p.External());
   const Functions& gl = p.gl;
@@ -726,7 +739,8 @@ bool AOEngine::Verify(Verification& result, std::string& error)
     error = "Precompute must come before Verify";
     return false;
   }
-  if (!p.Current(error))
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
     return false;
   StateGuard guard(p.gl, p.External());
   const Functions& gl = p.gl;
@@ -818,7 +832,10 @@ std::vector<std::pair<char, unsigned int>> AOEngine::ObjectNames() const
 void AOEngine::ReleaseGraphicsResources()
 {
   Impl& p = *this->P;
-  if (this->LiveObjects() == 0 || !p.Ctx.MakeCurrent())
+  if (this->LiveObjects() == 0)
+    return;
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok())
     return;
   StateGuard guard(p.gl, p.External());
   p.ReleaseAll();

@@ -152,7 +152,8 @@ bool DepthRaster::Build(const ClipCamera& cam, const TriangleMesh& mesh, double 
     error = "the clip mesh is too large for the GPU depth maps";
     return false;
   }
-  if (!p.Ctx.MakeCurrent(error))
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
     return false;
   const Functions& gl = p.gl;
   StateGuard guard(gl, p.Ctx.Kind() == ContextKind::External);
@@ -327,7 +328,8 @@ bool DepthRaster::Read(DepthMaps& raw, DepthMaps& dilated, DepthMaps& eroded, st
     error = "no depth maps have been built";
     return false;
   }
-  if (!p.Ctx.MakeCurrent(error))
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
     return false;
   StateGuard guard(p.gl, p.Ctx.Kind() == ContextKind::External);
   const std::size_t n = static_cast<std::size_t>(p.width) * p.height * p.layers;
@@ -396,7 +398,10 @@ int DepthRaster::LiveObjects() const
 void DepthRaster::ReleaseGraphicsResources()
 {
   Impl& p = *this->P;
-  if (this->LiveObjects() == 0 || !p.Ctx.MakeCurrent())
+  if (this->LiveObjects() == 0)
+    return;
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok())
     return;
   StateGuard guard(p.gl, p.Ctx.Kind() == ContextKind::External);
   p.Release();

@@ -28,6 +28,8 @@ using PFN_OSMesaCreateContextAttribs = OSMesaContextHandle (*)(const int*, OSMes
 using PFN_OSMesaMakeCurrent = unsigned char (*)(OSMesaContextHandle, void*, unsigned int, int, int);
 using PFN_OSMesaDestroyContext = void (*)(OSMesaContextHandle);
 using PFN_OSMesaGetProcAddress = void* (*)(const char*);
+using PFN_OSMesaGetCurrentContext = OSMesaContextHandle (*)();
+using PFN_OSMesaGetColorBuffer = unsigned char (*)(OSMesaContextHandle, int*, int*, int*, void**);
 }
 
 namespace cao
@@ -55,6 +57,7 @@ struct EGLLibrary
   PFNEGLGETCURRENTCONTEXTPROC GetCurrentContext = nullptr;
   PFNEGLGETCURRENTDISPLAYPROC GetCurrentDisplay = nullptr;
   PFNEGLGETCURRENTSURFACEPROC GetCurrentSurface = nullptr;
+  PFNEGLQUERYAPIPROC QueryAPI = nullptr;
   PFNEGLQUERYDEVICESEXTPROC QueryDevices = nullptr;
   PFNEGLGETPLATFORMDISPLAYEXTPROC GetPlatformDisplay = nullptr;
   std::string error;
@@ -92,8 +95,11 @@ struct EGLLibrary
       reinterpret_cast<PFNEGLGETCURRENTDISPLAYPROC>(sym("eglGetCurrentDisplay"));
     this->GetCurrentSurface =
       reinterpret_cast<PFNEGLGETCURRENTSURFACEPROC>(sym("eglGetCurrentSurface"));
+    this->QueryAPI = reinterpret_cast<PFNEGLQUERYAPIPROC>(sym("eglQueryAPI"));
     if (!this->GetProcAddress || !this->Initialize || !this->CreateContext ||
-      !this->MakeCurrent || !this->QueryString || !this->BindAPI || !this->ChooseConfig)
+      !this->MakeCurrent || !this->QueryString || !this->BindAPI || !this->ChooseConfig ||
+      !this->GetCurrentContext || !this->GetCurrentDisplay || !this->GetCurrentSurface ||
+      !this->QueryAPI)
     {
       this->error = "libEGL.so.1 lacks EGL 1.4 entry points";
       this->handle = nullptr;
@@ -155,6 +161,8 @@ struct OSMesaLibrary
   PFN_OSMesaMakeCurrent MakeCurrent = nullptr;
   PFN_OSMesaDestroyContext DestroyContext = nullptr;
   PFN_OSMesaGetProcAddress GetProcAddress = nullptr;
+  PFN_OSMesaGetCurrentContext GetCurrentContext = nullptr;
+  PFN_OSMesaGetColorBuffer GetColorBuffer = nullptr;
   std::string error;
 
   static OSMesaLibrary& Get()
@@ -185,14 +193,89 @@ struct OSMesaLibrary
       reinterpret_cast<PFN_OSMesaDestroyContext>(dlsym(this->handle, "OSMesaDestroyContext"));
     this->GetProcAddress =
       reinterpret_cast<PFN_OSMesaGetProcAddress>(dlsym(this->handle, "OSMesaGetProcAddress"));
+    this->GetCurrentContext = reinterpret_cast<PFN_OSMesaGetCurrentContext>(
+      dlsym(this->handle, "OSMesaGetCurrentContext"));
+    this->GetColorBuffer =
+      reinterpret_cast<PFN_OSMesaGetColorBuffer>(dlsym(this->handle, "OSMesaGetColorBuffer"));
     if (!this->CreateContextAttribs || !this->MakeCurrent || !this->DestroyContext ||
-      !this->GetProcAddress)
+      !this->GetProcAddress || !this->GetCurrentContext || !this->GetColorBuffer)
     {
       this->error = "libOSMesa lacks OSMesaCreateContextAttribs (Mesa >= 12 needed)";
       this->handle = nullptr;
     }
   }
+
+  /// The library if this process has loaded libOSMesa (we or the host
+  /// application), else null: without it no OSMesa context can be current.
+  static OSMesaLibrary* IfLoaded()
+  {
+    for (const char* name : { "libOSMesa.so.8", "libOSMesa.so.6", "libOSMesa.so" })
+    {
+      if (void* h = dlopen(name, RTLD_LAZY | RTLD_NOLOAD))
+      {
+        dlclose(h);
+        OSMesaLibrary& lib = Get();
+        return lib.handle ? &lib : nullptr;
+      }
+    }
+    return nullptr;
+  }
 };
+
+/// GLX, looked up only in a libGLX / libGL the process has already loaded
+/// (an application that renders through GLX has): we never load it.
+struct GLXLibrary
+{
+  using GetCurrentContextFn = void* (*)();
+  using GetCurrentDisplayFn = void* (*)();
+  using GetCurrentDrawableFn = unsigned long (*)();
+  using MakeContextCurrentFn = int (*)(void*, unsigned long, unsigned long, void*);
+  GetCurrentContextFn GetCurrentContext = nullptr;
+  GetCurrentDisplayFn GetCurrentDisplay = nullptr;
+  GetCurrentDrawableFn GetCurrentDrawable = nullptr;
+  GetCurrentDrawableFn GetCurrentReadDrawable = nullptr;
+  MakeContextCurrentFn MakeContextCurrent = nullptr;
+
+  static GLXLibrary* IfLoaded()
+  {
+    static GLXLibrary lib;
+    static std::mutex mutex;
+    std::lock_guard<std::mutex> lock(mutex);
+    if (lib.MakeContextCurrent)
+      return &lib;
+    for (const char* name : { "libGLX.so.0", "libGL.so.1", "libGL.so" })
+    {
+      void* h = dlopen(name, RTLD_LAZY | RTLD_NOLOAD);
+      if (!h)
+        continue;
+      auto sym = [h](const char* n) { return dlsym(h, n); };
+      lib.GetCurrentContext = reinterpret_cast<GetCurrentContextFn>(sym("glXGetCurrentContext"));
+      lib.GetCurrentDisplay = reinterpret_cast<GetCurrentDisplayFn>(sym("glXGetCurrentDisplay"));
+      lib.GetCurrentDrawable = reinterpret_cast<GetCurrentDrawableFn>(sym("glXGetCurrentDrawable"));
+      lib.GetCurrentReadDrawable =
+        reinterpret_cast<GetCurrentDrawableFn>(sym("glXGetCurrentReadDrawable"));
+      lib.MakeContextCurrent =
+        reinterpret_cast<MakeContextCurrentFn>(sym("glXMakeContextCurrent"));
+      if (lib.GetCurrentContext && lib.GetCurrentDisplay && lib.GetCurrentDrawable &&
+        lib.GetCurrentReadDrawable && lib.MakeContextCurrent)
+        return &lib; // the handle stays open: the library stays loaded
+      lib = GLXLibrary();
+      dlclose(h);
+    }
+    return nullptr;
+  }
+};
+
+/// Whether this process has loaded libEGL (we or the host application).
+bool EGLLoaded()
+{
+  if (void* h = dlopen("libEGL.so.1", RTLD_LAZY | RTLD_NOLOAD))
+  {
+    dlclose(h);
+    return true;
+  }
+  return false;
+}
 
 void* LoadEGLProc(const char* name, void*)
 {
@@ -224,6 +307,150 @@ bool CheckContext(const Functions& gl, const std::string& origin, std::string& d
 }
 }
 
+/// A context current on the calling thread that is not the one we are
+/// about to use: captured so that it can be released (EGL refuses to become
+/// current over GLX; OSMesa would silently take over GLX's dispatch) and
+/// made current again afterwards.
+struct HostContext
+{
+  enum class API
+  {
+    None,
+    GLX,
+    EGL,
+    OSMesa
+  };
+  API api = API::None;
+  // GLX
+  void* glxDisplay = nullptr;
+  unsigned long glxDraw = 0, glxRead = 0;
+  void* glxContext = nullptr;
+  // EGL (OpenGL API)
+  EGLDisplay eglDisplay = EGL_NO_DISPLAY;
+  EGLSurface eglDraw = EGL_NO_SURFACE, eglRead = EGL_NO_SURFACE;
+  EGLContext eglContext = EGL_NO_CONTEXT;
+  // OSMesa
+  OSMesaContextHandle osmesa = nullptr;
+  void* osmesaBuffer = nullptr;
+  int osmesaWidth = 0, osmesaHeight = 0;
+
+  /// What is current now, unless it is `exceptEGL` / `exceptOSMesa` (ours).
+  static HostContext Capture(EGLContext exceptEGL, OSMesaContextHandle exceptOSMesa)
+  {
+    HostContext h;
+    if (GLXLibrary* glx = GLXLibrary::IfLoaded())
+    {
+      if (void* c = glx->GetCurrentContext())
+      {
+        h.api = API::GLX;
+        h.glxContext = c;
+        h.glxDisplay = glx->GetCurrentDisplay();
+        h.glxDraw = glx->GetCurrentDrawable();
+        h.glxRead = glx->GetCurrentReadDrawable();
+        return h;
+      }
+    }
+    if (EGLLoaded())
+    {
+      EGLLibrary& egl = EGLLibrary::Get();
+      if (egl.handle)
+      {
+        const EGLenum bound = egl.QueryAPI();
+        if (bound != EGL_OPENGL_API)
+          egl.BindAPI(EGL_OPENGL_API);
+        const EGLContext c = egl.GetCurrentContext();
+        if (c != EGL_NO_CONTEXT && c != exceptEGL)
+        {
+          h.api = API::EGL;
+          h.eglContext = c;
+          h.eglDisplay = egl.GetCurrentDisplay();
+          h.eglDraw = egl.GetCurrentSurface(EGL_DRAW);
+          h.eglRead = egl.GetCurrentSurface(EGL_READ);
+        }
+        if (bound != EGL_OPENGL_API && bound != EGL_NONE)
+          egl.BindAPI(bound);
+        if (h.api != API::None || (c == exceptEGL && c != EGL_NO_CONTEXT))
+          return h;
+      }
+    }
+    if (OSMesaLibrary* os = OSMesaLibrary::IfLoaded())
+    {
+      OSMesaContextHandle c = os->GetCurrentContext();
+      if (c && c != exceptOSMesa)
+      {
+        int format = 0;
+        h.api = API::OSMesa;
+        h.osmesa = c;
+        os->GetColorBuffer(c, &h.osmesaWidth, &h.osmesaHeight, &format, &h.osmesaBuffer);
+      }
+    }
+    return h;
+  }
+
+  const char* Name() const
+  {
+    switch (this->api)
+    {
+      case API::GLX:
+        return "GLX";
+      case API::EGL:
+        return "EGL";
+      case API::OSMesa:
+        return "OSMesa";
+      default:
+        return nullptr;
+    }
+  }
+
+  /// Make it not current on this thread (its state is kept).
+  void Release() const
+  {
+    switch (this->api)
+    {
+      case API::GLX:
+        GLXLibrary::IfLoaded()->MakeContextCurrent(this->glxDisplay, 0, 0, nullptr);
+        break;
+      case API::EGL:
+      {
+        EGLLibrary& egl = EGLLibrary::Get();
+        egl.BindAPI(EGL_OPENGL_API);
+        egl.MakeCurrent(this->eglDisplay, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        break;
+      }
+      case API::OSMesa:
+        OSMesaLibrary::Get().MakeCurrent(nullptr, nullptr, 0, 0, 0);
+        break;
+      default:
+        break;
+    }
+  }
+
+  /// Make it current again, as it was captured.
+  void Restore() const
+  {
+    switch (this->api)
+    {
+      case API::GLX:
+        GLXLibrary::IfLoaded()->MakeContextCurrent(
+          this->glxDisplay, this->glxDraw, this->glxRead, this->glxContext);
+        break;
+      case API::EGL:
+      {
+        EGLLibrary& egl = EGLLibrary::Get();
+        egl.BindAPI(EGL_OPENGL_API);
+        egl.MakeCurrent(this->eglDisplay, this->eglDraw, this->eglRead, this->eglContext);
+        break;
+      }
+      case API::OSMesa:
+        OSMesaLibrary::Get().MakeCurrent(this->osmesa, this->osmesaBuffer, GL_UNSIGNED_BYTE,
+          this->osmesaWidth, this->osmesaHeight);
+        break;
+      default:
+        break;
+    }
+  }
+};
+
 struct Context::Impl
 {
   ContextKind kind = ContextKind::Auto;
@@ -248,7 +475,57 @@ struct Context::Impl
     }
     if (this->osmesa)
     {
-      OSMesaLibrary::Get().DestroyContext(this->osmesa);
+      OSMesaLibrary& os = OSMesaLibrary::Get();
+      if (os.GetCurrentContext() == this->osmesa)
+        os.MakeCurrent(nullptr, nullptr, 0, 0, 0);
+      os.DestroyContext(this->osmesa);
+    }
+  }
+
+  bool Current() const
+  {
+    if (this->context != EGL_NO_CONTEXT)
+    {
+      EGLLibrary& egl = EGLLibrary::Get();
+      egl.BindAPI(EGL_OPENGL_API);
+      return egl.GetCurrentContext() == this->context;
+    }
+    if (this->osmesa)
+      return OSMesaLibrary::Get().GetCurrentContext() == this->osmesa;
+    return this->kind == ContextKind::External;
+  }
+
+  /// Make ours current, releasing whatever other context is (headless kinds).
+  bool MakeCurrent()
+  {
+    if (this->kind == ContextKind::External || this->Current())
+      return true;
+    HostContext::Capture(this->context, this->osmesa).Release();
+    if (this->context != EGL_NO_CONTEXT)
+    {
+      EGLLibrary& egl = EGLLibrary::Get();
+      egl.BindAPI(EGL_OPENGL_API);
+      return egl.MakeCurrent(this->display, EGL_NO_SURFACE, EGL_NO_SURFACE, this->context);
+    }
+    if (this->osmesa)
+      return OSMesaLibrary::Get().MakeCurrent(this->osmesa, this->pixel, GL_UNSIGNED_BYTE, 1, 1);
+    return false;
+  }
+
+  void Release()
+  {
+    if (this->context != EGL_NO_CONTEXT)
+    {
+      EGLLibrary& egl = EGLLibrary::Get();
+      egl.BindAPI(EGL_OPENGL_API);
+      if (egl.GetCurrentContext() == this->context)
+        egl.MakeCurrent(this->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    }
+    else if (this->osmesa)
+    {
+      OSMesaLibrary& os = OSMesaLibrary::Get();
+      if (os.GetCurrentContext() == this->osmesa)
+        os.MakeCurrent(nullptr, nullptr, 0, 0, 0);
     }
   }
 
@@ -422,11 +699,20 @@ Context::~Context() = default;
 
 std::unique_ptr<Context> Context::CreateHeadless(ContextKind kind, std::string& error)
 {
+  // Creating a context makes it current to check it: the thread's own
+  // context (a host application's window) is released meanwhile and made
+  // current again afterwards, so that the thread is left as it was found.
+  const HostContext host = HostContext::Capture(EGL_NO_CONTEXT, nullptr);
+  host.Release();
   std::unique_ptr<Context> c(new Context);
   std::string eglWhy, osWhy;
-  if ((kind == ContextKind::Auto || kind == ContextKind::EGL) && c->P->TryEGL(eglWhy))
-    return c;
-  if ((kind == ContextKind::Auto || kind == ContextKind::OSMesa) && c->P->TryOSMesa(osWhy))
+  const bool made =
+    ((kind == ContextKind::Auto || kind == ContextKind::EGL) && c->P->TryEGL(eglWhy)) ||
+    ((kind == ContextKind::Auto || kind == ContextKind::OSMesa) && c->P->TryOSMesa(osWhy));
+  if (made)
+    c->P->Release();
+  host.Restore();
+  if (made)
     return c;
   error = "no OpenGL 4.3 context: ";
   if (!eglWhy.empty())
@@ -462,20 +748,7 @@ std::unique_ptr<Context> Context::WrapCurrent(
 
 bool Context::MakeCurrent()
 {
-  if (this->P->context != EGL_NO_CONTEXT)
-  {
-    EGLLibrary& egl = EGLLibrary::Get();
-    if (egl.GetCurrentContext() == this->P->context)
-      return true;
-    egl.BindAPI(EGL_OPENGL_API);
-    return egl.MakeCurrent(this->P->display, EGL_NO_SURFACE, EGL_NO_SURFACE, this->P->context);
-  }
-  if (this->P->osmesa)
-  {
-    return OSMesaLibrary::Get().MakeCurrent(
-      this->P->osmesa, this->P->pixel, GL_UNSIGNED_BYTE, 1, 1);
-  }
-  return true;
+  return this->P->MakeCurrent();
 }
 
 bool Context::MakeCurrent(std::string& error)
@@ -488,19 +761,52 @@ bool Context::MakeCurrent(std::string& error)
 
 bool Context::IsCurrent() const
 {
-  if (this->P->context != EGL_NO_CONTEXT)
-    return EGLLibrary::Get().GetCurrentContext() == this->P->context;
-  return this->P->kind == ContextKind::External;
+  return this->P->Current();
 }
 
 void Context::Release()
 {
-  if (this->P->context != EGL_NO_CONTEXT)
+  this->P->Release();
+}
+
+const char* CurrentContextAPI()
+{
+  return HostContext::Capture(EGL_NO_CONTEXT, nullptr).Name();
+}
+
+struct CurrentScope::Saved : HostContext
+{
+};
+
+CurrentScope::CurrentScope(Context& context)
+  : Ctx(context)
+{
+  Context::Impl& p = *context.P;
+  if (p.kind == ContextKind::External || p.Current())
   {
-    EGLLibrary& egl = EGLLibrary::Get();
-    if (egl.GetCurrentContext() == this->P->context)
-      egl.MakeCurrent(this->P->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    this->Current = true;
+    return;
   }
+  this->Previous.reset(new Saved);
+  static_cast<HostContext&>(*this->Previous) = HostContext::Capture(p.context, p.osmesa);
+  this->Previous->Release();
+  this->Current = this->Made = p.MakeCurrent();
+}
+
+CurrentScope::~CurrentScope()
+{
+  if (this->Made)
+    this->Ctx.P->Release();
+  if (this->Previous)
+    this->Previous->Restore();
+}
+
+bool CurrentScope::Ok(std::string& error) const
+{
+  if (this->Current)
+    return true;
+  error = "the OpenGL context cannot be made current";
+  return false;
 }
 
 bool Context::UsesHostClock() const

@@ -35,11 +35,18 @@ enum class ContextKind
 /// "auto", "egl", "osmesa", "window".
 const char* ContextKindName(ContextKind kind);
 
+/// The API of the OpenGL context current on the calling thread, whoever
+/// made it ("GLX", "EGL" or "OSMesa"), or nullptr when none is. Loads no
+/// library: an API whose library the process has not loaded has no context.
+const char* CurrentContextAPI();
+
 class Context
 {
 public:
   /// A headless context of the requested kind (Auto: EGL, then OSMesa).
-  /// Returns null and explains why in `error` when none fits.
+  /// Returns null and explains why in `error` when none fits. The calling
+  /// thread's current context is the same afterwards as before (the new
+  /// one is not left current: use CurrentScope or MakeCurrent).
   static std::unique_ptr<Context> CreateHeadless(ContextKind kind, std::string& error);
 
   /// Wrap the caller's current context. `functions` must come from it.
@@ -52,11 +59,16 @@ public:
 
   /// Make this context current on the calling thread (headless kinds); for
   /// External it checks nothing and returns true: the caller owns currency.
+  /// A context of another API current on the thread (an application's GLX
+  /// window) is released first, as a window switch would: GLVND keeps one
+  /// current context per thread, and EGL refuses to displace a GLX one.
+  /// To use a context for a while and give the thread back as it was, use
+  /// CurrentScope instead.
   bool MakeCurrent();
   /// MakeCurrent, with the reason in `error` when it fails.
   bool MakeCurrent(std::string& error);
-  /// Whether this EGL context is current on the calling thread (External:
-  /// true, the caller owns currency; OSMesa: false, not tracked).
+  /// Whether this context is current on the calling thread (External:
+  /// true, the caller owns currency).
   bool IsCurrent() const;
   /// Release a headless context from the calling thread (no-op for External).
   void Release();
@@ -74,6 +86,37 @@ private:
   Context();
   struct Impl;
   std::unique_ptr<Impl> P;
+  friend class CurrentScope;
+};
+
+/**
+ * Makes a context current for the lifetime of the scope, then gives the
+ * thread back as it was: whatever context was current before (an
+ * application's GLX or EGL window, an OSMesa buffer, another of ours) is
+ * released first and made current again at the end, and ours is released.
+ * Every entry point of the engine, the raster and the ray caster runs in
+ * one, so no call into this layer leaves a host application's context
+ * stale or displaced. A context already current, or External (its owner
+ * manages currency), is left alone.
+ */
+class CurrentScope
+{
+public:
+  explicit CurrentScope(Context& context);
+  ~CurrentScope();
+  CurrentScope(const CurrentScope&) = delete;
+  CurrentScope& operator=(const CurrentScope&) = delete;
+
+  /// Whether the context is current; the reason in `error` when not.
+  bool Ok(std::string& error) const;
+  bool Ok() const { return this->Current; }
+
+private:
+  Context& Ctx;
+  struct Saved;
+  std::unique_ptr<Saved> Previous; // what was current before; null: nothing to restore
+  bool Current = false;
+  bool Made = false;
 };
 }
 }

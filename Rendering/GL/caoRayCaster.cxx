@@ -33,7 +33,6 @@ struct RayCaster::Impl
   {
   }
   bool External() const { return this->Ctx.Kind() == ContextKind::External; }
-  bool Current(std::string& error) { return this->Ctx.MakeCurrent(error); }
   void Free(GLuint& t)
   {
     if (t)
@@ -109,7 +108,10 @@ RayCaster::RayCaster(Context& context)
 
 RayCaster::~RayCaster()
 {
-  if (this->LiveObjects() > 0 && this->P->Ctx.MakeCurrent())
+  if (this->LiveObjects() == 0)
+    return; // nothing to delete; the context may be gone (abandoned)
+  CurrentScope scope(this->P->Ctx);
+  if (scope.Ok())
   {
     StateGuard guard(this->P->gl, this->P->External());
     this->P->ReleaseAll();
@@ -124,7 +126,8 @@ bool RayCaster::SetTable(const float* rgba, int entries, std::string& error)
     error = "the transfer-function table needs at least 2 entries";
     return false;
   }
-  if (!p.Current(error))
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
     return false;
   StateGuard guard(p.gl, p.External());
   const Functions& gl = p.gl;
@@ -147,7 +150,8 @@ bool RayCaster::SetScalars(const float* values, const int dims[3], std::string& 
     error = "no scalars to render";
     return false;
   }
-  if (!p.Current(error))
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
     return false;
   StateGuard guard(p.gl, p.External());
   const Functions& gl = p.gl;
@@ -180,7 +184,8 @@ bool RayCaster::CaptureDepth(const int viewport[4], std::string& error)
     error = "the viewport is empty";
     return false;
   }
-  if (!p.Current(error))
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
     return false;
   StateGuard guard(p.gl, p.External());
   const Functions& gl = p.gl;
@@ -237,7 +242,8 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
     error = "no depth captured (CaptureDepth)";
     return false;
   }
-  if (!p.Current(error))
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
     return false;
   StateGuard guard(p.gl, p.External());
   const Functions& gl = p.gl;
@@ -288,7 +294,10 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
 double RayCaster::LastMilliseconds()
 {
   Impl& p = *this->P;
-  if (!p.timed || !p.Ctx.MakeCurrent())
+  if (!p.timed)
+    return -1.0;
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok())
     return -1.0;
   return p.timer.Milliseconds(p.gl, 0);
 }
@@ -320,7 +329,10 @@ int RayCaster::LiveObjects() const
 void RayCaster::ReleaseGraphicsResources()
 {
   Impl& p = *this->P;
-  if (this->LiveObjects() == 0 || !p.Ctx.MakeCurrent())
+  if (this->LiveObjects() == 0)
+    return;
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok())
     return;
   StateGuard guard(p.gl, p.External());
   p.ReleaseAll();
