@@ -23,6 +23,7 @@
 #include <dlfcn.h>
 #include <link.h>
 #include <sanitizer/lsan_interface.h>
+#include <cstdlib>
 #include <cstring>
 #endif
 
@@ -44,6 +45,15 @@ void PinDriverLibraries()
       return 0;
     },
     nullptr);
+}
+
+/// The negative control's deliberate leak (CAO_TEST_INJECT_LEAK=1): one
+/// block per cycle whose only pointer is dropped.
+__attribute__((noinline)) void InjectLeak()
+{
+  static void* volatile sink = nullptr;
+  sink = std::malloc(48);
+  sink = nullptr;
 }
 #endif
 
@@ -215,6 +225,11 @@ int TestGLResourceHygiene(int argc, char* argv[])
     const double centre[3] = { 10.0 + cycle % 5, 9, 8 };
     CAO_CHECK(engine.Update(s.scene.Pose(centre, 0.1 * cycle, s.dims, cycle % 2, 8), stats, error),
       "cycle %d: %s", cycle, error.c_str());
+#ifdef CAO_TEST_WITH_LSAN
+    if (const char* inject = std::getenv("CAO_TEST_INJECT_LEAK"))
+      if (std::strcmp(inject, "1") == 0)
+        InjectLeak();
+#endif
   }
   std::printf("100 context + engine + raster create/destroy cycles done\n");
 #ifdef CAO_TEST_WITH_LSAN
