@@ -8,6 +8,7 @@
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkUnsignedCharArray.h"
 
 #include "caoClassify.h"
 
@@ -39,6 +40,9 @@ bool ReadClipMaps(vtkImageData* maps, int mode, ClipMaps& out, std::string& erro
             "DilationRadius or ClipRegionBounds field arrays).";
     return false;
   }
+  out.scales[0] = out.scales[1] = out.dilation[3];
+  FieldTuple(maps->GetFieldData(), "PoseScaleRange", 2, out.scales);
+  FieldTuple(maps->GetFieldData(), "ValidRegion", 4, out.valid);
   out.width = static_cast<int>(out.camera[14]);
   out.height = static_cast<int>(out.camera[15]);
   out.layers = static_cast<int>(out.camera[16]);
@@ -59,16 +63,103 @@ bool ReadClipMaps(vtkImageData* maps, int mode, ClipMaps& out, std::string& erro
   return true;
 }
 
-double MinimumScale(vtkMatrix4x4* pose)
+namespace
+{
+void SingularValues(vtkMatrix4x4* pose, double W[3])
 {
   double linear[3][3];
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c)
       linear[r][c] = pose ? pose->GetElement(r, c) : (r == c ? 1.0 : 0.0);
-  double U[3][3], W[3], VT[3][3];
+  double U[3][3], VT[3][3];
   vtkMath::SingularValueDecomposition3x3(linear, U, W, VT);
+}
+}
+
+double MinimumScale(vtkMatrix4x4* pose)
+{
+  double W[3];
+  SingularValues(pose, W);
   const double s = std::min({ std::fabs(W[0]), std::fabs(W[1]), std::fabs(W[2]) });
   return std::isfinite(s) ? s : 0.0;
+}
+
+double MaximumScale(vtkMatrix4x4* pose)
+{
+  double W[3];
+  SingularValues(pose, W);
+  const double s = std::max({ std::fabs(W[0]), std::fabs(W[1]), std::fabs(W[2]) });
+  return std::isfinite(s) ? s : HUGE_VAL;
+}
+
+namespace
+{
+/// The 8 corners of the volume's voxel footprint (extent +- half a voxel),
+/// grown by `grow` world units along the index axes, in the mesh's frame.
+bool CornersInLocalFrame(vtkImageData* volume, vtkMatrix4x4* pose, double grow, double out[8][3])
+{
+  vtkNew<vtkMatrix4x4> worldToLocal;
+  if (pose)
+    vtkMatrix4x4::Invert(pose, worldToLocal);
+  vtkNew<vtkMatrix4x4> indexToLocal;
+  vtkMatrix4x4::Multiply4x4(worldToLocal, volume->GetIndexToPhysicalMatrix(), indexToLocal);
+  int extent[6];
+  volume->GetExtent(extent);
+  const double* spacing = volume->GetSpacing();
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    double idx[4] = { 0, 0, 0, 1 };
+    for (int d = 0; d < 3; ++d)
+    {
+      const double g = 0.5 + grow / std::max(std::fabs(spacing[d]), 1e-300);
+      idx[d] = (corner >> d) & 1 ? extent[2 * d + 1] + g : extent[2 * d] - g;
+    }
+    double local[4];
+    indexToLocal->MultiplyPoint(idx, local);
+    for (int d = 0; d < 3; ++d)
+    {
+      out[corner][d] = local[d];
+      if (!std::isfinite(local[d]))
+        return false;
+    }
+  }
+  return true;
+}
+}
+
+bool VolumeRegionInLocalFrame(vtkImageData* volume, vtkMatrix4x4* pose, double grow, double box[6])
+{
+  double corners[8][3];
+  if (!(MinimumScale(pose) > 0.0) || !CornersInLocalFrame(volume, pose, grow, corners))
+    return false;
+  for (int d = 0; d < 3; ++d)
+  {
+    box[2 * d] = HUGE_VAL;
+    box[2 * d + 1] = -HUGE_VAL;
+    for (const auto& c : corners)
+    {
+      box[2 * d] = std::min(box[2 * d], c[d]);
+      box[2 * d + 1] = std::max(box[2 * d + 1], c[d]);
+    }
+  }
+  return true;
+}
+
+bool VolumeInsideValidRegion(vtkImageData* volume, const ClipMaps& maps, vtkMatrix4x4* pose)
+{
+  if (!std::isfinite(maps.valid[0]) && !std::isfinite(maps.valid[1]) &&
+    !std::isfinite(maps.valid[2]) && !std::isfinite(maps.valid[3]))
+    return true;
+  double corners[8][3];
+  if (!CornersInLocalFrame(volume, pose, 0.0, corners))
+    return false;
+  for (const auto& c : corners)
+  {
+    const double u = vtkMath::Dot(c, maps.camera + 3), v = vtkMath::Dot(c, maps.camera + 6);
+    if (!(u >= maps.valid[0] && u <= maps.valid[1] && v >= maps.valid[2] && v <= maps.valid[3]))
+      return false;
+  }
+  return true;
 }
 
 bool MakeClipParams(vtkImageData* volume, const ClipMaps& maps, vtkMatrix4x4* poseIn,
@@ -96,6 +187,23 @@ bool MakeClipParams(vtkImageData* volume, const ClipMaps& maps, vtkMatrix4x4* po
         << " (local units) but this pose and volume need " << required << " (reach " << reach
         << ", voxel diagonal " << voxelDiagonal << ", pose scale " << sigmaMin
         << "). Set the depth-map filter's Reach, VoxelSpacing and MinimumPoseScale to match.";
+    error = msg.str();
+    return false;
+  }
+
+  // Above the scales the maps were made for, their pixels would be coarser
+  // in the world than half a voxel (0.1% of slack: the mapper makes maps
+  // for 0.1% around a pose's scale, and a rotation's singular values differ
+  // from 1 by a few ulps).
+  const double sigmaMax = MaximumScale(pose);
+  if (sigmaMax > maps.scales[1] * (1.0 + 1e-3))
+  {
+    std::ostringstream msg;
+    msg << "The pose scales the clip mesh by up to " << sigmaMax
+        << ", above the largest scale its depth maps were made for (MaximumPoseScale "
+        << maps.scales[1] << "): their pixels would be " << sigmaMax / maps.scales[1]
+        << " times coarser in the world than they were made for, and the clip that much less "
+           "exact. Make the maps for this scale (vtkClipDepthMaps::SetPoseScaleRange).";
     error = msg.str();
     return false;
   }
@@ -134,6 +242,15 @@ bool MakeClipParams(vtkImageData* volume, const ClipMaps& maps, vtkMatrix4x4* po
       affine[4 * r + 2] * extent[4];
   }
 
+  // Maps made for a region of interest are complete only there.
+  if (!VolumeInsideValidRegion(volume, maps, pose))
+  {
+    error = "This pose brings the volume outside the region its depth maps were made for "
+            "(their RegionOfInterest, for a clip mesh larger than the volume): make the maps "
+            "for this pose.";
+    return false;
+  }
+
   clip = cao::shared::ClipParams{};
   for (int r = 0; r < 3; ++r)
   {
@@ -154,6 +271,51 @@ bool MakeClipParams(vtkImageData* volume, const ClipMaps& maps, vtkMatrix4x4* po
     clip.boxMin = { 1, 1, 1, 0 }; // empty: no voxel is near the mesh
     clip.boxMax = { 0, 0, 0, 0 };
   }
+  return true;
+}
+
+bool CheckClipGeometry(vtkImageData* output, const ClipMaps& maps, vtkMatrix4x4* pose,
+  const cao::ClipShape& shape, double deviation, int mode, cao::ClipGeometryReport& report,
+  std::string& error)
+{
+  vtkPointData* pd = output ? output->GetPointData() : nullptr;
+  auto* category = pd ? vtkUnsignedCharArray::SafeDownCast(pd->GetArray("ClipCategory")) : nullptr;
+  auto* opacity =
+    pd ? vtkFloatArray::SafeDownCast(pd->GetArray("AmbientOcclusionOpacity")) : nullptr;
+  auto* clipped = pd ? vtkFloatArray::SafeDownCast(pd->GetArray("ClippedOpacity")) : nullptr;
+  const vtkIdType n = output ? output->GetNumberOfPoints() : 0;
+  if (!category || !opacity || !clipped || category->GetNumberOfTuples() != n ||
+    opacity->GetNumberOfTuples() != n || clipped->GetNumberOfTuples() != n)
+  {
+    error = "the clip result lacks ClipCategory, AmbientOcclusionOpacity or ClippedOpacity";
+    return false;
+  }
+  const double smin = MinimumScale(pose), smax = MaximumScale(pose);
+  if (!(smin > 0.0))
+  {
+    error = "the clip pose is singular";
+    return false;
+  }
+  vtkNew<vtkMatrix4x4> worldToLocal, indexToLocal;
+  if (pose)
+    vtkMatrix4x4::Invert(pose, worldToLocal);
+  vtkMatrix4x4::Multiply4x4(worldToLocal, output->GetIndexToPhysicalMatrix(), indexToLocal);
+  int extent[6], dims[3];
+  output->GetExtent(extent);
+  output->GetDimensions(dims);
+  double affine[12];
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+      affine[4 * r + c] = indexToLocal->GetElement(r, c);
+    affine[4 * r + 3] += affine[4 * r] * extent[0] + affine[4 * r + 1] * extent[2] +
+      affine[4 * r + 2] * extent[4];
+  }
+  const double pixel = std::max(maps.camera[12], maps.camera[13]);
+  const double margin = smax * (1.001 * pixel + deviation);
+  cao::CheckClipGeometry(dims, affine, smin, shape, margin, mode, category->GetPointer(0),
+    opacity->GetPointer(0), clipped->GetPointer(0), report);
+  report.pixel = smax * pixel;
   return true;
 }
 }

@@ -121,8 +121,9 @@ inline cao::VolumeGeometry GeometryOf(vtkImageData* image)
 inline void GhostedExtent(const int out[6], const int whole[6], const double spacing[3],
   double reach, int footprint, int in[6])
 {
-  if (out[0] > out[1] || out[2] > out[3] || out[4] > out[5])
+  if (out[0] > out[1] || out[2] > out[3] || out[4] > out[5] || !(reach >= 0.0))
   {
+    // (an invalid reach asks for everything; RequestData reports it)
     std::copy(whole, whole + 6, in);
     return;
   }

@@ -22,6 +22,7 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTriangleFilter.h"
 
+#include "caoClipCamera.h"
 #include "caoDepthMaps.h"
 
 #include <algorithm>
@@ -36,6 +37,29 @@ vtkCxxSetObjectMacro(vtkClipDepthMaps, RenderWindow, vtkRenderWindow);
 
 namespace
 {
+/// The triangles of a triangulated mesh as flat point and id vectors.
+void Flatten(vtkPolyData* mesh, std::vector<double>& points, std::vector<std::int64_t>& tris)
+{
+  points.resize(3 * static_cast<std::size_t>(mesh->GetNumberOfPoints()));
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    mesh->GetPoint(i, &points[3 * i]);
+  }
+  tris.clear();
+  tris.reserve(3 * static_cast<std::size_t>(mesh->GetNumberOfPolys()));
+  auto it = vtk::TakeSmartPointer(mesh->GetPolys()->NewIterator());
+  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+  {
+    vtkIdType n;
+    const vtkIdType* ids;
+    it->GetCurrentCell(n, ids);
+    if (n == 3)
+    {
+      tris.insert(tris.end(), { ids[0], ids[1], ids[2] });
+    }
+  }
+}
+
 vtkSmartPointer<vtkFloatArray> MakeLayerArray(
   const char* name, const std::vector<float>& values, int layers)
 {
@@ -116,8 +140,25 @@ int vtkClipDepthMaps::RequestData(
     vtkErrorMacro("The clip mesh is empty: it needs at least 4 polygons enclosing a volume.");
     return 0;
   }
+  if (!this->CheckSettings())
+  {
+    return 0;
+  }
+  // NaN or infinite vertices first: merging and orienting would hide them
+  // behind a misleading "open mesh".
+  for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    input->GetPoint(i, p);
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+    {
+      vtkErrorMacro("The clip mesh has a NaN or infinite coordinate (point " << i << ").");
+      return 0;
+    }
+  }
 
-  // Triangulate, merge duplicate points, orient consistently and outward.
+  // Triangulate, merge duplicate points, orient consistently and outward
+  // (VTK's filters); the checks and the camera are the kernel's.
   vtkNew<vtkPolyData> surface;
   surface->SetPoints(input->GetPoints());
   surface->SetPolys(input->GetPolys());
@@ -134,62 +175,23 @@ int vtkClipDepthMaps::RequestData(
   clean->ConvertLinesToPointsOff();
   clean->ConvertStripsToPolysOff();
   clean->Update();
-  vtkPolyData* cleaned = clean->GetOutput();
-
-  // Closedness: every undirected edge must be shared by exactly two triangles.
-  std::map<std::pair<vtkIdType, vtkIdType>, int> edges;
+  std::vector<double> points;
+  std::vector<std::int64_t> tris;
+  Flatten(clean->GetOutput(), points, tris);
+  cao::ClosedMeshCheck check;
+  std::string error;
+  if (!cao::CheckClosedMesh(cao::ViewMesh(points, tris), check, error))
   {
-    auto it = vtk::TakeSmartPointer(cleaned->GetPolys()->NewIterator());
-    for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
-    {
-      vtkIdType n;
-      const vtkIdType* ids;
-      it->GetCurrentCell(n, ids);
-      for (vtkIdType e = 0; e < n; ++e)
-      {
-        vtkIdType a = ids[e], b = ids[(e + 1) % n];
-        if (a > b)
-          std::swap(a, b);
-        ++edges[{ a, b }];
-      }
-    }
-  }
-  vtkIdType boundary = 0, nonManifold = 0;
-  for (const auto& e : edges)
-  {
-    boundary += e.second == 1;
-    nonManifold += e.second > 2;
-  }
-  if (cleaned->GetNumberOfPolys() < 4)
-  {
-    vtkErrorMacro("The clip mesh is degenerate: fewer than 4 non-degenerate triangles.");
+    vtkErrorMacro("Cannot clip with this mesh: " << error << ".");
     return 0;
   }
-  if (boundary > 0)
+  if (check.nonManifoldEdges > 0)
   {
-    vtkErrorMacro("The clip mesh is open: " << boundary
-                                            << " edge(s) belong to a single triangle. "
-                                               "Clipping needs a closed surface.");
-    return 0;
+    vtkWarningMacro(<< check.nonManifoldEdges << " non-manifold edge(s) in the clip mesh; "
+                    "inside/outside follows the winding number.");
   }
-  if (nonManifold > 0)
-  {
-    vtkWarningMacro(<< nonManifold << " non-manifold edge(s) in the clip mesh; inside/outside "
-                                      "follows the winding number.");
-  }
-  double bounds[6];
-  cleaned->GetBounds(bounds);
-  const double diag = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
-    (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
-    (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
-  if (!(diag > 0.0) || !std::isfinite(diag))
-  {
-    vtkErrorMacro("The clip mesh is degenerate: its bounds are empty or not finite.");
-    return 0;
-  }
-
   vtkNew<vtkPolyDataNormals> orient;
-  orient->SetInputData(cleaned);
+  orient->SetInputConnection(clean->GetOutputPort());
   orient->ComputePointNormalsOff();
   orient->ComputeCellNormalsOff();
   orient->SplittingOff();
@@ -197,261 +199,60 @@ int vtkClipDepthMaps::RequestData(
   orient->AutoOrientNormalsOn();
   orient->NonManifoldTraversalOff();
   orient->Update();
-  vtkPolyData* mesh = orient->GetOutput();
-
-  std::vector<double> points(3 * static_cast<std::size_t>(mesh->GetNumberOfPoints()));
-  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  Flatten(orient->GetOutput(), points, tris);
+  if (!cao::CheckClosedMesh(cao::ViewMesh(points, tris), check, error))
   {
-    mesh->GetPoint(i, &points[3 * i]);
-  }
-  std::vector<std::int64_t> tris;
-  tris.reserve(3 * static_cast<std::size_t>(mesh->GetNumberOfPolys()));
-  {
-    auto it = vtk::TakeSmartPointer(mesh->GetPolys()->NewIterator());
-    for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
-    {
-      vtkIdType n;
-      const vtkIdType* ids;
-      it->GetCurrentCell(n, ids);
-      if (n == 3)
-      {
-        tris.insert(tris.end(), { ids[0], ids[1], ids[2] });
-      }
-    }
-  }
-  // Signed volume: outward orientation makes it positive.
-  double volume = 0.0;
-  for (std::size_t t = 0; t < tris.size(); t += 3)
-  {
-    const double* a = &points[3 * tris[t]];
-    const double* b = &points[3 * tris[t + 1]];
-    const double* c = &points[3 * tris[t + 2]];
-    volume += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
-                a[2] * (b[0] * c[1] - b[1] * c[0])) /
-      6.0;
-  }
-  if (!(std::fabs(volume) > 1e-12 * diag * diag * diag))
-  {
-    vtkErrorMacro("The clip mesh is degenerate: it encloses no volume.");
+    vtkErrorMacro("Cannot clip with this mesh: " << error << ".");
     return 0;
   }
-  if (volume < 0.0)
+  if (check.signedVolume < 0.0)
   {
     for (std::size_t t = 0; t < tris.size(); t += 3)
     {
-      std::swap(tris[t + 1], tris[t + 2]);
+      std::swap(tris[t + 1], tris[t + 2]); // outward
     }
   }
 
-  // Camera frame: right x up = direction.
-  cao::ClipCamera cam;
-  double dir[3] = { this->Direction[0], this->Direction[1], this->Direction[2] };
-  if (vtkMath::Normalize(dir) == 0.0)
-  {
-    vtkErrorMacro("The clipping camera's Direction is zero.");
-    return 0;
-  }
-  double up[3] = { this->ViewUp[0], this->ViewUp[1], this->ViewUp[2] };
-  double right[3];
-  vtkMath::Cross(up, dir, right);
-  if (vtkMath::Normalize(right) < 1e-12)
-  {
-    vtkErrorMacro("The clipping camera's ViewUp is parallel to its Direction.");
-    return 0;
-  }
-  vtkMath::Cross(dir, right, up);
-  vtkMath::Normalize(up);
-  std::copy(dir, dir + 3, cam.direction);
-  std::copy(right, right + 3, cam.right);
-  std::copy(up, up + 3, cam.up);
-  cam.layers = this->NumberOfLayers;
-
-  // Projected bounds of the mesh.
-  double umin = VTK_DOUBLE_MAX, umax = -VTK_DOUBLE_MAX, vmin = VTK_DOUBLE_MAX,
-         vmax = -VTK_DOUBLE_MAX, zmin = VTK_DOUBLE_MAX, zmax = -VTK_DOUBLE_MAX;
-  for (std::size_t i = 0; i < points.size(); i += 3)
-  {
-    const double u = vtkMath::Dot(&points[i], right), v = vtkMath::Dot(&points[i], up),
-                 z = vtkMath::Dot(&points[i], dir);
-    umin = std::min(umin, u);
-    umax = std::max(umax, u);
-    vmin = std::min(vmin, v);
-    vmax = std::max(vmax, v);
-    zmin = std::min(zmin, z);
-    zmax = std::max(zmax, z);
-  }
-  if (!(umax > umin) || !(vmax > vmin))
-  {
-    vtkErrorMacro("The clip mesh projects to zero area along the camera direction.");
-    return 0;
-  }
-
-  // Dilation radius: reach + trilinear footprint (one cell diagonal) +
-  // anti-aliasing footprint (half a diagonal), over the smallest pose scale,
-  // plus slack for float rounding of the camera coordinates (~100 ulps of
-  // the camera's coordinate range).
+  // The clipping camera: frame, dilation radius, extent, resolution.
+  cao::ClipCameraRequest request;
+  std::copy(this->Direction, this->Direction + 3, request.direction);
+  std::copy(this->ViewUp, this->ViewUp + 3, request.viewUp);
+  std::copy(this->CameraExtent, this->CameraExtent + 4, request.cameraExtent);
+  request.margin = this->Margin;
+  request.pixelSize = this->PixelSize;
+  std::copy(this->Resolution, this->Resolution + 2, request.resolution);
+  request.layers = this->NumberOfLayers;
+  std::copy(this->VoxelSpacing, this->VoxelSpacing + 3, request.voxelSpacing);
   const double* h = this->VoxelSpacing;
-  if (!(h[0] > 0.0 && h[1] > 0.0 && h[2] > 0.0) || !std::isfinite(h[0] + h[1] + h[2]))
+  const double reach = this->Reach > 0.0 ? this->Reach : 8.0 * std::min({ h[0], h[1], h[2] });
+  request.reach = reach;
+  request.minimumPoseScale = this->MinimumPoseScale;
+  request.maximumPoseScale = this->GetEffectiveMaximumPoseScale();
+  request.dilationScale = this->DilationScale;
+  std::copy(this->RegionOfInterest, this->RegionOfInterest + 6, request.regionOfInterest);
+  cao::ClipCameraPlan plan;
+  if (!cao::PlanClipCamera(request, cao::ViewMesh(points, tris), plan, error))
   {
-    vtkErrorMacro("VoxelSpacing must be positive and finite.");
+    vtkErrorMacro("Cannot make the depth maps: " << error << ".");
     return 0;
   }
-  const double voxelDiagonal = std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
-  const double reach =
-    this->Reach > 0.0 ? this->Reach : 8.0 * std::min(h[0], std::min(h[1], h[2]));
-  const double nominal =
-    this->DilationScale * (reach + 1.5 * voxelDiagonal) / this->MinimumPoseScale;
-  const double range = std::max({ umax - umin, vmax - vmin, zmax - zmin }) + 2.0 * nominal +
-    std::max({ std::fabs(umin), std::fabs(umax), std::fabs(vmin), std::fabs(vmax),
-      std::fabs(zmin), std::fabs(zmax) });
-  const double radius = nominal + 1e-5 * range;
+  if (!plan.note.empty())
+  {
+    vtkWarningMacro(<< "Note: " << plan.note << ".");
+  }
+  const cao::ClipCamera& cam = plan.camera;
+  const double radius = plan.radius;
+  const double voxelDiagonal = plan.voxelDiagonal;
   this->DilationRadius = radius;
-
-  // Extent and resolution.
-  const bool customExtent = this->CameraExtent[0] != 0.0 || this->CameraExtent[1] != 0.0 ||
-    this->CameraExtent[2] != 0.0 || this->CameraExtent[3] != 0.0;
-  double pw = 0.0, ph = 0.0;
-  int width = 0, height = 0;
-  double eu0, eu1, ev0, ev1;
-  if (this->Resolution[0] < 0 || this->Resolution[1] < 0 ||
-    (this->Resolution[0] > 0) != (this->Resolution[1] > 0))
-  {
-    vtkErrorMacro("The clipping camera has zero area: Resolution ("
-      << this->Resolution[0] << ", " << this->Resolution[1] << ") must be both positive or both 0.");
-    return 0;
-  }
-  if (customExtent)
-  {
-    eu0 = this->CameraExtent[0];
-    eu1 = this->CameraExtent[1];
-    ev0 = this->CameraExtent[2];
-    ev1 = this->CameraExtent[3];
-    if (!(eu1 > eu0) || !(ev1 > ev0))
-    {
-      vtkErrorMacro("The clipping camera has zero area: CameraExtent ("
-        << eu0 << ", " << eu1 << ", " << ev0 << ", " << ev1 << ").");
-      return 0;
-    }
-    if (this->Resolution[0] > 0)
-    {
-      width = this->Resolution[0];
-      height = this->Resolution[1];
-      pw = (eu1 - eu0) / width;
-      ph = (ev1 - ev0) / height;
-    }
-    else
-    {
-      pw = ph = this->PixelSize > 0.0 ? this->PixelSize
-                                      : 0.5 * std::min({ h[0], h[1], h[2] }) / this->MinimumPoseScale;
-      width = static_cast<int>(std::ceil((eu1 - eu0) / pw));
-      height = static_cast<int>(std::ceil((ev1 - ev0) / ph));
-    }
-    if (umin - radius - pw < eu0 || umax + radius + pw > eu1 || vmin - radius - ph < ev0 ||
-      vmax + radius + ph > ev1)
-    {
-      vtkErrorMacro("CameraExtent does not contain the clip mesh dilated by "
-        << radius << " plus one pixel; enlarge it or leave it at 0 to derive it.");
-      return 0;
-    }
-  }
-  else
-  {
-    if (this->Resolution[0] > 0)
-    {
-      width = this->Resolution[0];
-      height = this->Resolution[1];
-      if (width < 5 || height < 5)
-      {
-        vtkErrorMacro("The clipping camera has (nearly) zero area: Resolution must be at least 5x5.");
-        return 0;
-      }
-      // margin = radius + 2 pixels on each side
-      const double userMargin = this->Margin >= 0.0 ? this->Margin : -1.0;
-      if (userMargin >= 0.0)
-      {
-        pw = (umax - umin + 2.0 * userMargin) / width;
-        ph = (vmax - vmin + 2.0 * userMargin) / height;
-      }
-      else
-      {
-        pw = (umax - umin + 2.0 * radius) / (width - 4);
-        ph = (vmax - vmin + 2.0 * radius) / (height - 4);
-      }
-    }
-    else
-    {
-      // Auto: half the smallest voxel, but no finer than radius / 32 so that
-      // the brute-force dilation window stays at most ~65 x 65 pixels.
-      pw = ph = this->PixelSize > 0.0
-        ? this->PixelSize
-        : std::max(0.5 * std::min({ h[0], h[1], h[2] }) / this->MinimumPoseScale, radius / 32.0);
-      const double margin = this->Margin >= 0.0 ? this->Margin : radius + 2.0 * pw;
-      const double span = std::max(umax - umin, vmax - vmin) + 2.0 * margin;
-      if (this->PixelSize <= 0.0 && span / pw > 4096.0)
-      {
-        pw = ph = span / 4096.0;
-      }
-    }
-    const double marginU = this->Margin >= 0.0 ? this->Margin : radius + 2.0 * pw;
-    const double marginV = this->Margin >= 0.0 ? this->Margin : radius + 2.0 * ph;
-    if (marginU < radius + pw || marginV < radius + ph)
-    {
-      vtkErrorMacro("Margin " << this->Margin << " leaves no room for the dilation radius "
-                              << radius << " plus one pixel.");
-      return 0;
-    }
-    eu0 = umin - marginU;
-    ev0 = vmin - marginV;
-    if (this->Resolution[0] > 0)
-    {
-      eu1 = eu0 + width * pw;
-      ev1 = ev0 + height * ph;
-    }
-    else
-    {
-      width = static_cast<int>(std::ceil((umax + marginU - eu0) / pw));
-      height = static_cast<int>(std::ceil((vmax + marginV - ev0) / ph));
-      eu1 = eu0 + width * pw;
-      ev1 = ev0 + height * ph;
-    }
-  }
-  if (!(pw > 0.0) || !(ph > 0.0) || width < 1 || height < 1 || !std::isfinite(pw * ph))
-  {
-    vtkErrorMacro("The clipping camera has zero area.");
-    return 0;
-  }
-  // The dilation visits (2 r + 3)^2 window pixels per pixel, r = radius / pixel.
-  const double window = (2.0 * std::ceil(radius / pw) + 3.0) * (2.0 * std::ceil(radius / ph) + 3.0);
-  if (static_cast<double>(width) * height * this->NumberOfLayers * window > 2.0e10)
-  {
-    vtkErrorMacro("The dilation radius " << radius << " spans " << std::ceil(radius / pw)
-      << " pixels of size " << pw << ": too many for the 2D dilation. Increase PixelSize "
-      "(or leave it at 0 to derive it).");
-    return 0;
-  }
-  if (static_cast<double>(width) * height * this->NumberOfLayers > 1.0e9)
-  {
-    vtkErrorMacro("The clipping camera would need " << width << " x " << height
-                                                     << " pixels; increase PixelSize.");
-    return 0;
-  }
-  cam.pixelSize[0] = pw;
-  cam.pixelSize[1] = ph;
-  cam.width = width;
-  cam.height = height;
-  for (int d = 0; d < 3; ++d)
-  {
-    cam.origin[d] = eu0 * right[d] + ev0 * up[d];
-  }
+  const int width = cam.width, height = cam.height;
+  const double pw = cam.pixelSize[0], ph = cam.pixelSize[1];
+  const double* right = cam.right;
+  const double* up = cam.up;
+  const double* dir = cam.direction;
 
   // Rasterise and peel, then dilate and erode: on the GPU or the CPU.
-  cao::TriangleMesh tm;
-  tm.points = points.data();
-  tm.numberOfPoints = mesh->GetNumberOfPoints();
-  tm.triangles = tris.data();
-  tm.numberOfTriangles = static_cast<std::int64_t>(tris.size() / 3);
+  const cao::TriangleMesh tm = cao::ViewMesh(points, tris);
   cao::DepthMaps raw, dilated, eroded;
-  std::string error;
   bool gpuFailed = false;
   const bool gpu = this->GPU->Resolve(this, this->Backend, gpuFailed, this->RenderWindow);
   if (gpuFailed)
@@ -486,9 +287,15 @@ int vtkClipDepthMaps::RequestData(
     rasterMs = vtkCAO::MillisecondsSince(t0);
   }
   this->UpdateProgress(0.2);
-  if (raw.coveredPixels == 0)
+  if (raw.coveredPixels == 0 && !std::isfinite(plan.validRegion[0]))
   {
-    vtkErrorMacro("The clip mesh covers no depth-map pixel; decrease PixelSize.");
+    // (With a region of interest the mesh may simply not reach it.)
+    vtkErrorMacro("The clip mesh covers no depth-map pixel: it is smaller than one pixel of "
+      << pw << " x " << ph << " local units ("
+      << (this->PixelSize > 0.0 ? "PixelSize; make it smaller"
+                                : "half a voxel at MaximumPoseScale, or the dilation radius / 32; "
+                                  "a mesh this small clips nothing")
+      << ").");
     return 0;
   }
   if (raw.unmatchedPixels > 0)
@@ -582,6 +389,16 @@ int vtkClipDepthMaps::RequestData(
     this->DilationScale };
   dilation->InsertNextTuple(dilationValues);
   fd->AddArray(dilation);
+  vtkNew<vtkDoubleArray> scales;
+  scales->SetName("PoseScaleRange");
+  scales->SetNumberOfComponents(2);
+  scales->InsertNextTuple2(this->MinimumPoseScale, this->GetEffectiveMaximumPoseScale());
+  fd->AddArray(scales);
+  vtkNew<vtkDoubleArray> valid;
+  valid->SetName("ValidRegion");
+  valid->SetNumberOfComponents(4);
+  valid->InsertNextTuple(plan.validRegion);
+  fd->AddArray(valid);
   vtkNew<vtkDoubleArray> regionArray;
   regionArray->SetName("ClipRegionBounds");
   regionArray->SetNumberOfComponents(6);
@@ -607,6 +424,28 @@ int vtkClipDepthMaps::RequestData(
 }
 
 //------------------------------------------------------------------------------
+bool vtkClipDepthMaps::CheckSettings()
+{
+  // The camera's own settings are checked by cao::PlanClipCamera.
+  if (this->Backend < AUTO || this->Backend > OPENGL)
+    vtkErrorMacro("Backend must be " << AUTO << " (Auto), " << CPU << " (CPU) or " << OPENGL
+                                     << " (OpenGL); got " << this->Backend << ".");
+  else if (!(this->Reach >= 0.0) || !std::isfinite(this->Reach))
+    vtkErrorMacro("Reach must be 0 (8 voxel spacings) or a positive, finite length; got "
+      << this->Reach << ".");
+  else if (this->NumberOfThreads < 0)
+    vtkErrorMacro("NumberOfThreads must be 0 (vtkSMPTools decides) or positive; got "
+      << this->NumberOfThreads << ".");
+  else if (this->MaximumPoseScale != 0.0 &&
+    !(this->MaximumPoseScale >= this->MinimumPoseScale && std::isfinite(this->MaximumPoseScale)))
+    vtkErrorMacro("MaximumPoseScale must be 0 (= MinimumPoseScale) or at least MinimumPoseScale ("
+      << this->MinimumPoseScale << "); got " << this->MaximumPoseScale << ".");
+  else
+    return true;
+  return false;
+}
+
+//------------------------------------------------------------------------------
 void vtkClipDepthMaps::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
@@ -624,6 +463,11 @@ void vtkClipDepthMaps::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "VoxelSpacing: (" << this->VoxelSpacing[0] << ", " << this->VoxelSpacing[1]
      << ", " << this->VoxelSpacing[2] << ")\n";
   os << indent << "MinimumPoseScale: " << this->MinimumPoseScale << "\n";
+  os << indent << "MaximumPoseScale: " << this->MaximumPoseScale << "\n";
+  os << indent << "RegionOfInterest: (" << this->RegionOfInterest[0] << ", "
+     << this->RegionOfInterest[1] << ", " << this->RegionOfInterest[2] << ", "
+     << this->RegionOfInterest[3] << ", " << this->RegionOfInterest[4] << ", "
+     << this->RegionOfInterest[5] << ")\n";
   os << indent << "DilationScale: " << this->DilationScale << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "DilationRadius: " << this->DilationRadius << "\n";

@@ -15,14 +15,32 @@
  *    with a sphere of radius DilationRadius, computed in 2D (CAO paper);
  *  - "ErodedFrontDepth", "ErodedBackDepth": the Minkowski difference, used
  *    by the probing mode.
- * Field arrays "ClipCamera", "DilationRadius", "ClipRegionBounds" and
- * "DepthMapStatistics" tell vtkContextualAmbientOcclusion how to use them.
+ * Field arrays "ClipCamera", "DilationRadius", "PoseScaleRange",
+ * "ValidRegion", "ClipRegionBounds" and "DepthMapStatistics" tell
+ * vtkContextualAmbientOcclusion how to use them.
  *
- * DilationRadius = (Reach + 1.5 * |VoxelSpacing|) / MinimumPoseScale
- * (plus float slack): the LAO reach, the trilinear footprint of a sample
- * (one cell diagonal) and the anti-aliasing footprint of a voxel (half a
- * diagonal), mapped to local units by the smallest pose scale. The pixel
- * size enters in the dilation itself (see caoDepthMaps.h).
+ * Pose scales. The maps serve poses whose scale lies in [MinimumPoseScale,
+ * MaximumPoseScale], with world-sized pixels and dilation at every one:
+ *  - DilationRadius = (Reach + 1.5 * |VoxelSpacing|) / MinimumPoseScale
+ *    (plus float slack): the LAO reach, the trilinear footprint of a sample
+ *    (one cell diagonal) and the anti-aliasing footprint of a voxel (half a
+ *    diagonal), mapped to local units by the smallest pose scale. The pixel
+ *    size enters in the dilation itself (see caoDepthMaps.h);
+ *  - the derived pixel is half the smallest voxel spacing in the world at
+ *    MaximumPoseScale, so the clipped set does not depend on how the clip's
+ *    world size is split between the mesh and the pose scale.
+ * vtkContextualAmbientOcclusion refuses a pose outside the range. Keep the
+ * range tight: a pose at scale s uses pixels s / MaximumPoseScale of half a
+ * voxel and a dilation MinimumPoseScale / s too wide.
+ *
+ * RegionOfInterest: for a mesh much larger than the volume, the local-frame
+ * box the volume can reach; the maps then cover only that (the field array
+ * "ValidRegion" records where they are complete, and the CAO filter
+ * refuses a pose that brings the volume outside it).
+ *
+ * The settings are taken as given: one outside its stated range is an error
+ * of the next update (nothing is clamped). The camera planning and the mesh
+ * checks are the VTK-free kernel's (caoClipCamera.h).
  *
  * Bad input (empty, open, degenerate meshes, a zero-area camera) is an error.
  *
@@ -88,9 +106,12 @@ public:
   /**
    * Depth-map pixel size in local units. 0 (default) derives it from
    * Resolution, or else uses half the smallest VoxelSpacing divided by
-   * MinimumPoseScale (capped to 4096 pixels per axis).
+   * MaximumPoseScale (half a voxel in the world at the largest pose scale),
+   * no finer than the dilation radius / 32 unless the mesh is smaller than
+   * 8 such pixels, and coarsened (with a warning) when a mesh is too large
+   * for 4096 pixels per axis or the dilation work limit.
    */
-  vtkSetClampMacro(PixelSize, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(PixelSize, double);
   vtkGetMacro(PixelSize, double);
   ///@}
 
@@ -101,15 +122,15 @@ public:
   ///@}
 
   ///@{
-  /// Depth-peel layers L (front/back pairs). Default 2; at least 1.
-  vtkSetClampMacro(NumberOfLayers, int, 1, 64);
+  /// Depth-peel layers L (front/back pairs), 1 to 64. Default 2.
+  vtkSetMacro(NumberOfLayers, int);
   vtkGetMacro(NumberOfLayers, int);
   ///@}
 
   ///@{
   /// LAO reach in world units; 0 (default) means 8 smallest voxel spacings,
   /// as vtkLocalAmbientOcclusion's default.
-  vtkSetClampMacro(Reach, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(Reach, double);
   vtkGetMacro(Reach, double);
   ///@}
 
@@ -120,9 +141,42 @@ public:
   ///@}
 
   ///@{
-  /// Smallest scale factor any pose will apply to the mesh. Default 1.
-  vtkSetClampMacro(MinimumPoseScale, double, 1e-9, VTK_DOUBLE_MAX);
+  /// Smallest scale factor any pose will apply to the mesh; positive. Default 1.
+  vtkSetMacro(MinimumPoseScale, double);
   vtkGetMacro(MinimumPoseScale, double);
+  ///@}
+
+  ///@{
+  /**
+   * Largest scale factor any pose will apply to the mesh; at least
+   * MinimumPoseScale. 0 (default) means MinimumPoseScale: the maps serve
+   * poses of that one scale.
+   */
+  vtkSetMacro(MaximumPoseScale, double);
+  vtkGetMacro(MaximumPoseScale, double);
+  /// MaximumPoseScale, or MinimumPoseScale when it is 0.
+  double GetEffectiveMaximumPoseScale() const
+  {
+    return this->MaximumPoseScale != 0.0 ? this->MaximumPoseScale : this->MinimumPoseScale;
+  }
+  /// Both at once: the maps serve poses scaled by s in [smin, smax].
+  void SetPoseScaleRange(double smin, double smax)
+  {
+    this->SetMinimumPoseScale(smin);
+    this->SetMaximumPoseScale(smax);
+  }
+  ///@}
+
+  ///@{
+  /**
+   * Local-frame box (xmin, xmax, ymin, ymax, zmin, zmax) the clipped volume
+   * can reach for the poses these maps serve (plus the reach). When the
+   * mesh extends beyond it, the maps cover only this box's projection, so a
+   * clip mesh far larger than the volume costs what the volume needs. An
+   * empty box (xmin > xmax, the default): the whole mesh.
+   */
+  vtkSetVector6Macro(RegionOfInterest, double);
+  vtkGetVector6Macro(RegionOfInterest, double);
   ///@}
 
   ///@{
@@ -131,13 +185,13 @@ public:
    * conservative value; smaller values exist only so tests can show that
    * an undersized dilation breaks exactness. Do not change it.
    */
-  vtkSetClampMacro(DilationScale, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(DilationScale, double);
   vtkGetMacro(DilationScale, double);
   ///@}
 
   ///@{
   /// Maximum number of threads for the dilation; 0 (default): vtkSMPTools.
-  vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
+  vtkSetMacro(NumberOfThreads, int);
   vtkGetMacro(NumberOfThreads, int);
   ///@}
 
@@ -156,7 +210,7 @@ public:
    * GPU; the CPU on a software rasteriser, or with one warning when there
    * is no OpenGL 4.3 at all). Both give the same maps, bit for bit.
    */
-  vtkSetClampMacro(Backend, int, AUTO, OPENGL);
+  vtkSetMacro(Backend, int);
   vtkGetMacro(Backend, int);
   void SetBackendToAuto() { this->SetBackend(AUTO); }
   void SetBackendToCPU() { this->SetBackend(CPU); }
@@ -182,6 +236,9 @@ public:
   /// Radius the output maps are dilated by (local units), after an update.
   vtkGetMacro(DilationRadius, double);
 
+  /// Whether every setting is within its stated range; an error if not.
+  bool CheckSettings();
+
 protected:
   vtkClipDepthMaps();
   ~vtkClipDepthMaps() override;
@@ -201,6 +258,8 @@ protected:
   double Reach = 0.0;
   double VoxelSpacing[3] = { 1.0, 1.0, 1.0 };
   double MinimumPoseScale = 1.0;
+  double MaximumPoseScale = 0.0;
+  double RegionOfInterest[6] = { 1.0, 0.0, 1.0, 0.0, 1.0, 0.0 };
   double DilationScale = 1.0;
   int NumberOfThreads = 0;
   double DilationRadius = 0.0;

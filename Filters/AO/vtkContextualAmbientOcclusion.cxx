@@ -160,17 +160,15 @@ int vtkContextualAmbientOcclusion::RequestUpdateExtent(
     vtkCAO::RequestGhostedExtent(inInfo, outInfo, spacing, reach, 3);
   }
   // The depth maps are produced whole and their extent is known only once
-  // they exist: ask for exactly the extent already held, so a pose change
-  // (which changes only this filter) never re-executes them. The pipeline
-  // would otherwise forward the volume's extent here and force a rerun.
+  // they exist (their whole extent is empty in the information pass): ask
+  // for an empty extent, which the executive reads as "whatever you hold",
+  // so a pose change (which changes only this filter) never re-executes
+  // them, and no filter between them and us (ParaView's vtkPVPostFilter,
+  // whose whole extent stays empty) sees a request outside its whole
+  // extent. Left unset, the pipeline would forward the volume's extent.
   vtkInformation* mapsInfo = inputVector[1]->GetInformationObject(0);
-  vtkImageData* maps = vtkImageData::GetData(mapsInfo);
-  int held[6] = { 0, -1, 0, -1, 0, -1 };
-  if (maps && maps->GetNumberOfPoints() > 0)
-  {
-    maps->GetExtent(held);
-  }
-  mapsInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), held, 6);
+  const int empty[6] = { 0, -1, 0, -1, 0, -1 };
+  mapsInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), empty, 6);
   // The whole maps on every process, whatever piece this one produces.
   mapsInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
   mapsInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);

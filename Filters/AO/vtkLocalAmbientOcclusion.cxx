@@ -69,11 +69,36 @@ vtkMTimeType vtkLocalAmbientOcclusion::GetMTime()
 }
 
 //------------------------------------------------------------------------------
+bool vtkLocalAmbientOcclusion::CheckSettings()
+{
+  // The LAO settings proper are checked with the plan (cao::CheckLAOSettings);
+  // these are this filter's own.
+  if (!(this->ScalarOpacityUnitDistance > 0.0) || !std::isfinite(this->ScalarOpacityUnitDistance))
+    vtkErrorMacro("ScalarOpacityUnitDistance must be positive and finite; got "
+      << this->ScalarOpacityUnitDistance << ".");
+  else if (this->QualityPreset < CUSTOM || this->QualityPreset > REFERENCE)
+    vtkErrorMacro("QualityPreset must be " << CUSTOM << " (Custom) to " << REFERENCE
+                                           << " (Reference); got " << this->QualityPreset << ".");
+  else if (this->Backend < AUTO || this->Backend > OPENGL)
+    vtkErrorMacro("Backend must be " << AUTO << " (Auto), " << CPU << " (CPU) or " << OPENGL
+                                     << " (OpenGL); got " << this->Backend << ".");
+  else if (this->Component < -1)
+    vtkErrorMacro("Component must be -1 (a one-component array) or a component index; got "
+      << this->Component << ".");
+  else if (this->NumberOfThreads < 0)
+    vtkErrorMacro("NumberOfThreads must be 0 (vtkSMPTools decides) or positive; got "
+      << this->NumberOfThreads << ".");
+  else
+    return true;
+  return false;
+}
+
+//------------------------------------------------------------------------------
 double vtkLocalAmbientOcclusion::GetEffectiveReach(const double spacing[3]) const
 {
-  if (this->Reach > 0.0)
+  if (this->Reach != 0.0)
   {
-    return this->Reach;
+    return this->Reach; // checked by cao::CheckLAOSettings: positive and finite
   }
   return 8.0 * std::min(spacing[0], std::min(spacing[1], spacing[2]));
 }
@@ -120,6 +145,10 @@ int vtkLocalAmbientOcclusion::RequestData(
     return 0;
   }
   output->ShallowCopy(input);
+  if (!this->CheckSettings())
+  {
+    return 0;
+  }
 
   int dims[3];
   input->GetDimensions(dims);

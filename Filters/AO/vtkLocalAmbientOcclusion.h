@@ -65,7 +65,8 @@ public:
     RAYS_14 = 1,
     RAYS_26 = 2,
     RAYS_54 = 3,
-    FIBONACCI = 4
+    FIBONACCI = 4,
+    RUBIKS_54 = 5 ///< the CAO authors' 54 rays (RAYS_54 jittered by +-0.025; caoRayPattern.h)
   };
 
   ///@{
@@ -80,39 +81,40 @@ public:
   ///@{
   /**
    * The distance (world units) over which OpacityFunction's opacity applies,
-   * as vtkVolumeProperty::SetScalarOpacityUnitDistance. Default 1.
+   * as vtkVolumeProperty::SetScalarOpacityUnitDistance. Default 1; positive
+   * and finite.
    */
-  vtkSetClampMacro(ScalarOpacityUnitDistance, double, 1e-12, VTK_DOUBLE_MAX);
+  vtkSetMacro(ScalarOpacityUnitDistance, double);
   vtkGetMacro(ScalarOpacityUnitDistance, double);
   ///@}
 
   ///@{
   /// Ray pattern (RayPatterns). Default RAYS_26.
-  vtkSetClampMacro(RayPattern, int, RAYS_6, FIBONACCI);
+  vtkSetMacro(RayPattern, int);
   vtkGetMacro(RayPattern, int);
   ///@}
 
   ///@{
-  /// Number of rays of the FIBONACCI pattern. Default 64.
-  vtkSetClampMacro(NumberOfRays, int, 1, 65536);
+  /// Number of rays of the FIBONACCI pattern, 1 to 65536. Default 64.
+  vtkSetMacro(NumberOfRays, int);
   vtkGetMacro(NumberOfRays, int);
   ///@}
 
   ///@{
   /**
-   * Samples per ray M. 0 (default) means SampleDensity samples per
-   * smallest voxel spacing: max(1, round(SampleDensity * Reach / h_min)).
+   * Samples per ray M, 1 to 65536. 0 (default) means SampleDensity samples
+   * per smallest voxel spacing: max(1, round(SampleDensity * Reach / h_min)).
    */
-  vtkSetClampMacro(NumberOfSamples, int, 0, 65536);
+  vtkSetMacro(NumberOfSamples, int);
   vtkGetMacro(NumberOfSamples, int);
   ///@}
 
   ///@{
   /**
    * Samples per smallest voxel spacing when NumberOfSamples is 0. Default 1
-   * (one sample per voxel); at least 0.001.
+   * (one sample per voxel); 0.001 to 1000.
    */
-  vtkSetClampMacro(SampleDensity, double, 0.001, 1000.0);
+  vtkSetMacro(SampleDensity, double);
   vtkGetMacro(SampleDensity, double);
   ///@}
 
@@ -122,10 +124,10 @@ public:
    * (m - StartOffset) * R / M. 0 is the paper's march; 0.5 (default) puts
    * each sample in the middle of the step it decides: against the reference
    * AO it measured a third less error at the same cost, on every pattern
-   * and density (README.md, "Accuracy versus time"). In [0, 0.999]. The
+   * and density (README.md, "Accuracy versus time"). In [0, 1). The
    * JITTER variations replace it with their own per-variant offsets.
    */
-  vtkSetClampMacro(StartOffset, double, 0.0, 0.999);
+  vtkSetMacro(StartOffset, double);
   vtkGetMacro(StartOffset, double);
   ///@}
 
@@ -149,7 +151,7 @@ public:
    * rays. The variant follows the global voxel index, so a piece of a
    * volume gets the values the whole volume gets.
    */
-  vtkSetClampMacro(RayVariation, int, NONE, ROTATE_JITTER);
+  vtkSetMacro(RayVariation, int);
   vtkGetMacro(RayVariation, int);
   void SetRayVariationToNone() { this->SetRayVariation(NONE); }
   void SetRayVariationToRotate() { this->SetRayVariation(ROTATE); }
@@ -176,7 +178,7 @@ public:
    * sample count follows the density); Reach stays this filter's. The
    * "LAOParameters" field array records the settings actually used.
    */
-  vtkSetClampMacro(QualityPreset, int, CUSTOM, REFERENCE);
+  vtkSetMacro(QualityPreset, int);
   vtkGetMacro(QualityPreset, int);
   void SetQualityPresetToCustom() { this->SetQualityPreset(CUSTOM); }
   void SetQualityPresetToInteractive() { this->SetQualityPreset(INTERACTIVE); }
@@ -186,10 +188,10 @@ public:
 
   ///@{
   /**
-   * Ray length R in world units. 0 (default) means 8 times the smallest
-   * voxel spacing.
+   * Ray length R in world units, positive and finite. 0 (default) means 8
+   * times the smallest voxel spacing.
    */
-  vtkSetClampMacro(Reach, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(Reach, double);
   vtkGetMacro(Reach, double);
   ///@}
 
@@ -197,14 +199,19 @@ public:
   /**
    * Component of a multi-component input array to use. -1 (default) accepts
    * single-component arrays only.
+   *
+   * Every numeric setting of this filter is taken as given: a value outside
+   * its stated range (a negative or NaN Reach, 0 rays, an offset of 1) makes
+   * the next update fail with an error naming the limit, as VTK filters do
+   * for invalid input; nothing is clamped or replaced silently.
    */
-  vtkSetClampMacro(Component, int, -1, VTK_INT_MAX);
+  vtkSetMacro(Component, int);
   vtkGetMacro(Component, int);
   ///@}
 
   ///@{
   /// Maximum number of threads; 0 (default) lets vtkSMPTools decide.
-  vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
+  vtkSetMacro(NumberOfThreads, int);
   vtkGetMacro(NumberOfThreads, int);
   ///@}
 
@@ -214,6 +221,10 @@ public:
   vtkGetMacro(OutputOpacity, bool);
   vtkBooleanMacro(OutputOpacity, bool);
   ///@}
+
+  /// Whether the settings that are this filter's own (unit distance,
+  /// preset, backend, component, threads) are valid; an error if not.
+  bool CheckSettings();
 
   /// The reach actually used for an input spacing (resolves Reach == 0).
   double GetEffectiveReach(const double spacing[3]) const;
@@ -238,7 +249,7 @@ public:
    * all). With RenderWindow set, the window's context. The output's field array
    * "ComputeBackend" says what ran and on which context.
    */
-  vtkSetClampMacro(Backend, int, AUTO, OPENGL);
+  vtkSetMacro(Backend, int);
   vtkGetMacro(Backend, int);
   void SetBackendToAuto() { this->SetBackend(AUTO); }
   void SetBackendToCPU() { this->SetBackend(CPU); }

@@ -14,6 +14,7 @@
 #include "caoLAOOptions.h"
 #include "caoRender.h"
 
+#include "vtkCAOClipPose.h"
 #include "vtkClipDepthMaps.h"
 #include "vtkContextualAmbientOcclusion.h"
 #include "vtkLocalAmbientOcclusion.h"
@@ -34,9 +35,12 @@
 #include "vtkTransform.h"
 #include "vtkXMLImageDataWriter.h"
 
+#include "caoClipGeometry.h"
 #include "caoRayPattern.h"
+#include "caoShared.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -60,14 +64,15 @@ const char* Usage = R"(usage:
 VOLUME: .vti, .mhd/.mha, .slc, legacy .vtk, .nii/.nii.gz
 
 common options:
-  --rays LIST          ray patterns: 6, 14, 26, 54 or fib:K; carve takes a
-                       comma list and runs each (default 26)
+  --rays LIST          ray patterns: 6, 14, 26, 54, rubiks54 (the paper's
+                       54 rays, jittered) or fib:K (K = 1 to 65536); carve
+                       takes a comma list and runs each (default 26)
   --reach R            ray length in world units (default 8 voxels)
-  --samples M          samples per ray (default: --density per voxel)
+  --samples M          samples per ray, 1 to 65536 (default: --density per voxel)
   --density D          samples per smallest voxel spacing when --samples is
-                       not given (default 1; 0.001..1000)
+                       not given (default 1; 0.001 to 1000)
   --offset F           start offset of the samples along a ray, in steps,
-                       0..0.999 (default 0; 0.5: mid-step)
+                       in [0, 1) (default 0.5: mid-step; 0 is the paper's march)
   --variation NAME     per-voxel ray variation: none (default), rotate,
                        jitter or rotate+jitter (interleaved 2x2x2)
   --quality NAME       LAO quality preset: custom (default: the options
@@ -96,14 +101,26 @@ clip options (carve):
   --mesh FILE          clip mesh (.vtp, .stl, .ply, .obj) instead of a shape
   --pose "tx ty tz [rx ry rz [s]]"   a pose (repeatable); rotation in degrees
   --poses FILE         one pose per line
-  --path N             N poses along the volume diagonal (default 24)
+  --path N             N poses along the volume diagonal (default 24; at most
+                       100000, as poses from --pose and --poses)
   --mode MODE          subtract (default) or probe
-  --layers L           depth-peel layers (default 2)
-  --aa N               extra anti-aliasing samples (default 16)
+  --layers L           depth-peel layers, 1 to 64 (default 2)
+  --aa N               extra anti-aliasing samples, 0 to 32 (default 16)
   --pixel-size P       depth-map pixel size (default: half a voxel)
   --direction X,Y,Z    clipping camera direction in the mesh frame (default 0,0,1)
   --verify             recompute the full LAO at every pose and require the
                        CAO result to equal it bit for bit (exit 3 otherwise)
+  --verify-geometry    check the clip against the exact shape (the closed-form
+                       sphere, cube or torus; the mesh itself by point location)
+                       at every pose, without the depth maps: a voxel inside
+                       by more than one map pixel must be clipped, one outside
+                       by more must not be (exit 3 otherwise)
+  --no-progress        no progress line on stderr (shown only on a terminal)
+
+The depth maps are made for each pose scale of the path: pixels of half a
+voxel and the dilation of the reach, in the world, however the clip's size is
+split between --size and the pose scale; a mesh much larger than the volume
+is mapped only where the volume can be.
 )";
 
 struct Options
@@ -117,7 +134,7 @@ struct Options
   caocli::LAOOptions lao;             // --quality, --density, --offset, --variation
   double direction[3] = { 0, 0, 1 };
   int samples = 0, component = -1, threads = 0, path = 24, layers = 2, aa = 16;
-  bool json = false, verify = false;
+  bool json = false, verify = false, verifyGeometry = false, quiet = false;
   int backend = 0;                    // vtkLocalAmbientOcclusion::AUTO
   std::vector<int> backends{ 0 };     // carve: each is run, side by side
 };
@@ -162,24 +179,27 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
       return true;
     };
     std::string v;
-    auto number = [&](double& out, double lo) {
+    // A number and the range it must lie in, stated in the error.
+    auto number = [&](double& out, double lo, const char* range) {
       if (!value(v))
         return false;
       if (!ToDouble(v, out) || out < lo)
       {
-        error = "bad value '" + v + "' for " + a;
+        error = "bad value '" + v + "' for " + a + " (" + range + ")";
         return false;
       }
       return true;
     };
-    auto integer = [&](int& out, int lo) {
+    auto integer = [&](int& out, int lo, int hi, const char* range) {
       if (!value(v))
         return false;
-      if (!ToInt(v, out) || out < lo)
+      double x = 0.0;
+      if (!ToDouble(v, x) || x != std::floor(x) || x < lo || x > hi)
       {
-        error = "bad value '" + v + "' for " + a;
+        error = "bad value '" + v + "' for " + a + " (" + range + ")";
         return false;
       }
+      out = static_cast<int>(x);
       return true;
     };
     bool ok = true;
@@ -198,7 +218,8 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
           int k = 0;
           if (!cao::ParseRayPattern(r, p, k))
           {
-            error = "bad ray pattern '" + r + "' (expected 6, 14, 26, 54 or fib:K)";
+            error = "bad ray pattern '" + r + "' (expected 6, 14, 26, 54, rubiks54 or fib:K "
+                    "with K from 1 to 65536)";
             return false;
           }
         }
@@ -210,28 +231,28 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
       }
     }
     else if (a == "--reach")
-      ok = number(o.reach, 1e-300);
+      ok = number(o.reach, 1e-300, "a positive length in world units");
     else if (a == "--samples")
     {
       caocli::NoteOverridden(o.lao, a);
-      ok = integer(o.samples, 1);
+      ok = integer(o.samples, 1, cao::LAOLimits::MaxSamples, "an integer, 1 to 65536");
     }
     else if (a == "--unit-distance")
-      ok = number(o.unitDistance, 1e-300);
+      ok = number(o.unitDistance, 1e-300, "a positive length in world units");
     else if (a == "--size")
-      ok = number(o.size, 1e-300);
+      ok = number(o.size, 1e-300, "a positive length in world units");
     else if (a == "--pixel-size")
-      ok = number(o.pixelSize, 1e-300);
+      ok = number(o.pixelSize, 1e-300, "a positive length in the mesh's units");
     else if (a == "--component")
-      ok = integer(o.component, 0);
+      ok = integer(o.component, 0, 1 << 20, "a component index, from 0");
     else if (a == "--threads")
-      ok = integer(o.threads, 1);
+      ok = integer(o.threads, 1, 4096, "an integer, 1 to 4096");
     else if (a == "--path")
-      ok = integer(o.path, 1);
+      ok = integer(o.path, 1, caocli::MaxPoses, "an integer, 1 to 100000");
     else if (a == "--layers")
-      ok = integer(o.layers, 1);
+      ok = integer(o.layers, 1, 64, "an integer, 1 to 64");
     else if (a == "--aa")
-      ok = integer(o.aa, 0) && (o.aa <= 32 || (error = "--aa is at most 32", false));
+      ok = integer(o.aa, 0, 32, "an integer, 0 to 32");
     else if (a == "--opacity")
     {
       ok = value(v);
@@ -319,6 +340,10 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
     }
     else if (a == "--verify")
       o.verify = true;
+    else if (a == "--verify-geometry")
+      o.verifyGeometry = true;
+    else if (a == "--no-progress")
+      o.quiet = true;
     else
       ok = caocli::TakeArgument(a, o.volume, error);
     if (!ok)
@@ -466,10 +491,16 @@ int RunLAO(const Options& o, vtkImageData* volume)
   log.Watch(lao);
   ConfigureLAO(o, o.rays[0], lao, tf);
   lao->SetInputData(volume);
-  lao->Update();
+  {
+    caocli::Progress progress(o.quiet);
+    progress.Watch(lao, "LAO");
+    lao->Update();
+  }
   if (!log.messages.empty())
     return Fail(1, log.Last());
   vtkImageData* out = lao->GetOutput();
+  const std::string backend = FieldString(out, "ComputeBackend");
+  const std::string context = ContextOf(backend);
   double range[2];
   out->GetPointData()->GetArray("AmbientOcclusion")->GetRange(range);
   const double ms = FieldValue(out, "LAOParameters", 7);
@@ -480,17 +511,25 @@ int RunLAO(const Options& o, vtkImageData* volume)
   {
     std::printf("{\"command\": \"lao\", \"volume\": \"%s\", \"dims\": [%d, %d, %d], "
                 "\"rays\": %d, \"samples\": %d, \"reach\": %.9g, %s, \"milliseconds\": %.3f, "
-                "\"ao_range\": [%.9g, %.9g], \"threads\": %d}\n",
-      o.volume.c_str(), dims[0], dims[1], dims[2], static_cast<int>(FieldValue(out, "LAOParameters", 1)),
+                "\"ao_range\": [%.9g, %.9g], \"threads\": %d, \"backend\": \"%s\", "
+                "\"context\": \"%s\", \"backend_detail\": \"%s\", \"stage_timing\": \"%s\"}\n",
+      JsonEscape(o.volume).c_str(), dims[0], dims[1], dims[2],
+      static_cast<int>(FieldValue(out, "LAOParameters", 1)),
       static_cast<int>(FieldValue(out, "LAOParameters", 2)), FieldValue(out, "LAOParameters", 3),
-      used.Json().c_str(), ms, range[0], range[1], vtkSMPTools::GetEstimatedNumberOfThreads());
+      used.Json().c_str(), ms, range[0], range[1], vtkSMPTools::GetEstimatedNumberOfThreads(),
+      context == "none" ? "cpu" : "gl", context.c_str(), JsonEscape(backend).c_str(),
+      context == "none" ? "host clock"
+                        : (context == "osmesa" || backend.find("llvmpipe") != std::string::npos
+                              ? "host clock around glFinish"
+                              : "GL timestamp queries"));
   }
   else
   {
-    std::printf("LAO of %s (%d x %d x %d): %d rays x %d samples, reach %g (%s): %.1f ms, AO in [%.4f, %.4f]\n",
+    std::printf("LAO of %s (%d x %d x %d): %d rays x %d samples, reach %g (%s): %.1f ms, AO in [%.4f, %.4f]\n"
+                "backend: %s\n",
       o.volume.c_str(), dims[0], dims[1], dims[2], static_cast<int>(FieldValue(out, "LAOParameters", 1)),
       static_cast<int>(FieldValue(out, "LAOParameters", 2)), FieldValue(out, "LAOParameters", 3),
-      used.Text().c_str(), ms, range[0], range[1]);
+      used.Text().c_str(), ms, range[0], range[1], backend.c_str());
   }
   std::string error;
   if (!o.output.empty() && !Write(out, o.output, error))
@@ -504,6 +543,9 @@ struct PoseResult
   double counts[3];
   double ms[4];
   double fullMs = -1.0, maxDiff = -1.0, differing = -1.0;
+  bool newMaps = false;         ///< the maps were (re)made for this pose's scale
+  bool geometryChecked = false; ///< --verify-geometry ran
+  cao::ClipGeometryReport geometry;
 };
 
 struct RunResult
@@ -512,7 +554,10 @@ struct RunResult
   std::string used; ///< the LAO settings used (LAOUsed::Json)
   int numRays = 0, samples = 0;
   double reach = 0.0, precomputeMs = 0.0, depthMs = 0.0;
+  int mapsBuilt = 0;            ///< depth maps made (one per pose scale)
+  vtkMTimeType mapsTime = 0;
   std::string backend;          ///< the CAO output's ComputeBackend
+  std::string mapsBackend;      ///< the maps' ComputeBackend
   double gpuBytesPerVoxel = -1; ///< resident on the GPU (OpenGL backend)
   std::vector<PoseResult> poses;
 };
@@ -523,13 +568,45 @@ int RunCarve(const Options& o, vtkImageData* volume)
   vtkSmartPointer<vtkPolyData> mesh;
   double bounds[6];
   volume->GetBounds(bounds);
-  const double smallest = std::min({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] });
+  // The default shape size: a quarter of the volume's smallest extent,
+  // counting each voxel's footprint (a 1-voxel-thick axis is one spacing).
+  int volumeDims[3];
+  volume->GetDimensions(volumeDims);
+  const double* spacing = volume->GetSpacing();
+  double smallest = HUGE_VAL;
+  for (int d = 0; d < 3; ++d)
+    smallest = std::min(smallest, volumeDims[d] * std::fabs(spacing[d]));
   if (!o.mesh.empty())
     mesh = caocli::ReadMesh(o.mesh, error);
   else
     mesh = caocli::MakeShape(o.shape, o.size > 0.0 ? o.size : std::max(0.25 * smallest, 1e-6), error);
   if (!mesh)
     return Fail(2, error);
+  // The exact shape, for --verify-geometry: in closed form for the built-in
+  // shapes (with how far their tessellation strays from it), the mesh itself
+  // (point location) for a mesh file.
+  cao::ClipShape exact;
+  double deviation = 0.0;
+  if (o.verifyGeometry)
+  {
+    std::vector<double> points;
+    std::vector<std::int64_t> tris;
+    caocli::TrianglesOf(mesh, points, tris);
+    const cao::TriangleMesh view = cao::ViewMesh(points, tris);
+    const double size = o.size > 0.0 ? o.size : std::max(0.25 * smallest, 1e-6);
+    if (!o.mesh.empty())
+    {
+      if (!cao::ClipShape::FromMesh(view, exact, error))
+        return Fail(2, "--verify-geometry: " + error);
+    }
+    else
+    {
+      exact = o.shape == "cube" ? cao::ClipShape::Cube(size)
+        : o.shape == "torus"    ? cao::ClipShape::Torus(size, size / 3.0)
+                                : cao::ClipShape::Sphere(size);
+      deviation = exact.Deviation(view);
+    }
+  }
 
   std::vector<caocli::Pose> poses;
   for (const auto& t : o.poseTexts)
@@ -541,11 +618,10 @@ int RunCarve(const Options& o, vtkImageData* volume)
   }
   if (!o.posesFile.empty() && !caocli::ReadPoses(o.posesFile, poses, error))
     return Fail(2, error);
+  if (poses.size() > static_cast<std::size_t>(caocli::MaxPoses))
+    return Fail(2, "more than " + std::to_string(caocli::MaxPoses) + " poses");
   if (poses.empty())
     poses = caocli::DefaultPath(bounds, o.path);
-  double minScale = 1.0;
-  for (const auto& p : poses)
-    minScale = std::min(minScale, p.scale);
 
   vtkNew<vtkPiecewiseFunction> tf;
   BuildTransferFunction(o, volume, tf);
@@ -554,7 +630,8 @@ int RunCarve(const Options& o, vtkImageData* volume)
   volume->GetDimensions(dims);
   std::vector<RunResult> runs;
   vtkSmartPointer<vtkImageData> last;
-  bool verifyFailed = false;
+  bool verifyFailed = false, geometryFailed = false;
+  caocli::Progress progress(o.quiet);
 
   for (const std::string& rays : o.rays)
   for (int backend : o.backends)
@@ -566,7 +643,9 @@ int RunCarve(const Options& o, vtkImageData* volume)
     log.Watch(lao);
     ConfigureLAO(ob, rays, lao, tf);
     lao->SetInputData(volume);
+    progress.Watch(lao, "LAO precompute (" + rays + " rays)");
     lao->Update();
+    progress.Done();
     if (!log.messages.empty())
       return Fail(1, log.Last());
     RunResult run;
@@ -578,21 +657,38 @@ int RunCarve(const Options& o, vtkImageData* volume)
     run.precomputeMs = FieldValue(laoOut, "LAOParameters", 7);
     run.used = LAOUsed(laoOut).Json();
 
+    // The maps are made for each pose scale of the path (pixels of half a
+    // voxel and the dilation of the reach, in the world, at that scale),
+    // over the region the volume occupies in the mesh's frame at the poses
+    // of that scale (all of the mesh unless it is larger than that).
+    std::map<double, std::array<double, 6>> regions;
+    for (const auto& p : poses)
+    {
+      vtkNew<vtkTransform> t;
+      caocli::PoseToTransform(p, t);
+      double box[6];
+      if (!vtkCAO::VolumeRegionInLocalFrame(volume, t->GetMatrix(), 0.0, box))
+        return Fail(2, "a clip pose must be an invertible transform (scale > 0)");
+      auto it = regions.find(p.scale);
+      if (it == regions.end())
+        regions[p.scale] = { box[0], box[1], box[2], box[3], box[4], box[5] };
+      else
+        for (int d = 0; d < 3; ++d)
+        {
+          it->second[2 * d] = std::min(it->second[2 * d], box[2 * d]);
+          it->second[2 * d + 1] = std::max(it->second[2 * d + 1], box[2 * d + 1]);
+        }
+    }
     vtkNew<vtkClipDepthMaps> maps;
     log.Watch(maps);
     maps->SetInputData(mesh);
     maps->SetReach(run.reach);
     maps->SetVoxelSpacing(volume->GetSpacing());
-    maps->SetMinimumPoseScale(minScale);
     maps->SetNumberOfLayers(o.layers);
     maps->SetPixelSize(o.pixelSize);
     maps->SetDirection(o.direction);
     maps->SetNumberOfThreads(o.threads);
-    auto t0 = std::chrono::steady_clock::now();
-    maps->Update();
-    run.depthMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    if (!log.messages.empty())
-      return Fail(2, log.Last());
+    maps->SetBackend(backend);
 
     vtkNew<vtkContextualAmbientOcclusion> cao;
     log.Watch(cao);
@@ -606,15 +702,33 @@ int RunCarve(const Options& o, vtkImageData* volume)
     cao->SetBackend(backend);
     vtkNew<vtkTransform> pose;
     cao->SetPoseTransform(pose);
-    for (const auto& p : poses)
+    const int mode = o.mode == "probe" ? cao::shared::CAO_MODE_PROBE : cao::shared::CAO_MODE_SUBTRACT;
+    for (std::size_t index = 0; index < poses.size(); ++index)
     {
+      const caocli::Pose& p = poses[index];
+      progress.Step("poses", index, poses.size());
       caocli::PoseToTransform(p, pose);
+      const double scale = p.scale;
+      maps->SetPoseScaleRange(scale, scale);
+      maps->SetRegionOfInterest(regions[scale].data());
+      auto t0 = std::chrono::steady_clock::now();
+      const int before = run.mapsBuilt;
+      maps->Update();
+      if (maps->GetOutput()->GetMTime() > run.mapsTime)
+      {
+        run.mapsTime = maps->GetOutput()->GetMTime();
+        ++run.mapsBuilt;
+        run.depthMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      }
+      if (!log.messages.empty())
+        return Fail(2, log.Last());
       cao->Update();
       if (!log.messages.empty())
         return Fail(1, log.Last());
       vtkImageData* out = cao->GetOutput();
       PoseResult r;
       r.pose = p;
+      r.newMaps = run.mapsBuilt > before;
       for (int c = 0; c < 3; ++c)
         r.counts[c] = FieldValue(out, "CategoryCounts", c);
       for (int c = 0; c < 4; ++c)
@@ -626,9 +740,22 @@ int RunCarve(const Options& o, vtkImageData* volume)
         r.fullMs = FieldValue(out, "Verification", 2);
         verifyFailed = verifyFailed || r.maxDiff != 0.0;
       }
+      if (o.verifyGeometry)
+      {
+        vtkCAO::ClipMaps held;
+        cao::ClipGeometryReport report;
+        if (!vtkCAO::ReadClipMaps(maps->GetOutput(), mode, held, error) ||
+          !vtkCAO::CheckClipGeometry(out, held, pose->GetMatrix(), exact, deviation, mode, report, error))
+          return Fail(1, "--verify-geometry: " + error);
+        r.geometry = report;
+        r.geometryChecked = true;
+        geometryFailed = geometryFailed || !report.Passed();
+      }
       run.poses.push_back(r);
     }
+    progress.Done();
     run.backend = FieldString(cao->GetOutput(), "ComputeBackend");
+    run.mapsBackend = FieldString(maps->GetOutput(), "ComputeBackend");
     run.gpuBytesPerVoxel = FieldValue(cao->GetOutput(), "GPUStatistics", 1);
     last = vtkSmartPointer<vtkImageData>::New();
     last->ShallowCopy(cao->GetOutput());
@@ -652,12 +779,14 @@ int RunCarve(const Options& o, vtkImageData* volume)
       std::printf("%s\n {\"rays\": %d, %s, \"samples\": %d, \"reach\": %.9g, "
                   "\"backend\": \"%s\", \"context\": \"%s\", \"backend_detail\": \"%s\", "
                   "\"stage_timing\": \"%s\", \"gpu_bytes_per_voxel\": %.4f, "
-                  "\"precompute_ms\": %.3f, \"depth_maps_ms\": %.3f, \"poses\": [",
+                  "\"precompute_ms\": %.3f, \"depth_maps_ms\": %.3f, \"depth_maps_made\": %d, "
+                  "\"depth_maps_backend\": \"%s\", \"poses\": [",
         i ? "," : "", run.numRays, run.used.c_str(), run.samples, run.reach, gl ? "gl" : "cpu",
         ContextOf(run.backend).c_str(), JsonEscape(run.backend).c_str(),
         gl ? (ContextOf(run.backend) == "osmesa" ? "host clock around glFinish" : "GL timestamp queries")
            : "host clock",
-        run.gpuBytesPerVoxel, run.precomputeMs, run.depthMs);
+        run.gpuBytesPerVoxel, run.precomputeMs, run.depthMs, run.mapsBuilt,
+        JsonEscape(run.mapsBackend).c_str());
       double sumFull = 0, sumCao = 0, sumB = 0, maxDiff = o.verify ? 0.0 : -1.0;
       for (std::size_t j = 0; j < run.poses.size(); ++j)
       {
@@ -677,6 +806,14 @@ int RunCarve(const Options& o, vtkImageData* volume)
           r.fullMs >= 0.0 ? "true" : "false", full / std::max(r.ms[3], 1e-9));
         if (o.verify)
           std::printf(", \"max_abs_difference\": %.9g, \"differing_voxels\": %.0f", r.maxDiff, r.differing);
+        if (r.geometryChecked)
+          std::printf(", \"geometry\": {\"margin\": %.9g, \"map_pixel\": %.9g, "
+                      "\"must_be_inside\": %lld, "
+                      "\"must_be_outside\": %lld, \"wrong_inside\": %lld, \"wrong_outside\": %lld}",
+            r.geometry.margin, r.geometry.pixel, static_cast<long long>(r.geometry.mustBeInside),
+            static_cast<long long>(r.geometry.mustBeOutside),
+            static_cast<long long>(r.geometry.wrongInside),
+            static_cast<long long>(r.geometry.wrongOutside));
         std::printf("}");
       }
       const double n = static_cast<double>(run.poses.size());
@@ -695,10 +832,12 @@ int RunCarve(const Options& o, vtkImageData* volume)
         o.volume.c_str(), dims[0], dims[1], dims[2], voxels, o.mode.c_str(), run.numRays,
         run.samples, run.reach);
       std::printf("backend: %s\n", run.backend.c_str());
-      std::printf("LAO precompute %.1f ms; depth maps %.1f ms (computed once)\n", run.precomputeMs, run.depthMs);
-      std::printf("%4s %10s %10s %10s %6s %9s %8s %10s %9s %9s %8s%s\n", "pose", "clipped(a)",
+      std::printf("LAO precompute %.1f ms; depth maps %.1f ms (%d made: one per pose scale; %s)\n",
+        run.precomputeMs, run.depthMs, run.mapsBuilt, run.mapsBackend.c_str());
+      std::printf("%4s %10s %10s %10s %6s %9s %8s %10s %9s %9s %8s%s%s\n", "pose", "clipped(a)",
         "affected(b)", "unaff.(c)", "%b", "classify", "copy", "recompute", "CAO ms", "full ms",
-        "speedup", o.verify ? "  max|diff|" : "");
+        "speedup", o.verify ? "  max|diff|" : "",
+        o.verifyGeometry ? "  geometry: wrong/checked (margin)" : "");
       for (std::size_t j = 0; j < run.poses.size(); ++j)
       {
         const PoseResult& r = run.poses[j];
@@ -708,7 +847,14 @@ int RunCarve(const Options& o, vtkImageData* volume)
           r.ms[2], r.ms[3], full, full / std::max(r.ms[3], 1e-9));
         if (o.verify)
           std::printf("  %g", r.maxDiff);
+        if (r.geometryChecked)
+          std::printf("  %lld/%lld (%.3g)",
+            static_cast<long long>(r.geometry.wrongInside + r.geometry.wrongOutside),
+            static_cast<long long>(r.geometry.mustBeInside + r.geometry.mustBeOutside),
+            r.geometry.margin);
         std::printf("\n");
+        if (r.geometryChecked && !r.geometry.Passed())
+          std::printf("     geometry: %s\n", r.geometry.firstWrong.c_str());
       }
     }
     // The summary table: one row per ray set (the README's benchmark table).
@@ -745,12 +891,31 @@ int RunCarve(const Options& o, vtkImageData* volume)
     return Fail(1, error);
   if (verifyFailed)
     return Fail(3, "--verify: the contextual AO differs from the full LAO recompute");
+  if (geometryFailed)
+    return Fail(3, "--verify-geometry: the clip differs from the exact shape by more than the "
+                   "margin (one depth-map pixel) at some voxels");
   return 0;
 }
 }
 
 int main(int argc, char* argv[])
 {
+  caocli::InstallOutputWindow();
+  for (int i = 2; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    if (a == "-h" || a == "--help")
+    {
+      const std::string command = argv[1];
+      if (command == "render")
+        std::cout << caocli::RenderUsage;
+      else if (command == "bench")
+        std::cout << caocli::BenchUsage;
+      else
+        std::cout << Usage;
+      return 0;
+    }
+  }
   if (argc >= 2 && std::string(argv[1]) == "render")
     return caocli::RunRender(argc, argv);
   if (argc >= 2 && std::string(argv[1]) == "bench")

@@ -14,6 +14,8 @@
 #include "vtkMetaImageReader.h"
 #include "vtkNIFTIImageReader.h"
 #include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkOutputWindow.h"
 #include "vtkOBJReader.h"
 #include "vtkPLYReader.h"
 #include "vtkPiecewiseFunction.h"
@@ -28,11 +30,16 @@
 #include "vtkXMLPolyDataReader.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <unistd.h>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 namespace caocli
 {
@@ -65,8 +72,405 @@ struct ErrorCatcher
     algorithm->AddObserver(vtkCommand::ErrorEvent, callback);
     if (auto* exec = algorithm->GetExecutive())
       exec->AddObserver(vtkCommand::ErrorEvent, callback);
+    // Readers report some read failures as warnings ("Error reading binary
+    // data!"); those are errors here.
+    warning->SetClientData(this);
+    warning->SetCallback([](vtkObject*, unsigned long, void* self, void* data) {
+      auto* catcher = static_cast<ErrorCatcher*>(self);
+      const char* text = static_cast<const char*>(data);
+      if (catcher->message.empty() && text &&
+        (std::strstr(text, "Error") || std::strstr(text, "error") || std::strstr(text, "truncat")))
+        catcher->message = text;
+    });
+    algorithm->AddObserver(vtkCommand::WarningEvent, warning);
   }
+  vtkNew<vtkCallbackCommand> warning;
 };
+
+std::string Trim(const std::string& s)
+{
+  const auto b = s.find_first_not_of(" \t\r\n");
+  const auto e = s.find_last_not_of(" \t\r\n");
+  return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
+}
+
+std::string Directory(const std::string& path)
+{
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
+}
+
+long long FileSize(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  return in ? static_cast<long long>(in.tellg()) : -1;
+}
+
+/// The voxel limit of the kernels (2^31 - 1, cao::MaxVoxels), stated in errors.
+constexpr double MaxVolumeVoxels = 2147483647.0;
+
+/**
+ * A MetaImage header's promise against its data, before any reader
+ * allocates: the declared voxel count within the kernels' limit, and (for
+ * uncompressed data in one file) at least that many bytes in the file. A
+ * header claiming 100000^3 voxels, or 600^3 with 64 bytes of data, is an
+ * error here instead of a reader abort or 1.8 GB of zeros.
+ */
+bool CheckMetaImage(const std::string& path, std::string& error)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::string line, dataFile;
+  std::vector<double> dims;
+  std::string type;
+  double channels = 1.0, headerSize = 0.0;
+  bool compressed = false;
+  long long headerEnd = -1;
+  for (int n = 0; n < 1000 && std::getline(in, line); ++n)
+  {
+    const auto eq = line.find('=');
+    if (eq == std::string::npos)
+      continue;
+    const std::string key = Lower(Trim(line.substr(0, eq)));
+    const std::string value = Trim(line.substr(eq + 1));
+    std::istringstream values(value);
+    if (key == "dimsize")
+    {
+      double d;
+      while (values >> d)
+        dims.push_back(d);
+    }
+    else if (key == "elementtype")
+      type = value;
+    else if (key == "elementnumberofchannels")
+      values >> channels;
+    else if (key == "headersize")
+      values >> headerSize;
+    else if (key == "compresseddata")
+      compressed = Lower(value) == "true";
+    else if (key == "elementdatafile")
+    {
+      dataFile = value;
+      headerEnd = static_cast<long long>(in.tellg());
+      break;
+    }
+  }
+  if (dims.empty())
+    return true; // the reader reports a header without DimSize
+  double voxels = 1.0;
+  std::string shape;
+  for (double d : dims)
+  {
+    if (!(d >= 1.0) || d != std::floor(d))
+    {
+      error = "cannot read '" + path + "': its DimSize has a non-positive or fractional size";
+      return false;
+    }
+    voxels *= d;
+    shape += (shape.empty() ? "" : " x ") + std::to_string(static_cast<long long>(d));
+  }
+  if (voxels > MaxVolumeVoxels)
+  {
+    error = "cannot read '" + path + "': its header declares " + shape + " voxels, above the " +
+      "limit of 2^31-1 (2147483647) voxels";
+    return false;
+  }
+  static const std::pair<const char*, int> sizes[] = { { "MET_UCHAR", 1 }, { "MET_CHAR", 1 },
+    { "MET_USHORT", 2 }, { "MET_SHORT", 2 }, { "MET_UINT", 4 }, { "MET_INT", 4 },
+    { "MET_ULONG", 8 }, { "MET_LONG", 8 }, { "MET_ULONG_LONG", 8 }, { "MET_LONG_LONG", 8 },
+    { "MET_FLOAT", 4 }, { "MET_DOUBLE", 8 } };
+  int elementSize = 0;
+  for (const auto& t : sizes)
+    if (type == t.first)
+      elementSize = t.second;
+  if (compressed || elementSize == 0 || dataFile.empty() || Lower(dataFile) == "list" ||
+    dataFile.find('%') != std::string::npos || headerSize < 0.0)
+    return true; // the sizes cannot be known up front: the reader checks what it can
+  const double needed = voxels * channels * elementSize;
+  long long available = 0;
+  std::string source;
+  if (Lower(dataFile) == "local")
+  {
+    available = FileSize(path) - headerEnd;
+    source = "'" + path + "' after its header";
+  }
+  else
+  {
+    const std::string data = dataFile[0] == '/' ? dataFile : Directory(path) + dataFile;
+    available = FileSize(data);
+    source = "'" + data + "'";
+    if (available < 0)
+    {
+      error = "cannot read '" + path + "': its data file '" + data + "' cannot be opened";
+      return false;
+    }
+  }
+  if (static_cast<double>(available) - headerSize < needed)
+  {
+    std::ostringstream msg;
+    msg << "cannot read '" << path << "': its header declares " << shape << " voxels of "
+        << type << " (" << static_cast<long long>(needed) << " bytes), but " << source
+        << " holds " << std::max(0LL, available - static_cast<long long>(headerSize))
+        << " bytes: the data is short";
+    error = msg.str();
+    return false;
+  }
+  return true;
+}
+
+/// Decode standard base64 (VTK's appended encoding); stops at the first
+/// character that is not base64.
+std::vector<unsigned char> Base64(const std::string& text)
+{
+  std::vector<unsigned char> out;
+  unsigned int buffer = 0;
+  int bits = 0;
+  for (char c : text)
+  {
+    int v;
+    if (c >= 'A' && c <= 'Z')
+      v = c - 'A';
+    else if (c >= 'a' && c <= 'z')
+      v = c - 'a' + 26;
+    else if (c >= '0' && c <= '9')
+      v = c - '0' + 52;
+    else if (c == '+')
+      v = 62;
+    else if (c == '/')
+      v = 63;
+    else
+      break;
+    buffer = (buffer << 6) | static_cast<unsigned int>(v);
+    bits += 6;
+    if (bits >= 8)
+    {
+      bits -= 8;
+      out.push_back(static_cast<unsigned char>((buffer >> bits) & 0xFF));
+    }
+  }
+  return out;
+}
+
+/**
+ * A VTK XML file's appended data against its length: every appended array's
+ * block header (its byte count, or its compressed block sizes) must be
+ * followed by that many bytes. VTK's readers fill what is missing with
+ * zeros without a word (an appended-raw .vti cut at 80% read 15 503 voxels
+ * as 0); here it is an error.
+ */
+bool CheckXMLAppendedData(const std::string& path, std::string& error)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::string head;
+  const std::size_t chunk = 1 << 16, limit = std::size_t(64) << 20;
+  std::size_t marker = std::string::npos;
+  char buffer[1 << 16];
+  while (head.size() < limit)
+  {
+    in.read(buffer, chunk);
+    const std::streamsize got = in.gcount();
+    if (got <= 0)
+      break;
+    head.append(buffer, static_cast<std::size_t>(got));
+    const std::size_t tag = head.find("<AppendedData");
+    if (tag != std::string::npos)
+    {
+      marker = head.find('_', tag);
+      if (marker != std::string::npos)
+        break;
+    }
+  }
+  if (marker == std::string::npos)
+    return true; // no appended data: inline arrays are checked by the XML parser
+  auto attribute = [](const std::string& text, const char* name) {
+    const std::string key = std::string(" ") + name + "=\"";
+    const std::size_t at = text.find(key);
+    if (at == std::string::npos)
+      return std::string();
+    const std::size_t end = text.find('"', at + key.size());
+    return text.substr(at + key.size(), end - at - key.size());
+  };
+  const std::size_t fileTag = head.find("<VTKFile");
+  const std::string fileHead = head.substr(fileTag, head.find('>', fileTag) - fileTag);
+  const int headerBytes = attribute(fileHead, "header_type") == "UInt64" ? 8 : 4;
+  const bool compressed = !attribute(fileHead, "compressor").empty();
+  const std::size_t appendedTag = head.find("<AppendedData");
+  const bool raw = attribute(head.substr(appendedTag, marker - appendedTag), "encoding") == "raw";
+  const long long dataStart = static_cast<long long>(marker) + 1;
+  const long long fileSize = FileSize(path);
+  auto readAt = [&](long long at, std::size_t n, std::string& out) {
+    if (at < 0 || at + static_cast<long long>(n) > fileSize)
+      return false;
+    in.clear();
+    in.seekg(at);
+    out.resize(n);
+    in.read(&out[0], static_cast<std::streamsize>(n));
+    return in.gcount() == static_cast<std::streamsize>(n);
+  };
+  auto value = [headerBytes](const unsigned char* p, int i) {
+    unsigned long long v = 0;
+    for (int b = headerBytes - 1; b >= 0; --b)
+      v = (v << 8) | p[i * headerBytes + b]; // little endian (VTK's writers)
+    return v;
+  };
+  if (head.find("byte_order=\"BigEndian\"") != std::string::npos)
+    return true; // not checked
+  std::size_t pos = 0;
+  while ((pos = head.find("<DataArray", pos)) != std::string::npos && pos < appendedTag)
+  {
+    const std::string element = head.substr(pos, head.find('>', pos) - pos);
+    pos += 10;
+    if (attribute(element, "format") != "appended")
+      continue;
+    const long long offset = std::atoll(attribute(element, "offset").c_str());
+    const std::string name = attribute(element, "Name");
+    long long end = -1; // one past the array's last byte
+    std::string bytes;
+    if (raw)
+    {
+      if (readAt(dataStart + offset, headerBytes, bytes))
+      {
+        const auto* h = reinterpret_cast<const unsigned char*>(bytes.data());
+        if (!compressed)
+          end = dataStart + offset + headerBytes + static_cast<long long>(value(h, 0));
+        else if (readAt(dataStart + offset, 3 * headerBytes, bytes))
+        {
+          const unsigned long long blocks = value(reinterpret_cast<const unsigned char*>(bytes.data()), 0);
+          if (blocks < (1ULL << 32) && readAt(dataStart + offset, (3 + blocks) * headerBytes, bytes))
+          {
+            long long sum = 0;
+            for (unsigned long long b = 0; b < blocks; ++b)
+              sum += static_cast<long long>(
+                value(reinterpret_cast<const unsigned char*>(bytes.data()), static_cast<int>(3 + b)));
+            end = dataStart + offset + static_cast<long long>((3 + blocks) * headerBytes) + sum;
+          }
+        }
+      }
+    }
+    else
+    {
+      // base64: the header is its own encoded block, then the data's.
+      const std::size_t firstChars = 4 * static_cast<std::size_t>(headerBytes);
+      if (readAt(dataStart + offset, firstChars, bytes))
+      {
+        const std::vector<unsigned char> h = Base64(bytes);
+        if (!compressed && h.size() >= static_cast<std::size_t>(headerBytes))
+        {
+          const long long headerChars = 4 * ((headerBytes + 2) / 3);
+          const long long n = static_cast<long long>(value(h.data(), 0));
+          end = dataStart + offset + headerChars + 4 * ((n + 2) / 3);
+        }
+        else if (compressed && h.size() >= static_cast<std::size_t>(3 * headerBytes))
+        {
+          const unsigned long long blocks = value(h.data(), 0);
+          const long long hb = static_cast<long long>((3 + blocks) * headerBytes);
+          const long long headerChars = 4 * ((hb + 2) / 3);
+          if (blocks < (1ULL << 32) && readAt(dataStart + offset, static_cast<std::size_t>(headerChars), bytes))
+          {
+            const std::vector<unsigned char> full = Base64(bytes);
+            long long sum = 0;
+            if (full.size() >= static_cast<std::size_t>(hb))
+            {
+              for (unsigned long long b = 0; b < blocks; ++b)
+                sum += static_cast<long long>(value(full.data(), static_cast<int>(3 + b)));
+              end = dataStart + offset + headerChars + 4 * ((sum + 2) / 3);
+            }
+          }
+        }
+      }
+    }
+    if (end < 0 || end > fileSize)
+    {
+      std::ostringstream msg;
+      msg << "cannot read '" << path << "': the file is short: array '" << name
+          << "' needs its appended data up to byte " << (end < 0 ? dataStart + offset : end)
+          << " but the file has " << fileSize << " bytes (a truncated copy?)";
+      error = msg.str();
+      return false;
+    }
+  }
+  return true;
+}
+
+/**
+ * A legacy VTK file's first binary point array against the file's length
+ * (VTK's legacy reader fills a short COLOR_SCALARS block without a word).
+ */
+bool CheckLegacyBinary(const std::string& path, std::string& error)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  bool binary = false;
+  long long points = -1;
+  for (int n = 0; n < 200 && std::getline(in, line); ++n)
+  {
+    std::istringstream words(line);
+    std::string key;
+    words >> key;
+    key = Lower(key);
+    if (n == 2 || key == "binary")
+      binary = binary || key == "binary";
+    if (key == "point_data")
+      words >> points;
+    if (!binary || points < 0)
+      continue;
+    int components = 0, size = 0;
+    std::string name, type;
+    if (key == "scalars")
+    {
+      words >> name >> type;
+      components = 1;
+      words >> components;
+      if (components < 1)
+        components = 1;
+    }
+    else if (key == "color_scalars")
+    {
+      words >> name >> components;
+      type = "unsigned_char";
+    }
+    else if (key == "vectors" || key == "normals")
+    {
+      words >> name >> type;
+      components = 3;
+    }
+    else
+      continue;
+    static const std::pair<const char*, int> sizes[] = { { "bit", 0 }, { "unsigned_char", 1 },
+      { "char", 1 }, { "unsigned_short", 2 }, { "short", 2 }, { "unsigned_int", 4 }, { "int", 4 },
+      { "unsigned_long", 8 }, { "long", 8 }, { "vtktypeuint64", 8 }, { "vtktypeint64", 8 },
+      { "float", 4 }, { "double", 8 } };
+    for (const auto& t : sizes)
+      if (Lower(type) == t.first)
+        size = t.second;
+    if (size == 0)
+      return true; // bits and unknown types: left to the reader
+    long long start = static_cast<long long>(in.tellg());
+    if (key == "scalars")
+    {
+      // An optional LOOKUP_TABLE line precedes the data.
+      std::string next;
+      const std::streampos before = in.tellg();
+      if (std::getline(in, next) && Lower(Trim(next)).rfind("lookup_table", 0) == 0)
+        start = static_cast<long long>(in.tellg());
+      else
+      {
+        in.clear();
+        in.seekg(before);
+      }
+    }
+    const long long needed = points * components * size;
+    const long long have = FileSize(path) - start;
+    if (have < needed)
+    {
+      error = "cannot read '" + path + "': the file is short: point array '" + name + "' needs " +
+        std::to_string(needed) + " bytes of binary data but the file holds " +
+        std::to_string(std::max(0LL, have)) + " after its header";
+      return false;
+    }
+    return true;
+  }
+  return true;
+}
 
 bool Readable(const std::string& path, std::string& error)
 {
@@ -139,6 +543,8 @@ vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path, std::string& e
   vtkSmartPointer<vtkImageData> image;
   if (EndsWith(p, ".vti"))
   {
+    if (!CheckXMLAppendedData(path, error))
+      return nullptr;
     vtkNew<vtkXMLImageDataReader> r;
     r->SetFileName(path.c_str());
     if (!Run(r.Get(), path, error))
@@ -154,6 +560,8 @@ vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path, std::string& e
       error = "cannot read '" + path + "': not a MetaImage file";
       return nullptr;
     }
+    if (!CheckMetaImage(path, error))
+      return nullptr;
     if (!Run(r.Get(), path, error))
       return nullptr;
     image = r->GetOutput();
@@ -186,6 +594,8 @@ vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path, std::string& e
   }
   else if (EndsWith(p, ".vtk"))
   {
+    if (!CheckLegacyBinary(path, error))
+      return nullptr;
     vtkNew<vtkDataSetReader> r;
     r->SetFileName(path.c_str());
     if (!Run(r.Get(), path, error))
@@ -206,6 +616,12 @@ vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path, std::string& e
   if (!image || image->GetNumberOfPoints() < 1)
   {
     error = "cannot read '" + path + "': no voxels";
+    return nullptr;
+  }
+  if (static_cast<double>(image->GetNumberOfPoints()) > MaxVolumeVoxels)
+  {
+    error = "cannot read '" + path + "': " + std::to_string(image->GetNumberOfPoints()) +
+      " voxels, above the limit of 2^31-1 (2147483647)";
     return nullptr;
   }
   auto copy = vtkSmartPointer<vtkImageData>::New();
@@ -394,6 +810,11 @@ bool ReadPoses(const std::string& path, std::vector<Pose>& poses, std::string& e
       return false;
     }
     poses.push_back(p);
+    if (poses.size() > static_cast<std::size_t>(MaxPoses))
+    {
+      error = "pose file '" + path + "' has more than " + std::to_string(MaxPoses) + " poses";
+      return false;
+    }
   }
   if (poses.empty())
   {
@@ -445,5 +866,134 @@ bool TakeArgument(const std::string& a, std::string& volume, std::string& error)
   }
   volume = a;
   return true;
+}
+
+Progress::Progress(bool disabled)
+  : Enabled(!disabled && isatty(2))
+{
+  this->Callback->SetClientData(this);
+  this->Callback->SetCallback([](vtkObject*, unsigned long, void* self, void* data) {
+    auto* p = static_cast<Progress*>(self);
+    const double f = data ? *static_cast<double*>(data) : 0.0;
+    char text[64];
+    std::snprintf(text, sizeof(text), ": %3.0f%%", 100.0 * f);
+    p->Show(p->Label + text);
+  });
+}
+
+Progress::~Progress()
+{
+  this->Done();
+}
+
+void Progress::Watch(vtkObject* algorithm, const std::string& label)
+{
+  this->Label = label;
+  if (this->Enabled)
+    algorithm->AddObserver(vtkCommand::ProgressEvent, this->Callback);
+}
+
+void Progress::Step(const std::string& label, std::size_t i, std::size_t n)
+{
+  this->Show(label + " " + std::to_string(i + 1) + "/" + std::to_string(n));
+}
+
+void Progress::Show(const std::string& text)
+{
+  if (!this->Enabled)
+    return;
+  std::fprintf(stderr, "\r%-60s", text.c_str());
+  std::fflush(stderr);
+  this->Shown = true;
+}
+
+void Progress::Done()
+{
+  if (this->Enabled && this->Shown)
+  {
+    std::fprintf(stderr, "\r%-60s\r", "");
+    std::fflush(stderr);
+  }
+  this->Shown = false;
+}
+
+void TrianglesOf(vtkPolyData* mesh, std::vector<double>& points, std::vector<std::int64_t>& tris)
+{
+  vtkNew<vtkTriangleFilter> triangles;
+  triangles->SetInputData(mesh);
+  triangles->PassVertsOff();
+  triangles->PassLinesOff();
+  triangles->Update();
+  vtkPolyData* t = triangles->GetOutput();
+  points.resize(3 * static_cast<std::size_t>(t->GetNumberOfPoints()));
+  for (vtkIdType i = 0; i < t->GetNumberOfPoints(); ++i)
+    t->GetPoint(i, &points[3 * i]);
+  tris.clear();
+  vtkCellArray* polys = t->GetPolys();
+  vtkIdType n;
+  const vtkIdType* ids;
+  for (polys->InitTraversal(); polys->GetNextCell(n, ids);)
+    if (n == 3)
+      tris.insert(tris.end(), { ids[0], ids[1], ids[2] });
+}
+
+std::string CleanMessage(const char* text)
+{
+  std::string m = text ? text : "";
+  // "ERROR: In file, line N\n" headers (output-window text).
+  if (m.rfind("ERROR: In ", 0) == 0 || m.rfind("Warning: In ", 0) == 0 ||
+    m.rfind("Generic Warning: In ", 0) == 0)
+  {
+    const std::size_t nl = m.find('\n');
+    m = nl == std::string::npos ? std::string() : m.substr(nl + 1);
+  }
+  // "vtkClass (0x55...): "
+  if (m.rfind("vtk", 0) == 0)
+  {
+    const std::size_t open = m.find(" (0x");
+    const std::size_t close = open == std::string::npos ? open : m.find("): ", open);
+    if (close != std::string::npos && m.find(' ') == open)
+      m = m.substr(close + 3);
+  }
+  while (!m.empty() && std::isspace(static_cast<unsigned char>(m.back())))
+    m.pop_back();
+  return m;
+}
+
+void ErrorLog::Watch(vtkObject* o)
+{
+  o->AddObserver(vtkCommand::ErrorEvent, this->callback);
+  if (auto* algorithm = vtkAlgorithm::SafeDownCast(o))
+    if (auto* exec = algorithm->GetExecutive())
+      exec->AddObserver(vtkCommand::ErrorEvent, this->callback);
+}
+
+namespace
+{
+class CliOutputWindow : public vtkOutputWindow
+{
+public:
+  static CliOutputWindow* New();
+  vtkTypeMacro(CliOutputWindow, vtkOutputWindow);
+  void DisplayText(const char* text) override { std::fprintf(stderr, "%s\n", CleanMessage(text).c_str()); }
+  void DisplayErrorText(const char* text) override
+  {
+    const std::string m = CleanMessage(text);
+    if (m.find("returned failure for request") == std::string::npos)
+      std::fprintf(stderr, "cao: error: %s\n", m.c_str());
+  }
+  void DisplayWarningText(const char* text) override
+  {
+    std::fprintf(stderr, "cao: warning: %s\n", CleanMessage(text).c_str());
+  }
+  void DisplayGenericWarningText(const char* text) override { this->DisplayWarningText(text); }
+};
+vtkStandardNewMacro(CliOutputWindow);
+}
+
+void InstallOutputWindow()
+{
+  vtkNew<CliOutputWindow> window;
+  vtkOutputWindow::SetInstance(window);
 }
 }

@@ -13,6 +13,7 @@
 #include "vtkSmartPointer.h"
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -24,7 +25,11 @@ class vtkTransform;
 
 namespace caocli
 {
-/// Collects the VTK errors raised by watched objects, so that they become CLI errors.
+/// A VTK message without its "vtkClass (0x...): " prefix and trailing blanks.
+std::string CleanMessage(const char* text);
+
+/// Collects the VTK errors raised by watched objects (and their executives,
+/// whose "returned failure" echo is dropped), so that they become CLI errors.
 struct ErrorLog
 {
   std::vector<std::string> messages;
@@ -33,16 +38,44 @@ struct ErrorLog
   {
     callback->SetClientData(this);
     callback->SetCallback([](vtkObject*, unsigned long, void* self, void* data) {
-      std::string m = data ? static_cast<const char*>(data) : "unknown error";
-      while (!m.empty() && (m.back() == '\n' || m.back() == ' '))
-        m.pop_back();
-      static_cast<ErrorLog*>(self)->messages.push_back(m);
+      std::string m = CleanMessage(data ? static_cast<const char*>(data) : "unknown error");
+      if (m.find("returned failure for request") == std::string::npos)
+        static_cast<ErrorLog*>(self)->messages.push_back(m);
     });
   }
-  void Watch(vtkObject* o) { o->AddObserver(vtkCommand::ErrorEvent, callback); }
+  void Watch(vtkObject* o);
   std::string Last() const { return messages.empty() ? "" : messages.back(); }
 };
 
+/// Route VTK's messages that no observer takes to stderr as "cao: warning:
+/// ..." / "cao: error: ..." lines, without VTK's log decoration.
+void InstallOutputWindow();
+
+
+/**
+ * Progress of long runs on stderr, when stderr is a terminal (never in
+ * logs or pipes): a percentage for a watched filter, a count for a loop,
+ * overwritten in place and cleared when done.
+ */
+class Progress
+{
+public:
+  explicit Progress(bool disabled = false);
+  ~Progress();
+  /// Show `algorithm`'s ProgressEvents as "label: NN%".
+  void Watch(vtkObject* algorithm, const std::string& label);
+  /// Show "label i/n" (i counted from 0).
+  void Step(const std::string& label, std::size_t i, std::size_t n);
+  /// Clear the line.
+  void Done();
+
+private:
+  void Show(const std::string& text);
+  bool Enabled;
+  bool Shown = false;
+  std::string Label;
+  vtkNew<vtkCallbackCommand> Callback;
+};
 
 /// The part of a command line that is not an option: `a` is an unknown
 /// option (an error), the volume (the first plain argument) or one too many.
@@ -69,6 +102,10 @@ vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path, std::string& e
 /// .vtp, .stl, .ply, .obj.
 vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, std::string& error);
 
+/// The triangles of a mesh (polygons and strips, triangulated) as flat
+/// point (xyz) and id (3 per triangle) vectors.
+void TrianglesOf(vtkPolyData* mesh, std::vector<double>& points, std::vector<std::int64_t>& tris);
+
 /// Built-in closed shapes centred on the origin: "sphere" (radius = size),
 /// "cube" (half edge = size), "torus" (ring radius = size, tube = size / 3).
 vtkSmartPointer<vtkPolyData> MakeShape(const std::string& name, double size, std::string& error);
@@ -85,7 +122,12 @@ struct Pose
 /// Parse "tx ty tz [rx ry rz [s]]" (spaces or commas).
 bool ParsePose(const std::string& text, Pose& pose, std::string& error);
 
-/// One pose per line; blank lines and lines starting with '#' are skipped.
+/// The most poses a path, a pose file or the command line may give (each
+/// pose is a contextual update and a line of the report).
+constexpr int MaxPoses = 100000;
+
+/// One pose per line; blank lines and lines starting with '#' are skipped;
+/// at most MaxPoses.
 bool ReadPoses(const std::string& path, std::vector<Pose>& poses, std::string& error);
 
 /// Pose matrix T * Rz * Rx * Ry * S.

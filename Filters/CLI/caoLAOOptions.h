@@ -29,7 +29,8 @@ struct LAOOptions
 };
 
 /// Limits, as vtkLocalAmbientOcclusion's and vtkContextualAOVolumeMapper's.
-constexpr double MinDensity = 0.001, MaxDensity = 1000.0, MaxOffset = 0.999;
+constexpr double MinDensity = cao::LAOLimits::MinSampleDensity,
+                 MaxDensity = cao::LAOLimits::MaxSampleDensity;
 
 /**
  * When `a` (argv[i]) is one of the four options, consume its value (i
@@ -70,13 +71,13 @@ inline bool TakeLAOOption(
   if (a == "--density")
   {
     if (!number || x < MinDensity || x > MaxDensity)
-      error = "bad value '" + v + "' for --density (samples per voxel, 0.001..1000)";
+      error = "bad value '" + v + "' for --density (samples per voxel, 0.001 to 1000)";
     o.density = x;
   }
   else
   {
-    if (!number || x < 0.0 || x > MaxOffset)
-      error = "bad value '" + v + "' for --offset (steps, in [0, 0.999])";
+    if (!number || x < 0.0 || x >= 1.0)
+      error = "bad value '" + v + "' for --offset (steps, in [0, 1))";
     o.offset = x;
   }
   if (o.overridden.empty())

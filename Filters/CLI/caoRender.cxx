@@ -50,10 +50,11 @@ render options:
   --preset NAME        built-in transfer function: warm (default), bone, cool, grayscale
   --preset-file FILE   a ParaView colour-map preset (.json); --preset picks a name in it
   --absolute           use the preset's values as they are (default: rescale to the data)
-  --rays P             LAO ray pattern: 6, 14, 26 (default), 54 or fib:K
+  --rays P             LAO ray pattern: 6, 14, 26 (default), 54, rubiks54 or
+                       fib:K (K = 1 to 65536)
   --reach R            LAO reach in world units (default 8 voxels)
   --density D          LAO samples per smallest voxel spacing (default 1)
-  --offset F           LAO sample start offset in steps, 0..0.999 (default 0)
+  --offset F           LAO sample start offset in steps, in [0, 1) (default 0.5)
   --variation NAME     LAO ray variation: none (default), rotate, jitter or
                        rotate+jitter
   --quality NAME       LAO quality preset: custom (default), interactive,
@@ -112,7 +113,14 @@ bool Parse(int argc, char* argv[], RenderOptions& o, std::string& error)
       out = std::strtod(v.c_str(), &end);
       if (v.empty() || *end || !std::isfinite(out) || out < lo || out > hi)
       {
-        error = "bad value '" + v + "' for " + a;
+        char range[96];
+        if (lo <= 1e-300 && hi >= 1e300)
+          std::snprintf(range, sizeof(range), "a positive number");
+        else if (hi >= 1e300)
+          std::snprintf(range, sizeof(range), "a number from %g", lo);
+        else
+          std::snprintf(range, sizeof(range), "from %g to %g", lo, hi);
+        error = "bad value '" + v + "' for " + a + " (" + range + ")";
         return false;
       }
       return true;
@@ -124,7 +132,7 @@ bool Parse(int argc, char* argv[], RenderOptions& o, std::string& error)
       out = static_cast<int>(d);
       if (out != d)
       {
-        error = a + " needs an integer";
+        error = a + " needs an integer (from " + std::to_string(lo) + " to " + std::to_string(hi) + ")";
         return false;
       }
       return true;

@@ -1,5 +1,7 @@
 #include "caoLAO.h"
 
+#include <sstream>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -308,10 +310,44 @@ void VariationRotation(int v, double R[9])
 int DefaultSampleCount(double reach, const double spacing[3], double density)
 {
   const double h = std::min(spacing[0], std::min(spacing[1], spacing[2]));
-  if (!(h > 0.0) || !(reach > 0.0) || !(density > 0.0) || !std::isfinite(density * reach / h))
+  if (!(h > 0.0) || !(reach > 0.0) || !(density > 0.0))
     return 1;
   const double m = std::round(density * reach / h);
-  return static_cast<int>(std::max(1.0, std::min(m, 4096.0)));
+  if (!(m <= LAOLimits::MaxSamples)) // also NaN and Inf
+    return LAOLimits::MaxSamples + 1;
+  return static_cast<int>(std::max(1.0, m));
+}
+
+bool CheckLAOSettings(const LAOSettings& s, std::string& error)
+{
+  std::ostringstream msg;
+  if (!(s.reach > 0.0) || !std::isfinite(s.reach))
+    msg << "the reach must be a positive, finite length in world units (0 selects the default, "
+           "8 smallest voxel spacings); got "
+        << s.reach;
+  else if (static_cast<int>(s.pattern) < 0 ||
+    static_cast<int>(s.pattern) > static_cast<int>(RayPattern::Rubiks54))
+    msg << "unknown ray pattern " << static_cast<int>(s.pattern);
+  else if (s.pattern == RayPattern::Fibonacci &&
+    !(s.fibonacciRays >= 1 && s.fibonacciRays <= LAOLimits::MaxRays))
+    msg << "a Fibonacci ray count must be 1 to " << LAOLimits::MaxRays << "; got "
+        << s.fibonacciRays;
+  else if (s.samples < 0 || s.samples > LAOLimits::MaxSamples)
+    msg << "the number of samples per ray must be 1 to " << LAOLimits::MaxSamples
+        << " (0 derives it from the sample density); got " << s.samples;
+  else if (s.samples == 0 &&
+    !(s.sampleDensity >= LAOLimits::MinSampleDensity &&
+      s.sampleDensity <= LAOLimits::MaxSampleDensity))
+    msg << "the sample density must be " << LAOLimits::MinSampleDensity << " to "
+        << LAOLimits::MaxSampleDensity << " samples per voxel; got " << s.sampleDensity;
+  else if (!(s.startOffset >= 0.0 && s.startOffset < 1.0))
+    msg << "the start offset must be in [0, 1) steps; got " << s.startOffset;
+  else if (static_cast<int>(s.variation) < 0 || static_cast<int>(s.variation) > 3)
+    msg << "unknown ray variation " << static_cast<int>(s.variation);
+  if (msg.tellp() == 0)
+    return true;
+  error = msg.str();
+  return false;
 }
 
 bool BuildLAOPlan(
@@ -335,37 +371,35 @@ bool BuildLAOPlan(
     error = "the volume has more than 2^31-1 voxels";
     return false;
   }
-  if (!(s.reach > 0.0) || !std::isfinite(s.reach))
-  {
-    error = "the reach must be positive and finite";
+  if (!CheckLAOSettings(s, error))
     return false;
-  }
-  if (!(s.startOffset >= 0.0 && s.startOffset < 1.0))
-  {
-    error = "the start offset must be in [0, 1) steps";
-    return false;
-  }
-  if (s.samples <= 0 && !(s.sampleDensity > 0.0 && std::isfinite(s.sampleDensity)))
-  {
-    error = "the sample density must be positive and finite";
-    return false;
-  }
-  if (static_cast<int>(s.variation) < 0 || static_cast<int>(s.variation) > 3)
-  {
-    error = "unknown ray variation";
-    return false;
-  }
   plan.directions = MakeRayPattern(s.pattern, s.fibonacciRays);
   if (plan.directions.empty())
   {
-    error = "the ray pattern has no rays (a Fibonacci count must be >= 1)";
+    error = "the ray pattern has no rays";
     return false;
   }
   const int samples =
     s.samples > 0 ? s.samples : DefaultSampleCount(s.reach, g.spacing, s.sampleDensity);
-  if (samples > 65536)
+  if (samples > LAOLimits::MaxSamples)
   {
-    error = "more than 65536 samples per ray";
+    std::ostringstream msg;
+    msg << "the reach " << s.reach << " at " << s.sampleDensity
+        << " samples per voxel needs more than " << LAOLimits::MaxSamples
+        << " samples per ray; shorten the reach or lower the density";
+    error = msg.str();
+    return false;
+  }
+  const std::int64_t taps = static_cast<std::int64_t>(RayVariationCount(s.variation)) *
+    static_cast<std::int64_t>(plan.directions.size()) * samples;
+  if (taps > LAOLimits::MaxTaps)
+  {
+    std::ostringstream msg;
+    msg << plan.directions.size() << " rays x " << samples << " samples x "
+        << RayVariationCount(s.variation) << " variant(s) = " << taps
+        << " ray taps, above the limit of " << LAOLimits::MaxTaps
+        << " (256 MiB); use fewer rays or samples";
+    error = msg.str();
     return false;
   }
   const int rays = static_cast<int>(plan.directions.size());

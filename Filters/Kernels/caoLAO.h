@@ -94,6 +94,23 @@ struct LAOSettings
   RayVariation variation = RayVariation::None;
 };
 
+/// The limits of LAOSettings, in one place: every layer (filters, mapper,
+/// plugin, `cao`) passes its values through CheckLAOSettings and reports its
+/// message, which states the limit.
+namespace LAOLimits
+{
+constexpr int MaxRays = 65536;            ///< Fibonacci count
+constexpr int MaxSamples = 65536;         ///< samples per ray (explicit or from the density)
+constexpr double MinSampleDensity = 0.001; ///< samples per smallest voxel spacing
+constexpr double MaxSampleDensity = 1000.0;
+constexpr std::int64_t MaxTaps = std::int64_t(1) << 24; ///< variants x rays x samples (256 MiB)
+}
+
+/// Whether `settings` is within LAOLimits (reach > 0: resolve a default
+/// first); false with a message that names the setting, its value and the
+/// limit.
+bool CheckLAOSettings(const LAOSettings& settings, std::string& error);
+
 /// Everything the march needs; uploadable as-is to a GPU (params + taps).
 struct LAOPlan
 {
@@ -110,7 +127,9 @@ struct LAOPlan
 /// Largest volume the kernels index with 32-bit strides (GPU-compatible).
 constexpr std::int64_t MaxVoxels = (std::int64_t(1) << 31) - 1;
 
-/// Default number of samples for a reach: `density` per smallest voxel spacing.
+/// Default number of samples for a reach: `density` per smallest voxel
+/// spacing, max(1, round(density * R / h_min)); above LAOLimits::MaxSamples
+/// it returns MaxSamples + 1 (BuildLAOPlan then refuses the plan).
 int DefaultSampleCount(double reach, const double spacing[3], double density = 1.0);
 
 /// The fixed rotation (row-major 3x3) of interleaved variant v in [0, 8).

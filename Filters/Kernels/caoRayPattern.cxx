@@ -81,6 +81,15 @@ std::vector<Direction> MakeRayPattern(RayPattern pattern, int fibonacciCount)
       }
       break;
     }
+    case RayPattern::Rubiks54:
+    {
+      static const double table[54][3] = {
+#include "caoRubiks54.inc"
+      };
+      for (const auto& v : table)
+        dirs.push_back(Normalized(v[0], v[1], v[2]));
+      break;
+    }
   }
   return dirs;
 }
@@ -96,6 +105,7 @@ int RayPatternSize(RayPattern pattern, int fibonacciCount)
     case RayPattern::Rays26:
       return 26;
     case RayPattern::Rays54:
+    case RayPattern::Rubiks54:
       return 54;
     case RayPattern::Fibonacci:
       return fibonacciCount > 0 ? fibonacciCount : 0;
@@ -117,6 +127,8 @@ const char* RayPatternName(RayPattern pattern)
       return "54";
     case RayPattern::Fibonacci:
       return "fibonacci";
+    case RayPattern::Rubiks54:
+      return "rubiks54";
   }
   return "unknown";
 }
@@ -129,6 +141,11 @@ bool ParseRayPattern(const std::string& text, RayPattern& pattern, int& fibonacc
       : text == "14"      ? RayPattern::Rays14
       : text == "26"      ? RayPattern::Rays26
                           : RayPattern::Rays54;
+    return true;
+  }
+  if (text == "rubiks54")
+  {
+    pattern = RayPattern::Rubiks54;
     return true;
   }
   const std::string::size_type colon = text.find(':');

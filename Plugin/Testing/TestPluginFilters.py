@@ -50,7 +50,7 @@ for proxy in (lao, maps, cao):
                     if not proxy.GetProperty(n).SMProperty.GetDocumentation()]
     check(not undocumented, "%s: every property documented (missing: %s)"
           % (proxy.GetXMLName(), undocumented))
-check(len(lao.GetProperty("RayPattern").Available) == 5 and
+check(len(lao.GetProperty("RayPattern").Available) == 6 and
       lao.GetProperty("RayPattern").Available[2].startswith("26"), "ray patterns are an enumeration")
 check(cao.GetProperty("Mode").Available == ["Subtraction", "Probing"], "the clip modes")
 

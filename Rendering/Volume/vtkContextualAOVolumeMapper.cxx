@@ -128,7 +128,7 @@ struct vtkContextualAOVolumeMapper::Internals
   bool HaveWindow = false;
   cao::LAOPlan Plan;
   std::vector<double> VolumeKey, MeshKey, MapsUploadKey, PoseKey, TableKey;
-  double BuiltPoseScale = 0.0;
+  double BuiltPoseScales[2] = { 0.0, 0.0 }; ///< the pose scales the maps serve
   int PrecomputeGeneration = 0, MapsGeneration = 0;
   double ScalarRange[2] = { 0, 1 };
   double TexelScale = 1.0; // texel value -> scalar value
@@ -243,6 +243,36 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     in.LastError = why;
   };
 
+  // 0. The mapper's own settings (the LAO settings are checked with the plan).
+  {
+    std::ostringstream bad;
+    auto outside = [&bad](const char* name, double v, const char* range) {
+      bad << name << " must be " << range << "; got " << v << ".";
+    };
+    if (!(this->AOStrength >= 0.0 && this->AOStrength <= 1.0))
+      outside("AOStrength", this->AOStrength, "in [0, 1]");
+    else if (this->QualityPreset < CUSTOM || this->QualityPreset > REFERENCE)
+      outside("QualityPreset", this->QualityPreset, "0 (Custom) to 3 (Reference)");
+    else if (this->Mode != SUBTRACTION && this->Mode != PROBING)
+      outside("Mode", this->Mode, "0 (subtraction) or 1 (probing)");
+    else if (this->NumberOfClipLayers < 1 || this->NumberOfClipLayers > 16)
+      outside("NumberOfClipLayers", this->NumberOfClipLayers, "1 to 16");
+    else if (!(this->ClipMapPixelSize >= 0.0) || !std::isfinite(this->ClipMapPixelSize))
+      outside("ClipMapPixelSize", this->ClipMapPixelSize, "0 (derived) or a positive length");
+    else if (this->AntiAliasingSamples < 0 || this->AntiAliasingSamples > 32)
+      outside("AntiAliasingSamples", this->AntiAliasingSamples, "0 to 32");
+    else if (this->AOUpdate != CONTEXTUAL && this->AOUpdate != FULL_RECOMPUTE)
+      outside("AOUpdate", this->AOUpdate, "0 (contextual) or 1 (full recompute)");
+    else if (!(this->SampleDistance >= 0.0) || !std::isfinite(this->SampleDistance))
+      outside("SampleDistance", this->SampleDistance, "0 (derived) or a positive length");
+    else if (!(this->InteractiveSampleDistance >= 0.0) ||
+      !std::isfinite(this->InteractiveSampleDistance))
+      outside("InteractiveSampleDistance", this->InteractiveSampleDistance,
+        "0 (derived) or a positive length");
+    if (bad.tellp() > 0)
+      return fail(bad.str());
+  }
+
   // 1. Input.
   if (vtkAlgorithm* upstream = this->GetInputAlgorithm())
     upstream->Update();
@@ -328,7 +358,7 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   cao::LAOSettings settings;
   settings.pattern = static_cast<cao::RayPattern>(this->RayPattern);
   settings.fibonacciRays = this->NumberOfRays;
-  settings.reach = this->Reach > 0.0 ? this->Reach : 8.0 * minSpacing;
+  settings.reach = this->Reach != 0.0 ? this->Reach : 8.0 * minSpacing; // checked with the plan
   settings.samples = this->NumberOfSamples;
   settings.sampleDensity = this->SampleDensity;
   settings.startOffset = this->StartOffset;
@@ -459,29 +489,54 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     vtkNew<vtkMatrix4x4> worldToVolume, pose;
     vtkMatrix4x4::Invert(vol->GetMatrix(), worldToVolume);
     vtkMatrix4x4::Multiply4x4(worldToVolume, this->ClipShape->GetMatrix(), pose);
-    const double scale = vtkCAO::MinimumScale(pose);
-    if (!(scale > 0.0))
+    const double smin = vtkCAO::MinimumScale(pose), smax = vtkCAO::MaximumScale(pose);
+    if (!(smin > 0.0) || !std::isfinite(smax))
       return fail("The clip pose must be an invertible affine transform.");
-    const double pixel =
-      this->ClipMapPixelSize > 0.0 ? this->ClipMapPixelSize : 0.5 * minSpacing / scale;
     const std::vector<double> meshKey = { static_cast<double>(reinterpret_cast<std::uintptr_t>(mesh)),
       static_cast<double>(mesh->GetMTime()), static_cast<double>(this->NumberOfClipLayers),
       this->ClipMapPixelSize,
       in.Plan.reach, spacing[0], spacing[1], spacing[2] };
-    // A pose that shrinks the mesh below the scale the maps were dilated
-    // for needs new maps; other scale changes keep them. The maps are made
-    // for 0.1% below this pose's scale, so that a rotation's singular
-    // values (1 - a few ulps) do not count as shrinking.
-    if (meshKey != in.MeshKey || scale < in.BuiltPoseScale)
+    // The maps are made for the pose's scale, 0.1% either side (so that a
+    // rotation's singular values, 1 +- a few ulps, keep them), with pixels
+    // of half a voxel in the world at that scale and the dilation of the
+    // world reach: a pose scaled outside that range, or one that takes the
+    // volume out of the region maps of a large mesh cover, gets new maps.
+    const char* remake = nullptr;
+    if (meshKey != in.MeshKey)
+      remake = "clip mesh changed";
+    else if (smin < in.BuiltPoseScales[0] || smax > in.BuiltPoseScales[1])
+      remake = "clip scale changed";
+    else
+    {
+      vtkCAO::ClipMaps held;
+      if (!vtkCAO::ReadClipMaps(in.DepthMaps->GetOutput(), mode, held, error) ||
+        !vtkCAO::VolumeInsideValidRegion(input, held, pose))
+        remake = "volume left the region of the clip maps";
+    }
+    if (remake)
     {
       in.MeshKey.clear();
+      const double pixel =
+        this->ClipMapPixelSize > 0.0 ? this->ClipMapPixelSize : 0.5 * minSpacing / smax;
+      // A mesh much larger than the volume: maps only where the volume is,
+      // with room to move half the volume's size before new ones.
+      double bounds[6], region[6];
+      input->GetBounds(bounds);
+      const double grow = 0.5 *
+          std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
+            (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
+            (bounds[5] - bounds[4]) * (bounds[5] - bounds[4])) +
+        in.Plan.reach;
+      if (!vtkCAO::VolumeRegionInLocalFrame(input, pose, grow, region))
+        return fail("The clip pose must be an invertible affine transform.");
       vtkClipDepthMaps* maps = in.DepthMaps;
       maps->SetInputData(mesh);
       maps->SetNumberOfLayers(this->NumberOfClipLayers);
       maps->SetPixelSize(pixel);
       maps->SetReach(in.Plan.reach);
       maps->SetVoxelSpacing(spacing[0], spacing[1], spacing[2]);
-      maps->SetMinimumPoseScale(0.999 * scale);
+      maps->SetPoseScaleRange(0.999 * smin, 1.001 * smax);
+      maps->SetRegionOfInterest(region);
       maps->SetRenderWindow(window);
       maps->SetBackend(vtkClipDepthMaps::AUTO);
       const auto start = std::chrono::steady_clock::now();
@@ -493,10 +548,11 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
         return fail("The clip mesh's depth maps could not be made: " +
           (in.DepthMapsError.empty() ? error : in.DepthMapsError));
       report.stages.push_back({ "depth_maps", vtkCAO::MillisecondsSince(start), "host" });
-      report.reasons.emplace_back("clip mesh changed");
+      report.reasons.emplace_back(remake);
       ++this->DepthMapsCount;
       ++in.MapsGeneration;
-      in.BuiltPoseScale = 0.999 * scale;
+      in.BuiltPoseScales[0] = 0.999 * smin;
+      in.BuiltPoseScales[1] = 1.001 * smax;
       in.MeshKey = meshKey;
     }
     vtkCAO::ClipMaps clipMaps;

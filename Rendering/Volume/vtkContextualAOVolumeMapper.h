@@ -80,8 +80,12 @@ public:
   ///@}
 
   ///@{
-  /// How much the AO darkens the ambient term: 1 - strength * (1 - AO). Default 1.
-  vtkSetClampMacro(AOStrength, double, 0.0, 1.0);
+  /// How much the AO darkens the ambient term: 1 - strength * (1 - AO), in [0, 1]. Default 1.
+  ///
+  /// Every numeric setting of this mapper is taken as given and checked when
+  /// it renders: a value outside its stated range is an error (reported
+  /// once, nothing drawn), never clamped or replaced silently.
+  vtkSetMacro(AOStrength, double);
   vtkGetMacro(AOStrength, double);
   ///@}
 
@@ -92,36 +96,37 @@ public:
     RAYS_14 = 1,
     RAYS_26 = 2,
     RAYS_54 = 3,
-    FIBONACCI = 4
+    FIBONACCI = 4,
+    RUBIKS_54 = 5 ///< the CAO authors' 54 rays (RAYS_54 jittered by +-0.025; caoRayPattern.h)
   };
 
   ///@{
   /// LAO ray pattern. Default RAYS_26.
-  vtkSetClampMacro(RayPattern, int, RAYS_6, FIBONACCI);
+  vtkSetMacro(RayPattern, int);
   vtkGetMacro(RayPattern, int);
   ///@}
 
   ///@{
-  /// Rays of the FIBONACCI pattern. Default 64.
-  vtkSetClampMacro(NumberOfRays, int, 1, 4096);
+  /// Rays of the FIBONACCI pattern, 1 to 65536. Default 64.
+  vtkSetMacro(NumberOfRays, int);
   vtkGetMacro(NumberOfRays, int);
   ///@}
 
   ///@{
   /// LAO reach R in world units; 0 (default) means 8 times the smallest spacing.
-  vtkSetClampMacro(Reach, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(Reach, double);
   vtkGetMacro(Reach, double);
   ///@}
 
   ///@{
-  /// Samples per LAO ray M; 0 (default) means SampleDensity per smallest spacing.
-  vtkSetClampMacro(NumberOfSamples, int, 0, 4096);
+  /// Samples per LAO ray M, 1 to 65536; 0 (default) means SampleDensity per smallest spacing.
+  vtkSetMacro(NumberOfSamples, int);
   vtkGetMacro(NumberOfSamples, int);
   ///@}
 
   ///@{
-  /// LAO samples per smallest voxel spacing when NumberOfSamples is 0. Default 1.
-  vtkSetClampMacro(SampleDensity, double, 0.001, 1000.0);
+  /// LAO samples per smallest voxel spacing when NumberOfSamples is 0, 0.001 to 1000. Default 1.
+  vtkSetMacro(SampleDensity, double);
   vtkGetMacro(SampleDensity, double);
   ///@}
 
@@ -129,9 +134,9 @@ public:
   /**
    * Where the LAO samples of a ray start, in steps (sample m at distance
    * (m - StartOffset) * R / M). Default 0.5 (mid-step; 0 is the paper's
-   * march), in [0, 0.999]; see vtkLocalAmbientOcclusion.
+   * march), in [0, 1); see vtkLocalAmbientOcclusion.
    */
-  vtkSetClampMacro(StartOffset, double, 0.0, 0.999);
+  vtkSetMacro(StartOffset, double);
   vtkGetMacro(StartOffset, double);
   ///@}
 
@@ -149,7 +154,7 @@ public:
    * How the LAO rays vary from voxel to voxel (interleaved over 2x2x2
    * blocks, see vtkLocalAmbientOcclusion::SetRayVariation). Default NONE.
    */
-  vtkSetClampMacro(RayVariation, int, NONE, ROTATE_JITTER);
+  vtkSetMacro(RayVariation, int);
   vtkGetMacro(RayVariation, int);
   void SetRayVariationToNone() { this->SetRayVariation(NONE); }
   void SetRayVariationToRotate() { this->SetRayVariation(ROTATE); }
@@ -173,7 +178,7 @@ public:
    * count, the sample density, the start offset and the ray variation with
    * the preset's (NumberOfSamples is ignored); Reach stays the mapper's.
    */
-  vtkSetClampMacro(QualityPreset, int, CUSTOM, REFERENCE);
+  vtkSetMacro(QualityPreset, int);
   vtkGetMacro(QualityPreset, int);
   void SetQualityPresetToCustom() { this->SetQualityPreset(CUSTOM); }
   void SetQualityPresetToInteractive() { this->SetQualityPreset(INTERACTIVE); }
@@ -205,27 +210,27 @@ public:
 
   ///@{
   /// Clip mode. Default SUBTRACTION.
-  vtkSetClampMacro(Mode, int, SUBTRACTION, PROBING);
+  vtkSetMacro(Mode, int);
   vtkGetMacro(Mode, int);
   void SetModeToSubtraction() { this->SetMode(SUBTRACTION); }
   void SetModeToProbing() { this->SetMode(PROBING); }
   ///@}
 
   ///@{
-  /// Depth-peel layers of the clip mesh's maps (concave meshes need more). Default 2.
-  vtkSetClampMacro(NumberOfClipLayers, int, 1, 16);
+  /// Depth-peel layers of the clip mesh's maps (concave meshes need more), 1 to 16. Default 2.
+  vtkSetMacro(NumberOfClipLayers, int);
   vtkGetMacro(NumberOfClipLayers, int);
   ///@}
 
   ///@{
   /// Depth-map pixel size in the mesh's local units; 0 (default): half the smallest spacing.
-  vtkSetClampMacro(ClipMapPixelSize, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(ClipMapPixelSize, double);
   vtkGetMacro(ClipMapPixelSize, double);
   ///@}
 
   ///@{
-  /// Extra anti-aliasing samples of the classification. Default 16, at most 32.
-  vtkSetClampMacro(AntiAliasingSamples, int, 0, 32);
+  /// Extra anti-aliasing samples of the classification, 0 to 32. Default 16.
+  vtkSetMacro(AntiAliasingSamples, int);
   vtkGetMacro(AntiAliasingSamples, int);
   ///@}
 
@@ -237,13 +242,13 @@ public:
 
   ///@{
   /// How the AO follows a pose change. Default CONTEXTUAL.
-  vtkSetClampMacro(AOUpdate, int, CONTEXTUAL, FULL_RECOMPUTE);
+  vtkSetMacro(AOUpdate, int);
   vtkGetMacro(AOUpdate, int);
   ///@}
 
   ///@{
   /// Ray-cast sample distance in world units; 0 (default): half the smallest spacing.
-  vtkSetClampMacro(SampleDistance, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(SampleDistance, double);
   vtkGetMacro(SampleDistance, double);
   ///@}
 
@@ -253,7 +258,7 @@ public:
    * update rate is above 1 frame per second, as an interactor sets it);
    * 0 (default): twice SampleDistance.
    */
-  vtkSetClampMacro(InteractiveSampleDistance, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(InteractiveSampleDistance, double);
   vtkGetMacro(InteractiveSampleDistance, double);
   ///@}
 

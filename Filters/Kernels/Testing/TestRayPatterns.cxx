@@ -1,8 +1,11 @@
-// Ray patterns: sizes, unit length, symmetry, no duplicates, parsing.
+// Ray patterns: sizes, unit length, symmetry, no duplicates, parsing; the
+// authors' jittered 54 against ours.
 #include "caoRayPattern.h"
 #include "caoTestUtilities.h"
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 int TestRayPatterns(int, char*[])
 {
@@ -67,8 +70,47 @@ int TestRayPatterns(int, char*[])
     "fibonacci set is not balanced");
   CAO_CHECK(cao::MakeRayPattern(RayPattern::Fibonacci, 0).empty(), "fibonacci 0 must be empty");
 
+  // The CAO authors' 54 rays (their Unity package's RUBIKS_54): the same
+  // grid as our 54, each direction jittered: within 1.165 degrees of one of
+  // ours (the largest is 1.1646), but none equal to it, and one-to-one.
+  {
+    const auto theirs = cao::MakeRayPattern(RayPattern::Rubiks54, 0);
+    const auto ours = cao::MakeRayPattern(RayPattern::Rays54, 0);
+    CAO_CHECK(theirs.size() == 54 && cao::RayPatternSize(RayPattern::Rubiks54, 0) == 54,
+      "rubiks54 has %zu rays", theirs.size());
+    std::vector<int> matched(ours.size(), 0);
+    double largest = 0.0, smallest = 180.0;
+    for (const auto& t : theirs)
+    {
+      CAO_CHECK(std::fabs(t.x * t.x + t.y * t.y + t.z * t.z - 1.0) < 1e-12, "unit length");
+      double best = -1.0;
+      std::size_t which = 0;
+      for (std::size_t j = 0; j < ours.size(); ++j)
+      {
+        const double dot = t.x * ours[j].x + t.y * ours[j].y + t.z * ours[j].z;
+        if (dot > best)
+        {
+          best = dot;
+          which = j;
+        }
+      }
+      const double angle = std::acos(std::min(1.0, best)) * 180.0 / 3.141592653589793;
+      largest = std::max(largest, angle);
+      smallest = std::min(smallest, angle);
+      ++matched[which];
+    }
+    CAO_CHECK(largest < 1.165 && smallest > 1e-3,
+      "rubiks54 lies %.4f to %.4f degrees from our 54 (expected jittered, within 1.165)", smallest,
+      largest);
+    for (int m : matched)
+      CAO_CHECK(m == 1, "rubiks54 does not match our 54 one to one");
+  }
+
   RayPattern parsed;
   int k = 0;
+  CAO_CHECK(cao::ParseRayPattern("rubiks54", parsed, k) && parsed == RayPattern::Rubiks54 &&
+      std::string(cao::RayPatternName(parsed)) == "rubiks54",
+    "parse rubiks54");
   CAO_CHECK(cao::ParseRayPattern("54", parsed, k) && parsed == RayPattern::Rays54, "parse 54");
   CAO_CHECK(cao::ParseRayPattern("fib:100", parsed, k) && parsed == RayPattern::Fibonacci && k == 100,
     "parse fib:100");

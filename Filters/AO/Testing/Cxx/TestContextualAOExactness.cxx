@@ -43,14 +43,10 @@ int RunPoses(vtkImageData* volume, vtkPolyData* mesh, const std::vector<caocli::
   const double* s = volume->GetSpacing();
   lao->SetReach(4.0 * std::min({ s[0], s[1], s[2] }));
   lao->SetNumberOfSamples(4);
-  double minScale = 1.0;
-  for (const auto& p : poses)
-    minScale = std::min(minScale, p.scale);
   vtkNew<vtkClipDepthMaps> maps;
   maps->SetInputData(mesh);
   maps->SetReach(lao->GetReach());
   maps->SetVoxelSpacing(volume->GetSpacing());
-  maps->SetMinimumPoseScale(minScale);
   maps->SetDilationScale(dilationScale);
   maps->SetNumberOfLayers(2);
   vtkNew<vtkContextualAmbientOcclusion> cao;
@@ -67,6 +63,7 @@ int RunPoses(vtkImageData* volume, vtkPolyData* mesh, const std::vector<caocli::
   for (const auto& p : poses)
   {
     caocli::PoseToTransform(p, pose);
+    maps->SetPoseScaleRange(p.scale, p.scale); // maps made for each pose's scale
     cao->Update();
     CAO_CHECK(events.errors == 0, "filter error: %s", events.lastError.c_str());
     vtkImageData* out = cao->GetOutput();

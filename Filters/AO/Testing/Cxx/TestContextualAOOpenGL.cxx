@@ -46,7 +46,7 @@ struct Pipeline
 };
 
 void Configure(Pipeline& p, vtkImageData* volume, vtkPolyData* mesh, vtkPiecewiseFunction* tf,
-  int pattern, int mode, double minScale, double dilationScale, int backend)
+  int pattern, int mode, double dilationScale, int backend)
 {
   p.lao->SetInputData(volume);
   p.lao->SetOpacityFunction(tf);
@@ -58,7 +58,6 @@ void Configure(Pipeline& p, vtkImageData* volume, vtkPolyData* mesh, vtkPiecewis
   p.maps->SetInputData(mesh);
   p.maps->SetReach(p.lao->GetReach());
   p.maps->SetVoxelSpacing(volume->GetSpacing());
-  p.maps->SetMinimumPoseScale(minScale);
   p.maps->SetDilationScale(dilationScale);
   p.maps->SetNumberOfLayers(2);
   p.maps->SetBackend(backend);
@@ -84,13 +83,10 @@ int Run(vtkImageData* volume, vtkPolyData* mesh, const std::vector<caocli::Pose>
   tf->AddPoint(0, 0);
   tf->AddPoint(30, 0);
   tf->AddPoint(255, 0.9);
-  double minScale = 1.0;
-  for (const auto& p : poses)
-    minScale = std::min(minScale, p.scale);
   Pipeline cpu, gpu;
-  Configure(cpu, volume, mesh, tf, pattern, mode, minScale, dilationScale,
+  Configure(cpu, volume, mesh, tf, pattern, mode, dilationScale,
     vtkContextualAmbientOcclusion::CPU);
-  Configure(gpu, volume, mesh, tf, pattern, mode, minScale, dilationScale,
+  Configure(gpu, volume, mesh, tf, pattern, mode, dilationScale,
     vtkContextualAmbientOcclusion::OPENGL);
   caotest::EventCounter events;
   events.Watch(gpu.cao);
@@ -100,6 +96,8 @@ int Run(vtkImageData* volume, vtkPolyData* mesh, const std::vector<caocli::Pose>
   {
     caocli::PoseToTransform(p, cpu.pose);
     caocli::PoseToTransform(p, gpu.pose);
+    cpu.maps->SetPoseScaleRange(p.scale, p.scale); // maps made for each pose's scale
+    gpu.maps->SetPoseScaleRange(p.scale, p.scale);
     cpu.cao->Update();
     gpu.cao->Update();
     CAO_CHECK(events.errors == 0, "filter error: %s", events.lastError.c_str());

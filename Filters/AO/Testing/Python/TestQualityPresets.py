@@ -20,7 +20,7 @@ import sys
 
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkCommonCore import vtkDoubleArray
+from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkOutputWindow, vtkStringOutputWindow
 from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPiecewiseFunction
 from vtkmodules.vtkCommonTransforms import vtkTransform
 from vtkmodules.vtkFiltersSources import vtkSphereSource
@@ -74,16 +74,31 @@ def lao_filter(**settings):
     return f
 
 
-# Defaults and clamps of the new properties.
+# Defaults of the new properties; out-of-range values are kept as given and
+# make the update fail with an error that states the limit (they used to be
+# clamped, or, for the reach, silently replaced by the default).
 f = LAO()
 check((f.GetSampleDensity(), f.GetStartOffset(), f.GetRayVariation(), f.GetQualityPreset())
       == (1.0, 0.5, LAO.NONE, LAO.CUSTOM), "defaults: density 1, offset 0.5, no variation, custom")
-f.SetStartOffset(1.5)
-f.SetSampleDensity(-1.0)
-f.SetRayVariation(7)
-f.SetQualityPreset(9)
-check((f.GetStartOffset(), f.GetSampleDensity(), f.GetRayVariation(), f.GetQualityPreset())
-      == (0.999, 0.001, LAO.ROTATE_JITTER, LAO.REFERENCE), "out-of-range values are clamped")
+errors = []
+for name, value, limit in (("StartOffset", 1.5, "[0, 1)"), ("SampleDensity", -1.0, "0.001 to 1000"),
+                           ("RayVariation", 7, "unknown ray variation"),
+                           ("QualityPreset", 9, "(Reference); got 9"),
+                           ("Reach", -1.0, "0 selects the default"),
+                           ("Reach", float("nan"), "0 selects the default"),
+                           ("NumberOfSamples", 1000000000, "1 to 65536"),
+                           ("RayPattern", 99, "unknown ray pattern"),
+                           ("ScalarOpacityUnitDistance", 0.0, "positive and finite")):
+    g = lao_filter(**{name: value})
+    got = getattr(g, "Get" + name)()
+    kept = got == value or (value != value and got != got)
+    window = vtkStringOutputWindow()  # the filter's error text, as VTK prints it
+    vtkOutputWindow.SetInstance(window)
+    g.Update()
+    vtkOutputWindow.SetInstance(None)
+    text = window.GetOutput()
+    check(kept and limit in text and g.GetOutput().GetPointData().GetArray("AmbientOcclusion") is None,
+          "%s = %r is kept and is an error stating the limit (%r)" % (name, value, limit))
 f.SetRayVariationToRotate()
 f.SetQualityPresetToBalanced()
 check((f.GetRayVariation(), f.GetQualityPreset()) == (LAO.ROTATE, LAO.BALANCED),
