@@ -361,5 +361,26 @@ check(rc == 0 and json.loads(out)["pattern"] == "rubiks54" and json.loads(out)["
       "backend_detail" in json.loads(out),
       f"lao --rays rubiks54 --json reports the pattern, the backend and the context: {out.strip()[:300]}")
 
+# Progress on stderr when it is a terminal (a pty here), never in a pipe.
+import pty  # noqa: E402
+master, slave = pty.openpty()
+p = subprocess.run([tool, "lao", neghip, "--rays", "fib:200"], stdout=subprocess.PIPE,
+                   stderr=slave, timeout=600)
+os.close(slave)
+shown = b""
+try:
+    while True:
+        chunk = os.read(master, 4096)
+        if not chunk:
+            break
+        shown += chunk
+except OSError:
+    pass
+os.close(master)
+check(p.returncode == 0 and b"LAO:" in shown and b"%" in shown,
+      f"a terminal shows the LAO's progress: {shown[-200:]!r}")
+rc, out, err = run("lao", neghip, "--rays", "fib:200")
+check(rc == 0 and "LAO:" not in err, "a pipe gets no progress line")
+
 print(f"{passed} passed, {len(failures)} failed")
 sys.exit(1 if failures else 0)

@@ -411,6 +411,36 @@ void Report(const Options& o)
       m->GetLastFrameRecomputedVoxels() < 66 * 66 * 66 / 2,
     "%lld", static_cast<long long>(m->GetLastFrameRecomputedVoxels()));
 
+  // The clip's world size split between the mesh and the actor's scale
+  // (held-out: a scale > 1 kept maps made for scale 1, 3x too coarse): the
+  // same world clip renders the same frame; a new scale makes new maps, a
+  // rotation-size change (0.05%) does not.
+  {
+    const caotest::Image atOne = s.Frame();
+    ball->SetRadius(14.0 / 3.0);
+    s.clip->SetScale(3.0);
+    st = frame("mesh / 3, actor scale x 3");
+    CHECK(Has(st, "depth_maps") && Has(st, "classify"), "%s", Join(st).c_str());
+    const caotest::Image atThree = s.Frame();
+    const long differing = caotest::DifferingPixels(atOne, atThree);
+    std::printf("the same world clip, mesh x 1 at scale 1 and mesh / 3 at scale 3: %ld "
+                "differing pixel(s)\n", differing);
+    CHECK(differing >= 0 && differing <= static_cast<long>(ImageTolerance.failFraction * Size * Size),
+      "the same world clip at actor scale 3 renders %ld pixels differently", differing);
+    s.clip->SetScale(3.0015);
+    st = frame("actor scale x 1.0005");
+    CHECK(!Has(st, "depth_maps") && Has(st, "classify"), "%s", Join(st).c_str());
+    s.clip->SetScale(6.0);
+    st = frame("actor scale x 2 (the clip grows)");
+    CHECK(Has(st, "depth_maps") &&
+        m->GetLastFrameReport().find("clip scale changed") != std::string::npos,
+      "%s: %s", Join(st).c_str(), m->GetLastFrameReport().c_str());
+    ball->SetRadius(14.0);
+    s.clip->SetScale(1.0);
+    st = frame("mesh and scale restored");
+    CHECK(Has(st, "depth_maps"), "%s", Join(st).c_str());
+  }
+
   // The opacity transfer function: the full LAO, then the pose again.
   s.opacity->AddPoint(150.0, 0.6);
   st = frame("opacity transfer function edited");
