@@ -23,7 +23,7 @@
 #include "vtkTriangleFilter.h"
 
 #include "caoClipCamera.h"
-#include "caoDepthMaps.h"
+#include "caoClipDepthMaps.h"
 
 #include <algorithm>
 #include <chrono>
@@ -252,7 +252,7 @@ int vtkClipDepthMaps::RequestData(
 
   // Rasterise and peel, then dilate and erode: on the GPU or the CPU.
   const cao::TriangleMesh tm = cao::ViewMesh(points, tris);
-  cao::DepthMaps raw, dilated, eroded;
+  cao::ClipDepthMaps raw, dilated, eroded;
   bool gpuFailed = false;
   const bool gpu = this->GPU->Resolve(this, this->Backend, gpuFailed, this->RenderWindow);
   if (gpuFailed)
@@ -262,8 +262,8 @@ int vtkClipDepthMaps::RequestData(
   double rasterMs = 0.0, dilateMs = 0.0;
   if (gpu)
   {
-    cao::gl::DepthRasterStats gpuStats;
-    cao::gl::DepthRaster& raster = this->GPU->Raster();
+    cao::gl::ClipDepthMapsGLStats gpuStats;
+    cao::gl::ClipDepthMapsGL& raster = this->GPU->Raster();
     if (!raster.Build(cam, tm, radius, gpuStats, error) ||
       !raster.Read(raw, dilated, eroded, error))
     {

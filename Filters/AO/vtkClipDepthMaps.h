@@ -25,7 +25,7 @@
  *    (plus float slack): the LAO reach, the trilinear footprint of a sample
  *    (one cell diagonal) and the anti-aliasing footprint of a voxel (half a
  *    diagonal), mapped to local units by the smallest pose scale. The pixel
- *    size enters in the dilation itself (see caoDepthMaps.h);
+ *    size enters in the dilation itself (see caoClipDepthMaps.h);
  *  - the derived pixel is half the smallest voxel spacing in the world at
  *    MaximumPoseScale, so the clipped set does not depend on how the clip's
  *    world size is split between the mesh and the pose scale.
@@ -45,7 +45,7 @@
  * Bad input (empty, open, degenerate meshes, a zero-area camera) is an error.
  *
  * Backend OPENGL rasterises, peels, dilates and erodes on the GPU (see
- * Rendering/GL/caoDepthRaster.h): the GL pipeline draws the triangles and a
+ * Rendering/GL/caoClipDepthMapsGL.h): the GL pipeline draws the triangles and a
  * fragment shader applies the CPU's exact coverage rule in double, so the
  * maps are the CPU backend's bit for bit. "ComputeBackend" (field data)
  * says what ran; the DepthMapStatistics times are then GPU milliseconds.

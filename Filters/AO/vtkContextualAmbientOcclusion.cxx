@@ -1,6 +1,6 @@
 #include "vtkContextualAmbientOcclusion.h"
 
-#include "vtkCAOClipPose.h"
+#include "vtkCAOClipMaps.h"
 #include "vtkCAOFilterUtilities.h"
 #include "vtkCAOGPUSession.h"
 #include "vtkRenderWindow.h"
@@ -293,8 +293,8 @@ int vtkContextualAmbientOcclusion::RequestData(
 
   // 3. Depth maps and their camera; 4. the pose's ClipParams (the maps
   // must be dilated enough for it).
-  const int mode = this->Mode == SUBTRACTION ? cao::shared::CAO_MODE_SUBTRACT
-                                             : cao::shared::CAO_MODE_PROBE;
+  const int mode = this->Mode == SUBTRACTION ? cao::layout::CAO_MODE_SUBTRACT
+                                             : cao::layout::CAO_MODE_PROBE;
   vtkCAO::ClipMaps clipMaps;
   if (!vtkCAO::ReadClipMaps(maps, mode, clipMaps, error))
   {
@@ -309,7 +309,7 @@ int vtkContextualAmbientOcclusion::RequestData(
     this->PoseTransform->Update();
     pose->DeepCopy(this->PoseTransform->GetMatrix());
   }
-  cao::shared::ClipParams clip{};
+  cao::layout::ClipParams clip{};
   if (!vtkCAO::MakeClipParams(
         input, clipMaps, pose, plan.reach, mode, this->AntiAliasingSamples, clip, error))
   {
@@ -379,7 +379,7 @@ int vtkContextualAmbientOcclusion::RequestData(
         const float* pre = precomputed->GetPointer(0);
         for (std::int64_t v = 0; v < voxels; ++v)
           q[static_cast<std::size_t>(v)] =
-            static_cast<std::uint16_t>(pre[v] * float(cao::shared::CAO_AO_SCALE) + 0.5f);
+            static_cast<std::uint16_t>(pre[v] * float(cao::layout::CAO_AO_SCALE) + 0.5f);
         done = engine.SetPrecomputed(q.data(), error);
       }
       else if (done)
@@ -441,10 +441,10 @@ int vtkContextualAmbientOcclusion::RequestData(
     for (std::int64_t v = 0; v < voxels; ++v)
     {
       const std::uint8_t sv = state[static_cast<std::size_t>(v)];
-      cat[v] = static_cast<std::uint8_t>(sv >> cao::shared::CAO_STATE_CATEGORY_SHIFT);
-      ac[v] = cat[v] == cao::shared::CAO_CATEGORY_CLIPPED
+      cat[v] = static_cast<std::uint8_t>(sv >> cao::layout::CAO_STATE_CATEGORY_SHIFT);
+      ac[v] = cat[v] == cao::layout::CAO_CATEGORY_CLIPPED
         ? 0.0f
-        : a[v] * cao::ClipFactor(sv & cao::shared::CAO_STATE_COUNT_MASK, total, clip.map.w);
+        : a[v] * cao::ClipFactor(sv & cao::layout::CAO_STATE_COUNT_MASK, total, clip.map.w);
       out[v] = cao::gl::AOEngine::Dequantize(stored[static_cast<std::size_t>(v)]);
     }
     if (this->Verify)
@@ -462,7 +462,7 @@ int vtkContextualAmbientOcclusion::RequestData(
       fullMs = engine.Times().full;
       differing = check.storedMismatches + check.floatMismatches;
       maxDifference = differing > 0
-        ? std::max(check.maxFloatDifference, check.storedMismatches > 0 ? 1.0 / cao::shared::CAO_AO_SCALE : 0.0)
+        ? std::max(check.maxFloatDifference, check.storedMismatches > 0 ? 1.0 / cao::layout::CAO_AO_SCALE : 0.0)
         : 0.0;
     }
     gpuResident = engine.ResidentBytes();
@@ -527,7 +527,7 @@ int vtkContextualAmbientOcclusion::RequestData(
       maxDifference = 0.0;
       for (std::int64_t v = 0; v < voxels; ++v)
       {
-        if (cat[v] == cao::shared::CAO_CATEGORY_CLIPPED)
+        if (cat[v] == cao::layout::CAO_CATEGORY_CLIPPED)
           continue;
         // Bitwise comparison: equal floats (and no NaN) or a difference.
         if (!(full[v] == out[v]))

@@ -8,7 +8,7 @@
 #include "vtkPolyDataMapper.h"
 #include "vtkSmartPointer.h"
 
-#include "caoInput.h"
+#include "vtkCAOInput.h"
 
 #include <string>
 
@@ -93,7 +93,7 @@ void vtkContextualAOVolumeRepresentation::UpdateMapperParameters()
     static const char* names[] = { "", "sphere", "cube", "torus" };
     std::string error;
     vtkSmartPointer<vtkPolyData> mesh =
-      caocli::MakeShape(names[this->ClipShape], this->ClipShapeSize, error);
+      vtkCAO::MakeShape(names[this->ClipShape], this->ClipShapeSize, error);
     if (!mesh)
     {
       vtkErrorMacro("Cannot make the clip shape: " << error);

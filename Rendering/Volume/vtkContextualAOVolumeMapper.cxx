@@ -28,7 +28,7 @@
 #include "vtkVolumeProperty.h"
 #include "vtkWeakPointer.h"
 
-#include "vtkCAOClipPose.h"
+#include "vtkCAOClipMaps.h"
 #include "vtkCAOFilterUtilities.h"
 #include "vtkCAOGPUSession.h"
 #include "vtkCAOOpacity.h"
@@ -95,8 +95,8 @@ struct FrameReport
   }
 };
 
-/// Column-major copy of a VTK (row-major) matrix, for caoShared.h's vec4 columns.
-void Columns(vtkMatrix4x4* m, cao::shared::vec4* out, int columns, int rows = 4)
+/// Column-major copy of a VTK (row-major) matrix, for caoGPULayout.h's vec4 columns.
+void Columns(vtkMatrix4x4* m, cao::layout::vec4* out, int columns, int rows = 4)
 {
   for (int c = 0; c < columns; ++c)
   {
@@ -119,7 +119,7 @@ struct vtkContextualAOVolumeMapper::Internals
   std::unique_ptr<cao::gl::RayCaster> Caster;
   const cao::gl::Context* CasterContext = nullptr; // the context the caster's objects live in
   bool WarnedBlend = false;
-  vtkSmartPointer<vtkClipDepthMaps> DepthMaps;
+  vtkSmartPointer<vtkClipDepthMaps> ClipDepthMaps;
   vtkNew<vtkCallbackCommand> DepthMapsErrors; // keeps the filter's last error
   std::string DepthMapsError;
   // The window whose context holds our objects; weak, so that a window
@@ -151,7 +151,7 @@ vtkContextualAOVolumeMapper::vtkContextualAOVolumeMapper()
 {
   vtkCAO::EnsureThreadedBackend();
   Internals& in = *this->Internal;
-  in.DepthMaps = vtkSmartPointer<vtkClipDepthMaps>::New();
+  in.ClipDepthMaps = vtkSmartPointer<vtkClipDepthMaps>::New();
   in.DepthMapsErrors->SetClientData(&in.DepthMapsError);
   in.DepthMapsErrors->SetCallback([](vtkObject*, unsigned long, void* out, void* text) {
     std::string m = text ? static_cast<const char*>(text) : "";
@@ -162,7 +162,7 @@ vtkContextualAOVolumeMapper::vtkContextualAOVolumeMapper()
       m.pop_back();
     *static_cast<std::string*>(out) = m;
   });
-  in.DepthMaps->AddObserver(vtkCommand::ErrorEvent, in.DepthMapsErrors);
+  in.ClipDepthMaps->AddObserver(vtkCommand::ErrorEvent, in.DepthMapsErrors);
 }
 
 //------------------------------------------------------------------------------
@@ -198,8 +198,8 @@ void vtkContextualAOVolumeMapper::ReleaseGraphicsResources(vtkWindow*)
     in.Caster.reset();
   }
   in.CasterContext = nullptr;
-  in.DepthMaps->ReleaseGraphicsResources();
-  in.DepthMaps->SetRenderWindow(nullptr);
+  in.ClipDepthMaps->ReleaseGraphicsResources();
+  in.ClipDepthMaps->SetRenderWindow(nullptr);
   in.GPU.Release();
   in.ForgetGPU();
   in.HaveWindow = false;
@@ -482,7 +482,7 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
   const bool clipping = this->ClipShape != nullptr;
   const int mode =
-    this->Mode == SUBTRACTION ? cao::shared::CAO_MODE_SUBTRACT : cao::shared::CAO_MODE_PROBE;
+    this->Mode == SUBTRACTION ? cao::layout::CAO_MODE_SUBTRACT : cao::layout::CAO_MODE_PROBE;
   if (clipping)
   {
     // Pose: the mesh's local frame to the volume's physical frame.
@@ -509,7 +509,7 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     else
     {
       vtkCAO::ClipMaps held;
-      if (!vtkCAO::ReadClipMaps(in.DepthMaps->GetOutput(), mode, held, error) ||
+      if (!vtkCAO::ReadClipMaps(in.ClipDepthMaps->GetOutput(), mode, held, error) ||
         !vtkCAO::VolumeInsideValidRegion(input, held, pose))
         remake = "volume left the region of the clip maps";
     }
@@ -529,7 +529,7 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
         in.Plan.reach;
       if (!vtkCAO::VolumeRegionInLocalFrame(input, pose, grow, region))
         return fail("The clip pose must be an invertible affine transform.");
-      vtkClipDepthMaps* maps = in.DepthMaps;
+      vtkClipDepthMaps* maps = in.ClipDepthMaps;
       maps->SetInputData(mesh);
       maps->SetNumberOfLayers(this->NumberOfClipLayers);
       maps->SetPixelSize(pixel);
@@ -556,7 +556,7 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       in.MeshKey = meshKey;
     }
     vtkCAO::ClipMaps clipMaps;
-    vtkImageData* mapsImage = in.DepthMaps->GetOutput();
+    vtkImageData* mapsImage = in.ClipDepthMaps->GetOutput();
     if (!vtkCAO::ReadClipMaps(mapsImage, mode, clipMaps, error))
       return fail(error);
     const std::vector<double> uploadKey = { static_cast<double>(in.MapsGeneration),
@@ -570,7 +570,7 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       in.MapsUploadKey = uploadKey;
       in.PoseKey.clear();
     }
-    cao::shared::ClipParams clip{};
+    cao::layout::ClipParams clip{};
     if (!vtkCAO::MakeClipParams(input, clipMaps, pose, in.Plan.reach, mode,
           this->AntiAliasingSamples, clip, error))
       return fail(error);
@@ -652,7 +652,7 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
 
   // 6. The frame: camera, volume placement, lighting, flags.
-  cao::shared::RenderParams params{};
+  cao::layout::RenderParams params{};
   int size[2], origin[2];
   ren->GetTiledSizeAndOrigin(&size[0], &size[1], &origin[0], &origin[1]);
   const int viewport[4] = { origin[0], origin[1], size[0], size[1] };
@@ -707,15 +707,15 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     static_cast<float>((-lo / (hi - lo) * (n - 1) + 0.5) / n),
     static_cast<float>(this->AOStrength) };
   params.invDims = { 1.0f / dims[0], 1.0f / dims[1], 1.0f / dims[2], 0.0f };
-  int flags = cao::shared::CAO_RENDER_OPAQUE_DEPTH;
+  int flags = cao::layout::CAO_RENDER_OPAQUE_DEPTH;
   if (property->GetShade(0))
-    flags |= cao::shared::CAO_RENDER_SHADE;
+    flags |= cao::layout::CAO_RENDER_SHADE;
   if (this->AmbientOcclusion)
-    flags |= cao::shared::CAO_RENDER_AO;
+    flags |= cao::layout::CAO_RENDER_AO;
   if (clipping)
-    flags |= cao::shared::CAO_RENDER_CLIP;
+    flags |= cao::layout::CAO_RENDER_CLIP;
   if (this->UseJittering)
-    flags |= cao::shared::CAO_RENDER_JITTER;
+    flags |= cao::layout::CAO_RENDER_JITTER;
   params.dims = { dims[0], dims[1], dims[2], flags };
   double diagonal = 0.0;
   const double* b = input->GetBounds();

@@ -3,7 +3,7 @@
 // and huge extents, empty/open/degenerate clip meshes, a zero-area clipping
 // camera, a singular pose, a pose that outgrows the dilation, wrong inputs.
 #include "caoFilterTestUtilities.h"
-#include "caoInput.h"
+#include "vtkCAOInput.h"
 
 #include "vtkCellArray.h"
 #include "vtkClipDepthMaps.h"
@@ -36,7 +36,7 @@ int ExpectError(vtkAlgorithm* algorithm, const char* word, const char* what)
 vtkSmartPointer<vtkPolyData> Mesh(const char* shape)
 {
   std::string error;
-  return caocli::MakeShape(shape, 10.0, error);
+  return vtkCAO::MakeShape(shape, 10.0, error);
 }
 }
 

@@ -1,6 +1,6 @@
 // Numerically hard cases: each asserts an exact value or a stated bound.
 #include "caoFilterTestUtilities.h"
-#include "caoInput.h"
+#include "vtkCAOInput.h"
 
 #include "vtkClipDepthMaps.h"
 #include "vtkContextualAmbientOcclusion.h"
@@ -135,7 +135,7 @@ int TestAmbientOcclusionHardCases(int argc, char* argv[])
     lao->SetReach(1000.0);
     lao->SetNumberOfSamples(16);
     std::string error;
-    auto mesh = caocli::MakeShape("sphere", 10.0, error);
+    auto mesh = vtkCAO::MakeShape("sphere", 10.0, error);
     vtkNew<vtkClipDepthMaps> maps;
     maps->SetInputData(mesh);
     maps->SetReach(1000.0);
@@ -224,7 +224,7 @@ int TestAmbientOcclusionHardCases(int argc, char* argv[])
     far->ShallowCopy(near);
     far->SetOrigin(1e6, 1e6, 1e6);
     std::string error;
-    auto mesh = caocli::MakeShape("cube", 12.0, error);
+    auto mesh = vtkCAO::MakeShape("cube", 12.0, error);
     vtkSmartPointer<vtkImageData> out[2];
     for (int run = 0; run < 2; ++run)
     {

@@ -16,8 +16,8 @@
 // (20%) finds wrong voxels; maps made for scale 1 and a pose at scale 30 (the
 // held-out case) are refused with the reason.
 #include "caoFilterTestUtilities.h"
-#include "caoInput.h"
-#include "vtkCAOClipPose.h"
+#include "vtkCAOInput.h"
+#include "vtkCAOClipMaps.h"
 
 #include "vtkClipDepthMaps.h"
 #include "vtkContextualAmbientOcclusion.h"
@@ -61,7 +61,7 @@ cao::ClipShape ExactShape(const Shape& shape, vtkPolyData* localMesh, double s, 
 {
   std::vector<double> points;
   std::vector<std::int64_t> tris;
-  caocli::TrianglesOf(localMesh, points, tris);
+  vtkCAO::TrianglesOf(localMesh, points, tris);
   const double size = shape.worldSize / s * grow;
   cao::ClipShape exact;
   if (shape.name == "sphere")
@@ -96,9 +96,9 @@ int TestClipScales(int argc, char* argv[])
   bunnyReader->Update();
   CAO_CHECK(bunnyReader->GetOutput()->GetNumberOfPolys() >= 1000, "Bunny.vtp not read");
   std::vector<Shape> shapes = {
-    { "sphere", caocli::MakeShape("sphere", 36.0, error), 36.0, 2 },
-    { "cube", caocli::MakeShape("cube", 28.0, error), 28.0, 2 },
-    { "torus", caocli::MakeShape("torus", 45.0, error), 45.0, 2 },
+    { "sphere", vtkCAO::MakeShape("sphere", 36.0, error), 36.0, 2 },
+    { "cube", vtkCAO::MakeShape("cube", 28.0, error), 28.0, 2 },
+    { "torus", vtkCAO::MakeShape("torus", 45.0, error), 45.0, 2 },
     // The bunny, about 0.31 units across, scaled to ~120 mm.
     { "bunny", Scaled(bunnyReader->GetOutput(), 380.0), 0.0, 3 },
   };
@@ -149,14 +149,14 @@ int TestClipScales(int argc, char* argv[])
       const cao::ClipShape exact = ExactShape(shape, local, s, 1.0, deviation);
       for (int p = 0; p < 2; ++p)
       {
-        caocli::Pose cp;
+        vtkCAO::Pose cp;
         for (int d = 0; d < 3; ++d)
         {
           cp.translation[d] = poses[p][d];
           cp.rotation[d] = poses[p][3 + d];
         }
         cp.scale = s;
-        caocli::PoseToTransform(cp, pose);
+        vtkCAO::PoseToTransform(cp, pose);
         cao->Update();
         CAO_CHECK(events.errors == 0, "%s at scale %g: %s", shape.name.c_str(), s,
           events.lastError.c_str());
@@ -165,9 +165,9 @@ int TestClipScales(int argc, char* argv[])
           "%s at scale %g, pose %d: CAO differs from the full recompute", shape.name.c_str(), s, p);
         vtkCAO::ClipMaps held;
         cao::ClipGeometryReport report;
-        CAO_CHECK(vtkCAO::ReadClipMaps(maps->GetOutput(), cao::shared::CAO_MODE_SUBTRACT, held, error) &&
+        CAO_CHECK(vtkCAO::ReadClipMaps(maps->GetOutput(), cao::layout::CAO_MODE_SUBTRACT, held, error) &&
             vtkCAO::CheckClipGeometry(out, held, pose->GetMatrix(), exact, deviation,
-              cao::shared::CAO_MODE_SUBTRACT, report, error),
+              cao::layout::CAO_MODE_SUBTRACT, report, error),
           "%s", error.c_str());
         CAO_CHECK(report.Passed() && report.mustBeInside > 100 && report.mustBeOutside > 10000,
           "%s at scale %g, pose %d: %lld + %lld of %lld + %lld voxels wrong (%s)",
@@ -203,9 +203,9 @@ int TestClipScales(int argc, char* argv[])
         const cao::ClipShape larger = ExactShape(shape, local, s, 1.2, unused);
         vtkCAO::ClipMaps held;
         cao::ClipGeometryReport report;
-        vtkCAO::ReadClipMaps(maps->GetOutput(), cao::shared::CAO_MODE_SUBTRACT, held, error);
+        vtkCAO::ReadClipMaps(maps->GetOutput(), cao::layout::CAO_MODE_SUBTRACT, held, error);
         vtkCAO::CheckClipGeometry(cao->GetOutput(), held, pose->GetMatrix(), larger,
-          deviation, cao::shared::CAO_MODE_SUBTRACT, report, error);
+          deviation, cao::layout::CAO_MODE_SUBTRACT, report, error);
         std::printf("negative control at scale %g: %lld of %lld inside wrong, margin %g\n", s,
           (long long)report.wrongInside, (long long)report.mustBeInside, report.margin);
         CAO_CHECK(report.wrongInside > 50,
@@ -220,7 +220,7 @@ int TestClipScales(int argc, char* argv[])
   // pixels would be 30 times too coarse in the world; refused.
   {
     vtkNew<vtkClipDepthMaps> maps;
-    maps->SetInputData(caocli::MakeShape("torus", 1.5, error));
+    maps->SetInputData(vtkCAO::MakeShape("torus", 1.5, error));
     maps->SetReach(reach);
     maps->SetVoxelSpacing(volume->GetSpacing());
     vtkNew<vtkContextualAmbientOcclusion> cao;

@@ -6,7 +6,7 @@
 // 2 threads and the pose moved by one voxel must differ in the contextual AO
 // and not in the LAO, which shows that each array compared is the one named.
 #include "caoFilterTestUtilities.h"
-#include "caoInput.h"
+#include "vtkCAOInput.h"
 
 #include "vtkClipDepthMaps.h"
 #include "vtkContextualAmbientOcclusion.h"
@@ -28,7 +28,7 @@ int TestContextualAODeterminism(int argc, char* argv[])
   const std::string data = caotest::DataDirectory(argc, argv);
   vtkSmartPointer<vtkImageData> volume = caotest::ReadSLC(data + "/neghip.slc");
   std::string error;
-  auto mesh = caocli::MakeShape("torus", 18.0, error);
+  auto mesh = vtkCAO::MakeShape("torus", 18.0, error);
   CAO_CHECK(mesh, "%s", error.c_str());
   vtkNew<vtkPiecewiseFunction> tf;
   tf->AddPoint(0, 0);

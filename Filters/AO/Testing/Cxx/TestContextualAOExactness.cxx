@@ -6,7 +6,7 @@
 // probing mode; then a negative control showing that an undersized dilation
 // is caught, so this test can fail.
 #include "caoFilterTestUtilities.h"
-#include "caoInput.h"
+#include "vtkCAOInput.h"
 
 #include "vtkClipDepthMaps.h"
 #include "vtkContextualAmbientOcclusion.h"
@@ -29,7 +29,7 @@ struct Outcome
 };
 
 /// Run CAO with Verify at every pose; collect the verification results.
-int RunPoses(vtkImageData* volume, vtkPolyData* mesh, const std::vector<caocli::Pose>& poses,
+int RunPoses(vtkImageData* volume, vtkPolyData* mesh, const std::vector<vtkCAO::Pose>& poses,
   int pattern, int mode, double dilationScale, Outcome& outcome)
 {
   vtkNew<vtkPiecewiseFunction> tf;
@@ -62,7 +62,7 @@ int RunPoses(vtkImageData* volume, vtkPolyData* mesh, const std::vector<caocli::
   const double voxels = static_cast<double>(volume->GetNumberOfPoints());
   for (const auto& p : poses)
   {
-    caocli::PoseToTransform(p, pose);
+    vtkCAO::PoseToTransform(p, pose);
     maps->SetPoseScaleRange(p.scale, p.scale); // maps made for each pose's scale
     cao->Update();
     CAO_CHECK(events.errors == 0, "filter error: %s", events.lastError.c_str());
@@ -109,7 +109,7 @@ int TestContextualAOExactness(int argc, char* argv[])
   for (const Shape& shape : shapes)
   {
     std::string error;
-    vtkSmartPointer<vtkPolyData> mesh = caocli::MakeShape(shape.name, shape.size, error);
+    vtkSmartPointer<vtkPolyData> mesh = vtkCAO::MakeShape(shape.name, shape.size, error);
     CAO_CHECK(mesh, "%s", error.c_str());
     double bounds[6];
     shape.volume->GetBounds(bounds);
@@ -132,7 +132,7 @@ int TestContextualAOExactness(int argc, char* argv[])
   // Probing mode: keep only what is inside the mesh.
   {
     std::string error;
-    auto mesh = caocli::MakeShape("torus", 20.0, error);
+    auto mesh = vtkCAO::MakeShape("torus", 20.0, error);
     double bounds[6];
     neghip->GetBounds(bounds);
     Outcome out;
@@ -147,7 +147,7 @@ int TestContextualAOExactness(int argc, char* argv[])
   // affected voxels, and the verification must notice.
   {
     std::string error;
-    auto mesh = caocli::MakeShape("sphere", 14.0, error);
+    auto mesh = vtkCAO::MakeShape("sphere", 14.0, error);
     double bounds[6];
     neghip->GetBounds(bounds);
     Outcome out;

@@ -18,7 +18,7 @@
 // Exits 125 when there is no OpenGL 4.3 context.
 #include "caoFilterTestUtilities.h"
 #include "caoGLContext.h"
-#include "caoInput.h"
+#include "vtkCAOInput.h"
 
 #include "vtkClipDepthMaps.h"
 #include "vtkContextualAmbientOcclusion.h"
@@ -76,7 +76,7 @@ struct Outcome
   double maxGpuCpu = 0.0;
 };
 
-int Run(vtkImageData* volume, vtkPolyData* mesh, const std::vector<caocli::Pose>& poses,
+int Run(vtkImageData* volume, vtkPolyData* mesh, const std::vector<vtkCAO::Pose>& poses,
   int pattern, int mode, double dilationScale, bool requireExact, Outcome& out)
 {
   vtkNew<vtkPiecewiseFunction> tf;
@@ -94,8 +94,8 @@ int Run(vtkImageData* volume, vtkPolyData* mesh, const std::vector<caocli::Pose>
   events.Watch(cpu.cao);
   for (const auto& p : poses)
   {
-    caocli::PoseToTransform(p, cpu.pose);
-    caocli::PoseToTransform(p, gpu.pose);
+    vtkCAO::PoseToTransform(p, cpu.pose);
+    vtkCAO::PoseToTransform(p, gpu.pose);
     cpu.maps->SetPoseScaleRange(p.scale, p.scale); // maps made for each pose's scale
     gpu.maps->SetPoseScaleRange(p.scale, p.scale);
     cpu.cao->Update();
@@ -195,7 +195,7 @@ int TestContextualAOOpenGL(int argc, char* argv[])
   for (const Shape& shape : shapes)
   {
     std::string error;
-    auto mesh = caocli::MakeShape(shape.name, shape.size, error);
+    auto mesh = vtkCAO::MakeShape(shape.name, shape.size, error);
     CAO_CHECK(mesh, "%s", error.c_str());
     double bounds[6];
     shape.volume->GetBounds(bounds);
@@ -214,7 +214,7 @@ int TestContextualAOOpenGL(int argc, char* argv[])
   // Negative control: an undersized dilation must be caught on the GPU too.
   {
     std::string error;
-    auto mesh = caocli::MakeShape("sphere", 14.0, error);
+    auto mesh = vtkCAO::MakeShape("sphere", 14.0, error);
     double bounds[6];
     neghip->GetBounds(bounds);
     Outcome out;

@@ -13,7 +13,7 @@
 #include "vtkSLCReader.h"
 #include "vtkSmartPointer.h"
 
-#include "caoInput.h"
+#include "vtkCAOInput.h"
 
 #include <algorithm>
 #include <random>
@@ -30,17 +30,17 @@ namespace caotest
 /// through the volume (translation, rotation, scale 0.5..1.6), then poses
 /// that graze a face, touch a corner, sit in the clipping camera's margin,
 /// leave the volume, cover it whole, and sit at its centre.
-inline std::vector<caocli::Pose> MakePoses(const double bounds[6], double size, unsigned seed, int count)
+inline std::vector<vtkCAO::Pose> MakePoses(const double bounds[6], double size, unsigned seed, int count)
 {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> uni(0.0, 1.0);
   const double c[3] = { 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]),
     0.5 * (bounds[4] + bounds[5]) };
   const double e[3] = { bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] };
-  std::vector<caocli::Pose> poses;
+  std::vector<vtkCAO::Pose> poses;
   for (int i = 0; i < count; ++i)
   {
-    caocli::Pose p;
+    vtkCAO::Pose p;
     for (int d = 0; d < 3; ++d)
     {
       p.translation[d] = bounds[2 * d] - 0.35 * e[d] + 1.7 * e[d] * uni(rng);
@@ -50,28 +50,28 @@ inline std::vector<caocli::Pose> MakePoses(const double bounds[6], double size, 
     poses.push_back(p);
   }
   // Special poses. Grazing: the shape's extreme point at the volume's face.
-  caocli::Pose graze;
+  vtkCAO::Pose graze;
   graze.translation = { bounds[1] + size, c[1], c[2] };
   poses.push_back(graze);
   // Touching a corner region diagonally, half a voxel away.
-  caocli::Pose touch;
+  vtkCAO::Pose touch;
   touch.translation = { bounds[0] - size + 0.5, bounds[2] - 0.5, c[2] };
   poses.push_back(touch);
   // In the camera margin: the mesh is outside, its dilation reaches inside.
-  caocli::Pose margin;
+  vtkCAO::Pose margin;
   margin.translation = { c[0], bounds[3] + size + 2.0, c[2] };
   poses.push_back(margin);
   // Leaving: far away.
-  caocli::Pose away;
+  vtkCAO::Pose away;
   away.translation = { bounds[1] + 3 * e[0], c[1], c[2] };
   poses.push_back(away);
   // Covering the whole volume.
-  caocli::Pose cover;
+  vtkCAO::Pose cover;
   cover.translation = { c[0], c[1], c[2] };
   cover.scale = 3.0 * std::max({ e[0], e[1], e[2] }) / size;
   poses.push_back(cover);
   // Centred, unrotated, unit scale.
-  caocli::Pose centre;
+  vtkCAO::Pose centre;
   centre.translation = { c[0], c[1], c[2] };
   poses.push_back(centre);
   return poses;

@@ -21,7 +21,7 @@
 #include "vtk_glew.h" // first: GLEW must see no other GL header before it
 
 #include "caoFilterTestUtilities.h"
-#include "caoInput.h"
+#include "vtkCAOInput.h"
 
 #include "vtkActor.h"
 #include "vtkClipDepthMaps.h"
@@ -184,7 +184,7 @@ int TestHostContext(int argc, char* argv[])
   vtkSmartPointer<vtkImageData> volume = caotest::ReadSLC(data + "/neghip.slc");
   CAO_CHECK(volume->GetNumberOfPoints() == 66 * 66 * 66, "neghip.slc not read");
   std::string error;
-  auto mesh = caocli::MakeShape("sphere", 14.0, error);
+  auto mesh = vtkCAO::MakeShape("sphere", 14.0, error);
   CAO_CHECK(mesh, "%s", error.c_str());
   caotest::EventCounter events;
 

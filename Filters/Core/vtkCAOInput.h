@@ -1,0 +1,67 @@
+/**
+ * vtkCAOInput — what the project reads and builds as input, shared by the
+ * `cao` tool, the ParaView plugin and the tests: volumes in any format VTK
+ * reads (with their declared size checked against the data before any
+ * reader allocates), clip meshes (files or the built-in closed shapes) and
+ * clip poses. Every function reports a failure as a message, never a crash.
+ */
+#ifndef vtkCAOInput_h
+#define vtkCAOInput_h
+
+#include "caoFiltersCoreModule.h" // For export macro
+#include "vtkSmartPointer.h"
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+class vtkImageData;
+class vtkPolyData;
+class vtkTransform;
+
+namespace vtkCAO
+{
+/// .vti, .mhd/.mha, .slc, legacy .vtk, .nii/.nii.gz.
+CAOFILTERSCORE_EXPORT vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path, std::string& error);
+
+/// .vtp, .stl, .ply, .obj.
+CAOFILTERSCORE_EXPORT vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, std::string& error);
+
+/// The triangles of a mesh (polygons and strips, triangulated) as flat
+/// point (xyz) and id (3 per triangle) vectors.
+CAOFILTERSCORE_EXPORT void TrianglesOf(vtkPolyData* mesh, std::vector<double>& points, std::vector<std::int64_t>& tris);
+
+/// Built-in closed shapes centred on the origin: "sphere" (radius = size),
+/// "cube" (half edge = size), "torus" (ring radius = size, tube = size / 3).
+CAOFILTERSCORE_EXPORT vtkSmartPointer<vtkPolyData> MakeShape(const std::string& name, double size, std::string& error);
+
+/// A pose: translation, rotation in degrees (applied as VTK's props do:
+/// Z, then X, then Y) and a uniform scale.
+struct Pose
+{
+  std::array<double, 3> translation{ { 0, 0, 0 } };
+  std::array<double, 3> rotation{ { 0, 0, 0 } };
+  double scale = 1.0;
+};
+
+/// Parse "tx ty tz [rx ry rz [s]]" (spaces or commas).
+CAOFILTERSCORE_EXPORT bool ParsePose(const std::string& text, Pose& pose, std::string& error);
+
+/// The most poses a path, a pose file or the command line may give (each
+/// pose is a contextual update and a line of the report).
+constexpr int MaxPoses = 100000;
+
+/// One pose per line; blank lines and lines starting with '#' are skipped;
+/// at most MaxPoses.
+CAOFILTERSCORE_EXPORT bool ReadPoses(const std::string& path, std::vector<Pose>& poses, std::string& error);
+
+/// Pose matrix T * Rz * Rx * Ry * S.
+CAOFILTERSCORE_EXPORT void PoseToTransform(const Pose& pose, vtkTransform* transform);
+
+/// The default path: `count` poses along the volume's diagonal, starting
+/// and ending outside it and crossing its centre, rotating as they go.
+CAOFILTERSCORE_EXPORT std::vector<Pose> DefaultPath(const double bounds[6], int count);
+}
+
+#endif

@@ -1,0 +1,31 @@
+/**
+ * vtkCAOOpacity — private glue: the LAO's opacity volume from scalars and a
+ * transfer function, step-corrected. Shared by vtkLocalAmbientOcclusion and
+ * the contextual-AO volume mapper, so that both compute the same opacity
+ * (and so the same AO) from the same function. Not wrapped or installed.
+ */
+#ifndef vtkCAOOpacity_h
+#define vtkCAOOpacity_h
+
+#include "caoFiltersCoreModule.h" // For export macro
+
+#include <cstdint>
+
+class vtkAlgorithm;
+class vtkDataArray;
+class vtkPiecewiseFunction;
+
+namespace vtkCAO
+{
+/**
+ * Evaluate `tf` for every voxel of `scalars` (component `component`),
+ * corrected for samples `stepOverUnit` unit distances apart. Integer
+ * arrays with at most 65536 distinct values use an exact table. NaN/Inf
+ * scalars become transparent and are counted in `nonFinite`. Progress goes
+ * from 0 to 0.1 on `self`; false when aborted.
+ */
+CAOFILTERSCORE_EXPORT bool ComputeOpacity(vtkAlgorithm* self, vtkDataArray* scalars, int component,
+  vtkPiecewiseFunction* tf, double stepOverUnit, float* opacity, std::int64_t& nonFinite);
+}
+
+#endif

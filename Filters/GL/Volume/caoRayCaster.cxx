@@ -1,0 +1,356 @@
+#include "caoRayCaster.h"
+
+#include "caoGLStateGuard.h"
+
+#include "caoClipTest_glsl.h"
+#include "caoRayCastFS_glsl.h"
+#include "caoRayCastVS_glsl.h"
+
+#include <algorithm>
+
+namespace cao
+{
+namespace gl
+{
+struct RayCaster::Impl
+{
+  Context& Ctx;
+  const Functions& gl;
+  Program program;
+  StageTimer timer{ 1 };
+  GLuint vertexArray = 0, table = 0, scalars = 0, depth = 0, block = 0;
+  // Normalised views of the engine's integer volumes, and what they view.
+  GLuint scalarView = 0, currentView = 0, precomputedView = 0;
+  std::uint64_t viewGeneration = 0;
+  GLuint viewedVolume = 0;
+  int depthSize[2] = { 0, 0 };
+  int scalarDims[3] = { 0, 0, 0 };
+  bool timed = false;
+
+  Impl(Context& c)
+    : Ctx(c)
+    , gl(c.GL())
+  {
+  }
+  bool External() const { return this->Ctx.Kind() == ContextKind::External; }
+  void Free(GLuint& t)
+  {
+    if (t)
+      gl.DeleteTextures(1, &t);
+    t = 0;
+  }
+  void FreeViews()
+  {
+    this->Free(scalarView);
+    this->Free(currentView);
+    this->Free(precomputedView);
+    viewGeneration = 0;
+    viewedVolume = 0;
+  }
+  static void Linear(const Functions& gl, GLenum target)
+  {
+    gl.TexParameteri(target, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl.TexParameteri(target, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl.TexParameteri(target, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl.TexParameteri(target, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    if (target == GL_TEXTURE_3D)
+      gl.TexParameteri(target, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+  }
+  /// A normalised, linearly filtered view of an integer volume.
+  GLuint View(GLuint source, GLenum format)
+  {
+    GLuint view = 0;
+    gl.GenTextures(1, &view);
+    gl.TextureView(view, GL_TEXTURE_3D, source, format, 0, 1, 0, 1);
+    gl.BindTexture(GL_TEXTURE_3D, view);
+    Linear(gl, GL_TEXTURE_3D);
+    gl.BindTexture(GL_TEXTURE_3D, 0);
+    return view;
+  }
+  /// (Re)make the views when the engine re-created its volumes.
+  void SyncViews(const AOEngine::Resources& r)
+  {
+    if (r.generation == viewGeneration && r.volume == viewedVolume)
+      return;
+    this->FreeViews();
+    currentView = this->View(r.currentAO, GL_R16);
+    precomputedView = this->View(r.precomputedAO, GL_R16);
+    if (r.source == OpacitySource::Scalars8)
+      scalarView = this->View(r.volume, GL_R8);
+    else if (r.source == OpacitySource::Scalars16)
+      scalarView = this->View(r.volume, GL_R16);
+    viewGeneration = r.generation;
+    viewedVolume = r.volume;
+  }
+  void ReleaseAll()
+  {
+    gl.UseProgram(0);
+    this->FreeViews();
+    for (GLuint* t : { &table, &scalars, &depth })
+      this->Free(*t);
+    if (vertexArray)
+      gl.DeleteVertexArrays(1, &vertexArray);
+    vertexArray = 0;
+    if (block)
+      gl.DeleteBuffers(1, &block);
+    block = 0;
+    program.Release(gl);
+    timer.Release(gl);
+    depthSize[0] = depthSize[1] = 0;
+    std::fill(scalarDims, scalarDims + 3, 0);
+  }
+};
+
+RayCaster::RayCaster(Context& context)
+  : P(new Impl(context))
+{
+}
+
+RayCaster::~RayCaster()
+{
+  if (this->LiveObjects() == 0)
+    return; // nothing to delete; the context may be gone (abandoned)
+  CurrentScope scope(this->P->Ctx);
+  if (scope.Ok())
+  {
+    StateGuard guard(this->P->gl, this->P->External());
+    this->P->ReleaseAll();
+  }
+}
+
+bool RayCaster::SetTable(const float* rgba, int entries, std::string& error)
+{
+  Impl& p = *this->P;
+  if (!rgba || entries < 2)
+  {
+    error = "the transfer-function table needs at least 2 entries";
+    return false;
+  }
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
+    return false;
+  StateGuard guard(p.gl, p.External());
+  const Functions& gl = p.gl;
+  if (!p.table)
+    gl.GenTextures(1, &p.table);
+  gl.ActiveTexture(GL_TEXTURE0 + CAO_UNIT_TABLE);
+  gl.BindTexture(GL_TEXTURE_2D, p.table);
+  gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, entries, 1, 0, GL_RGBA, GL_FLOAT, rgba);
+  Impl::Linear(gl, GL_TEXTURE_2D);
+  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+  return CheckError(gl, "the transfer-function upload", error);
+}
+
+bool RayCaster::SetScalars(const float* values, const int dims[3], std::string& error)
+{
+  Impl& p = *this->P;
+  if (!values || dims[0] < 1 || dims[1] < 1 || dims[2] < 1)
+  {
+    error = "no scalars to render";
+    return false;
+  }
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
+    return false;
+  StateGuard guard(p.gl, p.External());
+  const Functions& gl = p.gl;
+  if (!std::equal(dims, dims + 3, p.scalarDims))
+  {
+    p.Free(p.scalars);
+    gl.GenTextures(1, &p.scalars);
+    gl.BindTexture(GL_TEXTURE_3D, p.scalars);
+    gl.TexStorage3D(GL_TEXTURE_3D, 1, GL_R32F, dims[0], dims[1], dims[2]);
+    Impl::Linear(gl, GL_TEXTURE_3D);
+    std::copy(dims, dims + 3, p.scalarDims);
+  }
+  gl.BindTexture(GL_TEXTURE_3D, p.scalars);
+  gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  gl.TexSubImage3D(
+    GL_TEXTURE_3D, 0, 0, 0, 0, dims[0], dims[1], dims[2], GL_RED, GL_FLOAT, values);
+  return CheckError(gl, "the scalar upload", error);
+}
+
+bool RayCaster::OwnScalars() const
+{
+  return this->P->scalars != 0;
+}
+
+bool RayCaster::CaptureDepth(const int viewport[4], std::string& error)
+{
+  Impl& p = *this->P;
+  if (viewport[2] < 1 || viewport[3] < 1)
+  {
+    error = "the viewport is empty";
+    return false;
+  }
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
+    return false;
+  StateGuard guard(p.gl, p.External());
+  const Functions& gl = p.gl;
+  if (!p.depth || p.depthSize[0] != viewport[2] || p.depthSize[1] != viewport[3])
+  {
+    p.Free(p.depth);
+    gl.GenTextures(1, &p.depth);
+    gl.ActiveTexture(GL_TEXTURE0 + CAO_UNIT_DEPTH);
+    gl.BindTexture(GL_TEXTURE_2D, p.depth);
+    gl.TexStorage2D(GL_TEXTURE_2D, 1, GL_DEPTH_COMPONENT32F, viewport[2], viewport[3]);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    p.depthSize[0] = viewport[2];
+    p.depthSize[1] = viewport[3];
+  }
+  GLint draw = 0;
+  gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
+  gl.BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(draw));
+  gl.ActiveTexture(GL_TEXTURE0 + CAO_UNIT_DEPTH);
+  gl.BindTexture(GL_TEXTURE_2D, p.depth);
+  gl.CopyTexSubImage2D(
+    GL_TEXTURE_2D, 0, 0, 0, viewport[0], viewport[1], viewport[2], viewport[3]);
+  return CheckError(gl, "the depth capture", error);
+}
+
+bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
+  const layout::RenderParams& params, std::string& error)
+{
+  Impl& p = *this->P;
+  const AOEngine::Resources r = engine.GetResources();
+  const bool clip = (params.dims.w & layout::CAO_RENDER_CLIP) != 0;
+  if (!r.volume || !r.currentAO)
+  {
+    error = "the AO engine holds no volume";
+    return false;
+  }
+  if (clip && (!r.clipParams || !r.maps))
+  {
+    error = "clipping needs the engine's depth maps and clip parameters";
+    return false;
+  }
+  if (!p.table)
+  {
+    error = "no transfer function (SetTable)";
+    return false;
+  }
+  if (r.source == OpacitySource::Float32 && !p.scalars)
+  {
+    error = "the engine holds opacity, not scalars: SetScalars first";
+    return false;
+  }
+  if ((params.dims.w & layout::CAO_RENDER_OPAQUE_DEPTH) && !p.depth)
+  {
+    error = "no depth captured (CaptureDepth)";
+    return false;
+  }
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
+    return false;
+  StateGuard guard(p.gl, p.External());
+  const Functions& gl = p.gl;
+  if (!p.program.Valid() &&
+    !p.program.BuildRaster(
+      gl, { caoRayCastVS_glsl }, { caoClipTest_glsl, caoRayCastFS_glsl }, {}, error))
+    return false;
+  if (!p.vertexArray)
+    gl.GenVertexArrays(1, &p.vertexArray);
+  p.timer.Allocate(gl, p.Ctx.UsesHostClock());
+  p.SyncViews(r);
+
+  // The frame's parameters: one uniform buffer, rewritten per draw.
+  if (!p.block)
+    gl.GenBuffers(1, &p.block);
+  gl.BindBuffer(GL_UNIFORM_BUFFER, p.block);
+  gl.BufferData(GL_UNIFORM_BUFFER, sizeof(params), &params, GL_STREAM_DRAW);
+  gl.BindBufferBase(GL_UNIFORM_BUFFER, CAO_BINDING_RENDER_PARAMS, p.block);
+  gl.BindBufferBase(GL_UNIFORM_BUFFER, CAO_BINDING_CLIP_PARAMS, r.clipParams);
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_MAPS, r.maps);
+  const GLuint units[5][2] = {
+    { GL_TEXTURE_3D, p.scalars ? p.scalars : p.scalarView },
+    { GL_TEXTURE_3D, precomputedAO ? p.precomputedView : p.currentView },
+    { GL_TEXTURE_2D, p.table },
+    { GL_TEXTURE_2D, p.depth },
+    { GL_TEXTURE_3D, r.state },
+  };
+  for (int u = 0; u < 5; ++u)
+  {
+    gl.ActiveTexture(GL_TEXTURE0 + u);
+    gl.BindTexture(units[u][0], units[u][1]);
+  }
+  gl.UseProgram(p.program.Id());
+  gl.BindVertexArray(p.vertexArray);
+  gl.Disable(GL_DEPTH_TEST);
+  gl.Disable(GL_CULL_FACE);
+  gl.DepthMask(GL_FALSE);
+  gl.Enable(GL_BLEND);
+  gl.BlendEquationSeparate(GL_FUNC_ADD, GL_FUNC_ADD);
+  gl.BlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  p.timer.Begin(gl, 0);
+  gl.DrawArrays(GL_TRIANGLES, 0, 3);
+  p.timer.End(gl, 0);
+  p.timed = true;
+  return CheckError(gl, "the ray cast", error);
+}
+
+double RayCaster::LastMilliseconds()
+{
+  Impl& p = *this->P;
+  if (!p.timed)
+    return -1.0;
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok())
+    return -1.0;
+  return p.timer.Milliseconds(p.gl, 0);
+}
+
+std::vector<std::pair<char, unsigned int>> RayCaster::ObjectNames() const
+{
+  const Impl& p = *this->P;
+  std::vector<std::pair<char, unsigned int>> names;
+  for (GLuint t : { p.table, p.scalars, p.depth, p.scalarView, p.currentView, p.precomputedView })
+    if (t)
+      names.emplace_back('t', t);
+  if (p.vertexArray)
+    names.emplace_back('v', p.vertexArray);
+  if (p.block)
+    names.emplace_back('b', p.block);
+  if (p.program.Valid())
+    names.emplace_back('p', p.program.Id());
+  for (GLuint q : p.timer.Names())
+    if (q)
+      names.emplace_back('q', q);
+  return names;
+}
+
+int RayCaster::LiveObjects() const
+{
+  return static_cast<int>(this->ObjectNames().size());
+}
+
+void RayCaster::ReleaseGraphicsResources()
+{
+  Impl& p = *this->P;
+  if (this->LiveObjects() == 0)
+    return;
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok())
+    return;
+  StateGuard guard(p.gl, p.External());
+  p.ReleaseAll();
+}
+
+void RayCaster::AbandonGraphicsResources()
+{
+  Impl& p = *this->P;
+  for (GLuint* t : { &p.table, &p.scalars, &p.depth, &p.scalarView, &p.currentView,
+         &p.precomputedView, &p.vertexArray, &p.block })
+    *t = 0;
+  p.program.Abandon();
+  p.timer.Abandon();
+  p.viewGeneration = 0;
+  p.viewedVolume = 0;
+  p.depthSize[0] = p.depthSize[1] = 0;
+  std::fill(p.scalarDims, p.scalarDims + 3, 0);
+  p.timed = false;
+}
+}
+}

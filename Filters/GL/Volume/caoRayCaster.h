@@ -1,0 +1,76 @@
+/**
+ * caoRayCaster — the volume ray caster of the contextual-AO mapper, with no
+ * VTK: a full-viewport triangle whose fragment shader (caoRayCastFS.glsl)
+ * marches each pixel's ray through the AO engine's own GPU volumes. The
+ * scalars and the AO are sampled through texture views of the engine's
+ * integer volumes (normalised, trilinear), so nothing is copied; clipping
+ * uses the engine's depth maps and ClipParams with the classifier's own
+ * shadow test (caoClipTest.glsl).
+ *
+ * It draws into the framebuffer bound when Draw is called, blending
+ * premultiplied colour over it, and restores every piece of state it
+ * changes (StateGuard) in a caller's context. Timed with a GPU query.
+ */
+#ifndef caoRayCaster_h
+#define caoRayCaster_h
+
+#include "caoAOEngine.h"
+#include "caoGLProgram.h"
+#include "caoGLTimer.h"
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace cao
+{
+namespace gl
+{
+class RayCaster
+{
+public:
+  /// The ray caster borrows the context; it must outlive it.
+  explicit RayCaster(Context& context);
+  ~RayCaster();
+  RayCaster(const RayCaster&) = delete;
+  RayCaster& operator=(const RayCaster&) = delete;
+
+  /// The transfer function: `entries` RGBA rows (colour, opacity already
+  /// corrected for the step), looked up at RenderParams::sampling.y/z.
+  bool SetTable(const float* rgba, int entries, std::string& error);
+
+  /// Float scalars for rendering, when the engine's volume holds opacity
+  /// rather than the scalars (OpacitySource::Float32). Otherwise the
+  /// engine's volume is sampled through a normalised view: the texel is
+  /// scalar / 255 (8-bit) or scalar / 65535 (16-bit).
+  bool SetScalars(const float* values, const int dims[3], std::string& error);
+  /// Whether the renderer samples its own float scalars (SetScalars).
+  bool OwnScalars() const;
+
+  /// Copy the depth of the framebuffer bound for drawing, over `viewport`
+  /// (x, y, width, height): what the opaque geometry left.
+  bool CaptureDepth(const int viewport[4], std::string& error);
+
+  /// Draw: `params` is the frame; `precomputedAO` samples the unclipped AO
+  /// instead of the current one (no clip shape). `params.dims.w` carries
+  /// the CAO_RENDER_* flags.
+  bool Draw(const AOEngine& engine, bool precomputedAO, const layout::RenderParams& params,
+    std::string& error);
+
+  /// GPU milliseconds of the last Draw (timer query; waits for the GPU).
+  double LastMilliseconds();
+
+  int LiveObjects() const;
+  std::vector<std::pair<char, unsigned int>> ObjectNames() const;
+  void ReleaseGraphicsResources();
+  void AbandonGraphicsResources();
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> P;
+};
+}
+}
+
+#endif

@@ -1,0 +1,206 @@
+/*
+ * caoGPULayout.h - the one definition of ContextualAO's parameter blocks and
+ * buffer layouts, compiled both as C++ (kernels, filters) and as GLSL
+ * (compute shaders, via #include after vtk_encode_string embedding).
+ *
+ * Rules that keep the two sides identical:
+ *  - every member is a 16-byte vec4/ivec4, so std140 and std430 agree with
+ *    the C++ layout (checked by static_asserts at the end);
+ *  - no bool, no vec3, no implicit padding;
+ *  - constants are plain ints usable from both languages.
+ */
+#ifndef CAO_SHARED_H
+#define CAO_SHARED_H
+
+#ifdef __cplusplus
+#include <cstdint>
+namespace cao
+{
+namespace layout
+{
+struct vec4
+{
+  float x, y, z, w;
+};
+struct ivec4
+{
+  std::int32_t x, y, z, w;
+};
+using uint = std::uint32_t;
+#define CAO_CONST static constexpr int
+#else
+#define CAO_CONST const int
+#endif
+
+/* Voxel categories written to the ClipCategory mask (paper: a, b, c). */
+CAO_CONST CAO_CATEGORY_CLIPPED = 0;    /* a: fully clipped, not recomputed */
+CAO_CONST CAO_CATEGORY_AFFECTED = 1;   /* b: LAO recomputed on the clipped opacity */
+CAO_CONST CAO_CATEGORY_UNAFFECTED = 2; /* c: precomputed LAO copied */
+
+/* Clip modes (paper: subtraction and probing). */
+CAO_CONST CAO_MODE_SUBTRACT = 0; /* remove what is inside the mesh */
+CAO_CONST CAO_MODE_PROBE = 1;    /* keep only what is inside the mesh */
+
+/* Anti-aliased clipping: centre + 8 corners, then up to this many extra
+ * samples where those 9 disagree. */
+CAO_CONST CAO_MAX_AA_EXTRA_SAMPLES = 32;
+
+/*
+ * One tap of the LAO ray march: the position of sample m of ray k relative
+ * to the voxel, in index space, split into the lower corner of the
+ * trilinear cell (integer) and the position inside that cell (fraction).
+ * The fraction is the same for every voxel, which is what makes the march
+ * a fixed 8-tap stencil per sample.
+ */
+struct LAOTap
+{
+  ivec4 cell; /* xyz: lower-corner offset in voxels; w: linear offset of that corner */
+  vec4 frac;  /* xyz: trilinear fractions in [0,1); w: unused (0) */
+};
+
+struct LAOMarchBlock
+{
+  ivec4 dims;        /* xyz: voxels per axis; w: parity of the global origin (bit d: axis d) */
+  ivec4 strides;     /* xyz: linear strides (1, nx, nx*ny); w: 0 */
+  ivec4 rays;        /* x: rays K; y: samples per ray M; z: taps per ray (M-1);
+                        w: variants V (1, or 8 interleaved over 2x2x2 voxels) */
+  ivec4 interiorMin; /* xyz: first voxel index whose every tap is in bounds */
+  ivec4 interiorMax; /* xyz: last voxel index whose every tap is in bounds */
+  vec4 norm;         /* x: float(K*M), the divisor of the summed transmittances */
+};
+
+/*
+ * Per-pose clipping parameters. toCamera maps a continuous voxel index
+ * (x, y, z, 1) to the clipping camera's (u, v, depth): u and v in depth-map
+ * pixels, depth in the mesh's local length unit along the view direction.
+ * Each row is evaluated as ((r.x*x + r.y*y) + r.z*z) + r.w, in that order.
+ */
+struct ClipParams
+{
+  vec4 toCamera[3];
+  ivec4 map;    /* x: width; y: height; z: layers; w: mode (CAO_MODE_*) */
+  ivec4 aa;     /* x: extra AA samples N; yzw: 0 */
+  ivec4 boxMin; /* xyz: first voxel of the candidate box (inclusive) */
+  ivec4 boxMax; /* xyz: last voxel of the candidate box (inclusive) */
+  vec4 aaOffsets[CAO_MAX_AA_EXTRA_SAMPLES]; /* xyz in [-0.5,0.5]: extra AA positions */
+};
+
+/*
+ * One frame of the ray caster (caoRayCaster, caoRayCastFS.glsl). Matrices
+ * are column-major, as GLSL's mat4(c0, c1, c2, c3): ndcToWorld takes a
+ * window's normalised device coordinates to world space, worldToIndex takes
+ * world space to the volume's 0-based voxel index (x, y, z), and
+ * normalToWorld (3 columns) takes an index-space gradient to a world-space
+ * normal (the inverse transpose of index-to-world's linear part).
+ */
+struct RenderParams
+{
+  vec4 ndcToWorld[4];
+  vec4 worldToIndex[4];
+  vec4 normalToWorld[3];
+  vec4 viewport;  /* x, y: first pixel; z, w: 1 / width, 1 / height */
+  vec4 light;     /* xyz: world direction towards the light; w: 1 = headlight */
+  vec4 shading;   /* x: ambient, y: diffuse, z: specular, w: specular power */
+  vec4 sampling;  /* x: step (world units); y, z: table coordinate = texel * y + z; w: AO strength */
+  vec4 invDims;   /* xyz: 1 / voxels per axis (texture coordinate = (index + 0.5) * invDims) */
+  ivec4 dims;     /* xyz: voxels per axis; w: CAO_RENDER_* flags */
+  ivec4 limits;   /* x: maximum samples per ray; yzw: 0 */
+  vec4 boxMax;    /* xyz: the last voxel index (the box is [0, boxMax]); w: early termination alpha */
+};
+CAO_CONST CAO_RENDER_SHADE = 1;        /* gradient Blinn-Phong */
+CAO_CONST CAO_RENDER_AO = 2;           /* the AO volume scales the ambient term */
+CAO_CONST CAO_RENDER_CLIP = 4;         /* shadow-test clipping against the depth maps */
+CAO_CONST CAO_RENDER_JITTER = 8;       /* per-pixel ray-start offset */
+CAO_CONST CAO_RENDER_OPAQUE_DEPTH = 16; /* stop at the opaque geometry's depth */
+
+/*
+ * Binding points, shared so that the C++ side binds what the GLSL declares.
+ * Plain #defines: GLSL 4.30 layout qualifiers need literal-like constants.
+ */
+#define CAO_BINDING_LAO_MARCH 0    /* uniform block: LAOMarchBlock */
+#define CAO_BINDING_CLIP_PARAMS 1   /* uniform block: ClipParams */
+#define CAO_BINDING_TAPS 0          /* storage: LAOTap[K*(M-1)] */
+#define CAO_BINDING_OPACITY_TABLE 1 /* storage: float opacity per scalar value */
+#define CAO_BINDING_CLIP_FACTORS 2  /* storage: float clip factor per coverage count */
+#define CAO_BINDING_MAPS 3          /* storage: front, back, candidate front, candidate back */
+#define CAO_BINDING_COUNTERS 4      /* storage: uint category counts (a, b, c) */
+#define CAO_BINDING_RENDER_PARAMS 2 /* uniform block: RenderParams */
+#define CAO_UNIT_SCALARS 0          /* sampler3D: scalars (normalised integer view or float) */
+#define CAO_UNIT_AO 1               /* sampler3D: AO (16-bit normalised view) */
+#define CAO_UNIT_TABLE 2            /* sampler2D: RGBA transfer-function table, 1 row */
+#define CAO_UNIT_DEPTH 3            /* sampler2D: the opaque geometry's depth */
+#define CAO_UNIT_STATE 4            /* usampler3D: the clip state (category << 6 | count) */
+/* The depth-map programs (caoClipDepthMapsGL) are separate programs with their
+ * own storage bindings, kept within the 8 that GL 4.3 guarantees. */
+#define CAO_BINDING_DM_POINTS 0    /* storage: double xyz per mesh point (local frame) */
+#define CAO_BINDING_DM_IDS 1       /* storage: int, 3 point ids per triangle */
+#define CAO_BINDING_DM_TRIANGLES 2 /* storage: DMTriangle per triangle */
+#define CAO_BINDING_DM_HEADS 3     /* storage: uint per pixel, first hit of its list */
+#define CAO_BINDING_DM_HITS 4      /* storage: DMHit per covered (pixel, triangle) */
+#define CAO_BINDING_DM_MAPS 5      /* storage: six maps (see caoClipDepthMapsGL.h) */
+#define CAO_BINDING_DM_WINDOW 6    /* storage: DMOffset per dilation window pixel */
+#define CAO_BINDING_DM_STATS 7     /* storage: int counters (CAO_DM_STAT_*), layer boxes */
+#define CAO_IMAGE_VOLUME 0          /* scalars (r8ui/r16ui) or opacity (r32f) */
+#define CAO_IMAGE_STATE 1           /* r8ui: category << 6 | coverage count */
+#define CAO_IMAGE_AO_IN 2           /* r16ui: precomputed AO */
+#define CAO_IMAGE_AO_OUT 3          /* r16ui: current AO */
+
+/*
+ * The per-voxel clip state the GPU keeps (one byte): the category in the
+ * top two bits and the anti-aliasing coverage count (0 .. 9 + N) in the low
+ * six. The clipped opacity is opacity * clipFactor[count], with the factor
+ * table computed on the CPU exactly as caoClassify computes 1 - c or c.
+ */
+CAO_CONST CAO_STATE_CATEGORY_SHIFT = 6;
+CAO_CONST CAO_STATE_COUNT_MASK = 63;
+/* AO is stored on the GPU as 16-bit unsigned normalised: q = uint(ao * 65535 + 0.5). */
+CAO_CONST CAO_AO_SCALE = 65535;
+
+/*
+ * Depth maps on the GPU. caoClipDepthMaps.cxx works in double; so do these
+ * records and the shaders that use them, operation for operation, so that
+ * the GPU maps are the CPU maps bit for bit. Doubles are 8-byte aligned in
+ * both std430 and C++; each struct is padded to a multiple of 16 by hand.
+ */
+struct DMTriangle
+{
+  double u[4]; /* pixel coordinates of the corners (counter-clockwise); [3] unused */
+  double v[4];
+  double z[4]; /* depths of the corners */
+  ivec4 ids;   /* xyz: the corners' point ids (canonical edge order); w: winding (+1/-1) */
+  ivec4 box;   /* pixels [x, z] x [y, w] whose centres may be covered; empty if x > z */
+};
+struct DMHit
+{
+  double z;          /* depth of the crossing */
+  int winding;       /* +1 entering, -1 leaving */
+  uint next;         /* next hit of the same pixel, CAO_DM_END at the end */
+};
+struct DMOffset
+{
+  int dx, dy; /* window offset in pixels */
+  double h;   /* sqrt(radius^2 - gap^2): the depth slack at that offset */
+};
+CAO_CONST CAO_DM_STAT_COVERED = 0;   /* pixels with an interval */
+CAO_CONST CAO_DM_STAT_OVERFLOW = 1;  /* pixels with more intervals than layers */
+CAO_CONST CAO_DM_STAT_UNMATCHED = 2; /* pixels whose winding did not return to 0 */
+CAO_CONST CAO_DM_STAT_NONFINITE = 3; /* triangles with a non-finite projection */
+CAO_CONST CAO_DM_STAT_HITS = 4;      /* hits appended (the allocation counter) */
+CAO_CONST CAO_DM_STAT_BOXES = 8;     /* then per layer: covered x0, y0, x1, y1 */
+#define CAO_DM_END 0xFFFFFFFFu
+
+#ifdef __cplusplus
+static_assert(sizeof(DMTriangle) == 128, "DMTriangle must match std430");
+static_assert(sizeof(DMHit) == 16, "DMHit must match std430");
+static_assert(sizeof(DMOffset) == 16, "DMOffset must match std430");
+static_assert(sizeof(RenderParams) == 19 * 16, "RenderParams must match std140");
+static_assert(sizeof(LAOTap) == 32, "LAOTap must match std430");
+static_assert(sizeof(LAOMarchBlock) == 96, "LAOMarchBlock must match std140/std430");
+static_assert(sizeof(ClipParams) == 3 * 16 + 4 * 16 + CAO_MAX_AA_EXTRA_SAMPLES * 16,
+  "ClipParams must match std140/std430");
+} // namespace layout
+} // namespace cao
+#endif
+
+#undef CAO_CONST
+#endif

@@ -1,0 +1,163 @@
+/**
+ * caoLAO — the local ambient occlusion ray march (Hernell et al.), no VTK.
+ *
+ * For voxel v, ray k and sample m = 1..M at distance m*s (s = R/M):
+ *   A_k = (1/M) * sum_{m=1..M} prod_{i<m} (1 - a_i),
+ * with a_i the opacity trilinearly interpolated at sample i (samples outside
+ * the volume are transparent). The voxel's value is the mean of A_k over the
+ * K rays, computed as (sum_k sum_m T_{k,m}) / (K*M) in float.
+ *
+ * Because every voxel uses the same ray offsets, the plan precomputes, per
+ * (ray, sample), the integer cell offset and the trilinear fractions
+ * (caoGPULayout.h's LAOTap). The march is then a fixed stencil; the CPU code
+ * here and the GLSL compute shader run the same arithmetic in the same order
+ * (nested lerps x + t*(y - x), x first), so one plan drives both backends.
+ *
+ * Bit-exactness contract: LAOVoxel's result depends only on the plan and on
+ * the opacity values it reads. Voxels whose taps are all in bounds take a
+ * fast path without bounds checks; the others substitute 0 for out-of-bounds
+ * corners in the same operation order, so both paths give identical bits.
+ * Compile with -ffp-contract=off (CMake does) so no FMA changes rounding.
+ */
+#ifndef caoLAO_h
+#define caoLAO_h
+
+#include "caoRayPattern.h"
+#include "caoGPULayout.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace cao
+{
+/// Grid geometry of a volume: voxel counts, spacing and the 3x3 direction
+/// matrix (row-major, index axes as columns) of the image.
+struct VolumeGeometry
+{
+  int dims[3] = { 0, 0, 0 };
+  /// Global index of voxel (0, 0, 0): the extent's minimum. Interleaved ray
+  /// variations pick a voxel's variant from the parity of its global index,
+  /// so a piece of a volume gets the values the whole volume gets.
+  int origin[3] = { 0, 0, 0 };
+  double spacing[3] = { 1, 1, 1 };
+  double direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  std::int64_t NumberOfVoxels() const
+  {
+    return static_cast<std::int64_t>(dims[0]) * dims[1] * dims[2];
+  }
+};
+
+/**
+ * How the ray pattern varies from voxel to voxel: interleaved sampling
+ * (Keller & Heidrich 2001, used for volumetric AO by Szirmay-Kalos et al.
+ * 2010). The voxels of each 2x2x2 block, told apart by the parity of their
+ * global index, use 8 different variants of the pattern, so that neighbours
+ * (blended by the renderer's trilinear interpolation) see 8x the directions
+ * or start offsets at the cost of one. Every variant is fixed, so the march
+ * stays deterministic and the contextual update stays exact.
+ *  - Rotate: variant v is the pattern under a fixed rotation R_v;
+ *  - Jitter: variant v starts its samples at offset (v + 0.5) / 8 of a step;
+ *  - RotateJitter: both.
+ */
+enum class RayVariation : int
+{
+  None = 0,
+  Rotate = 1,
+  Jitter = 2,
+  RotateJitter = 3
+};
+
+/// Number of pattern variants a variation uses (1 or 8).
+int RayVariationCount(RayVariation variation);
+
+/// "none", "rotate", "jitter" or "rotate+jitter"; Parse accepts the same.
+const char* RayVariationName(RayVariation variation);
+bool ParseRayVariation(const std::string& text, RayVariation& variation);
+
+/// User-facing LAO settings; reach in world units. samples <= 0 selects the
+/// default: `sampleDensity` samples per (smallest) voxel spacing,
+/// max(1, round(density * R / h_min)).
+///
+/// Sample m (1 .. M-1) of a ray lies at distance (m - startOffset) * R / M:
+/// the paper's march has startOffset 0; 0.5 puts each sample in the middle
+/// of the step whose transmittance it decides. Jitter variations replace
+/// startOffset with their own per-variant offsets.
+struct LAOSettings
+{
+  RayPattern pattern = RayPattern::Rays26;
+  int fibonacciRays = 64;
+  double reach = 0.0;
+  int samples = 0;
+  double sampleDensity = 1.0;
+  double startOffset = 0.0;
+  RayVariation variation = RayVariation::None;
+};
+
+/// The limits of LAOSettings, in one place: every layer (filters, mapper,
+/// plugin, `cao`) passes its values through CheckLAOSettings and reports its
+/// message, which states the limit.
+namespace LAOLimits
+{
+constexpr int MaxRays = 65536;            ///< Fibonacci count
+constexpr int MaxSamples = 65536;         ///< samples per ray (explicit or from the density)
+constexpr double MinSampleDensity = 0.001; ///< samples per smallest voxel spacing
+constexpr double MaxSampleDensity = 1000.0;
+constexpr std::int64_t MaxTaps = std::int64_t(1) << 24; ///< variants x rays x samples (256 MiB)
+}
+
+/// Whether `settings` is within LAOLimits (reach > 0: resolve a default
+/// first); false with a message that names the setting, its value and the
+/// limit.
+bool CheckLAOSettings(const LAOSettings& settings, std::string& error);
+
+/// Everything the march needs; uploadable as-is to a GPU (params + taps).
+struct LAOPlan
+{
+  layout::LAOMarchBlock params{};
+  std::vector<layout::LAOTap> taps; ///< V * K * (M-1) taps: variant-major, then ray-major
+  std::vector<Direction> directions; ///< variant 0's K directions
+  int variants = 1;                  ///< V: 1, or 8 for an interleaved variation
+  double reach = 0.0;
+  double step = 0.0; ///< world distance between samples, R / M
+  int rays = 0;
+  int samples = 0;
+};
+
+/// Largest volume the kernels index with 32-bit strides (GPU-compatible).
+constexpr std::int64_t MaxVoxels = (std::int64_t(1) << 31) - 1;
+
+/// Default number of samples for a reach: `density` per smallest voxel
+/// spacing, max(1, round(density * R / h_min)); above LAOLimits::MaxSamples
+/// it returns MaxSamples + 1 (BuildLAOPlan then refuses the plan).
+int DefaultSampleCount(double reach, const double spacing[3], double density = 1.0);
+
+/// The fixed rotation (row-major 3x3) of interleaved variant v in [0, 8).
+void VariationRotation(int v, double rotation[9]);
+
+/// Build a plan; returns false with a message for invalid settings.
+bool BuildLAOPlan(
+  const VolumeGeometry& geometry, const LAOSettings& settings, LAOPlan& plan, std::string& error);
+
+/// LAO of one voxel (i, j, k) over an opacity volume laid out x-fastest.
+float LAOVoxel(const LAOPlan& plan, const float* opacity, int i, int j, int k);
+
+/// LAO of the voxels with linear index in [begin, end).
+void LAORange(
+  const LAOPlan& plan, const float* opacity, float* ao, std::int64_t begin, std::int64_t end);
+
+/// LAO of one voxel like LAOVoxel, from the same plan and opacities, but
+/// with every operation in double: the reference for the float
+/// accumulation error (same sample positions, same order).
+double LAOVoxelDouble(const LAOPlan& plan, const float* opacity, int i, int j, int k);
+
+/// LAO of the listed voxels (linear indices list[begin..end)), written in place.
+void LAOList(const LAOPlan& plan, const float* opacity, float* ao, const std::int64_t* list,
+  std::int64_t begin, std::int64_t end);
+
+/// Step-length correction of an opacity for samples `stepOverUnit` unit
+/// distances apart: 1 - (1 - a)^(step/unit), computed in double, exact at 0 and 1.
+float CorrectOpacity(double alpha, double stepOverUnit);
+}
+
+#endif

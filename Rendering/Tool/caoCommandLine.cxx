@@ -1,0 +1,183 @@
+#include "caoCommandLine.h"
+
+#include "vtkAlgorithm.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkExecutive.h"
+#include "vtkFieldData.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkOutputWindow.h"
+#include "vtkPiecewiseFunction.h"
+
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <unistd.h>
+
+namespace caocli
+{
+std::vector<std::string> Split(const std::string& s, char sep)
+{
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  std::string item;
+  while (std::getline(in, item, sep))
+    if (!item.empty())
+      out.push_back(item);
+  return out;
+}
+
+bool ToDouble(const std::string& s, double& v)
+{
+  char* end = nullptr;
+  v = std::strtod(s.c_str(), &end);
+  return !s.empty() && *end == '\0' && std::isfinite(v);
+}
+
+double FieldValue(vtkDataObject* d, const char* name, int component, double missing)
+{
+  vtkDataArray* a = d ? d->GetFieldData()->GetArray(name) : nullptr;
+  return a && a->GetNumberOfTuples() > 0 && component >= 0 &&
+      component < a->GetNumberOfComponents()
+    ? a->GetComponent(0, component)
+    : missing;
+}
+
+void DefaultOpacityRamp(const double range[2], vtkPiecewiseFunction* tf)
+{
+  const double lo = range[0], hi = range[1] > range[0] ? range[1] : range[0] + 1.0;
+  tf->AddPoint(lo, 0.0);
+  tf->AddPoint(lo + 0.25 * (hi - lo), 0.0);
+  tf->AddPoint(hi, 0.8);
+}
+
+bool TakeArgument(const std::string& a, std::string& volume, std::string& error)
+{
+  if (!a.empty() && a[0] == '-')
+  {
+    error = "unknown option '" + a + "'";
+    return false;
+  }
+  if (!volume.empty())
+  {
+    error = "unexpected argument '" + a + "'";
+    return false;
+  }
+  volume = a;
+  return true;
+}
+
+Progress::Progress(bool disabled)
+  : Enabled(!disabled && isatty(2))
+{
+  this->Callback->SetClientData(this);
+  this->Callback->SetCallback([](vtkObject*, unsigned long, void* self, void* data) {
+    auto* p = static_cast<Progress*>(self);
+    const double f = data ? *static_cast<double*>(data) : 0.0;
+    char text[64];
+    std::snprintf(text, sizeof(text), ": %3.0f%%", 100.0 * f);
+    p->Show(p->Label + text);
+  });
+}
+
+Progress::~Progress()
+{
+  this->Done();
+}
+
+void Progress::Watch(vtkObject* algorithm, const std::string& label)
+{
+  this->Label = label;
+  if (this->Enabled)
+    algorithm->AddObserver(vtkCommand::ProgressEvent, this->Callback);
+}
+
+void Progress::Step(const std::string& label, std::size_t i, std::size_t n)
+{
+  this->Show(label + " " + std::to_string(i + 1) + "/" + std::to_string(n));
+}
+
+void Progress::Show(const std::string& text)
+{
+  if (!this->Enabled)
+    return;
+  std::fprintf(stderr, "\r%-60s", text.c_str());
+  std::fflush(stderr);
+  this->Shown = true;
+}
+
+void Progress::Done()
+{
+  if (this->Enabled && this->Shown)
+  {
+    std::fprintf(stderr, "\r%-60s\r", "");
+    std::fflush(stderr);
+  }
+  this->Shown = false;
+}
+
+
+std::string CleanMessage(const char* text)
+{
+  std::string m = text ? text : "";
+  // "ERROR: In file, line N\n" headers (output-window text).
+  if (m.rfind("ERROR: In ", 0) == 0 || m.rfind("Warning: In ", 0) == 0 ||
+    m.rfind("Generic Warning: In ", 0) == 0)
+  {
+    const std::size_t nl = m.find('\n');
+    m = nl == std::string::npos ? std::string() : m.substr(nl + 1);
+  }
+  // "vtkClass (0x55...): "
+  if (m.rfind("vtk", 0) == 0)
+  {
+    const std::size_t open = m.find(" (0x");
+    const std::size_t close = open == std::string::npos ? open : m.find("): ", open);
+    if (close != std::string::npos && m.find(' ') == open)
+      m = m.substr(close + 3);
+  }
+  while (!m.empty() && std::isspace(static_cast<unsigned char>(m.back())))
+    m.pop_back();
+  return m;
+}
+
+void ErrorLog::Watch(vtkObject* o)
+{
+  o->AddObserver(vtkCommand::ErrorEvent, this->callback);
+  if (auto* algorithm = vtkAlgorithm::SafeDownCast(o))
+    if (auto* exec = algorithm->GetExecutive())
+      exec->AddObserver(vtkCommand::ErrorEvent, this->callback);
+}
+
+namespace
+{
+class CliOutputWindow : public vtkOutputWindow
+{
+public:
+  static CliOutputWindow* New();
+  vtkTypeMacro(CliOutputWindow, vtkOutputWindow);
+  void DisplayText(const char* text) override { std::fprintf(stderr, "%s\n", CleanMessage(text).c_str()); }
+  void DisplayErrorText(const char* text) override
+  {
+    const std::string m = CleanMessage(text);
+    if (m.find("returned failure for request") == std::string::npos)
+      std::fprintf(stderr, "cao: error: %s\n", m.c_str());
+  }
+  void DisplayWarningText(const char* text) override
+  {
+    std::fprintf(stderr, "cao: warning: %s\n", CleanMessage(text).c_str());
+  }
+  void DisplayGenericWarningText(const char* text) override { this->DisplayWarningText(text); }
+};
+vtkStandardNewMacro(CliOutputWindow);
+}
+
+void InstallOutputWindow()
+{
+  vtkNew<CliOutputWindow> window;
+  vtkOutputWindow::SetInstance(window);
+}
+}

@@ -1,0 +1,102 @@
+/**
+ * caoCommandLine — the `cao` tool's command-line plumbing: VTK errors turned
+ * into CLI errors, VTK's messages as "cao: warning:" lines, a progress line
+ * on a terminal, and option parsing helpers. What the tool reads (volumes,
+ * meshes, poses) is vtkCAOInput's, shared with the plugin and the tests.
+ */
+#ifndef caoCommandLine_h
+#define caoCommandLine_h
+
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
+#include "vtkNew.h"
+
+#include "vtkSmartPointer.h"
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+class vtkDataObject;
+class vtkImageData;
+class vtkPiecewiseFunction;
+class vtkPolyData;
+class vtkTransform;
+
+namespace caocli
+{
+/// A VTK message without its "vtkClass (0x...): " prefix and trailing blanks.
+std::string CleanMessage(const char* text);
+
+/// Collects the VTK errors raised by watched objects (and their executives,
+/// whose "returned failure" echo is dropped), so that they become CLI errors.
+struct ErrorLog
+{
+  std::vector<std::string> messages;
+  vtkNew<vtkCallbackCommand> callback;
+  ErrorLog()
+  {
+    callback->SetClientData(this);
+    callback->SetCallback([](vtkObject*, unsigned long, void* self, void* data) {
+      std::string m = CleanMessage(data ? static_cast<const char*>(data) : "unknown error");
+      if (m.find("returned failure for request") == std::string::npos)
+        static_cast<ErrorLog*>(self)->messages.push_back(m);
+    });
+  }
+  void Watch(vtkObject* o);
+  std::string Last() const { return messages.empty() ? "" : messages.back(); }
+};
+
+/// Route VTK's messages that no observer takes to stderr as "cao: warning:
+/// ..." / "cao: error: ..." lines, without VTK's log decoration.
+void InstallOutputWindow();
+
+
+/**
+ * Progress of long runs on stderr, when stderr is a terminal (never in
+ * logs or pipes): a percentage for a watched filter, a count for a loop,
+ * overwritten in place and cleared when done.
+ */
+class Progress
+{
+public:
+  explicit Progress(bool disabled = false);
+  ~Progress();
+  /// Show `algorithm`'s ProgressEvents as "label: NN%".
+  void Watch(vtkObject* algorithm, const std::string& label);
+  /// Show "label i/n" (i counted from 0).
+  void Step(const std::string& label, std::size_t i, std::size_t n);
+  /// Clear the line.
+  void Done();
+
+private:
+  void Show(const std::string& text);
+  bool Enabled;
+  bool Shown = false;
+  std::string Label;
+  vtkNew<vtkCallbackCommand> Callback;
+};
+
+/// The part of a command line that is not an option: `a` is an unknown
+/// option (an error), the volume (the first plain argument) or one too many.
+/// Returns false with the reason in `error`.
+bool TakeArgument(const std::string& a, std::string& volume, std::string& error);
+
+/// The non-empty items of `s` between separators `sep`.
+std::vector<std::string> Split(const std::string& s, char sep);
+
+/// A whole string as a finite double; false otherwise.
+bool ToDouble(const std::string& s, double& v);
+
+/// Component `component` of the first tuple of field array `name` of `d`;
+/// `missing` when there is no such array or component.
+double FieldValue(vtkDataObject* d, const char* name, int component, double missing = -1.0);
+
+/// The tools' default opacity function over a scalar range: 0 up to 25% of
+/// the range, then a ramp to 0.8 at its maximum.
+void DefaultOpacityRamp(const double range[2], vtkPiecewiseFunction* tf);
+
+}
+
+#endif

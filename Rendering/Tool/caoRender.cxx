@@ -1,0 +1,428 @@
+#include "caoRender.h"
+#include "caoWindow.h"
+
+#include "vtkRenderWindow.h"
+
+#include "caoCommandLine.h"
+#include "vtkCAOInput.h"
+#include "caoLAOOptions.h"
+#include "caoPresets.h"
+
+#include "vtkActor.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkCommand.h"
+#include "vtkContextualAOVolumeMapper.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPNGWriter.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
+#include "vtkTransform.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+#include "vtkWindowToImageFilter.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace caocli
+{
+using vtkCAO::ReadVolume;
+using vtkCAO::ReadMesh;
+using vtkCAO::MakeShape;
+using vtkCAO::Pose;
+using vtkCAO::ParsePose;
+using vtkCAO::ReadPoses;
+using vtkCAO::DefaultPath;
+using vtkCAO::PoseToTransform;
+const char* RenderUsage = R"(  cao render VOLUME [render options] [clip options] [-o FRAMES_%03d.png]
+
+render options:
+  --image WxH          frame size in pixels (default 512x512)
+  --azimuth A          camera azimuth, degrees, after a reset (default 30)
+  --elevation E        camera elevation, degrees (default 20)
+  --zoom Z             camera zoom (default 1.4)
+  --preset NAME        built-in transfer function: warm (default), bone, cool, grayscale
+  --preset-file FILE   a ParaView colour-map preset (.json); --preset picks a name in it
+  --absolute           use the preset's values as they are (default: rescale to the data)
+  --rays P             LAO ray pattern: 6, 14, 26 (default), 54, rubiks54 or
+                       fib:K (K = 1 to 65536)
+  --reach R            LAO reach in world units (default 8 voxels)
+  --density D          LAO samples per smallest voxel spacing (default 1)
+  --offset F           LAO sample start offset in steps, in [0, 1) (default 0.5)
+  --variation NAME     LAO ray variation: none (default), rotate, jitter or
+                       rotate+jitter
+  --quality NAME       LAO quality preset: custom (default), interactive,
+                       balanced or reference (sets the rays, density, offset
+                       and variation; not combined with those options).
+                       Not to be confused with --preset, the colours
+  --ao-strength S      0..1 (default 1); --no-ao renders without AO
+  --no-shade           no gradient shading (ambient only)
+  --sample-distance D  ray-cast sample distance, world units (default half a voxel)
+  --window W           auto (default: X when DISPLAY is set, else EGL), egl or x
+  --full               recompute the full LAO at every pose (the reference)
+  --json               print each frame's work report as a JSON list on stdout
+  clip options as for carve: --shape, --size, --mesh, --pose, --poses, --path
+  (default 12), --mode, --layers, --aa; --no-clip renders the unclipped volume
+)";
+
+namespace
+{
+struct RenderOptions
+{
+  std::string volume, output = "cao-frame_%03d.png", preset, presetFile, shape = "sphere", mesh,
+                      posesFile, mode = "subtract", window = "auto", rays = "26";
+  std::vector<std::string> poseTexts;
+  int width = 512, height = 512, path = 12, layers = 2, aa = 16;
+  double azimuth = 30, elevation = 20, zoom = 1.4, reach = 0, strength = 1, size = 0,
+         sampleDistance = 0;
+  bool absolute = false, ao = true, shade = true, json = false, clip = true, full = false;
+  LAOOptions lao; // --quality, --density, --offset, --variation
+};
+
+int Fail(int code, const std::string& message)
+{
+  std::cerr << "cao: error: " << message << "\n";
+  return code;
+}
+
+bool Parse(int argc, char* argv[], RenderOptions& o, std::string& error)
+{
+  for (int i = 2; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    auto value = [&](std::string& out) {
+      if (i + 1 >= argc)
+      {
+        error = "option " + a + " needs a value";
+        return false;
+      }
+      out = argv[++i];
+      return true;
+    };
+    auto number = [&](double& out, double lo, double hi) {
+      std::string v;
+      if (!value(v))
+        return false;
+      char* end = nullptr;
+      out = std::strtod(v.c_str(), &end);
+      if (v.empty() || *end || !std::isfinite(out) || out < lo || out > hi)
+      {
+        char range[96];
+        if (lo <= 1e-300 && hi >= 1e300)
+          std::snprintf(range, sizeof(range), "a positive number");
+        else if (hi >= 1e300)
+          std::snprintf(range, sizeof(range), "a number from %g", lo);
+        else
+          std::snprintf(range, sizeof(range), "from %g to %g", lo, hi);
+        error = "bad value '" + v + "' for " + a + " (" + range + ")";
+        return false;
+      }
+      return true;
+    };
+    auto integer = [&](int& out, int lo, int hi) {
+      double d = 0;
+      if (!number(d, lo, hi))
+        return false;
+      out = static_cast<int>(d);
+      if (out != d)
+      {
+        error = a + " needs an integer (from " + std::to_string(lo) + " to " + std::to_string(hi) + ")";
+        return false;
+      }
+      return true;
+    };
+    bool ok = true;
+    if (TakeLAOOption(a, argc, argv, i, o.lao, error))
+      ok = error.empty();
+    else if (a == "--image")
+    {
+      std::string v;
+      ok = value(v);
+      if (ok && (std::sscanf(v.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 16 ||
+                  o.height < 16 || o.width > 8192 || o.height > 8192))
+      {
+        error = "--image needs WxH, each 16..8192";
+        ok = false;
+      }
+    }
+    else if (a == "--azimuth")
+      ok = number(o.azimuth, -360, 360);
+    else if (a == "--elevation")
+      ok = number(o.elevation, -90, 90);
+    else if (a == "--zoom")
+      ok = number(o.zoom, 1e-3, 1e3);
+    else if (a == "--preset")
+      ok = value(o.preset);
+    else if (a == "--preset-file")
+      ok = value(o.presetFile);
+    else if (a == "--absolute")
+      o.absolute = true;
+    else if (a == "--rays")
+    {
+      NoteOverridden(o.lao, a);
+      ok = value(o.rays);
+    }
+    else if (a == "--reach")
+      ok = number(o.reach, 0, 1e300);
+    else if (a == "--ao-strength")
+      ok = number(o.strength, 0, 1);
+    else if (a == "--no-ao")
+      o.ao = false;
+    else if (a == "--no-shade")
+      o.shade = false;
+    else if (a == "--sample-distance")
+      ok = number(o.sampleDistance, 0, 1e300);
+    else if (a == "--window")
+    {
+      ok = value(o.window);
+      if (ok && o.window != "auto" && o.window != "egl" && o.window != "x")
+      {
+        error = "--window is auto, egl or x";
+        ok = false;
+      }
+    }
+    else if (a == "--full")
+      o.full = true;
+    else if (a == "--json")
+      o.json = true;
+    else if (a == "--shape")
+      ok = value(o.shape);
+    else if (a == "--size")
+      ok = number(o.size, 1e-300, 1e300);
+    else if (a == "--mesh")
+      ok = value(o.mesh);
+    else if (a == "--pose")
+    {
+      std::string v;
+      ok = value(v);
+      o.poseTexts.push_back(v);
+    }
+    else if (a == "--poses")
+      ok = value(o.posesFile);
+    else if (a == "--path")
+      ok = integer(o.path, 1, 100000);
+    else if (a == "--mode")
+    {
+      ok = value(o.mode);
+      if (ok && o.mode != "subtract" && o.mode != "probe")
+      {
+        error = "--mode is subtract or probe";
+        ok = false;
+      }
+    }
+    else if (a == "--layers")
+      ok = integer(o.layers, 1, 16);
+    else if (a == "--aa")
+      ok = integer(o.aa, 0, 32);
+    else if (a == "--no-clip")
+      o.clip = false;
+    else if (a == "-o" || a == "--output")
+      ok = value(o.output);
+    else
+      ok = TakeArgument(a, o.volume, error);
+    if (!ok)
+      return false;
+  }
+  if (o.volume.empty())
+  {
+    error = "missing VOLUME";
+    return false;
+  }
+  if (o.output.find('%') == std::string::npos)
+  {
+    error = "-o needs a printf pattern for the frame number, e.g. frame_%03d.png";
+    return false;
+  }
+  return CheckLAOOptions(o.lao, error);
+}
+
+}
+
+int RunRender(int argc, char* argv[])
+{
+  RenderOptions o;
+  std::string error;
+  if (!Parse(argc, argv, o, error))
+    return Fail(2, error + "\nusage:\n" + RenderUsage);
+  vtkSmartPointer<vtkImageData> volume = ReadVolume(o.volume, error);
+  if (!volume)
+    return Fail(2, error);
+  vtkDataArray* scalars = volume->GetPointData()->GetScalars();
+  if (!scalars)
+    return Fail(2, "'" + o.volume + "' has no point scalars");
+  double range[2];
+  scalars->GetRange(range, 0);
+  if (!std::isfinite(range[0]) || !std::isfinite(range[1]))
+    return Fail(2, "the scalars contain NaN or infinite values");
+  if (!(range[1] > range[0]))
+    range[1] = range[0] + 1.0;
+
+  // The transfer function.
+  vtkNew<vtkColorTransferFunction> color;
+  vtkNew<vtkPiecewiseFunction> opacity;
+  const std::string presetName = o.preset.empty() && o.presetFile.empty() ? "warm" : o.preset;
+  if (!LoadPreset(o.presetFile, presetName, range, o.absolute, color, opacity, error))
+    return Fail(2, error);
+
+  // The window: X when there is a display (or asked for), else EGL.
+  std::string windowKind;
+  vtkSmartPointer<vtkRenderWindow> window = MakeOffscreenWindow(o.window, windowKind, error);
+  if (!window)
+    return Fail(1, error);
+  window->SetSize(o.width, o.height);
+  vtkNew<vtkRenderer> renderer;
+  renderer->SetBackground(1.0, 1.0, 1.0);
+  window->AddRenderer(renderer);
+
+  vtkNew<vtkContextualAOVolumeMapper> mapper;
+  mapper->SetInputData(volume);
+  int pattern = 2, fib = 64;
+  if (o.rays == "6")
+    pattern = 0;
+  else if (o.rays == "14")
+    pattern = 1;
+  else if (o.rays == "26")
+    pattern = 2;
+  else if (o.rays == "54")
+    pattern = 3;
+  else if (o.rays.rfind("fib:", 0) == 0 && std::sscanf(o.rays.c_str() + 4, "%d", &fib) == 1 &&
+    fib >= 1 && fib <= 4096)
+    pattern = 4;
+  else
+    return Fail(2, "--rays is 6, 14, 26, 54 or fib:K (K in 1..4096)");
+  mapper->SetRayPattern(pattern);
+  mapper->SetNumberOfRays(fib);
+  mapper->SetReach(o.reach);
+  mapper->SetSampleDensity(o.lao.density);
+  mapper->SetStartOffset(o.lao.offset);
+  mapper->SetRayVariation(static_cast<int>(o.lao.variation));
+  mapper->SetQualityPreset(static_cast<int>(o.lao.quality));
+  mapper->SetAOStrength(o.strength);
+  mapper->SetAmbientOcclusion(o.ao);
+  mapper->SetSampleDistance(o.sampleDistance);
+  mapper->SetMode(o.mode == "probe" ? vtkContextualAOVolumeMapper::PROBING
+                                    : vtkContextualAOVolumeMapper::SUBTRACTION);
+  mapper->SetNumberOfClipLayers(o.layers);
+  mapper->SetAntiAliasingSamples(o.aa);
+  mapper->SetAOUpdate(o.full ? vtkContextualAOVolumeMapper::FULL_RECOMPUTE
+                             : vtkContextualAOVolumeMapper::CONTEXTUAL);
+  vtkNew<vtkVolumeProperty> property;
+  property->SetColor(color);
+  property->SetScalarOpacity(opacity);
+  property->SetInterpolationTypeToLinear();
+  property->SetShade(o.shade);
+  property->SetAmbient(0.6);
+  property->SetDiffuse(0.5);
+  property->SetSpecular(0.2);
+  property->SetSpecularPower(20.0);
+  vtkNew<vtkVolume> prop;
+  prop->SetMapper(mapper);
+  prop->SetProperty(property);
+  renderer->AddVolume(prop);
+  ErrorLog errors;
+  errors.Watch(mapper);
+
+  // The clip shape and its path.
+  double bounds[6];
+  volume->GetBounds(bounds);
+  std::vector<Pose> poses;
+  vtkNew<vtkActor> shape;
+  vtkNew<vtkPolyDataMapper> shapeMapper;
+  if (o.clip)
+  {
+    const double smallest =
+      std::min({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] });
+    vtkSmartPointer<vtkPolyData> mesh = o.mesh.empty()
+      ? MakeShape(o.shape, o.size > 0.0 ? o.size : std::max(0.25 * smallest, 1e-6), error)
+      : ReadMesh(o.mesh, error);
+    if (!mesh)
+      return Fail(2, error);
+    shapeMapper->SetInputData(mesh);
+    shape->SetMapper(shapeMapper);
+    mapper->SetClipShape(shape);
+    for (const auto& t : o.poseTexts)
+    {
+      Pose p;
+      if (!ParsePose(t, p, error))
+        return Fail(2, error);
+      poses.push_back(p);
+    }
+    if (!o.posesFile.empty() && !ReadPoses(o.posesFile, poses, error))
+      return Fail(2, error);
+    if (poses.empty())
+      poses = DefaultPath(bounds, o.path);
+  }
+  else
+  {
+    poses.resize(1);
+  }
+
+  renderer->ResetCamera();
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->Azimuth(o.azimuth);
+  camera->Elevation(o.elevation);
+  camera->OrthogonalizeViewUp();
+  camera->Zoom(o.zoom);
+  renderer->ResetCameraClippingRange();
+
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->SetInputBufferTypeToRGB();
+  grab->ReadFrontBufferOff();
+  grab->ShouldRerenderOff(); // the frame just rendered, not another one
+  vtkNew<vtkPNGWriter> png;
+  png->SetInputConnection(grab->GetOutputPort());
+  if (o.json)
+    std::printf("[");
+  else
+    std::printf("cao render: %s, %dx%d, %s, %zu frame(s) -> %s\n", o.volume.c_str(), o.width,
+      o.height, windowKind.c_str(), poses.size(), o.output.c_str());
+  for (std::size_t f = 0; f < poses.size(); ++f)
+  {
+    if (o.clip)
+    {
+      vtkNew<vtkTransform> t;
+      PoseToTransform(poses[f], t);
+      shape->SetUserTransform(t);
+    }
+    const auto start = std::chrono::steady_clock::now();
+    window->Render();
+    const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (!errors.messages.empty())
+      return Fail(1, errors.messages.back());
+    std::vector<char> name(o.output.size() + 32);
+    std::snprintf(name.data(), name.size(), o.output.c_str(), static_cast<int>(f));
+    grab->Modified();
+    png->SetFileName(name.data());
+    png->Write();
+    if (png->GetErrorCode())
+      return Fail(1, std::string("cannot write '") + name.data() + "'");
+    if (o.json)
+      std::printf("%s\n  {\"file\": \"%s\", \"wall_ms\": %.3f, \"report\": %s}", f ? "," : "",
+        name.data(), ms, mapper->GetLastFrameReport().c_str());
+    else
+      std::printf("frame %3zu  %8.1f ms  recomputed %9lld voxels  [%s]  %s\n", f, ms,
+        static_cast<long long>(mapper->GetLastFrameRecomputedVoxels()),
+        mapper->GetLastFrameStages().c_str(), name.data());
+  }
+  if (o.json)
+    std::printf("\n]\n");
+  return 0;
+}
+}
