@@ -33,7 +33,6 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkClipDepthMaps);
-vtkCxxSetObjectMacro(vtkClipDepthMaps, RenderWindow, vtkRenderWindow);
 
 namespace
 {
@@ -73,24 +72,10 @@ vtkSmartPointer<vtkFloatArray> MakeLayerArray(
 }
 
 //------------------------------------------------------------------------------
-vtkClipDepthMaps::vtkClipDepthMaps()
-  : GPU(new vtkCAO::GPUSession)
-{
-  vtkCAO::EnsureThreadedBackend();
-}
+vtkClipDepthMaps::vtkClipDepthMaps() = default;
 
 //------------------------------------------------------------------------------
-vtkClipDepthMaps::~vtkClipDepthMaps()
-{
-  this->GPU->Release(); // in the window's context, while we still hold the window
-  this->SetRenderWindow(nullptr);
-}
-
-//------------------------------------------------------------------------------
-void vtkClipDepthMaps::ReleaseGraphicsResources()
-{
-  this->GPU->Release();
-}
+vtkClipDepthMaps::~vtkClipDepthMaps() = default;
 
 //------------------------------------------------------------------------------
 int vtkClipDepthMaps::FillInputPortInformation(int, vtkInformation* info)
@@ -254,7 +239,7 @@ int vtkClipDepthMaps::RequestData(
   const cao::TriangleMesh tm = cao::ViewMesh(points, tris);
   cao::ClipDepthMaps raw, dilated, eroded;
   bool gpuFailed = false;
-  const bool gpu = this->GPU->Resolve(this, this->Backend, gpuFailed, this->RenderWindow);
+  const bool gpu = this->ResolveBackend(gpuFailed);
   if (gpuFailed)
   {
     return 0;
@@ -427,15 +412,11 @@ int vtkClipDepthMaps::RequestData(
 bool vtkClipDepthMaps::CheckSettings()
 {
   // The camera's own settings are checked by cao::PlanClipCamera.
-  if (this->Backend < AUTO || this->Backend > OPENGL)
-    vtkErrorMacro("Backend must be " << AUTO << " (Auto), " << CPU << " (CPU) or " << OPENGL
-                                     << " (OpenGL); got " << this->Backend << ".");
-  else if (!(this->Reach >= 0.0) || !std::isfinite(this->Reach))
+  if (!this->CheckExecutionSettings())
+    return false;
+  if (!(this->Reach >= 0.0) || !std::isfinite(this->Reach))
     vtkErrorMacro("Reach must be 0 (8 voxel spacings) or a positive, finite length; got "
       << this->Reach << ".");
-  else if (this->NumberOfThreads < 0)
-    vtkErrorMacro("NumberOfThreads must be 0 (vtkSMPTools decides) or positive; got "
-      << this->NumberOfThreads << ".");
   else if (this->MaximumPoseScale != 0.0 &&
     !(this->MaximumPoseScale >= this->MinimumPoseScale && std::isfinite(this->MaximumPoseScale)))
     vtkErrorMacro("MaximumPoseScale must be 0 (= MinimumPoseScale) or at least MinimumPoseScale ("
@@ -469,8 +450,5 @@ void vtkClipDepthMaps::PrintSelf(ostream& os, vtkIndent indent)
      << this->RegionOfInterest[3] << ", " << this->RegionOfInterest[4] << ", "
      << this->RegionOfInterest[5] << ")\n";
   os << indent << "DilationScale: " << this->DilationScale << "\n";
-  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "DilationRadius: " << this->DilationRadius << "\n";
-  os << indent << "Backend: " << vtkCAO::BackendName(this->Backend) << "\n";
-  os << indent << "RenderWindow: " << static_cast<void*>(this->RenderWindow) << "\n";
 }

@@ -54,21 +54,13 @@
 #define vtkClipDepthMaps_h
 
 #include "caoFiltersAOModule.h" // For export macro
-#include "vtkImageAlgorithm.h"
+#include "vtkAOAlgorithm.h"
 
-#include <memory> // For the GPU session
-
-class vtkRenderWindow;
-namespace vtkCAO
-{
-class GPUSession;
-}
-
-class CAOFILTERSAO_EXPORT vtkClipDepthMaps : public vtkImageAlgorithm
+class CAOFILTERSAO_EXPORT vtkClipDepthMaps : public vtkAOAlgorithm
 {
 public:
   static vtkClipDepthMaps* New();
-  vtkTypeMacro(vtkClipDepthMaps, vtkImageAlgorithm);
+  vtkTypeMacro(vtkClipDepthMaps, vtkAOAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
@@ -189,50 +181,6 @@ public:
   vtkGetMacro(DilationScale, double);
   ///@}
 
-  ///@{
-  /// Maximum number of threads for the dilation; 0 (default): vtkSMPTools.
-  vtkSetMacro(NumberOfThreads, int);
-  vtkGetMacro(NumberOfThreads, int);
-  ///@}
-
-  /// Where the work runs: as vtkLocalAmbientOcclusion's Backend.
-  enum Backends
-  {
-    AUTO = 0,
-    CPU = 1,
-    OPENGL = 2
-  };
-
-  ///@{
-  /**
-   * Backend: CPU, OPENGL (a headless EGL or OSMesa OpenGL >= 4.3 context;
-   * an error when there is none) or AUTO (default: OpenGL on a hardware
-   * GPU; the CPU on a software rasteriser, or with one warning when there
-   * is no OpenGL 4.3 at all). Both give the same maps, bit for bit.
-   */
-  vtkSetMacro(Backend, int);
-  vtkGetMacro(Backend, int);
-  void SetBackendToAuto() { this->SetBackend(AUTO); }
-  void SetBackendToCPU() { this->SetBackend(CPU); }
-  void SetBackendToOpenGL() { this->SetBackend(OPENGL); }
-  ///@}
-
-  /// Free the GPU objects and the OpenGL context this filter holds.
-  void ReleaseGraphicsResources();
-
-  ///@{
-  /**
-   * A VTK OpenGL render window whose context the OpenGL backend uses
-   * instead of a headless one (null, the default: headless EGL or OSMesa).
-   * The filter makes it current when it executes, uses the window's GLEW,
-   * and restores every OpenGL state it changes. Call
-   * ReleaseGraphicsResources() before the window's context is destroyed;
-   * if it is gone first, the filter forgets its objects without GL calls.
-   */
-  virtual void SetRenderWindow(vtkRenderWindow* window);
-  vtkGetObjectMacro(RenderWindow, vtkRenderWindow);
-  ///@}
-
   /// Radius the output maps are dilated by (local units), after an update.
   vtkGetMacro(DilationRadius, double);
 
@@ -261,11 +209,7 @@ protected:
   double MaximumPoseScale = 0.0;
   double RegionOfInterest[6] = { 1.0, 0.0, 1.0, 0.0, 1.0, 0.0 };
   double DilationScale = 1.0;
-  int NumberOfThreads = 0;
   double DilationRadius = 0.0;
-  int Backend = AUTO;
-  std::unique_ptr<vtkCAO::GPUSession> GPU;
-  vtkRenderWindow* RenderWindow = nullptr;
 
 private:
   vtkClipDepthMaps(const vtkClipDepthMaps&) = delete;

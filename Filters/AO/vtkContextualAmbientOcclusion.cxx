@@ -3,7 +3,7 @@
 #include "vtkCAOClipMaps.h"
 #include "vtkCAOFilterUtilities.h"
 #include "vtkCAOGPUSession.h"
-#include "vtkRenderWindow.h"
+#include "vtkCAOLAOSettings.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -13,8 +13,6 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkLinearTransform.h"
-#include "vtkMath.h"
-#include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -25,17 +23,16 @@
 #include "vtkUnsignedCharArray.h"
 
 #include "caoClassify.h"
+#include "caoContextualUpdate.h"
 #include "caoLAO.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <mutex>
-#include <utility>
+#include <functional>
 #include <vector>
 
 vtkStandardNewMacro(vtkContextualAmbientOcclusion);
-vtkCxxSetObjectMacro(vtkContextualAmbientOcclusion, RenderWindow, vtkRenderWindow);
 vtkCxxSetObjectMacro(vtkContextualAmbientOcclusion, PoseTransform, vtkLinearTransform);
 
 namespace
@@ -45,41 +42,133 @@ vtkFloatArray* FloatArray(vtkDataSetAttributes* pd, const char* name)
   return vtkFloatArray::SafeDownCast(pd->GetAbstractArray(name));
 }
 
-/// Field-data tuple 0 of a named double array, or false when absent/short.
-bool FieldTuple(vtkFieldData* fd, const char* name, int components, double* out)
+/// One execution's inputs, gathered and checked (RequestData, steps 1-3).
+struct PoseInputs
 {
-  auto* a = vtkDoubleArray::SafeDownCast(fd ? fd->GetAbstractArray(name) : nullptr);
-  if (!a || a->GetNumberOfTuples() < 1 || a->GetNumberOfComponents() != components)
+  vtkImageData* input = nullptr;
+  vtkImageData* source = nullptr; ///< input, or the internal precompute's output
+  vtkImageData* maps = nullptr;
+  vtkFloatArray* precomputed = nullptr;
+  vtkFloatArray* opacity = nullptr;
+  cao::VolumeGeometry geometry;
+  cao::LAOSettings settings; ///< as recorded upstream: they rebuild the identical plan
+  cao::LAOPlan plan;
+  vtkCAO::ClipMaps clipMaps;
+  cao::ClipMapsView view;
+  cao::layout::ClipParams clip{};
+  std::int64_t voxels = 0;
+};
+
+/// What a pose produced besides the arrays.
+struct PoseResult
+{
+  cao::CategoryCounts counts;
+  std::int64_t classifiedVoxels = 0, restoredVoxels = 0;
+  double classifyMs = 0, copyMs = 0, recomputeMs = 0, totalMs = 0;
+  double fullMs = -1, maxDifference = -1;
+  std::int64_t differing = 0;
+};
+
+/// What a set of buffers or the GPU engine holds: a pose may build on the
+/// previous one only while all of it is unchanged.
+struct VolumeKey
+{
+  const void* opacity = nullptr;
+  vtkMTimeType opacityTime = 0;
+  const void* precomputed = nullptr;
+  vtkMTimeType precomputedTime = 0;
+  const void* scalars = nullptr;
+  vtkMTimeType scalarsTime = 0;
+  cao::VolumeGeometry geometry;
+  cao::LAOSettings settings;
+  bool operator==(const VolumeKey& o) const
   {
-    return false;
+    return opacity == o.opacity && opacityTime == o.opacityTime &&
+      precomputed == o.precomputed && precomputedTime == o.precomputedTime &&
+      scalars == o.scalars && scalarsTime == o.scalarsTime && geometry == o.geometry &&
+      settings == o.settings;
   }
-  a->GetTuple(0, out);
-  return true;
+  bool operator!=(const VolumeKey& o) const { return !(*this == o); }
+};
+
+VolumeKey KeyOf(const PoseInputs& in)
+{
+  VolumeKey k;
+  k.opacity = in.opacity;
+  k.opacityTime = in.opacity->GetMTime();
+  k.precomputed = in.precomputed;
+  k.precomputedTime = in.precomputed->GetMTime();
+  vtkDataArray* scalars = in.input->GetPointData()->GetScalars();
+  k.scalars = scalars;
+  k.scalarsTime = scalars ? scalars->GetMTime() : 0;
+  k.geometry = in.geometry;
+  k.settings = in.settings;
+  return k;
 }
 
-/// Components of the "LAOParameters" array vtkLocalAmbientOcclusion writes:
-/// RayPattern, Rays, Samples, Reach, Step, UnitDistance, FibonacciRays,
-/// Milliseconds, then StartOffset, RayVariation and QualityPreset.
-constexpr int LAOParameterCount = 11;
-/// Arrays written before the start offset and the variation existed.
-constexpr int LegacyLAOParameterCount = 8;
-
-/// Tuple 0 of the "LAOParameters" field array: the current 11 components,
-/// or the 8 of older outputs with the defaults (start offset 0, no
-/// variation, custom) for the rest.
-bool LAOParametersTuple(vtkFieldData* fd, double out[LAOParameterCount])
+/// A buffer the filter keeps between poses, shared with the output: reused
+/// in place while nobody else holds it; otherwise a copy takes its place,
+/// so an array a caller kept from an earlier output never changes.
+template <typename Array>
+vtkSmartPointer<Array> KeepOrCopy(vtkSmartPointer<Array>& kept, const char* name, std::int64_t n)
 {
-  std::fill(out, out + LAOParameterCount, 0.0);
-  return FieldTuple(fd, vtkCAO::LAOParametersName, LAOParameterCount, out) ||
-    FieldTuple(fd, vtkCAO::LAOParametersName, LegacyLAOParameterCount, out);
+  if (kept && kept->GetNumberOfTuples() == n && kept->GetReferenceCount() > 1)
+  {
+    auto copy = vtkSmartPointer<Array>::New();
+    copy->DeepCopy(kept);
+    kept = copy;
+  }
+  else if (!kept || kept->GetNumberOfTuples() != n)
+  {
+    kept = vtkSmartPointer<Array>::New();
+    kept->SetName(name);
+    kept->SetNumberOfTuples(n);
+  }
+  return kept;
 }
 }
 
 //------------------------------------------------------------------------------
-vtkContextualAmbientOcclusion::vtkContextualAmbientOcclusion()
-  : GPU(new vtkCAO::GPUSession)
+struct vtkContextualAmbientOcclusion::Internals
 {
-  vtkCAO::EnsureThreadedBackend();
+  // CPU: the update's previous pose, valid for the buffers below while
+  // CPUKey matches (the buffers' contents are the previous pose's output).
+  cao::ContextualUpdate CPU;
+  VolumeKey CPUKey;
+  bool CPUKeyValid = false;
+  vtkSmartPointer<vtkFloatArray> AO, Clipped;
+  vtkSmartPointer<vtkUnsignedCharArray> Category;
+  // GPU: what the engine holds.
+  VolumeKey EngineKey;
+  bool EngineKeyValid = false;
+  const void* Maps = nullptr;
+  vtkMTimeType MapsTime = 0;
+  int MapsMode = -1;
+
+  /// The output buffers for `n` voxels; false when they do not hold the
+  /// previous pose's output for `key` (the CPU update must start over).
+  bool AcquireBuffers(std::int64_t n, const VolumeKey& key)
+  {
+    const bool same = this->AO && this->AO->GetNumberOfTuples() == n && this->CPUKeyValid &&
+      this->CPUKey == key;
+    KeepOrCopy(this->AO, vtkCAO::AmbientOcclusionName, n);
+    KeepOrCopy(this->Clipped, vtkCAO::ClippedOpacityName, n);
+    KeepOrCopy(this->Category, vtkCAO::CategoryName, n);
+    this->CPUKey = key;
+    this->CPUKeyValid = true;
+    return same;
+  }
+
+  bool Gather(vtkContextualAmbientOcclusion* self, vtkImageData* input, vtkImageData* maps,
+    bool gpu, PoseInputs& in);
+  bool RunCPU(vtkContextualAmbientOcclusion* self, const PoseInputs& in, PoseResult& r);
+  bool RunGPU(vtkContextualAmbientOcclusion* self, const PoseInputs& in, PoseResult& r);
+};
+
+//------------------------------------------------------------------------------
+vtkContextualAmbientOcclusion::vtkContextualAmbientOcclusion()
+  : Internal(new Internals)
+{
   this->SetNumberOfInputPorts(2);
   this->Precompute = vtkSmartPointer<vtkLocalAmbientOcclusion>::New();
   this->Precompute->SetContainerAlgorithm(this);
@@ -89,14 +178,14 @@ vtkContextualAmbientOcclusion::vtkContextualAmbientOcclusion()
 vtkContextualAmbientOcclusion::~vtkContextualAmbientOcclusion()
 {
   this->SetPoseTransform(nullptr);
-  this->GPU->Release(); // in the window's context, while we still hold the window
-  this->SetRenderWindow(nullptr);
 }
 
 //------------------------------------------------------------------------------
 void vtkContextualAmbientOcclusion::ReleaseGraphicsResources()
 {
-  this->GPU->Release();
+  this->Superclass::ReleaseGraphicsResources();
+  this->Internal->EngineKeyValid = false;
+  this->Internal->Maps = nullptr;
   this->Precompute->ReleaseGraphicsResources();
 }
 
@@ -123,10 +212,9 @@ vtkMTimeType vtkContextualAmbientOcclusion::GetMTime()
 }
 
 //------------------------------------------------------------------------------
-int vtkContextualAmbientOcclusion::FillInputPortInformation(int port, vtkInformation* info)
+int vtkContextualAmbientOcclusion::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
-  (void)port;
   return 1;
 }
 
@@ -177,12 +265,295 @@ int vtkContextualAmbientOcclusion::RequestUpdateExtent(
 }
 
 //------------------------------------------------------------------------------
+bool vtkContextualAmbientOcclusion::CheckSettings()
+{
+  if (!this->CheckExecutionSettings())
+    return false;
+  if (this->Mode != SUBTRACTION && this->Mode != PROBING)
+    vtkErrorMacro("Mode must be " << SUBTRACTION << " (subtraction) or " << PROBING
+                                  << " (probing); got " << this->Mode << ".");
+  else if (this->AntiAliasingSamples < 0 ||
+    this->AntiAliasingSamples > cao::layout::CAO_MAX_AA_EXTRA_SAMPLES)
+    vtkErrorMacro("AntiAliasingSamples must be in [0, " << cao::layout::CAO_MAX_AA_EXTRA_SAMPLES
+                                                        << "]; got " << this->AntiAliasingSamples
+                                                        << ".");
+  else
+    return true;
+  return false;
+}
+
+//------------------------------------------------------------------------------
+vtkImageData* vtkContextualAmbientOcclusion::PrecomputedSource(vtkImageData* input, bool gpu)
+{
+  // The input's own LAO when it carries one (vtkLocalAmbientOcclusion's
+  // output with OutputOpacity on), else the internal precompute's, cached
+  // until the input or the LAO settings change.
+  cao::LAOSettings recorded;
+  if (FloatArray(input->GetPointData(), vtkCAO::AmbientOcclusionName) &&
+    FloatArray(input->GetPointData(), vtkCAO::OpacityName) &&
+    vtkCAO::ReadLAOSettings(input->GetFieldData(), recorded))
+    return input;
+  const vtkMTimeType inputTime = input->GetMTime();
+  if (this->PrecomputeCache && this->PrecomputeCacheInput == input &&
+    this->PrecomputeCacheInputTime == inputTime &&
+    this->PrecomputeCacheFilterTime == this->Precompute->GetMTime())
+    return this->PrecomputeCache;
+  vtkNew<vtkImageData> copy;
+  copy->ShallowCopy(input);
+  this->Precompute->SetInputData(copy);
+  this->Precompute->SetNumberOfThreads(this->NumberOfThreads);
+  this->Precompute->SetBackend(gpu ? OPENGL : CPU);
+  this->Precompute->OutputOpacityOn();
+  this->Precompute->Update();
+  this->Precompute->SetInputData(nullptr);
+  vtkImageData* out = this->Precompute->GetOutput();
+  this->PrecomputeCache = nullptr;
+  if (!FloatArray(out->GetPointData(), vtkCAO::AmbientOcclusionName))
+    return nullptr;
+  this->PrecomputeCache = vtkSmartPointer<vtkImageData>::New();
+  this->PrecomputeCache->ShallowCopy(out);
+  this->PrecomputeCacheInput = input;
+  this->PrecomputeCacheInputTime = inputTime;
+  this->PrecomputeCacheFilterTime = this->Precompute->GetMTime();
+  ++this->PrecomputeCount;
+  return this->PrecomputeCache;
+}
+
+//------------------------------------------------------------------------------
+bool vtkContextualAmbientOcclusion::Internals::Gather(vtkContextualAmbientOcclusion* self,
+  vtkImageData* input, vtkImageData* maps, bool gpu, PoseInputs& in)
+{
+  in.input = input;
+  in.maps = maps;
+  in.geometry = vtkCAO::GeometryOf(input);
+  in.voxels = in.geometry.NumberOfVoxels();
+  std::string error;
+  // 1. The precomputed, unclipped LAO and the settings that made it.
+  in.source = self->PrecomputedSource(input, gpu);
+  if (!in.source)
+  {
+    vtkErrorWithObjectMacro(self, "The LAO precompute failed; see the previous error.");
+    return false;
+  }
+  in.precomputed = FloatArray(in.source->GetPointData(), vtkCAO::AmbientOcclusionName);
+  in.opacity = FloatArray(in.source->GetPointData(), vtkCAO::OpacityName);
+  if (!in.precomputed || !in.opacity ||
+    !vtkCAO::ReadLAOSettings(in.source->GetFieldData(), in.settings))
+    vtkErrorWithObjectMacro(self, "The LAO precompute produced no usable output.");
+  else if (in.precomputed->GetNumberOfTuples() != in.voxels ||
+    in.opacity->GetNumberOfTuples() != in.voxels || in.precomputed->GetNumberOfComponents() != 1 ||
+    in.opacity->GetNumberOfComponents() != 1)
+    vtkErrorWithObjectMacro(self, "The precomputed LAO arrays do not match the volume's extent.");
+  // 2. The plan: the same settings and geometry give the same taps.
+  else if (!cao::BuildLAOPlan(in.geometry, in.settings, in.plan, error))
+    vtkErrorWithObjectMacro(self, "Cannot rebuild the LAO plan from " << vtkCAO::LAOSettingsName << ": " << error
+                                                      << ".");
+  // 3. The depth maps and the pose's ClipParams (the maps must be dilated
+  // enough for it, and serve its scale).
+  else if (!vtkCAO::ReadClipMaps(maps,
+             self->Mode == SUBTRACTION ? cao::layout::CAO_MODE_SUBTRACT
+                                       : cao::layout::CAO_MODE_PROBE,
+             in.clipMaps, error))
+    vtkErrorWithObjectMacro(self, << error);
+  else
+  {
+    vtkNew<vtkMatrix4x4> pose;
+    if (self->PoseTransform)
+    {
+      self->PoseTransform->Update();
+      pose->DeepCopy(self->PoseTransform->GetMatrix());
+    }
+    const int mode =
+      self->Mode == SUBTRACTION ? cao::layout::CAO_MODE_SUBTRACT : cao::layout::CAO_MODE_PROBE;
+    if (!vtkCAO::MakeClipParams(input, in.clipMaps, pose, in.plan.reach, mode,
+          self->AntiAliasingSamples, in.clip, error))
+    {
+      vtkErrorWithObjectMacro(self, << error);
+      return false;
+    }
+    in.view.front = in.clipMaps.arrays[0]->GetPointer(0);
+    in.view.back = in.clipMaps.arrays[1]->GetPointer(0);
+    in.view.candFront = in.clipMaps.arrays[2]->GetPointer(0);
+    in.view.candBack = in.clipMaps.arrays[3]->GetPointer(0);
+    return true;
+  }
+  return false;
+}
+
+//------------------------------------------------------------------------------
+bool vtkContextualAmbientOcclusion::Internals::RunCPU(
+  vtkContextualAmbientOcclusion* self, const PoseInputs& in, PoseResult& r)
+{
+  // Progress: the pose to 1, or to 0.5 and the verification's full recompute after.
+  const double span = self->Verify ? 0.5 : 1.0;
+  double base = 0.0;
+  const cao::ContextualUpdate::ParallelFor parallel = [&](std::int64_t n, std::int64_t grain,
+                                                        double p0, double p1,
+                                                        const std::function<void(std::int64_t,
+                                                          std::int64_t)>& body) {
+    return vtkCAO::ParallelFor(self, n, grain, base + span * p0, base + span * p1, body);
+  };
+  cao::ContextualUpdate::Volume volume;
+  volume.geometry = in.geometry;
+  volume.plan = &in.plan;
+  volume.opacity = in.opacity->GetPointer(0);
+  volume.precomputed = in.precomputed->GetPointer(0);
+  const cao::ContextualUpdate::Buffers buffers = { this->AO->GetPointer(0),
+    this->Clipped->GetPointer(0), this->Category->GetPointer(0) };
+  bool ok = false;
+  vtkCAO::WithThreads(self->NumberOfThreads, [&] {
+    const auto start = std::chrono::steady_clock::now();
+    cao::ContextualUpdate::Stats stats;
+    ok = this->CPU.Update(volume, in.clip, in.view, buffers, parallel, stats);
+    r.totalMs = vtkCAO::MillisecondsSince(start);
+    r.counts = stats.counts;
+    r.classifiedVoxels = stats.classifiedVoxels;
+    r.restoredVoxels = stats.restoredVoxels;
+    r.classifyMs = stats.classifyMs;
+    r.copyMs = stats.copyMs;
+    r.recomputeMs = stats.recomputeMs;
+    if (ok && self->Verify)
+    {
+      base = 0.5;
+      ok = cao::ContextualUpdate::Verify(
+        volume, buffers, parallel, r.differing, r.maxDifference, r.fullMs);
+    }
+  });
+  if (!ok)
+    this->CPUKeyValid = false; // aborted: the buffers are incomplete
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+bool vtkContextualAmbientOcclusion::Internals::RunGPU(
+  vtkContextualAmbientOcclusion* self, const PoseInputs& in, PoseResult& r)
+{
+  // The same plan, opacity, maps and ClipParams on the GPU. The engine keeps
+  // the volume, the precomputed AO and the maps between poses; only a new
+  // volume, opacity or plan re-runs the precompute, only new maps are
+  // uploaded again.
+  cao::gl::AOEngine& engine = self->GPU->Engine();
+  std::string error;
+  const VolumeKey key = KeyOf(in);
+  if (!this->EngineKeyValid || this->EngineKey != key || !engine.HasPrecomputed())
+  {
+    this->EngineKeyValid = false;
+    this->Maps = nullptr;
+    vtkDataArray* scalars = in.input->GetPointData()->GetScalars();
+    std::vector<std::uint8_t> packed;
+    const cao::gl::VolumeUpload upload = vtkCAO::MakeVolumeUpload(scalars,
+      scalars && scalars->GetNumberOfComponents() == 1 ? 0 : -1, in.opacity->GetPointer(0),
+      in.geometry.dims, packed);
+    // An LAO computed by the OpenGL backend on this same driver holds
+    // exactly the values this engine's precompute would store: upload it
+    // instead of marching again. Anything else is recomputed here, so the
+    // category-c values come from the same march as the recompute.
+    vtkStringArray* laoBackend = vtkStringArray::SafeDownCast(
+      in.source->GetFieldData()->GetAbstractArray("ComputeBackend"));
+    const bool reuse = laoBackend && laoBackend->GetNumberOfValues() == 1 &&
+      laoBackend->GetValue(0) == self->GPU->BackendLabel(true);
+    bool aborted = false, done = engine.SetVolume(upload, error) && engine.SetPlan(in.plan, error);
+    if (done && reuse)
+    {
+      std::vector<std::uint16_t> q(static_cast<std::size_t>(in.voxels));
+      const float* pre = in.precomputed->GetPointer(0);
+      for (std::size_t v = 0; v < q.size(); ++v)
+        q[v] = cao::gl::AOEngine::Quantize(pre[v]);
+      done = engine.SetPrecomputed(q.data(), error);
+    }
+    else if (done)
+      done = engine.Precompute(error, [&](double f) {
+        self->UpdateProgress(0.5 * f);
+        aborted = self->CheckAbort();
+        return !aborted;
+      });
+    if (!done && !aborted)
+      vtkErrorWithObjectMacro(self, "The OpenGL LAO precompute failed: " << error << ".");
+    if (!done)
+      return false;
+    this->EngineKey = key;
+    this->EngineKeyValid = true;
+  }
+  if (this->Maps != in.maps || this->MapsTime != in.maps->GetMTime() ||
+    this->MapsMode != self->Mode)
+  {
+    const vtkCAO::ClipMaps& m = in.clipMaps;
+    if (!engine.SetMaps(m.width, m.height, m.layers, in.view.front, in.view.back,
+          in.view.candFront, in.view.candBack, error))
+    {
+      this->Maps = nullptr;
+      vtkErrorWithObjectMacro(self, "The depth-map upload failed: " << error << ".");
+      return false;
+    }
+    this->Maps = in.maps;
+    this->MapsTime = in.maps->GetMTime();
+    this->MapsMode = self->Mode;
+  }
+  cao::gl::UpdateStats stats;
+  std::vector<std::uint16_t> stored;
+  std::vector<std::uint8_t> state;
+  if (!engine.Update(in.clip, stats, error) || !engine.ReadCurrentAO(stored, error) ||
+    !engine.ReadState(state, error))
+  {
+    vtkErrorWithObjectMacro(self, "The OpenGL pose update failed: " << error << ".");
+    return false;
+  }
+  r.counts.clipped = stats.clipped;
+  r.counts.affected = stats.affected;
+  r.counts.unaffected = stats.unaffected;
+  r.classifiedVoxels = stats.regionVoxels;
+  r.restoredVoxels = -1; // the engine restores on the GPU without counting
+  const cao::gl::StageTimes& t = engine.Times();
+  r.classifyMs = t.classify;
+  r.copyMs = t.copy;
+  r.recomputeMs = t.recompute;
+  r.totalMs = t.classify + t.copy + t.recompute;
+  // The outputs: the AO as stored, the category, and the clipped opacity
+  // the state implies (caoClassify's arithmetic: a * (1 - c) or a * c).
+  this->CPUKeyValid = false; // the buffers no longer hold the CPU update's pose
+  const float* a = in.opacity->GetPointer(0);
+  float* out = this->AO->GetPointer(0);
+  float* ac = this->Clipped->GetPointer(0);
+  std::uint8_t* cat = this->Category->GetPointer(0);
+  const int total = 9 + in.clip.aa.x;
+  for (std::int64_t v = 0; v < in.voxels; ++v)
+  {
+    const std::uint8_t sv = state[static_cast<std::size_t>(v)];
+    cat[v] = static_cast<std::uint8_t>(sv >> cao::layout::CAO_STATE_CATEGORY_SHIFT);
+    ac[v] = cat[v] == cao::layout::CAO_CATEGORY_CLIPPED
+      ? 0.0f
+      : a[v] * cao::ClipFactor(sv & cao::layout::CAO_STATE_COUNT_MASK, total, in.clip.map.w);
+    out[v] = cao::gl::AOEngine::Dequantize(stored[static_cast<std::size_t>(v)]);
+  }
+  if (self->Verify)
+  {
+    // GPU CAO against the GPU full recompute: the stored 16-bit values of
+    // every voxel not clipped, and, below that storage step, the float LAO
+    // of every category-c voxel on the clipped against the unclipped
+    // opacity (what the copy assumes), bit for bit.
+    cao::gl::AOEngine::Verification check;
+    if (!engine.Verify(check, error))
+    {
+      vtkErrorWithObjectMacro(self, "The OpenGL verification failed: " << error << ".");
+      return false;
+    }
+    r.fullMs = engine.Times().full;
+    r.differing = check.storedMismatches + check.floatMismatches;
+    r.maxDifference = r.differing == 0 ? 0.0
+                                       : std::max(check.maxFloatDifference,
+                                           check.storedMismatches > 0 ? 1.0 / cao::layout::CAO_AO_SCALE : 0.0);
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
 int vtkContextualAmbientOcclusion::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkImageData* maps = vtkImageData::GetData(inputVector[1]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
   if (!input || !output)
   {
     vtkErrorMacro("Input 0 must be the volume (vtkImageData).");
@@ -193,419 +564,52 @@ int vtkContextualAmbientOcclusion::RequestData(
     vtkErrorMacro("Input 1 must be the clip depth maps (vtkClipDepthMaps output).");
     return 0;
   }
-  int dims[3];
-  input->GetDimensions(dims);
-  const std::int64_t voxels = static_cast<std::int64_t>(dims[0]) * dims[1] * dims[2];
-  if (dims[0] < 1 || dims[1] < 1 || dims[2] < 1 || voxels < 1)
-  {
-    if (vtkCAO::IsOneOfSeveralPieces(outputVector->GetInformationObject(0)))
-    {
-      // A process of a parallel run that holds no data (a reader that does
-      // not split its volume gives it all to one process): nothing to do.
-      output->Initialize();
-      return 1;
-    }
-    vtkErrorMacro("The input volume has an empty extent.");
-    return 0;
-  }
-  if (voxels > cao::MaxVoxels)
-  {
-    vtkErrorMacro("The input volume has " << voxels << " voxels; at most 2^31-1 are supported.");
-    return 0;
-  }
-
+  int status = 0;
+  if (!this->CheckSettings() || !vtkCAO::CheckVolumeExtent(this, input, outInfo, status))
+    return status;
   bool gpuFailed = false;
-  const bool gpu = this->GPU->Resolve(this, this->Backend, gpuFailed, this->RenderWindow);
-  if (gpuFailed)
-  {
+  const bool gpu = this->ResolveBackend(gpuFailed);
+  PoseInputs in;
+  if (gpuFailed || !this->Internal->Gather(this, input, maps, gpu, in))
     return 0;
-  }
 
-  // 1. Precomputed, unclipped LAO: from the input, or computed and cached.
-  vtkImageData* source = input;
-  vtkFloatArray* precomputed = FloatArray(input->GetPointData(), vtkCAO::AmbientOcclusionName);
-  vtkFloatArray* opacity = FloatArray(input->GetPointData(), vtkCAO::OpacityName);
-  double lao[LAOParameterCount];
-  bool haveLAO = precomputed && opacity && LAOParametersTuple(input->GetFieldData(), lao);
-  if (!haveLAO)
-  {
-    const vtkMTimeType inputTime = input->GetMTime();
-    const vtkMTimeType filterTime = this->Precompute->GetMTime();
-    if (!this->PrecomputeCache || this->PrecomputeCacheInput != input ||
-      this->PrecomputeCacheInputTime != inputTime || this->PrecomputeCacheFilterTime != filterTime)
-    {
-      vtkNew<vtkImageData> copy;
-      copy->ShallowCopy(input);
-      this->Precompute->SetInputData(copy);
-      this->Precompute->SetNumberOfThreads(this->NumberOfThreads);
-      this->Precompute->SetBackend(gpu ? vtkLocalAmbientOcclusion::OPENGL : vtkLocalAmbientOcclusion::CPU);
-      this->Precompute->OutputOpacityOn();
-      this->Precompute->Update();
-      this->Precompute->SetInputData(nullptr);
-      vtkImageData* out = this->Precompute->GetOutput();
-      if (!FloatArray(out->GetPointData(), vtkCAO::AmbientOcclusionName))
-      {
-        vtkErrorMacro("The LAO precompute failed; see the previous error.");
-        this->PrecomputeCache = nullptr;
-        return 0;
-      }
-      this->PrecomputeCache = vtkSmartPointer<vtkImageData>::New();
-      this->PrecomputeCache->ShallowCopy(out);
-      this->PrecomputeCacheInput = input;
-      this->PrecomputeCacheInputTime = inputTime;
-      this->PrecomputeCacheFilterTime = this->Precompute->GetMTime();
-      ++this->PrecomputeCount;
-    }
-    source = this->PrecomputeCache;
-    precomputed = FloatArray(source->GetPointData(), vtkCAO::AmbientOcclusionName);
-    opacity = FloatArray(source->GetPointData(), vtkCAO::OpacityName);
-    haveLAO = precomputed && opacity && LAOParametersTuple(source->GetFieldData(), lao);
-    if (!haveLAO)
-    {
-      vtkErrorMacro("The LAO precompute produced no usable output.");
-      return 0;
-    }
-  }
-  if (precomputed->GetNumberOfTuples() != voxels || opacity->GetNumberOfTuples() != voxels ||
-    precomputed->GetNumberOfComponents() != 1 || opacity->GetNumberOfComponents() != 1)
-  {
-    vtkErrorMacro("The precomputed LAO arrays do not match the volume's extent.");
-    return 0;
-  }
+  // The pose: into buffers kept between poses (the CPU update builds on the
+  // previous pose's output while the volume and its LAO are unchanged).
+  output->ShallowCopy(input); // first: the output lets go of the last pose's arrays
+  Internals& internal = *this->Internal;
+  if (!internal.AcquireBuffers(in.voxels, KeyOf(in)))
+    internal.CPU.Reset();
+  PoseResult r;
+  if (!(gpu ? internal.RunGPU(this, in, r) : internal.RunCPU(this, in, r)))
+    return this->CheckAbort() ? 1 : 0; // aborted: the executive flags the output
 
-  // 2. The LAO plan: the same settings and geometry give the same taps.
-  const cao::VolumeGeometry geometry = vtkCAO::GeometryOf(input);
-  const double* spacing = geometry.spacing;
-  cao::LAOSettings settings;
-  settings.pattern = static_cast<cao::RayPattern>(static_cast<int>(lao[0]));
-  settings.samples = static_cast<int>(lao[2]);
-  settings.reach = lao[3];
-  settings.fibonacciRays = static_cast<int>(lao[6]);
-  settings.startOffset = lao[8];
-  settings.variation = static_cast<cao::RayVariation>(static_cast<int>(lao[9]));
-  cao::LAOPlan plan;
-  std::string error;
-  if (!cao::BuildLAOPlan(geometry, settings, plan, error))
-  {
-    vtkErrorMacro("Cannot rebuild the LAO plan from LAOParameters: " << error << ".");
-    return 0;
-  }
-
-  // 3. Depth maps and their camera; 4. the pose's ClipParams (the maps
-  // must be dilated enough for it).
-  const int mode = this->Mode == SUBTRACTION ? cao::layout::CAO_MODE_SUBTRACT
-                                             : cao::layout::CAO_MODE_PROBE;
-  vtkCAO::ClipMaps clipMaps;
-  if (!vtkCAO::ReadClipMaps(maps, mode, clipMaps, error))
-  {
-    vtkErrorMacro(<< error);
-    return 0;
-  }
-  const int width = clipMaps.width, height = clipMaps.height, layers = clipMaps.layers;
-  vtkFloatArray* const* mapArrays = clipMaps.arrays;
-  vtkNew<vtkMatrix4x4> pose;
-  if (this->PoseTransform)
-  {
-    this->PoseTransform->Update();
-    pose->DeepCopy(this->PoseTransform->GetMatrix());
-  }
-  cao::layout::ClipParams clip{};
-  if (!vtkCAO::MakeClipParams(
-        input, clipMaps, pose, plan.reach, mode, this->AntiAliasingSamples, clip, error))
-  {
-    vtkErrorMacro(<< error);
-    return 0;
-  }
-
-  // 6. Outputs.
-  vtkNew<vtkFloatArray> ao;
-  ao->SetName(vtkCAO::AmbientOcclusionName);
-  ao->SetNumberOfTuples(voxels);
-  vtkNew<vtkFloatArray> clipped;
-  clipped->SetName(vtkCAO::ClippedOpacityName);
-  clipped->SetNumberOfTuples(voxels);
-  vtkNew<vtkUnsignedCharArray> category;
-  category->SetName(vtkCAO::CategoryName);
-  category->SetNumberOfTuples(voxels);
-
-  cao::ClipMapsView view;
-  view.front = mapArrays[0]->GetPointer(0);
-  view.back = mapArrays[1]->GetPointer(0);
-  view.candFront = mapArrays[2]->GetPointer(0);
-  view.candBack = mapArrays[3]->GetPointer(0);
-
-  double classifyMs = 0.0, copyMs = 0.0, recomputeMs = 0.0, fullMs = -1.0;
-  double maxDifference = -1.0;
-  std::int64_t differing = 0;
-  cao::CategoryCounts counts;
-  std::vector<std::int64_t> affected;
-  bool ok = true;
-  const auto startAll = std::chrono::steady_clock::now();
-  std::int64_t gpuResident = 0;
-  if (gpu)
-  {
-    // The same plan, opacity, maps and ClipParams on the GPU. The engine
-    // keeps the volume, the precomputed AO and the maps between poses; only
-    // a new volume, opacity or plan re-runs the precompute, and only new
-    // maps are re-uploaded.
-    cao::gl::AOEngine& engine = this->GPU->Engine();
-    vtkDataArray* scalars = input->GetPointData()->GetScalars();
-    const std::vector<double> volumeKey = { static_cast<double>(reinterpret_cast<std::uintptr_t>(opacity)),
-      static_cast<double>(opacity->GetMTime()), static_cast<double>(dims[0]),
-      static_cast<double>(dims[1]), static_cast<double>(dims[2]), lao[0], lao[2], lao[3], lao[6],
-      lao[8], lao[9], static_cast<double>(geometry.origin[0]),
-      static_cast<double>(geometry.origin[1]), static_cast<double>(geometry.origin[2]),
-      spacing[0], spacing[1], spacing[2],
-      scalars ? static_cast<double>(scalars->GetMTime()) : -1.0 };
-    if (volumeKey != this->GPU->Key || !engine.HasPrecomputed())
-    {
-      std::vector<std::uint8_t> packed;
-      const cao::gl::VolumeUpload upload = vtkCAO::MakeVolumeUpload(scalars,
-        scalars && scalars->GetNumberOfComponents() == 1 ? 0 : -1, opacity->GetPointer(0), dims,
-        packed);
-      // An LAO computed by the OpenGL backend on this same driver holds
-      // exactly the values this engine's precompute would store: upload it
-      // instead of marching again. Anything else is recomputed here, so the
-      // category-c values come from the same march as the recompute.
-      vtkStringArray* laoBackend = vtkStringArray::SafeDownCast(
-        source->GetFieldData()->GetAbstractArray("ComputeBackend"));
-      const bool reuse = laoBackend && laoBackend->GetNumberOfValues() == 1 &&
-        laoBackend->GetValue(0) == this->GPU->BackendLabel(true);
-      bool aborted = false;
-      bool done = engine.SetVolume(upload, error) && engine.SetPlan(plan, error);
-      if (done && reuse)
-      {
-        std::vector<std::uint16_t> q(static_cast<std::size_t>(voxels));
-        const float* pre = precomputed->GetPointer(0);
-        for (std::int64_t v = 0; v < voxels; ++v)
-          q[static_cast<std::size_t>(v)] =
-            static_cast<std::uint16_t>(pre[v] * float(cao::layout::CAO_AO_SCALE) + 0.5f);
-        done = engine.SetPrecomputed(q.data(), error);
-      }
-      else if (done)
-      {
-        done = engine.Precompute(error, [&](double f) {
-          this->UpdateProgress(0.5 * f);
-          aborted = this->CheckAbort();
-          return !aborted;
-        });
-      }
-      this->GPU->Key.clear();
-      this->GPUMapsKey.clear();
-      if (aborted)
-      {
-        return 1;
-      }
-      if (!done)
-      {
-        vtkErrorMacro("The OpenGL LAO precompute failed: " << error << ".");
-        return 0;
-      }
-      this->GPU->Key = volumeKey;
-    }
-    const std::vector<double> mapsKey = { static_cast<double>(reinterpret_cast<std::uintptr_t>(maps)),
-      static_cast<double>(maps->GetMTime()), static_cast<double>(this->Mode) };
-    if (mapsKey != this->GPUMapsKey)
-    {
-      if (!engine.SetMaps(width, height, layers, view.front, view.back, view.candFront,
-            view.candBack, error))
-      {
-        vtkErrorMacro("The depth-map upload failed: " << error << ".");
-        return 0;
-      }
-      this->GPUMapsKey = mapsKey;
-    }
-    cao::gl::UpdateStats stats;
-    std::vector<std::uint16_t> stored;
-    std::vector<std::uint8_t> state;
-    if (!engine.Update(clip, stats, error) || !engine.ReadCurrentAO(stored, error) ||
-      !engine.ReadState(state, error))
-    {
-      vtkErrorMacro("The OpenGL pose update failed: " << error << ".");
-      return 0;
-    }
-    counts.clipped = stats.clipped;
-    counts.affected = stats.affected;
-    counts.unaffected = stats.unaffected;
-    const cao::gl::StageTimes& t = engine.Times();
-    classifyMs = t.classify;
-    copyMs = t.copy;
-    recomputeMs = t.recompute;
-    // Outputs: the AO as stored, the category, and the clipped opacity the
-    // state implies (caoClassify's arithmetic: a * (1 - c) or a * c).
-    const float* a = opacity->GetPointer(0);
-    float* out = ao->GetPointer(0);
-    float* ac = clipped->GetPointer(0);
-    std::uint8_t* cat = category->GetPointer(0);
-    const int total = 9 + clip.aa.x;
-    for (std::int64_t v = 0; v < voxels; ++v)
-    {
-      const std::uint8_t sv = state[static_cast<std::size_t>(v)];
-      cat[v] = static_cast<std::uint8_t>(sv >> cao::layout::CAO_STATE_CATEGORY_SHIFT);
-      ac[v] = cat[v] == cao::layout::CAO_CATEGORY_CLIPPED
-        ? 0.0f
-        : a[v] * cao::ClipFactor(sv & cao::layout::CAO_STATE_COUNT_MASK, total, clip.map.w);
-      out[v] = cao::gl::AOEngine::Dequantize(stored[static_cast<std::size_t>(v)]);
-    }
-    if (this->Verify)
-    {
-      // GPU CAO against the GPU full recompute: the stored 16-bit values of
-      // every voxel not clipped, and, below that storage step, the float
-      // LAO of every category-c voxel on the clipped against the unclipped
-      // opacity (what the copy assumes), bit for bit.
-      cao::gl::AOEngine::Verification check;
-      if (!engine.Verify(check, error))
-      {
-        vtkErrorMacro("The OpenGL verification failed: " << error << ".");
-        return 0;
-      }
-      fullMs = engine.Times().full;
-      differing = check.storedMismatches + check.floatMismatches;
-      maxDifference = differing > 0
-        ? std::max(check.maxFloatDifference, check.storedMismatches > 0 ? 1.0 / cao::layout::CAO_AO_SCALE : 0.0)
-        : 0.0;
-    }
-    gpuResident = engine.ResidentBytes();
-  }
-  else
-  vtkCAO::WithThreads(this->NumberOfThreads, [&] {
-    // Classification, slab by slab; the affected lists are concatenated in
-    // slab order, so the list is sorted whatever the thread count.
-    auto t0 = std::chrono::steady_clock::now();
-    std::mutex mutex;
-    std::vector<std::pair<std::int64_t, std::vector<std::int64_t>>> lists;
-    const float* a = opacity->GetPointer(0);
-    float* ac = clipped->GetPointer(0);
-    std::uint8_t* cat = category->GetPointer(0);
-    ok = vtkCAO::ParallelFor(this, dims[2], 1, 0.0, 0.2, [&](std::int64_t b, std::int64_t e) {
-      std::vector<std::int64_t> list;
-      cao::CategoryCounts local;
-      cao::ClassifySlices(clip, dims, view, a, ac, cat, static_cast<int>(b),
-        static_cast<int>(e), list, local);
-      std::lock_guard<std::mutex> lock(mutex);
-      counts.Add(local);
-      lists.emplace_back(b, std::move(list));
-    });
-    if (!ok)
-      return;
-    std::sort(lists.begin(), lists.end(),
-      [](const auto& l, const auto& r) { return l.first < r.first; });
-    affected.reserve(static_cast<std::size_t>(counts.affected));
-    for (auto& l : lists)
-      affected.insert(affected.end(), l.second.begin(), l.second.end());
-    classifyMs = vtkCAO::MillisecondsSince(t0);
-
-    // Copy the precomputed LAO (categories a and c keep it).
-    t0 = std::chrono::steady_clock::now();
-    const float* pre = precomputed->GetPointer(0);
-    float* out = ao->GetPointer(0);
-    ok = vtkCAO::ParallelFor(this, voxels, 1 << 16, 0.2, 0.25,
-      [&](std::int64_t b, std::int64_t e) { std::copy(pre + b, pre + e, out + b); }, 4);
-    if (!ok)
-      return;
-    copyMs = vtkCAO::MillisecondsSince(t0);
-
-    // Recompute the affected voxels on the clipped opacity.
-    t0 = std::chrono::steady_clock::now();
-    const std::int64_t* list = affected.data();
-    ok = vtkCAO::ParallelFor(this, static_cast<std::int64_t>(affected.size()), 256, 0.25,
-      this->Verify ? 0.5 : 1.0,
-      [&](std::int64_t b, std::int64_t e) { cao::LAOList(plan, ac, out, list, b, e); });
-    if (!ok)
-      return;
-    recomputeMs = vtkCAO::MillisecondsSince(t0);
-
-    if (this->Verify)
-    {
-      t0 = std::chrono::steady_clock::now();
-      std::vector<float> full(static_cast<std::size_t>(voxels));
-      ok = vtkCAO::ParallelFor(this, voxels, 1024, 0.5, 1.0,
-        [&](std::int64_t b, std::int64_t e) { cao::LAORange(plan, ac, full.data(), b, e); });
-      if (!ok)
-        return;
-      fullMs = vtkCAO::MillisecondsSince(t0);
-      maxDifference = 0.0;
-      for (std::int64_t v = 0; v < voxels; ++v)
-      {
-        if (cat[v] == cao::layout::CAO_CATEGORY_CLIPPED)
-          continue;
-        // Bitwise comparison: equal floats (and no NaN) or a difference.
-        if (!(full[v] == out[v]))
-        {
-          ++differing;
-          const double d = std::fabs(static_cast<double>(full[v]) - out[v]);
-          maxDifference = std::max(maxDifference, std::isnan(d) ? 1.0 : d);
-        }
-      }
-    }
-  });
-  if (!ok)
-  {
-    return 1; // aborted; the executive flags the output
-  }
-  const double totalMs = gpu ? classifyMs + copyMs + recomputeMs
-                            : vtkCAO::MillisecondsSince(startAll) - fullMs * (fullMs > 0.0);
-
-  output->ShallowCopy(input);
   vtkPointData* pd = output->GetPointData();
   pd->RemoveArray(vtkCAO::AmbientOcclusionName);
-  pd->AddArray(ao);
-  if (source != input)
+  pd->AddArray(internal.AO);
+  if (in.source != input)
   {
-    pd->AddArray(opacity);
-    output->GetFieldData()->AddArray(source->GetFieldData()->GetAbstractArray(vtkCAO::LAOParametersName));
+    pd->AddArray(in.opacity);
+    output->GetFieldData()->AddArray(
+      in.source->GetFieldData()->GetAbstractArray(vtkCAO::LAOSettingsName));
   }
-  pd->AddArray(clipped);
-  pd->AddArray(category);
-
-  vtkNew<vtkIdTypeArray> countArray;
-  countArray->SetName("CategoryCounts");
-  countArray->SetNumberOfComponents(3);
-  countArray->SetComponentName(0, "Clipped");
-  countArray->SetComponentName(1, "Affected");
-  countArray->SetComponentName(2, "Unaffected");
-  const vtkIdType countValues[3] = { counts.clipped, counts.affected, counts.unaffected };
-  countArray->InsertNextTypedTuple(countValues);
-  output->GetFieldData()->AddArray(countArray);
-
-  vtkNew<vtkDoubleArray> timing;
-  timing->SetName("StageMilliseconds");
-  timing->SetNumberOfComponents(4);
-  const char* stageNames[] = { "Classify", "CopyUnaffected", "RecomputeAffected", "Total" };
-  for (int c = 0; c < 4; ++c)
-  {
-    timing->SetComponentName(c, stageNames[c]);
-  }
-  const double timingValues[4] = { classifyMs, copyMs, recomputeMs, totalMs };
-  timing->InsertNextTuple(timingValues);
-  output->GetFieldData()->AddArray(timing);
-
-  this->GPU->AddBackendLabel(output->GetFieldData(), gpu);
-  if (gpu)
-  {
-    vtkNew<vtkDoubleArray> gpuInfo;
-    gpuInfo->SetName("GPUStatistics");
-    gpuInfo->SetNumberOfComponents(2);
-    gpuInfo->SetComponentName(0, "ResidentBytes");
-    gpuInfo->SetComponentName(1, "ResidentBytesPerVoxel");
-    const double info[2] = { static_cast<double>(gpuResident),
-      static_cast<double>(gpuResident) / static_cast<double>(voxels) };
-    gpuInfo->InsertNextTuple(info);
-    output->GetFieldData()->AddArray(gpuInfo);
-  }
+  pd->AddArray(internal.Clipped);
+  pd->AddArray(internal.Category);
+  vtkFieldData* fd = output->GetFieldData();
+  vtkCAO::AddFieldTuple(fd, "CategoryCounts", { "Clipped", "Affected", "Unaffected" },
+    { double(r.counts.clipped), double(r.counts.affected), double(r.counts.unaffected) });
+  vtkCAO::AddFieldTuple(fd, "StageMilliseconds",
+    { "Classify", "CopyUnaffected", "RecomputeAffected", "Total" },
+    { r.classifyMs, r.copyMs, r.recomputeMs, r.totalMs });
+  vtkCAO::AddFieldTuple(fd, "UpdateRegion", { "ClassifiedVoxels", "RestoredVoxels" },
+    { double(r.classifiedVoxels), double(r.restoredVoxels) });
   if (this->Verify)
-  {
-    vtkNew<vtkDoubleArray> verification;
-    verification->SetName("Verification");
-    verification->SetNumberOfComponents(3);
-    verification->SetComponentName(0, "MaxAbsDifference");
-    verification->SetComponentName(1, "DifferingVoxels");
-    verification->SetComponentName(2, "FullRecomputeMilliseconds");
-    const double values[3] = { maxDifference, static_cast<double>(differing), fullMs };
-    verification->InsertNextTuple(values);
-    output->GetFieldData()->AddArray(verification);
-  }
-  vtkCAO::CropToRequestedPiece(outputVector->GetInformationObject(0), output);
+    vtkCAO::AddFieldTuple(fd, "Verification",
+      { "MaxAbsDifference", "DifferingVoxels", "FullRecomputeMilliseconds" },
+      { r.maxDifference, double(r.differing), r.fullMs });
+  this->GPU->AddBackendLabel(fd, gpu);
+  if (gpu)
+    vtkCAO::AddGPUStatistics(fd, this->GPU->Engine(), in.voxels);
+  vtkCAO::CropToRequestedPiece(outInfo, output);
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -627,9 +631,6 @@ void vtkContextualAmbientOcclusion::PrintSelf(ostream& os, vtkIndent indent)
   }
   os << indent << "AntiAliasingSamples: " << this->AntiAliasingSamples << "\n";
   os << indent << "Verify: " << (this->Verify ? "On" : "Off") << "\n";
-  os << indent << "Backend: " << vtkCAO::BackendName(this->Backend) << "\n";
-  os << indent << "RenderWindow: " << static_cast<void*>(this->RenderWindow) << "\n";
-  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "PrecomputeCount: " << this->PrecomputeCount << "\n";
   os << indent << "Precompute (LAO settings when the input has none):\n";
   this->Precompute->PrintSelf(os, indent.GetNextIndent());

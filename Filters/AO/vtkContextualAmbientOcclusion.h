@@ -3,13 +3,13 @@
  * @brief   Contextual ambient occlusion (Titov et al. 2023), CPU backend.
  *
  * Input 0 is the volume. When it carries "AmbientOcclusion",
- * "AmbientOcclusionOpacity" and the "LAOParameters" field array (the output
- * of vtkLocalAmbientOcclusion), those are the precomputed unclipped LAO,
- * and the LAO plan (pattern, samples, reach, start offset, ray variation)
- * is rebuilt from that array, so a quality preset set upstream applies here
- * too (an array of the older 8 components means no offset, no variation);
- * otherwise the filter computes them with its own LAO settings (forwarded
- * below) and caches them until the input or those settings change.
+ * "AmbientOcclusionOpacity" and the "LAOSettings" field array (the output
+ * of vtkLocalAmbientOcclusion with OutputOpacity on), those are the
+ * precomputed unclipped LAO, and the LAO plan is rebuilt from the recorded
+ * settings (read by component name; the older "LAOParameters" array is read
+ * too), so a quality preset set upstream applies here as well; otherwise
+ * the filter computes them with its own LAO settings (forwarded below) and
+ * caches them until the input or those settings change.
  *
  * Input 1 is the output of vtkClipDepthMaps for the clip mesh, whose pose
  * (local to world) is PoseTransform. Moving the mesh means changing the
@@ -25,35 +25,38 @@
  *
  * Output: the volume with "AmbientOcclusion" (contextual), "ClippedOpacity"
  * (float), "ClipCategory" (uint8: 0 clipped, 1 affected, 2 unaffected) and
- * the field arrays "CategoryCounts" and "StageMilliseconds" (plus
- * "Verification" when Verify is on).
+ * the field arrays "CategoryCounts", "StageMilliseconds" and "UpdateRegion"
+ * (plus "Verification" when Verify is on).
+ *
+ * Between poses the filter keeps its output arrays and, on the CPU, builds
+ * on the previous pose as the GPU engine does (cao::ContextualUpdate): only
+ * the union of this pose's candidate box and the previous one's is
+ * classified ("UpdateRegion": ClassifiedVoxels), and only the previous
+ * pose's affected voxels get the precomputed AO back (RestoredVoxels)
+ * before this pose's are recomputed. The arrays are reused in place only
+ * while nothing else holds them: an array kept from an earlier output
+ * (a reference, a numpy view) is never changed by a later pose.
  */
 #ifndef vtkContextualAmbientOcclusion_h
 #define vtkContextualAmbientOcclusion_h
 
 #include "caoFiltersAOModule.h" // For export macro
-#include "vtkImageAlgorithm.h"
+#include "vtkAOAlgorithm.h"
 
-#include <memory> // For the GPU session
-#include <vector> // For the GPU maps key
-
-class vtkRenderWindow;
-namespace vtkCAO
-{
-class GPUSession;
-}
 #include "vtkLocalAmbientOcclusion.h" // For the forwarded LAO settings
 #include "vtkSmartPointer.h"          // For members
+
+#include <memory> // For the internals
 
 class vtkLinearTransform;
 class vtkMatrix4x4;
 class vtkPiecewiseFunction;
 
-class CAOFILTERSAO_EXPORT vtkContextualAmbientOcclusion : public vtkImageAlgorithm
+class CAOFILTERSAO_EXPORT vtkContextualAmbientOcclusion : public vtkAOAlgorithm
 {
 public:
   static vtkContextualAmbientOcclusion* New();
-  vtkTypeMacro(vtkContextualAmbientOcclusion, vtkImageAlgorithm);
+  vtkTypeMacro(vtkContextualAmbientOcclusion, vtkAOAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   enum Modes
@@ -67,8 +70,8 @@ public:
   void SetDepthMapsData(vtkDataObject* maps) { this->SetInputData(1, maps); }
 
   ///@{
-  /// Clip mode. Default SUBTRACTION.
-  vtkSetClampMacro(Mode, int, SUBTRACTION, PROBING);
+  /// Clip mode (Modes). Default SUBTRACTION.
+  vtkSetMacro(Mode, int);
   vtkGetMacro(Mode, int);
   ///@}
 
@@ -85,7 +88,7 @@ public:
 
   ///@{
   /// Extra anti-aliasing samples where the 9 base samples disagree. Default 16, at most 32.
-  vtkSetClampMacro(AntiAliasingSamples, int, 0, 32);
+  vtkSetMacro(AntiAliasingSamples, int);
   vtkGetMacro(AntiAliasingSamples, int);
   ///@}
 
@@ -99,12 +102,6 @@ public:
   vtkSetMacro(Verify, bool);
   vtkGetMacro(Verify, bool);
   vtkBooleanMacro(Verify, bool);
-  ///@}
-
-  ///@{
-  /// Maximum number of threads; 0 (default) lets vtkSMPTools decide.
-  vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
-  vtkGetMacro(NumberOfThreads, int);
   ///@}
 
   ///@{
@@ -142,44 +139,8 @@ public:
   /// Includes the pose transform's and the LAO settings' modification times.
   vtkMTimeType GetMTime() override;
 
-  /// Where the work runs (see Backend).
-  enum Backends
-  {
-    AUTO = 0,
-    CPU = 1,
-    OPENGL = 2
-  };
-
-  ///@{
-  /**
-   * Backend: CPU, OPENGL (compute shaders in a headless EGL or OSMesa
-   * OpenGL >= 4.3 context; an error when there is none) or AUTO (default:
-   * OpenGL on a hardware GPU; otherwise, including Mesa's software
-   * llvmpipe, the CPU, with one warning). The output's field array
-   * "ComputeBackend" says what ran and on which context.
-   */
-  vtkSetClampMacro(Backend, int, AUTO, OPENGL);
-  vtkGetMacro(Backend, int);
-  void SetBackendToAuto() { this->SetBackend(AUTO); }
-  void SetBackendToCPU() { this->SetBackend(CPU); }
-  void SetBackendToOpenGL() { this->SetBackend(OPENGL); }
-  ///@}
-
-  /// Free the GPU objects and the OpenGL context this filter holds.
-  void ReleaseGraphicsResources();
-
-  ///@{
-  /**
-   * A VTK OpenGL render window whose context the OpenGL backend uses
-   * instead of a headless one (null, the default: headless EGL or OSMesa).
-   * The filter makes it current when it executes, uses the window's GLEW,
-   * and restores every OpenGL state it changes. Call
-   * ReleaseGraphicsResources() before the window's context is destroyed;
-   * if it is gone first, the filter forgets its objects without GL calls.
-   */
-  virtual void SetRenderWindow(vtkRenderWindow* window);
-  vtkGetObjectMacro(RenderWindow, vtkRenderWindow);
-  ///@}
+  /// Also frees the internal LAO precompute's GPU objects.
+  void ReleaseGraphicsResources() override;
 
 protected:
   vtkContextualAmbientOcclusion();
@@ -190,16 +151,20 @@ protected:
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
+  /// Mode and AntiAliasingSamples within their ranges (an error if not).
+  bool CheckSettings();
+  /// The input when it carries a precomputed LAO; otherwise the internal
+  /// precompute's output (cached); null after an error.
+  vtkImageData* PrecomputedSource(vtkImageData* input, bool gpu);
+
   int Mode = SUBTRACTION;
   vtkLinearTransform* PoseTransform = nullptr;
   int AntiAliasingSamples = 16;
   bool Verify = false;
-  int NumberOfThreads = 0;
-  int Backend = AUTO;
-  std::unique_ptr<vtkCAO::GPUSession> GPU;
-  vtkRenderWindow* RenderWindow = nullptr;
-  std::vector<double> GPUMapsKey; // what the engine holds as maps
   int PrecomputeCount = 0;
+  /// The CPU update's persistent state and the keys of what the GPU holds.
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
 
   vtkSmartPointer<vtkLocalAmbientOcclusion> Precompute;
   vtkSmartPointer<vtkImageData> PrecomputeCache;

@@ -3,7 +3,7 @@
 #include "vtkCAOFilterUtilities.h"
 #include "vtkCAOOpacity.h"
 #include "vtkCAOGPUSession.h"
-#include "vtkRenderWindow.h"
+#include "vtkCAOLAOSettings.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -21,7 +21,7 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include "caoLAO.h"
-#include "caoQualityPreset.h"
+#include "caoLAOSettings.h"
 
 #include <algorithm>
 #include <atomic>
@@ -30,15 +30,27 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkLocalAmbientOcclusion);
-vtkCxxSetObjectMacro(vtkLocalAmbientOcclusion, RenderWindow, vtkRenderWindow);
 vtkCxxSetObjectMacro(vtkLocalAmbientOcclusion, OpacityFunction, vtkPiecewiseFunction);
 vtkInformationKeyMacro(vtkLocalAmbientOcclusion, REACH, Double);
 
+struct vtkLocalAmbientOcclusion::Internals
+{
+  cao::LAOSettings Settings; // the one definition: defaults and limits in caoLAOSettings.h
+};
+
+vtkCAOLAOSettingMacro(vtkLocalAmbientOcclusion, RayPattern, int, this->Internal->Settings.pattern);
+vtkCAOLAOSettingMacro(vtkLocalAmbientOcclusion, NumberOfRays, int, this->Internal->Settings.fibonacciRays);
+vtkCAOLAOSettingMacro(vtkLocalAmbientOcclusion, Reach, double, this->Internal->Settings.reach);
+vtkCAOLAOSettingMacro(vtkLocalAmbientOcclusion, NumberOfSamples, int, this->Internal->Settings.samples);
+vtkCAOLAOSettingMacro(vtkLocalAmbientOcclusion, SampleDensity, double, this->Internal->Settings.sampleDensity);
+vtkCAOLAOSettingMacro(vtkLocalAmbientOcclusion, StartOffset, double, this->Internal->Settings.startOffset);
+vtkCAOLAOSettingMacro(vtkLocalAmbientOcclusion, RayVariation, int, this->Internal->Settings.variation);
+vtkCAOLAOSettingMacro(vtkLocalAmbientOcclusion, QualityPreset, int, this->Internal->Settings.preset);
+
 //------------------------------------------------------------------------------
 vtkLocalAmbientOcclusion::vtkLocalAmbientOcclusion()
-  : GPU(new vtkCAO::GPUSession)
+  : Internal(new Internals)
 {
-  vtkCAO::EnsureThreadedBackend();
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
 }
@@ -47,14 +59,6 @@ vtkLocalAmbientOcclusion::vtkLocalAmbientOcclusion()
 vtkLocalAmbientOcclusion::~vtkLocalAmbientOcclusion()
 {
   this->SetOpacityFunction(nullptr);
-  this->GPU->Release(); // in the window's context, while we still hold the window
-  this->SetRenderWindow(nullptr);
-}
-
-//------------------------------------------------------------------------------
-void vtkLocalAmbientOcclusion::ReleaseGraphicsResources()
-{
-  this->GPU->Release();
 }
 
 //------------------------------------------------------------------------------
@@ -71,23 +75,14 @@ vtkMTimeType vtkLocalAmbientOcclusion::GetMTime()
 //------------------------------------------------------------------------------
 bool vtkLocalAmbientOcclusion::CheckSettings()
 {
-  // The LAO settings proper are checked with the plan (cao::CheckLAOSettings);
-  // these are this filter's own.
+  if (!this->CheckExecutionSettings())
+    return false;
   if (!(this->ScalarOpacityUnitDistance > 0.0) || !std::isfinite(this->ScalarOpacityUnitDistance))
     vtkErrorMacro("ScalarOpacityUnitDistance must be positive and finite; got "
       << this->ScalarOpacityUnitDistance << ".");
-  else if (this->QualityPreset < CUSTOM || this->QualityPreset > REFERENCE)
-    vtkErrorMacro("QualityPreset must be " << CUSTOM << " (Custom) to " << REFERENCE
-                                           << " (Reference); got " << this->QualityPreset << ".");
-  else if (this->Backend < AUTO || this->Backend > OPENGL)
-    vtkErrorMacro("Backend must be " << AUTO << " (Auto), " << CPU << " (CPU) or " << OPENGL
-                                     << " (OpenGL); got " << this->Backend << ".");
   else if (this->Component < -1)
     vtkErrorMacro("Component must be -1 (a one-component array) or a component index; got "
       << this->Component << ".");
-  else if (this->NumberOfThreads < 0)
-    vtkErrorMacro("NumberOfThreads must be 0 (vtkSMPTools decides) or positive; got "
-      << this->NumberOfThreads << ".");
   else
     return true;
   return false;
@@ -96,11 +91,7 @@ bool vtkLocalAmbientOcclusion::CheckSettings()
 //------------------------------------------------------------------------------
 double vtkLocalAmbientOcclusion::GetEffectiveReach(const double spacing[3]) const
 {
-  if (this->Reach != 0.0)
-  {
-    return this->Reach; // checked by cao::CheckLAOSettings: positive and finite
-  }
-  return 8.0 * std::min(spacing[0], std::min(spacing[1], spacing[2]));
+  return cao::ResolveLAOSettings(this->Internal->Settings, spacing).reach;
 }
 
 //------------------------------------------------------------------------------
@@ -134,6 +125,68 @@ int vtkLocalAmbientOcclusion::RequestUpdateExtent(
 }
 
 //------------------------------------------------------------------------------
+vtkDataArray* vtkLocalAmbientOcclusion::SelectScalars(
+  vtkInformationVector** inputVector, vtkImageData* input, int& component)
+{
+  vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector);
+  vtkInformation* request = this->GetInputArrayInformation(0);
+  if (!scalars && request->Has(vtkDataObject::FIELD_NAME()) &&
+    std::string(request->Get(vtkDataObject::FIELD_NAME())).empty())
+  {
+    // An empty array name (ParaView's array selection before it has a
+    // choice) means the active point scalars, as the default does.
+    scalars = input->GetPointData()->GetScalars();
+  }
+  const char* name = scalars && scalars->GetName() ? scalars->GetName() : "";
+  const int nc = scalars ? scalars->GetNumberOfComponents() : 0;
+  component = this->Component < 0 ? 0 : this->Component;
+  if (!scalars)
+    vtkErrorMacro("The input has no point scalars to compute opacity from "
+                  "(set the input array to process).");
+  else if (scalars->GetNumberOfTuples() != input->GetNumberOfPoints())
+    vtkErrorMacro("Array '" << name << "' is not a point array of the volume.");
+  else if (this->Component < 0 && nc != 1)
+    vtkErrorMacro("Array '" << name << "' has " << nc
+                            << " components; choose one with SetComponent().");
+  else if (this->Component >= nc)
+    vtkErrorMacro("Component " << this->Component << " requested but the array has " << nc
+                               << " components.");
+  else
+    return scalars;
+  return nullptr;
+}
+
+//------------------------------------------------------------------------------
+bool vtkLocalAmbientOcclusion::RunOnGPU(vtkDataArray* scalars, int component, const int dims[3],
+  const cao::LAOPlan& plan, vtkFloatArray* opacity, vtkFloatArray* ao, bool& aborted)
+{
+  // The same plan and opacity on the GPU: scalars + an exact opacity table
+  // when the data allow it, else float opacity.
+  cao::gl::AOEngine& engine = this->GPU->Engine();
+  std::vector<std::uint8_t> packed;
+  const cao::gl::VolumeUpload upload =
+    vtkCAO::MakeVolumeUpload(scalars, component, opacity->GetPointer(0), dims, packed);
+  std::vector<std::uint16_t> stored;
+  std::string error;
+  const bool done = engine.SetVolume(upload, error) && engine.SetPlan(plan, error) &&
+    engine.Precompute(error,
+      [&](double f) {
+        this->UpdateProgress(0.1 + 0.85 * f);
+        aborted = this->CheckAbort();
+        return !aborted;
+      }) &&
+    engine.ReadPrecomputedAO(stored, error);
+  if (!done && !aborted)
+    vtkErrorMacro("The OpenGL LAO failed: " << error << ".");
+  if (!done)
+    return false;
+  float* out = ao->GetPointer(0);
+  for (std::size_t v = 0; v < stored.size(); ++v)
+    out[v] = cao::gl::AOEngine::Dequantize(stored[v]);
+  return true;
+}
+
+//------------------------------------------------------------------------------
 int vtkLocalAmbientOcclusion::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -145,84 +198,19 @@ int vtkLocalAmbientOcclusion::RequestData(
     return 0;
   }
   output->ShallowCopy(input);
-  if (!this->CheckSettings())
-  {
-    return 0;
-  }
-
-  int dims[3];
-  input->GetDimensions(dims);
-  const std::int64_t voxels = static_cast<std::int64_t>(dims[0]) * dims[1] * dims[2];
-  if (dims[0] < 1 || dims[1] < 1 || dims[2] < 1 || voxels < 1)
-  {
-    if (vtkCAO::IsOneOfSeveralPieces(outputVector->GetInformationObject(0)))
-    {
-      // A process of a parallel run that holds no data (a reader that does
-      // not split its volume gives it all to one process): nothing to do.
-      output->Initialize();
-      return 1;
-    }
-    vtkErrorMacro("The input volume has an empty extent.");
-    return 0;
-  }
-  if (voxels > cao::MaxVoxels)
-  {
-    vtkErrorMacro("The input volume has " << voxels
-                                          << " voxels; at most 2^31-1 are supported.");
-    return 0;
-  }
-  vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector);
-  vtkInformation* request = this->GetInputArrayInformation(0);
-  if (!scalars && request->Has(vtkDataObject::FIELD_NAME()) &&
-    std::string(request->Get(vtkDataObject::FIELD_NAME())).empty())
-  {
-    // An empty array name (ParaView's array selection before it has a
-    // choice) means the active point scalars, as the default does.
-    scalars = input->GetPointData()->GetScalars();
-  }
+  int status = 0;
+  if (!this->CheckSettings() ||
+    !vtkCAO::CheckVolumeExtent(this, input, outputVector->GetInformationObject(0), status))
+    return status;
+  int component = 0;
+  vtkDataArray* scalars = this->SelectScalars(inputVector, input, component);
   if (!scalars)
-  {
-    vtkErrorMacro("The input has no point scalars to compute opacity from "
-                  "(set the input array to process).");
     return 0;
-  }
-  if (scalars->GetNumberOfTuples() != voxels)
-  {
-    vtkErrorMacro("Array '" << (scalars->GetName() ? scalars->GetName() : "")
-                            << "' is not a point array of the volume.");
-    return 0;
-  }
-  const int nc = scalars->GetNumberOfComponents();
-  int component = this->Component;
-  if (component < 0)
-  {
-    if (nc != 1)
-    {
-      vtkErrorMacro("Array '" << (scalars->GetName() ? scalars->GetName() : "") << "' has "
-                              << nc << " components; choose one with SetComponent().");
-      return 0;
-    }
-    component = 0;
-  }
-  else if (component >= nc)
-  {
-    vtkErrorMacro("Component " << component << " requested but the array has " << nc
-                               << " components.");
-    return 0;
-  }
 
+  // 1. The settings in effect and their plan.
   const cao::VolumeGeometry geometry = vtkCAO::GeometryOf(input);
-  const double* spacing = geometry.spacing;
-
-  cao::LAOSettings settings;
-  settings.pattern = static_cast<cao::RayPattern>(this->RayPattern);
-  settings.fibonacciRays = this->NumberOfRays;
-  settings.reach = this->GetEffectiveReach(spacing);
-  settings.samples = this->NumberOfSamples;
-  settings.sampleDensity = this->SampleDensity;
-  settings.startOffset = this->StartOffset;
-  settings.variation = static_cast<cao::RayVariation>(this->RayVariation);
-  cao::ApplyQualityPreset(static_cast<cao::QualityPreset>(this->QualityPreset), settings);
+  const cao::LAOSettings settings =
+    cao::ResolveLAOSettings(this->Internal->Settings, geometry.spacing);
   cao::LAOPlan plan;
   std::string error;
   if (!cao::BuildLAOPlan(geometry, settings, plan, error))
@@ -230,133 +218,51 @@ int vtkLocalAmbientOcclusion::RequestData(
     vtkErrorMacro("Cannot compute LAO: " << error << ".");
     return 0;
   }
-
-  vtkNew<vtkPiecewiseFunction> ramp;
-  vtkPiecewiseFunction* tf = this->OpacityFunction;
-  if (!tf)
-  {
-    double range[2];
-    scalars->GetRange(range, component);
-    if (!std::isfinite(range[0]) || !std::isfinite(range[1]))
-    {
-      range[0] = 0.0;
-      range[1] = 1.0;
-    }
-    ramp->AddPoint(range[0], 0.0);
-    ramp->AddPoint(range[1] > range[0] ? range[1] : range[0] + 1.0, 1.0);
-    tf = ramp;
-  }
-
   bool gpuFailed = false;
-  const bool gpu = this->GPU->Resolve(this, this->Backend, gpuFailed, this->RenderWindow);
+  const bool gpu = this->ResolveBackend(gpuFailed);
   if (gpuFailed)
-  {
     return 0;
-  }
 
+  // 2. The step-corrected opacity, then the march (CPU or GPU).
   const auto start = std::chrono::steady_clock::now();
-  vtkNew<vtkFloatArray> opacity;
+  const std::int64_t voxels = geometry.NumberOfVoxels();
+  vtkNew<vtkFloatArray> opacity, ao;
   opacity->SetName(vtkCAO::OpacityName);
   opacity->SetNumberOfTuples(voxels);
-  vtkNew<vtkFloatArray> ao;
   ao->SetName(vtkCAO::AmbientOcclusionName);
   ao->SetNumberOfTuples(voxels);
-
-  bool ok = true;
+  bool ok = true, aborted = false;
   std::int64_t nonFinite = 0;
   vtkCAO::WithThreads(this->NumberOfThreads, [&] {
-    ok = vtkCAO::ComputeOpacity(this, scalars, component, tf,
+    ok = vtkCAO::ComputeOpacity(this, scalars, component, this->OpacityFunction,
       plan.step / this->ScalarOpacityUnitDistance, opacity->GetPointer(0), nonFinite);
-    if (!ok || gpu)
-      return;
-    const float* a = opacity->GetPointer(0);
-    float* out = ao->GetPointer(0);
-    ok = vtkCAO::ParallelFor(this, voxels, 1024, 0.1, 1.0,
-      [&](std::int64_t b, std::int64_t e) { cao::LAORange(plan, a, out, b, e); });
+    if (ok && !gpu)
+      ok = vtkCAO::ParallelFor(this, voxels, 1024, 0.1, 1.0, [&](std::int64_t b, std::int64_t e) {
+        cao::LAORange(plan, opacity->GetPointer(0), ao->GetPointer(0), b, e);
+      });
   });
   if (nonFinite > 0)
-  {
     vtkWarningMacro(<< nonFinite << " NaN or Inf scalar value(s) treated as transparent.");
-  }
-  double gpuMs = -1.0;
-  if (ok && gpu)
-  {
-    // The same plan and opacity on the GPU: scalars + an exact opacity
-    // table when the data allow it, else float opacity.
-    cao::gl::AOEngine& engine = this->GPU->Engine();
-    std::vector<std::uint8_t> packed;
-    const cao::gl::VolumeUpload upload =
-      vtkCAO::MakeVolumeUpload(scalars, component, opacity->GetPointer(0), dims, packed);
-    std::vector<std::uint16_t> stored;
-    bool aborted = false;
-    const bool done = engine.SetVolume(upload, error) && engine.SetPlan(plan, error) &&
-      engine.Precompute(error,
-        [&](double f) {
-          this->UpdateProgress(0.1 + 0.85 * f);
-          aborted = this->CheckAbort();
-          return !aborted;
-        }) &&
-      engine.ReadPrecomputedAO(stored, error);
-    if (aborted)
-    {
-      return 1;
-    }
-    if (!done)
-    {
-      vtkErrorMacro("The OpenGL LAO failed: " << error << ".");
-      return 0;
-    }
-    float* out = ao->GetPointer(0);
-    for (std::int64_t v = 0; v < voxels; ++v)
-    {
-      out[v] = cao::gl::AOEngine::Dequantize(stored[static_cast<std::size_t>(v)]);
-    }
-    gpuMs = engine.Times().precompute;
-  }
   if (!ok)
-  {
-    // Aborted: the executive flags the output; leave no partial AO behind.
-    return 1;
-  }
-  const double ms = vtkCAO::MillisecondsSince(start);
+    return 1; // aborted: the executive flags the output
+  if (gpu && !this->RunOnGPU(scalars, component, geometry.dims, plan, opacity, ao, aborted))
+    return aborted ? 1 : 0;
 
+  // 3. The output: AO, opacity, the settings in effect, what ran.
   output->GetPointData()->AddArray(ao);
   if (this->OutputOpacity)
-  {
     output->GetPointData()->AddArray(opacity);
-  }
-  vtkNew<vtkDoubleArray> params;
-  params->SetName(vtkCAO::LAOParametersName);
-  // The settings actually used (after the quality preset): enough for
-  // vtkContextualAmbientOcclusion to rebuild the identical plan.
-  const char* names[] = { "RayPattern", "Rays", "Samples", "Reach", "Step", "UnitDistance",
-    "FibonacciRays", "Milliseconds", "StartOffset", "RayVariation", "QualityPreset" };
-  constexpr int count = static_cast<int>(sizeof(names) / sizeof(names[0]));
-  params->SetNumberOfComponents(count);
-  for (int c = 0; c < count; ++c)
-  {
-    params->SetComponentName(c, names[c]);
-  }
-  const double values[count] = { static_cast<double>(settings.pattern),
-    static_cast<double>(plan.rays), static_cast<double>(plan.samples), plan.reach, plan.step,
-    this->ScalarOpacityUnitDistance, static_cast<double>(settings.fibonacciRays), ms,
-    settings.startOffset, static_cast<double>(settings.variation),
-    static_cast<double>(this->QualityPreset) };
-  params->InsertNextTuple(values);
-  output->GetFieldData()->AddArray(params);
+  vtkCAO::LAORun run;
+  run.rays = plan.rays;
+  run.samples = plan.samples;
+  run.step = plan.step;
+  run.unitDistance = this->ScalarOpacityUnitDistance;
+  run.milliseconds = vtkCAO::MillisecondsSince(start);
+  run.preset = this->Internal->Settings.preset;
+  vtkCAO::WriteLAOSettings(output->GetFieldData(), settings, run);
   this->GPU->AddBackendLabel(output->GetFieldData(), gpu);
   if (gpu)
-  {
-    vtkNew<vtkDoubleArray> gpuInfo;
-    gpuInfo->SetName("GPUStatistics");
-    gpuInfo->SetNumberOfComponents(2);
-    gpuInfo->SetComponentName(0, "PrecomputeMilliseconds");
-    gpuInfo->SetComponentName(1, "ResidentBytesPerVoxel");
-    const double info[2] = { gpuMs,
-      static_cast<double>(this->GPU->Engine().ResidentBytes()) / static_cast<double>(voxels) };
-    gpuInfo->InsertNextTuple(info);
-    output->GetFieldData()->AddArray(gpuInfo);
-  }
+    vtkCAO::AddGPUStatistics(output->GetFieldData(), this->GPU->Engine(), voxels);
   vtkCAO::CropToRequestedPiece(outputVector->GetInformationObject(0), output);
   this->UpdateProgress(1.0);
   return 1;
@@ -377,21 +283,7 @@ void vtkLocalAmbientOcclusion::PrintSelf(ostream& os, vtkIndent indent)
     os << "(none: linear ramp over the scalar range)\n";
   }
   os << indent << "ScalarOpacityUnitDistance: " << this->ScalarOpacityUnitDistance << "\n";
-  os << indent << "RayPattern: "
-     << cao::RayPatternName(static_cast<cao::RayPattern>(this->RayPattern)) << "\n";
-  os << indent << "NumberOfRays: " << this->NumberOfRays << "\n";
-  os << indent << "NumberOfSamples: " << this->NumberOfSamples
-     << (this->NumberOfSamples == 0 ? " (SampleDensity per voxel)" : "") << "\n";
-  os << indent << "SampleDensity: " << this->SampleDensity << "\n";
-  os << indent << "StartOffset: " << this->StartOffset << "\n";
-  os << indent << "RayVariation: "
-     << cao::RayVariationName(static_cast<cao::RayVariation>(this->RayVariation)) << "\n";
-  os << indent << "QualityPreset: "
-     << cao::QualityPresetName(static_cast<cao::QualityPreset>(this->QualityPreset)) << "\n";
-  os << indent << "Reach: " << this->Reach << (this->Reach == 0.0 ? " (8 voxels)" : "") << "\n";
+  vtkCAO::PrintLAOSettings(os, indent, this->Internal->Settings);
   os << indent << "Component: " << this->Component << "\n";
-  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "OutputOpacity: " << (this->OutputOpacity ? "On" : "Off") << "\n";
-  os << indent << "Backend: " << vtkCAO::BackendName(this->Backend) << "\n";
-  os << indent << "RenderWindow: " << static_cast<void*>(this->RenderWindow) << "\n";
 }

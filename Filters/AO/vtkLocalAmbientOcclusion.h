@@ -15,11 +15,15 @@
  * Output: the input plus the float point arrays "AmbientOcclusion" in [0,1]
  * and, unless OutputOpacity is off, "AmbientOcclusionOpacity" (the corrected
  * opacity, which vtkContextualAmbientOcclusion reuses), and the field array
- * "LAOParameters" recording the settings actually used (after a
- * QualityPreset): pattern, rays, samples, reach, step, unit distance,
- * Fibonacci ray count, milliseconds, start offset, ray variation and
- * quality preset (11 named components; vtkContextualAmbientOcclusion
- * rebuilds the identical plan from them).
+ * "LAOSettings" recording the settings actually used (after a
+ * QualityPreset and the reach's default), one component per setting named
+ * as its property (RayPattern, NumberOfRays, Reach, NumberOfSamples,
+ * SampleDensity, StartOffset, RayVariation, QualityPreset) plus Rays, Step,
+ * ScalarOpacityUnitDistance and Milliseconds: vtkContextualAmbientOcclusion
+ * reads them by name and rebuilds the identical plan.
+ *
+ * The settings are one cao::LAOSettings (caoLAOSettings.h: defaults, limits
+ * and presets in one place, shared with the mapper, the plugin and `cao`).
  *
  * The work runs in the VTK-free kernel caoLAO through vtkSMPTools (STDThread
  * unless VTK_SMP_BACKEND_IN_USE says otherwise); the result does not depend
@@ -29,20 +33,21 @@
 #define vtkLocalAmbientOcclusion_h
 
 #include "caoFiltersAOModule.h" // For export macro
-#include "vtkImageAlgorithm.h"
+#include "vtkAOAlgorithm.h"
 
-#include <memory> // For the GPU session
+#include <memory> // For the settings
 
-class vtkRenderWindow;
-namespace vtkCAO
-{
-class GPUSession;
-}
-
+class vtkDataArray;
+class vtkFloatArray;
+class vtkImageData;
 class vtkInformationDoubleKey;
 class vtkPiecewiseFunction;
+namespace cao
+{
+struct LAOPlan;
+}
 
-class CAOFILTERSAO_EXPORT vtkLocalAmbientOcclusion : public vtkImageAlgorithm
+class CAOFILTERSAO_EXPORT vtkLocalAmbientOcclusion : public vtkAOAlgorithm
 {
 public:
   static vtkLocalAmbientOcclusion* New();
@@ -54,7 +59,7 @@ public:
    * needs around a piece.
    */
   static vtkInformationDoubleKey* REACH();
-  vtkTypeMacro(vtkLocalAmbientOcclusion, vtkImageAlgorithm);
+  vtkTypeMacro(vtkLocalAmbientOcclusion, vtkAOAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   /// Ray patterns: the quasi-uniform 6/14/26/54 sets, or NumberOfRays
@@ -90,14 +95,14 @@ public:
 
   ///@{
   /// Ray pattern (RayPatterns). Default RAYS_26.
-  vtkSetMacro(RayPattern, int);
-  vtkGetMacro(RayPattern, int);
+  void SetRayPattern(int pattern);
+  int GetRayPattern();
   ///@}
 
   ///@{
   /// Number of rays of the FIBONACCI pattern, 1 to 65536. Default 64.
-  vtkSetMacro(NumberOfRays, int);
-  vtkGetMacro(NumberOfRays, int);
+  void SetNumberOfRays(int rays);
+  int GetNumberOfRays();
   ///@}
 
   ///@{
@@ -105,8 +110,8 @@ public:
    * Samples per ray M, 1 to 65536. 0 (default) means SampleDensity samples
    * per smallest voxel spacing: max(1, round(SampleDensity * Reach / h_min)).
    */
-  vtkSetMacro(NumberOfSamples, int);
-  vtkGetMacro(NumberOfSamples, int);
+  void SetNumberOfSamples(int samples);
+  int GetNumberOfSamples();
   ///@}
 
   ///@{
@@ -114,8 +119,8 @@ public:
    * Samples per smallest voxel spacing when NumberOfSamples is 0. Default 1
    * (one sample per voxel); 0.001 to 1000.
    */
-  vtkSetMacro(SampleDensity, double);
-  vtkGetMacro(SampleDensity, double);
+  void SetSampleDensity(double density);
+  double GetSampleDensity();
   ///@}
 
   ///@{
@@ -127,8 +132,8 @@ public:
    * and density (README.md, "Accuracy versus time"). In [0, 1). The
    * JITTER variations replace it with their own per-variant offsets.
    */
-  vtkSetMacro(StartOffset, double);
-  vtkGetMacro(StartOffset, double);
+  void SetStartOffset(double offset);
+  double GetStartOffset();
   ///@}
 
   /**
@@ -151,8 +156,8 @@ public:
    * rays. The variant follows the global voxel index, so a piece of a
    * volume gets the values the whole volume gets.
    */
-  vtkSetMacro(RayVariation, int);
-  vtkGetMacro(RayVariation, int);
+  void SetRayVariation(int variation);
+  int GetRayVariation();
   void SetRayVariationToNone() { this->SetRayVariation(NONE); }
   void SetRayVariationToRotate() { this->SetRayVariation(ROTATE); }
   void SetRayVariationToJitter() { this->SetRayVariation(JITTER); }
@@ -176,10 +181,10 @@ public:
    * Fibonacci ray count, the sample density, the start offset and the
    * variation with the preset's (NumberOfSamples is then ignored: the
    * sample count follows the density); Reach stays this filter's. The
-   * "LAOParameters" field array records the settings actually used.
+   * "LAOSettings" field array records the settings actually used.
    */
-  vtkSetMacro(QualityPreset, int);
-  vtkGetMacro(QualityPreset, int);
+  void SetQualityPreset(int preset);
+  int GetQualityPreset();
   void SetQualityPresetToCustom() { this->SetQualityPreset(CUSTOM); }
   void SetQualityPresetToInteractive() { this->SetQualityPreset(INTERACTIVE); }
   void SetQualityPresetToBalanced() { this->SetQualityPreset(BALANCED); }
@@ -191,8 +196,8 @@ public:
    * Ray length R in world units, positive and finite. 0 (default) means 8
    * times the smallest voxel spacing.
    */
-  vtkSetMacro(Reach, double);
-  vtkGetMacro(Reach, double);
+  void SetReach(double reach);
+  double GetReach();
   ///@}
 
   ///@{
@@ -210,12 +215,6 @@ public:
   ///@}
 
   ///@{
-  /// Maximum number of threads; 0 (default) lets vtkSMPTools decide.
-  vtkSetMacro(NumberOfThreads, int);
-  vtkGetMacro(NumberOfThreads, int);
-  ///@}
-
-  ///@{
   /// Also output the corrected opacity ("AmbientOcclusionOpacity"). Default on.
   vtkSetMacro(OutputOpacity, bool);
   vtkGetMacro(OutputOpacity, bool);
@@ -223,7 +222,8 @@ public:
   ///@}
 
   /// Whether the settings that are this filter's own (unit distance,
-  /// preset, backend, component, threads) are valid; an error if not.
+  /// component, backend, threads) are valid; an error if not (the LAO
+  /// settings proper are checked with the plan: cao::CheckLAOSettings).
   bool CheckSettings();
 
   /// The reach actually used for an input spacing (resolves Reach == 0).
@@ -231,46 +231,6 @@ public:
 
   /// Includes the opacity function's modification time.
   vtkMTimeType GetMTime() override;
-
-  /// Where the work runs (see Backend).
-  enum Backends
-  {
-    AUTO = 0,
-    CPU = 1,
-    OPENGL = 2
-  };
-
-  ///@{
-  /**
-   * Backend: CPU, OPENGL (compute shaders in a headless EGL or OSMesa
-   * OpenGL >= 4.3 context; an error when there is none) or AUTO (default:
-   * OpenGL on a hardware GPU; the CPU on a software rasteriser such as
-   * Mesa's llvmpipe, and with one warning when there is no OpenGL 4.3 at
-   * all). With RenderWindow set, the window's context. The output's field array
-   * "ComputeBackend" says what ran and on which context.
-   */
-  vtkSetMacro(Backend, int);
-  vtkGetMacro(Backend, int);
-  void SetBackendToAuto() { this->SetBackend(AUTO); }
-  void SetBackendToCPU() { this->SetBackend(CPU); }
-  void SetBackendToOpenGL() { this->SetBackend(OPENGL); }
-  ///@}
-
-  /// Free the GPU objects and the OpenGL context this filter holds.
-  void ReleaseGraphicsResources();
-
-  ///@{
-  /**
-   * A VTK OpenGL render window whose context the OpenGL backend uses
-   * instead of a headless one (null, the default: headless EGL or OSMesa).
-   * The filter makes it current when it executes, uses the window's GLEW,
-   * and restores every OpenGL state it changes. Call
-   * ReleaseGraphicsResources() before the window's context is destroyed;
-   * if it is gone first, the filter forgets its objects without GL calls.
-   */
-  virtual void SetRenderWindow(vtkRenderWindow* window);
-  vtkGetObjectMacro(RenderWindow, vtkRenderWindow);
-  ///@}
 
 protected:
   vtkLocalAmbientOcclusion();
@@ -280,22 +240,19 @@ protected:
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
+  /// The array to process and its component; null after an error.
+  vtkDataArray* SelectScalars(vtkInformationVector** inputVector, vtkImageData* input, int& component);
+  /// The march on the GPU into `ao`; false after an error or an abort.
+  bool RunOnGPU(vtkDataArray* scalars, int component, const int dims[3],
+    const cao::LAOPlan& plan, vtkFloatArray* opacity, vtkFloatArray* ao, bool& aborted);
+
   vtkPiecewiseFunction* OpacityFunction = nullptr;
   double ScalarOpacityUnitDistance = 1.0;
-  int RayPattern = RAYS_26;
-  int NumberOfRays = 64;
-  int NumberOfSamples = 0;
-  double SampleDensity = 1.0;
-  double StartOffset = 0.5;
-  int RayVariation = NONE;
-  int QualityPreset = CUSTOM;
-  double Reach = 0.0;
   int Component = -1;
-  int NumberOfThreads = 0;
-  int Backend = AUTO;
-  std::unique_ptr<vtkCAO::GPUSession> GPU;
-  vtkRenderWindow* RenderWindow = nullptr;
   bool OutputOpacity = true;
+  /// The LAO settings (cao::LAOSettings: defaults and limits in one place).
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
 
 private:
   vtkLocalAmbientOcclusion(const vtkLocalAmbientOcclusion&) = delete;

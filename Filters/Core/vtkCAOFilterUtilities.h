@@ -1,6 +1,6 @@
 /**
  * vtkCAOFilterUtilities — private glue shared by the ContextualAO filters:
- * selecting a threaded SMP backend, running a kernel over a range in blocks
+ * scoping the SMP backend and thread count, running a kernel over a range in blocks
  * with progress and abort checks, thread-count scoping, and timing.
  * Not wrapped; not installed as public API.
  */
@@ -8,6 +8,8 @@
 #define vtkCAOFilterUtilities_h
 
 #include "vtkAlgorithm.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkExtentTranslator.h"
 #include "vtkInformation.h"
@@ -23,37 +25,26 @@
 #include <chrono>
 #include <cstdint>
 #include <cstdlib>
+#include <initializer_list>
 #include <string>
 
 namespace vtkCAO
 {
-/// vtkSMPTools defaults to the Sequential backend in Debian's VTK; select
-/// STDThread once unless the user chose a backend through the environment.
-inline void EnsureThreadedBackend()
-{
-  static const bool done = [] {
-    if (!std::getenv("VTK_SMP_BACKEND_IN_USE") &&
-      std::string(vtkSMPTools::GetBackend()) == "Sequential")
-    {
-      vtkSMPTools::SetBackend("STDThread");
-    }
-    return true;
-  }();
-  (void)done;
-}
-
-/// Run f() with at most `threads` threads (0: the backend's default).
+/**
+ * Run f() with at most `threads` threads (0: the backend's default), on the
+ * SMP backend in use, except that Debian's VTK defaults to Sequential: then
+ * STDThread, unless the user chose a backend through VTK_SMP_BACKEND_IN_USE.
+ * The choice is scoped to f(): the application's own setting is left as it
+ * was (a plugin never changes its host's threading).
+ */
 template <typename F>
 void WithThreads(int threads, F&& f)
 {
-  if (threads > 0)
-  {
-    vtkSMPTools::LocalScope(vtkSMPTools::Config(threads), f);
-  }
-  else
-  {
-    f();
-  }
+  std::string backend = vtkSMPTools::GetBackend();
+  if (backend == "Sequential" && !std::getenv("VTK_SMP_BACKEND_IN_USE"))
+    backend = "STDThread";
+  vtkSMPTools::LocalScope(
+    vtkSMPTools::Config(std::max(0, threads), backend, vtkSMPTools::GetNestedParallelism()), f);
 }
 
 /**
@@ -213,10 +204,61 @@ inline bool IsOneOfSeveralPieces(vtkInformation* outInfo)
     outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()) > 1;
 }
 
+/**
+ * The volume checks every filter makes first: an empty extent is an error,
+ * except on a process of a parallel run that holds no data (its output is
+ * emptied and `status` set to 1: success, nothing to do); more than
+ * cao::MaxVoxels is an error. True when the filter should go on.
+ */
+template <typename Self>
+bool CheckVolumeExtent(Self* self, vtkImageData* input, vtkInformation* outInfo, int& status)
+{
+  int dims[3];
+  input->GetDimensions(dims);
+  const std::int64_t voxels = static_cast<std::int64_t>(dims[0]) * dims[1] * dims[2];
+  status = 0;
+  if (dims[0] < 1 || dims[1] < 1 || dims[2] < 1 || voxels < 1)
+  {
+    if (IsOneOfSeveralPieces(outInfo))
+    {
+      vtkImageData::GetData(outInfo)->Initialize();
+      status = 1;
+      return false;
+    }
+    vtkErrorWithObjectMacro(self, "The input volume has an empty extent.");
+    return false;
+  }
+  if (voxels > cao::MaxVoxels)
+  {
+    vtkErrorWithObjectMacro(
+      self, "The input volume has " << voxels << " voxels; at most 2^31-1 are supported.");
+    return false;
+  }
+  return true;
+}
+
+/// Add a one-tuple field array `name` whose components are named:
+/// the statistics a run reports (counts, milliseconds).
+template <typename Array = vtkDoubleArray>
+void AddFieldTuple(vtkFieldData* fd, const char* name,
+  std::initializer_list<const char*> components, std::initializer_list<double> values)
+{
+  vtkNew<Array> a;
+  a->SetName(name);
+  a->SetNumberOfComponents(static_cast<int>(components.size()));
+  int c = 0;
+  for (const char* n : components)
+    a->SetComponentName(c++, n);
+  a->SetNumberOfTuples(1);
+  c = 0;
+  for (double v : values)
+    a->SetComponent(0, c++, v);
+  fd->AddArray(a);
+}
+
 /// Names of the arrays the filters exchange.
 constexpr const char* AmbientOcclusionName = "AmbientOcclusion";
 constexpr const char* OpacityName = "AmbientOcclusionOpacity";
-constexpr const char* LAOParametersName = "LAOParameters";
 constexpr const char* ClippedOpacityName = "ClippedOpacity";
 constexpr const char* CategoryName = "ClipCategory";
 }

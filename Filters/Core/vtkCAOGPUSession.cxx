@@ -2,6 +2,7 @@
 #include "vtkCAOWindowGL.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkDoubleArray.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkNew.h"
@@ -230,6 +231,21 @@ void GPUSession::Release()
   this->Context.reset();
   this->Tried = false;
   this->Key.clear();
+}
+
+void AddGPUStatistics(vtkFieldData* fd, const cao::gl::AOEngine& engine, std::int64_t voxels)
+{
+  vtkNew<vtkDoubleArray> info;
+  info->SetName("GPUStatistics");
+  info->SetNumberOfComponents(3);
+  info->SetComponentName(0, "PrecomputeMilliseconds");
+  info->SetComponentName(1, "ResidentBytesPerVoxel");
+  info->SetComponentName(2, "ResidentBytes");
+  const double bytes = static_cast<double>(engine.ResidentBytes());
+  const double values[3] = { engine.Times().precompute, bytes / static_cast<double>(voxels),
+    bytes };
+  info->InsertNextTuple(values);
+  fd->AddArray(info);
 }
 
 cao::gl::VolumeUpload MakeVolumeUpload(vtkDataArray* scalars, int component, const float* opacity,

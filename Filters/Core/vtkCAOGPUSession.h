@@ -100,6 +100,12 @@ private:
   bool Warned = false;
 };
 
+/// Add the field array "GPUStatistics": the engine's last precompute in GPU
+/// milliseconds (-1 when it ran none), its resident bytes per voxel of the
+/// `voxels` volume, and its resident bytes.
+CAOFILTERSCORE_EXPORT void AddGPUStatistics(
+  vtkFieldData* fd, const cao::gl::AOEngine& engine, std::int64_t voxels);
+
 /**
  * Pack a volume for the GPU. When `scalars` (component `component`) holds
  * integers in [0, 255] or [0, 65535] and every voxel's opacity equals one

@@ -1,5 +1,7 @@
 #include "vtkCAOOpacity.h"
 
+#include "vtkNew.h"
+
 #include "vtkCAOFilterUtilities.h"
 #include "vtkDataArray.h"
 #include "vtkPiecewiseFunction.h"
@@ -17,6 +19,21 @@ namespace vtkCAO
 bool ComputeOpacity(vtkAlgorithm* self, vtkDataArray* scalars, int component,
   vtkPiecewiseFunction* tf, double stepOverUnit, float* opacity, std::int64_t& nonFinite)
 {
+  vtkNew<vtkPiecewiseFunction> ramp;
+  if (!tf)
+  {
+    // No function: a ramp from 0 at the smallest scalar to 1 at the largest.
+    double r[2];
+    scalars->GetRange(r, component);
+    if (!std::isfinite(r[0]) || !std::isfinite(r[1]))
+    {
+      r[0] = 0.0;
+      r[1] = 1.0;
+    }
+    ramp->AddPoint(r[0], 0.0);
+    ramp->AddPoint(r[1] > r[0] ? r[1] : r[0] + 1.0, 1.0);
+    tf = ramp;
+  }
   const std::int64_t n = scalars->GetNumberOfTuples();
   std::atomic<std::int64_t> bad{ 0 };
   const int type = scalars->GetDataType();

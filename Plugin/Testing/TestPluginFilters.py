@@ -161,16 +161,16 @@ check(cats == (0.0, 2.0), "the pose clips some voxels, affects some, leaves some
 
 
 # A quality preset on the LAO proxy: the same settings in effect
-# (LAOParameters) and the same AO as the VTK filter with that preset.
+# (LAOSettings) and the same AO as the VTK filter with that preset.
 def lao_parameters(image):
-    a = image.GetFieldData().GetArray("LAOParameters")
+    a = image.GetFieldData().GetArray("LAOSettings")
     return {a.GetComponentName(c): a.GetComponent(0, c) for c in range(a.GetNumberOfComponents())
             if a.GetComponentName(c) != "Milliseconds"} if a else {}
 
 
 custom_params = lao_parameters(servermanager.Fetch(lao))
-check(len(custom_params) == 10 and custom_params["QualityPreset"] == 0,
-      "the LAO proxy's LAOParameters: 11 components, custom (%s)" % custom_params)
+check(len(custom_params) == 11 and custom_params["QualityPreset"] == 0,
+      "the LAO proxy's LAOSettings: 12 components, custom (%s)" % custom_params)
 lao.QualityPreset = "Interactive"
 lao.UpdatePipeline()
 pv_preset = servermanager.Fetch(lao)
@@ -178,7 +178,7 @@ v_lao.SetQualityPresetToInteractive()
 v_lao.Update()
 pv_params, v_params = lao_parameters(pv_preset), lao_parameters(v_lao.GetOutput())
 check(pv_params == v_params and pv_params["QualityPreset"] == 1 and pv_params != custom_params,
-      "QualityPreset Interactive changes the proxy's LAOParameters as the VTK filter's: %s"
+      "QualityPreset Interactive changes the proxy's LAOSettings as the VTK filter's: %s"
       % pv_params)
 a = pv_preset.GetPointData().GetArray("AmbientOcclusion")
 b = v_lao.GetOutput().GetPointData().GetArray("AmbientOcclusion")

@@ -12,6 +12,7 @@
 #include "caoBench.h"
 #include "caoCommandLine.h"
 #include "vtkCAOInput.h"
+#include "vtkCAOLAOSettings.h"
 #include "caoLAOOptions.h"
 #include "caoRender.h"
 
@@ -430,24 +431,25 @@ std::string JsonEscape(const std::string& text)
   return out;
 }
 
-/// The settings an LAO output was computed with (its LAOParameters, after
-/// any quality preset), as a JSON fragment or as text: the ray pattern as
-/// --rays spells it, the start offset, the variation and the preset.
+/// The settings an LAO output was computed with (its LAOSettings field
+/// array, after any quality preset), as a JSON fragment or as text: the ray
+/// pattern as --rays spells it, the start offset, the variation and the
+/// preset; and the run (rays, samples, milliseconds).
 struct LAOUsed
 {
   std::string pattern, variation, quality;
   double offset = 0.0;
+  cao::LAOSettings settings;
+  vtkCAO::LAORun run;
   explicit LAOUsed(vtkDataObject* out)
   {
-    const auto p = static_cast<cao::RayPattern>(static_cast<int>(FieldValue(out, "LAOParameters", 0)));
-    pattern = p == cao::RayPattern::Fibonacci
-      ? "fib:" + std::to_string(static_cast<int>(FieldValue(out, "LAOParameters", 6)))
-      : cao::RayPatternName(p);
-    offset = FieldValue(out, "LAOParameters", 8);
-    variation = cao::RayVariationName(
-      static_cast<cao::RayVariation>(static_cast<int>(FieldValue(out, "LAOParameters", 9))));
-    quality = cao::QualityPresetName(
-      static_cast<cao::QualityPreset>(static_cast<int>(FieldValue(out, "LAOParameters", 10))));
+    vtkCAO::ReadLAOSettings(out ? out->GetFieldData() : nullptr, settings, &run);
+    pattern = settings.pattern == cao::RayPattern::Fibonacci
+      ? "fib:" + std::to_string(settings.fibonacciRays)
+      : cao::RayPatternName(settings.pattern);
+    offset = settings.startOffset;
+    variation = cao::RayVariationName(settings.variation);
+    quality = cao::QualityPresetName(run.preset);
   }
   std::string Json() const
   {
@@ -504,19 +506,18 @@ int RunLAO(const Options& o, vtkImageData* volume)
   const std::string context = ContextOf(backend);
   double range[2];
   out->GetPointData()->GetArray("AmbientOcclusion")->GetRange(range);
-  const double ms = FieldValue(out, "LAOParameters", 7);
   int dims[3];
   out->GetDimensions(dims);
   const LAOUsed used(out);
+  const double ms = used.run.milliseconds;
   if (o.json)
   {
     std::printf("{\"command\": \"lao\", \"volume\": \"%s\", \"dims\": [%d, %d, %d], "
                 "\"rays\": %d, \"samples\": %d, \"reach\": %.9g, %s, \"milliseconds\": %.3f, "
                 "\"ao_range\": [%.9g, %.9g], \"threads\": %d, \"backend\": \"%s\", "
                 "\"context\": \"%s\", \"backend_detail\": \"%s\", \"stage_timing\": \"%s\"}\n",
-      JsonEscape(o.volume).c_str(), dims[0], dims[1], dims[2],
-      static_cast<int>(FieldValue(out, "LAOParameters", 1)),
-      static_cast<int>(FieldValue(out, "LAOParameters", 2)), FieldValue(out, "LAOParameters", 3),
+      JsonEscape(o.volume).c_str(), dims[0], dims[1], dims[2], used.run.rays, used.run.samples,
+      used.settings.reach,
       used.Json().c_str(), ms, range[0], range[1], vtkSMPTools::GetEstimatedNumberOfThreads(),
       context == "none" ? "cpu" : "gl", context.c_str(), JsonEscape(backend).c_str(),
       context == "none" ? "host clock"
@@ -528,8 +529,8 @@ int RunLAO(const Options& o, vtkImageData* volume)
   {
     std::printf("LAO of %s (%d x %d x %d): %d rays x %d samples, reach %g (%s): %.1f ms, AO in [%.4f, %.4f]\n"
                 "backend: %s\n",
-      o.volume.c_str(), dims[0], dims[1], dims[2], static_cast<int>(FieldValue(out, "LAOParameters", 1)),
-      static_cast<int>(FieldValue(out, "LAOParameters", 2)), FieldValue(out, "LAOParameters", 3),
+      o.volume.c_str(), dims[0], dims[1], dims[2], used.run.rays, used.run.samples,
+      used.settings.reach,
       used.Text().c_str(), ms, range[0], range[1], backend.c_str());
   }
   std::string error;
@@ -652,11 +653,12 @@ int RunCarve(const Options& o, vtkImageData* volume)
     RunResult run;
     run.rays = rays;
     vtkImageData* laoOut = lao->GetOutput();
-    run.numRays = static_cast<int>(FieldValue(laoOut, "LAOParameters", 1));
-    run.samples = static_cast<int>(FieldValue(laoOut, "LAOParameters", 2));
-    run.reach = FieldValue(laoOut, "LAOParameters", 3);
-    run.precomputeMs = FieldValue(laoOut, "LAOParameters", 7);
-    run.used = LAOUsed(laoOut).Json();
+    const LAOUsed used(laoOut);
+    run.numRays = used.run.rays;
+    run.samples = used.run.samples;
+    run.reach = used.settings.reach;
+    run.precomputeMs = used.run.milliseconds;
+    run.used = used.Json();
 
     // The maps are made for each pose scale of the path (pixels of half a
     // voxel and the dilation of the reach, in the world, at that scale),
@@ -934,8 +936,7 @@ int main(int argc, char* argv[])
     std::cerr << "cao: error: " << error << "\n" << Usage;
     return 2;
   }
-  if (o.threads > 0)
-    vtkSMPTools::Initialize(o.threads);
+  caocli::SelectThreads(o.threads);
   vtkSmartPointer<vtkImageData> volume = vtkCAO::ReadVolume(o.volume, error);
   if (!volume)
     return Fail(2, error);

@@ -2,6 +2,7 @@
 
 #include "caoBenchPlot.h"
 #include "caoCommandLine.h"
+#include "vtkCAOLAOSettings.h"
 #include "vtkCAOInput.h"
 #include "caoPresets.h"
 #include "caoWindow.h"
@@ -35,7 +36,7 @@
 #include "vtkWindowToImageFilter.h"
 
 #include "caoLAO.h"
-#include "caoQualityPreset.h"
+#include "caoLAOSettings.h"
 #include "caoRayPattern.h"
 #include "caoReference.h"
 
@@ -570,11 +571,7 @@ int RunBench(int argc, char* argv[])
   const double reach = o.reach > 0 ? o.reach : 8.0 * h;
   if (mkdir(o.output.c_str(), 0755) != 0 && errno != EEXIST)
     return Fail(2, "cannot create the output directory '" + o.output + "'");
-  // The reference runs on vtkSMPTools before any filter exists: select the
-  // threaded backend the filters select.
-  vtkCAO::EnsureThreadedBackend();
-  if (o.threads > 0)
-    vtkSMPTools::Initialize(o.threads);
+  caocli::SelectThreads(o.threads);
 
   vtkNew<vtkPiecewiseFunction> tf;
   if (!o.opacity.empty())
@@ -782,9 +779,12 @@ int RunBench(int argc, char* argv[])
         if (!timeRun(lao, cpuLog, row.cpuMs))
           return Fail(1, cpuLog.Last());
         vtkImageData* out = lao->GetOutput();
-        row.rays = static_cast<int>(FieldValue(out, "LAOParameters", 1));
-        row.samples = static_cast<int>(FieldValue(out, "LAOParameters", 2));
-        row.step = FieldValue(out, "LAOParameters", 4) / h;
+        cao::LAOSettings used;
+        vtkCAO::LAORun run;
+        vtkCAO::ReadLAOSettings(out->GetFieldData(), used, &run);
+        row.rays = run.rays;
+        row.samples = run.samples;
+        row.step = run.step / h;
         vtkFloatArray* ao =
           vtkFloatArray::SafeDownCast(out->GetPointData()->GetArray("AmbientOcclusion"));
         if (!ao)
@@ -992,8 +992,11 @@ int RunBench(int argc, char* argv[])
           row.pattern = "fib:" + std::to_string(balanced.fibonacciRays);
         row.variant = "balanced preset";
         row.density = balanced.sampleDensity;
-        row.rays = static_cast<int>(FieldValue(lao->GetOutput(), "LAOParameters", 1));
-        row.samples = static_cast<int>(FieldValue(lao->GetOutput(), "LAOParameters", 2));
+        cao::LAOSettings used;
+        vtkCAO::LAORun run;
+        vtkCAO::ReadLAOSettings(lao->GetOutput()->GetFieldData(), used, &run);
+        row.rays = run.rays;
+        row.samples = run.samples;
         row.mapPixel = pixel;
         row.updateMs = FieldValue(out, "StageMilliseconds", 3);
         (backend == vtkLocalAmbientOcclusion::CPU ? row.cpuMs : row.glMs) = row.mapsMs + row.updateMs;

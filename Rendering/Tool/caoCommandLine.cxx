@@ -10,6 +10,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkOutputWindow.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkSMPTools.h"
 
 #include <cctype>
 #include <cmath>
@@ -179,5 +180,14 @@ void InstallOutputWindow()
 {
   vtkNew<CliOutputWindow> window;
   vtkOutputWindow::SetInstance(window);
+}
+
+void SelectThreads(int threads)
+{
+  if (std::string(vtkSMPTools::GetBackend()) == "Sequential" &&
+    !std::getenv("VTK_SMP_BACKEND_IN_USE"))
+    vtkSMPTools::SetBackend("STDThread");
+  if (threads > 0)
+    vtkSMPTools::Initialize(threads);
 }
 }

@@ -97,6 +97,11 @@ double FieldValue(vtkDataObject* d, const char* name, int component, double miss
 /// the range, then a ramp to 0.8 at its maximum.
 void DefaultOpacityRamp(const double range[2], vtkPiecewiseFunction* tf);
 
+/// The tool's threading, for the whole process (it is the application):
+/// STDThread where Debian's VTK defaults to Sequential (unless
+/// VTK_SMP_BACKEND_IN_USE chooses), at most `threads` threads (0: all).
+void SelectThreads(int threads);
+
 }
 
 #endif

@@ -8,7 +8,7 @@
 #define caoLAOOptions_h
 
 #include "caoLAO.h"
-#include "caoQualityPreset.h"
+#include "caoLAOSettings.h"
 
 #include <cmath>
 #include <cstdlib>

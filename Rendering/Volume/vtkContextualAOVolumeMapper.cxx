@@ -31,10 +31,11 @@
 #include "vtkCAOClipMaps.h"
 #include "vtkCAOFilterUtilities.h"
 #include "vtkCAOGPUSession.h"
+#include "vtkCAOLAOSettings.h"
 #include "vtkCAOOpacity.h"
 
 #include "caoLAO.h"
-#include "caoQualityPreset.h"
+#include "caoLAOSettings.h"
 #include "caoRayCaster.h"
 
 #include <algorithm>
@@ -115,6 +116,7 @@ std::vector<double> MatrixKey(vtkMatrix4x4* m)
 
 struct vtkContextualAOVolumeMapper::Internals
 {
+  cao::LAOSettings Settings; // the one definition: defaults and limits in caoLAOSettings.h
   vtkCAO::GPUSession GPU;
   std::unique_ptr<cao::gl::RayCaster> Caster;
   const cao::gl::Context* CasterContext = nullptr; // the context the caster's objects live in
@@ -145,11 +147,19 @@ struct vtkContextualAOVolumeMapper::Internals
   }
 };
 
+vtkCAOLAOSettingMacro(vtkContextualAOVolumeMapper, RayPattern, int, this->Internal->Settings.pattern);
+vtkCAOLAOSettingMacro(vtkContextualAOVolumeMapper, NumberOfRays, int, this->Internal->Settings.fibonacciRays);
+vtkCAOLAOSettingMacro(vtkContextualAOVolumeMapper, Reach, double, this->Internal->Settings.reach);
+vtkCAOLAOSettingMacro(vtkContextualAOVolumeMapper, NumberOfSamples, int, this->Internal->Settings.samples);
+vtkCAOLAOSettingMacro(vtkContextualAOVolumeMapper, SampleDensity, double, this->Internal->Settings.sampleDensity);
+vtkCAOLAOSettingMacro(vtkContextualAOVolumeMapper, StartOffset, double, this->Internal->Settings.startOffset);
+vtkCAOLAOSettingMacro(vtkContextualAOVolumeMapper, RayVariation, int, this->Internal->Settings.variation);
+vtkCAOLAOSettingMacro(vtkContextualAOVolumeMapper, QualityPreset, int, this->Internal->Settings.preset);
+
 //------------------------------------------------------------------------------
 vtkContextualAOVolumeMapper::vtkContextualAOVolumeMapper()
   : Internal(new Internals)
 {
-  vtkCAO::EnsureThreadedBackend();
   Internals& in = *this->Internal;
   in.ClipDepthMaps = vtkSmartPointer<vtkClipDepthMaps>::New();
   in.DepthMapsErrors->SetClientData(&in.DepthMapsError);
@@ -251,8 +261,6 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     };
     if (!(this->AOStrength >= 0.0 && this->AOStrength <= 1.0))
       outside("AOStrength", this->AOStrength, "in [0, 1]");
-    else if (this->QualityPreset < CUSTOM || this->QualityPreset > REFERENCE)
-      outside("QualityPreset", this->QualityPreset, "0 (Custom) to 3 (Reference)");
     else if (this->Mode != SUBTRACTION && this->Mode != PROBING)
       outside("Mode", this->Mode, "0 (subtraction) or 1 (probing)");
     else if (this->NumberOfClipLayers < 1 || this->NumberOfClipLayers > 16)
@@ -354,16 +362,8 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   // no LAO is computed at all.
   const bool ao = this->AmbientOcclusion;
   // The LAO settings in effect: a quality preset overrides the individual
-  // ones (the reach stays the mapper's).
-  cao::LAOSettings settings;
-  settings.pattern = static_cast<cao::RayPattern>(this->RayPattern);
-  settings.fibonacciRays = this->NumberOfRays;
-  settings.reach = this->Reach != 0.0 ? this->Reach : 8.0 * minSpacing; // checked with the plan
-  settings.samples = this->NumberOfSamples;
-  settings.sampleDensity = this->SampleDensity;
-  settings.startOffset = this->StartOffset;
-  settings.variation = static_cast<cao::RayVariation>(this->RayVariation);
-  cao::ApplyQualityPreset(static_cast<cao::QualityPreset>(this->QualityPreset), settings);
+  // ones, a reach of 0 is 8 voxels (checked with the plan).
+  const cao::LAOSettings settings = cao::ResolveLAOSettings(in.Settings, spacing);
   // A given AO array replaces the precompute.
   vtkDataArray* givenAO = nullptr;
   if (ao && this->AmbientOcclusionArrayName && *this->AmbientOcclusionArrayName)
@@ -749,18 +749,9 @@ void vtkContextualAOVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "AmbientOcclusion: " << (this->AmbientOcclusion ? "On" : "Off") << "\n";
   os << indent << "AOStrength: " << this->AOStrength << "\n";
-  os << indent << "RayPattern: " << this->RayPattern << "\n";
-  os << indent << "NumberOfRays: " << this->NumberOfRays << "\n";
-  os << indent << "Reach: " << this->Reach << "\n";
-  os << indent << "NumberOfSamples: " << this->NumberOfSamples << "\n";
   os << indent << "AmbientOcclusionArrayName: "
      << (this->AmbientOcclusionArrayName ? this->AmbientOcclusionArrayName : "(none)") << "\n";
-  os << indent << "SampleDensity: " << this->SampleDensity << "\n";
-  os << indent << "StartOffset: " << this->StartOffset << "\n";
-  os << indent << "RayVariation: "
-     << cao::RayVariationName(static_cast<cao::RayVariation>(this->RayVariation)) << "\n";
-  os << indent << "QualityPreset: "
-     << cao::QualityPresetName(static_cast<cao::QualityPreset>(this->QualityPreset)) << "\n";
+  vtkCAO::PrintLAOSettings(os, indent, this->Internal->Settings);
   os << indent << "ClipShape: " << this->ClipShape << "\n";
   os << indent << "ClipMesh: " << this->ClipMesh << "\n";
   os << indent << "Mode: " << (this->Mode == SUBTRACTION ? "Subtraction" : "Probing") << "\n";

@@ -102,32 +102,32 @@ public:
 
   ///@{
   /// LAO ray pattern. Default RAYS_26.
-  vtkSetMacro(RayPattern, int);
-  vtkGetMacro(RayPattern, int);
+  virtual void SetRayPattern(int value);
+  virtual int GetRayPattern();
   ///@}
 
   ///@{
   /// Rays of the FIBONACCI pattern, 1 to 65536. Default 64.
-  vtkSetMacro(NumberOfRays, int);
-  vtkGetMacro(NumberOfRays, int);
+  virtual void SetNumberOfRays(int value);
+  virtual int GetNumberOfRays();
   ///@}
 
   ///@{
   /// LAO reach R in world units; 0 (default) means 8 times the smallest spacing.
-  vtkSetMacro(Reach, double);
-  vtkGetMacro(Reach, double);
+  virtual void SetReach(double value);
+  virtual double GetReach();
   ///@}
 
   ///@{
   /// Samples per LAO ray M, 1 to 65536; 0 (default) means SampleDensity per smallest spacing.
-  vtkSetMacro(NumberOfSamples, int);
-  vtkGetMacro(NumberOfSamples, int);
+  virtual void SetNumberOfSamples(int value);
+  virtual int GetNumberOfSamples();
   ///@}
 
   ///@{
   /// LAO samples per smallest voxel spacing when NumberOfSamples is 0, 0.001 to 1000. Default 1.
-  vtkSetMacro(SampleDensity, double);
-  vtkGetMacro(SampleDensity, double);
+  virtual void SetSampleDensity(double value);
+  virtual double GetSampleDensity();
   ///@}
 
   ///@{
@@ -136,8 +136,8 @@ public:
    * (m - StartOffset) * R / M). Default 0.5 (mid-step; 0 is the paper's
    * march), in [0, 1); see vtkLocalAmbientOcclusion.
    */
-  vtkSetMacro(StartOffset, double);
-  vtkGetMacro(StartOffset, double);
+  virtual void SetStartOffset(double value);
+  virtual double GetStartOffset();
   ///@}
 
   /// LAO ray variations, as vtkLocalAmbientOcclusion's.
@@ -154,8 +154,8 @@ public:
    * How the LAO rays vary from voxel to voxel (interleaved over 2x2x2
    * blocks, see vtkLocalAmbientOcclusion::SetRayVariation). Default NONE.
    */
-  vtkSetMacro(RayVariation, int);
-  vtkGetMacro(RayVariation, int);
+  virtual void SetRayVariation(int value);
+  virtual int GetRayVariation();
   void SetRayVariationToNone() { this->SetRayVariation(NONE); }
   void SetRayVariationToRotate() { this->SetRayVariation(ROTATE); }
   void SetRayVariationToJitter() { this->SetRayVariation(JITTER); }
@@ -178,8 +178,8 @@ public:
    * count, the sample density, the start offset and the ray variation with
    * the preset's (NumberOfSamples is ignored); Reach stays the mapper's.
    */
-  vtkSetMacro(QualityPreset, int);
-  vtkGetMacro(QualityPreset, int);
+  virtual void SetQualityPreset(int value);
+  virtual int GetQualityPreset();
   void SetQualityPresetToCustom() { this->SetQualityPreset(CUSTOM); }
   void SetQualityPresetToInteractive() { this->SetQualityPreset(INTERACTIVE); }
   void SetQualityPresetToBalanced() { this->SetQualityPreset(BALANCED); }
@@ -302,14 +302,6 @@ protected:
   bool AmbientOcclusion = true;
   double AOStrength = 1.0;
   char* AmbientOcclusionArrayName = nullptr;
-  int RayPattern = RAYS_26;
-  int NumberOfRays = 64;
-  double Reach = 0.0;
-  int NumberOfSamples = 0;
-  double SampleDensity = 1.0;
-  double StartOffset = 0.5;
-  int RayVariation = NONE;
-  int QualityPreset = CUSTOM;
   vtkProp3D* ClipShape = nullptr;
   vtkPolyData* ClipMesh = nullptr;
   int Mode = SUBTRACTION;

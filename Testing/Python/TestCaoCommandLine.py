@@ -147,13 +147,13 @@ check(all(o in out for o in ("--quality", "--density", "--offset", "--variation"
       "--help lists --quality, --density, --offset and --variation")
 
 # Quality presets: `--quality interactive` runs, reports (JSON) and records
-# (LAOParameters in the .vti) the settings in effect, and its AO equals the
+# (LAOSettings in the .vti) the settings in effect, and its AO equals the
 # AO of those settings given as explicit options.
 def lao_field(path):
     reader.SetFileName(path)
     reader.Update()
     image = reader.GetOutput()
-    a = image.GetFieldData().GetArray("LAOParameters")
+    a = image.GetFieldData().GetArray("LAOSettings")
     params = {a.GetComponentName(c): a.GetComponent(0, c) for c in range(a.GetNumberOfComponents())}
     return params, vtk_to_numpy(image.GetPointData().GetArray("AmbientOcclusion")).copy()
 
@@ -169,8 +169,8 @@ if rc == 0:
           f"--quality interactive: the JSON and the field data name the preset: {q}")
     pattern = q["pattern"]
     check(params["RayPattern"] == {"6": 0, "14": 1, "26": 2, "54": 3}.get(pattern, 4) and
-          (not pattern.startswith("fib:") or params["FibonacciRays"] == int(pattern[4:])) and
-          params["Samples"] == q["samples"] and params["StartOffset"] == q["start_offset"],
+          (not pattern.startswith("fib:") or params["NumberOfRays"] == int(pattern[4:])) and
+          params["NumberOfSamples"] == q["samples"] and params["StartOffset"] == q["start_offset"],
           f"--quality interactive: the field data holds the pattern in effect ({pattern}): {params}")
     hand_vti = os.path.join(tmp, "by-hand.vti")
     rc, out, err = run("lao", neghip, "--rays", pattern, "--samples", str(q["samples"]),

@@ -137,11 +137,20 @@ void ClassifySlices(const layout::ClipParams& p, const int dims[3], const ClipMa
   const float* opacity, float* clipped, std::uint8_t* category, int zBegin, int zEnd,
   std::vector<std::int64_t>& affected, CategoryCounts& counts)
 {
+  const int whole[6] = { 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1 };
+  ClassifyRegion(p, dims, maps, opacity, clipped, category, whole, zBegin, zEnd, affected, counts);
+}
+
+void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMapsView& maps,
+  const float* opacity, float* clipped, std::uint8_t* category, const int region[6], int zBegin,
+  int zEnd, std::vector<std::int64_t>& affected, CategoryCounts& counts)
+{
   const std::int64_t nx = dims[0], nxy = std::int64_t(dims[0]) * dims[1];
   const bool subtract = p.map.w == layout::CAO_MODE_SUBTRACT;
   const int bx0 = p.boxMin.x, bx1 = p.boxMax.x, by0 = p.boxMin.y, by1 = p.boxMax.y;
   const bool boxValid = p.boxMin.x <= p.boxMax.x && p.boxMin.y <= p.boxMax.y &&
     p.boxMin.z <= p.boxMax.z;
+  const int rx0 = region[0], rx1 = region[1], ry0 = region[2], ry1 = region[3];
   const int cw = bx1 - bx0 + 2, ch = by1 - by0 + 2; // corner lattice of the box
   std::vector<std::uint8_t> lower, upper;
   if (boxValid)
@@ -155,14 +164,20 @@ void ClassifySlices(const layout::ClipParams& p, const int dims[3], const ClipMa
         plane[static_cast<std::size_t>(cy) * cw + cx] = InsideClip(p, maps.front, maps.back,
           static_cast<float>(bx0 + cx) - 0.5f, static_cast<float>(by0 + cy) - 0.5f, zc);
   };
+  // The region's voxels of rows [j0, j1] x columns [i0, i1] get the default.
+  auto fillRows = [&](std::int64_t slice, int j0, int j1, int i0, int i1) {
+    for (int j = j0; j <= j1 && i0 <= i1; ++j)
+      FillOutside(p, opacity, clipped, category, slice + j * nx + i0, slice + j * nx + i1 + 1,
+        counts);
+  };
   bool haveLower = false;
   const float total = static_cast<float>(9 + p.aa.x);
-  for (int k = zBegin; k < zEnd; ++k)
+  for (int k = std::max(zBegin, region[4]); k < std::min(zEnd, region[5] + 1); ++k)
   {
     const std::int64_t slice = k * nxy;
     if (!boxValid || k < p.boxMin.z || k > p.boxMax.z)
     {
-      FillOutside(p, opacity, clipped, category, slice, slice + nxy, counts);
+      fillRows(slice, ry0, ry1, rx0, rx1);
       haveLower = false;
       continue;
     }
@@ -170,11 +185,12 @@ void ClassifySlices(const layout::ClipParams& p, const int dims[3], const ClipMa
       cornerPlane(static_cast<float>(k) - 0.5f, lower);
     cornerPlane(static_cast<float>(k) + 0.5f, upper);
     haveLower = true;
-    FillOutside(p, opacity, clipped, category, slice, slice + by0 * nx, counts);
+    // The box lies inside the region: the region's rest is default.
+    fillRows(slice, ry0, by0 - 1, rx0, rx1);
     for (int j = by0; j <= by1; ++j)
     {
       const std::int64_t row = slice + j * nx;
-      FillOutside(p, opacity, clipped, category, row, row + bx0, counts);
+      FillOutside(p, opacity, clipped, category, row + rx0, row + bx0, counts);
       const std::size_t c0 = static_cast<std::size_t>(j - by0) * cw;
       const std::size_t c1 = c0 + cw;
       for (int i = bx0; i <= bx1; ++i)
@@ -240,9 +256,9 @@ void ClassifySlices(const layout::ClipParams& p, const int dims[3], const ClipMa
         else
           ++counts.unaffected;
       }
-      FillOutside(p, opacity, clipped, category, row + bx1 + 1, row + nx, counts);
+      FillOutside(p, opacity, clipped, category, row + bx1 + 1, row + rx1 + 1, counts);
     }
-    FillOutside(p, opacity, clipped, category, slice + (by1 + 1) * nx, slice + nxy, counts);
+    fillRows(slice, by1 + 1, ry1, rx0, rx1);
     std::swap(lower, upper);
   }
 }

@@ -83,6 +83,13 @@ bool InsideClip(const layout::ClipParams& p, const float* front, const float* ba
 void ClassifySlices(const layout::ClipParams& p, const int dims[3], const ClipMapsView& maps,
   const float* opacity, float* clippedOpacity, std::uint8_t* category, int zBegin, int zEnd,
   std::vector<std::int64_t>& affected, CategoryCounts& counts);
+/// ClassifySlices within `region` (x0, x1, y0, y1, z0, z1, inclusive, which
+/// must contain the candidate box) only: voxels outside it are not written
+/// and not counted. The contextual update classifies the union of this
+/// pose's box and the previous pose's, outside which nothing can change.
+void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMapsView& maps,
+  const float* opacity, float* clippedOpacity, std::uint8_t* category, const int region[6],
+  int zBegin, int zEnd, std::vector<std::int64_t>& affected, CategoryCounts& counts);
 }
 
 #endif

@@ -243,41 +243,6 @@ void MarchRun(const LAOPlan& plan, const float* a, float* ao, int j, int k, int 
 }
 }
 
-int RayVariationCount(RayVariation variation)
-{
-  return variation == RayVariation::None ? 1 : 8;
-}
-
-const char* RayVariationName(RayVariation variation)
-{
-  switch (variation)
-  {
-    case RayVariation::None:
-      return "none";
-    case RayVariation::Rotate:
-      return "rotate";
-    case RayVariation::Jitter:
-      return "jitter";
-    case RayVariation::RotateJitter:
-      return "rotate+jitter";
-  }
-  return "unknown";
-}
-
-bool ParseRayVariation(const std::string& text, RayVariation& variation)
-{
-  for (RayVariation v : { RayVariation::None, RayVariation::Rotate, RayVariation::Jitter,
-         RayVariation::RotateJitter })
-  {
-    if (text == RayVariationName(v))
-    {
-      variation = v;
-      return true;
-    }
-  }
-  return false;
-}
-
 void VariationRotation(int v, double R[9])
 {
   // Eight fixed rotations: unit quaternions from a fixed-seed splitmix64
@@ -318,40 +283,9 @@ int DefaultSampleCount(double reach, const double spacing[3], double density)
   return static_cast<int>(std::max(1.0, m));
 }
 
-bool CheckLAOSettings(const LAOSettings& s, std::string& error)
-{
-  std::ostringstream msg;
-  if (!(s.reach > 0.0) || !std::isfinite(s.reach))
-    msg << "the reach must be a positive, finite length in world units (0 selects the default, "
-           "8 smallest voxel spacings); got "
-        << s.reach;
-  else if (static_cast<int>(s.pattern) < 0 ||
-    static_cast<int>(s.pattern) > static_cast<int>(RayPattern::Rubiks54))
-    msg << "unknown ray pattern " << static_cast<int>(s.pattern);
-  else if (s.pattern == RayPattern::Fibonacci &&
-    !(s.fibonacciRays >= 1 && s.fibonacciRays <= LAOLimits::MaxRays))
-    msg << "a Fibonacci ray count must be 1 to " << LAOLimits::MaxRays << "; got "
-        << s.fibonacciRays;
-  else if (s.samples < 0 || s.samples > LAOLimits::MaxSamples)
-    msg << "the number of samples per ray must be 1 to " << LAOLimits::MaxSamples
-        << " (0 derives it from the sample density); got " << s.samples;
-  else if (s.samples == 0 &&
-    !(s.sampleDensity >= LAOLimits::MinSampleDensity &&
-      s.sampleDensity <= LAOLimits::MaxSampleDensity))
-    msg << "the sample density must be " << LAOLimits::MinSampleDensity << " to "
-        << LAOLimits::MaxSampleDensity << " samples per voxel; got " << s.sampleDensity;
-  else if (!(s.startOffset >= 0.0 && s.startOffset < 1.0))
-    msg << "the start offset must be in [0, 1) steps; got " << s.startOffset;
-  else if (static_cast<int>(s.variation) < 0 || static_cast<int>(s.variation) > 3)
-    msg << "unknown ray variation " << static_cast<int>(s.variation);
-  if (msg.tellp() == 0)
-    return true;
-  error = msg.str();
-  return false;
-}
 
 bool BuildLAOPlan(
-  const VolumeGeometry& g, const LAOSettings& s, LAOPlan& plan, std::string& error)
+  const VolumeGeometry& g, const LAOSettings& settings, LAOPlan& plan, std::string& error)
 {
   for (int d = 0; d < 3; ++d)
   {
@@ -371,6 +305,7 @@ bool BuildLAOPlan(
     error = "the volume has more than 2^31-1 voxels";
     return false;
   }
+  const LAOSettings s = ResolveLAOSettings(settings, g.spacing);
   if (!CheckLAOSettings(s, error))
     return false;
   plan.directions = MakeRayPattern(s.pattern, s.fibonacciRays);

@@ -22,9 +22,11 @@
 #ifndef caoLAO_h
 #define caoLAO_h
 
+#include "caoLAOSettings.h"
 #include "caoRayPattern.h"
 #include "caoGPULayout.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -46,70 +48,13 @@ struct VolumeGeometry
   {
     return static_cast<std::int64_t>(dims[0]) * dims[1] * dims[2];
   }
+  bool operator==(const VolumeGeometry& o) const
+  {
+    return std::equal(dims, dims + 3, o.dims) && std::equal(origin, origin + 3, o.origin) &&
+      std::equal(spacing, spacing + 3, o.spacing) && std::equal(direction, direction + 9, o.direction);
+  }
+  bool operator!=(const VolumeGeometry& o) const { return !(*this == o); }
 };
-
-/**
- * How the ray pattern varies from voxel to voxel: interleaved sampling
- * (Keller & Heidrich 2001, used for volumetric AO by Szirmay-Kalos et al.
- * 2010). The voxels of each 2x2x2 block, told apart by the parity of their
- * global index, use 8 different variants of the pattern, so that neighbours
- * (blended by the renderer's trilinear interpolation) see 8x the directions
- * or start offsets at the cost of one. Every variant is fixed, so the march
- * stays deterministic and the contextual update stays exact.
- *  - Rotate: variant v is the pattern under a fixed rotation R_v;
- *  - Jitter: variant v starts its samples at offset (v + 0.5) / 8 of a step;
- *  - RotateJitter: both.
- */
-enum class RayVariation : int
-{
-  None = 0,
-  Rotate = 1,
-  Jitter = 2,
-  RotateJitter = 3
-};
-
-/// Number of pattern variants a variation uses (1 or 8).
-int RayVariationCount(RayVariation variation);
-
-/// "none", "rotate", "jitter" or "rotate+jitter"; Parse accepts the same.
-const char* RayVariationName(RayVariation variation);
-bool ParseRayVariation(const std::string& text, RayVariation& variation);
-
-/// User-facing LAO settings; reach in world units. samples <= 0 selects the
-/// default: `sampleDensity` samples per (smallest) voxel spacing,
-/// max(1, round(density * R / h_min)).
-///
-/// Sample m (1 .. M-1) of a ray lies at distance (m - startOffset) * R / M:
-/// the paper's march has startOffset 0; 0.5 puts each sample in the middle
-/// of the step whose transmittance it decides. Jitter variations replace
-/// startOffset with their own per-variant offsets.
-struct LAOSettings
-{
-  RayPattern pattern = RayPattern::Rays26;
-  int fibonacciRays = 64;
-  double reach = 0.0;
-  int samples = 0;
-  double sampleDensity = 1.0;
-  double startOffset = 0.0;
-  RayVariation variation = RayVariation::None;
-};
-
-/// The limits of LAOSettings, in one place: every layer (filters, mapper,
-/// plugin, `cao`) passes its values through CheckLAOSettings and reports its
-/// message, which states the limit.
-namespace LAOLimits
-{
-constexpr int MaxRays = 65536;            ///< Fibonacci count
-constexpr int MaxSamples = 65536;         ///< samples per ray (explicit or from the density)
-constexpr double MinSampleDensity = 0.001; ///< samples per smallest voxel spacing
-constexpr double MaxSampleDensity = 1000.0;
-constexpr std::int64_t MaxTaps = std::int64_t(1) << 24; ///< variants x rays x samples (256 MiB)
-}
-
-/// Whether `settings` is within LAOLimits (reach > 0: resolve a default
-/// first); false with a message that names the setting, its value and the
-/// limit.
-bool CheckLAOSettings(const LAOSettings& settings, std::string& error);
 
 /// Everything the march needs; uploadable as-is to a GPU (params + taps).
 struct LAOPlan
@@ -135,7 +80,8 @@ int DefaultSampleCount(double reach, const double spacing[3], double density = 1
 /// The fixed rotation (row-major 3x3) of interleaved variant v in [0, 8).
 void VariationRotation(int v, double rotation[9]);
 
-/// Build a plan; returns false with a message for invalid settings.
+/// Build a plan for the settings resolved (ResolveLAOSettings: the preset
+/// applied, the reach's default); false with a message for invalid ones.
 bool BuildLAOPlan(
   const VolumeGeometry& geometry, const LAOSettings& settings, LAOPlan& plan, std::string& error);
 

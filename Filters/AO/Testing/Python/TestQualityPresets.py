@@ -3,12 +3,12 @@ VTK filters (CPU backend, small reach so it runs in seconds):
 
  - for each preset, vtkLocalAmbientOcclusion with QualityPreset=P gives
    bit for bit the AO of the same filter with the preset's settings set by
-   hand (read back from the LAOParameters field array, which records the
+   hand (read back from the LAOSettings field array, which records the
    settings in effect), and differs from the CUSTOM defaults;
  - changing QualityPreset re-executes the filter, setting it again does not;
  - vtkContextualAmbientOcclusion downstream of an LAO with RayVariation
    ROTATE_JITTER and StartOffset 0.5 rebuilds the same plan from
-   LAOParameters: its Verify (a full recompute) finds no difference at any
+   LAOSettings: its Verify (a full recompute) finds no difference at any
    pose; with the variation stripped from the array (an old 8-component
    array) the same check does find differences, so it is not vacuous; the
    CAO filter's own LAO (no upstream) honours a forwarded preset;
@@ -45,8 +45,8 @@ def ao_of(image):
 
 
 def parameters(image):
-    """LAOParameters as a dict of component name -> value."""
-    a = image.GetFieldData().GetArray("LAOParameters")
+    """LAOSettings as a dict of component name -> value."""
+    a = image.GetFieldData().GetArray("LAOSettings")
     return {a.GetComponentName(c): a.GetComponent(0, c) for c in range(a.GetNumberOfComponents())}
 
 
@@ -108,11 +108,15 @@ custom = lao_filter()
 custom.Update()
 custom_ao = ao_of(custom.GetOutput())
 p = parameters(custom.GetOutput())
-check(custom.GetOutput().GetFieldData().GetArray("LAOParameters").GetNumberOfComponents() == 11
-      and list(p)[8:] == ["StartOffset", "RayVariation", "QualityPreset"]
-      and (p["RayPattern"], p["StartOffset"], p["RayVariation"], p["QualityPreset"])
-      == (LAO.RAYS_26, 0.5, LAO.NONE, LAO.CUSTOM),
-      "LAOParameters has 11 components, the custom settings in effect: %s" % p)
+# One component per setting, named as the setting (its Set method and the
+# ParaView property), then what the run made of them.
+SETTING_NAMES = ["RayPattern", "NumberOfRays", "Reach", "NumberOfSamples", "SampleDensity",
+                 "StartOffset", "RayVariation", "QualityPreset", "Rays", "Step",
+                 "ScalarOpacityUnitDistance", "Milliseconds"]
+check(list(p) == SETTING_NAMES
+      and (p["RayPattern"], p["StartOffset"], p["RayVariation"], p["QualityPreset"], p["Reach"])
+      == (LAO.RAYS_26, 0.5, LAO.NONE, LAO.CUSTOM, REACH),
+      "LAOSettings names every setting, the custom settings in effect: %s" % p)
 
 # Each preset equals its own settings set by hand, and is not the default.
 for preset, name in ((LAO.INTERACTIVE, "interactive"), (LAO.BALANCED, "balanced"),
@@ -124,19 +128,18 @@ for preset, name in ((LAO.INTERACTIVE, "interactive"), (LAO.BALANCED, "balanced"
     got = ao_of(f.GetOutput())
     p = parameters(f.GetOutput())
     check(p["QualityPreset"] == preset and p["Reach"] == REACH,
-          "%s: LAOParameters records the preset and the user's reach" % name)
-    by_hand = lao_filter(RayPattern=int(p["RayPattern"]), NumberOfRays=int(p["FibonacciRays"]),
-                         NumberOfSamples=int(p["Samples"]), StartOffset=p["StartOffset"],
+          "%s: LAOSettings records the preset and the user's reach" % name)
+    by_hand = lao_filter(RayPattern=int(p["RayPattern"]), NumberOfRays=int(p["NumberOfRays"]),
+                         NumberOfSamples=int(p["NumberOfSamples"]), StartOffset=p["StartOffset"],
                          RayVariation=int(p["RayVariation"]))
     by_hand.Update()
     q = parameters(by_hand.GetOutput())
-    same = {k: q[k] for k in ("RayPattern", "Rays", "Samples", "Step", "FibonacciRays",
-                              "StartOffset", "RayVariation")} == \
-        {k: p[k] for k in ("RayPattern", "Rays", "Samples", "Step", "FibonacciRays",
-                           "StartOffset", "RayVariation")}
+    keys = ("RayPattern", "Rays", "NumberOfSamples", "Step", "NumberOfRays", "StartOffset",
+            "RayVariation")
+    same = {k: q[k] for k in keys} == {k: p[k] for k in keys}
     check(same and np.array_equal(got, ao_of(by_hand.GetOutput())),
           "%s: bit-identical to its settings by hand (pattern %d, %d rays, %d samples, offset %g, "
-          "variation %d)" % (name, p["RayPattern"], p["Rays"], p["Samples"], p["StartOffset"],
+          "variation %d)" % (name, p["RayPattern"], p["Rays"], p["NumberOfSamples"], p["StartOffset"],
                              p["RayVariation"]))
     check(not np.array_equal(got, custom_ao), "%s: differs from the custom defaults" % name)
 
@@ -197,18 +200,30 @@ for step in range(3):
 check(worst == 0.0 and affected > 0, "CAO after an LAO with ROTATE_JITTER and offset 0.5 equals "
       "the full recompute at 3 poses (%d affected voxels)" % affected)
 
-# The same LAO output with the variation and offset stripped from
-# LAOParameters (an old 8-component array): the CAO filter then rebuilds a
-# plan without them, and its verification sees the difference.
+
+
+def legacy_parameters(image):
+    """The predecessor of LAOSettings, as outputs before the start offset
+    and the variation wrote it: "LAOParameters", 8 components by position
+    (RayPattern, Rays, Samples, Reach, Step, UnitDistance, FibonacciRays,
+    Milliseconds)."""
+    p = parameters(image)
+    old = vtkDoubleArray()
+    old.SetName("LAOParameters")
+    old.SetNumberOfComponents(8)
+    old.InsertNextTuple([p[k] for k in ("RayPattern", "Rays", "NumberOfSamples", "Reach", "Step",
+                                        "ScalarOpacityUnitDistance", "NumberOfRays",
+                                        "Milliseconds")])
+    return old
+
+
+# The same LAO output with the variation and offset stripped (an old
+# 8-component LAOParameters instead of LAOSettings): the CAO filter then
+# rebuilds a plan without them, and its verification sees the difference.
 legacy = vtkImageData()
 legacy.ShallowCopy(lao.GetOutput())
-old = vtkDoubleArray()
-old.SetName("LAOParameters")
-old.SetNumberOfComponents(8)
-full = lao.GetOutput().GetFieldData().GetArray("LAOParameters")
-old.InsertNextTuple([full.GetComponent(0, c) for c in range(8)])
-legacy.GetFieldData().RemoveArray("LAOParameters")
-legacy.GetFieldData().AddArray(old)
+legacy.GetFieldData().RemoveArray("LAOSettings")
+legacy.GetFieldData().AddArray(legacy_parameters(lao.GetOutput()))
 cao_legacy = vtkContextualAmbientOcclusion()
 cao_legacy.SetInputData(0, legacy)
 cao_legacy.SetInputConnection(1, maps.GetOutputPort())
@@ -230,13 +245,8 @@ plain.SetStartOffset(0.0)  # as every LAO did before the offset existed
 plain.SetBackendToCPU()
 plain.Update()
 legacy.ShallowCopy(plain.GetOutput())
-full = plain.GetOutput().GetFieldData().GetArray("LAOParameters")
-old = vtkDoubleArray()
-old.SetName("LAOParameters")
-old.SetNumberOfComponents(8)
-old.InsertNextTuple([full.GetComponent(0, c) for c in range(8)])
-legacy.GetFieldData().RemoveArray("LAOParameters")
-legacy.GetFieldData().AddArray(old)
+legacy.GetFieldData().RemoveArray("LAOSettings")
+legacy.GetFieldData().AddArray(legacy_parameters(plain.GetOutput()))
 cao_legacy.SetInputData(0, legacy)
 cao_legacy.Update()
 v = cao_legacy.GetOutput().GetFieldData().GetArray("Verification")

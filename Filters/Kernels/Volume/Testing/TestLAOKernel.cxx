@@ -79,6 +79,7 @@ int TestLAOKernel(int, char*[])
     s.fibonacciRays = c.fib;
     s.reach = c.reach;
     s.samples = c.samples;
+    s.startOffset = 0.0; // the paper's march, as Reference() takes it (offsets: TestLAOVariations)
     cao::LAOPlan plan;
     std::string error;
     CAO_CHECK(cao::BuildLAOPlan(g, s, plan, error), "plan: %s", error.c_str());
@@ -115,6 +116,7 @@ int TestLAOKernel(int, char*[])
   s.pattern = cao::RayPattern::Rays14;
   s.reach = 3.0;
   s.samples = 3;
+  s.startOffset = 0.0; // the closed forms below are the paper's march
   cao::LAOPlan plan;
   std::string error;
   CAO_CHECK(cao::BuildLAOPlan(g, s, plan, error), "plan");
@@ -138,8 +140,15 @@ int TestLAOKernel(int, char*[])
   CAO_CHECK(cao::CorrectOpacity(std::nan(""), 1.0) == 0.0f, "NaN opacity is transparent");
 
   // Invalid settings are errors, not crashes.
+  s.reach = -1.0;
+  CAO_CHECK(!cao::BuildLAOPlan(g, s, plan, error), "a negative reach must fail");
+  s.reach = std::nan("");
+  CAO_CHECK(!cao::BuildLAOPlan(g, s, plan, error), "a NaN reach must fail");
+  // A reach of 0 is the default: 8 times the smallest spacing.
   s.reach = 0.0;
-  CAO_CHECK(!cao::BuildLAOPlan(g, s, plan, error), "zero reach must fail");
+  CAO_CHECK(cao::BuildLAOPlan(g, s, plan, error) &&
+      plan.reach == 8.0 * std::min({ g.spacing[0], g.spacing[1], g.spacing[2] }),
+    "reach 0 must mean 8 voxels, got %g", plan.reach);
   s.reach = 1.0;
   cao::VolumeGeometry empty;
   CAO_CHECK(!cao::BuildLAOPlan(empty, s, plan, error), "empty extent must fail");

@@ -1,0 +1,176 @@
+#include "caoContextualUpdate.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <utility>
+
+namespace cao
+{
+namespace
+{
+double MillisecondsSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+    .count();
+}
+
+bool Empty(const int box[6])
+{
+  return box[0] > box[1] || box[2] > box[3] || box[4] > box[5];
+}
+
+std::int64_t Voxels(const int box[6])
+{
+  return Empty(box) ? 0
+                    : std::int64_t(box[1] - box[0] + 1) * (box[3] - box[2] + 1) *
+      (box[5] - box[4] + 1);
+}
+}
+
+void ContextualUpdate::Reset()
+{
+  this->Valid = false;
+  this->Previous.clear();
+  this->Current.clear();
+}
+
+bool ContextualUpdate::Update(const Volume& volume, const layout::ClipParams& clip,
+  const ClipMapsView& maps, const Buffers& out, const ParallelFor& parallel, Stats& stats)
+{
+  stats = Stats();
+  const int* dims = volume.geometry.dims;
+  const std::int64_t voxels = volume.geometry.NumberOfVoxels();
+  const int mode = clip.map.w;
+  const int box[6] = { clip.boxMin.x, clip.boxMax.x, clip.boxMin.y, clip.boxMax.y,
+    clip.boxMin.z, clip.boxMax.z };
+  const bool incremental = this->Valid && mode == this->Mode;
+  this->Valid = false; // until this pose is complete
+
+  // 1. Give the previous pose's b voxels their precomputed AO back (the
+  // first pose: every voxel). Nothing else differs from it.
+  auto t0 = std::chrono::steady_clock::now();
+  const float* pre = volume.precomputed;
+  float* ao = out.ao;
+  bool ok;
+  if (incremental)
+  {
+    const std::int64_t* list = this->Previous.data();
+    ok = parallel(static_cast<std::int64_t>(this->Previous.size()), 4096, 0.0, 0.05,
+      [&](std::int64_t b, std::int64_t e) {
+        for (std::int64_t i = b; i < e; ++i)
+          ao[list[i]] = pre[list[i]];
+      });
+    stats.restoredVoxels = static_cast<std::int64_t>(this->Previous.size());
+  }
+  else
+  {
+    ok = parallel(voxels, 1 << 16, 0.0, 0.05,
+      [&](std::int64_t b, std::int64_t e) { std::copy(pre + b, pre + e, ao + b); });
+    stats.restoredVoxels = voxels;
+  }
+  if (!ok)
+  {
+    this->Reset();
+    return false;
+  }
+  stats.copyMs = MillisecondsSince(t0);
+
+  // 2. Classify the union of this pose's candidate box and the previous
+  // one's (everything, the first time), slab by slab; the b lists are
+  // concatenated in slab order, so the list is sorted whatever the threads.
+  t0 = std::chrono::steady_clock::now();
+  int region[6] = { 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1 };
+  if (incremental)
+  {
+    const int* prev = this->Box;
+    for (int d = 0; d < 3; ++d)
+    {
+      region[2 * d] = std::min(Empty(box) ? dims[d] : box[2 * d], Empty(prev) ? dims[d] : prev[2 * d]);
+      region[2 * d + 1] = std::max(Empty(box) ? -1 : box[2 * d + 1], Empty(prev) ? -1 : prev[2 * d + 1]);
+    }
+  }
+  stats.classifiedVoxels = Voxels(region);
+  std::mutex mutex;
+  std::vector<std::pair<std::int64_t, std::vector<std::int64_t>>> lists;
+  CategoryCounts counts;
+  const int z0 = region[4], slabs = Empty(region) ? 0 : region[5] - region[4] + 1;
+  ok = parallel(slabs, 1, 0.05, 0.2, [&](std::int64_t b, std::int64_t e) {
+    std::vector<std::int64_t> list;
+    CategoryCounts local;
+    ClassifyRegion(clip, dims, maps, volume.opacity, out.clippedOpacity, out.category, region,
+      z0 + static_cast<int>(b), z0 + static_cast<int>(e), list, local);
+    std::lock_guard<std::mutex> lock(mutex);
+    counts.Add(local);
+    lists.emplace_back(b, std::move(list));
+  });
+  if (!ok)
+  {
+    this->Reset();
+    return false;
+  }
+  std::sort(lists.begin(), lists.end(),
+    [](const auto& l, const auto& r) { return l.first < r.first; });
+  this->Current.clear();
+  this->Current.reserve(static_cast<std::size_t>(counts.affected));
+  for (auto& l : lists)
+    this->Current.insert(this->Current.end(), l.second.begin(), l.second.end());
+  // Outside the region every voxel holds the unclipped state.
+  const std::int64_t outside = voxels - stats.classifiedVoxels;
+  if (mode == layout::CAO_MODE_SUBTRACT)
+    counts.unaffected += outside;
+  else
+    counts.clipped += outside;
+  stats.counts = counts;
+  stats.classifyMs = MillisecondsSince(t0);
+
+  // 3. Recompute the b voxels on the clipped opacity.
+  t0 = std::chrono::steady_clock::now();
+  const std::int64_t* list = this->Current.data();
+  ok = parallel(static_cast<std::int64_t>(this->Current.size()), 256, 0.2, 1.0,
+    [&](std::int64_t b, std::int64_t e) {
+      LAOList(*volume.plan, out.clippedOpacity, ao, list, b, e);
+    });
+  if (!ok)
+  {
+    this->Reset();
+    return false;
+  }
+  stats.recomputeMs = MillisecondsSince(t0);
+
+  std::copy(box, box + 6, this->Box);
+  this->Mode = mode;
+  std::swap(this->Previous, this->Current); // Affected() reports this pose's list
+  this->Valid = true;
+  return true;
+}
+
+bool ContextualUpdate::Verify(const Volume& volume, const Buffers& buffers,
+  const ParallelFor& parallel, std::int64_t& differing, double& maxDifference, double& ms)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::int64_t voxels = volume.geometry.NumberOfVoxels();
+  std::vector<float> full(static_cast<std::size_t>(voxels));
+  if (!parallel(voxels, 1024, 0.0, 1.0, [&](std::int64_t b, std::int64_t e) {
+        LAORange(*volume.plan, buffers.clippedOpacity, full.data(), b, e);
+      }))
+    return false;
+  ms = MillisecondsSince(t0);
+  differing = 0;
+  maxDifference = 0.0;
+  for (std::int64_t v = 0; v < voxels; ++v)
+  {
+    if (buffers.category[v] == layout::CAO_CATEGORY_CLIPPED)
+      continue;
+    // Bitwise comparison: equal floats (and no NaN) or a difference.
+    if (!(full[static_cast<std::size_t>(v)] == buffers.ao[v]))
+    {
+      ++differing;
+      const double d = std::fabs(static_cast<double>(full[static_cast<std::size_t>(v)]) - buffers.ao[v]);
+      maxDifference = std::max(maxDifference, std::isnan(d) ? 1.0 : d);
+    }
+  }
+  return true;
+}
+}

@@ -1,0 +1,95 @@
+/**
+ * caoContextualUpdate — the contextual AO update on the CPU: the twin of
+ * gl::AOEngine::Update (CAO paper, section 4). No VTK.
+ *
+ * Per pose: classify the voxels (clipped a, affected b, unaffected c) with
+ * the anti-aliased clip test, give every voxel not in b the precomputed AO,
+ * and recompute the b voxels on the clipped opacity with the LAO plan's
+ * march. The result equals a full recompute of the clipped volume bit for
+ * bit (Verify checks it).
+ *
+ * The buffers (AO, clipped opacity, category) are the caller's and persist
+ * between poses: a pose touches only what can have changed since the
+ * previous one, as the GPU engine does. Outside the union of this pose's
+ * candidate box and the previous pose's, every voxel holds the unclipped
+ * state already (category c and the opacity in subtraction; a and 0 in
+ * probing), so classification runs over that union only; and the AO
+ * differs from the precomputed AO only at the previous pose's b voxels,
+ * which are restored before this pose's are recomputed. The first pose,
+ * and any after Reset() or a change of mode, writes every voxel.
+ *
+ * Parallel work goes through a ParallelFor the caller provides (the VTK
+ * layer passes vtkSMPTools with progress and abort), so the results never
+ * depend on the thread count: lists are concatenated in slab order.
+ */
+#ifndef caoContextualUpdate_h
+#define caoContextualUpdate_h
+
+#include "caoClassify.h"
+#include "caoLAO.h"
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace cao
+{
+class ContextualUpdate
+{
+public:
+  /// body(begin, end) over [0, n) in parallel, progress from p0 to p1;
+  /// false when aborted (the update then stops and Reset()s).
+  using ParallelFor = std::function<bool(std::int64_t n, std::int64_t grain, double p0,
+    double p1, const std::function<void(std::int64_t, std::int64_t)>& body)>;
+
+  /// The volume's inputs, unchanged between poses (the caller Reset()s when
+  /// any of them changes).
+  struct Volume
+  {
+    VolumeGeometry geometry;
+    const LAOPlan* plan = nullptr;
+    const float* opacity = nullptr;     ///< unclipped, step-corrected
+    const float* precomputed = nullptr; ///< the LAO of `opacity` with `plan`
+  };
+  /// The outputs, kept by the caller between poses (contents included).
+  struct Buffers
+  {
+    float* ao = nullptr;
+    float* clippedOpacity = nullptr;
+    std::uint8_t* category = nullptr;
+  };
+  struct Stats
+  {
+    CategoryCounts counts;
+    std::int64_t classifiedVoxels = 0; ///< the union region's
+    std::int64_t restoredVoxels = 0;   ///< previous b voxels given their precomputed AO back
+    double classifyMs = 0, copyMs = 0, recomputeMs = 0;
+  };
+
+  /// Forget the previous pose: the next Update writes every voxel.
+  void Reset();
+
+  /// One pose. `clip` and `maps` as the classifier takes them. False when
+  /// aborted (the buffers are then incomplete and the state reset).
+  bool Update(const Volume& volume, const layout::ClipParams& clip, const ClipMapsView& maps,
+    const Buffers& buffers, const ParallelFor& parallel, Stats& stats);
+
+  /// The voxels recomputed at the last pose (category b), in increasing order.
+  const std::vector<std::int64_t>& Affected() const { return this->Previous; }
+
+  /// The full recompute of the clipped volume (LAORange over every voxel)
+  /// against the buffers' AO, over the voxels not clipped, bit for bit:
+  /// the number that differ and the largest difference.
+  static bool Verify(const Volume& volume, const Buffers& buffers, const ParallelFor& parallel,
+    std::int64_t& differing, double& maxDifference, double& ms);
+
+private:
+  bool Valid = false;
+  int Mode = -1;
+  int Box[6] = { 0, -1, 0, -1, 0, -1 }; ///< the previous pose's candidate box (inclusive)
+  std::vector<std::int64_t> Previous; ///< the last pose's b voxels
+  std::vector<std::int64_t> Current;  ///< scratch: this pose's, until it completes
+};
+}
+
+#endif

@@ -1,0 +1,222 @@
+#include "caoLAOSettings.h"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace cao
+{
+int RayVariationCount(RayVariation variation)
+{
+  return variation == RayVariation::None ? 1 : 8;
+}
+
+const char* RayVariationName(RayVariation variation)
+{
+  switch (variation)
+  {
+    case RayVariation::None:
+      return "none";
+    case RayVariation::Rotate:
+      return "rotate";
+    case RayVariation::Jitter:
+      return "jitter";
+    case RayVariation::RotateJitter:
+      return "rotate+jitter";
+  }
+  return "unknown";
+}
+
+bool ParseRayVariation(const std::string& text, RayVariation& variation)
+{
+  for (RayVariation v : { RayVariation::None, RayVariation::Rotate, RayVariation::Jitter,
+         RayVariation::RotateJitter })
+  {
+    if (text == RayVariationName(v))
+    {
+      variation = v;
+      return true;
+    }
+  }
+  return false;
+}
+
+namespace
+{
+/// One preset's settings. Values chosen from the measured front: see
+/// README.md, "Accuracy versus time" (embryo.slc and neghip.slc).
+struct PresetSettings
+{
+  RayPattern pattern;
+  int fibonacciRays;
+  double sampleDensity;
+  RayVariation variation;
+};
+// Interactive: the 6 axes rotated per voxel (interleaved), 2 samples per voxel.
+// Balanced: 14 rays, 4 samples per voxel.
+// Reference: 100 Fibonacci rays, 4 samples per voxel.
+// All mid-step (start offset 0.5).
+constexpr PresetSettings Presets[] = {
+  { RayPattern::Rays6, 6, 2.0, RayVariation::Rotate },
+  { RayPattern::Rays14, 14, 4.0, RayVariation::None },
+  { RayPattern::Fibonacci, 100, 4.0, RayVariation::None },
+};
+}
+
+void ApplyQualityPreset(QualityPreset preset, LAOSettings& s)
+{
+  const int index = static_cast<int>(preset);
+  if (index < 1 || index > 3)
+    return; // Custom, or invalid (CheckLAOSettings reports it)
+  const PresetSettings& p = Presets[index - 1];
+  s.pattern = p.pattern;
+  s.fibonacciRays = p.fibonacciRays;
+  s.sampleDensity = p.sampleDensity;
+  s.startOffset = 0.5;
+  s.variation = p.variation;
+  s.samples = 0;
+}
+
+const char* QualityPresetName(QualityPreset preset)
+{
+  switch (preset)
+  {
+    case QualityPreset::Custom:
+      return "custom";
+    case QualityPreset::Interactive:
+      return "interactive";
+    case QualityPreset::Balanced:
+      return "balanced";
+    case QualityPreset::Reference:
+      return "reference";
+  }
+  return "unknown";
+}
+
+bool ParseQualityPreset(const std::string& text, QualityPreset& preset)
+{
+  for (QualityPreset p : { QualityPreset::Custom, QualityPreset::Interactive,
+         QualityPreset::Balanced, QualityPreset::Reference })
+  {
+    if (text == QualityPresetName(p))
+    {
+      preset = p;
+      return true;
+    }
+  }
+  return false;
+}
+
+bool CheckLAOSettings(const LAOSettings& s, std::string& error)
+{
+  std::ostringstream msg;
+  if (!(s.reach > 0.0) || !std::isfinite(s.reach))
+    msg << "the reach must be a positive, finite length in world units (0 selects the default, "
+           "8 smallest voxel spacings); got "
+        << s.reach;
+  else if (static_cast<int>(s.pattern) < 0 ||
+    static_cast<int>(s.pattern) > static_cast<int>(RayPattern::Rubiks54))
+    msg << "unknown ray pattern " << static_cast<int>(s.pattern);
+  else if (s.pattern == RayPattern::Fibonacci &&
+    !(s.fibonacciRays >= 1 && s.fibonacciRays <= LAOLimits::MaxRays))
+    msg << "a Fibonacci ray count must be 1 to " << LAOLimits::MaxRays << "; got "
+        << s.fibonacciRays;
+  else if (s.samples < 0 || s.samples > LAOLimits::MaxSamples)
+    msg << "the number of samples per ray must be 1 to " << LAOLimits::MaxSamples
+        << " (0 derives it from the sample density); got " << s.samples;
+  else if (s.samples == 0 &&
+    !(s.sampleDensity >= LAOLimits::MinSampleDensity &&
+      s.sampleDensity <= LAOLimits::MaxSampleDensity))
+    msg << "the sample density must be " << LAOLimits::MinSampleDensity << " to "
+        << LAOLimits::MaxSampleDensity << " samples per voxel; got " << s.sampleDensity;
+  else if (!(s.startOffset >= 0.0 && s.startOffset < 1.0))
+    msg << "the start offset must be in [0, 1) steps; got " << s.startOffset;
+  else if (static_cast<int>(s.variation) < 0 || static_cast<int>(s.variation) > 3)
+    msg << "unknown ray variation " << static_cast<int>(s.variation);
+  else if (static_cast<int>(s.preset) < 0 || static_cast<int>(s.preset) > 3)
+    msg << "QualityPreset must be 0 (Custom) to 3 (Reference); got " << static_cast<int>(s.preset);
+  if (msg.tellp() == 0)
+    return true;
+  error = msg.str();
+  return false;
+}
+
+LAOSettings ResolveLAOSettings(const LAOSettings& settings, const double spacing[3])
+{
+  LAOSettings s = settings;
+  ApplyQualityPreset(s.preset, s);
+  if (s.reach == 0.0)
+    s.reach = 8.0 * std::min(spacing[0], std::min(spacing[1], spacing[2]));
+  return s;
+}
+
+namespace
+{
+constexpr double Unbounded = std::numeric_limits<double>::infinity();
+constexpr LAOSettingInfo Table[] = {
+  { "RayPattern", 2, 0, 5, true },
+  { "NumberOfRays", 64, 1, LAOLimits::MaxRays, true },
+  { "Reach", 0, 0, Unbounded, false },
+  { "NumberOfSamples", 0, 0, LAOLimits::MaxSamples, true },
+  { "SampleDensity", 1, LAOLimits::MinSampleDensity, LAOLimits::MaxSampleDensity, false },
+  { "StartOffset", 0.5, 0, 0.999, false },
+  { "RayVariation", 0, 0, 3, true },
+  { "QualityPreset", 0, 0, 3, true },
+};
+}
+
+const LAOSettingInfo* LAOSettingTable(int& count)
+{
+  count = static_cast<int>(sizeof(Table) / sizeof(Table[0]));
+  return Table;
+}
+
+double GetLAOSetting(const LAOSettings& s, const std::string& name)
+{
+  if (name == "RayPattern")
+    return static_cast<double>(s.pattern);
+  if (name == "NumberOfRays")
+    return s.fibonacciRays;
+  if (name == "Reach")
+    return s.reach;
+  if (name == "NumberOfSamples")
+    return s.samples;
+  if (name == "SampleDensity")
+    return s.sampleDensity;
+  if (name == "StartOffset")
+    return s.startOffset;
+  if (name == "RayVariation")
+    return static_cast<double>(s.variation);
+  if (name == "QualityPreset")
+    return static_cast<double>(s.preset);
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+bool SetLAOSetting(LAOSettings& s, const std::string& name, double v)
+{
+  // Out-of-range values are kept (CheckLAOSettings reports them); integral
+  // settings are truncated as a C++ setter taking an int would.
+  auto integer = [v] {
+    return std::isfinite(v) && std::fabs(v) < 2e9 ? static_cast<int>(v) : -1;
+  };
+  if (name == "RayPattern")
+    s.pattern = static_cast<RayPattern>(integer());
+  else if (name == "NumberOfRays")
+    s.fibonacciRays = integer();
+  else if (name == "Reach")
+    s.reach = v;
+  else if (name == "NumberOfSamples")
+    s.samples = integer();
+  else if (name == "SampleDensity")
+    s.sampleDensity = v;
+  else if (name == "StartOffset")
+    s.startOffset = v;
+  else if (name == "RayVariation")
+    s.variation = static_cast<RayVariation>(integer());
+  else if (name == "QualityPreset")
+    s.preset = static_cast<QualityPreset>(integer());
+  else
+    return false;
+  return true;
+}
+}
