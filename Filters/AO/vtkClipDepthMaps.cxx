@@ -108,26 +108,20 @@ int vtkClipDepthMaps::RequestUpdateExtent(
   return 1;
 }
 
-//------------------------------------------------------------------------------
-int vtkClipDepthMaps::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+namespace
 {
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
-  vtkImageData* output = vtkImageData::GetData(outputVector);
-  if (!input || !output)
-  {
-    vtkErrorMacro("The input must be vtkPolyData.");
-    return 0;
-  }
-  output->Initialize();
+/// The clip mesh as the kernels take it: finite, triangulated, duplicate
+/// points merged, closed, oriented consistently and outward (VTK's filters
+/// do the merging and orienting; the checks are the kernel's). False with
+/// an error on `self` when the mesh cannot clip.
+bool PrepareMesh(vtkAlgorithm* self, vtkPolyData* input, std::vector<double>& points,
+  std::vector<std::int64_t>& tris)
+{
   if (input->GetNumberOfPoints() < 4 || input->GetNumberOfPolys() + input->GetNumberOfStrips() < 4)
   {
-    vtkErrorMacro("The clip mesh is empty: it needs at least 4 polygons enclosing a volume.");
-    return 0;
-  }
-  if (!this->CheckSettings())
-  {
-    return 0;
+    vtkErrorWithObjectMacro(
+      self, "The clip mesh is empty: it needs at least 4 polygons enclosing a volume.");
+    return false;
   }
   // NaN or infinite vertices first: merging and orienting would hide them
   // behind a misleading "open mesh".
@@ -137,13 +131,11 @@ int vtkClipDepthMaps::RequestData(
     input->GetPoint(i, p);
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
     {
-      vtkErrorMacro("The clip mesh has a NaN or infinite coordinate (point " << i << ").");
-      return 0;
+      vtkErrorWithObjectMacro(
+        self, "The clip mesh has a NaN or infinite coordinate (point " << i << ").");
+      return false;
     }
   }
-
-  // Triangulate, merge duplicate points, orient consistently and outward
-  // (VTK's filters); the checks and the camera are the kernel's.
   vtkNew<vtkPolyData> surface;
   surface->SetPoints(input->GetPoints());
   surface->SetPolys(input->GetPolys());
@@ -160,21 +152,18 @@ int vtkClipDepthMaps::RequestData(
   clean->ConvertLinesToPointsOff();
   clean->ConvertStripsToPolysOff();
   clean->Update();
-  std::vector<double> points;
-  std::vector<std::int64_t> tris;
   Flatten(clean->GetOutput(), points, tris);
   cao::ClosedMeshCheck check;
   std::string error;
   if (!cao::CheckClosedMesh(cao::ViewMesh(points, tris), check, error))
   {
-    vtkErrorMacro("Cannot clip with this mesh: " << error << ".");
-    return 0;
+    vtkErrorWithObjectMacro(self, "Cannot clip with this mesh: " << error << ".");
+    return false;
   }
   if (check.nonManifoldEdges > 0)
-  {
-    vtkWarningMacro(<< check.nonManifoldEdges << " non-manifold edge(s) in the clip mesh; "
-                    "inside/outside follows the winding number.");
-  }
+    vtkWarningWithObjectMacro(self, << check.nonManifoldEdges
+                                    << " non-manifold edge(s) in the clip mesh; "
+                                       "inside/outside follows the winding number.");
   vtkNew<vtkPolyDataNormals> orient;
   orient->SetInputConnection(clean->GetOutputPort());
   orient->ComputePointNormalsOff();
@@ -187,18 +176,51 @@ int vtkClipDepthMaps::RequestData(
   Flatten(orient->GetOutput(), points, tris);
   if (!cao::CheckClosedMesh(cao::ViewMesh(points, tris), check, error))
   {
-    vtkErrorMacro("Cannot clip with this mesh: " << error << ".");
-    return 0;
+    vtkErrorWithObjectMacro(self, "Cannot clip with this mesh: " << error << ".");
+    return false;
   }
   if (check.signedVolume < 0.0)
-  {
     for (std::size_t t = 0; t < tris.size(); t += 3)
-    {
       std::swap(tris[t + 1], tris[t + 2]); // outward
-    }
-  }
+  return true;
+}
 
-  // The clipping camera: frame, dilation radius, extent, resolution.
+/// The warnings and the error the raw maps call for (a mesh smaller than a
+/// pixel, unbalanced crossings, more intervals than layers).
+bool CheckRawMaps(vtkClipDepthMaps* self, const cao::ClipDepthMaps& raw,
+  const cao::ClipCameraPlan& plan)
+{
+  const cao::ClipCamera& cam = plan.camera;
+  if (raw.coveredPixels == 0 && !std::isfinite(plan.validRegion[0]))
+  {
+    // (With a region of interest the mesh may simply not reach it.)
+    vtkErrorWithObjectMacro(self,
+      "The clip mesh covers no depth-map pixel: it is smaller than one pixel of "
+        << cam.pixelSize[0] << " x " << cam.pixelSize[1] << " local units ("
+        << (self->GetPixelSize() > 0.0
+               ? "PixelSize; make it smaller"
+               : "half a voxel at MaximumPoseScale, or the dilation radius / 32; "
+                 "a mesh this small clips nothing")
+        << ").");
+    return false;
+  }
+  if (raw.unmatchedPixels > 0)
+    vtkWarningWithObjectMacro(self, << raw.unmatchedPixels
+                                    << " depth-map pixel(s) saw unbalanced crossings; the mesh "
+                                       "may self-intersect.");
+  if (raw.overflowPixels > 0)
+    vtkWarningWithObjectMacro(self, << raw.overflowPixels << " pixel(s) have more than "
+                                    << cam.layers
+                                    << " inside intervals; the extra ones were merged into the "
+                                       "last layer. Increase NumberOfLayers to clip this mesh "
+                                       "exactly.");
+  return true;
+}
+}
+
+//------------------------------------------------------------------------------
+cao::ClipCameraRequest vtkClipDepthMaps::MakeCameraRequest() const
+{
   cao::ClipCameraRequest request;
   std::copy(this->Direction, this->Direction + 3, request.direction);
   std::copy(this->ViewUp, this->ViewUp + 3, request.viewUp);
@@ -209,201 +231,153 @@ int vtkClipDepthMaps::RequestData(
   request.layers = this->NumberOfLayers;
   std::copy(this->VoxelSpacing, this->VoxelSpacing + 3, request.voxelSpacing);
   const double* h = this->VoxelSpacing;
-  const double reach = this->Reach > 0.0 ? this->Reach : 8.0 * std::min({ h[0], h[1], h[2] });
-  request.reach = reach;
+  request.reach = this->Reach > 0.0 ? this->Reach : 8.0 * std::min({ h[0], h[1], h[2] });
   request.minimumPoseScale = this->MinimumPoseScale;
   request.maximumPoseScale = this->GetEffectiveMaximumPoseScale();
   request.dilationScale = this->DilationScale;
   std::copy(this->RegionOfInterest, this->RegionOfInterest + 6, request.regionOfInterest);
+  return request;
+}
+
+//------------------------------------------------------------------------------
+bool vtkClipDepthMaps::BuildMaps(const cao::ClipCameraPlan& plan, const cao::TriangleMesh& mesh,
+  bool gpu, cao::ClipDepthMaps maps[3], double& rasterMs, double& dilateMs, bool& aborted)
+{
+  // Rasterise and peel, then dilate and erode: on the GPU or the CPU.
+  const cao::ClipCamera& cam = plan.camera;
+  cao::ClipDepthMaps &raw = maps[0], &dilated = maps[1], &eroded = maps[2];
+  std::string error;
+  aborted = false;
+  if (gpu)
+  {
+    cao::gl::ClipDepthMapsGLStats stats;
+    cao::gl::ClipDepthMapsGL& raster = this->GPU->Raster();
+    if (!raster.Build(cam, mesh, plan.radius, stats, error) ||
+      !raster.Read(raw, dilated, eroded, error))
+    {
+      vtkErrorMacro("Cannot build the depth maps on the GPU: " << error << ".");
+      return false;
+    }
+    raw.coveredPixels = stats.coveredPixels;
+    raw.overflowPixels = stats.overflowPixels;
+    raw.unmatchedPixels = stats.unmatchedPixels;
+    rasterMs = stats.rasterMs;
+    dilateMs = stats.dilateMs;
+    this->UpdateProgress(0.2);
+    return CheckRawMaps(this, raw, plan);
+  }
+  auto t0 = std::chrono::steady_clock::now();
+  if (!cao::RasterizeDepthLayers(cam, mesh, raw, error))
+  {
+    vtkErrorMacro("Cannot rasterise the clip mesh: " << error << ".");
+    return false;
+  }
+  rasterMs = vtkCAO::MillisecondsSince(t0);
+  this->UpdateProgress(0.2);
+  if (!CheckRawMaps(this, raw, plan))
+    return false;
+  t0 = std::chrono::steady_clock::now();
+  dilated.Allocate(cam.width, cam.height, cam.layers);
+  eroded.Allocate(cam.width, cam.height, cam.layers);
+  bool ok = true;
+  vtkCAO::WithThreads(this->NumberOfThreads, [&] {
+    ok = vtkCAO::ParallelFor(this, cam.height, 1, 0.2, 1.0, [&](std::int64_t b, std::int64_t e) {
+      cao::DilateErodeRows(
+        raw, cam, plan.radius, dilated, eroded, static_cast<int>(b), static_cast<int>(e));
+    });
+  });
+  aborted = !ok;
+  dilateMs = vtkCAO::MillisecondsSince(t0);
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+void vtkClipDepthMaps::WriteOutput(vtkImageData* output, const cao::ClipCameraPlan& plan,
+  const cao::ClipDepthMaps maps[3], const double times[2], bool gpu)
+{
+  const cao::ClipCamera& cam = plan.camera;
+  const double *right = cam.right, *up = cam.up, *dir = cam.direction;
+  output->SetExtent(0, cam.width - 1, 0, cam.height - 1, 0, 0);
+  output->SetOrigin(cam.origin);
+  output->SetSpacing(cam.pixelSize[0], cam.pixelSize[1], 1.0);
+  const double direction[9] = { right[0], up[0], dir[0], right[1], up[1], dir[1], right[2],
+    up[2], dir[2] };
+  output->SetDirectionMatrix(direction);
+  vtkPointData* pd = output->GetPointData();
+  const char* names[3][2] = { { "FrontDepth", "BackDepth" },
+    { "DilatedFrontDepth", "DilatedBackDepth" }, { "ErodedFrontDepth", "ErodedBackDepth" } };
+  for (int m = 0; m < 3; ++m)
+  {
+    pd->AddArray(MakeLayerArray(names[m][0], maps[m].front, cam.layers));
+    pd->AddArray(MakeLayerArray(names[m][1], maps[m].back, cam.layers));
+  }
+  // Camera-space bounds of the dilated region: the candidate box.
+  double region[6];
+  cao::DilatedRegionBounds(maps[1], region);
+  vtkFieldData* fd = output->GetFieldData();
+  vtkCAO::AddFieldTuple(fd, "ClipCamera", {},
+    { cam.origin[0], cam.origin[1], cam.origin[2], right[0], right[1], right[2], up[0], up[1],
+      up[2], dir[0], dir[1], dir[2], cam.pixelSize[0], cam.pixelSize[1], double(cam.width),
+      double(cam.height), double(cam.layers) });
+  vtkCAO::AddFieldTuple(fd, "DilationRadius",
+    { "Radius", "Reach", "VoxelDiagonal", "MinimumPoseScale", "DilationScale" },
+    { plan.radius, this->MakeCameraRequest().reach, plan.voxelDiagonal, this->MinimumPoseScale,
+      this->DilationScale });
+  vtkCAO::AddFieldTuple(fd, "PoseScaleRange", {},
+    { this->MinimumPoseScale, this->GetEffectiveMaximumPoseScale() });
+  vtkCAO::AddFieldTuple(fd, "ValidRegion", {},
+    { plan.validRegion[0], plan.validRegion[1], plan.validRegion[2], plan.validRegion[3] });
+  vtkCAO::AddFieldTuple(fd, "ClipRegionBounds", {},
+    { region[0], region[1], region[2], region[3], region[4], region[5] });
+  const cao::ClipDepthMaps& raw = maps[0];
+  vtkCAO::AddFieldTuple(fd, "DepthMapStatistics",
+    { "CoveredPixels", "OverflowPixels", "UnmatchedPixels", "RasterMilliseconds",
+      "DilateMilliseconds" },
+    { double(raw.coveredPixels), double(raw.overflowPixels), double(raw.unmatchedPixels),
+      times[0], times[1] });
+  this->GPU->AddBackendLabel(fd, gpu);
+}
+
+//------------------------------------------------------------------------------
+int vtkClipDepthMaps::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  vtkImageData* output = vtkImageData::GetData(outputVector);
+  if (!input || !output)
+  {
+    vtkErrorMacro("The input must be vtkPolyData.");
+    return 0;
+  }
+  output->Initialize();
+  std::vector<double> points;
+  std::vector<std::int64_t> tris;
+  if (!this->CheckSettings() || !PrepareMesh(this, input, points, tris))
+    return 0;
+  const cao::TriangleMesh mesh = cao::ViewMesh(points, tris);
+
+  // The clipping camera: frame, dilation radius, extent, resolution.
   cao::ClipCameraPlan plan;
-  if (!cao::PlanClipCamera(request, cao::ViewMesh(points, tris), plan, error))
+  std::string error;
+  if (!cao::PlanClipCamera(this->MakeCameraRequest(), mesh, plan, error))
   {
     vtkErrorMacro("Cannot make the depth maps: " << error << ".");
     return 0;
   }
   if (!plan.note.empty())
-  {
     vtkWarningMacro(<< "Note: " << plan.note << ".");
-  }
-  const cao::ClipCamera& cam = plan.camera;
-  const double radius = plan.radius;
-  const double voxelDiagonal = plan.voxelDiagonal;
-  this->DilationRadius = radius;
-  const int width = cam.width, height = cam.height;
-  const double pw = cam.pixelSize[0], ph = cam.pixelSize[1];
-  const double* right = cam.right;
-  const double* up = cam.up;
-  const double* dir = cam.direction;
+  this->DilationRadius = plan.radius;
 
-  // Rasterise and peel, then dilate and erode: on the GPU or the CPU.
-  const cao::TriangleMesh tm = cao::ViewMesh(points, tris);
-  cao::ClipDepthMaps raw, dilated, eroded;
-  bool gpuFailed = false;
+  // The maps (raw, dilated, eroded), on the GPU or the CPU.
+  bool gpuFailed = false, aborted = false;
   const bool gpu = this->ResolveBackend(gpuFailed);
   if (gpuFailed)
-  {
     return 0;
-  }
-  double rasterMs = 0.0, dilateMs = 0.0;
-  if (gpu)
-  {
-    cao::gl::ClipDepthMapsGLStats gpuStats;
-    cao::gl::ClipDepthMapsGL& raster = this->GPU->Raster();
-    if (!raster.Build(cam, tm, radius, gpuStats, error) ||
-      !raster.Read(raw, dilated, eroded, error))
-    {
-      vtkErrorMacro("Cannot build the depth maps on the GPU: " << error << ".");
-      return 0;
-    }
-    raw.coveredPixels = gpuStats.coveredPixels;
-    raw.overflowPixels = gpuStats.overflowPixels;
-    raw.unmatchedPixels = gpuStats.unmatchedPixels;
-    rasterMs = gpuStats.rasterMs;
-    dilateMs = gpuStats.dilateMs;
-  }
-  else
-  {
-    auto t0 = std::chrono::steady_clock::now();
-    if (!cao::RasterizeDepthLayers(cam, tm, raw, error))
-    {
-      vtkErrorMacro("Cannot rasterise the clip mesh: " << error << ".");
-      return 0;
-    }
-    rasterMs = vtkCAO::MillisecondsSince(t0);
-  }
-  this->UpdateProgress(0.2);
-  if (raw.coveredPixels == 0 && !std::isfinite(plan.validRegion[0]))
-  {
-    // (With a region of interest the mesh may simply not reach it.)
-    vtkErrorMacro("The clip mesh covers no depth-map pixel: it is smaller than one pixel of "
-      << pw << " x " << ph << " local units ("
-      << (this->PixelSize > 0.0 ? "PixelSize; make it smaller"
-                                : "half a voxel at MaximumPoseScale, or the dilation radius / 32; "
-                                  "a mesh this small clips nothing")
-      << ").");
-    return 0;
-  }
-  if (raw.unmatchedPixels > 0)
-  {
-    vtkWarningMacro(<< raw.unmatchedPixels
-                    << " depth-map pixel(s) saw unbalanced crossings; the mesh may "
-                       "self-intersect.");
-  }
-  if (raw.overflowPixels > 0)
-  {
-    vtkWarningMacro(<< raw.overflowPixels << " pixel(s) have more than " << cam.layers
-                    << " inside intervals; the extra ones were merged into the last "
-                       "layer. Increase NumberOfLayers to clip this mesh exactly.");
-  }
-
-  if (!gpu)
-  {
-    auto t0 = std::chrono::steady_clock::now();
-    dilated.Allocate(width, height, cam.layers);
-    eroded.Allocate(width, height, cam.layers);
-    bool ok = true;
-    vtkCAO::WithThreads(this->NumberOfThreads, [&] {
-      ok = vtkCAO::ParallelFor(this, height, 1, 0.2, 1.0, [&](std::int64_t b, std::int64_t e) {
-        cao::DilateErodeRows(raw, cam, radius, dilated, eroded, static_cast<int>(b),
-          static_cast<int>(e));
-      });
-    });
-    if (!ok)
-    {
-      return 1;
-    }
-    dilateMs = vtkCAO::MillisecondsSince(t0);
-  }
-
-  // Camera-space bounds of the dilated region: the candidate box.
-  double region[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
-    VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
-  for (int y = 0; y < height; ++y)
-  {
-    for (int x = 0; x < width; ++x)
-    {
-      for (int l = 0; l < cam.layers; ++l)
-      {
-        const std::size_t i = dilated.Index(l, x, y);
-        if (dilated.front[i] <= dilated.back[i])
-        {
-          region[0] = std::min(region[0], static_cast<double>(x));
-          region[1] = std::max(region[1], static_cast<double>(x + 1));
-          region[2] = std::min(region[2], static_cast<double>(y));
-          region[3] = std::max(region[3], static_cast<double>(y + 1));
-          region[4] = std::min(region[4], static_cast<double>(dilated.front[i]));
-          region[5] = std::max(region[5], static_cast<double>(dilated.back[i]));
-        }
-      }
-    }
-  }
-
-  output->SetExtent(0, width - 1, 0, height - 1, 0, 0);
-  output->SetOrigin(cam.origin);
-  output->SetSpacing(pw, ph, 1.0);
-  const double direction[9] = { right[0], up[0], dir[0], right[1], up[1], dir[1], right[2],
-    up[2], dir[2] };
-  output->SetDirectionMatrix(direction);
-  vtkPointData* pd = output->GetPointData();
-  pd->AddArray(MakeLayerArray("FrontDepth", raw.front, cam.layers));
-  pd->AddArray(MakeLayerArray("BackDepth", raw.back, cam.layers));
-  pd->AddArray(MakeLayerArray("DilatedFrontDepth", dilated.front, cam.layers));
-  pd->AddArray(MakeLayerArray("DilatedBackDepth", dilated.back, cam.layers));
-  pd->AddArray(MakeLayerArray("ErodedFrontDepth", eroded.front, cam.layers));
-  pd->AddArray(MakeLayerArray("ErodedBackDepth", eroded.back, cam.layers));
-
-  vtkFieldData* fd = output->GetFieldData();
-  vtkNew<vtkDoubleArray> camera;
-  camera->SetName("ClipCamera");
-  camera->SetNumberOfComponents(17);
-  const double cameraValues[17] = { cam.origin[0], cam.origin[1], cam.origin[2], right[0],
-    right[1], right[2], up[0], up[1], up[2], dir[0], dir[1], dir[2], pw, ph,
-    static_cast<double>(width), static_cast<double>(height), static_cast<double>(cam.layers) };
-  camera->InsertNextTuple(cameraValues);
-  fd->AddArray(camera);
-  vtkNew<vtkDoubleArray> dilation;
-  dilation->SetName("DilationRadius");
-  dilation->SetNumberOfComponents(5);
-  const char* dilationNames[] = { "Radius", "Reach", "VoxelDiagonal", "MinimumPoseScale",
-    "DilationScale" };
-  for (int c = 0; c < 5; ++c)
-  {
-    dilation->SetComponentName(c, dilationNames[c]);
-  }
-  const double dilationValues[5] = { radius, reach, voxelDiagonal, this->MinimumPoseScale,
-    this->DilationScale };
-  dilation->InsertNextTuple(dilationValues);
-  fd->AddArray(dilation);
-  vtkNew<vtkDoubleArray> scales;
-  scales->SetName("PoseScaleRange");
-  scales->SetNumberOfComponents(2);
-  scales->InsertNextTuple2(this->MinimumPoseScale, this->GetEffectiveMaximumPoseScale());
-  fd->AddArray(scales);
-  vtkNew<vtkDoubleArray> valid;
-  valid->SetName("ValidRegion");
-  valid->SetNumberOfComponents(4);
-  valid->InsertNextTuple(plan.validRegion);
-  fd->AddArray(valid);
-  vtkNew<vtkDoubleArray> regionArray;
-  regionArray->SetName("ClipRegionBounds");
-  regionArray->SetNumberOfComponents(6);
-  regionArray->InsertNextTuple(region);
-  fd->AddArray(regionArray);
-  vtkNew<vtkDoubleArray> stats;
-  stats->SetName("DepthMapStatistics");
-  stats->SetNumberOfComponents(5);
-  const char* statNames[] = { "CoveredPixels", "OverflowPixels", "UnmatchedPixels",
-    "RasterMilliseconds", "DilateMilliseconds" };
-  for (int c = 0; c < 5; ++c)
-  {
-    stats->SetComponentName(c, statNames[c]);
-  }
-  const double statValues[5] = { static_cast<double>(raw.coveredPixels),
-    static_cast<double>(raw.overflowPixels), static_cast<double>(raw.unmatchedPixels), rasterMs,
-    dilateMs };
-  stats->InsertNextTuple(statValues);
-  fd->AddArray(stats);
-  this->GPU->AddBackendLabel(fd, gpu);
+  cao::ClipDepthMaps maps[3];
+  double times[2] = { 0.0, 0.0 };
+  if (!this->BuildMaps(plan, mesh, gpu, maps, times[0], times[1], aborted))
+    return aborted ? 1 : 0; // aborted: the executive flags the output
+  this->WriteOutput(output, plan, maps, times, gpu);
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -56,6 +56,14 @@
 #include "caoFiltersAOModule.h" // For export macro
 #include "vtkAOAlgorithm.h"
 
+namespace cao
+{
+struct ClipCameraPlan;
+struct ClipCameraRequest;
+struct ClipDepthMaps;
+struct TriangleMesh;
+}
+
 class CAOFILTERSAO_EXPORT vtkClipDepthMaps : public vtkAOAlgorithm
 {
 public:
@@ -195,6 +203,16 @@ protected:
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  /// The camera request of the settings (the reach resolved).
+  cao::ClipCameraRequest MakeCameraRequest() const;
+  /// Raw, dilated and eroded maps (maps[0..2]) on the GPU or the CPU; false
+  /// after an error or an abort (`aborted`).
+  bool BuildMaps(const cao::ClipCameraPlan& plan, const cao::TriangleMesh& mesh, bool gpu,
+    cao::ClipDepthMaps maps[3], double& rasterMs, double& dilateMs, bool& aborted);
+  /// The maps, the camera and the statistics as the output image.
+  void WriteOutput(vtkImageData* output, const cao::ClipCameraPlan& plan,
+    const cao::ClipDepthMaps maps[3], const double times[2], bool gpu);
 
   double Direction[3] = { 0.0, 0.0, 1.0 };
   double ViewUp[3] = { 0.0, 1.0, 0.0 };

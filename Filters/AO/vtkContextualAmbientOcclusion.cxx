@@ -63,7 +63,7 @@ struct PoseInputs
 struct PoseResult
 {
   cao::CategoryCounts counts;
-  std::int64_t classifiedVoxels = 0, restoredVoxels = 0;
+  std::int64_t classifiedVoxels = 0, restoredVoxels = 0, brickVoxels = -1;
   double classifyMs = 0, copyMs = 0, recomputeMs = 0, totalMs = 0;
   double fullMs = -1, maxDifference = -1;
   std::int64_t differing = 0;
@@ -404,11 +404,16 @@ bool vtkContextualAmbientOcclusion::Internals::RunCPU(
   vtkCAO::WithThreads(self->NumberOfThreads, [&] {
     const auto start = std::chrono::steady_clock::now();
     cao::ContextualUpdate::Stats stats;
-    ok = this->CPU.Update(volume, in.clip, in.view, buffers, parallel, stats);
+    // The maps' version: a new maps object, new contents or another mode.
+    const std::uint64_t mapsVersion =
+      (static_cast<std::uint64_t>(in.maps->GetMTime()) << 1) | (self->Mode & 1);
+    ok = this->CPU.Update(volume, in.clip, in.view, mapsVersion, buffers, parallel, stats,
+      !vtkCAO::BrickClassificationDisabled());
     r.totalMs = vtkCAO::MillisecondsSince(start);
     r.counts = stats.counts;
     r.classifiedVoxels = stats.classifiedVoxels;
     r.restoredVoxels = stats.restoredVoxels;
+    r.brickVoxels = stats.counts.byBrick;
     r.classifyMs = stats.classifyMs;
     r.copyMs = stats.copyMs;
     r.recomputeMs = stats.recomputeMs;
@@ -600,8 +605,9 @@ int vtkContextualAmbientOcclusion::RequestData(
   vtkCAO::AddFieldTuple(fd, "StageMilliseconds",
     { "Classify", "CopyUnaffected", "RecomputeAffected", "Total" },
     { r.classifyMs, r.copyMs, r.recomputeMs, r.totalMs });
-  vtkCAO::AddFieldTuple(fd, "UpdateRegion", { "ClassifiedVoxels", "RestoredVoxels" },
-    { double(r.classifiedVoxels), double(r.restoredVoxels) });
+  vtkCAO::AddFieldTuple(fd, "UpdateRegion",
+    { "ClassifiedVoxels", "RestoredVoxels", "DecidedByBrick" },
+    { double(r.classifiedVoxels), double(r.restoredVoxels), double(r.brickVoxels) });
   if (this->Verify)
     vtkCAO::AddFieldTuple(fd, "Verification",
       { "MaxAbsDifference", "DifferingVoxels", "FullRecomputeMilliseconds" },

@@ -95,6 +95,49 @@ double vtkLocalAmbientOcclusion::GetEffectiveReach(const double spacing[3]) cons
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+const cao::LAOSettingInfo* SettingRow(int i)
+{
+  int count = 0;
+  const cao::LAOSettingInfo* table = cao::LAOSettingTable(count);
+  return i >= 0 && i < count ? table + i : nullptr;
+}
+}
+
+int vtkLocalAmbientOcclusion::GetNumberOfSettings()
+{
+  int count = 0;
+  cao::LAOSettingTable(count);
+  return count;
+}
+const char* vtkLocalAmbientOcclusion::GetSettingName(int i)
+{
+  const cao::LAOSettingInfo* r = SettingRow(i);
+  return r ? r->name : nullptr;
+}
+double vtkLocalAmbientOcclusion::GetSettingDefault(int i)
+{
+  const cao::LAOSettingInfo* r = SettingRow(i);
+  return r ? r->defaultValue : std::nan("");
+}
+double vtkLocalAmbientOcclusion::GetSettingMinimum(int i)
+{
+  const cao::LAOSettingInfo* r = SettingRow(i);
+  return r ? r->minimum : std::nan("");
+}
+double vtkLocalAmbientOcclusion::GetSettingMaximum(int i)
+{
+  const cao::LAOSettingInfo* r = SettingRow(i);
+  return r ? r->maximum : std::nan("");
+}
+bool vtkLocalAmbientOcclusion::GetSettingIsInteger(int i)
+{
+  const cao::LAOSettingInfo* r = SettingRow(i);
+  return r && r->integer;
+}
+
+//------------------------------------------------------------------------------
 int vtkLocalAmbientOcclusion::RequestInformation(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {

@@ -229,6 +229,23 @@ public:
   /// The reach actually used for an input spacing (resolves Reach == 0).
   double GetEffectiveReach(const double spacing[3]) const;
 
+  ///@{
+  /**
+   * The LAO settings table (cao::LAOSettingTable), the one definition the
+   * filters, the mapper, the ParaView XML (checked by
+   * Plugin.SettingsMatchXML) and `cao` share: setting i's name (its
+   * Set/Get method, its ParaView property, its component of the
+   * "LAOSettings" field array), default, accepted range, and whether it is
+   * an integer (enumerations are their integer values).
+   */
+  static int GetNumberOfSettings();
+  static const char* GetSettingName(int i);
+  static double GetSettingDefault(int i);
+  static double GetSettingMinimum(int i);
+  static double GetSettingMaximum(int i);
+  static bool GetSettingIsInteger(int i);
+  ///@}
+
   /// Includes the opacity function's modification time.
   vtkMTimeType GetMTime() override;
 

@@ -31,7 +31,8 @@
 namespace vtkCAO
 {
 /**
- * Run f() with at most `threads` threads (0: the backend's default), on the
+ * Run f() with at most `threads` threads (0: as many as the application
+ * asked vtkSMPTools for with Initialize, or the backend's default), on the
  * SMP backend in use, except that Debian's VTK defaults to Sequential: then
  * STDThread, unless the user chose a backend through VTK_SMP_BACKEND_IN_USE.
  * The choice is scoped to f(): the application's own setting is left as it
@@ -43,8 +44,11 @@ void WithThreads(int threads, F&& f)
   std::string backend = vtkSMPTools::GetBackend();
   if (backend == "Sequential" && !std::getenv("VTK_SMP_BACKEND_IN_USE"))
     backend = "STDThread";
+  const int desired = threads > 0
+    ? threads
+    : vtk::detail::smp::vtkSMPToolsAPI::GetInstance().GetInternalDesiredNumberOfThread();
   vtkSMPTools::LocalScope(
-    vtkSMPTools::Config(std::max(0, threads), backend, vtkSMPTools::GetNestedParallelism()), f);
+    vtkSMPTools::Config(std::max(0, desired), backend, vtkSMPTools::GetNestedParallelism()), f);
 }
 
 /**
@@ -77,6 +81,16 @@ bool ParallelFor(vtkAlgorithm* self, std::int64_t n, std::int64_t grain, double 
     }
   }
   return true;
+}
+
+/// Diagnostic: CAO_CLASSIFY_PER_SAMPLE=1 makes the CPU classification test
+/// every voxel sample by sample instead of deciding provably uniform bricks
+/// at once (cao::ClipMapsTiles). The result is the same bit for bit; tests
+/// and benchmarks compare the two.
+inline bool BrickClassificationDisabled()
+{
+  const char* v = std::getenv("CAO_CLASSIFY_PER_SAMPLE");
+  return v && *v && std::string(v) != "0";
 }
 
 /// Milliseconds since `start`.
@@ -237,18 +251,19 @@ bool CheckVolumeExtent(Self* self, vtkImageData* input, vtkInformation* outInfo,
   return true;
 }
 
-/// Add a one-tuple field array `name` whose components are named:
-/// the statistics a run reports (counts, milliseconds).
+/// Add a one-tuple field array `name` of `values`, its components named
+/// by `components` when given: the statistics a run reports.
 template <typename Array = vtkDoubleArray>
 void AddFieldTuple(vtkFieldData* fd, const char* name,
   std::initializer_list<const char*> components, std::initializer_list<double> values)
 {
   vtkNew<Array> a;
   a->SetName(name);
-  a->SetNumberOfComponents(static_cast<int>(components.size()));
+  a->SetNumberOfComponents(static_cast<int>(values.size()));
   int c = 0;
   for (const char* n : components)
-    a->SetComponentName(c++, n);
+    if (c < static_cast<int>(values.size()))
+      a->SetComponentName(c++, n);
   a->SetNumberOfTuples(1);
   c = 0;
   for (double v : values)

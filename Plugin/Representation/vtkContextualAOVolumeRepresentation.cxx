@@ -53,6 +53,10 @@ void vtkContextualAOVolumeRepresentation::SetReach(double r)
 {
   this->GetAOMapper()->SetReach(r);
 }
+void vtkContextualAOVolumeRepresentation::SetNumberOfSamples(int m)
+{
+  this->GetAOMapper()->SetNumberOfSamples(m);
+}
 void vtkContextualAOVolumeRepresentation::SetSampleDensity(double d)
 {
   this->GetAOMapper()->SetSampleDensity(d);

@@ -37,6 +37,7 @@ public:
   void SetRayPattern(int pattern);
   void SetNumberOfRays(int rays);
   void SetReach(double reach);
+  void SetNumberOfSamples(int samples);
   void SetSampleDensity(double density);
   void SetStartOffset(double offset);
   void SetRayVariation(int variation);

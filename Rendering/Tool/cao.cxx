@@ -374,10 +374,10 @@ void ConfigureLAO(const Options& o, const std::string& rays, vtkLocalAmbientOccl
   lao->SetNumberOfRays(k);
   lao->SetReach(o.reach);
   lao->SetNumberOfSamples(o.samples);
-  lao->SetSampleDensity(o.lao.density);
-  lao->SetStartOffset(o.lao.offset);
-  lao->SetRayVariation(static_cast<int>(o.lao.variation));
-  lao->SetQualityPreset(static_cast<int>(o.lao.quality));
+  lao->SetSampleDensity(o.lao.settings.sampleDensity);
+  lao->SetStartOffset(o.lao.settings.startOffset);
+  lao->SetRayVariation(static_cast<int>(o.lao.settings.variation));
+  lao->SetQualityPreset(static_cast<int>(o.lao.settings.preset));
   lao->SetScalarOpacityUnitDistance(o.unitDistance);
   lao->SetComponent(o.component);
   lao->SetNumberOfThreads(o.threads);

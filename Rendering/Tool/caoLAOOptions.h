@@ -16,13 +16,12 @@
 
 namespace caocli
 {
-/// What the four options set; the defaults are the filters' and the mapper's.
+/// What the four options set: fields of the one settings type (its
+/// defaults are the filters' and the mapper's), and which option a preset
+/// would override.
 struct LAOOptions
 {
-  cao::QualityPreset quality = cao::QualityPreset::Custom;
-  double density = 1.0;
-  double offset = 0.5;
-  cao::RayVariation variation = cao::RayVariation::None;
+  cao::LAOSettings settings; ///< preset, sampleDensity, startOffset, variation
   /// The first option given that a quality preset overrides (--rays,
   /// --samples, --density, --offset, --variation), for the conflict check.
   std::string overridden;
@@ -51,14 +50,14 @@ inline bool TakeLAOOption(
   const std::string v = argv[++i];
   if (a == "--quality")
   {
-    if (!cao::ParseQualityPreset(v, o.quality))
+    if (!cao::ParseQualityPreset(v, o.settings.preset))
       error = "bad quality preset '" + v + "' for --quality (expected custom, interactive, "
                                            "balanced or reference)";
     return true;
   }
   if (a == "--variation")
   {
-    if (!cao::ParseRayVariation(v, o.variation))
+    if (!cao::ParseRayVariation(v, o.settings.variation))
       error = "bad ray variation '" + v + "' for --variation (expected none, rotate, jitter "
                                           "or rotate+jitter)";
     if (o.overridden.empty())
@@ -72,13 +71,13 @@ inline bool TakeLAOOption(
   {
     if (!number || x < MinDensity || x > MaxDensity)
       error = "bad value '" + v + "' for --density (samples per voxel, 0.001 to 1000)";
-    o.density = x;
+    o.settings.sampleDensity = x;
   }
   else
   {
     if (!number || x < 0.0 || x >= 1.0)
       error = "bad value '" + v + "' for --offset (steps, in [0, 1))";
-    o.offset = x;
+    o.settings.startOffset = x;
   }
   if (o.overridden.empty())
     o.overridden = a;
@@ -96,9 +95,9 @@ inline void NoteOverridden(LAOOptions& o, const std::string& option)
 /// individual options set, so giving both is an error.
 inline bool CheckLAOOptions(const LAOOptions& o, std::string& error)
 {
-  if (o.quality != cao::QualityPreset::Custom && !o.overridden.empty())
+  if (o.settings.preset != cao::QualityPreset::Custom && !o.overridden.empty())
   {
-    error = std::string("--quality ") + cao::QualityPresetName(o.quality) +
+    error = std::string("--quality ") + cao::QualityPresetName(o.settings.preset) +
       " sets the rays, samples, density, offset and variation; it cannot be combined with " +
       o.overridden;
     return false;

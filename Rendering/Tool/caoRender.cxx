@@ -308,10 +308,10 @@ int RunRender(int argc, char* argv[])
   mapper->SetRayPattern(pattern);
   mapper->SetNumberOfRays(fib);
   mapper->SetReach(o.reach);
-  mapper->SetSampleDensity(o.lao.density);
-  mapper->SetStartOffset(o.lao.offset);
-  mapper->SetRayVariation(static_cast<int>(o.lao.variation));
-  mapper->SetQualityPreset(static_cast<int>(o.lao.quality));
+  mapper->SetSampleDensity(o.lao.settings.sampleDensity);
+  mapper->SetStartOffset(o.lao.settings.startOffset);
+  mapper->SetRayVariation(static_cast<int>(o.lao.settings.variation));
+  mapper->SetQualityPreset(static_cast<int>(o.lao.settings.preset));
   mapper->SetAOStrength(o.strength);
   mapper->SetAmbientOcclusion(o.ao);
   mapper->SetSampleDistance(o.sampleDistance);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace cao
 {
@@ -138,31 +139,261 @@ void ClassifySlices(const layout::ClipParams& p, const int dims[3], const ClipMa
   std::vector<std::int64_t>& affected, CategoryCounts& counts)
 {
   const int whole[6] = { 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1 };
-  ClassifyRegion(p, dims, maps, opacity, clipped, category, whole, zBegin, zEnd, affected, counts);
+  std::vector<std::vector<std::int64_t>> lists(static_cast<std::size_t>(std::max(0, zEnd - zBegin)));
+  ClassifyRegion(p, dims, maps, opacity, clipped, category, whole, zBegin, zEnd, lists.data(), counts);
+  for (const auto& l : lists)
+    affected.insert(affected.end(), l.begin(), l.end());
+}
+
+namespace
+{
+constexpr float PosInf = std::numeric_limits<float>::infinity();
+
+/// An interval as the point test reads it: empty when it contains nothing
+/// (front > back, or NaN).
+inline bool Usable(float f, float b)
+{
+  return f <= b;
+}
+}
+
+void ClipMapsTiles::Build(const ClipMapsView& maps, int width, int height, int layers)
+{
+  this->Width = width;
+  this->Height = height;
+  this->Layers = layers;
+  this->Levels.clear();
+  if (width < 1 || height < 1 || layers < 1)
+    return;
+  const float* fronts[2] = { maps.front, maps.candFront };
+  const float* backs[2] = { maps.back, maps.candBack };
+  for (int tile = 4;; tile *= 4)
+  {
+    Level level;
+    level.tile = tile;
+    level.tilesX = (width + tile - 1) / tile;
+    level.tilesY = (height + tile - 1) / tile;
+    const std::size_t n = static_cast<std::size_t>(level.tilesX) * level.tilesY;
+    for (int set = 0; set < 2; ++set)
+    {
+      level.minFront[set].assign(n, PosInf);
+      level.maxBack[set].assign(n, -PosInf);
+      level.maxFrontLayer[set].assign(n * layers, -PosInf);
+      level.minBackLayer[set].assign(n * layers, PosInf);
+    }
+    if (this->Levels.empty())
+    {
+      // From the pixels.
+      for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x)
+        {
+          const std::size_t t = static_cast<std::size_t>(y / tile) * level.tilesX + x / tile;
+          const std::size_t base = (static_cast<std::size_t>(y) * width + x) * layers;
+          for (int set = 0; set < 2; ++set)
+            for (int l = 0; l < layers; ++l)
+            {
+              float f = fronts[set][base + l], b = backs[set][base + l];
+              if (Usable(f, b))
+              {
+                level.minFront[set][t] = std::min(level.minFront[set][t], f);
+                level.maxBack[set][t] = std::max(level.maxBack[set][t], b);
+              }
+              else
+              {
+                f = PosInf; // contains nothing: no range lies in it
+                b = -PosInf;
+              }
+              float& mf = level.maxFrontLayer[set][t * layers + l];
+              float& mb = level.minBackLayer[set][t * layers + l];
+              mf = std::max(mf, f);
+              mb = std::min(mb, b);
+            }
+        }
+    }
+    else
+    {
+      // From the level below: 4 x 4 of its tiles per tile.
+      const Level& below = this->Levels.back();
+      for (int ty = 0; ty < below.tilesY; ++ty)
+        for (int tx = 0; tx < below.tilesX; ++tx)
+        {
+          const std::size_t c = static_cast<std::size_t>(ty) * below.tilesX + tx;
+          const std::size_t t = static_cast<std::size_t>(ty / 4) * level.tilesX + tx / 4;
+          for (int set = 0; set < 2; ++set)
+          {
+            level.minFront[set][t] = std::min(level.minFront[set][t], below.minFront[set][c]);
+            level.maxBack[set][t] = std::max(level.maxBack[set][t], below.maxBack[set][c]);
+            for (int l = 0; l < layers; ++l)
+            {
+              float& mf = level.maxFrontLayer[set][t * layers + l];
+              float& mb = level.minBackLayer[set][t * layers + l];
+              mf = std::max(mf, below.maxFrontLayer[set][c * layers + l]);
+              mb = std::min(mb, below.minBackLayer[set][c * layers + l]);
+            }
+          }
+        }
+    }
+    this->Levels.push_back(std::move(level));
+    if (tile >= width && tile >= height)
+      break;
+  }
+}
+
+ClipMapsTiles::Coverage ClipMapsTiles::Query(int set, int px0, int px1, int py0, int py1,
+  double d0, double d1, bool allInMap) const
+{
+  px0 = std::max(px0, 0);
+  py0 = std::max(py0, 0);
+  px1 = std::min(px1, this->Width - 1);
+  py1 = std::min(py1, this->Height - 1);
+  if (px0 > px1 || py0 > py1)
+    return None;
+  // The finest level whose tiles cover the rectangle with at most 4 x 4.
+  const Level* level = &this->Levels.back();
+  for (const Level& l : this->Levels)
+    if (px1 / l.tile - px0 / l.tile < 6 && py1 / l.tile - py0 / l.tile < 6)
+    {
+      level = &l;
+      break;
+    }
+  const int T = level->tile, L = this->Layers;
+  bool none = true, all = allInMap;
+  for (int ty = py0 / T; ty <= py1 / T && (none || all); ++ty)
+    for (int tx = px0 / T; tx <= px1 / T && (none || all); ++tx)
+    {
+      const std::size_t t = static_cast<std::size_t>(ty) * level->tilesX + tx;
+      // None: the range misses every interval of the tile.
+      if (!(d1 < level->minFront[set][t] || d0 > level->maxBack[set][t]))
+        none = false;
+      // All: one layer holds the range at every pixel of the tile.
+      bool held = false;
+      for (int l = 0; l < L && !held; ++l)
+        held = level->maxFrontLayer[set][t * L + l] <= d0 && d1 <= level->minBackLayer[set][t * L + l];
+      if (!held)
+        all = false;
+    }
+  return none ? None : (all ? All : Mixed);
+}
+
+namespace
+{
+/// The coverage of every point of the index-space box [lo, hi] (inclusive,
+/// continuous) for map set `set`, proven with the tiles, or Mixed. The box
+/// is projected in double and grown by a bound on the float evaluation
+/// error of Project (operands and coordinates rounded to float: a few ulps
+/// of the terms' magnitudes), so the float point test of any sample in it
+/// falls in the queried pixels and depths.
+ClipMapsTiles::Coverage BoxCoverage(const layout::ClipParams& p, const ClipMapsTiles& tiles,
+  int set, const double lo[3], const double hi[3])
+{
+  double range[3][2];
+  for (int r = 0; r < 3; ++r)
+  {
+    const layout::vec4& m = p.toCamera[r];
+    const double c[3] = { m.x, m.y, m.z };
+    double a = m.w, b = m.w, magnitude = std::fabs(static_cast<double>(m.w));
+    for (int d = 0; d < 3; ++d)
+    {
+      const double x0 = c[d] * lo[d], x1 = c[d] * hi[d];
+      a += std::min(x0, x1);
+      b += std::max(x0, x1);
+      magnitude += std::fabs(c[d]) * std::max(std::fabs(lo[d]), std::fabs(hi[d]));
+    }
+    const double pad = 1e-6 * magnitude + 1e-30;
+    range[r][0] = a - pad;
+    range[r][1] = b + pad;
+    if (!std::isfinite(range[r][0]) || !std::isfinite(range[r][1]))
+      return ClipMapsTiles::Mixed;
+  }
+  const double W = p.map.x, H = p.map.y;
+  if (range[0][1] < 0.0 || range[0][0] >= W || range[1][1] < 0.0 || range[1][0] >= H)
+    return ClipMapsTiles::None; // every sample off the map: in no layer
+  const bool allInMap =
+    range[0][0] >= 0.0 && range[0][1] < W && range[1][0] >= 0.0 && range[1][1] < H;
+  const auto pixel = [](double v, double size) {
+    return static_cast<int>(std::floor(std::min(std::max(v, -1.0), size)));
+  };
+  return tiles.Query(set, pixel(range[0][0], W), pixel(range[0][1], W), pixel(range[1][0], H),
+    pixel(range[1][1], H), range[2][0], range[2][1], allInMap);
+}
+
+enum BrickState : std::uint8_t
+{
+  BrickMixed = 0,
+  BrickClipped,
+  BrickAffected,
+  BrickUnaffected
+};
+
+/// The category every voxel of the brick [i0, i1] x [j0, j1] x [k0, k1]
+/// provably gets, or BrickMixed. Clip samples lie within half a voxel of
+/// the centres; the candidate test reads the centres only.
+BrickState ClassifyBrick(const layout::ClipParams& p, const ClipMapsTiles& tiles, int i0, int i1,
+  int j0, int j1, int k0, int k1)
+{
+  const double slo[3] = { i0 - 0.5, j0 - 0.5, k0 - 0.5 }, shi[3] = { i1 + 0.5, j1 + 0.5, k1 + 0.5 };
+  const ClipMapsTiles::Coverage clip = BoxCoverage(p, tiles, 0, slo, shi);
+  if (clip == ClipMapsTiles::Mixed)
+    return BrickMixed;
+  const bool subtract = p.map.w == layout::CAO_MODE_SUBTRACT;
+  if (subtract && clip == ClipMapsTiles::All)
+    return BrickClipped;
+  if (!subtract && clip == ClipMapsTiles::None)
+    return BrickClipped;
+  const double clo[3] = { double(i0), double(j0), double(k0) }, chi[3] = { double(i1), double(j1),
+    double(k1) };
+  const ClipMapsTiles::Coverage cand = BoxCoverage(p, tiles, 1, clo, chi);
+  if (cand == ClipMapsTiles::Mixed)
+    return BrickMixed;
+  // Subtraction: not clipped; a candidate is affected. Probing: fully
+  // inside; a candidate (deep inside) is unaffected.
+  const bool candidate = cand == ClipMapsTiles::All;
+  if (subtract)
+    return candidate ? BrickAffected : BrickUnaffected;
+  return candidate ? BrickUnaffected : BrickAffected;
+}
+
+constexpr int BrickSize = 4;
 }
 
 void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMapsView& maps,
   const float* opacity, float* clipped, std::uint8_t* category, const int region[6], int zBegin,
-  int zEnd, std::vector<std::int64_t>& affected, CategoryCounts& counts)
+  int zEnd, std::vector<std::int64_t>* affectedBySlice, CategoryCounts& counts,
+  const ClipMapsTiles* tiles)
 {
+  for (int k = zBegin; k < zEnd; ++k)
+    affectedBySlice[k - zBegin].clear();
+  std::vector<std::int64_t>* list = affectedBySlice; // the current slice's
   const std::int64_t nx = dims[0], nxy = std::int64_t(dims[0]) * dims[1];
   const bool subtract = p.map.w == layout::CAO_MODE_SUBTRACT;
   const int bx0 = p.boxMin.x, bx1 = p.boxMax.x, by0 = p.boxMin.y, by1 = p.boxMax.y;
-  const bool boxValid = p.boxMin.x <= p.boxMax.x && p.boxMin.y <= p.boxMax.y &&
-    p.boxMin.z <= p.boxMax.z;
+  const int bz0 = p.boxMin.z, bz1 = p.boxMax.z;
+  const bool boxValid = bx0 <= bx1 && by0 <= by1 && bz0 <= bz1;
   const int rx0 = region[0], rx1 = region[1], ry0 = region[2], ry1 = region[3];
   const int cw = bx1 - bx0 + 2, ch = by1 - by0 + 2; // corner lattice of the box
+  if (tiles && !tiles->Built(p.map.x, p.map.y, p.map.z))
+    tiles = nullptr;
+  // Corner planes below and above the slice, filled as needed (2: not yet
+  // evaluated), so that bricks decided at once cost no corner tests.
+  constexpr std::uint8_t Unknown = 2;
   std::vector<std::uint8_t> lower, upper;
+  // The brick layer's states, over the box's bricks.
+  const int nbx = boxValid ? (bx1 - bx0) / BrickSize + 1 : 0;
+  const int nby = boxValid ? (by1 - by0) / BrickSize + 1 : 0;
+  std::vector<std::uint8_t> bricks;
+  int brickLayer = -1;
   if (boxValid)
   {
-    lower.resize(static_cast<std::size_t>(cw) * ch);
-    upper.resize(lower.size());
+    lower.assign(static_cast<std::size_t>(cw) * ch, Unknown);
+    upper.assign(lower.size(), Unknown);
+    bricks.assign(static_cast<std::size_t>(nbx) * nby, BrickMixed);
   }
-  auto cornerPlane = [&](float zc, std::vector<std::uint8_t>& plane) {
-    for (int cy = 0; cy < ch; ++cy)
-      for (int cx = 0; cx < cw; ++cx)
-        plane[static_cast<std::size_t>(cy) * cw + cx] = InsideClip(p, maps.front, maps.back,
-          static_cast<float>(bx0 + cx) - 0.5f, static_cast<float>(by0 + cy) - 0.5f, zc);
+  auto corner = [&](std::vector<std::uint8_t>& plane, std::size_t c, int cx, int cy, float zc) {
+    std::uint8_t& v = plane[c];
+    if (v == Unknown)
+      v = InsideClip(p, maps.front, maps.back, static_cast<float>(bx0 + cx) - 0.5f,
+        static_cast<float>(by0 + cy) - 0.5f, zc);
+    return static_cast<int>(v);
   };
   // The region's voxels of rows [j0, j1] x columns [i0, i1] get the default.
   auto fillRows = [&](std::int64_t slice, int j0, int j1, int i0, int i1) {
@@ -170,21 +401,66 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
       FillOutside(p, opacity, clipped, category, slice + j * nx + i0, slice + j * nx + i1 + 1,
         counts);
   };
+  // Voxels [begin, end) of a brick decided at once.
+  auto fillBrick = [&](BrickState state, std::int64_t begin, std::int64_t end) {
+    std::vector<std::int64_t>& affected = *list;
+    const std::int64_t n = end - begin;
+    counts.byBrick += n;
+    if (state == BrickClipped)
+    {
+      std::fill(clipped + begin, clipped + end, 0.0f);
+      std::fill(category + begin, category + end,
+        static_cast<std::uint8_t>(layout::CAO_CATEGORY_CLIPPED));
+      counts.clipped += n;
+      return;
+    }
+    // Coverage 0 (subtraction) or 1 (probing): the factor is exactly 1.
+    std::copy(opacity + begin, opacity + end, clipped + begin);
+    if (state == BrickAffected)
+    {
+      std::fill(category + begin, category + end,
+        static_cast<std::uint8_t>(layout::CAO_CATEGORY_AFFECTED));
+      for (std::int64_t v = begin; v < end; ++v)
+        affected.push_back(v);
+      counts.affected += n;
+    }
+    else
+    {
+      std::fill(category + begin, category + end,
+        static_cast<std::uint8_t>(layout::CAO_CATEGORY_UNAFFECTED));
+      counts.unaffected += n;
+    }
+  };
   bool haveLower = false;
   const float total = static_cast<float>(9 + p.aa.x);
   for (int k = std::max(zBegin, region[4]); k < std::min(zEnd, region[5] + 1); ++k)
   {
     const std::int64_t slice = k * nxy;
-    if (!boxValid || k < p.boxMin.z || k > p.boxMax.z)
+    list = affectedBySlice + (k - zBegin);
+    std::vector<std::int64_t>& affected = *list;
+    if (!boxValid || k < bz0 || k > bz1)
     {
       fillRows(slice, ry0, ry1, rx0, rx1);
       haveLower = false;
       continue;
     }
     if (!haveLower)
-      cornerPlane(static_cast<float>(k) - 0.5f, lower);
-    cornerPlane(static_cast<float>(k) + 0.5f, upper);
+      std::fill(lower.begin(), lower.end(), Unknown);
+    std::fill(upper.begin(), upper.end(), Unknown);
     haveLower = true;
+    const float zLower = static_cast<float>(k) - 0.5f, zUpper = static_cast<float>(k) + 0.5f;
+    if (tiles && (k - bz0) / BrickSize != brickLayer)
+    {
+      brickLayer = (k - bz0) / BrickSize;
+      const int k0 = bz0 + brickLayer * BrickSize, k1 = std::min(bz1, k0 + BrickSize - 1);
+      for (int by = 0; by < nby; ++by)
+        for (int bx = 0; bx < nbx; ++bx)
+        {
+          const int i0 = bx0 + bx * BrickSize, j0 = by0 + by * BrickSize;
+          bricks[static_cast<std::size_t>(by) * nbx + bx] = ClassifyBrick(p, *tiles, i0,
+            std::min(bx1, i0 + BrickSize - 1), j0, std::min(by1, j0 + BrickSize - 1), k0, k1);
+        }
+    }
     // The box lies inside the region: the region's rest is default.
     fillRows(slice, ry0, by0 - 1, rx0, rx1);
     for (int j = by0; j <= by1; ++j)
@@ -193,68 +469,87 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
       FillOutside(p, opacity, clipped, category, row + rx0, row + bx0, counts);
       const std::size_t c0 = static_cast<std::size_t>(j - by0) * cw;
       const std::size_t c1 = c0 + cw;
-      for (int i = bx0; i <= bx1; ++i)
+      const int cy0 = j - by0, cy1 = cy0 + 1;
+      const std::uint8_t* brickRow = tiles ? &bricks[static_cast<std::size_t>(cy0 / BrickSize) * nbx] : nullptr;
+      int i = bx0;
+      while (i <= bx1)
       {
-        const std::int64_t v = row + i;
-        const std::size_t ci = static_cast<std::size_t>(i - bx0);
-        const Projection centre =
-          Project(p, static_cast<float>(i), static_cast<float>(j), static_cast<float>(k));
-        int inside = InLayers(p, maps.front, maps.back, centre) + lower[c0 + ci] +
-          lower[c0 + ci + 1] + lower[c1 + ci] + lower[c1 + ci + 1] + upper[c0 + ci] +
-          upper[c0 + ci + 1] + upper[c1 + ci] + upper[c1 + ci + 1];
-        float coverage;
-        if (inside == 0)
-          coverage = 0.0f;
-        else if (inside == 9)
-          coverage = 1.0f;
-        else
+        const int bx = (i - bx0) / BrickSize;
+        const int iEnd = std::min(bx1, bx0 + (bx + 1) * BrickSize - 1);
+        const BrickState state = brickRow ? static_cast<BrickState>(brickRow[bx]) : BrickMixed;
+        if (state != BrickMixed)
         {
-          for (int n = 0; n < p.aa.x; ++n)
-          {
-            const layout::vec4& o = p.aaOffsets[n];
-            inside += InsideClip(p, maps.front, maps.back, static_cast<float>(i) + o.x,
-              static_cast<float>(j) + o.y, static_cast<float>(k) + o.z);
-          }
-          coverage = static_cast<float>(inside) / total;
+          fillBrick(state, row + i, row + iEnd + 1);
+          i = iEnd + 1;
+          continue;
         }
-        const bool candidate = InLayers(p, maps.candFront, maps.candBack, centre);
-        std::uint8_t cat;
-        if (subtract)
+        for (; i <= iEnd; ++i)
         {
-          if (coverage == 1.0f)
+          const std::int64_t v = row + i;
+          const int cx = i - bx0;
+          const std::size_t ci = static_cast<std::size_t>(cx);
+          const Projection centre =
+            Project(p, static_cast<float>(i), static_cast<float>(j), static_cast<float>(k));
+          int inside = InLayers(p, maps.front, maps.back, centre) +
+            corner(lower, c0 + ci, cx, cy0, zLower) + corner(lower, c0 + ci + 1, cx + 1, cy0, zLower) +
+            corner(lower, c1 + ci, cx, cy1, zLower) + corner(lower, c1 + ci + 1, cx + 1, cy1, zLower) +
+            corner(upper, c0 + ci, cx, cy0, zUpper) + corner(upper, c0 + ci + 1, cx + 1, cy0, zUpper) +
+            corner(upper, c1 + ci, cx, cy1, zUpper) + corner(upper, c1 + ci + 1, cx + 1, cy1, zUpper);
+          float coverage;
+          if (inside == 0)
+            coverage = 0.0f;
+          else if (inside == 9)
+            coverage = 1.0f;
+          else
           {
-            cat = layout::CAO_CATEGORY_CLIPPED;
-            clipped[v] = 0.0f;
+            for (int n = 0; n < p.aa.x; ++n)
+            {
+              const layout::vec4& o = p.aaOffsets[n];
+              inside += InLayers(p, maps.front, maps.back,
+                Project(p, static_cast<float>(i) + o.x, static_cast<float>(j) + o.y,
+                  static_cast<float>(k) + o.z));
+            }
+            coverage = static_cast<float>(inside) / total;
+          }
+          const bool candidate = InLayers(p, maps.candFront, maps.candBack, centre);
+          std::uint8_t cat;
+          if (subtract)
+          {
+            if (coverage == 1.0f)
+            {
+              cat = layout::CAO_CATEGORY_CLIPPED;
+              clipped[v] = 0.0f;
+            }
+            else
+            {
+              cat = candidate ? layout::CAO_CATEGORY_AFFECTED : layout::CAO_CATEGORY_UNAFFECTED;
+              clipped[v] = opacity[v] * (1.0f - coverage);
+            }
           }
           else
           {
-            cat = candidate ? layout::CAO_CATEGORY_AFFECTED : layout::CAO_CATEGORY_UNAFFECTED;
-            clipped[v] = opacity[v] * (1.0f - coverage);
+            if (coverage == 0.0f)
+            {
+              cat = layout::CAO_CATEGORY_CLIPPED;
+              clipped[v] = 0.0f;
+            }
+            else
+            {
+              cat = candidate ? layout::CAO_CATEGORY_UNAFFECTED : layout::CAO_CATEGORY_AFFECTED;
+              clipped[v] = opacity[v] * coverage;
+            }
           }
-        }
-        else
-        {
-          if (coverage == 0.0f)
+          category[v] = cat;
+          if (cat == layout::CAO_CATEGORY_CLIPPED)
+            ++counts.clipped;
+          else if (cat == layout::CAO_CATEGORY_AFFECTED)
           {
-            cat = layout::CAO_CATEGORY_CLIPPED;
-            clipped[v] = 0.0f;
+            ++counts.affected;
+            affected.push_back(v);
           }
           else
-          {
-            cat = candidate ? layout::CAO_CATEGORY_UNAFFECTED : layout::CAO_CATEGORY_AFFECTED;
-            clipped[v] = opacity[v] * coverage;
-          }
+            ++counts.unaffected;
         }
-        category[v] = cat;
-        if (cat == layout::CAO_CATEGORY_CLIPPED)
-          ++counts.clipped;
-        else if (cat == layout::CAO_CATEGORY_AFFECTED)
-        {
-          ++counts.affected;
-          affected.push_back(v);
-        }
-        else
-          ++counts.unaffected;
       }
       FillOutside(p, opacity, clipped, category, row + bx1 + 1, row + rx1 + 1, counts);
     }

@@ -41,12 +41,66 @@ struct ClipMapsView
 struct CategoryCounts
 {
   std::int64_t clipped = 0, affected = 0, unaffected = 0;
+  /// Of those, the voxels of the candidate box decided brick by brick
+  /// (ClipMapsTiles) rather than sample by sample.
+  std::int64_t byBrick = 0;
   void Add(const CategoryCounts& o)
   {
     clipped += o.clipped;
     affected += o.affected;
     unaffected += o.unaffected;
+    byBrick += o.byBrick;
   }
+};
+
+/**
+ * Conservative summaries of the two map sets (clip and candidate layers)
+ * over square pixel tiles of 8, 32, 128, ... pixels: per tile, the smallest
+ * front and the largest back over all its pixels and layers (a depth range
+ * outside them meets no interval), and per layer the largest front and the
+ * smallest back (a range inside them lies in that layer at every pixel).
+ * An empty or NaN interval counts as empty, as the point test reads it.
+ *
+ * ClassifyRegion uses them to decide a whole brick of 4^3 voxels at once
+ * when every sample of every voxel in it (centre, corners, anti-aliasing
+ * samples: all within half a voxel of the centres) provably gives the same
+ * answer as the per-sample test would; a brick it cannot prove uniform goes
+ * sample by sample. The result is therefore bit for bit the same with and
+ * without the tiles; only the work differs.
+ */
+class ClipMapsTiles
+{
+public:
+  enum Coverage : std::uint8_t
+  {
+    None = 0,  ///< no sample lies in any layer
+    All = 1,   ///< every sample lies in a layer
+    Mixed = 2  ///< cannot tell: test each sample
+  };
+  /// Summarise `maps` (width x height pixels, `layers` layers).
+  void Build(const ClipMapsView& maps, int width, int height, int layers);
+  /// Whether Build ran (for these dimensions).
+  bool Built(int width, int height, int layers) const
+  {
+    return this->Width == width && this->Height == height && this->Layers == layers &&
+      !this->Levels.empty();
+  }
+  /// Coverage of the samples whose camera coordinates lie in pixels
+  /// [px0, px1] x [py0, py1] (clamped to the map) at depths [d0, d1], for
+  /// map set `set` (0: clip layers, 1: candidate layers). `allInMap`: every
+  /// sample lies inside the map (otherwise All is impossible).
+  Coverage Query(int set, int px0, int px1, int py0, int py1, double d0, double d1,
+    bool allInMap) const;
+
+private:
+  struct Level
+  {
+    int tile = 0, tilesX = 0, tilesY = 0;
+    // [set][tile]: over all layers; [set][tile * layers + l]: per layer.
+    std::vector<float> minFront[2], maxBack[2], maxFrontLayer[2], minBackLayer[2];
+  };
+  int Width = 0, Height = 0, Layers = 0;
+  std::vector<Level> Levels;
 };
 
 /// The factor a voxel's opacity is multiplied by when `count` of its
@@ -87,9 +141,14 @@ void ClassifySlices(const layout::ClipParams& p, const int dims[3], const ClipMa
 /// must contain the candidate box) only: voxels outside it are not written
 /// and not counted. The contextual update classifies the union of this
 /// pose's box and the previous pose's, outside which nothing can change.
+/// Slice k's affected voxels go to affectedBySlice[k - zBegin] (cleared
+/// first; the caller keeps these lists between poses, so their memory is
+/// reused). With `tiles` (built from `maps`), bricks proven uniform are
+/// decided at once; the result is the same bit for bit.
 void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMapsView& maps,
   const float* opacity, float* clippedOpacity, std::uint8_t* category, const int region[6],
-  int zBegin, int zEnd, std::vector<std::int64_t>& affected, CategoryCounts& counts);
+  int zBegin, int zEnd, std::vector<std::int64_t>* affectedBySlice, CategoryCounts& counts,
+  const ClipMapsTiles* tiles = nullptr);
 }
 
 #endif

@@ -359,4 +359,26 @@ void DilateErodeRows(const ClipDepthMaps& in, const ClipCamera& cam, double radi
     }
   }
 }
+
+void DilatedRegionBounds(const ClipDepthMaps& maps, double b[6])
+{
+  const double big = 1.0e+299; // the value VTK_DOUBLE_MAX has: as the maps always recorded
+  b[0] = b[2] = b[4] = big;
+  b[1] = b[3] = b[5] = -big;
+  for (int y = 0; y < maps.height; ++y)
+    for (int x = 0; x < maps.width; ++x)
+      for (int l = 0; l < maps.layers; ++l)
+      {
+        const std::size_t i = maps.Index(l, x, y);
+        if (maps.front[i] <= maps.back[i])
+        {
+          b[0] = std::min(b[0], static_cast<double>(x));
+          b[1] = std::max(b[1], static_cast<double>(x + 1));
+          b[2] = std::min(b[2], static_cast<double>(y));
+          b[3] = std::max(b[3], static_cast<double>(y + 1));
+          b[4] = std::min(b[4], static_cast<double>(maps.front[i]));
+          b[5] = std::max(b[5], static_cast<double>(maps.back[i]));
+        }
+      }
+}
 }

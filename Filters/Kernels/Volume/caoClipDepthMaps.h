@@ -133,6 +133,12 @@ bool RasterizeDepthLayers(
  */
 void DilateErodeRows(const ClipDepthMaps& in, const ClipCamera& camera, double radius,
   ClipDepthMaps& dilated, ClipDepthMaps& eroded, int rowBegin, int rowEnd);
+
+/// The camera-space bounds of every non-empty interval of `maps`: pixels
+/// [x0, x1) x [y0, y1) and depths [z0, z1] as (x0, x1, y0, y1, z0, z1); an
+/// empty map gives (+max, -max, ...). For the dilated maps: the region a
+/// clip can affect (the candidate box).
+void DilatedRegionBounds(const ClipDepthMaps& maps, double bounds[6]);
 }
 
 #endif

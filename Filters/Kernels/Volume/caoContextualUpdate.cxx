@@ -37,7 +37,8 @@ void ContextualUpdate::Reset()
 }
 
 bool ContextualUpdate::Update(const Volume& volume, const layout::ClipParams& clip,
-  const ClipMapsView& maps, const Buffers& out, const ParallelFor& parallel, Stats& stats)
+  const ClipMapsView& maps, std::uint64_t mapsVersion, const Buffers& out,
+  const ParallelFor& parallel, Stats& stats, bool useTiles)
 {
   stats = Stats();
   const int* dims = volume.geometry.dims;
@@ -92,30 +93,42 @@ bool ContextualUpdate::Update(const Volume& volume, const layout::ClipParams& cl
     }
   }
   stats.classifiedVoxels = Voxels(region);
-  std::mutex mutex;
-  std::vector<std::pair<std::int64_t, std::vector<std::int64_t>>> lists;
-  CategoryCounts counts;
+  const float* of[4] = { maps.front, maps.back, maps.candFront, maps.candBack };
+  if (useTiles &&
+    (mapsVersion == 0 || mapsVersion != this->TilesVersion ||
+      !std::equal(of, of + 4, this->TilesOf) ||
+      !this->Tiles.Built(clip.map.x, clip.map.y, clip.map.z)))
+  {
+    this->Tiles.Build(maps, clip.map.x, clip.map.y, clip.map.z);
+    this->TilesVersion = mapsVersion;
+    std::copy(of, of + 4, this->TilesOf);
+  }
+  const ClipMapsTiles* tiles = useTiles ? &this->Tiles : nullptr;
+  // One list per slice, kept between poses (their memory is reused: no
+  // fresh pages per pose), concatenated in slice order.
   const int z0 = region[4], slabs = Empty(region) ? 0 : region[5] - region[4] + 1;
+  if (static_cast<int>(this->SliceLists.size()) < slabs)
+    this->SliceLists.resize(static_cast<std::size_t>(slabs));
+  std::mutex mutex;
+  CategoryCounts counts;
   ok = parallel(slabs, 1, 0.05, 0.2, [&](std::int64_t b, std::int64_t e) {
-    std::vector<std::int64_t> list;
     CategoryCounts local;
     ClassifyRegion(clip, dims, maps, volume.opacity, out.clippedOpacity, out.category, region,
-      z0 + static_cast<int>(b), z0 + static_cast<int>(e), list, local);
+      z0 + static_cast<int>(b), z0 + static_cast<int>(e), this->SliceLists.data() + b, local,
+      tiles);
     std::lock_guard<std::mutex> lock(mutex);
     counts.Add(local);
-    lists.emplace_back(b, std::move(list));
   });
   if (!ok)
   {
     this->Reset();
     return false;
   }
-  std::sort(lists.begin(), lists.end(),
-    [](const auto& l, const auto& r) { return l.first < r.first; });
   this->Current.clear();
   this->Current.reserve(static_cast<std::size_t>(counts.affected));
-  for (auto& l : lists)
-    this->Current.insert(this->Current.end(), l.second.begin(), l.second.end());
+  for (int s = 0; s < slabs; ++s)
+    this->Current.insert(
+      this->Current.end(), this->SliceLists[s].begin(), this->SliceLists[s].end());
   // Outside the region every voxel holds the unclipped state.
   const std::int64_t outside = voxels - stats.classifiedVoxels;
   if (mode == layout::CAO_MODE_SUBTRACT)

@@ -60,7 +60,7 @@ public:
   };
   struct Stats
   {
-    CategoryCounts counts;
+    CategoryCounts counts; ///< counts.byBrick: voxels decided brick by brick
     std::int64_t classifiedVoxels = 0; ///< the union region's
     std::int64_t restoredVoxels = 0;   ///< previous b voxels given their precomputed AO back
     double classifyMs = 0, copyMs = 0, recomputeMs = 0;
@@ -69,10 +69,14 @@ public:
   /// Forget the previous pose: the next Update writes every voxel.
   void Reset();
 
-  /// One pose. `clip` and `maps` as the classifier takes them. False when
-  /// aborted (the buffers are then incomplete and the state reset).
+  /// One pose. `clip` and `maps` as the classifier takes them; `mapsVersion`
+  /// changes whenever the maps' contents may have (0: unknown, every call).
+  /// The maps' tile summaries (ClipMapsTiles) are rebuilt only then.
+  /// `useTiles` false classifies sample by sample everywhere (same result).
+  /// False when aborted (the buffers are then incomplete and the state reset).
   bool Update(const Volume& volume, const layout::ClipParams& clip, const ClipMapsView& maps,
-    const Buffers& buffers, const ParallelFor& parallel, Stats& stats);
+    std::uint64_t mapsVersion, const Buffers& buffers, const ParallelFor& parallel, Stats& stats,
+    bool useTiles = true);
 
   /// The voxels recomputed at the last pose (category b), in increasing order.
   const std::vector<std::int64_t>& Affected() const { return this->Previous; }
@@ -89,6 +93,10 @@ private:
   int Box[6] = { 0, -1, 0, -1, 0, -1 }; ///< the previous pose's candidate box (inclusive)
   std::vector<std::int64_t> Previous; ///< the last pose's b voxels
   std::vector<std::int64_t> Current;  ///< scratch: this pose's, until it completes
+  std::vector<std::vector<std::int64_t>> SliceLists; ///< scratch: b voxels per slice
+  ClipMapsTiles Tiles;
+  std::uint64_t TilesVersion = 0;
+  const float* TilesOf[4] = { nullptr, nullptr, nullptr, nullptr };
 };
 }
 

@@ -14,8 +14,13 @@ array held from an earlier output keeps its values (and a released one is
 reused, which shows the copy is due to the holder).
 
 Negative controls: the output at pose k differs from a new filter's at pose
-k+1 (so the comparison sees a pose), and the small moves classify fewer
-voxels than the volume has (so the region logic is exercised)."""
+k+1 (so the comparison sees a pose), the small moves classify fewer
+voxels than the volume has (so the region logic is exercised), and bricks
+decide voxels at every pose inside the volume (so the brick path is).
+
+At every pose, the classification that decides provably uniform bricks at
+once (cao::ClipMapsTiles) equals testing every voxel sample by sample
+(CAO_CLASSIFY_PER_SAMPLE=1), bit for bit."""
 import os
 import sys
 
@@ -98,10 +103,13 @@ def field(image, name, c):
     return image.GetFieldData().GetArray(name).GetComponent(0, c)
 
 
-def fresh(mesh, mode, aa, matrix):
+def fresh(mesh, mode, aa, matrix, per_sample=False):
     f = vtkContextualAmbientOcclusion()
     configure(f, mesh, mode, aa, matrix)
+    if per_sample:
+        os.environ["CAO_CLASSIFY_PER_SAMPLE"] = "1"
     f.Update()
+    os.environ.pop("CAO_CLASSIFY_PER_SAMPLE", None)
     return f.GetOutput()
 
 
@@ -131,6 +139,7 @@ path = [("first pose", "sphere", SUB, 16, pose(30, 34, 33)),
 kept = vtkContextualAmbientOcclusion()
 previous = None
 small_regions = []
+bricks_used = []
 for i, (what, mesh, mode, aa, matrix) in enumerate(path):
     configure(kept, mesh, mode, aa, matrix)
     kept.Update()
@@ -146,12 +155,22 @@ for i, (what, mesh, mode, aa, matrix) in enumerate(path):
           "voxels classified)" % (i, what, counts, classified, voxels))
     if what.startswith("small move") or what == "cube, small move":
         small_regions.append(classified)
+    # Bricks proven uniform (cao::ClipMapsTiles) against every voxel tested
+    # sample by sample: the same bits.
+    slow = arrays(fresh(mesh, mode, aa, matrix, per_sample=True))
+    by_brick = field(got, "UpdateRegion", 2)
+    check(all(np.array_equal(a[n], slow[n]) for n in ARRAYS),
+          "pose %d: deciding %d voxels by brick gives the bits of testing every sample"
+          % (i, by_brick))
+    bricks_used.append(by_brick)
     if previous is not None:
         # Negative control: the previous pose's output is not this pose's.
         differs = any(not np.array_equal(previous[n], b[n]) for n in ARRAYS)
         check(differs, "pose %d: the previous pose's output differs from this pose's "
               "(the comparison sees the pose)" % i)
     previous = a
+check(sum(1 for b in bricks_used if b > 0) >= len(path) - 1,
+      "bricks decide voxels at the poses inside the volume: %s" % [int(b) for b in bricks_used])
 check(field(fresh(*path[0][1:]), "UpdateRegion", 0) == voxels,
       "a new filter classifies the whole volume (%d voxels)" % voxels)
 check(small_regions and max(small_regions) < voxels / 2,

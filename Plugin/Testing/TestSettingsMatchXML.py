@@ -1,0 +1,121 @@
+"""The ParaView XML states the LAO settings as the one definition does
+(cao::LAOSettingTable, read through vtkLocalAmbientOcclusion's static
+GetSetting* methods):
+
+  TestSettingsMatchXML.py PLUGIN.so
+
+For the LocalAmbientOcclusion filter proxy (property = the setting's name)
+and the ContextualAOVolumeRepresentation proxy (property = "AO" + name),
+every setting of the table has a property whose command is Set<name>, an
+integer property exactly when the setting is an integer, the table's
+default, and a domain inside the table's range (a slider may stop short of
+the limit, never go past it); an enumeration offers every value of the
+range. The VTK filter's and mapper's own defaults are the table's too.
+
+Negative control: the same comparison against a table with one default
+and one limit changed reports both."""
+import sys
+
+from paraview import servermanager
+from paraview.simple import LoadPlugin
+
+from contextualao import vtkContextualAOVolumeMapper
+from contextualao import vtkLocalAmbientOcclusion as LAO
+
+failures = []
+
+
+def check(ok, what):
+    print(("ok: " if ok else "FAIL: ") + what)
+    if not ok:
+        failures.append(what)
+
+
+LoadPlugin(sys.argv[1], remote=False, ns=globals())
+table = [dict(name=LAO.GetSettingName(i), default=LAO.GetSettingDefault(i),
+              minimum=LAO.GetSettingMinimum(i), maximum=LAO.GetSettingMaximum(i),
+              integer=LAO.GetSettingIsInteger(i)) for i in range(LAO.GetNumberOfSettings())]
+check([r["name"] for r in table] == ["RayPattern", "NumberOfRays", "Reach", "NumberOfSamples",
+                                     "SampleDensity", "StartOffset", "RayVariation",
+                                     "QualityPreset"],
+      "the table names the eight LAO settings: %s" % [r["name"] for r in table])
+
+pxm = servermanager.ProxyManager()
+proxies = {"LocalAmbientOcclusion": (pxm.NewProxy("filters", "LocalAmbientOcclusion"), ""),
+           "ContextualAOVolumeRepresentation":
+           (pxm.NewProxy("representations", "ContextualAOVolumeRepresentation"), "AO")}
+
+
+def domain_range(prop):
+    """(min or None, max or None, enumeration values or None) of a property."""
+    it = prop.NewDomainIterator()
+    it.Begin()
+    lo = hi = values = None
+    while not it.IsAtEnd():
+        d = it.GetDomain()
+        if d.IsA("vtkSMEnumerationDomain"):
+            values = sorted(d.GetEntryValue(i) for i in range(d.GetNumberOfEntries()))
+        elif d.IsA("vtkSMIntRangeDomain") or d.IsA("vtkSMDoubleRangeDomain"):
+            if d.GetMinimumExists(0):
+                lo = d.GetMinimum(0)
+            if d.GetMaximumExists(0):
+                hi = d.GetMaximum(0)
+        it.Next()
+    return lo, hi, values
+
+
+def mismatches(rows, proxy, prefix):
+    found = []
+    for r in rows:
+        name = prefix + r["name"]
+        prop = proxy.GetProperty(name)
+        if prop is None:
+            found.append("%s: no property" % name)
+            continue
+        if prop.GetCommand() != "Set" + r["name"]:
+            found.append("%s: command %s" % (name, prop.GetCommand()))
+        is_int = prop.IsA("vtkSMIntVectorProperty")
+        if is_int != r["integer"]:
+            found.append("%s: %s property for a%s setting" % (
+                name, "an integer" if is_int else "a double", "n integer" if r["integer"] else
+                " real"))
+        prop.ResetToXMLDefaults()
+        default = prop.GetElement(0)
+        if default != r["default"]:
+            found.append("%s: default %r, the table's %r" % (name, default, r["default"]))
+        lo, hi, values = domain_range(prop)
+        if values is not None:
+            want = list(range(int(r["minimum"]), int(r["maximum"]) + 1))
+            if values != want:
+                found.append("%s: enumeration %s, the table's range %s" % (name, values, want))
+        if lo is not None and lo < r["minimum"]:
+            found.append("%s: domain minimum %r below the table's %r" % (name, lo, r["minimum"]))
+        if hi is not None and hi > r["maximum"]:
+            found.append("%s: domain maximum %r above the table's %r" % (name, hi, r["maximum"]))
+    return found
+
+
+for label, (proxy, prefix) in proxies.items():
+    found = mismatches(table, proxy, prefix)
+    check(not found, "%s states every LAO setting as the table does%s" % (
+        label, (": " + "; ".join(found)) if found else ""))
+
+# The VTK objects' own defaults.
+for label, obj in (("vtkLocalAmbientOcclusion", LAO()),
+                   ("vtkContextualAOVolumeMapper", vtkContextualAOVolumeMapper())):
+    wrong = ["%s=%r" % (r["name"], getattr(obj, "Get" + r["name"])()) for r in table
+             if getattr(obj, "Get" + r["name"])() != r["default"]]
+    check(not wrong, "%s's defaults are the table's%s" % (label, (": " + ", ".join(wrong))
+                                                         if wrong else ""))
+
+# Negative control: a changed default and a narrower limit are both reported.
+altered = [dict(r) for r in table]
+altered[0]["default"] = 3  # RayPattern
+altered[5]["maximum"] = 0.5  # StartOffset
+found = mismatches(altered, proxies["LocalAmbientOcclusion"][0], "")
+check(len(found) == 2 and "RayPattern" in found[0] and "StartOffset" in found[1],
+      "negative control: an altered table is caught (%s)" % "; ".join(found))
+
+if failures:
+    print("%d check(s) failed" % len(failures))
+    sys.exit(1)
