@@ -112,6 +112,78 @@ std::vector<double> MatrixKey(vtkMatrix4x4* m)
 {
   return std::vector<double>(m->GetData(), m->GetData() + 16);
 }
+
+/// What the volume on the GPU was made from: a different one re-uploads it
+/// (and re-runs the LAO precompute when the AO is on).
+struct VolumeKey
+{
+  const void* input = nullptr;
+  vtkMTimeType inputTime = 0;
+  const void* scalars = nullptr;
+  vtkMTimeType scalarsTime = 0;
+  int scalarMode = 0, arrayId = 0;
+  bool ao = false;
+  // With the AO on:
+  const void* opacityFunction = nullptr;
+  vtkMTimeType opacityTime = 0;
+  double unitDistance = 0.0;
+  cao::LAOSettings settings;
+  const void* givenAO = nullptr;
+  vtkMTimeType givenAOTime = 0;
+  bool operator==(const VolumeKey& o) const
+  {
+    return input == o.input && inputTime == o.inputTime && scalars == o.scalars &&
+      scalarsTime == o.scalarsTime && scalarMode == o.scalarMode && arrayId == o.arrayId &&
+      ao == o.ao && opacityFunction == o.opacityFunction && opacityTime == o.opacityTime &&
+      unitDistance == o.unitDistance && settings == o.settings && givenAO == o.givenAO &&
+      givenAOTime == o.givenAOTime;
+  }
+  bool operator!=(const VolumeKey& o) const { return !(*this == o); }
+};
+
+/// What the depth maps were made from.
+struct MeshKey
+{
+  const void* mesh = nullptr;
+  vtkMTimeType meshTime = 0;
+  int layers = 0;
+  double pixelSize = 0.0, reach = 0.0, spacing[3] = { 0, 0, 0 };
+  bool operator==(const MeshKey& o) const
+  {
+    return mesh == o.mesh && meshTime == o.meshTime && layers == o.layers &&
+      pixelSize == o.pixelSize && reach == o.reach && std::equal(spacing, spacing + 3, o.spacing);
+  }
+  bool operator!=(const MeshKey& o) const { return !(*this == o); }
+};
+
+/// One frame: what its steps read and what they report.
+struct Frame
+{
+  vtkRenderer* renderer = nullptr;
+  vtkVolume* volume = nullptr;
+  vtkImageData* input = nullptr;
+  vtkDataArray* scalars = nullptr;
+  int dims[3] = { 0, 0, 0 };
+  std::int64_t voxels = 0;
+  double range[2] = { 0, 1 };
+  const double* spacing = nullptr;
+  double minSpacing = 1.0;
+  vtkVolumeProperty* property = nullptr;
+  vtkPiecewiseFunction* opacityFunction = nullptr;
+  double unitDistance = 1.0;
+  vtkRenderWindow* window = nullptr;
+  cao::gl::AOEngine* engine = nullptr;
+  const char* glTimer = "gl_timestamp";
+  bool clipping = false;
+  FrameReport report;
+  std::string why; ///< the error that stopped the frame (empty: aborted)
+
+  bool Fail(const std::string& text)
+  {
+    this->why = text;
+    return false;
+  }
+};
 }
 
 struct vtkContextualAOVolumeMapper::Internals
@@ -129,7 +201,11 @@ struct vtkContextualAOVolumeMapper::Internals
   vtkWeakPointer<vtkRenderWindow> Window;
   bool HaveWindow = false;
   cao::LAOPlan Plan;
-  std::vector<double> VolumeKey, MeshKey, MapsUploadKey, PoseKey, TableKey;
+  ::VolumeKey Volume;
+  bool HaveVolume = false;
+  ::MeshKey Mesh;
+  bool HaveMesh = false;
+  std::vector<double> MapsUploadKey, PoseKey, TableKey; // numbers only
   double BuiltPoseScales[2] = { 0.0, 0.0 }; ///< the pose scales the maps serve
   int PrecomputeGeneration = 0, MapsGeneration = 0;
   double ScalarRange[2] = { 0, 1 };
@@ -139,12 +215,25 @@ struct vtkContextualAOVolumeMapper::Internals
 
   void ForgetGPU()
   {
-    this->VolumeKey.clear();
-    this->MeshKey.clear();
+    this->HaveVolume = false;
+    this->HaveMesh = false;
     this->MapsUploadKey.clear();
     this->PoseKey.clear();
     this->TableKey.clear();
   }
+
+  // The frame's steps, in order; each returns false with f.why set (or
+  // empty after an abort) when the frame cannot be drawn.
+  bool GatherInput(vtkContextualAOVolumeMapper* self, Frame& f);
+  bool AcquireContext(vtkContextualAOVolumeMapper* self, Frame& f);
+  bool UpdateVolume(vtkContextualAOVolumeMapper* self, Frame& f);
+  bool UploadVolume(vtkContextualAOVolumeMapper* self, Frame& f, vtkDataArray* givenAO);
+  bool UpdateClip(vtkContextualAOVolumeMapper* self, Frame& f);
+  bool UpdateMaps(vtkContextualAOVolumeMapper* self, Frame& f, vtkPolyData* mesh,
+    vtkMatrix4x4* pose, int mode);
+  bool UpdateTable(vtkContextualAOVolumeMapper* self, Frame& f, double& step);
+  void MakeRenderParams(vtkContextualAOVolumeMapper* self, const Frame& f, double step,
+    cao::layout::RenderParams& params);
 };
 
 vtkCAOLAOSettingMacro(vtkContextualAOVolumeMapper, RayPattern, int, this->Internal->Settings.pattern);
@@ -243,434 +332,466 @@ vtkIdType vtkContextualAOVolumeMapper::GetLastFrameRecomputedVoxels() const
 }
 
 //------------------------------------------------------------------------------
-void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
+bool vtkContextualAOVolumeMapper::CheckSettings(std::string& why) const
 {
-  Internals& in = *this->Internal;
-  auto fail = [&](const std::string& why) {
-    // One message per distinct failure, not one per frame.
-    if (why != in.LastError)
-      vtkErrorMacro(<< why);
-    in.LastError = why;
+  // The mapper's own settings (the LAO settings are checked with the plan).
+  std::ostringstream bad;
+  auto outside = [&bad](const char* name, double v, const char* range) {
+    bad << name << " must be " << range << "; got " << v << ".";
   };
+  if (!(this->AOStrength >= 0.0 && this->AOStrength <= 1.0))
+    outside("AOStrength", this->AOStrength, "in [0, 1]");
+  else if (this->Mode != SUBTRACTION && this->Mode != PROBING)
+    outside("Mode", this->Mode, "0 (subtraction) or 1 (probing)");
+  else if (this->NumberOfClipLayers < 1 || this->NumberOfClipLayers > 16)
+    outside("NumberOfClipLayers", this->NumberOfClipLayers, "1 to 16");
+  else if (!(this->ClipMapPixelSize >= 0.0) || !std::isfinite(this->ClipMapPixelSize))
+    outside("ClipMapPixelSize", this->ClipMapPixelSize, "0 (derived) or a positive length");
+  else if (this->AntiAliasingSamples < 0 || this->AntiAliasingSamples > 32)
+    outside("AntiAliasingSamples", this->AntiAliasingSamples, "0 to 32");
+  else if (this->AOUpdate != CONTEXTUAL && this->AOUpdate != FULL_RECOMPUTE)
+    outside("AOUpdate", this->AOUpdate, "0 (contextual) or 1 (full recompute)");
+  else if (!(this->SampleDistance >= 0.0) || !std::isfinite(this->SampleDistance))
+    outside("SampleDistance", this->SampleDistance, "0 (derived) or a positive length");
+  else if (!(this->InteractiveSampleDistance >= 0.0) ||
+    !std::isfinite(this->InteractiveSampleDistance))
+    outside("InteractiveSampleDistance", this->InteractiveSampleDistance,
+      "0 (derived) or a positive length");
+  why = bad.str();
+  return why.empty();
+}
 
-  // 0. The mapper's own settings (the LAO settings are checked with the plan).
-  {
-    std::ostringstream bad;
-    auto outside = [&bad](const char* name, double v, const char* range) {
-      bad << name << " must be " << range << "; got " << v << ".";
-    };
-    if (!(this->AOStrength >= 0.0 && this->AOStrength <= 1.0))
-      outside("AOStrength", this->AOStrength, "in [0, 1]");
-    else if (this->Mode != SUBTRACTION && this->Mode != PROBING)
-      outside("Mode", this->Mode, "0 (subtraction) or 1 (probing)");
-    else if (this->NumberOfClipLayers < 1 || this->NumberOfClipLayers > 16)
-      outside("NumberOfClipLayers", this->NumberOfClipLayers, "1 to 16");
-    else if (!(this->ClipMapPixelSize >= 0.0) || !std::isfinite(this->ClipMapPixelSize))
-      outside("ClipMapPixelSize", this->ClipMapPixelSize, "0 (derived) or a positive length");
-    else if (this->AntiAliasingSamples < 0 || this->AntiAliasingSamples > 32)
-      outside("AntiAliasingSamples", this->AntiAliasingSamples, "0 to 32");
-    else if (this->AOUpdate != CONTEXTUAL && this->AOUpdate != FULL_RECOMPUTE)
-      outside("AOUpdate", this->AOUpdate, "0 (contextual) or 1 (full recompute)");
-    else if (!(this->SampleDistance >= 0.0) || !std::isfinite(this->SampleDistance))
-      outside("SampleDistance", this->SampleDistance, "0 (derived) or a positive length");
-    else if (!(this->InteractiveSampleDistance >= 0.0) ||
-      !std::isfinite(this->InteractiveSampleDistance))
-      outside("InteractiveSampleDistance", this->InteractiveSampleDistance,
-        "0 (derived) or a positive length");
-    if (bad.tellp() > 0)
-      return fail(bad.str());
-  }
-
-  // 1. Input.
-  if (vtkAlgorithm* upstream = this->GetInputAlgorithm())
+//------------------------------------------------------------------------------
+bool vtkContextualAOVolumeMapper::Internals::GatherInput(
+  vtkContextualAOVolumeMapper* self, Frame& f)
+{
+  if (vtkAlgorithm* upstream = self->GetInputAlgorithm())
     upstream->Update();
-  vtkImageData* input = vtkImageData::SafeDownCast(this->GetInputDataObject(0, 0));
-  if (!input)
-    return fail("No input image.");
-  int dims[3];
-  input->GetDimensions(dims);
-  const std::int64_t voxels = std::int64_t(dims[0]) * dims[1] * dims[2];
-  if (dims[0] < 2 || dims[1] < 2 || dims[2] < 2)
-    return fail("The input must have at least 2 voxels along each axis.");
-  if (voxels > cao::MaxVoxels)
-    return fail("The input has more voxels than the GPU kernels index (2^31 - 1).");
+  f.input = vtkImageData::SafeDownCast(self->GetInputDataObject(0, 0));
+  if (!f.input)
+    return f.Fail("No input image.");
+  f.input->GetDimensions(f.dims);
+  f.voxels = std::int64_t(f.dims[0]) * f.dims[1] * f.dims[2];
+  if (f.dims[0] < 2 || f.dims[1] < 2 || f.dims[2] < 2)
+    return f.Fail("The input must have at least 2 voxels along each axis.");
+  if (f.voxels > cao::MaxVoxels)
+    return f.Fail("The input has more voxels than the GPU kernels index (2^31 - 1).");
   int cellFlag = 0;
-  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(input, this->ScalarMode,
-    this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
-  if (!scalars || cellFlag != 0)
-    return fail("The input has no point scalars (cell scalars are not supported).");
-  if (scalars->GetNumberOfComponents() != 1)
-    return fail("The scalars must have 1 component (they have " +
-      std::to_string(scalars->GetNumberOfComponents()) + ").");
-  double range[2];
-  scalars->GetRange(range, 0);
-  if (!std::isfinite(range[0]) || !std::isfinite(range[1]))
-    return fail("The scalars contain NaN or infinite values.");
-  vtkVolumeProperty* property = vol->GetProperty();
-  vtkPiecewiseFunction* opacityFunction = property->GetScalarOpacity(0);
-  const double unitDistance = property->GetScalarOpacityUnitDistance(0);
-  if (!(unitDistance > 0.0))
-    return fail("The scalar opacity unit distance must be positive.");
+  f.scalars = vtkAbstractMapper::GetScalars(f.input, self->ScalarMode, self->ArrayAccessMode,
+    self->ArrayId, self->ArrayName, cellFlag);
+  if (!f.scalars || cellFlag != 0)
+    return f.Fail("The input has no point scalars (cell scalars are not supported).");
+  if (f.scalars->GetNumberOfComponents() != 1)
+    return f.Fail("The scalars must have 1 component (they have " +
+      std::to_string(f.scalars->GetNumberOfComponents()) + ").");
+  f.scalars->GetRange(f.range, 0);
+  if (!std::isfinite(f.range[0]) || !std::isfinite(f.range[1]))
+    return f.Fail("The scalars contain NaN or infinite values.");
+  f.property = f.volume->GetProperty();
+  f.opacityFunction = f.property->GetScalarOpacity(0);
+  f.unitDistance = f.property->GetScalarOpacityUnitDistance(0);
+  if (!(f.unitDistance > 0.0))
+    return f.Fail("The scalar opacity unit distance must be positive.");
+  f.spacing = f.input->GetSpacing();
+  f.minSpacing = std::min({ f.spacing[0], f.spacing[1], f.spacing[2] });
+  return true;
+}
 
-  // 2. The render window's OpenGL 4.3 context.
-  vtkRenderWindow* window = ren->GetRenderWindow();
-  if (in.HaveWindow && in.Window != window)
-    this->ReleaseGraphicsResources(nullptr); // another window's (or a destroyed one's) objects
-  in.Window = window;
-  in.HaveWindow = true;
+//------------------------------------------------------------------------------
+bool vtkContextualAOVolumeMapper::Internals::AcquireContext(
+  vtkContextualAOVolumeMapper* self, Frame& f)
+{
+  // The render window's OpenGL 4.3 context.
+  f.window = f.renderer->GetRenderWindow();
+  if (this->HaveWindow && this->Window != f.window)
+    self->ReleaseGraphicsResources(nullptr); // another window's (or a destroyed one's) objects
+  this->Window = f.window;
+  this->HaveWindow = true;
   bool failed = false;
-  auto dropCaster = [&in] {
+  auto dropCaster = [this] {
     // Its context may be gone (the session abandons a lost one): no GL calls.
-    if (in.Caster)
-      in.Caster->AbandonGraphicsResources();
-    in.Caster.reset();
-    in.CasterContext = nullptr;
+    if (this->Caster)
+      this->Caster->AbandonGraphicsResources();
+    this->Caster.reset();
+    this->CasterContext = nullptr;
   };
-  if (!in.GPU.Resolve(this, vtkCAO::BACKEND_OPENGL, failed, window) || failed)
+  if (!this->GPU.Resolve(self, vtkCAO::BACKEND_OPENGL, failed, f.window) || failed)
   {
-    in.ForgetGPU();
+    this->ForgetGPU();
     dropCaster();
-    return fail("The render window has no usable OpenGL 4.3 context; nothing is drawn.");
+    return f.Fail("The render window has no usable OpenGL 4.3 context; nothing is drawn.");
   }
-  cao::gl::AOEngine& engine = in.GPU.Engine();
-  if (in.Caster && in.CasterContext != &engine.GetContext())
+  f.engine = &this->GPU.Engine();
+  if (this->Caster && this->CasterContext != &f.engine->GetContext())
     dropCaster(); // the session made a new context: the old objects went with the old one
-  if (!in.Caster)
+  if (!this->Caster)
   {
-    in.Caster.reset(new cao::gl::RayCaster(engine.GetContext()));
-    in.CasterContext = &engine.GetContext();
+    this->Caster.reset(new cao::gl::RayCaster(f.engine->GetContext()));
+    this->CasterContext = &f.engine->GetContext();
   }
-  if (this->BlendMode != vtkVolumeMapper::COMPOSITE_BLEND && !in.WarnedBlend)
+  if (self->BlendMode != vtkVolumeMapper::COMPOSITE_BLEND && !this->WarnedBlend)
   {
-    vtkWarningMacro("Only the composite blend mode is supported; rendering with it.");
-    in.WarnedBlend = true;
+    vtkWarningWithObjectMacro(self, "Only the composite blend mode is supported; rendering with it.");
+    this->WarnedBlend = true;
   }
-  std::string error;
   // GPU stages are timed with GL_TIMESTAMP queries; on a software
   // rasteriser (whose timestamps do not bracket the work) with the host
   // clock around glFinish.
-  const char* glTimer = engine.GetContext().UsesHostClock() ? "host_glfinish" : "gl_timestamp";
+  f.glTimer = f.engine->GetContext().UsesHostClock() ? "host_glfinish" : "gl_timestamp";
+  f.report.frame = self->FrameCount + 1;
+  f.report.backend = this->GPU.Description();
+  return true;
+}
 
-  FrameReport report;
-  report.frame = this->FrameCount + 1;
-  report.backend = in.GPU.Description();
-  const double* spacing = input->GetSpacing();
-  const double minSpacing = std::min({ spacing[0], spacing[1], spacing[2] });
-
-  // 3. The volume on the GPU, and the LAO precompute when the AO is on and
-  // the opacity, the scalars or the LAO settings changed. With the AO off
-  // no LAO is computed at all.
-  const bool ao = this->AmbientOcclusion;
-  // The LAO settings in effect: a quality preset overrides the individual
-  // ones, a reach of 0 is 8 voxels (checked with the plan).
-  const cao::LAOSettings settings = cao::ResolveLAOSettings(in.Settings, spacing);
-  // A given AO array replaces the precompute.
+//------------------------------------------------------------------------------
+bool vtkContextualAOVolumeMapper::Internals::UpdateVolume(
+  vtkContextualAOVolumeMapper* self, Frame& f)
+{
+  // The volume on the GPU, and the LAO precompute when the AO is on and the
+  // opacity, the scalars or the LAO settings changed. With the AO off no LAO
+  // is computed at all. A given AO array replaces the precompute.
+  const bool ao = self->AmbientOcclusion;
   vtkDataArray* givenAO = nullptr;
-  if (ao && this->AmbientOcclusionArrayName && *this->AmbientOcclusionArrayName)
+  if (ao && self->AmbientOcclusionArrayName && *self->AmbientOcclusionArrayName)
   {
-    givenAO = input->GetPointData()->GetArray(this->AmbientOcclusionArrayName);
+    givenAO = f.input->GetPointData()->GetArray(self->AmbientOcclusionArrayName);
     if (!givenAO || givenAO->GetNumberOfComponents() != 1 ||
-      givenAO->GetNumberOfTuples() != voxels)
-      return fail(std::string("The input has no one-component point array '") +
-        this->AmbientOcclusionArrayName + "' to use as the AO.");
+      givenAO->GetNumberOfTuples() != f.voxels)
+      return f.Fail(std::string("The input has no one-component point array '") +
+        self->AmbientOcclusionArrayName + "' to use as the AO.");
   }
-  std::vector<double> volumeKey = { static_cast<double>(reinterpret_cast<std::uintptr_t>(input)),
-    static_cast<double>(input->GetMTime()),
-    static_cast<double>(reinterpret_cast<std::uintptr_t>(scalars)),
-    static_cast<double>(scalars->GetMTime()), static_cast<double>(this->ScalarMode),
-    static_cast<double>(this->ArrayId), static_cast<double>(ao) };
+  ::VolumeKey key;
+  key.input = f.input;
+  key.inputTime = f.input->GetMTime();
+  key.scalars = f.scalars;
+  key.scalarsTime = f.scalars->GetMTime();
+  key.scalarMode = self->ScalarMode;
+  key.arrayId = self->ArrayId;
+  key.ao = ao;
   if (ao)
   {
-    volumeKey.insert(volumeKey.end(),
-      { static_cast<double>(reinterpret_cast<std::uintptr_t>(opacityFunction)),
-        static_cast<double>(opacityFunction->GetMTime()), unitDistance,
-        static_cast<double>(settings.pattern), static_cast<double>(settings.fibonacciRays),
-        settings.reach, static_cast<double>(settings.samples), settings.sampleDensity,
-        settings.startOffset, static_cast<double>(settings.variation) });
-    if (givenAO)
-      volumeKey.insert(volumeKey.end(),
-        { static_cast<double>(reinterpret_cast<std::uintptr_t>(givenAO)),
-          static_cast<double>(givenAO->GetMTime()) });
+    key.opacityFunction = f.opacityFunction;
+    key.opacityTime = f.opacityFunction->GetMTime();
+    key.unitDistance = f.unitDistance;
+    // The settings in effect (individual settings a preset overrides change nothing).
+    key.settings = cao::ResolveLAOSettings(this->Settings, f.spacing);
+    key.settings.preset = cao::QualityPreset::Custom;
+    key.givenAO = givenAO;
+    key.givenAOTime = givenAO ? givenAO->GetMTime() : 0;
   }
-  if (volumeKey != in.VolumeKey || (ao && !engine.HasPrecomputed()))
-  {
-    in.VolumeKey.clear();
-    if (!cao::BuildLAOPlan(vtkCAO::GeometryOf(input), settings, in.Plan, error))
-      return fail("Cannot plan the LAO: " + error + ".");
-    const auto start = std::chrono::steady_clock::now();
-    std::vector<float> opacity(static_cast<std::size_t>(voxels));
-    std::int64_t nonFinite = 0;
-    if (!vtkCAO::ComputeOpacity(this, scalars, 0, opacityFunction,
-          in.Plan.step / unitDistance, opacity.data(), nonFinite))
-      return; // aborted
-    if (nonFinite > 0) // (GetRange skips NaN, so they are counted here)
-      return fail("The scalars contain " + std::to_string(nonFinite) +
-        " NaN or infinite value(s); nothing is drawn.");
-    std::vector<std::uint8_t> packed;
-    const cao::gl::VolumeUpload upload =
-      vtkCAO::MakeVolumeUpload(scalars, 0, opacity.data(), dims, packed);
-    if (!engine.SetVolume(upload, error))
-      return fail("The volume upload failed: " + error + ".");
-    if (upload.source == cao::gl::OpacitySource::Float32)
-    {
-      std::vector<float> values(static_cast<std::size_t>(voxels));
-      for (std::int64_t v = 0; v < voxels; ++v)
-        values[static_cast<std::size_t>(v)] = static_cast<float>(scalars->GetComponent(v, 0));
-      if (!in.Caster->SetScalars(values.data(), dims, error))
-        return fail("The scalar upload failed: " + error + ".");
-      in.TexelScale = 1.0;
-    }
-    else
-    {
-      in.TexelScale = upload.source == cao::gl::OpacitySource::Scalars8 ? 255.0 : 65535.0;
-    }
-    in.ScalarRange[0] = range[0];
-    in.ScalarRange[1] = range[1] > range[0] ? range[1] : range[0] + 1.0;
-    report.stages.push_back({ "volume_upload", vtkCAO::MillisecondsSince(start), "host" });
-    if (ao && givenAO)
-    {
-      const auto uploadStart = std::chrono::steady_clock::now();
-      std::vector<std::uint16_t> quantized(static_cast<std::size_t>(voxels));
-      for (std::int64_t v = 0; v < voxels; ++v)
-      {
-        const double x = givenAO->GetComponent(v, 0);
-        if (!(x >= 0.0 && x <= 1.0)) // also NaN
-          return fail(std::string("The AO array '") + this->AmbientOcclusionArrayName +
-            "' has a value outside [0, 1] at voxel " + std::to_string(v) + ".");
-        quantized[static_cast<std::size_t>(v)] =
-          cao::gl::AOEngine::Quantize(static_cast<float>(x));
-      }
-      if (!engine.SetPlan(in.Plan, error) || !engine.SetPrecomputed(quantized.data(), error))
-        return fail("The AO upload failed: " + error + ".");
-      report.stages.push_back({ "ao_upload", vtkCAO::MillisecondsSince(uploadStart), "host" });
-      report.reasons.emplace_back("the input AO array changed");
-    }
-    else if (ao)
-    {
-      if (!engine.SetPlan(in.Plan, error) || !engine.Precompute(error))
-        return fail("The LAO precompute failed: " + error + ".");
-      report.stages.push_back({ "precompute", engine.Times().precompute, glTimer });
-      report.reasons.emplace_back("scalar opacity, scalars or LAO settings changed");
-      report.recomputed += voxels;
-      ++this->PrecomputeCount;
-    }
-    else
-    {
-      report.reasons.emplace_back("scalars changed (AO off: no LAO)");
-    }
-    ++in.PrecomputeGeneration;
-    in.PoseKey.clear();
-    in.VolumeKey = volumeKey;
-  }
+  if (this->HaveVolume && key == this->Volume && (!ao || f.engine->HasPrecomputed()))
+    return true;
+  this->HaveVolume = false;
+  if (!this->UploadVolume(self, f, givenAO))
+    return false;
+  ++this->PrecomputeGeneration;
+  this->PoseKey.clear();
+  this->Volume = key;
+  this->HaveVolume = true;
+  return true;
+}
 
-  // 4. The clip shape: depth maps when the mesh changed, the AO update
-  // when the pose changed.
-  vtkPolyData* mesh = this->ClipMesh;
-  if (this->ClipShape && !mesh)
+//------------------------------------------------------------------------------
+bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
+  vtkContextualAOVolumeMapper* self, Frame& f, vtkDataArray* givenAO)
+{
+  // The LAO settings in effect: a quality preset overrides the individual
+  // ones, a reach of 0 is 8 voxels (checked with the plan).
+  cao::gl::AOEngine& engine = *f.engine;
+  std::string error;
+  if (!cao::BuildLAOPlan(vtkCAO::GeometryOf(f.input), this->Settings, this->Plan, error))
+    return f.Fail("Cannot plan the LAO: " + error + ".");
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<float> opacity(static_cast<std::size_t>(f.voxels));
+  std::int64_t nonFinite = 0;
+  if (!vtkCAO::ComputeOpacity(self, f.scalars, 0, f.opacityFunction,
+        this->Plan.step / f.unitDistance, opacity.data(), nonFinite))
+    return false; // aborted
+  if (nonFinite > 0) // (GetRange skips NaN, so they are counted here)
+    return f.Fail("The scalars contain " + std::to_string(nonFinite) +
+      " NaN or infinite value(s); nothing is drawn.");
+  std::vector<std::uint8_t> packed;
+  const cao::gl::VolumeUpload upload =
+    vtkCAO::MakeVolumeUpload(f.scalars, 0, opacity.data(), f.dims, packed);
+  if (!engine.SetVolume(upload, error))
+    return f.Fail("The volume upload failed: " + error + ".");
+  if (upload.source == cao::gl::OpacitySource::Float32)
   {
-    if (vtkActor* actor = vtkActor::SafeDownCast(this->ClipShape))
+    std::vector<float> values(static_cast<std::size_t>(f.voxels));
+    for (std::int64_t v = 0; v < f.voxels; ++v)
+      values[static_cast<std::size_t>(v)] = static_cast<float>(f.scalars->GetComponent(v, 0));
+    if (!this->Caster->SetScalars(values.data(), f.dims, error))
+      return f.Fail("The scalar upload failed: " + error + ".");
+    this->TexelScale = 1.0;
+  }
+  else
+    this->TexelScale = upload.source == cao::gl::OpacitySource::Scalars8 ? 255.0 : 65535.0;
+  this->ScalarRange[0] = f.range[0];
+  this->ScalarRange[1] = f.range[1] > f.range[0] ? f.range[1] : f.range[0] + 1.0;
+  f.report.stages.push_back({ "volume_upload", vtkCAO::MillisecondsSince(start), "host" });
+  if (!self->AmbientOcclusion)
+  {
+    f.report.reasons.emplace_back("scalars changed (AO off: no LAO)");
+    return true;
+  }
+  if (givenAO)
+  {
+    const auto uploadStart = std::chrono::steady_clock::now();
+    std::vector<std::uint16_t> quantized(static_cast<std::size_t>(f.voxels));
+    for (std::int64_t v = 0; v < f.voxels; ++v)
     {
+      const double x = givenAO->GetComponent(v, 0);
+      if (!(x >= 0.0 && x <= 1.0)) // also NaN
+        return f.Fail(std::string("The AO array '") + self->AmbientOcclusionArrayName +
+          "' has a value outside [0, 1] at voxel " + std::to_string(v) + ".");
+      quantized[static_cast<std::size_t>(v)] = cao::gl::AOEngine::Quantize(static_cast<float>(x));
+    }
+    if (!engine.SetPlan(this->Plan, error) || !engine.SetPrecomputed(quantized.data(), error))
+      return f.Fail("The AO upload failed: " + error + ".");
+    f.report.stages.push_back({ "ao_upload", vtkCAO::MillisecondsSince(uploadStart), "host" });
+    f.report.reasons.emplace_back("the input AO array changed");
+    return true;
+  }
+  if (!engine.SetPlan(this->Plan, error) || !engine.Precompute(error))
+    return f.Fail("The LAO precompute failed: " + error + ".");
+  f.report.stages.push_back({ "precompute", engine.Times().precompute, f.glTimer });
+  f.report.reasons.emplace_back("scalar opacity, scalars or LAO settings changed");
+  f.report.recomputed += f.voxels;
+  ++self->PrecomputeCount;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkContextualAOVolumeMapper::Internals::UpdateClip(
+  vtkContextualAOVolumeMapper* self, Frame& f)
+{
+  // The clip shape: depth maps when the mesh changed, the AO update when
+  // the pose changed.
+  vtkPolyData* mesh = self->ClipMesh;
+  if (self->ClipShape && !mesh)
+  {
+    if (vtkActor* actor = vtkActor::SafeDownCast(self->ClipShape))
       if (vtkMapper* m = actor->GetMapper())
       {
         if (vtkAlgorithm* a = m->GetInputAlgorithm())
           a->Update();
         mesh = vtkPolyData::SafeDownCast(m->GetInputDataObject(0, 0));
       }
-    }
     if (!mesh)
-      return fail("The clip shape has no mesh: give it a vtkPolyDataMapper input or set ClipMesh.");
+      return f.Fail(
+        "The clip shape has no mesh: give it a vtkPolyDataMapper input or set ClipMesh.");
   }
-  const bool clipping = this->ClipShape != nullptr;
-  const int mode =
-    this->Mode == SUBTRACTION ? cao::layout::CAO_MODE_SUBTRACT : cao::layout::CAO_MODE_PROBE;
-  if (clipping)
+  f.clipping = self->ClipShape != nullptr;
+  if (!f.clipping)
   {
-    // Pose: the mesh's local frame to the volume's physical frame.
-    vtkNew<vtkMatrix4x4> worldToVolume, pose;
-    vtkMatrix4x4::Invert(vol->GetMatrix(), worldToVolume);
-    vtkMatrix4x4::Multiply4x4(worldToVolume, this->ClipShape->GetMatrix(), pose);
-    const double smin = vtkCAO::MinimumScale(pose), smax = vtkCAO::MaximumScale(pose);
-    if (!(smin > 0.0) || !std::isfinite(smax))
-      return fail("The clip pose must be an invertible affine transform.");
-    const std::vector<double> meshKey = { static_cast<double>(reinterpret_cast<std::uintptr_t>(mesh)),
-      static_cast<double>(mesh->GetMTime()), static_cast<double>(this->NumberOfClipLayers),
-      this->ClipMapPixelSize,
-      in.Plan.reach, spacing[0], spacing[1], spacing[2] };
-    // The maps are made for the pose's scale, 0.1% either side (so that a
-    // rotation's singular values, 1 +- a few ulps, keep them), with pixels
-    // of half a voxel in the world at that scale and the dilation of the
-    // world reach: a pose scaled outside that range, or one that takes the
-    // volume out of the region maps of a large mesh cover, gets new maps.
-    const char* remake = nullptr;
-    if (meshKey != in.MeshKey)
-      remake = "clip mesh changed";
-    else if (smin < in.BuiltPoseScales[0] || smax > in.BuiltPoseScales[1])
-      remake = "clip scale changed";
-    else
-    {
-      vtkCAO::ClipMaps held;
-      if (!vtkCAO::ReadClipMaps(in.ClipDepthMaps->GetOutput(), mode, held, error) ||
-        !vtkCAO::VolumeInsideValidRegion(input, held, pose))
-        remake = "volume left the region of the clip maps";
-    }
-    if (remake)
-    {
-      in.MeshKey.clear();
-      const double pixel =
-        this->ClipMapPixelSize > 0.0 ? this->ClipMapPixelSize : 0.5 * minSpacing / smax;
-      // A mesh much larger than the volume: maps only where the volume is,
-      // with room to move half the volume's size before new ones.
-      double bounds[6], region[6];
-      input->GetBounds(bounds);
-      const double grow = 0.5 *
-          std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
-            (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
-            (bounds[5] - bounds[4]) * (bounds[5] - bounds[4])) +
-        in.Plan.reach;
-      if (!vtkCAO::VolumeRegionInLocalFrame(input, pose, grow, region))
-        return fail("The clip pose must be an invertible affine transform.");
-      vtkClipDepthMaps* maps = in.ClipDepthMaps;
-      maps->SetInputData(mesh);
-      maps->SetNumberOfLayers(this->NumberOfClipLayers);
-      maps->SetPixelSize(pixel);
-      maps->SetReach(in.Plan.reach);
-      maps->SetVoxelSpacing(spacing[0], spacing[1], spacing[2]);
-      maps->SetPoseScaleRange(0.999 * smin, 1.001 * smax);
-      maps->SetRegionOfInterest(region);
-      maps->SetRenderWindow(window);
-      maps->SetBackend(vtkClipDepthMaps::AUTO);
-      const auto start = std::chrono::steady_clock::now();
-      in.DepthMapsError.clear();
-      maps->Update();
-      vtkImageData* out = maps->GetOutput();
-      vtkCAO::ClipMaps check;
-      if (!in.DepthMapsError.empty() || !vtkCAO::ReadClipMaps(out, mode, check, error))
-        return fail("The clip mesh's depth maps could not be made: " +
-          (in.DepthMapsError.empty() ? error : in.DepthMapsError));
-      report.stages.push_back({ "depth_maps", vtkCAO::MillisecondsSince(start), "host" });
-      report.reasons.emplace_back(remake);
-      ++this->DepthMapsCount;
-      ++in.MapsGeneration;
-      in.BuiltPoseScales[0] = 0.999 * smin;
-      in.BuiltPoseScales[1] = 1.001 * smax;
-      in.MeshKey = meshKey;
-    }
-    vtkCAO::ClipMaps clipMaps;
-    vtkImageData* mapsImage = in.ClipDepthMaps->GetOutput();
-    if (!vtkCAO::ReadClipMaps(mapsImage, mode, clipMaps, error))
-      return fail(error);
-    const std::vector<double> uploadKey = { static_cast<double>(in.MapsGeneration),
-      static_cast<double>(mode), static_cast<double>(in.PrecomputeGeneration) };
-    if (uploadKey != in.MapsUploadKey)
-    {
-      if (!engine.SetMaps(clipMaps.width, clipMaps.height, clipMaps.layers,
-            clipMaps.arrays[0]->GetPointer(0), clipMaps.arrays[1]->GetPointer(0),
-            clipMaps.arrays[2]->GetPointer(0), clipMaps.arrays[3]->GetPointer(0), error))
-        return fail("The depth-map upload failed: " + error + ".");
-      in.MapsUploadKey = uploadKey;
-      in.PoseKey.clear();
-    }
-    cao::layout::ClipParams clip{};
-    if (!vtkCAO::MakeClipParams(input, clipMaps, pose, in.Plan.reach, mode,
-          this->AntiAliasingSamples, clip, error))
-      return fail(error);
-    std::vector<double> poseKey = MatrixKey(pose);
-    poseKey.insert(poseKey.end(), { static_cast<double>(mode),
-      static_cast<double>(this->AntiAliasingSamples), static_cast<double>(this->AOUpdate),
-      static_cast<double>(in.MapsGeneration), static_cast<double>(in.PrecomputeGeneration) });
-    poseKey.push_back(static_cast<double>(ao));
-    if (poseKey != in.PoseKey && !ao)
-    {
-      // Only the shadow test needs the pose: no classification, no AO.
-      if (!engine.SetClipParams(clip, error))
-        return fail("The clip parameters upload failed: " + error + ".");
-      in.PoseKey = poseKey;
-    }
-    else if (poseKey != in.PoseKey)
-    {
-      cao::gl::UpdateStats stats;
-      const auto updateMode = this->AOUpdate == FULL_RECOMPUTE
-        ? cao::gl::AOEngine::UpdateMode::Full
-        : cao::gl::AOEngine::UpdateMode::Contextual;
-      if (!engine.Update(clip, stats, error, updateMode))
-        return fail("The AO update failed: " + error + ".");
-      const cao::gl::StageTimes& t = engine.Times();
-      report.stages.push_back({ "classify", t.classify, glTimer });
-      report.stages.push_back({ "copy", t.copy, glTimer });
-      report.stages.push_back({ this->AOUpdate == FULL_RECOMPUTE ? "full_recompute" : "recompute",
-        t.recompute, glTimer });
-      report.reasons.emplace_back(in.PoseKey.empty() ? "clip shape set" : "clip pose changed");
-      report.recomputed += this->AOUpdate == FULL_RECOMPUTE ? stats.affected + stats.unaffected
-                                                            : stats.affected;
-      report.clipped = stats.clipped;
-      report.affected = stats.affected;
-      report.unaffected = stats.unaffected;
-      ++this->ClassifyCount;
-      in.PoseKey = poseKey;
-    }
+    this->PoseKey.clear(); // a clip shape set again is a new pose
+    return true;
   }
+  const bool ao = self->AmbientOcclusion;
+  const int mode =
+    self->Mode == SUBTRACTION ? cao::layout::CAO_MODE_SUBTRACT : cao::layout::CAO_MODE_PROBE;
+  // Pose: the mesh's local frame to the volume's physical frame.
+  vtkNew<vtkMatrix4x4> worldToVolume, pose;
+  vtkMatrix4x4::Invert(f.volume->GetMatrix(), worldToVolume);
+  vtkMatrix4x4::Multiply4x4(worldToVolume, self->ClipShape->GetMatrix(), pose);
+  if (!this->UpdateMaps(self, f, mesh, pose, mode))
+    return false;
+  std::string error;
+  vtkCAO::ClipMaps clipMaps;
+  if (!vtkCAO::ReadClipMaps(this->ClipDepthMaps->GetOutput(), mode, clipMaps, error))
+    return f.Fail(error);
+  cao::gl::AOEngine& engine = *f.engine;
+  const std::vector<double> uploadKey = { static_cast<double>(this->MapsGeneration),
+    static_cast<double>(mode), static_cast<double>(this->PrecomputeGeneration) };
+  if (uploadKey != this->MapsUploadKey)
+  {
+    if (!engine.SetMaps(clipMaps.width, clipMaps.height, clipMaps.layers,
+          clipMaps.arrays[0]->GetPointer(0), clipMaps.arrays[1]->GetPointer(0),
+          clipMaps.arrays[2]->GetPointer(0), clipMaps.arrays[3]->GetPointer(0), error))
+      return f.Fail("The depth-map upload failed: " + error + ".");
+    this->MapsUploadKey = uploadKey;
+    this->PoseKey.clear();
+  }
+  cao::layout::ClipParams clip{};
+  if (!vtkCAO::MakeClipParams(f.input, clipMaps, pose, this->Plan.reach, mode,
+        self->AntiAliasingSamples, clip, error))
+    return f.Fail(error);
+  std::vector<double> poseKey = MatrixKey(pose);
+  poseKey.insert(poseKey.end(), { static_cast<double>(mode),
+    static_cast<double>(self->AntiAliasingSamples), static_cast<double>(self->AOUpdate),
+    static_cast<double>(this->MapsGeneration), static_cast<double>(this->PrecomputeGeneration),
+    static_cast<double>(ao) });
+  if (poseKey == this->PoseKey)
+    return true;
+  if (!ao)
+  {
+    // Only the shadow test needs the pose: no classification, no AO.
+    if (!engine.SetClipParams(clip, error))
+      return f.Fail("The clip parameters upload failed: " + error + ".");
+    this->PoseKey = poseKey;
+    return true;
+  }
+  cao::gl::UpdateStats stats;
+  const bool full = self->AOUpdate == FULL_RECOMPUTE;
+  if (!engine.Update(clip, stats, error,
+        full ? cao::gl::AOEngine::UpdateMode::Full : cao::gl::AOEngine::UpdateMode::Contextual))
+    return f.Fail("The AO update failed: " + error + ".");
+  const cao::gl::StageTimes& t = engine.Times();
+  f.report.stages.push_back({ "classify", t.classify, f.glTimer });
+  f.report.stages.push_back({ "copy", t.copy, f.glTimer });
+  f.report.stages.push_back({ full ? "full_recompute" : "recompute", t.recompute, f.glTimer });
+  f.report.reasons.emplace_back(this->PoseKey.empty() ? "clip shape set" : "clip pose changed");
+  f.report.recomputed += full ? stats.affected + stats.unaffected : stats.affected;
+  f.report.clipped = stats.clipped;
+  f.report.affected = stats.affected;
+  f.report.unaffected = stats.unaffected;
+  ++self->ClassifyCount;
+  this->PoseKey = poseKey;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkContextualAOVolumeMapper::Internals::UpdateMaps(vtkContextualAOVolumeMapper* self,
+  Frame& f, vtkPolyData* mesh, vtkMatrix4x4* pose, int mode)
+{
+  const double smin = vtkCAO::MinimumScale(pose), smax = vtkCAO::MaximumScale(pose);
+  if (!(smin > 0.0) || !std::isfinite(smax))
+    return f.Fail("The clip pose must be an invertible affine transform.");
+  ::MeshKey key;
+  key.mesh = mesh;
+  key.meshTime = mesh->GetMTime();
+  key.layers = self->NumberOfClipLayers;
+  key.pixelSize = self->ClipMapPixelSize;
+  key.reach = this->Plan.reach;
+  std::copy(f.spacing, f.spacing + 3, key.spacing);
+  // The maps are made for the pose's scale, 0.1% either side (so that a
+  // rotation's singular values, 1 +- a few ulps, keep them), with pixels of
+  // half a voxel in the world at that scale and the dilation of the world
+  // reach: a pose scaled outside that range, or one that takes the volume
+  // out of the region maps of a large mesh cover, gets new maps.
+  std::string error;
+  const char* remake = nullptr;
+  if (!this->HaveMesh || key != this->Mesh)
+    remake = "clip mesh changed";
+  else if (smin < this->BuiltPoseScales[0] || smax > this->BuiltPoseScales[1])
+    remake = "clip scale changed";
   else
   {
-    in.PoseKey.clear(); // a clip shape set again is a new pose
+    vtkCAO::ClipMaps held;
+    if (!vtkCAO::ReadClipMaps(this->ClipDepthMaps->GetOutput(), mode, held, error) ||
+      !vtkCAO::VolumeInsideValidRegion(f.input, held, pose))
+      remake = "volume left the region of the clip maps";
   }
+  if (!remake)
+    return true;
+  this->HaveMesh = false;
+  const double pixel =
+    self->ClipMapPixelSize > 0.0 ? self->ClipMapPixelSize : 0.5 * f.minSpacing / smax;
+  // A mesh much larger than the volume: maps only where the volume is, with
+  // room to move half the volume's size before new ones.
+  double bounds[6], region[6];
+  f.input->GetBounds(bounds);
+  const double grow = 0.5 *
+      std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
+        (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
+        (bounds[5] - bounds[4]) * (bounds[5] - bounds[4])) +
+    this->Plan.reach;
+  if (!vtkCAO::VolumeRegionInLocalFrame(f.input, pose, grow, region))
+    return f.Fail("The clip pose must be an invertible affine transform.");
+  vtkClipDepthMaps* maps = this->ClipDepthMaps;
+  maps->SetInputData(mesh);
+  maps->SetNumberOfLayers(self->NumberOfClipLayers);
+  maps->SetPixelSize(pixel);
+  maps->SetReach(this->Plan.reach);
+  maps->SetVoxelSpacing(f.spacing[0], f.spacing[1], f.spacing[2]);
+  maps->SetPoseScaleRange(0.999 * smin, 1.001 * smax);
+  maps->SetRegionOfInterest(region);
+  maps->SetRenderWindow(f.window);
+  maps->SetBackend(vtkClipDepthMaps::AUTO);
+  const auto start = std::chrono::steady_clock::now();
+  this->DepthMapsError.clear();
+  maps->Update();
+  vtkCAO::ClipMaps check;
+  if (!this->DepthMapsError.empty() || !vtkCAO::ReadClipMaps(maps->GetOutput(), mode, check, error))
+    return f.Fail("The clip mesh's depth maps could not be made: " +
+      (this->DepthMapsError.empty() ? error : this->DepthMapsError));
+  f.report.stages.push_back({ "depth_maps", vtkCAO::MillisecondsSince(start), "host" });
+  f.report.reasons.emplace_back(remake);
+  ++self->DepthMapsCount;
+  ++this->MapsGeneration;
+  this->BuiltPoseScales[0] = 0.999 * smin;
+  this->BuiltPoseScales[1] = 1.001 * smax;
+  this->Mesh = key;
+  this->HaveMesh = true;
+  return true;
+}
 
-  // 5. The transfer-function table: colour and opacity, step-corrected.
-  const bool interactive = window->GetDesiredUpdateRate() > 1.0;
-  double step = this->SampleDistance > 0.0 ? this->SampleDistance : 0.5 * minSpacing;
+//------------------------------------------------------------------------------
+bool vtkContextualAOVolumeMapper::Internals::UpdateTable(
+  vtkContextualAOVolumeMapper* self, Frame& f, double& step)
+{
+  // The transfer-function table: colour and opacity, step-corrected.
+  const bool interactive = f.window->GetDesiredUpdateRate() > 1.0;
+  step = self->SampleDistance > 0.0 ? self->SampleDistance : 0.5 * f.minSpacing;
   if (interactive)
-    step = this->InteractiveSampleDistance > 0.0 ? this->InteractiveSampleDistance : 2.0 * step;
-  report.sampleDistance = step;
+    step = self->InteractiveSampleDistance > 0.0 ? self->InteractiveSampleDistance : 2.0 * step;
+  f.report.sampleDistance = step;
   // Ask for the kind of function the property has: asking for the other
   // one would create it and switch the property's colour channels.
-  const bool rgb = property->GetColorChannels(0) == 3;
-  vtkColorTransferFunction* color = rgb ? property->GetRGBTransferFunction(0) : nullptr;
-  vtkPiecewiseFunction* gray = rgb ? nullptr : property->GetGrayTransferFunction(0);
-  const std::vector<double> tableKey = { static_cast<double>(opacityFunction->GetMTime()),
+  const bool rgb = f.property->GetColorChannels(0) == 3;
+  vtkColorTransferFunction* color = rgb ? f.property->GetRGBTransferFunction(0) : nullptr;
+  vtkPiecewiseFunction* gray = rgb ? nullptr : f.property->GetGrayTransferFunction(0);
+  const std::vector<double> tableKey = { static_cast<double>(f.opacityFunction->GetMTime()),
     static_cast<double>(rgb ? color->GetMTime() : gray->GetMTime()), static_cast<double>(rgb),
-    unitDistance, step, in.ScalarRange[0], in.ScalarRange[1],
-    static_cast<double>(in.PrecomputeGeneration) };
-  if (tableKey != in.TableKey)
+    f.unitDistance, step, this->ScalarRange[0], this->ScalarRange[1],
+    static_cast<double>(this->PrecomputeGeneration) };
+  if (tableKey == this->TableKey)
+    return true;
+  std::vector<float> table(4 * TableEntries);
+  const double lo = this->ScalarRange[0], hi = this->ScalarRange[1];
+  for (int i = 0; i < TableEntries; ++i)
   {
-    std::vector<float> table(4 * TableEntries);
-    const double lo = in.ScalarRange[0], hi = in.ScalarRange[1];
-    for (int i = 0; i < TableEntries; ++i)
-    {
-      const double s = lo + (hi - lo) * i / (TableEntries - 1);
-      double c[3] = { 1, 1, 1 };
-      if (rgb)
-        color->GetColor(s, c);
-      else
-        c[0] = c[1] = c[2] = gray->GetValue(s);
-      table[4 * i] = static_cast<float>(c[0]);
-      table[4 * i + 1] = static_cast<float>(c[1]);
-      table[4 * i + 2] = static_cast<float>(c[2]);
-      table[4 * i + 3] = cao::CorrectOpacity(opacityFunction->GetValue(s), step / unitDistance);
-    }
-    if (!in.Caster->SetTable(table.data(), TableEntries, error))
-      return fail("The transfer-function upload failed: " + error + ".");
-    in.TableKey = tableKey;
+    const double s = lo + (hi - lo) * i / (TableEntries - 1);
+    double c[3] = { 1, 1, 1 };
+    if (rgb)
+      color->GetColor(s, c);
+    else
+      c[0] = c[1] = c[2] = gray->GetValue(s);
+    table[4 * i] = static_cast<float>(c[0]);
+    table[4 * i + 1] = static_cast<float>(c[1]);
+    table[4 * i + 2] = static_cast<float>(c[2]);
+    table[4 * i + 3] = cao::CorrectOpacity(f.opacityFunction->GetValue(s), step / f.unitDistance);
   }
+  std::string error;
+  if (!this->Caster->SetTable(table.data(), TableEntries, error))
+    return f.Fail("The transfer-function upload failed: " + error + ".");
+  this->TableKey = tableKey;
+  return true;
+}
 
-  // 6. The frame: camera, volume placement, lighting, flags.
-  cao::layout::RenderParams params{};
+//------------------------------------------------------------------------------
+void vtkContextualAOVolumeMapper::Internals::MakeRenderParams(vtkContextualAOVolumeMapper* self,
+  const Frame& f, double step, cao::layout::RenderParams& params)
+{
+  // The frame: camera, volume placement, lighting, flags.
+  vtkRenderer* ren = f.renderer;
   int size[2], origin[2];
   ren->GetTiledSizeAndOrigin(&size[0], &size[1], &origin[0], &origin[1]);
-  const int viewport[4] = { origin[0], origin[1], size[0], size[1] };
   vtkCamera* camera = ren->GetActiveCamera();
   vtkNew<vtkMatrix4x4> worldToNDC, ndcToWorld;
-  worldToNDC->DeepCopy(camera->GetCompositeProjectionTransformMatrix(
-    ren->GetTiledAspectRatio(), -1.0, 1.0));
+  worldToNDC->DeepCopy(
+    camera->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1.0, 1.0));
   vtkMatrix4x4::Invert(worldToNDC, ndcToWorld);
   Columns(ndcToWorld, params.ndcToWorld, 4);
   int extent[6];
-  input->GetExtent(extent);
+  f.input->GetExtent(extent);
   vtkNew<vtkMatrix4x4> shift, indexToPhysical, indexToWorld, worldToIndex;
   shift->Identity();
   shift->SetElement(0, 3, extent[0]);
   shift->SetElement(1, 3, extent[2]);
   shift->SetElement(2, 3, extent[4]);
-  vtkMatrix4x4::Multiply4x4(input->GetIndexToPhysicalMatrix(), shift, indexToPhysical);
-  vtkMatrix4x4::Multiply4x4(vol->GetMatrix(), indexToPhysical, indexToWorld);
+  vtkMatrix4x4::Multiply4x4(f.input->GetIndexToPhysicalMatrix(), shift, indexToPhysical);
+  vtkMatrix4x4::Multiply4x4(f.volume->GetMatrix(), indexToPhysical, indexToWorld);
   vtkMatrix4x4::Invert(indexToWorld, worldToIndex);
   Columns(worldToIndex, params.worldToIndex, 4);
   // Normal matrix: the inverse transpose of index-to-world's linear part;
@@ -678,8 +799,8 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   vtkNew<vtkMatrix4x4> normal;
   vtkMatrix4x4::Transpose(worldToIndex, normal);
   Columns(normal, params.normalToWorld, 3, 3);
-  params.viewport = { static_cast<float>(viewport[0]), static_cast<float>(viewport[1]),
-    1.0f / static_cast<float>(viewport[2]), 1.0f / static_cast<float>(viewport[3]) };
+  params.viewport = { static_cast<float>(origin[0]), static_cast<float>(origin[1]),
+    1.0f / static_cast<float>(size[0]), 1.0f / static_cast<float>(size[1]) };
   params.light = { 0, 0, 1, 1 };
   vtkLightCollection* lights = ren->GetLights();
   lights->InitTraversal();
@@ -689,57 +810,91 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       continue;
     if (!light->LightTypeIsHeadlight() && !light->LightTypeIsCameraLight())
     {
-      double p[3], f[3];
+      double p[3], fp[3];
       light->GetTransformedPosition(p);
-      light->GetTransformedFocalPoint(f);
-      params.light = { static_cast<float>(p[0] - f[0]), static_cast<float>(p[1] - f[1]),
-        static_cast<float>(p[2] - f[2]), 0.0f };
+      light->GetTransformedFocalPoint(fp);
+      params.light = { static_cast<float>(p[0] - fp[0]), static_cast<float>(p[1] - fp[1]),
+        static_cast<float>(p[2] - fp[2]), 0.0f };
     }
     break;
   }
+  vtkVolumeProperty* property = f.property;
   params.shading = { static_cast<float>(property->GetAmbient(0)),
     static_cast<float>(property->GetDiffuse(0)), static_cast<float>(property->GetSpecular(0)),
     static_cast<float>(property->GetSpecularPower(0)) };
-  const double lo = in.ScalarRange[0], hi = in.ScalarRange[1];
+  const double lo = this->ScalarRange[0], hi = this->ScalarRange[1];
   const double n = TableEntries;
   params.sampling = { static_cast<float>(step),
-    static_cast<float>(in.TexelScale / (hi - lo) * (n - 1) / n),
+    static_cast<float>(this->TexelScale / (hi - lo) * (n - 1) / n),
     static_cast<float>((-lo / (hi - lo) * (n - 1) + 0.5) / n),
-    static_cast<float>(this->AOStrength) };
+    static_cast<float>(self->AOStrength) };
+  const int* dims = f.dims;
   params.invDims = { 1.0f / dims[0], 1.0f / dims[1], 1.0f / dims[2], 0.0f };
   int flags = cao::layout::CAO_RENDER_OPAQUE_DEPTH;
   if (property->GetShade(0))
     flags |= cao::layout::CAO_RENDER_SHADE;
-  if (this->AmbientOcclusion)
+  if (self->AmbientOcclusion)
     flags |= cao::layout::CAO_RENDER_AO;
-  if (clipping)
+  if (f.clipping)
     flags |= cao::layout::CAO_RENDER_CLIP;
-  if (this->UseJittering)
+  if (self->UseJittering)
     flags |= cao::layout::CAO_RENDER_JITTER;
   params.dims = { dims[0], dims[1], dims[2], flags };
   double diagonal = 0.0;
-  const double* b = input->GetBounds();
+  const double* b = f.input->GetBounds();
   for (int d = 0; d < 3; ++d)
     diagonal += (b[2 * d + 1] - b[2 * d]) * (b[2 * d + 1] - b[2 * d]);
   // World length of the longest ray through the box, allowing for a scaled prop.
-  vtkNew<vtkMatrix4x4> linear;
-  linear->DeepCopy(vol->GetMatrix());
-  const double propScale = std::max({ std::hypot(linear->GetElement(0, 0), linear->GetElement(1, 0),
-                                        linear->GetElement(2, 0)),
-    std::hypot(linear->GetElement(0, 1), linear->GetElement(1, 1), linear->GetElement(2, 1)),
-    std::hypot(linear->GetElement(0, 2), linear->GetElement(1, 2), linear->GetElement(2, 2)) });
+  vtkMatrix4x4* m = f.volume->GetMatrix();
+  const double propScale =
+    std::max({ std::hypot(m->GetElement(0, 0), m->GetElement(1, 0), m->GetElement(2, 0)),
+      std::hypot(m->GetElement(0, 1), m->GetElement(1, 1), m->GetElement(2, 1)),
+      std::hypot(m->GetElement(0, 2), m->GetElement(1, 2), m->GetElement(2, 2)) });
   params.limits = { static_cast<int>(std::ceil(std::sqrt(diagonal) * propScale / step)) + 2, 0, 0,
     0 };
   params.boxMax = { static_cast<float>(dims[0] - 1), static_cast<float>(dims[1] - 1),
     static_cast<float>(dims[2] - 1), EarlyTermination };
+}
 
-  // 7. Draw over what the opaque geometry left.
-  if (!in.Caster->CaptureDepth(viewport, error) ||
-    !in.Caster->Draw(engine, !clipping, params, error))
-    return fail("The ray cast failed: " + error + ".");
-  report.stages.push_back({ "raycast", in.Caster->LastMilliseconds(), glTimer });
+//------------------------------------------------------------------------------
+void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
+{
+  // The frame as a sequence of steps, each doing only the work its inputs'
+  // changes call for (the frame report says which ran and why).
+  Internals& in = *this->Internal;
+  Frame f;
+  f.renderer = ren;
+  f.volume = vol;
+  double step = 0.0;
+  cao::layout::RenderParams params{};
+  bool ok = this->CheckSettings(f.why) && in.GatherInput(this, f) &&
+    in.AcquireContext(this, f) && in.UpdateVolume(this, f) && in.UpdateClip(this, f) &&
+    in.UpdateTable(this, f, step);
+  if (ok)
+  {
+    // Draw over what the opaque geometry left.
+    in.MakeRenderParams(this, f, step, params);
+    int size[2], origin[2];
+    ren->GetTiledSizeAndOrigin(&size[0], &size[1], &origin[0], &origin[1]);
+    const int viewport[4] = { origin[0], origin[1], size[0], size[1] };
+    std::string error;
+    ok = in.Caster->CaptureDepth(viewport, error) &&
+      in.Caster->Draw(*f.engine, !f.clipping, params, error);
+    if (!ok)
+      f.why = "The ray cast failed: " + error + ".";
+  }
+  if (!ok)
+  {
+    // One message per distinct failure, not one per frame; none after an abort.
+    if (!f.why.empty() && f.why != in.LastError)
+      vtkErrorMacro(<< f.why);
+    if (!f.why.empty())
+      in.LastError = f.why;
+    return;
+  }
+  f.report.stages.push_back({ "raycast", in.Caster->LastMilliseconds(), f.glTimer });
   in.LastError.clear();
-  in.Last = report;
+  in.Last = f.report;
   ++this->FrameCount;
 }
 

@@ -298,6 +298,8 @@ protected:
   ~vtkContextualAOVolumeMapper() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  /// Whether the mapper's own settings are in range; `why` says which is not.
+  bool CheckSettings(std::string& why) const;
 
   bool AmbientOcclusion = true;
   double AOStrength = 1.0;
