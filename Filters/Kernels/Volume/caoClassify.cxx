@@ -391,8 +391,8 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
   auto corner = [&](std::vector<std::uint8_t>& plane, std::size_t c, int cx, int cy, float zc) {
     std::uint8_t& v = plane[c];
     if (v == Unknown)
-      v = InsideClip(p, maps.front, maps.back, static_cast<float>(bx0 + cx) - 0.5f,
-        static_cast<float>(by0 + cy) - 0.5f, zc);
+      v = InLayers(p, maps.front, maps.back,
+        Project(p, static_cast<float>(bx0 + cx) - 0.5f, static_cast<float>(by0 + cy) - 0.5f, zc));
     return static_cast<int>(v);
   };
   // The region's voxels of rows [j0, j1] x columns [i0, i1] get the default.

@@ -3,6 +3,8 @@
 #include <sstream>
 
 #include <algorithm>
+#include <string>
+#include <cstdlib>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -241,6 +243,69 @@ void MarchRun(const LAOPlan& plan, const float* a, float* ao, int j, int k, int 
       first, n, s);
   }
 }
+
+/**
+ * The run march compiled twice, chosen at run time: the baseline (the
+ * build's target, SSE2 on x86-64) and, on x86-64 processors that have it,
+ * AVX2 (twice the vector width). Everything MarchRun calls is inlined into
+ * each (flatten), so each is vectorised for its own instruction set. The
+ * arithmetic per voxel is the same sequence of IEEE single-precision
+ * operations in both (no FMA: AVX2 does not imply it, and the library is
+ * built with -ffp-contract=off; lanes never mix), so the results are the
+ * same bit for bit (TestLAOKernel compares the two).
+ */
+using MarchRunFunction = void (*)(
+  const LAOPlan&, const float*, float*, int, int, int, int, RunScratch&);
+
+__attribute__((flatten)) void MarchRunBaseline(const LAOPlan& plan, const float* a, float* ao,
+  int j, int k, int i0, int i1, RunScratch& s)
+{
+  MarchRun(plan, a, ao, j, k, i0, i1, s);
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#define CAO_HAVE_AVX2_MARCH 1
+__attribute__((target("avx2"), flatten)) void MarchRunAVX2(const LAOPlan& plan, const float* a,
+  float* ao, int j, int k, int i0, int i1, RunScratch& s)
+{
+  MarchRun(plan, a, ao, j, k, i0, i1, s);
+}
+#endif
+
+/// The march for this processor, unless CAO_LAO_BASELINE=1 asks for the
+/// baseline (to compare the two).
+MarchRunFunction SelectMarchRun(const char*& isa)
+{
+  const char* force = std::getenv("CAO_LAO_BASELINE");
+  const bool baseline = force && *force && std::string(force) != "0";
+#ifdef CAO_HAVE_AVX2_MARCH
+  __builtin_cpu_init();
+  if (!baseline && __builtin_cpu_supports("avx2"))
+  {
+    isa = "avx2";
+    return MarchRunAVX2;
+  }
+#endif
+  (void)baseline;
+  isa = "baseline";
+  return MarchRunBaseline;
+}
+
+MarchRunFunction ActiveMarchRun(const char** isaOut = nullptr)
+{
+  const char* isa = "baseline";
+  const MarchRunFunction f = SelectMarchRun(isa);
+  if (isaOut)
+    *isaOut = isa;
+  return f;
+}
+}
+
+const char* LAOMarchInstructionSet()
+{
+  const char* isa = "baseline";
+  ActiveMarchRun(&isa);
+  return isa;
 }
 
 void VariationRotation(int v, double R[9])
@@ -443,6 +508,7 @@ void LAORange(
   const layout::LAOMarchBlock& p = plan.params;
   const std::int64_t nx = p.dims.x, nxy = std::int64_t(p.dims.x) * p.dims.y;
   RunScratch scratch;
+  const MarchRunFunction march = ActiveMarchRun();
   std::int64_t v = begin;
   while (v < end)
   {
@@ -451,7 +517,7 @@ void LAORange(
     const int j = static_cast<int>(rem / nx);
     const int i = static_cast<int>(rem - j * nx);
     const int i1 = static_cast<int>(std::min<std::int64_t>(nx, i + (end - v)));
-    MarchRun(plan, opacity, ao, j, k, i, i1, scratch);
+    march(plan, opacity, ao, j, k, i, i1, scratch);
     v += i1 - i;
   }
 }
@@ -462,6 +528,7 @@ void LAOList(const LAOPlan& plan, const float* opacity, float* ao, const std::in
   const layout::LAOMarchBlock& p = plan.params;
   const std::int64_t nx = p.dims.x, nxy = std::int64_t(p.dims.x) * p.dims.y;
   RunScratch scratch;
+  const MarchRunFunction march = ActiveMarchRun();
   std::int64_t n = begin;
   while (n < end)
   {
@@ -474,7 +541,7 @@ void LAOList(const LAOPlan& plan, const float* opacity, float* ao, const std::in
     std::int64_t last = n;
     while (last + 1 < end && list[last + 1] == list[last] + 1 && i + (last + 1 - n) < nx)
       ++last;
-    MarchRun(plan, opacity, ao, j, k, i, i + static_cast<int>(last - n) + 1, scratch);
+    march(plan, opacity, ao, j, k, i, i + static_cast<int>(last - n) + 1, scratch);
     n = last + 1;
   }
 }

@@ -97,6 +97,11 @@ void LAORange(
 /// accumulation error (same sample positions, same order).
 double LAOVoxelDouble(const LAOPlan& plan, const float* opacity, int i, int j, int k);
 
+/// The instruction set the run march (LAORange, LAOList) uses on this
+/// processor: "avx2" or "baseline" (the build's target; also when
+/// CAO_LAO_BASELINE=1). Both give the same bits.
+const char* LAOMarchInstructionSet();
+
 /// LAO of the listed voxels (linear indices list[begin..end)), written in place.
 void LAOList(const LAOPlan& plan, const float* opacity, float* ao, const std::int64_t* list,
   std::int64_t begin, std::int64_t end);
