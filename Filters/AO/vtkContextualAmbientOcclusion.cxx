@@ -107,24 +107,24 @@ VolumeKey KeyOf(const PoseInputs& in)
 }
 
 /// A buffer the filter keeps between poses, shared with the output: reused
-/// in place while nobody else holds it; otherwise a copy takes its place,
-/// so an array a caller kept from an earlier output never changes.
+/// in place while nobody else holds it; otherwise another takes its place
+/// (a copy when `keepContents`), so an array a caller kept from an earlier
+/// output never changes.
 template <typename Array>
-vtkSmartPointer<Array> KeepOrCopy(vtkSmartPointer<Array>& kept, const char* name, std::int64_t n)
+void KeepOrCopy(vtkSmartPointer<Array>& kept, const char* name, std::int64_t n, bool keepContents)
 {
-  if (kept && kept->GetNumberOfTuples() == n && kept->GetReferenceCount() > 1)
+  const bool fits = kept && kept->GetNumberOfTuples() == n;
+  if (fits && kept->GetReferenceCount() == 1)
+    return;
+  auto fresh = vtkSmartPointer<Array>::New();
+  if (fits && keepContents)
+    fresh->DeepCopy(kept);
+  else
   {
-    auto copy = vtkSmartPointer<Array>::New();
-    copy->DeepCopy(kept);
-    kept = copy;
+    fresh->SetName(name);
+    fresh->SetNumberOfTuples(n);
   }
-  else if (!kept || kept->GetNumberOfTuples() != n)
-  {
-    kept = vtkSmartPointer<Array>::New();
-    kept->SetName(name);
-    kept->SetNumberOfTuples(n);
-  }
-  return kept;
+  kept = fresh;
 }
 }
 
@@ -147,13 +147,15 @@ struct vtkContextualAmbientOcclusion::Internals
 
   /// The output buffers for `n` voxels; false when they do not hold the
   /// previous pose's output for `key` (the CPU update must start over).
-  bool AcquireBuffers(std::int64_t n, const VolumeKey& key)
+  /// `gpu`: the GPU path rewrites them whole (their contents are not needed).
+  bool AcquireBuffers(std::int64_t n, const VolumeKey& key, bool gpu)
   {
     const bool same = this->AO && this->AO->GetNumberOfTuples() == n && this->CPUKeyValid &&
       this->CPUKey == key;
-    KeepOrCopy(this->AO, vtkCAO::AmbientOcclusionName, n);
-    KeepOrCopy(this->Clipped, vtkCAO::ClippedOpacityName, n);
-    KeepOrCopy(this->Category, vtkCAO::CategoryName, n);
+    const bool keep = same && !gpu;
+    KeepOrCopy(this->AO, vtkCAO::AmbientOcclusionName, n, keep);
+    KeepOrCopy(this->Clipped, vtkCAO::ClippedOpacityName, n, keep);
+    KeepOrCopy(this->Category, vtkCAO::CategoryName, n, keep);
     this->CPUKey = key;
     this->CPUKeyValid = true;
     return same;
@@ -582,7 +584,7 @@ int vtkContextualAmbientOcclusion::RequestData(
   // previous pose's output while the volume and its LAO are unchanged).
   output->ShallowCopy(input); // first: the output lets go of the last pose's arrays
   Internals& internal = *this->Internal;
-  if (!internal.AcquireBuffers(in.voxels, KeyOf(in)))
+  if (!internal.AcquireBuffers(in.voxels, KeyOf(in), gpu))
     internal.CPU.Reset();
   PoseResult r;
   if (!(gpu ? internal.RunGPU(this, in, r) : internal.RunCPU(this, in, r)))

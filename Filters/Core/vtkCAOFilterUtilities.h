@@ -42,7 +42,13 @@ template <typename F>
 void WithThreads(int threads, F&& f)
 {
   std::string backend = vtkSMPTools::GetBackend();
-  if (backend == "Sequential" && !std::getenv("VTK_SMP_BACKEND_IN_USE"))
+  const bool promote = backend == "Sequential" && !std::getenv("VTK_SMP_BACKEND_IN_USE");
+  if (threads <= 0 && !promote)
+  {
+    f(); // the application's own setting as it is: nothing to scope
+    return;
+  }
+  if (promote)
     backend = "STDThread";
   const int desired = threads > 0
     ? threads

@@ -10,6 +10,8 @@
 #include "caoFiltersCoreModule.h" // For export macro
 #include "caoLAO.h"
 
+#include <type_traits> // For vtkCAOLAOSettingMacro
+
 #include "vtkIndent.h" // For PrintLAOSettings
 #include "vtkSystemIncludes.h" // For ostream
 

@@ -339,8 +339,11 @@ bool vtkContextualAOVolumeMapper::CheckSettings(std::string& why) const
   auto outside = [&bad](const char* name, double v, const char* range) {
     bad << name << " must be " << range << "; got " << v << ".";
   };
+  const int preset = static_cast<int>(this->Internal->Settings.preset);
   if (!(this->AOStrength >= 0.0 && this->AOStrength <= 1.0))
     outside("AOStrength", this->AOStrength, "in [0, 1]");
+  else if (preset < CUSTOM || preset > REFERENCE)
+    outside("QualityPreset", preset, "0 (Custom) to 3 (Reference)");
   else if (this->Mode != SUBTRACTION && this->Mode != PROBING)
     outside("Mode", this->Mode, "0 (subtraction) or 1 (probing)");
   else if (this->NumberOfClipLayers < 1 || this->NumberOfClipLayers > 16)
@@ -504,8 +507,12 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
   const auto start = std::chrono::steady_clock::now();
   std::vector<float> opacity(static_cast<std::size_t>(f.voxels));
   std::int64_t nonFinite = 0;
-  if (!vtkCAO::ComputeOpacity(self, f.scalars, 0, f.opacityFunction,
-        this->Plan.step / f.unitDistance, opacity.data(), nonFinite))
+  bool computed = false;
+  vtkCAO::WithThreads(0, [&] {
+    computed = vtkCAO::ComputeOpacity(self, f.scalars, 0, f.opacityFunction,
+      this->Plan.step / f.unitDistance, opacity.data(), nonFinite);
+  });
+  if (!computed)
     return false; // aborted
   if (nonFinite > 0) // (GetRange skips NaN, so they are counted here)
     return f.Fail("The scalars contain " + std::to_string(nonFinite) +

@@ -248,7 +248,7 @@ ClipMapsTiles::Coverage ClipMapsTiles::Query(int set, int px0, int px1, int py0,
   py1 = std::min(py1, this->Height - 1);
   if (px0 > px1 || py0 > py1)
     return None;
-  // The finest level whose tiles cover the rectangle with at most 4 x 4.
+  // The finest level whose tiles cover the rectangle with at most 6 x 6.
   const Level* level = &this->Levels.back();
   for (const Level& l : this->Levels)
     if (px1 / l.tile - px0 / l.tile < 6 && py1 / l.tile - py0 / l.tile < 6)

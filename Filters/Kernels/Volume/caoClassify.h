@@ -55,7 +55,7 @@ struct CategoryCounts
 
 /**
  * Conservative summaries of the two map sets (clip and candidate layers)
- * over square pixel tiles of 8, 32, 128, ... pixels: per tile, the smallest
+ * over square pixel tiles of 4, 16, 64, ... pixels: per tile, the smallest
  * front and the largest back over all its pixels and layers (a depth range
  * outside them meets no interval), and per layer the largest front and the
  * smallest back (a range inside them lies in that layer at every pixel).

@@ -106,16 +106,25 @@ bool ContextualUpdate::Update(const Volume& volume, const layout::ClipParams& cl
   const ClipMapsTiles* tiles = useTiles ? &this->Tiles : nullptr;
   // One list per slice, kept between poses (their memory is reused: no
   // fresh pages per pose), concatenated in slice order.
-  const int z0 = region[4], slabs = Empty(region) ? 0 : region[5] - region[4] + 1;
+  // Work in groups of 4 slices aligned to the candidate box's brick layers
+  // (ClassifyRegion decides a layer of 4^3 bricks once per call, and shares
+  // corner planes between the slices of a call).
+  const int layer = 4;
+  const int boxZ = clip.boxMin.z <= clip.boxMax.z ? clip.boxMin.z : region[4];
+  const int align = Empty(region) ? 0 : ((region[4] - boxZ) % layer + layer) % layer;
+  const int z0 = region[4] - align;
+  const int slabs = Empty(region) ? 0 : region[5] - z0 + 1;
+  const int groups = (slabs + layer - 1) / layer;
   if (static_cast<int>(this->SliceLists.size()) < slabs)
     this->SliceLists.resize(static_cast<std::size_t>(slabs));
   std::mutex mutex;
   CategoryCounts counts;
-  ok = parallel(slabs, 1, 0.05, 0.2, [&](std::int64_t b, std::int64_t e) {
+  ok = parallel(groups, 1, 0.05, 0.2, [&](std::int64_t b, std::int64_t e) {
     CategoryCounts local;
+    const int zBegin = z0 + static_cast<int>(b) * layer;
+    const int zEnd = std::min(z0 + static_cast<int>(e) * layer, z0 + slabs);
     ClassifyRegion(clip, dims, maps, volume.opacity, out.clippedOpacity, out.category, region,
-      z0 + static_cast<int>(b), z0 + static_cast<int>(e), this->SliceLists.data() + b, local,
-      tiles);
+      zBegin, zEnd, this->SliceLists.data() + (zBegin - z0), local, tiles);
     std::lock_guard<std::mutex> lock(mutex);
     counts.Add(local);
   });

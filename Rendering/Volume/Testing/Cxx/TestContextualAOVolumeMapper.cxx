@@ -616,6 +616,11 @@ void BadInput(const Options& o)
   const int frames = m->GetFrameCount();
   s.window->Render();
   CAO_EXPECT(errors.empty() && m->GetFrameCount() == frames + 1, "no recovery after bad input");
+  // A setting out of range after a good frame (everything cached) is still
+  // refused, whether or not it changes what is cached.
+  m->SetQualityPreset(7);
+  expect("quality preset 7 after a good frame", "QualityPreset");
+  m->SetQualityPreset(vtkContextualAOVolumeMapper::CUSTOM);
 
   // Lifecycle: the window (and its context) is destroyed while the mapper
   // still holds objects in it; the mapper then draws in a new window.
