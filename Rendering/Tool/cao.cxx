@@ -564,12 +564,24 @@ struct RunResult
   std::vector<PoseResult> poses;
 };
 
-int RunCarve(const Options& o, vtkImageData* volume)
+/// What `cao carve` needs besides the options: the clip mesh, the exact
+/// shape it stands for (--verify-geometry), the poses and their regions.
+struct CarveSetup
+{
+  vtkSmartPointer<vtkPolyData> mesh;
+  cao::ClipShape exact;
+  double deviation = 0.0; ///< how far the built-in shape's tessellation strays from it
+  std::vector<vtkCAO::Pose> poses;
+  /// Per pose scale: the region the volume occupies in the mesh's frame at
+  /// the poses of that scale.
+  std::map<double, std::array<double, 6>> regions;
+};
+
+/// The clip mesh and, for --verify-geometry, the exact shape: in closed
+/// form for the built-in shapes, the mesh itself (point location) for a file.
+int MakeClip(const Options& o, vtkImageData* volume, CarveSetup& s)
 {
   std::string error;
-  vtkSmartPointer<vtkPolyData> mesh;
-  double bounds[6];
-  volume->GetBounds(bounds);
   // The default shape size: a quarter of the volume's smallest extent,
   // counting each voxel's footprint (a 1-voxel-thick axis is one spacing).
   int volumeDims[3];
@@ -578,318 +590,342 @@ int RunCarve(const Options& o, vtkImageData* volume)
   double smallest = HUGE_VAL;
   for (int d = 0; d < 3; ++d)
     smallest = std::min(smallest, volumeDims[d] * std::fabs(spacing[d]));
-  if (!o.mesh.empty())
-    mesh = vtkCAO::ReadMesh(o.mesh, error);
-  else
-    mesh = vtkCAO::MakeShape(o.shape, o.size > 0.0 ? o.size : std::max(0.25 * smallest, 1e-6), error);
-  if (!mesh)
+  const double size = o.size > 0.0 ? o.size : std::max(0.25 * smallest, 1e-6);
+  s.mesh = o.mesh.empty() ? vtkCAO::MakeShape(o.shape, size, error) : vtkCAO::ReadMesh(o.mesh, error);
+  if (!s.mesh)
     return Fail(2, error);
-  // The exact shape, for --verify-geometry: in closed form for the built-in
-  // shapes (with how far their tessellation strays from it), the mesh itself
-  // (point location) for a mesh file.
-  cao::ClipShape exact;
-  double deviation = 0.0;
-  if (o.verifyGeometry)
+  if (!o.verifyGeometry)
+    return 0;
+  std::vector<double> points;
+  std::vector<std::int64_t> tris;
+  vtkCAO::TrianglesOf(s.mesh, points, tris);
+  const cao::TriangleMesh view = cao::ViewMesh(points, tris);
+  if (!o.mesh.empty())
   {
-    std::vector<double> points;
-    std::vector<std::int64_t> tris;
-    vtkCAO::TrianglesOf(mesh, points, tris);
-    const cao::TriangleMesh view = cao::ViewMesh(points, tris);
-    const double size = o.size > 0.0 ? o.size : std::max(0.25 * smallest, 1e-6);
-    if (!o.mesh.empty())
-    {
-      if (!cao::ClipShape::FromMesh(view, exact, error))
-        return Fail(2, "--verify-geometry: " + error);
-    }
-    else
-    {
-      exact = o.shape == "cube" ? cao::ClipShape::Cube(size)
-        : o.shape == "torus"    ? cao::ClipShape::Torus(size, size / 3.0)
-                                : cao::ClipShape::Sphere(size);
-      deviation = exact.Deviation(view);
-    }
+    if (!cao::ClipShape::FromMesh(view, s.exact, error))
+      return Fail(2, "--verify-geometry: " + error);
+    return 0;
   }
+  s.exact = o.shape == "cube" ? cao::ClipShape::Cube(size)
+    : o.shape == "torus"      ? cao::ClipShape::Torus(size, size / 3.0)
+                              : cao::ClipShape::Sphere(size);
+  s.deviation = s.exact.Deviation(view);
+  return 0;
+}
 
-  std::vector<vtkCAO::Pose> poses;
+/// The poses (--pose, --poses or the default path) and, per pose scale,
+/// the maps' region of interest.
+int MakePoses(const Options& o, vtkImageData* volume, CarveSetup& s)
+{
+  std::string error;
   for (const auto& t : o.poseTexts)
   {
     vtkCAO::Pose p;
     if (!vtkCAO::ParsePose(t, p, error))
       return Fail(2, error);
-    poses.push_back(p);
+    s.poses.push_back(p);
   }
-  if (!o.posesFile.empty() && !vtkCAO::ReadPoses(o.posesFile, poses, error))
+  if (!o.posesFile.empty() && !vtkCAO::ReadPoses(o.posesFile, s.poses, error))
     return Fail(2, error);
-  if (poses.size() > static_cast<std::size_t>(vtkCAO::MaxPoses))
+  if (s.poses.size() > static_cast<std::size_t>(vtkCAO::MaxPoses))
     return Fail(2, "more than " + std::to_string(vtkCAO::MaxPoses) + " poses");
-  if (poses.empty())
-    poses = vtkCAO::DefaultPath(bounds, o.path);
+  double bounds[6];
+  volume->GetBounds(bounds);
+  if (s.poses.empty())
+    s.poses = vtkCAO::DefaultPath(bounds, o.path);
+  // The maps are made for each pose scale of the path (pixels of half a
+  // voxel and the dilation of the reach, in the world, at that scale),
+  // over the region the volume occupies in the mesh's frame at the poses
+  // of that scale (all of the mesh unless it is larger than that).
+  for (const auto& p : s.poses)
+  {
+    vtkNew<vtkTransform> t;
+    vtkCAO::PoseToTransform(p, t);
+    double box[6];
+    if (!vtkCAO::VolumeRegionInLocalFrame(volume, t->GetMatrix(), 0.0, box))
+      return Fail(2, "a clip pose must be an invertible transform (scale > 0)");
+    auto it = s.regions.find(p.scale);
+    if (it == s.regions.end())
+      s.regions[p.scale] = { box[0], box[1], box[2], box[3], box[4], box[5] };
+    else
+      for (int d = 0; d < 3; ++d)
+      {
+        it->second[2 * d] = std::min(it->second[2 * d], box[2 * d]);
+        it->second[2 * d + 1] = std::max(it->second[2 * d + 1], box[2 * d + 1]);
+      }
+  }
+  return 0;
+}
 
-  vtkNew<vtkPiecewiseFunction> tf;
-  BuildTransferFunction(o, volume, tf);
-  const long long voxels = volume->GetNumberOfPoints();
+/// One ray set on one backend: the LAO precompute, then every pose through
+/// vtkClipDepthMaps and vtkContextualAmbientOcclusion. `last` receives the
+/// last pose's output; `verifyFailed` / `geometryFailed` are raised.
+int CarveRun(const Options& o, vtkImageData* volume, vtkPiecewiseFunction* tf,
+  const CarveSetup& s, const std::string& rays, int backend, caocli::Progress& progress,
+  RunResult& run, vtkSmartPointer<vtkImageData>& last, bool& verifyFailed, bool& geometryFailed)
+{
+  std::string error;
+  Options ob = o;
+  ob.backend = backend;
+  caocli::ErrorLog log;
+  vtkNew<vtkLocalAmbientOcclusion> lao;
+  log.Watch(lao);
+  ConfigureLAO(ob, rays, lao, tf);
+  lao->SetInputData(volume);
+  progress.Watch(lao, "LAO precompute (" + rays + " rays)");
+  lao->Update();
+  progress.Done();
+  if (!log.messages.empty())
+    return Fail(1, log.Last());
+  run.rays = rays;
+  const LAOUsed used(lao->GetOutput());
+  run.numRays = used.run.rays;
+  run.samples = used.run.samples;
+  run.reach = used.settings.reach;
+  run.precomputeMs = used.run.milliseconds;
+  run.used = used.Json();
+
+  vtkNew<vtkClipDepthMaps> maps;
+  log.Watch(maps);
+  maps->SetInputData(s.mesh);
+  maps->SetReach(run.reach);
+  maps->SetVoxelSpacing(volume->GetSpacing());
+  maps->SetNumberOfLayers(o.layers);
+  maps->SetPixelSize(o.pixelSize);
+  maps->SetDirection(o.direction);
+  maps->SetNumberOfThreads(o.threads);
+  maps->SetBackend(backend);
+
+  vtkNew<vtkContextualAmbientOcclusion> cao;
+  log.Watch(cao);
+  cao->SetInputConnection(0, lao->GetOutputPort());
+  cao->SetInputConnection(1, maps->GetOutputPort());
+  cao->SetMode(o.mode == "probe" ? vtkContextualAmbientOcclusion::PROBING
+                                 : vtkContextualAmbientOcclusion::SUBTRACTION);
+  cao->SetAntiAliasingSamples(o.aa);
+  cao->SetVerify(o.verify);
+  cao->SetNumberOfThreads(o.threads);
+  cao->SetBackend(backend);
+  vtkNew<vtkTransform> pose;
+  cao->SetPoseTransform(pose);
+  const int mode = o.mode == "probe" ? cao::layout::CAO_MODE_PROBE : cao::layout::CAO_MODE_SUBTRACT;
+  for (std::size_t index = 0; index < s.poses.size(); ++index)
+  {
+    const vtkCAO::Pose& p = s.poses[index];
+    progress.Step("poses", index, s.poses.size());
+    vtkCAO::PoseToTransform(p, pose);
+    maps->SetPoseScaleRange(p.scale, p.scale);
+    maps->SetRegionOfInterest(s.regions.at(p.scale).data());
+    auto t0 = std::chrono::steady_clock::now();
+    const int before = run.mapsBuilt;
+    maps->Update();
+    if (maps->GetOutput()->GetMTime() > run.mapsTime)
+    {
+      run.mapsTime = maps->GetOutput()->GetMTime();
+      ++run.mapsBuilt;
+      run.depthMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    }
+    if (!log.messages.empty())
+      return Fail(2, log.Last());
+    cao->Update();
+    if (!log.messages.empty())
+      return Fail(1, log.Last());
+    vtkImageData* out = cao->GetOutput();
+    PoseResult r;
+    r.pose = p;
+    r.newMaps = run.mapsBuilt > before;
+    for (int c = 0; c < 3; ++c)
+      r.counts[c] = FieldValue(out, "CategoryCounts", c);
+    for (int c = 0; c < 4; ++c)
+      r.ms[c] = FieldValue(out, "StageMilliseconds", c);
+    if (o.verify)
+    {
+      r.maxDiff = FieldValue(out, "Verification", 0);
+      r.differing = FieldValue(out, "Verification", 1);
+      r.fullMs = FieldValue(out, "Verification", 2);
+      verifyFailed = verifyFailed || r.maxDiff != 0.0;
+    }
+    if (o.verifyGeometry)
+    {
+      vtkCAO::ClipMaps held;
+      cao::ClipGeometryReport report;
+      if (!vtkCAO::ReadClipMaps(maps->GetOutput(), mode, held, error) ||
+        !vtkCAO::CheckClipGeometry(out, held, pose->GetMatrix(), s.exact, s.deviation, mode, report, error))
+        return Fail(1, "--verify-geometry: " + error);
+      r.geometry = report;
+      r.geometryChecked = true;
+      geometryFailed = geometryFailed || !report.Passed();
+    }
+    run.poses.push_back(r);
+  }
+  progress.Done();
+  run.backend = FieldString(cao->GetOutput(), "ComputeBackend");
+  run.mapsBackend = FieldString(maps->GetOutput(), "ComputeBackend");
+  run.gpuBytesPerVoxel = FieldValue(cao->GetOutput(), "GPUStatistics", 1);
+  last = vtkSmartPointer<vtkImageData>::New();
+  last->ShallowCopy(cao->GetOutput());
+  return 0;
+}
+
+double FullMs(const RunResult& run, const PoseResult& r)
+{
+  return r.fullMs >= 0.0 ? r.fullMs : run.precomputeMs;
+}
+
+void PrintCarveJson(const Options& o, vtkImageData* volume, const std::vector<RunResult>& runs)
+{
   int dims[3];
   volume->GetDimensions(dims);
+  const long long voxels = volume->GetNumberOfPoints();
+  std::printf("{\"command\": \"carve\", \"volume\": \"%s\", \"dims\": [%d, %d, %d], "
+              "\"voxels\": %lld, \"mode\": \"%s\", \"threads\": %d, \"runs\": [",
+    o.volume.c_str(), dims[0], dims[1], dims[2], voxels, o.mode.c_str(),
+    vtkSMPTools::GetEstimatedNumberOfThreads());
+  for (std::size_t i = 0; i < runs.size(); ++i)
+  {
+    const RunResult& run = runs[i];
+    const bool gl = ContextOf(run.backend) != "none";
+    std::printf("%s\n {\"rays\": %d, %s, \"samples\": %d, \"reach\": %.9g, "
+                "\"backend\": \"%s\", \"context\": \"%s\", \"backend_detail\": \"%s\", "
+                "\"stage_timing\": \"%s\", \"gpu_bytes_per_voxel\": %.4f, "
+                "\"precompute_ms\": %.3f, \"depth_maps_ms\": %.3f, \"depth_maps_made\": %d, "
+                "\"depth_maps_backend\": \"%s\", \"poses\": [",
+      i ? "," : "", run.numRays, run.used.c_str(), run.samples, run.reach, gl ? "gl" : "cpu",
+      ContextOf(run.backend).c_str(), JsonEscape(run.backend).c_str(),
+      gl ? (ContextOf(run.backend) == "osmesa" ? "host clock around glFinish" : "GL timestamp queries")
+         : "host clock",
+      run.gpuBytesPerVoxel, run.precomputeMs, run.depthMs, run.mapsBuilt,
+      JsonEscape(run.mapsBackend).c_str());
+    double sumFull = 0, sumCao = 0, sumB = 0, maxDiff = o.verify ? 0.0 : -1.0;
+    for (std::size_t j = 0; j < run.poses.size(); ++j)
+    {
+      const PoseResult& r = run.poses[j];
+      const double full = FullMs(run, r);
+      sumFull += full;
+      sumCao += r.ms[3];
+      sumB += r.counts[1];
+      maxDiff = std::max(maxDiff, r.maxDiff);
+      std::printf("%s\n  {\"pose\": [%g, %g, %g, %g, %g, %g, %g], "
+                  "\"counts\": {\"clipped\": %.0f, \"affected\": %.0f, \"unaffected\": %.0f}, "
+                  "\"ms\": {\"classify\": %.3f, \"copy\": %.3f, \"recompute\": %.3f, \"cao_total\": %.3f}, "
+                  "\"full_lao_ms\": %.3f, \"full_lao_measured_at_pose\": %s, \"speedup\": %.4f",
+        j ? "," : "", r.pose.translation[0], r.pose.translation[1], r.pose.translation[2],
+        r.pose.rotation[0], r.pose.rotation[1], r.pose.rotation[2], r.pose.scale, r.counts[0],
+        r.counts[1], r.counts[2], r.ms[0], r.ms[1], r.ms[2], r.ms[3], full,
+        r.fullMs >= 0.0 ? "true" : "false", full / std::max(r.ms[3], 1e-9));
+      if (o.verify)
+        std::printf(", \"max_abs_difference\": %.9g, \"differing_voxels\": %.0f", r.maxDiff, r.differing);
+      if (r.geometryChecked)
+        std::printf(", \"geometry\": {\"margin\": %.9g, \"map_pixel\": %.9g, "
+                    "\"must_be_inside\": %lld, "
+                    "\"must_be_outside\": %lld, \"wrong_inside\": %lld, \"wrong_outside\": %lld}",
+          r.geometry.margin, r.geometry.pixel, static_cast<long long>(r.geometry.mustBeInside),
+          static_cast<long long>(r.geometry.mustBeOutside),
+          static_cast<long long>(r.geometry.wrongInside),
+          static_cast<long long>(r.geometry.wrongOutside));
+      std::printf("}");
+    }
+    const double n = static_cast<double>(run.poses.size());
+    std::printf("],\n  \"summary\": {\"full_lao_ms\": %.3f, \"cao_ms\": %.3f, \"speedup\": %.4f, "
+                "\"affected_percent\": %.4f, \"physical_limit\": %.4f, \"max_abs_difference\": %.9g}}",
+      sumFull / n, sumCao / n, sumFull / std::max(sumCao, 1e-9), 100.0 * sumB / (n * voxels),
+      sumB > 0 ? n * voxels / sumB : 0.0, maxDiff);
+  }
+  std::printf("]}\n");
+}
+
+void PrintCarveTables(const Options& o, vtkImageData* volume, const std::vector<RunResult>& runs)
+{
+  int dims[3];
+  volume->GetDimensions(dims);
+  const long long voxels = volume->GetNumberOfPoints();
+  for (const RunResult& run : runs)
+  {
+    std::printf("\n%s (%d x %d x %d = %lld voxels), %s mode, %d rays x %d samples, reach %g\n",
+      o.volume.c_str(), dims[0], dims[1], dims[2], voxels, o.mode.c_str(), run.numRays,
+      run.samples, run.reach);
+    std::printf("backend: %s\n", run.backend.c_str());
+    std::printf("LAO precompute %.1f ms; depth maps %.1f ms (%d made: one per pose scale; %s)\n",
+      run.precomputeMs, run.depthMs, run.mapsBuilt, run.mapsBackend.c_str());
+    std::printf("%4s %10s %10s %10s %6s %9s %8s %10s %9s %9s %8s%s%s\n", "pose", "clipped(a)",
+      "affected(b)", "unaff.(c)", "%b", "classify", "copy", "recompute", "CAO ms", "full ms",
+      "speedup", o.verify ? "  max|diff|" : "",
+      o.verifyGeometry ? "  geometry: wrong/checked (margin)" : "");
+    for (std::size_t j = 0; j < run.poses.size(); ++j)
+    {
+      const PoseResult& r = run.poses[j];
+      const double full = FullMs(run, r);
+      std::printf("%4zu %10.0f %10.0f %10.0f %6.2f %9.2f %8.2f %10.2f %9.2f %9.2f %8.2f", j,
+        r.counts[0], r.counts[1], r.counts[2], 100.0 * r.counts[1] / voxels, r.ms[0], r.ms[1],
+        r.ms[2], r.ms[3], full, full / std::max(r.ms[3], 1e-9));
+      if (o.verify)
+        std::printf("  %g", r.maxDiff);
+      if (r.geometryChecked)
+        std::printf("  %lld/%lld (%.3g)",
+          static_cast<long long>(r.geometry.wrongInside + r.geometry.wrongOutside),
+          static_cast<long long>(r.geometry.mustBeInside + r.geometry.mustBeOutside),
+          r.geometry.margin);
+      std::printf("\n");
+      if (r.geometryChecked && !r.geometry.Passed())
+        std::printf("     geometry: %s\n", r.geometry.firstWrong.c_str());
+    }
+  }
+  // The summary table: one row per ray set (the README's benchmark table).
+  std::printf("\nSummary (means over %zu poses; full LAO %s):\n", runs[0].poses.size(),
+    o.verify ? "recomputed on the clipped opacity at every pose" : "= the unclipped precompute");
+  std::printf("| rays | backend | full-LAO ms | CAO update ms | speed-up | %% voxels in b | physical limit | speed-up / limit |%s\n",
+    o.verify ? " max abs diff |" : "");
+  std::printf("|---:|---|---:|---:|---:|---:|---:|---:|%s\n", o.verify ? "---:|" : "");
+  for (const RunResult& run : runs)
+  {
+    double sumFull = 0, sumCao = 0, sumB = 0, maxDiff = 0;
+    for (const auto& r : run.poses)
+    {
+      sumFull += FullMs(run, r);
+      sumCao += r.ms[3];
+      sumB += r.counts[1];
+      maxDiff = std::max(maxDiff, r.maxDiff);
+    }
+    const double n = static_cast<double>(run.poses.size());
+    const double speedup = sumFull / std::max(sumCao, 1e-9);
+    const double limit = sumB > 0 ? n * voxels / sumB : 0.0;
+    const std::string context = ContextOf(run.backend);
+    std::printf("| %d | %s | %.1f | %.1f | %.2fx | %.2f | %.2fx | %.0f%% |", run.numRays,
+      context == "none" ? "CPU" : ("GL " + context).c_str(), sumFull / n,
+      sumCao / n, speedup, 100.0 * sumB / (n * voxels), limit, limit > 0 ? 100.0 * speedup / limit : 0.0);
+    if (o.verify)
+      std::printf(" %g |", maxDiff);
+    std::printf("\n");
+  }
+}
+
+int RunCarve(const Options& o, vtkImageData* volume)
+{
+  CarveSetup setup;
+  if (const int rc = MakeClip(o, volume, setup))
+    return rc;
+  if (const int rc = MakePoses(o, volume, setup))
+    return rc;
+  vtkNew<vtkPiecewiseFunction> tf;
+  BuildTransferFunction(o, volume, tf);
   std::vector<RunResult> runs;
   vtkSmartPointer<vtkImageData> last;
   bool verifyFailed = false, geometryFailed = false;
   caocli::Progress progress(o.quiet);
-
   for (const std::string& rays : o.rays)
-  for (int backend : o.backends)
-  {
-    Options ob = o;
-    ob.backend = backend;
-    caocli::ErrorLog log;
-    vtkNew<vtkLocalAmbientOcclusion> lao;
-    log.Watch(lao);
-    ConfigureLAO(ob, rays, lao, tf);
-    lao->SetInputData(volume);
-    progress.Watch(lao, "LAO precompute (" + rays + " rays)");
-    lao->Update();
-    progress.Done();
-    if (!log.messages.empty())
-      return Fail(1, log.Last());
-    RunResult run;
-    run.rays = rays;
-    vtkImageData* laoOut = lao->GetOutput();
-    const LAOUsed used(laoOut);
-    run.numRays = used.run.rays;
-    run.samples = used.run.samples;
-    run.reach = used.settings.reach;
-    run.precomputeMs = used.run.milliseconds;
-    run.used = used.Json();
-
-    // The maps are made for each pose scale of the path (pixels of half a
-    // voxel and the dilation of the reach, in the world, at that scale),
-    // over the region the volume occupies in the mesh's frame at the poses
-    // of that scale (all of the mesh unless it is larger than that).
-    std::map<double, std::array<double, 6>> regions;
-    for (const auto& p : poses)
+    for (int backend : o.backends)
     {
-      vtkNew<vtkTransform> t;
-      vtkCAO::PoseToTransform(p, t);
-      double box[6];
-      if (!vtkCAO::VolumeRegionInLocalFrame(volume, t->GetMatrix(), 0.0, box))
-        return Fail(2, "a clip pose must be an invertible transform (scale > 0)");
-      auto it = regions.find(p.scale);
-      if (it == regions.end())
-        regions[p.scale] = { box[0], box[1], box[2], box[3], box[4], box[5] };
-      else
-        for (int d = 0; d < 3; ++d)
-        {
-          it->second[2 * d] = std::min(it->second[2 * d], box[2 * d]);
-          it->second[2 * d + 1] = std::max(it->second[2 * d + 1], box[2 * d + 1]);
-        }
+      RunResult run;
+      if (const int rc = CarveRun(
+            o, volume, tf, setup, rays, backend, progress, run, last, verifyFailed, geometryFailed))
+        return rc;
+      runs.push_back(run);
     }
-    vtkNew<vtkClipDepthMaps> maps;
-    log.Watch(maps);
-    maps->SetInputData(mesh);
-    maps->SetReach(run.reach);
-    maps->SetVoxelSpacing(volume->GetSpacing());
-    maps->SetNumberOfLayers(o.layers);
-    maps->SetPixelSize(o.pixelSize);
-    maps->SetDirection(o.direction);
-    maps->SetNumberOfThreads(o.threads);
-    maps->SetBackend(backend);
-
-    vtkNew<vtkContextualAmbientOcclusion> cao;
-    log.Watch(cao);
-    cao->SetInputConnection(0, lao->GetOutputPort());
-    cao->SetInputConnection(1, maps->GetOutputPort());
-    cao->SetMode(o.mode == "probe" ? vtkContextualAmbientOcclusion::PROBING
-                                   : vtkContextualAmbientOcclusion::SUBTRACTION);
-    cao->SetAntiAliasingSamples(o.aa);
-    cao->SetVerify(o.verify);
-    cao->SetNumberOfThreads(o.threads);
-    cao->SetBackend(backend);
-    vtkNew<vtkTransform> pose;
-    cao->SetPoseTransform(pose);
-    const int mode = o.mode == "probe" ? cao::layout::CAO_MODE_PROBE : cao::layout::CAO_MODE_SUBTRACT;
-    for (std::size_t index = 0; index < poses.size(); ++index)
-    {
-      const vtkCAO::Pose& p = poses[index];
-      progress.Step("poses", index, poses.size());
-      vtkCAO::PoseToTransform(p, pose);
-      const double scale = p.scale;
-      maps->SetPoseScaleRange(scale, scale);
-      maps->SetRegionOfInterest(regions[scale].data());
-      auto t0 = std::chrono::steady_clock::now();
-      const int before = run.mapsBuilt;
-      maps->Update();
-      if (maps->GetOutput()->GetMTime() > run.mapsTime)
-      {
-        run.mapsTime = maps->GetOutput()->GetMTime();
-        ++run.mapsBuilt;
-        run.depthMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-      }
-      if (!log.messages.empty())
-        return Fail(2, log.Last());
-      cao->Update();
-      if (!log.messages.empty())
-        return Fail(1, log.Last());
-      vtkImageData* out = cao->GetOutput();
-      PoseResult r;
-      r.pose = p;
-      r.newMaps = run.mapsBuilt > before;
-      for (int c = 0; c < 3; ++c)
-        r.counts[c] = FieldValue(out, "CategoryCounts", c);
-      for (int c = 0; c < 4; ++c)
-        r.ms[c] = FieldValue(out, "StageMilliseconds", c);
-      if (o.verify)
-      {
-        r.maxDiff = FieldValue(out, "Verification", 0);
-        r.differing = FieldValue(out, "Verification", 1);
-        r.fullMs = FieldValue(out, "Verification", 2);
-        verifyFailed = verifyFailed || r.maxDiff != 0.0;
-      }
-      if (o.verifyGeometry)
-      {
-        vtkCAO::ClipMaps held;
-        cao::ClipGeometryReport report;
-        if (!vtkCAO::ReadClipMaps(maps->GetOutput(), mode, held, error) ||
-          !vtkCAO::CheckClipGeometry(out, held, pose->GetMatrix(), exact, deviation, mode, report, error))
-          return Fail(1, "--verify-geometry: " + error);
-        r.geometry = report;
-        r.geometryChecked = true;
-        geometryFailed = geometryFailed || !report.Passed();
-      }
-      run.poses.push_back(r);
-    }
-    progress.Done();
-    run.backend = FieldString(cao->GetOutput(), "ComputeBackend");
-    run.mapsBackend = FieldString(maps->GetOutput(), "ComputeBackend");
-    run.gpuBytesPerVoxel = FieldValue(cao->GetOutput(), "GPUStatistics", 1);
-    last = vtkSmartPointer<vtkImageData>::New();
-    last->ShallowCopy(cao->GetOutput());
-    runs.push_back(run);
-  }
-
-  // Reports.
-  auto fullOf = [](const RunResult& run, const PoseResult& r) {
-    return r.fullMs >= 0.0 ? r.fullMs : run.precomputeMs;
-  };
   if (o.json)
-  {
-    std::printf("{\"command\": \"carve\", \"volume\": \"%s\", \"dims\": [%d, %d, %d], "
-                "\"voxels\": %lld, \"mode\": \"%s\", \"threads\": %d, \"runs\": [",
-      o.volume.c_str(), dims[0], dims[1], dims[2], voxels, o.mode.c_str(),
-      vtkSMPTools::GetEstimatedNumberOfThreads());
-    for (std::size_t i = 0; i < runs.size(); ++i)
-    {
-      const RunResult& run = runs[i];
-      const bool gl = ContextOf(run.backend) != "none";
-      std::printf("%s\n {\"rays\": %d, %s, \"samples\": %d, \"reach\": %.9g, "
-                  "\"backend\": \"%s\", \"context\": \"%s\", \"backend_detail\": \"%s\", "
-                  "\"stage_timing\": \"%s\", \"gpu_bytes_per_voxel\": %.4f, "
-                  "\"precompute_ms\": %.3f, \"depth_maps_ms\": %.3f, \"depth_maps_made\": %d, "
-                  "\"depth_maps_backend\": \"%s\", \"poses\": [",
-        i ? "," : "", run.numRays, run.used.c_str(), run.samples, run.reach, gl ? "gl" : "cpu",
-        ContextOf(run.backend).c_str(), JsonEscape(run.backend).c_str(),
-        gl ? (ContextOf(run.backend) == "osmesa" ? "host clock around glFinish" : "GL timestamp queries")
-           : "host clock",
-        run.gpuBytesPerVoxel, run.precomputeMs, run.depthMs, run.mapsBuilt,
-        JsonEscape(run.mapsBackend).c_str());
-      double sumFull = 0, sumCao = 0, sumB = 0, maxDiff = o.verify ? 0.0 : -1.0;
-      for (std::size_t j = 0; j < run.poses.size(); ++j)
-      {
-        const PoseResult& r = run.poses[j];
-        const double full = fullOf(run, r);
-        sumFull += full;
-        sumCao += r.ms[3];
-        sumB += r.counts[1];
-        maxDiff = std::max(maxDiff, r.maxDiff);
-        std::printf("%s\n  {\"pose\": [%g, %g, %g, %g, %g, %g, %g], "
-                    "\"counts\": {\"clipped\": %.0f, \"affected\": %.0f, \"unaffected\": %.0f}, "
-                    "\"ms\": {\"classify\": %.3f, \"copy\": %.3f, \"recompute\": %.3f, \"cao_total\": %.3f}, "
-                    "\"full_lao_ms\": %.3f, \"full_lao_measured_at_pose\": %s, \"speedup\": %.4f",
-          j ? "," : "", r.pose.translation[0], r.pose.translation[1], r.pose.translation[2],
-          r.pose.rotation[0], r.pose.rotation[1], r.pose.rotation[2], r.pose.scale, r.counts[0],
-          r.counts[1], r.counts[2], r.ms[0], r.ms[1], r.ms[2], r.ms[3], full,
-          r.fullMs >= 0.0 ? "true" : "false", full / std::max(r.ms[3], 1e-9));
-        if (o.verify)
-          std::printf(", \"max_abs_difference\": %.9g, \"differing_voxels\": %.0f", r.maxDiff, r.differing);
-        if (r.geometryChecked)
-          std::printf(", \"geometry\": {\"margin\": %.9g, \"map_pixel\": %.9g, "
-                      "\"must_be_inside\": %lld, "
-                      "\"must_be_outside\": %lld, \"wrong_inside\": %lld, \"wrong_outside\": %lld}",
-            r.geometry.margin, r.geometry.pixel, static_cast<long long>(r.geometry.mustBeInside),
-            static_cast<long long>(r.geometry.mustBeOutside),
-            static_cast<long long>(r.geometry.wrongInside),
-            static_cast<long long>(r.geometry.wrongOutside));
-        std::printf("}");
-      }
-      const double n = static_cast<double>(run.poses.size());
-      std::printf("],\n  \"summary\": {\"full_lao_ms\": %.3f, \"cao_ms\": %.3f, \"speedup\": %.4f, "
-                  "\"affected_percent\": %.4f, \"physical_limit\": %.4f, \"max_abs_difference\": %.9g}}",
-        sumFull / n, sumCao / n, sumFull / std::max(sumCao, 1e-9), 100.0 * sumB / (n * voxels),
-        sumB > 0 ? n * voxels / sumB : 0.0, maxDiff);
-    }
-    std::printf("]}\n");
-  }
+    PrintCarveJson(o, volume, runs);
   else
-  {
-    for (const RunResult& run : runs)
-    {
-      std::printf("\n%s (%d x %d x %d = %lld voxels), %s mode, %d rays x %d samples, reach %g\n",
-        o.volume.c_str(), dims[0], dims[1], dims[2], voxels, o.mode.c_str(), run.numRays,
-        run.samples, run.reach);
-      std::printf("backend: %s\n", run.backend.c_str());
-      std::printf("LAO precompute %.1f ms; depth maps %.1f ms (%d made: one per pose scale; %s)\n",
-        run.precomputeMs, run.depthMs, run.mapsBuilt, run.mapsBackend.c_str());
-      std::printf("%4s %10s %10s %10s %6s %9s %8s %10s %9s %9s %8s%s%s\n", "pose", "clipped(a)",
-        "affected(b)", "unaff.(c)", "%b", "classify", "copy", "recompute", "CAO ms", "full ms",
-        "speedup", o.verify ? "  max|diff|" : "",
-        o.verifyGeometry ? "  geometry: wrong/checked (margin)" : "");
-      for (std::size_t j = 0; j < run.poses.size(); ++j)
-      {
-        const PoseResult& r = run.poses[j];
-        const double full = fullOf(run, r);
-        std::printf("%4zu %10.0f %10.0f %10.0f %6.2f %9.2f %8.2f %10.2f %9.2f %9.2f %8.2f", j,
-          r.counts[0], r.counts[1], r.counts[2], 100.0 * r.counts[1] / voxels, r.ms[0], r.ms[1],
-          r.ms[2], r.ms[3], full, full / std::max(r.ms[3], 1e-9));
-        if (o.verify)
-          std::printf("  %g", r.maxDiff);
-        if (r.geometryChecked)
-          std::printf("  %lld/%lld (%.3g)",
-            static_cast<long long>(r.geometry.wrongInside + r.geometry.wrongOutside),
-            static_cast<long long>(r.geometry.mustBeInside + r.geometry.mustBeOutside),
-            r.geometry.margin);
-        std::printf("\n");
-        if (r.geometryChecked && !r.geometry.Passed())
-          std::printf("     geometry: %s\n", r.geometry.firstWrong.c_str());
-      }
-    }
-    // The summary table: one row per ray set (the README's benchmark table).
-    {
-      std::printf("\nSummary (means over %zu poses; full LAO %s):\n", runs[0].poses.size(),
-        o.verify ? "recomputed on the clipped opacity at every pose" : "= the unclipped precompute");
-      std::printf("| rays | backend | full-LAO ms | CAO update ms | speed-up | %% voxels in b | physical limit | speed-up / limit |%s\n",
-        o.verify ? " max abs diff |" : "");
-      std::printf("|---:|---|---:|---:|---:|---:|---:|---:|%s\n", o.verify ? "---:|" : "");
-      for (const RunResult& run : runs)
-      {
-        double sumFull = 0, sumCao = 0, sumB = 0, maxDiff = 0;
-        for (const auto& r : run.poses)
-        {
-          sumFull += fullOf(run, r);
-          sumCao += r.ms[3];
-          sumB += r.counts[1];
-          maxDiff = std::max(maxDiff, r.maxDiff);
-        }
-        const double n = static_cast<double>(run.poses.size());
-        const double speedup = sumFull / std::max(sumCao, 1e-9);
-        const double limit = sumB > 0 ? n * voxels / sumB : 0.0;
-        const std::string context = ContextOf(run.backend);
-        std::printf("| %d | %s | %.1f | %.1f | %.2fx | %.2f | %.2fx | %.0f%% |", run.numRays,
-          context == "none" ? "CPU" : ("GL " + context).c_str(), sumFull / n,
-          sumCao / n, speedup, 100.0 * sumB / (n * voxels), limit, limit > 0 ? 100.0 * speedup / limit : 0.0);
-        if (o.verify)
-          std::printf(" %g |", maxDiff);
-        std::printf("\n");
-      }
-    }
-  }
+    PrintCarveTables(o, volume, runs);
+  std::string error;
   if (!o.output.empty() && last && !Write(last, o.output, error))
     return Fail(1, error);
   if (verifyFailed)

@@ -526,16 +526,78 @@ struct Frames
 };
 }
 
-int RunBench(int argc, char* argv[])
+namespace
+{
+/// One `cao bench accuracy` run: the volume, the reference and the rows,
+/// built by the steps RunBench calls in order (each returns 0 or the exit
+/// code of its failure, with the message printed).
+struct Bench
 {
   BenchOptions o;
+  vtkSmartPointer<vtkImageData> image;
+  vtkDataArray* scalars = nullptr;
+  int dims[3] = { 0, 0, 0 };
+  std::int64_t voxels = 0, sy = 0, sz = 0;
+  const double* spacing = nullptr;
+  double h = 0.0, reach = 0.0;
+  cao::VolumeGeometry geometry;
+  vtkNew<vtkPiecewiseFunction> tf;
+  // 1. Unit-distance opacity, the visible and the covered voxels.
+  std::vector<double> unit;
+  std::vector<std::int64_t> visible, covered;
+  std::vector<char> inSet;
+  // 2. The reference.
+  std::vector<cao::Direction> setA, setB;
+  std::vector<double> reference;
+  ErrorStats convergence, setsDiffer, stepError;
+  double msA = 0, msB = 0, msStep = 0;
+  // 3. Backends and frames.
+  bool useGL = false;
+  std::string glNote;
+  vtkNew<vtkLocalAmbientOcclusion> cpuFilter, glFilter;
+  ErrorLog cpuLog, glLog;
+  Frames frames;
+  bool haveFrames = false;
+  vtkSmartPointer<vtkUnsignedCharArray> referenceFrame;
+  // 4.-6. The rows, the plotted points, the contextual study.
+  std::vector<Row> rows;
+  std::vector<PlotPoint> points;
+  std::vector<std::string> series;
+  ErrorStats clipConvergence;
+  std::int64_t clipRegion = 0;
+  double sphereRadius = 0.0;
+
+  int Load();
+  int SelectVoxels();
+  std::string Reference(const std::vector<cao::Direction>& dirs, double stepVoxels,
+    const std::vector<double>* coverage, const std::vector<std::int64_t>& list,
+    std::vector<double>& out, double& ms) const;
+  int MakeReference();
+  void Configure(vtkLocalAmbientOcclusion* lao, const std::string& pattern, double density,
+    const std::string& variant, int backend);
+  bool TimeRun(vtkLocalAmbientOcclusion* lao, ErrorLog& log, double& ms);
+  int SetupBackends();
+  int SweepLAO();
+  void MarkFront();
+  void SphereCoverage(const double centre[3], std::vector<double>& coverage,
+    std::vector<std::int64_t>& region, std::vector<std::int64_t>& regionVisible) const;
+  int Contextual();
+  int ContextualRow(int backend, vtkLocalAmbientOcclusion* lao, vtkPolyData* sphere,
+    double pixel, const double centre[3], const cao::LAOSettings& balanced,
+    const std::vector<double>& clipRef, const std::vector<double>& exactClipAO,
+    const std::vector<std::int64_t>& regionVisible);
+  int WriteCSV(const std::string& path) const;
+  int WriteJSON(const std::string& path) const;
+  void Report(const std::string& csvPath);
+};
+
+int Bench::Load()
+{
   std::string error;
-  if (!Parse(argc, argv, o, error))
-    return Fail(2, error + "\n" + BenchUsage);
   vtkSmartPointer<vtkImageData> read = ReadVolume(o.volume, error);
   if (!read)
     return Fail(2, error);
-  vtkSmartPointer<vtkImageData> image = read;
+  image = read;
   if (o.cropSet)
   {
     const int* whole = read->GetExtent();
@@ -552,7 +614,7 @@ int RunBench(int argc, char* argv[])
     // A crop is a volume of its own: its first voxel is index 0.
     image->SetExtent(0, o.crop[1] - o.crop[0], 0, o.crop[3] - o.crop[2], 0, o.crop[5] - o.crop[4]);
   }
-  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  scalars = image->GetPointData()->GetScalars();
   if (!scalars || scalars->GetNumberOfComponents() != 1)
     return Fail(2, "the volume needs one-component point scalars");
   double range[2];
@@ -561,34 +623,37 @@ int RunBench(int argc, char* argv[])
     return Fail(2, "the scalars contain NaN or infinite values");
   if (!(range[1] > range[0]))
     range[1] = range[0] + 1.0;
-  int dims[3];
   image->GetDimensions(dims);
   if (dims[0] < 2 || dims[1] < 2 || dims[2] < 2)
     return Fail(2, "the volume must be at least 2 voxels along each axis");
-  const std::int64_t voxels = image->GetNumberOfPoints();
-  const double* spacing = image->GetSpacing();
-  const double h = std::min({ spacing[0], spacing[1], spacing[2] });
-  const double reach = o.reach > 0 ? o.reach : 8.0 * h;
+  voxels = image->GetNumberOfPoints();
+  spacing = image->GetSpacing();
+  h = std::min({ spacing[0], spacing[1], spacing[2] });
+  reach = o.reach > 0 ? o.reach : 8.0 * h;
+  std::copy(dims, dims + 3, geometry.dims);
+  std::copy(spacing, spacing + 3, geometry.spacing);
   if (mkdir(o.output.c_str(), 0755) != 0 && errno != EEXIST)
     return Fail(2, "cannot create the output directory '" + o.output + "'");
   caocli::SelectThreads(o.threads);
-
-  vtkNew<vtkPiecewiseFunction> tf;
   if (!o.opacity.empty())
     for (std::size_t i = 0; i < o.opacity.size(); i += 2)
       tf->AddPoint(o.opacity[i], o.opacity[i + 1]);
   else
     DefaultOpacityRamp(range, tf);
+  return 0;
+}
 
-  // 1. Unit-distance opacity (double), the visible voxels and the voxels
-  // the reference covers (the visible ones and their 26 neighbours: every
-  // voxel the renderer's trilinear AO lookup can touch where it draws).
-  std::vector<double> unit(static_cast<std::size_t>(voxels));
+// 1. Unit-distance opacity (double), the visible voxels and the voxels the
+// reference covers (the visible ones and their 26 neighbours: every voxel
+// the renderer's trilinear AO lookup can touch where it draws).
+int Bench::SelectVoxels()
+{
+  unit.resize(static_cast<std::size_t>(voxels));
   for (std::int64_t v = 0; v < voxels; ++v)
     unit[v] = std::min(1.0, std::max(0.0, tf->GetValue(scalars->GetComponent(v, 0))));
-  std::vector<std::int64_t> visible, covered;
-  std::vector<char> inSet(static_cast<std::size_t>(voxels), 0);
-  const std::int64_t sy = dims[0], sz = std::int64_t(dims[0]) * dims[1];
+  inSet.assign(static_cast<std::size_t>(voxels), 0);
+  sy = dims[0];
+  sz = std::int64_t(dims[0]) * dims[1];
   for (int k = 0; k < dims[2]; ++k)
     for (int j = 0; j < dims[1]; ++j)
       for (int i = 0; i < dims[0]; ++i)
@@ -614,68 +679,66 @@ int RunBench(int argc, char* argv[])
   std::printf("cao bench accuracy: %s, %d x %d x %d voxels (%lld visible), reach %g (%g voxels)\n",
     o.volume.c_str(), dims[0], dims[1], dims[2], (long long)visible.size(), reach, reach / h);
   std::fflush(stdout);
+  return 0;
+}
 
-  // 2. The reference: two stratified sets of K directions (seeds 1 and 2;
-  // together 2K directions, two per cell), steps of at most S voxels.
-  const cao::VolumeGeometry geometry = [&] {
-    cao::VolumeGeometry g;
-    std::copy(dims, dims + 3, g.dims);
-    std::copy(spacing, spacing + 3, g.spacing);
-    return g;
-  }();
-  // The reference at `list` over the unit opacity corrected for its own
-  // step, times (1 - coverage) when clipped, as the classification scales
-  // the per-step opacity.
-  auto runReference = [&](const std::vector<cao::Direction>& dirs, double stepVoxels,
-                        const std::vector<double>* coverage, const std::vector<std::int64_t>& list,
-                        std::vector<double>& out, double& ms) {
-    cao::ReferencePlan plan;
-    std::string e;
-    if (!cao::BuildReferencePlan(geometry, dirs, reach, stepVoxels, plan, e))
-      return e;
-    std::vector<double> a(unit.size());
-    for (std::size_t v = 0; v < unit.size(); ++v)
-    {
-      a[v] = unit[v] >= 1.0 ? 1.0 : 1.0 - std::pow(1.0 - unit[v], plan.step / 1.0);
-      if (coverage)
-        a[v] *= 1.0 - (*coverage)[v];
-    }
-    std::vector<double> values(list.size());
-    const auto t0 = std::chrono::steady_clock::now();
-    const std::vector<double> padded = cao::PadReferenceMedium(plan, a.data());
-    vtkSMPTools::For(0, static_cast<vtkIdType>(list.size()), 64, [&](vtkIdType b, vtkIdType e2) {
-      cao::ReferenceLAO(plan, padded, list.data(), b, e2, values.data());
-    });
-    ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    out.assign(unit.size(), 1.0);
-    for (std::size_t n = 0; n < list.size(); ++n)
-      out[static_cast<std::size_t>(list[n])] = values[n];
-    return std::string();
-  };
-  const auto setA = cao::StratifiedSphere(o.referenceRays, 1);
-  const auto setB = cao::StratifiedSphere(o.referenceRays, 2);
-  std::vector<double> refA, refB, reference(static_cast<std::size_t>(voxels), 1.0);
-  double msA = 0, msB = 0;
-  error = runReference(setA, o.referenceStep, nullptr, covered, refA, msA);
+// The reference at `list` over the unit opacity corrected for its own step,
+// times (1 - coverage) when clipped, as the classification scales the
+// per-step opacity.
+std::string Bench::Reference(const std::vector<cao::Direction>& dirs, double stepVoxels,
+  const std::vector<double>* coverage, const std::vector<std::int64_t>& list,
+  std::vector<double>& out, double& ms) const
+{
+  cao::ReferencePlan plan;
+  std::string e;
+  if (!cao::BuildReferencePlan(geometry, dirs, reach, stepVoxels, plan, e))
+    return e;
+  std::vector<double> a(unit.size());
+  for (std::size_t v = 0; v < unit.size(); ++v)
+  {
+    a[v] = unit[v] >= 1.0 ? 1.0 : 1.0 - std::pow(1.0 - unit[v], plan.step / 1.0);
+    if (coverage)
+      a[v] *= 1.0 - (*coverage)[v];
+  }
+  std::vector<double> values(list.size());
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<double> padded = cao::PadReferenceMedium(plan, a.data());
+  vtkSMPTools::For(0, static_cast<vtkIdType>(list.size()), 64, [&](vtkIdType b, vtkIdType e2) {
+    cao::ReferenceLAO(plan, padded, list.data(), b, e2, values.data());
+  });
+  ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  out.assign(unit.size(), 1.0);
+  for (std::size_t n = 0; n < list.size(); ++n)
+    out[static_cast<std::size_t>(list[n])] = values[n];
+  return std::string();
+}
+
+// 2. The reference: two stratified sets of K directions (seeds 1 and 2;
+// together 2K directions, two per cell), steps of at most S voxels.
+int Bench::MakeReference()
+{
+  setA = cao::StratifiedSphere(o.referenceRays, 1);
+  setB = cao::StratifiedSphere(o.referenceRays, 2);
+  std::vector<double> refA, refB;
+  reference.assign(static_cast<std::size_t>(voxels), 1.0);
+  std::string error = Reference(setA, o.referenceStep, nullptr, covered, refA, msA);
   if (error.empty())
-    error = runReference(setB, o.referenceStep, nullptr, covered, refB, msB);
+    error = Reference(setB, o.referenceStep, nullptr, covered, refB, msB);
   if (!error.empty())
     return Fail(2, "reference: " + error);
   for (std::size_t v = 0; v < reference.size(); ++v)
     reference[v] = 0.5 * (refA[v] + refB[v]);
-  const ErrorStats convergence = Compare(refA, reference, visible);
-  const ErrorStats setsDiffer = Compare(refA, refB, visible);
+  convergence = Compare(refA, reference, visible);
+  setsDiffer = Compare(refA, refB, visible);
   std::printf("reference: 2 x %d directions, step %g voxel, %lld voxels, %.1f s; "
               "%d vs %d directions: RMSE %.3g, max %.3g, p99 %.3g\n",
     o.referenceRays, o.referenceStep, (long long)covered.size(), (msA + msB) / 1000.0,
     o.referenceRays, 2 * o.referenceRays, convergence.rmse, convergence.max, convergence.p99);
   std::fflush(stdout);
-  ErrorStats stepError;
-  double msStep = 0;
   if (o.stepCheck)
   {
     std::vector<double> half;
-    error = runReference(setA, 0.5 * o.referenceStep, nullptr, covered, half, msStep);
+    error = Reference(setA, 0.5 * o.referenceStep, nullptr, covered, half, msStep);
     if (!error.empty())
       return Fail(2, "reference step check: " + error);
     stepError = Compare(refA, half, visible);
@@ -684,60 +747,66 @@ int RunBench(int argc, char* argv[])
       stepError.p99);
     std::fflush(stdout);
   }
+  return 0;
+}
 
-  // 3. Backends and the frames.
-  bool useGL = o.backends.empty();
+void Bench::Configure(vtkLocalAmbientOcclusion* lao, const std::string& pattern, double density,
+  const std::string& variant, int backend)
+{
+  cao::RayPattern p = cao::RayPattern::Rays26;
+  int k = 64;
+  cao::ParseRayPattern(pattern, p, k);
+  cao::RayVariation variation;
+  double offset;
+  ParseVariant(variant, variation, offset);
+  lao->SetInputData(image);
+  lao->SetOpacityFunction(tf);
+  lao->SetScalarOpacityUnitDistance(1.0);
+  lao->SetRayPattern(static_cast<int>(p));
+  lao->SetNumberOfRays(k);
+  lao->SetReach(reach);
+  lao->SetNumberOfSamples(0);
+  lao->SetSampleDensity(density);
+  lao->SetStartOffset(offset);
+  lao->SetRayVariation(static_cast<int>(variation));
+  lao->SetNumberOfThreads(o.threads);
+  lao->SetBackend(backend);
+}
+
+/// The median of the repeated runs of `lao` (false on an error).
+bool Bench::TimeRun(vtkLocalAmbientOcclusion* lao, ErrorLog& log, double& ms)
+{
+  std::vector<double> runs;
+  const int repeat = lao->GetBackend() == vtkLocalAmbientOcclusion::OPENGL ? o.glRepeat : o.repeat;
+  for (int r = 0; r < repeat; ++r)
+  {
+    lao->Modified();
+    const auto t0 = std::chrono::steady_clock::now();
+    lao->Update();
+    runs.push_back(
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    if (!log.messages.empty())
+      return false;
+  }
+  ms = Median(runs);
+  return true;
+}
+
+// 3. Backends and the frames. One filter per backend for the whole sweep,
+// as a user changing settings would have: the GL backend keeps its context
+// and programs between runs.
+int Bench::SetupBackends()
+{
+  useGL = o.backends.empty();
   for (const std::string& b : o.backends)
     useGL = useGL || b == "gl";
   const bool glRequested = !o.backends.empty() && useGL;
-  std::string glNote;
-  auto configure = [&](vtkLocalAmbientOcclusion* lao, const std::string& pattern,
-                     double density, const std::string& variant, int backend) {
-    cao::RayPattern p = cao::RayPattern::Rays26;
-    int k = 64;
-    cao::ParseRayPattern(pattern, p, k);
-    cao::RayVariation variation;
-    double offset;
-    ParseVariant(variant, variation, offset);
-    lao->SetInputData(image);
-    lao->SetOpacityFunction(tf);
-    lao->SetScalarOpacityUnitDistance(1.0);
-    lao->SetRayPattern(static_cast<int>(p));
-    lao->SetNumberOfRays(k);
-    lao->SetReach(reach);
-    lao->SetNumberOfSamples(0);
-    lao->SetSampleDensity(density);
-    lao->SetStartOffset(offset);
-    lao->SetRayVariation(static_cast<int>(variation));
-    lao->SetNumberOfThreads(o.threads);
-    lao->SetBackend(backend);
-  };
-  // One filter per backend for the whole sweep, as a user changing settings
-  // would have: the GL backend keeps its context and programs between runs.
-  vtkNew<vtkLocalAmbientOcclusion> cpuFilter, glFilter;
-  ErrorLog cpuLog, glLog;
   cpuLog.Watch(cpuFilter);
   glLog.Watch(glFilter);
-  auto timeRun = [&](vtkLocalAmbientOcclusion* lao, ErrorLog& log, double& ms) {
-    std::vector<double> runs;
-    const int repeat = lao->GetBackend() == vtkLocalAmbientOcclusion::OPENGL ? o.glRepeat : o.repeat;
-    for (int r = 0; r < repeat; ++r)
-    {
-      lao->Modified();
-      const auto t0 = std::chrono::steady_clock::now();
-      lao->Update();
-      runs.push_back(
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-      if (!log.messages.empty())
-        return false;
-    }
-    ms = Median(runs);
-    return true;
-  };
   if (useGL)
   {
     // A first run creates the context and the programs (not timed).
-    configure(glFilter, "6", 0.5, "paper", vtkLocalAmbientOcclusion::OPENGL);
+    Configure(glFilter, "6", 0.5, "paper", vtkLocalAmbientOcclusion::OPENGL);
     glFilter->Update();
     if (!glLog.messages.empty())
     {
@@ -747,9 +816,7 @@ int RunBench(int argc, char* argv[])
       glNote = "no OpenGL 4.3 backend: " + glLog.Last();
     }
   }
-  Frames frames;
-  const bool haveFrames = frames.Setup(image, tf, reach, o.width, o.height);
-  vtkSmartPointer<vtkUnsignedCharArray> referenceFrame;
+  haveFrames = frames.Setup(image, tf, reach, o.width, o.height);
   if (haveFrames)
   {
     referenceFrame = frames.Render(reference);
@@ -762,21 +829,25 @@ int RunBench(int argc, char* argv[])
   std::printf("\n%-9s %-14s %5s %4s %8s %10s %10s %10s %10s %10s %8s %10s\n", "pattern",
     "variant", "dens", "M", "storage", "cpu ms", "gl ms", "RMSE", "max", "p99", "PSNR", "memory");
   std::fflush(stdout);
+  return 0;
+}
 
-  // 4. The LAO sweep.
-  std::vector<Row> rows;
+// 4. The LAO sweep: each configuration timed on each backend, then its AO
+// at each storage precision against the reference.
+int Bench::SweepLAO()
+{
   for (const std::string& variant : o.variants)
     for (const std::string& pattern : o.patterns)
       for (double density : o.densities)
       {
         vtkLocalAmbientOcclusion* lao = cpuFilter;
-        configure(lao, pattern, density, variant, vtkLocalAmbientOcclusion::CPU);
+        Configure(lao, pattern, density, variant, vtkLocalAmbientOcclusion::CPU);
         Row row;
         row.kind = "lao";
         row.pattern = pattern;
         row.variant = variant;
         row.density = density;
-        if (!timeRun(lao, cpuLog, row.cpuMs))
+        if (!TimeRun(lao, cpuLog, row.cpuMs))
           return Fail(1, cpuLog.Last());
         vtkImageData* out = lao->GetOutput();
         cao::LAOSettings used;
@@ -791,8 +862,8 @@ int RunBench(int argc, char* argv[])
           return Fail(1, "the LAO filter produced no AmbientOcclusion array");
         if (useGL && row.cpuMs <= o.glLimitMs)
         {
-          configure(glFilter, pattern, density, variant, vtkLocalAmbientOcclusion::OPENGL);
-          if (!timeRun(glFilter, glLog, row.glMs))
+          Configure(glFilter, pattern, density, variant, vtkLocalAmbientOcclusion::OPENGL);
+          if (!TimeRun(glFilter, glLog, row.glMs))
             return Fail(1, glLog.Last());
         }
         cao::RayVariation variation;
@@ -821,11 +892,14 @@ int RunBench(int argc, char* argv[])
           std::fflush(stdout);
         }
       }
+  return 0;
+}
 
-  // 5. The Pareto front over (CPU time, RMSE) of the float32 configurations.
-  std::vector<PlotPoint> points;
+// 5. The Pareto front over (CPU time, RMSE) of the float32 configurations.
+void Bench::MarkFront()
+{
   std::vector<std::size_t> pointRow;
-  std::vector<std::string> series = o.variants;
+  series = o.variants;
   for (std::size_t r = 0; r < rows.size(); ++r)
   {
     if (rows[r].kind != "lao" || rows[r].storage != "float32")
@@ -841,215 +915,232 @@ int RunBench(int argc, char* argv[])
   }
   for (std::size_t i : ParetoFront(points))
     rows[pointRow[i]].front = true;
+}
 
-  // 6. The contextual update: depth-map resolution (a sphere at the
-  // centre), against a reference recomputed on the exactly clipped medium.
-  ErrorStats clipConvergence;
-  std::int64_t clipRegion = 0;
-  double sphereRadius = 0.0;
-  if (!o.mapPixels.empty())
-  {
-    double bounds[6];
-    image->GetBounds(bounds);
-    const double centre[3] = { 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]),
-      0.5 * (bounds[4] + bounds[5]) };
-    sphereRadius = 0.25 * std::min({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] });
-    // Exact coverage of each voxel cell by the sphere (8^3 sub-samples).
-    std::vector<double> coverage(static_cast<std::size_t>(voxels), 0.0);
-    std::vector<std::int64_t> region, regionVisible;
-    const double* origin = image->GetOrigin();
-    for (int k = 0; k < dims[2]; ++k)
-      for (int j = 0; j < dims[1]; ++j)
-        for (int i = 0; i < dims[0]; ++i)
-        {
-          const std::int64_t v = i + j * sy + k * sz;
-          const double p[3] = { origin[0] + i * spacing[0], origin[1] + j * spacing[1],
-            origin[2] + k * spacing[2] };
-          const double d = std::sqrt((p[0] - centre[0]) * (p[0] - centre[0]) +
-            (p[1] - centre[1]) * (p[1] - centre[1]) + (p[2] - centre[2]) * (p[2] - centre[2]));
-          const double cellRadius = 0.5 * std::sqrt(spacing[0] * spacing[0] +
-            spacing[1] * spacing[1] + spacing[2] * spacing[2]);
-          if (d < sphereRadius + cellRadius)
-          {
-            int inside = 0;
-            for (int c = 0; c < 512; ++c)
-            {
-              const double q[3] = { p[0] + ((c & 7) + 0.5) / 8.0 * spacing[0] - 0.5 * spacing[0] - centre[0],
-                p[1] + (((c >> 3) & 7) + 0.5) / 8.0 * spacing[1] - 0.5 * spacing[1] - centre[1],
-                p[2] + (((c >> 6) & 7) + 0.5) / 8.0 * spacing[2] - 0.5 * spacing[2] - centre[2] };
-              inside += q[0] * q[0] + q[1] * q[1] + q[2] * q[2] <= sphereRadius * sphereRadius;
-            }
-            coverage[v] = inside / 512.0;
-          }
-          // Voxels whose rays can reach a clipped cell: recomputed.
-          if (inSet[v] && coverage[v] < 1.0 && d <= sphereRadius + reach + 3.0 * cellRadius)
-          {
-            region.push_back(v);
-            if (unit[v] > 0.0)
-              regionVisible.push_back(v);
-          }
-        }
-    clipRegion = static_cast<std::int64_t>(regionVisible.size());
-    std::vector<double> refClipA, refClipB, clipRef(reference);
-    double ms1 = 0, ms2 = 0;
-    error = runReference(setA, o.referenceStep, &coverage, region, refClipA, ms1);
-    if (error.empty())
-      error = runReference(setB, o.referenceStep, &coverage, region, refClipB, ms2);
-    if (!error.empty())
-      return Fail(2, "clipped reference: " + error);
-    for (std::int64_t v : region)
-      clipRef[v] = 0.5 * (refClipA[v] + refClipB[v]);
-    clipConvergence = Compare(refClipA, clipRef, regionVisible);
-    std::printf("\ncontextual AO: sphere of radius %g at the centre, %lld visible voxels within "
-                "reach of it; clipped reference %.1f s (%d vs %d directions: RMSE %.3g)\n",
-      sphereRadius, (long long)clipRegion, (ms1 + ms2) / 1000.0, o.referenceRays,
-      2 * o.referenceRays, clipConvergence.rmse);
-    std::printf("%-10s %-8s %10s %10s %10s %10s %10s %10s %12s %12s %12s\n", "pixel vox",
-      "backend", "maps ms", "update ms", "b voxels", "RMSE", "max", "p99", "CAO!=full",
-      "RMSE exact", "max exact");
-    std::fflush(stdout);
-
-    // The same rays on the exactly clipped opacity (float, as the filters):
-    // the error the depth maps and the anti-aliasing add, alone.
-    cao::LAOSettings balanced;
-    cao::ApplyQualityPreset(cao::QualityPreset::Balanced, balanced);
-    balanced.reach = reach;
-    std::vector<double> exactClipAO(static_cast<std::size_t>(voxels), 1.0);
-    {
-      cao::LAOPlan plan;
-      if (!cao::BuildLAOPlan(geometry, balanced, plan, error))
-        return Fail(1, "balanced plan: " + error);
-      std::vector<float> clippedOpacity(static_cast<std::size_t>(voxels)), out(clippedOpacity.size());
-      for (std::int64_t v = 0; v < voxels; ++v)
-        clippedOpacity[v] = static_cast<float>(cao::CorrectOpacity(unit[v], plan.step / 1.0) *
-          static_cast<float>(1.0 - coverage[v]));
-      cao::LAOList(plan, clippedOpacity.data(), out.data(), region.data(), 0,
-        static_cast<std::int64_t>(region.size()));
-      for (std::int64_t v : region)
-        exactClipAO[v] = out[v];
-    }
-
-    vtkNew<vtkSphereSource> sphere;
-    sphere->SetRadius(sphereRadius);
-    sphere->SetThetaResolution(128);
-    sphere->SetPhiResolution(128);
-    sphere->Update();
-    std::vector<int> backends = { vtkLocalAmbientOcclusion::CPU };
-    if (useGL)
-      backends.push_back(vtkLocalAmbientOcclusion::OPENGL);
-    for (int backend : backends)
-    {
-      ErrorLog log;
-      vtkNew<vtkLocalAmbientOcclusion> lao;
-      log.Watch(lao);
-      lao->SetInputData(image);
-      lao->SetOpacityFunction(tf);
-      lao->SetReach(reach);
-      lao->SetQualityPreset(vtkLocalAmbientOcclusion::BALANCED);
-      lao->SetNumberOfThreads(o.threads);
-      lao->SetBackend(backend);
-      lao->Update();
-      if (!log.messages.empty())
-        return Fail(1, log.Last());
-      vtkFloatArray* unclipped =
-        vtkFloatArray::SafeDownCast(lao->GetOutput()->GetPointData()->GetArray("AmbientOcclusion"));
-      for (double pixel : o.mapPixels)
+/// Exact coverage of each voxel cell by the sphere (8^3 sub-samples), and
+/// the covered voxels whose rays can reach a clipped cell (recomputed).
+void Bench::SphereCoverage(const double centre[3], std::vector<double>& coverage,
+  std::vector<std::int64_t>& region, std::vector<std::int64_t>& regionVisible) const
+{
+  coverage.assign(static_cast<std::size_t>(voxels), 0.0);
+  const double* origin = image->GetOrigin();
+  const double cellRadius =
+    0.5 * std::sqrt(spacing[0] * spacing[0] + spacing[1] * spacing[1] + spacing[2] * spacing[2]);
+  for (int k = 0; k < dims[2]; ++k)
+    for (int j = 0; j < dims[1]; ++j)
+      for (int i = 0; i < dims[0]; ++i)
       {
-        vtkNew<vtkClipDepthMaps> maps;
-        log.Watch(maps);
-        maps->SetInputData(sphere->GetOutput());
-        maps->SetReach(reach);
-        maps->SetVoxelSpacing(spacing[0], spacing[1], spacing[2]);
-        maps->SetPixelSize(pixel * h);
-        maps->SetNumberOfThreads(o.threads);
-        maps->SetBackend(backend);
-        const auto t0 = std::chrono::steady_clock::now();
-        maps->Update();
-        Row row;
-        row.kind = "cao_map";
-        row.mapsMs =
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        if (!log.messages.empty())
-          return Fail(1, log.Last());
-        vtkNew<vtkContextualAmbientOcclusion> cao;
-        log.Watch(cao);
-        cao->SetInputConnection(0, lao->GetOutputPort());
-        cao->SetInputConnection(1, maps->GetOutputPort());
-        cao->SetNumberOfThreads(o.threads);
-        cao->SetBackend(backend);
-        cao->SetVerify(true);
-        vtkNew<vtkTransform> pose;
-        pose->Translate(centre);
-        cao->SetPoseTransform(pose);
-        cao->Update();
-        if (!log.messages.empty())
-          return Fail(1, log.Last());
-        vtkImageData* out = cao->GetOutput();
-        vtkFloatArray* ao =
-          vtkFloatArray::SafeDownCast(out->GetPointData()->GetArray("AmbientOcclusion"));
-        row.pattern = cao::RayPatternName(balanced.pattern);
-        if (balanced.pattern == cao::RayPattern::Fibonacci)
-          row.pattern = "fib:" + std::to_string(balanced.fibonacciRays);
-        row.variant = "balanced preset";
-        row.density = balanced.sampleDensity;
-        cao::LAOSettings used;
-        vtkCAO::LAORun run;
-        vtkCAO::ReadLAOSettings(lao->GetOutput()->GetFieldData(), used, &run);
-        row.rays = run.rays;
-        row.samples = run.samples;
-        row.mapPixel = pixel;
-        row.updateMs = FieldValue(out, "StageMilliseconds", 3);
-        (backend == vtkLocalAmbientOcclusion::CPU ? row.cpuMs : row.glMs) = row.mapsMs + row.updateMs;
-        row.affected = static_cast<long long>(FieldValue(out, "CategoryCounts", 1));
-        row.differing = static_cast<long long>(FieldValue(out, "Verification", 1));
-        if (!ao || !unclipped)
-          return Fail(1, "the contextual AO produced no AmbientOcclusion array");
-        std::vector<double> clippedAO(static_cast<std::size_t>(voxels)),
-          unclippedAO(static_cast<std::size_t>(voxels));
-        for (std::int64_t v = 0; v < voxels; ++v)
+        const std::int64_t v = i + j * sy + k * sz;
+        const double p[3] = { origin[0] + i * spacing[0], origin[1] + j * spacing[1],
+          origin[2] + k * spacing[2] };
+        const double d = std::sqrt((p[0] - centre[0]) * (p[0] - centre[0]) +
+          (p[1] - centre[1]) * (p[1] - centre[1]) + (p[2] - centre[2]) * (p[2] - centre[2]));
+        if (d < sphereRadius + cellRadius)
         {
-          clippedAO[v] = ao->GetValue(v);
-          unclippedAO[v] = unclipped->GetValue(v);
-        }
-        row.error = Compare(clippedAO, clipRef, regionVisible);
-        row.baseline = Compare(unclippedAO, reference, regionVisible);
-        row.exactClip = Compare(clippedAO, exactClipAO, regionVisible);
-        row.memory = double(maps->GetOutput()->GetNumberOfPoints()) * 6 * 2 * 4;
-        // Times: the median of --repeat runs of each stage (the first run
-        // above also verified against a full recompute; these do not).
-        {
-          std::vector<double> mapRuns, updateRuns;
-          cao->SetVerify(false);
-          for (int r = 0; r < o.repeat; ++r)
+          int inside = 0;
+          for (int c = 0; c < 512; ++c)
           {
-            maps->Modified();
-            const auto m0 = std::chrono::steady_clock::now();
-            maps->Update();
-            mapRuns.push_back(
-              std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - m0).count());
-            pose->Modified();
-            cao->Update();
-            updateRuns.push_back(FieldValue(cao->GetOutput(), "StageMilliseconds", 3));
+            const double q[3] = { p[0] + ((c & 7) + 0.5) / 8.0 * spacing[0] - 0.5 * spacing[0] - centre[0],
+              p[1] + (((c >> 3) & 7) + 0.5) / 8.0 * spacing[1] - 0.5 * spacing[1] - centre[1],
+              p[2] + (((c >> 6) & 7) + 0.5) / 8.0 * spacing[2] - 0.5 * spacing[2] - centre[2] };
+            inside += q[0] * q[0] + q[1] * q[1] + q[2] * q[2] <= sphereRadius * sphereRadius;
           }
-          if (!log.messages.empty())
-            return Fail(1, log.Last());
-          row.mapsMs = Median(mapRuns);
-          row.updateMs = Median(updateRuns);
-          (backend == vtkLocalAmbientOcclusion::CPU ? row.cpuMs : row.glMs) = row.mapsMs + row.updateMs;
+          coverage[v] = inside / 512.0;
         }
-        rows.push_back(row);
-        std::printf("%-10g %-8s %10.1f %10.1f %10lld %10.3g %10.3g %10.3g %12lld %12.3g %12.3g\n",
-          pixel, backend == vtkLocalAmbientOcclusion::CPU ? "cpu" : "gl", row.mapsMs,
-          row.updateMs, row.affected, row.error.rmse, row.error.max, row.error.p99, row.differing,
-          row.exactClip.rmse, row.exactClip.max);
-        std::fflush(stdout);
+        if (inSet[v] && coverage[v] < 1.0 && d <= sphereRadius + reach + 3.0 * cellRadius)
+        {
+          region.push_back(v);
+          if (unit[v] > 0.0)
+            regionVisible.push_back(v);
+        }
       }
-    }
+}
+
+// 6. The contextual update: depth-map resolution (a sphere at the centre),
+// against a reference recomputed on the exactly clipped medium.
+int Bench::Contextual()
+{
+  if (o.mapPixels.empty())
+    return 0;
+  double bounds[6];
+  image->GetBounds(bounds);
+  const double centre[3] = { 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]),
+    0.5 * (bounds[4] + bounds[5]) };
+  sphereRadius = 0.25 * std::min({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] });
+  std::vector<double> coverage;
+  std::vector<std::int64_t> region, regionVisible;
+  SphereCoverage(centre, coverage, region, regionVisible);
+  clipRegion = static_cast<std::int64_t>(regionVisible.size());
+  std::vector<double> refClipA, refClipB, clipRef(reference);
+  double ms1 = 0, ms2 = 0;
+  std::string error = Reference(setA, o.referenceStep, &coverage, region, refClipA, ms1);
+  if (error.empty())
+    error = Reference(setB, o.referenceStep, &coverage, region, refClipB, ms2);
+  if (!error.empty())
+    return Fail(2, "clipped reference: " + error);
+  for (std::int64_t v : region)
+    clipRef[v] = 0.5 * (refClipA[v] + refClipB[v]);
+  clipConvergence = Compare(refClipA, clipRef, regionVisible);
+  std::printf("\ncontextual AO: sphere of radius %g at the centre, %lld visible voxels within "
+              "reach of it; clipped reference %.1f s (%d vs %d directions: RMSE %.3g)\n",
+    sphereRadius, (long long)clipRegion, (ms1 + ms2) / 1000.0, o.referenceRays,
+    2 * o.referenceRays, clipConvergence.rmse);
+  std::printf("%-10s %-8s %10s %10s %10s %10s %10s %10s %12s %12s %12s\n", "pixel vox",
+    "backend", "maps ms", "update ms", "b voxels", "RMSE", "max", "p99", "CAO!=full",
+    "RMSE exact", "max exact");
+  std::fflush(stdout);
+
+  // The same rays on the exactly clipped opacity (float, as the filters):
+  // the error the depth maps and the anti-aliasing add, alone.
+  cao::LAOSettings balanced;
+  cao::ApplyQualityPreset(cao::QualityPreset::Balanced, balanced);
+  balanced.reach = reach;
+  std::vector<double> exactClipAO(static_cast<std::size_t>(voxels), 1.0);
+  {
+    cao::LAOPlan plan;
+    if (!cao::BuildLAOPlan(geometry, balanced, plan, error))
+      return Fail(1, "balanced plan: " + error);
+    std::vector<float> clippedOpacity(static_cast<std::size_t>(voxels)), out(clippedOpacity.size());
+    for (std::int64_t v = 0; v < voxels; ++v)
+      clippedOpacity[v] = static_cast<float>(cao::CorrectOpacity(unit[v], plan.step / 1.0) *
+        static_cast<float>(1.0 - coverage[v]));
+    cao::LAOList(plan, clippedOpacity.data(), out.data(), region.data(), 0,
+      static_cast<std::int64_t>(region.size()));
+    for (std::int64_t v : region)
+      exactClipAO[v] = out[v];
   }
 
-  // 7. Outputs.
-  const std::string csvPath = o.output + "/accuracy.csv";
-  std::ofstream csv(csvPath);
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetRadius(sphereRadius);
+  sphere->SetThetaResolution(128);
+  sphere->SetPhiResolution(128);
+  sphere->Update();
+  std::vector<int> backends = { vtkLocalAmbientOcclusion::CPU };
+  if (useGL)
+    backends.push_back(vtkLocalAmbientOcclusion::OPENGL);
+  for (int backend : backends)
+  {
+    ErrorLog log;
+    vtkNew<vtkLocalAmbientOcclusion> lao;
+    log.Watch(lao);
+    lao->SetInputData(image);
+    lao->SetOpacityFunction(tf);
+    lao->SetReach(reach);
+    lao->SetQualityPreset(vtkLocalAmbientOcclusion::BALANCED);
+    lao->SetNumberOfThreads(o.threads);
+    lao->SetBackend(backend);
+    lao->Update();
+    if (!log.messages.empty())
+      return Fail(1, log.Last());
+    for (double pixel : o.mapPixels)
+      if (const int rc = ContextualRow(backend, lao, sphere->GetOutput(), pixel, centre, balanced,
+            clipRef, exactClipAO, regionVisible))
+        return rc;
+  }
+  return 0;
+}
+
+/// One row of the contextual study: maps of `pixel` voxels on `backend`,
+/// verified once against a full recompute, then timed (--repeat medians).
+int Bench::ContextualRow(int backend, vtkLocalAmbientOcclusion* lao, vtkPolyData* sphere,
+  double pixel, const double centre[3], const cao::LAOSettings& balanced,
+  const std::vector<double>& clipRef, const std::vector<double>& exactClipAO,
+  const std::vector<std::int64_t>& regionVisible)
+{
+  ErrorLog log;
+  vtkFloatArray* unclipped =
+    vtkFloatArray::SafeDownCast(lao->GetOutput()->GetPointData()->GetArray("AmbientOcclusion"));
+  vtkNew<vtkClipDepthMaps> maps;
+  log.Watch(maps);
+  maps->SetInputData(sphere);
+  maps->SetReach(reach);
+  maps->SetVoxelSpacing(spacing[0], spacing[1], spacing[2]);
+  maps->SetPixelSize(pixel * h);
+  maps->SetNumberOfThreads(o.threads);
+  maps->SetBackend(backend);
+  const auto t0 = std::chrono::steady_clock::now();
+  maps->Update();
+  Row row;
+  row.kind = "cao_map";
+  row.mapsMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  if (!log.messages.empty())
+    return Fail(1, log.Last());
+  vtkNew<vtkContextualAmbientOcclusion> cao;
+  log.Watch(cao);
+  cao->SetInputConnection(0, lao->GetOutputPort());
+  cao->SetInputConnection(1, maps->GetOutputPort());
+  cao->SetNumberOfThreads(o.threads);
+  cao->SetBackend(backend);
+  cao->SetVerify(true);
+  vtkNew<vtkTransform> pose;
+  pose->Translate(centre);
+  cao->SetPoseTransform(pose);
+  cao->Update();
+  if (!log.messages.empty())
+    return Fail(1, log.Last());
+  vtkImageData* out = cao->GetOutput();
+  vtkFloatArray* ao = vtkFloatArray::SafeDownCast(out->GetPointData()->GetArray("AmbientOcclusion"));
+  row.pattern = cao::RayPatternName(balanced.pattern);
+  if (balanced.pattern == cao::RayPattern::Fibonacci)
+    row.pattern = "fib:" + std::to_string(balanced.fibonacciRays);
+  row.variant = "balanced preset";
+  row.density = balanced.sampleDensity;
+  cao::LAOSettings used;
+  vtkCAO::LAORun run;
+  vtkCAO::ReadLAOSettings(lao->GetOutput()->GetFieldData(), used, &run);
+  row.rays = run.rays;
+  row.samples = run.samples;
+  row.mapPixel = pixel;
+  row.updateMs = FieldValue(out, "StageMilliseconds", 3);
+  (backend == vtkLocalAmbientOcclusion::CPU ? row.cpuMs : row.glMs) = row.mapsMs + row.updateMs;
+  row.affected = static_cast<long long>(FieldValue(out, "CategoryCounts", 1));
+  row.differing = static_cast<long long>(FieldValue(out, "Verification", 1));
+  if (!ao || !unclipped)
+    return Fail(1, "the contextual AO produced no AmbientOcclusion array");
+  std::vector<double> clippedAO(static_cast<std::size_t>(voxels)),
+    unclippedAO(static_cast<std::size_t>(voxels));
+  for (std::int64_t v = 0; v < voxels; ++v)
+  {
+    clippedAO[v] = ao->GetValue(v);
+    unclippedAO[v] = unclipped->GetValue(v);
+  }
+  row.error = Compare(clippedAO, clipRef, regionVisible);
+  row.baseline = Compare(unclippedAO, reference, regionVisible);
+  row.exactClip = Compare(clippedAO, exactClipAO, regionVisible);
+  row.memory = double(maps->GetOutput()->GetNumberOfPoints()) * 6 * 2 * 4;
+  // Times: the median of --repeat runs of each stage (the first run above
+  // also verified against a full recompute; these do not).
+  std::vector<double> mapRuns, updateRuns;
+  cao->SetVerify(false);
+  for (int r = 0; r < o.repeat; ++r)
+  {
+    maps->Modified();
+    const auto m0 = std::chrono::steady_clock::now();
+    maps->Update();
+    mapRuns.push_back(
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - m0).count());
+    pose->Modified();
+    cao->Update();
+    updateRuns.push_back(FieldValue(cao->GetOutput(), "StageMilliseconds", 3));
+  }
+  if (!log.messages.empty())
+    return Fail(1, log.Last());
+  row.mapsMs = Median(mapRuns);
+  row.updateMs = Median(updateRuns);
+  (backend == vtkLocalAmbientOcclusion::CPU ? row.cpuMs : row.glMs) = row.mapsMs + row.updateMs;
+  rows.push_back(row);
+  std::printf("%-10g %-8s %10.1f %10.1f %10lld %10.3g %10.3g %10.3g %12lld %12.3g %12.3g\n", pixel,
+    backend == vtkLocalAmbientOcclusion::CPU ? "cpu" : "gl", row.mapsMs, row.updateMs,
+    row.affected, row.error.rmse, row.error.max, row.error.p99, row.differing,
+    row.exactClip.rmse, row.exactClip.max);
+  std::fflush(stdout);
+  return 0;
+}
+
+// 7. Outputs: the CSV, the JSON and the plot.
+int Bench::WriteCSV(const std::string& path) const
+{
+  std::ofstream csv(path);
   csv << "kind,pattern,rays,density,samples,step_voxels,variant,storage,map_pixel_voxels,"
          "cpu_ms,gl_ms,rmse,max,p99,psnr_db,memory_bytes,pareto,maps_ms,update_ms,"
          "affected_voxels,cao_vs_full_differing,exact_clip_rmse,exact_clip_max\n";
@@ -1066,9 +1157,12 @@ int RunBench(int argc, char* argv[])
         << (r.kind == "cao_map" ? Num(r.exactClip.rmse) : "") << ","
         << (r.kind == "cao_map" ? Num(r.exactClip.max) : "") << "\n";
   if (!csv)
-    return Fail(1, "cannot write " + csvPath);
-  csv.close();
+    return Fail(1, "cannot write " + path);
+  return 0;
+}
 
+int Bench::WriteJSON(const std::string& path) const
+{
   nlohmann::json j;
   j["volume"] = o.volume;
   j["dimensions"] = { dims[0], dims[1], dims[2] };
@@ -1128,12 +1222,15 @@ int RunBench(int argc, char* argv[])
     list.push_back(e);
   }
   j["rows"] = list;
-  std::ofstream js(o.output + "/accuracy.json");
+  std::ofstream js(path);
   js << j.dump(2) << "\n";
   if (!js)
-    return Fail(1, "cannot write " + o.output + "/accuracy.json");
-  js.close();
+    return Fail(1, "cannot write " + path);
+  return 0;
+}
 
+void Bench::Report(const std::string& csvPath)
+{
   const std::string png = o.output + "/accuracy.png";
   std::string plotError;
   const bool plotted = WriteErrorTimePlot(points, series,
@@ -1149,6 +1246,25 @@ int RunBench(int argc, char* argv[])
         r.cpuMs, r.error.rmse);
   std::printf("\nwrote %s, %s/accuracy.json%s\n", csvPath.c_str(), o.output.c_str(),
     plotted ? (", " + png).c_str() : (" (no plot: " + plotError + ")").c_str());
+}
+}
+
+int RunBench(int argc, char* argv[])
+{
+  Bench bench;
+  std::string error;
+  if (!Parse(argc, argv, bench.o, error))
+    return Fail(2, error + "\n" + BenchUsage);
+  int rc = 0;
+  if ((rc = bench.Load()) || (rc = bench.SelectVoxels()) || (rc = bench.MakeReference()) ||
+    (rc = bench.SetupBackends()) || (rc = bench.SweepLAO()))
+    return rc;
+  bench.MarkFront();
+  const std::string csvPath = bench.o.output + "/accuracy.csv";
+  if ((rc = bench.Contextual()) || (rc = bench.WriteCSV(csvPath)) ||
+    (rc = bench.WriteJSON(bench.o.output + "/accuracy.json")))
+    return rc;
+  bench.Report(csvPath);
   return 0;
 }
 }
