@@ -41,6 +41,10 @@ void vtkContextualAOVolumeRepresentation::SetAOStrength(double s)
 {
   this->GetAOMapper()->SetAOStrength(s);
 }
+void vtkContextualAOVolumeRepresentation::SetAOCalibration(int c)
+{
+  this->GetAOMapper()->SetAOCalibration(c);
+}
 void vtkContextualAOVolumeRepresentation::SetRayPattern(int p)
 {
   this->GetAOMapper()->SetRayPattern(p);

@@ -34,6 +34,7 @@ public:
   /// Forwarded to the mapper (see vtkContextualAOVolumeMapper).
   void SetAmbientOcclusion(bool on);
   void SetAOStrength(double strength);
+  void SetAOCalibration(int calibration);
   void SetRayPattern(int pattern);
   void SetNumberOfRays(int rays);
   void SetReach(double reach);

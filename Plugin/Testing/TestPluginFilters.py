@@ -104,6 +104,52 @@ if rep is not None:
     check((mapper.GetQualityPreset(), mapper.GetRayVariation(), mapper.GetSampleDensity(),
            mapper.GetStartOffset()) == (2, 3, 1.5, 0.25),
           "the representation forwards the quality settings to the mapper")
+    # Panel labels: ParaView splits an unlabelled "AOStrength" into
+    # "A OStrength"; every AO property carries its own label.
+    labels = {n: rep.GetProperty(n).GetXMLLabel() for n in
+              ("AmbientOcclusion", "AOStrength", "AOCalibration", "AOQualityPreset", "AORayPattern",
+               "AONumberOfRays", "AOReach", "AONumberOfSamples", "AOSampleDensity",
+               "AOStartOffset", "AORayVariation")}
+    check(all(label and label.startswith(("AO ", "Ambient")) for label in labels.values()),
+          "the representation's AO labels read 'AO ...': %s" % labels)
+    # The AO calibration: half-space by default, forwarded, none available.
+    check(entries("AOCalibration") == ["None (raw LAO)", "Half-space (open faces stay lit)"] and
+          rep.GetProperty("AOCalibration").GetElement(0) == 1 and
+          mapper.GetAOCalibration() == mapper.AO_CALIBRATION_HALF_SPACE,
+          "the AO calibration defaults to half-space on the proxy and the mapper")
+    rep.GetProperty("AOCalibration").SetElement(0, 0)
+    rep.UpdateVTKObjects()
+    check(mapper.GetAOCalibration() == mapper.AO_CALIBRATION_NONE,
+          "the representation forwards AO Calibration = None to the mapper")
+
+# Volume formats VTK reads and ParaView 5.11 does not register: the plugin's
+# reader proxies open them by extension.
+import tempfile  # noqa: E402
+from vtkmodules.vtkIOImage import vtkNIFTIImageWriter  # noqa: E402
+slc = pvs.OpenDataFile(os.path.join(data, "neghip.slc"))
+if slc:
+    slc.UpdatePipeline()
+check(slc is not None and slc.GetXMLName() == "CAOSLCReader" and
+      tuple(slc.GetDataInformation().GetExtent()) == (0, 65, 0, 65, 0, 65),
+      "OpenDataFile reads neghip.slc with the plugin's SLC reader (%s)"
+      % (slc.GetXMLName() if slc else None))
+from vtkmodules.vtkIOImage import vtkMetaImageReader as _MetaReader  # noqa: E402
+_m = _MetaReader()
+_m.SetFileName(os.path.join(data, "HeadMRVolume.mhd"))
+_m.Update()
+tmp = tempfile.mkdtemp()
+for ext in ("nii", "nii.gz"):
+    path = os.path.join(tmp, "head." + ext)
+    w = vtkNIFTIImageWriter()
+    w.SetInputData(_m.GetOutput())
+    w.SetFileName(path)
+    w.Write()
+    nii = pvs.OpenDataFile(path)
+    if nii:
+        nii.UpdatePipeline()
+    check(nii is not None and nii.GetXMLName() == "CAONIfTIReader" and
+          tuple(nii.GetDataInformation().GetExtent()) == tuple(_m.GetOutput().GetExtent()),
+          "OpenDataFile reads a .%s volume with the plugin's NIfTI reader" % ext)
 
 # The same results as the VTK filters.
 lao.RayPattern = "14 rays (faces + corners)"

@@ -477,6 +477,9 @@ struct Frames
     image->GetPointData()->AddArray(this->ao);
     this->mapper->SetInputData(image);
     this->mapper->SetAmbientOcclusionArrayName("ReferenceBenchAO");
+    // The raw AO: the frames compare how each configuration's AO error
+    // shows against the reference's, under one display mapping.
+    this->mapper->SetAOCalibration(vtkContextualAOVolumeMapper::AO_CALIBRATION_NONE);
     this->mapper->SetReach(reach);
     this->mapper->SetSampleDistance(0.25 * std::min({ image->GetSpacing()[0],
                                              image->GetSpacing()[1], image->GetSpacing()[2] }));

@@ -71,6 +71,8 @@ render options:
                        and variation; not combined with those options).
                        Not to be confused with --preset, the colours
   --ao-strength S      0..1 (default 1); --no-ao renders without AO
+  --ao-calibration C   half-space (default: AO / the LAO of an open flat face,
+                       at most 1, so only crevices darken) or none (the raw LAO)
   --no-shade           no gradient shading (ambient only)
   --sample-distance D  ray-cast sample distance, world units (default half a voxel)
   --window W           auto (default: X when DISPLAY is set, else EGL), egl or x
@@ -87,7 +89,8 @@ struct RenderOptions
   std::string volume, output = "cao-frame_%03d.png", preset, presetFile, shape = "sphere", mesh,
                       posesFile, mode = "subtract", window = "auto", rays = "26";
   std::vector<std::string> poseTexts;
-  int width = 512, height = 512, path = 12, layers = 2, aa = 16;
+  int width = 512, height = 512, path = 12, layers = 2, aa = 16,
+      calibration = 1; // vtkContextualAOVolumeMapper::AO_CALIBRATION_HALF_SPACE
   double azimuth = 30, elevation = 20, zoom = 1.4, reach = 0, strength = 1, size = 0,
          sampleDistance = 0;
   bool absolute = false, ao = true, shade = true, json = false, clip = true, full = false;
@@ -181,6 +184,15 @@ bool Parse(int argc, char* argv[], RenderOptions& o, std::string& error)
       ok = number(o.reach, 0, 1e300);
     else if (a == "--ao-strength")
       ok = number(o.strength, 0, 1);
+    else if (a == "--ao-calibration")
+    {
+      std::string c;
+      ok = value(c);
+      if (ok && c != "half-space" && c != "none")
+        return error = "--ao-calibration is half-space or none, not '" + c + "'", false;
+      o.calibration = c == "none" ? vtkContextualAOVolumeMapper::AO_CALIBRATION_NONE
+                                  : vtkContextualAOVolumeMapper::AO_CALIBRATION_HALF_SPACE;
+    }
     else if (a == "--no-ao")
       o.ao = false;
     else if (a == "--no-shade")
@@ -313,6 +325,7 @@ int RunRender(int argc, char* argv[])
   mapper->SetRayVariation(static_cast<int>(o.lao.settings.variation));
   mapper->SetQualityPreset(static_cast<int>(o.lao.settings.preset));
   mapper->SetAOStrength(o.strength);
+  mapper->SetAOCalibration(o.calibration);
   mapper->SetAmbientOcclusion(o.ao);
   mapper->SetSampleDistance(o.sampleDistance);
   mapper->SetMode(o.mode == "probe" ? vtkContextualAOVolumeMapper::PROBING

@@ -201,6 +201,7 @@ struct vtkContextualAOVolumeMapper::Internals
   vtkWeakPointer<vtkRenderWindow> Window;
   bool HaveWindow = false;
   cao::LAOPlan Plan;
+  cao::AOCalibration Calibration; ///< SurfaceCalibration(Plan): the half-space calibration
   ::VolumeKey Volume;
   bool HaveVolume = false;
   ::MeshKey Mesh;
@@ -342,6 +343,9 @@ bool vtkContextualAOVolumeMapper::CheckSettings(std::string& why) const
   const int preset = static_cast<int>(this->Internal->Settings.preset);
   if (!(this->AOStrength >= 0.0 && this->AOStrength <= 1.0))
     outside("AOStrength", this->AOStrength, "in [0, 1]");
+  else if (this->AOCalibration != AO_CALIBRATION_NONE &&
+    this->AOCalibration != AO_CALIBRATION_HALF_SPACE)
+    outside("AOCalibration", this->AOCalibration, "0 (None) or 1 (HalfSpace)");
   else if (preset < CUSTOM || preset > REFERENCE)
     outside("QualityPreset", preset, "0 (Custom) to 3 (Reference)");
   else if (this->Mode != SUBTRACTION && this->Mode != PROBING)
@@ -504,6 +508,17 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
   std::string error;
   if (!cao::BuildLAOPlan(vtkCAO::GeometryOf(f.input), this->Settings, this->Plan, error))
     return f.Fail("Cannot plan the LAO: " + error + ".");
+  this->Calibration = cao::SurfaceCalibration(this->Plan);
+  {
+    // A given AO array is calibrated with the settings that made it, when
+    // it carries them (vtkLocalAmbientOcclusion's LAOSettings field array).
+    cao::LAOSettings given;
+    cao::LAOPlan givenPlan;
+    std::string ignored;
+    if (givenAO && vtkCAO::ReadLAOSettings(f.input->GetFieldData(), given, nullptr) &&
+      cao::BuildLAOPlan(vtkCAO::GeometryOf(f.input), given, givenPlan, ignored))
+      this->Calibration = cao::SurfaceCalibration(givenPlan);
+  }
   const auto start = std::chrono::steady_clock::now();
   std::vector<float> opacity(static_cast<std::size_t>(f.voxels));
   std::int64_t nonFinite = 0;
@@ -837,11 +852,16 @@ void vtkContextualAOVolumeMapper::Internals::MakeRenderParams(vtkContextualAOVol
     static_cast<float>(self->AOStrength) };
   const int* dims = f.dims;
   params.invDims = { 1.0f / dims[0], 1.0f / dims[1], 1.0f / dims[2], 0.0f };
+  const cao::AOCalibration& c = this->Calibration;
+  params.aoCalibration = { static_cast<float>(c.openEmpty), static_cast<float>(c.openOpaque),
+    static_cast<float>(c.enclosed), static_cast<float>(this->Plan.step / step) };
   int flags = cao::layout::CAO_RENDER_OPAQUE_DEPTH;
   if (property->GetShade(0))
     flags |= cao::layout::CAO_RENDER_SHADE;
   if (self->AmbientOcclusion)
     flags |= cao::layout::CAO_RENDER_AO;
+  if (self->AmbientOcclusion && self->AOCalibration == AO_CALIBRATION_HALF_SPACE)
+    flags |= cao::layout::CAO_RENDER_AO_CALIBRATED;
   if (f.clipping)
     flags |= cao::layout::CAO_RENDER_CLIP;
   if (self->UseJittering)
@@ -906,11 +926,22 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 }
 
 //------------------------------------------------------------------------------
+void vtkContextualAOVolumeMapper::GetAOCalibrationRange(double range[3])
+{
+  const cao::AOCalibration& c = this->Internal->Calibration;
+  range[0] = c.enclosed;
+  range[1] = c.openEmpty;
+  range[2] = c.openOpaque;
+}
+
+//------------------------------------------------------------------------------
 void vtkContextualAOVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "AmbientOcclusion: " << (this->AmbientOcclusion ? "On" : "Off") << "\n";
   os << indent << "AOStrength: " << this->AOStrength << "\n";
+  os << indent << "AOCalibration: "
+     << (this->AOCalibration == AO_CALIBRATION_HALF_SPACE ? "HalfSpace" : "None") << "\n";
   os << indent << "AmbientOcclusionArrayName: "
      << (this->AmbientOcclusionArrayName ? this->AmbientOcclusionArrayName : "(none)") << "\n";
   vtkCAO::PrintLAOSettings(os, indent, this->Internal->Settings);

@@ -89,6 +89,36 @@ public:
   vtkGetMacro(AOStrength, double);
   ///@}
 
+  /// How the LAO value becomes the ambient light it scales.
+  enum AOCalibrations
+  {
+    /// The LAO as computed: an open flat face gets about 0.5 (half of its
+    /// rays run into the matter it bounds), so AO darkens every surface.
+    AO_CALIBRATION_NONE = 0,
+    /// Per voxel, (LAO - E) / (H - E) clamped to [0, 1]: E the LAO of an
+    /// enclosed voxel (1/M), H that of a voxel of the same opacity on the
+    /// open flat face of an opaque half-space, for the ray settings in use
+    /// (cao::SurfaceCalibration). A surface sees at most its hemisphere, so
+    /// open faces keep their light and only what occludes more than the
+    /// half-space (crevices, slots, concave corners) darkens.
+    AO_CALIBRATION_HALF_SPACE = 1
+  };
+
+  ///@{
+  /// The AO calibration, AO_CALIBRATION_HALF_SPACE (default) or
+  /// AO_CALIBRATION_NONE. A given AO array (AmbientOcclusionArrayName) is
+  /// calibrated with the LAO settings of the input's LAOSettings field array
+  /// when it has one, else with this mapper's.
+  vtkSetMacro(AOCalibration, int);
+  vtkGetMacro(AOCalibration, int);
+  ///@}
+
+  /// The LAO range the calibration maps to [0, 1] for the settings of the
+  /// last precompute (cao::AOCalibration): range[0] an enclosed voxel's
+  /// LAO (1/M), range[1] and range[2] an open flat face's last empty and
+  /// first opaque voxel's.
+  void GetAOCalibrationRange(double range[3]);
+
   /// Ray patterns, as vtkLocalAmbientOcclusion's.
   enum RayPatterns
   {
@@ -303,6 +333,7 @@ protected:
 
   bool AmbientOcclusion = true;
   double AOStrength = 1.0;
+  int AOCalibration = AO_CALIBRATION_HALF_SPACE;
   char* AmbientOcclusionArrayName = nullptr;
   vtkProp3D* ClipShape = nullptr;
   vtkPolyData* ClipMesh = nullptr;

@@ -102,16 +102,20 @@ struct RenderParams
   vec4 light;     /* xyz: world direction towards the light; w: 1 = headlight */
   vec4 shading;   /* x: ambient, y: diffuse, z: specular, w: specular power */
   vec4 sampling;  /* x: step (world units); y, z: table coordinate = texel * y + z; w: AO strength */
-  vec4 invDims;   /* xyz: 1 / voxels per axis (texture coordinate = (index + 0.5) * invDims) */
+  vec4 invDims;   /* xyz: 1 / voxels per axis (texture coordinate = (index + 0.5) * invDims); w: 0 */
   ivec4 dims;     /* xyz: voxels per axis; w: CAO_RENDER_* flags */
   ivec4 limits;   /* x: maximum samples per ray; yzw: 0 */
   vec4 boxMax;    /* xyz: the last voxel index (the box is [0, boxMax]); w: early termination alpha */
+  vec4 aoCalibration; /* CAO_RENDER_AO_CALIBRATED (cao::AOCalibration): x: the LAO of an open flat
+                         face's last empty voxel, y: of its first opaque voxel, z: of an enclosed
+                         voxel (1/M); w: LAO step / ray-cast step (table opacity -> LAO opacity) */
 };
 CAO_CONST CAO_RENDER_SHADE = 1;        /* gradient Blinn-Phong */
 CAO_CONST CAO_RENDER_AO = 2;           /* the AO volume scales the ambient term */
 CAO_CONST CAO_RENDER_CLIP = 4;         /* shadow-test clipping against the depth maps */
 CAO_CONST CAO_RENDER_JITTER = 8;       /* per-pixel ray-start offset */
 CAO_CONST CAO_RENDER_OPAQUE_DEPTH = 16; /* stop at the opaque geometry's depth */
+CAO_CONST CAO_RENDER_AO_CALIBRATED = 32; /* the AO as the light an open face would get (aoCalibration) */
 
 /*
  * Binding points, shared so that the C++ side binds what the GLSL declares.
@@ -193,7 +197,7 @@ CAO_CONST CAO_DM_STAT_BOXES = 8;     /* then per layer: covered x0, y0, x1, y1 *
 static_assert(sizeof(DMTriangle) == 128, "DMTriangle must match std430");
 static_assert(sizeof(DMHit) == 16, "DMHit must match std430");
 static_assert(sizeof(DMOffset) == 16, "DMOffset must match std430");
-static_assert(sizeof(RenderParams) == 19 * 16, "RenderParams must match std140");
+static_assert(sizeof(RenderParams) == 20 * 16, "RenderParams must match std140");
 static_assert(sizeof(LAOTap) == 32, "LAOTap must match std430");
 static_assert(sizeof(LAOMarchBlock) == 96, "LAOMarchBlock must match std140/std430");
 static_assert(sizeof(ClipParams) == 3 * 16 + 4 * 16 + CAO_MAX_AA_EXTRA_SAMPLES * 16,

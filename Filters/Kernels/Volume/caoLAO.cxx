@@ -600,6 +600,56 @@ double LAOVoxelDouble(const LAOPlan& plan, const float* a, int i, int j, int k)
   return total / (static_cast<double>(rays) * samples);
 }
 
+double HalfSpaceAO(const LAOPlan& plan, double depth)
+{
+  const double t = std::min(1.0, std::max(0.0, depth));
+  const layout::LAOMarchBlock& p = plan.params;
+  const int rays = p.rays.x, samples = p.rays.y, tapsPerRay = p.rays.z, variants = p.rays.w;
+  if (rays <= 0 || samples <= 0 || variants <= 0)
+    return 1.0;
+  double total = 0.0;
+  int count = 0;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int sign = -1; sign <= 1; sign += 2)
+      for (int layer = 0; layer < 2; ++layer) // 0: the last empty layer; 1: the first full one
+        for (int v = 0; v < variants; ++v)
+        {
+          const layout::LAOTap* taps = VariantTaps(plan, v);
+          double sum = 0.0;
+          for (int r = 0; r < rays; ++r)
+          {
+            double transmittance = 1.0;
+            for (int m = 0; m < samples; ++m)
+            {
+              sum += transmittance;
+              if (m == tapsPerRay)
+                break;
+              const layout::LAOTap& t = taps[static_cast<std::ptrdiff_t>(r) * tapsPerRay + m];
+              const double offset = axis == 0 ? t.cell.x + double(t.frac.x)
+                : axis == 1                   ? t.cell.y + double(t.frac.y)
+                                              : t.cell.z + double(t.frac.z);
+              // Voxel layers beyond the face (depth >= 1) are full, those
+              // before it empty; trilinear interpolation is linear across.
+              const double depth = sign * offset + layer;
+              transmittance *= 1.0 - std::min(1.0, std::max(0.0, depth));
+            }
+          }
+          // Trilinear between the layers: weight 1 - t on the empty one.
+          total += (layer == 0 ? 1.0 - t : t) * sum / (static_cast<double>(rays) * samples);
+          ++count;
+        }
+  return 2.0 * total / count;
+}
+
+AOCalibration SurfaceCalibration(const LAOPlan& plan)
+{
+  AOCalibration c;
+  c.openEmpty = HalfSpaceAO(plan, 0.0);
+  c.openOpaque = HalfSpaceAO(plan, 1.0);
+  c.enclosed = plan.samples > 0 ? 1.0 / plan.samples : 0.0;
+  return c;
+}
+
 float CorrectOpacity(double alpha, double stepOverUnit)
 {
   if (!(alpha > 0.0)) // also NaN

@@ -106,6 +106,32 @@ const char* LAOMarchInstructionSet();
 void LAOList(const LAOPlan& plan, const float* opacity, float* ao, const std::int64_t* list,
   std::int64_t begin, std::int64_t end);
 
+/// The AO the plan gives a point on the open flat face of an opaque
+/// half-space, `depth` voxels past the last empty voxel layer (0: that
+/// layer, 1: the first opaque one, between: trilinear): the mean over the
+/// six axis-aligned faces and every ray variant, in closed form from the
+/// plan's taps (the opacity of an axis-aligned half-space depends on one
+/// coordinate), in double, with the march's order of operations.
+double HalfSpaceAO(const LAOPlan& plan, double depth);
+
+/// The range the plan's LAO spans at a surface, for the renderer's
+/// calibration (vtkContextualAOVolumeMapper::AO_CALIBRATION_HALF_SPACE).
+///
+/// A point on a surface receives ambient light from its outer hemisphere
+/// only. LAO averages over the whole sphere, and its first sample is never
+/// occluded, so the LAO of a surface voxel runs from `enclosed` (1/M: every
+/// ray blocked at once, a closed cavity) to the value of an open flat face
+/// (`openEmpty` for the last empty voxel, `openOpaque` for the first opaque
+/// one, HalfSpaceAO at depth 0 and 1). (AO - enclosed) / (open - enclosed),
+/// clamped to [0, 1], with `open` taken at the voxel's own opacity, is then
+/// the fraction of an open face's light that reaches the point: 1 on open
+/// faces (which raw LAO leaves at about one half), 0 in a closed cavity.
+struct AOCalibration
+{
+  double openEmpty = 1.0, openOpaque = 1.0, enclosed = 0.0;
+};
+AOCalibration SurfaceCalibration(const LAOPlan& plan);
+
 /// Step-length correction of an opacity for samples `stepOverUnit` unit
 /// distances apart: 1 - (1 - a)^(step/unit), computed in double, exact at 0 and 1.
 float CorrectOpacity(double alpha, double stepOverUnit);

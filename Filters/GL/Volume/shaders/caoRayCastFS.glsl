@@ -9,8 +9,9 @@
 //  - the shadow test against the clip mesh's depth maps (caoClipTest.glsl)
 //    removes the sample when it is inside the mesh (subtraction) or outside
 //    it (probing);
-//  - the AO (trilinear; with clipping, over the unclipped voxels only)
-//    scales the ambient term: 1 - strength * (1 - AO);
+//  - the AO (trilinear; with clipping, over the unclipped voxels only;
+//    calibrated per voxel with CAO_RENDER_AO_CALIBRATED) scales the ambient
+//    term: 1 - strength * (1 - AO);
 //  - with shading, gradient Blinn-Phong (two-sided, one directional light)
 //    adds the diffuse and specular terms as vtkVolumeProperty defines them.
 // Front-to-back compositing, premultiplied output, early termination.
@@ -44,11 +45,26 @@ vec3 Unproject(vec2 ndc, float z)
   return p.xyz / p.w;
 }
 
+/// Voxel v's AO as the share of an open face's light that reaches it
+/// (cao::AOCalibration): (AO - enclosed) / (open - enclosed), clamped, the
+/// open-face value taken at the voxel's own LAO opacity (the table's
+/// opacity for the ray-cast step, converted to the LAO's step).
+float Calibrated(ivec3 v, float ao)
+{
+  float s = texelFetch(scalarTexture, v, 0).r;
+  float alpha = texture(tableTexture, vec2(s * rp.sampling.y + rp.sampling.z, 0.5)).a;
+  float a = 1.0 - pow(max(1.0 - alpha, 0.0), rp.aoCalibration.w);
+  float open = mix(rp.aoCalibration.x, rp.aoCalibration.y, a);
+  float enclosed = rp.aoCalibration.z;
+  return clamp((ao - enclosed) / max(open - enclosed, 1e-6), 0.0, 1.0);
+}
+
 /// The AO at index-space point p, trilinear over the voxels that are not
-/// clipped (category a) only: a clipped voxel holds an AO that no longer
-/// means anything (its matter is gone), and blending it in would darken
-/// the cut surfaces. Weights are renormalised; 1 when all 8 are clipped.
-float ClippedAO(vec3 p)
+/// clipped (category a) only when `clipped`: a clipped voxel holds an AO
+/// that no longer means anything (its matter is gone), and blending it in
+/// would darken the cut surfaces. Weights are renormalised; 1 when all 8
+/// are clipped. Each voxel's value calibrated when `calibrated`.
+float VoxelAO(vec3 p, bool clipped, bool calibrated)
 {
   vec3 q = clamp(p, vec3(0.0), rp.boxMax.xyz);
   ivec3 base = min(ivec3(floor(q)), rp.dims.xyz - 2);
@@ -58,12 +74,16 @@ float ClippedAO(vec3 p)
   {
     ivec3 o = ivec3(n & 1, (n >> 1) & 1, (n >> 2) & 1);
     ivec3 v = base + o;
-    int category = int(texelFetch(stateTexture, v, 0).r) >> CAO_STATE_CATEGORY_SHIFT;
-    if (category == CAO_CATEGORY_CLIPPED)
-      continue;
+    if (clipped)
+    {
+      int category = int(texelFetch(stateTexture, v, 0).r) >> CAO_STATE_CATEGORY_SHIFT;
+      if (category == CAO_CATEGORY_CLIPPED)
+        continue;
+    }
     vec3 t = mix(1.0 - f, f, vec3(o));
     float w = t.x * t.y * t.z;
-    sum += w * texelFetch(aoTexture, v, 0).r;
+    float ao = texelFetch(aoTexture, v, 0).r;
+    sum += w * (calibrated ? Calibrated(v, ao) : ao);
     weight += w;
   }
   return weight > 0.0 ? sum / weight : 1.0;
@@ -125,7 +145,9 @@ void main()
     float ambient = 1.0;
     if ((flags & CAO_RENDER_AO) != 0)
     {
-      float ao = (flags & CAO_RENDER_CLIP) != 0 ? ClippedAO(p) : texture(aoTexture, tc).r;
+      bool clipped = (flags & CAO_RENDER_CLIP) != 0;
+      bool calibrated = (flags & CAO_RENDER_AO_CALIBRATED) != 0;
+      float ao = clipped || calibrated ? VoxelAO(p, clipped, calibrated) : texture(aoTexture, tc).r;
       ambient = 1.0 - rp.sampling.w * (1.0 - ao);
     }
     vec3 color;

@@ -645,6 +645,129 @@ void BadInput(const Options& o)
     kept->GetLastFrameStages().c_str());
 }
 
+/// The slot phantom: an opaque block (x, y in [8, 55], z in [8, 40], one
+/// voxel per world unit) with a slot 4 voxels wide (x in [30, 33]) and 24
+/// deep (z from 17 up to the top face), seen from straight above in
+/// parallel projection, shading off (ParaView's default: the AO scales all
+/// of a sample's light). Mean RGB over the open top face and over the slot's
+/// floor, AO off against AO on.
+struct Phantom
+{
+  Scene s;
+  double top = 0, slot = 0; ///< mean RGB (0..255) of the two regions, last frame
+
+  bool Open(const std::string& kind)
+  {
+    if (!s.Open(kind))
+      return false;
+    auto image = vtkSmartPointer<vtkImageData>::New();
+    image->SetDimensions(64, 64, 64);
+    image->AllocateScalars(VTK_UNSIGNED_CHAR, 1);
+    auto* v = static_cast<unsigned char*>(image->GetScalarPointer());
+    for (int k = 0; k < 64; ++k)
+      for (int j = 0; j < 64; ++j)
+        for (int i = 0; i < 64; ++i)
+        {
+          const bool block = i >= 8 && i <= 55 && j >= 8 && j <= 55 && k >= 8 && k <= 40;
+          const bool inSlot = i >= 30 && i <= 33 && j >= 12 && j <= 51 && k >= 17;
+          v[i + 64 * (j + 64 * k)] = block && !inSlot ? 255 : 0;
+        }
+    s.image = image;
+    s.mapper->SetInputData(image);
+    s.opacity->RemoveAllPoints();
+    s.opacity->AddPoint(0.0, 0.0);
+    s.opacity->AddPoint(100.0, 0.0);
+    s.opacity->AddPoint(155.0, 1.0);
+    s.opacity->AddPoint(255.0, 1.0);
+    s.color->RemoveAllPoints();
+    s.color->AddRGBPoint(0.0, 0.9, 0.9, 0.9);
+    s.color->AddRGBPoint(255.0, 0.9, 0.9, 0.9);
+    s.property->ShadeOff();
+    s.renderer->SetBackground(0.0, 0.0, 0.0);
+    vtkCamera* camera = s.renderer->GetActiveCamera();
+    camera->ParallelProjectionOn();
+    camera->SetFocalPoint(31.5, 31.5, 24.0);
+    camera->SetPosition(31.5, 31.5, 200.0);
+    camera->SetViewUp(0.0, 1.0, 0.0);
+    camera->SetParallelScale(32.0);
+    s.renderer->ResetCameraClippingRange();
+    return true;
+  }
+
+  /// Mean RGB over the pixels whose centres see world x in [x0, x1], y in [y0, y1].
+  static double Mean(Scene& s, const caotest::Image& im, double x0, double x1, double y0, double y1)
+  {
+    double lo[3], hi[3];
+    s.renderer->SetWorldPoint(x0, y0, 40.0, 1.0);
+    s.renderer->WorldToDisplay();
+    s.renderer->GetDisplayPoint(lo);
+    s.renderer->SetWorldPoint(x1, y1, 40.0, 1.0);
+    s.renderer->WorldToDisplay();
+    s.renderer->GetDisplayPoint(hi);
+    double sum = 0.0;
+    long n = 0;
+    for (int y = static_cast<int>(std::ceil(lo[1])); y <= static_cast<int>(std::floor(hi[1])); ++y)
+      for (int x = static_cast<int>(std::ceil(lo[0])); x <= static_cast<int>(std::floor(hi[0])); ++x)
+        for (int c = 0; c < 3; ++c, ++n)
+          sum += im.rgb[3 * (static_cast<std::size_t>(y) * im.width + x) + c];
+    return n ? sum / n : 0.0;
+  }
+
+  caotest::Image Frame()
+  {
+    caotest::Image im = s.Frame();
+    top = Mean(s, im, 12.0, 24.0, 16.0, 48.0);  // 6+ voxels from every edge
+    slot = Mean(s, im, 31.0, 32.0, 20.0, 44.0); // the slot's floor, seen through it
+    return im;
+  }
+};
+
+void Calibration(const Options& o)
+{
+  Phantom p;
+  if (!p.Open(o.window))
+    return;
+  p.s.mapper->AmbientOcclusionOff();
+  const caotest::Image off = p.Frame();
+  const double topOff = p.top, slotOff = p.slot;
+  p.s.mapper->AmbientOcclusionOn();
+  p.s.mapper->SetAOCalibration(vtkContextualAOVolumeMapper::AO_CALIBRATION_NONE);
+  const caotest::Image raw = p.Frame();
+  const double topRaw = p.top / topOff, slotRaw = p.slot / slotOff;
+  p.s.mapper->SetAOCalibration(vtkContextualAOVolumeMapper::AO_CALIBRATION_HALF_SPACE);
+  const caotest::Image calibrated = p.Frame();
+  const double topCal = p.top / topOff, slotCal = p.slot / slotOff;
+  double range[3];
+  p.s.mapper->GetAOCalibrationRange(range);
+  std::printf("slot phantom, AO on / AO off (mean RGB): top face %.3f raw, %.3f half-space; "
+              "slot floor %.3f raw, %.3f half-space (LAO range: enclosed %.4f, open face "
+              "%.4f empty / %.4f opaque voxel)\n",
+    topRaw, topCal, slotRaw, slotCal, range[0], range[1], range[2]);
+  CAO_EXPECT(topOff > 100.0 && slotOff > 100.0, "the phantom's regions are lit with AO off: %g %g",
+    topOff, slotOff);
+  // The calibrated AO keeps open faces within 5% and darkens the slot by
+  // at least 30% (the measurement).
+  CAO_EXPECT(std::fabs(topCal - 1.0) <= 0.05, "open top face with AO: %.3f of AO off", topCal);
+  CAO_EXPECT(slotCal <= 0.70, "slot floor with AO: %.3f of AO off", slotCal);
+  // Negative control: the raw LAO darkens the open face too, so the same
+  // check fails on it.
+  CAO_EXPECT(std::fabs(topRaw - 1.0) > 0.05, "the raw LAO should darken the open face: %.3f", topRaw);
+  // The three frames side by side, for the eye.
+  caotest::Image row;
+  row.width = 3 * off.width;
+  row.height = off.height;
+  row.rgb.resize(static_cast<std::size_t>(row.width) * row.height * 3);
+  const caotest::Image* parts[3] = { &off, &raw, &calibrated };
+  for (int part = 0; part < 3; ++part)
+    for (int y = 0; y < off.height; ++y)
+      std::memcpy(&row.rgb[3 * (static_cast<std::size_t>(y) * row.width + part * off.width)],
+        &parts[part]->rgb[3 * static_cast<std::size_t>(y) * off.width], 3 * off.width);
+  std::string error;
+  const std::string path = o.output + "/calibration-phantom-" + o.window + ".png";
+  if (caotest::WritePNG(row, path, error))
+    std::printf("wrote %s (AO off | raw LAO | half-space calibrated)\n", path.c_str());
+}
+
 int TestContextualAOVolumeMapper(int argc, char* argv[])
 {
   Options o;
@@ -663,10 +786,11 @@ int TestContextualAOVolumeMapper(int argc, char* argv[])
       o.mode = a;
   }
   if ((o.window != "egl" && o.window != "x") ||
-    (o.mode != "images" && o.mode != "report" && o.mode != "badinput") ||
+    (o.mode != "images" && o.mode != "report" && o.mode != "badinput" &&
+      o.mode != "calibration") ||
     o.data.empty() || o.baselines.empty() || o.output.empty())
   {
-    std::printf("usage: TestContextualAOVolumeMapper <egl|x> <images|report|badinput> -D data -B "
+    std::printf("usage: TestContextualAOVolumeMapper <egl|x> <images|report|badinput|calibration> -D data -B "
                 "baselines -T output\n");
     return 1;
   }
@@ -679,6 +803,8 @@ int TestContextualAOVolumeMapper(int argc, char* argv[])
     Images(o);
   else if (o.mode == "report")
     Report(o);
+  else if (o.mode == "calibration")
+    Calibration(o);
   else
     BadInput(o);
   std::printf("%s: %d failure(s)\n", failures ? "FAILED" : "PASSED", failures);
