@@ -122,6 +122,20 @@ if rep is not None:
     check(mapper.GetAOCalibration() == mapper.AO_CALIBRATION_NONE,
           "the representation forwards AO Calibration = None to the mapper")
 
+# The clip shape starts where it cuts something: at the data's centre, a
+# quarter of its largest extent in size (was (0, 0, 0) and 10: a corner).
+view = pvs.CreateView("RenderView")
+display = pvs.Show(reader, view)
+display.SetRepresentationType("Contextual AO Volume")
+b = reader.GetDataInformation().GetBounds()
+centre = [0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5])]
+check(list(display.ClipPosition) == centre and
+      abs(display.ClipShapeSize - 0.25 * max(b[1] - b[0], b[3] - b[2], b[5] - b[4])) < 1e-9,
+      "the clip shape defaults to the data's centre %s and a quarter of its extent (%s, %s)"
+      % (centre, list(display.ClipPosition), display.ClipShapeSize))
+pvs.Delete(display)
+pvs.Delete(view)
+
 # Volume formats VTK reads and ParaView 5.11 does not register: the plugin's
 # reader proxies open them by extension.
 import tempfile  # noqa: E402
