@@ -136,6 +136,64 @@ check(list(display.ClipPosition) == centre and
 pvs.Delete(display)
 pvs.Delete(view)
 
+# A multi-component array: the panel offers it and Component picks one. The
+# AO of component 1 of a 3-component (a, b, a) volume equals the AO of b.
+import numpy  # noqa: E402
+from vtkmodules.vtkCommonDataModel import vtkImageData  # noqa: E402
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy  # noqa: E402
+from vtkmodules.vtkIOImage import vtkMetaImageReader as _HeadReader  # noqa: E402
+_h = _HeadReader()
+_h.SetFileName(os.path.join(data, "HeadMRVolume.mhd"))
+_h.Update()
+_a = vtk_to_numpy(_h.GetOutput().GetPointData().GetScalars())
+_b = (_a // 2).astype(_a.dtype)
+
+
+def _image(values, name):
+    image = vtkImageData()
+    image.CopyStructure(_h.GetOutput())
+    array = numpy_to_vtk(numpy.ascontiguousarray(values), deep=1)
+    array.SetName(name)
+    image.GetPointData().SetScalars(array)
+    return image
+
+
+_abc = _image(numpy.stack([_a, _b, _a], axis=1), "abc")
+_single = _image(_b, "b")
+producer = pvs.TrivialProducer()
+producer.GetClientSideObject().SetOutput(_abc)
+producer.UpdatePipeline()
+single = pvs.TrivialProducer()
+single.GetClientSideObject().SetOutput(_single)
+single.UpdatePipeline()
+
+
+def _array_names(proxy):
+    domain = proxy.GetProperty("SelectInputScalars").FindDomain("vtkSMArrayListDomain")
+    return [domain.GetString(i) for i in range(domain.GetNumberOfStrings())]
+
+
+pvs.SetActiveSource(producer)
+multi = LAO(Input=producer)
+check(list(multi.Scalars) == ["POINTS", "abc"] and "abc" in _array_names(multi)
+      and multi.Component == -1 and "Component" in multi.ListProperties(),
+      "the LAO proxy offers a 3-component array and a Component property (%s, %s)"
+      % (list(multi.Scalars), multi.Component))
+multi.Component = 1
+multi.Backend = "CPU"
+multi.UpdatePipeline()
+pvs.SetActiveSource(single)
+one = LAO(Input=single, Backend="CPU")
+one.UpdatePipeline()
+_m_ao = servermanager.Fetch(multi).GetPointData().GetArray("AmbientOcclusion")
+_o_ao = servermanager.Fetch(one).GetPointData().GetArray("AmbientOcclusion")
+check(_m_ao is not None and _o_ao is not None and _m_ao.GetNumberOfTuples() == _o_ao.GetNumberOfTuples()
+      and all(_m_ao.GetValue(i) == _o_ao.GetValue(i) for i in range(_m_ao.GetNumberOfTuples())),
+      "Component 1 of (a, b, a) gives the AO of b, value for value (%s vs %s)"
+      % (_m_ao.GetRange() if _m_ao else None, _o_ao.GetRange() if _o_ao else None))
+pvs.Delete(multi)
+pvs.Delete(one)
+
 # Volume formats VTK reads and ParaView 5.11 does not register: the plugin's
 # reader proxies open them by extension.
 import tempfile  # noqa: E402
