@@ -823,22 +823,33 @@ void vtkContextualAOVolumeMapper::Internals::MakeRenderParams(vtkContextualAOVol
   Columns(normal, params.normalToWorld, 3, 3);
   params.viewport = { static_cast<float>(origin[0]), static_cast<float>(origin[1]),
     1.0f / static_cast<float>(size[0]), 1.0f / static_cast<float>(size[1]) };
-  params.light = { 0, 0, 1, 1 };
+  // The renderer's lights (VTK makes a headlight when there is none), in
+  // world directions; camera lights (ParaView's light kit) follow the
+  // camera through their transform. Positional lights are taken as
+  // directional, from their position towards their focal point.
+  int count = 0;
   vtkLightCollection* lights = ren->GetLights();
   lights->InitTraversal();
   while (vtkLight* light = lights->GetNextItem())
   {
-    if (!light->GetSwitch())
+    if (!light->GetSwitch() || light->GetIntensity() <= 0.0 || count == CAO_MAX_LIGHTS)
       continue;
-    if (!light->LightTypeIsHeadlight() && !light->LightTypeIsCameraLight())
+    cao::layout::vec4& direction = params.lights[count];
+    if (light->LightTypeIsHeadlight())
+      direction = { 0.0f, 0.0f, 1.0f, 1.0f };
+    else
     {
       double p[3], fp[3];
       light->GetTransformedPosition(p);
       light->GetTransformedFocalPoint(fp);
-      params.light = { static_cast<float>(p[0] - fp[0]), static_cast<float>(p[1] - fp[1]),
+      direction = { static_cast<float>(p[0] - fp[0]), static_cast<float>(p[1] - fp[1]),
         static_cast<float>(p[2] - fp[2]), 0.0f };
     }
-    break;
+    const double* colour = light->GetDiffuseColor();
+    const double intensity = light->GetIntensity();
+    params.lightColors[count] = { static_cast<float>(colour[0] * intensity),
+      static_cast<float>(colour[1] * intensity), static_cast<float>(colour[2] * intensity), 0.0f };
+    ++count;
   }
   vtkVolumeProperty* property = f.property;
   params.shading = { static_cast<float>(property->GetAmbient(0)),
@@ -877,7 +888,7 @@ void vtkContextualAOVolumeMapper::Internals::MakeRenderParams(vtkContextualAOVol
     std::max({ std::hypot(m->GetElement(0, 0), m->GetElement(1, 0), m->GetElement(2, 0)),
       std::hypot(m->GetElement(0, 1), m->GetElement(1, 1), m->GetElement(2, 1)),
       std::hypot(m->GetElement(0, 2), m->GetElement(1, 2), m->GetElement(2, 2)) });
-  params.limits = { static_cast<int>(std::ceil(std::sqrt(diagonal) * propScale / step)) + 2, 0, 0,
+  params.limits = { static_cast<int>(std::ceil(std::sqrt(diagonal) * propScale / step)) + 2, count, 0,
     0 };
   params.boxMax = { static_cast<float>(dims[0] - 1), static_cast<float>(dims[1] - 1),
     static_cast<float>(dims[2] - 1), EarlyTermination };

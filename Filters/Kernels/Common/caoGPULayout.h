@@ -93,18 +93,21 @@ struct ClipParams
  * normalToWorld (3 columns) takes an index-space gradient to a world-space
  * normal (the inverse transpose of index-to-world's linear part).
  */
+#define CAO_MAX_LIGHTS 8 /* lights the ray caster shades with (the renderer's first 8 switched on) */
 struct RenderParams
 {
   vec4 ndcToWorld[4];
   vec4 worldToIndex[4];
   vec4 normalToWorld[3];
   vec4 viewport;  /* x, y: first pixel; z, w: 1 / width, 1 / height */
-  vec4 light;     /* xyz: world direction towards the light; w: 1 = headlight */
+  vec4 lights[CAO_MAX_LIGHTS];      /* xyz: world direction towards light l; w: 1 = headlight
+                                      (along the view ray) */
+  vec4 lightColors[CAO_MAX_LIGHTS]; /* rgb: light l's colour times its intensity; w: 0 */
   vec4 shading;   /* x: ambient, y: diffuse, z: specular, w: specular power */
   vec4 sampling;  /* x: step (world units); y, z: table coordinate = texel * y + z; w: AO strength */
   vec4 invDims;   /* xyz: 1 / voxels per axis (texture coordinate = (index + 0.5) * invDims); w: 0 */
   ivec4 dims;     /* xyz: voxels per axis; w: CAO_RENDER_* flags */
-  ivec4 limits;   /* x: maximum samples per ray; yzw: 0 */
+  ivec4 limits;   /* x: maximum samples per ray; y: lights (0 to CAO_MAX_LIGHTS); zw: 0 */
   vec4 boxMax;    /* xyz: the last voxel index (the box is [0, boxMax]); w: early termination alpha */
   vec4 aoCalibration; /* CAO_RENDER_AO_CALIBRATED (cao::AOCalibration): x: the LAO of an open flat
                          face's last empty voxel, y: of its first opaque voxel, z: of an enclosed
@@ -197,7 +200,7 @@ CAO_CONST CAO_DM_STAT_BOXES = 8;     /* then per layer: covered x0, y0, x1, y1 *
 static_assert(sizeof(DMTriangle) == 128, "DMTriangle must match std430");
 static_assert(sizeof(DMHit) == 16, "DMHit must match std430");
 static_assert(sizeof(DMOffset) == 16, "DMOffset must match std430");
-static_assert(sizeof(RenderParams) == 20 * 16, "RenderParams must match std140");
+static_assert(sizeof(RenderParams) == (19 + 2 * CAO_MAX_LIGHTS) * 16, "RenderParams must match std140");
 static_assert(sizeof(LAOTap) == 32, "LAOTap must match std430");
 static_assert(sizeof(LAOMarchBlock) == 96, "LAOMarchBlock must match std140/std430");
 static_assert(sizeof(ClipParams) == 3 * 16 + 4 * 16 + CAO_MAX_AA_EXTRA_SAMPLES * 16,

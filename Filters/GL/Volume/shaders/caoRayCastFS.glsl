@@ -12,8 +12,10 @@
 //  - the AO (trilinear; with clipping, over the unclipped voxels only;
 //    calibrated per voxel with CAO_RENDER_AO_CALIBRATED) scales the ambient
 //    term: 1 - strength * (1 - AO);
-//  - with shading, gradient Blinn-Phong (two-sided, one directional light)
-//    adds the diffuse and specular terms as vtkVolumeProperty defines them.
+//  - with shading, gradient Blinn-Phong adds the diffuse and specular terms
+//    as vtkVolumeProperty defines them, summed over the renderer's lights
+//    (each with its colour and intensity; two-sided, as VTK's ray caster
+//    lights a volume, so ParaView's light kit looks the same).
 // Front-to-back compositing, premultiplied output, early termination.
 layout(std140, binding = CAO_BINDING_RENDER_PARAMS) uniform RenderBlock
 {
@@ -126,8 +128,6 @@ void main()
 
   float step = rp.sampling.x;
   float t = tEnter + step * ((flags & CAO_RENDER_JITTER) != 0 ? Jitter(pixel) : 0.5);
-  vec3 lightDir = rp.light.w > 0.5 ? -dirWorld : normalize(rp.light.xyz);
-  vec3 halfway = normalize(lightDir - dirWorld);
   mat3 normalMatrix = mat3(rp.normalToWorld[0].xyz, rp.normalToWorld[1].xyz,
     rp.normalToWorld[2].xyz);
   vec3 texel = rp.invDims.xyz;
@@ -166,10 +166,16 @@ void main()
       if (dot(n, dirWorld) > 0.0)
         n = -n; // two-sided: the normal faces the viewer
       n = normalize(mix(facing, n, smoothstep(0.0, 0.02, len)));
-      float diffuse = max(dot(n, lightDir), 0.0);
-      float specular = pow(max(dot(n, halfway), 0.0), rp.shading.w);
+      vec3 diffuse = vec3(0.0), specular = vec3(0.0);
+      for (int l = 0; l < rp.limits.y; ++l)
+      {
+        vec3 lightDir = rp.lights[l].w > 0.5 ? -dirWorld : normalize(rp.lights[l].xyz);
+        vec3 halfway = normalize(lightDir - dirWorld);
+        diffuse += rp.lightColors[l].rgb * abs(dot(n, lightDir));
+        specular += rp.lightColors[l].rgb * pow(abs(dot(n, halfway)), rp.shading.w);
+      }
       color = c.rgb * (rp.shading.x * ambient + rp.shading.y * diffuse) +
-        vec3(rp.shading.z * specular);
+        rp.shading.z * specular;
     }
     else
     {
