@@ -9,6 +9,9 @@
 #include "vtkSmartPointer.h"
 
 #include "vtkCAOInput.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkPointData.h"
 
 #include <string>
 
@@ -91,6 +94,13 @@ void vtkContextualAOVolumeRepresentation::UpdateMapperParameters()
 {
   this->Superclass::UpdateMapperParameters();
   vtkContextualAOVolumeMapper* mapper = this->GetAOMapper();
+  vtkImageData* data = vtkImageData::SafeDownCast(mapper->GetInputDataObject(0, 0));
+  // vtkLocalAmbientOcclusion's output arrays (vtkCAO::AmbientOcclusionName,
+  // vtkCAO::LAOSettingsName).
+  const bool upstream = this->UseInputAmbientOcclusion && data &&
+    data->GetPointData()->GetArray("AmbientOcclusion") &&
+    data->GetFieldData()->GetAbstractArray("LAOSettings");
+  mapper->SetAmbientOcclusionArrayName(upstream ? "AmbientOcclusion" : nullptr);
   if (this->ClipShape == NONE)
   {
     mapper->SetClipShape(nullptr);
@@ -122,6 +132,7 @@ void vtkContextualAOVolumeRepresentation::UpdateMapperParameters()
 void vtkContextualAOVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "UseInputAmbientOcclusion: " << this->UseInputAmbientOcclusion << "\n";
   os << indent << "ClipShape: " << this->ClipShape << "\n";
   os << indent << "ClipShapeSize: " << this->ClipShapeSize << "\n";
   os << indent << "ClipPosition: " << this->ClipPosition[0] << " " << this->ClipPosition[1] << " "

@@ -73,6 +73,15 @@ public:
   vtkGetMacro(ClipScale, double);
   ///@}
 
+  ///@{
+  /// Draw the input's AmbientOcclusion array when it has one with the
+  /// LAOSettings field array (the output of an upstream Local Ambient
+  /// Occlusion filter), continuing that LAO exactly under the clip, instead
+  /// of computing the representation's own. Default on.
+  vtkSetMacro(UseInputAmbientOcclusion, bool);
+  vtkGetMacro(UseInputAmbientOcclusion, bool);
+  ///@}
+
   /// The mapper, for its work report.
   vtkContextualAOVolumeMapper* GetAOMapper();
 
@@ -82,6 +91,7 @@ protected:
 
   void UpdateMapperParameters() override;
 
+  bool UseInputAmbientOcclusion = true;
   int ClipShape = NONE;
   double ClipShapeSize = 10.0;
   double ClipPosition[3] = { 0.0, 0.0, 0.0 };

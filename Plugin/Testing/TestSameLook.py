@@ -5,6 +5,10 @@ volume's pixels agree within 3%, shading off and on, with AO off. The
 grey with AO on (raw LAO, shading off) is reported too and must differ by
 more than 3% (the negative control: the measure sees a change of light).
 
+Shown downstream of a Local Ambient Occlusion filter, the representation
+draws that filter's AO (no precompute of its own) while Use Upstream LAO
+is on, and computes its own when it is off (the negative control).
+
   pvpython TestSameLook.py PLUGIN.so   (under Testing/run-with-xvfb.sh)"""
 import os
 import sys
@@ -62,6 +66,35 @@ ok = abs(raw / theirs - 1.0) > 0.03
 print("%s: negative control: raw AO on gives %.1f against %.1f" % ("ok" if ok else "FAIL", raw, theirs))
 if not ok:
     failures.append("control")
+
+# An upstream LAO is drawn, not recomputed.
+import contextualao  # noqa: E402,F401  (wraps vtkContextualAOVolumeMapper)
+lao = LocalAmbientOcclusion(Input=reader)
+lao.RayPattern = "6 rays (faces)"
+lao.Backend = "CPU"
+Hide(reader, view)
+shown = Show(lao, view)
+ColorBy(shown, ("POINTS", "MetaImage"))
+shown.SetRepresentationType("Contextual AO Volume")
+shown.ClipShape = "Sphere"
+Render(view)
+# (The plugin's representation class is not wrapped: reach the mapper
+# through its wrapped superclass's volume actor.)
+mapper = shown.GetClientSideObject().GetActiveRepresentation().GetActor().GetMapper()
+stages = mapper.GetLastFrameStages()
+ok = mapper.GetAmbientOcclusionArrayName() == "AmbientOcclusion" and "precompute" not in stages
+print("%s: downstream of the LAO filter the representation draws its AO (%s; %s)"
+      % ("ok" if ok else "FAIL", mapper.GetAmbientOcclusionArrayName(), stages))
+if not ok:
+    failures.append("upstream")
+shown.UseInputAmbientOcclusion = 0
+Render(view)
+stages = mapper.GetLastFrameStages()
+ok = mapper.GetAmbientOcclusionArrayName() is None and "precompute" in stages
+print("%s: Use Upstream LAO off: its own precompute (%s)" % ("ok" if ok else "FAIL", stages))
+if not ok:
+    failures.append("own")
+
 print("%d failure(s)" % len(failures))
 sys.stdout.flush()
 # Leave without the interpreter's teardown: Debian's ParaView 5.11 under

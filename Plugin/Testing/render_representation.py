@@ -30,6 +30,11 @@ try:
     lut.ApplyPreset("Warm to Cool", True)
     pwf = GetOpacityTransferFunction("MetaImage")
     pwf.Points = [0.0, 0.0, 0.5, 0.0, 40.0, 0.0, 0.5, 0.0, 90.0, 0.4, 0.5, 0.0, 255.0, 0.9, 0.5, 0.0]
+    # The upstream LAO occludes with the opacity the view shows; the
+    # representation draws its AO (Use Upstream LAO) and continues it under
+    # the clip with the same opacity and settings.
+    lao.OpacityFunction = pwf
+    lao.ScalarOpacityUnitDistance = display.ScalarOpacityUnitDistance
     display.Shade = 1
     display.Ambient = 0.6
     display.Diffuse = 0.5

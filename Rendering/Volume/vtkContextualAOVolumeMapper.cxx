@@ -229,6 +229,17 @@ struct vtkContextualAOVolumeMapper::Internals
   bool AcquireContext(vtkContextualAOVolumeMapper* self, Frame& f);
   bool UpdateVolume(vtkContextualAOVolumeMapper* self, Frame& f);
   bool UploadVolume(vtkContextualAOVolumeMapper* self, Frame& f, vtkDataArray* givenAO);
+  /// The LAO settings the plan follows: those a given AO array was made
+  /// with when the input carries them (the LAOSettings field array of
+  /// vtkLocalAmbientOcclusion), so the contextual recompute continues that
+  /// LAO exactly; otherwise the mapper's own.
+  cao::LAOSettings PlanSettings(const Frame& f, vtkDataArray* givenAO) const
+  {
+    cao::LAOSettings given;
+    if (givenAO && vtkCAO::ReadLAOSettings(f.input->GetFieldData(), given, nullptr))
+      return given;
+    return this->Settings;
+  }
   bool UpdateClip(vtkContextualAOVolumeMapper* self, Frame& f);
   bool UpdateMaps(vtkContextualAOVolumeMapper* self, Frame& f, vtkPolyData* mesh,
     vtkMatrix4x4* pose, int mode);
@@ -481,7 +492,7 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateVolume(
     key.opacityTime = f.opacityFunction->GetMTime();
     key.unitDistance = f.unitDistance;
     // The settings in effect (individual settings a preset overrides change nothing).
-    key.settings = cao::ResolveLAOSettings(this->Settings, f.spacing);
+    key.settings = cao::ResolveLAOSettings(this->PlanSettings(f, givenAO), f.spacing);
     key.settings.preset = cao::QualityPreset::Custom;
     key.givenAO = givenAO;
     key.givenAOTime = givenAO ? givenAO->GetMTime() : 0;
@@ -506,27 +517,32 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
   // ones, a reach of 0 is 8 voxels (checked with the plan).
   cao::gl::AOEngine& engine = *f.engine;
   std::string error;
-  if (!cao::BuildLAOPlan(vtkCAO::GeometryOf(f.input), this->Settings, this->Plan, error))
+  if (!cao::BuildLAOPlan(vtkCAO::GeometryOf(f.input), this->PlanSettings(f, givenAO), this->Plan, error))
     return f.Fail("Cannot plan the LAO: " + error + ".");
   this->Calibration = cao::SurfaceCalibration(this->Plan);
-  {
-    // A given AO array is calibrated with the settings that made it, when
-    // it carries them (vtkLocalAmbientOcclusion's LAOSettings field array).
-    cao::LAOSettings given;
-    cao::LAOPlan givenPlan;
-    std::string ignored;
-    if (givenAO && vtkCAO::ReadLAOSettings(f.input->GetFieldData(), given, nullptr) &&
-      cao::BuildLAOPlan(vtkCAO::GeometryOf(f.input), given, givenPlan, ignored))
-      this->Calibration = cao::SurfaceCalibration(givenPlan);
-  }
   const auto start = std::chrono::steady_clock::now();
   std::vector<float> opacity(static_cast<std::size_t>(f.voxels));
   std::int64_t nonFinite = 0;
   bool computed = false;
-  vtkCAO::WithThreads(0, [&] {
-    computed = vtkCAO::ComputeOpacity(self, f.scalars, 0, f.opacityFunction,
-      this->Plan.step / f.unitDistance, opacity.data(), nonFinite);
-  });
+  // A given AO made by vtkLocalAmbientOcclusion (its settings recorded)
+  // comes with the step-corrected opacity it was made from: the contextual
+  // recompute marches that opacity, so it continues that LAO exactly.
+  cao::LAOSettings recorded;
+  vtkFloatArray* givenOpacity = givenAO &&
+      vtkCAO::ReadLAOSettings(f.input->GetFieldData(), recorded, nullptr)
+    ? vtkFloatArray::SafeDownCast(f.input->GetPointData()->GetArray(vtkCAO::OpacityName))
+    : nullptr;
+  if (givenOpacity && givenOpacity->GetNumberOfComponents() == 1 &&
+    givenOpacity->GetNumberOfTuples() == f.voxels)
+  {
+    std::copy(givenOpacity->GetPointer(0), givenOpacity->GetPointer(0) + f.voxels, opacity.begin());
+    computed = true;
+  }
+  else
+    vtkCAO::WithThreads(0, [&] {
+      computed = vtkCAO::ComputeOpacity(self, f.scalars, 0, f.opacityFunction,
+        this->Plan.step / f.unitDistance, opacity.data(), nonFinite);
+    });
   if (!computed)
     return false; // aborted
   if (nonFinite > 0) // (GetRange skips NaN, so they are counted here)

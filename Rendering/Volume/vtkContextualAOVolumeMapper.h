@@ -73,7 +73,9 @@ public:
    * "AmbientOcclusion" array of vtkLocalAmbientOcclusion, or a reference
    * AO). Empty (default): the mapper computes the LAO itself. The array is
    * stored as 16-bit, like the mapper's own AO. With a clip shape, the
-   * affected voxels are recomputed with the mapper's ray settings.
+   * affected voxels are recomputed with the LAO settings the input's
+   * LAOSettings field array records (an upstream vtkLocalAmbientOcclusion's
+   * output carries them), else with the mapper's ray settings.
    */
   vtkSetStringMacro(AmbientOcclusionArrayName);
   vtkGetStringMacro(AmbientOcclusionArrayName);
