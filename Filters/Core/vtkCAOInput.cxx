@@ -635,6 +635,22 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, std::string& erro
   return copy;
 }
 
+double DefaultShapeSize(const std::string& name, vtkImageData* volume)
+{
+  int dims[3];
+  volume->GetDimensions(dims);
+  const double* spacing = volume->GetSpacing();
+  double smallest = HUGE_VAL, diagonal2 = 0.0;
+  for (int d = 0; d < 3; ++d)
+  {
+    const double extent = dims[d] * std::fabs(spacing[d]);
+    smallest = std::min(smallest, extent);
+    diagonal2 += extent * extent;
+  }
+  return name == "plane" ? std::max(2.0 * std::sqrt(diagonal2), 1e-6)
+                         : std::max(0.25 * smallest, 1e-6);
+}
+
 vtkSmartPointer<vtkPolyData> MakeShape(const std::string& name, double size, std::string& error)
 {
   if (!(size > 0.0) || !std::isfinite(size))
@@ -659,6 +675,19 @@ vtkSmartPointer<vtkPolyData> MakeShape(const std::string& name, double size, std
     c->SetYLength(2 * size);
     c->SetZLength(2 * size);
     vtkNew<vtkCleanPolyData> clean; // the source duplicates corners per face
+    clean->SetInputConnection(c->GetOutputPort());
+    vtkNew<vtkTriangleFilter> tri;
+    tri->SetInputConnection(clean->GetOutputPort());
+    tri->Update();
+    out->ShallowCopy(tri->GetOutput());
+  }
+  else if (name == "plane")
+  {
+    // The half-space z >= 0 of the pose's frame, as the closed slab
+    // [-size, size]^2 x [0, size]: exact wherever the slab covers the volume.
+    vtkNew<vtkCubeSource> c;
+    c->SetBounds(-size, size, -size, size, 0.0, size);
+    vtkNew<vtkCleanPolyData> clean;
     clean->SetInputConnection(c->GetOutputPort());
     vtkNew<vtkTriangleFilter> tri;
     tri->SetInputConnection(clean->GetOutputPort());
@@ -698,7 +727,7 @@ vtkSmartPointer<vtkPolyData> MakeShape(const std::string& name, double size, std
   }
   else
   {
-    error = "unknown shape '" + name + "' (expected sphere, cube or torus)";
+    error = "unknown shape '" + name + "' (expected sphere, cube, torus or plane)";
     return nullptr;
   }
   return out;

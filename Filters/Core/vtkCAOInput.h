@@ -33,7 +33,14 @@ CAOFILTERSCORE_EXPORT vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& p
 CAOFILTERSCORE_EXPORT void TrianglesOf(vtkPolyData* mesh, std::vector<double>& points, std::vector<std::int64_t>& tris);
 
 /// Built-in closed shapes centred on the origin: "sphere" (radius = size),
-/// "cube" (half edge = size), "torus" (ring radius = size, tube = size / 3).
+/// "cube" (half edge = size), "torus" (ring radius = size, tube = size / 3),
+/// "plane" (the half-space z >= 0 as the slab [-size, size]^2 x [0, size]).
+/// The default size of a built-in shape for `volume`: a plane's slab, twice
+/// the volume's diagonal (it covers the volume from any pose inside its
+/// bounds); the others a quarter of the smallest extent, counting each
+/// voxel's footprint (a 1-voxel-thick axis is one spacing).
+CAOFILTERSCORE_EXPORT double DefaultShapeSize(const std::string& name, vtkImageData* volume);
+
 CAOFILTERSCORE_EXPORT vtkSmartPointer<vtkPolyData> MakeShape(const std::string& name, double size, std::string& error);
 
 /// A pose: translation, rotation in degrees (applied as VTK's props do:

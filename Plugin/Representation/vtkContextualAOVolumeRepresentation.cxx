@@ -106,12 +106,16 @@ void vtkContextualAOVolumeRepresentation::UpdateMapperParameters()
     mapper->SetClipShape(nullptr);
     return;
   }
-  if (this->ClipShape != this->BuiltShape || this->ClipShapeSize != this->BuiltSize)
+  static const char* names[] = { "", "sphere", "cube", "torus", "plane" };
+  // A plane's slab covers the data at any pose inside them (in the shape's
+  // frame, so divided by the pose scale).
+  const double size = this->ClipShape == PLANE && data
+    ? vtkCAO::DefaultShapeSize("plane", data) / this->ClipScale
+    : this->ClipShapeSize;
+  if (this->ClipShape != this->BuiltShape || size != this->BuiltSize)
   {
-    static const char* names[] = { "", "sphere", "cube", "torus" };
     std::string error;
-    vtkSmartPointer<vtkPolyData> mesh =
-      vtkCAO::MakeShape(names[this->ClipShape], this->ClipShapeSize, error);
+    vtkSmartPointer<vtkPolyData> mesh = vtkCAO::MakeShape(names[this->ClipShape], size, error);
     if (!mesh)
     {
       vtkErrorMacro("Cannot make the clip shape: " << error);
@@ -120,7 +124,7 @@ void vtkContextualAOVolumeRepresentation::UpdateMapperParameters()
     }
     this->ClipMapper->SetInputData(mesh);
     this->BuiltShape = this->ClipShape;
-    this->BuiltSize = this->ClipShapeSize;
+    this->BuiltSize = size;
   }
   this->ClipActor->SetPosition(this->ClipPosition);
   this->ClipActor->SetOrientation(this->ClipOrientation);

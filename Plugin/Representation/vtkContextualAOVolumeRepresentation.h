@@ -52,12 +52,15 @@ public:
     NONE = 0,
     SPHERE = 1,
     CUBE = 2,
-    TORUS = 3
+    TORUS = 3,
+    PLANE = 4 ///< the half-space z >= 0 of the pose's frame (position and orientation)
   };
 
   ///@{
-  /// The clip shape: NONE (default), SPHERE (radius), CUBE (half edge) or TORUS (ring radius).
-  vtkSetClampMacro(ClipShape, int, NONE, TORUS);
+  /// The clip shape: NONE (default), SPHERE (radius), CUBE (half edge),
+  /// TORUS (ring radius) or PLANE (the size is not used: the half-space
+  /// covers the data).
+  vtkSetClampMacro(ClipShape, int, NONE, PLANE);
   vtkGetMacro(ClipShape, int);
   vtkSetClampMacro(ClipShapeSize, double, 1e-9, VTK_DOUBLE_MAX);
   vtkGetMacro(ClipShapeSize, double);

@@ -97,9 +97,12 @@ common options:
   -o, --output FILE    write the (last) AO volume as .vti
 
 clip options (carve):
-  --shape NAME         sphere, cube or torus (default sphere)
+  --shape NAME         sphere, cube, torus or plane (default sphere); plane:
+                       the half-space on the +z side of the pose's frame
+                       (the pose's orientation turns it)
   --size S             shape size in world units (default: 1/4 of the
-                       volume's smallest extent)
+                       volume's smallest extent; for a plane, its slab's
+                       half width, twice the volume's diagonal)
   --mesh FILE          clip mesh (.vtp, .stl, .ply, .obj) instead of a shape
   --pose "tx ty tz [rx ry rz [s]]"   a pose (repeatable); rotation in degrees
   --poses FILE         one pose per line
@@ -113,7 +116,7 @@ clip options (carve):
   --verify             recompute the full LAO at every pose and require the
                        CAO result to equal it bit for bit (exit 3 otherwise)
   --verify-geometry    check the clip against the exact shape (the closed-form
-                       sphere, cube or torus; the mesh itself by point location)
+                       sphere, cube, torus or plane; the mesh itself by point location)
                        at every pose, without the depth maps: a voxel inside
                        by more than one map pixel must be clipped, one outside
                        by more must not be (exit 3 otherwise)
@@ -582,15 +585,7 @@ struct CarveSetup
 int MakeClip(const Options& o, vtkImageData* volume, CarveSetup& s)
 {
   std::string error;
-  // The default shape size: a quarter of the volume's smallest extent,
-  // counting each voxel's footprint (a 1-voxel-thick axis is one spacing).
-  int volumeDims[3];
-  volume->GetDimensions(volumeDims);
-  const double* spacing = volume->GetSpacing();
-  double smallest = HUGE_VAL;
-  for (int d = 0; d < 3; ++d)
-    smallest = std::min(smallest, volumeDims[d] * std::fabs(spacing[d]));
-  const double size = o.size > 0.0 ? o.size : std::max(0.25 * smallest, 1e-6);
+  const double size = o.size > 0.0 ? o.size : vtkCAO::DefaultShapeSize(o.shape, volume);
   s.mesh = o.mesh.empty() ? vtkCAO::MakeShape(o.shape, size, error) : vtkCAO::ReadMesh(o.mesh, error);
   if (!s.mesh)
     return Fail(2, error);
@@ -608,6 +603,7 @@ int MakeClip(const Options& o, vtkImageData* volume, CarveSetup& s)
   }
   s.exact = o.shape == "cube" ? cao::ClipShape::Cube(size)
     : o.shape == "torus"      ? cao::ClipShape::Torus(size, size / 3.0)
+    : o.shape == "plane"      ? cao::ClipShape::Plane(size)
                               : cao::ClipShape::Sphere(size);
   s.deviation = s.exact.Deviation(view);
   return 0;

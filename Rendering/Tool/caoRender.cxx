@@ -358,10 +358,8 @@ int RunRender(int argc, char* argv[])
   vtkNew<vtkPolyDataMapper> shapeMapper;
   if (o.clip)
   {
-    const double smallest =
-      std::min({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] });
     vtkSmartPointer<vtkPolyData> mesh = o.mesh.empty()
-      ? MakeShape(o.shape, o.size > 0.0 ? o.size : std::max(0.25 * smallest, 1e-6), error)
+      ? MakeShape(o.shape, o.size > 0.0 ? o.size : vtkCAO::DefaultShapeSize(o.shape, volume), error)
       : ReadMesh(o.mesh, error);
     if (!mesh)
       return Fail(2, error);

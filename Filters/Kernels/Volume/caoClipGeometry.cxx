@@ -271,6 +271,7 @@ struct ClipShape::Impl
     Sphere,
     Cube,
     Torus,
+    Box,
     Mesh
   } kind = Kind::Sphere;
   double a = 1.0, b = 0.0; // sphere radius; cube half side; torus radii
@@ -300,6 +301,15 @@ ClipShape ClipShape::Cube(double halfSide)
 {
   ClipShape s = Sphere(halfSide);
   s.P->kind = Impl::Kind::Cube;
+  return s;
+}
+
+ClipShape ClipShape::Plane(double size)
+{
+  ClipShape s;
+  s.P->kind = Impl::Kind::Box;
+  const double b[6] = { -size, size, -size, size, 0.0, size };
+  std::copy(b, b + 6, s.P->bounds);
   return s;
 }
 
@@ -379,6 +389,17 @@ double ClipShape::SignedDistance(const double p[3]) const
       }
       return outside > 0.0 ? std::sqrt(outside) : inside;
     }
+    case Impl::Kind::Box:
+    {
+      double outside = 0.0, inside = -HUGE_VAL;
+      for (int d = 0; d < 3; ++d)
+      {
+        const double q = std::max(s.bounds[2 * d] - p[d], p[d] - s.bounds[2 * d + 1]);
+        outside += q > 0.0 ? q * q : 0.0;
+        inside = std::max(inside, q);
+      }
+      return outside > 0.0 ? std::sqrt(outside) : inside;
+    }
     case Impl::Kind::Torus:
     {
       const double ring = std::sqrt(p[0] * p[0] + p[1] * p[1]) - s.a;
@@ -408,6 +429,8 @@ const char* ClipShape::Name() const
       return "cube";
     case Impl::Kind::Torus:
       return "torus";
+    case Impl::Kind::Box:
+      return "plane";
     default:
       return "mesh";
   }
