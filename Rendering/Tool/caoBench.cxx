@@ -92,6 +92,12 @@ options:
   --reference-rays K   directions per reference set (default 4096; two sets)
   --reference-step S   reference step, in voxels (default 0.25)
   --no-step-check      skip the reference's step check (S vs S/2)
+  --reference-resolve F   refine the reference (halve its step, double its
+                       directions) until its own error (S vs S/2, K vs 2K;
+                       max over the visible voxels) is at most F times the
+                       max error of the sweep's most accurate configuration,
+                       at most --reference-rounds times (default 0.1; 0: off)
+  --reference-rounds N refinements at most (default 3)
   --size WxH           rendered frame size (default 256x256)
   --opacity S,A,...    opacity transfer function points (default: 0 up to
                        25% of the scalar range, then a ramp to 0.8)
@@ -120,6 +126,8 @@ struct BenchOptions
   int referenceRays = 4096;
   double referenceStep = 0.25;
   bool stepCheck = true;
+  double referenceResolve = 0.1;
+  int referenceRounds = 3;
   int width = 256, height = 256;
   std::vector<double> opacity;
   int repeat = 3;
@@ -295,6 +303,20 @@ bool Parse(int argc, char* argv[], BenchOptions& o, std::string& error)
     }
     else if (a == "--no-step-check")
       o.stepCheck = false;
+    else if (a == "--reference-resolve")
+    {
+      if (!value(v) || !ParseNumbers(v, numbers) || numbers.size() != 1 || !(numbers[0] >= 0) ||
+        numbers[0] > 1)
+        return error = "--reference-resolve needs a fraction in [0, 1]", false;
+      o.referenceResolve = numbers[0];
+    }
+    else if (a == "--reference-rounds")
+    {
+      if (!value(v) || !ParseNumbers(v, numbers) || numbers.size() != 1 || numbers[0] < 0 ||
+        numbers[0] > 6)
+        return error = "--reference-rounds needs a count from 0 to 6", false;
+      o.referenceRounds = static_cast<int>(numbers[0]);
+    }
     else if (a == "--size")
     {
       if (!value(v) || std::sscanf(v.c_str(), "%dx%d", &o.width, &o.height) != 2 ||
@@ -554,6 +576,11 @@ struct Bench
   std::vector<double> reference;
   ErrorStats convergence, setsDiffer, stepError;
   double msA = 0, msB = 0, msStep = 0;
+  // 2b. Whether the reference resolves the best configuration.
+  std::string bestConfiguration;
+  ErrorStats bestError;
+  int referenceRefinements = 0;
+  bool referenceResolved = false;
   // 3. Backends and frames.
   bool useGL = false;
   std::string glNote;
@@ -576,6 +603,7 @@ struct Bench
     const std::vector<double>* coverage, const std::vector<std::int64_t>& list,
     std::vector<double>& out, double& ms) const;
   int MakeReference();
+  int ResolveReference();
   void Configure(vtkLocalAmbientOcclusion* lao, const std::string& pattern, double density,
     const std::string& variant, int backend);
   bool TimeRun(vtkLocalAmbientOcclusion* lao, ErrorLog& log, double& ms);
@@ -751,6 +779,67 @@ int Bench::MakeReference()
     std::fflush(stdout);
   }
   return 0;
+}
+
+// 2b. The reference must resolve the front: its own error (step S vs S/2,
+// K vs 2K directions) at most --reference-resolve times the error of the
+// sweep's most accurate configuration (the last pattern at the highest
+// density, its best variant), else it is refined and measured again.
+int Bench::ResolveReference()
+{
+  if (!(o.referenceResolve > 0.0) || o.patterns.empty() || o.densities.empty() || o.variants.empty())
+    return 0;
+  const std::string pattern = o.patterns.back();
+  const double density = *std::max_element(o.densities.begin(), o.densities.end());
+  ErrorLog log;
+  vtkNew<vtkLocalAmbientOcclusion> lao;
+  log.Watch(lao);
+  for (int round = 0;; ++round)
+  {
+    bestError = ErrorStats();
+    bestError.max = HUGE_VAL;
+    for (const std::string& variant : o.variants)
+    {
+      Configure(lao, pattern, density, variant, vtkLocalAmbientOcclusion::CPU);
+      lao->Modified();
+      lao->Update();
+      if (!log.messages.empty())
+        return Fail(1, log.Last());
+      vtkFloatArray* ao =
+        vtkFloatArray::SafeDownCast(lao->GetOutput()->GetPointData()->GetArray("AmbientOcclusion"));
+      if (!ao)
+        return Fail(1, "the LAO filter produced no AmbientOcclusion array");
+      std::vector<double> values(static_cast<std::size_t>(voxels), 1.0);
+      for (std::int64_t v : covered)
+        values[v] = ao->GetValue(v);
+      const ErrorStats e = Compare(values, reference, visible);
+      if (e.max < bestError.max)
+      {
+        bestError = e;
+        bestConfiguration = pattern + " x" + Num(density, 3) + " " + variant;
+      }
+    }
+    const double limit = o.referenceResolve * bestError.max;
+    const bool stepOk = !o.stepCheck || stepError.max <= limit;
+    const bool raysOk = convergence.max <= limit;
+    referenceResolved = stepOk && raysOk;
+    std::printf("reference resolution: best configuration %s, max error %.3g; the reference's "
+                "own max error %.3g (step), %.3g (directions): %s\n",
+      bestConfiguration.c_str(), bestError.max, o.stepCheck ? stepError.max : 0.0,
+      convergence.max,
+      referenceResolved ? "resolved"
+                        : (round < o.referenceRounds ? "refining" : "NOT resolved (rounds spent)"));
+    std::fflush(stdout);
+    if (referenceResolved || round >= o.referenceRounds)
+      return 0;
+    if (!stepOk)
+      o.referenceStep *= 0.5;
+    if (!raysOk)
+      o.referenceRays *= 2;
+    ++referenceRefinements;
+    if (const int rc = MakeReference())
+      return rc;
+  }
 }
 
 void Bench::Configure(vtkLocalAmbientOcclusion* lao, const std::string& pattern, double density,
@@ -1188,6 +1277,12 @@ int Bench::WriteJSON(const std::string& path) const
                             { "rmse", convergence.rmse }, { "max", convergence.max },
                             { "p99", convergence.p99 } } },
     { "sets_differ_rmse", setsDiffer.rmse } };
+  if (o.referenceResolve > 0.0)
+    j["reference"]["resolution"] = { { "best_configuration", bestConfiguration },
+      { "best_max", bestError.max }, { "best_rmse", bestError.rmse },
+      { "own_max_step", o.stepCheck ? stepError.max : 0.0 },
+      { "own_max_directions", convergence.max }, { "fraction", o.referenceResolve },
+      { "refinements", referenceRefinements }, { "resolved", referenceResolved } };
   if (o.stepCheck)
     j["reference"]["convergence_step"] = { { "compared",
                                              Num(o.referenceStep) + " vs " + Num(0.5 * o.referenceStep) },
@@ -1260,7 +1355,7 @@ int RunBench(int argc, char* argv[])
     return Fail(2, error + "\n" + BenchUsage);
   int rc = 0;
   if ((rc = bench.Load()) || (rc = bench.SelectVoxels()) || (rc = bench.MakeReference()) ||
-    (rc = bench.SetupBackends()) || (rc = bench.SweepLAO()))
+    (rc = bench.ResolveReference()) || (rc = bench.SetupBackends()) || (rc = bench.SweepLAO()))
     return rc;
   bench.MarkFront();
   const std::string csvPath = bench.o.output + "/accuracy.csv";

@@ -2,7 +2,11 @@
 PNG it writes and what they must satisfy.
 
  - the reference reports its own convergence (4096 vs 8192 directions
-   scaled down here to 256 vs 512 to keep the test short) and its step check;
+   scaled down here to 256 vs 512 to keep the test short) and its step check,
+   and refines itself until its own max error is at most a tenth of the most
+   accurate configuration's (here: the step halved twice); with no
+   refinement allowed the same check reports the reference unresolved (the
+   negative control);
  - every LAO row has a finite error, the storage rows differ from the
    float32 row by at most the rounding step (|max_8 - max_32| <= 0.5/255);
  - shorter steps lower the error (4 samples per voxel against 1: the march
@@ -53,7 +57,12 @@ report = json.load(open(os.path.join(out, "accuracy.json")))
 lao = [r for r in rows if r["kind"] == "lao"]
 check(len(lao) == 2 * 2 * 2 * 3, "24 LAO rows (2 patterns x 2 densities x 2 variants x 3 storages), got %d" % len(lao))
 ref = report["reference"]
-check(ref["directions"] == 512 and ref["step_voxels"] == 0.25, "reference settings %s" % ref)
+res = ref.get("resolution", {})
+check(res.get("resolved") is True and res["refinements"] >= 1 and
+      max(res["own_max_step"], res["own_max_directions"]) <= 0.1 * res["best_max"] and
+      ref["step_voxels"] == 0.25 / 2 ** res["refinements"] or ref["directions"] > 512,
+      "the reference refines until it resolves the best configuration: %s (step %s, %s directions)"
+      % (res, ref["step_voxels"], ref["directions"]))
 conv = ref["convergence_rays"]["rmse"]
 check(0 < conv < 0.01, "reference convergence RMSE %g in (0, 0.01)" % conv)
 check(0 < ref["convergence_step"]["rmse"] < 0.01, "step check %s" % ref["convergence_step"])
@@ -121,6 +130,21 @@ for bad, words in ((["--patterns", "7"], "ray pattern"), (["--variants", "spin"]
     q = subprocess.run([tool, "bench", "accuracy", os.path.join(data, "neghip.slc"), *bad,
                         "-o", out], capture_output=True, text=True, timeout=60)
     check(q.returncode == 2 and words in q.stderr, "%s: exit %d, %s" % (bad, q.returncode, q.stderr))
+
+# Negative control of the reference's resolution: no refinement allowed, the
+# same crop's reference (step 1/4) is reported unresolved.
+control = tempfile.mkdtemp(prefix="cao-bench-control-")
+q = subprocess.run([tool, "bench", "accuracy", os.path.join(data, "neghip.slc"),
+                    "--crop", "16,47,16,47,16,47", "--reach", "4", "--patterns", "fib:128",
+                    "--densities", "4", "--variants", "offset", "--reference-rays", "256",
+                    "--map-pixels", "none", "--storage", "float32", "--repeat", "1",
+                    "--size", "96x96", "--gl-limit-ms", "0", "--reference-rounds", "0",
+                    "-o", control], capture_output=True, text=True, timeout=600)
+res0 = json.load(open(os.path.join(control, "accuracy.json")))["reference"].get("resolution", {}) \
+    if q.returncode == 0 else {}
+check(q.returncode == 0 and res0.get("resolved") is False and res0["refinements"] == 0 and
+      "NOT resolved" in q.stdout,
+      "negative control: with no refinement the reference is reported unresolved: %s" % res0)
 
 if failures:
     print("%d failure(s)" % len(failures))
