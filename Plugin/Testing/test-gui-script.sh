@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Run a GUI startup script in the ParaView GUI under a private Xvfb and pass
+# when the result file it writes ends with PASSED.
+#   test-gui-script.sh SCRIPT.py PLUGIN.so DATA_DIR RESULT.txt
+set -uo pipefail
+script=$1
+export CAO_PLUGIN=$2 CAO_DATA_DIR=$3 CAO_RESULT=$4
+here=$(cd "$(dirname "$0")" && pwd)
+command -v paraview >/dev/null || { echo "SKIP: no paraview executable"; exit 125; }
+rm -f "$CAO_RESULT"
+timeout 300 bash "$here/../../Testing/run-with-xvfb.sh" paraview --dr --script="$script" \
+  >"$CAO_RESULT.log" 2>&1 || true
+[ -f "$CAO_RESULT" ] || { echo "FAIL: the script wrote no result:"; cat "$CAO_RESULT.log"; exit 1; }
+cat "$CAO_RESULT"
+tail -n 1 "$CAO_RESULT" | grep -qx PASSED
