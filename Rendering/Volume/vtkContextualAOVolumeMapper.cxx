@@ -590,8 +590,25 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
     f.report.reasons.emplace_back("the input AO array changed");
     return true;
   }
-  if (!engine.SetPlan(this->Plan, error) || !engine.Precompute(error))
+  // Progress (the mapper's ProgressEvent: the opacity pass to 0.1, then the
+  // precompute's slabs of z to 1) and abort (SetAbortExecute from an
+  // observer, as ParaView's button does): an aborted precompute draws
+  // nothing and starts again at the next frame.
+  self->SetAbortExecute(0);
+  const bool precomputed = engine.SetPlan(this->Plan, error) &&
+    engine.Precompute(error, [self](double fraction) {
+      self->UpdateProgress(0.1 + 0.9 * fraction);
+      return !self->GetAbortExecute();
+    });
+  if (!precomputed)
+  {
+    if (self->GetAbortExecute())
+    {
+      self->SetAbortExecute(0);
+      return f.Fail("The LAO precompute was aborted; the next frame starts it again.");
+    }
     return f.Fail("The LAO precompute failed: " + error + ".");
+  }
   f.report.stages.push_back({ "precompute", engine.Times().precompute, f.glTimer });
   f.report.reasons.emplace_back("scalar opacity, scalars or LAO settings changed");
   f.report.recomputed += f.voxels;

@@ -4,6 +4,11 @@ and SetAbortExecuteAndUpdateTime() from an observer stops the run promptly
 (within one progress block) and leaves an empty output flagged ABORTED by
 the executive, never a partial AO. The next update runs to completion.
 Both backends: the CPU, and OpenGL (skipped without an OpenGL 4.3 context).
+
+The volume mapper's own LAO precompute (what the ParaView representation
+runs when it computes its own AO) reports progress the same way, and an
+abort from a progress observer stops it within one slab; the frame draws
+nothing and the next frame precomputes again, to completion.
 """
 import os
 import sys
@@ -85,6 +90,59 @@ for backend, name, rays in ((cao.vtkLocalAmbientOcclusion.CPU, "CPU", 1024),
     ao = lao.GetOutput().GetPointData().GetArray("AmbientOcclusion")
     check(ao is not None and ao.GetNumberOfTuples() == 66 ** 3 and not info.Get(vtkAlgorithm.ABORTED()),
           "%s: the next update completes and is not flagged" % name)
+
+
+# The mapper's precompute, in an EGL window (no X).
+from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction  # noqa: E402
+from vtkmodules.vtkRenderingCore import vtkRenderer, vtkVolume, vtkVolumeProperty  # noqa: E402
+from vtkmodules.vtkCommonCore import vtkCommand  # noqa: E402
+window = cao.vtkContextualAOEGLWindow()
+if not window.IsUsable():
+    print("skip the mapper: no EGL OpenGL 4.3 context")
+else:
+    mapper = cao.vtkContextualAOVolumeMapper()
+    mapper.SetInputConnection(reader.GetOutputPort())
+    mapper.SetRayPattern(mapper.FIBONACCI)
+    mapper.SetNumberOfRays(48)
+    mapper.SetReach(16.0)
+    opacity = vtkPiecewiseFunction()
+    opacity.AddPoint(40, 0.0)
+    opacity.AddPoint(255, 0.8)
+    prop = vtkVolumeProperty()
+    prop.SetScalarOpacity(opacity)
+    volume = vtkVolume()
+    volume.SetMapper(mapper)
+    volume.SetProperty(prop)
+    window.SetSize(64, 64)
+    renderer = vtkRenderer()
+    window.AddRenderer(renderer)
+    renderer.AddVolume(volume)
+    renderer.ResetCamera()
+    seen = []
+    errors = []
+
+    def on_mapper_progress(obj, event):
+        seen.append(obj.GetProgress())
+        if obj.GetProgress() >= 0.2 and not obj.GetAbortExecute():
+            obj.SetAbortExecute(1)
+
+    tag = mapper.AddObserver("ProgressEvent", on_mapper_progress)
+    err = mapper.AddObserver(vtkCommand.ErrorEvent, lambda o, e: errors.append(e))
+    window.Render()
+    after = [p for p in seen if 0.2 <= p < 1.0]
+    check(len([p for p in seen if p < 0.2]) >= 5 and len(after) == 1 and after[0] < 0.26 and
+          all(b >= a for a, b in zip(seen, seen[1:])),
+          "mapper: progress in steps, never back, stopped within one slab of the abort (%s)"
+          % ["%.3f" % p for p in seen])
+    check("precompute" not in mapper.GetLastFrameStages(),
+          "mapper: the aborted frame reports no precompute (%s)" % mapper.GetLastFrameStages())
+    mapper.RemoveObserver(tag)
+    seen = []
+    mapper.AddObserver("ProgressEvent", lambda o, e: seen.append(o.GetProgress()))
+    window.Render()
+    check("precompute" in mapper.GetLastFrameStages() and seen and seen[-1] == 1.0,
+          "mapper: the next frame precomputes to completion (%s; last progress %s)"
+          % (mapper.GetLastFrameStages(), seen[-1] if seen else None))
 
 print("%d failure(s)" % len(failures))
 sys.exit(1 if failures else 0)
