@@ -157,7 +157,9 @@ struct vtkContextualAmbientOcclusion::Internals
     KeepOrCopy(this->Clipped, vtkCAO::ClippedOpacityName, n, keep);
     KeepOrCopy(this->Category, vtkCAO::CategoryName, n, keep);
     this->CPUKey = key;
-    this->CPUKeyValid = true;
+    // The GPU path may leave fresh, unwritten buffers behind (an abort, a
+    // failure): only the CPU path keeps them valid for the next pose.
+    this->CPUKeyValid = !gpu;
     return same;
   }
 

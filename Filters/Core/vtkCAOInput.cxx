@@ -635,20 +635,38 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, std::string& erro
   return copy;
 }
 
-double DefaultShapeSize(const std::string& name, vtkImageData* volume)
+double DefaultShapeSize(vtkImageData* volume)
 {
   int dims[3];
   volume->GetDimensions(dims);
   const double* spacing = volume->GetSpacing();
-  double smallest = HUGE_VAL, diagonal2 = 0.0;
+  double smallest = HUGE_VAL;
   for (int d = 0; d < 3; ++d)
+    smallest = std::min(smallest, dims[d] * std::fabs(spacing[d]));
+  return std::max(0.25 * smallest, 1e-6);
+}
+
+double PlaneSlabSize(vtkImageData* volume, const std::vector<Pose>& poses)
+{
+  double b[6];
+  volume->GetBounds(b);
+  double size = 1e-6;
+  for (const Pose& p : poses)
   {
-    const double extent = dims[d] * std::fabs(spacing[d]);
-    smallest = std::min(smallest, extent);
-    diagonal2 += extent * extent;
+    double far2 = 0.0;
+    for (int c = 0; c < 8; ++c)
+    {
+      double d2 = 0.0;
+      for (int d = 0; d < 3; ++d)
+      {
+        const double x = b[2 * d + ((c >> d) & 1)] - p.translation[d];
+        d2 += x * x;
+      }
+      far2 = std::max(far2, d2);
+    }
+    size = std::max(size, 1.25 * std::sqrt(far2) / p.scale);
   }
-  return name == "plane" ? std::max(2.0 * std::sqrt(diagonal2), 1e-6)
-                         : std::max(0.25 * smallest, 1e-6);
+  return size;
 }
 
 vtkSmartPointer<vtkPolyData> MakeShape(const std::string& name, double size, std::string& error)

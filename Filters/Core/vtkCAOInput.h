@@ -35,11 +35,10 @@ CAOFILTERSCORE_EXPORT void TrianglesOf(vtkPolyData* mesh, std::vector<double>& p
 /// Built-in closed shapes centred on the origin: "sphere" (radius = size),
 /// "cube" (half edge = size), "torus" (ring radius = size, tube = size / 3),
 /// "plane" (the half-space z >= 0 as the slab [-size, size]^2 x [0, size]).
-/// The default size of a built-in shape for `volume`: a plane's slab, twice
-/// the volume's diagonal (it covers the volume from any pose inside its
-/// bounds); the others a quarter of the smallest extent, counting each
-/// voxel's footprint (a 1-voxel-thick axis is one spacing).
-CAOFILTERSCORE_EXPORT double DefaultShapeSize(const std::string& name, vtkImageData* volume);
+/// The default size of a built-in shape for `volume`: a quarter of the
+/// smallest extent, counting each voxel's footprint (a 1-voxel-thick axis
+/// is one spacing). (A plane's slab is sized by PlaneSlabSize.)
+CAOFILTERSCORE_EXPORT double DefaultShapeSize(vtkImageData* volume);
 
 CAOFILTERSCORE_EXPORT vtkSmartPointer<vtkPolyData> MakeShape(const std::string& name, double size, std::string& error);
 
@@ -69,6 +68,13 @@ CAOFILTERSCORE_EXPORT void PoseToTransform(const Pose& pose, vtkTransform* trans
 /// The default path: `count` poses along the volume's diagonal, starting
 /// and ending outside it and crossing its centre, rotating as they go.
 CAOFILTERSCORE_EXPORT std::vector<Pose> DefaultPath(const double bounds[6], int count);
+
+/// The size of the slab that stands for the plane clip (MakeShape "plane")
+/// at every pose of `poses`: 1.25 times the largest distance from a pose's
+/// position to a corner of the volume's bounds, in the shape's frame (over
+/// the pose's scale), so that only the slab's plane face lies in the volume
+/// or near it, wherever the poses are.
+CAOFILTERSCORE_EXPORT double PlaneSlabSize(vtkImageData* volume, const std::vector<Pose>& poses);
 }
 
 #endif

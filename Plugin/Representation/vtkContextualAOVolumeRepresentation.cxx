@@ -13,6 +13,7 @@
 #include "vtkImageData.h"
 #include "vtkPointData.h"
 
+#include <algorithm>
 #include <string>
 
 vtkStandardNewMacro(vtkContextualAOVolumeRepresentation);
@@ -107,11 +108,18 @@ void vtkContextualAOVolumeRepresentation::UpdateMapperParameters()
     return;
   }
   static const char* names[] = { "", "sphere", "cube", "torus", "plane" };
-  // A plane's slab covers the data at any pose inside them (in the shape's
-  // frame, so divided by the pose scale).
-  const double size = this->ClipShape == PLANE && data
-    ? vtkCAO::DefaultShapeSize("plane", data) / this->ClipScale
-    : this->ClipShapeSize;
+  // A plane's slab must cover the data from the pose (vtkCAO::PlaneSlabSize).
+  // It only grows, with room to spare, so that dragging the plane does not
+  // remake the mesh (and its depth maps) at every step.
+  double size = this->ClipShapeSize;
+  if (this->ClipShape == PLANE && data)
+  {
+    vtkCAO::Pose pose;
+    std::copy(this->ClipPosition, this->ClipPosition + 3, pose.translation.begin());
+    pose.scale = this->ClipScale;
+    const double needed = vtkCAO::PlaneSlabSize(data, { pose });
+    size = this->BuiltShape == PLANE && this->BuiltSize >= needed ? this->BuiltSize : 2.0 * needed;
+  }
   if (this->ClipShape != this->BuiltShape || size != this->BuiltSize)
   {
     std::string error;

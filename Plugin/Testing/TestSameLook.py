@@ -81,16 +81,18 @@ Render(view)
 # (The plugin's representation class is not wrapped: reach the mapper
 # through its wrapped superclass's volume actor.)
 mapper = shown.GetClientSideObject().GetActiveRepresentation().GetActor().GetMapper()
-stages = mapper.GetLastFrameStages()
-ok = mapper.GetAmbientOcclusionArrayName() == "AmbientOcclusion" and "precompute" not in stages
-print("%s: downstream of the LAO filter the representation draws its AO (%s; %s)"
-      % ("ok" if ok else "FAIL", mapper.GetAmbientOcclusionArrayName(), stages))
+ok = mapper.GetAmbientOcclusionArrayName() == "AmbientOcclusion" and mapper.GetFrameCount() > 0 \
+    and mapper.GetPrecomputeCount() == 0
+print("%s: downstream of the LAO filter the representation draws its AO, no precompute "
+      "(%s; %d frames, %d precomputes)" % ("ok" if ok else "FAIL", mapper.GetAmbientOcclusionArrayName(),
+                                           mapper.GetFrameCount(), mapper.GetPrecomputeCount()))
 if not ok:
     failures.append("upstream")
 shown.UseInputAmbientOcclusion = 0
 Render(view)
 stages = mapper.GetLastFrameStages()
-ok = mapper.GetAmbientOcclusionArrayName() is None and "precompute" in stages
+ok = mapper.GetAmbientOcclusionArrayName() is None and "precompute" in stages and \
+    mapper.GetPrecomputeCount() == 1
 print("%s: Use Upstream LAO off: its own precompute (%s)" % ("ok" if ok else "FAIL", stages))
 if not ok:
     failures.append("own")

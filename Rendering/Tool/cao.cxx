@@ -102,7 +102,8 @@ clip options (carve):
                        (the pose's orientation turns it)
   --size S             shape size in world units (default: 1/4 of the
                        volume's smallest extent; for a plane, its slab's
-                       half width, twice the volume's diagonal)
+                       half width: 1.25 x the farthest volume corner from
+                       any pose)
   --mesh FILE          clip mesh (.vtp, .stl, .ply, .obj) instead of a shape
   --pose "tx ty tz [rx ry rz [s]]"   a pose (repeatable); rotation in degrees
   --poses FILE         one pose per line
@@ -585,7 +586,10 @@ struct CarveSetup
 int MakeClip(const Options& o, vtkImageData* volume, CarveSetup& s)
 {
   std::string error;
-  const double size = o.size > 0.0 ? o.size : vtkCAO::DefaultShapeSize(o.shape, volume);
+  // (A plane's slab covers the volume at every pose: sized from the poses.)
+  const double size = o.size > 0.0 ? o.size
+    : o.shape == "plane"           ? vtkCAO::PlaneSlabSize(volume, s.poses)
+                                   : vtkCAO::DefaultShapeSize(volume);
   s.mesh = o.mesh.empty() ? vtkCAO::MakeShape(o.shape, size, error) : vtkCAO::ReadMesh(o.mesh, error);
   if (!s.mesh)
     return Fail(2, error);
@@ -601,9 +605,15 @@ int MakeClip(const Options& o, vtkImageData* volume, CarveSetup& s)
       return Fail(2, "--verify-geometry: " + error);
     return 0;
   }
+  if (o.shape == "plane")
+  {
+    // The true half-space: a slab that does not cover the volume is caught.
+    s.exact = cao::ClipShape::Plane();
+    s.deviation = 0.0; // the slab's plane face is the plane, exactly
+    return 0;
+  }
   s.exact = o.shape == "cube" ? cao::ClipShape::Cube(size)
     : o.shape == "torus"      ? cao::ClipShape::Torus(size, size / 3.0)
-    : o.shape == "plane"      ? cao::ClipShape::Plane(size)
                               : cao::ClipShape::Sphere(size);
   s.deviation = s.exact.Deviation(view);
   return 0;
@@ -898,9 +908,9 @@ void PrintCarveTables(const Options& o, vtkImageData* volume, const std::vector<
 int RunCarve(const Options& o, vtkImageData* volume)
 {
   CarveSetup setup;
-  if (const int rc = MakeClip(o, volume, setup))
-    return rc;
   if (const int rc = MakePoses(o, volume, setup))
+    return rc;
+  if (const int rc = MakeClip(o, volume, setup))
     return rc;
   vtkNew<vtkPiecewiseFunction> tf;
   BuildTransferFunction(o, volume, tf);

@@ -71,8 +71,10 @@ render options:
                        and variation; not combined with those options).
                        Not to be confused with --preset, the colours
   --ao-strength S      0..1 (default 1); --no-ao renders without AO
-  --ao-calibration C   half-space (default: AO / the LAO of an open flat face,
-                       at most 1, so only crevices darken) or none (the raw LAO)
+  --ao-calibration C   half-space (default: per voxel (AO - 1/M) / (H - 1/M),
+                       clamped to [0, 1], H the LAO of an open flat face at the
+                       voxel's opacity: open faces keep their light, crevices
+                       darken) or none (the raw LAO)
   --no-shade           no gradient shading (ambient only)
   --sample-distance D  ray-cast sample distance, world units (default half a voxel)
   --window W           auto (default: X when DISPLAY is set, else EGL), egl or x
@@ -358,14 +360,6 @@ int RunRender(int argc, char* argv[])
   vtkNew<vtkPolyDataMapper> shapeMapper;
   if (o.clip)
   {
-    vtkSmartPointer<vtkPolyData> mesh = o.mesh.empty()
-      ? MakeShape(o.shape, o.size > 0.0 ? o.size : vtkCAO::DefaultShapeSize(o.shape, volume), error)
-      : ReadMesh(o.mesh, error);
-    if (!mesh)
-      return Fail(2, error);
-    shapeMapper->SetInputData(mesh);
-    shape->SetMapper(shapeMapper);
-    mapper->SetClipShape(shape);
     for (const auto& t : o.poseTexts)
     {
       Pose p;
@@ -377,6 +371,16 @@ int RunRender(int argc, char* argv[])
       return Fail(2, error);
     if (poses.empty())
       poses = DefaultPath(bounds, o.path);
+    const double size = o.size > 0.0 ? o.size
+      : o.shape == "plane"           ? vtkCAO::PlaneSlabSize(volume, poses)
+                                     : vtkCAO::DefaultShapeSize(volume);
+    vtkSmartPointer<vtkPolyData> mesh =
+      o.mesh.empty() ? MakeShape(o.shape, size, error) : ReadMesh(o.mesh, error);
+    if (!mesh)
+      return Fail(2, error);
+    shapeMapper->SetInputData(mesh);
+    shape->SetMapper(shapeMapper);
+    mapper->SetClipShape(shape);
   }
   else
   {

@@ -544,7 +544,11 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
         this->Plan.step / f.unitDistance, opacity.data(), nonFinite);
     });
   if (!computed)
-    return false; // aborted
+  {
+    self->SetAbortExecute(0); // aborted: the next frame starts again
+    f.why.clear();
+    return false;
+  }
   if (nonFinite > 0) // (GetRange skips NaN, so they are counted here)
     return f.Fail("The scalars contain " + std::to_string(nonFinite) +
       " NaN or infinite value(s); nothing is drawn.");
@@ -604,8 +608,9 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
   {
     if (self->GetAbortExecute())
     {
-      self->SetAbortExecute(0);
-      return f.Fail("The LAO precompute was aborted; the next frame starts it again.");
+      self->SetAbortExecute(0); // aborted (no error): the next frame starts again
+      f.why.clear();
+      return false;
     }
     return f.Fail("The LAO precompute failed: " + error + ".");
   }

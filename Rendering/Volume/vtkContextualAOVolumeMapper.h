@@ -110,7 +110,10 @@ public:
   /// The AO calibration, AO_CALIBRATION_HALF_SPACE (default) or
   /// AO_CALIBRATION_NONE. A given AO array (AmbientOcclusionArrayName) is
   /// calibrated with the LAO settings of the input's LAOSettings field array
-  /// when it has one, else with this mapper's.
+  /// when it has one, else with this mapper's; the voxel's opacity the
+  /// calibration interpolates H at is the rendered one (the volume
+  /// property's opacity function), so a given AO made with another opacity
+  /// function is calibrated at the opacity shown.
   vtkSetMacro(AOCalibration, int);
   vtkGetMacro(AOCalibration, int);
   ///@}

@@ -304,9 +304,16 @@ for label, size, pose in (("a", "400", "94 120 82 0 0 0 1"), ("b", "40", "94 120
 check(len(plane_counts) == 4 and plane_counts["a"] == plane_counts["b"] and
       plane_counts["d"] != plane_counts["a"],
       f"plane: slab size/scale split gives the same sets, a turned plane others: {plane_counts}")
-rc, out, err = run("carve", head, "--shape", "plane", "--rays", "6", "--path", "3", "--verify",
-                   "--verify-geometry")
-check(rc == 0, f"carve plane with the default size along a path: rc={rc} {err.strip()[:300]}")
+rc, out, err = run("carve", head, "--shape", "plane", "--rays", "6", "--path", "3", "--pose",
+                   "-300 500 82 20 0 0 0.1", "--verify", "--verify-geometry")
+check(rc == 0, f"carve plane with the default size along a path and far outside at scale 0.1: "
+               f"rc={rc} {err.strip()[:300]}")
+# Negative control: a slab too small to cover the volume is not the
+# half-space, and the geometry check (against the true half-space) says so.
+rc, out, err = run("carve", head, "--shape", "plane", "--size", "20", "--pose", "94 120 82 0 0 0",
+                   "--rays", "6", "--verify-geometry")
+check(rc == 3 and "--verify-geometry" in err,
+      f"negative control: a 20-unit slab is caught by --verify-geometry (exit 3): rc={rc} {err.strip()[:200]}")
 # A real mesh at scale 3.8 (held-out: 2,811 voxels wrong), exact with 3 layers;
 # with 1 layer its concave parts are merged into one interval, and the
 # geometry check sees it (exit 3): the negative control.

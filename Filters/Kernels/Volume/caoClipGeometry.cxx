@@ -271,7 +271,7 @@ struct ClipShape::Impl
     Sphere,
     Cube,
     Torus,
-    Box,
+    HalfSpace,
     Mesh
   } kind = Kind::Sphere;
   double a = 1.0, b = 0.0; // sphere radius; cube half side; torus radii
@@ -304,11 +304,11 @@ ClipShape ClipShape::Cube(double halfSide)
   return s;
 }
 
-ClipShape ClipShape::Plane(double size)
+ClipShape ClipShape::Plane()
 {
   ClipShape s;
-  s.P->kind = Impl::Kind::Box;
-  const double b[6] = { -size, size, -size, size, 0.0, size };
+  s.P->kind = Impl::Kind::HalfSpace;
+  const double b[6] = { -1e300, 1e300, -1e300, 1e300, 0.0, 1e300 };
   std::copy(b, b + 6, s.P->bounds);
   return s;
 }
@@ -389,17 +389,8 @@ double ClipShape::SignedDistance(const double p[3]) const
       }
       return outside > 0.0 ? std::sqrt(outside) : inside;
     }
-    case Impl::Kind::Box:
-    {
-      double outside = 0.0, inside = -HUGE_VAL;
-      for (int d = 0; d < 3; ++d)
-      {
-        const double q = std::max(s.bounds[2 * d] - p[d], p[d] - s.bounds[2 * d + 1]);
-        outside += q > 0.0 ? q * q : 0.0;
-        inside = std::max(inside, q);
-      }
-      return outside > 0.0 ? std::sqrt(outside) : inside;
-    }
+    case Impl::Kind::HalfSpace:
+      return -p[2];
     case Impl::Kind::Torus:
     {
       const double ring = std::sqrt(p[0] * p[0] + p[1] * p[1]) - s.a;
@@ -429,7 +420,7 @@ const char* ClipShape::Name() const
       return "cube";
     case Impl::Kind::Torus:
       return "torus";
-    case Impl::Kind::Box:
+    case Impl::Kind::HalfSpace:
       return "plane";
     default:
       return "mesh";

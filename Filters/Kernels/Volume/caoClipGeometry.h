@@ -43,9 +43,8 @@ public:
   static ClipShape Sphere(double radius);
   static ClipShape Cube(double halfSide);
   static ClipShape Torus(double majorRadius, double minorRadius);
-  /// The `cao` tool's plane of size `size`: the half-space z >= 0 as the
-  /// slab [-size, size]^2 x [0, size] (an axis-aligned box).
-  static ClipShape Plane(double size);
+  /// The plane clip: the half-space z >= 0 (its signed distance is -z).
+  static ClipShape Plane();
   /// A closed triangle mesh (copied; inside by ray parity, majority of 3
   /// directions; distance through a bounding-volume hierarchy).
   static bool FromMesh(const TriangleMesh& mesh, ClipShape& shape, std::string& error);

@@ -602,7 +602,7 @@ double LAOVoxelDouble(const LAOPlan& plan, const float* a, int i, int j, int k)
 
 double HalfSpaceAO(const LAOPlan& plan, double depth)
 {
-  const double t = std::min(1.0, std::max(0.0, depth));
+  const double weight = std::min(1.0, std::max(0.0, depth));
   const layout::LAOMarchBlock& p = plan.params;
   const int rays = p.rays.x, samples = p.rays.y, tapsPerRay = p.rays.z, variants = p.rays.w;
   if (rays <= 0 || samples <= 0 || variants <= 0)
@@ -624,18 +624,18 @@ double HalfSpaceAO(const LAOPlan& plan, double depth)
               sum += transmittance;
               if (m == tapsPerRay)
                 break;
-              const layout::LAOTap& t = taps[static_cast<std::ptrdiff_t>(r) * tapsPerRay + m];
-              const double offset = axis == 0 ? t.cell.x + double(t.frac.x)
-                : axis == 1                   ? t.cell.y + double(t.frac.y)
-                                              : t.cell.z + double(t.frac.z);
+              const layout::LAOTap& tap = taps[static_cast<std::ptrdiff_t>(r) * tapsPerRay + m];
+              const double offset = axis == 0 ? tap.cell.x + double(tap.frac.x)
+                : axis == 1                   ? tap.cell.y + double(tap.frac.y)
+                                              : tap.cell.z + double(tap.frac.z);
               // Voxel layers beyond the face (depth >= 1) are full, those
               // before it empty; trilinear interpolation is linear across.
-              const double depth = sign * offset + layer;
-              transmittance *= 1.0 - std::min(1.0, std::max(0.0, depth));
+              const double into = sign * offset + layer;
+              transmittance *= 1.0 - std::min(1.0, std::max(0.0, into));
             }
           }
           // Trilinear between the layers: weight 1 - t on the empty one.
-          total += (layer == 0 ? 1.0 - t : t) * sum / (static_cast<double>(rays) * samples);
+          total += (layer == 0 ? 1.0 - weight : weight) * sum / (static_cast<double>(rays) * samples);
           ++count;
         }
   return 2.0 * total / count;

@@ -128,19 +128,23 @@ else:
 
     tag = mapper.AddObserver("ProgressEvent", on_mapper_progress)
     err = mapper.AddObserver(vtkCommand.ErrorEvent, lambda o, e: errors.append(e))
+    frames = mapper.GetFrameCount()
     window.Render()
     after = [p for p in seen if 0.2 <= p < 1.0]
     check(len([p for p in seen if p < 0.2]) >= 5 and len(after) == 1 and after[0] < 0.26 and
           all(b >= a for a, b in zip(seen, seen[1:])),
           "mapper: progress in steps, never back, stopped within one slab of the abort (%s)"
           % ["%.3f" % p for p in seen])
-    check("precompute" not in mapper.GetLastFrameStages(),
-          "mapper: the aborted frame reports no precompute (%s)" % mapper.GetLastFrameStages())
+    check(mapper.GetFrameCount() == frames and mapper.GetPrecomputeCount() == 0 and not errors,
+          "mapper: the aborted frame is not drawn, no precompute counted, no error (%d frames, "
+          "%d precomputes, errors %s)" % (mapper.GetFrameCount() - frames,
+                                         mapper.GetPrecomputeCount(), errors))
     mapper.RemoveObserver(tag)
     seen = []
     mapper.AddObserver("ProgressEvent", lambda o, e: seen.append(o.GetProgress()))
     window.Render()
-    check("precompute" in mapper.GetLastFrameStages() and seen and seen[-1] == 1.0,
+    check("precompute" in mapper.GetLastFrameStages() and seen and seen[-1] == 1.0 and
+          mapper.GetFrameCount() == frames + 1 and mapper.GetPrecomputeCount() == 1 and not errors,
           "mapper: the next frame precomputes to completion (%s; last progress %s)"
           % (mapper.GetLastFrameStages(), seen[-1] if seen else None))
 

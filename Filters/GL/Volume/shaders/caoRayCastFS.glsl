@@ -58,7 +58,10 @@ float Calibrated(ivec3 v, float ao)
   float a = 1.0 - pow(max(1.0 - alpha, 0.0), rp.aoCalibration.w);
   float open = mix(rp.aoCalibration.x, rp.aoCalibration.y, a);
   float enclosed = rp.aoCalibration.z;
-  return clamp((ao - enclosed) / max(open - enclosed, 1e-6), 0.0, 1.0);
+  // With one sample per ray an open face and an enclosed voxel both get 1:
+  // the LAO then occludes nothing, and neither does its calibration.
+  float range = open - enclosed;
+  return range > 1e-6 ? clamp((ao - enclosed) / range, 0.0, 1.0) : 1.0;
 }
 
 /// The AO at index-space point p, trilinear over the voxels that are not

@@ -96,14 +96,14 @@ int TestClipGeometry(int, char*[])
         std::fabs(torus.SignedDistance(hole) - 2.0) < 1e-15 &&
         std::fabs(torus.SignedDistance(above) - 1.0) < 1e-15,
       "torus distances");
-    // The plane: the half-space z >= 0 as the slab [-10, 10]^2 x [0, 10].
-    const auto plane = cao::ClipShape::Plane(10.0);
-    const double below[3] = { 3, -2, -1.5 }, inside[3] = { 3, -2, 0.25 }, beside[3] = { 13, 0, 5 };
+    // The plane: the half-space z >= 0, unbounded in x and y.
+    const auto plane = cao::ClipShape::Plane();
+    const double below[3] = { 3, -2, -1.5 }, inside[3] = { 3, -2, 0.25 }, far[3] = { 1e6, -1e6, 7 };
     double b[6];
     plane.Bounds(b);
     CAO_CHECK(std::fabs(plane.SignedDistance(below) - 1.5) < 1e-15 &&
         std::fabs(plane.SignedDistance(inside) + 0.25) < 1e-15 &&
-        std::fabs(plane.SignedDistance(beside) - 3.0) < 1e-15 && b[4] == 0.0 && b[5] == 10.0 &&
+        std::fabs(plane.SignedDistance(far) + 7.0) < 1e-15 && b[4] == 0.0 && b[0] < -1e299 &&
         std::string(plane.Name()) == "plane",
       "plane distances");
   }

@@ -752,6 +752,14 @@ void Calibration(const Options& o)
   // Negative control: the raw LAO darkens the open face too, so the same
   // check fails on it.
   CAO_EXPECT(std::fabs(topRaw - 1.0) > 0.05, "the raw LAO should darken the open face: %.3f", topRaw);
+  // One sample per ray: every LAO is 1 (its only sample is never occluded),
+  // so nothing darkens, calibrated or not (the calibration's range is empty).
+  p.s.mapper->SetNumberOfSamples(1);
+  p.Frame();
+  CAO_EXPECT(std::fabs(p.top / topOff - 1.0) <= 0.01 && std::fabs(p.slot / slotOff - 1.0) <= 0.01,
+    "one sample per ray darkens nothing: top %.3f, slot %.3f of AO off", p.top / topOff,
+    p.slot / slotOff);
+  p.s.mapper->SetNumberOfSamples(0);
   // The three frames side by side, for the eye.
   caotest::Image row;
   row.width = 3 * off.width;
