@@ -13,7 +13,7 @@
 #include "caoCommandLine.h"
 #include "vtkCAOInput.h"
 #include "vtkCAOLAOSettings.h"
-#include "caoLAOOptions.h"
+#include "caoLAOCommandLine.h"
 #include "caoRender.h"
 
 #include "vtkCAOClipMaps.h"
@@ -137,7 +137,7 @@ struct Options
   std::vector<double> opacity;
   std::vector<std::string> poseTexts;
   double reach = 0.0, unitDistance = 1.0, size = 0.0, pixelSize = 0.0;
-  caocli::LAOOptions lao;             // --quality, --density, --offset, --variation
+  caocli::LAOCommandLine lao;             // --quality, --density, --offset, --variation
   double direction[3] = { 0, 0, 1 };
   int samples = 0, component = -1, threads = 0, path = 24, layers = 2, aa = 16;
   bool json = false, verify = false, verifyGeometry = false, quiet = false;
@@ -365,7 +365,7 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
     error = "lao takes a single ray pattern";
     return false;
   }
-  return caocli::CheckLAOOptions(o.lao, error);
+  return caocli::CheckLAOCommandLine(o.lao, error);
 }
 
 void ConfigureLAO(const Options& o, const std::string& rays, vtkLocalAmbientOcclusion* lao,

@@ -5,7 +5,7 @@
 
 #include "caoCommandLine.h"
 #include "vtkCAOInput.h"
-#include "caoLAOOptions.h"
+#include "caoLAOCommandLine.h"
 #include "caoPresets.h"
 
 #include "vtkActor.h"
@@ -96,7 +96,7 @@ struct RenderOptions
   double azimuth = 30, elevation = 20, zoom = 1.4, reach = 0, strength = 1, size = 0,
          sampleDistance = 0;
   bool absolute = false, ao = true, shade = true, json = false, clip = true, full = false;
-  LAOOptions lao; // --quality, --density, --offset, --variation
+  LAOCommandLine lao; // --quality, --density, --offset, --variation
 };
 
 int Fail(int code, const std::string& message)
@@ -262,7 +262,7 @@ bool Parse(int argc, char* argv[], RenderOptions& o, std::string& error)
     error = "-o needs a printf pattern for the frame number, e.g. frame_%03d.png";
     return false;
   }
-  return CheckLAOOptions(o.lao, error);
+  return CheckLAOCommandLine(o.lao, error);
 }
 
 }

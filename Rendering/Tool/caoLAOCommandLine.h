@@ -1,11 +1,11 @@
 /**
- * caoLAOOptions — the LAO quality options shared by `cao lao`, `cao carve`
+ * caoLAOCommandLine — the LAO quality options shared by `cao lao`, `cao carve`
  * and `cao render`: --quality NAME (a quality preset), --density D,
  * --offset F and --variation NAME. Header-only; parsed the same way, with
  * the same messages, by every command.
  */
-#ifndef caoLAOOptions_h
-#define caoLAOOptions_h
+#ifndef caoLAOCommandLine_h
+#define caoLAOCommandLine_h
 
 #include "caoLAO.h"
 #include "caoLAOSettings.h"
@@ -19,7 +19,7 @@ namespace caocli
 /// What the four options set: fields of the one settings type (its
 /// defaults are the filters' and the mapper's), and which option a preset
 /// would override.
-struct LAOOptions
+struct LAOCommandLine
 {
   cao::LAOSettings settings; ///< preset, sampleDensity, startOffset, variation
   /// The first option given that a quality preset overrides (--rays,
@@ -38,7 +38,7 @@ constexpr double MinDensity = cao::LAOLimits::MinSampleDensity,
  * NoteOverridden for the command's own options that a preset overrides.
  */
 inline bool TakeLAOOption(
-  const std::string& a, int argc, char* argv[], int& i, LAOOptions& o, std::string& error)
+  const std::string& a, int argc, char* argv[], int& i, LAOCommandLine& o, std::string& error)
 {
   if (a != "--quality" && a != "--density" && a != "--offset" && a != "--variation")
     return false;
@@ -85,7 +85,7 @@ inline bool TakeLAOOption(
 }
 
 /// Record that `option`, which a quality preset overrides, was given.
-inline void NoteOverridden(LAOOptions& o, const std::string& option)
+inline void NoteOverridden(LAOCommandLine& o, const std::string& option)
 {
   if (o.overridden.empty())
     o.overridden = option;
@@ -93,7 +93,7 @@ inline void NoteOverridden(LAOOptions& o, const std::string& option)
 
 /// After parsing: a preset other than custom fixes the settings that the
 /// individual options set, so giving both is an error.
-inline bool CheckLAOOptions(const LAOOptions& o, std::string& error)
+inline bool CheckLAOCommandLine(const LAOCommandLine& o, std::string& error)
 {
   if (o.settings.preset != cao::QualityPreset::Custom && !o.overridden.empty())
   {
