@@ -236,9 +236,12 @@ struct vtkContextualAOVolumeMapper::Internals
   cao::LAOSettings PlanSettings(const Frame& f, vtkDataArray* givenAO) const
   {
     cao::LAOSettings given;
-    if (givenAO && vtkCAO::ReadLAOSettings(f.input->GetFieldData(), given, nullptr))
-      return given;
-    return this->Settings;
+    return Recorded(f, givenAO, given) ? given : this->Settings;
+  }
+  /// True when the given AO array comes with the settings that made it.
+  static bool Recorded(const Frame& f, vtkDataArray* givenAO, cao::LAOSettings& settings)
+  {
+    return givenAO && vtkCAO::ReadLAOSettings(f.input->GetFieldData(), settings, nullptr);
   }
   bool UpdateClip(vtkContextualAOVolumeMapper* self, Frame& f);
   bool UpdateMaps(vtkContextualAOVolumeMapper* self, Frame& f, vtkPolyData* mesh,
@@ -528,8 +531,7 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
   // comes with the step-corrected opacity it was made from: the contextual
   // recompute marches that opacity, so it continues that LAO exactly.
   cao::LAOSettings recorded;
-  vtkFloatArray* givenOpacity = givenAO &&
-      vtkCAO::ReadLAOSettings(f.input->GetFieldData(), recorded, nullptr)
+  vtkFloatArray* givenOpacity = Recorded(f, givenAO, recorded)
     ? vtkFloatArray::SafeDownCast(f.input->GetPointData()->GetArray(vtkCAO::OpacityName))
     : nullptr;
   if (givenOpacity && givenOpacity->GetNumberOfComponents() == 1 &&
