@@ -1,7 +1,10 @@
 // Minimal checking helpers shared by the kernel unit tests.
 #ifndef caoTestUtilities_h
 #define caoTestUtilities_h
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <vector>
 
 #define CAO_CHECK(cond, ...)                                                                       \
   do                                                                                               \
@@ -14,4 +17,36 @@
       return 1;                                                                                    \
     }                                                                                              \
   } while (0)
+
+namespace caotest
+{
+/// A closed, outward UV sphere of radius r (n segments around, n/2 rings).
+inline void UVSphere(double r, int n, std::vector<double>& points, std::vector<std::int64_t>& tris)
+{
+  const double pi = 3.141592653589793;
+  points = { 0, 0, r, 0, 0, -r };
+  const int rings = n / 2;
+  for (int i = 1; i < rings; ++i)
+    for (int j = 0; j < n; ++j)
+    {
+      const double t = pi * i / rings, p = 2 * pi * j / n;
+      points.insert(points.end(), { r * std::sin(t) * std::cos(p), r * std::sin(t) * std::sin(p),
+                                    r * std::cos(t) });
+    }
+  auto id = [n](int ring, int j) { return 2 + (ring - 1) * n + ((j % n) + n) % n; };
+  tris.clear();
+  for (int j = 0; j < n; ++j)
+  {
+    tris.insert(tris.end(), { 0, id(1, j), id(1, j + 1) });
+    tris.insert(tris.end(), { 1, id(rings - 1, j + 1), id(rings - 1, j) });
+  }
+  for (int i = 1; i + 1 < rings; ++i)
+    for (int j = 0; j < n; ++j)
+    {
+      tris.insert(tris.end(), { id(i, j), id(i + 1, j), id(i + 1, j + 1) });
+      tris.insert(tris.end(), { id(i, j), id(i + 1, j + 1), id(i, j + 1) });
+    }
+}
+
+}
 #endif

@@ -177,9 +177,13 @@ bool ClipDepthMapsGL::Build(const ClipCamera& cam, const TriangleMesh& mesh, dou
   const std::size_t mapFloats = pixels * cam.layers;
   const int triangleCount = static_cast<int>(mesh.numberOfTriangles);
 
-  // Inputs: points in double, ids as int, the dilation window.
-  std::vector<std::int32_t> ids(static_cast<std::size_t>(3 * mesh.numberOfTriangles));
-  std::copy(mesh.triangles, mesh.triangles + ids.size(), ids.begin());
+  // Inputs: points in double, ids as int then a weight per triangle, the
+  // dilation window.
+  std::vector<std::int32_t> ids(static_cast<std::size_t>(4 * mesh.numberOfTriangles), 1);
+  std::copy(mesh.triangles, mesh.triangles + 3 * mesh.numberOfTriangles, ids.begin());
+  if (mesh.weights)
+    std::copy(mesh.weights, mesh.weights + mesh.numberOfTriangles,
+      ids.begin() + 3 * mesh.numberOfTriangles);
   int rx = 0, ry = 0;
   const std::vector<DilationOffset> window = DilationWindow(cam, radius, rx, ry);
   std::vector<layout::DMOffset> offsets(window.size());
@@ -281,6 +285,7 @@ bool ClipDepthMapsGL::Build(const ClipCamera& cam, const TriangleMesh& mesh, dou
   // 3. Resolve: the winding sweep per pixel.
   gl.UseProgram(p.resolve.Id());
   p.MapSize(p.resolve);
+  gl.Uniform1i(p.resolve.Uniform(gl, "minimumWinding"), mesh.minimumWinding);
   gl.DispatchCompute(Groups(cam.width, PixelLocal), Groups(cam.height, PixelLocal), 1);
   gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   p.timer.End(gl, SRaster);
@@ -315,7 +320,7 @@ bool ClipDepthMapsGL::Build(const ClipCamera& cam, const TriangleMesh& mesh, dou
   stats.dilateMs = p.timer.Milliseconds(gl, SDilate);
   p.bytes = static_cast<std::int64_t>(6 * mapFloats * sizeof(float) + pixels * 4 +
     std::max(total, 1) * sizeof(layout::DMHit) + triangleCount * sizeof(layout::DMTriangle) +
-    3 * mesh.numberOfPoints * sizeof(double) + ids.size() * 4 +
+    3 * mesh.numberOfPoints * sizeof(double) + ids.size() * sizeof(std::int32_t) +
     offsets.size() * sizeof(layout::DMOffset) + counters.size() * 4);
   return true;
 }

@@ -115,6 +115,11 @@ bool ValidateRasterInput(const ClipCamera& cam, const TriangleMesh& mesh, std::s
       return false;
     }
   }
+  if (mesh.minimumWinding < 0 || (mesh.minimumWinding > 0 && !mesh.weights))
+  {
+    error = "a minimum winding needs per-triangle weights and must be at least 1";
+    return false;
+  }
   return true;
 }
 
@@ -198,7 +203,8 @@ bool RasterizeDepthLayers(
         continue; // edge-on: covers no pixel centre consistently; neighbours do
       // Outward normal's component along the view direction has the sign of
       // the projected area (right x up = direction): positive = leaving.
-      const int winding = area > 0.0 ? -1 : +1;
+      const int weight = mesh.weights ? mesh.weights[t] : 1;
+      const int winding = area > 0.0 ? -weight : weight;
       if (area < 0.0)
         std::swap(id[1], id[2]); // counter-clockwise for the coverage test
       const Projected& a = pts[id[0]];
@@ -258,17 +264,18 @@ bool RasterizeDepthLayers(
       double start = 0.0;
       for (Hit* h = begin; h != end; ++h)
       {
-        const int before = w;
+        const bool wasInside = InsideWinding(w, mesh.minimumWinding);
         w += h->winding;
-        if (before == 0 && w != 0)
+        const bool inside = InsideWinding(w, mesh.minimumWinding);
+        if (!wasInside && inside)
           start = h->z;
-        else if (before != 0 && w == 0 && h->z > start)
+        else if (wasInside && !inside && h->z > start)
           intervals.emplace_back(start, h->z);
       }
       if (w != 0)
       {
         ++out.unmatchedPixels;
-        if ((end - 1)->z > start)
+        if (InsideWinding(w, mesh.minimumWinding) && (end - 1)->z > start)
           intervals.emplace_back(start, (end - 1)->z);
       }
       if (intervals.empty())

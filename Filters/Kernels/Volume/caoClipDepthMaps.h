@@ -63,13 +63,31 @@ struct ClipDepthMaps
 };
 
 /// A triangle mesh in the camera's local frame (points xyz, 3 ids/triangle).
+///
+/// Inside test. Without weights, a point is inside where the winding number
+/// of the crossings in front of it is not 0 (either orientation). A
+/// composite of several closed meshes (caoClipComposite.h) gives each
+/// triangle the integer weight of its solid and a `minimumWinding` k >= 1:
+/// a point is then inside where the weighted winding number is at least k,
+/// which expresses a union (weights 1, k = 1), an intersection of n solids
+/// (weights 1, k = n) and their difference (a subtracted solid weighs
+/// -(n + 1)), all in one peel.
 struct TriangleMesh
 {
   const double* points = nullptr;
   std::int64_t numberOfPoints = 0;
   const std::int64_t* triangles = nullptr;
   std::int64_t numberOfTriangles = 0;
+  const int* weights = nullptr; ///< per triangle; null: every triangle weighs 1
+  int minimumWinding = 0;       ///< 0: inside where the winding is not 0; k >= 1: at least k
 };
+
+/// Whether a (weighted) winding number is inside under `minimumWinding`
+/// (see TriangleMesh). Shared with the GPU resolve.
+inline bool InsideWinding(int winding, int minimumWinding)
+{
+  return minimumWinding > 0 ? winding >= minimumWinding : winding != 0;
+}
 
 /// A view of a mesh held as flat vectors (xyz per point, 3 ids per triangle).
 inline TriangleMesh ViewMesh(

@@ -272,11 +272,17 @@ struct ClipShape::Impl
     Cube,
     Torus,
     HalfSpace,
-    Mesh
+    Mesh,
+    Composite
   } kind = Kind::Sphere;
   double a = 1.0, b = 0.0; // sphere radius; cube half side; torus radii
   MeshBVH bvh;
   double bounds[6] = { 0, 0, 0, 0, 0, 0 };
+  // Composite: the parts, their common-to-local maps and smallest scales.
+  std::vector<ClipShapePart> parts;
+  std::vector<std::array<double, 12>> commonToLocal;
+  std::vector<double> scale;
+  int probes = 0;
 };
 
 ClipShape::ClipShape()
@@ -371,6 +377,120 @@ bool ClipShape::FromMesh(const TriangleMesh& mesh, ClipShape& shape, std::string
   return true;
 }
 
+namespace
+{
+/// Smallest singular value of the 3x3 part of a 3x4 affine: the square root
+/// of the smallest eigenvalue of A^T A, by cyclic Jacobi rotations.
+double SmallestSingularValue(const double* A)
+{
+  double S[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      S[i][j] = A[i] * A[j] + A[4 + i] * A[4 + j] + A[8 + i] * A[8 + j];
+  for (int sweep = 0; sweep < 50; ++sweep)
+  {
+    const double off = S[0][1] * S[0][1] + S[0][2] * S[0][2] + S[1][2] * S[1][2];
+    if (!(off > 1e-300))
+      break;
+    for (int p = 0; p < 2; ++p)
+      for (int q = p + 1; q < 3; ++q)
+      {
+        if (S[p][q] == 0.0)
+          continue;
+        const double theta = 0.5 * std::atan2(2.0 * S[p][q], S[q][q] - S[p][p]);
+        const double c = std::cos(theta), s = std::sin(theta);
+        for (int k = 0; k < 3; ++k) // columns p, q
+        {
+          const double kp = S[k][p], kq = S[k][q];
+          S[k][p] = c * kp - s * kq;
+          S[k][q] = s * kp + c * kq;
+        }
+        for (int k = 0; k < 3; ++k) // rows p, q
+        {
+          const double pk = S[p][k], qk = S[q][k];
+          S[p][k] = c * pk - s * qk;
+          S[q][k] = s * pk + c * qk;
+        }
+      }
+  }
+  const double e = std::min({ S[0][0], S[1][1], S[2][2] });
+  return e > 0.0 ? std::sqrt(e) : 0.0;
+}
+
+bool InvertAffine(const double* A, double* M)
+{
+  const double det = A[0] * (A[5] * A[10] - A[6] * A[9]) - A[1] * (A[4] * A[10] - A[6] * A[8]) +
+    A[2] * (A[4] * A[9] - A[5] * A[8]);
+  if (!(std::fabs(det) > 0.0) || !std::isfinite(det))
+    return false;
+  const double inv[9] = { (A[5] * A[10] - A[6] * A[9]) / det, (A[2] * A[9] - A[1] * A[10]) / det,
+    (A[1] * A[6] - A[2] * A[5]) / det, (A[6] * A[8] - A[4] * A[10]) / det,
+    (A[0] * A[10] - A[2] * A[8]) / det, (A[2] * A[4] - A[0] * A[6]) / det,
+    (A[4] * A[9] - A[5] * A[8]) / det, (A[1] * A[8] - A[0] * A[9]) / det,
+    (A[0] * A[5] - A[1] * A[4]) / det };
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+      M[4 * r + c] = inv[3 * r + c];
+    M[4 * r + 3] = -(inv[3 * r] * A[3] + inv[3 * r + 1] * A[7] + inv[3 * r + 2] * A[11]);
+  }
+  return true;
+}
+}
+
+ClipShape ClipShape::Composite(std::vector<ClipShapePart> parts)
+{
+  ClipShape s;
+  Impl& c = *s.P;
+  c.kind = Impl::Kind::Composite;
+  const double big = 1e300;
+  double lo[3] = { big, big, big }, hi[3] = { -big, -big, -big }; // union of all
+  double plo[3] = { -big, -big, -big }, phi[3] = { big, big, big }; // intersection of probes
+  for (ClipShapePart& part : parts)
+  {
+    std::array<double, 12> M{};
+    if (!InvertAffine(part.localToCommon, M.data()))
+      M.fill(std::numeric_limits<double>::quiet_NaN()); // a NaN distance fails every check
+    c.commonToLocal.push_back(M);
+    c.scale.push_back(SmallestSingularValue(part.localToCommon));
+    c.probes += part.mode == layout::CAO_MODE_PROBE ? 1 : 0;
+    double b[6];
+    part.shape.Bounds(b);
+    double blo[3] = { big, big, big }, bhi[3] = { -big, -big, -big };
+    for (int k = 0; k < 8; ++k)
+    {
+      const double q[3] = { std::max(-big, std::min(big, b[k & 1])),
+        std::max(-big, std::min(big, b[2 + ((k >> 1) & 1)])),
+        std::max(-big, std::min(big, b[4 + ((k >> 2) & 1)])) };
+      for (int r = 0; r < 3; ++r)
+      {
+        const double* A = part.localToCommon;
+        double v = A[4 * r] * q[0] + A[4 * r + 1] * q[1] + A[4 * r + 2] * q[2] + A[4 * r + 3];
+        v = std::isfinite(v) ? std::max(-big, std::min(big, v)) : (v > 0 ? big : -big);
+        blo[r] = std::min(blo[r], v);
+        bhi[r] = std::max(bhi[r], v);
+      }
+    }
+    for (int r = 0; r < 3; ++r)
+    {
+      lo[r] = std::min(lo[r], blo[r]);
+      hi[r] = std::max(hi[r], bhi[r]);
+      if (part.mode == layout::CAO_MODE_PROBE)
+      {
+        plo[r] = std::max(plo[r], blo[r]);
+        phi[r] = std::min(phi[r], bhi[r]);
+      }
+    }
+  }
+  for (int r = 0; r < 3; ++r)
+  {
+    c.bounds[2 * r] = c.probes ? plo[r] : lo[r];
+    c.bounds[2 * r + 1] = c.probes ? phi[r] : hi[r];
+  }
+  c.parts = std::move(parts);
+  return s;
+}
+
 double ClipShape::SignedDistance(const double p[3]) const
 {
   const Impl& s = *this->P;
@@ -395,6 +515,25 @@ double ClipShape::SignedDistance(const double p[3]) const
     {
       const double ring = std::sqrt(p[0] * p[0] + p[1] * p[1]) - s.a;
       return std::sqrt(ring * ring + p[2] * p[2]) - s.b;
+    }
+    case Impl::Kind::Composite:
+    {
+      // Subtract only: the union (min). With probes: the kept region,
+      // max over the probes' distances and the negated subtractions'.
+      double d = s.probes == 0 ? HUGE_VAL : -HUGE_VAL;
+      for (std::size_t i = 0; i < s.parts.size(); ++i)
+      {
+        const double* M = s.commonToLocal[i].data();
+        double q[3];
+        for (int r = 0; r < 3; ++r)
+          q[r] = M[4 * r] * p[0] + M[4 * r + 1] * p[1] + M[4 * r + 2] * p[2] + M[4 * r + 3];
+        const double di = s.scale[i] * s.parts[i].shape.SignedDistance(q);
+        if (s.probes == 0)
+          d = std::min(d, di);
+        else
+          d = std::max(d, s.parts[i].mode == layout::CAO_MODE_PROBE ? di : -di);
+      }
+      return d;
     }
     default:
     {
@@ -422,6 +561,8 @@ const char* ClipShape::Name() const
       return "torus";
     case Impl::Kind::HalfSpace:
       return "plane";
+    case Impl::Kind::Composite:
+      return "composite";
     default:
       return "mesh";
   }

@@ -33,6 +33,8 @@
 
 namespace cao
 {
+struct ClipShapePart;
+
 /// An exact clip shape in its local frame; SignedDistance is negative inside.
 class ClipShape
 {
@@ -48,6 +50,14 @@ public:
   /// A closed triangle mesh (copied; inside by ray parity, majority of 3
   /// directions; distance through a bounding-volume hierarchy).
   static bool FromMesh(const TriangleMesh& mesh, ClipShape& shape, std::string& error);
+  /// Several shapes, each posed in a common frame with its mode, combined
+  /// as caoClipComposite.h combines their meshes: the union of the
+  /// subtracting parts when none probes, else the probes' intersection less
+  /// the subtracting parts. Its signed distance (min / max of the parts',
+  /// each scaled by its pose's smallest singular value) has the exact sign
+  /// and a magnitude no larger than the true distance, which keeps
+  /// CheckClipGeometry's margins sound.
+  static ClipShape Composite(std::vector<ClipShapePart> parts);
 
   ClipShape();
   ~ClipShape();
@@ -66,6 +76,14 @@ public:
 private:
   struct Impl;
   std::unique_ptr<Impl> P;
+};
+
+/// One part of ClipShape::Composite.
+struct ClipShapePart
+{
+  ClipShape shape;
+  double localToCommon[12] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0 }; ///< 3x4, row-major
+  int mode = 0; ///< layout::CAO_MODE_*
 };
 
 struct ClipGeometryReport

@@ -6,6 +6,8 @@
 //  - a torus seen along and across its axis: up to 4 crossings, L = 1, 2, 3
 //    (L = 1 and 2 overflow and merge the surplus intervals);
 //  - nested spheres (winding 2) and an open box (unbalanced crossings);
+//  - composites of several spheres (caoClipComposite: weighted windings):
+//    a union of 8 and 2 probes less a subtraction;
 //  - the UV sphere of the CAO scenes, in 12 random orientations;
 //  - a huge camera error and a bad id: the same messages as the CPU.
 // Then the engine fed from the raster (no CPU round trip) classifies every
@@ -13,7 +15,9 @@
 #include "caoClipDepthMapsGL.h"
 #include "caoGLTestUtilities.h"
 
+#include "caoClipComposite.h"
 #include "caoClipScene.h"
+#include "caoGPULayout.h"
 #include "caoLAO.h"
 
 #include <algorithm>
@@ -27,7 +31,18 @@ struct Mesh
 {
   std::vector<double> points;
   std::vector<std::int64_t> triangles;
-  cao::TriangleMesh View() const { return cao::ViewMesh(points, triangles); }
+  std::vector<int> weights; // a composite's (caoClipComposite.h); empty: 1 each
+  int minimumWinding = 0;
+  cao::TriangleMesh View() const
+  {
+    cao::TriangleMesh m = cao::ViewMesh(points, triangles);
+    if (!weights.empty())
+    {
+      m.weights = weights.data();
+      m.minimumWinding = minimumWinding;
+    }
+    return m;
+  }
   void Append(const Mesh& other)
   {
     const std::int64_t base = static_cast<std::int64_t>(points.size() / 3);
@@ -276,6 +291,46 @@ int TestGLDepthMaps(int argc, char* argv[])
     Mesh open = Box(lo, hi, true);
     ok &= Compare(raster, "open box (unbalanced)", open, Camera(open, tilt, 0.25, 2, 1.0), 1.0, -1,
       true);
+  }
+  // Composites: weighted windings and a minimum winding on the GPU.
+  {
+    const double centres[8][3] = { { -6, -5, 0 }, { -3, -4, 1 }, { 0, -2, 0 }, { 2, 0, -1 },
+      { 4, 2, 0 }, { 6, 4, 1 }, { -4, 4, 0 }, { -1, 5, -1 } };
+    std::vector<Mesh> spheres;
+    const double origin[3] = { 0, 0, 0 };
+    for (int i = 0; i < 8; ++i)
+      spheres.push_back(Sphere(2.0 + 0.25 * i, origin));
+    for (int mix = 0; mix < 2; ++mix)
+    {
+      std::vector<cao::ClipPart> parts;
+      const int count = mix == 0 ? 8 : 3;
+      for (int i = 0; i < count; ++i)
+      {
+        cao::ClipPart part;
+        part.mesh = spheres[i].View();
+        const double lens[3][3] = { { 0, 0, 0 }, { 1.5, 0.5, 0 }, { 0.5, 0, 2.5 } };
+        const double* c = mix == 0 ? centres[i] : lens[i];
+        const double sx = i == 1 ? -1.0 : 1.0; // one mirrored pose
+        const double A[12] = { sx, 0, 0, c[0], 0, 1, 0, c[1], 0, 0, 1, c[2] };
+        std::copy(A, A + 12, part.localToCommon);
+        part.mode = mix == 1 && i < 2 ? cao::layout::CAO_MODE_PROBE : cao::layout::CAO_MODE_SUBTRACT;
+        parts.push_back(part);
+      }
+      cao::CompositeClipMesh composite;
+      std::string error;
+      if (!cao::BuildCompositeClipMesh(parts, composite, error))
+      {
+        std::printf("FAIL composite: %s\n", error.c_str());
+        return 1;
+      }
+      Mesh m;
+      m.points = composite.points;
+      m.triangles = composite.triangles;
+      m.weights = composite.weights;
+      m.minimumWinding = composite.combination.minimumWinding;
+      ok &= Compare(raster, mix == 0 ? "composite: union of 8" : "composite: 2 probes less 1",
+        m, Camera(m, down, 0.2, 4, 0.6), 0.6, -1);
+    }
   }
   // The CAO scenes' sphere, in random orientations and pixel sizes.
   {

@@ -29,6 +29,8 @@ layout(std430, binding = CAO_BINDING_DM_POINTS) readonly buffer PointBlock
 {
   double points[];
 };
+// 3 point ids per triangle, then one winding weight per triangle
+// (caoClipDepthMaps.h TriangleMesh: 1 unless a composite gave others).
 layout(std430, binding = CAO_BINDING_DM_IDS) readonly buffer IdBlock
 {
   int ids[];
@@ -62,6 +64,7 @@ layout(std430, binding = CAO_BINDING_DM_STATS) buffer StatBlock
 
 uniform ivec3 mapSize;     // width, height, layers
 uniform int triangleCount; // SETUP
+uniform int minimumWinding; // RESOLVE: 0 = inside where the winding is not 0, k = at least k
 uniform dvec3 camOrigin;   // SETUP: the clipping camera (caoClipDepthMaps.h ClipCamera)
 uniform dvec3 camRight;
 uniform dvec3 camUp;
@@ -172,7 +175,8 @@ void main()
   {
     // The outward normal's view component has the sign of the area
     // (right x up = direction): positive = leaving the solid.
-    tri.ids.w = area > 0.0LF ? -1 : 1;
+    const int weight = ids[3 * triangleCount + t];
+    tri.ids.w = area > 0.0LF ? -weight : weight;
     if (area < 0.0LF) // counter-clockwise for the coverage test
     {
       const int i = tri.ids[1];
@@ -236,6 +240,12 @@ void main()
 
 #elif CAO_DM_STAGE == CAO_DM_RESOLVE
 int intervalCount = 0;
+
+// caoClipDepthMaps.h InsideWinding.
+bool InsideWinding(int w)
+{
+  return minimumWinding > 0 ? w >= minimumWinding : w != 0;
+}
 
 // Layer `intervalCount` gets [f, b]; intervals past the last layer merge
 // into it (its back moves to theirs), as in caoClipDepthMaps.cxx.
@@ -306,11 +316,12 @@ void main()
       break;
     for (int i = 0; i < multiplicity; ++i)
     {
-      const int before = w;
+      const bool wasInside = InsideWinding(w);
       w += keyWinding;
-      if (before == 0 && w != 0)
+      const bool inside = InsideWinding(w);
+      if (!wasInside && inside)
         start = keyZ;
-      else if (before != 0 && w == 0 && keyZ > start)
+      else if (wasInside && !inside && keyZ > start)
         AddInterval(base, layerSize, start, keyZ);
     }
     havePrevious = true;
@@ -320,7 +331,7 @@ void main()
   if (w != 0)
   {
     atomicAdd(stats[CAO_DM_STAT_UNMATCHED], 1);
-    if (previousZ > start)
+    if (InsideWinding(w) && previousZ > start)
       AddInterval(base, layerSize, start, previousZ);
   }
   if (intervalCount == 0)

@@ -24,34 +24,6 @@
 
 namespace
 {
-/// A closed, outward UV sphere of radius r (n segments around, n/2 rings).
-void UVSphere(double r, int n, std::vector<double>& points, std::vector<std::int64_t>& tris)
-{
-  const double pi = 3.141592653589793;
-  points = { 0, 0, r, 0, 0, -r };
-  const int rings = n / 2;
-  for (int i = 1; i < rings; ++i)
-    for (int j = 0; j < n; ++j)
-    {
-      const double t = pi * i / rings, p = 2 * pi * j / n;
-      points.insert(points.end(), { r * std::sin(t) * std::cos(p), r * std::sin(t) * std::sin(p),
-                                    r * std::cos(t) });
-    }
-  auto id = [n](int ring, int j) { return 2 + (ring - 1) * n + ((j % n) + n) % n; };
-  tris.clear();
-  for (int j = 0; j < n; ++j)
-  {
-    tris.insert(tris.end(), { 0, id(1, j), id(1, j + 1) });
-    tris.insert(tris.end(), { 1, id(rings - 1, j + 1), id(rings - 1, j) });
-  }
-  for (int i = 1; i + 1 < rings; ++i)
-    for (int j = 0; j < n; ++j)
-    {
-      tris.insert(tris.end(), { id(i, j), id(i + 1, j), id(i + 1, j + 1) });
-      tris.insert(tris.end(), { id(i, j), id(i + 1, j + 1), id(i, j + 1) });
-    }
-}
-
 double BruteDistance(const std::vector<double>& pts, const std::vector<std::int64_t>& tris,
   const double p[3])
 {
@@ -111,7 +83,7 @@ int TestClipGeometry(int, char*[])
   // 2. A tessellated sphere as a mesh shape.
   std::vector<double> pts;
   std::vector<std::int64_t> tris;
-  UVSphere(5.0, 32, pts, tris);
+  caotest::UVSphere(5.0, 32, pts, tris);
   const cao::TriangleMesh view = cao::ViewMesh(pts, tris);
   cao::ClipShape meshShape;
   std::string error;
