@@ -23,6 +23,9 @@
 #include "vtkTriangleFilter.h"
 
 #include "caoClipCamera.h"
+#include "caoClipComposite.h"
+#include "caoGPULayout.h"
+#include "vtkMatrix4x4.h"
 #include "caoClipDepthMaps.h"
 
 #include <algorithm>
@@ -81,7 +84,60 @@ vtkClipDepthMaps::~vtkClipDepthMaps() = default;
 int vtkClipDepthMaps::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  info->Set(vtkAlgorithm::INPUT_IS_REPEATABLE(), 1);
   return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkClipDepthMaps::SetShapePose(int index, vtkMatrix4x4* pose)
+{
+  if (index < 0 || index >= cao::MaximumClipParts)
+  {
+    vtkErrorMacro("SetShapePose: shape index " << index << " is outside 0 to "
+                                               << cao::MaximumClipParts - 1 << ".");
+    return;
+  }
+  if (static_cast<int>(this->ShapePoses.size()) <= index)
+    this->ShapePoses.resize(index + 1);
+  this->ShapePoses[index] = pose;
+  this->Modified();
+}
+
+void vtkClipDepthMaps::SetShapeMode(int index, int mode)
+{
+  if (index < 0 || index >= cao::MaximumClipParts || (mode != 0 && mode != 1))
+  {
+    vtkErrorMacro("SetShapeMode: shape index " << index << " must be 0 to "
+                                               << cao::MaximumClipParts - 1 << " and mode "
+                                               << mode << " 0 (subtraction) or 1 (probing).");
+    return;
+  }
+  if (static_cast<int>(this->ShapeModes.size()) <= index)
+    this->ShapeModes.resize(index + 1, 0);
+  this->ShapeModes[index] = mode;
+  this->Modified();
+}
+
+void vtkClipDepthMaps::RemoveAllShapeSettings()
+{
+  this->ShapePoses.clear();
+  this->ShapeModes.clear();
+  this->Modified();
+}
+
+bool vtkClipDepthMaps::IsComposite()
+{
+  return this->GetNumberOfInputConnections(0) > 1 || !this->ShapePoses.empty() ||
+    !this->ShapeModes.empty();
+}
+
+vtkMTimeType vtkClipDepthMaps::GetMTime()
+{
+  vtkMTimeType t = this->Superclass::GetMTime();
+  for (const auto& pose : this->ShapePoses)
+    if (pose)
+      t = std::max(t, pose->GetMTime());
+  return t;
 }
 
 //------------------------------------------------------------------------------
@@ -101,10 +157,13 @@ int vtkClipDepthMaps::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
   // The whole mesh on every process: a piece of a closed mesh is open.
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  for (int i = 0; i < inputVector[0]->GetNumberOfInformationObjects(); ++i)
+  {
+    vtkInformation* inInfo = inputVector[0]->GetInformationObject(i);
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  }
   return 1;
 }
 
@@ -352,9 +411,13 @@ int vtkClipDepthMaps::RequestData(
   output->Initialize();
   std::vector<double> points;
   std::vector<std::int64_t> tris;
-  if (!this->CheckSettings() || !PrepareMesh(this, input, points, tris))
+  cao::CompositeClipMesh composite;
+  const bool several = this->IsComposite();
+  if (!this->CheckSettings() ||
+    !(several ? this->PrepareComposite(inputVector[0], composite)
+              : PrepareMesh(this, input, points, tris)))
     return 0;
-  const cao::TriangleMesh mesh = cao::ViewMesh(points, tris);
+  const cao::TriangleMesh mesh = several ? composite.View() : cao::ViewMesh(points, tris);
 
   // The clipping camera: frame, dilation radius, extent, resolution.
   cao::ClipCameraPlan plan;
@@ -378,8 +441,66 @@ int vtkClipDepthMaps::RequestData(
   if (!this->BuildMaps(plan, mesh, gpu, maps, times[0], times[1], aborted))
     return aborted ? 1 : 0; // aborted: the executive flags the output
   this->WriteOutput(output, plan, maps, times, gpu);
+  if (several)
+  {
+    const cao::ClipCombination& c = composite.combination;
+    vtkCAO::AddFieldTuple(output->GetFieldData(), "ClipComposite",
+      { "Shapes", "Probes", "Subtractions", "Mode", "MinimumWinding" },
+      { double(c.probes + c.subtractions), double(c.probes), double(c.subtractions),
+        double(c.mode), double(c.minimumWinding) });
+  }
   this->UpdateProgress(1.0);
   return 1;
+}
+
+//------------------------------------------------------------------------------
+bool vtkClipDepthMaps::PrepareComposite(
+  vtkInformationVector* inputs, cao::CompositeClipMesh& composite)
+{
+  const int n = inputs->GetNumberOfInformationObjects();
+  if (n > cao::MaximumClipParts || static_cast<int>(this->ShapePoses.size()) > n ||
+    static_cast<int>(this->ShapeModes.size()) > n)
+  {
+    vtkErrorMacro("Several clip shapes: " << n << " input mesh(es), "
+                                          << this->ShapePoses.size() << " pose(s) and "
+                                          << this->ShapeModes.size()
+                                          << " mode(s) set; at most "
+                                          << cao::MaximumClipParts
+                                          << " shapes, and no pose or mode without a mesh.");
+    return false;
+  }
+  std::vector<std::vector<double>> points(n);
+  std::vector<std::vector<std::int64_t>> tris(n);
+  std::vector<cao::ClipPart> parts(n);
+  for (int i = 0; i < n; ++i)
+  {
+    vtkPolyData* mesh = vtkPolyData::GetData(inputs, i);
+    if (!mesh)
+    {
+      vtkErrorMacro("Clip shape " << i << " is not vtkPolyData.");
+      return false;
+    }
+    if (!PrepareMesh(this, mesh, points[i], tris[i]))
+    {
+      vtkErrorMacro("(that was clip shape " << i << " of " << n << ")");
+      return false;
+    }
+    parts[i].mesh = cao::ViewMesh(points[i], tris[i]);
+    if (i < static_cast<int>(this->ShapePoses.size()) && this->ShapePoses[i])
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 4; ++c)
+          parts[i].localToCommon[4 * r + c] = this->ShapePoses[i]->GetElement(r, c);
+    parts[i].mode = i < static_cast<int>(this->ShapeModes.size()) && this->ShapeModes[i] == 1
+      ? cao::layout::CAO_MODE_PROBE
+      : cao::layout::CAO_MODE_SUBTRACT;
+  }
+  std::string error;
+  if (!cao::BuildCompositeClipMesh(parts, composite, error))
+  {
+    vtkErrorMacro("Cannot combine the clip shapes: " << error << ".");
+    return false;
+  }
+  return true;
 }
 
 //------------------------------------------------------------------------------

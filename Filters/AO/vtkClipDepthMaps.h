@@ -42,6 +42,18 @@
  * of the next update (nothing is clamped). The camera planning and the mesh
  * checks are the VTK-free kernel's (caoClipCamera.h).
  *
+ * Several clip shapes. Input port 0 is repeatable: with more than one
+ * connection (or any SetShapePose / SetShapeMode), mesh i is placed by
+ * ShapePose i (its local frame to a common frame; identity when unset) and
+ * clips in ShapeMode i, and the maps hold the combination (caoClipComposite.h):
+ * the union of the subtracting shapes, or, when any shape probes, the
+ * probes' intersection less the subtracting shapes. The maps then live in
+ * the common frame (give vtkContextualAmbientOcclusion the pose of that
+ * frame, usually identity), and the field array "ClipComposite" (Shapes,
+ * Probes, Subtractions, Mode, MinimumWinding) sets the mode the contextual
+ * filter clips with; its own Mode is not used. Moving one shape means new
+ * maps. At most 32 shapes.
+ *
  * Bad input (empty, open, degenerate meshes, a zero-area camera) is an error.
  *
  * Backend OPENGL rasterises, peels, dilates and erodes on the GPU (see
@@ -55,12 +67,18 @@
 
 #include "caoFiltersAOModule.h" // For export macro
 #include "vtkAOAlgorithm.h"
+#include "vtkSmartPointer.h" // For the shape poses
+
+#include <vector> // For the shape poses
+
+class vtkMatrix4x4;
 
 namespace cao
 {
 struct ClipCameraPlan;
 struct ClipCameraRequest;
 struct ClipDepthMaps;
+struct CompositeClipMesh;
 struct TriangleMesh;
 }
 
@@ -189,6 +207,23 @@ public:
   vtkGetMacro(DilationScale, double);
   ///@}
 
+  ///@{
+  /**
+   * Several clip shapes (see the class comment): the pose of input
+   * connection `index` (null: identity) and its mode (0 subtraction, 1
+   * probing, as vtkContextualAmbientOcclusion's Mode). The matrix is
+   * referenced, and its changes re-execute the filter.
+   */
+  void SetShapePose(int index, vtkMatrix4x4* pose);
+  void SetShapeMode(int index, int mode);
+  /// Forget every shape's pose and mode.
+  void RemoveAllShapeSettings();
+  /// Whether the maps combine shapes (more than one input, or a pose or
+  /// mode set).
+  bool IsComposite();
+  vtkMTimeType GetMTime() override;
+  ///@}
+
   /// Radius the output maps are dilated by (local units), after an update.
   vtkGetMacro(DilationRadius, double);
 
@@ -210,6 +245,8 @@ protected:
   /// after an error or an abort (`aborted`).
   bool BuildMaps(const cao::ClipCameraPlan& plan, const cao::TriangleMesh& mesh, bool gpu,
     cao::ClipDepthMaps maps[3], double& rasterMs, double& dilateMs, bool& aborted);
+  /// Several shapes: each input prepared as one mesh is, then combined.
+  bool PrepareComposite(vtkInformationVector* inputs, cao::CompositeClipMesh& composite);
   /// The maps, the camera and the statistics as the output image.
   void WriteOutput(vtkImageData* output, const cao::ClipCameraPlan& plan,
     const cao::ClipDepthMaps maps[3], const double times[2], bool gpu);
@@ -228,6 +265,8 @@ protected:
   double RegionOfInterest[6] = { 1.0, 0.0, 1.0, 0.0, 1.0, 0.0 };
   double DilationScale = 1.0;
   double DilationRadius = 0.0;
+  std::vector<vtkSmartPointer<vtkMatrix4x4>> ShapePoses;
+  std::vector<int> ShapeModes;
 
 private:
   vtkClipDepthMaps(const vtkClipDepthMaps&) = delete;

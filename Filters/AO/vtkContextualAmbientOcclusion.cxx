@@ -367,8 +367,7 @@ bool vtkContextualAmbientOcclusion::Internals::Gather(vtkContextualAmbientOcclus
       self->PoseTransform->Update();
       pose->DeepCopy(self->PoseTransform->GetMatrix());
     }
-    const int mode =
-      self->Mode == SUBTRACTION ? cao::layout::CAO_MODE_SUBTRACT : cao::layout::CAO_MODE_PROBE;
+    const int mode = in.clipMaps.mode; // Mode, or a composite's own
     if (!vtkCAO::MakeClipParams(input, in.clipMaps, pose, in.plan.reach, mode,
           self->AntiAliasingSamples, in.clip, error))
     {
@@ -410,7 +409,7 @@ bool vtkContextualAmbientOcclusion::Internals::RunCPU(
     cao::ContextualUpdate::Stats stats;
     // The maps' version: a new maps object, new contents or another mode.
     const std::uint64_t mapsVersion =
-      (static_cast<std::uint64_t>(in.maps->GetMTime()) << 1) | (self->Mode & 1);
+      (static_cast<std::uint64_t>(in.maps->GetMTime()) << 1) | (in.clipMaps.mode & 1);
     ok = this->CPU.Update(volume, in.clip, in.view, mapsVersion, buffers, parallel, stats,
       !vtkCAO::BrickClassificationDisabled());
     r.totalMs = vtkCAO::MillisecondsSince(start);
@@ -484,7 +483,7 @@ bool vtkContextualAmbientOcclusion::Internals::RunGPU(
     this->EngineKeyValid = true;
   }
   if (this->Maps != in.maps || this->MapsTime != in.maps->GetMTime() ||
-    this->MapsMode != self->Mode)
+    this->MapsMode != in.clipMaps.mode)
   {
     const vtkCAO::ClipMaps& m = in.clipMaps;
     if (!engine.SetMaps(m.width, m.height, m.layers, in.view.front, in.view.back,
@@ -496,7 +495,7 @@ bool vtkContextualAmbientOcclusion::Internals::RunGPU(
     }
     this->Maps = in.maps;
     this->MapsTime = in.maps->GetMTime();
-    this->MapsMode = self->Mode;
+    this->MapsMode = in.clipMaps.mode;
   }
   cao::gl::UpdateStats stats;
   std::vector<std::uint16_t> stored;

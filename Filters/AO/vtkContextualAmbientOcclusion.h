@@ -70,7 +70,9 @@ public:
   void SetDepthMapsData(vtkDataObject* maps) { this->SetInputData(1, maps); }
 
   ///@{
-  /// Clip mode (Modes). Default SUBTRACTION.
+  /// Clip mode (Modes). Default SUBTRACTION. Maps of several clip shapes
+  /// (vtkClipDepthMaps with several inputs) carry their own mode, which
+  /// takes its place.
   vtkSetMacro(Mode, int);
   vtkGetMacro(Mode, int);
   ///@}

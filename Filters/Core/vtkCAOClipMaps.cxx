@@ -46,7 +46,15 @@ bool ReadClipMaps(vtkImageData* maps, int mode, ClipMaps& out, std::string& erro
   out.width = static_cast<int>(out.camera[14]);
   out.height = static_cast<int>(out.camera[15]);
   out.layers = static_cast<int>(out.camera[16]);
-  const bool subtract = mode == cao::layout::CAO_MODE_SUBTRACT;
+  double composite[5];
+  out.composite = FieldTuple(maps->GetFieldData(), "ClipComposite", 5, composite);
+  out.mode = out.composite ? static_cast<int>(composite[3]) : mode;
+  if (out.mode != cao::layout::CAO_MODE_SUBTRACT && out.mode != cao::layout::CAO_MODE_PROBE)
+  {
+    error = "The depth maps' clip mode " + std::to_string(out.mode) + " is unknown.";
+    return false;
+  }
+  const bool subtract = out.mode == cao::layout::CAO_MODE_SUBTRACT;
   const char* names[4] = { "FrontDepth", "BackDepth",
     subtract ? "DilatedFrontDepth" : "ErodedFrontDepth",
     subtract ? "DilatedBackDepth" : "ErodedBackDepth" };

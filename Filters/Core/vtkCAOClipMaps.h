@@ -33,11 +33,16 @@ struct ClipMaps
   /// (local units along the camera's right and up); infinite by default
   double valid[4] = { -HUGE_VAL, HUGE_VAL, -HUGE_VAL, HUGE_VAL };
   int width = 0, height = 0, layers = 0;
+  /// The mode these maps clip in (layout::CAO_MODE_*): the one asked for,
+  /// or a composite's own ("ClipComposite", see vtkClipDepthMaps).
+  int mode = 0;
+  bool composite = false;
   /// front, back, and the candidate pair of the mode (dilated or eroded)
   vtkFloatArray* arrays[4] = { nullptr, nullptr, nullptr, nullptr };
 };
 
-/// Read vtkClipDepthMaps' output for clip mode `mode` (CAO_MODE_*).
+/// Read vtkClipDepthMaps' output for clip mode `mode` (CAO_MODE_*); maps of
+/// several shapes clip in their own mode instead (out.mode says which).
 CAOFILTERSCORE_EXPORT bool ReadClipMaps(
   vtkImageData* maps, int mode, ClipMaps& out, std::string& error);
 
