@@ -29,6 +29,7 @@
 #include "vtkWeakPointer.h"
 
 #include "vtkCAOClipMaps.h"
+#include "caoClipComposite.h"
 #include "vtkCAOFilterUtilities.h"
 #include "vtkCAOGPUSession.h"
 #include "vtkCAOLAOSettings.h"
@@ -148,10 +149,12 @@ struct MeshKey
   vtkMTimeType meshTime = 0;
   int layers = 0;
   double pixelSize = 0.0, reach = 0.0, spacing[3] = { 0, 0, 0 };
+  std::vector<double> shapes; ///< several shapes: each mesh, its time, pose and mode
   bool operator==(const MeshKey& o) const
   {
     return mesh == o.mesh && meshTime == o.meshTime && layers == o.layers &&
-      pixelSize == o.pixelSize && reach == o.reach && std::equal(spacing, spacing + 3, o.spacing);
+      pixelSize == o.pixelSize && reach == o.reach && std::equal(spacing, spacing + 3, o.spacing) &&
+      shapes == o.shapes;
   }
   bool operator!=(const MeshKey& o) const { return !(*this == o); }
 };
@@ -244,8 +247,17 @@ struct vtkContextualAOVolumeMapper::Internals
     return givenAO && vtkCAO::ReadLAOSettings(f.input->GetFieldData(), settings, nullptr);
   }
   bool UpdateClip(vtkContextualAOVolumeMapper* self, Frame& f);
-  bool UpdateMaps(vtkContextualAOVolumeMapper* self, Frame& f, vtkPolyData* mesh,
-    vtkMatrix4x4* pose, int mode);
+  /// A clip shape: its mesh, its pose (local frame to the volume's
+  /// physical frame) and mode.
+  struct ClipPart
+  {
+    vtkPolyData* mesh = nullptr;
+    vtkSmartPointer<vtkMatrix4x4> pose;
+    int mode = 0;
+  };
+  bool GatherClipParts(vtkContextualAOVolumeMapper* self, Frame& f, std::vector<ClipPart>& parts);
+  bool UpdateMaps(vtkContextualAOVolumeMapper* self, Frame& f, const std::vector<ClipPart>& parts);
+  std::vector<std::pair<vtkSmartPointer<vtkProp3D>, int>> AddedShapes;
   bool UpdateTable(vtkContextualAOVolumeMapper* self, Frame& f, double& step);
   void MakeRenderParams(vtkContextualAOVolumeMapper* self, const Frame& f, double step,
     cao::layout::RenderParams& params);
@@ -286,6 +298,32 @@ vtkContextualAOVolumeMapper::~vtkContextualAOVolumeMapper()
   this->SetClipShape(nullptr);
   this->SetClipMesh(nullptr);
   this->SetAmbientOcclusionArrayName(nullptr);
+}
+
+//------------------------------------------------------------------------------
+void vtkContextualAOVolumeMapper::AddClipShape(vtkProp3D* shape, int mode)
+{
+  if (!shape || (mode != SUBTRACTION && mode != PROBING))
+  {
+    vtkErrorMacro("AddClipShape needs a prop and mode 0 (subtraction) or 1 (probing); got "
+      << shape << ", " << mode << ".");
+    return;
+  }
+  this->Internal->AddedShapes.emplace_back(shape, mode);
+  this->Modified();
+}
+
+void vtkContextualAOVolumeMapper::RemoveAllClipShapes()
+{
+  if (this->Internal->AddedShapes.empty())
+    return;
+  this->Internal->AddedShapes.clear();
+  this->Modified();
+}
+
+int vtkContextualAOVolumeMapper::GetNumberOfClipShapes()
+{
+  return (this->ClipShape ? 1 : 0) + static_cast<int>(this->Internal->AddedShapes.size());
 }
 
 //------------------------------------------------------------------------------
@@ -624,44 +662,72 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
 }
 
 //------------------------------------------------------------------------------
+bool vtkContextualAOVolumeMapper::Internals::GatherClipParts(
+  vtkContextualAOVolumeMapper* self, Frame& f, std::vector<ClipPart>& parts)
+{
+  std::vector<std::pair<vtkProp3D*, int>> props;
+  if (self->ClipShape)
+    props.emplace_back(self->ClipShape, self->Mode);
+  for (const auto& added : this->AddedShapes)
+    props.emplace_back(added.first, added.second);
+  if (props.size() > static_cast<std::size_t>(cao::MaximumClipParts))
+    return f.Fail("At most " + std::to_string(cao::MaximumClipParts) + " clip shapes; " +
+      std::to_string(props.size()) + " are set.");
+  vtkNew<vtkMatrix4x4> worldToVolume;
+  vtkMatrix4x4::Invert(f.volume->GetMatrix(), worldToVolume);
+  for (std::size_t i = 0; i < props.size(); ++i)
+  {
+    ClipPart part;
+    part.mesh = i == 0 && self->ClipShape ? self->ClipMesh : nullptr;
+    if (!part.mesh)
+      if (vtkActor* actor = vtkActor::SafeDownCast(props[i].first))
+        if (vtkMapper* m = actor->GetMapper())
+        {
+          if (vtkAlgorithm* a = m->GetInputAlgorithm())
+            a->Update();
+          part.mesh = vtkPolyData::SafeDownCast(m->GetInputDataObject(0, 0));
+        }
+    if (!part.mesh)
+      return f.Fail("Clip shape " + std::to_string(i) +
+        " has no mesh: give it a vtkPolyDataMapper input" +
+        (i == 0 && self->ClipShape ? " or set ClipMesh." : "."));
+    // Pose: the mesh's local frame to the volume's physical frame.
+    part.pose = vtkSmartPointer<vtkMatrix4x4>::New();
+    vtkMatrix4x4::Multiply4x4(worldToVolume, props[i].first->GetMatrix(), part.pose);
+    part.mode =
+      props[i].second == SUBTRACTION ? cao::layout::CAO_MODE_SUBTRACT : cao::layout::CAO_MODE_PROBE;
+    parts.push_back(part);
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
 bool vtkContextualAOVolumeMapper::Internals::UpdateClip(
   vtkContextualAOVolumeMapper* self, Frame& f)
 {
-  // The clip shape: depth maps when the mesh changed, the AO update when
-  // the pose changed.
-  vtkPolyData* mesh = self->ClipMesh;
-  if (self->ClipShape && !mesh)
-  {
-    if (vtkActor* actor = vtkActor::SafeDownCast(self->ClipShape))
-      if (vtkMapper* m = actor->GetMapper())
-      {
-        if (vtkAlgorithm* a = m->GetInputAlgorithm())
-          a->Update();
-        mesh = vtkPolyData::SafeDownCast(m->GetInputDataObject(0, 0));
-      }
-    if (!mesh)
-      return f.Fail(
-        "The clip shape has no mesh: give it a vtkPolyDataMapper input or set ClipMesh.");
-  }
-  f.clipping = self->ClipShape != nullptr;
+  // The clip shapes: depth maps when a mesh changed (or, for several, any
+  // pose), the AO update when the pose changed.
+  std::vector<ClipPart> parts;
+  if (!this->GatherClipParts(self, f, parts))
+    return false;
+  f.clipping = !parts.empty();
   if (!f.clipping)
   {
     this->PoseKey.clear(); // a clip shape set again is a new pose
     return true;
   }
   const bool ao = self->AmbientOcclusion;
-  const int mode =
-    self->Mode == SUBTRACTION ? cao::layout::CAO_MODE_SUBTRACT : cao::layout::CAO_MODE_PROBE;
-  // Pose: the mesh's local frame to the volume's physical frame.
-  vtkNew<vtkMatrix4x4> worldToVolume, pose;
-  vtkMatrix4x4::Invert(f.volume->GetMatrix(), worldToVolume);
-  vtkMatrix4x4::Multiply4x4(worldToVolume, self->ClipShape->GetMatrix(), pose);
-  if (!this->UpdateMaps(self, f, mesh, pose, mode))
+  // One shape: its maps in its own frame, posed. Several: maps of the
+  // combination in the volume's frame (identity pose), in its mode.
+  vtkNew<vtkMatrix4x4> identity;
+  vtkMatrix4x4* pose = parts.size() == 1 ? parts[0].pose.GetPointer() : identity.GetPointer();
+  if (!this->UpdateMaps(self, f, parts))
     return false;
   std::string error;
   vtkCAO::ClipMaps clipMaps;
-  if (!vtkCAO::ReadClipMaps(this->ClipDepthMaps->GetOutput(), mode, clipMaps, error))
+  if (!vtkCAO::ReadClipMaps(this->ClipDepthMaps->GetOutput(), parts[0].mode, clipMaps, error))
     return f.Fail(error);
+  const int mode = clipMaps.mode;
   cao::gl::AOEngine& engine = *f.engine;
   const std::vector<double> uploadKey = { static_cast<double>(this->MapsGeneration),
     static_cast<double>(mode), static_cast<double>(this->PrecomputeGeneration) };
@@ -713,19 +779,33 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateClip(
 }
 
 //------------------------------------------------------------------------------
-bool vtkContextualAOVolumeMapper::Internals::UpdateMaps(vtkContextualAOVolumeMapper* self,
-  Frame& f, vtkPolyData* mesh, vtkMatrix4x4* pose, int mode)
+bool vtkContextualAOVolumeMapper::Internals::UpdateMaps(
+  vtkContextualAOVolumeMapper* self, Frame& f, const std::vector<ClipPart>& parts)
 {
+  const bool several = parts.size() > 1;
+  vtkNew<vtkMatrix4x4> identity;
+  vtkMatrix4x4* pose = several ? identity.GetPointer() : parts[0].pose.GetPointer();
+  const int mode = parts[0].mode;
   const double smin = vtkCAO::MinimumScale(pose), smax = vtkCAO::MaximumScale(pose);
   if (!(smin > 0.0) || !std::isfinite(smax))
     return f.Fail("The clip pose must be an invertible affine transform.");
   ::MeshKey key;
-  key.mesh = mesh;
-  key.meshTime = mesh->GetMTime();
-  key.layers = self->NumberOfClipLayers;
+  key.mesh = parts[0].mesh;
+  key.meshTime = parts[0].mesh->GetMTime();
+  key.layers = several ? std::max(self->NumberOfClipLayers, static_cast<int>(parts.size()) + 1)
+                       : self->NumberOfClipLayers;
   key.pixelSize = self->ClipMapPixelSize;
   key.reach = this->Plan.reach;
   std::copy(f.spacing, f.spacing + 3, key.spacing);
+  if (several)
+    for (const ClipPart& part : parts)
+    {
+      key.shapes.push_back(static_cast<double>(reinterpret_cast<std::uintptr_t>(part.mesh)));
+      key.shapes.push_back(static_cast<double>(part.mesh->GetMTime()));
+      const std::vector<double> m = MatrixKey(part.pose);
+      key.shapes.insert(key.shapes.end(), m.begin(), m.end());
+      key.shapes.push_back(part.mode);
+    }
   // The maps are made for the pose's scale, 0.1% either side (so that a
   // rotation's singular values, 1 +- a few ulps, keep them), with pixels of
   // half a voxel in the world at that scale and the dilation of the world
@@ -734,7 +814,9 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateMaps(vtkContextualAOVolumeMap
   std::string error;
   const char* remake = nullptr;
   if (!this->HaveMesh || key != this->Mesh)
-    remake = "clip mesh changed";
+    remake = several && this->HaveMesh && key.shapes.size() == this->Mesh.shapes.size()
+      ? "clip shapes moved"
+      : "clip mesh changed";
   else if (smin < this->BuiltPoseScales[0] || smax > this->BuiltPoseScales[1])
     remake = "clip scale changed";
   else
@@ -761,8 +843,18 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateMaps(vtkContextualAOVolumeMap
   if (!vtkCAO::VolumeRegionInLocalFrame(f.input, pose, grow, region))
     return f.Fail("The clip pose must be an invertible affine transform.");
   vtkClipDepthMaps* maps = this->ClipDepthMaps;
-  maps->SetInputData(mesh);
-  maps->SetNumberOfLayers(self->NumberOfClipLayers);
+  maps->RemoveAllInputConnections(0);
+  maps->RemoveAllShapeSettings();
+  for (std::size_t i = 0; i < parts.size(); ++i)
+  {
+    maps->AddInputData(0, parts[i].mesh);
+    if (several)
+    {
+      maps->SetShapePose(static_cast<int>(i), parts[i].pose);
+      maps->SetShapeMode(static_cast<int>(i), parts[i].mode);
+    }
+  }
+  maps->SetNumberOfLayers(key.layers);
   maps->SetPixelSize(pixel);
   maps->SetReach(this->Plan.reach);
   maps->SetVoxelSpacing(f.spacing[0], f.spacing[1], f.spacing[2]);

@@ -232,6 +232,24 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Several clip shapes. AddClipShape adds a shape beside ClipShape, with
+   * its own mode (its mesh is its actor's mapper input). With any added
+   * shape the clip is the combination vtkClipDepthMaps makes of them all
+   * (ClipShape taking part with Mode): the union of the subtracting shapes,
+   * or, when any probes, the probes' intersection less the subtracting
+   * ones. The combination's maps live in the volume's frame, so moving any
+   * shape makes new maps (the frame report's "depth_maps" stage), and they
+   * get at least one depth layer per shape plus one. At most 32 shapes.
+   * RemoveAllClipShapes removes the added shapes (ClipShape stays).
+   */
+  void AddClipShape(vtkProp3D* shape, int mode = 0);
+  void RemoveAllClipShapes();
+  /// ClipShape (when set) and the added shapes.
+  int GetNumberOfClipShapes();
+  ///@}
+
+  ///@{
   /// The clip mesh (closed triangles, in the shape's local frame); overrides the actor's.
   virtual void SetClipMesh(vtkPolyData* mesh);
   vtkGetObjectMacro(ClipMesh, vtkPolyData);

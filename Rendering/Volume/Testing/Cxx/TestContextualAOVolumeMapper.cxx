@@ -236,6 +236,69 @@ void ClippedPose(const Options& o, Scene& s, const std::string& name, double x, 
   CheckAgainstFullRecompute(s, image, name);
 }
 
+/// Several clip shapes: the ClipShape sphere and three added shapes carve
+/// at once; moving one remakes the maps of the combination and updates the
+/// AO, equal to a full recompute; two probes keep their intersection.
+void Several(const Options& o, Scene& s)
+{
+  std::string error;
+  s.Shape("sphere", 12.0);
+  s.clip->SetPosition(33.0, 22.0, 48.0);
+  s.clip->SetOrientation(0.0, 0.0, 0.0);
+  const char* names[3] = { "cube", "torus", "sphere" };
+  const double sizes[3] = { 9.0, 12.0, 10.0 };
+  const double at[3][3] = { { 20.0, 40.0, 44.0 }, { 44.0, 40.0, 40.0 }, { 33.0, 33.0, 52.0 } };
+  std::vector<vtkSmartPointer<vtkActor>> added;
+  for (int i = 0; i < 3; ++i)
+  {
+    vtkNew<vtkPolyDataMapper> m;
+    m->SetInputData(vtkCAO::MakeShape(names[i], sizes[i], error));
+    added.push_back(vtkSmartPointer<vtkActor>::New());
+    added.back()->SetMapper(m);
+    added.back()->SetPosition(at[i][0], at[i][1], at[i][2]);
+    added.back()->SetOrientation(20.0 * i, 30.0, 0.0);
+    s.mapper->AddClipShape(added.back(), vtkContextualAOVolumeMapper::SUBTRACTION);
+  }
+  CAO_EXPECT(s.mapper->GetNumberOfClipShapes() == 4, "4 clip shapes, not %d",
+    s.mapper->GetNumberOfClipShapes());
+  const caotest::Image four = s.Frame();
+  CAO_EXPECT(s.mapper->GetLastFrameStages().find("depth_maps") != std::string::npos,
+    "several shapes: no maps made: %s", s.mapper->GetLastFrameStages().c_str());
+  Compare(o, four, "cao-several");
+  CheckAgainstFullRecompute(s, four, "cao-several");
+  // Move one added shape: new maps of the combination, a contextual update.
+  added[1]->SetPosition(40.0, 28.0, 36.0);
+  const caotest::Image moved = s.Frame();
+  const std::string report = s.mapper->GetLastFrameReport();
+  CAO_EXPECT(report.find("clip shapes moved") != std::string::npos &&
+      s.mapper->GetLastFrameStages().find("recompute") != std::string::npos,
+    "moving one of several shapes: %s", report.c_str());
+  CAO_EXPECT(caotest::DifferingPixels(four, moved) > 100, "moving a shape changed too little");
+  CheckAgainstFullRecompute(s, moved, "cao-several-moved");
+  // Nothing moved: nothing made (the first frame goes back from the full
+  // recompute to the contextual update).
+  s.Frame();
+  s.Frame();
+  CAO_EXPECT(s.mapper->GetLastFrameStages().find("depth_maps") == std::string::npos &&
+      s.mapper->GetLastFrameRecomputedVoxels() == 0,
+    "a still frame remade work: %s", s.mapper->GetLastFrameStages().c_str());
+  // Two probes: their intersection.
+  s.mapper->RemoveAllClipShapes();
+  s.mapper->SetModeToProbing();
+  s.Shape("sphere", 24.0);
+  s.clip->SetPosition(27.0, 33.0, 33.0);
+  added[2]->SetPosition(39.0, 33.0, 33.0);
+  added[2]->GetMapper()->SetInputDataObject(vtkCAO::MakeShape("sphere", 24.0, error));
+  s.mapper->AddClipShape(added[2], vtkContextualAOVolumeMapper::PROBING);
+  const caotest::Image lens = s.Frame();
+  Compare(o, lens, "cao-several-probe");
+  CheckAgainstFullRecompute(s, lens, "cao-several-probe");
+  s.mapper->RemoveAllClipShapes();
+  s.mapper->SetModeToSubtraction();
+  CAO_EXPECT(s.mapper->GetNumberOfClipShapes() == 1, "RemoveAllClipShapes left %d",
+    s.mapper->GetNumberOfClipShapes());
+}
+
 void Images(const Options& o)
 {
   const bool full = o.window == "egl"; // the X run repeats a subset
@@ -263,6 +326,7 @@ void Images(const Options& o)
       s.Shape("sphere", 24.0);
       ClippedPose(o, s, "cao-probe", 33.0, 33.0, 33.0);
       s.mapper->SetModeToSubtraction();
+      Several(o, s);
       // AO off: the plain image of the same pose (the paper's comparison).
       s.Shape("sphere", 15.0);
       s.clip->SetPosition(33.0, 24.0, 48.0);
