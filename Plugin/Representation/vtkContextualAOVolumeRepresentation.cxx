@@ -1,6 +1,7 @@
 #include "vtkContextualAOVolumeRepresentation.h"
 
 #include "vtkActor.h"
+#include "vtkAlgorithm.h"
 #include "vtkContextualAOVolumeMapper.h"
 #include "vtkObjectFactory.h"
 #include "vtkPVLODVolume.h"
@@ -83,6 +84,7 @@ void vtkContextualAOVolumeRepresentation::SetQualityPreset(int p)
 }
 void vtkContextualAOVolumeRepresentation::SetMode(int m)
 {
+  this->MeshesChanged = true; // meshes without their own mode follow it
   this->GetAOMapper()->SetMode(m);
 }
 void vtkContextualAOVolumeRepresentation::SetNumberOfClipLayers(int l)
@@ -102,6 +104,68 @@ void vtkContextualAOVolumeRepresentation::UpdateMapperParameters()
     data->GetPointData()->GetArray("AmbientOcclusion") &&
     data->GetFieldData()->GetAbstractArray("LAOSettings");
   mapper->SetAmbientOcclusionArrayName(upstream ? "AmbientOcclusion" : nullptr);
+  this->UpdateBuiltInShape(data);
+  if (this->MeshesChanged)
+  {
+    mapper->RemoveAllClipShapes();
+    for (std::size_t i = 0; i < this->MeshActors.size(); ++i)
+    {
+      const int mode = i < this->MeshModes.size() && this->MeshModes[i] >= 0
+        ? this->MeshModes[i]
+        : mapper->GetMode();
+      mapper->AddClipShape(this->MeshActors[i], mode);
+    }
+    this->MeshesChanged = false;
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkContextualAOVolumeRepresentation::AddClipMeshSource(vtkAlgorithm* source)
+{
+  if (!source)
+    return;
+  vtkNew<vtkPolyDataMapper> m;
+  m->SetInputConnection(source->GetOutputPort(0));
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(m);
+  this->MeshActors.push_back(actor);
+  this->MeshesChanged = true;
+  this->Modified();
+}
+
+void vtkContextualAOVolumeRepresentation::RemoveAllClipMeshSources()
+{
+  if (this->MeshActors.empty())
+    return;
+  this->MeshActors.clear();
+  this->MeshesChanged = true;
+  this->Modified();
+}
+
+void vtkContextualAOVolumeRepresentation::SetClipMeshMode(int index, int mode)
+{
+  if (index < 0 || index >= 32 || (mode != 0 && mode != 1))
+  {
+    vtkErrorMacro("SetClipMeshMode: mesh " << index << " must be 0 to 31 and mode " << mode
+                                           << " 0 (subtraction) or 1 (probing).");
+    return;
+  }
+  if (this->MeshModes.size() <= static_cast<std::size_t>(index))
+    this->MeshModes.resize(index + 1, -1);
+  this->MeshModes[index] = mode;
+  this->MeshesChanged = true;
+  this->Modified();
+}
+
+int vtkContextualAOVolumeRepresentation::GetNumberOfClipMeshSources() const
+{
+  return static_cast<int>(this->MeshActors.size());
+}
+
+//------------------------------------------------------------------------------
+void vtkContextualAOVolumeRepresentation::UpdateBuiltInShape(vtkImageData* data)
+{
+  vtkContextualAOVolumeMapper* mapper = this->GetAOMapper();
   if (this->ClipShape == NONE)
   {
     mapper->SetClipShape(nullptr);

@@ -16,7 +16,13 @@
 
 #include "caoParaViewRepresentationModule.h" // For export macro
 #include "vtkImageVolumeRepresentation.h"
-#include "vtkNew.h" // For members
+#include "vtkNew.h"          // For members
+#include "vtkSmartPointer.h" // For members
+
+#include <vector> // For members
+
+class vtkAlgorithm;
+class vtkImageData;
 
 class vtkActor;
 class vtkContextualAOVolumeMapper;
@@ -85,6 +91,23 @@ public:
   vtkGetMacro(UseInputAmbientOcclusion, bool);
   ///@}
 
+  ///@{
+  /**
+   * Closed meshes from the pipeline (an STL, a contour of a segmentation) as
+   * further clip shapes, in their world coordinates, beside the built-in
+   * shape: the clip is their combination (vtkContextualAOVolumeMapper::
+   * AddClipShape). The first output of each algorithm is the mesh. Mode i
+   * is that mesh's (0 subtraction, 1 probing); unset, the representation's
+   * Mode. At most 32 shapes in all. The algorithms are used in the
+   * process that renders (builtin sessions and pvserver, where data and
+   * render server are one).
+   */
+  void AddClipMeshSource(vtkAlgorithm* source);
+  void RemoveAllClipMeshSources();
+  void SetClipMeshMode(int index, int mode);
+  int GetNumberOfClipMeshSources() const;
+  ///@}
+
   /// The mapper, for its work report.
   vtkContextualAOVolumeMapper* GetAOMapper();
 
@@ -104,6 +127,12 @@ protected:
   double BuiltSize = 0.0;
   vtkNew<vtkActor> ClipActor;
   vtkNew<vtkPolyDataMapper> ClipMapper;
+  // The pipeline's clip meshes: an actor each (identity pose), and modes.
+  std::vector<vtkSmartPointer<vtkActor>> MeshActors;
+  std::vector<int> MeshModes;
+  bool MeshesChanged = false;
+  /// The built-in shape onto the mapper (or none).
+  void UpdateBuiltInShape(vtkImageData* data);
 
 private:
   vtkContextualAOVolumeRepresentation(const vtkContextualAOVolumeRepresentation&) = delete;

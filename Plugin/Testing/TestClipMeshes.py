@@ -1,0 +1,146 @@
+"""Closed meshes from the pipeline clip the representation (Clip Meshes),
+several at once, each with its own mode (Clip Mesh Modes), on HeadMR in
+pvpython:
+  - a Sphere source clips: the frame differs from the unclipped one, and
+    the mapper reports one clip shape;
+  - a Sphere and a Transform of a Box clip together: the frame differs from
+    the sphere alone; the mapper holds 2 shapes (+1 with the built-in
+    Clip Shape, 3);
+  - moving the upstream sphere (its Center) remakes the maps of the
+    combination and updates the AO, equal to a full recompute of the same
+    frame;
+  - two probing meshes keep their intersection: fewer volume pixels than
+    either probe alone;
+  - negative control: an open mesh (a Plane source) is refused with the
+    reason, and nothing crashes.
+
+  pvpython TestClipMeshes.py PLUGIN.so OUTPUT_DIR   (under run-with-xvfb.sh)"""
+import os
+import sys
+
+from paraview.simple import *  # noqa: F401,F403
+from paraview import servermanager
+from vtkmodules.vtkCommonCore import vtkOutputWindow, vtkStringOutputWindow
+from vtkmodules.vtkIOImage import vtkPNGReader
+from vtkmodules.util.numpy_support import vtk_to_numpy
+
+LoadPlugin(sys.argv[1], remote=False, ns=globals())
+import contextualao  # noqa: E402,F401  (wraps vtkContextualAOVolumeMapper)
+out = sys.argv[2]
+os.makedirs(out, exist_ok=True)
+failures = []
+
+
+def check(ok, what):
+    print(("ok: " if ok else "FAIL: ") + what)
+    if not ok:
+        failures.append(what)
+
+
+reader = OpenDataFile(os.path.join(os.environ["CAO_DATA_DIR"], "HeadMRVolume.mhd"))
+view = CreateView("RenderView")
+view.OrientationAxesVisibility = 0
+display = Show(reader, view)
+ColorBy(display, ("POINTS", "MetaImage"))
+display.SetRepresentationType("Contextual AO Volume")
+opacity = GetOpacityTransferFunction("MetaImage")
+opacity.Points = [0.0, 0.0, 0.5, 0.0, 40.0, 0.0, 0.5, 0.0, 90.0, 0.4, 0.5, 0.0, 255.0, 0.9, 0.5, 0.0]
+display.ClipShape = "None"
+view.ResetCamera()
+view.CameraPosition = [95.0, -400.0, 160.0]
+view.CameraFocalPoint = [95.0, 123.0, 82.0]
+view.CameraViewUp = [0.0, 0.0, 1.0]
+centre = [95.0, 123.0, 82.0]
+mapper = display.GetClientSideObject().GetActiveRepresentation().GetActor().GetMapper()
+
+
+def frame(name):
+    path = os.path.join(out, name + ".png")
+    SaveScreenshot(path, view, ImageResolution=[240, 240])
+    r = vtkPNGReader()
+    r.SetFileName(path)
+    r.Update()
+    return vtk_to_numpy(r.GetOutput().GetPointData().GetScalars()).astype(int)[:, :3]
+
+
+def changed(a, b):
+    return int((abs(a - b).sum(axis=1) > 6).sum())
+
+
+def volume_pixels(a):
+    return int((abs(a - a[0]).sum(axis=1) > 6).sum())
+
+
+plain = frame("plain")
+sphere = Sphere(Center=[centre[0], centre[1] - 60.0, centre[2]], Radius=45.0,
+                ThetaResolution=48, PhiResolution=48)
+display.ClipMeshes = [sphere]
+one = frame("sphere")
+check(changed(plain, one) > 300, "a pipeline sphere clips: %d pixels changed" % changed(plain, one))
+check(mapper.GetNumberOfClipShapes() == 1, "the mapper holds 1 shape (%d)" % mapper.GetNumberOfClipShapes())
+
+box = Box(XLength=60.0, YLength=60.0, ZLength=60.0)
+moved_box = Transform(Input=box)
+moved_box.Transform.Translate = [centre[0] + 40.0, centre[1] - 80.0, centre[2] + 40.0]
+moved_box.Transform.Rotate = [20.0, 30.0, 0.0]
+display.ClipMeshes = [sphere, moved_box]
+two = frame("sphere-box")
+check(changed(one, two) > 200, "a sphere and a transformed box clip together: %d pixels changed"
+      % changed(one, two))
+check(mapper.GetNumberOfClipShapes() == 2, "the mapper holds 2 shapes (%d)" % mapper.GetNumberOfClipShapes())
+display.ClipShape = "Sphere"
+display.ClipShapeSize = 20.0
+display.ClipPosition = [centre[0] - 40.0, centre[1] - 90.0, centre[2]]
+three = frame("sphere-box-builtin")
+check(mapper.GetNumberOfClipShapes() == 3 and changed(two, three) > 50,
+      "with the built-in shape, 3 shapes: %d pixels changed" % changed(two, three))
+
+# Moving the upstream sphere: new maps of the combination, AO updated, and
+# the frame equals a full recompute of the same pose.
+sphere.Center = [centre[0] - 10.0, centre[1] - 60.0, centre[2] + 15.0]
+moved = frame("moved")
+report = mapper.GetLastFrameReport()
+check("clip shapes moved" in report and "recompute" in mapper.GetLastFrameStages(),
+      "moving the upstream sphere remakes the maps and updates the AO: %s"
+      % mapper.GetLastFrameStages())
+mapper.SetAOUpdate(mapper.FULL_RECOMPUTE)
+view.StillRender()
+full = frame("moved-full")
+mapper.SetAOUpdate(mapper.CONTEXTUAL)
+check(changed(moved, full) == 0, "the contextual frame equals the full recompute (%d pixels differ)"
+      % changed(moved, full))
+
+# Two probes keep their intersection.
+display.ClipShape = "None"
+display.ClipMode = "Probing"
+big = Sphere(Center=[centre[0] - 25.0, centre[1], centre[2]], Radius=70.0,
+             ThetaResolution=48, PhiResolution=48)
+other = Sphere(Center=[centre[0] + 25.0, centre[1], centre[2]], Radius=70.0,
+               ThetaResolution=48, PhiResolution=48)
+display.ClipMeshes = [big]
+first = volume_pixels(frame("probe-a"))
+display.ClipMeshes = [other]
+second = volume_pixels(frame("probe-b"))
+display.ClipMeshes = [big, other]
+both = volume_pixels(frame("probe-ab"))
+check(0 < both < min(first, second) - 100,
+      "two probes keep their intersection: %d volume pixels, %d and %d for each" % (both, first, second))
+display.ClipMeshModes = [1, 0]  # the second now subtracts from the first
+less = volume_pixels(frame("probe-less"))
+check(0 < less < first - 100, "a probe less a subtracting mesh: %d pixels (%d probe alone)" % (less, first))
+
+# Negative control: an open mesh is refused with the reason.
+display.ClipMeshModes = []
+display.ClipMode = "Subtraction"
+errors = vtkStringOutputWindow()
+previous = vtkOutputWindow.GetInstance()
+vtkOutputWindow.SetInstance(errors)
+display.ClipMeshes = [Plane(Origin=[0, 0, 82], Point1=[200, 0, 82], Point2=[0, 250, 82], XResolution=4, YResolution=4)]
+frame("open")
+vtkOutputWindow.SetInstance(previous)
+text = errors.GetOutput()
+check("open" in text and "closed" in text, "an open mesh is refused with the reason: %s"
+      % " ".join(text.split())[:300])
+print("%d failure(s)" % len(failures))
+sys.stdout.flush()
+os._exit(1 if failures else 0)  # (teardown under Xvfb: see TestSameLook.py)
