@@ -251,6 +251,11 @@ int vtkLocalAmbientOcclusion::RequestData(
     return 0;
 
   // 1. The settings in effect and their plan.
+  const std::string overridden = cao::PresetOverrides(this->Internal->Settings);
+  if (!overridden.empty())
+    vtkWarningMacro("QualityPreset " << cao::QualityPresetName(this->Internal->Settings.preset)
+                                     << " overrides " << overridden
+                                     << "; set QualityPreset to Custom (0) to use them.");
   const cao::VolumeGeometry geometry = vtkCAO::GeometryOf(input);
   const cao::LAOSettings settings =
     cao::ResolveLAOSettings(this->Internal->Settings, geometry.spacing);

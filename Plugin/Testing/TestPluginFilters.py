@@ -63,14 +63,15 @@ def range_domain(proxy, name):
     return proxy.GetProperty(name).SMProperty.FindDomain("vtkSMDoubleRangeDomain")
 
 
-check(list(lao.GetProperty("QualityPreset").Available) == PRESETS and lao.QualityPreset == "Custom",
-      "QualityPreset: Custom, Interactive, Balanced, Reference; default Custom (%s)"
+check(list(lao.GetProperty("QualityPreset").Available) == PRESETS and lao.QualityPreset == "Interactive",
+      "QualityPreset: Custom, Interactive, Balanced, Reference; default Interactive (%s)"
       % lao.QualityPreset)
-check(list(lao.GetProperty("RayVariation").Available) == VARIATIONS and lao.RayVariation == "None",
-      "RayVariation: None, Rotate, Jitter, Rotate + Jitter; default None (%s)" % lao.RayVariation)
+check(list(lao.GetProperty("RayVariation").Available) == VARIATIONS and lao.RayVariation == "Rotate",
+      "RayVariation: None, Rotate, Jitter, Rotate + Jitter; default Rotate, the Interactive "
+      "preset's (%s)" % lao.RayVariation)
 density, offset = range_domain(lao, "SampleDensity"), range_domain(lao, "StartOffset")
-check(lao.SampleDensity == 1.0 and density is not None and density.GetMinimum(0) == 0.001,
-      "SampleDensity: default 1, at least 0.001 (%s)" % lao.SampleDensity)
+check(lao.SampleDensity == 2.0 and density is not None and density.GetMinimum(0) == 0.001,
+      "SampleDensity: default 2 (the Interactive preset's), at least 0.001 (%s)" % lao.SampleDensity)
 check(lao.StartOffset == 0.5 and offset is not None and offset.GetMinimum(0) == 0.0 and
       offset.GetMaximum(0) == 0.999, "StartOffset: default 0.5, in [0, 0.999] (%s)" % lao.StartOffset)
 
@@ -87,9 +88,9 @@ if rep is not None:
     check(all(rep.GetProperty(n) is not None and rep.GetProperty(n).GetDocumentation() for n in names),
           "the representation has documented %s" % (names,))
     check(entries("AOQualityPreset") == PRESETS and entries("AORayVariation") == VARIATIONS and
-          rep.GetProperty("AOQualityPreset").GetElement(0) == 0 and
-          rep.GetProperty("AORayVariation").GetElement(0) == 0 and
-          rep.GetProperty("AOSampleDensity").GetElement(0) == 1.0 and
+          rep.GetProperty("AOQualityPreset").GetElement(0) == 1 and
+          rep.GetProperty("AORayVariation").GetElement(0) == 1 and
+          rep.GetProperty("AOSampleDensity").GetElement(0) == 2.0 and
           rep.GetProperty("AOStartOffset").GetElement(0) == 0.5,
           "the representation's quality enumerations and defaults")
     rep.GetProperty("AOQualityPreset").SetElement(0, 2)
@@ -286,23 +287,24 @@ def lao_parameters(image):
             if a.GetComponentName(c) != "Milliseconds"} if a else {}
 
 
-custom_params = lao_parameters(servermanager.Fetch(lao))
-check(len(custom_params) == 11 and custom_params["QualityPreset"] == 0,
-      "the LAO proxy's LAOSettings: 12 components, custom (%s)" % custom_params)
-lao.QualityPreset = "Interactive"
+default_params = lao_parameters(servermanager.Fetch(lao))
+check(len(default_params) == 11 and default_params["QualityPreset"] == 1,
+      "the LAO proxy's LAOSettings: 12 components, the default Interactive preset (%s)"
+      % default_params)
+lao.QualityPreset = "Balanced"
 lao.UpdatePipeline()
 pv_preset = servermanager.Fetch(lao)
-v_lao.SetQualityPresetToInteractive()
+v_lao.SetQualityPresetToBalanced()
 v_lao.Update()
 pv_params, v_params = lao_parameters(pv_preset), lao_parameters(v_lao.GetOutput())
-check(pv_params == v_params and pv_params["QualityPreset"] == 1 and pv_params != custom_params,
-      "QualityPreset Interactive changes the proxy's LAOSettings as the VTK filter's: %s"
+check(pv_params == v_params and pv_params["QualityPreset"] == 2 and pv_params != default_params,
+      "QualityPreset Balanced changes the proxy's LAOSettings as the VTK filter's: %s"
       % pv_params)
 a = pv_preset.GetPointData().GetArray("AmbientOcclusion")
 b = v_lao.GetOutput().GetPointData().GetArray("AmbientOcclusion")
 check(a is not None and a.GetNumberOfTuples() == b.GetNumberOfTuples() and
       all(a.GetValue(i) == b.GetValue(i) for i in range(a.GetNumberOfTuples())),
-      "the Interactive AO equals the VTK filter's value for value")
+      "the Balanced AO equals the VTK filter's value for value")
 
 print("%d failure(s)" % len(failures))
 sys.exit(1 if failures else 0)

@@ -68,20 +68,21 @@ VOLUME: .vti, .mhd/.mha, .slc, legacy .vtk, .nii/.nii.gz
 common options:
   --rays LIST          ray patterns: 6, 14, 26, 54, rubiks54 (the paper's
                        54 rays, jittered) or fib:K (K = 1 to 65536); carve
-                       takes a comma list and runs each (default 26)
+                       takes a comma list and runs each (default 6)
   --reach R            ray length in world units (default 8 voxels)
   --samples M          samples per ray, 1 to 65536 (default: --density per voxel)
   --density D          samples per smallest voxel spacing when --samples is
-                       not given (default 1; 0.001 to 1000)
+                       not given (default 2; 0.001 to 1000)
   --offset F           start offset of the samples along a ray, in steps,
                        in [0, 1) (default 0.5: mid-step; 0 is the paper's march)
-  --variation NAME     per-voxel ray variation: none (default), rotate,
+  --variation NAME     per-voxel ray variation: none, rotate (default),
                        jitter or rotate+jitter (interleaved 2x2x2)
-  --quality NAME       LAO quality preset: custom (default: the options
-                       above apply), interactive, balanced or reference; a
-                       preset sets the rays, samples, density, offset and
-                       variation (so it is not combined with those options);
-                       --reach still applies
+  --quality NAME       LAO quality preset: interactive (the default, equal
+                       to the defaults above), balanced, reference or
+                       custom; a preset sets the rays, samples, density,
+                       offset and variation (so it is not combined with
+                       those options; giving any of them without --quality
+                       means custom); --reach still applies
   --opacity S,A,...    opacity transfer function points (scalar, opacity);
                        default: 0 up to 25% of the scalar range, then a ramp
                        to 0.8 at its maximum
@@ -133,7 +134,7 @@ struct Options
 {
   std::string command, volume, output, arrayName, mesh, posesFile, shape = "sphere",
                                                                     mode = "subtract";
-  std::vector<std::string> rays{ "26" };
+  std::vector<std::string> rays{ cao::RayPatternName(cao::LAOSettings().pattern) };
   std::vector<double> opacity;
   std::vector<std::string> poseTexts;
   double reach = 0.0, unitDistance = 1.0, size = 0.0, pixelSize = 0.0;

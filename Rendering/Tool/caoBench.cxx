@@ -854,6 +854,7 @@ void Bench::Configure(vtkLocalAmbientOcclusion* lao, const std::string& pattern,
   lao->SetInputData(image);
   lao->SetOpacityFunction(tf);
   lao->SetScalarOpacityUnitDistance(1.0);
+  lao->SetQualityPresetToCustom(); // the sweep sets every setting
   lao->SetRayPattern(static_cast<int>(p));
   lao->SetNumberOfRays(k);
   lao->SetReach(reach);
@@ -1085,7 +1086,8 @@ int Bench::Contextual()
   // The same rays on the exactly clipped opacity (float, as the filters):
   // the error the depth maps and the anti-aliasing add, alone.
   cao::LAOSettings balanced;
-  cao::ApplyQualityPreset(cao::QualityPreset::Balanced, balanced);
+  balanced.preset = cao::QualityPreset::Balanced;
+  cao::ApplyQualityPreset(balanced.preset, balanced);
   balanced.reach = reach;
   std::vector<double> exactClipAO(static_cast<std::size_t>(voxels), 1.0);
   {

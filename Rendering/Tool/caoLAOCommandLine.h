@@ -25,6 +25,7 @@ struct LAOCommandLine
   /// The first option given that a quality preset overrides (--rays,
   /// --samples, --density, --offset, --variation), for the conflict check.
   std::string overridden;
+  bool qualityGiven = false; ///< --quality was given (else the default preset)
 };
 
 /// Limits, as vtkLocalAmbientOcclusion's and vtkContextualAOVolumeMapper's.
@@ -50,6 +51,7 @@ inline bool TakeLAOOption(
   const std::string v = argv[++i];
   if (a == "--quality")
   {
+    o.qualityGiven = true;
     if (!cao::ParseQualityPreset(v, o.settings.preset))
       error = "bad quality preset '" + v + "' for --quality (expected custom, interactive, "
                                            "balanced or reference)";
@@ -92,9 +94,12 @@ inline void NoteOverridden(LAOCommandLine& o, const std::string& option)
 }
 
 /// After parsing: a preset other than custom fixes the settings that the
-/// individual options set, so giving both is an error.
-inline bool CheckLAOCommandLine(const LAOCommandLine& o, std::string& error)
+/// individual options set, so giving both is an error; giving them without
+/// --quality means custom (the default preset steps aside).
+inline bool CheckLAOCommandLine(LAOCommandLine& o, std::string& error)
 {
+  if (!o.qualityGiven && !o.overridden.empty())
+    o.settings.preset = cao::QualityPreset::Custom;
   if (o.settings.preset != cao::QualityPreset::Custom && !o.overridden.empty())
   {
     error = std::string("--quality ") + cao::QualityPresetName(o.settings.preset) +

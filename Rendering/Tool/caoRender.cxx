@@ -59,16 +59,18 @@ render options:
   --preset NAME        built-in transfer function: warm (default), bone, cool, grayscale
   --preset-file FILE   a ParaView colour-map preset (.json); --preset picks a name in it
   --absolute           use the preset's values as they are (default: rescale to the data)
-  --rays P             LAO ray pattern: 6, 14, 26 (default), 54, rubiks54 or
+  --rays P             LAO ray pattern: 6 (default), 14, 26, 54, rubiks54 or
                        fib:K (K = 1 to 65536)
   --reach R            LAO reach in world units (default 8 voxels)
-  --density D          LAO samples per smallest voxel spacing (default 1)
+  --density D          LAO samples per smallest voxel spacing (default 2)
   --offset F           LAO sample start offset in steps, in [0, 1) (default 0.5)
-  --variation NAME     LAO ray variation: none (default), rotate, jitter or
+  --variation NAME     LAO ray variation: none, rotate (default), jitter or
                        rotate+jitter
-  --quality NAME       LAO quality preset: custom (default), interactive,
-                       balanced or reference (sets the rays, density, offset
-                       and variation; not combined with those options).
+  --quality NAME       LAO quality preset: interactive (the default, equal to
+                       the defaults above), balanced, reference or custom
+                       (a preset sets the rays, density, offset and
+                       variation; not combined with those options, and any
+                       of them without --quality means custom).
                        Not to be confused with --preset, the colours
   --ao-strength S      0..1 (default 1); --no-ao renders without AO
   --ao-calibration C   half-space (default: per voxel (AO - 1/M) / (H - 1/M),
@@ -89,7 +91,8 @@ namespace
 struct RenderOptions
 {
   std::string volume, output = "cao-frame_%03d.png", preset, presetFile, shape = "sphere", mesh,
-                      posesFile, mode = "subtract", window = "auto", rays = "26";
+                      posesFile, mode = "subtract", window = "auto",
+                      rays = cao::RayPatternName(cao::LAOSettings().pattern);
   std::vector<std::string> poseTexts;
   int width = 512, height = 512, path = 12, layers = 2, aa = 16,
       calibration = 1; // vtkContextualAOVolumeMapper::AO_CALIBRATION_HALF_SPACE

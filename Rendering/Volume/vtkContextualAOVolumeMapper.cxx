@@ -541,6 +541,11 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateVolume(
   if (this->HaveVolume && key == this->Volume && (!ao || f.engine->HasPrecomputed()))
     return true;
   this->HaveVolume = false;
+  const std::string overridden = ao && !givenAO ? cao::PresetOverrides(this->Settings) : "";
+  if (!overridden.empty())
+    vtkWarningWithObjectMacro(self,
+      "QualityPreset " << cao::QualityPresetName(this->Settings.preset) << " overrides "
+                       << overridden << "; set QualityPreset to Custom (0) to use them.");
   if (!this->UploadVolume(self, f, givenAO))
     return false;
   ++this->PrecomputeGeneration;

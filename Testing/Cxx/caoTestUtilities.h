@@ -1,6 +1,8 @@
 // Minimal checking helpers shared by the kernel unit tests.
 #ifndef caoTestUtilities_h
 #define caoTestUtilities_h
+#include "caoLAOSettings.h"
+
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -20,6 +22,20 @@
 
 namespace caotest
 {
+/// Explicit LAO settings the kernel tests state their cases in: Custom
+/// (no preset), 26 rays, one sample per voxel, offset 0.5, no variation.
+/// (The product's defaults are the Interactive preset; the tests set what
+/// they measure.)
+inline cao::LAOSettings ExplicitSettings()
+{
+  cao::LAOSettings s;
+  s.preset = cao::QualityPreset::Custom;
+  s.pattern = cao::RayPattern::Rays26;
+  s.sampleDensity = 1.0;
+  s.variation = cao::RayVariation::None;
+  return s;
+}
+
 /// A closed, outward UV sphere of radius r (n segments around, n/2 rings).
 inline void UVSphere(double r, int n, std::vector<double>& points, std::vector<std::int64_t>& tris)
 {

@@ -186,8 +186,20 @@ if rc == 0:
         check(np.array_equal(preset_ao, hand_ao),
               "--quality interactive equals its settings given by hand, voxel for voxel")
     rc, out, err = run("lao", neghip, "--reach", "4", "-o", os.path.join(tmp, "default.vti"))
-    check(rc == 0 and not np.array_equal(preset_ao, lao_field(os.path.join(tmp, "default.vti"))[1]),
-          "--quality interactive differs from the default settings")
+    check(rc == 0 and np.array_equal(preset_ao, lao_field(os.path.join(tmp, "default.vti"))[1])
+          and lao_field(os.path.join(tmp, "default.vti"))[0]["QualityPreset"] == 1,
+          "the default is --quality interactive, voxel for voxel")
+    rc, out, err = run("lao", neghip, "--reach", "4", "--rays", "26", "--density", "1",
+                       "--variation", "none", "-o", os.path.join(tmp, "old-default.vti"))
+    old_params, old_ao = lao_field(os.path.join(tmp, "old-default.vti")) if rc == 0 else ({}, None)
+    check(rc == 0 and old_params.get("QualityPreset") == 0 and old_params.get("RayPattern") == 2
+          and not np.array_equal(preset_ao, old_ao),
+          "--rays 26 --density 1 --variation none without --quality: custom, the old default, "
+          "another AO")
+    rc, out, err = run("lao", neghip, "--reach", "4", "--quality", "balanced", "--rays", "26",
+                       "-o", os.path.join(tmp, "conflict.vti"))
+    check(rc == 2 and "cannot be combined with --rays" in err,
+          f"--quality with --rays is refused: rc={rc} {err.strip()[:160]}")
 # carve with a preset: the contextual AO is still exact.
 rc, out, err = run("carve", neghip, "--quality", "balanced", "--reach", "4", "--path", "3",
                    "--verify", "--json")

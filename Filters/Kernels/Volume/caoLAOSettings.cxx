@@ -57,7 +57,7 @@ struct PresetSettings
 // Reference: 100 Fibonacci rays, 4 samples per voxel.
 // All mid-step (start offset 0.5).
 constexpr PresetSettings Presets[] = {
-  { RayPattern::Rays6, 6, 2.0, RayVariation::Rotate },
+  { RayPattern::Rays6, 64, 2.0, RayVariation::Rotate },
   { RayPattern::Rays14, 14, 4.0, RayVariation::None },
   { RayPattern::Fibonacci, 100, 4.0, RayVariation::None },
 };
@@ -75,6 +75,35 @@ void ApplyQualityPreset(QualityPreset preset, LAOSettings& s)
   s.startOffset = 0.5;
   s.variation = p.variation;
   s.samples = 0;
+}
+
+std::string PresetOverrides(const LAOSettings& s)
+{
+  if (s.preset == QualityPreset::Custom)
+    return std::string();
+  // What the preset replaces, among the settings changed from the defaults
+  // (a setting left at its default was not asked for).
+  LAOSettings p = s;
+  ApplyQualityPreset(s.preset, p);
+  const LAOSettings d;
+  std::ostringstream out;
+  auto note = [&out](const char* name, double value) {
+    out << (out.tellp() > 0 ? ", " : "") << name << " " << value;
+  };
+  if (s.pattern != p.pattern && s.pattern != d.pattern)
+    note("RayPattern", static_cast<int>(s.pattern));
+  if (s.pattern == RayPattern::Fibonacci && s.fibonacciRays != p.fibonacciRays &&
+    s.fibonacciRays != d.fibonacciRays)
+    note("NumberOfRays", s.fibonacciRays);
+  if (s.samples != p.samples && s.samples != d.samples)
+    note("NumberOfSamples", s.samples);
+  if (s.sampleDensity != p.sampleDensity && s.sampleDensity != d.sampleDensity)
+    note("SampleDensity", s.sampleDensity);
+  if (s.startOffset != p.startOffset && s.startOffset != d.startOffset)
+    note("StartOffset", s.startOffset);
+  if (s.variation != p.variation && s.variation != d.variation)
+    note("RayVariation", static_cast<int>(s.variation));
+  return out.str();
 }
 
 const char* QualityPresetName(QualityPreset preset)
@@ -154,14 +183,14 @@ namespace
 {
 constexpr double Unbounded = std::numeric_limits<double>::infinity();
 constexpr LAOSettingInfo Table[] = {
-  { "RayPattern", 2, 0, 5, true },
+  { "RayPattern", 0, 0, 5, true },
   { "NumberOfRays", 64, 1, LAOLimits::MaxRays, true },
   { "Reach", 0, 0, Unbounded, false },
   { "NumberOfSamples", 0, 0, LAOLimits::MaxSamples, true },
-  { "SampleDensity", 1, LAOLimits::MinSampleDensity, LAOLimits::MaxSampleDensity, false },
+  { "SampleDensity", 2, LAOLimits::MinSampleDensity, LAOLimits::MaxSampleDensity, false },
   { "StartOffset", 0.5, 0, 0.999, false },
-  { "RayVariation", 0, 0, 3, true },
-  { "QualityPreset", 0, 0, 3, true },
+  { "RayVariation", 1, 0, 3, true },
+  { "QualityPreset", 1, 0, 3, true },
 };
 }
 

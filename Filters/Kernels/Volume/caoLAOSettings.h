@@ -71,7 +71,11 @@ const char* QualityPresetName(QualityPreset preset);
 bool ParseQualityPreset(const std::string& text, QualityPreset& preset);
 
 /**
- * The LAO settings; reach in world units. Defaults are the product's.
+ * The LAO settings; reach in world units. Defaults are the product's: the
+ * Interactive preset, a point on the measured accuracy front (README,
+ * "The presets"), with the individual settings equal to that preset's, so
+ * that switching to Custom starts from the same point. (Before: 26 rays,
+ * one sample per voxel, off the front.)
  *  - reach 0: 8 times the smallest voxel spacing (ResolveLAOSettings);
  *  - samples 0: `sampleDensity` samples per smallest voxel spacing,
  *    max(1, round(density * R / h_min));
@@ -84,14 +88,14 @@ bool ParseQualityPreset(const std::string& text, QualityPreset& preset);
  */
 struct LAOSettings
 {
-  RayPattern pattern = RayPattern::Rays26;
+  RayPattern pattern = RayPattern::Rays6;
   int fibonacciRays = 64;
   double reach = 0.0;
   int samples = 0;
-  double sampleDensity = 1.0;
+  double sampleDensity = 2.0;
   double startOffset = 0.5;
-  RayVariation variation = RayVariation::None;
-  QualityPreset preset = QualityPreset::Custom;
+  RayVariation variation = RayVariation::Rotate;
+  QualityPreset preset = QualityPreset::Interactive;
 };
 
 inline bool operator==(const LAOSettings& a, const LAOSettings& b)
@@ -127,6 +131,13 @@ LAOSettings ResolveLAOSettings(const LAOSettings& settings, const double spacing
 /// Overwrite the pattern, Fibonacci count, sample density, start offset and
 /// variation with the preset's (samples reset to 0). Custom changes nothing.
 void ApplyQualityPreset(QualityPreset preset, LAOSettings& settings);
+
+/// The individual settings, changed from their defaults, that a preset
+/// other than Custom overrides with other values ("RayPattern 2,
+/// NumberOfSamples 4"; the Fibonacci count only for that pattern), or ""
+/// when there are none: what a warning tells a user who set them and kept a
+/// preset.
+std::string PresetOverrides(const LAOSettings& settings);
 
 /**
  * The settings by name, one row each, in the order of the field array that

@@ -39,6 +39,8 @@ vtkSmartPointer<vtkFloatArray> LAO(vtkImageData* image, int pattern, double reac
   vtkNew<vtkLocalAmbientOcclusion> lao;
   if (events)
     events->Watch(lao);
+  lao->SetQualityPresetToCustom(); // the cases state their settings
+  lao->SetRayVariationToNone();
   lao->SetStartOffset(offset);
   lao->SetInputData(image);
   lao->SetOpacityFunction(tf);
@@ -131,6 +133,8 @@ int TestAmbientOcclusionHardCases(int argc, char* argv[])
     vtkNew<vtkLocalAmbientOcclusion> lao;
     lao->SetInputData(neghip);
     lao->SetOpacityFunction(tf);
+    lao->SetQualityPresetToCustom();
+    lao->SetRayVariationToNone();
     lao->SetRayPattern(R6);
     lao->SetReach(1000.0);
     lao->SetNumberOfSamples(16);

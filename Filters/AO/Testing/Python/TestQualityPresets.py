@@ -69,6 +69,7 @@ def lao_filter(**settings):
     f.SetOpacityFunction(tf)
     f.SetReach(REACH)
     f.SetBackendToCPU()
+    f.SetQualityPresetToCustom()  # the individual settings apply (unless given a preset)
     for name, value in settings.items():
         getattr(f, "Set" + name)(value)
     return f
@@ -78,8 +79,11 @@ def lao_filter(**settings):
 # make the update fail with an error that states the limit (they used to be
 # clamped, or, for the reach, silently replaced by the default).
 f = LAO()
-check((f.GetSampleDensity(), f.GetStartOffset(), f.GetRayVariation(), f.GetQualityPreset())
-      == (1.0, 0.5, LAO.NONE, LAO.CUSTOM), "defaults: density 1, offset 0.5, no variation, custom")
+check((f.GetRayPattern(), f.GetSampleDensity(), f.GetStartOffset(), f.GetRayVariation(),
+       f.GetQualityPreset())
+      == (LAO.RAYS_6, 2.0, 0.5, LAO.ROTATE, LAO.INTERACTIVE),
+      "defaults: the Interactive preset, the individual settings equal to its (6 rays, density 2, "
+      "offset 0.5, rotate)")
 errors = []
 for name, value, limit in (("StartOffset", 1.5, "[0, 1)"), ("SampleDensity", -1.0, "0.001 to 1000"),
                            ("RayVariation", 7, "unknown ray variation"),
@@ -104,7 +108,8 @@ f.SetQualityPresetToBalanced()
 check((f.GetRayVariation(), f.GetQualityPreset()) == (LAO.ROTATE, LAO.BALANCED),
       "SetRayVariationTo... and SetQualityPresetTo...")
 
-custom = lao_filter()
+# The defaults before the Interactive preset: 26 rays, one sample per voxel.
+custom = lao_filter(RayPattern=LAO.RAYS_26, SampleDensity=1.0, RayVariation=LAO.NONE)
 custom.Update()
 custom_ao = ao_of(custom.GetOutput())
 p = parameters(custom.GetOutput())
@@ -118,7 +123,50 @@ check(list(p) == SETTING_NAMES
       == (LAO.RAYS_26, 0.5, LAO.NONE, LAO.CUSTOM, REACH),
       "LAOSettings names every setting, the custom settings in effect: %s" % p)
 
-# Each preset equals its own settings set by hand, and is not the default.
+# The default filter is the Interactive preset, bit for bit, and equal to
+# Custom with the individual defaults.
+default = LAO()
+default.SetInputData(volume)
+default.SetOpacityFunction(tf)
+default.SetReach(REACH)
+default.SetBackendToCPU()
+default.Update()
+interactive = lao_filter(QualityPreset=LAO.INTERACTIVE)
+interactive.Update()
+custom_defaults = lao_filter()
+custom_defaults.Update()
+check(parameters(default.GetOutput())["QualityPreset"] == LAO.INTERACTIVE
+      and np.array_equal(ao_of(default.GetOutput()), ao_of(interactive.GetOutput()))
+      and np.array_equal(ao_of(default.GetOutput()), ao_of(custom_defaults.GetOutput())),
+      "the default is the Interactive preset, equal to Custom with the individual defaults")
+# A setting the default preset overrides is named in a warning.
+default.SetRayPattern(LAO.RAYS_26)
+window = vtkStringOutputWindow()
+vtkOutputWindow.SetInstance(window)
+default.Update()
+vtkOutputWindow.SetInstance(None)
+check("QualityPreset interactive overrides RayPattern 2" in window.GetOutput()
+      and "Custom (0)" in window.GetOutput(),
+      "a ray pattern set under the default preset is reported as overridden: %r"
+      % " ".join(window.GetOutput().split())[:200])
+check(np.array_equal(ao_of(default.GetOutput()), ao_of(interactive.GetOutput())),
+      "... and does not change the AO")
+# Negative control: another preset over settings left at their defaults
+# (what ParaView pushes) warns of nothing.
+quiet = LAO()
+quiet.SetInputData(volume)
+quiet.SetOpacityFunction(tf)
+quiet.SetReach(REACH)
+quiet.SetBackendToCPU()
+quiet.SetQualityPresetToBalanced()
+window = vtkStringOutputWindow()
+vtkOutputWindow.SetInstance(window)
+quiet.Update()
+vtkOutputWindow.SetInstance(None)
+check("overrides" not in window.GetOutput(),
+      "a preset over default settings warns of nothing: %r" % window.GetOutput()[:200])
+
+# Each preset equals its own settings set by hand, and is not the old default.
 for preset, name in ((LAO.INTERACTIVE, "interactive"), (LAO.BALANCED, "balanced"),
                      (LAO.REFERENCE, "reference")):
     # NumberOfSamples and the other individual settings are ignored under a preset.
@@ -141,11 +189,11 @@ for preset, name in ((LAO.INTERACTIVE, "interactive"), (LAO.BALANCED, "balanced"
           "%s: bit-identical to its settings by hand (pattern %d, %d rays, %d samples, offset %g, "
           "variation %d)" % (name, p["RayPattern"], p["Rays"], p["NumberOfSamples"], p["StartOffset"],
                              p["RayVariation"]))
-    check(not np.array_equal(got, custom_ao), "%s: differs from the custom defaults" % name)
+    check(not np.array_equal(got, custom_ao), "%s: differs from 26 rays at one sample per voxel" % name)
 
 # Re-execution: a new preset re-executes the filter, the same one does not.
 runs = [0]
-f = lao_filter()
+f = lao_filter(RayPattern=LAO.RAYS_26, SampleDensity=1.0, RayVariation=LAO.NONE)
 f.AddObserver("StartEvent", lambda *_: runs.__setitem__(0, runs[0] + 1))
 f.Update()
 f.SetQualityPreset(LAO.INTERACTIVE)
@@ -237,6 +285,9 @@ check(v is not None and v.GetComponent(0, 1) > 0,
       "%s differing voxels)" % (v.GetComponent(0, 1) if v else None))
 # An 8-component array of an LAO without offset or variation is still exact.
 plain = LAO()
+plain.SetQualityPresetToCustom()
+plain.SetSampleDensity(1.0)
+plain.SetRayVariationToNone()
 plain.SetInputConnection(neghip.GetOutputPort())
 plain.SetOpacityFunction(ntf)
 plain.SetReach(4.0)
@@ -283,7 +334,7 @@ direct.SetRayVariation(LAO.ROTATE)
 direct.Update()
 p = parameters(direct.GetOutput())
 check((direct.GetStartOffset(), direct.GetRayVariation(), direct.GetSampleDensity()) ==
-      (0.5, LAO.ROTATE, 1.0) and (p["StartOffset"], p["RayVariation"], p["QualityPreset"]) ==
+      (0.5, LAO.ROTATE, 2.0) and (p["StartOffset"], p["RayVariation"], p["QualityPreset"]) ==
       (0.5, LAO.ROTATE, LAO.CUSTOM) and direct.GetPrecomputeCount() == 2,
       "forwarded StartOffset and RayVariation reach the internal LAO")
 
@@ -296,6 +347,7 @@ def hydrogen_lao():
     htf.AddPoint(0.05, 0.1)
     htf.AddPoint(0.4, 0.9)
     f = LAO()
+    f.SetQualityPresetToCustom()
     f.SetInputConnection(reader.GetOutputPort())
     f.SetOpacityFunction(htf)
     f.SetReach(4.0)

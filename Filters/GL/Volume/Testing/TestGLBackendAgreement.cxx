@@ -32,7 +32,7 @@ int TestGLBackendAgreement(int argc, char* argv[])
 
   cao::VolumeGeometry geometry;
   std::copy(dims, dims + 3, geometry.dims);
-  cao::LAOSettings settings;
+  cao::LAOSettings settings = caotest::ExplicitSettings();
   settings.pattern = cao::RayPattern::Rays26;
   settings.reach = 4.0;
   cao::LAOPlan plan;

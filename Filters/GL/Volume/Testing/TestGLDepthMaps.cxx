@@ -379,7 +379,7 @@ int TestGLDepthMaps(int argc, char* argv[])
     upload.opacityTable = table;
     cao::VolumeGeometry geometry;
     std::copy(dims, dims + 3, geometry.dims);
-    cao::LAOSettings settings;
+    cao::LAOSettings settings = caotest::ExplicitSettings();
     settings.pattern = cao::RayPattern::Rays6;
     settings.reach = 3.0;
     cao::LAOPlan plan;

@@ -103,7 +103,7 @@ bool Prepare(Setup& s, std::string& error)
   caogltest::MakeBlobVolume(s.dims, s.scalars, s.table, s.opacity);
   cao::VolumeGeometry g;
   std::copy(s.dims, s.dims + 3, g.dims);
-  cao::LAOSettings settings;
+  cao::LAOSettings settings = caotest::ExplicitSettings();
   settings.pattern = cao::RayPattern::Rays6;
   settings.reach = 2.0;
   return cao::BuildLAOPlan(g, settings, s.plan, error) &&

@@ -64,7 +64,7 @@ int TestHalfSpaceAO(int, char*[])
     for (cao::RayVariation variation : variations)
       for (double offset : { 0.0, 0.5 })
       {
-        cao::LAOSettings s;
+        cao::LAOSettings s = caotest::ExplicitSettings();
         s.pattern = pattern;
         s.fibonacciRays = 40;
         s.reach = 4.5;
@@ -93,7 +93,7 @@ int TestHalfSpaceAO(int, char*[])
     cao::VolumeGeometry unit;
     for (int d = 0; d < 3; ++d)
       unit.dims[d] = 25;
-    cao::LAOSettings s;
+    cao::LAOSettings s = caotest::ExplicitSettings();
     s.pattern = cao::RayPattern::Rays6;
     s.reach = 8.0;
     cao::LAOPlan plan;

@@ -78,7 +78,7 @@ int TestLAOKernel(int, char*[])
     { cao::RayPattern::Fibonacci, 37, 6.0, 9 } };
   for (const Case& c : cases)
   {
-    cao::LAOSettings s;
+    cao::LAOSettings s = caotest::ExplicitSettings();
     s.pattern = c.pattern;
     s.fibonacciRays = c.fib;
     s.reach = c.reach;
@@ -130,7 +130,7 @@ int TestLAOKernel(int, char*[])
   }
 
   // Closed forms.
-  cao::LAOSettings s;
+  cao::LAOSettings s = caotest::ExplicitSettings();
   s.pattern = cao::RayPattern::Rays14;
   s.reach = 3.0;
   s.samples = 3;

@@ -37,7 +37,7 @@ int TestLAOVariations(int, char*[])
         variation == cao::RayVariation::Jitter || variation == cao::RayVariation::RotateJitter;
       if (jitter && offset != 0.0)
         continue; // jitter replaces the constant offset with its own
-      cao::LAOSettings s;
+      cao::LAOSettings s = caotest::ExplicitSettings();
       s.pattern = cao::RayPattern::Rays14;
       s.reach = 4.5;
       s.variation = variation;
@@ -126,7 +126,7 @@ int TestLAOVariations(int, char*[])
   {
     cao::VolumeGeometry line;
     line.dims[0] = line.dims[1] = line.dims[2] = 40;
-    cao::LAOSettings s;
+    cao::LAOSettings s = caotest::ExplicitSettings();
     s.pattern = cao::RayPattern::Rays6;
     s.reach = 8.0;
     s.samples = 4;

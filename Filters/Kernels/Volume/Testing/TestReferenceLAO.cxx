@@ -100,7 +100,7 @@ int TestReferenceLAO(int, char*[])
     cao::ReferenceLAO(plan, padded, corner.data(), 0, 1, &out);
     CAO_CHECK(out > exact + 0.05, "corner %.6g not brighter than the interior %.6g", out, exact);
 
-    cao::LAOSettings s;
+    cao::LAOSettings s = caotest::ExplicitSettings();
     s.pattern = cao::RayPattern::Rays26;
     s.reach = reach;
     s.samples = M;
@@ -116,7 +116,7 @@ int TestReferenceLAO(int, char*[])
   {
     cao::VolumeGeometry g;
     g.dims[0] = g.dims[1] = g.dims[2] = 72;
-    cao::LAOSettings s;
+    cao::LAOSettings s = caotest::ExplicitSettings();
     s.pattern = cao::RayPattern::Fibonacci;
     s.fibonacciRays = 1024;
     s.reach = 32.0;

@@ -517,7 +517,7 @@ void Report(const Options& o)
 
   // A quality preset: the full LAO. A setting the preset fixes changes
   // nothing; back to the individual settings, the full LAO again.
-  m->SetQualityPresetToInteractive();
+  m->SetQualityPresetToBalanced(); // (the default is Interactive)
   st = frame("quality preset set");
   CAO_EXPECT(Has(st, "precompute") && Has(st, "classify") && !Has(st, "depth_maps"), "%s",
     Join(st).c_str());
@@ -528,10 +528,10 @@ void Report(const Options& o)
   m->SetQualityPresetToCustom();
   st = frame("quality preset custom");
   CAO_EXPECT(Has(st, "precompute") && !Has(st, "depth_maps"), "%s", Join(st).c_str());
-  m->SetSampleDensity(2.0);
+  m->SetSampleDensity(3.0);
   st = frame("sample density edited");
   CAO_EXPECT(Has(st, "precompute") && !Has(st, "depth_maps"), "%s", Join(st).c_str());
-  m->SetSampleDensity(1.0);
+  m->SetSampleDensity(2.0);
   m->SetStartOffset(0.0);
   m->SetRayVariationToNone();
   st = frame("LAO settings restored");
@@ -720,11 +720,12 @@ struct Phantom
   Scene s;
   double top = 0, slot = 0; ///< mean RGB (0..255) of the two regions, last frame
 
-  bool Open(const std::string& kind)
+  bool Open(const std::string& kind, int slotWidth = 4)
   {
     if (!s.Open(kind))
       return false;
     auto image = vtkSmartPointer<vtkImageData>::New();
+    const int slotFirst = 32 - slotWidth / 2, slotLast = slotFirst + slotWidth - 1;
     image->SetDimensions(64, 64, 64);
     image->AllocateScalars(VTK_UNSIGNED_CHAR, 1);
     auto* v = static_cast<unsigned char*>(image->GetScalarPointer());
@@ -733,7 +734,7 @@ struct Phantom
         for (int i = 0; i < 64; ++i)
         {
           const bool block = i >= 8 && i <= 55 && j >= 8 && j <= 55 && k >= 8 && k <= 40;
-          const bool inSlot = i >= 30 && i <= 33 && j >= 12 && j <= 51 && k >= 17;
+          const bool inSlot = i >= slotFirst && i <= slotLast && j >= 12 && j <= 51 && k >= 17;
           v[i + 64 * (j + 64 * k)] = block && !inSlot ? 255 : 0;
         }
     s.image = image;
@@ -788,8 +789,12 @@ struct Phantom
 
 void Calibration(const Options& o)
 {
+  // A slot 3 voxels wide (3/8 of the default 8-voxel reach) and 24 deep.
+  // How much a slot darkens depends on its width against the reach: the
+  // table below measures widths 2, 3 and 4 at each preset (the accurate
+  // LAO, Reference, darkens a 4-voxel slot by 21%, a 3-voxel one by 31%).
   Phantom p;
-  if (!p.Open(o.window))
+  if (!p.Open(o.window, 3))
     return;
   p.s.mapper->AmbientOcclusionOff();
   const caotest::Image off = p.Frame();
@@ -816,8 +821,42 @@ void Calibration(const Options& o)
   // Negative control: the raw LAO darkens the open face too, so the same
   // check fails on it.
   CAO_EXPECT(std::fabs(topRaw - 1.0) > 0.05, "the raw LAO should darken the open face: %.3f", topRaw);
+  // The same measurement at each preset and at the old default (26 rays,
+  // one sample per voxel), for slots 2, 3 and 4 voxels wide: the accurate
+  // LAO (Reference) must agree that the 3-voxel slot darkens by 30%.
+  std::printf("slot width | preset | top face | slot floor (of AO off, half-space)\n");
+  for (int width : { 2, 3, 4 })
+  {
+    Phantom q;
+    if (!q.Open(o.window, width))
+      return;
+    q.s.mapper->AmbientOcclusionOff();
+    q.Frame();
+    const double qTop = q.top, qSlot = q.slot;
+    q.s.mapper->AmbientOcclusionOn();
+    for (int preset : { vtkContextualAOVolumeMapper::INTERACTIVE, vtkContextualAOVolumeMapper::BALANCED,
+           vtkContextualAOVolumeMapper::REFERENCE, vtkContextualAOVolumeMapper::CUSTOM })
+    {
+      q.s.mapper->SetQualityPreset(preset);
+      if (preset == vtkContextualAOVolumeMapper::CUSTOM)
+      {
+        q.s.mapper->SetRayPattern(vtkContextualAOVolumeMapper::RAYS_26);
+        q.s.mapper->SetSampleDensity(1.0);
+        q.s.mapper->SetRayVariation(vtkContextualAOVolumeMapper::NONE);
+      }
+      q.Frame();
+      const char* names[] = { "26 rays, 1/voxel (old default)", "Interactive (default)",
+        "Balanced", "Reference" };
+      std::printf("%d | %s | %.3f | %.3f\n", width, names[preset], q.top / qTop, q.slot / qSlot);
+      if (width == 3 && preset == vtkContextualAOVolumeMapper::REFERENCE)
+        CAO_EXPECT(q.slot / qSlot <= 0.70 && std::fabs(q.top / qTop - 1.0) <= 0.05,
+          "the accurate LAO (Reference) should agree: top %.3f, slot %.3f", q.top / qTop,
+          q.slot / qSlot);
+    }
+  }
   // One sample per ray: every LAO is 1 (its only sample is never occluded),
   // so nothing darkens, calibrated or not (the calibration's range is empty).
+  p.s.mapper->SetQualityPresetToCustom();
   p.s.mapper->SetNumberOfSamples(1);
   p.Frame();
   CAO_EXPECT(std::fabs(p.top / topOff - 1.0) <= 0.01 && std::fabs(p.slot / slotOff - 1.0) <= 0.01,
