@@ -2,6 +2,7 @@
 
 #include "vtkActor.h"
 #include "vtkAlgorithm.h"
+#include "vtkCommand.h"
 #include "vtkContextualAOVolumeMapper.h"
 #include "vtkObjectFactory.h"
 #include "vtkPVLODVolume.h"
@@ -27,6 +28,25 @@ vtkContextualAOVolumeRepresentation::vtkContextualAOVolumeRepresentation()
   this->VolumeMapper = vtkSmartPointer<vtkContextualAOVolumeMapper>::New();
   this->Actor->SetMapper(this->VolumeMapper);
   this->ClipActor->SetMapper(this->ClipMapper);
+  // The mapper's LAO precompute runs inside a render: its progress becomes
+  // the representation's (ParaView shows a representation's progress in
+  // the status bar and its Abort button sets the representation's
+  // AbortExecute, handed back to the mapper here).
+  this->VolumeMapper->AddObserver(vtkCommand::ProgressEvent, this,
+    &vtkContextualAOVolumeRepresentation::ForwardProgress);
+}
+
+//------------------------------------------------------------------------------
+void vtkContextualAOVolumeRepresentation::ForwardProgress(vtkObject*, unsigned long, void*)
+{
+  vtkContextualAOVolumeMapper* mapper = this->GetAOMapper();
+  if (this->GetAbortExecute())
+  {
+    mapper->SetAbortExecute(1);
+    this->SetAbortExecute(0);
+  }
+  this->SetProgressText("Contextual AO: LAO precompute");
+  this->UpdateProgress(mapper->GetProgress());
 }
 
 //------------------------------------------------------------------------------

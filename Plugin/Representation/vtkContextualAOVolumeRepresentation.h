@@ -131,6 +131,8 @@ protected:
   std::vector<vtkSmartPointer<vtkActor>> MeshActors;
   std::vector<int> MeshModes;
   bool MeshesChanged = false;
+  /// The mapper's progress as the representation's.
+  void ForwardProgress(vtkObject*, unsigned long, void*);
   /// The built-in shape onto the mapper (or none).
   void UpdateBuiltInShape(vtkImageData* data);
 

@@ -13,6 +13,9 @@ pvpython:
     either probe alone;
   - negative control: an open mesh (a Plane source) is refused with the
     reason, and nothing crashes.
+Also the representation's own LAO precompute reports progress to ParaView's
+progress handler (the GUI's status bar) while it renders; a
+render that precomputes nothing reports none (negative control).
 
   pvpython TestClipMeshes.py PLUGIN.so OUTPUT_DIR   (under run-with-xvfb.sh)"""
 import os
@@ -71,7 +74,21 @@ def volume_pixels(a):
     return int((abs(a - a[0]).sum(axis=1) > 6).sum())
 
 
+# Progress of the representation's LAO precompute, as the GUI's status bar
+# receives it.
+handler = servermanager.ActiveConnection.Session.GetProgressHandler()
+progress = []
+handler.AddObserver("ProgressEvent", lambda obj, ev: progress.append(
+    (obj.GetLastProgress(), obj.GetLastProgressText())))
 plain = frame("plain")
+mine = [p for p, text in progress if text == "Contextual AO: LAO precompute"]
+check(len(mine) >= 1 and 0 <= min(mine) <= max(mine) <= 100,
+      "the LAO precompute reports progress to ParaView while rendering (throttled to one event per 0.1 s): %d events, up to %s"
+      % (len(mine), max(mine) if mine else None))
+del progress[:]
+frame("plain-again")
+check(not [p for p, text in progress if text == "Contextual AO: LAO precompute"],
+      "a render that precomputes nothing reports no precompute progress")
 sphere = Sphere(Center=[centre[0], centre[1] - 60.0, centre[2]], Radius=45.0,
                 ThetaResolution=48, PhiResolution=48)
 display.ClipMeshes = [sphere]
