@@ -5,6 +5,10 @@ volume's pixels agree within 3%, shading off and on, with AO off. The
 grey with AO on (raw LAO, shading off) is reported too and must differ by
 more than 3% (the negative control: the measure sees a change of light).
 
+The Local Ambient Occlusion filter occludes with the opacity map its array
+is displayed with, and follows its edits (Follow Display Opacity off: its
+ramp, the negative control).
+
 Shown downstream of a Local Ambient Occlusion filter, the representation
 draws that filter's AO (no precompute of its own) while Use Upstream LAO
 is on, and computes its own when it is off (the negative control).
@@ -96,6 +100,35 @@ ok = mapper.GetAmbientOcclusionArrayName() is None and "precompute" in stages an
 print("%s: Use Upstream LAO off: its own precompute (%s)" % ("ok" if ok else "FAIL", stages))
 if not ok:
     failures.append("own")
+
+# The LAO filter occludes with the opacity map the array is displayed with
+# (Follow Display Opacity, on by default), and follows its edits; with it
+# off the filter keeps its ramp (the negative control).
+from paraview import servermanager  # noqa: E402
+tf = GetOpacityTransferFunction("MetaImage")
+followed = lao.OpacityFunction == tf
+
+
+def ao_sum(proxy):
+    a = servermanager.Fetch(proxy).GetPointData().GetArray("AmbientOcclusion")
+    return sum(a.GetValue(i) for i in range(0, a.GetNumberOfTuples(), 7))
+
+
+first = ao_sum(lao)
+saved = list(tf.Points)
+tf.Points = [0.0, 0.0, 0.5, 0.0, 150.0, 0.0, 0.5, 0.0, 255.0, 1.0, 0.5, 0.0]
+lao.UpdatePipeline()
+edited = ao_sum(lao)
+tf.Points = saved
+SetActiveSource(reader)
+ramp = LocalAmbientOcclusion(Input=reader, FollowDisplayOpacity=0)
+ramp.UpdatePipeline()
+ok = followed and edited != first and ramp.OpacityFunction is None
+print("%s: the LAO filter follows the displayed opacity map (%s), an edit of the map changes its "
+      "AO (%.1f -> %.1f); Follow Display Opacity off keeps the ramp (%s)"
+      % ("ok" if ok else "FAIL", followed, first, edited, ramp.OpacityFunction))
+if not ok:
+    failures.append("follow")
 
 # The Plane clip: the half-space on the +z side of the pose, at the data's
 # centre by default; it cuts (voxels recomputed), and its removal restores
