@@ -51,7 +51,8 @@ bool ReadClipMaps(vtkImageData* maps, int mode, ClipMaps& out, std::string& erro
   out.mode = out.composite ? static_cast<int>(composite[3]) : mode;
   if (out.mode != cao::layout::CAO_MODE_SUBTRACT && out.mode != cao::layout::CAO_MODE_PROBE)
   {
-    error = "The depth maps' clip mode " + std::to_string(out.mode) + " is unknown.";
+    error = "The depth maps' clip mode " + std::to_string(out.mode) +
+      " is unknown (0 subtraction or 1 probing).";
     return false;
   }
   const bool subtract = out.mode == cao::layout::CAO_MODE_SUBTRACT;

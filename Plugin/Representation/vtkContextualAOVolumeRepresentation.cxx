@@ -164,15 +164,25 @@ void vtkContextualAOVolumeRepresentation::RemoveAllClipMeshSources()
 
 void vtkContextualAOVolumeRepresentation::SetClipMeshMode(int index, int mode)
 {
-  if (index < 0 || index >= 32 || (mode != 0 && mode != 1))
+  if (index < 0 || index >= vtkContextualAOVolumeMapper::MAX_CLIP_SHAPES || (mode != 0 && mode != 1))
   {
-    vtkErrorMacro("SetClipMeshMode: mesh " << index << " must be 0 to 31 and mode " << mode
+    vtkErrorMacro("SetClipMeshMode: mesh " << index << " must be 0 to "
+                                           << vtkContextualAOVolumeMapper::MAX_CLIP_SHAPES - 1 << " and mode " << mode
                                            << " 0 (subtraction) or 1 (probing).");
     return;
   }
   if (this->MeshModes.size() <= static_cast<std::size_t>(index))
     this->MeshModes.resize(index + 1, -1);
   this->MeshModes[index] = mode;
+  this->MeshesChanged = true;
+  this->Modified();
+}
+
+void vtkContextualAOVolumeRepresentation::RemoveAllClipMeshModes()
+{
+  if (this->MeshModes.empty())
+    return;
+  this->MeshModes.clear();
   this->MeshesChanged = true;
   this->Modified();
 }

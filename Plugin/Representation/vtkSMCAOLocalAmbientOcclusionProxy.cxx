@@ -81,7 +81,13 @@ void vtkSMCAOLocalAmbientOcclusionProxy::FollowDisplayOpacity()
   // Only a map that exists: one the array is (or was) displayed with. A new
   // one would not be fitted to the data's range yet.
   vtkSMProxy* map = pxm->GetProxy("piecewise_functions", (array + ".PiecewiseFunction").c_str());
-  if (map && map != current)
+  if (!map && current && current == this->Followed)
+  {
+    // Another array, not displayed yet: the ramp, not the old array's map.
+    opacity->RemoveAllProxies();
+    this->Followed = nullptr;
+  }
+  else if (map && map != current)
   {
     vtkSMPropertyHelper(opacity).Set(map);
     this->Followed = map;

@@ -117,8 +117,9 @@ check(mapper.GetNumberOfClipShapes() == 3 and changed(two, three) > 50,
 sphere.Center = [centre[0] - 10.0, centre[1] - 60.0, centre[2] + 15.0]
 moved = frame("moved")
 report = mapper.GetLastFrameReport()
-check("clip shapes moved" in report and "recompute" in mapper.GetLastFrameStages(),
-      "moving the upstream sphere remakes the maps and updates the AO: %s"
+check("clip mesh changed" in report and "depth_maps" in mapper.GetLastFrameStages()
+      and "recompute" in mapper.GetLastFrameStages(),
+      "moving the upstream sphere (a new mesh) remakes the maps and updates the AO: %s"
       % mapper.GetLastFrameStages())
 mapper.SetAOUpdate(mapper.FULL_RECOMPUTE)
 view.StillRender()

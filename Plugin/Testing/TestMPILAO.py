@@ -31,6 +31,7 @@ def check(ok, what):
 
 reader = OpenDataFile(os.path.join(data, "hydrogen.vti"))
 lao = LocalAmbientOcclusion(Input=reader)
+lao.QualityPreset = "Custom"  # the settings below apply
 lao.RayPattern = "26 rays (faces + edges + corners)"
 lao.Backend = "CPU"
 # An explicit opacity function: without one the filter ramps over the
@@ -95,6 +96,7 @@ serial_reader = vtkXMLImageDataReader()
 serial_reader.SetFileName(os.path.join(data, "hydrogen.vti"))
 serial = contextualao.vtkLocalAmbientOcclusion()
 serial.SetInputConnection(serial_reader.GetOutputPort())
+serial.SetQualityPresetToCustom()
 serial.SetRayPattern(serial.RAYS_26)
 serial.SetBackendToCPU()
 from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction  # noqa: E402

@@ -225,6 +225,7 @@ for ext in ("nii", "nii.gz"):
           "OpenDataFile reads a .%s volume with the plugin's NIfTI reader" % ext)
 
 # The same results as the VTK filters.
+lao.QualityPreset = "Custom"  # the settings below apply
 lao.RayPattern = "14 rays (faces + corners)"
 lao.Backend = "CPU"
 maps.Reach = 32.0
@@ -249,6 +250,7 @@ r = vtkMetaImageReader()
 r.SetFileName(os.path.join(data, "HeadMRVolume.mhd"))
 v_lao = vcao.vtkLocalAmbientOcclusion()
 v_lao.SetInputConnection(r.GetOutputPort())
+v_lao.SetQualityPresetToCustom()
 v_lao.SetRayPattern(v_lao.RAYS_14)
 v_lao.SetBackendToCPU()
 s = vtkSphereSource()
@@ -288,8 +290,9 @@ def lao_parameters(image):
 
 
 default_params = lao_parameters(servermanager.Fetch(lao))
-check(len(default_params) == 11 and default_params["QualityPreset"] == 1,
-      "the LAO proxy's LAOSettings: 12 components, the default Interactive preset (%s)"
+check(len(default_params) == 11 and default_params["QualityPreset"] == 0
+      and default_params["Rays"] == 14,
+      "the LAO proxy's LAOSettings: 12 components, Custom with the 14 rays set above (%s)"
       % default_params)
 lao.QualityPreset = "Balanced"
 lao.UpdatePipeline()

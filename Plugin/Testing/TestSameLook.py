@@ -120,13 +120,23 @@ tf.Points = [0.0, 0.0, 0.5, 0.0, 150.0, 0.0, 0.5, 0.0, 255.0, 1.0, 0.5, 0.0]
 lao.UpdatePipeline()
 edited = ao_sum(lao)
 tf.Points = saved
-SetActiveSource(reader)
-ramp = LocalAmbientOcclusion(Input=reader, FollowDisplayOpacity=0)
-ramp.UpdatePipeline()
-ok = followed and edited != first and ramp.OpacityFunction is None
+lao.UpdatePipeline()
+restored = ao_sum(lao)
+lao.FollowDisplayOpacity = 0  # switched off: the map it gave goes, the ramp comes back
+lao.UpdatePipeline()
+dropped = lao.OpacityFunction is None
+tf.Points = [0.0, 0.0, 0.5, 0.0, 150.0, 0.0, 0.5, 0.0, 255.0, 1.0, 0.5, 0.0]
+lao.UpdatePipeline()
+off = ao_sum(lao)  # the same edit, not followed
+tf.Points = saved
+lao.FollowDisplayOpacity = 1
+lao.UpdatePipeline()
+ok = followed and edited != first and restored == first and dropped and off == first \
+    and lao.OpacityFunction == tf
 print("%s: the LAO filter follows the displayed opacity map (%s), an edit of the map changes its "
-      "AO (%.1f -> %.1f); Follow Display Opacity off keeps the ramp (%s)"
-      % ("ok" if ok else "FAIL", followed, first, edited, ramp.OpacityFunction))
+      "AO (%.1f -> %.1f -> %.1f restored); Follow Display Opacity off drops the map (%s) and the "
+      "same edit leaves the AO (%.1f); on again it follows" % ("ok" if ok else "FAIL", followed,
+                                                             first, edited, restored, dropped, off))
 if not ok:
     failures.append("follow")
 

@@ -301,6 +301,9 @@ vtkContextualAOVolumeMapper::~vtkContextualAOVolumeMapper()
 }
 
 //------------------------------------------------------------------------------
+static_assert(vtkContextualAOVolumeMapper::MAX_CLIP_SHAPES == cao::MaximumClipParts,
+  "the mapper's clip-shape limit is the kernel's");
+
 void vtkContextualAOVolumeMapper::AddClipShape(vtkProp3D* shape, int mode)
 {
   if (!shape || (mode != SUBTRACTION && mode != PROBING))
@@ -819,9 +822,19 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateMaps(
   std::string error;
   const char* remake = nullptr;
   if (!this->HaveMesh || key != this->Mesh)
-    remake = several && this->HaveMesh && key.shapes.size() == this->Mesh.shapes.size()
-      ? "clip shapes moved"
-      : "clip mesh changed";
+  {
+    // Several shapes: only poses moved when every mesh, its time and mode
+    // and the settings are as before (the key's layout: mesh, time, 16 pose
+    // entries, mode per shape).
+    bool posesOnly = several && this->HaveMesh && key.shapes.size() == this->Mesh.shapes.size();
+    for (std::size_t i = 0; posesOnly && i < key.shapes.size(); i += 19)
+      posesOnly = key.shapes[i] == this->Mesh.shapes[i] &&
+        key.shapes[i + 1] == this->Mesh.shapes[i + 1] &&
+        key.shapes[i + 18] == this->Mesh.shapes[i + 18];
+    ::MeshKey same = key;
+    same.shapes = this->Mesh.shapes;
+    remake = posesOnly && same == this->Mesh ? "clip shapes moved" : "clip mesh changed";
+  }
   else if (smin < this->BuiltPoseScales[0] || smax > this->BuiltPoseScales[1])
     remake = "clip scale changed";
   else
@@ -1012,6 +1025,8 @@ void vtkContextualAOVolumeMapper::Internals::MakeRenderParams(vtkContextualAOVol
     flags |= cao::layout::CAO_RENDER_AO_CALIBRATED;
   if (f.clipping)
     flags |= cao::layout::CAO_RENDER_CLIP;
+  if (f.clipping && self->SmoothClipSurface)
+    flags |= cao::layout::CAO_RENDER_CLIP_SMOOTH;
   if (self->UseJittering)
     flags |= cao::layout::CAO_RENDER_JITTER;
   params.dims = { dims[0], dims[1], dims[2], flags };

@@ -136,7 +136,7 @@ public:
   };
 
   ///@{
-  /// LAO ray pattern. Default RAYS_26.
+  /// LAO ray pattern. Default RAYS_6 (the Interactive preset's; applies under CUSTOM).
   virtual void SetRayPattern(int value);
   virtual int GetRayPattern();
   ///@}
@@ -160,7 +160,7 @@ public:
   ///@}
 
   ///@{
-  /// LAO samples per smallest voxel spacing when NumberOfSamples is 0, 0.001 to 1000. Default 1.
+  /// LAO samples per smallest voxel spacing when NumberOfSamples is 0, 0.001 to 1000. Default 2.
   virtual void SetSampleDensity(double value);
   virtual double GetSampleDensity();
   ///@}
@@ -187,7 +187,7 @@ public:
   ///@{
   /**
    * How the LAO rays vary from voxel to voxel (interleaved over 2x2x2
-   * blocks, see vtkLocalAmbientOcclusion::SetRayVariation). Default NONE.
+   * blocks, see vtkLocalAmbientOcclusion::SetRayVariation). Default ROTATE.
    */
   virtual void SetRayVariation(int value);
   virtual int GetRayVariation();
@@ -208,8 +208,8 @@ public:
 
   ///@{
   /**
-   * LAO quality preset. CUSTOM (default): the individual LAO settings
-   * apply; any other preset replaces the ray pattern, the Fibonacci ray
+   * LAO quality preset. INTERACTIVE (default, equal to the individual
+   * defaults); CUSTOM: the individual LAO settings apply; any other preset replaces the ray pattern, the Fibonacci ray
    * count, the sample density, the start offset and the ray variation with
    * the preset's (NumberOfSamples is ignored); Reach stays the mapper's.
    */
@@ -244,6 +244,8 @@ public:
    * RemoveAllClipShapes removes the added shapes (ClipShape stays).
    */
   void AddClipShape(vtkProp3D* shape, int mode = 0);
+  /// The most clip shapes in all (cao::MaximumClipParts).
+  static constexpr int MAX_CLIP_SHAPES = 32;
   void RemoveAllClipShapes();
   /// ClipShape (when set) and the added shapes.
   int GetNumberOfClipShapes();
@@ -324,6 +326,21 @@ public:
 
   ///@{
   /**
+   * The picture's clip test between depth-map pixels (default on): the
+   * signed depth distances of the 4 nearest pixels, blended, so that the
+   * clip surface is continuous between pixel centres instead of a staircase
+   * of pixels (which shows as stripes where a thin sliver of matter is left
+   * along the clipping camera's silhouette). The AO's classification keeps
+   * the per-pixel test (exact against its full recompute); the two differ
+   * only within a map pixel of the surface. Off: the per-pixel test.
+   */
+  vtkSetMacro(SmoothClipSurface, bool);
+  vtkGetMacro(SmoothClipSurface, bool);
+  vtkBooleanMacro(SmoothClipSurface, bool);
+  ///@}
+
+  ///@{
+  /**
    * The last rendered frame's work report, as JSON: frame number, the
    * stages that ran with milliseconds each (and the timer used), the voxels recomputed, the
    * category counts and why AO work was done. Empty before the first frame.
@@ -368,6 +385,7 @@ protected:
   double SampleDistance = 0.0;
   double InteractiveSampleDistance = 0.0;
   bool UseJittering = true;
+  bool SmoothClipSurface = true;
   int FrameCount = 0;
   int PrecomputeCount = 0;
   int DepthMapsCount = 0;

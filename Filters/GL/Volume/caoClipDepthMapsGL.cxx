@@ -146,10 +146,15 @@ bool ClipDepthMapsGL::Build(const ClipCamera& cam, const TriangleMesh& mesh, dou
     error = "the GPU depth maps support at most 64 layers";
     return false;
   }
-  if (mesh.numberOfPoints > std::numeric_limits<std::int32_t>::max() / 3 ||
-    mesh.numberOfTriangles > std::numeric_limits<std::int32_t>::max() / 3)
+  // 32-bit indices: 3 coordinates per point, 3 ids and a weight per triangle.
+  const std::int64_t maxPoints = std::numeric_limits<std::int32_t>::max() / 3;
+  const std::int64_t maxTriangles = std::numeric_limits<std::int32_t>::max() / 4;
+  if (mesh.numberOfPoints > maxPoints || mesh.numberOfTriangles > maxTriangles)
   {
-    error = "the clip mesh is too large for the GPU depth maps";
+    error = "the clip mesh is too large for the GPU depth maps (at most " +
+      std::to_string(maxPoints) + " points and " + std::to_string(maxTriangles) +
+      " triangles; it has " + std::to_string(mesh.numberOfPoints) + " and " +
+      std::to_string(mesh.numberOfTriangles) + ")";
     return false;
   }
   CurrentScope scope(p.Ctx);

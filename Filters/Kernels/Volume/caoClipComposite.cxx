@@ -62,7 +62,8 @@ bool BuildCompositeClipMesh(
     const int mode = parts[i].mode;
     if (mode != layout::CAO_MODE_SUBTRACT && mode != layout::CAO_MODE_PROBE)
     {
-      error = "clip shape " + std::to_string(i) + " has an unknown mode " + std::to_string(mode);
+      error = "clip shape " + std::to_string(i) + " has an unknown mode " + std::to_string(mode) +
+        " (0 subtraction or 1 probing)";
       return false;
     }
     (mode == layout::CAO_MODE_PROBE ? probes : subtractions)++;

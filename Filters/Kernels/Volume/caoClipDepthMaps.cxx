@@ -117,7 +117,8 @@ bool ValidateRasterInput(const ClipCamera& cam, const TriangleMesh& mesh, std::s
   }
   if (mesh.minimumWinding < 0 || (mesh.minimumWinding > 0 && !mesh.weights))
   {
-    error = "a minimum winding needs per-triangle weights and must be at least 1";
+    error = "a minimum winding needs per-triangle weights and must be 0 (none) or at least 1; got " +
+      std::to_string(mesh.minimumWinding) + (mesh.weights ? "" : " without weights");
     return false;
   }
   return true;

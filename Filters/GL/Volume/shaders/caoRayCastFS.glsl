@@ -40,6 +40,51 @@ float Jitter(ivec2 pixel)
   return float(h >> 8u) * (1.0 / 16777216.0);
 }
 
+/// The clip test the picture uses (CAO_RENDER_CLIP_SMOOTH). The maps hold
+/// one depth interval list per pixel, so Inside() sees the clip surface as
+/// a staircase of pixels: where the surface runs along the clipping
+/// camera's direction (its silhouette in the maps) a step can be many
+/// voxels deep, and a thin sliver of matter left by the clip shows the
+/// staircase as stripes. Here each of the 4 nearest pixel centres gives a
+/// signed depth distance to its nearest interval boundary (positive
+/// inside), clamped to one pixel's size in depth units (a pixel without an
+/// interval counts as one pixel outside), and the point is inside where
+/// their bilinear blend is positive: the same surface at pixel centres,
+/// continuous between them. The classifier keeps Inside() (bit for bit the
+/// CPU's); the two differ only within a pixel of the surface.
+bool InsideSmooth(vec3 q)
+{
+  float u = dot(clip.toCamera[0].xyz, q) + clip.toCamera[0].w - 0.5;
+  float v = dot(clip.toCamera[1].xyz, q) + clip.toCamera[1].w - 0.5;
+  float depth = dot(clip.toCamera[2].xyz, q) + clip.toCamera[2].w;
+  // One pixel in depth units: |depth row| / |u row| (orthonormal axes).
+  float h = length(clip.toCamera[2].xyz) / max(length(clip.toCamera[0].xyz), 1e-30);
+  if (!(u > -1.0 && v > -1.0 && u < float(clip.map.x) && v < float(clip.map.y)))
+    return false;
+  int x0 = int(floor(u)), y0 = int(floor(v));
+  vec2 f = vec2(u - float(x0), v - float(y0));
+  int layerSize = clip.map.x * clip.map.y * clip.map.z;
+  float sum = 0.0;
+  for (int n = 0; n < 4; ++n)
+  {
+    int x = x0 + (n & 1), y = y0 + (n >> 1);
+    float sd = -h;
+    if (x >= 0 && y >= 0 && x < clip.map.x && y < clip.map.y)
+    {
+      int base = (y * clip.map.x + x) * clip.map.z;
+      for (int l = 0; l < clip.map.z; ++l)
+      {
+        float front = maps[base + l], back = maps[base + layerSize + l];
+        if (front <= back)
+          sd = max(sd, min(depth - front, back - depth));
+      }
+    }
+    float w = ((n & 1) != 0 ? f.x : 1.0 - f.x) * ((n >> 1) != 0 ? f.y : 1.0 - f.y);
+    sum += w * clamp(sd, -h, h);
+  }
+  return sum > 0.0;
+}
+
 vec3 Unproject(vec2 ndc, float z)
 {
   mat4 m = mat4(rp.ndcToWorld[0], rp.ndcToWorld[1], rp.ndcToWorld[2], rp.ndcToWorld[3]);
@@ -143,7 +188,9 @@ void main()
     vec4 c = texture(tableTexture, vec2(s * rp.sampling.y + rp.sampling.z, 0.5));
     if (c.a <= 0.0)
       continue;
-    if ((flags & CAO_RENDER_CLIP) != 0 && Inside(p) == (clip.map.w == CAO_MODE_SUBTRACT))
+    if ((flags & CAO_RENDER_CLIP) != 0 &&
+      ((flags & CAO_RENDER_CLIP_SMOOTH) != 0 ? InsideSmooth(p) : Inside(p)) ==
+        (clip.map.w == CAO_MODE_SUBTRACT))
       continue;
     float ambient = 1.0;
     if ((flags & CAO_RENDER_AO) != 0)

@@ -827,6 +827,7 @@ void Calibration(const Options& o)
   std::printf("slot width | preset | top face | slot floor (of AO off, half-space)\n");
   for (int width : { 2, 3, 4 })
   {
+    double slotAt[4] = { 0, 0, 0, 0 };
     Phantom q;
     if (!q.Open(o.window, width))
       return;
@@ -848,11 +849,17 @@ void Calibration(const Options& o)
       const char* names[] = { "26 rays, 1/voxel (old default)", "Interactive (default)",
         "Balanced", "Reference" };
       std::printf("%d | %s | %.3f | %.3f\n", width, names[preset], q.top / qTop, q.slot / qSlot);
+      slotAt[preset] = q.slot / qSlot;
       if (width == 3 && preset == vtkContextualAOVolumeMapper::REFERENCE)
         CAO_EXPECT(q.slot / qSlot <= 0.70 && std::fabs(q.top / qTop - 1.0) <= 0.05,
           "the accurate LAO (Reference) should agree: top %.3f, slot %.3f", q.top / qTop,
           q.slot / qSlot);
     }
+    // The default's picture follows the accurate one at every width.
+    CAO_EXPECT(std::fabs(slotAt[vtkContextualAOVolumeMapper::INTERACTIVE] -
+                 slotAt[vtkContextualAOVolumeMapper::REFERENCE]) <= 0.1,
+      "slot %d wide: the default (%.3f) and Reference (%.3f) differ by more than 0.1", width,
+      slotAt[vtkContextualAOVolumeMapper::INTERACTIVE], slotAt[vtkContextualAOVolumeMapper::REFERENCE]);
   }
   // One sample per ray: every LAO is 1 (its only sample is never occluded),
   // so nothing darkens, calibrated or not (the calibration's range is empty).
@@ -879,6 +886,53 @@ void Calibration(const Options& o)
     std::printf("wrote %s (AO off | raw LAO | half-space calibrated)\n", path.c_str());
 }
 
+/// Mean |a - b| over the RGB values of two frames (grey levels).
+double MeanDifference(const caotest::Image& a, const caotest::Image& b)
+{
+  double sum = 0.0;
+  for (std::size_t i = 0; i < a.rgb.size() && i < b.rgb.size(); ++i)
+    sum += std::fabs(double(a.rgb[i]) - double(b.rgb[i]));
+  return a.rgb.empty() ? 0.0 : sum / a.rgb.size();
+}
+
+/// A sphere clips the same at every orientation; only the clipping
+/// camera (attached to the sphere's frame) turns. The frames at two
+/// orientations differ only by how the depth maps' pixels represent the
+/// surface: with the per-pixel test, a staircase along the maps'
+/// silhouette (the stripes on thin slivers of neghip in the main job);
+/// with the blended test (SmoothClipSurface), a continuous surface. The
+/// blended frames must differ by less than half as much (negative
+/// control: the per-pixel frames differ visibly). AO off: the ray caster's
+/// clip test alone.
+void Silhouette(const Options& o)
+{
+  Scene s;
+  if (!s.Open(o.window) || !s.Load(o.data + "/neghip.slc"))
+    return;
+  s.mapper->AmbientOcclusionOff();
+  s.Shape("sphere", 16.5);
+  s.clip->SetPosition(34.273, 33.918, 33.564);
+  double d[2] = { 0, 0 };
+  caotest::Image frames[2][2];
+  for (int smooth = 1; smooth >= 0; --smooth)
+  {
+    s.mapper->SetSmoothClipSurface(smooth != 0);
+    s.clip->SetOrientation(0.0, 0.0, 0.0);
+    frames[smooth][0] = s.Frame();
+    s.clip->SetOrientation(42.0, 66.0, 18.0);
+    frames[smooth][1] = s.Frame();
+    d[smooth] = MeanDifference(frames[smooth][0], frames[smooth][1]);
+  }
+  s.mapper->SmoothClipSurfaceOn();
+  std::printf("a sphere turned in place: frames differ by %.4f grey levels with the blended clip "
+              "test, %.4f with the per-pixel test\n",
+    d[1], d[0]);
+  CAO_EXPECT(d[0] > 0.05, "negative control: the per-pixel test should show the turn (%.4f)", d[0]);
+  CAO_EXPECT(d[1] < 0.5 * d[0], "the blended test should halve it at least: %.4f vs %.4f", d[1], d[0]);
+  Compare(o, frames[1][1], "silhouette-blended");
+  Compare(o, frames[0][1], "silhouette-per-pixel");
+}
+
 int TestContextualAOVolumeMapper(int argc, char* argv[])
 {
   Options o;
@@ -898,10 +952,10 @@ int TestContextualAOVolumeMapper(int argc, char* argv[])
   }
   if ((o.window != "egl" && o.window != "x") ||
     (o.mode != "images" && o.mode != "report" && o.mode != "badinput" &&
-      o.mode != "calibration") ||
+      o.mode != "calibration" && o.mode != "silhouette") ||
     o.data.empty() || o.baselines.empty() || o.output.empty())
   {
-    std::printf("usage: TestContextualAOVolumeMapper <egl|x> <images|report|badinput|calibration> -D data -B "
+    std::printf("usage: TestContextualAOVolumeMapper <egl|x> <images|report|badinput|calibration|silhouette> -D data -B "
                 "baselines -T output\n");
     return 1;
   }
@@ -916,6 +970,8 @@ int TestContextualAOVolumeMapper(int argc, char* argv[])
     Report(o);
   else if (o.mode == "calibration")
     Calibration(o);
+  else if (o.mode == "silhouette")
+    Silhouette(o);
   else
     BadInput(o);
   std::printf("%s: %d failure(s)\n", failures ? "FAILED" : "PASSED", failures);
