@@ -149,12 +149,13 @@ struct MeshKey
   vtkMTimeType meshTime = 0;
   int layers = 0;
   double pixelSize = 0.0, reach = 0.0, spacing[3] = { 0, 0, 0 };
-  std::vector<double> shapes; ///< several shapes: each mesh, its time, pose and mode
+  std::vector<double> shapes; ///< several shapes: each mesh, its time and mode
+  std::vector<double> poses;  ///< several shapes: each pose (16 entries)
   bool operator==(const MeshKey& o) const
   {
     return mesh == o.mesh && meshTime == o.meshTime && layers == o.layers &&
       pixelSize == o.pixelSize && reach == o.reach && std::equal(spacing, spacing + 3, o.spacing) &&
-      shapes == o.shapes;
+      shapes == o.shapes && poses == o.poses;
   }
   bool operator!=(const MeshKey& o) const { return !(*this == o); }
 };
@@ -256,7 +257,9 @@ struct vtkContextualAOVolumeMapper::Internals
     int mode = 0;
   };
   bool GatherClipParts(vtkContextualAOVolumeMapper* self, Frame& f, std::vector<ClipPart>& parts);
-  bool UpdateMaps(vtkContextualAOVolumeMapper* self, Frame& f, const std::vector<ClipPart>& parts);
+  /// `pose`: the maps' pose (the shape's for one, identity for several).
+  bool UpdateMaps(vtkContextualAOVolumeMapper* self, Frame& f, const std::vector<ClipPart>& parts,
+    vtkMatrix4x4* pose);
   std::vector<std::pair<vtkSmartPointer<vtkProp3D>, int>> AddedShapes;
   bool UpdateTable(vtkContextualAOVolumeMapper* self, Frame& f, double& step);
   void MakeRenderParams(vtkContextualAOVolumeMapper* self, const Frame& f, double step,
@@ -729,7 +732,7 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateClip(
   // combination in the volume's frame (identity pose), in its mode.
   vtkNew<vtkMatrix4x4> identity;
   vtkMatrix4x4* pose = parts.size() == 1 ? parts[0].pose.GetPointer() : identity.GetPointer();
-  if (!this->UpdateMaps(self, f, parts))
+  if (!this->UpdateMaps(self, f, parts, pose))
     return false;
   std::string error;
   vtkCAO::ClipMaps clipMaps;
@@ -787,12 +790,10 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateClip(
 }
 
 //------------------------------------------------------------------------------
-bool vtkContextualAOVolumeMapper::Internals::UpdateMaps(
-  vtkContextualAOVolumeMapper* self, Frame& f, const std::vector<ClipPart>& parts)
+bool vtkContextualAOVolumeMapper::Internals::UpdateMaps(vtkContextualAOVolumeMapper* self,
+  Frame& f, const std::vector<ClipPart>& parts, vtkMatrix4x4* pose)
 {
   const bool several = parts.size() > 1;
-  vtkNew<vtkMatrix4x4> identity;
-  vtkMatrix4x4* pose = several ? identity.GetPointer() : parts[0].pose.GetPointer();
   const int mode = parts[0].mode;
   const double smin = vtkCAO::MinimumScale(pose), smax = vtkCAO::MaximumScale(pose);
   if (!(smin > 0.0) || !std::isfinite(smax))
@@ -810,9 +811,9 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateMaps(
     {
       key.shapes.push_back(static_cast<double>(reinterpret_cast<std::uintptr_t>(part.mesh)));
       key.shapes.push_back(static_cast<double>(part.mesh->GetMTime()));
-      const std::vector<double> m = MatrixKey(part.pose);
-      key.shapes.insert(key.shapes.end(), m.begin(), m.end());
       key.shapes.push_back(part.mode);
+      const std::vector<double> m = MatrixKey(part.pose);
+      key.poses.insert(key.poses.end(), m.begin(), m.end());
     }
   // The maps are made for the pose's scale, 0.1% either side (so that a
   // rotation's singular values, 1 +- a few ulps, keep them), with pixels of
@@ -823,17 +824,11 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateMaps(
   const char* remake = nullptr;
   if (!this->HaveMesh || key != this->Mesh)
   {
-    // Several shapes: only poses moved when every mesh, its time and mode
-    // and the settings are as before (the key's layout: mesh, time, 16 pose
-    // entries, mode per shape).
-    bool posesOnly = several && this->HaveMesh && key.shapes.size() == this->Mesh.shapes.size();
-    for (std::size_t i = 0; posesOnly && i < key.shapes.size(); i += 19)
-      posesOnly = key.shapes[i] == this->Mesh.shapes[i] &&
-        key.shapes[i + 1] == this->Mesh.shapes[i + 1] &&
-        key.shapes[i + 18] == this->Mesh.shapes[i + 18];
-    ::MeshKey same = key;
-    same.shapes = this->Mesh.shapes;
-    remake = posesOnly && same == this->Mesh ? "clip shapes moved" : "clip mesh changed";
+    // Several shapes: only poses moved when everything but the poses is as before.
+    ::MeshKey samePoses = key;
+    samePoses.poses = this->Mesh.poses;
+    remake = several && this->HaveMesh && samePoses == this->Mesh ? "clip shapes moved"
+                                                                    : "clip mesh changed";
   }
   else if (smin < this->BuiltPoseScales[0] || smax > this->BuiltPoseScales[1])
     remake = "clip scale changed";
