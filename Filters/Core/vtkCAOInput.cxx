@@ -9,6 +9,7 @@
 #include "vtkDataSetReader.h"
 #include "vtkExecutive.h"
 #include "vtkImageData.h"
+#include "vtkMatrix4x4.h"
 #include "vtkMetaImageReader.h"
 #include "vtkNIFTIImageReader.h"
 #include "vtkNew.h"
@@ -646,27 +647,62 @@ double DefaultShapeSize(vtkImageData* volume)
   return std::max(0.25 * smallest, 1e-6);
 }
 
-double PlaneSlabSize(vtkImageData* volume, const std::vector<Pose>& poses)
+namespace
+{
+/// The largest length of a corner of the volume's bounds mapped by `toShape`.
+template <typename ToShape>
+double FarthestCorner(vtkImageData* volume, ToShape toShape)
 {
   double b[6];
   volume->GetBounds(b);
+  double far2 = 0.0;
+  for (int c = 0; c < 8; ++c)
+  {
+    double x[3];
+    for (int d = 0; d < 3; ++d)
+    {
+      x[d] = b[2 * d + ((c >> d) & 1)];
+    }
+    double l[3];
+    toShape(x, l);
+    far2 = std::max(far2, l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+  }
+  return std::sqrt(far2);
+}
+}
+
+double PlaneSlabSize(vtkImageData* volume, const std::vector<Pose>& poses)
+{
   double size = 1e-6;
   for (const Pose& p : poses)
   {
-    double far2 = 0.0;
-    for (int c = 0; c < 8; ++c)
-    {
-      double d2 = 0.0;
+    // The distance is rotation-invariant: translate and scale only.
+    size = std::max(size, 1.25 * FarthestCorner(volume, [&p](const double x[3], double l[3]) {
       for (int d = 0; d < 3; ++d)
       {
-        const double x = b[2 * d + ((c >> d) & 1)] - p.translation[d];
-        d2 += x * x;
+        l[d] = (x[d] - p.translation[d]) / p.scale;
       }
-      far2 = std::max(far2, d2);
-    }
-    size = std::max(size, 1.25 * std::sqrt(far2) / p.scale);
+    }));
   }
   return size;
+}
+
+double PlaneSlabSize(vtkImageData* volume, const double shapeToWorld[16])
+{
+  const double det = vtkMatrix4x4::Determinant(shapeToWorld);
+  if (!(std::abs(det) > 0.0) || !std::isfinite(det))
+  {
+    return 0.0;
+  }
+  double inverse[16];
+  vtkMatrix4x4::Invert(shapeToWorld, inverse);
+  return std::max(1e-6, 1.25 * FarthestCorner(volume, [&inverse](const double x[3], double l[3]) {
+    for (int r = 0; r < 3; ++r)
+    {
+      l[r] = inverse[4 * r] * x[0] + inverse[4 * r + 1] * x[1] + inverse[4 * r + 2] * x[2] +
+        inverse[4 * r + 3];
+    }
+  }));
 }
 
 vtkSmartPointer<vtkPolyData> MakeShape(const std::string& name, double size, std::string& error)

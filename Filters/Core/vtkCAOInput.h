@@ -75,6 +75,11 @@ CAOFILTERSCORE_EXPORT std::vector<Pose> DefaultPath(const double bounds[6], int 
 /// the pose's scale), so that only the slab's plane face lies in the volume
 /// or near it, wherever the poses are.
 CAOFILTERSCORE_EXPORT double PlaneSlabSize(vtkImageData* volume, const std::vector<Pose>& poses);
+/// The same for one pose given as a shape-to-world matrix (row-major, any
+/// invertible affine map: a prop's matrix): 1.25 times the largest length,
+/// in the shape's frame, of a corner of the volume's bounds. 0 when the
+/// matrix is singular.
+CAOFILTERSCORE_EXPORT double PlaneSlabSize(vtkImageData* volume, const double shapeToWorld[16]);
 }
 
 #endif

@@ -4,11 +4,13 @@
 #include "vtkAlgorithm.h"
 #include "vtkCommand.h"
 #include "vtkContextualAOVolumeMapper.h"
+#include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkPVLODVolume.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkSmartPointer.h"
+#include "vtkTransform.h"
 
 #include "vtkCAOInput.h"
 #include "vtkFieldData.h"
@@ -16,6 +18,7 @@
 #include "vtkPointData.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 vtkStandardNewMacro(vtkContextualAOVolumeRepresentation);
@@ -193,6 +196,37 @@ int vtkContextualAOVolumeRepresentation::GetNumberOfClipMeshSources() const
 }
 
 //------------------------------------------------------------------------------
+void vtkContextualAOVolumeRepresentation::SetClipScale(double x, double y, double z)
+{
+  // Keep the sign (a negative scale mirrors, as a prop's), never zero.
+  auto clamp = [](double v) { return std::abs(v) < 1e-9 ? std::copysign(1e-9, v) : v; };
+  const double scale[3] = { clamp(x), clamp(y), clamp(z) };
+  if (!std::equal(scale, scale + 3, this->ClipScale))
+  {
+    std::copy(scale, scale + 3, this->ClipScale);
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkContextualAOVolumeRepresentation::GetClipShapeMatrix(double matrix[16])
+{
+  // vtkPVBox's transform of the reference box, then the box's centre and
+  // half-extents, so that the shape of half-extent 1 fills the box.
+  const double unit[6] = { 0, 1, 0, 1, 0, 1 };
+  const double* b = this->ClipUseReferenceBounds ? this->ClipReferenceBounds : unit;
+  vtkNew<vtkTransform> t;
+  t->Translate(this->ClipPosition);
+  t->RotateZ(this->ClipOrientation[2]);
+  t->RotateX(this->ClipOrientation[0]);
+  t->RotateY(this->ClipOrientation[1]);
+  t->Scale(this->ClipScale);
+  t->Translate(0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]));
+  t->Scale(0.5 * (b[1] - b[0]), 0.5 * (b[3] - b[2]), 0.5 * (b[5] - b[4]));
+  vtkMatrix4x4::DeepCopy(matrix, t->GetMatrix());
+}
+
+//------------------------------------------------------------------------------
 void vtkContextualAOVolumeRepresentation::UpdateBuiltInShape(vtkImageData* data)
 {
   vtkContextualAOVolumeMapper* mapper = this->GetAOMapper();
@@ -201,17 +235,31 @@ void vtkContextualAOVolumeRepresentation::UpdateBuiltInShape(vtkImageData* data)
     mapper->SetClipShape(nullptr);
     return;
   }
+  const double* b = this->ClipReferenceBounds;
+  const bool boundsOk = !this->ClipUseReferenceBounds ||
+    (b[1] - b[0] > 0.0 && b[3] - b[2] > 0.0 && b[5] - b[4] > 0.0 &&
+      std::all_of(b, b + 6, [](double v) { return std::isfinite(v); }));
+  double matrix[16];
+  this->GetClipShapeMatrix(matrix);
+  const double det = vtkMatrix4x4::Determinant(matrix);
+  if (!boundsOk || !std::isfinite(det) || det == 0.0)
+  {
+    vtkErrorMacro("The clip box is empty or not finite (reference bounds "
+      << b[0] << " " << b[1] << " " << b[2] << " " << b[3] << " " << b[4] << " " << b[5]
+      << ", each max above its min): nothing is clipped.");
+    mapper->SetClipShape(nullptr);
+    return;
+  }
   static const char* names[] = { "", "sphere", "cube", "torus", "plane" };
-  // A plane's slab must cover the data from the pose (vtkCAO::PlaneSlabSize).
-  // It only grows, with room to spare, so that dragging the plane does not
-  // remake the mesh (and its depth maps) at every step.
-  double size = this->ClipShapeSize;
+  // Half-extent 1: the torus' ring radius 3/4 (tube 1/4) reaches the box's
+  // faces. A plane's slab must cover the data from the pose
+  // (vtkCAO::PlaneSlabSize): it only grows, with room to spare, so that
+  // dragging the plane does not remake the mesh (and its depth maps) at
+  // every step.
+  double size = this->ClipShape == TORUS ? 0.75 : 1.0;
   if (this->ClipShape == PLANE && data)
   {
-    vtkCAO::Pose pose;
-    std::copy(this->ClipPosition, this->ClipPosition + 3, pose.translation.begin());
-    pose.scale = this->ClipScale;
-    const double needed = vtkCAO::PlaneSlabSize(data, { pose });
+    const double needed = vtkCAO::PlaneSlabSize(data, matrix);
     size = this->BuiltShape == PLANE && this->BuiltSize >= needed ? this->BuiltSize : 2.0 * needed;
   }
   if (this->ClipShape != this->BuiltShape || size != this->BuiltSize)
@@ -228,9 +276,18 @@ void vtkContextualAOVolumeRepresentation::UpdateBuiltInShape(vtkImageData* data)
     this->BuiltShape = this->ClipShape;
     this->BuiltSize = size;
   }
-  this->ClipActor->SetPosition(this->ClipPosition);
-  this->ClipActor->SetOrientation(this->ClipOrientation);
-  this->ClipActor->SetScale(this->ClipScale);
+  vtkNew<vtkMatrix4x4> m;
+  m->DeepCopy(matrix);
+  vtkMatrix4x4* current = this->ClipActor->GetUserMatrix();
+  bool same = current != nullptr;
+  for (int i = 0; same && i < 16; ++i)
+  {
+    same = current->GetElement(i / 4, i % 4) == matrix[i];
+  }
+  if (!same) // an unchanged pose keeps the actor's time: no "clip shapes moved"
+  {
+    this->ClipActor->SetUserMatrix(m);
+  }
   mapper->SetClipShape(this->ClipActor);
 }
 
@@ -240,11 +297,17 @@ void vtkContextualAOVolumeRepresentation::PrintSelf(ostream& os, vtkIndent inden
   this->Superclass::PrintSelf(os, indent);
   os << indent << "UseInputAmbientOcclusion: " << this->UseInputAmbientOcclusion << "\n";
   os << indent << "ClipShape: " << this->ClipShape << "\n";
-  os << indent << "ClipShapeSize: " << this->ClipShapeSize << "\n";
   os << indent << "ClipPosition: " << this->ClipPosition[0] << " " << this->ClipPosition[1] << " "
      << this->ClipPosition[2] << "\n";
   os << indent << "ClipOrientation: " << this->ClipOrientation[0] << " "
      << this->ClipOrientation[1] << " " << this->ClipOrientation[2] << "\n";
-  os << indent << "ClipScale: " << this->ClipScale << "\n";
+  os << indent << "ClipScale: " << this->ClipScale[0] << " " << this->ClipScale[1] << " "
+     << this->ClipScale[2] << "\n";
+  os << indent << "ClipReferenceBounds:";
+  for (double v : this->ClipReferenceBounds)
+  {
+    os << " " << v;
+  }
+  os << "\n" << indent << "ClipUseReferenceBounds: " << this->ClipUseReferenceBounds << "\n";
   os << indent << "AOMapper: " << this->VolumeMapper << "\n";
 }

@@ -7,9 +7,14 @@
  * Volume representation (colour and opacity maps, shading, the array to
  * render), with the project's mapper instead of vtkSmartVolumeMapper, so
  * the volume is lit by local ambient occlusion that a clip shape carves
- * exactly. The clip shape is built here from ClipShape (none, sphere, cube,
- * torus) and ClipShapeSize, and posed by ClipPosition, ClipOrientation and
- * ClipScale, as a vtkProp3D would be.
+ * exactly. The built-in clip shape (ClipShape: none, sphere, cube, torus,
+ * plane) is the one inscribed in a box, the box ParaView's box widget
+ * draws and drags: the reference box (ClipReferenceBounds, or the unit box
+ * [0,1]^3 when ClipUseReferenceBounds is off) posed by ClipPosition,
+ * ClipOrientation and ClipScale as vtkPVBox poses it (translate, rotate Z
+ * then X then Y as a vtkProp3D, scale per axis). With the default reference
+ * box [-1,1]^3, ClipPosition is the shape's centre and ClipScale its
+ * half-extents (a sphere's radii, a cube's half edges).
  */
 #ifndef vtkContextualAOVolumeRepresentation_h
 #define vtkContextualAOVolumeRepresentation_h
@@ -63,24 +68,43 @@ public:
   };
 
   ///@{
-  /// The clip shape: NONE (default), SPHERE (radius), CUBE (half edge),
-  /// TORUS (ring radius) or PLANE (the size is not used: the half-space
-  /// covers the data).
+  /// The clip shape, inscribed in the clip box: NONE (default), SPHERE (the
+  /// ellipsoid touching the box's faces), CUBE (the box), TORUS (ring in
+  /// the box's xy mid-plane, outer radius to the box's x and y faces, tube
+  /// a quarter of that) or PLANE (the half-space z >= 0 of the box's frame,
+  /// through its centre; it covers the data whatever the box's size).
   vtkSetClampMacro(ClipShape, int, NONE, PLANE);
   vtkGetMacro(ClipShape, int);
-  vtkSetClampMacro(ClipShapeSize, double, 1e-9, VTK_DOUBLE_MAX);
-  vtkGetMacro(ClipShapeSize, double);
   ///@}
 
   ///@{
-  /// The clip shape's pose, as a prop's: position, orientation (degrees), uniform scale.
+  /// The clip box's pose, as vtkPVBox's (the box widget's Position, Rotation
+  /// and Scale): translation, rotation in degrees (Z, then X, then Y, as a
+  /// prop's) and a scale per axis. A zero scale is refused (the shape would
+  /// be flat): SetClipScale clamps each axis to at least 1e-9 in magnitude.
   vtkSetVector3Macro(ClipPosition, double);
   vtkGetVector3Macro(ClipPosition, double);
   vtkSetVector3Macro(ClipOrientation, double);
   vtkGetVector3Macro(ClipOrientation, double);
-  vtkSetClampMacro(ClipScale, double, 1e-9, VTK_DOUBLE_MAX);
-  vtkGetMacro(ClipScale, double);
+  void SetClipScale(double x, double y, double z);
+  void SetClipScale(const double scale[3]) { this->SetClipScale(scale[0], scale[1], scale[2]); }
+  vtkGetVector3Macro(ClipScale, double);
   ///@}
+
+  ///@{
+  /// The clip box before its pose: ClipReferenceBounds (xmin, xmax, ymin,
+  /// ymax, zmin, zmax; default [-1,1]^3) when ClipUseReferenceBounds is on
+  /// (default), else the unit box [0,1]^3, as ParaView's box widget reads
+  /// them. Empty or inverted bounds clip nothing and say why.
+  vtkSetVector6Macro(ClipReferenceBounds, double);
+  vtkGetVector6Macro(ClipReferenceBounds, double);
+  vtkSetMacro(ClipUseReferenceBounds, bool);
+  vtkGetMacro(ClipUseReferenceBounds, bool);
+  ///@}
+
+  /// The clip shape's matrix (the shape of half-extent 1 centred on the
+  /// origin to world coordinates), as handed to the mapper.
+  void GetClipShapeMatrix(double matrix[16]);
 
   ///@{
   /// Draw the input's AmbientOcclusion array when it has one with the
@@ -121,10 +145,11 @@ protected:
 
   bool UseInputAmbientOcclusion = true;
   int ClipShape = NONE;
-  double ClipShapeSize = 10.0;
   double ClipPosition[3] = { 0.0, 0.0, 0.0 };
   double ClipOrientation[3] = { 0.0, 0.0, 0.0 };
-  double ClipScale = 1.0;
+  double ClipScale[3] = { 10.0, 10.0, 10.0 };
+  double ClipReferenceBounds[6] = { -1.0, 1.0, -1.0, 1.0, -1.0, 1.0 };
+  bool ClipUseReferenceBounds = true;
   int BuiltShape = -1;
   double BuiltSize = 0.0;
   vtkNew<vtkActor> ClipActor;

@@ -13,6 +13,11 @@ pvpython:
     either probe alone;
   - negative control: an open mesh (a Plane source) is refused with the
     reason, and nothing crashes.
+  - the built-in shape is inscribed in the box widget's box: a Cube equals
+    a Transform of a unit Box with the same Translate, Rotate and Scale
+    (negative control: turned further, it differs); without reference
+    bounds the box is [0,1]^3; a Plane's half-space ignores the box's size;
+    an empty reference box clips nothing and says why.
 Also the representation's own LAO precompute reports progress to ParaView's
 progress handler (the GUI's status bar) while it renders; a
 render that precomputes nothing reports none (negative control).
@@ -106,7 +111,7 @@ check(changed(one, two) > 200, "a sphere and a transformed box clip together: %d
       % changed(one, two))
 check(mapper.GetNumberOfClipShapes() == 2, "the mapper holds 2 shapes (%d)" % mapper.GetNumberOfClipShapes())
 display.ClipShape = "Sphere"
-display.ClipShapeSize = 20.0
+display.ClipScale = [20.0, 20.0, 20.0]
 display.ClipPosition = [centre[0] - 40.0, centre[1] - 90.0, centre[2]]
 three = frame("sphere-box-builtin")
 check(mapper.GetNumberOfClipShapes() == 3 and changed(two, three) > 50,
@@ -146,6 +151,83 @@ check(0 < both < min(first, second) - 100,
 display.ClipMeshModes = [1, 0]  # the second now subtracts from the first
 less = volume_pixels(frame("probe-less"))
 check(0 < less < first - 100, "a probe less a subtracting mesh: %d pixels (%d probe alone)" % (less, first))
+
+# The built-in shape is the one inscribed in the box widget's box: the
+# reference box posed by Clip Position, Rotation and Scale as vtkPVBox
+# poses it. A built-in Cube clips exactly as a pipeline Box (half-extent 1)
+# moved by a Transform filter with the same Translate, Rotate and Scale.
+display.ClipMeshes = []
+display.ClipMeshModes = []
+display.ClipMode = "Subtraction"
+display.ClipShape = "Cube"
+display.ClipPosition = [centre[0] + 10.0, centre[1] - 70.0, centre[2] + 5.0]
+display.ClipOrientation = [25.0, 40.0, 15.0]
+display.ClipScale = [50.0, 30.0, 40.0]
+builtin = frame("box-builtin")
+unit_box = Box(XLength=2.0, YLength=2.0, ZLength=2.0)
+posed = Transform(Input=unit_box)
+posed.Transform.Translate = list(display.ClipPosition)
+posed.Transform.Rotate = list(display.ClipOrientation)
+posed.Transform.Scale = list(display.ClipScale)
+display.ClipShape = "None"
+display.ClipMeshes = [posed]
+piped = frame("box-pipeline")
+# Exact: the mapper's clip matrix is ParaView's own transform of the
+# Transform filter (vtkPVTransform, the box widget's pose math).
+posed.UpdatePipeline()
+theirs = posed.Transform.GetClientSideObject().GetMatrix()
+display.ClipShape = "Cube"
+frame("box-builtin-again")
+mine = mapper.GetClipShape().GetMatrix()
+worst = max(abs(mine.GetElement(i, j) - theirs.GetElement(i, j)) for i in range(4) for j in range(4))
+check(worst < 1e-9, "the built-in Cube's matrix is ParaView's Transform of a unit box (largest difference %.2g)"
+      % worst)
+display.ClipShape = "None"
+# In the picture: the same carve up to the depth maps' pixels (the
+# pipeline mesh's maps are framed in world axes, the built-in shape's in
+# its own, so the cut's outline moves by up to a map pixel), far below
+# what a 30-degree turn changes (negative control).
+posed.Transform.Rotate = [25.0, 40.0, 45.0]
+turned = frame("box-pipeline-turned")
+theirs = posed.Transform.GetClientSideObject().GetMatrix()
+off = max(abs(mine.GetElement(i, j) - theirs.GetElement(i, j)) for i in range(4) for j in range(4))
+check(off > 0.1, "negative control: the box turned 30 degrees more has another matrix (%.2g)" % off)
+check(changed(plain, builtin) > 300 and changed(builtin, piped) < changed(builtin, turned) / 4,
+      "the built-in Cube carves as a Transform of a Box: %d pixels differ, against %d for the box "
+      "turned 30 degrees more (%d clipped)" % (changed(builtin, piped), changed(builtin, turned),
+                                              changed(plain, builtin)))
+display.ClipMeshes = []
+display.ClipShape = "Cube"
+display.ClipUseReferenceBounds = 0  # the unit box [0,1]^3: the position is a corner
+corner = frame("box-unit")
+display.ClipUseReferenceBounds = 1
+display.ClipReferenceBounds = [0.0, 1.0, 0.0, 1.0, 0.0, 1.0]
+check(changed(corner, frame("box-reference-unit")) == 0 and changed(corner, builtin) > 100,
+      "without reference bounds the box is [0,1]^3, as the widget draws it (%d pixels moved)"
+      % changed(corner, builtin))
+# A plane's half-space does not depend on the box's size.
+display.ClipReferenceBounds = [-1.0, 1.0, -1.0, 1.0, -1.0, 1.0]
+display.ClipShape = "Plane"
+display.ClipScale = [100.0, 100.0, 100.0]
+big = frame("plane-big")
+display.ClipScale = [0.01, 0.02, 0.01]
+small = frame("plane-small")
+display.ClipOrientation = [25.0, 70.0, 15.0]
+check(changed(big, small) == 0 and changed(plain, big) > 300 and changed(small, frame("plane-turned")) > 100,
+      "a plane cuts the same half-space in a large and a tiny box (%d pixels differ); turned, it differs"
+      % changed(big, small))
+# An empty reference box clips nothing and says why.
+errors = vtkStringOutputWindow()
+previous = vtkOutputWindow.GetInstance()
+vtkOutputWindow.SetInstance(errors)
+display.ClipShape = "Sphere"
+display.ClipReferenceBounds = [0.0, 0.0, -1.0, 1.0, -1.0, 1.0]
+empty = frame("box-empty")
+vtkOutputWindow.SetInstance(previous)
+check("clip box is empty" in errors.GetOutput() and changed(plain, empty) == 0,
+      "an empty reference box clips nothing, with the reason: %s" % " ".join(errors.GetOutput().split())[:200])
+display.ClipReferenceBounds = [-1.0, 1.0, -1.0, 1.0, -1.0, 1.0]
+display.ClipShape = "None"
 
 # Negative control: an open mesh is refused with the reason.
 display.ClipMeshModes = []

@@ -1,10 +1,15 @@
 """The clip shape's widget in the ParaView GUI (a startup script under
-Xvfb): the "Contextual AO Volume" representation shows a sphere widget at
-the clip shape (its position and size); dragging its centre with the mouse
-(events sent to the view's interactor, as a user's drag) moves Clip
-Position, the GUI applies it at once, and the mapper's clip shape follows
-with frames drawn during the drag.
-Negative control: the same drag started far from the widget moves nothing.
+Xvfb): the "Contextual AO Volume" representation shows ParaView's box widget
+around the clip shape. With the mouse (events sent to the view's
+interactor, as a user's drag):
+- dragging the box's centre handle moves Clip Position, the GUI applies it
+  at once, and the mapper's clip shape follows with frames drawn during the
+  drag;
+- dragging across a face of the box turns it: Clip Rotation changes and the
+  mapper's clip matrix is the box widget's pose (the shape stays inscribed
+  in the box the user sees).
+Negative control: the same drags started far from the widget change
+nothing.
 Writes CAO_RESULT (ok/FAIL lines, then PASSED or FAILED)."""
 import os
 
@@ -20,15 +25,45 @@ def check(ok, what):
         failures.append(what)
 
 
-def drag(view, x, y, dx):
+def drag(view, x, y, dx, dy=0):
     iren = view.GetRenderWindow().GetInteractor()
     iren.SetEventInformation(int(x), int(y), 0, 0)
     iren.InvokeEvent("MouseMoveEvent")
     iren.InvokeEvent("LeftButtonPressEvent")
     for k in range(1, 11):
-        iren.SetEventInformation(int(x + dx * k / 10.0), int(y), 0, 0)
+        iren.SetEventInformation(int(x + dx * k / 10.0), int(y + dy * k / 10.0), 0, 0)
         iren.InvokeEvent("MouseMoveEvent")
     iren.InvokeEvent("LeftButtonReleaseEvent")
+
+
+def to_display(view, p):
+    renderer = view.GetRenderer()
+    renderer.SetWorldPoint(p[0], p[1], p[2], 1.0)
+    renderer.WorldToDisplay()
+    return renderer.GetDisplayPoint()[:2]
+
+
+def expected_matrix(display):
+    """vtkPVBox's pose of the reference box, then the box's centre and
+    half-extents: the matrix of the shape of half-extent 1 in the box."""
+    import vtk
+    b = list(display.ClipReferenceBounds)
+    t = vtk.vtkTransform()
+    t.Translate(list(display.ClipPosition))
+    r = list(display.ClipOrientation)
+    t.RotateZ(r[2])
+    t.RotateX(r[0])
+    t.RotateY(r[1])
+    t.Scale(list(display.ClipScale))
+    t.Translate(0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]))
+    t.Scale(0.5 * (b[1] - b[0]), 0.5 * (b[3] - b[2]), 0.5 * (b[5] - b[4]))
+    m = t.GetMatrix()
+    return [m.GetElement(i // 4, i % 4) for i in range(16)]
+
+
+def shape_matrix(mapper):
+    m = mapper.GetClipShape().GetMatrix()
+    return [m.GetElement(i // 4, i % 4) for i in range(16)]
 
 
 try:
@@ -45,27 +80,43 @@ try:
     Render(view)
     mapper = display.GetClientSideObject().GetActiveRepresentation().GetActor().GetMapper()
     start = list(display.ClipPosition)
-    renderer = view.GetRenderer()
-    renderer.SetWorldPoint(start[0], start[1], start[2], 1.0)
-    renderer.WorldToDisplay()
-    x, y, _ = renderer.GetDisplayPoint()
-    # Negative control: a drag in the view's corner, far from the widget.
+    x, y = to_display(view, start)
+    # Negative control: drags in the view's corner, far from the widget.
     drag(view, 5, 5, 60)
+    drag(view, 5, 5, 0, 60)
     Render(view)
-    check(list(display.ClipPosition) == start,
-          "a drag away from the widget leaves Clip Position %s (%s)" % (start, list(display.ClipPosition)))
+    check(list(display.ClipPosition) == start and list(display.ClipOrientation) == [0, 0, 0],
+          "drags away from the widget leave Clip Position %s and Clip Rotation (%s, %s)"
+          % (start, list(display.ClipPosition), list(display.ClipOrientation)))
     frames = mapper.GetFrameCount()
     drag(view, x, y, 60)
     Render(view)
     moved = list(display.ClipPosition)
     check(moved[0] > start[0] + 10.0 and abs(moved[1] - start[1]) < 1e-6,
-          "dragging the widget's centre right moves Clip Position along +x: %s -> %s" % (start, moved))
+          "dragging the box's centre handle right moves Clip Position along +x: %s -> %s" % (start, moved))
     # The GUI applies display properties at once and renders while the
-    # widget moves: the mapper's clip prop is at the new position and frames
+    # widget moves: the mapper's clip prop is at the new pose and frames
     # were drawn during the drag (each recomputing the voxels the move affects).
-    check(list(mapper.GetClipShape().GetPosition()) == moved and mapper.GetFrameCount() > frames,
-          "the mapper's clip shape follows the widget (%s) and %d frames were drawn during the drag"
-          % (list(mapper.GetClipShape().GetPosition()), mapper.GetFrameCount() - frames))
+    check(max(abs(a - b) for a, b in zip(shape_matrix(mapper), expected_matrix(display))) < 1e-9
+          and mapper.GetFrameCount() > frames,
+          "the mapper's clip shape follows the widget (translation %s) and %d frames were drawn "
+          "during the drag" % (shape_matrix(mapper)[3::4][:3], mapper.GetFrameCount() - frames))
+    # Turn the box: press on its front face (the view looks down -z, the
+    # face nearest the camera), halfway between the centre and the face's
+    # right edge (away from the face's handle), and drag upwards.
+    scale = list(display.ClipScale)
+    face = [moved[0] + 0.5 * scale[0], moved[1], moved[2] + scale[2]]
+    fx, fy = to_display(view, face)
+    frames = mapper.GetFrameCount()
+    drag(view, fx, fy, 0, 60)
+    Render(view)
+    turned = list(display.ClipOrientation)
+    check(max(abs(v) for v in turned) > 5.0,
+          "dragging across the box's face turns it: Clip Rotation %s" % (turned,))
+    check(max(abs(a - b) for a, b in zip(shape_matrix(mapper), expected_matrix(display))) < 1e-9
+          and mapper.GetFrameCount() > frames,
+          "the mapper's clip matrix is the turned box's pose and %d frames were drawn during the turn"
+          % (mapper.GetFrameCount() - frames))
     SaveScreenshot(os.environ["CAO_RESULT"] + ".png", view, ImageResolution=[400, 300])
 except Exception as e:  # noqa: BLE001  (reported as a failure)
     check(False, "exception: %r" % (e,))

@@ -130,10 +130,14 @@ display = pvs.Show(reader, view)
 display.SetRepresentationType("Contextual AO Volume")
 b = reader.GetDataInformation().GetBounds()
 centre = [0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5])]
+quarter = 0.25 * max(b[1] - b[0], b[3] - b[2], b[5] - b[4])
 check(list(display.ClipPosition) == centre and
-      abs(display.ClipShapeSize - 0.25 * max(b[1] - b[0], b[3] - b[2], b[5] - b[4])) < 1e-9,
-      "the clip shape defaults to the data's centre %s and a quarter of its extent (%s, %s)"
-      % (centre, list(display.ClipPosition), display.ClipShapeSize))
+      all(abs(s - quarter) < 1e-9 for s in display.ClipScale) and
+      list(display.ClipReferenceBounds) == [-1, 1, -1, 1, -1, 1] and display.ClipUseReferenceBounds == 1,
+      "the clip box defaults to the data's centre %s, half-extents a quarter of its extent %g and "
+      "the reference box [-1,1]^3 (%s, %s, %s, %s)"
+      % (centre, quarter, list(display.ClipPosition), list(display.ClipScale),
+         list(display.ClipReferenceBounds), display.ClipUseReferenceBounds))
 pvs.Delete(display)
 pvs.Delete(view)
 

@@ -42,7 +42,7 @@ display.SetRepresentationType("Contextual AO Volume")
 opacity = GetOpacityTransferFunction("MetaImage")
 opacity.Points = [0.0, 0.0, 0.5, 0.0, 40.0, 0.0, 0.5, 0.0, 90.0, 0.4, 0.5, 0.0, 255.0, 0.9, 0.5, 0.0]
 display.ClipShape = "Sphere"
-display.ClipShapeSize = 50.0
+display.ClipScale = [50.0, 50.0, 50.0]
 view.ResetCamera()
 scene = GetAnimationScene()
 scene.PlayMode = "Sequence"

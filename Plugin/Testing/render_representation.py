@@ -40,7 +40,7 @@ try:
     display.Diffuse = 0.5
     display.AORayPattern = "6 rays (faces)"
     display.ClipShape = "Sphere"
-    display.ClipShapeSize = 60.0
+    display.ClipScale = [60.0, 60.0, 60.0]
     display.ClipPosition = [94.0, 60.0, 82.0]
     view.CameraPosition = [94.0, -500.0, 82.0]
     view.CameraFocalPoint = [94.0, 122.0, 82.0]
