@@ -1022,6 +1022,8 @@ void vtkContextualAOVolumeMapper::Internals::MakeRenderParams(vtkContextualAOVol
     flags |= cao::layout::CAO_RENDER_CLIP;
   if (f.clipping && self->SmoothClipSurface)
     flags |= cao::layout::CAO_RENDER_CLIP_SMOOTH;
+  if (f.clipping && self->SampleAtClipSurface)
+    flags |= cao::layout::CAO_RENDER_CLIP_ENTRY;
   if (self->UseJittering)
     flags |= cao::layout::CAO_RENDER_JITTER;
   params.dims = { dims[0], dims[1], dims[2], flags };
@@ -1114,6 +1116,8 @@ void vtkContextualAOVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SampleDistance: " << this->SampleDistance << "\n";
   os << indent << "InteractiveSampleDistance: " << this->InteractiveSampleDistance << "\n";
   os << indent << "UseJittering: " << (this->UseJittering ? "On" : "Off") << "\n";
+  os << indent << "SmoothClipSurface: " << (this->SmoothClipSurface ? "On" : "Off") << "\n";
+  os << indent << "SampleAtClipSurface: " << (this->SampleAtClipSurface ? "On" : "Off") << "\n";
   os << indent << "FrameCount: " << this->FrameCount << "\n";
   os << indent << "PrecomputeCount: " << this->PrecomputeCount << "\n";
   os << indent << "DepthMapsCount: " << this->DepthMapsCount << "\n";

@@ -341,6 +341,22 @@ public:
 
   ///@{
   /**
+   * Sample the matter exactly at the clip surface where a ray comes out of
+   * the clipped region (default on): the sample after the crossing moves
+   * back onto the surface (8 bisections of the clip test, a step / 256),
+   * and the following samples step on from there. Behind a cut the AO
+   * changes fast with depth, so a first sample anywhere within one step
+   * behind the surface showed as concentric rings on a curved cut face
+   * (jitter off) or as salt-and-pepper grain (jitter on). Off: the samples
+   * stay on the ray's regular (jittered) grid.
+   */
+  vtkSetMacro(SampleAtClipSurface, bool);
+  vtkGetMacro(SampleAtClipSurface, bool);
+  vtkBooleanMacro(SampleAtClipSurface, bool);
+  ///@}
+
+  ///@{
+  /**
    * The last rendered frame's work report, as JSON: frame number, the
    * stages that ran with milliseconds each (and the timer used), the voxels recomputed, the
    * category counts and why AO work was done. Empty before the first frame.
@@ -386,6 +402,7 @@ protected:
   double InteractiveSampleDistance = 0.0;
   bool UseJittering = true;
   bool SmoothClipSurface = true;
+  bool SampleAtClipSurface = true;
   int FrameCount = 0;
   int PrecomputeCount = 0;
   int DepthMapsCount = 0;

@@ -120,6 +120,7 @@ CAO_CONST CAO_RENDER_JITTER = 8;       /* per-pixel ray-start offset */
 CAO_CONST CAO_RENDER_OPAQUE_DEPTH = 16; /* stop at the opaque geometry's depth */
 CAO_CONST CAO_RENDER_AO_CALIBRATED = 32; /* the AO as the light an open face would get (aoCalibration) */
 CAO_CONST CAO_RENDER_CLIP_SMOOTH = 64; /* the picture's clip test blends the 4 nearest map pixels */
+CAO_CONST CAO_RENDER_CLIP_ENTRY = 128; /* the first sample behind a cut moves onto the clip surface */
 
 /*
  * Binding points, shared so that the C++ side binds what the GLSL declares.

@@ -8,7 +8,9 @@
 //    the transfer-function table;
 //  - the shadow test against the clip mesh's depth maps (caoClipTest.glsl)
 //    removes the sample when it is inside the mesh (subtraction) or outside
-//    it (probing);
+//    it (probing); where the ray comes out of the clipped region, the next
+//    sample moves onto the clip surface (bisection; CAO_RENDER_CLIP_ENTRY),
+//    and the samples after it follow from there;
 //  - the AO (trilinear; with clipping, over the unclipped voxels only;
 //    calibrated per voxel with CAO_RENDER_AO_CALIBRATED) scales the ambient
 //    term: 1 - strength * (1 - AO);
@@ -139,6 +141,17 @@ float VoxelAO(vec3 p, bool clipped, bool calibrated)
   return weight > 0.0 ? sum / weight : 1.0;
 }
 
+/// Whether the clip removes the sample at index-space point p.
+bool Removed(vec3 p, int flags)
+{
+  return ((flags & CAO_RENDER_CLIP_SMOOTH) != 0 ? InsideSmooth(p) : Inside(p)) ==
+    (clip.map.w == CAO_MODE_SUBTRACT);
+}
+
+/// Bisection steps that put the first sample behind a cut onto the clip
+/// surface (a step / 256).
+#define CAO_CLIP_ENTRY_BISECTIONS 8
+
 float Scalar(vec3 tc)
 {
   return texture(scalarTexture, tc).r;
@@ -180,6 +193,7 @@ void main()
     rp.normalToWorld[2].xyz);
   vec3 texel = rp.invDims.xyz;
   vec4 sum = vec4(0.0);
+  bool wasRemoved = false;
   for (int i = 0; i < rp.limits.x && t <= tExit; ++i, t += step)
   {
     vec3 p = origin + t * dir;
@@ -188,10 +202,42 @@ void main()
     vec4 c = texture(tableTexture, vec2(s * rp.sampling.y + rp.sampling.z, 0.5));
     if (c.a <= 0.0)
       continue;
-    if ((flags & CAO_RENDER_CLIP) != 0 &&
-      ((flags & CAO_RENDER_CLIP_SMOOTH) != 0 ? InsideSmooth(p) : Inside(p)) ==
-        (clip.map.w == CAO_MODE_SUBTRACT))
-      continue;
+    if ((flags & CAO_RENDER_CLIP) != 0)
+    {
+      if (Removed(p, flags))
+      {
+        wasRemoved = true;
+        continue;
+      }
+      // (With CAO_RENDER_CLIP_ENTRY off, the first sample stays where the
+      // step put it.)
+      if (wasRemoved && (flags & CAO_RENDER_CLIP_ENTRY) != 0)
+      {
+        // The ray came out of the clipped region since the last sample:
+        // sample the matter at the clip surface (bisection between the step
+        // before and this one), not at a step-quantized depth behind it.
+        // Behind a curved cut the AO changes fast with depth, and that
+        // quantization showed as concentric rings (jitter off) or grain
+        // (jitter on). The samples after it follow from the surface.
+        float lo = t - step, hi = t;
+        for (int k = 0; k < CAO_CLIP_ENTRY_BISECTIONS; ++k)
+        {
+          float mid = 0.5 * (lo + hi);
+          if (Removed(origin + mid * dir, flags))
+            lo = mid;
+          else
+            hi = mid;
+        }
+        wasRemoved = false;
+        t = hi;
+        p = origin + t * dir;
+        tc = (p + 0.5) * rp.invDims.xyz;
+        s = Scalar(tc);
+        c = texture(tableTexture, vec2(s * rp.sampling.y + rp.sampling.z, 0.5));
+        if (c.a <= 0.0)
+          continue;
+      }
+    }
     float ambient = 1.0;
     if ((flags & CAO_RENDER_AO) != 0)
     {

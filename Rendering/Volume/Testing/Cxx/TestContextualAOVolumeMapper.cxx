@@ -933,6 +933,49 @@ void Silhouette(const Options& o)
   Compare(o, frames[0][1], "silhouette-per-pixel");
 }
 
+/// The matter behind a cut face, sampled where the ray leaves the clip
+/// shape: HeadMR probed by a sphere at its centre, so every visible pixel
+/// of the sphere's face lies on a cut, AO on. On the ray's regular grid the
+/// first sample behind the curved surface lands anywhere within a step of
+/// it, set by the per-pixel jitter, and the AO there changes fast with
+/// depth: grain with jitter, concentric rings without, and the two frames
+/// differ. Sampled at the surface (SampleAtClipSurface), the first sample
+/// and those after it no longer depend on the jitter: the frames with and
+/// without jitter must differ by less than half as much (negative
+/// control: on the regular grid they differ visibly).
+void CutFace(const Options& o)
+{
+  Scene s;
+  if (!s.Open(o.window) || !s.Load(o.data + "/HeadMRVolume.mhd"))
+    return;
+  double b[6];
+  s.image->GetBounds(b);
+  const double extent = std::max({ b[1] - b[0], b[3] - b[2], b[5] - b[4] });
+  s.Shape("sphere", 0.3 * extent);
+  s.clip->SetPosition(0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]));
+  s.mapper->SetModeToProbing();
+  double d[2] = { 0, 0 };
+  caotest::Image frames[2][2];
+  for (int atSurface = 1; atSurface >= 0; --atSurface)
+  {
+    s.mapper->SetSampleAtClipSurface(atSurface != 0);
+    for (int jitter = 1; jitter >= 0; --jitter)
+    {
+      s.mapper->SetUseJittering(jitter != 0);
+      frames[atSurface][jitter] = s.Frame();
+    }
+    d[atSurface] = MeanDifference(frames[atSurface][0], frames[atSurface][1]);
+  }
+  s.mapper->UseJitteringOn();
+  s.mapper->SampleAtClipSurfaceOn();
+  std::printf("a probed sphere's cut face, with and without jitter: frames differ by %.4f grey "
+              "levels sampled at the clip surface, %.4f on the regular grid\n",
+    d[1], d[0]);
+  CAO_EXPECT(d[0] > 0.5, "negative control: the regular grid should depend on the jitter (%.4f)", d[0]);
+  CAO_EXPECT(d[1] < 0.5 * d[0], "sampling at the surface should halve it at least: %.4f vs %.4f",
+    d[1], d[0]);
+  Compare(o, frames[1][1], "cutface-at-surface");
+
 int TestContextualAOVolumeMapper(int argc, char* argv[])
 {
   Options o;
@@ -952,10 +995,10 @@ int TestContextualAOVolumeMapper(int argc, char* argv[])
   }
   if ((o.window != "egl" && o.window != "x") ||
     (o.mode != "images" && o.mode != "report" && o.mode != "badinput" &&
-      o.mode != "calibration" && o.mode != "silhouette") ||
+      o.mode != "calibration" && o.mode != "silhouette" && o.mode != "cutface") ||
     o.data.empty() || o.baselines.empty() || o.output.empty())
   {
-    std::printf("usage: TestContextualAOVolumeMapper <egl|x> <images|report|badinput|calibration|silhouette> -D data -B "
+    std::printf("usage: TestContextualAOVolumeMapper <egl|x> <images|report|badinput|calibration|silhouette|cutface> -D data -B "
                 "baselines -T output\n");
     return 1;
   }
@@ -972,6 +1015,8 @@ int TestContextualAOVolumeMapper(int argc, char* argv[])
     Calibration(o);
   else if (o.mode == "silhouette")
     Silhouette(o);
+  else if (o.mode == "cutface")
+    CutFace(o);
   else
     BadInput(o);
   std::printf("%s: %d failure(s)\n", failures ? "FAILED" : "PASSED", failures);
