@@ -975,6 +975,7 @@ void CutFace(const Options& o)
   CAO_EXPECT(d[1] < 0.5 * d[0], "sampling at the surface should halve it at least: %.4f vs %.4f",
     d[1], d[0]);
   Compare(o, frames[1][1], "cutface-at-surface");
+}
 
 int TestContextualAOVolumeMapper(int argc, char* argv[])
 {
