@@ -15,6 +15,7 @@
 #include "vtkCAOLAOSettings.h"
 #include "caoLAOCommandLine.h"
 #include "caoRender.h"
+#include "caoSurface.h"
 
 #include "vtkCAOClipMaps.h"
 #include "vtkClipDepthMaps.h"
@@ -957,6 +958,8 @@ int main(int argc, char* argv[])
         std::cout << caocli::RenderUsage;
       else if (command == "bench")
         std::cout << caocli::BenchUsage;
+      else if (command == "surface")
+        std::cout << caocli::SurfaceUsage;
       else
         std::cout << Usage;
       return 0;
@@ -966,10 +969,13 @@ int main(int argc, char* argv[])
     return caocli::RunRender(argc, argv);
   if (argc >= 2 && std::string(argv[1]) == "bench")
     return caocli::RunBench(argc, argv);
+  if (argc >= 2 && std::string(argv[1]) == "surface")
+    return caocli::RunSurface(argc, argv);
   if (argc >= 2 && (std::string(argv[1]) == "-h" || std::string(argv[1]) == "--help" ||
                      std::string(argv[1]) == "help"))
   {
-    std::cout << Usage << "\n" << caocli::RenderUsage << "\n" << caocli::BenchUsage;
+    std::cout << Usage << "\n" << caocli::RenderUsage << "\n" << caocli::BenchUsage << "\n"
+              << caocli::SurfaceUsage;
     return 0;
   }
   Options o;

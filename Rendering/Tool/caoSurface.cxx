@@ -1,0 +1,480 @@
+#include "caoSurface.h"
+
+#include "caoCommandLine.h"
+#include "caoSurfaceReference.h"
+#include "caoWindow.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkPNGWriter.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkRenderStepsPass.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkSSAOPass.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkUnsignedShortArray.h"
+
+#include "vtkCAOInput.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <sstream>
+
+namespace caocli
+{
+const char* SurfaceUsage = R"(cao surface MESH... [options] -o out.png
+  Ambient occlusion of closed or open triangle meshes (.vtp, .vtk, .stl,
+  .ply, .obj) seen by one camera.
+  --method reference|ssao|none   (default reference)
+        reference: CPU ray tracing in double precision (Kernels/Surface);
+        ssao: VTK's vtkSSAOPass, its default kernel (32) and bias, blurred,
+              at the same radius, read back from an unlit white material;
+        none: AO = 1.
+  --radius R            world units (default: a tenth of the meshes' bounding-box diagonal)
+  --rays N              reference: directions per pixel (default 1024, at most 1048576)
+  --falloff step|linear|quartic   reference (default step)
+  --weighting cosine|uniform      reference (default cosine)
+  --image WxH           default 512x512 (at most 16384 a side)
+  --azimuth A --elevation E --zoom Z   the camera after fitting the meshes
+                        (defaults 30, 20, 1.0), as vtkCamera's
+  --ao-only             write the AO term alone: 16-bit grey and alpha (1 = open;
+                        background transparent)
+  --json                print the settings, per-stage times and counts as JSON
+  --threads N           CPU threads (0: all; default 0)
+  --window auto|egl|x   ssao's offscreen window (default auto)
+  -o out.png            the picture (required)
+Exit codes: 0 done, 2 bad input, 1 failure.
+)";
+
+namespace
+{
+struct SurfaceOptions
+{
+  std::vector<std::string> meshes;
+  std::string method = "reference", output, window = "auto";
+  int width = 512, height = 512, threads = 0;
+  double azimuth = 30, elevation = 20, zoom = 1.0, radius = 0;
+  bool aoOnly = false, json = false;
+  cao::SurfaceReferenceSettings reference;
+};
+
+int Fail(int code, const std::string& message)
+{
+  std::cerr << "cao: error: " << message << "\n";
+  return code;
+}
+
+bool Parse(int argc, char* argv[], SurfaceOptions& o, std::string& error)
+{
+  for (int i = 2; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    std::string v;
+    auto value = [&]() {
+      if (i + 1 >= argc)
+      {
+        error = "option " + a + " needs a value";
+        return false;
+      }
+      v = argv[++i];
+      return true;
+    };
+    auto number = [&](double& out, double lo, double hi) {
+      if (!value())
+        return false;
+      if (!ToDouble(v, out) || out < lo || out > hi)
+      {
+        std::ostringstream s;
+        s << a << " must be a number in [" << lo << ", " << hi << "] (got '" << v << "')";
+        error = s.str();
+        return false;
+      }
+      return true;
+    };
+    double d = 0;
+    if (a == "--method")
+    {
+      if (!value())
+        return false;
+      if (v != "reference" && v != "ssao" && v != "none")
+      {
+        error = "--method is reference, ssao or none (got '" + v + "')";
+        return false;
+      }
+      o.method = v;
+    }
+    else if (a == "--radius")
+    {
+      if (!number(o.radius, 0, std::numeric_limits<double>::max()) )
+        return false;
+      if (!(o.radius > 0))
+      {
+        error = "--radius must be positive";
+        return false;
+      }
+    }
+    else if (a == "--rays")
+    {
+      if (!number(d, 1, cao::SurfaceReferenceSettings::MaximumRays) || d != std::floor(d))
+      {
+        if (error.empty())
+          error = "--rays must be a whole number";
+        return false;
+      }
+      o.reference.rays = static_cast<int>(d);
+    }
+    else if (a == "--falloff")
+    {
+      if (!value())
+        return false;
+      if (!cao::ParseFalloff(v, o.reference.falloff))
+      {
+        error = "--falloff is step, linear or quartic (got '" + v + "')";
+        return false;
+      }
+    }
+    else if (a == "--weighting")
+    {
+      if (!value())
+        return false;
+      if (!cao::ParseWeighting(v, o.reference.weighting))
+      {
+        error = "--weighting is cosine or uniform (got '" + v + "')";
+        return false;
+      }
+    }
+    else if (a == "--image")
+    {
+      if (!value())
+        return false;
+      int w = 0, h = 0;
+      char x = 0, extra = 0;
+      std::istringstream s(v);
+      if (!(s >> w >> x >> h) || x != 'x' || (s >> extra) || w < 1 || h < 1 ||
+        w > cao::PixelCamera::MaximumSide || h > cao::PixelCamera::MaximumSide)
+      {
+        error = "--image is WxH, each 1.." + std::to_string(cao::PixelCamera::MaximumSide) +
+          " (got '" + v + "')";
+        return false;
+      }
+      o.width = w;
+      o.height = h;
+    }
+    else if (a == "--azimuth")
+    {
+      if (!number(o.azimuth, -3600, 3600))
+        return false;
+    }
+    else if (a == "--elevation")
+    {
+      if (!number(o.elevation, -89.9, 89.9))
+        return false;
+    }
+    else if (a == "--zoom")
+    {
+      if (!number(o.zoom, 1e-3, 1e3))
+        return false;
+    }
+    else if (a == "--threads")
+    {
+      if (!number(d, 0, 1024))
+        return false;
+      o.threads = static_cast<int>(d);
+    }
+    else if (a == "--window")
+    {
+      if (!value())
+        return false;
+      if (v != "auto" && v != "egl" && v != "x")
+      {
+        error = "--window is auto, egl or x";
+        return false;
+      }
+      o.window = v;
+    }
+    else if (a == "--ao-only")
+      o.aoOnly = true;
+    else if (a == "--json")
+      o.json = true;
+    else if (a == "-o" || a == "--output")
+    {
+      if (!value())
+        return false;
+      o.output = v;
+    }
+    else if (!a.empty() && a[0] == '-')
+    {
+      error = "unknown option " + a;
+      return false;
+    }
+    else
+      o.meshes.push_back(a);
+  }
+  if (o.meshes.empty())
+  {
+    error = "give at least one mesh";
+    return false;
+  }
+  if (o.output.empty())
+  {
+    error = "give the output picture with -o out.png";
+    return false;
+  }
+  o.reference.threads = o.threads;
+  return true;
+}
+
+/// VTK's renderer fit (vtkRenderer::ResetCamera, VTK 9.2): the focal point
+/// at the bounds' centre, the bounding sphere filling the view angle (the
+/// narrower one when the image is taller than wide), then the tool's
+/// azimuth, elevation and zoom, and near/far planes around the bounds.
+void FitCamera(vtkCamera* camera, const double b[6], double aspect, const SurfaceOptions& o)
+{
+  const double centre[3] = { 0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]) };
+  const double w[3] = { b[1] - b[0], b[3] - b[2], b[5] - b[4] };
+  double radius = 0.5 * std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+  if (!(radius > 0))
+    radius = 0.5;
+  double angle = vtkMath::RadiansFromDegrees(camera->GetViewAngle());
+  if (aspect < 1.0)
+    angle = 2.0 * std::atan(std::tan(angle * 0.5) * aspect);
+  const double distance = radius / std::sin(angle * 0.5);
+  camera->SetFocalPoint(centre);
+  camera->SetPosition(centre[0], centre[1], centre[2] + distance);
+  camera->SetViewUp(0, 1, 0);
+  camera->Azimuth(o.azimuth);
+  camera->Elevation(o.elevation);
+  camera->OrthogonalizeViewUp();
+  camera->Zoom(o.zoom);
+  // Near and far around the bounding sphere.
+  const double d = std::sqrt(vtkMath::Distance2BetweenPoints(camera->GetPosition(), centre));
+  camera->SetClippingRange(std::max(1e-3 * d, d - 1.01 * radius), d + 1.01 * radius);
+}
+
+/// The AO of every pixel by vtkSSAOPass on an unlit white material (the
+/// pass multiplies the colour, 1, by its occlusion term), read back;
+/// NaN where the depth buffer holds the background.
+bool SSAO(const std::vector<vtkSmartPointer<vtkPolyData>>& meshes, vtkCamera* camera,
+  const SurfaceOptions& o, double radius, std::vector<double>& ao, std::string& description,
+  std::string& error)
+{
+  vtkSmartPointer<vtkRenderWindow> window = MakeOffscreenWindow(o.window, description, error);
+  if (!window)
+    return false;
+  window->SetSize(o.width, o.height);
+  vtkNew<vtkRenderer> renderer;
+  renderer->SetBackground(0, 0, 0);
+  window->AddRenderer(renderer);
+  for (const auto& mesh : meshes)
+  {
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputData(mesh);
+    mapper->ScalarVisibilityOff();
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(mapper);
+    actor->GetProperty()->SetColor(1, 1, 1);
+    actor->GetProperty()->SetAmbient(1.0);
+    actor->GetProperty()->SetDiffuse(0.0);
+    actor->GetProperty()->SetSpecular(0.0);
+    actor->GetProperty()->BackfaceCullingOff();
+    renderer->AddActor(actor);
+  }
+  vtkNew<vtkRenderStepsPass> steps;
+  vtkNew<vtkSSAOPass> ssao;
+  ssao->SetDelegatePass(steps);
+  ssao->SetRadius(radius);
+  ssao->BlurOn();
+  renderer->SetPass(ssao);
+  renderer->GetActiveCamera()->DeepCopy(camera);
+  window->Render();
+  vtkNew<vtkFloatArray> rgba;
+  window->GetRGBAPixelData(0, 0, o.width - 1, o.height - 1, 0, rgba);
+  vtkNew<vtkFloatArray> z;
+  window->GetZbufferData(0, 0, o.width - 1, o.height - 1, z);
+  const std::size_t pixels = static_cast<std::size_t>(o.width) * o.height;
+  ao.assign(pixels, std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t i = 0; i < pixels; ++i)
+    if (z->GetValue(static_cast<vtkIdType>(i)) < 1.0f)
+      ao[i] = rgba->GetValue(static_cast<vtkIdType>(4 * i));
+  return true;
+}
+
+bool WritePicture(const SurfaceOptions& o, const cao::SurfaceFrame& frame,
+  const std::vector<double>& ao, std::string& error)
+{
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(o.width, o.height, 1);
+  const std::size_t pixels = static_cast<std::size_t>(o.width) * o.height;
+  vtkNew<vtkPNGWriter> png;
+  if (o.aoOnly)
+  {
+    vtkNew<vtkUnsignedShortArray> v;
+    v->SetNumberOfComponents(2);
+    v->SetNumberOfTuples(static_cast<vtkIdType>(pixels));
+    for (std::size_t i = 0; i < pixels; ++i)
+    {
+      const bool covered = std::isfinite(ao[i]);
+      const double a = covered ? std::min(1.0, std::max(0.0, ao[i])) : 0.0;
+      v->SetTypedComponent(static_cast<vtkIdType>(i), 0, static_cast<unsigned short>(std::lround(a * 65535.0)));
+      v->SetTypedComponent(static_cast<vtkIdType>(i), 1, covered ? 65535 : 0);
+    }
+    image->GetPointData()->SetScalars(v);
+  }
+  else
+  {
+    // Grey, lit by a headlight: ambient (scaled by the AO) plus diffuse.
+    vtkNew<vtkUnsignedCharArray> v;
+    v->SetNumberOfComponents(4);
+    v->SetNumberOfTuples(static_cast<vtkIdType>(pixels));
+    for (std::size_t i = 0; i < pixels; ++i)
+    {
+      const bool covered = frame.triangle[i] >= 0;
+      const double a = std::isfinite(ao[i]) ? std::min(1.0, std::max(0.0, ao[i])) : 1.0;
+      const double c = covered ? 0.9 * (0.55 * a + 0.45 * frame.facing[i]) : 0.0;
+      const unsigned char g = static_cast<unsigned char>(std::lround(255.0 * std::min(1.0, c)));
+      for (int k = 0; k < 3; ++k)
+        v->SetTypedComponent(static_cast<vtkIdType>(i), k, g);
+      v->SetTypedComponent(static_cast<vtkIdType>(i), 3, covered ? 255 : 0);
+    }
+    image->GetPointData()->SetScalars(v);
+  }
+  png->SetInputData(image);
+  png->SetFileName(o.output.c_str());
+  png->Write();
+  if (png->GetErrorCode() != 0)
+  {
+    error = "cannot write '" + o.output + "'";
+    return false;
+  }
+  return true;
+}
+
+double Milliseconds(std::chrono::steady_clock::time_point since)
+{
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since).count();
+}
+}
+
+int RunSurface(int argc, char* argv[])
+{
+  SurfaceOptions o;
+  std::string error;
+  if (!Parse(argc, argv, o, error))
+    return Fail(2, error + "\nusage:\n" + SurfaceUsage);
+  SelectThreads(o.threads);
+  auto start = std::chrono::steady_clock::now();
+  std::vector<vtkSmartPointer<vtkPolyData>> meshes;
+  std::vector<double> points;
+  std::vector<std::int64_t> tris;
+  for (const std::string& path : o.meshes)
+  {
+    vtkSmartPointer<vtkPolyData> mesh = vtkCAO::ReadMesh(path, error);
+    if (!mesh)
+      return Fail(2, error);
+    std::vector<double> p;
+    std::vector<std::int64_t> t;
+    vtkCAO::TrianglesOf(mesh, p, t);
+    if (t.empty())
+      return Fail(2, "'" + path + "' has no triangles (polygons or strips)");
+    const std::int64_t base = static_cast<std::int64_t>(points.size() / 3);
+    points.insert(points.end(), p.begin(), p.end());
+    for (std::int64_t id : t)
+      tris.push_back(id + base);
+    meshes.push_back(mesh);
+  }
+  const double readMs = Milliseconds(start);
+  start = std::chrono::steady_clock::now();
+  cao::TriangleBVH scene;
+  if (!scene.Build(points, tris, error))
+    return Fail(2, error);
+  const double bvhMs = Milliseconds(start);
+  const std::array<double, 6>& b = scene.Bounds();
+  if (scene.NumberOfTriangles() == 0)
+    return Fail(2, "the meshes have no triangle with an area");
+  const double diagonal = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
+    (b[5] - b[4]) * (b[5] - b[4]));
+  const double radius = o.radius > 0 ? o.radius : 0.1 * diagonal;
+  o.reference.radius = radius;
+
+  vtkNew<vtkCamera> camera;
+  const double aspect = double(o.width) / o.height;
+  FitCamera(camera, b.data(), aspect, o);
+  vtkMatrix4x4* toNDC = camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
+  cao::PixelCamera pixels;
+  vtkMatrix4x4::Invert(&toNDC->Element[0][0], pixels.ndcToWorld);
+  pixels.width = o.width;
+  pixels.height = o.height;
+  start = std::chrono::steady_clock::now();
+  cao::SurfaceFrame frame;
+  if (!cao::CastPrimary(scene, pixels, frame, error))
+    return Fail(2, error);
+  const double primaryMs = Milliseconds(start);
+
+  start = std::chrono::steady_clock::now();
+  std::vector<double> ao;
+  std::string window;
+  if (o.method == "reference")
+  {
+    if (!cao::ReferenceFrame(scene, o.reference, frame, error))
+      return Fail(2, error);
+    ao = frame.ao;
+  }
+  else if (o.method == "ssao")
+  {
+    if (!SSAO(meshes, camera, o, radius, ao, window, error))
+      return Fail(1, error);
+  }
+  else
+  {
+    ao.assign(frame.triangle.size(), std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t i = 0; i < ao.size(); ++i)
+      if (frame.triangle[i] >= 0)
+        ao[i] = 1.0;
+  }
+  const double aoMs = Milliseconds(start);
+  if (!WritePicture(o, frame, ao, error))
+    return Fail(1, error);
+  std::int64_t covered = 0;
+  double sum = 0.0;
+  for (double a : ao)
+    if (std::isfinite(a))
+    {
+      ++covered;
+      sum += a;
+    }
+  if (o.json)
+  {
+    std::cout << std::setprecision(10) << "{\"method\": \"" << o.method << "\", \"image\": [" << o.width
+              << ", " << o.height << "], \"radius\": " << radius << ", \"triangles\": "
+              << scene.NumberOfTriangles() << ", \"covered_pixels\": " << covered
+              << ", \"mean_ao\": " << (covered ? sum / covered : 0.0);
+    if (o.method == "reference")
+      std::cout << ", \"reference\": {\"rays\": " << o.reference.rays << ", \"falloff\": \""
+                << cao::FalloffName(o.reference.falloff) << "\", \"weighting\": \""
+                << cao::WeightingName(o.reference.weighting) << "\", \"seed\": " << o.reference.seed
+                << "}";
+    if (o.method == "ssao")
+      std::cout << ", \"window\": \"" << window << "\"";
+    std::cout << ", \"stages_ms\": {\"read\": " << readMs << ", \"bvh\": " << bvhMs
+              << ", \"primary\": " << primaryMs << ", \"ao\": " << aoMs << "}}\n";
+  }
+  else
+    std::cout << "wrote " << o.output << " (" << o.method << ", " << covered << " pixels, radius "
+              << radius << ", mean AO " << (covered ? sum / covered : 0.0) << ", AO "
+              << std::fixed << std::setprecision(1) << aoMs << " ms)\n";
+  return 0;
+}
+}
