@@ -2,6 +2,7 @@
 
 #include "caoCommandLine.h"
 #include "caoSurfaceReference.h"
+#include "caoVoxelConeTracing.h"
 #include "caoWindow.h"
 
 #include "vtkActor.h"
@@ -38,12 +39,22 @@ namespace caocli
 const char* SurfaceUsage = R"(cao surface MESH... [options] -o out.png
   Ambient occlusion of closed or open triangle meshes (.vtp, .vtk, .stl,
   .ply, .obj) seen by one camera.
-  --method reference|ssao|none   (default reference)
+  --method vct|reference|ssao|none   (default vct)
+        vct: voxel cone tracing (seed 000) on a world-space bit grid (CPU);
         reference: CPU ray tracing in double precision (Kernels/Surface);
         ssao: VTK's vtkSSAOPass, its default kernel (32) and bias, blurred,
               at the same radius, read back from an unlit white material;
         none: AO = 1.
   --radius R            world units (default: a tenth of the meshes' bounding-box diagonal)
+  --quality low|medium|high   vct: the paper's presets (spheres 3/5/7, prisms 3/6/12;
+                        default medium)
+  --slices N            vct: depth slices of the grid, 32..1024, a multiple of 32
+                        (default 128, the paper's)
+  --grid world          vct: the grid (world: built once per geometry; the paper's
+                        eye-space grid is not built yet)
+  --cone-weights cosine|equal   vct (default cosine; equal: the paper's average)
+  --cone-angle DEG      vct: each cone's half-angle, 5..45 (default 30)
+  --apex-offset V       vct: the cones' apex above the surface, in voxels, 0..4 (default 1)
   --rays N              reference: directions per pixel (default 1024, at most 1048576)
   --falloff step|linear|quartic   reference (default step)
   --weighting cosine|uniform      reference (default cosine)
@@ -64,11 +75,12 @@ namespace
 struct SurfaceOptions
 {
   std::vector<std::string> meshes;
-  std::string method = "reference", output, window = "auto";
+  std::string method = "vct", output, window = "auto";
   int width = 512, height = 512, threads = 0;
   double azimuth = 30, elevation = 20, zoom = 1.0, radius = 0;
   bool aoOnly = false, json = false;
   cao::SurfaceReferenceSettings reference;
+  cao::VCTSettings vct;
 };
 
 int Fail(int code, const std::string& message)
@@ -109,9 +121,9 @@ bool Parse(int argc, char* argv[], SurfaceOptions& o, std::string& error)
     {
       if (!value())
         return false;
-      if (v != "reference" && v != "ssao" && v != "none")
+      if (v != "vct" && v != "reference" && v != "ssao" && v != "none")
       {
-        error = "--method is reference, ssao or none (got '" + v + "')";
+        error = "--method is vct, reference, ssao or none (got '" + v + "')";
         return false;
       }
       o.method = v;
@@ -135,6 +147,58 @@ bool Parse(int argc, char* argv[], SurfaceOptions& o, std::string& error)
         return false;
       }
       o.reference.rays = static_cast<int>(d);
+    }
+    else if (a == "--quality")
+    {
+      if (!value())
+        return false;
+      if (!cao::ParseVCTQuality(v, o.vct.quality) || o.vct.quality == cao::VCTQuality::Custom)
+      {
+        error = "--quality is low, medium or high (got '" + v + "')";
+        return false;
+      }
+    }
+    else if (a == "--slices")
+    {
+      if (!number(d, 32, 1024) || d != std::floor(d) || static_cast<int>(d) % 32 != 0)
+      {
+        if (error.empty())
+          error = "--slices must be 32..1024 and a multiple of 32 (got '" + v + "')";
+        return false;
+      }
+      o.vct.slices = static_cast<int>(d);
+    }
+    else if (a == "--grid")
+    {
+      if (!value())
+        return false;
+      if (v != "world")
+      {
+        error = v == "eye" ? "--grid eye (the paper's per-frame eye-space grid) is not built yet; use --grid world"
+                           : "--grid is world (got '" + v + "')";
+        return false;
+      }
+    }
+    else if (a == "--apex-offset")
+    {
+      if (!number(o.vct.apexOffset, 0, 4))
+        return false;
+    }
+    else if (a == "--cone-angle")
+    {
+      if (!number(o.vct.coneHalfAngle, 5, 45))
+        return false;
+    }
+    else if (a == "--cone-weights")
+    {
+      if (!value())
+        return false;
+      if (v != "cosine" && v != "equal")
+      {
+        error = "--cone-weights is cosine or equal (got '" + v + "')";
+        return false;
+      }
+      o.vct.weights = v == "cosine" ? cao::ConeWeights::Cosine : cao::ConeWeights::Equal;
     }
     else if (a == "--falloff")
     {
@@ -379,6 +443,8 @@ int RunSurface(int argc, char* argv[])
   std::vector<vtkSmartPointer<vtkPolyData>> meshes;
   std::vector<double> points;
   std::vector<std::int64_t> tris;
+  std::vector<std::vector<double>> meshPoints;
+  std::vector<std::vector<std::int64_t>> meshTris;
   for (const std::string& path : o.meshes)
   {
     vtkSmartPointer<vtkPolyData> mesh = vtkCAO::ReadMesh(path, error);
@@ -394,6 +460,8 @@ int RunSurface(int argc, char* argv[])
     for (std::int64_t id : t)
       tris.push_back(id + base);
     meshes.push_back(mesh);
+    meshPoints.push_back(std::move(p));
+    meshTris.push_back(std::move(t));
   }
   const double readMs = Milliseconds(start);
   start = std::chrono::steady_clock::now();
@@ -426,7 +494,35 @@ int RunSurface(int argc, char* argv[])
   start = std::chrono::steady_clock::now();
   std::vector<double> ao;
   std::string window;
-  if (o.method == "reference")
+  double voxelizeMs = -1.0;
+  cao::BitGrid grid;
+  std::vector<std::string> openReport;
+  if (o.method == "vct")
+  {
+    o.vct.radius = radius;
+    std::vector<cao::MeshView> views;
+    for (std::size_t m = 0; m < meshPoints.size(); ++m)
+      views.push_back({ &meshPoints[m], &meshTris[m] });
+    // Padding: the cones reach R (plus the apex offset) beyond a surface.
+    const double padding = radius * 1.05;
+    if (!cao::VoxelizeWorld(views, b, padding, o.vct.slices, grid, error))
+      return Fail(2, error);
+    voxelizeMs = Milliseconds(start);
+    for (std::size_t m = 0; m < grid.openEdges.size(); ++m)
+      if (grid.openEdges[m] > 0)
+      {
+        openReport.push_back(o.meshes[m]);
+        std::cerr << "cao: warning: '" << o.meshes[m] << "' is open (" << grid.openEdges[m]
+                  << " boundary or non-manifold edges): voxelized as a shell, its inside is not filled\n";
+      }
+    start = std::chrono::steady_clock::now();
+    cao::VCTPlan plan;
+    if (!cao::BuildVCTPlan(o.vct, grid, plan, error) ||
+      !cao::VCTFrame(grid, plan, frame, o.threads, error))
+      return Fail(2, error);
+    ao = frame.ao;
+  }
+  else if (o.method == "reference")
   {
     if (!cao::ReferenceFrame(scene, o.reference, frame, error))
       return Fail(2, error);
@@ -468,8 +564,25 @@ int RunSurface(int argc, char* argv[])
                 << "}";
     if (o.method == "ssao")
       std::cout << ", \"window\": \"" << window << "\"";
+    if (o.method == "vct")
+    {
+      std::cout << ", \"vct\": {\"quality\": \"" << cao::VCTQualityName(o.vct.quality)
+                << "\", \"spheres\": " << o.vct.EffectiveSpheres() << ", \"prisms\": "
+                << o.vct.EffectivePrisms() << ", \"cone_half_angle\": " << o.vct.coneHalfAngle
+                << ", \"cone_weights\": \""
+                << (o.vct.weights == cao::ConeWeights::Cosine ? "cosine" : "equal")
+                << "\", \"grid\": \"world\", \"slices\": " << grid.slices << ", \"columns\": ["
+                << grid.nx << ", " << grid.ny << "], \"voxel\": " << grid.voxel
+                << ", \"solid_voxels\": " << grid.CountAll() << ", \"open_meshes\": [";
+      for (std::size_t m = 0; m < openReport.size(); ++m)
+        std::cout << (m ? ", " : "") << "\"" << openReport[m] << "\"";
+      std::cout << "]}";
+    }
     std::cout << ", \"stages_ms\": {\"read\": " << readMs << ", \"bvh\": " << bvhMs
-              << ", \"primary\": " << primaryMs << ", \"ao\": " << aoMs << "}}\n";
+              << ", \"primary\": " << primaryMs;
+    if (voxelizeMs >= 0)
+      std::cout << ", \"voxelize\": " << voxelizeMs;
+    std::cout << ", \"ao\": " << aoMs << "}}\n";
   }
   else
     std::cout << "wrote " << o.output << " (" << o.method << ", " << covered << " pixels, radius "

@@ -9,6 +9,9 @@
   the same directions): step <= quartic <= linear, on Bunny; negative
   control: the reverse order fails;
 - the weighting switches: uniform differs from cosine;
+- voxel cone tracing (the default): the reference's pixels, AO in [0, 1],
+  dark by a sphere, open elsewhere; an open mesh is reported and voxelized
+  as a shell;
 - bad input exits 2 with the reason; an unreadable mesh too.
 Prints vtkSSAOPass's error against the reference on Bunny (informative)."""
 import json
@@ -60,7 +63,7 @@ def surface(name, meshes, *options):
 
 
 bunny = os.path.join(data, "Bunny.vtp")
-(ref, ref_json) = surface("bunny-reference", [bunny], "--rays", "256")
+(ref, ref_json) = surface("bunny-reference", [bunny], "--method", "reference", "--rays", "256")
 kind, components, ao, covered = ref
 check(kind == 5 and components == 2, "--ao-only is 16-bit grey and alpha (type %d, %d components)"
       % (kind, components))
@@ -92,15 +95,15 @@ print("vtkSSAOPass against the reference (Bunny, radius %.4g, 256 rays): RMSE %.
       % (ref_json["radius"], np.sqrt(np.mean(d * d)), d.mean(), np.percentile(np.abs(d), 99)))
 
 # Falloffs: the same directions (same seed), so each pixel orders as the measures.
-(lin, _) = surface("bunny-linear", [bunny], "--rays", "256", "--falloff", "linear")
-(qua, _) = surface("bunny-quartic", [bunny], "--rays", "256", "--falloff", "quartic")
+(lin, _) = surface("bunny-linear", [bunny], "--method", "reference", "--rays", "256", "--falloff", "linear")
+(qua, _) = surface("bunny-quartic", [bunny], "--method", "reference", "--rays", "256", "--falloff", "quartic")
 m = covered
 check(np.all(ao[m] <= qua[2][m] + 1e-6) and np.all(qua[2][m] <= lin[2][m] + 1e-6) and
       lin[2][m].mean() > qua[2][m].mean() > ao[m].mean(),
       "falloffs order pixel by pixel: step %.4f <= quartic %.4f <= linear %.4f (means)"
       % (ao[m].mean(), qua[2][m].mean(), lin[2][m].mean()))
 check(not np.all(lin[2][m] <= ao[m] + 1e-6), "negative control: linear <= step does not hold")
-(uni, _) = surface("bunny-uniform", [bunny], "--rays", "256", "--weighting", "uniform")
+(uni, _) = surface("bunny-uniform", [bunny], "--method", "reference", "--rays", "256", "--weighting", "uniform")
 check(np.abs(uni[2][m] - ao[m]).max() > 0.05, "the uniform weighting changes the AO (max %.3f)"
       % np.abs(uni[2][m] - ao[m]).max())
 
@@ -117,8 +120,8 @@ w.SetInputConnection(tri.GetOutputPort())
 square = os.path.join(tmp, "square.vtp")
 w.SetFileName(square)
 w.Write()
-(flat, _) = surface("square", [square], "--rays", "64", "--elevation", "0", "--azimuth", "0",
-                    "--radius", "100")
+(flat, _) = surface("square", [square], "--method", "reference", "--rays", "64", "--elevation", "0",
+                    "--azimuth", "0", "--radius", "100")
 check(flat[3].sum() > 1000 and np.all(flat[2][flat[3]] == 1.0),
       "an open square gets AO 1 at every pixel (%d pixels, min %.6f)" % (flat[3].sum(), flat[2][flat[3]].min()))
 sphere = vtkSphereSource()
@@ -131,8 +134,31 @@ w2.SetInputConnection(sphere.GetOutputPort())
 ball = os.path.join(tmp, "ball.vtp")
 w2.SetFileName(ball)
 w2.Write()
-(lit, _) = surface("square-ball", [square, ball], "--rays", "64", "--radius", "100")
+(lit, _) = surface("square-ball", [square, ball], "--method", "reference", "--rays", "64", "--radius", "100")
 check(lit[2][lit[3]].min() < 0.3, "a sphere resting on the square darkens it (min AO %.3f)" % lit[2][lit[3]].min())
+
+# Voxel cone tracing (the default method): the same pixels as the
+# reference, AO in [0, 1], and darker under the ball than on the open
+# square far from it; the open square is reported and voxelized as a shell.
+out = os.path.join(tmp, "vct-ball.png")
+rc, so, se = run(square, ball, "--ao-only", "--json", "--image", "160x120", "--radius", "0.5", "-o", out)
+report = json.loads(so) if rc == 0 else {}
+check(rc == 0 and report.get("method") == "vct" and report["vct"]["open_meshes"] == [square] and
+      "is open" in se and "shell" in se,
+      "vct is the default; the open square is reported (%s) and voxelized as a shell: %r"
+      % (report.get("vct", {}).get("open_meshes"), se.strip()[:200]))
+if rc == 0:
+    _, _, vao, vcov = ao_png(out)
+    check(vcov.sum() == report["covered_pixels"] and vao[vcov].min() >= 0 and vao[vcov].max() <= 1 and
+          vao[vcov].min() < 0.8 and np.percentile(vao[vcov], 90) > 0.99,
+          "vct: AO in [0, 1], dark near the ball (min %.3f), open elsewhere (90th percentile %.3f)"
+          % (vao[vcov].min(), np.percentile(vao[vcov], 90)))
+(vb, vb_json) = surface("bunny-vct", [bunny])
+m = np.logical_and(covered, vb[3])
+d = vb[2][m] - ao[m]
+print("vct (medium, 128 slices) against the reference (Bunny): RMSE %.4f, bias %+.4f; %s"
+      % (np.sqrt(np.mean(d * d)), d.mean(), vb_json["stages_ms"]))
+check(vb[3].sum() == covered.sum(), "vct sees the reference's pixels (%d, %d)" % (vb[3].sum(), covered.sum()))
 
 # Bad input.
 for args, words in [(["--method", "magic", bunny, "-o", "x.png"], "--method is"),
@@ -141,6 +167,9 @@ for args, words in [(["--method", "magic", bunny, "-o", "x.png"], "--method is")
                     (["--radius", "-1", bunny, "-o", "x.png"], "--radius"),
                     ([bunny], "-o out.png"),
                     (["--falloff", "cubic", bunny, "-o", "x.png"], "--falloff is"),
+                    (["--slices", "100", bunny, "-o", "x.png"], "multiple of 32"),
+                    (["--grid", "eye", bunny, "-o", "x.png"], "not built yet"),
+                    (["--quality", "ultra", bunny, "-o", "x.png"], "--quality is"),
                     ([os.path.join(tmp, "missing.vtp"), "-o", "x.png"], "missing.vtp")]:
     rc, so, se = run(*args)
     check(rc == 2 and words in se and "Segmentation" not in se, "bad input %s: rc %d, %r" % (args[:2], rc, se.strip()[:160]))

@@ -1,0 +1,227 @@
+// Seed 000's CPU twin (caoVoxelConeTracing):
+// - the voxelizer: a cube whose vertices and edges lie exactly on column
+//   centres fills exactly 15^3 voxels (the top-left rule counts each
+//   shared edge once; negative control: the same cube shifted by half a
+//   voxel fills 16^3 or 14^3 columns... its own exact count); a sphere's
+//   parity equals the analytic interior at every voxel centre farther
+//   than the tessellation's sagitta from the surface; two overlapping
+//   closed spheres stay solid (OR of fills, not XOR); an open mesh is
+//   reported (its boundary edges) and filled as a shell;
+// - cone tracing against its own definition: a solid half-space x > a
+//   voxelized finely, against the same cones, spheres and prisms with each
+//   prism's chord counted exactly;
+//   negative control: a coarse grid misses it by more; an empty grid
+//   gives AO 1 exactly; a point on a solid floor stays open;
+// - bad input: slices, settings, ids.
+#include "caoVoxelConeTracing.h"
+#include "caoTestUtilities.h"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+namespace
+{
+const double Pi = 3.14159265358979323846;
+
+void Box(double lo, double hi, std::vector<double>& p, std::vector<std::int64_t>& t)
+{
+  p = { lo, lo, lo, hi, lo, lo, hi, hi, lo, lo, hi, lo, lo, lo, hi, hi, lo, hi, hi, hi, hi, lo, hi, hi };
+  t = { 0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4, 2, 3, 7, 2, 7, 6, 1, 2, 6, 1, 6, 5, 3, 0, 4, 3, 4, 7 };
+}
+
+/// Fraction of a sphere (centre c, radius r) in the half-space x > a.
+double CapFraction(double cx, double r, double a)
+{
+  const double d = a - cx; // signed distance of the plane from the centre
+  if (d >= r)
+    return 0.0;
+  if (d <= -r)
+    return 1.0;
+  const double hcap = r - d; // height of the cap x > a
+  return Pi * hcap * hcap * (3 * r - hcap) / 3.0 / (4.0 / 3.0 * Pi * r * r * r);
+}
+}
+
+int TestVoxelConeTracing(int, char*[])
+{
+  std::string error;
+  // The cube on column centres: h = 1/16, origin -1; vertices at
+  // -1 + 8.5/16 and -1 + 23.5/16.
+  {
+    std::vector<double> p;
+    std::vector<std::int64_t> t;
+    Box(-1 + 8.5 / 16, -1 + 23.5 / 16, p, t);
+    cao::BitGrid grid;
+    CAO_CHECK(cao::VoxelizeWorld({ { &p, &t } }, { { -1, 1, -1, 1, -1, 1 } }, 0.0, 32, grid, error),
+      "%s", error.c_str());
+    CAO_CHECK(grid.voxel == 1.0 / 16 && grid.nx == 32 && grid.origin[0] == -1.0, "grid h %g nx %d origin %g",
+      grid.voxel, grid.nx, grid.origin[0]);
+    std::printf("cube with vertices on column centres: %lld voxels set (15^3 = 3375), open edges %lld\n",
+      static_cast<long long>(grid.CountAll()), static_cast<long long>(grid.openEdges[0]));
+    CAO_CHECK(grid.CountAll() == 3375 && grid.openEdges[0] == 0, "%lld", static_cast<long long>(grid.CountAll()));
+    // Negative control: an inclusive rule (both triangles own a shared
+    // edge) would cancel the parity on the face diagonals and double the
+    // boundary columns; the count here would not be a cube.
+    for (int j = 0; j < grid.ny; ++j)
+      for (int i = 0; i < grid.nx; ++i)
+      {
+        const int n = grid.CountBits(i, j, 0, 31);
+        const bool in = i >= 8 && i <= 22 && j >= 8 && j <= 22;
+        CAO_CHECK(n == (in ? 15 : 0), "column %d %d: %d bits", i, j, n);
+      }
+  }
+  // A sphere: parity = analytic interior away from the surface.
+  std::vector<double> sp;
+  std::vector<std::int64_t> st;
+  caotest::UVSphere(0.6, 128, sp, st);
+  {
+    cao::BitGrid grid;
+    CAO_CHECK(cao::VoxelizeWorld({ { &sp, &st } }, { { -0.6, 0.6, -0.6, 0.6, -0.6, 0.6 } }, 0.1, 128,
+                grid, error), "%s", error.c_str());
+    const double sagitta = 0.6 * (1 - std::cos(Pi / 128)) * 2; // rings and segments
+    std::int64_t wrong = 0, checked = 0, inside = 0;
+    for (int j = 0; j < grid.ny; ++j)
+      for (int i = 0; i < grid.nx; ++i)
+        for (int k = 0; k < grid.slices; ++k)
+        {
+          const double x = grid.origin[0] + (i + 0.5) * grid.voxel, y = grid.origin[1] + (j + 0.5) * grid.voxel,
+                       z = grid.origin[2] + (k + 0.5) * grid.voxel;
+          const double d = std::sqrt(x * x + y * y + z * z) - 0.6;
+          if (std::fabs(d) <= sagitta + 1e-12)
+            continue;
+          ++checked;
+          inside += d < 0;
+          wrong += grid.Bit(i, j, k) != (d < 0);
+        }
+    std::printf("sphere r=0.6, 128 slices: %lld of %lld voxel centres checked wrong (%lld inside)\n",
+      static_cast<long long>(wrong), static_cast<long long>(checked), static_cast<long long>(inside));
+    CAO_CHECK(wrong == 0 && inside > 100000, "%lld wrong", static_cast<long long>(wrong));
+    // Two overlapping spheres: their union, solid (a shared XOR would hollow the overlap).
+    std::vector<double> sp2 = sp;
+    for (std::size_t c = 0; c < sp2.size(); c += 3)
+      sp2[c] += 0.3;
+    cao::BitGrid two;
+    CAO_CHECK(cao::VoxelizeWorld({ { &sp, &st }, { &sp2, &st } }, { { -0.6, 0.9, -0.6, 0.6, -0.6, 0.6 } },
+                0.1, 128, two, error), "%s", error.c_str());
+    const int ci = static_cast<int>(std::floor((0.15 - two.origin[0]) / two.voxel));
+    const int cj = static_cast<int>(std::floor((0.0 - two.origin[1]) / two.voxel));
+    const int ck = static_cast<int>(std::floor((0.0 - two.origin[2]) / two.voxel));
+    CAO_CHECK(two.Bit(ci, cj, ck), "the overlap of two closed spheres stays solid");
+    // An open mesh: the sphere less one triangle.
+    std::vector<std::int64_t> holed(st.begin() + 3, st.end());
+    cao::BitGrid shell;
+    CAO_CHECK(cao::VoxelizeWorld({ { &sp, &holed } }, { { -0.6, 0.6, -0.6, 0.6, -0.6, 0.6 } }, 0.1, 128,
+                shell, error), "%s", error.c_str());
+    std::printf("the sphere less one triangle: %lld open edges, filled as a shell: %lld voxels (solid: %lld)\n",
+      static_cast<long long>(shell.openEdges[0]), static_cast<long long>(shell.CountAll()),
+      static_cast<long long>(grid.CountAll()));
+    CAO_CHECK(shell.openEdges[0] == 3 && shell.CountAll() < grid.CountAll() / 4 && shell.CountAll() > 1000,
+      "open mesh: %lld edges, %lld voxels", static_cast<long long>(shell.openEdges[0]),
+      static_cast<long long>(shell.CountAll()));
+  }
+  // Cone tracing against its own definition: half-space x > a (a box
+  // slab), P at the origin with n = +z: each sphere's occupied fraction is
+  // the cap beyond x = a.
+  {
+    for (double a : { 0.1, 0.3 })
+    {
+      std::vector<double> p = { a, -3, -3, 3, -3, -3, 3, 3, -3, a, 3, -3, a, -3, 3, 3, -3, 3, 3, 3, 3, a, 3, 3 };
+      std::vector<std::int64_t> t;
+      std::vector<double> dummy;
+      Box(0, 1, dummy, t); // the box's triangles, on these 8 points
+      cao::VCTSettings s;
+      s.quality = cao::VCTQuality::Custom;
+      s.spheres = 5;
+      s.prisms = 32;
+      s.radius = 1.0;
+      s.apexOffset = 0.0;
+      double error2[2] = { 0, 0 };
+      double exactAO = 0;
+      for (int fine = 1; fine >= 0; --fine)
+      {
+        s.slices = fine ? 1024 : 32;
+        cao::BitGrid grid;
+        CAO_CHECK(cao::VoxelizeWorld({ { &p, &t } }, { { -1.1, 1.1, -1.1, 1.1, -1.1, 1.1 } }, 0.0, s.slices,
+                    grid, error), "%s", error.c_str());
+        cao::VCTPlan plan;
+        CAO_CHECK(cao::BuildVCTPlan(s, grid, plan, error), "%s", error.c_str());
+        // The exact value of the same cones, spheres and prisms: a prism
+        // (a chord along z) lies wholly in x > a or wholly out of it, so a
+        // sphere's occupied fraction is the chord-weighted share of the
+        // prisms beyond the plane. (The spherical cap's volume fraction,
+        // the limit of many prisms, is printed beside it.)
+        const double n[3] = { 0, 0, 1 }, o[3] = { 0, 0, 0 };
+        double occ = 0.0, capOcc = 0.0;
+        for (std::size_t c = 0; c < plan.cones.size(); ++c)
+        {
+          // ConeTraceAO's frame for n = +z: tx = (1, 0, 0), ty = (0, 1, 0).
+          const double dx = plan.cones[c][0];
+          double open = 1.0, capOpen = 1.0;
+          for (const auto& sphere : plan.spheres)
+          {
+            double in = 0.0, all = 0.0;
+            for (const auto& d : plan.disk)
+            {
+              const double chord = std::sqrt(std::max(0.0, 1.0 - d[0] * d[0] - d[1] * d[1]));
+              all += chord;
+              in += sphere.t * dx + sphere.r * d[0] > a ? chord : 0.0;
+            }
+            open *= 1.0 - in / all;
+            capOpen *= 1.0 - CapFraction(sphere.t * dx, sphere.r, a);
+          }
+          occ += plan.coneWeights[c] * (1.0 - open);
+          capOcc += plan.coneWeights[c] * (1.0 - capOpen);
+        }
+        exactAO = 1.0 - occ;
+        const double ao = cao::ConeTraceAO(grid, plan, o, n);
+        error2[fine] = std::fabs(ao - exactAO);
+        std::printf("half-space x > %.1f, %4d slices, %zu spheres: VCT AO %.4f, exact for its cones and "
+                    "prisms %.4f (spheres' true volume: %.4f)\n",
+          a, s.slices, plan.spheres.size(), ao, exactAO, 1.0 - capOcc);
+      }
+      CAO_CHECK(error2[1] < 0.01, "fine grid: |VCT - exact| = %.4f", error2[1]);
+      CAO_CHECK(error2[0] > error2[1], "negative control: the coarse grid should be further (%.4f vs %.4f)",
+        error2[0], error2[1]);
+    }
+  }
+  // An empty grid: AO 1 exactly; a point on a solid floor: open.
+  {
+    std::vector<double> p;
+    std::vector<std::int64_t> t;
+    Box(-1, 0, p, t);
+    for (std::size_t c = 2; c < p.size(); c += 3)
+      p[c] = p[c] == 0 ? 0.0 : -1.0; // floor z in [-1, 0]
+    cao::BitGrid grid;
+    CAO_CHECK(cao::VoxelizeWorld({ { &p, &t } }, { { -1, 0, -1, 0, -1, 0 } }, 0.5, 128, grid, error), "%s",
+      error.c_str());
+    cao::VCTSettings s;
+    s.radius = 0.4;
+    cao::VCTPlan plan;
+    CAO_CHECK(cao::BuildVCTPlan(s, grid, plan, error), "%s", error.c_str());
+    const double n[3] = { 0, 0, 1 }, onFloor[3] = { -0.5, -0.5, 0.0 }, above[3] = { -0.5, -0.5, 0.9 };
+    const double floorAO = cao::ConeTraceAO(grid, plan, onFloor, n);
+    const double freeAO = cao::ConeTraceAO(grid, plan, above, n);
+    std::printf("a point on a solid floor: AO %.4f; far above it: %.4f\n", floorAO, freeAO);
+    CAO_CHECK(freeAO == 1.0 && floorAO > 0.95, "floor %.4f free %.4f", floorAO, freeAO);
+  }
+  // Bad input.
+  {
+    cao::VCTSettings s;
+    s.slices = 100;
+    CAO_CHECK(s.Validate().find("multiple of 32") != std::string::npos, "%s", s.Validate().c_str());
+    s.slices = 128;
+    s.quality = cao::VCTQuality::Custom;
+    s.prisms = 0;
+    CAO_CHECK(s.Validate().find("prisms") != std::string::npos, "%s", s.Validate().c_str());
+    std::vector<double> p = { 0, 0, 0, 1, 0, 0, 0, 1, 0 };
+    std::vector<std::int64_t> t = { 0, 1, 5 };
+    cao::BitGrid grid;
+    CAO_CHECK(!cao::VoxelizeWorld({ { &p, &t } }, { { 0, 1, 0, 1, 0, 1 } }, 0, 128, grid, error) &&
+        error.find("point 5 of 3") != std::string::npos, "%s", error.c_str());
+    CAO_CHECK(!cao::VoxelizeWorld({}, { { 0, 1, 0, 1, 0, 1 } }, 0, 48, grid, error) &&
+        error.find("multiple of 32") != std::string::npos, "%s", error.c_str());
+  }
+  return 0;
+}

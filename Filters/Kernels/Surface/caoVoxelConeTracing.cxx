@@ -1,0 +1,470 @@
+#include "caoVoxelConeTracing.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <map>
+#include <thread>
+#include <unordered_map>
+
+namespace cao
+{
+namespace
+{
+constexpr double Pi = 3.14159265358979323846;
+
+/// 2D edge function of the directed edge u -> v at p: positive on its left.
+double Edge(const double* u, const double* v, double px, double py)
+{
+  return (v[0] - u[0]) * (py - u[1]) - (v[1] - u[1]) * (px - u[0]);
+}
+
+/// The top-left rule's owner of a directed edge: of the two directions of
+/// a shared edge exactly one owns it, so a column through the edge counts
+/// one crossing.
+bool Owned(const double* u, const double* v)
+{
+  const double dy = v[1] - u[1], dx = v[0] - u[0];
+  return dy < 0.0 || (dy == 0.0 && dx > 0.0);
+}
+
+bool Inside(double e, const double* u, const double* v)
+{
+  return e > 0.0 || (e == 0.0 && Owned(u, v));
+}
+
+/// XOR (solid) or OR (shell) the slices of one crossing at slice
+/// coordinate s (slice k spans [k, k + 1)) into a column of `words` words.
+void Cross(std::uint32_t* column, int slices, int words, double s, bool solid)
+{
+  if (solid)
+  {
+    // Every slice whose centre lies beyond the crossing: k + 1/2 > s.
+    const double first = std::floor(s - 0.5) + 1.0;
+    if (first >= slices)
+      return;
+    const int k0 = first < 0.0 ? 0 : static_cast<int>(first);
+    int w = k0 >> 5;
+    column[w] ^= ~0u << (k0 & 31);
+    for (++w; w < words; ++w)
+      column[w] = ~column[w];
+  }
+  else
+  {
+    const double k = std::floor(s);
+    if (k < 0.0 || k >= slices)
+      return;
+    const int kk = static_cast<int>(k);
+    column[kk >> 5] |= 1u << (kk & 31);
+  }
+}
+
+template <typename Body>
+void ParallelFor(std::size_t count, int threads, Body body)
+{
+  unsigned n = threads > 0 ? static_cast<unsigned>(threads) : std::thread::hardware_concurrency();
+  n = std::max(1u, std::min<unsigned>(n, static_cast<unsigned>(std::min<std::size_t>(count, 256))));
+  std::atomic<std::size_t> next{ 0 };
+  auto work = [&]() {
+    for (;;)
+    {
+      const std::size_t begin = next.fetch_add(64);
+      if (begin >= count)
+        return;
+      for (std::size_t i = begin; i < std::min(count, begin + 64); ++i)
+        body(i);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < n; ++t)
+    pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool)
+    t.join();
+}
+}
+
+int VCTSettings::EffectiveSpheres() const
+{
+  switch (this->quality)
+  {
+    case VCTQuality::Low:
+      return 3;
+    case VCTQuality::Medium:
+      return 5;
+    case VCTQuality::High:
+      return 7;
+    default:
+      return this->spheres;
+  }
+}
+
+int VCTSettings::EffectivePrisms() const
+{
+  switch (this->quality)
+  {
+    case VCTQuality::Low:
+      return 3;
+    case VCTQuality::Medium:
+      return 6;
+    case VCTQuality::High:
+      return 12;
+    default:
+      return this->prisms;
+  }
+}
+
+std::string VCTSettings::Validate() const
+{
+  if (static_cast<int>(this->quality) < 0 || static_cast<int>(this->quality) > 3)
+    return "unknown quality";
+  if (this->spheres < 1 || this->spheres > 16)
+    return "spheres per cone must be 1..16 (got " + std::to_string(this->spheres) + ")";
+  if (this->prisms < 1 || this->prisms > MaximumPrisms)
+    return "prisms per sphere must be 1.." + std::to_string(MaximumPrisms) + " (got " +
+      std::to_string(this->prisms) + ")";
+  if (!(this->coneHalfAngle >= 5.0 && this->coneHalfAngle <= 45.0))
+    return "the cone half-angle must be 5..45 degrees";
+  if (this->slices < 32 || this->slices > 1024 || this->slices % 32 != 0)
+    return "depth slices must be 32..1024 and a multiple of 32 (got " + std::to_string(this->slices) + ")";
+  if (!(this->radius > 0.0) || !std::isfinite(this->radius))
+    return "the radius must be positive and finite";
+  if (!(this->apexOffset >= 0.0 && this->apexOffset <= 4.0))
+    return "the apex offset must be 0..4 voxels";
+  return std::string();
+}
+
+const char* VCTQualityName(VCTQuality quality)
+{
+  switch (quality)
+  {
+    case VCTQuality::Low:
+      return "low";
+    case VCTQuality::Medium:
+      return "medium";
+    case VCTQuality::High:
+      return "high";
+    default:
+      return "custom";
+  }
+}
+
+bool ParseVCTQuality(const std::string& text, VCTQuality& quality)
+{
+  for (VCTQuality q : { VCTQuality::Custom, VCTQuality::Low, VCTQuality::Medium, VCTQuality::High })
+    if (text == VCTQualityName(q))
+    {
+      quality = q;
+      return true;
+    }
+  return false;
+}
+
+std::int64_t OpenEdges(const MeshView& mesh)
+{
+  // Points at the same coordinates are one point (readers may duplicate them).
+  const std::vector<double>& p = *mesh.points;
+  std::map<std::array<double, 3>, std::int64_t> unique;
+  std::vector<std::int64_t> canonical(p.size() / 3);
+  for (std::size_t i = 0; i < canonical.size(); ++i)
+    canonical[i] = unique.emplace(std::array<double, 3>{ { p[3 * i], p[3 * i + 1], p[3 * i + 2] } },
+                           static_cast<std::int64_t>(unique.size()))
+                     .first->second;
+  std::unordered_map<std::uint64_t, int> uses;
+  const std::vector<std::int64_t>& t = *mesh.triangles;
+  for (std::size_t f = 0; f + 2 < t.size(); f += 3)
+    for (int e = 0; e < 3; ++e)
+    {
+      std::uint64_t a = static_cast<std::uint64_t>(canonical[static_cast<std::size_t>(t[f + e])]);
+      std::uint64_t b = static_cast<std::uint64_t>(canonical[static_cast<std::size_t>(t[f + (e + 1) % 3])]);
+      if (a == b)
+        continue;
+      if (a > b)
+        std::swap(a, b);
+      ++uses[(a << 32) ^ b];
+    }
+  std::int64_t open = 0;
+  for (const auto& u : uses)
+    open += u.second != 2;
+  return open;
+}
+
+int BitGrid::CountBits(int i, int j, int k0, int k1) const
+{
+  if (i < 0 || j < 0 || i >= this->nx || j >= this->ny)
+    return 0;
+  k0 = std::max(k0, 0);
+  k1 = std::min(k1, this->slices - 1);
+  if (k1 < k0)
+    return 0;
+  const std::uint32_t* column = &this->bits[(static_cast<std::size_t>(j) * this->nx + i) * this->words];
+  int count = 0;
+  for (int w = k0 >> 5; w <= (k1 >> 5); ++w)
+  {
+    std::uint32_t word = column[w];
+    const int lo = w == (k0 >> 5) ? (k0 & 31) : 0, hi = w == (k1 >> 5) ? (k1 & 31) : 31;
+    word &= (~0u << lo) & (~0u >> (31 - hi)); // bits lo..hi (bitfieldExtract's range)
+    count += __builtin_popcount(word);        // bitCount
+  }
+  return count;
+}
+
+std::int64_t BitGrid::CountAll() const
+{
+  std::int64_t n = 0;
+  for (std::uint32_t w : this->bits)
+    n += __builtin_popcount(w);
+  return n;
+}
+
+bool VoxelizeWorld(const std::vector<MeshView>& meshes, const std::array<double, 6>& bounds,
+  double padding, int slices, BitGrid& grid, std::string& error)
+{
+  if (slices < 32 || slices > 1024 || slices % 32 != 0)
+  {
+    error = "depth slices must be 32..1024 and a multiple of 32 (got " + std::to_string(slices) + ")";
+    return false;
+  }
+  if (!(padding >= 0.0) || !std::isfinite(padding))
+  {
+    error = "the grid padding must be finite and not negative";
+    return false;
+  }
+  double size = 0.0;
+  for (int d = 0; d < 3; ++d)
+  {
+    if (!std::isfinite(bounds[2 * d]) || !std::isfinite(bounds[2 * d + 1]) ||
+      bounds[2 * d + 1] < bounds[2 * d])
+    {
+      error = "the grid's bounds are empty or not finite";
+      return false;
+    }
+    size = std::max(size, bounds[2 * d + 1] - bounds[2 * d] + 2.0 * padding);
+  }
+  if (!(size > 0.0))
+  {
+    error = "the meshes have no extent";
+    return false;
+  }
+  grid = BitGrid();
+  grid.slices = slices;
+  grid.words = slices / 32;
+  grid.voxel = size / slices;
+  const double h = grid.voxel;
+  const double nxd = std::ceil((bounds[1] - bounds[0] + 2.0 * padding) / h - 1e-9);
+  const double nyd = std::ceil((bounds[3] - bounds[2] + 2.0 * padding) / h - 1e-9);
+  grid.nx = std::max(1, static_cast<int>(nxd));
+  grid.ny = std::max(1, static_cast<int>(nyd));
+  if (static_cast<std::int64_t>(grid.nx) * grid.ny > BitGrid::MaximumColumns)
+  {
+    error = "the grid would have " + std::to_string(static_cast<std::int64_t>(grid.nx) * grid.ny) +
+      " columns; at most " + std::to_string(BitGrid::MaximumColumns);
+    return false;
+  }
+  // Centred on the bounds' centre in x and y; z starts at the padded bottom.
+  grid.origin = { { 0.5 * (bounds[0] + bounds[1]) - 0.5 * grid.nx * h,
+    0.5 * (bounds[2] + bounds[3]) - 0.5 * grid.ny * h, bounds[4] - padding } };
+  const std::size_t columnWords = static_cast<std::size_t>(grid.nx) * grid.ny * grid.words;
+  grid.bits.assign(columnWords, 0u);
+  std::vector<std::uint32_t> one;
+  for (const MeshView& mesh : meshes)
+  {
+    if (!mesh.points || !mesh.triangles || mesh.points->size() % 3 || mesh.triangles->size() % 3)
+    {
+      error = "a mesh needs 3 coordinates per point and 3 ids per triangle";
+      return false;
+    }
+    const std::vector<double>& p = *mesh.points;
+    const std::vector<std::int64_t>& t = *mesh.triangles;
+    const std::int64_t numPoints = static_cast<std::int64_t>(p.size() / 3);
+    for (std::int64_t id : t)
+      if (id < 0 || id >= numPoints)
+      {
+        error = "a triangle refers to point " + std::to_string(id) + " of " + std::to_string(numPoints);
+        return false;
+      }
+    for (double c : p)
+      if (!std::isfinite(c))
+      {
+        error = "a mesh has a NaN or infinite coordinate";
+        return false;
+      }
+    const std::int64_t open = OpenEdges(mesh);
+    grid.openEdges.push_back(open);
+    const bool solid = open == 0;
+    one.assign(columnWords, 0u);
+    for (std::size_t f = 0; f + 2 < t.size(); f += 3)
+    {
+      double v[3][3];
+      for (int k = 0; k < 3; ++k)
+        for (int d = 0; d < 3; ++d)
+          v[k][d] = (p[static_cast<std::size_t>(3 * t[f + k] + d)] - grid.origin[d]) / h;
+      double area = Edge(v[0], v[1], v[2][0], v[2][1]);
+      if (area == 0.0)
+        continue; // edge-on along z: no column crosses it
+      const double* a = v[0];
+      const double* b = area > 0.0 ? v[1] : v[2];
+      const double* c = area > 0.0 ? v[2] : v[1];
+      area = std::fabs(area);
+      const double minX = std::min({ a[0], b[0], c[0] }), maxX = std::max({ a[0], b[0], c[0] });
+      const double minY = std::min({ a[1], b[1], c[1] }), maxY = std::max({ a[1], b[1], c[1] });
+      const int i0 = std::max(0, static_cast<int>(std::ceil(minX - 0.5)));
+      const int i1 = std::min(grid.nx - 1, static_cast<int>(std::floor(maxX - 0.5)));
+      const int j0 = std::max(0, static_cast<int>(std::ceil(minY - 0.5)));
+      const int j1 = std::min(grid.ny - 1, static_cast<int>(std::floor(maxY - 0.5)));
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i)
+        {
+          const double px = i + 0.5, py = j + 0.5;
+          const double ea = Edge(b, c, px, py), eb = Edge(c, a, px, py), ec = Edge(a, b, px, py);
+          if (!Inside(ea, b, c) || !Inside(eb, c, a) || !Inside(ec, a, b))
+            continue;
+          const double s = (ea * a[2] + eb * b[2] + ec * c[2]) / area;
+          Cross(&one[(static_cast<std::size_t>(j) * grid.nx + i) * grid.words], slices, grid.words, s,
+            solid);
+        }
+    }
+    for (std::size_t w = 0; w < columnWords; ++w)
+      grid.bits[w] |= one[w];
+  }
+  return true;
+}
+
+bool BuildVCTPlan(const VCTSettings& settings, const BitGrid& grid, VCTPlan& plan,
+  std::string& error)
+{
+  error = settings.Validate();
+  if (!error.empty())
+    return false;
+  if (grid.nx < 1 || grid.slices < 32)
+  {
+    error = "the grid is empty (voxelize first)";
+    return false;
+  }
+  plan = VCTPlan();
+  // One cone along the normal and five at 60 degrees, 72 degrees apart.
+  plan.cones.push_back({ { 0.0, 0.0, 1.0 } });
+  for (int m = 0; m < 5; ++m)
+  {
+    const double theta = Pi / 3.0, phi = 2.0 * Pi * m / 5.0;
+    plan.cones.push_back({ { std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+      std::cos(theta) } });
+  }
+  if (settings.weights == ConeWeights::Cosine)
+  {
+    // The cosine-weighted shares of the cap theta < 30 degrees (sin^2 30) and
+    // of the five sectors of the ring beyond it.
+    plan.coneWeights = { 0.25, 0.15, 0.15, 0.15, 0.15, 0.15 };
+  }
+  else
+    plan.coneWeights.assign(6, 1.0 / 6.0);
+  // Tangent spheres along a cone, the last ending at R.
+  const double s = std::sin(settings.coneHalfAngle * Pi / 180.0);
+  const double q = (1.0 + s) / (1.0 - s);
+  const double h = grid.voxel;
+  int n = settings.EffectiveSpheres();
+  const double last = settings.radius / (1.0 + s);
+  while (n > 1 && s * last / std::pow(q, n - 1) < h)
+    --n; // the first sphere would be under a voxel
+  for (int k = 0; k < n; ++k)
+  {
+    const double t = last / std::pow(q, n - 1 - k);
+    plan.spheres.push_back({ t, s * t });
+  }
+  // A progressive best-candidate (Mitchell) Poisson-disk pattern: the
+  // centre first, each next point the farthest of 64 candidates from
+  // those before (fixed seed: the same pattern everywhere).
+  const int prisms = settings.EffectivePrisms();
+  plan.disk.push_back({ { 0.0, 0.0 } });
+  std::uint64_t state = 0x9e3779b97f4a7c15ull;
+  auto next = [&state]() {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(state >> 11) * (1.0 / 9007199254740992.0);
+  };
+  while (static_cast<int>(plan.disk.size()) < prisms)
+  {
+    std::array<double, 2> best{ { 0, 0 } };
+    double bestDistance = -1.0;
+    for (int c = 0; c < 64; ++c)
+    {
+      const double r = std::sqrt(next()), a = 2.0 * Pi * next();
+      const std::array<double, 2> cand{ { r * std::cos(a), r * std::sin(a) } };
+      double nearest = 1e30;
+      for (const auto& d : plan.disk)
+        nearest = std::min(nearest, (cand[0] - d[0]) * (cand[0] - d[0]) + (cand[1] - d[1]) * (cand[1] - d[1]));
+      if (nearest > bestDistance)
+      {
+        bestDistance = nearest;
+        best = cand;
+      }
+    }
+    plan.disk.push_back(best);
+  }
+  plan.apexOffset = settings.apexOffset * h;
+  return true;
+}
+
+double ConeTraceAO(const BitGrid& grid, const VCTPlan& plan, const double p[3], const double n[3])
+{
+  const double h = grid.voxel;
+  const double sign = std::copysign(1.0, n[2]);
+  const double a = -1.0 / (sign + n[2]);
+  const double b = n[0] * n[1] * a;
+  const double tx[3] = { 1.0 + sign * n[0] * n[0] * a, sign * b, -sign * n[0] };
+  const double ty[3] = { b, sign + n[1] * n[1] * a, -n[1] };
+  double apex[3];
+  for (int d = 0; d < 3; ++d)
+    apex[d] = p[d] + plan.apexOffset * n[d];
+  double occlusion = 0.0;
+  for (std::size_t c = 0; c < plan.cones.size(); ++c)
+  {
+    const std::array<double, 3>& l = plan.cones[c];
+    double dir[3];
+    for (int d = 0; d < 3; ++d)
+      dir[d] = l[0] * tx[d] + l[1] * ty[d] + l[2] * n[d];
+    double open = 1.0;
+    for (const VCTPlan::Sphere& sphere : plan.spheres)
+    {
+      double centre[3];
+      for (int d = 0; d < 3; ++d)
+        centre[d] = apex[d] + sphere.t * dir[d];
+      const double gz = (centre[2] - grid.origin[2]) / h;
+      std::int64_t set = 0, total = 0;
+      for (const auto& sample : plan.disk)
+      {
+        const double gx = (centre[0] + sphere.r * sample[0] - grid.origin[0]) / h;
+        const double gy = (centre[1] + sphere.r * sample[1] - grid.origin[1]) / h;
+        const int i = static_cast<int>(std::floor(gx)), j = static_cast<int>(std::floor(gy));
+        const double half = sphere.r * std::sqrt(std::max(0.0, 1.0 - sample[0] * sample[0] - sample[1] * sample[1])) / h;
+        // The slices whose centres lie on the chord [gz - half, gz + half].
+        int k0 = static_cast<int>(std::ceil(gz - half - 0.5));
+        int k1 = static_cast<int>(std::floor(gz + half - 0.5));
+        if (k1 < k0)
+          k0 = k1 = static_cast<int>(std::floor(gz)); // a chord under a slice: its slice
+        total += k1 - k0 + 1;
+        set += grid.CountBits(i, j, k0, k1);
+      }
+      const double occ = total > 0 ? static_cast<double>(set) / static_cast<double>(total) : 0.0;
+      open *= 1.0 - occ;
+    }
+    occlusion += plan.coneWeights[c] * (1.0 - open);
+  }
+  return 1.0 - occlusion;
+}
+
+bool VCTFrame(const BitGrid& grid, const VCTPlan& plan, SurfaceFrame& frame, int threads,
+  std::string& error)
+{
+  if (plan.cones.empty() || plan.spheres.empty() || plan.disk.empty())
+  {
+    error = "the cone-tracing plan is empty";
+    return false;
+  }
+  ParallelFor(frame.triangle.size(), threads, [&](std::size_t i) {
+    if (frame.triangle[i] >= 0)
+      frame.ao[i] = ConeTraceAO(grid, plan, &frame.position[3 * i], &frame.normal[3 * i]);
+  });
+  return true;
+}
+
+}
