@@ -16,6 +16,7 @@
 #include "caoLAOCommandLine.h"
 #include "caoRender.h"
 #include "caoSurface.h"
+#include "caoBenchSurface.h"
 
 #include "vtkCAOClipMaps.h"
 #include "vtkClipDepthMaps.h"
@@ -956,6 +957,8 @@ int main(int argc, char* argv[])
       const std::string command = argv[1];
       if (command == "render")
         std::cout << caocli::RenderUsage;
+      else if (command == "bench" && argc > 2 && std::string(argv[2]) == "surface")
+        std::cout << caocli::BenchSurfaceUsage;
       else if (command == "bench")
         std::cout << caocli::BenchUsage;
       else if (command == "surface")
@@ -967,6 +970,8 @@ int main(int argc, char* argv[])
   }
   if (argc >= 2 && std::string(argv[1]) == "render")
     return caocli::RunRender(argc, argv);
+  if (argc >= 3 && std::string(argv[1]) == "bench" && std::string(argv[2]) == "surface")
+    return caocli::RunBenchSurface(argc, argv);
   if (argc >= 2 && std::string(argv[1]) == "bench")
     return caocli::RunBench(argc, argv);
   if (argc >= 2 && std::string(argv[1]) == "surface")
@@ -975,7 +980,7 @@ int main(int argc, char* argv[])
                      std::string(argv[1]) == "help"))
   {
     std::cout << Usage << "\n" << caocli::RenderUsage << "\n" << caocli::BenchUsage << "\n"
-              << caocli::SurfaceUsage;
+              << caocli::SurfaceUsage << "\n" << caocli::BenchSurfaceUsage;
     return 0;
   }
   Options o;

@@ -42,7 +42,7 @@ const char* SurfaceUsage = R"(cao surface MESH... [options] -o out.png
   --method vct|reference|ssao|none   (default vct)
         vct: voxel cone tracing (seed 000) on a world-space bit grid (CPU);
         reference: CPU ray tracing in double precision (Kernels/Surface);
-        ssao: VTK's vtkSSAOPass, its default kernel (32) and bias, blurred,
+        ssao: VTK's vtkSSAOPass, its default kernel (32, --kernel) and bias, blurred,
               at the same radius, read back from an unlit white material;
         none: AO = 1.
   --radius R            world units (default: a tenth of the meshes' bounding-box diagonal)
@@ -66,6 +66,7 @@ const char* SurfaceUsage = R"(cao surface MESH... [options] -o out.png
   --json                print the settings, per-stage times and counts as JSON
   --threads N           CPU threads (0: all; default 0)
   --window auto|egl|x   ssao's offscreen window (default auto)
+  --kernel N            ssao: vtkSSAOPass's kernel size (default 32, VTK's)
   -o out.png            the picture (required)
 Exit codes: 0 done, 2 bad input, 1 failure.
 )";
@@ -76,8 +77,9 @@ struct SurfaceOptions
 {
   std::vector<std::string> meshes;
   std::string method = "vct", output, window = "auto";
-  int width = 512, height = 512, threads = 0;
-  double azimuth = 30, elevation = 20, zoom = 1.0, radius = 0;
+  SurfaceView view;
+  int threads = 0, kernel = 32;
+  double radius = 0;
   bool aoOnly = false, json = false;
   cao::SurfaceReferenceSettings reference;
   cao::VCTSettings vct;
@@ -234,23 +236,29 @@ bool Parse(int argc, char* argv[], SurfaceOptions& o, std::string& error)
           " (got '" + v + "')";
         return false;
       }
-      o.width = w;
-      o.height = h;
+      o.view.width = w;
+      o.view.height = h;
     }
     else if (a == "--azimuth")
     {
-      if (!number(o.azimuth, -3600, 3600))
+      if (!number(o.view.azimuth, -3600, 3600))
         return false;
     }
     else if (a == "--elevation")
     {
-      if (!number(o.elevation, -89.9, 89.9))
+      if (!number(o.view.elevation, -89.9, 89.9))
         return false;
     }
     else if (a == "--zoom")
     {
-      if (!number(o.zoom, 1e-3, 1e3))
+      if (!number(o.view.zoom, 1e-3, 1e3))
         return false;
+    }
+    else if (a == "--kernel")
+    {
+      if (!number(d, 1, 1024) || d != std::floor(d))
+        return false;
+      o.kernel = static_cast<int>(d);
     }
     else if (a == "--threads")
     {
@@ -301,12 +309,11 @@ bool Parse(int argc, char* argv[], SurfaceOptions& o, std::string& error)
   return true;
 }
 
-/// VTK's renderer fit (vtkRenderer::ResetCamera, VTK 9.2): the focal point
-/// at the bounds' centre, the bounding sphere filling the view angle (the
-/// narrower one when the image is taller than wide), then the tool's
-/// azimuth, elevation and zoom, and near/far planes around the bounds.
-void FitCamera(vtkCamera* camera, const double b[6], double aspect, const SurfaceOptions& o)
+}
+
+void FitCamera(vtkCamera* camera, const double b[6], const SurfaceView& o)
 {
+  const double aspect = double(o.width) / o.height;
   const double centre[3] = { 0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]) };
   const double w[3] = { b[1] - b[0], b[3] - b[2], b[5] - b[4] };
   double radius = 0.5 * std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
@@ -328,47 +335,67 @@ void FitCamera(vtkCamera* camera, const double b[6], double aspect, const Surfac
   camera->SetClippingRange(std::max(1e-3 * d, d - 1.01 * radius), d + 1.01 * radius);
 }
 
-/// The AO of every pixel by vtkSSAOPass on an unlit white material (the
-/// pass multiplies the colour, 1, by its occlusion term), read back;
-/// NaN where the depth buffer holds the background.
-bool SSAO(const std::vector<vtkSmartPointer<vtkPolyData>>& meshes, vtkCamera* camera,
-  const SurfaceOptions& o, double radius, std::vector<double>& ao, std::string& description,
-  std::string& error)
+bool SSAORenderer::Setup(const SurfaceScene& scene, const std::string& windowKind,
+  const SurfaceView& view, std::string& error)
 {
-  vtkSmartPointer<vtkRenderWindow> window = MakeOffscreenWindow(o.window, description, error);
-  if (!window)
+  this->Window = MakeOffscreenWindow(windowKind, this->Description, error);
+  if (!this->Window)
     return false;
-  window->SetSize(o.width, o.height);
-  vtkNew<vtkRenderer> renderer;
-  renderer->SetBackground(0, 0, 0);
-  window->AddRenderer(renderer);
-  for (const auto& mesh : meshes)
+  this->View = view;
+  this->Window->SetSize(view.width, view.height);
+  this->Renderer = vtkSmartPointer<vtkRenderer>::New();
+  this->Renderer->SetBackground(0, 0, 0);
+  this->Window->AddRenderer(this->Renderer);
+  for (const auto& mesh : scene.meshes)
   {
     vtkNew<vtkPolyDataMapper> mapper;
     mapper->SetInputData(mesh);
     mapper->ScalarVisibilityOff();
     vtkNew<vtkActor> actor;
     actor->SetMapper(mapper);
+    // Unlit white: the pass multiplies the colour, 1, by its occlusion term.
     actor->GetProperty()->SetColor(1, 1, 1);
     actor->GetProperty()->SetAmbient(1.0);
     actor->GetProperty()->SetDiffuse(0.0);
     actor->GetProperty()->SetSpecular(0.0);
-    actor->GetProperty()->BackfaceCullingOff();
-    renderer->AddActor(actor);
+    this->Renderer->AddActor(actor);
   }
+  this->Pass = vtkSmartPointer<vtkSSAOPass>::New();
   vtkNew<vtkRenderStepsPass> steps;
-  vtkNew<vtkSSAOPass> ssao;
-  ssao->SetDelegatePass(steps);
-  ssao->SetRadius(radius);
-  ssao->BlurOn();
-  renderer->SetPass(ssao);
-  renderer->GetActiveCamera()->DeepCopy(camera);
-  window->Render();
+  this->Pass->SetDelegatePass(steps);
+  this->Pass->BlurOn();
+  this->Renderer->SetPass(this->Pass);
+  return true;
+}
+
+bool SSAORenderer::Render(vtkCamera* camera, double radius, int kernelSize, int repeats,
+  std::vector<double>& ao, double& ms, std::string& error)
+{
+  if (!this->Window)
+  {
+    error = "the SSAO window is not set up";
+    return false;
+  }
+  this->Pass->SetRadius(radius);
+  this->Pass->SetKernelSize(static_cast<unsigned int>(kernelSize));
+  this->Renderer->GetActiveCamera()->DeepCopy(camera);
+  this->Renderer->ResetCameraClippingRange();
+  this->Renderer->GetActiveCamera()->SetClippingRange(camera->GetClippingRange());
+  ms = 0.0;
+  for (int r = 0; r < std::max(1, repeats); ++r)
+  {
+    auto start = std::chrono::steady_clock::now();
+    this->Window->Render();
+    vtkNew<vtkFloatArray> probe; // wait for the frame: read one pixel back
+    this->Window->GetRGBAPixelData(0, 0, 0, 0, 0, probe);
+    ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
+  const int w = this->View.width, h = this->View.height;
   vtkNew<vtkFloatArray> rgba;
-  window->GetRGBAPixelData(0, 0, o.width - 1, o.height - 1, 0, rgba);
+  this->Window->GetRGBAPixelData(0, 0, w - 1, h - 1, 0, rgba);
   vtkNew<vtkFloatArray> z;
-  window->GetZbufferData(0, 0, o.width - 1, o.height - 1, z);
-  const std::size_t pixels = static_cast<std::size_t>(o.width) * o.height;
+  this->Window->GetZbufferData(0, 0, w - 1, h - 1, z);
+  const std::size_t pixels = static_cast<std::size_t>(w) * h;
   ao.assign(pixels, std::numeric_limits<double>::quiet_NaN());
   for (std::size_t i = 0; i < pixels; ++i)
     if (z->GetValue(static_cast<vtkIdType>(i)) < 1.0f)
@@ -376,12 +403,75 @@ bool SSAO(const std::vector<vtkSmartPointer<vtkPolyData>>& meshes, vtkCamera* ca
   return true;
 }
 
+bool SurfaceScene::Load(const std::vector<std::string>& files, std::string& error)
+{
+  this->paths = files;
+  std::vector<double> all;
+  std::vector<std::int64_t> tris;
+  for (const std::string& path : files)
+  {
+    vtkSmartPointer<vtkPolyData> mesh = vtkCAO::ReadMesh(path, error);
+    if (!mesh)
+      return false;
+    std::vector<double> p;
+    std::vector<std::int64_t> t;
+    vtkCAO::TrianglesOf(mesh, p, t);
+    if (t.empty())
+    {
+      error = "'" + path + "' has no triangles (polygons or strips)";
+      return false;
+    }
+    const std::int64_t base = static_cast<std::int64_t>(all.size() / 3);
+    all.insert(all.end(), p.begin(), p.end());
+    for (std::int64_t id : t)
+      tris.push_back(id + base);
+    this->meshes.push_back(mesh);
+    this->points.push_back(std::move(p));
+    this->triangles.push_back(std::move(t));
+  }
+  if (!this->bvh.Build(all, tris, error))
+    return false;
+  if (this->bvh.NumberOfTriangles() == 0)
+  {
+    error = "the meshes have no triangle with an area";
+    return false;
+  }
+  const std::array<double, 6>& b = this->bvh.Bounds();
+  this->diagonal = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
+    (b[5] - b[4]) * (b[5] - b[4]));
+  return true;
+}
+
+bool CastFrame(const SurfaceScene& scene, vtkCamera* camera, const SurfaceView& view,
+  cao::SurfaceFrame& frame, std::string& error)
+{
+  const double aspect = double(view.width) / view.height;
+  vtkMatrix4x4* toNDC = camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
+  cao::PixelCamera pixels;
+  vtkMatrix4x4::Invert(&toNDC->Element[0][0], pixels.ndcToWorld);
+  pixels.width = view.width;
+  pixels.height = view.height;
+  return cao::CastPrimary(scene.bvh, pixels, frame, error);
+}
+
+bool VoxelizeScene(const SurfaceScene& scene, int slices, double radius, cao::BitGrid& grid,
+  std::string& error)
+{
+  std::vector<cao::MeshView> views;
+  for (std::size_t m = 0; m < scene.points.size(); ++m)
+    views.push_back({ &scene.points[m], &scene.triangles[m] });
+  // Padding: the cones reach R (and the apex offset) beyond a surface.
+  return cao::VoxelizeWorld(views, scene.bvh.Bounds(), 1.05 * radius, slices, grid, error);
+}
+
+namespace
+{
 bool WritePicture(const SurfaceOptions& o, const cao::SurfaceFrame& frame,
   const std::vector<double>& ao, std::string& error)
 {
   vtkNew<vtkImageData> image;
-  image->SetDimensions(o.width, o.height, 1);
-  const std::size_t pixels = static_cast<std::size_t>(o.width) * o.height;
+  image->SetDimensions(o.view.width, o.view.height, 1);
+  const std::size_t pixels = static_cast<std::size_t>(o.view.width) * o.view.height;
   vtkNew<vtkPNGWriter> png;
   if (o.aoOnly)
   {
@@ -440,54 +530,18 @@ int RunSurface(int argc, char* argv[])
     return Fail(2, error + "\nusage:\n" + SurfaceUsage);
   SelectThreads(o.threads);
   auto start = std::chrono::steady_clock::now();
-  std::vector<vtkSmartPointer<vtkPolyData>> meshes;
-  std::vector<double> points;
-  std::vector<std::int64_t> tris;
-  std::vector<std::vector<double>> meshPoints;
-  std::vector<std::vector<std::int64_t>> meshTris;
-  for (const std::string& path : o.meshes)
-  {
-    vtkSmartPointer<vtkPolyData> mesh = vtkCAO::ReadMesh(path, error);
-    if (!mesh)
-      return Fail(2, error);
-    std::vector<double> p;
-    std::vector<std::int64_t> t;
-    vtkCAO::TrianglesOf(mesh, p, t);
-    if (t.empty())
-      return Fail(2, "'" + path + "' has no triangles (polygons or strips)");
-    const std::int64_t base = static_cast<std::int64_t>(points.size() / 3);
-    points.insert(points.end(), p.begin(), p.end());
-    for (std::int64_t id : t)
-      tris.push_back(id + base);
-    meshes.push_back(mesh);
-    meshPoints.push_back(std::move(p));
-    meshTris.push_back(std::move(t));
-  }
-  const double readMs = Milliseconds(start);
-  start = std::chrono::steady_clock::now();
-  cao::TriangleBVH scene;
-  if (!scene.Build(points, tris, error))
+  SurfaceScene scene;
+  if (!scene.Load(o.meshes, error))
     return Fail(2, error);
-  const double bvhMs = Milliseconds(start);
-  const std::array<double, 6>& b = scene.Bounds();
-  if (scene.NumberOfTriangles() == 0)
-    return Fail(2, "the meshes have no triangle with an area");
-  const double diagonal = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
-    (b[5] - b[4]) * (b[5] - b[4]));
-  const double radius = o.radius > 0 ? o.radius : 0.1 * diagonal;
+  const double loadMs = Milliseconds(start); // reading and the BVH
+  const std::array<double, 6>& b = scene.bvh.Bounds();
+  const double radius = o.radius > 0 ? o.radius : 0.1 * scene.diagonal;
   o.reference.radius = radius;
-
   vtkNew<vtkCamera> camera;
-  const double aspect = double(o.width) / o.height;
-  FitCamera(camera, b.data(), aspect, o);
-  vtkMatrix4x4* toNDC = camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
-  cao::PixelCamera pixels;
-  vtkMatrix4x4::Invert(&toNDC->Element[0][0], pixels.ndcToWorld);
-  pixels.width = o.width;
-  pixels.height = o.height;
+  FitCamera(camera, b.data(), o.view);
   start = std::chrono::steady_clock::now();
   cao::SurfaceFrame frame;
-  if (!cao::CastPrimary(scene, pixels, frame, error))
+  if (!CastFrame(scene, camera, o.view, frame, error))
     return Fail(2, error);
   const double primaryMs = Milliseconds(start);
 
@@ -500,12 +554,7 @@ int RunSurface(int argc, char* argv[])
   if (o.method == "vct")
   {
     o.vct.radius = radius;
-    std::vector<cao::MeshView> views;
-    for (std::size_t m = 0; m < meshPoints.size(); ++m)
-      views.push_back({ &meshPoints[m], &meshTris[m] });
-    // Padding: the cones reach R (plus the apex offset) beyond a surface.
-    const double padding = radius * 1.05;
-    if (!cao::VoxelizeWorld(views, b, padding, o.vct.slices, grid, error))
+    if (!VoxelizeScene(scene, o.vct.slices, radius, grid, error))
       return Fail(2, error);
     voxelizeMs = Milliseconds(start);
     for (std::size_t m = 0; m < grid.openEdges.size(); ++m)
@@ -524,14 +573,18 @@ int RunSurface(int argc, char* argv[])
   }
   else if (o.method == "reference")
   {
-    if (!cao::ReferenceFrame(scene, o.reference, frame, error))
+    if (!cao::ReferenceFrame(scene.bvh, o.reference, frame, error))
       return Fail(2, error);
     ao = frame.ao;
   }
   else if (o.method == "ssao")
   {
-    if (!SSAO(meshes, camera, o, radius, ao, window, error))
+    SSAORenderer ssao;
+    double ms = 0;
+    if (!ssao.Setup(scene, o.window, o.view, error) ||
+      !ssao.Render(camera, radius, o.kernel, 1, ao, ms, error))
       return Fail(1, error);
+    window = ssao.Description;
   }
   else
   {
@@ -553,9 +606,9 @@ int RunSurface(int argc, char* argv[])
     }
   if (o.json)
   {
-    std::cout << std::setprecision(10) << "{\"method\": \"" << o.method << "\", \"image\": [" << o.width
-              << ", " << o.height << "], \"radius\": " << radius << ", \"triangles\": "
-              << scene.NumberOfTriangles() << ", \"covered_pixels\": " << covered
+    std::cout << std::setprecision(10) << "{\"method\": \"" << o.method << "\", \"image\": [" << o.view.width
+              << ", " << o.view.height << "], \"radius\": " << radius << ", \"triangles\": "
+              << scene.bvh.NumberOfTriangles() << ", \"covered_pixels\": " << covered
               << ", \"mean_ao\": " << (covered ? sum / covered : 0.0);
     if (o.method == "reference")
       std::cout << ", \"reference\": {\"rays\": " << o.reference.rays << ", \"falloff\": \""
@@ -578,8 +631,7 @@ int RunSurface(int argc, char* argv[])
         std::cout << (m ? ", " : "") << "\"" << openReport[m] << "\"";
       std::cout << "]}";
     }
-    std::cout << ", \"stages_ms\": {\"read\": " << readMs << ", \"bvh\": " << bvhMs
-              << ", \"primary\": " << primaryMs;
+    std::cout << ", \"stages_ms\": {\"load\": " << loadMs << ", \"primary\": " << primaryMs;
     if (voxelizeMs >= 0)
       std::cout << ", \"voxelize\": " << voxelizeMs;
     std::cout << ", \"ao\": " << aoMs << "}}\n";

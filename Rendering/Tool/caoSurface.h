@@ -1,19 +1,86 @@
 /**
  * caoSurface — `cao surface`: ambient occlusion of triangle meshes seen by
- * one camera, by one method (the ray-traced reference, VTK's vtkSSAOPass,
- * or none), as a shaded picture or as the AO term alone (a 16-bit grey PNG,
- * 1 = open, background transparent) so that two methods' outputs compare
- * pixel by pixel. Every method uses the same camera and the same default
- * radius (a tenth of the scene's bounding-box diagonal).
+ * one camera, by one method (voxel cone tracing, the ray-traced reference,
+ * VTK's vtkSSAOPass, or none), as a shaded picture or as the AO term alone
+ * (a 16-bit grey PNG, 1 = open, background transparent) so that two
+ * methods' outputs compare pixel by pixel. Every method uses the same
+ * camera and the same default radius (a tenth of the scene's bounding-box
+ * diagonal). The pieces are shared with `cao bench surface`.
  */
 #ifndef caoSurface_h
 #define caoSurface_h
+
+#include "caoSurfaceReference.h"
+#include "caoVoxelConeTracing.h"
+
+#include "vtkSmartPointer.h"
+
+#include <string>
+#include <vector>
+
+class vtkCamera;
+class vtkPolyData;
+class vtkRenderWindow;
+class vtkRenderer;
+class vtkSSAOPass;
 
 namespace caocli
 {
 extern const char* SurfaceUsage;
 /// argv[1] is "surface". Exit codes as the rest of `cao`.
 int RunSurface(int argc, char* argv[]);
+
+/// The meshes of a scene, as read (for VTK's renderers), as triangles (for
+/// the voxelizer) and as one BVH (for the G-buffer and the reference).
+struct SurfaceScene
+{
+  std::vector<std::string> paths;
+  std::vector<vtkSmartPointer<vtkPolyData>> meshes;
+  std::vector<std::vector<double>> points;
+  std::vector<std::vector<std::int64_t>> triangles;
+  cao::TriangleBVH bvh;
+  double diagonal = 0.0;
+  bool Load(const std::vector<std::string>& files, std::string& error);
+};
+
+/// The image and the camera's turn after fitting the scene.
+struct SurfaceView
+{
+  int width = 512, height = 512;
+  double azimuth = 30, elevation = 20, zoom = 1.0;
+};
+
+/// VTK's renderer fit (vtkRenderer::ResetCamera, VTK 9.2): the focal point
+/// at the bounds' centre, the bounding sphere filling the view angle (the
+/// narrower one when the image is taller than wide), then azimuth,
+/// elevation and zoom, and near/far planes around the bounding sphere.
+void FitCamera(vtkCamera* camera, const double bounds[6], const SurfaceView& view);
+/// The G-buffer of the camera, by ray casting the scene's BVH.
+bool CastFrame(const SurfaceScene& scene, vtkCamera* camera, const SurfaceView& view,
+  cao::SurfaceFrame& frame, std::string& error);
+/// The world-space bit grid of the scene for cones of radius R.
+bool VoxelizeScene(const SurfaceScene& scene, int slices, double radius, cao::BitGrid& grid,
+  std::string& error);
+
+/// vtkSSAOPass on the scene's meshes (unlit white), in one offscreen window
+/// kept between renders, read back as the AO (NaN on the background).
+class SSAORenderer
+{
+public:
+  bool Setup(const SurfaceScene& scene, const std::string& windowKind, const SurfaceView& view,
+    std::string& error);
+  /// Renders `repeats` times (the last one timed, with a read-back of one
+  /// pixel to wait for it) and reads the AO.
+  bool Render(vtkCamera* camera, double radius, int kernelSize, int repeats,
+    std::vector<double>& ao, double& ms, std::string& error);
+  std::string Description;
+
+private:
+  SurfaceView View;
+  vtkSmartPointer<vtkRenderWindow> Window;
+  vtkSmartPointer<vtkRenderer> Renderer;
+  vtkSmartPointer<vtkSSAOPass> Pass;
+};
 }
 
 #endif

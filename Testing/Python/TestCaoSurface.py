@@ -12,6 +12,10 @@
 - voxel cone tracing (the default): the reference's pixels, AO in [0, 1],
   dark by a sphere, open elsewhere; an open mesh is reported and voxelized
   as a shell;
+- cao bench surface: csv, json and plot; every configuration has a row;
+  the reference's own error is below every method's; no AO is worse than
+  any vct row; more slices and quality help; the Pareto front is exactly
+  the non-dominated rows;
 - bad input exits 2 with the reason; an unreadable mesh too.
 Prints vtkSSAOPass's error against the reference on Bunny (informative)."""
 import json
@@ -159,6 +163,41 @@ d = vb[2][m] - ao[m]
 print("vct (medium, 128 slices) against the reference (Bunny): RMSE %.4f, bias %+.4f; %s"
       % (np.sqrt(np.mean(d * d)), d.mean(), vb_json["stages_ms"]))
 check(vb[3].sum() == covered.sum(), "vct sees the reference's pixels (%d, %d)" % (vb[3].sum(), covered.sum()))
+
+# cao bench surface: the table's promises on a small run.
+bench = os.path.join(tmp, "bench")
+p = subprocess.run([tool, "bench", "surface", bunny, "--image", "96x96", "--reference-rays", "128",
+                    "--slices", "128,256", "--qualities", "low,high", "--kernels", "32", "--repeats", "1",
+                    "-o", bench], capture_output=True, text=True, timeout=600)
+check(p.returncode == 0 and all(os.path.exists(os.path.join(bench, f))
+                                for f in ("surface.csv", "surface.json", "surface.png")),
+      "cao bench surface writes its csv, json and plot (rc %d, %s)" % (p.returncode, p.stderr.strip()[-200:]))
+if p.returncode == 0:
+    result = json.load(open(os.path.join(bench, "surface.json")))
+    by = {r["configuration"]: r for r in result["rows"]}
+    expected = {"reference 128 rays", "none", "vct low 128", "vct high 128", "vct low 256", "vct high 256", "ssao k32"}
+    check(set(by) == expected, "every configuration has a row: %s" % sorted(by))
+    vct = [r for r in result["rows"] if r["method"] == "vct"]
+    check(by["reference 128 rays"]["rmse"] < min(r["rmse"] for r in vct),
+          "the reference's own error (%.4f, against 4x the rays) is below every method's (%.4f)"
+          % (by["reference 128 rays"]["rmse"], min(r["rmse"] for r in vct)))
+    check(by["none"]["rmse"] > max(r["rmse"] for r in vct),
+          "no AO is worse than any vct configuration (%.4f)" % by["none"]["rmse"])
+    check(by["vct high 256"]["rmse"] < by["vct low 128"]["rmse"],
+          "vct high at 256 slices beats low at 128 (%.4f < %.4f)"
+          % (by["vct high 256"]["rmse"], by["vct low 128"]["rmse"]))
+    # The Pareto front is exactly the non-dominated method rows.
+    methods = [r for r in result["rows"] if r["method"] in ("vct", "ssao")]
+    def dominated(r, rows):
+        return any(o["ms"] <= r["ms"] and o["rmse"] <= r["rmse"] and (o["ms"] < r["ms"] or o["rmse"] < r["rmse"])
+                   for o in rows)
+    front = sorted(r["configuration"] for r in methods if not dominated(r, methods))
+    check(sorted(result["pareto"]) == front, "the Pareto front is the non-dominated rows: %s" % result["pareto"])
+    worst = max(methods, key=lambda r: r["rmse"] + r["ms"])
+    check(not (worst["configuration"] in result["pareto"] and dominated(worst, methods)),
+          "negative control: a dominated row is not on the front")
+rc = subprocess.run([tool, "bench", "surface", "--slices", "100", bunny], capture_output=True, text=True).returncode
+check(rc == 2, "cao bench surface with --slices 100 exits 2 (%d)" % rc)
 
 # Bad input.
 for args, words in [(["--method", "magic", bunny, "-o", "x.png"], "--method is"),

@@ -1,0 +1,571 @@
+#include "caoBenchSurface.h"
+
+#include "caoBenchPlot.h"
+#include "caoCommandLine.h"
+#include "caoSurface.h"
+
+#include "vtkCamera.h"
+#include "vtkNew.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <sys/stat.h>
+
+namespace caocli
+{
+const char* BenchSurfaceUsage = R"(usage:
+  cao bench surface MESH... [options]
+
+Measures what surface AO accuracy costs in time, against the ray-traced
+reference (cosine-weighted, binary within R: the common definition), from
+the same camera for every method. Writes DIR/surface.csv, DIR/surface.json
+and DIR/surface.png (error against time, log-log, with the Pareto front).
+
+options:
+  --image WxH          default 256x256
+  --radius-fraction F  R = F x each scene's bounding-box diagonal (default 0.1)
+  --reference-rays N   directions per pixel of the reference (default 1024);
+                       its own error is measured against 4N
+  --qualities LIST     vct presets (default low,medium,high)
+  --slices LIST        vct grid depth slices (default 128,256,512)
+  --kernels LIST       vtkSSAOPass kernel sizes (default 16,32,64,128; 32 is VTK's)
+  --orbit DEG          the second camera's azimuth step, for flicker (default 0.5)
+  --band PX            the depth-discontinuity band's half-width (default 2)
+  --repeats N          timed runs per configuration, the median kept (default 3)
+  --threads N          CPU threads (0: all; default 0)
+  --window auto|egl|x  the SSAO window (default auto)
+  -o DIR               output folder (default surface-bench)
+)";
+
+namespace
+{
+struct Options
+{
+  std::vector<std::string> meshes;
+  SurfaceView view{ 256, 256 };
+  double radiusFraction = 0.1, orbit = 0.5;
+  int referenceRays = 1024, band = 2, repeats = 3, threads = 0;
+  std::vector<cao::VCTQuality> qualities{ cao::VCTQuality::Low, cao::VCTQuality::Medium,
+    cao::VCTQuality::High };
+  std::vector<int> slices{ 128, 256, 512 }, kernels{ 16, 32, 64, 128 };
+  std::string window = "auto", output = "surface-bench";
+};
+
+int Fail(int code, const std::string& message)
+{
+  std::cerr << "cao: error: " << message << "\n";
+  return code;
+}
+
+bool IntList(const std::string& text, int lo, int hi, std::vector<int>& out, std::string& error,
+  const std::string& what)
+{
+  out.clear();
+  for (const std::string& item : Split(text, ','))
+  {
+    double v = 0;
+    if (!ToDouble(item, v) || v != std::floor(v) || v < lo || v > hi)
+    {
+      error = what + ": '" + item + "' is not a whole number in " + std::to_string(lo) + ".." +
+        std::to_string(hi);
+      return false;
+    }
+    out.push_back(static_cast<int>(v));
+  }
+  if (out.empty())
+  {
+    error = what + " is empty";
+    return false;
+  }
+  return true;
+}
+
+bool Parse(int argc, char* argv[], Options& o, std::string& error)
+{
+  for (int i = 3; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    std::string v;
+    auto value = [&]() {
+      if (i + 1 >= argc)
+      {
+        error = "option " + a + " needs a value";
+        return false;
+      }
+      v = argv[++i];
+      return true;
+    };
+    double d = 0;
+    std::vector<int> list;
+    if (a == "--image")
+    {
+      if (!value())
+        return false;
+      int w = 0, h = 0;
+      char x = 0;
+      std::istringstream s(v);
+      if (!(s >> w >> x >> h) || x != 'x' || w < 8 || h < 8 || w > 4096 || h > 4096)
+      {
+        error = "--image is WxH, each 8..4096 (got '" + v + "')";
+        return false;
+      }
+      o.view.width = w;
+      o.view.height = h;
+    }
+    else if (a == "--radius-fraction")
+    {
+      if (!value() || !ToDouble(v, o.radiusFraction) || !(o.radiusFraction > 0) || o.radiusFraction > 10)
+      {
+        error = "--radius-fraction must be in (0, 10]";
+        return false;
+      }
+    }
+    else if (a == "--reference-rays")
+    {
+      if (!value() || !IntList(v, 16, 65536, list, error, "--reference-rays") || list.size() != 1)
+        return false;
+      o.referenceRays = list[0];
+    }
+    else if (a == "--qualities")
+    {
+      if (!value())
+        return false;
+      o.qualities.clear();
+      for (const std::string& q : Split(v, ','))
+      {
+        cao::VCTQuality quality;
+        if (!cao::ParseVCTQuality(q, quality) || quality == cao::VCTQuality::Custom)
+        {
+          error = "--qualities: '" + q + "' is not low, medium or high";
+          return false;
+        }
+        o.qualities.push_back(quality);
+      }
+    }
+    else if (a == "--slices")
+    {
+      if (!value() || !IntList(v, 32, 1024, o.slices, error, "--slices"))
+        return false;
+      for (int s : o.slices)
+        if (s % 32)
+        {
+          error = "--slices: each must be a multiple of 32";
+          return false;
+        }
+    }
+    else if (a == "--kernels")
+    {
+      if (!value() || !IntList(v, 1, 1024, o.kernels, error, "--kernels"))
+        return false;
+    }
+    else if (a == "--orbit")
+    {
+      if (!value() || !ToDouble(v, o.orbit) || !(o.orbit > 0) || o.orbit > 45)
+      {
+        error = "--orbit must be in (0, 45] degrees";
+        return false;
+      }
+    }
+    else if (a == "--band")
+    {
+      if (!value() || !IntList(v, 1, 32, list, error, "--band"))
+        return false;
+      o.band = list[0];
+    }
+    else if (a == "--repeats")
+    {
+      if (!value() || !IntList(v, 1, 100, list, error, "--repeats"))
+        return false;
+      o.repeats = list[0];
+    }
+    else if (a == "--threads")
+    {
+      if (!value() || !ToDouble(v, d) || d < 0 || d > 1024)
+      {
+        error = "--threads must be 0..1024";
+        return false;
+      }
+      o.threads = static_cast<int>(d);
+    }
+    else if (a == "--window")
+    {
+      if (!value() || (v != "auto" && v != "egl" && v != "x"))
+      {
+        error = "--window is auto, egl or x";
+        return false;
+      }
+      o.window = v;
+    }
+    else if (a == "-o" || a == "--output")
+    {
+      if (!value())
+        return false;
+      o.output = v;
+    }
+    else if (!a.empty() && a[0] == '-')
+    {
+      error = "unknown option " + a;
+      return false;
+    }
+    else
+      o.meshes.push_back(a);
+  }
+  if (o.meshes.empty())
+  {
+    error = "give at least one mesh";
+    return false;
+  }
+  return true;
+}
+
+/// One configuration's result on one mesh.
+struct Row
+{
+  std::string mesh, method, label;
+  int series = 0; ///< 0 vct, 1 ssao, 2 none, 3 reference
+  double ms = 0, gridMs = -1;
+  double rmse = 0, bias = 0, p99 = 0, bandRmse = 0, flicker = 0, referenceFlicker = 0;
+  std::int64_t pixels = 0;
+};
+
+double Median(std::vector<double> v)
+{
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+/// The pixels within `band` pixels of a depth discontinuity (a 4-neighbour
+/// whose depth differs by more than 5% of the nearer, or not covered).
+std::vector<char> DiscontinuityBand(const cao::SurfaceFrame& f, int band)
+{
+  const int w = f.width, h = f.height;
+  std::vector<char> edge(static_cast<std::size_t>(w) * h, 0), out(edge.size(), 0);
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i)
+    {
+      const std::size_t p = static_cast<std::size_t>(j) * w + i;
+      if (f.triangle[p] < 0)
+        continue;
+      const int di[4] = { 1, -1, 0, 0 }, dj[4] = { 0, 0, 1, -1 };
+      for (int k = 0; k < 4; ++k)
+      {
+        const int ii = i + di[k], jj = j + dj[k];
+        if (ii < 0 || jj < 0 || ii >= w || jj >= h)
+          continue;
+        const std::size_t q = static_cast<std::size_t>(jj) * w + ii;
+        if (f.triangle[q] < 0 ||
+          std::fabs(f.depth[q] - f.depth[p]) > 0.05 * std::min(f.depth[q], f.depth[p]))
+          edge[p] = 1;
+      }
+    }
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i)
+      if (edge[static_cast<std::size_t>(j) * w + i])
+        for (int jj = std::max(0, j - band); jj <= std::min(h - 1, j + band); ++jj)
+          for (int ii = std::max(0, i - band); ii <= std::min(w - 1, i + band); ++ii)
+            out[static_cast<std::size_t>(jj) * w + ii] = 1;
+  return out;
+}
+
+void Measure(Row& row, const std::vector<double>& ao, const std::vector<double>& ao2,
+  const std::vector<double>& ref, const std::vector<double>& ref2, const std::vector<char>& band)
+{
+  std::vector<double> absErr;
+  double sum2 = 0, sum = 0, band2 = 0, flick = 0, refFlick = 0;
+  std::int64_t n = 0, nb = 0, nf = 0;
+  for (std::size_t i = 0; i < ref.size(); ++i)
+  {
+    if (std::isfinite(ref[i]) && std::isfinite(ao[i]))
+    {
+      const double d = ao[i] - ref[i];
+      sum += d;
+      sum2 += d * d;
+      absErr.push_back(std::fabs(d));
+      ++n;
+      if (band[i])
+      {
+        band2 += d * d;
+        ++nb;
+      }
+    }
+    if (std::isfinite(ao[i]) && std::isfinite(ao2[i]) && std::isfinite(ref[i]) && std::isfinite(ref2[i]))
+    {
+      flick += std::fabs(ao2[i] - ao[i]);
+      refFlick += std::fabs(ref2[i] - ref[i]);
+      ++nf;
+    }
+  }
+  row.pixels = n;
+  row.rmse = n ? std::sqrt(sum2 / n) : 0;
+  row.bias = n ? sum / n : 0;
+  if (!absErr.empty())
+  {
+    std::sort(absErr.begin(), absErr.end());
+    row.p99 = absErr[std::min(absErr.size() - 1, static_cast<std::size_t>(0.99 * absErr.size()))];
+  }
+  row.bandRmse = nb ? std::sqrt(band2 / nb) : 0;
+  row.flicker = nf ? flick / nf : 0;
+  row.referenceFlicker = nf ? refFlick / nf : 0;
+}
+}
+
+int RunBenchSurface(int argc, char* argv[])
+{
+  Options o;
+  std::string error;
+  if (!Parse(argc, argv, o, error))
+    return Fail(2, error + "\n" + BenchSurfaceUsage);
+  SelectThreads(o.threads);
+  ::mkdir(o.output.c_str(), 0755);
+  std::vector<Row> rows;
+  std::vector<std::string> notes;
+  for (const std::string& path : o.meshes)
+  {
+    SurfaceScene scene;
+    if (!scene.Load({ path }, error))
+      return Fail(2, error);
+    const std::string name = path.substr(path.find_last_of('/') + 1);
+    const double radius = o.radiusFraction * scene.diagonal;
+    vtkNew<vtkCamera> camera, camera2;
+    FitCamera(camera, scene.bvh.Bounds().data(), o.view);
+    SurfaceView turned = o.view;
+    turned.azimuth += o.orbit;
+    FitCamera(camera2, scene.bvh.Bounds().data(), turned);
+    cao::SurfaceFrame frame, frame2;
+    if (!CastFrame(scene, camera, o.view, frame, error) || !CastFrame(scene, camera2, o.view, frame2, error))
+      return Fail(1, error);
+    const std::vector<char> band = DiscontinuityBand(frame, o.band);
+    // The reference at both cameras, and its own error against 4x the rays.
+    cao::SurfaceReferenceSettings rs;
+    rs.radius = radius;
+    rs.rays = o.referenceRays;
+    rs.threads = o.threads;
+    auto start = std::chrono::steady_clock::now();
+    cao::SurfaceFrame ref = frame, ref2 = frame2, fine = frame;
+    if (!cao::ReferenceFrame(scene.bvh, rs, ref, error) || !cao::ReferenceFrame(scene.bvh, rs, ref2, error))
+      return Fail(1, error);
+    const double referenceMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / 2;
+    cao::SurfaceReferenceSettings rf = rs;
+    rf.rays = 4 * rs.rays;
+    rf.seed = 2;
+    if (!cao::ReferenceFrame(scene.bvh, rf, fine, error))
+      return Fail(1, error);
+    Row self;
+    self.mesh = name;
+    self.method = "reference";
+    self.label = "reference " + std::to_string(rs.rays) + " rays";
+    self.series = 3;
+    self.ms = referenceMs;
+    Measure(self, ref.ao, ref2.ao, fine.ao, ref2.ao, band);
+    self.flicker = self.referenceFlicker = 0;
+    {
+      Row r = self;
+      Measure(r, ref.ao, ref2.ao, ref.ao, ref2.ao, band);
+      self.flicker = r.flicker;
+      self.referenceFlicker = r.referenceFlicker;
+    }
+    rows.push_back(self);
+    std::cerr << name << ": reference " << rs.rays << " rays " << std::fixed << std::setprecision(0)
+              << referenceMs << " ms; its RMSE against " << rf.rays << " rays: " << std::setprecision(4)
+              << self.rmse << "\n";
+    // No AO: the error of leaving it out.
+    {
+      Row r;
+      r.mesh = name;
+      r.method = "none";
+      r.label = "none";
+      r.series = 2;
+      std::vector<double> one(ref.ao.size()), one2(ref2.ao.size());
+      for (std::size_t i = 0; i < one.size(); ++i)
+      {
+        one[i] = frame.triangle[i] >= 0 ? 1.0 : std::numeric_limits<double>::quiet_NaN();
+        one2[i] = frame2.triangle[i] >= 0 ? 1.0 : std::numeric_limits<double>::quiet_NaN();
+      }
+      Measure(r, one, one2, ref.ao, ref2.ao, band);
+      rows.push_back(r);
+    }
+    // Voxel cone tracing: the grid once per size (world space: cached while
+    // the geometry stays), the cones per frame.
+    for (int slices : o.slices)
+    {
+      cao::BitGrid grid;
+      start = std::chrono::steady_clock::now();
+      if (!VoxelizeScene(scene, slices, radius, grid, error))
+        return Fail(1, error);
+      const double gridMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      for (cao::VCTQuality q : o.qualities)
+      {
+        cao::VCTSettings vs;
+        vs.quality = q;
+        vs.slices = slices;
+        vs.radius = radius;
+        cao::VCTPlan plan;
+        if (!cao::BuildVCTPlan(vs, grid, plan, error))
+          return Fail(1, error);
+        std::vector<double> times;
+        cao::SurfaceFrame a = frame, b = frame2;
+        for (int r = 0; r < o.repeats; ++r)
+        {
+          a = frame;
+          start = std::chrono::steady_clock::now();
+          if (!cao::VCTFrame(grid, plan, a, o.threads, error))
+            return Fail(1, error);
+          times.push_back(
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+        }
+        cao::VCTFrame(grid, plan, b, o.threads, error);
+        Row row;
+        row.mesh = name;
+        row.method = "vct";
+        row.label = std::string("vct ") + cao::VCTQualityName(q) + " " + std::to_string(slices);
+        row.series = 0;
+        row.ms = Median(times);
+        row.gridMs = gridMs;
+        Measure(row, a.ao, b.ao, ref.ao, ref2.ao, band);
+        rows.push_back(row);
+      }
+    }
+    // vtkSSAOPass, one window for all kernel sizes.
+    SSAORenderer ssao;
+    if (!ssao.Setup(scene, o.window, o.view, error))
+      notes.push_back("vtkSSAOPass skipped: " + error);
+    else
+      for (int k : o.kernels)
+      {
+        std::vector<double> a, b;
+        double ms = 0, ms2 = 0;
+        std::vector<double> times;
+        for (int r = 0; r < o.repeats; ++r)
+        {
+          if (!ssao.Render(camera, radius, k, 2, a, ms, error))
+            return Fail(1, error);
+          times.push_back(ms);
+        }
+        if (!ssao.Render(camera2, radius, k, 1, b, ms2, error))
+          return Fail(1, error);
+        Row row;
+        row.mesh = name;
+        row.method = "ssao";
+        row.label = "ssao k" + std::to_string(k);
+        row.series = 1;
+        row.ms = Median(times);
+        Measure(row, a, b, ref.ao, ref2.ao, band);
+        rows.push_back(row);
+      }
+  }
+  // The mean over meshes per configuration, the Pareto front over
+  // (time, RMSE) among the methods (not the reference, not "none").
+  std::vector<std::string> labels;
+  std::map<std::string, std::vector<const Row*>> byLabel;
+  for (const Row& r : rows)
+  {
+    if (!byLabel.count(r.label))
+      labels.push_back(r.label);
+    byLabel[r.label].push_back(&r);
+  }
+  struct Mean
+  {
+    std::string label;
+    int series;
+    double ms, gridMs, rmse, bias, p99, bandRmse, flicker, referenceFlicker;
+  };
+  std::vector<Mean> means;
+  for (const std::string& l : labels)
+  {
+    const auto& v = byLabel[l];
+    Mean m{ l, v[0]->series, 0, 0, 0, 0, 0, 0, 0, 0 };
+    for (const Row* r : v)
+    {
+      m.ms += r->ms / v.size();
+      m.gridMs += r->gridMs / v.size();
+      m.rmse += r->rmse / v.size();
+      m.bias += r->bias / v.size();
+      m.p99 += r->p99 / v.size();
+      m.bandRmse += r->bandRmse / v.size();
+      m.flicker += r->flicker / v.size();
+      m.referenceFlicker += r->referenceFlicker / v.size();
+    }
+    means.push_back(m);
+  }
+  std::vector<PlotPoint> points;
+  std::vector<std::size_t> pointOf;
+  for (std::size_t i = 0; i < means.size(); ++i)
+    if ((means[i].series == 0 || means[i].series == 1) && means[i].ms > 0 && means[i].rmse > 0)
+    {
+      points.push_back({ means[i].ms, means[i].rmse, means[i].label, means[i].series });
+      pointOf.push_back(i);
+    }
+  std::vector<char> front(means.size(), 0);
+  for (std::size_t k : ParetoFront(points))
+    front[pointOf[k]] = 1;
+  // The table.
+  std::cout << "Surface AO against the reference (" << o.referenceRays
+            << " cosine-weighted rays, binary within R = " << o.radiusFraction
+            << " x diagonal), " << o.view.width << "x" << o.view.height << ", mean over "
+            << o.meshes.size() << " mesh(es):\n\n";
+  std::cout << "| configuration | ms/frame | grid ms | RMSE | bias | p99 | band RMSE | flicker (ref) | Pareto |\n";
+  std::cout << "|---|---:|---:|---:|---:|---:|---:|---:|:-:|\n";
+  std::cout << std::fixed;
+  for (std::size_t i = 0; i < means.size(); ++i)
+  {
+    const Mean& m = means[i];
+    std::cout << "| " << m.label << " | " << std::setprecision(1) << m.ms << " | "
+              << (m.gridMs > 0 ? std::to_string(static_cast<long long>(std::lround(m.gridMs))) : std::string("-"))
+              << " | " << std::setprecision(4) << m.rmse << " | " << std::showpos << m.bias
+              << std::noshowpos << " | " << m.p99 << " | " << m.bandRmse << " | " << m.flicker << " ("
+              << m.referenceFlicker << ") | " << (front[i] ? "yes" : "") << " |\n";
+  }
+  std::cout << "\nreference row: its RMSE is against " << 4 * o.referenceRays
+            << " rays (its own error); ms/frame: vct on the CPU (" << (o.threads ? o.threads : 0)
+            << " = all threads), ssao on the GL context (" << "vtkSSAOPass, blur on), reference on the CPU.\n";
+  for (const std::string& n : notes)
+    std::cout << "note: " << n << "\n";
+  // CSV and JSON, per mesh.
+  std::ofstream csv(o.output + "/surface.csv");
+  csv << "mesh,configuration,method,ms,grid_ms,rmse,bias,p99,band_rmse,flicker,reference_flicker,pixels\n";
+  for (const Row& r : rows)
+    csv << r.mesh << "," << r.label << "," << r.method << "," << r.ms << "," << r.gridMs << "," << r.rmse
+        << "," << r.bias << "," << r.p99 << "," << r.bandRmse << "," << r.flicker << ","
+        << r.referenceFlicker << "," << r.pixels << "\n";
+  std::ofstream json(o.output + "/surface.json");
+  json << std::setprecision(8) << "{\"image\": [" << o.view.width << ", " << o.view.height
+       << "], \"reference_rays\": " << o.referenceRays << ", \"radius_fraction\": " << o.radiusFraction
+       << ", \"rows\": [";
+  for (std::size_t i = 0; i < rows.size(); ++i)
+  {
+    const Row& r = rows[i];
+    json << (i ? ", " : "") << "{\"mesh\": \"" << r.mesh << "\", \"configuration\": \"" << r.label
+         << "\", \"method\": \"" << r.method << "\", \"ms\": " << r.ms << ", \"grid_ms\": " << r.gridMs
+         << ", \"rmse\": " << r.rmse << ", \"bias\": " << r.bias << ", \"p99\": " << r.p99
+         << ", \"band_rmse\": " << r.bandRmse << ", \"flicker\": " << r.flicker
+         << ", \"reference_flicker\": " << r.referenceFlicker << ", \"pixels\": " << r.pixels << "}";
+  }
+  json << "], \"pareto\": [";
+  bool first = true;
+  for (std::size_t i = 0; i < means.size(); ++i)
+    if (front[i])
+    {
+      json << (first ? "" : ", ") << "\"" << means[i].label << "\"";
+      first = false;
+    }
+  json << "]}\n";
+  if (!points.empty())
+  {
+    if (!WriteErrorTimePlot(points, { "vct (CPU)", "vtkSSAOPass (GL)" },
+          "Surface AO: RMSE against the ray-traced reference", "ms per frame", "RMSE",
+          o.output + "/surface.png", 900, 600, error))
+      std::cout << "note: no plot: " << error << "\n";
+  }
+  std::cout << "wrote " << o.output << "/surface.csv, surface.json, surface.png\n";
+  return 0;
+}
+}

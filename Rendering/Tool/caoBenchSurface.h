@@ -1,0 +1,23 @@
+/**
+ * caoBenchSurface — `cao bench surface`: what surface AO accuracy costs in
+ * time. On each mesh, from one camera (and a second turned by a small
+ * orbit, for flicker), every method and preset (voxel cone tracing at each
+ * quality and grid size, vtkSSAOPass at several kernel sizes, no AO) is
+ * timed and compared with the ray-traced reference: RMSE, signed bias,
+ * p99, the RMSE in a band around depth discontinuities, and the mean frame
+ * to frame change under the orbit beside the reference's own. The
+ * reference's own error is estimated against 4 times the rays. Writes
+ * DIR/surface.csv, DIR/surface.json and DIR/surface.png (error against
+ * time, log-log, the Pareto front marked).
+ */
+#ifndef caoBenchSurface_h
+#define caoBenchSurface_h
+
+namespace caocli
+{
+extern const char* BenchSurfaceUsage;
+/// `cao bench surface MESH... [options]`; returns the process exit code.
+int RunBenchSurface(int argc, char* argv[]);
+}
+
+#endif
