@@ -38,6 +38,8 @@ options:
   --kernels LIST       vtkSSAOPass kernel sizes (default 16,32,64,128; 32 is VTK's)
   --orbit DEG          the second camera's azimuth step, for flicker (default 0.5)
   --band PX            the depth-discontinuity band's half-width (default 2)
+  --vct-backends LIST  where vct runs: cpu, gl (default cpu; gl: the OpenGL 4.3 compute
+                       twin, its grid voxelized on the GPU, timed by GPU queries)
   --repeats N          timed runs per configuration, the median kept (default 3)
   --threads N          CPU threads (0: all; default 0)
   --window auto|egl|x  the SSAO window (default auto)
@@ -56,6 +58,7 @@ struct Options
     cao::VCTQuality::High };
   std::vector<int> slices{ 128, 256, 512 }, kernels{ 16, 32, 64, 128 };
   std::string window = "auto", output = "surface-bench";
+  bool vctCPU = true, vctGL = false;
 };
 
 int Fail(int code, const std::string& message)
@@ -179,6 +182,24 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
         return false;
       o.band = list[0];
     }
+    else if (a == "--vct-backends")
+    {
+      if (!value())
+        return false;
+      o.vctCPU = o.vctGL = false;
+      for (const std::string& b : Split(v, ','))
+      {
+        if (b == "cpu")
+          o.vctCPU = true;
+        else if (b == "gl")
+          o.vctGL = true;
+        else
+        {
+          error = "--vct-backends: '" + b + "' is not cpu or gl";
+          return false;
+        }
+      }
+    }
     else if (a == "--repeats")
     {
       if (!value() || !IntList(v, 1, 100, list, error, "--repeats"))
@@ -229,7 +250,7 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
 struct Row
 {
   std::string mesh, method, label;
-  int series = 0; ///< 0 vct, 1 ssao, 2 none, 3 reference
+  int series = 0; ///< 0 vct (CPU), 1 ssao, 2 none, 3 reference, 4 vct (GL)
   double ms = 0, gridMs = -1;
   double rmse = 0, bias = 0, p99 = 0, bandRmse = 0, flicker = 0, referenceFlicker = 0;
   std::int64_t pixels = 0;
@@ -326,6 +347,7 @@ int RunBenchSurface(int argc, char* argv[])
   ::mkdir(o.output.c_str(), 0755);
   std::vector<Row> rows;
   std::vector<std::string> notes;
+  VCTGPU gpu;
   for (const std::string& path : o.meshes)
   {
     SurfaceScene scene;
@@ -394,7 +416,7 @@ int RunBenchSurface(int argc, char* argv[])
     }
     // Voxel cone tracing: the grid once per size (world space: cached while
     // the geometry stays), the cones per frame.
-    for (int slices : o.slices)
+    for (int slices : o.vctCPU ? o.slices : std::vector<int>())
     {
       cao::BitGrid grid;
       start = std::chrono::steady_clock::now();
@@ -432,6 +454,53 @@ int RunBenchSurface(int argc, char* argv[])
         row.gridMs = gridMs;
         Measure(row, a.ao, b.ao, ref.ao, ref2.ao, band);
         rows.push_back(row);
+      }
+    }
+    // Voxel cone tracing on the GPU: the grid voxelized there, GPU times.
+    if (o.vctGL)
+    {
+      if (!gpu.Open(error))
+        return Fail(1, "--vct-backends gl: no OpenGL 4.3 context: " + error);
+      for (int slices : o.slices)
+      {
+        cao::BitGrid shape;
+        double gridMs = 0;
+        std::vector<std::int64_t> open;
+        if (!cao::PlanGrid(scene.bvh.Bounds(), 1.05 * radius, slices, shape, error) ||
+          !gpu.Voxelize(scene, shape, open, gridMs, error))
+          return Fail(1, error);
+        for (cao::VCTQuality q : o.qualities)
+        {
+          cao::VCTSettings vs;
+          vs.quality = q;
+          vs.slices = slices;
+          vs.radius = radius;
+          cao::VCTPlan plan;
+          if (!cao::BuildVCTPlan(vs, shape, plan, error))
+            return Fail(1, error);
+          std::vector<double> times;
+          cao::SurfaceFrame a = frame, b = frame2;
+          for (int r = 0; r < o.repeats; ++r)
+          {
+            a = frame;
+            double ms = 0;
+            if (!gpu.Trace(plan, a, ms, error))
+              return Fail(1, error);
+            times.push_back(ms);
+          }
+          double ms2 = 0;
+          if (!gpu.Trace(plan, b, ms2, error))
+            return Fail(1, error);
+          Row row;
+          row.mesh = name;
+          row.method = "vct-gl";
+          row.label = std::string("vct-gl ") + cao::VCTQualityName(q) + " " + std::to_string(slices);
+          row.series = 4;
+          row.ms = Median(times);
+          row.gridMs = gridMs;
+          Measure(row, a.ao, b.ao, ref.ao, ref2.ao, band);
+          rows.push_back(row);
+        }
       }
     }
     // vtkSSAOPass, one window for all kernel sizes.
@@ -499,9 +568,11 @@ int RunBenchSurface(int argc, char* argv[])
   std::vector<PlotPoint> points;
   std::vector<std::size_t> pointOf;
   for (std::size_t i = 0; i < means.size(); ++i)
-    if ((means[i].series == 0 || means[i].series == 1) && means[i].ms > 0 && means[i].rmse > 0)
+    if ((means[i].series == 0 || means[i].series == 1 || means[i].series == 4) && means[i].ms > 0 &&
+      means[i].rmse > 0)
     {
-      points.push_back({ means[i].ms, means[i].rmse, means[i].label, means[i].series });
+      points.push_back({ means[i].ms, means[i].rmse, means[i].label,
+        means[i].series == 4 ? 2 : means[i].series });
       pointOf.push_back(i);
     }
   std::vector<char> front(means.size(), 0);
@@ -525,8 +596,10 @@ int RunBenchSurface(int argc, char* argv[])
               << m.referenceFlicker << ") | " << (front[i] ? "yes" : "") << " |\n";
   }
   std::cout << "\nreference row: its RMSE is against " << 4 * o.referenceRays
-            << " rays (its own error); ms/frame: vct on the CPU (" << (o.threads ? o.threads : 0)
-            << " = all threads), ssao on the GL context (" << "vtkSSAOPass, blur on), reference on the CPU.\n";
+            << " rays (its own error); ms/frame: vct on the CPU (wall clock, "
+            << (o.threads ? std::to_string(o.threads) : std::string("all")) << " threads), vct-gl on "
+            << (o.vctGL ? gpu.Description() : std::string("-")) << " (GPU queries, the trace only), "
+            << "ssao in the offscreen window (wall clock, vtkSSAOPass with blur), the reference on the CPU.\n";
   for (const std::string& n : notes)
     std::cout << "note: " << n << "\n";
   // CSV and JSON, per mesh.
@@ -549,7 +622,7 @@ int RunBenchSurface(int argc, char* argv[])
          << ", \"band_rmse\": " << r.bandRmse << ", \"flicker\": " << r.flicker
          << ", \"reference_flicker\": " << r.referenceFlicker << ", \"pixels\": " << r.pixels << "}";
   }
-  json << "], \"pareto\": [";
+  json << "], \"vct_gl_context\": \"" << (o.vctGL ? gpu.Description() : std::string()) << "\", \"pareto\": [";
   bool first = true;
   for (std::size_t i = 0; i < means.size(); ++i)
     if (front[i])
@@ -560,7 +633,7 @@ int RunBenchSurface(int argc, char* argv[])
   json << "]}\n";
   if (!points.empty())
   {
-    if (!WriteErrorTimePlot(points, { "vct (CPU)", "vtkSSAOPass (GL)" },
+    if (!WriteErrorTimePlot(points, { "vct (CPU)", "vtkSSAOPass (GL)", "vct (GL)" },
           "Surface AO: RMSE against the ray-traced reference", "ms per frame", "RMSE",
           o.output + "/surface.png", 900, 600, error))
       std::cout << "note: no plot: " << error << "\n";

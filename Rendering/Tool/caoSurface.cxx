@@ -2,6 +2,7 @@
 
 #include "caoCommandLine.h"
 #include "caoSurfaceReference.h"
+#include "caoVCTGL.h"
 #include "caoVoxelConeTracing.h"
 #include "caoWindow.h"
 
@@ -53,6 +54,9 @@ const char* SurfaceUsage = R"(cao surface MESH... [options] -o out.png
   --grid world          vct: the grid (world: built once per geometry; the paper's
                         eye-space grid is not built yet)
   --cone-weights cosine|equal   vct (default cosine; equal: the paper's average)
+  --backend auto|cpu|gl vct: where it runs (auto: OpenGL 4.3 on a hardware GPU, the CPU
+                        with a software rasterizer such as llvmpipe or none; gl: OpenGL
+                        even on llvmpipe, an error without a context)
   --cone-angle DEG      vct: each cone's half-angle, 5..45 (default 30)
   --apex-offset V       vct: the cones' apex above the surface, in voxels, 0..4 (default 1)
   --rays N              reference: directions per pixel (default 1024, at most 1048576)
@@ -83,6 +87,7 @@ struct SurfaceOptions
   bool aoOnly = false, json = false;
   cao::SurfaceReferenceSettings reference;
   cao::VCTSettings vct;
+  std::string backend = "auto";
 };
 
 int Fail(int code, const std::string& message)
@@ -180,6 +185,17 @@ bool Parse(int argc, char* argv[], SurfaceOptions& o, std::string& error)
                            : "--grid is world (got '" + v + "')";
         return false;
       }
+    }
+    else if (a == "--backend")
+    {
+      if (!value())
+        return false;
+      if (v != "auto" && v != "cpu" && v != "gl")
+      {
+        error = "--backend is auto, cpu or gl (got '" + v + "')";
+        return false;
+      }
+      o.backend = v;
     }
     else if (a == "--apex-offset")
     {
@@ -333,6 +349,86 @@ void FitCamera(vtkCamera* camera, const double b[6], const SurfaceView& o)
   // Near and far around the bounding sphere.
   const double d = std::sqrt(vtkMath::Distance2BetweenPoints(camera->GetPosition(), centre));
   camera->SetClippingRange(std::max(1e-3 * d, d - 1.01 * radius), d + 1.01 * radius);
+}
+
+struct VCTGPU::Impl
+{
+  std::unique_ptr<cao::gl::Context> context;
+  std::unique_ptr<cao::gl::VCTEngine> engine;
+};
+
+VCTGPU::VCTGPU()
+  : P(new Impl)
+{
+}
+
+VCTGPU::~VCTGPU()
+{
+  this->P->engine.reset(); // before its context
+}
+
+bool VCTGPU::Open(std::string& error)
+{
+  if (this->P->engine)
+    return true;
+  this->P->context = cao::gl::Context::CreateHeadless(cao::gl::ContextKind::Auto, error);
+  if (!this->P->context)
+    return false;
+  this->P->engine.reset(new cao::gl::VCTEngine(*this->P->context));
+  return true;
+}
+
+bool VCTGPU::Software() const
+{
+  const std::string d = this->Description();
+  return d.find("llvmpipe") != std::string::npos || d.find("softpipe") != std::string::npos ||
+    d.find("OSMesa") != std::string::npos;
+}
+
+std::string VCTGPU::Description() const
+{
+  return this->P->context ? this->P->context->Description() : std::string();
+}
+
+bool VCTGPU::Voxelize(const SurfaceScene& scene, const cao::BitGrid& shape,
+  std::vector<std::int64_t>& openEdges, double& ms, std::string& error)
+{
+  if (!this->P->engine)
+  {
+    error = "no OpenGL context (Open first)";
+    return false;
+  }
+  std::vector<cao::MeshView> views;
+  for (std::size_t m = 0; m < scene.points.size(); ++m)
+    views.push_back({ &scene.points[m], &scene.triangles[m] });
+  return this->P->engine->Voxelize(shape, views, openEdges, ms, error);
+}
+
+bool VCTGPU::Trace(const cao::VCTPlan& plan, cao::SurfaceFrame& frame, double& ms, std::string& error)
+{
+  if (!this->P->engine)
+  {
+    error = "no OpenGL context (Open first)";
+    return false;
+  }
+  std::vector<float> points, normals;
+  std::vector<std::size_t> where;
+  for (std::size_t i = 0; i < frame.triangle.size(); ++i)
+    if (frame.triangle[i] >= 0)
+    {
+      where.push_back(i);
+      for (int d = 0; d < 3; ++d)
+      {
+        points.push_back(static_cast<float>(frame.position[3 * i + d]));
+        normals.push_back(static_cast<float>(frame.normal[3 * i + d]));
+      }
+    }
+  std::vector<float> ao;
+  if (!this->P->engine->Trace(plan, points.data(), normals.data(), where.size(), ao, ms, error))
+    return false;
+  for (std::size_t k = 0; k < where.size(); ++k)
+    frame.ao[where[k]] = ao[k];
+  return true;
 }
 
 bool SSAORenderer::Setup(const SurfaceScene& scene, const std::string& windowKind,
@@ -551,12 +647,36 @@ int RunSurface(int argc, char* argv[])
   double voxelizeMs = -1.0;
   cao::BitGrid grid;
   std::vector<std::string> openReport;
+  std::string vctBackend = "CPU";
   if (o.method == "vct")
   {
     o.vct.radius = radius;
-    if (!VoxelizeScene(scene, o.vct.slices, radius, grid, error))
-      return Fail(2, error);
-    voxelizeMs = Milliseconds(start);
+    VCTGPU gpu;
+    bool useGL = false;
+    if (o.backend != "cpu")
+    {
+      std::string why;
+      const bool opened = gpu.Open(why);
+      if (o.backend == "gl" && !opened)
+        return Fail(1, "--backend gl: no OpenGL 4.3 context: " + why);
+      useGL = opened && (o.backend == "gl" || !gpu.Software());
+    }
+    cao::VCTPlan plan;
+    if (useGL)
+    {
+      double ms = 0;
+      if (!cao::PlanGrid(b, 1.05 * radius, o.vct.slices, grid, error) ||
+        !gpu.Voxelize(scene, grid, grid.openEdges, ms, error))
+        return Fail(1, error);
+      voxelizeMs = ms;
+      vctBackend = "OpenGL (" + gpu.Description() + ")";
+    }
+    else
+    {
+      if (!VoxelizeScene(scene, o.vct.slices, radius, grid, error))
+        return Fail(2, error);
+      voxelizeMs = Milliseconds(start);
+    }
     for (std::size_t m = 0; m < grid.openEdges.size(); ++m)
       if (grid.openEdges[m] > 0)
       {
@@ -565,9 +685,15 @@ int RunSurface(int argc, char* argv[])
                   << " boundary or non-manifold edges): voxelized as a shell, its inside is not filled\n";
       }
     start = std::chrono::steady_clock::now();
-    cao::VCTPlan plan;
-    if (!cao::BuildVCTPlan(o.vct, grid, plan, error) ||
-      !cao::VCTFrame(grid, plan, frame, o.threads, error))
+    if (!cao::BuildVCTPlan(o.vct, grid, plan, error))
+      return Fail(2, error);
+    if (useGL)
+    {
+      double ms = 0;
+      if (!gpu.Trace(plan, frame, ms, error))
+        return Fail(1, error);
+    }
+    else if (!cao::VCTFrame(grid, plan, frame, o.threads, error))
       return Fail(2, error);
     ao = frame.ao;
   }
@@ -624,9 +750,10 @@ int RunSurface(int argc, char* argv[])
                 << o.vct.EffectivePrisms() << ", \"cone_half_angle\": " << o.vct.coneHalfAngle
                 << ", \"cone_weights\": \""
                 << (o.vct.weights == cao::ConeWeights::Cosine ? "cosine" : "equal")
-                << "\", \"grid\": \"world\", \"slices\": " << grid.slices << ", \"columns\": ["
+                << "\", \"backend\": \"" << vctBackend << "\", \"grid\": \"world\", \"slices\": " << grid.slices << ", \"columns\": ["
                 << grid.nx << ", " << grid.ny << "], \"voxel\": " << grid.voxel
-                << ", \"solid_voxels\": " << grid.CountAll() << ", \"open_meshes\": [";
+                << ", \"solid_voxels\": " << (grid.bits.empty() ? -1 : grid.CountAll())
+                << ", \"open_meshes\": [";
       for (std::size_t m = 0; m < openReport.size(); ++m)
         std::cout << (m ? ", " : "") << "\"" << openReport[m] << "\"";
       std::cout << "]}";

@@ -15,6 +15,7 @@
 
 #include "vtkSmartPointer.h"
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -61,6 +62,29 @@ bool CastFrame(const SurfaceScene& scene, vtkCamera* camera, const SurfaceView& 
 /// The world-space bit grid of the scene for cones of radius R.
 bool VoxelizeScene(const SurfaceScene& scene, int slices, double radius, cao::BitGrid& grid,
   std::string& error);
+
+/// Voxel cone tracing on the GPU: a headless context (EGL, then OSMesa) and
+/// the engine, kept between frames.
+class VCTGPU
+{
+public:
+  VCTGPU();
+  ~VCTGPU();
+  /// A context; false with the reason. `software`: the renderer is a
+  /// software rasterizer (llvmpipe), slower than the CPU twin here.
+  bool Open(std::string& error);
+  bool Software() const;
+  std::string Description() const;
+  /// The scene's grid (PlanGrid's shape) voxelized on the GPU.
+  bool Voxelize(const SurfaceScene& scene, const cao::BitGrid& shape, std::vector<std::int64_t>& openEdges,
+    double& ms, std::string& error);
+  /// The AO of every covered pixel of `frame` into frame.ao; `ms` GPU time.
+  bool Trace(const cao::VCTPlan& plan, cao::SurfaceFrame& frame, double& ms, std::string& error);
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> P;
+};
 
 /// vtkSSAOPass on the scene's meshes (unlit white), in one offscreen window
 /// kept between renders, read back as the AO (NaN on the background).

@@ -96,6 +96,7 @@
   X(Uniform3d, UNIFORM3D)                                                                        \
   X(Uniform3f, UNIFORM3F)                                                                        \
   X(Uniform3i, UNIFORM3I)                                                                        \
+  X(Uniform4i, UNIFORM4I)                                                                      \
   X(Uniform4f, UNIFORM4F)                                                                        \
   X(UseProgram, USEPROGRAM)                                                                      \
   X(VertexAttribDivisor, VERTEXATTRIBDIVISOR)                                                    \

@@ -198,12 +198,45 @@ CAO_CONST CAO_DM_STAT_HITS = 4;      /* hits appended (the allocation counter) *
 CAO_CONST CAO_DM_STAT_BOXES = 8;     /* then per layer: covered x0, y0, x1, y1 */
 #define CAO_DM_END 0xFFFFFFFFu
 
+/*
+ * Voxel cone tracing (seed 000; caoVoxelConeTracing.h is the CPU twin,
+ * caoVCTGL the GPU side). The grid: column (i, j) holds `words` 32-bit
+ * words, slice k in bit k % 32 of word k / 32, column-major as the CPU's
+ * BitGrid. The voxelizer (caoVoxelize.glsl) reads the points in grid units
+ * ((p - origin) / h, double, computed by the host as the CPU does) and 3
+ * ids per triangle; one workgroup per triangle walks its column box.
+ */
+#define CAO_VCT_MAX_CONES 8
+#define CAO_VCT_MAX_SPHERES 16
+#define CAO_VCT_MAX_PRISMS 32
+struct VCTParams
+{
+  ivec4 grid;   /* x: nx, y: ny, z: slices, w: words per column */
+  vec4 origin;  /* xyz: the grid's corner (world); w: 1 / voxel size */
+  ivec4 counts; /* x: cones, y: spheres, z: prisms, w: points */
+  vec4 apex;    /* x: apex offset along the normal (world units); yzw: 0 */
+  vec4 cones[CAO_VCT_MAX_CONES];     /* xyz: direction, z along the normal; w: weight */
+  vec4 spheres[CAO_VCT_MAX_SPHERES]; /* x: centre distance t, y: radius r (world); zw: 0 */
+  vec4 disk[CAO_VCT_MAX_PRISMS];     /* xy: unit-disk sample, z: sqrt(1 - x^2 - y^2); w: 0 */
+};
+#define CAO_BINDING_VCT_PARAMS 3   /* uniform block: VCTParams */
+#define CAO_BINDING_VX_POINTS 0    /* storage: double xyz per point, grid units */
+#define CAO_BINDING_VX_IDS 1       /* storage: int, 3 point ids per triangle */
+#define CAO_BINDING_VX_BITS 2      /* storage: uint, the mesh's own bits (voxelize) / the grid (trace) */
+#define CAO_BINDING_VX_GRID 3      /* storage: uint, the grid the mesh is OR'ed into */
+#define CAO_BINDING_VCT_POINTS 4   /* storage: vec4 per point (xyz world, w unused) */
+#define CAO_BINDING_VCT_NORMALS 5  /* storage: vec4 per point (xyz unit normal) */
+#define CAO_BINDING_VCT_AO 6       /* storage: float AO per point */
+
 #ifdef __cplusplus
 static_assert(sizeof(DMTriangle) == 128, "DMTriangle must match std430");
 static_assert(sizeof(DMHit) == 16, "DMHit must match std430");
 static_assert(sizeof(DMOffset) == 16, "DMOffset must match std430");
 static_assert(sizeof(RenderParams) == (19 + 2 * CAO_MAX_LIGHTS) * 16, "RenderParams must match std140");
 static_assert(sizeof(LAOTap) == 32, "LAOTap must match std430");
+static_assert(sizeof(VCTParams) ==
+    4 * 16 + (CAO_VCT_MAX_CONES + CAO_VCT_MAX_SPHERES + CAO_VCT_MAX_PRISMS) * 16,
+  "VCTParams must match std140");
 static_assert(sizeof(LAOMarchBlock) == 96, "LAOMarchBlock must match std140/std430");
 static_assert(sizeof(ClipParams) == 3 * 16 + 4 * 16 + CAO_MAX_AA_EXTRA_SAMPLES * 16,
   "ClipParams must match std140/std430");

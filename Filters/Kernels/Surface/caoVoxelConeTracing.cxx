@@ -217,8 +217,8 @@ std::int64_t BitGrid::CountAll() const
   return n;
 }
 
-bool VoxelizeWorld(const std::vector<MeshView>& meshes, const std::array<double, 6>& bounds,
-  double padding, int slices, BitGrid& grid, std::string& error)
+bool PlanGrid(const std::array<double, 6>& bounds, double padding, int slices, BitGrid& grid,
+  std::string& error)
 {
   if (slices < 32 || slices > 1024 || slices % 32 != 0)
   {
@@ -264,6 +264,30 @@ bool VoxelizeWorld(const std::vector<MeshView>& meshes, const std::array<double,
   // Centred on the bounds' centre in x and y; z starts at the padded bottom.
   grid.origin = { { 0.5 * (bounds[0] + bounds[1]) - 0.5 * grid.nx * h,
     0.5 * (bounds[2] + bounds[3]) - 0.5 * grid.ny * h, bounds[4] - padding } };
+  return true;
+}
+
+bool GridPoints(const BitGrid& grid, const std::vector<double>& points, std::vector<double>& out,
+  std::string& error)
+{
+  out.resize(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    if (!std::isfinite(points[i]))
+    {
+      error = "a mesh has a NaN or infinite coordinate";
+      return false;
+    }
+    out[i] = (points[i] - grid.origin[i % 3]) / grid.voxel;
+  }
+  return true;
+}
+
+bool VoxelizeWorld(const std::vector<MeshView>& meshes, const std::array<double, 6>& bounds,
+  double padding, int slices, BitGrid& grid, std::string& error)
+{
+  if (!PlanGrid(bounds, padding, slices, grid, error))
+    return false;
   const std::size_t columnWords = static_cast<std::size_t>(grid.nx) * grid.ny * grid.words;
   grid.bits.assign(columnWords, 0u);
   std::vector<std::uint32_t> one;
@@ -283,12 +307,9 @@ bool VoxelizeWorld(const std::vector<MeshView>& meshes, const std::array<double,
         error = "a triangle refers to point " + std::to_string(id) + " of " + std::to_string(numPoints);
         return false;
       }
-    for (double c : p)
-      if (!std::isfinite(c))
-      {
-        error = "a mesh has a NaN or infinite coordinate";
-        return false;
-      }
+    std::vector<double> g;
+    if (!GridPoints(grid, p, g, error))
+      return false;
     const std::int64_t open = OpenEdges(mesh);
     grid.openEdges.push_back(open);
     const bool solid = open == 0;
@@ -298,7 +319,7 @@ bool VoxelizeWorld(const std::vector<MeshView>& meshes, const std::array<double,
       double v[3][3];
       for (int k = 0; k < 3; ++k)
         for (int d = 0; d < 3; ++d)
-          v[k][d] = (p[static_cast<std::size_t>(3 * t[f + k] + d)] - grid.origin[d]) / h;
+          v[k][d] = g[static_cast<std::size_t>(3 * t[f + k] + d)];
       double area = Edge(v[0], v[1], v[2][0], v[2][1]);
       if (area == 0.0)
         continue; // edge-on along z: no column crosses it
@@ -319,7 +340,7 @@ bool VoxelizeWorld(const std::vector<MeshView>& meshes, const std::array<double,
           const double ea = Edge(b, c, px, py), eb = Edge(c, a, px, py), ec = Edge(a, b, px, py);
           if (!Inside(ea, b, c) || !Inside(eb, c, a) || !Inside(ec, a, b))
             continue;
-          const double s = (ea * a[2] + eb * b[2] + ec * c[2]) / area;
+          const double s = ((ea * a[2] + eb * b[2]) + ec * c[2]) / area;
           Cross(&one[(static_cast<std::size_t>(j) * grid.nx + i) * grid.words], slices, grid.words, s,
             solid);
         }
@@ -404,10 +425,36 @@ bool BuildVCTPlan(const VCTSettings& settings, const BitGrid& grid, VCTPlan& pla
   return true;
 }
 
+layout::VCTParams MakeVCTParams(const BitGrid& grid, const VCTPlan& plan, int points)
+{
+  layout::VCTParams v{};
+  v.grid = { grid.nx, grid.ny, grid.slices, grid.words };
+  v.origin = { static_cast<float>(grid.origin[0]), static_cast<float>(grid.origin[1]),
+    static_cast<float>(grid.origin[2]), static_cast<float>(1.0 / grid.voxel) };
+  const int cones = std::min<int>(static_cast<int>(plan.cones.size()), CAO_VCT_MAX_CONES);
+  const int spheres = std::min<int>(static_cast<int>(plan.spheres.size()), CAO_VCT_MAX_SPHERES);
+  const int prisms = std::min<int>(static_cast<int>(plan.disk.size()), CAO_VCT_MAX_PRISMS);
+  v.counts = { cones, spheres, prisms, points };
+  v.apex = { static_cast<float>(plan.apexOffset), 0, 0, 0 };
+  for (int c = 0; c < cones; ++c)
+    v.cones[c] = { static_cast<float>(plan.cones[c][0]), static_cast<float>(plan.cones[c][1]),
+      static_cast<float>(plan.cones[c][2]), static_cast<float>(plan.coneWeights[c]) };
+  for (int k = 0; k < spheres; ++k)
+    v.spheres[k] = { static_cast<float>(plan.spheres[k].t), static_cast<float>(plan.spheres[k].r), 0, 0 };
+  for (int k = 0; k < prisms; ++k)
+  {
+    const double x = plan.disk[k][0], y = plan.disk[k][1];
+    v.disk[k] = { static_cast<float>(x), static_cast<float>(y),
+      static_cast<float>(std::sqrt(std::max(0.0, 1.0 - x * x - y * y))), 0 };
+  }
+  return v;
+}
+
 double ConeTraceAO(const BitGrid& grid, const VCTPlan& plan, const double p[3], const double n[3])
 {
   const double h = grid.voxel;
-  const double sign = std::copysign(1.0, n[2]);
+  const double sign = n[2] >= 0.0 ? 1.0 : -1.0; // as the GLSL's
+
   const double a = -1.0 / (sign + n[2]);
   const double b = n[0] * n[1] * a;
   const double tx[3] = { 1.0 + sign * n[0] * n[0] * a, sign * b, -sign * n[0] };

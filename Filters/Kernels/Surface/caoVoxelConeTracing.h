@@ -32,6 +32,7 @@
 #ifndef caoVoxelConeTracing_h
 #define caoVoxelConeTracing_h
 
+#include "caoGPULayout.h"
 #include "caoSurfaceReference.h"
 
 #include <array>
@@ -120,6 +121,8 @@ struct BitGrid
 bool VoxelizeWorld(const std::vector<MeshView>& meshes, const std::array<double, 6>& bounds,
   double padding, int slices, BitGrid& grid, std::string& error);
 
+
+
 /// The cones, spheres and prism samples of `settings` on `grid`.
 struct VCTPlan
 {
@@ -136,6 +139,18 @@ struct VCTPlan
 
 bool BuildVCTPlan(const VCTSettings& settings, const BitGrid& grid, VCTPlan& plan,
   std::string& error);
+
+/// VoxelizeWorld's grid without its bits (size, origin, voxel; bits
+/// empty): what the GPU voxelizer fills.
+bool PlanGrid(const std::array<double, 6>& bounds, double padding, int slices, BitGrid& grid,
+  std::string& error);
+/// A mesh's points in the grid's units, (p - origin) / voxel, as the
+/// voxelizer (CPU or GPU) rasterizes them. False on a NaN or infinity.
+bool GridPoints(const BitGrid& grid, const std::vector<double>& points, std::vector<double>& out,
+  std::string& error);
+/// The parameter block of the GPU cone tracer for `plan` on `grid`, for
+/// `points` points (caoGPULayout.h VCTParams).
+layout::VCTParams MakeVCTParams(const BitGrid& grid, const VCTPlan& plan, int points);
 
 /// The AO (1 = open) at P with unit normal n.
 double ConeTraceAO(const BitGrid& grid, const VCTPlan& plan, const double p[3], const double n[3]);

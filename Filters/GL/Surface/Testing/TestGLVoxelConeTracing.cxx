@@ -1,0 +1,223 @@
+// Voxel cone tracing on the GPU (caoVCTGL) against its CPU twin
+// (caoVoxelConeTracing):
+// - the voxelizer's bits equal cao::VoxelizeWorld's, word for word, for a
+//   cube whose vertices and edges lie on column centres (the top-left
+//   rule's ties), a UV sphere in 12 random orientations, two overlapping
+//   spheres (OR of solids) and an open mesh (the shell), at 128 and 512
+//   slices;
+// - the cone tracer (float) on 4000 points of those surfaces, against the
+//   CPU's double: the mean |difference| under 1e-4 and the largest under
+//   0.01 (a prism's slice range can round the other way in float);
+//   negative control: one changed bit near a point changes its GPU AO;
+// - a CPU grid uploaded traces as the GPU's own (the same bits);
+// - bad input: a plan beyond the GPU's limits, tracing with no grid.
+#include "caoVCTGL.h"
+#include "caoGLTestUtilities.h"
+#include "caoTestUtilities.h"
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+namespace
+{
+void Box(double lo, double hi, std::vector<double>& p, std::vector<std::int64_t>& t)
+{
+  p = { lo, lo, lo, hi, lo, lo, hi, hi, lo, lo, hi, lo, lo, lo, hi, hi, lo, hi, hi, hi, hi, lo, hi, hi };
+  t = { 0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4, 2, 3, 7, 2, 7, 6, 1, 2, 6, 1, 6, 5, 3, 0, 4, 3, 4, 7 };
+}
+
+void Rotate(std::vector<double>& p, double ax, double ay)
+{
+  for (std::size_t i = 0; i < p.size(); i += 3)
+  {
+    double x = p[i], y = p[i + 1], z = p[i + 2];
+    double y1 = y * std::cos(ax) - z * std::sin(ax), z1 = y * std::sin(ax) + z * std::cos(ax);
+    double x2 = x * std::cos(ay) + z1 * std::sin(ay), z2 = -x * std::sin(ay) + z1 * std::cos(ay);
+    p[i] = x2;
+    p[i + 1] = y1;
+    p[i + 2] = z2;
+  }
+}
+
+int failures = 0;
+
+bool SameGrid(cao::gl::VCTEngine& engine, const char* name, const std::vector<cao::MeshView>& meshes,
+  const std::array<double, 6>& bounds, double padding, int slices, cao::BitGrid* keep = nullptr)
+{
+  std::string error;
+  cao::BitGrid cpu, shape;
+  if (!cao::VoxelizeWorld(meshes, bounds, padding, slices, cpu, error) ||
+    !cao::PlanGrid(bounds, padding, slices, shape, error))
+  {
+    std::printf("FAIL %s: CPU: %s\n", name, error.c_str());
+    ++failures;
+    return false;
+  }
+  std::vector<std::int64_t> open;
+  std::vector<std::uint32_t> gpu;
+  double ms = 0;
+  if (!engine.Voxelize(shape, meshes, open, ms, error) || !engine.Read(gpu, error))
+  {
+    std::printf("FAIL %s: GPU: %s\n", name, error.c_str());
+    ++failures;
+    return false;
+  }
+  std::int64_t differing = 0;
+  for (std::size_t w = 0; w < gpu.size() && w < cpu.bits.size(); ++w)
+    differing += gpu[w] != cpu.bits[w];
+  const bool ok = gpu.size() == cpu.bits.size() && differing == 0 && open == cpu.openEdges;
+  std::printf("%-40s %4dx%-4d x %4d: %9lld solid voxels, %lld words differ, open edges %lld/%lld, GPU %.2f ms %s\n",
+    name, cpu.nx, cpu.ny, slices, static_cast<long long>(cpu.CountAll()), static_cast<long long>(differing),
+    static_cast<long long>(open.empty() ? -1 : open[0]), static_cast<long long>(cpu.openEdges[0]), ms,
+    ok ? "ok" : "FAIL");
+  if (!ok)
+    ++failures;
+  if (keep)
+    *keep = cpu;
+  return ok;
+}
+}
+
+int TestGLVoxelConeTracing(int argc, char* argv[])
+{
+  auto context = caogltest::ContextOrSkip(caogltest::KindFromArgs(argc, argv));
+  if (!context)
+    return caogltest::Skip;
+  std::printf("context: %s\n", context->Description().c_str());
+  cao::gl::VCTEngine engine(*context);
+  std::vector<double> cube;
+  std::vector<std::int64_t> cubeTris;
+  Box(-1 + 8.5 / 16, -1 + 23.5 / 16, cube, cubeTris);
+  SameGrid(engine, "cube, vertices on column centres", { { &cube, &cubeTris } }, { { -1, 1, -1, 1, -1, 1 } }, 0.0, 32);
+  std::vector<double> sphere;
+  std::vector<std::int64_t> sphereTris;
+  caotest::UVSphere(0.6, 96, sphere, sphereTris);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> angle(0.0, 6.283185307179586);
+  for (int k = 0; k < 12; ++k)
+  {
+    std::vector<double> turned = sphere;
+    Rotate(turned, angle(rng), angle(rng));
+    char name[64];
+    std::snprintf(name, sizeof(name), "sphere, random orientation %d", k);
+    SameGrid(engine, name, { { &turned, &sphereTris } }, { { -0.6, 0.6, -0.6, 0.6, -0.6, 0.6 } }, 0.1,
+      k % 2 ? 128 : 512);
+  }
+  std::vector<double> second = sphere;
+  for (std::size_t i = 0; i < second.size(); i += 3)
+    second[i] += 0.3;
+  SameGrid(engine, "two overlapping spheres", { { &sphere, &sphereTris }, { &second, &sphereTris } },
+    { { -0.6, 0.9, -0.6, 0.6, -0.6, 0.6 } }, 0.1, 256);
+  std::vector<std::int64_t> holed(sphereTris.begin() + 3, sphereTris.end());
+  SameGrid(engine, "open sphere (shell)", { { &sphere, &holed } }, { { -0.6, 0.6, -0.6, 0.6, -0.6, 0.6 } }, 0.1, 128);
+
+  // The cone tracer on points of a scene: the two spheres on a floor box.
+  std::vector<double> floor;
+  std::vector<std::int64_t> floorTris;
+  Box(-1.5, 1.5, floor, floorTris);
+  for (std::size_t i = 2; i < floor.size(); i += 3)
+    floor[i] = floor[i] < 0 ? -1.0 : -0.6;
+  cao::BitGrid grid;
+  const std::vector<cao::MeshView> scene = { { &sphere, &sphereTris }, { &second, &sphereTris },
+    { &floor, &floorTris } };
+  std::string error;
+  if (!SameGrid(engine, "spheres on a floor", scene, { { -1.5, 1.5, -1.5, 1.5, -1.0, 0.6 } }, 0.4, 256, &grid))
+    return 1;
+  cao::VCTSettings settings;
+  settings.radius = 0.35;
+  settings.quality = cao::VCTQuality::High;
+  cao::VCTPlan plan;
+  CAO_CHECK(cao::BuildVCTPlan(settings, grid, plan, error), "%s", error.c_str());
+  // Points on the spheres' surfaces and the floor's top, normals outward.
+  std::vector<float> points, normals;
+  std::vector<double> dp, dn;
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  while (points.size() < 3 * 4000)
+  {
+    double n[3] = { unit(rng), unit(rng), unit(rng) };
+    const double l = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(l > 0.1 && l < 1.0))
+      continue;
+    double p[3];
+    if (points.size() % 9 == 0)
+    {
+      p[0] = 1.2 * unit(rng);
+      p[1] = 1.2 * unit(rng);
+      p[2] = -0.6;
+      n[0] = n[1] = 0;
+      n[2] = l;
+    }
+    else
+      for (int d = 0; d < 3; ++d)
+        p[d] = 0.6 * n[d] / l + (d == 0 && points.size() % 2 ? 0.3 : 0.0);
+    for (int d = 0; d < 3; ++d)
+    {
+      n[d] /= l;
+      points.push_back(static_cast<float>(p[d]));
+      normals.push_back(static_cast<float>(n[d]));
+    }
+  }
+  // The CPU evaluates at the same float positions and normals.
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    dp.push_back(points[i]);
+    dn.push_back(normals[i]);
+  }
+  for (std::size_t i = 0; i < dn.size(); i += 3)
+  {
+    const double l = std::sqrt(dn[i] * dn[i] + dn[i + 1] * dn[i + 1] + dn[i + 2] * dn[i + 2]);
+    for (int d = 0; d < 3; ++d)
+      dn[i + d] /= l;
+  }
+  std::vector<float> gpu;
+  double ms = 0;
+  CAO_CHECK(engine.Trace(plan, points.data(), normals.data(), 4000, gpu, ms, error), "%s", error.c_str());
+  double sum = 0, worst = 0, meanAO = 0;
+  int exact = 0;
+  for (int i = 0; i < 4000; ++i)
+  {
+    const double cpu = cao::ConeTraceAO(grid, plan, &dp[3 * i], &dn[3 * i]);
+    const double d = std::fabs(cpu - gpu[i]);
+    sum += d;
+    worst = std::max(worst, d);
+    exact += d < 1e-6;
+    meanAO += cpu / 4000;
+  }
+  std::printf("cone tracing, 4000 points (mean AO %.4f): GPU float against CPU double: mean |diff| %.2e, max %.2e, "
+              "%d within 1e-6; GPU %.2f ms\n", meanAO, sum / 4000, worst, exact, ms);
+  CAO_CHECK(sum / 4000 < 1e-4 && worst < 0.01 && meanAO < 0.97, "GPU trace differs: mean %.2e max %.2e", sum / 4000, worst);
+  // Negative control: fill the voxels around one point; its GPU AO drops.
+  cao::BitGrid changed = grid;
+  const int i0 = static_cast<int>(std::floor((dp[3] + 0.1 * dn[3] - grid.origin[0]) / grid.voxel));
+  const int j0 = static_cast<int>(std::floor((dp[4] + 0.1 * dn[4] - grid.origin[1]) / grid.voxel));
+  const int k0 = static_cast<int>(std::floor((dp[5] + 0.1 * dn[5] - grid.origin[2]) / grid.voxel));
+  for (int dj = -3; dj <= 3; ++dj)
+    for (int di = -3; di <= 3; ++di)
+      for (int dk = -3; dk <= 3; ++dk)
+      {
+        const int i = i0 + di, j = j0 + dj, k = k0 + dk;
+        if (i >= 0 && j >= 0 && k >= 0 && i < grid.nx && j < grid.ny && k < grid.slices)
+          changed.bits[(static_cast<std::size_t>(j) * grid.nx + i) * grid.words + (k >> 5)] |= 1u << (k & 31);
+      }
+  std::vector<float> gpu2;
+  CAO_CHECK(engine.Upload(changed, error) && engine.Trace(plan, points.data(), normals.data(), 4000, gpu2, ms, error),
+    "%s", error.c_str());
+  std::printf("negative control: voxels filled next to point 1: its GPU AO %.4f -> %.4f\n", gpu[1], gpu2[1]);
+  CAO_CHECK(gpu2[1] < gpu[1] - 0.05, "the filled voxels should darken point 1");
+  // The CPU's own grid uploaded traces as the GPU-voxelized one.
+  std::vector<float> gpu3;
+  CAO_CHECK(engine.Upload(grid, error) && engine.Trace(plan, points.data(), normals.data(), 4000, gpu3, ms, error),
+    "%s", error.c_str());
+  CAO_CHECK(gpu3 == gpu, "the uploaded CPU grid traces as the GPU's own");
+  // Bad input.
+  cao::VCTPlan big = plan;
+  big.spheres.resize(CAO_VCT_MAX_SPHERES + 1, plan.spheres[0]);
+  CAO_CHECK(!engine.Trace(big, points.data(), normals.data(), 4000, gpu3, ms, error) &&
+      error.find("limits") != std::string::npos, "too many spheres: %s", error.c_str());
+  cao::gl::VCTEngine fresh(*context);
+  CAO_CHECK(!fresh.Trace(plan, points.data(), normals.data(), 1, gpu3, ms, error) &&
+      error.find("no grid") != std::string::npos, "no grid: %s", error.c_str());
+  std::printf("%d failure(s)\n", failures);
+  return failures ? 1 : 0;
+}

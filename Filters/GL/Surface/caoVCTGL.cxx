@@ -1,0 +1,303 @@
+#include "caoVCTGL.h"
+
+#include "caoGLProgram.h"
+#include "caoGLStateGuard.h"
+#include "caoGLTimer.h"
+#include "caoGPULayout.h"
+
+#include "caoConeTrace_glsl.h"
+#include "caoVoxelize_glsl.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace cao
+{
+namespace gl
+{
+namespace
+{
+enum Stage
+{
+  SVoxelize,
+  STrace,
+  SCount
+};
+}
+
+struct VCTEngine::Impl
+{
+  Context& Ctx;
+  const Functions& gl;
+  GLuint points = 0, ids = 0, bits = 0, grid = 0, params = 0, tracePoints = 0, traceNormals = 0,
+         ao = 0;
+  Program rasterize, combine, trace;
+  StageTimer timer{ SCount };
+  BitGrid shape; ///< size and place of the grid on the GPU (no bits)
+  std::int64_t bytes = 0;
+  explicit Impl(Context& c)
+    : Ctx(c)
+    , gl(c.GL())
+  {
+  }
+  GLuint* Buffers[8] = { &points, &ids, &bits, &grid, &params, &tracePoints, &traceNormals, &ao };
+  void Upload(GLuint& b, GLenum target, std::size_t size, const void* data)
+  {
+    if (!b)
+      gl.GenBuffers(1, &b);
+    gl.BindBuffer(target, b);
+    gl.BufferData(target, static_cast<GLsizeiptr>(std::max<std::size_t>(size, 16)), data, GL_DYNAMIC_DRAW);
+    gl.BindBuffer(target, 0);
+  }
+  bool BuildPrograms(std::string& error)
+  {
+    if (this->rasterize.Valid())
+      return true;
+    return this->rasterize.BuildCompute(gl, { caoVoxelize_glsl }, { { "CAO_VX_STAGE", "0" } }, error) &&
+      this->combine.BuildCompute(gl, { caoVoxelize_glsl }, { { "CAO_VX_STAGE", "1" } }, error) &&
+      this->trace.BuildCompute(gl, { caoConeTrace_glsl }, {}, error);
+  }
+  void Release()
+  {
+    gl.UseProgram(0);
+    for (GLuint* b : this->Buffers)
+      if (*b)
+      {
+        gl.DeleteBuffers(1, b);
+        *b = 0;
+      }
+    for (Program* p : { &rasterize, &combine, &trace })
+      p->Release(gl);
+    timer.Release(gl);
+    bytes = 0;
+    shape = BitGrid();
+  }
+  /// Dispatch `groups` workgroups as a 2D grid within GL's per-axis limit.
+  void Dispatch(std::int64_t groups)
+  {
+    const std::int64_t x = std::min<std::int64_t>(groups, 65535);
+    const std::int64_t y = (groups + x - 1) / x;
+    gl.DispatchCompute(static_cast<GLuint>(std::max<std::int64_t>(x, 1)), static_cast<GLuint>(std::max<std::int64_t>(y, 1)), 1);
+  }
+};
+
+VCTEngine::VCTEngine(Context& context)
+  : P(new Impl(context))
+{
+}
+
+VCTEngine::~VCTEngine()
+{
+  this->ReleaseGraphicsResources();
+}
+
+void VCTEngine::ReleaseGraphicsResources()
+{
+  Impl& p = *this->P;
+  if (p.bytes == 0 && !p.rasterize.Valid())
+    return;
+  CurrentScope scope(p.Ctx);
+  if (scope.Ok())
+    p.Release();
+}
+
+std::int64_t VCTEngine::ResidentBytes() const
+{
+  return this->P->bytes;
+}
+
+bool VCTEngine::Voxelize(const BitGrid& shape, const std::vector<MeshView>& meshes,
+  std::vector<std::int64_t>& openEdges, double& ms, std::string& error)
+{
+  Impl& p = *this->P;
+  const std::int64_t words = static_cast<std::int64_t>(shape.nx) * shape.ny * shape.words;
+  if (shape.nx < 1 || shape.ny < 1 || shape.words < 1 || words > std::numeric_limits<std::int32_t>::max())
+  {
+    error = "the grid is empty or too large for the GPU voxelizer (at most 2^31 words)";
+    return false;
+  }
+  // The inputs, checked and converted on the CPU as VoxelizeWorld does.
+  std::vector<std::vector<double>> gridPoints(meshes.size());
+  std::vector<std::vector<std::int32_t>> ids(meshes.size());
+  openEdges.clear();
+  for (std::size_t m = 0; m < meshes.size(); ++m)
+  {
+    const MeshView& mesh = meshes[m];
+    if (!mesh.points || !mesh.triangles || mesh.points->size() % 3 || mesh.triangles->size() % 3)
+    {
+      error = "a mesh needs 3 coordinates per point and 3 ids per triangle";
+      return false;
+    }
+    const std::int64_t numPoints = static_cast<std::int64_t>(mesh.points->size() / 3);
+    if (numPoints > std::numeric_limits<std::int32_t>::max() / 3 ||
+      mesh.triangles->size() / 3 > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
+    {
+      error = "a mesh is too large for the GPU voxelizer";
+      return false;
+    }
+    for (std::int64_t id : *mesh.triangles)
+    {
+      if (id < 0 || id >= numPoints)
+      {
+        error = "a triangle refers to point " + std::to_string(id) + " of " + std::to_string(numPoints);
+        return false;
+      }
+      ids[m].push_back(static_cast<std::int32_t>(id));
+    }
+    if (!GridPoints(shape, *mesh.points, gridPoints[m], error))
+      return false;
+    openEdges.push_back(OpenEdges(mesh));
+  }
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
+    return false;
+  const Functions& gl = p.gl;
+  StateGuard guard(gl, p.Ctx.Kind() == ContextKind::External);
+  if (!p.BuildPrograms(error))
+    return false;
+  p.timer.Allocate(gl, p.Ctx.UsesHostClock());
+  const std::size_t bytes = static_cast<std::size_t>(words) * sizeof(std::uint32_t);
+  p.Upload(p.grid, GL_SHADER_STORAGE_BUFFER, bytes, nullptr);
+  p.Upload(p.bits, GL_SHADER_STORAGE_BUFFER, bytes, nullptr);
+  const GLuint zero = 0;
+  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, p.grid);
+  gl.ClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  p.timer.Begin(gl, SVoxelize);
+  for (std::size_t m = 0; m < meshes.size(); ++m)
+  {
+    const int triangles = static_cast<int>(ids[m].size() / 3);
+    p.Upload(p.points, GL_SHADER_STORAGE_BUFFER, gridPoints[m].size() * sizeof(double), gridPoints[m].data());
+    p.Upload(p.ids, GL_SHADER_STORAGE_BUFFER, ids[m].size() * sizeof(std::int32_t), ids[m].data());
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, p.bits);
+    gl.ClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VX_POINTS, p.points);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VX_IDS, p.ids);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VX_BITS, p.bits);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VX_GRID, p.grid);
+    if (triangles > 0)
+    {
+      gl.UseProgram(p.rasterize.Id());
+      gl.Uniform4i(p.rasterize.Uniform(gl, "gridSize"), shape.nx, shape.ny, shape.slices, shape.words);
+      gl.Uniform1i(p.rasterize.Uniform(gl, "triangleCount"), triangles);
+      gl.Uniform1i(p.rasterize.Uniform(gl, "solid"), openEdges[m] == 0 ? 1 : 0);
+      p.Dispatch(triangles);
+      gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    gl.UseProgram(p.combine.Id());
+    gl.Uniform1ui(p.combine.Uniform(gl, "wordCount"), static_cast<GLuint>(words));
+    p.Dispatch((words + 255) / 256);
+    gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
+  p.timer.End(gl, SVoxelize);
+  gl.UseProgram(0);
+  if (!CheckError(gl, "the voxelization", error))
+    return false;
+  ms = p.timer.Milliseconds(gl, SVoxelize);
+  p.shape = shape;
+  p.shape.bits.clear();
+  p.bytes = static_cast<std::int64_t>(2 * bytes);
+  return true;
+}
+
+bool VCTEngine::Upload(const BitGrid& grid, std::string& error)
+{
+  Impl& p = *this->P;
+  if (grid.bits.size() != static_cast<std::size_t>(grid.nx) * grid.ny * grid.words || grid.bits.empty())
+  {
+    error = "the grid has no bits (voxelize it first)";
+    return false;
+  }
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
+    return false;
+  StateGuard guard(p.gl, p.Ctx.Kind() == ContextKind::External);
+  p.Upload(p.grid, GL_SHADER_STORAGE_BUFFER, grid.bits.size() * sizeof(std::uint32_t), grid.bits.data());
+  p.shape = grid;
+  p.shape.bits.clear();
+  p.bytes = static_cast<std::int64_t>(grid.bits.size() * sizeof(std::uint32_t));
+  return CheckError(p.gl, "the grid upload", error);
+}
+
+bool VCTEngine::Read(std::vector<std::uint32_t>& out, std::string& error)
+{
+  Impl& p = *this->P;
+  if (!p.grid || p.shape.nx < 1)
+  {
+    error = "no grid on the GPU";
+    return false;
+  }
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
+    return false;
+  StateGuard guard(p.gl, p.Ctx.Kind() == ContextKind::External);
+  out.resize(static_cast<std::size_t>(p.shape.nx) * p.shape.ny * p.shape.words);
+  p.gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, p.grid);
+  p.gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0,
+    static_cast<GLsizeiptr>(out.size() * sizeof(std::uint32_t)), out.data());
+  p.gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+  return CheckError(p.gl, "the grid read-back", error);
+}
+
+bool VCTEngine::Trace(const VCTPlan& plan, const float* points, const float* normals,
+  std::size_t count, std::vector<float>& ao, double& ms, std::string& error)
+{
+  Impl& p = *this->P;
+  if (!p.grid || p.shape.nx < 1)
+  {
+    error = "no grid on the GPU (voxelize or upload one first)";
+    return false;
+  }
+  if (count > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
+  {
+    error = "too many points for one trace";
+    return false;
+  }
+  if (plan.cones.size() > CAO_VCT_MAX_CONES || plan.spheres.size() > CAO_VCT_MAX_SPHERES ||
+    plan.disk.size() > CAO_VCT_MAX_PRISMS)
+  {
+    error = "the plan exceeds the GPU's limits (cones, spheres, prisms)";
+    return false;
+  }
+  const layout::VCTParams params = MakeVCTParams(p.shape, plan, static_cast<int>(count));
+  std::vector<float> p4(4 * count), n4(4 * count);
+  for (std::size_t i = 0; i < count; ++i)
+    for (int d = 0; d < 3; ++d)
+    {
+      p4[4 * i + d] = points[3 * i + d];
+      n4[4 * i + d] = normals[3 * i + d];
+    }
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
+    return false;
+  const Functions& gl = p.gl;
+  StateGuard guard(gl, p.Ctx.Kind() == ContextKind::External);
+  if (!p.BuildPrograms(error))
+    return false;
+  p.timer.Allocate(gl, p.Ctx.UsesHostClock());
+  p.Upload(p.params, GL_UNIFORM_BUFFER, sizeof(params), &params);
+  p.Upload(p.tracePoints, GL_SHADER_STORAGE_BUFFER, p4.size() * sizeof(float), p4.data());
+  p.Upload(p.traceNormals, GL_SHADER_STORAGE_BUFFER, n4.size() * sizeof(float), n4.data());
+  p.Upload(p.ao, GL_SHADER_STORAGE_BUFFER, count * sizeof(float), nullptr);
+  gl.BindBufferBase(GL_UNIFORM_BUFFER, CAO_BINDING_VCT_PARAMS, p.params);
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VX_BITS, p.grid);
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VCT_POINTS, p.tracePoints);
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VCT_NORMALS, p.traceNormals);
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VCT_AO, p.ao);
+  gl.UseProgram(p.trace.Id());
+  p.timer.Begin(gl, STrace);
+  p.Dispatch((static_cast<std::int64_t>(count) + 63) / 64);
+  p.timer.End(gl, STrace);
+  gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  gl.UseProgram(0);
+  ao.resize(count);
+  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, p.ao);
+  gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(std::max<std::size_t>(count, 1) * sizeof(float)), ao.data());
+  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+  if (!CheckError(gl, "the cone tracing", error))
+    return false;
+  ms = p.timer.Milliseconds(gl, STrace);
+  return true;
+}
+}
+}

@@ -1,0 +1,64 @@
+/**
+ * caoVCTGL — voxel cone tracing (seed 000) on the GPU, with no VTK: the
+ * world-space bit grid voxelized in a compute shader (caoVoxelize.glsl: a
+ * software rasterizer in double with the CPU's top-left rule, so the bits
+ * are cao::VoxelizeWorld's on every GPU, not the hardware rasterizer's),
+ * kept on the GPU while the geometry stays, and the cones traced per point
+ * in float (caoConeTrace.glsl: bitfieldExtract and bitCount per prism).
+ * The CPU twin is caoVoxelConeTracing.h; the parameter block is
+ * caoGPULayout.h's VCTParams. Every entry point runs in a CurrentScope and
+ * a StateGuard: a host application's context and GL state come back as
+ * they were.
+ */
+#ifndef caoVCTGL_h
+#define caoVCTGL_h
+
+#include "caoGLContext.h"
+#include "caoVoxelConeTracing.h"
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace cao
+{
+namespace gl
+{
+class VCTEngine
+{
+public:
+  /// The engine borrows the context; it must outlive the engine.
+  explicit VCTEngine(Context& context);
+  ~VCTEngine();
+  VCTEngine(const VCTEngine&) = delete;
+  VCTEngine& operator=(const VCTEngine&) = delete;
+
+  /// Voxelizes `meshes` into `grid`'s size and place (PlanGrid's; its bits
+  /// are not read): each closed mesh filled by parity, each open one as a
+  /// shell (cao::OpenEdges, counted on the CPU), OR'ed. The open edges per
+  /// mesh go to `openEdges`. `ms`: GPU time.
+  bool Voxelize(const BitGrid& grid, const std::vector<MeshView>& meshes,
+    std::vector<std::int64_t>& openEdges, double& ms, std::string& error);
+  /// Uses a grid made elsewhere (the CPU's) instead.
+  bool Upload(const BitGrid& grid, std::string& error);
+  /// The grid's bits, as BitGrid::bits.
+  bool Read(std::vector<std::uint32_t>& bits, std::string& error);
+  /// The AO at `count` points (positions and unit normals, x y z each) with
+  /// `plan` on the grid voxelized or uploaded last. `ms`: GPU time.
+  bool Trace(const VCTPlan& plan, const float* points, const float* normals, std::size_t count,
+    std::vector<float>& ao, double& ms, std::string& error);
+
+  /// Bytes of GPU memory held.
+  std::int64_t ResidentBytes() const;
+  /// Delete the GL objects (the context must be alive; made current here).
+  void ReleaseGraphicsResources();
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> P;
+};
+}
+}
+
+#endif

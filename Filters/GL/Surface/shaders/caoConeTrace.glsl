@@ -1,0 +1,97 @@
+// caoConeTrace.glsl - the GPU side of cao::ConeTraceAO (caoVoxelConeTracing.cxx),
+// in float: per point, the six cones of tangent spheres, each sphere's
+// occlusion the set bits over the bits counted in its prisms (bitfieldExtract
+// and bitCount per word), the cones' front-to-back products, weighted. The
+// plan (cones, spheres, prism samples) comes from the host's VCTPlan.
+layout(local_size_x = 64) in;
+
+layout(std140, binding = CAO_BINDING_VCT_PARAMS) uniform VCTBlock
+{
+  VCTParams vct;
+};
+layout(std430, binding = CAO_BINDING_VX_BITS) readonly buffer BitBlock
+{
+  uint bits[];
+};
+layout(std430, binding = CAO_BINDING_VCT_POINTS) readonly buffer PointBlock
+{
+  vec4 points[];
+};
+layout(std430, binding = CAO_BINDING_VCT_NORMALS) readonly buffer NormalBlock
+{
+  vec4 normals[];
+};
+layout(std430, binding = CAO_BINDING_VCT_AO) writeonly buffer AOBlock
+{
+  float ao[];
+};
+
+/// Set bits in slices [k0, k1] of column (i, j); 0 outside the grid.
+int CountBits(int i, int j, int k0, int k1)
+{
+  if (i < 0 || j < 0 || i >= vct.grid.x || j >= vct.grid.y)
+    return 0;
+  k0 = max(k0, 0);
+  k1 = min(k1, vct.grid.z - 1);
+  if (k1 < k0)
+    return 0;
+  uint column = uint(j * vct.grid.x + i) * uint(vct.grid.w);
+  int count = 0;
+  for (int w = k0 >> 5; w <= (k1 >> 5); ++w)
+  {
+    int lo = w == (k0 >> 5) ? (k0 & 31) : 0, hi = w == (k1 >> 5) ? (k1 & 31) : 31;
+    count += bitCount(bitfieldExtract(bits[column + uint(w)], lo, hi - lo + 1));
+  }
+  return count;
+}
+
+void main()
+{
+  int index = int(gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * 64u);
+  if (index >= vct.counts.w)
+    return;
+  vec3 p = points[index].xyz, n = normals[index].xyz;
+  float invH = vct.origin.w;
+  // An orthonormal frame around n (Duff et al. 2017), as the CPU's.
+  float sgn = n.z >= 0.0 ? 1.0 : -1.0;
+  float a = -1.0 / (sgn + n.z);
+  float b = n.x * n.y * a;
+  vec3 tx = vec3(1.0 + sgn * n.x * n.x * a, sgn * b, -sgn * n.x);
+  vec3 ty = vec3(b, sgn + n.y * n.y * a, -n.y);
+  vec3 apex = p + vct.apex.x * n;
+  float occlusion = 0.0;
+  for (int c = 0; c < vct.counts.x; ++c)
+  {
+    vec4 l = vct.cones[c];
+    vec3 dir = l.x * tx + l.y * ty + l.z * n;
+    float open = 1.0;
+    for (int s = 0; s < vct.counts.y; ++s)
+    {
+      vec3 centre = apex + vct.spheres[s].x * dir;
+      float r = vct.spheres[s].y;
+      float gz = (centre.z - vct.origin.z) * invH;
+      int set = 0, total = 0;
+      for (int k = 0; k < vct.counts.z; ++k)
+      {
+        vec4 d = vct.disk[k];
+        float gx = (centre.x + r * d.x - vct.origin.x) * invH;
+        float gy = (centre.y + r * d.y - vct.origin.y) * invH;
+        int i = int(floor(gx)), j = int(floor(gy));
+        float chord = r * d.z * invH;
+        int k0 = int(ceil(gz - chord - 0.5));
+        int k1 = int(floor(gz + chord - 0.5));
+        if (k1 < k0)
+        {
+          k0 = int(floor(gz));
+          k1 = k0;
+        }
+        total += k1 - k0 + 1;
+        set += CountBits(i, j, k0, k1);
+      }
+      float occ = total > 0 ? float(set) / float(total) : 0.0;
+      open *= 1.0 - occ;
+    }
+    occlusion += l.w * (1.0 - open);
+  }
+  ao[index] = 1.0 - occlusion;
+}

@@ -1,0 +1,123 @@
+// caoVoxelize.glsl - the GPU twin of cao::VoxelizeWorld (caoVoxelConeTracing.cxx):
+// one mesh rasterized along the grid's z axis in a compute shader (no
+// hardware rasterizer, whose sub-pixel snapping differs between GPUs),
+// one workgroup per triangle, its threads striding over the triangle's
+// column box. Coverage at column centres with the top-left rule and the
+// depth's slice, in double, operation for operation as the C++ does
+// (`precise`: no contraction into FMA), so the bits are the CPU's.
+// CAO_VX_STAGE 0: rasterize one mesh into its own bits (XOR from the
+// crossing to the top for a solid mesh, the crossing's slice for a shell);
+// 1: OR the mesh's bits into the grid.
+#if CAO_VX_STAGE == 0
+layout(local_size_x = 64) in;
+#else
+layout(local_size_x = 256) in;
+#endif
+
+layout(std430, binding = CAO_BINDING_VX_POINTS) readonly buffer PointBlock
+{
+  double points[];
+};
+layout(std430, binding = CAO_BINDING_VX_IDS) readonly buffer IdBlock
+{
+  int ids[];
+};
+layout(std430, binding = CAO_BINDING_VX_BITS) buffer BitBlock
+{
+  uint bits[];
+};
+layout(std430, binding = CAO_BINDING_VX_GRID) buffer GridBlock
+{
+  uint grid[];
+};
+
+uniform ivec4 gridSize;    // nx, ny, slices, words
+uniform int triangleCount; // stage 0
+uniform int solid;         // stage 0: 1 solid (XOR), 0 shell (OR)
+uniform uint wordCount;    // stage 1
+
+#if CAO_VX_STAGE == 0
+dvec3 Point(int id)
+{
+  return dvec3(points[3 * id], points[3 * id + 1], points[3 * id + 2]);
+}
+
+// 2D edge function of the directed edge u -> v at p (the C++'s Edge).
+double Edge(dvec3 u, dvec3 v, double px, double py)
+{
+  precise double a = (v.x - u.x) * (py - u.y);
+  precise double b = (v.y - u.y) * (px - u.x);
+  precise double e = a - b;
+  return e;
+}
+
+bool Owned(dvec3 u, dvec3 v)
+{
+  double dy = v.y - u.y, dx = v.x - u.x;
+  return dy < 0.0LF || (dy == 0.0LF && dx > 0.0LF);
+}
+
+bool Inside(double e, dvec3 u, dvec3 v)
+{
+  return e > 0.0LF || (e == 0.0LF && Owned(u, v));
+}
+
+void main()
+{
+  int t = int(gl_WorkGroupID.x) + int(gl_WorkGroupID.y) * int(gl_NumWorkGroups.x);
+  if (t >= triangleCount)
+    return;
+  dvec3 v0 = Point(ids[3 * t]), v1 = Point(ids[3 * t + 1]), v2 = Point(ids[3 * t + 2]);
+  precise double area = Edge(v0, v1, v2.x, v2.y);
+  if (area == 0.0LF)
+    return;
+  dvec3 a = v0, b = area > 0.0LF ? v1 : v2, c = area > 0.0LF ? v2 : v1;
+  area = abs(area);
+  double minX = min(a.x, min(b.x, c.x)), maxX = max(a.x, max(b.x, c.x));
+  double minY = min(a.y, min(b.y, c.y)), maxY = max(a.y, max(b.y, c.y));
+  int i0 = max(0, int(ceil(minX - 0.5LF))), i1 = min(gridSize.x - 1, int(floor(maxX - 0.5LF)));
+  int j0 = max(0, int(ceil(minY - 0.5LF))), j1 = min(gridSize.y - 1, int(floor(maxY - 0.5LF)));
+  if (i1 < i0 || j1 < j0)
+    return;
+  int width = i1 - i0 + 1;
+  int columns = width * (j1 - j0 + 1);
+  for (int n = int(gl_LocalInvocationID.x); n < columns; n += 64)
+  {
+    int i = i0 + n % width, j = j0 + n / width;
+    double px = double(i) + 0.5LF, py = double(j) + 0.5LF;
+    double ea = Edge(b, c, px, py), eb = Edge(c, a, px, py), ec = Edge(a, b, px, py);
+    if (!Inside(ea, b, c) || !Inside(eb, c, a) || !Inside(ec, a, b))
+      continue;
+    precise double num = (ea * a.z + eb * b.z) + ec * c.z;
+    precise double s = num / area;
+    uint column = uint(j * gridSize.x + i) * uint(gridSize.w);
+    if (solid != 0)
+    {
+      // Every slice whose centre lies beyond the crossing: k + 1/2 > s.
+      double first = floor(s - 0.5LF) + 1.0LF;
+      if (first >= double(gridSize.z))
+        continue;
+      int k0 = first < 0.0LF ? 0 : int(first);
+      int w = k0 >> 5;
+      atomicXor(bits[column + uint(w)], 0xFFFFFFFFu << uint(k0 & 31));
+      for (++w; w < gridSize.w; ++w)
+        atomicXor(bits[column + uint(w)], 0xFFFFFFFFu);
+    }
+    else
+    {
+      double k = floor(s);
+      if (k < 0.0LF || k >= double(gridSize.z))
+        continue;
+      int kk = int(k);
+      atomicOr(bits[column + uint(kk >> 5)], 1u << uint(kk & 31));
+    }
+  }
+}
+#else
+void main()
+{
+  uint w = gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * 256u;
+  if (w < wordCount)
+    grid[w] |= bits[w];
+}
+#endif
