@@ -589,7 +589,7 @@ int RunBenchSurface(int argc, char* argv[])
   for (std::size_t i = 0; i < means.size(); ++i)
   {
     const Mean& m = means[i];
-    std::cout << "| " << m.label << " | " << std::setprecision(1) << m.ms << " | "
+    std::cout << "| " << m.label << " | " << std::setprecision(m.ms < 10 ? 3 : 1) << m.ms << " | "
               << (m.gridMs > 0 ? std::to_string(static_cast<long long>(std::lround(m.gridMs))) : std::string("-"))
               << " | " << std::setprecision(4) << m.rmse << " | " << std::showpos << m.bias
               << std::noshowpos << " | " << m.p99 << " | " << m.bandRmse << " | " << m.flicker << " ("
