@@ -57,6 +57,8 @@ const char* SurfaceUsage = R"(cao surface MESH... [options] -o out.png
   --backend auto|cpu|gl vct: where it runs (auto: OpenGL 4.3 on a hardware GPU, the CPU
                         with a software rasterizer such as llvmpipe or none; gl: OpenGL
                         even on llvmpipe, an error without a context)
+  --fill surface|parity vct: a closed mesh's voxels: its parity plus the voxels its
+                        surface crosses (default), or the paper's parity alone
   --cone-angle DEG      vct: each cone's half-angle, 5..45 (default 30)
   --apex-offset V       vct: the cones' apex above the surface, in voxels, 0..4 (default 1)
   --rays N              reference: directions per pixel (default 1024, at most 1048576)
@@ -196,6 +198,17 @@ bool Parse(int argc, char* argv[], SurfaceOptions& o, std::string& error)
         return false;
       }
       o.backend = v;
+    }
+    else if (a == "--fill")
+    {
+      if (!value())
+        return false;
+      if (v != "surface" && v != "parity")
+      {
+        error = "--fill is surface or parity (got '" + v + "')";
+        return false;
+      }
+      o.vct.surfaceVoxels = v == "surface";
     }
     else if (a == "--apex-offset")
     {
@@ -391,7 +404,7 @@ std::string VCTGPU::Description() const
 }
 
 bool VCTGPU::Voxelize(const SurfaceScene& scene, const cao::BitGrid& shape,
-  std::vector<std::int64_t>& openEdges, double& ms, std::string& error)
+  std::vector<std::int64_t>& openEdges, double& ms, std::string& error, bool surfaceVoxels)
 {
   if (!this->P->engine)
   {
@@ -401,7 +414,7 @@ bool VCTGPU::Voxelize(const SurfaceScene& scene, const cao::BitGrid& shape,
   std::vector<cao::MeshView> views;
   for (std::size_t m = 0; m < scene.points.size(); ++m)
     views.push_back({ &scene.points[m], &scene.triangles[m] });
-  return this->P->engine->Voxelize(shape, views, openEdges, ms, error);
+  return this->P->engine->Voxelize(shape, views, openEdges, ms, error, surfaceVoxels);
 }
 
 bool VCTGPU::Trace(const cao::VCTPlan& plan, cao::SurfaceFrame& frame, double& ms, std::string& error)
@@ -551,13 +564,13 @@ bool CastFrame(const SurfaceScene& scene, vtkCamera* camera, const SurfaceView& 
 }
 
 bool VoxelizeScene(const SurfaceScene& scene, int slices, double radius, cao::BitGrid& grid,
-  std::string& error)
+  std::string& error, bool surfaceVoxels)
 {
   std::vector<cao::MeshView> views;
   for (std::size_t m = 0; m < scene.points.size(); ++m)
     views.push_back({ &scene.points[m], &scene.triangles[m] });
   // Padding: the cones reach R (and the apex offset) beyond a surface.
-  return cao::VoxelizeWorld(views, scene.bvh.Bounds(), 1.05 * radius, slices, grid, error);
+  return cao::VoxelizeWorld(views, scene.bvh.Bounds(), 1.05 * radius, slices, grid, error, surfaceVoxels);
 }
 
 namespace
@@ -666,14 +679,14 @@ int RunSurface(int argc, char* argv[])
     {
       double ms = 0;
       if (!cao::PlanGrid(b, 1.05 * radius, o.vct.slices, grid, error) ||
-        !gpu.Voxelize(scene, grid, grid.openEdges, ms, error))
+        !gpu.Voxelize(scene, grid, grid.openEdges, ms, error, o.vct.surfaceVoxels))
         return Fail(1, error);
       voxelizeMs = ms;
       vctBackend = "OpenGL (" + gpu.Description() + ")";
     }
     else
     {
-      if (!VoxelizeScene(scene, o.vct.slices, radius, grid, error))
+      if (!VoxelizeScene(scene, o.vct.slices, radius, grid, error, o.vct.surfaceVoxels))
         return Fail(2, error);
       voxelizeMs = Milliseconds(start);
     }
@@ -750,6 +763,7 @@ int RunSurface(int argc, char* argv[])
                 << o.vct.EffectivePrisms() << ", \"cone_half_angle\": " << o.vct.coneHalfAngle
                 << ", \"cone_weights\": \""
                 << (o.vct.weights == cao::ConeWeights::Cosine ? "cosine" : "equal")
+                << "\", \"fill\": \"" << (o.vct.surfaceVoxels ? "surface" : "parity")
                 << "\", \"backend\": \"" << vctBackend << "\", \"grid\": \"world\", \"slices\": " << grid.slices << ", \"columns\": ["
                 << grid.nx << ", " << grid.ny << "], \"voxel\": " << grid.voxel
                 << ", \"solid_voxels\": " << (grid.bits.empty() ? -1 : grid.CountAll())

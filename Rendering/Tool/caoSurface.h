@@ -61,7 +61,7 @@ bool CastFrame(const SurfaceScene& scene, vtkCamera* camera, const SurfaceView& 
   cao::SurfaceFrame& frame, std::string& error);
 /// The world-space bit grid of the scene for cones of radius R.
 bool VoxelizeScene(const SurfaceScene& scene, int slices, double radius, cao::BitGrid& grid,
-  std::string& error);
+  std::string& error, bool surfaceVoxels = true);
 
 /// Voxel cone tracing on the GPU: a headless context (EGL, then OSMesa) and
 /// the engine, kept between frames.
@@ -77,7 +77,7 @@ public:
   std::string Description() const;
   /// The scene's grid (PlanGrid's shape) voxelized on the GPU.
   bool Voxelize(const SurfaceScene& scene, const cao::BitGrid& shape, std::vector<std::int64_t>& openEdges,
-    double& ms, std::string& error);
+    double& ms, std::string& error, bool surfaceVoxels = true);
   /// The AO of every covered pixel of `frame` into frame.ao; `ms` GPU time.
   bool Trace(const cao::VCTPlan& plan, cao::SurfaceFrame& frame, double& ms, std::string& error);
 

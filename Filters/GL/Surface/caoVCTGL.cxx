@@ -30,7 +30,7 @@ struct VCTEngine::Impl
   Context& Ctx;
   const Functions& gl;
   GLuint points = 0, ids = 0, bits = 0, grid = 0, params = 0, tracePoints = 0, traceNormals = 0,
-         ao = 0;
+         ao = 0, surface = 0;
   Program rasterize, combine, trace;
   StageTimer timer{ SCount };
   BitGrid shape; ///< size and place of the grid on the GPU (no bits)
@@ -40,7 +40,7 @@ struct VCTEngine::Impl
     , gl(c.GL())
   {
   }
-  GLuint* Buffers[8] = { &points, &ids, &bits, &grid, &params, &tracePoints, &traceNormals, &ao };
+  GLuint* Buffers[9] = { &points, &ids, &bits, &grid, &params, &tracePoints, &traceNormals, &ao, &surface };
   void Upload(GLuint& b, GLenum target, std::size_t size, const void* data)
   {
     if (!b)
@@ -107,7 +107,7 @@ std::int64_t VCTEngine::ResidentBytes() const
 }
 
 bool VCTEngine::Voxelize(const BitGrid& shape, const std::vector<MeshView>& meshes,
-  std::vector<std::int64_t>& openEdges, double& ms, std::string& error)
+  std::vector<std::int64_t>& openEdges, double& ms, std::string& error, bool surfaceVoxels)
 {
   Impl& p = *this->P;
   const std::int64_t words = static_cast<std::int64_t>(shape.nx) * shape.ny * shape.words;
@@ -159,6 +159,7 @@ bool VCTEngine::Voxelize(const BitGrid& shape, const std::vector<MeshView>& mesh
   const std::size_t bytes = static_cast<std::size_t>(words) * sizeof(std::uint32_t);
   p.Upload(p.grid, GL_SHADER_STORAGE_BUFFER, bytes, nullptr);
   p.Upload(p.bits, GL_SHADER_STORAGE_BUFFER, bytes, nullptr);
+  p.Upload(p.surface, GL_SHADER_STORAGE_BUFFER, bytes, nullptr);
   const GLuint zero = 0;
   gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, p.grid);
   gl.ClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
@@ -168,19 +169,24 @@ bool VCTEngine::Voxelize(const BitGrid& shape, const std::vector<MeshView>& mesh
     const int triangles = static_cast<int>(ids[m].size() / 3);
     p.Upload(p.points, GL_SHADER_STORAGE_BUFFER, gridPoints[m].size() * sizeof(double), gridPoints[m].data());
     p.Upload(p.ids, GL_SHADER_STORAGE_BUFFER, ids[m].size() * sizeof(std::int32_t), ids[m].data());
-    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, p.bits);
-    gl.ClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    for (GLuint b : { p.bits, p.surface })
+    {
+      gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, b);
+      gl.ClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    }
     gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VX_POINTS, p.points);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VX_IDS, p.ids);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VX_BITS, p.bits);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VX_GRID, p.grid);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VX_SURFACE, p.surface);
     if (triangles > 0)
     {
       gl.UseProgram(p.rasterize.Id());
       gl.Uniform4i(p.rasterize.Uniform(gl, "gridSize"), shape.nx, shape.ny, shape.slices, shape.words);
       gl.Uniform1i(p.rasterize.Uniform(gl, "triangleCount"), triangles);
       gl.Uniform1i(p.rasterize.Uniform(gl, "solid"), openEdges[m] == 0 ? 1 : 0);
+      gl.Uniform1i(p.rasterize.Uniform(gl, "surfaceVoxels"), surfaceVoxels ? 1 : 0);
       p.Dispatch(triangles);
       gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
@@ -196,7 +202,7 @@ bool VCTEngine::Voxelize(const BitGrid& shape, const std::vector<MeshView>& mesh
   ms = p.timer.Milliseconds(gl, SVoxelize);
   p.shape = shape;
   p.shape.bits.clear();
-  p.bytes = static_cast<std::int64_t>(2 * bytes);
+  p.bytes = static_cast<std::int64_t>(3 * bytes);
   return true;
 }
 

@@ -36,10 +36,11 @@ public:
 
   /// Voxelizes `meshes` into `grid`'s size and place (PlanGrid's; its bits
   /// are not read): each closed mesh filled by parity, each open one as a
-  /// shell (cao::OpenEdges, counted on the CPU), OR'ed. The open edges per
+  /// shell (cao::OpenEdges, counted on the CPU), OR'ed; `surfaceVoxels` as
+  /// cao::VoxelizeWorld's. The open edges per
   /// mesh go to `openEdges`. `ms`: GPU time.
   bool Voxelize(const BitGrid& grid, const std::vector<MeshView>& meshes,
-    std::vector<std::int64_t>& openEdges, double& ms, std::string& error);
+    std::vector<std::int64_t>& openEdges, double& ms, std::string& error, bool surfaceVoxels = true);
   /// Uses a grid made elsewhere (the CPU's) instead.
   bool Upload(const BitGrid& grid, std::string& error);
   /// The grid's bits, as BitGrid::bits.

@@ -224,6 +224,7 @@ struct VCTParams
 #define CAO_BINDING_VX_IDS 1       /* storage: int, 3 point ids per triangle */
 #define CAO_BINDING_VX_BITS 2      /* storage: uint, the mesh's own bits (voxelize) / the grid (trace) */
 #define CAO_BINDING_VX_GRID 3      /* storage: uint, the grid the mesh is OR'ed into */
+#define CAO_BINDING_VX_SURFACE 7   /* storage: uint, a closed mesh's surface voxels (OR'ed with its parity) */
 #define CAO_BINDING_VCT_POINTS 4   /* storage: vec4 per point (xyz world, w unused) */
 #define CAO_BINDING_VCT_NORMALS 5  /* storage: vec4 per point (xyz unit normal) */
 #define CAO_BINDING_VCT_AO 6       /* storage: float AO per point */

@@ -284,13 +284,13 @@ bool GridPoints(const BitGrid& grid, const std::vector<double>& points, std::vec
 }
 
 bool VoxelizeWorld(const std::vector<MeshView>& meshes, const std::array<double, 6>& bounds,
-  double padding, int slices, BitGrid& grid, std::string& error)
+  double padding, int slices, BitGrid& grid, std::string& error, bool surfaceVoxels)
 {
   if (!PlanGrid(bounds, padding, slices, grid, error))
     return false;
   const std::size_t columnWords = static_cast<std::size_t>(grid.nx) * grid.ny * grid.words;
   grid.bits.assign(columnWords, 0u);
-  std::vector<std::uint32_t> one;
+  std::vector<std::uint32_t> one, surface;
   for (const MeshView& mesh : meshes)
   {
     if (!mesh.points || !mesh.triangles || mesh.points->size() % 3 || mesh.triangles->size() % 3)
@@ -314,6 +314,7 @@ bool VoxelizeWorld(const std::vector<MeshView>& meshes, const std::array<double,
     grid.openEdges.push_back(open);
     const bool solid = open == 0;
     one.assign(columnWords, 0u);
+    surface.assign(solid && surfaceVoxels ? columnWords : 0, 0u);
     for (std::size_t f = 0; f + 2 < t.size(); f += 3)
     {
       double v[3][3];
@@ -341,12 +342,14 @@ bool VoxelizeWorld(const std::vector<MeshView>& meshes, const std::array<double,
           if (!Inside(ea, b, c) || !Inside(eb, c, a) || !Inside(ec, a, b))
             continue;
           const double s = ((ea * a[2] + eb * b[2]) + ec * c[2]) / area;
-          Cross(&one[(static_cast<std::size_t>(j) * grid.nx + i) * grid.words], slices, grid.words, s,
-            solid);
+          const std::size_t column = (static_cast<std::size_t>(j) * grid.nx + i) * grid.words;
+          Cross(&one[column], slices, grid.words, s, solid);
+          if (solid && surfaceVoxels)
+            Cross(&surface[column], slices, grid.words, s, false); // the crossing's own slice
         }
     }
     for (std::size_t w = 0; w < columnWords; ++w)
-      grid.bits[w] |= one[w];
+      grid.bits[w] |= one[w] | (surface.empty() ? 0u : surface[w]);
   }
   return true;
 }

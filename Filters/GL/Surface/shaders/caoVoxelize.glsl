@@ -7,7 +7,7 @@
 // (`precise`: no contraction into FMA), so the bits are the CPU's.
 // CAO_VX_STAGE 0: rasterize one mesh into its own bits (XOR from the
 // crossing to the top for a solid mesh, the crossing's slice for a shell);
-// 1: OR the mesh's bits into the grid.
+// 1: OR the mesh's bits (and its surface voxels) into the grid.
 #if CAO_VX_STAGE == 0
 layout(local_size_x = 64) in;
 #else
@@ -30,10 +30,15 @@ layout(std430, binding = CAO_BINDING_VX_GRID) buffer GridBlock
 {
   uint grid[];
 };
+layout(std430, binding = CAO_BINDING_VX_SURFACE) buffer SurfaceBlock
+{
+  uint surface[];
+};
 
 uniform ivec4 gridSize;    // nx, ny, slices, words
 uniform int triangleCount; // stage 0
 uniform int solid;         // stage 0: 1 solid (XOR), 0 shell (OR)
+uniform int surfaceVoxels; // stage 0, solid: also OR the crossing's slice into `surface`
 uniform uint wordCount;    // stage 1
 
 #if CAO_VX_STAGE == 0
@@ -91,6 +96,15 @@ void main()
     precise double num = (ea * a.z + eb * b.z) + ec * c.z;
     precise double s = num / area;
     uint column = uint(j * gridSize.x + i) * uint(gridSize.w);
+    if (solid != 0 && surfaceVoxels != 0)
+    {
+      double k = floor(s);
+      if (k >= 0.0LF && k < double(gridSize.z))
+      {
+        int kk = int(k);
+        atomicOr(surface[column + uint(kk >> 5)], 1u << uint(kk & 31));
+      }
+    }
     if (solid != 0)
     {
       // Every slice whose centre lies beyond the crossing: k + 1/2 > s.
@@ -118,6 +132,6 @@ void main()
 {
   uint w = gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * 256u;
   if (w < wordCount)
-    grid[w] |= bits[w];
+    grid[w] |= bits[w] | surface[w];
 }
 #endif

@@ -54,7 +54,7 @@ int TestVoxelConeTracing(int, char*[])
     std::vector<std::int64_t> t;
     Box(-1 + 8.5 / 16, -1 + 23.5 / 16, p, t);
     cao::BitGrid grid;
-    CAO_CHECK(cao::VoxelizeWorld({ { &p, &t } }, { { -1, 1, -1, 1, -1, 1 } }, 0.0, 32, grid, error),
+    CAO_CHECK(cao::VoxelizeWorld({ { &p, &t } }, { { -1, 1, -1, 1, -1, 1 } }, 0.0, 32, grid, error, false),
       "%s", error.c_str());
     CAO_CHECK(grid.voxel == 1.0 / 16 && grid.nx == 32 && grid.origin[0] == -1.0, "grid h %g nx %d origin %g",
       grid.voxel, grid.nx, grid.origin[0]);
@@ -71,6 +71,16 @@ int TestVoxelConeTracing(int, char*[])
         const bool in = i >= 8 && i <= 22 && j >= 8 && j <= 22;
         CAO_CHECK(n == (in ? 15 : 0), "column %d %d: %d bits", i, j, n);
       }
+    // With the surface voxels: the bottom face's crossing (slice
+    // coordinate 8.5) adds slice 8 under each column; the top face's
+    // (23.5) is slice 23, already inside: 15 x 15 x 16.
+    cao::BitGrid withSurface;
+    CAO_CHECK(cao::VoxelizeWorld({ { &p, &t } }, { { -1, 1, -1, 1, -1, 1 } }, 0.0, 32, withSurface, error),
+      "%s", error.c_str());
+    std::printf("the same cube with its surface voxels: %lld (15 x 15 x 16 = 3600)\n",
+      static_cast<long long>(withSurface.CountAll()));
+    CAO_CHECK(withSurface.CountAll() == 3600 && withSurface.CountBits(8, 8, 8, 8) == 1, "%lld",
+      static_cast<long long>(withSurface.CountAll()));
   }
   // A sphere: parity = analytic interior away from the surface.
   std::vector<double> sp;
@@ -79,7 +89,7 @@ int TestVoxelConeTracing(int, char*[])
   {
     cao::BitGrid grid;
     CAO_CHECK(cao::VoxelizeWorld({ { &sp, &st } }, { { -0.6, 0.6, -0.6, 0.6, -0.6, 0.6 } }, 0.1, 128,
-                grid, error), "%s", error.c_str());
+                grid, error, false), "%s", error.c_str());
     const double sagitta = 0.6 * (1 - std::cos(Pi / 128)) * 2; // rings and segments
     std::int64_t wrong = 0, checked = 0, inside = 0;
     for (int j = 0; j < grid.ny; ++j)
@@ -98,6 +108,30 @@ int TestVoxelConeTracing(int, char*[])
     std::printf("sphere r=0.6, 128 slices: %lld of %lld voxel centres checked wrong (%lld inside)\n",
       static_cast<long long>(wrong), static_cast<long long>(checked), static_cast<long long>(inside));
     CAO_CHECK(wrong == 0 && inside > 100000, "%lld wrong", static_cast<long long>(wrong));
+    // With the surface voxels: a superset, every added voxel within a
+    // voxel's half-diagonal (and the sagitta) of the sphere.
+    cao::BitGrid filled;
+    CAO_CHECK(cao::VoxelizeWorld({ { &sp, &st } }, { { -0.6, 0.6, -0.6, 0.6, -0.6, 0.6 } }, 0.1, 128,
+                filled, error), "%s", error.c_str());
+    std::int64_t added = 0, far = 0, lost = 0;
+    for (int j = 0; j < grid.ny; ++j)
+      for (int i = 0; i < grid.nx; ++i)
+        for (int k = 0; k < grid.slices; ++k)
+        {
+          const bool a = grid.Bit(i, j, k), b = filled.Bit(i, j, k);
+          lost += a && !b;
+          if (b && !a)
+          {
+            ++added;
+            const double x = grid.origin[0] + (i + 0.5) * grid.voxel, y = grid.origin[1] + (j + 0.5) * grid.voxel,
+                         z = grid.origin[2] + (k + 0.5) * grid.voxel;
+            far += std::fabs(std::sqrt(x * x + y * y + z * z) - 0.6) > 0.5 * std::sqrt(3.0) * grid.voxel + sagitta;
+          }
+        }
+    std::printf("with surface voxels: %lld added (all within a half-diagonal of the sphere: %lld beyond), %lld lost\n",
+      static_cast<long long>(added), static_cast<long long>(far), static_cast<long long>(lost));
+    CAO_CHECK(added > 1000 && far == 0 && lost == 0, "surface voxels: %lld added, %lld far, %lld lost",
+      static_cast<long long>(added), static_cast<long long>(far), static_cast<long long>(lost));
     // Two overlapping spheres: their union, solid (a shared XOR would hollow the overlap).
     std::vector<double> sp2 = sp;
     for (std::size_t c = 0; c < sp2.size(); c += 3)
@@ -143,9 +177,11 @@ int TestVoxelConeTracing(int, char*[])
       {
         s.slices = fine ? 1024 : 32;
         cao::BitGrid grid;
+        // The parity alone: the exact value below is for the solid x > a.
         CAO_CHECK(cao::VoxelizeWorld({ { &p, &t } }, { { -1.1, 1.1, -1.1, 1.1, -1.1, 1.1 } }, 0.0, s.slices,
-                    grid, error), "%s", error.c_str());
+                    grid, error, false), "%s", error.c_str());
         cao::VCTPlan plan;
+        s.surfaceVoxels = false;
         CAO_CHECK(cao::BuildVCTPlan(s, grid, plan, error), "%s", error.c_str());
         // The exact value of the same cones, spheres and prisms: a prism
         // (a chord along z) lies wholly in x > a or wholly out of it, so a
