@@ -414,61 +414,26 @@ int RunBenchSurface(int argc, char* argv[])
       Measure(r, one, one2, ref.ao, ref2.ao, band);
       rows.push_back(r);
     }
-    // Voxel cone tracing: the grid once per size (world space: cached while
-    // the geometry stays), the cones per frame.
-    for (int slices : o.vctCPU ? o.slices : std::vector<int>())
+    // Voxel cone tracing on each backend: the grid once per size (world
+    // space: cached while the geometry stays), the cones per frame. The
+    // CPU is timed by the wall clock, the GPU by its timer queries.
+    if (o.vctGL && !gpu.Open(error))
+      return Fail(1, "--vct-backends gl: no OpenGL 4.3 context: " + error);
+    for (int onGPU = 0; onGPU < 2; ++onGPU)
     {
-      cao::BitGrid grid;
-      start = std::chrono::steady_clock::now();
-      if (!VoxelizeScene(scene, slices, radius, grid, error))
-        return Fail(1, error);
-      const double gridMs =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-      for (cao::VCTQuality q : o.qualities)
-      {
-        cao::VCTSettings vs;
-        vs.quality = q;
-        vs.slices = slices;
-        vs.radius = radius;
-        cao::VCTPlan plan;
-        if (!cao::BuildVCTPlan(vs, grid, plan, error))
-          return Fail(1, error);
-        std::vector<double> times;
-        cao::SurfaceFrame a = frame, b = frame2;
-        for (int r = 0; r < o.repeats; ++r)
-        {
-          a = frame;
-          start = std::chrono::steady_clock::now();
-          if (!cao::VCTFrame(grid, plan, a, o.threads, error))
-            return Fail(1, error);
-          times.push_back(
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-        }
-        cao::VCTFrame(grid, plan, b, o.threads, error);
-        Row row;
-        row.mesh = name;
-        row.method = "vct";
-        row.label = std::string("vct ") + cao::VCTQualityName(q) + " " + std::to_string(slices);
-        row.series = 0;
-        row.ms = Median(times);
-        row.gridMs = gridMs;
-        Measure(row, a.ao, b.ao, ref.ao, ref2.ao, band);
-        rows.push_back(row);
-      }
-    }
-    // Voxel cone tracing on the GPU: the grid voxelized there, GPU times.
-    if (o.vctGL)
-    {
-      if (!gpu.Open(error))
-        return Fail(1, "--vct-backends gl: no OpenGL 4.3 context: " + error);
+      if (!(onGPU ? o.vctGL : o.vctCPU))
+        continue;
       for (int slices : o.slices)
       {
-        cao::BitGrid shape;
+        cao::BitGrid grid;
         double gridMs = 0;
-        std::vector<std::int64_t> open;
-        if (!cao::PlanGrid(scene.bvh.Bounds(), 1.05 * radius, slices, shape, error) ||
-          !gpu.Voxelize(scene, shape, open, gridMs, error))
+        start = std::chrono::steady_clock::now();
+        if (onGPU ? !cao::PlanGrid(scene.bvh.Bounds(), 1.05 * radius, slices, grid, error) ||
+              !gpu.Voxelize(scene, grid, grid.openEdges, gridMs, error)
+                  : !VoxelizeScene(scene, slices, radius, grid, error))
           return Fail(1, error);
+        if (!onGPU)
+          gridMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         for (cao::VCTQuality q : o.qualities)
         {
           cao::VCTSettings vs;
@@ -476,26 +441,32 @@ int RunBenchSurface(int argc, char* argv[])
           vs.slices = slices;
           vs.radius = radius;
           cao::VCTPlan plan;
-          if (!cao::BuildVCTPlan(vs, shape, plan, error))
+          if (!cao::BuildVCTPlan(vs, grid, plan, error))
             return Fail(1, error);
+          auto trace = [&](cao::SurfaceFrame& f, double& ms) {
+            start = std::chrono::steady_clock::now();
+            const bool ok = onGPU ? gpu.Trace(plan, f, ms, error) : cao::VCTFrame(grid, plan, f, o.threads, error);
+            if (!onGPU)
+              ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+            return ok;
+          };
           std::vector<double> times;
           cao::SurfaceFrame a = frame, b = frame2;
+          double ms = 0;
           for (int r = 0; r < o.repeats; ++r)
           {
             a = frame;
-            double ms = 0;
-            if (!gpu.Trace(plan, a, ms, error))
+            if (!trace(a, ms))
               return Fail(1, error);
             times.push_back(ms);
           }
-          double ms2 = 0;
-          if (!gpu.Trace(plan, b, ms2, error))
+          if (!trace(b, ms))
             return Fail(1, error);
           Row row;
           row.mesh = name;
-          row.method = "vct-gl";
-          row.label = std::string("vct-gl ") + cao::VCTQualityName(q) + " " + std::to_string(slices);
-          row.series = 4;
+          row.method = onGPU ? "vct-gl" : "vct";
+          row.label = row.method + " " + cao::VCTQualityName(q) + " " + std::to_string(slices);
+          row.series = onGPU ? 4 : 0;
           row.ms = Median(times);
           row.gridMs = gridMs;
           Measure(row, a.ao, b.ao, ref.ao, ref2.ao, band);

@@ -1,5 +1,7 @@
 #include "caoSurfaceReference.h"
 
+#include "caoParallelFor.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -35,32 +37,6 @@ double RadicalInverse2(std::uint32_t i)
   return static_cast<double>(i) * (1.0 / 4294967296.0);
 }
 
-/// Runs body(i) for i in [0, count) over `threads` threads (0: the hardware's).
-template <typename Body>
-void ParallelFor(std::size_t count, int threads, Body body)
-{
-  unsigned n = threads > 0 ? static_cast<unsigned>(threads) : std::thread::hardware_concurrency();
-  n = std::max(1u, std::min<unsigned>(n, static_cast<unsigned>(std::min<std::size_t>(count, 256))));
-  std::atomic<std::size_t> next{ 0 };
-  const std::size_t chunk = 64;
-  auto work = [&]() {
-    for (;;)
-    {
-      const std::size_t begin = next.fetch_add(chunk);
-      if (begin >= count)
-        return;
-      const std::size_t end = std::min(count, begin + chunk);
-      for (std::size_t i = begin; i < end; ++i)
-        body(i);
-    }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < n; ++t)
-    pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool)
-    t.join();
-}
 }
 
 std::string SurfaceReferenceSettings::Validate() const

@@ -1,5 +1,7 @@
 #include "caoVoxelConeTracing.h"
 
+#include "caoParallelFor.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -59,29 +61,6 @@ void Cross(std::uint32_t* column, int slices, int words, double s, bool solid)
   }
 }
 
-template <typename Body>
-void ParallelFor(std::size_t count, int threads, Body body)
-{
-  unsigned n = threads > 0 ? static_cast<unsigned>(threads) : std::thread::hardware_concurrency();
-  n = std::max(1u, std::min<unsigned>(n, static_cast<unsigned>(std::min<std::size_t>(count, 256))));
-  std::atomic<std::size_t> next{ 0 };
-  auto work = [&]() {
-    for (;;)
-    {
-      const std::size_t begin = next.fetch_add(64);
-      if (begin >= count)
-        return;
-      for (std::size_t i = begin; i < std::min(count, begin + 64); ++i)
-        body(i);
-    }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < n; ++t)
-    pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool)
-    t.join();
-}
 }
 
 int VCTSettings::EffectiveSpheres() const

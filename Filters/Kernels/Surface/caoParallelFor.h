@@ -1,0 +1,43 @@
+// caoParallelFor.h - the surface kernels' loop over independent items on a
+// few std::threads (chunks of 64 handed out by an atomic counter), so that
+// each item's result does not depend on the number of threads.
+#ifndef caoParallelFor_h
+#define caoParallelFor_h
+
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <thread>
+#include <vector>
+
+namespace cao
+{
+/// body(i) for i in [0, count), on `threads` threads (0: the hardware's).
+template <typename Body>
+void ParallelFor(std::size_t count, int threads, Body body)
+{
+  unsigned n = threads > 0 ? static_cast<unsigned>(threads) : std::thread::hardware_concurrency();
+  n = std::max(1u, std::min<unsigned>(n, static_cast<unsigned>(std::min<std::size_t>(count, 256))));
+  std::atomic<std::size_t> next{ 0 };
+  const std::size_t chunk = 64;
+  auto work = [&]() {
+    for (;;)
+    {
+      const std::size_t begin = next.fetch_add(chunk);
+      if (begin >= count)
+        return;
+      const std::size_t end = std::min(count, begin + chunk);
+      for (std::size_t i = begin; i < end; ++i)
+        body(i);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < n; ++t)
+    pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool)
+    t.join();
+}
+}
+
+#endif
