@@ -6,6 +6,7 @@
 #include "vtkCleanPolyData.h"
 #include "vtkCommand.h"
 #include "vtkCubeSource.h"
+#include "vtkDataObject.h"
 #include "vtkDataSetReader.h"
 #include "vtkExecutive.h"
 #include "vtkImageData.h"
@@ -618,14 +619,27 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, std::string& erro
     r->SetFileName(path.c_str());
     reader = r;
   }
+  else if (EndsWith(p, ".vtk"))
+  {
+    auto r = vtkSmartPointer<vtkDataSetReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  }
   else
   {
-    error = "unknown mesh format '" + path + "' (expected .vtp, .stl, .ply or .obj)";
+    error = "unknown mesh format '" + path + "' (expected .vtp, .vtk, .stl, .ply or .obj)";
     return nullptr;
   }
   if (!Run(reader.Get(), path, error))
     return nullptr;
-  auto* mesh = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
+  vtkDataObject* read = reader->GetOutputDataObject(0);
+  if (read && !vtkPolyData::SafeDownCast(read))
+  {
+    error = "'" + path + "' holds a " + read->GetClassName() +
+      ", not a polygonal mesh (extract its surface or contour it first)";
+    return nullptr;
+  }
+  auto* mesh = vtkPolyData::SafeDownCast(read);
   if (!mesh || mesh->GetNumberOfPoints() < 1)
   {
     error = "cannot read '" + path + "': no geometry";

@@ -107,7 +107,7 @@ clip options (carve):
                        volume's smallest extent; for a plane, its slab's
                        half width: 1.25 x the farthest volume corner from
                        any pose)
-  --mesh FILE          clip mesh (.vtp, .stl, .ply, .obj) instead of a shape
+  --mesh FILE          clip mesh (.vtp, .vtk, .stl, .ply, .obj) instead of a shape
   --pose "tx ty tz [rx ry rz [s]]"   a pose (repeatable); rotation in degrees
   --poses FILE         one pose per line
   --path N             N poses along the volume diagonal (default 24; at most

@@ -16,6 +16,8 @@
   the reference's own error is below every method's; no AO is worse than
   any vct row; more slices and quality help; the Pareto front is exactly
   the non-dominated rows;
+- a legacy .vtk mesh reads as its .vtp (the same AO); a legacy volume is
+  refused with what it holds;
 - bad input exits 2 with the reason; an unreadable mesh too.
 Prints vtkSSAOPass's error against the reference on Bunny (informative)."""
 import json
@@ -199,6 +201,30 @@ if p.returncode == 0:
 rc = subprocess.run([tool, "bench", "surface", "--slices", "100", bunny], capture_output=True, text=True).returncode
 check(rc == 2, "cao bench surface with --slices 100 exits 2 (%d)" % rc)
 
+# A legacy .vtk polygonal mesh reads as the .vtp does; a legacy volume is
+# refused with what it holds.
+from vtkmodules.vtkIOLegacy import vtkPolyDataWriter, vtkStructuredPointsWriter
+from vtkmodules.vtkImagingCore import vtkRTAnalyticSource
+from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+rb = vtkXMLPolyDataReader()
+rb.SetFileName(bunny)
+rb.Update()
+legacy = os.path.join(tmp, "bunny.vtk")
+lw = vtkPolyDataWriter()
+lw.SetInputData(rb.GetOutput())
+lw.SetFileName(legacy)
+lw.SetFileTypeToBinary()  # exact coordinates (ASCII rounds them)
+lw.Write()
+(lg, _) = surface("bunny-legacy", [legacy], "--method", "reference", "--rays", "256")
+check(np.array_equal(lg[3], covered) and np.abs(lg[2] - ao).max() == 0,
+      "a legacy .vtk mesh gives the .vtp's AO (max diff %.2g)" % np.abs(lg[2] - ao).max())
+wave = vtkRTAnalyticSource()
+vw = vtkStructuredPointsWriter()
+vw.SetInputConnection(wave.GetOutputPort())
+volume_vtk = os.path.join(tmp, "wave.vtk")
+vw.SetFileName(volume_vtk)
+vw.Write()
+
 # Bad input.
 for args, words in [(["--method", "magic", bunny, "-o", "x.png"], "--method is"),
                     (["--rays", "0", bunny, "-o", "x.png"], "--rays"),
@@ -209,7 +235,9 @@ for args, words in [(["--method", "magic", bunny, "-o", "x.png"], "--method is")
                     (["--slices", "100", bunny, "-o", "x.png"], "multiple of 32"),
                     (["--grid", "eye", bunny, "-o", "x.png"], "not built yet"),
                     (["--quality", "ultra", bunny, "-o", "x.png"], "--quality is"),
-                    ([os.path.join(tmp, "missing.vtp"), "-o", "x.png"], "missing.vtp")]:
+                    ([volume_vtk, "-o", "x.png"], "not a polygonal mesh"),
+                    ([os.path.join(tmp, "missing.vtp"), "-o", "x.png"], "missing.vtp"),
+                    ([os.path.join(data, "HeadMRVolume.mhd"), "-o", "x.png"], "unknown mesh format")]:
     rc, so, se = run(*args)
     check(rc == 2 and words in se and "Segmentation" not in se, "bad input %s: rc %d, %r" % (args[:2], rc, se.strip()[:160]))
 
