@@ -3,6 +3,9 @@
 #include "vtkActor.h"
 #include "vtkActorCollection.h"
 #include "vtkCamera.h"
+#include "vtkCompositeDataIterator.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkSmartPointer.h"
 #include "vtkFloatArray.h"
 #include "vtkMapper.h"
 #include "vtkMatrix4x4.h"
@@ -19,6 +22,7 @@
 #include "caoSurfaceReference.h"
 #include "caoVoxelConeTracing.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -29,6 +33,29 @@ vtkCxxSetObjectMacro(vtkContextualAOPass, DelegatePass, vtkRenderPass);
 
 namespace
 {
+/// The polygonal pieces a mapper draws: its polydata input, or the polydata
+/// leaves of a composite input (ParaView's geometry representations hand
+/// their mapper a multiblock dataset).
+std::vector<vtkPolyData*> Pieces(vtkMapper* mapper)
+{
+  std::vector<vtkPolyData*> pieces;
+  vtkDataObject* input = mapper ? mapper->GetInputDataObject(0, 0) : nullptr;
+  if (auto* poly = vtkPolyData::SafeDownCast(input))
+    pieces.push_back(poly);
+  else if (auto* composite = vtkCompositeDataSet::SafeDownCast(input))
+  {
+    vtkSmartPointer<vtkCompositeDataIterator> it;
+    it.TakeReference(composite->NewIterator());
+    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+      if (auto* leaf = vtkPolyData::SafeDownCast(it->GetCurrentDataObject()))
+        pieces.push_back(leaf);
+  }
+  pieces.erase(std::remove_if(pieces.begin(), pieces.end(),
+                 [](vtkPolyData* p) { return p->GetNumberOfCells() == 0; }),
+    pieces.end());
+  return pieces;
+}
+
 double Since(std::chrono::steady_clock::time_point t)
 {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
@@ -139,24 +166,25 @@ void vtkContextualAOPass::Render(const vtkRenderState* s)
     return;
 
   // The visible opaque polygonal actors, and what the grid depends on.
-  std::vector<vtkActor*> actors;
+  std::vector<std::pair<vtkActor*, vtkPolyData*>> actors; // one entry per polygonal piece
   std::vector<double> sceneKey{ static_cast<double>(this->Slices), this->Radius };
   vtkActorCollection* collection = ren->GetActors();
   vtkCollectionSimpleIterator it;
   collection->InitTraversal(it);
   while (vtkActor* actor = collection->GetNextActor(it))
   {
-    vtkMapper* mapper = actor->GetMapper();
-    vtkPolyData* data = mapper ? vtkPolyData::SafeDownCast(mapper->GetInputDataObject(0, 0)) : nullptr;
-    if (!actor->GetVisibility() || !data || !actor->HasOpaqueGeometry() || data->GetNumberOfCells() == 0)
+    if (!actor->GetVisibility() || !actor->HasOpaqueGeometry())
       continue;
-    actors.push_back(actor);
-    sceneKey.push_back(static_cast<double>(reinterpret_cast<std::uintptr_t>(actor)));
-    sceneKey.push_back(static_cast<double>(reinterpret_cast<std::uintptr_t>(data)));
-    sceneKey.push_back(static_cast<double>(data->GetMTime()));
-    vtkMatrix4x4* m = actor->GetMatrix();
-    for (int i = 0; i < 16; ++i)
-      sceneKey.push_back(m->GetElement(i / 4, i % 4));
+    for (vtkPolyData* data : Pieces(actor->GetMapper()))
+    {
+      actors.emplace_back(actor, data);
+      sceneKey.push_back(static_cast<double>(reinterpret_cast<std::uintptr_t>(actor)));
+      sceneKey.push_back(static_cast<double>(reinterpret_cast<std::uintptr_t>(data)));
+      sceneKey.push_back(static_cast<double>(data->GetMTime()));
+      vtkMatrix4x4* m = actor->GetMatrix();
+      for (int i = 0; i < 16; ++i)
+        sceneKey.push_back(m->GetElement(i / 4, i % 4));
+    }
   }
   if (actors.empty())
   {
@@ -180,12 +208,12 @@ void vtkContextualAOPass::Render(const vtkRenderState* s)
     p.triangles.clear();
     std::vector<double> all;
     std::vector<std::int64_t> allTris;
-    for (vtkActor* actor : actors)
+    for (const auto& piece : actors)
     {
       std::vector<double> pts;
       std::vector<std::int64_t> tris;
-      vtkCAO::TrianglesOf(vtkPolyData::SafeDownCast(actor->GetMapper()->GetInputDataObject(0, 0)), pts, tris);
-      vtkMatrix4x4* m = actor->GetMatrix();
+      vtkCAO::TrianglesOf(piece.second, pts, tris);
+      vtkMatrix4x4* m = piece.first->GetMatrix();
       for (std::size_t i = 0; i < pts.size(); i += 3)
       {
         const double in[4] = { pts[i], pts[i + 1], pts[i + 2], 1.0 };

@@ -11,7 +11,8 @@
  *
  * Only the effects the scene calls for, and nothing its last frame already
  * has (GetLastFrameReport says what ran, as JSON):
- *  - "voxelize": the grid of the visible opaque polydata actors' triangles
+ *  - "voxelize": the grid of the visible opaque actors' triangles (a
+ *    mapper's polydata input, or the polydata leaves of a composite one)
  *    in world space, only when one of them, its data, its pose or the
  *    grid's settings changed; a closed mesh is filled, an open one is a
  *    shell (GetNumberOfOpenMeshes);

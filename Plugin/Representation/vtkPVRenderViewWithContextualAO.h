@@ -1,0 +1,54 @@
+/**
+ * @class   vtkPVRenderViewWithContextualAO
+ * @brief   ParaView's render view with the scene's surface ambient occlusion
+ *          (vtkContextualAOPass) in its render pass chain: "Render View
+ *          (Contextual AO)" in the GUI's view list, CreateView("ContextualAORenderView")
+ *          in Python.
+ *
+ * Everything of the Render View, and the pass between ParaView's camera
+ * pass and its default pass, with its properties forwarded (the
+ * "Ambient Occlusion" group). The volume representations draw as in the
+ * Render View; the pass darkens only the opaque polygonal actors' pixels.
+ * Builtin sessions and a single-process pvserver (the pass reads the
+ * rendered frame back in the process that renders it).
+ */
+#ifndef vtkPVRenderViewWithContextualAO_h
+#define vtkPVRenderViewWithContextualAO_h
+
+#include "caoParaViewRepresentationModule.h" // For export macro
+#include "vtkNew.h"                         // For the pass
+#include "vtkPVRenderView.h"
+
+class vtkContextualAOPass;
+
+class CAOPARAVIEWREPRESENTATION_EXPORT vtkPVRenderViewWithContextualAO : public vtkPVRenderView
+{
+public:
+  static vtkPVRenderViewWithContextualAO* New();
+  vtkTypeMacro(vtkPVRenderViewWithContextualAO, vtkPVRenderView);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// Forwarded to the pass (vtkContextualAOPass's Method, Radius, Strength,
+  /// Quality, Slices).
+  void SetSurfaceAOMethod(int method);
+  void SetSurfaceAORadius(double radius);
+  void SetSurfaceAOStrength(double strength);
+  void SetSurfaceAOQuality(int quality);
+  void SetSurfaceAOSlices(int slices);
+  ///@}
+
+  /// The pass, for its frame report.
+  vtkContextualAOPass* GetSurfaceAOPass();
+
+protected:
+  vtkPVRenderViewWithContextualAO();
+  ~vtkPVRenderViewWithContextualAO() override;
+
+private:
+  vtkPVRenderViewWithContextualAO(const vtkPVRenderViewWithContextualAO&) = delete;
+  void operator=(const vtkPVRenderViewWithContextualAO&) = delete;
+  vtkNew<vtkContextualAOPass> Pass;
+};
+
+#endif
