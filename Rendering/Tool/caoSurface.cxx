@@ -487,9 +487,7 @@ bool SSAORenderer::Render(vtkCamera* camera, double radius, int kernelSize, int 
   }
   this->Pass->SetRadius(radius);
   this->Pass->SetKernelSize(static_cast<unsigned int>(kernelSize));
-  this->Renderer->GetActiveCamera()->DeepCopy(camera);
-  this->Renderer->ResetCameraClippingRange();
-  this->Renderer->GetActiveCamera()->SetClippingRange(camera->GetClippingRange());
+  this->Renderer->GetActiveCamera()->DeepCopy(camera); // its clipping range too
   ms = 0.0;
   for (int r = 0; r < std::max(1, repeats); ++r)
   {
