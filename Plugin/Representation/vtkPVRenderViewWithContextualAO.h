@@ -8,7 +8,11 @@
  * Everything of the Render View, and the pass between ParaView's camera
  * pass and its default pass, with its properties forwarded (the
  * "Ambient Occlusion" group). The volume representations draw as in the
- * Render View; the pass darkens only the opaque polygonal actors' pixels.
+ * Render View, but the pass darkens the finished colour of every pixel
+ * whose first opaque surface is occluded, so a translucent volume drawn in
+ * front of such a surface is darkened with it (dark halos in a mixed
+ * scene); the combine belongs between the opaque and the translucent
+ * steps, which is not built yet.
  * Builtin sessions and a single-process pvserver (the pass reads the
  * rendered frame back in the process that renders it).
  */

@@ -29,6 +29,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -41,7 +42,7 @@ const char* SurfaceUsage = R"(cao surface MESH... [options] -o out.png
   Ambient occlusion of closed or open triangle meshes (.vtp, .vtk, .stl,
   .ply, .obj) seen by one camera.
   --method vct|reference|ssao|none   (default vct)
-        vct: voxel cone tracing (seed 000) on a world-space bit grid (CPU);
+        vct: voxel cone tracing (seed 000) on a world-space bit grid (CPU or OpenGL: --backend);
         reference: CPU ray tracing in double precision (Kernels/Surface);
         ssao: VTK's vtkSSAOPass, its default kernel (32, --kernel) and bias, blurred,
               at the same radius, read back from an unlit white material;
@@ -332,6 +333,12 @@ bool Parse(int argc, char* argv[], SurfaceOptions& o, std::string& error)
   if (o.output.empty())
   {
     error = "give the output picture with -o out.png";
+    return false;
+  }
+  const std::filesystem::path folder = std::filesystem::path(o.output).parent_path();
+  if (!folder.empty() && !std::filesystem::is_directory(folder))
+  {
+    error = "cannot write '" + o.output + "': the folder '" + folder.string() + "' does not exist";
     return false;
   }
   o.reference.threads = o.threads;

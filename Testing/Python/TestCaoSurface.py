@@ -236,6 +236,7 @@ for args, words in [(["--method", "magic", bunny, "-o", "x.png"], "--method is")
                     (["--grid", "eye", bunny, "-o", "x.png"], "not built yet"),
                     (["--quality", "ultra", bunny, "-o", "x.png"], "--quality is"),
                     ([volume_vtk, "-o", "x.png"], "not a polygonal mesh"),
+                    ([bunny, "-o", os.path.join(tmp, "no", "such", "x.png")], "does not exist"),
                     ([os.path.join(tmp, "missing.vtp"), "-o", "x.png"], "missing.vtp"),
                     ([os.path.join(data, "HeadMRVolume.mhd"), "-o", "x.png"], "unknown mesh format")]:
     rc, so, se = run(*args)
