@@ -63,7 +63,7 @@ void WithThreads(int threads, F&& f)
  * abort flag is honoured between blocks (and polled inside them by the
  * kernel loop granularity). Results never depend on the blocking or the
  * thread count: every index is processed exactly once by the same code.
- * Returns false when aborted.
+ * Returns false when aborted. `self` may be null (no progress, no abort).
  */
 template <typename Body>
 bool ParallelFor(vtkAlgorithm* self, std::int64_t n, std::int64_t grain, double p0, double p1,
@@ -71,7 +71,7 @@ bool ParallelFor(vtkAlgorithm* self, std::int64_t n, std::int64_t grain, double 
 {
   if (n <= 0)
   {
-    return !self->CheckAbort();
+    return !(self && self->CheckAbort());
   }
   blocks = static_cast<int>(std::max<std::int64_t>(1, std::min<std::int64_t>(blocks, n)));
   const std::int64_t perBlock = (n + blocks - 1) / blocks;
@@ -80,6 +80,8 @@ bool ParallelFor(vtkAlgorithm* self, std::int64_t n, std::int64_t grain, double 
     const std::int64_t stop = std::min(n, start + perBlock);
     vtkSMPTools::For(start, stop, std::max<std::int64_t>(1, grain),
       [&](std::int64_t b, std::int64_t e) { body(b, e); });
+    if (!self)
+      continue;
     self->UpdateProgress(p0 + (p1 - p0) * static_cast<double>(stop) / static_cast<double>(n));
     if (self->CheckAbort())
     {

@@ -75,6 +75,8 @@ bool ComputeOpacity(vtkAlgorithm* self, vtkDataArray* scalars, int component,
       }
       opacity[i] = cao::CorrectOpacity(tf->GetValue(s), stepOverUnit);
     }
+    if (!self)
+      continue;
     self->UpdateProgress(0.1 * static_cast<double>(stop) / static_cast<double>(n));
     if (self->CheckAbort())
     {

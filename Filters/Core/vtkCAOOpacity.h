@@ -23,7 +23,7 @@ namespace vtkCAO
  * arrays with at most 65536 distinct values use an exact table. NaN/Inf
  * scalars become transparent and are counted in `nonFinite`. A null `tf`
  * is a ramp from 0 at the scalars' smallest value to 1 at the largest. Progress goes
- * from 0 to 0.1 on `self`; false when aborted.
+ * from 0 to 0.1 on `self` (may be null); false when aborted.
  */
 CAOFILTERSCORE_EXPORT bool ComputeOpacity(vtkAlgorithm* self, vtkDataArray* scalars, int component,
   vtkPiecewiseFunction* tf, double stepOverUnit, float* opacity, std::int64_t& nonFinite);

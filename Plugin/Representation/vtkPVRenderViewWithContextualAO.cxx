@@ -2,7 +2,6 @@
 
 #include "vtkContextualAOPass.h"
 #include "vtkObjectFactory.h"
-#include "vtkPVDefaultPass.h"
 #include "vtkPVSynchronizedRenderer.h"
 #include "vtkRenderWindow.h"
 
@@ -12,9 +11,11 @@ vtkPVRenderViewWithContextualAO::vtkPVRenderViewWithContextualAO()
 {
   // ParaView's chain is [FXAA] -> [image processing] -> camera -> RenderPass
   // (default: vtkPVDefaultPass, the scene without the camera): the pass
-  // takes RenderPass's place and draws through the default pass.
-  vtkNew<vtkPVDefaultPass> scene;
-  this->Pass->SetDelegatePass(scene);
+  // takes RenderPass's place and draws the scene's steps without the camera.
+  // ParaView's surfaces have Ambient 0 by default, so the view scales the
+  // whole colour unless Apply AO To says otherwise.
+  this->Pass->SetsCameraOff();
+  this->Pass->SetApplyTo(vtkContextualAOPass::WHOLE_COLOR);
   if (this->SynchronizedRenderers)
     this->SynchronizedRenderers->SetRenderPass(this->Pass);
 }
@@ -29,6 +30,21 @@ vtkContextualAOPass* vtkPVRenderViewWithContextualAO::GetSurfaceAOPass()
 void vtkPVRenderViewWithContextualAO::SetSurfaceAOMethod(int method)
 {
   this->Pass->SetMethod(method);
+  this->Modified();
+}
+void vtkPVRenderViewWithContextualAO::SetApplyAOTo(int mode)
+{
+  this->Pass->SetApplyTo(mode);
+  this->Modified();
+}
+void vtkPVRenderViewWithContextualAO::SetSurfaceAOGrid(int grid)
+{
+  this->Pass->SetGrid(grid);
+  this->Modified();
+}
+void vtkPVRenderViewWithContextualAO::SetVolumesOccludeSurfaces(int on)
+{
+  this->Pass->SetOccludingVolumes(on != 0);
   this->Modified();
 }
 void vtkPVRenderViewWithContextualAO::SetSurfaceAORadius(double radius)

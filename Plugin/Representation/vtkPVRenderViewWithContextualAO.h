@@ -33,9 +33,12 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /// Forwarded to the pass (vtkContextualAOPass's Method, Radius, Strength,
-  /// Quality, Slices).
+  /// Forwarded to the pass (vtkContextualAOPass's Method, ApplyTo, Radius,
+  /// Strength, Quality, Slices, Grid, OccludingVolumes).
   void SetSurfaceAOMethod(int method);
+  void SetApplyAOTo(int mode);
+  void SetSurfaceAOGrid(int grid);
+  void SetVolumesOccludeSurfaces(int on);
   void SetSurfaceAORadius(double radius);
   void SetSurfaceAOStrength(double strength);
   void SetSurfaceAOQuality(int quality);

@@ -7,8 +7,12 @@ resting on a box (ParaView sources, drawn by composite mappers):
   not everywhere;
 - a colour change runs only the combine; a camera turn casts and traces
   without a new grid; moving the sphere (its source) re-voxelizes;
-- the view's properties reach the pass (Strength 0 leaves the picture).
-Writes OUT_DIR/view-off.png and view-on.png.
+- the view's properties reach the pass (Strength 0 leaves the picture);
+- a volume in the same view ("Contextual AO Volume" of a block of image
+  data beside the sphere) occludes the box under it, through its opacity;
+  carving it all away with its Cube clip shape gives the box its own AO
+  again, exactly; Volumes Occlude Surfaces off is the control.
+Writes OUT_DIR/view-off.png, view-on.png and view-volume.png.
 
   pvpython TestContextualAOView.py PLUGIN.so OUT_DIR   (under run-with-xvfb.sh)"""
 import os
@@ -90,6 +94,58 @@ a = shot("view-strength0")
 view.SurfaceAOMethod = "None"
 b = shot("view-none")
 check(abs(a - b).max() <= 1, "Strength 0 leaves the picture as Method None (max diff %.0f)" % abs(a - b).max())
+view.SurfaceAOStrength = 1.0
+view.SurfaceAOMethod = "Voxel Cones"
+
+# A volume in the same view: a block of image data on the box, beside the
+# sphere, drawn by the contextual AO volume representation.
+block = ProgrammableSource(OutputDataSetType="vtkImageData")
+block.ScriptRequestInformation = """
+from paraview import util
+util.SetOutputWholeExtent(self, [0, 10, 0, 20, 0, 8])
+"""
+block.Script = """
+import numpy
+out = self.GetOutput()
+out.SetExtent(0, 10, 0, 20, 0, 8)
+out.SetOrigin(0.9, -1.0, 0.05)
+out.SetSpacing(0.1, 0.1, 0.1)
+values = numpy.ones(11 * 21 * 9)
+from vtkmodules.util.numpy_support import numpy_to_vtk
+a = numpy_to_vtk(values, deep=1)
+a.SetName("density")
+out.GetPointData().SetScalars(a)
+"""
+blockDisplay = Show(block, view)
+ColorBy(blockDisplay, ("POINTS", "density"))
+blockDisplay.SetRepresentationType("Contextual AO Volume")
+blockOpacity = GetOpacityTransferFunction("density")
+blockOpacity.Points = [0.0, 0.0, 0.5, 0.0, 1.0, 0.3, 0.5, 0.0]
+blockDisplay.ScalarOpacityUnitDistance = 0.2
+blockDisplay.ClipShape = "None"
+Render(view)
+# Where the box's top under the block projects (display coordinates).
+ren = view.GetRenderer()
+ren.SetWorldPoint(1.4, -0.5, 0.0, 1.0)
+ren.WorldToDisplay()
+px, py = [int(v) for v in ren.GetDisplayPoint()[:2]]
+under = pas.GetPixelAO(px, py)
+report = pas.GetLastFrameReport()
+view.VolumesOccludeSurfaces = 0
+Render(view)
+alone = pas.GetPixelAO(px, py)
+check('"occluding_volumes": 1' in report and under < alone - 0.1,
+      "the volume occludes the box under it: AO %.3f against %.3f without (%s)" % (under, alone, report))
+view.VolumesOccludeSurfaces = 1
+shot("view-volume")
+blockDisplay.ClipShape = "Cube"
+blockDisplay.ClipPosition = [1.4, 0.0, 0.45]
+blockDisplay.ClipScale = [0.7, 1.2, 0.6]
+Render(view)
+carved = pas.GetPixelAO(px, py)
+check("volumes" in pas.GetLastFrameStages() and carved == alone,
+      "carving the block away with its Cube gives the box its own AO: %.3f (%s)"
+      % (carved, pas.GetLastFrameStages()))
 print("%d failure(s)" % len(failures))
 sys.stdout.flush()
 os._exit(1 if failures else 0)

@@ -3,21 +3,33 @@
 #include "vtkActor.h"
 #include "vtkActorCollection.h"
 #include "vtkCamera.h"
+#include "vtkCameraPass.h"
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataSet.h"
-#include "vtkSmartPointer.h"
 #include "vtkFloatArray.h"
+#include "vtkLightsPass.h"
 #include "vtkMapper.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
+#include "vtkOpaquePass.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
+#include "vtkOverlayPass.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
+#include "vtkRenderPassCollection.h"
 #include "vtkRenderState.h"
-#include "vtkRenderStepsPass.h"
 #include "vtkRenderer.h"
+#include "vtkSequencePass.h"
+#include "vtkSmartPointer.h"
+#include "vtkTranslucentPass.h"
+#include "vtkVolume.h"
+#include "vtkVolumeCollection.h"
+#include "vtkVolumetricPass.h"
+#include "vtk_glew.h"
 
 #include "vtkCAOInput.h"
+#include "vtkCAOSceneVolume.h"
 
 #include "caoSurfaceReference.h"
 #include "caoVoxelConeTracing.h"
@@ -25,11 +37,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <sstream>
 #include <vector>
 
 vtkStandardNewMacro(vtkContextualAOPass);
-vtkCxxSetObjectMacro(vtkContextualAOPass, DelegatePass, vtkRenderPass);
 
 namespace
 {
@@ -56,57 +68,117 @@ std::vector<vtkPolyData*> Pieces(vtkMapper* mapper)
   return pieces;
 }
 
-double Since(std::chrono::steady_clock::time_point t)
+using Clock = std::chrono::steady_clock;
+double Since(Clock::time_point t)
 {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
 }
+
+double Address(const void* p)
+{
+  return static_cast<double>(reinterpret_cast<std::uintptr_t>(p));
+}
+
+/// The step between the opaque and the translucent geometry: the AO.
+class vtkCAOAOStep : public vtkRenderPass
+{
+public:
+  static vtkCAOAOStep* New();
+  vtkTypeMacro(vtkCAOAOStep, vtkRenderPass);
+  std::function<void(const vtkRenderState*)> Run;
+  void Render(const vtkRenderState* s) override
+  {
+    if (this->Run)
+      this->Run(s);
+  }
+};
+vtkStandardNewMacro(vtkCAOAOStep);
 }
 
 struct vtkContextualAOPass::Internals
 {
-  // What the grid was built from: per actor its address, its data's address
-  // and time, its matrix; then slices and the radius setting.
+  vtkNew<vtkCameraPass> camera;
+  vtkNew<vtkSequencePass> sequence;
+  vtkNew<vtkLightsPass> lights;
+  vtkNew<vtkOpaquePass> opaque;
+  vtkNew<vtkCAOAOStep> step;
+  vtkNew<vtkTranslucentPass> translucent;
+  vtkNew<vtkVolumetricPass> volumetric;
+  vtkNew<vtkOverlayPass> overlay;
+  // This frame's scene: one entry per polygonal piece; the volumes.
+  std::vector<std::pair<vtkActor*, vtkPolyData*>> pieces;
+  std::vector<vtkVolume*> volumes;
+  std::vector<double> frameSceneKey, frameVolumeKey;
+  // What the grid was built from, and the grid.
   std::vector<double> sceneKey;
-  std::vector<std::vector<double>> points;
-  std::vector<std::vector<std::int64_t>> triangles;
   cao::TriangleBVH bvh;
   cao::BitGrid grid;
   double radius = 0.0;
   int open = 0;
   int serial = 0; ///< grids built
-  // What the AO image was made for: camera, viewport, settings, grid.
+  // The volumes' opacity.
+  std::vector<double> volumeKey;
+  std::vector<cao::OpacityVolume> opacity;
+  int volumeSerial = 0;
+  // What the AO image was made for: camera, viewport, settings, grid, volumes.
   std::vector<double> viewKey;
   cao::SurfaceFrame frame;
-  int x0 = 0, y0 = 0;
   // The last frame.
   std::vector<std::string> stages, reasons;
   std::vector<double> ms;
   std::string error;
   std::int64_t combined = 0;
+
+  void Stage(const char* name, Clock::time_point start)
+  {
+    this->stages.push_back(name);
+    this->ms.push_back(Since(start));
+  }
+  bool Fail(vtkContextualAOPass* self, const std::string& what)
+  {
+    this->error = what;
+    vtkErrorWithObjectMacro(self, << what);
+    return false;
+  }
+  void RunAO(vtkContextualAOPass* self, const vtkRenderState* s);
+  void Collect(vtkContextualAOPass* self, vtkRenderer* ren);
+  bool UpdateGrid(vtkContextualAOPass* self);
+  bool UpdateVolumes(vtkContextualAOPass* self);
+  bool UpdateAO(vtkContextualAOPass* self, vtkRenderer* ren);
+  bool Combine(vtkContextualAOPass* self, const vtkRenderState* s);
 };
 
 vtkContextualAOPass::vtkContextualAOPass()
   : Internal(new Internals)
 {
-  vtkRenderStepsPass* steps = vtkRenderStepsPass::New();
-  this->SetDelegatePass(steps);
-  steps->Delete();
+  Internals& p = *this->Internal;
+  vtkNew<vtkRenderPassCollection> passes;
+  for (vtkRenderPass* step : std::initializer_list<vtkRenderPass*>{ p.lights, p.opaque, p.step,
+         p.translucent, p.volumetric, p.overlay })
+    passes->AddItem(step);
+  p.sequence->SetPasses(passes);
+  p.camera->SetDelegatePass(p.sequence);
+  p.step->Run = [this](const vtkRenderState* s) { this->Internal->RunAO(this, s); };
 }
 
 vtkContextualAOPass::~vtkContextualAOPass()
 {
-  this->SetDelegatePass(nullptr);
+  this->Internal->step->Run = nullptr;
 }
 
 void vtkContextualAOPass::ReleaseGraphicsResources(vtkWindow* w)
 {
-  if (this->DelegatePass)
-    this->DelegatePass->ReleaseGraphicsResources(w);
+  this->Internal->camera->ReleaseGraphicsResources(w);
 }
 
 int vtkContextualAOPass::GetNumberOfOpenMeshes() const
 {
   return this->Internal->open;
+}
+
+int vtkContextualAOPass::GetNumberOfOccludingVolumes() const
+{
+  return static_cast<int>(this->Internal->opacity.size());
 }
 
 double vtkContextualAOPass::GetPixelAO(int x, int y) const
@@ -131,15 +203,18 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
   const Internals& p = *this->Internal;
   std::ostringstream o;
   o << "{\"frame\": " << this->FrameCount << ", \"method\": \""
-    << (this->Method == VCT ? "vct" : "none") << "\", \"stages\": {";
+    << (this->Method == VCT ? "vct" : "none") << "\", \"apply_to\": \""
+    << (this->ApplyTo == AMBIENT_TERM ? "ambient" : "whole colour") << "\", \"grid\": \""
+    << (this->Grid == EYE_GRID ? "eye" : "world") << "\", \"stages\": {";
   for (std::size_t i = 0; i < p.stages.size(); ++i)
     o << (i ? ", " : "") << "\"" << p.stages[i] << "\": " << p.ms[i];
   o << "}, \"reasons\": [";
   for (std::size_t i = 0; i < p.reasons.size(); ++i)
     o << (i ? ", " : "") << "\"" << p.reasons[i] << "\"";
   o << "], \"triangles\": " << p.bvh.NumberOfTriangles() << ", \"open_meshes\": " << p.open
-    << ", \"radius\": " << p.radius << ", \"slices\": " << p.grid.slices
-    << ", \"covered_pixels\": " << p.frame.covered << ", \"combined_pixels\": " << p.combined;
+    << ", \"occluding_volumes\": " << p.opacity.size() << ", \"radius\": " << p.radius
+    << ", \"slices\": " << p.grid.slices << ", \"covered_pixels\": " << p.frame.covered
+    << ", \"combined_pixels\": " << p.combined;
   if (!p.error.empty())
     o << ", \"error\": \"" << p.error << "\"";
   o << "}";
@@ -155,198 +230,309 @@ void vtkContextualAOPass::Render(const vtkRenderState* s)
   p.ms.clear();
   p.error.clear();
   p.combined = 0;
-  this->NumberOfRenderedProps = 0;
-  if (this->DelegatePass)
-  {
-    this->DelegatePass->Render(s);
-    this->NumberOfRenderedProps = this->DelegatePass->GetNumberOfRenderedProps();
-  }
-  vtkRenderer* ren = s->GetRenderer();
-  if (this->Method == NONE || !ren)
-    return;
+  vtkRenderPass* scene = this->SetsCamera ? static_cast<vtkRenderPass*>(p.camera.Get())
+                                          : static_cast<vtkRenderPass*>(p.sequence.Get());
+  scene->Render(s); // lights, opaque, RunAO, translucent, volumes, overlay
+  this->NumberOfRenderedProps = scene->GetNumberOfRenderedProps();
+}
 
+void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkRenderState* s)
+{
+  vtkRenderer* ren = s->GetRenderer();
+  if (self->Method == NONE || !ren)
+    return;
+  this->Collect(self, ren);
+  if (this->pieces.empty())
+  {
+    this->frame = cao::SurfaceFrame();
+    this->viewKey.clear();
+    return; // no surfaces: no surface work
+  }
+  if (self->Slices < 32 || self->Slices > 1024 || self->Slices % 32 != 0)
+  {
+    this->Fail(self, "Slices must be 32..1024 and a multiple of 32 (got " +
+        std::to_string(self->Slices) + ")");
+    return;
+  }
+  if (!std::isfinite(self->Radius) || !std::isfinite(self->Strength))
+  {
+    this->Fail(self, "Radius (0 or more, world units) and Strength (0..1) must be numbers");
+    return;
+  }
+  if (this->UpdateGrid(self) && this->UpdateVolumes(self) && this->UpdateAO(self, ren))
+    this->Combine(self, s);
+}
+
+void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRenderer* ren)
+{
   // The visible opaque polygonal actors, and what the grid depends on.
-  std::vector<std::pair<vtkActor*, vtkPolyData*>> actors; // one entry per polygonal piece
-  std::vector<double> sceneKey{ static_cast<double>(this->Slices), this->Radius };
-  vtkActorCollection* collection = ren->GetActors();
+  this->pieces.clear();
+  this->volumes.clear();
+  std::vector<double>& key = this->frameSceneKey;
+  key = { static_cast<double>(self->Slices), self->Radius, static_cast<double>(self->Grid) };
+  vtkActorCollection* actors = ren->GetActors();
   vtkCollectionSimpleIterator it;
-  collection->InitTraversal(it);
-  while (vtkActor* actor = collection->GetNextActor(it))
+  actors->InitTraversal(it);
+  while (vtkActor* actor = actors->GetNextActor(it))
   {
     if (!actor->GetVisibility() || !actor->HasOpaqueGeometry())
       continue;
     for (vtkPolyData* data : Pieces(actor->GetMapper()))
     {
-      actors.emplace_back(actor, data);
-      sceneKey.push_back(static_cast<double>(reinterpret_cast<std::uintptr_t>(actor)));
-      sceneKey.push_back(static_cast<double>(reinterpret_cast<std::uintptr_t>(data)));
-      sceneKey.push_back(static_cast<double>(data->GetMTime()));
+      this->pieces.emplace_back(actor, data);
+      key.push_back(Address(actor));
+      key.push_back(Address(data));
+      key.push_back(static_cast<double>(data->GetMTime()));
       vtkMatrix4x4* m = actor->GetMatrix();
       for (int i = 0; i < 16; ++i)
-        sceneKey.push_back(m->GetElement(i / 4, i % 4));
+        key.push_back(m->GetElement(i / 4, i % 4));
     }
   }
-  if (actors.empty())
+  if (self->Grid == EYE_GRID) // the camera's orientation (a dolly or pan moves its last bits only)
   {
-    p.frame = cao::SurfaceFrame();
-    p.viewKey.clear();
-    return; // no surfaces: no surface work
+    vtkMatrix4x4* view = ren->GetActiveCamera()->GetViewTransformMatrix();
+    for (int i = 0; i < 12; ++i)
+      key.push_back(i % 4 < 3 ? std::round(view->GetElement(i / 4, i % 4) * 1e9) * 1e-9 : 0.0);
   }
-  if (this->Slices < 32 || this->Slices > 1024 || this->Slices % 32 != 0)
-  {
-    p.error = "Slices must be 32..1024 and a multiple of 32";
-    vtkErrorMacro(<< p.error << " (got " << this->Slices << ")");
+  this->frameVolumeKey.clear();
+  if (!self->OccludingVolumes)
     return;
-  }
+  vtkVolumeCollection* volumes = ren->GetVolumes();
+  volumes->InitTraversal(it);
+  while (vtkVolume* volume = volumes->GetNextVolume(it))
+    if (volume->GetVisibility() && volume->GetMapper() && volume->GetProperty())
+    {
+      this->volumes.push_back(volume);
+      vtkCAO::AppendVolumeOpacityKey(volume, this->frameVolumeKey);
+    }
+}
 
-  // 1. The grid: only when the geometry, a pose or the grid settings changed.
-  if (sceneKey != p.sceneKey)
+bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
+{
+  // Only when the geometry, a pose, the grid settings or (eye grid) the
+  // camera's orientation changed.
+  if (this->frameSceneKey == this->sceneKey)
+    return true;
+  const auto start = Clock::now();
+  this->reasons.push_back(this->sceneKey.empty() ? "first frame"
+      : self->Grid == EYE_GRID                   ? "geometry, grid or camera orientation changed"
+                                                 : "geometry or grid changed");
+  std::vector<std::vector<double>> points;
+  std::vector<std::vector<std::int64_t>> triangles;
+  std::vector<double> all;
+  std::vector<std::int64_t> allTris;
+  for (const auto& piece : this->pieces)
   {
-    const auto start = std::chrono::steady_clock::now();
-    p.reasons.push_back(p.sceneKey.empty() ? "first frame" : "geometry or grid changed");
-    p.points.clear();
-    p.triangles.clear();
-    std::vector<double> all;
-    std::vector<std::int64_t> allTris;
-    for (const auto& piece : actors)
+    std::vector<double> pts;
+    std::vector<std::int64_t> tris;
+    vtkCAO::TrianglesOf(piece.second, pts, tris);
+    vtkMatrix4x4* m = piece.first->GetMatrix();
+    for (std::size_t i = 0; i < pts.size(); i += 3)
     {
-      std::vector<double> pts;
-      std::vector<std::int64_t> tris;
-      vtkCAO::TrianglesOf(piece.second, pts, tris);
-      vtkMatrix4x4* m = piece.first->GetMatrix();
-      for (std::size_t i = 0; i < pts.size(); i += 3)
-      {
-        const double in[4] = { pts[i], pts[i + 1], pts[i + 2], 1.0 };
-        double out[4];
-        m->MultiplyPoint(in, out);
-        for (int d = 0; d < 3; ++d)
-          pts[i + d] = out[d] / out[3];
-      }
-      const std::int64_t base = static_cast<std::int64_t>(all.size() / 3);
-      all.insert(all.end(), pts.begin(), pts.end());
-      for (std::int64_t id : tris)
-        allTris.push_back(id + base);
-      p.points.push_back(std::move(pts));
-      p.triangles.push_back(std::move(tris));
+      const double in[4] = { pts[i], pts[i + 1], pts[i + 2], 1.0 };
+      double out[4];
+      m->MultiplyPoint(in, out);
+      for (int d = 0; d < 3; ++d)
+        pts[i + d] = out[d] / out[3];
     }
-    std::string error;
-    std::vector<cao::MeshView> views;
-    for (std::size_t i = 0; i < p.points.size(); ++i)
-      views.push_back({ &p.points[i], &p.triangles[i] });
-    if (!p.bvh.Build(all, allTris, error) || p.bvh.NumberOfTriangles() == 0)
-    {
-      p.error = error.empty() ? "the actors have no triangle with an area" : error;
-      vtkErrorMacro(<< "Cannot build the scene: " << p.error);
-      p.sceneKey.clear();
-      return;
-    }
-    const std::array<double, 6>& b = p.bvh.Bounds();
-    const double diagonal = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
-      (b[5] - b[4]) * (b[5] - b[4]));
-    p.radius = this->Radius > 0 ? this->Radius : 0.1 * diagonal;
-    if (!cao::VoxelizeWorld(views, b, 1.05 * p.radius, this->Slices, p.grid, error))
-    {
-      p.error = error;
-      vtkErrorMacro(<< "Cannot voxelize the scene: " << error);
-      p.sceneKey.clear();
-      return;
-    }
-    p.open = 0;
-    for (std::int64_t e : p.grid.openEdges)
-      p.open += e > 0;
-    p.sceneKey = sceneKey;
-    ++p.serial;
-    ++this->VoxelizeCount;
-    p.stages.push_back("voxelize");
-    p.ms.push_back(Since(start));
+    const std::int64_t base = static_cast<std::int64_t>(all.size() / 3);
+    all.insert(all.end(), pts.begin(), pts.end());
+    for (std::int64_t id : tris)
+      allTris.push_back(id + base);
+    points.push_back(std::move(pts));
+    triangles.push_back(std::move(tris));
   }
+  this->sceneKey.clear();
+  std::string error;
+  if (!this->bvh.Build(all, allTris, error) || this->bvh.NumberOfTriangles() == 0)
+    return this->Fail(self, "Cannot build the scene: " +
+        (error.empty() ? std::string("the actors have no triangle with an area") : error));
+  std::vector<cao::MeshView> views;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    views.push_back({ &points[i], &triangles[i] });
+  const std::array<double, 6>& b = this->bvh.Bounds();
+  const double diagonal = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
+    (b[5] - b[4]) * (b[5] - b[4]));
+  this->radius = self->Radius > 0 ? self->Radius : 0.1 * diagonal;
+  bool ok = false;
+  if (self->Grid == EYE_GRID)
+  {
+    const std::vector<double>& k = this->frameSceneKey;
+    const std::size_t v = k.size() - 12; // the view matrix's rows
+    const double right[3] = { k[v], k[v + 1], k[v + 2] }, up[3] = { k[v + 4], k[v + 5], k[v + 6] };
+    std::array<double, 9> axes;
+    ok = cao::EyeAxes(right, up, axes, error) &&
+      cao::PlanEyeGrid(views, axes, 1.05 * this->radius, self->Slices, this->grid, error) &&
+      cao::FillGrid(views, this->grid, error);
+  }
+  else
+    ok = cao::VoxelizeWorld(views, b, 1.05 * this->radius, self->Slices, this->grid, error);
+  if (!ok)
+    return this->Fail(self, "Cannot voxelize the scene: " + error);
+  this->open = 0;
+  for (std::int64_t e : this->grid.openEdges)
+    this->open += e > 0;
+  this->sceneKey = this->frameSceneKey;
+  ++this->serial;
+  ++self->VoxelizeCount;
+  this->Stage("voxelize", start);
+  return true;
+}
 
-  // 2. The AO image: only when the grid, the camera, the viewport or the
-  // AO settings changed.
+bool vtkContextualAOPass::Internals::UpdateVolumes(vtkContextualAOPass* self)
+{
+  if (this->frameVolumeKey == this->volumeKey)
+    return true;
+  const auto start = Clock::now();
+  this->volumeKey.clear();
+  this->opacity.clear();
+  ++this->volumeSerial;
+  if (this->volumes.empty())
+    return true; // the last volume went: the AO is traced again, without it
+  this->reasons.push_back("volumes changed");
+  this->opacity.resize(this->volumes.size());
+  for (std::size_t i = 0; i < this->volumes.size(); ++i)
+  {
+    std::string error;
+    if (!vtkCAO::VolumeOpacity(this->volumes[i], this->opacity[i], error))
+    {
+      this->opacity.clear();
+      return this->Fail(self, "Volume " + std::to_string(i) + " cannot occlude the surfaces: " + error);
+    }
+  }
+  this->volumeKey = this->frameVolumeKey;
+  ++self->VolumeCount;
+  this->Stage("volumes", start);
+  return true;
+}
+
+bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRenderer* ren)
+{
+  // Only when the grid, the volumes, the camera, the viewport or the AO
+  // settings changed.
   int width = 0, height = 0, x0 = 0, y0 = 0;
   ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
   vtkCamera* camera = ren->GetActiveCamera();
   const double aspect = width > 0 && height > 0 ? double(width) / height : 1.0;
   vtkMatrix4x4* toNDC = camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
-  std::vector<double> viewKey{ static_cast<double>(p.serial), static_cast<double>(width),
-    static_cast<double>(height), static_cast<double>(x0), static_cast<double>(y0),
-    static_cast<double>(this->Quality), p.radius };
+  std::vector<double> key{ static_cast<double>(this->serial),
+    static_cast<double>(this->volumeSerial), static_cast<double>(width),
+    static_cast<double>(height), static_cast<double>(self->Quality), this->radius };
   for (int i = 0; i < 16; ++i)
-    viewKey.push_back(toNDC->GetElement(i / 4, i % 4));
-  if (viewKey != p.viewKey)
-  {
-    auto start = std::chrono::steady_clock::now();
-    p.reasons.push_back(p.stages.empty() ? "camera or settings changed" : "new grid");
-    cao::PixelCamera pixels;
-    vtkMatrix4x4::Invert(&toNDC->Element[0][0], pixels.ndcToWorld);
-    pixels.width = width;
-    pixels.height = height;
-    std::string error;
-    if (!cao::CastPrimary(p.bvh, pixels, p.frame, error))
-    {
-      p.error = error;
-      vtkErrorMacro(<< error);
-      p.viewKey.clear();
-      return;
-    }
-    p.stages.push_back("primary");
-    p.ms.push_back(Since(start));
-    start = std::chrono::steady_clock::now();
-    cao::VCTSettings settings;
-    settings.quality = static_cast<cao::VCTQuality>(this->Quality);
-    settings.slices = this->Slices;
-    settings.radius = p.radius;
-    cao::VCTPlan plan;
-    if (!cao::BuildVCTPlan(settings, p.grid, plan, error) || !cao::VCTFrame(p.grid, plan, p.frame, 0, error))
-    {
-      p.error = error;
-      vtkErrorMacro(<< error);
-      p.viewKey.clear();
-      return;
-    }
-    p.viewKey = viewKey;
-    p.x0 = x0;
-    p.y0 = y0;
-    ++this->TraceCount;
-    p.stages.push_back("trace");
-    p.ms.push_back(Since(start));
-  }
+    key.push_back(toNDC->GetElement(i / 4, i % 4));
+  if (key == this->viewKey)
+    return true;
+  auto start = Clock::now();
+  this->reasons.push_back(this->stages.empty() ? "camera or settings changed" : "new grid or volumes");
+  this->viewKey.clear();
+  cao::PixelCamera pixels;
+  vtkMatrix4x4::Invert(&toNDC->Element[0][0], pixels.ndcToWorld);
+  pixels.width = width;
+  pixels.height = height;
+  std::string error;
+  if (!cao::CastPrimary(this->bvh, pixels, this->frame, error))
+    return this->Fail(self, error);
+  this->Stage("primary", start);
+  start = Clock::now();
+  cao::VCTSettings settings;
+  settings.quality = static_cast<cao::VCTQuality>(self->Quality);
+  settings.slices = self->Slices;
+  settings.radius = this->radius;
+  cao::VCTPlan plan;
+  if (!cao::BuildVCTPlan(settings, this->grid, plan, error))
+    return this->Fail(self, error);
+  for (const cao::OpacityVolume& volume : this->opacity)
+    plan.volumes.push_back(&volume);
+  if (!cao::VCTFrame(this->grid, plan, this->frame, 0, error))
+    return this->Fail(self, error);
+  this->viewKey = key;
+  ++self->TraceCount;
+  this->Stage("trace", start);
+  return true;
+}
 
-  // 3. Combine: every frame (the colours are the scene's own drawing).
-  auto start = std::chrono::steady_clock::now();
+bool vtkContextualAOPass::Internals::Combine(vtkContextualAOPass* self, const vtkRenderState* s)
+{
+  // Every frame: the colours are the scene's own drawing of the opaque props.
+  vtkRenderer* ren = s->GetRenderer();
+  int width = 0, height = 0, x0 = 0, y0 = 0;
+  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
   vtkRenderWindow* window = ren->GetRenderWindow();
-  vtkNew<vtkFloatArray> rgba;
-  window->GetRGBAPixelData(x0, y0, x0 + width - 1, y0 + height - 1, 0, rgba, 0);
   const std::size_t count = static_cast<std::size_t>(width) * height;
-  if (static_cast<std::size_t>(rgba->GetNumberOfTuples()) != count)
+  vtkNew<vtkFloatArray> rgba, ambient;
+  window->GetRGBAPixelData(x0, y0, x0 + width - 1, y0 + height - 1, 0, rgba, 0);
+  if (static_cast<std::size_t>(rgba->GetNumberOfTuples()) != count ||
+    static_cast<std::size_t>(this->frame.width) * this->frame.height != count)
+    return this->Fail(self, "the frame could not be read back");
+  bool whole = self->ApplyTo == WHOLE_COLOR;
+  if (!whole)
   {
-    p.error = "the frame could not be read back";
-    vtkErrorMacro(<< p.error);
-    return;
+    // The ambient part: the opaque props again, diffuse and specular off,
+    // over a cleared colour buffer (same depth: VTK draws with LEQUAL).
+    const auto start = Clock::now();
+    std::vector<std::pair<vtkProperty*, std::array<double, 2>>> saved;
+    for (const auto& piece : this->pieces)
+    {
+      vtkProperty* property = piece.first->GetProperty();
+      if (std::none_of(saved.begin(), saved.end(), [property](const auto& e) { return e.first == property; }))
+        saved.push_back({ property, { { property->GetDiffuse(), property->GetSpecular() } } });
+    }
+    auto* gl = vtkOpenGLRenderWindow::SafeDownCast(window);
+    if (!gl)
+      return this->Fail(self, "the ambient term needs an OpenGL window; use ApplyTo WHOLE_COLOR");
+    vtkOpenGLState* state = gl->GetState();
+    vtkOpenGLState::ScopedglEnableDisable scissor(state, GL_SCISSOR_TEST);
+    vtkOpenGLState::ScopedglScissor box(state);
+    vtkOpenGLState::ScopedglClearColor clearColor(state);
+    state->vtkglEnable(GL_SCISSOR_TEST);
+    state->vtkglScissor(x0, y0, width, height);
+    state->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
+    state->vtkglClear(GL_COLOR_BUFFER_BIT);
+    vtkOpenGLState::ScopedglDepthFunc depthFunc(state);
+    state->vtkglDepthFunc(GL_LEQUAL);
+    for (auto& e : saved)
+    {
+      e.first->SetDiffuse(0.0);
+      e.first->SetSpecular(0.0);
+    }
+    this->opaque->Render(s);
+    for (auto& e : saved)
+    {
+      e.first->SetDiffuse(e.second[0]);
+      e.first->SetSpecular(e.second[1]);
+    }
+    window->GetRGBAPixelData(x0, y0, x0 + width - 1, y0 + height - 1, 0, ambient, 0);
+    this->Stage("ambient", start);
   }
+  const auto start = Clock::now();
   float* c = rgba->GetPointer(0);
+  const float* a = whole ? nullptr : ambient->GetPointer(0);
   for (std::size_t i = 0; i < count; ++i)
   {
-    const double a = p.frame.ao[i];
-    if (!std::isfinite(a))
+    const double ao = this->frame.ao[i];
+    if (!std::isfinite(ao))
       continue;
-    const float f = static_cast<float>(1.0 - this->Strength * (1.0 - std::min(1.0, std::max(0.0, a))));
+    const float dark = static_cast<float>(self->Strength * (1.0 - std::min(1.0, std::max(0.0, ao))));
     for (int k = 0; k < 3; ++k)
-      c[4 * i + k] *= f;
-    ++p.combined;
+      c[4 * i + k] = whole ? c[4 * i + k] * (1.0f - dark) : std::max(0.0f, c[4 * i + k] - dark * a[4 * i + k]);
+    ++this->combined;
   }
   window->SetRGBAPixelData(x0, y0, x0 + width - 1, y0 + height - 1, rgba, 0, 0, 0);
-  p.stages.push_back("combine");
-  p.ms.push_back(Since(start));
+  this->Stage("combine", start);
+  return true;
 }
 
 void vtkContextualAOPass::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Method: " << this->Method << "\n"
+     << indent << "ApplyTo: " << this->ApplyTo << "\n"
+     << indent << "Grid: " << this->Grid << "\n"
+     << indent << "OccludingVolumes: " << this->OccludingVolumes << "\n"
+     << indent << "SetsCamera: " << this->SetsCamera << "\n"
      << indent << "Radius: " << this->Radius << "\n"
      << indent << "Strength: " << this->Strength << "\n"
      << indent << "Quality: " << this->Quality << "\n"
-     << indent << "Slices: " << this->Slices << "\n"
-     << indent << "DelegatePass: " << this->DelegatePass << "\n";
+     << indent << "Slices: " << this->Slices << "\n";
 }
+

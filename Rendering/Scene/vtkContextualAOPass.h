@@ -1,32 +1,47 @@
 /**
  * @class   vtkContextualAOPass
  * @brief   Ambient occlusion for the opaque surfaces of a VTK scene, by voxel
- *          cone tracing (seed 000) on a world-space bit grid, as a render
- *          pass (used as vtkSSAOPass is: renderer->SetPass(pass)).
+ *          cone tracing (seed 000) on a bit grid, as a render pass (used as
+ *          vtkSSAOPass is: renderer->SetPass(pass)), with the scene's
+ *          volumes occluding the surfaces.
  *
- * Each frame the delegate pass (default: vtkRenderStepsPass) draws the
- * scene; then the pass darkens the colour of each pixel of an opaque
- * polygonal actor by its AO (1 - Strength * (1 - AO): the whole colour, as
- * vtkSSAOPass does; scaling the ambient term alone is not built yet).
+ * The pass draws the scene in VTK's steps: [camera], lights, opaque
+ * geometry, then the AO combine, then translucent geometry, volumes and
+ * overlays. So the AO darkens the opaque surfaces only: a translucent
+ * surface or a volume drawn over them keeps its own colour.
+ *
+ * ApplyTo AMBIENT_TERM (default) scales the opaque surfaces' ambient term
+ * (colour - Strength (1 - AO) ambient, the ambient part from a second draw
+ * of the opaque props with diffuse and specular 0); WHOLE_COLOR scales the
+ * whole colour (1 - Strength (1 - AO)), as vtkSSAOPass does.
+ *
+ * The grid: WORLD_GRID (default) in world axes, built while the geometry
+ * does not change; EYE_GRID aligned with the camera (its slices are depth
+ * slices, as in the paper), rebuilt when the camera turns. Its columns are
+ * parallel (orthographic), not the paper's per-pixel perspective columns.
  *
  * Only the effects the scene calls for, and nothing its last frame already
- * has (GetLastFrameReport says what ran, as JSON):
+ * has (GetLastFrameReport says what ran, and why, as JSON):
  *  - "voxelize": the grid of the visible opaque actors' triangles (a
- *    mapper's polydata input, or the polydata leaves of a composite one)
- *    in world space, only when one of them, its data, its pose or the
- *    grid's settings changed; a closed mesh is filled, an open one is a
- *    shell (GetNumberOfOpenMeshes);
+ *    mapper's polydata input, or the polydata leaves of a composite one),
+ *    only when one of them, its data, its pose, the grid's settings or (eye
+ *    grid) the camera's orientation changed; a closed mesh is filled, an
+ *    open one is a shell (GetNumberOfOpenMeshes);
+ *  - "volumes": the clipped opacity of the visible volumes
+ *    (vtkCAOSceneVolume), only when a volume, its data, its opacity
+ *    function, its pose or its clip shapes changed (OccludingVolumes on);
  *  - "primary" and "trace": the pixels' first surfaces (a ray cast of the
- *    same triangles) and their cone tracing, only when the grid, the camera,
- *    the viewport or the AO settings changed;
- *  - "combine": every frame that has surfaces (a colour, colour-map or
- *    light change re-runs the scene's own drawing and this step alone).
+ *    same triangles) and their cone tracing, only when the grid, the
+ *    volumes' opacity, the camera, the viewport or the AO settings changed;
+ *  - "ambient" (AMBIENT_TERM only) and "combine": every frame that has
+ *    surfaces (a colour, colour-map or light change re-runs the scene's own
+ *    drawing and these steps alone).
  * No visible opaque polydata actor: none of them runs.
  *
  * The AO is cao::VCTFrame's (Filters/Kernels/Surface), on the CPU; the
  * picture is read back and written through the window (so it works on any
- * OpenGL, slowly on large windows). The ParaView view and the GPU path of
- * this pass are not built yet.
+ * OpenGL, slowly on large windows). The pass's GPU path is not built yet
+ * (the `cao surface` tool has it).
  */
 #ifndef vtkContextualAOPass_h
 #define vtkContextualAOPass_h
@@ -36,8 +51,6 @@
 
 #include <memory> // For the implementation
 #include <string> // For the report
-
-class vtkRenderPass;
 
 class CAORENDERINGSCENE_EXPORT vtkContextualAOPass : public vtkRenderPass
 {
@@ -50,9 +63,11 @@ public:
   void ReleaseGraphicsResources(vtkWindow* w) override;
 
   ///@{
-  /// The pass that draws the scene (default: a vtkRenderStepsPass).
-  virtual void SetDelegatePass(vtkRenderPass* pass);
-  vtkGetObjectMacro(DelegatePass, vtkRenderPass);
+  /// Whether the pass sets the camera and clears (default on: a renderer's
+  /// pass). Off where an outer camera pass does (ParaView's view).
+  vtkSetMacro(SetsCamera, bool);
+  vtkGetMacro(SetsCamera, bool);
+  vtkBooleanMacro(SetsCamera, bool);
   ///@}
 
   enum Methods
@@ -60,11 +75,40 @@ public:
     NONE = 0, ///< draw the scene only
     VCT = 1   ///< voxel cone tracing
   };
+  enum ApplyToModes
+  {
+    AMBIENT_TERM = 0, ///< AO scales the ambient term
+    WHOLE_COLOR = 1   ///< AO scales the whole colour (vtkSSAOPass's way)
+  };
+  enum GridKinds
+  {
+    WORLD_GRID = 0, ///< world axes, cached while the geometry does not change
+    EYE_GRID = 1    ///< camera axes, rebuilt when the camera turns
+  };
 
   ///@{
   /// NONE or VCT (default).
   vtkSetClampMacro(Method, int, NONE, VCT);
   vtkGetMacro(Method, int);
+  ///@}
+
+  ///@{
+  /// AMBIENT_TERM (default) or WHOLE_COLOR.
+  vtkSetClampMacro(ApplyTo, int, AMBIENT_TERM, WHOLE_COLOR);
+  vtkGetMacro(ApplyTo, int);
+  ///@}
+
+  ///@{
+  /// WORLD_GRID (default) or EYE_GRID.
+  vtkSetClampMacro(Grid, int, WORLD_GRID, EYE_GRID);
+  vtkGetMacro(Grid, int);
+  ///@}
+
+  ///@{
+  /// Whether the visible volumes occlude the surfaces (default on).
+  vtkSetMacro(OccludingVolumes, bool);
+  vtkGetMacro(OccludingVolumes, bool);
+  vtkBooleanMacro(OccludingVolumes, bool);
   ///@}
 
   ///@{
@@ -88,23 +132,26 @@ public:
   ///@}
 
   ///@{
-  /// Depth slices of the world grid: 32 to 1024, a multiple of 32
-  /// (default 128, the paper's); another value is refused at render time.
+  /// Depth slices of the grid: 32 to 1024, a multiple of 32 (default 128,
+  /// the paper's); another value is refused at render time.
   vtkSetMacro(Slices, int);
   vtkGetMacro(Slices, int);
   ///@}
 
   /// What the last frame ran, as JSON: frame, stages, reasons, pixels,
-  /// triangles, open meshes, milliseconds per stage.
+  /// triangles, open meshes, volumes, milliseconds per stage.
   std::string GetLastFrameReport() const;
   /// The stage names of the last frame, comma-separated.
   std::string GetLastFrameStages() const;
-  /// Frames rendered; times the grid and the trace ran.
+  /// Frames rendered; times the grid, the volumes and the trace ran.
   vtkGetMacro(FrameCount, int);
   vtkGetMacro(VoxelizeCount, int);
+  vtkGetMacro(VolumeCount, int);
   vtkGetMacro(TraceCount, int);
   /// Opaque actors voxelized as a shell (their mesh has boundary edges).
   int GetNumberOfOpenMeshes() const;
+  /// Volumes that occluded the surfaces in the last frame.
+  int GetNumberOfOccludingVolumes() const;
   /// The AO of pixel (x, y) of the renderer's viewport in the last frame
   /// (1 open .. 0 occluded); -1 on the background or outside.
   double GetPixelAO(int x, int y) const;
@@ -113,14 +160,18 @@ protected:
   vtkContextualAOPass();
   ~vtkContextualAOPass() override;
 
-  vtkRenderPass* DelegatePass = nullptr;
+  bool SetsCamera = true;
   int Method = VCT;
+  int ApplyTo = AMBIENT_TERM;
+  int Grid = WORLD_GRID;
+  bool OccludingVolumes = true;
   double Radius = 0.0;
   double Strength = 1.0;
   int Quality = 2;
   int Slices = 128;
   int FrameCount = 0;
   int VoxelizeCount = 0;
+  int VolumeCount = 0;
   int TraceCount = 0;
 
 private:
@@ -128,6 +179,7 @@ private:
   void operator=(const vtkContextualAOPass&) = delete;
   struct Internals;
   std::unique_ptr<Internals> Internal;
+  friend struct Internals;
 };
 
 #endif

@@ -17,6 +17,7 @@
 #include "caoRender.h"
 #include "caoSurface.h"
 #include "caoBenchSurface.h"
+#include "caoBenchSurfaceScale.h"
 
 #include "vtkCAOClipMaps.h"
 #include "vtkClipDepthMaps.h"
@@ -959,6 +960,8 @@ int main(int argc, char* argv[])
         std::cout << caocli::RenderUsage;
       else if (command == "bench" && argc > 2 && std::string(argv[2]) == "surface")
         std::cout << caocli::BenchSurfaceUsage;
+      else if (command == "bench" && argc > 2 && std::string(argv[2]) == "surface-scale")
+        std::cout << caocli::BenchSurfaceScaleUsage;
       else if (command == "bench")
         std::cout << caocli::BenchUsage;
       else if (command == "surface")
@@ -972,6 +975,8 @@ int main(int argc, char* argv[])
     return caocli::RunRender(argc, argv);
   if (argc >= 3 && std::string(argv[1]) == "bench" && std::string(argv[2]) == "surface")
     return caocli::RunBenchSurface(argc, argv);
+  if (argc >= 3 && std::string(argv[1]) == "bench" && std::string(argv[2]) == "surface-scale")
+    return caocli::RunBenchSurfaceScale(argc, argv);
   if (argc >= 2 && std::string(argv[1]) == "bench")
     return caocli::RunBench(argc, argv);
   if (argc >= 2 && std::string(argv[1]) == "surface")
@@ -980,7 +985,8 @@ int main(int argc, char* argv[])
                      std::string(argv[1]) == "help"))
   {
     std::cout << Usage << "\n" << caocli::RenderUsage << "\n" << caocli::BenchUsage << "\n"
-              << caocli::SurfaceUsage << "\n" << caocli::BenchSurfaceUsage;
+              << caocli::SurfaceUsage << "\n" << caocli::BenchSurfaceUsage << "\n"
+              << caocli::BenchSurfaceScaleUsage;
     return 0;
   }
   Options o;

@@ -5,6 +5,7 @@
 #include "caoSurface.h"
 
 #include "vtkCamera.h"
+#include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 
 #include <algorithm>
@@ -40,6 +41,8 @@ options:
   --band PX            the depth-discontinuity band's half-width (default 2)
   --vct-backends LIST  where vct runs: cpu, gl (default cpu; gl: the OpenGL 4.3 compute
                        twin, its grid voxelized on the GPU, timed by GPU queries)
+  --grids LIST         vct grids: world (default), eye (the camera's axes, built again for
+                       each camera: its grid ms is paid at every turn)
   --repeats N          timed runs per configuration, the median kept (default 3)
   --threads N          CPU threads (0: all; default 0)
   --window auto|egl|x  the SSAO window (default auto)
@@ -59,6 +62,7 @@ struct Options
   std::vector<int> slices{ 128, 256, 512 }, kernels{ 16, 32, 64, 128 };
   std::string window = "auto", output = "surface-bench";
   bool vctCPU = true, vctGL = false;
+  std::vector<std::string> grids{ "world" };
 };
 
 int Fail(int code, const std::string& message)
@@ -198,6 +202,18 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
           error = "--vct-backends: '" + b + "' is not cpu or gl";
           return false;
         }
+      }
+    }
+    else if (a == "--grids")
+    {
+      if (!value())
+        return false;
+      o.grids.clear();
+      for (const std::string& g : Split(v, ','))
+      {
+        if (g != "world" && g != "eye")
+          return error = "--grids: '" + g + "' is not world or eye", false;
+        o.grids.push_back(g);
       }
     }
     else if (a == "--repeats")
@@ -418,49 +434,75 @@ int RunBenchSurface(int argc, char* argv[])
     {
       if (!(onGPU ? o.vctGL : o.vctCPU))
         continue;
+      for (const std::string& kind : o.grids)
       for (int slices : o.slices)
       {
-        cao::BitGrid grid;
-        double gridMs = 0;
-        start = std::chrono::steady_clock::now();
-        if (onGPU ? !cao::PlanGrid(scene.bvh.Bounds(), 1.05 * radius, slices, grid, error) ||
-              !gpu.Voxelize(scene, grid, grid.openEdges, gridMs, error)
-                  : !VoxelizeScene(scene, slices, radius, grid, error))
+        // The grid for a camera: world axes (one for both cameras), or the
+        // camera's own (eye: one per camera, as a turn rebuilds it).
+        auto build = [&](vtkCamera* cam, cao::BitGrid& g, double& ms) {
+          std::vector<cao::MeshView> views;
+          for (std::size_t m = 0; m < scene.points.size(); ++m)
+            views.push_back({ &scene.points[m], &scene.triangles[m] });
+          const auto t0 = std::chrono::steady_clock::now();
+          bool ok = false;
+          if (kind == "world")
+            ok = cao::PlanGrid(scene.bvh.Bounds(), 1.05 * radius, slices, g, error);
+          else
+          {
+            vtkMatrix4x4* v = cam->GetViewTransformMatrix();
+            const double right[3] = { v->GetElement(0, 0), v->GetElement(0, 1), v->GetElement(0, 2) };
+            const double up[3] = { v->GetElement(1, 0), v->GetElement(1, 1), v->GetElement(1, 2) };
+            std::array<double, 9> axes;
+            ok = cao::EyeAxes(right, up, axes, error) &&
+              cao::PlanEyeGrid(views, axes, 1.05 * radius, slices, g, error);
+          }
+          ok = ok && (onGPU ? gpu.Voxelize(scene, g, g.openEdges, ms, error) : cao::FillGrid(views, g, error));
+          if (!onGPU)
+            ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+          return ok;
+        };
+        cao::BitGrid grid, grid2;
+        double gridMs = 0, grid2Ms = 0;
+        if (!build(camera, grid, gridMs) || (kind == "eye" && !build(camera2, grid2, grid2Ms)))
           return Fail(1, error);
-        if (!onGPU)
-          gridMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        const cao::BitGrid& second = kind == "eye" ? grid2 : grid;
         for (cao::VCTQuality q : o.qualities)
         {
           cao::VCTSettings vs;
           vs.quality = q;
           vs.slices = slices;
           vs.radius = radius;
-          cao::VCTPlan plan;
-          if (!cao::BuildVCTPlan(vs, grid, plan, error))
+          cao::VCTPlan plan, plan2;
+          if (!cao::BuildVCTPlan(vs, grid, plan, error) || !cao::BuildVCTPlan(vs, second, plan2, error))
             return Fail(1, error);
-          auto trace = [&](cao::SurfaceFrame& f, double& ms) {
+          auto trace = [&](const cao::BitGrid& g, const cao::VCTPlan& pl, cao::SurfaceFrame& f, double& ms) {
             start = std::chrono::steady_clock::now();
-            const bool ok = onGPU ? gpu.Trace(plan, f, ms, error) : cao::VCTFrame(grid, plan, f, o.threads, error);
+            const bool ok = onGPU ? gpu.Trace(g, pl, f, ms, error) : cao::VCTFrame(g, pl, f, o.threads, error);
             if (!onGPU)
               ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
             return ok;
           };
           std::vector<double> times;
           cao::SurfaceFrame a = frame, b = frame2;
-          double ms = 0;
+          double ms = 0, unused = 0;
+          if (kind == "eye" && onGPU && !gpu.Voxelize(scene, grid, grid.openEdges, unused, error))
+            return Fail(1, error); // the GPU holds one grid: the first camera's
           for (int r = 0; r < o.repeats; ++r)
           {
             a = frame;
-            if (!trace(a, ms))
+            if (!trace(grid, plan, a, ms))
               return Fail(1, error);
             times.push_back(ms);
           }
-          if (!trace(b, ms))
+          if (kind == "eye" && onGPU && !gpu.Voxelize(scene, grid2, grid2.openEdges, unused, error))
+            return Fail(1, error); // the GPU holds one grid: the second camera's
+          if (!trace(second, plan2, b, ms))
             return Fail(1, error);
           Row row;
           row.mesh = name;
           row.method = onGPU ? "vct-gl" : "vct";
-          row.label = row.method + " " + cao::VCTQualityName(q) + " " + std::to_string(slices);
+          row.label = row.method + " " + cao::VCTQualityName(q) + " " + std::to_string(slices) +
+            (kind == "eye" ? " eye" : "");
           row.series = onGPU ? 4 : 0;
           row.ms = Median(times);
           row.gridMs = gridMs;

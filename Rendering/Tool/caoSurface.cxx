@@ -26,6 +26,16 @@
 #include "vtkUnsignedShortArray.h"
 
 #include "vtkCAOInput.h"
+#include "vtkCAOSceneVolume.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkContextualAOVolumeMapper.h"
+#include "vtkDataArray.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkTransform.h"
+#include "vtkTransformPolyDataFilter.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+#include "caoPresets.h"
 
 #include <algorithm>
 #include <chrono>
@@ -42,7 +52,7 @@ const char* SurfaceUsage = R"(cao surface MESH... [options] -o out.png
   Ambient occlusion of closed or open triangle meshes (.vtp, .vtk, .stl,
   .ply, .obj) seen by one camera.
   --method vct|reference|ssao|none   (default vct)
-        vct: voxel cone tracing (seed 000) on a world-space bit grid (CPU or OpenGL: --backend);
+        vct: voxel cone tracing (seed 000) on a bit grid of the meshes (CPU or OpenGL: --backend);
         reference: CPU ray tracing in double precision (Kernels/Surface);
         ssao: VTK's vtkSSAOPass, its default kernel (32, --kernel) and bias, blurred,
               at the same radius, read back from an unlit white material;
@@ -52,8 +62,10 @@ const char* SurfaceUsage = R"(cao surface MESH... [options] -o out.png
                         default medium)
   --slices N            vct: depth slices of the grid, 32..1024, a multiple of 32
                         (default 128, the paper's)
-  --grid world          vct: the grid (world: built once per geometry; the paper's
-                        eye-space grid is not built yet)
+  --grid world|eye      vct: the grid's axes (world: default, built once per geometry;
+                        eye: the camera's, its slices in depth as in the paper, built
+                        again whenever the camera turns; parallel columns, not the
+                        paper's per-pixel perspective ones)
   --cone-weights cosine|equal   vct (default cosine; equal: the paper's average)
   --backend auto|cpu|gl vct: where it runs (auto: OpenGL 4.3 on a hardware GPU, the CPU
                         with a software rasterizer such as llvmpipe or none; gl: OpenGL
@@ -75,6 +87,16 @@ const char* SurfaceUsage = R"(cao surface MESH... [options] -o out.png
   --window auto|egl|x   ssao's offscreen window (default auto)
   --kernel N            ssao: vtkSSAOPass's kernel size (default 32, VTK's)
   -o out.png            the picture (required)
+ The volume occluding the meshes (vct on the CPU): its opacity darkens the
+ meshes near it (the picture shows the meshes only):
+  --volume FILE         a volume as for cao render (.vti, .mhd, .slc, .nii, .vtk)
+  --preset NAME --preset-file FILE --absolute   its opacity, as for cao render
+                        (default preset warm)
+  --unit-distance D     the length the opacity refers to, world units (default 1,
+                        VTK's ScalarOpacityUnitDistance)
+  --shape sphere|cube|torus|plane --size S --mesh FILE --pose "tx ty tz [rx ry rz [s]]"
+  --mode subtract|probe the clip that carves it, as for cao render (default: no clip;
+                        a --shape or --mesh clips, at --pose, default the volume's centre)
 Exit codes: 0 done, 2 bad input, 1 failure.
 )";
 
@@ -90,7 +112,11 @@ struct SurfaceOptions
   bool aoOnly = false, json = false;
   cao::SurfaceReferenceSettings reference;
   cao::VCTSettings vct;
-  std::string backend = "auto";
+  std::string backend = "auto", grid = "world";
+  // The occluding volume and its clip.
+  std::string volume, preset, presetFile, shape, clipMesh, pose, mode = "subtract";
+  bool absolute = false;
+  double unitDistance = 1.0, size = 0.0;
 };
 
 int Fail(int code, const std::string& message)
@@ -182,12 +208,43 @@ bool Parse(int argc, char* argv[], SurfaceOptions& o, std::string& error)
     {
       if (!value())
         return false;
-      if (v != "world")
+      if (v != "world" && v != "eye")
       {
-        error = v == "eye" ? "--grid eye (the paper's per-frame eye-space grid) is not built yet; use --grid world"
-                           : "--grid is world (got '" + v + "')";
+        error = "--grid is world or eye (got '" + v + "')";
         return false;
       }
+      o.grid = v;
+    }
+    else if (a == "--volume" || a == "--preset" || a == "--preset-file" || a == "--shape" || a == "--mesh" ||
+      a == "--pose" || a == "--mode")
+    {
+      if (!value())
+        return false;
+      std::string& field = a == "--volume" ? o.volume
+        : a == "--preset"                  ? o.preset
+        : a == "--preset-file"             ? o.presetFile
+        : a == "--shape"                   ? o.shape
+        : a == "--mesh"                    ? o.clipMesh
+        : a == "--pose"                    ? o.pose
+                                           : o.mode;
+      field = v;
+      if (a == "--mode" && v != "subtract" && v != "probe")
+      {
+        error = "--mode is subtract or probe (got '" + v + "')";
+        return false;
+      }
+    }
+    else if (a == "--absolute")
+      o.absolute = true;
+    else if (a == "--unit-distance")
+    {
+      if (!number(o.unitDistance, 1e-9, 1e12))
+        return false;
+    }
+    else if (a == "--size")
+    {
+      if (!number(o.size, 1e-12, 1e12))
+        return false;
     }
     else if (a == "--backend")
     {
@@ -335,6 +392,18 @@ bool Parse(int argc, char* argv[], SurfaceOptions& o, std::string& error)
     error = "give the output picture with -o out.png";
     return false;
   }
+  if (o.volume.empty() && (!o.preset.empty() || !o.presetFile.empty() || !o.shape.empty() ||
+                            !o.clipMesh.empty() || !o.pose.empty()))
+  {
+    error = "--preset, --preset-file, --shape, --mesh and --pose describe the occluding volume: give --volume";
+    return false;
+  }
+  if (!o.volume.empty() && (o.method != "vct" || o.backend == "gl"))
+  {
+    error = "--volume occludes the meshes in --method vct on the CPU (the OpenGL cone tracer does not "
+            "read volumes yet)";
+    return false;
+  }
   const std::filesystem::path folder = std::filesystem::path(o.output).parent_path();
   if (!folder.empty() && !std::filesystem::is_directory(folder))
   {
@@ -424,7 +493,8 @@ bool VCTGPU::Voxelize(const SurfaceScene& scene, const cao::BitGrid& shape,
   return this->P->engine->Voxelize(shape, views, openEdges, ms, error, surfaceVoxels);
 }
 
-bool VCTGPU::Trace(const cao::VCTPlan& plan, cao::SurfaceFrame& frame, double& ms, std::string& error)
+bool VCTGPU::Trace(const cao::BitGrid& grid, const cao::VCTPlan& plan, cao::SurfaceFrame& frame, double& ms,
+  std::string& error)
 {
   if (!this->P->engine)
   {
@@ -437,10 +507,13 @@ bool VCTGPU::Trace(const cao::VCTPlan& plan, cao::SurfaceFrame& frame, double& m
     if (frame.triangle[i] >= 0)
     {
       where.push_back(i);
+      double p[3], n[3]; // in the grid's frame (an eye grid turns them)
+      grid.ToGrid(&frame.position[3 * i], p);
+      grid.ToGrid(&frame.normal[3 * i], n);
       for (int d = 0; d < 3; ++d)
       {
-        points.push_back(static_cast<float>(frame.position[3 * i + d]));
-        normals.push_back(static_cast<float>(frame.normal[3 * i + d]));
+        points.push_back(static_cast<float>(p[d]));
+        normals.push_back(static_cast<float>(n[d]));
       }
     }
   std::vector<float> ao;
@@ -514,6 +587,53 @@ bool SSAORenderer::Render(vtkCamera* camera, double radius, int kernelSize, int 
   for (std::size_t i = 0; i < pixels; ++i)
     if (z->GetValue(static_cast<vtkIdType>(i)) < 1.0f)
       ao[i] = rgba->GetValue(static_cast<vtkIdType>(4 * i));
+  return true;
+}
+
+bool SurfaceScene::Replicate(int copies, std::string& error)
+{
+  if (copies < 1 || copies > 4096)
+    return error = "copies must be 1..4096", false;
+  if (copies == 1)
+    return true;
+  const std::array<double, 6> b = this->bvh.Bounds();
+  const double pitch = 1.1 * std::max(b[1] - b[0], b[3] - b[2]);
+  const int k = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(copies))));
+  const std::size_t originals = this->meshes.size();
+  std::vector<double> all;
+  std::vector<std::int64_t> tris;
+  for (int c = 0; c < copies; ++c)
+    for (std::size_t m = 0; m < originals; ++m)
+    {
+      const double dx = (c % k) * pitch, dy = (c / k) * pitch;
+      std::vector<double> p = this->points[m];
+      for (std::size_t i = 0; i < p.size(); i += 3)
+      {
+        p[i] += dx;
+        p[i + 1] += dy;
+      }
+      const std::int64_t base = static_cast<std::int64_t>(all.size() / 3);
+      all.insert(all.end(), p.begin(), p.end());
+      for (std::int64_t id : this->triangles[m])
+        tris.push_back(id + base);
+      if (c == 0)
+        continue;
+      vtkNew<vtkTransform> t;
+      t->Translate(dx, dy, 0.0);
+      vtkNew<vtkTransformPolyDataFilter> move;
+      move->SetInputData(this->meshes[m]);
+      move->SetTransform(t);
+      move->Update();
+      this->meshes.push_back(move->GetOutput());
+      this->points.push_back(std::move(p));
+      this->triangles.push_back(this->triangles[m]);
+      this->paths.push_back(this->paths[m]);
+    }
+  if (!this->bvh.Build(all, tris, error))
+    return false;
+  const std::array<double, 6>& n = this->bvh.Bounds();
+  this->diagonal = std::sqrt((n[1] - n[0]) * (n[1] - n[0]) + (n[3] - n[2]) * (n[3] - n[2]) +
+    (n[5] - n[4]) * (n[5] - n[4]));
   return true;
 }
 
@@ -630,6 +750,81 @@ bool WritePicture(const SurfaceOptions& o, const cao::SurfaceFrame& frame,
   return true;
 }
 
+/// The grid's plan for the meshes: world axes, or the camera's (eye).
+bool PlanSceneGrid(const SurfaceScene& scene, vtkCamera* camera, const SurfaceOptions& o, double radius,
+  cao::BitGrid& grid, std::string& error)
+{
+  if (o.grid == "world")
+    return cao::PlanGrid(scene.bvh.Bounds(), 1.05 * radius, o.vct.slices, grid, error);
+  vtkMatrix4x4* view = camera->GetViewTransformMatrix();
+  const double right[3] = { view->GetElement(0, 0), view->GetElement(0, 1), view->GetElement(0, 2) };
+  const double up[3] = { view->GetElement(1, 0), view->GetElement(1, 1), view->GetElement(1, 2) };
+  std::array<double, 9> axes;
+  std::vector<cao::MeshView> views;
+  for (std::size_t m = 0; m < scene.points.size(); ++m)
+    views.push_back({ &scene.points[m], &scene.triangles[m] });
+  return cao::EyeAxes(right, up, axes, error) &&
+    cao::PlanEyeGrid(views, axes, 1.05 * radius, o.vct.slices, grid, error);
+}
+
+/// The occluding volume of --volume, carved by its clip, as the cones read it.
+bool LoadOccludingVolume(const SurfaceOptions& o, cao::OpacityVolume& opacity, std::string& error)
+{
+  vtkSmartPointer<vtkImageData> image = vtkCAO::ReadVolume(o.volume, error);
+  if (!image)
+    return false;
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  if (!scalars)
+    return error = "'" + o.volume + "' has no point scalars", false;
+  double range[2];
+  scalars->GetRange(range, 0);
+  if (!std::isfinite(range[0]) || !std::isfinite(range[1]))
+    return error = "the volume's scalars contain NaN or infinite values", false;
+  if (!(range[1] > range[0]))
+    range[1] = range[0] + 1.0;
+  vtkNew<vtkColorTransferFunction> color;
+  vtkNew<vtkPiecewiseFunction> function;
+  const std::string name = o.preset.empty() && o.presetFile.empty() ? "warm" : o.preset;
+  if (!LoadPreset(o.presetFile, name, range, o.absolute, color, function, error))
+    return false;
+  vtkNew<vtkContextualAOVolumeMapper> mapper;
+  mapper->SetInputData(image);
+  vtkNew<vtkVolumeProperty> property;
+  property->SetScalarOpacity(function);
+  property->SetScalarOpacityUnitDistance(o.unitDistance);
+  vtkNew<vtkVolume> volume;
+  volume->SetMapper(mapper);
+  volume->SetProperty(property);
+  vtkNew<vtkActor> clip;
+  vtkNew<vtkPolyDataMapper> clipMapper;
+  if (!o.shape.empty() || !o.clipMesh.empty())
+  {
+    const double size = o.size > 0 ? o.size : vtkCAO::DefaultShapeSize(image);
+    vtkSmartPointer<vtkPolyData> mesh = o.clipMesh.empty() ? vtkCAO::MakeShape(o.shape, size, error)
+                                                           : vtkCAO::ReadMesh(o.clipMesh, error);
+    if (!mesh)
+      return false;
+    vtkCAO::Pose pose;
+    if (o.pose.empty())
+    {
+      double c[3];
+      image->GetCenter(c);
+      pose.translation = { { c[0], c[1], c[2] } };
+    }
+    else if (!vtkCAO::ParsePose(o.pose, pose, error))
+      return false;
+    vtkNew<vtkTransform> t;
+    vtkCAO::PoseToTransform(pose, t);
+    clipMapper->SetInputData(mesh);
+    clip->SetMapper(clipMapper);
+    clip->SetUserTransform(t);
+    mapper->SetClipShape(clip);
+    mapper->SetMode(o.mode == "probe" ? vtkContextualAOVolumeMapper::PROBING
+                                      : vtkContextualAOVolumeMapper::SUBTRACTION);
+  }
+  return vtkCAO::VolumeOpacity(volume, opacity, error);
+}
+
 double Milliseconds(std::chrono::steady_clock::time_point since)
 {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since).count();
@@ -662,8 +857,9 @@ int RunSurface(int argc, char* argv[])
   start = std::chrono::steady_clock::now();
   std::vector<double> ao;
   std::string window;
-  double voxelizeMs = -1.0;
+  double voxelizeMs = -1.0, volumeMs = -1.0;
   cao::BitGrid grid;
+  cao::OpacityVolume volume;
   std::vector<std::string> openReport;
   std::string vctBackend = "CPU";
   if (o.method == "vct")
@@ -679,21 +875,33 @@ int RunSurface(int argc, char* argv[])
         return Fail(1, "--backend gl: no OpenGL 4.3 context: " + why);
       useGL = opened && (o.backend == "gl" || !gpu.Software());
     }
+    useGL = useGL && o.volume.empty(); // the OpenGL tracer does not read volumes yet
     cao::VCTPlan plan;
+    if (!PlanSceneGrid(scene, camera, o, radius, grid, error))
+      return Fail(2, error);
     if (useGL)
     {
       double ms = 0;
-      if (!cao::PlanGrid(b, 1.05 * radius, o.vct.slices, grid, error) ||
-        !gpu.Voxelize(scene, grid, grid.openEdges, ms, error, o.vct.surfaceVoxels))
+      if (!gpu.Voxelize(scene, grid, grid.openEdges, ms, error, o.vct.surfaceVoxels))
         return Fail(1, error);
       voxelizeMs = ms;
       vctBackend = "OpenGL (" + gpu.Description() + ")";
     }
     else
     {
-      if (!VoxelizeScene(scene, o.vct.slices, radius, grid, error, o.vct.surfaceVoxels))
+      std::vector<cao::MeshView> views;
+      for (std::size_t m = 0; m < scene.points.size(); ++m)
+        views.push_back({ &scene.points[m], &scene.triangles[m] });
+      if (!cao::FillGrid(views, grid, error, o.vct.surfaceVoxels))
         return Fail(2, error);
       voxelizeMs = Milliseconds(start);
+    }
+    if (!o.volume.empty())
+    {
+      start = std::chrono::steady_clock::now();
+      if (!LoadOccludingVolume(o, volume, error))
+        return Fail(2, error);
+      volumeMs = Milliseconds(start);
     }
     for (std::size_t m = 0; m < grid.openEdges.size(); ++m)
       if (grid.openEdges[m] > 0)
@@ -705,10 +913,12 @@ int RunSurface(int argc, char* argv[])
     start = std::chrono::steady_clock::now();
     if (!cao::BuildVCTPlan(o.vct, grid, plan, error))
       return Fail(2, error);
+    if (!o.volume.empty())
+      plan.volumes.push_back(&volume);
     if (useGL)
     {
       double ms = 0;
-      if (!gpu.Trace(plan, frame, ms, error))
+      if (!gpu.Trace(grid, plan, frame, ms, error))
         return Fail(1, error);
     }
     else if (!cao::VCTFrame(grid, plan, frame, o.threads, error))
@@ -769,17 +979,25 @@ int RunSurface(int argc, char* argv[])
                 << ", \"cone_weights\": \""
                 << (o.vct.weights == cao::ConeWeights::Cosine ? "cosine" : "equal")
                 << "\", \"fill\": \"" << (o.vct.surfaceVoxels ? "surface" : "parity")
-                << "\", \"backend\": \"" << vctBackend << "\", \"grid\": \"world\", \"slices\": " << grid.slices << ", \"columns\": ["
+                << "\", \"backend\": \"" << vctBackend << "\", \"grid\": \"" << o.grid << "\", \"slices\": " << grid.slices << ", \"columns\": ["
                 << grid.nx << ", " << grid.ny << "], \"voxel\": " << grid.voxel
                 << ", \"solid_voxels\": " << (grid.bits.empty() ? -1 : grid.CountAll())
                 << ", \"open_meshes\": [";
       for (std::size_t m = 0; m < openReport.size(); ++m)
         std::cout << (m ? ", " : "") << "\"" << openReport[m] << "\"";
-      std::cout << "]}";
+      std::cout << "], \"grid_bytes\": " << grid.bits.size() * sizeof(std::uint32_t);
+      if (!o.volume.empty())
+        std::cout << ", \"volume\": {\"file\": \"" << o.volume << "\", \"dims\": [" << volume.dims[0] << ", "
+                  << volume.dims[1] << ", " << volume.dims[2] << "], \"unit_distance\": " << volume.unitDistance
+                  << ", \"clip\": \"" << (o.shape.empty() && o.clipMesh.empty() ? "none" : o.mode)
+                  << "\", \"bytes\": " << volume.alpha.size() * sizeof(float) << "}";
+      std::cout << "}";
     }
     std::cout << ", \"stages_ms\": {\"load\": " << loadMs << ", \"primary\": " << primaryMs;
     if (voxelizeMs >= 0)
       std::cout << ", \"voxelize\": " << voxelizeMs;
+    if (volumeMs >= 0)
+      std::cout << ", \"volume\": " << volumeMs;
     std::cout << ", \"ao\": " << aoMs << "}}\n";
   }
   else

@@ -42,6 +42,9 @@ struct SurfaceScene
   cao::TriangleBVH bvh;
   double diagonal = 0.0;
   bool Load(const std::vector<std::string>& files, std::string& error);
+  /// `copies` instances of the loaded meshes (1 to 4096), tiled k x k in x
+  /// and y 1.1 times their extent apart; the BVH is rebuilt.
+  bool Replicate(int copies, std::string& error);
 };
 
 /// The image and the camera's turn after fitting the scene.
@@ -79,7 +82,10 @@ public:
   bool Voxelize(const SurfaceScene& scene, const cao::BitGrid& shape, std::vector<std::int64_t>& openEdges,
     double& ms, std::string& error, bool surfaceVoxels = true);
   /// The AO of every covered pixel of `frame` into frame.ao; `ms` GPU time.
-  bool Trace(const cao::VCTPlan& plan, cao::SurfaceFrame& frame, double& ms, std::string& error);
+  /// The cone tracing of the frame's covered pixels on the uploaded grid
+  /// (`grid`: its frame turns the points into an eye grid's).
+  bool Trace(const cao::BitGrid& grid, const cao::VCTPlan& plan, cao::SurfaceFrame& frame, double& ms,
+    std::string& error);
 
 private:
   struct Impl;

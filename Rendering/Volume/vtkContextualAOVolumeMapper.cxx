@@ -332,6 +332,38 @@ int vtkContextualAOVolumeMapper::GetNumberOfClipShapes()
   return (this->ClipShape ? 1 : 0) + static_cast<int>(this->Internal->AddedShapes.size());
 }
 
+vtkProp3D* vtkContextualAOVolumeMapper::GetClipShapeAt(int i)
+{
+  if (i < 0 || i >= this->GetNumberOfClipShapes())
+    return nullptr;
+  if (this->ClipShape)
+    --i;
+  return i < 0 ? this->ClipShape : this->Internal->AddedShapes[i].first.Get();
+}
+
+int vtkContextualAOVolumeMapper::GetClipShapeModeAt(int i)
+{
+  if (i < 0 || i >= this->GetNumberOfClipShapes())
+    return -1;
+  if (this->ClipShape)
+    --i;
+  return i < 0 ? this->Mode : this->Internal->AddedShapes[i].second;
+}
+
+vtkPolyData* vtkContextualAOVolumeMapper::GetClipShapeMeshAt(int i)
+{
+  if (i == 0 && this->ClipShape && this->ClipMesh)
+    return this->ClipMesh;
+  if (vtkActor* actor = vtkActor::SafeDownCast(this->GetClipShapeAt(i)))
+    if (vtkMapper* m = actor->GetMapper())
+    {
+      if (vtkAlgorithm* a = m->GetInputAlgorithm())
+        a->Update();
+      return vtkPolyData::SafeDownCast(m->GetInputDataObject(0, 0));
+    }
+  return nullptr;
+}
+
 //------------------------------------------------------------------------------
 int vtkContextualAOVolumeMapper::FillInputPortInformation(int, vtkInformation* info)
 {
@@ -676,37 +708,25 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
 bool vtkContextualAOVolumeMapper::Internals::GatherClipParts(
   vtkContextualAOVolumeMapper* self, Frame& f, std::vector<ClipPart>& parts)
 {
-  std::vector<std::pair<vtkProp3D*, int>> props;
-  if (self->ClipShape)
-    props.emplace_back(self->ClipShape, self->Mode);
-  for (const auto& added : this->AddedShapes)
-    props.emplace_back(added.first, added.second);
-  if (props.size() > static_cast<std::size_t>(cao::MaximumClipParts))
+  const int shapes = self->GetNumberOfClipShapes();
+  if (shapes > cao::MaximumClipParts)
     return f.Fail("At most " + std::to_string(cao::MaximumClipParts) + " clip shapes; " +
-      std::to_string(props.size()) + " are set.");
+      std::to_string(shapes) + " are set.");
   vtkNew<vtkMatrix4x4> worldToVolume;
   vtkMatrix4x4::Invert(f.volume->GetMatrix(), worldToVolume);
-  for (std::size_t i = 0; i < props.size(); ++i)
+  for (int i = 0; i < shapes; ++i)
   {
     ClipPart part;
-    part.mesh = i == 0 && self->ClipShape ? self->ClipMesh : nullptr;
-    if (!part.mesh)
-      if (vtkActor* actor = vtkActor::SafeDownCast(props[i].first))
-        if (vtkMapper* m = actor->GetMapper())
-        {
-          if (vtkAlgorithm* a = m->GetInputAlgorithm())
-            a->Update();
-          part.mesh = vtkPolyData::SafeDownCast(m->GetInputDataObject(0, 0));
-        }
+    part.mesh = self->GetClipShapeMeshAt(i);
     if (!part.mesh)
       return f.Fail("Clip shape " + std::to_string(i) +
         " has no mesh: give it a vtkPolyDataMapper input" +
         (i == 0 && self->ClipShape ? " or set ClipMesh." : "."));
     // Pose: the mesh's local frame to the volume's physical frame.
     part.pose = vtkSmartPointer<vtkMatrix4x4>::New();
-    vtkMatrix4x4::Multiply4x4(worldToVolume, props[i].first->GetMatrix(), part.pose);
+    vtkMatrix4x4::Multiply4x4(worldToVolume, self->GetClipShapeAt(i)->GetMatrix(), part.pose);
     part.mode =
-      props[i].second == SUBTRACTION ? cao::layout::CAO_MODE_SUBTRACT : cao::layout::CAO_MODE_PROBE;
+      self->GetClipShapeModeAt(i) == SUBTRACTION ? cao::layout::CAO_MODE_SUBTRACT : cao::layout::CAO_MODE_PROBE;
     parts.push_back(part);
   }
   return true;

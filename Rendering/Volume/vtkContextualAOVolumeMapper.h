@@ -249,6 +249,12 @@ public:
   void RemoveAllClipShapes();
   /// ClipShape (when set) and the added shapes.
   int GetNumberOfClipShapes();
+  /// Clip shape i of GetNumberOfClipShapes() (ClipShape first when set),
+  /// its mode, and its mesh in its local frame (ClipMesh for ClipShape when
+  /// set, else the actor's mapper input, brought up to date; null if none).
+  vtkProp3D* GetClipShapeAt(int i);
+  int GetClipShapeModeAt(int i);
+  vtkPolyData* GetClipShapeMeshAt(int i);
   ///@}
 
   ///@{

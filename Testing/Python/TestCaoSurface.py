@@ -18,6 +18,12 @@
   the non-dominated rows;
 - a legacy .vtk mesh reads as its .vtp (the same AO); a legacy volume is
   refused with what it holds;
+- the eye grid (--grid eye): the same pixels, its AO near the world
+  grid's (the grid's axes differ, so its voxels do);
+- the volume occluding (--volume): a block of volume on the square darkens
+  it where the sphere alone does not reach; --shape cube at the block's
+  centre carving it away gives the square's AO without the volume
+  exactly; probing keeps it; --json reports the volume and its bytes;
 - bad input exits 2 with the reason; an unreadable mesh too.
 Prints vtkSSAOPass's error against the reference on Bunny (informative)."""
 import json
@@ -225,6 +231,48 @@ volume_vtk = os.path.join(tmp, "wave.vtk")
 vw.SetFileName(volume_vtk)
 vw.Write()
 
+# The eye grid: the same pixels, AO near the world grid's.
+eye = surface("bunny-vct-eye", [bunny], "--grid", "eye")
+world = surface("bunny-vct-world", [bunny])
+if eye and world:
+    m = eye[0][3] & world[0][3]
+    check(np.array_equal(eye[0][3], world[0][3]) and eye[1]["vct"]["grid"] == "eye" and
+          np.abs(eye[0][2][m] - world[0][2][m]).mean() < 0.03,
+          "--grid eye: the same pixels, mean |dAO| %.4f against the world grid"
+          % np.abs(eye[0][2][m] - world[0][2][m]).mean())
+
+# The volume occluding: a block of image data standing on the open square.
+from vtkmodules.vtkCommonDataModel import vtkImageData
+from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
+blk = vtkImageData()
+blk.SetDimensions(11, 11, 6)
+blk.SetOrigin(0.2, -0.5, 0.02)
+blk.SetSpacing(0.06, 0.1, 0.1)
+blk.AllocateScalars(10, 1)  # VTK_FLOAT
+blk.GetPointData().GetScalars().Fill(1.0)
+blk.GetPointData().GetScalars().SetValue(0, 0.0)  # the range [0, 1]: the preset maps 1 to its top
+block_vti = os.path.join(tmp, "block.vti")
+bw = vtkXMLImageDataWriter()
+bw.SetInputData(blk)
+bw.SetFileName(block_vti)
+bw.Write()
+alone = surface("square-alone", [square], "--radius", "0.5")
+vol = surface("square-volume", [square], "--radius", "0.5", "--volume", block_vti, "--preset", "grayscale")
+carved = surface("square-carved", [square], "--radius", "0.5", "--volume", block_vti, "--preset", "grayscale",
+                 "--shape", "cube", "--size", "1.0", "--pose", "0.5 0 0.27")
+probed = surface("square-probed", [square], "--radius", "0.5", "--volume", block_vti, "--preset", "grayscale",
+                 "--shape", "cube", "--size", "1.0", "--pose", "0.5 0 0.27", "--mode", "probe")
+if alone and vol and carved and probed:
+    m = alone[0][3]
+    dark = (alone[0][2][m] - vol[0][2][m]).max()
+    check(dark > 0.1 and np.all(vol[0][2][m] <= alone[0][2][m] + 1e-6) and
+          vol[1]["vct"]["volume"]["dims"] == [11, 11, 6] and vol[1]["vct"]["volume"]["bytes"] == 11 * 11 * 6 * 4,
+          "--volume darkens the square near the block (by up to %.3f), nowhere lightens it; --json: %s"
+          % (dark, vol[1]["vct"]["volume"]))
+    check(np.array_equal(carved[0][2], alone[0][2]) and carved[1]["vct"]["volume"]["clip"] == "subtract",
+          "carving the whole block away gives the square's own AO exactly")
+    check(np.array_equal(probed[0][2], vol[0][2]), "probing the whole block keeps it all (the volume's AO)")
+
 # Bad input.
 for args, words in [(["--method", "magic", bunny, "-o", "x.png"], "--method is"),
                     (["--rays", "0", bunny, "-o", "x.png"], "--rays"),
@@ -233,7 +281,12 @@ for args, words in [(["--method", "magic", bunny, "-o", "x.png"], "--method is")
                     ([bunny], "-o out.png"),
                     (["--falloff", "cubic", bunny, "-o", "x.png"], "--falloff is"),
                     (["--slices", "100", bunny, "-o", "x.png"], "multiple of 32"),
-                    (["--grid", "eye", bunny, "-o", "x.png"], "not built yet"),
+                    (["--grid", "polar", bunny, "-o", "x.png"], "--grid is world or eye"),
+                    (["--shape", "cube", bunny, "-o", "x.png"], "give --volume"),
+                    (["--volume", block_vti, "--method", "ssao", bunny, "-o", "x.png"], "--method vct on the CPU"),
+                    (["--volume", block_vti, "--unit-distance", "0", bunny, "-o", "x.png"], "--unit-distance"),
+                    (["--volume", block_vti, "--mode", "sideways", bunny, "-o", "x.png"], "--mode is"),
+                    (["--volume", bunny, bunny, "-o", "x.png"], "Bunny.vtp"),
                     (["--quality", "ultra", bunny, "-o", "x.png"], "--quality is"),
                     ([volume_vtk, "-o", "x.png"], "not a polygonal mesh"),
                     ([bunny, "-o", os.path.join(tmp, "no", "such", "x.png")], "does not exist"),

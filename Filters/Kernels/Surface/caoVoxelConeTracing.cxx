@@ -1,5 +1,6 @@
 #include "caoVoxelConeTracing.h"
 
+#include "caoLAO.h"
 #include "caoParallelFor.h"
 
 #include <algorithm>
@@ -257,8 +258,89 @@ bool GridPoints(const BitGrid& grid, const std::vector<double>& points, std::vec
       error = "a mesh has a NaN or infinite coordinate";
       return false;
     }
-    out[i] = (points[i] - grid.origin[i % 3]) / grid.voxel;
   }
+  for (std::size_t i = 0; i + 2 < points.size(); i += 3)
+  {
+    double g[3];
+    grid.ToGrid(&points[i], g);
+    for (int d = 0; d < 3; ++d)
+      out[i + d] = (g[d] - grid.origin[d]) / grid.voxel;
+  }
+  return true;
+}
+
+void BitGrid::ToGrid(const double w[3], double out[3]) const
+{
+  const double* a = this->axes.data();
+  for (int r = 0; r < 3; ++r)
+    out[r] = a[3 * r] * w[0] + a[3 * r + 1] * w[1] + a[3 * r + 2] * w[2];
+}
+
+void BitGrid::ToWorld(const double g[3], double out[3]) const
+{
+  const double* a = this->axes.data();
+  for (int c = 0; c < 3; ++c)
+    out[c] = a[c] * g[0] + a[3 + c] * g[1] + a[6 + c] * g[2];
+}
+
+bool EyeAxes(const double right[3], const double up[3], std::array<double, 9>& axes,
+  std::string& error)
+{
+  double x[3] = { right[0], right[1], right[2] }, y[3] = { up[0], up[1], up[2] };
+  const double lx = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+  if (!(lx > 0.0) || !std::isfinite(lx))
+  {
+    error = "the camera's frame is degenerate";
+    return false;
+  }
+  for (double& v : x)
+    v /= lx;
+  const double d = x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+  for (int k = 0; k < 3; ++k)
+    y[k] -= d * x[k];
+  const double ly = std::sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2]);
+  if (!(ly > 1e-12 * lx) || !std::isfinite(ly))
+  {
+    error = "the camera's frame is degenerate";
+    return false;
+  }
+  for (double& v : y)
+    v /= ly;
+  axes = { { x[0], x[1], x[2], y[0], y[1], y[2], x[1] * y[2] - x[2] * y[1],
+    x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0] } };
+  return true;
+}
+
+bool PlanEyeGrid(const std::vector<MeshView>& meshes, const std::array<double, 9>& axes,
+  double padding, int slices, BitGrid& grid, std::string& error)
+{
+  BitGrid frame;
+  frame.axes = axes;
+  std::array<double, 6> b{ { 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 } };
+  for (const MeshView& mesh : meshes)
+  {
+    if (!mesh.points)
+      continue;
+    const std::vector<double>& p = *mesh.points;
+    for (std::size_t i = 0; i + 2 < p.size(); i += 3)
+    {
+      double g[3];
+      frame.ToGrid(&p[i], g);
+      for (int d = 0; d < 3; ++d)
+      {
+        if (!std::isfinite(g[d]))
+        {
+          error = "a mesh has a NaN or infinite coordinate";
+          return false;
+        }
+        b[2 * d] = std::min(b[2 * d], g[d]);
+        b[2 * d + 1] = std::max(b[2 * d + 1], g[d]);
+      }
+    }
+  }
+  if (!PlanGrid(b, padding, slices, grid, error))
+    return false;
+  grid.axes = axes;
   return true;
 }
 
@@ -267,6 +349,14 @@ bool VoxelizeWorld(const std::vector<MeshView>& meshes, const std::array<double,
 {
   if (!PlanGrid(bounds, padding, slices, grid, error))
     return false;
+  return FillGrid(meshes, grid, error, surfaceVoxels);
+}
+
+bool FillGrid(const std::vector<MeshView>& meshes, BitGrid& grid, std::string& error,
+  bool surfaceVoxels)
+{
+  const int slices = grid.slices;
+  grid.openEdges.clear();
   const std::size_t columnWords = static_cast<std::size_t>(grid.nx) * grid.ny * grid.words;
   grid.bits.assign(columnWords, 0u);
   std::vector<std::uint32_t> one, surface;
@@ -432,8 +522,104 @@ layout::VCTParams MakeVCTParams(const BitGrid& grid, const VCTPlan& plan, int po
   return v;
 }
 
-double ConeTraceAO(const BitGrid& grid, const VCTPlan& plan, const double p[3], const double n[3])
+bool InsideMask(const MeshView& mesh, const int dims[3], const std::array<double, 12>& worldToIndex,
+  std::vector<std::uint8_t>& inside, std::string& error)
 {
+  if (dims[0] < 1 || dims[1] < 1 || dims[2] < 1 ||
+    static_cast<double>(dims[0]) * dims[1] * dims[2] > 2147483648.0)
+  {
+    error = "the volume must have 1 to 2^31 voxels";
+    return false;
+  }
+  if (!mesh.points || !mesh.triangles || mesh.points->size() % 3 || mesh.triangles->size() % 3)
+  {
+    error = "a mesh needs 3 coordinates per point and 3 ids per triangle";
+    return false;
+  }
+  const std::int64_t open = OpenEdges(mesh);
+  if (open > 0)
+  {
+    error = "the clip mesh is open (" + std::to_string(open) +
+      " boundary edges): its inside is not defined";
+    return false;
+  }
+  std::vector<double> index(mesh.points->size());
+  const std::vector<double>& p = *mesh.points;
+  const double* m = worldToIndex.data();
+  for (std::size_t i = 0; i + 2 < p.size(); i += 3)
+    for (int r = 0; r < 3; ++r)
+      index[i + r] = m[4 * r] * p[i] + m[4 * r + 1] * p[i + 1] + m[4 * r + 2] * p[i + 2] + m[4 * r + 3];
+  // A grid whose voxel centres are the volume's: slice k's centre at index k.
+  BitGrid grid;
+  grid.nx = dims[0];
+  grid.ny = dims[1];
+  grid.words = (dims[2] + 31) / 32;
+  grid.slices = 32 * grid.words;
+  grid.voxel = 1.0;
+  grid.origin = { { -0.5, -0.5, -0.5 } };
+  const std::vector<MeshView> meshes{ { &index, mesh.triangles } };
+  if (!FillGrid(meshes, grid, error, false))
+    return false;
+  inside.assign(static_cast<std::size_t>(dims[0]) * dims[1] * dims[2], 0);
+  for (int j = 0; j < dims[1]; ++j)
+    for (int i = 0; i < dims[0]; ++i)
+      for (int k = 0; k < dims[2]; ++k)
+        if (grid.Bit(i, j, k))
+          inside[i + static_cast<std::size_t>(dims[0]) * (j + static_cast<std::size_t>(dims[1]) * k)] = 1;
+  return true;
+}
+
+std::string OpacityVolume::Validate() const
+{
+  if (this->dims[0] < 1 || this->dims[1] < 1 || this->dims[2] < 1)
+    return "the volume is empty";
+  if (this->alpha.size() !=
+    static_cast<std::size_t>(this->dims[0]) * this->dims[1] * this->dims[2])
+    return "the volume's opacity has the wrong size";
+  if (!(this->unitDistance > 0.0) || !std::isfinite(this->unitDistance))
+    return "the opacity unit distance must be positive and finite";
+  for (double v : this->worldToIndex)
+    if (!std::isfinite(v))
+      return "the volume's world-to-index matrix is not finite";
+  return std::string();
+}
+
+double OpacityVolume::Sample(const double w[3]) const
+{
+  const double* m = this->worldToIndex.data();
+  double x[3];
+  for (int r = 0; r < 3; ++r)
+    x[r] = m[4 * r] * w[0] + m[4 * r + 1] * w[1] + m[4 * r + 2] * w[2] + m[4 * r + 3];
+  int i0[3];
+  double f[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    if (!(x[d] >= 0.0) || x[d] > this->dims[d] - 1)
+      return 0.0;
+    i0[d] = std::min(static_cast<int>(x[d]), std::max(0, this->dims[d] - 2));
+    f[d] = x[d] - i0[d];
+  }
+  const std::size_t sx = 1, sy = static_cast<std::size_t>(this->dims[0]),
+                    sz = sy * static_cast<std::size_t>(this->dims[1]);
+  const std::size_t base = i0[0] * sx + i0[1] * sy + i0[2] * sz;
+  const std::size_t step[3] = { this->dims[0] > 1 ? sx : 0, this->dims[1] > 1 ? sy : 0,
+    this->dims[2] > 1 ? sz : 0 };
+  double value = 0.0;
+  for (int c = 0; c < 8; ++c)
+  {
+    const int bx = c & 1, by = (c >> 1) & 1, bz = (c >> 2) & 1;
+    const double weight = (bx ? f[0] : 1.0 - f[0]) * (by ? f[1] : 1.0 - f[1]) * (bz ? f[2] : 1.0 - f[2]);
+    if (weight > 0.0)
+      value += weight * this->alpha[base + bx * step[0] + by * step[1] + bz * step[2]];
+  }
+  return value;
+}
+
+double ConeTraceAO(const BitGrid& grid, const VCTPlan& plan, const double pWorld[3], const double nWorld[3])
+{
+  double p[3], n[3];
+  grid.ToGrid(pWorld, p);
+  grid.ToGrid(nWorld, n);
   const double h = grid.voxel;
   const double sign = n[2] >= 0.0 ? 1.0 : -1.0; // as the GLSL's
 
@@ -475,6 +661,23 @@ double ConeTraceAO(const BitGrid& grid, const VCTPlan& plan, const double p[3], 
       }
       const double occ = total > 0 ? static_cast<double>(set) / static_cast<double>(total) : 0.0;
       open *= 1.0 - occ;
+      for (const OpacityVolume* volume : plan.volumes)
+      {
+        // The volume's mean opacity over the sphere's centre and prism points.
+        double sum = 0.0, g[3], w[3];
+        g[0] = centre[0], g[1] = centre[1], g[2] = centre[2];
+        grid.ToWorld(g, w);
+        sum += volume->Sample(w);
+        for (const auto& sample : plan.disk)
+        {
+          g[0] = centre[0] + sphere.r * sample[0];
+          g[1] = centre[1] + sphere.r * sample[1];
+          grid.ToWorld(g, w);
+          sum += volume->Sample(w);
+        }
+        const double mean = sum / static_cast<double>(plan.disk.size() + 1);
+        open *= 1.0 - CorrectOpacity(mean, 2.0 * sphere.r / volume->unitDistance);
+      }
     }
     occlusion += plan.coneWeights[c] * (1.0 - open);
   }

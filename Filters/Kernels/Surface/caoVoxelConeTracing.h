@@ -107,6 +107,13 @@ struct BitGrid
   int nx = 0, ny = 0, slices = 0, words = 0;
   std::array<double, 3> origin{ { 0, 0, 0 } };
   double voxel = 1.0;
+  /// The grid's frame: row r is the grid's axis r in world coordinates
+  /// (identity: a world grid; an eye grid's rows are the camera's right, up
+  /// and backward directions, so that its slices are depth slices, as in
+  /// the paper). Points enter the grid as axes * p (ToGrid).
+  std::array<double, 9> axes{ { 1, 0, 0, 0, 1, 0, 0, 0, 1 } };
+  void ToGrid(const double world[3], double out[3]) const;
+  void ToWorld(const double grid[3], double out[3]) const;
   std::vector<std::uint32_t> bits; ///< (j * nx + i) * words + word
   std::vector<std::int64_t> openEdges; ///< per mesh, as voxelized (0: solid fill)
   static constexpr std::int64_t MaximumColumns = std::int64_t(4096) * 4096;
@@ -131,6 +138,50 @@ struct BitGrid
 bool VoxelizeWorld(const std::vector<MeshView>& meshes, const std::array<double, 6>& bounds,
   double padding, int slices, BitGrid& grid, std::string& error, bool surfaceVoxels = true);
 
+/// Rasterizes `meshes` into `grid` as planned (PlanGrid or PlanEyeGrid;
+/// its bits are replaced): what VoxelizeWorld does after planning.
+bool FillGrid(const std::vector<MeshView>& meshes, BitGrid& grid, std::string& error,
+  bool surfaceVoxels = true);
+
+/// The frame of an eye grid: the rows of a camera's view matrix (right, up,
+/// backward), orthonormalised. False if they are degenerate.
+bool EyeAxes(const double right[3], const double up[3], std::array<double, 9>& axes,
+  std::string& error);
+
+/// An eye grid's plan: the meshes' bounds in the frame `axes`, padded, as
+/// PlanGrid plans a world grid (bits empty).
+bool PlanEyeGrid(const std::vector<MeshView>& meshes, const std::array<double, 9>& axes,
+  double padding, int slices, BitGrid& grid, std::string& error);
+
+/// Which voxel centres of a regular grid lie inside a closed mesh, by the
+/// voxelizer's parity (top-left rule along the grid's k axis): inside[i +
+/// dims0 * (j + dims1 * k)] = 1. `worldToIndex` (3 x 4, row-major) maps the
+/// mesh's points to continuous voxel indices (voxel centres at integers).
+/// False with the reason when the mesh is open or has bad coordinates, or
+/// the grid is empty or has more than 2^31 voxels.
+bool InsideMask(const MeshView& mesh, const int dims[3], const std::array<double, 12>& worldToIndex,
+  std::vector<std::uint8_t>& inside, std::string& error);
+
+/// A volume's opacity as the cones read it (the volume occludes surfaces):
+/// per voxel the opacity of `unitDistance` world units of it (VTK's scalar
+/// opacity and its unit distance), clipped voxels 0. Along a cone, a
+/// sphere of radius r sees the mean opacity a of the volume at its centre
+/// and its prisms' points, over its diameter: 1 - (1 - a)^(2r / unit), the
+/// step-length correction LAO uses (seed 003 Eq. 2, seed 000 Sec. III-C2:
+/// one absorption model), composed with the sphere's voxel occupancy as
+/// 1 - (1 - occ)(1 - alpha).
+struct OpacityVolume
+{
+  int dims[3] = { 0, 0, 0 };
+  std::array<double, 12> worldToIndex{ { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0 } }; ///< 3 x 4
+  std::vector<float> alpha; ///< i + dims0 * (j + dims1 * k)
+  double unitDistance = 1.0;
+  /// Trilinear opacity at a world point; 0 outside the grid.
+  double Sample(const double world[3]) const;
+  /// Empty when usable, else why not.
+  std::string Validate() const;
+};
+
 
 
 /// The cones, spheres and prism samples of `settings` on `grid`.
@@ -145,6 +196,7 @@ struct VCTPlan
   std::vector<Sphere> spheres;
   std::vector<std::array<double, 2>> disk; ///< prism samples in the unit disk
   double apexOffset = 0.0;                  ///< world units
+  std::vector<const OpacityVolume*> volumes; ///< occluding volumes (not owned), may be empty
 };
 
 bool BuildVCTPlan(const VCTSettings& settings, const BitGrid& grid, VCTPlan& plan,
@@ -162,7 +214,7 @@ bool GridPoints(const BitGrid& grid, const std::vector<double>& points, std::vec
 /// `points` points (caoGPULayout.h VCTParams).
 layout::VCTParams MakeVCTParams(const BitGrid& grid, const VCTPlan& plan, int points);
 
-/// The AO (1 = open) at P with unit normal n.
+/// The AO (1 = open) at P with unit normal n (world coordinates).
 double ConeTraceAO(const BitGrid& grid, const VCTPlan& plan, const double p[3], const double n[3]);
 
 /// The AO of every covered pixel of `frame` (CastPrimary's).

@@ -12,10 +12,20 @@
 //   prism's chord counted exactly;
 //   negative control: a coarse grid misses it by more; an empty grid
 //   gives AO 1 exactly; a point on a solid floor stays open;
+// - the eye grid: a scene turned by R^T in a grid of frame R gives the
+//   world grid's AO (to rounding) at the turned points; negative control:
+//   the wrong frame (R^T) does not;
+// - InsideMask against the analytic interior of a sphere under an
+//   anisotropic, shifted index map; an open mesh is refused;
+// - the volume occluding surfaces: in a homogeneous medium of opacity a per
+//   unit distance, and no voxel near, the AO is the transmittance
+//   (1 - a)^(sum of the spheres' diameters / unit) exactly; the medium
+//   carved away (opacity 0) gives 1; a trilinear field is sampled exactly;
 // - bad input: slices, settings, ids.
 #include "caoVoxelConeTracing.h"
 #include "caoTestUtilities.h"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -241,6 +251,141 @@ int TestVoxelConeTracing(int, char*[])
     const double freeAO = cao::ConeTraceAO(grid, plan, above, n);
     std::printf("a point on a solid floor: AO %.4f; far above it: %.4f\n", floorAO, freeAO);
     CAO_CHECK(freeAO == 1.0 && floorAO > 0.95, "floor %.4f free %.4f", floorAO, freeAO);
+  }
+  // The eye grid: the scene turned by R^T, in a grid whose frame is R.
+  {
+    std::vector<double> slab, ball;
+    std::vector<std::int64_t> slabT, ballT;
+    Box(-1.0, 1.0, slab, slabT);
+    for (std::size_t c = 2; c < slab.size(); c += 3)
+      slab[c] = slab[c] < 0 ? -0.3 : 0.0; // a slab z in [-0.3, 0]
+    caotest::UVSphere(0.3, 48, ball, ballT);
+    for (std::size_t c = 2; c < ball.size(); c += 3)
+      ball[c] += 0.3; // resting on it
+    const double a = 0.4, b = 0.7; // R: rotation about z by a, then about x by b
+    const double rz[9] = { std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a), 0, 0, 0, 1 };
+    const double rx[9] = { 1, 0, 0, 0, std::cos(b), -std::sin(b), 0, std::sin(b), std::cos(b) };
+    std::array<double, 9> R{};
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c)
+        for (int k = 0; k < 3; ++k)
+          R[3 * r + c] += rx[3 * r + k] * rz[3 * k + c];
+    auto turn = [](const std::array<double, 9>& m, bool transpose, const double* in, double* out) {
+      for (int r = 0; r < 3; ++r)
+        out[r] = transpose ? m[r] * in[0] + m[3 + r] * in[1] + m[6 + r] * in[2]
+                           : m[3 * r] * in[0] + m[3 * r + 1] * in[1] + m[3 * r + 2] * in[2];
+    };
+    std::vector<double> slabR(slab.size()), ballR(ball.size());
+    for (std::size_t i = 0; i < slab.size(); i += 3)
+      turn(R, true, &slab[i], &slabR[i]);
+    for (std::size_t i = 0; i < ball.size(); i += 3)
+      turn(R, true, &ball[i], &ballR[i]);
+    cao::BitGrid world, eye, wrongFrame;
+    const std::vector<cao::MeshView> scene{ { &slab, &slabT }, { &ball, &ballT } };
+    const std::vector<cao::MeshView> turned{ { &slabR, &slabT }, { &ballR, &ballT } };
+    std::array<double, 9> Rt{};
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c)
+        Rt[3 * r + c] = R[3 * c + r];
+    CAO_CHECK(cao::PlanEyeGrid(scene, { { 1, 0, 0, 0, 1, 0, 0, 0, 1 } }, 0.3, 128, world, error) &&
+        cao::FillGrid(scene, world, error) && cao::PlanEyeGrid(turned, R, 0.3, 128, eye, error) &&
+        cao::FillGrid(turned, eye, error) && cao::PlanEyeGrid(turned, Rt, 0.3, 128, wrongFrame, error) &&
+        cao::FillGrid(turned, wrongFrame, error), "%s", error.c_str());
+    cao::VCTSettings s;
+    s.radius = 0.3;
+    cao::VCTPlan planWorld, planEye, planWrong;
+    CAO_CHECK(cao::BuildVCTPlan(s, world, planWorld, error) && cao::BuildVCTPlan(s, eye, planEye, error) &&
+        cao::BuildVCTPlan(s, wrongFrame, planWrong, error), "%s", error.c_str());
+    double worst = 0.0, wrongWorst = 0.0, darkest = 1.0;
+    for (int k = 0; k < 200; ++k)
+    {
+      // Points on the slab's top around the contact, normal +z.
+      const double r = 0.05 + 0.5 * (k % 20) / 20.0, phi = 2 * Pi * (k / 20) / 10.0 + 0.1;
+      const double pt[3] = { r * std::cos(phi), r * std::sin(phi), 0.0 }, n[3] = { 0, 0, 1 };
+      double ptR[3], nR[3];
+      turn(R, true, pt, ptR);
+      turn(R, true, n, nR);
+      const double ao = cao::ConeTraceAO(world, planWorld, pt, n);
+      darkest = std::min(darkest, ao);
+      worst = std::max(worst, std::fabs(ao - cao::ConeTraceAO(eye, planEye, ptR, nR)));
+      wrongWorst = std::max(wrongWorst, std::fabs(ao - cao::ConeTraceAO(wrongFrame, planWrong, ptR, nR)));
+    }
+    std::printf("eye grid (frame R, scene turned by R^T) vs world grid: max |dAO| %.2e over 200 points "
+                "(darkest %.3f); the wrong frame: %.3f\n", worst, darkest, wrongWorst);
+    CAO_CHECK(worst < 1e-9 && darkest < 0.8 && wrongWorst > 0.05, "eye grid: %g, wrong frame %g", worst,
+      wrongWorst);
+  }
+  // InsideMask: a sphere under an anisotropic, shifted index map.
+  {
+    const int dims[3] = { 40, 30, 70 };
+    const std::array<double, 12> toIndex{ { 1.0 / 0.035, 0, 0, 19.3, 0, 1.0 / 0.05, 0, 14.6, 0, 0,
+      1.0 / 0.02, 35.2 } };
+    std::vector<std::uint8_t> inside;
+    CAO_CHECK(cao::InsideMask({ &sp, &st }, dims, toIndex, inside, error), "%s", error.c_str());
+    const double sagitta = 0.6 * (1 - std::cos(Pi / 128)) * 2;
+    std::int64_t wrong = 0, checked = 0, in = 0;
+    for (int k = 0; k < dims[2]; ++k)
+      for (int j = 0; j < dims[1]; ++j)
+        for (int i = 0; i < dims[0]; ++i)
+        {
+          const double x = (i - 19.3) * 0.035, y = (j - 14.6) * 0.05, z = (k - 35.2) * 0.02;
+          const double d = std::sqrt(x * x + y * y + z * z) - 0.6;
+          if (std::fabs(d) <= sagitta + 1e-9)
+            continue;
+          ++checked;
+          in += d < 0;
+          wrong += (inside[i + dims[0] * (j + dims[1] * k)] != 0) != (d < 0);
+        }
+    std::printf("InsideMask, sphere r=0.6 on a 40x30x70 anisotropic grid: %lld of %lld wrong (%lld inside)\n",
+      static_cast<long long>(wrong), static_cast<long long>(checked), static_cast<long long>(in));
+    CAO_CHECK(wrong == 0 && in > 10000, "%lld wrong", static_cast<long long>(wrong));
+    std::vector<std::int64_t> openT(st.begin(), st.end() - 3); // one triangle less: open
+    CAO_CHECK(!cao::InsideMask({ &sp, &openT }, dims, toIndex, inside, error) &&
+        error.find("open") != std::string::npos, "%s", error.c_str());
+  }
+  // The volume occludes: a homogeneous medium, no voxel near the point.
+  {
+    std::vector<double> p;
+    std::vector<std::int64_t> t;
+    Box(4.0, 4.1, p, t); // far away: the grid is empty around the origin
+    cao::BitGrid grid;
+    CAO_CHECK(cao::VoxelizeWorld({ { &p, &t } }, { { -1, 4.1, -1, 4.1, -1, 4.1 } }, 0.0, 256, grid, error),
+      "%s", error.c_str());
+    cao::OpacityVolume medium;
+    medium.dims[0] = medium.dims[1] = medium.dims[2] = 11;
+    medium.worldToIndex = { { 5, 0, 0, 5, 0, 5, 0, 5, 0, 0, 5, 5 } }; // [-1, 1]^3, spacing 0.2
+    medium.unitDistance = 0.5;
+    medium.alpha.assign(11 * 11 * 11, 0.3f);
+    CAO_CHECK(medium.Validate().empty(), "%s", medium.Validate().c_str());
+    cao::VCTSettings s;
+    s.radius = 0.6;
+    cao::VCTPlan plan;
+    CAO_CHECK(cao::BuildVCTPlan(s, grid, plan, error), "%s", error.c_str());
+    const double pt[3] = { 0.0, 0.0, 0.0 }, n[3] = { 0.0, 0.6, 0.8 };
+    const double open = cao::ConeTraceAO(grid, plan, pt, n);
+    plan.volumes.push_back(&medium);
+    const double ao = cao::ConeTraceAO(grid, plan, pt, n);
+    double diameters = 0.0;
+    for (const auto& sphere : plan.spheres)
+      diameters += 2.0 * sphere.r;
+    const double expected = std::pow(1.0 - 0.3, diameters / 0.5);
+    medium.alpha.assign(medium.alpha.size(), 0.0f); // carved away
+    const double carved = cao::ConeTraceAO(grid, plan, pt, n);
+    std::printf("homogeneous medium, opacity 0.3 per 0.5 units: AO %.6f (transmittance over %.4f units: %.6f); "
+                "without the volume %.6f; carved %.6f\n", ao, diameters, expected, open, carved);
+    CAO_CHECK(open == 1.0 && std::fabs(ao - expected) < 1e-6 && ao < 0.9 && carved == 1.0,
+      "medium: %.6f vs %.6f, carved %.6f", ao, expected, carved);
+    // A linear field is sampled exactly (trilinear), zero outside.
+    for (int k = 0; k < 11; ++k)
+      for (int j = 0; j < 11; ++j)
+        for (int i = 0; i < 11; ++i)
+          medium.alpha[i + 11 * (j + 11 * k)] = static_cast<float>(0.01 * i + 0.02 * j + 0.03 * k);
+    const double q[3] = { 0.13, -0.27, 0.55 }, outside[3] = { 1.2, 0, 0 };
+    const double linear = 0.01 * (5 * 0.13 + 5) + 0.02 * (5 * -0.27 + 5) + 0.03 * (5 * 0.55 + 5);
+    CAO_CHECK(std::fabs(medium.Sample(q) - linear) < 1e-6 && medium.Sample(outside) == 0.0,
+      "trilinear %.8f vs %.8f", medium.Sample(q), linear);
+    medium.unitDistance = 0.0;
+    CAO_CHECK(medium.Validate().find("unit distance") != std::string::npos, "%s", medium.Validate().c_str());
   }
   // Bad input.
   {

@@ -1,17 +1,36 @@
 // vtkContextualAOPass in a VTK scene (a sphere resting on a slab, in the
 // project's EGL window):
-// - the first frame voxelizes, casts, traces and combines; the pixels by
-//   the contact are darker than with the pass set to NONE, the pixels far
-//   from it are unchanged (AO 1 there), and the background is untouched;
+// - the first frame voxelizes, casts, traces, draws the ambient term and
+//   combines; by the contact the slab loses (1 - AO) of its ambient term
+//   (0.3 x 255) and keeps the rest; Whole colour scales the whole grey
+//   instead (the negative control of the ambient term); far from the
+//   contact and on the background nothing changes;
 // - only what a change calls for runs: a colour change re-runs only the
-//   combine (negative control: the AO image is the same object's), a camera
-//   turn casts and traces but does not voxelize, moving an actor
-//   re-voxelizes, removing every actor runs nothing; Method NONE runs
-//   nothing and leaves the delegate's picture;
+//   ambient draw and the combine (negative control: the AO image is the
+//   same object's), a camera turn casts and traces but does not voxelize,
+//   moving an actor re-voxelizes, removing every actor runs nothing;
+//   Method NONE runs nothing;
+// - a translucent sheet drawn over the contact halves the darkening (the
+//   combine runs before translucent geometry; darkening the finished
+//   picture, the negative control, would darken the sheet too);
+// - the eye grid: built on a turn, kept on a dolly, its AO near the world
+//   grid's;
 // - the pass's AO at a pixel equals cao::VCTFrame's for the same triangles
 //   and camera (the kernel's, not a second implementation);
-// - an open mesh is counted; bad Slices is refused with the reason.
+// - an open mesh is counted; bad Slices and a NaN Strength are refused with
+//   the reason;
+// - the volume occludes: a dense block of volume (vtkContextualAOVolumeMapper)
+//   darkens the slab under it; a camera turn does not rebuild its opacity;
+//   carving it all away with the mapper's clip box gives the slab's own AO
+//   exactly; half carved and the other half probed fall between.
 #include "vtkContextualAOPass.h"
+#include "vtkContextualAOVolumeMapper.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
@@ -106,8 +125,9 @@ int TestContextualAOPass(int, char*[])
   project(0.0, -0.55, 0.0, cx, cy); // on the slab, by the contact (in front)
   project(1.8, 1.8, 0.0, fx, fy);   // on the slab, far from the sphere
   std::printf("report 1: %s\n", pass->GetLastFrameReport().c_str());
-  Check(pass->GetLastFrameStages() == "voxelize,primary,trace,combine",
-    "the first frame voxelizes, casts, traces, combines (" + pass->GetLastFrameStages() + ")");
+  Check(pass->GetLastFrameStages() == "voxelize,primary,trace,ambient,combine",
+    "the first frame voxelizes, casts, traces, draws the ambient term, combines (" +
+      pass->GetLastFrameStages() + ")");
   const double contact = Grey(window, cx, cy), far = Grey(window, fx, fy), back = Grey(window, 2, 2);
   const double aoContact = pass->GetPixelAO(cx, cy), aoFar = pass->GetPixelAO(fx, fy);
   pass->SetMethod(vtkContextualAOPass::NONE);
@@ -116,19 +136,34 @@ int TestContextualAOPass(int, char*[])
   std::printf("grey by the contact %.1f (no AO %.1f, AO %.3f), far %.1f (%.1f, AO %.3f), background %.1f (%.1f)\n",
     contact, contactNone, aoContact, far, farNone, aoFar, back, backNone);
   Check(pass->GetLastFrameStages().empty(), "Method NONE runs nothing (" + pass->GetLastFrameStages() + ")");
-  Check(aoContact < 0.8 && contact < contactNone - 10, "the slab by the contact is darkened");
+  // The ambient term (Ambient 0.3 of a white slab: 0.3 x 255) is scaled by
+  // the AO; the rest of the colour stays.
+  const double expectAmbient = contactNone - (1.0 - aoContact) * 0.3 * 255.0;
+  Check(aoContact < 0.8 && std::fabs(contact - expectAmbient) <= 1.5,
+    "the slab by the contact loses (1 - AO) of its ambient term: grey " + std::to_string(contact) +
+      ", expected " + std::to_string(expectAmbient));
+  pass->SetMethod(vtkContextualAOPass::VCT);
+  pass->SetApplyTo(vtkContextualAOPass::WHOLE_COLOR);
+  window->Render();
+  const double contactWhole = Grey(window, cx, cy), expectWhole = contactNone * aoContact;
+  Check(pass->GetLastFrameStages() == "combine" && std::fabs(contactWhole - expectWhole) <= 1.5,
+    "Whole colour: grey " + std::to_string(contactWhole) + ", expected " + std::to_string(expectWhole) +
+      " (negative control for the ambient term: differs by " + std::to_string(contactWhole - contact) +
+      "), only the combine ran (" + pass->GetLastFrameStages() + ")");
+  pass->SetApplyTo(vtkContextualAOPass::AMBIENT_TERM);
+  pass->SetMethod(vtkContextualAOPass::NONE);
   Check(aoFar > 0.999 && std::fabs(far - farNone) <= 1 && back == backNone,
     "far from the sphere and on the background nothing changes");
   pass->SetMethod(vtkContextualAOPass::VCT);
   window->Render(); // settings unchanged since frame 1: the AO image is reused
-  Check(pass->GetLastFrameStages() == "combine", "back to VCT with nothing changed: combine only (" +
+  Check(pass->GetLastFrameStages() == "ambient,combine", "back to VCT with nothing changed: combine only (" +
       pass->GetLastFrameStages() + ")");
 
   // A colour change: the scene redraws, the pass only combines.
   const int traces = pass->GetTraceCount(), grids = pass->GetVoxelizeCount();
   sphereActor->GetProperty()->SetColor(0.9, 0.3, 0.2);
   window->Render();
-  Check(pass->GetLastFrameStages() == "combine" && pass->GetTraceCount() == traces &&
+  Check(pass->GetLastFrameStages() == "ambient,combine" && pass->GetTraceCount() == traces &&
       pass->GetVoxelizeCount() == grids,
     "a colour change runs only the combine (" + pass->GetLastFrameStages() + ")");
   Check(std::fabs(pass->GetPixelAO(cx, cy) - aoContact) == 0, "and keeps the same AO image");
@@ -136,12 +171,13 @@ int TestContextualAOPass(int, char*[])
   camera->Azimuth(20);
   renderer->ResetCameraClippingRange();
   window->Render();
-  Check(pass->GetLastFrameStages() == "primary,trace,combine" && pass->GetVoxelizeCount() == grids,
+  Check(pass->GetLastFrameStages() == "primary,trace,ambient,combine" && pass->GetVoxelizeCount() == grids,
     "a camera turn casts and traces but keeps the grid (" + pass->GetLastFrameStages() + ")");
   // Moving an actor: a new grid.
   sphereActor->SetPosition(0.3, 0, 0);
   window->Render();
-  Check(pass->GetLastFrameStages() == "voxelize,primary,trace,combine" && pass->GetVoxelizeCount() == grids + 1,
+  Check(pass->GetLastFrameStages() == "voxelize,primary,trace,ambient,combine" &&
+      pass->GetVoxelizeCount() == grids + 1,
     "moving an actor re-voxelizes (" + pass->GetLastFrameStages() + ")");
 
   // The pass's AO is the kernel's: the same triangles in world space, the
@@ -204,6 +240,73 @@ int TestContextualAOPass(int, char*[])
     Check(ran && compared > 1000 && worst == 0.0, text);
   }
 
+  // Translucent geometry over the AO surface keeps its own colour (the
+  // combine runs before it): a half-transparent white sheet in front.
+  {
+    sphereActor->SetPosition(0, 0, 0);
+    pass->SetApplyTo(vtkContextualAOPass::WHOLE_COLOR);
+    project(0.0, -0.55, 0.0, cx, cy);
+    double off = 0.0;
+    auto difference = [&]() {
+      pass->SetMethod(vtkContextualAOPass::VCT);
+      window->Render();
+      const double on = Grey(window, cx, cy);
+      pass->SetMethod(vtkContextualAOPass::NONE);
+      window->Render();
+      off = Grey(window, cx, cy);
+      return off - on;
+    };
+    const double bare = difference(), bareOff = off;
+    vtkNew<vtkPlaneSource> sheet;
+    sheet->SetOrigin(-4, -1.5, -1);
+    sheet->SetPoint1(4, -1.5, -1);
+    sheet->SetPoint2(-4, -1.5, 3);
+    vtkNew<vtkPolyDataMapper> sheetMapper;
+    sheetMapper->SetInputConnection(sheet->GetOutputPort());
+    vtkNew<vtkActor> sheetActor;
+    sheetActor->SetMapper(sheetMapper);
+    sheetActor->GetProperty()->SetOpacity(0.5);
+    sheetActor->GetProperty()->SetAmbient(1.0);
+    sheetActor->GetProperty()->SetDiffuse(0.0);
+    renderer->AddActor(sheetActor);
+    const double behind = difference();
+    // Darkening the finished picture (the sheet too) would take (1 - AO) of
+    // the whole pixel: the negative control.
+    const double afterAll = bare / bareOff * off;
+    char text[300];
+    std::snprintf(text, sizeof(text),
+      "a translucent sheet over the contact: AO darkens by %.1f grey levels, half of %.1f without the "
+      "sheet (its own colour is not darkened; darkening after it would give %.1f)", behind, bare, afterAll);
+    Check(bare > 10 && std::fabs(behind - 0.5 * bare) <= 1.5 && afterAll - behind > 10, text);
+    renderer->RemoveActor(sheetActor);
+    pass->SetMethod(vtkContextualAOPass::VCT);
+    pass->SetApplyTo(vtkContextualAOPass::AMBIENT_TERM);
+  }
+  // The eye grid: rebuilt when the camera turns, not when it dollies; its
+  // AO near the world grid's.
+  {
+    window->Render();
+    const double worldAO = pass->GetPixelAO(cx, cy);
+    const int before = pass->GetVoxelizeCount();
+    pass->SetGrid(vtkContextualAOPass::EYE_GRID);
+    window->Render();
+    const double eyeAO = pass->GetPixelAO(cx, cy);
+    Check(pass->GetVoxelizeCount() == before + 1 && std::fabs(eyeAO - worldAO) < 0.08,
+      "the eye grid is built (" + pass->GetLastFrameStages() + "), AO by the contact " + std::to_string(eyeAO) +
+        " vs the world grid's " + std::to_string(worldAO));
+    camera->Dolly(1.1);
+    renderer->ResetCameraClippingRange();
+    window->Render();
+    Check(pass->GetLastFrameStages() == "primary,trace,ambient,combine",
+      "eye grid: a dolly keeps the grid (" + pass->GetLastFrameStages() + ")");
+    camera->Azimuth(-10);
+    renderer->ResetCameraClippingRange();
+    window->Render();
+    Check(pass->GetLastFrameStages() == "voxelize,primary,trace,ambient,combine",
+      "eye grid: a turn rebuilds it (" + pass->GetLastFrameStages() + "); the world grid does not (above)");
+    pass->SetGrid(vtkContextualAOPass::WORLD_GRID);
+  }
+
   // An open mesh (a plane) is counted as open.
   vtkNew<vtkPlaneSource> plane;
   plane->SetOrigin(-2, 2.5, 0);
@@ -227,6 +330,89 @@ int TestContextualAOPass(int, char*[])
   window->Render();
   Check(pass->GetLastFrameReport().find("multiple of 32") != std::string::npos,
     "Slices 100 is refused with the reason");
+  pass->SetSlices(128);
+  pass->SetStrength(std::nan(""));
+  window->Render();
+  Check(pass->GetLastFrameReport().find("must be numbers") != std::string::npos &&
+      pass->GetLastFrameStages().empty(),
+    "a NaN Strength is refused with the reason, and nothing runs");
+  pass->SetStrength(1.0);
+  // The volume occludes the surfaces, and carving it lightens them: a slab
+  // under a dense block of volume, carved by the volume mapper's clip box.
+  {
+    renderer->RemoveAllViewProps();
+    pass->SetSlices(128);
+    pass->SetApplyTo(vtkContextualAOPass::WHOLE_COLOR);
+    renderer->AddActor(slabActor);
+    vtkNew<vtkImageData> block;
+    block->SetDimensions(21, 21, 9);
+    block->SetOrigin(-1.0, -1.0, 0.05);
+    block->SetSpacing(0.1, 0.1, 0.1);
+    block->AllocateScalars(VTK_FLOAT, 1);
+    block->GetPointData()->GetScalars()->Fill(1.0);
+    vtkNew<vtkPiecewiseFunction> opacity;
+    opacity->AddPoint(0.0, 0.0);
+    opacity->AddPoint(1.0, 0.3);
+    vtkNew<vtkVolumeProperty> property;
+    property->SetScalarOpacity(opacity);
+    property->SetScalarOpacityUnitDistance(0.2);
+    vtkNew<vtkContextualAOVolumeMapper> mapper;
+    mapper->SetInputData(block);
+    vtkNew<vtkVolume> volume;
+    volume->SetMapper(mapper);
+    volume->SetProperty(property);
+    renderer->AddVolume(volume);
+    camera->SetPosition(0, -6, 4);
+    camera->SetFocalPoint(0, 0, 0.2);
+    camera->SetViewUp(0, 0, 1);
+    renderer->ResetCameraClippingRange();
+    int bx, by, ex, ey;
+    project(0.0, -0.5, 0.0, bx, by); // on the slab, under the block
+    project(1.6, -1.6, 0.0, ex, ey); // on the slab, beyond the block's reach... nearly
+    pass->OccludingVolumesOff();
+    window->Render();
+    const double alone = pass->GetPixelAO(bx, by);
+    pass->OccludingVolumesOn();
+    window->Render();
+    const double under = pass->GetPixelAO(bx, by);
+    std::printf("volume report: %s\n", pass->GetLastFrameReport().c_str());
+    Check(pass->GetLastFrameStages() == "volumes,primary,trace,combine" && pass->GetNumberOfOccludingVolumes() == 1 &&
+        under < alone - 0.2,
+      "the block darkens the slab under it: AO " + std::to_string(under) + " against " + std::to_string(alone) +
+        " without it (" + pass->GetLastFrameStages() + ")");
+    camera->Azimuth(10);
+    renderer->ResetCameraClippingRange();
+    window->Render();
+    Check(pass->GetLastFrameStages() == "primary,trace,combine",
+      "a camera turn does not rebuild the volume's opacity (" + pass->GetLastFrameStages() + ")");
+    camera->Azimuth(-10);
+    renderer->ResetCameraClippingRange();
+    // Carve the whole block away: the AO is the slab's alone, exactly.
+    vtkNew<vtkCubeSource> box;
+    box->SetBounds(-1.5, 1.5, -1.5, 1.5, -0.01, 1.5);
+    vtkNew<vtkPolyDataMapper> boxMapper;
+    boxMapper->SetInputConnection(box->GetOutputPort());
+    vtkNew<vtkActor> clip;
+    clip->SetMapper(boxMapper);
+    mapper->SetClipShape(clip);
+    window->Render();
+    const double carved = pass->GetPixelAO(bx, by);
+    Check(pass->GetLastFrameStages().find("volumes") == 0 && carved == alone,
+      "carving the whole block away gives the slab's own AO exactly: " + std::to_string(carved) + " (" +
+        pass->GetLastFrameStages() + ")");
+    // Half carved (x < 0 removed): between the two; then probing that box
+    // keeps only that half.
+    clip->SetPosition(-1.5, 0, 0);
+    window->Render();
+    const double half = pass->GetPixelAO(bx, by);
+    mapper->SetModeToProbing();
+    window->Render();
+    const double probed = pass->GetPixelAO(bx, by);
+    Check(half > under + 0.02 && half < alone - 0.02 && probed > under + 0.02 && probed < alone - 0.02 &&
+        std::fabs(half + probed - under - alone) < 0.5,
+      "half carved: AO " + std::to_string(half) + ", the other half probed: " + std::to_string(probed) +
+        " (between " + std::to_string(under) + " and " + std::to_string(alone) + ")");
+  }
   std::printf("%d failure(s)\n", failures);
   return failures ? 1 : 0;
 }

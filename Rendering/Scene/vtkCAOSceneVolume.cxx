@@ -1,0 +1,151 @@
+#include "vtkCAOSceneVolume.h"
+
+#include "vtkAbstractVolumeMapper.h"
+#include "vtkContextualAOVolumeMapper.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkMatrix3x3.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkProp3D.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+
+#include "vtkCAOInput.h"
+#include "vtkCAOOpacity.h"
+
+#include <cmath>
+#include <cstdint>
+
+namespace
+{
+vtkImageData* InputOf(vtkVolume* volume)
+{
+  vtkAbstractVolumeMapper* mapper = volume ? volume->GetMapper() : nullptr;
+  if (!mapper)
+    return nullptr;
+  if (vtkAlgorithm* a = mapper->GetInputAlgorithm())
+    a->Update();
+  return vtkImageData::SafeDownCast(mapper->GetDataSetInput());
+}
+
+void AppendMatrix(vtkMatrix4x4* m, std::vector<double>& key)
+{
+  for (int i = 0; i < 16; ++i)
+    key.push_back(m->GetElement(i / 4, i % 4));
+}
+}
+
+namespace vtkCAO
+{
+void AppendVolumeOpacityKey(vtkVolume* volume, std::vector<double>& key)
+{
+  vtkImageData* input = InputOf(volume);
+  key.push_back(static_cast<double>(reinterpret_cast<std::uintptr_t>(volume)));
+  key.push_back(static_cast<double>(reinterpret_cast<std::uintptr_t>(input)));
+  key.push_back(input ? static_cast<double>(input->GetMTime()) : 0.0);
+  vtkVolumeProperty* property = volume->GetProperty();
+  key.push_back(static_cast<double>(property->GetScalarOpacity(0)->GetMTime()));
+  key.push_back(property->GetScalarOpacityUnitDistance(0));
+  AppendMatrix(volume->GetMatrix(), key);
+  if (auto* mapper = vtkContextualAOVolumeMapper::SafeDownCast(volume->GetMapper()))
+    for (int i = 0; i < mapper->GetNumberOfClipShapes(); ++i)
+    {
+      vtkPolyData* mesh = mapper->GetClipShapeMeshAt(i);
+      key.push_back(static_cast<double>(reinterpret_cast<std::uintptr_t>(mesh)));
+      key.push_back(mesh ? static_cast<double>(mesh->GetMTime()) : 0.0);
+      key.push_back(mapper->GetClipShapeModeAt(i));
+      AppendMatrix(mapper->GetClipShapeAt(i)->GetMatrix(), key);
+    }
+}
+
+bool VolumeOpacity(vtkVolume* volume, cao::OpacityVolume& out, std::string& error)
+{
+  vtkImageData* input = InputOf(volume);
+  vtkDataArray* scalars = input ? input->GetPointData()->GetScalars() : nullptr;
+  if (!scalars)
+  {
+    error = "the volume's input is not image data with point scalars";
+    return false;
+  }
+  int dims[3];
+  input->GetDimensions(dims);
+  const long long voxels = static_cast<long long>(dims[0]) * dims[1] * dims[2];
+  if (voxels < 1 || voxels > MaximumOccludingVoxels)
+  {
+    error = "a volume occluding surfaces has 1 to " + std::to_string(MaximumOccludingVoxels) +
+      " voxels; this one has " + std::to_string(voxels);
+    return false;
+  }
+  // World to continuous index: (volume matrix * index-to-physical)^-1.
+  int extent[6];
+  input->GetExtent(extent);
+  vtkNew<vtkMatrix4x4> shift, indexToPhysical, indexToWorld, worldToIndex;
+  shift->SetElement(0, 3, extent[0]);
+  shift->SetElement(1, 3, extent[2]);
+  shift->SetElement(2, 3, extent[4]);
+  vtkMatrix4x4::Multiply4x4(input->GetIndexToPhysicalMatrix(), shift, indexToPhysical);
+  vtkMatrix4x4::Multiply4x4(volume->GetMatrix(), indexToPhysical, indexToWorld);
+  if (indexToWorld->Determinant() == 0.0)
+  {
+    error = "the volume's pose or spacing is singular";
+    return false;
+  }
+  vtkMatrix4x4::Invert(indexToWorld, worldToIndex);
+  for (int i = 0; i < 12; ++i)
+    out.worldToIndex[i] = worldToIndex->GetElement(i / 4, i % 4);
+  for (int d = 0; d < 3; ++d)
+    out.dims[d] = dims[d];
+  // The opacity of a unit distance (no step correction), as LAO's.
+  vtkVolumeProperty* property = volume->GetProperty();
+  out.unitDistance = property->GetScalarOpacityUnitDistance(0);
+  out.alpha.resize(static_cast<std::size_t>(voxels));
+  std::int64_t nonFinite = 0;
+  vtkCAO::ComputeOpacity(nullptr, scalars, 0, property->GetScalarOpacity(0), 1.0, out.alpha.data(), nonFinite);
+  // The clip: the voxels the mapper's shapes remove.
+  auto* mapper = vtkContextualAOVolumeMapper::SafeDownCast(volume->GetMapper());
+  const int shapes = mapper ? mapper->GetNumberOfClipShapes() : 0;
+  std::vector<std::uint8_t> probeKeeps, subtracts, inside;
+  for (int s = 0; s < shapes; ++s)
+  {
+    vtkPolyData* mesh = mapper->GetClipShapeMeshAt(s);
+    if (!mesh)
+    {
+      error = "clip shape " + std::to_string(s) + " has no mesh";
+      return false;
+    }
+    std::vector<double> points;
+    std::vector<std::int64_t> triangles;
+    vtkCAO::TrianglesOf(mesh, points, triangles);
+    vtkMatrix4x4* pose = mapper->GetClipShapeAt(s)->GetMatrix();
+    for (std::size_t i = 0; i + 2 < points.size(); i += 3)
+    {
+      const double in[4] = { points[i], points[i + 1], points[i + 2], 1.0 };
+      double w[4];
+      pose->MultiplyPoint(in, w);
+      for (int d = 0; d < 3; ++d)
+        points[i + d] = w[d] / w[3];
+    }
+    if (!cao::InsideMask({ &points, &triangles }, dims, out.worldToIndex, inside, error))
+    {
+      error = "clip shape " + std::to_string(s) + ": " + error;
+      return false;
+    }
+    const bool probe = mapper->GetClipShapeModeAt(s) == vtkContextualAOVolumeMapper::PROBING;
+    std::vector<std::uint8_t>& into = probe ? probeKeeps : subtracts;
+    if (into.empty())
+      into = inside;
+    else
+      for (std::size_t v = 0; v < inside.size(); ++v)
+        into[v] = probe ? (into[v] & inside[v]) : (into[v] | inside[v]);
+  }
+  for (std::size_t v = 0; v < out.alpha.size(); ++v)
+    if ((!probeKeeps.empty() && !probeKeeps[v]) || (!subtracts.empty() && subtracts[v]))
+      out.alpha[v] = 0.0f;
+  error = out.Validate();
+  return error.empty();
+}
+}

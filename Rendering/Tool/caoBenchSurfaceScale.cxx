@@ -1,0 +1,276 @@
+#include "caoBenchSurfaceScale.h"
+
+#include "caoCommandLine.h"
+#include "caoSurface.h"
+#include "caoVoxelConeTracing.h"
+
+#include "vtkCamera.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace caocli
+{
+const char* BenchSurfaceScaleUsage = R"(usage:
+  cao bench surface-scale MESH... [options]
+
+How the cost of surface AO grows with pixels and triangles, beside
+vtkSSAOPass in the same run (time only; `cao bench surface` measures the
+error). Per configuration, the median of --repeats frames of: the G-buffer
+(a CPU ray cast of the BVH), the world grid (built once per geometry), the
+eye grid (built again at each camera turn), the cone tracing (CPU), and
+vtkSSAOPass at its default kernel (32) and the same radius, a whole VTK
+frame timed by the wall clock. Writes DIR/surface-scale.csv.
+
+options:
+  --copies LIST        instances of the meshes, tiled in a square (default 1,9,81)
+  --sizes LIST         image sizes WxH (default 256x256,1024x768,1920x1080)
+  --quality NAME       vct preset low, medium (default) or high
+  --slices N           grid depth slices (default 128)
+  --radius-fraction F  R = F x the tiled scene's bounding-box diagonal (default 0.1)
+  --repeats N          timed frames per configuration, the median kept (default 3)
+  --threads N          CPU threads (0: all; default 0)
+  --window auto|egl|x  the SSAO window (default auto)
+  -o DIR               output folder (default surface-scale)
+)";
+
+namespace
+{
+struct Options
+{
+  std::vector<std::string> meshes;
+  std::vector<int> copies{ 1, 9, 81 };
+  std::vector<std::pair<int, int>> sizes{ { 256, 256 }, { 1024, 768 }, { 1920, 1080 } };
+  cao::VCTQuality quality = cao::VCTQuality::Medium;
+  int slices = 128, repeats = 3, threads = 0;
+  double radiusFraction = 0.1;
+  std::string window = "auto", output = "surface-scale";
+};
+
+int Fail(int code, const std::string& message)
+{
+  std::cerr << "cao: error: " << message << "\n";
+  return code;
+}
+
+bool Parse(int argc, char* argv[], Options& o, std::string& error)
+{
+  for (int i = 3; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    std::string v;
+    auto value = [&]() {
+      if (i + 1 >= argc)
+        return error = "option " + a + " needs a value", false;
+      v = argv[++i];
+      return true;
+    };
+    auto integer = [&](int& out, int lo, int hi) {
+      double d = 0;
+      if (!value() || !ToDouble(v, d) || d != std::floor(d) || d < lo || d > hi)
+        return error = a + " must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                 "] (got '" + v + "')",
+               false;
+      out = static_cast<int>(d);
+      return true;
+    };
+    if (a == "--copies")
+    {
+      if (!value())
+        return false;
+      o.copies.clear();
+      for (const std::string& item : Split(v, ','))
+      {
+        double d = 0;
+        if (!ToDouble(item, d) || d != std::floor(d) || d < 1 || d > 4096)
+          return error = "--copies takes integers 1..4096 (got '" + item + "')", false;
+        o.copies.push_back(static_cast<int>(d));
+      }
+    }
+    else if (a == "--sizes")
+    {
+      if (!value())
+        return false;
+      o.sizes.clear();
+      for (const std::string& item : Split(v, ','))
+      {
+        int w = 0, h = 0;
+        char x = 0;
+        if (std::sscanf(item.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' || w < 16 || h < 16 ||
+          w > 8192 || h > 8192)
+          return error = "--sizes takes WxH, each 16..8192 (got '" + item + "')", false;
+        o.sizes.emplace_back(w, h);
+      }
+    }
+    else if (a == "--quality")
+    {
+      if (!value() || !cao::ParseVCTQuality(v, o.quality) || o.quality == cao::VCTQuality::Custom)
+        return error = "--quality is low, medium or high (got '" + v + "')", false;
+    }
+    else if (a == "--slices")
+    {
+      if (!integer(o.slices, 32, 1024) || o.slices % 32)
+        return error = error.empty() ? "--slices must be a multiple of 32" : error, false;
+    }
+    else if (a == "--radius-fraction")
+    {
+      if (!value() || !ToDouble(v, o.radiusFraction) || !(o.radiusFraction > 0) || o.radiusFraction > 1)
+        return error = "--radius-fraction must be in (0, 1] (got '" + v + "')", false;
+    }
+    else if (a == "--repeats")
+    {
+      if (!integer(o.repeats, 1, 100))
+        return false;
+    }
+    else if (a == "--threads")
+    {
+      if (!integer(o.threads, 0, 1024))
+        return false;
+    }
+    else if (a == "--window")
+    {
+      if (!value())
+        return false;
+      o.window = v;
+    }
+    else if (a == "-o")
+    {
+      if (!value())
+        return false;
+      o.output = v;
+    }
+    else if (!a.empty() && a[0] == '-')
+      return error = "unknown option " + a, false;
+    else
+      o.meshes.push_back(a);
+  }
+  if (o.meshes.empty())
+    return error = "give at least one mesh", false;
+  return true;
+}
+
+double Median(std::vector<double> v)
+{
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+template <typename F>
+double Time(int repeats, F&& f, std::string& error, bool& ok)
+{
+  std::vector<double> t;
+  for (int r = 0; r < repeats && ok; ++r)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    ok = f();
+    t.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  }
+  (void)error;
+  return Median(t);
+}
+}
+
+int RunBenchSurfaceScale(int argc, char* argv[])
+{
+  Options o;
+  std::string error;
+  if (!Parse(argc, argv, o, error))
+    return Fail(2, error + "\n" + BenchSurfaceScaleUsage);
+  SelectThreads(o.threads);
+  ::mkdir(o.output.c_str(), 0755);
+  std::ofstream csv(o.output + "/surface-scale.csv");
+  csv << "copies,triangles,width,height,covered_pixels,primary_ms,world_grid_ms,eye_grid_ms,trace_ms,ssao_ms,"
+         "trace_ns_per_covered_pixel,trace_over_ssao,frame_world_over_ssao,frame_eye_over_ssao\n";
+  std::printf("| copies | triangles | image | covered pixels | G-buffer ms | world grid ms (once) | eye grid ms (per turn) | "
+              "trace ms | trace ns / covered pixel | vtkSSAOPass ms | trace / SSAO | G-buffer + trace / SSAO | eye grid + G-buffer + trace / "
+              "SSAO |\n|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  for (int copies : o.copies)
+  {
+    SurfaceScene scene;
+    if (!scene.Load(o.meshes, error) || !scene.Replicate(copies, error))
+      return Fail(2, error);
+    const double radius = o.radiusFraction * scene.diagonal;
+    std::vector<cao::MeshView> views;
+    for (std::size_t m = 0; m < scene.points.size(); ++m)
+      views.push_back({ &scene.points[m], &scene.triangles[m] });
+    bool ok = true;
+    cao::BitGrid world;
+    const double worldMs = Time(o.repeats, [&]() {
+      return cao::VoxelizeWorld(views, scene.bvh.Bounds(), 1.05 * radius, o.slices, world, error);
+    }, error, ok);
+    if (!ok)
+      return Fail(1, error);
+    for (const auto& size : o.sizes)
+    {
+      SurfaceView view;
+      view.width = size.first;
+      view.height = size.second;
+      vtkNew<vtkCamera> camera;
+      FitCamera(camera, scene.bvh.Bounds().data(), view);
+      cao::SurfaceFrame frame;
+      const double primaryMs = Time(o.repeats, [&]() { return CastFrame(scene, camera, view, frame, error); },
+        error, ok);
+      vtkMatrix4x4* m = camera->GetViewTransformMatrix();
+      const double right[3] = { m->GetElement(0, 0), m->GetElement(0, 1), m->GetElement(0, 2) };
+      const double up[3] = { m->GetElement(1, 0), m->GetElement(1, 1), m->GetElement(1, 2) };
+      std::array<double, 9> axes;
+      cao::BitGrid eye;
+      const double eyeMs = Time(o.repeats, [&]() {
+        return cao::EyeAxes(right, up, axes, error) &&
+          cao::PlanEyeGrid(views, axes, 1.05 * radius, o.slices, eye, error) && cao::FillGrid(views, eye, error);
+      }, error, ok);
+      cao::VCTSettings settings;
+      settings.quality = o.quality;
+      settings.slices = o.slices;
+      settings.radius = radius;
+      cao::VCTPlan plan;
+      ok = ok && cao::BuildVCTPlan(settings, world, plan, error);
+      const double traceMs = Time(o.repeats, [&]() { return cao::VCTFrame(world, plan, frame, o.threads, error); },
+        error, ok);
+      if (!ok)
+        return Fail(1, error);
+      SSAORenderer ssao;
+      std::vector<double> ao;
+      double ssaoMs = -1.0, ms = 0.0;
+      std::vector<double> times;
+      if (ssao.Setup(scene, o.window, view, error))
+      {
+        ssao.Render(camera, radius, 32, 1, ao, ms, error); // warm up: shaders, uploads
+        for (int r = 0; r < o.repeats; ++r)
+        {
+          if (!ssao.Render(camera, radius, 32, 1, ao, ms, error))
+            return Fail(1, error);
+          times.push_back(ms);
+        }
+        ssaoMs = Median(times);
+      }
+      else
+        std::cerr << "cao: warning: vtkSSAOPass skipped: " << error << "\n";
+      const double tri = static_cast<double>(scene.bvh.NumberOfTriangles());
+      auto ratio = [ssaoMs](double v) { return ssaoMs > 0 ? v / ssaoMs : -1.0; };
+      const double perPixel = frame.covered > 0 ? 1e6 * traceMs / static_cast<double>(frame.covered) : 0.0;
+      std::printf("| %d | %.0f | %dx%d | %lld | %.1f | %.1f | %.1f | %.1f | %.0f | %.1f | %.2f | %.2f | %.2f |\n",
+        copies, tri, view.width, view.height, static_cast<long long>(frame.covered), primaryMs, worldMs, eyeMs,
+        traceMs, perPixel, ssaoMs, ratio(traceMs),
+        ratio(primaryMs + traceMs), ratio(eyeMs + primaryMs + traceMs));
+      std::fflush(stdout);
+      csv << copies << "," << tri << "," << view.width << "," << view.height << "," << frame.covered << ","
+          << primaryMs << "," << worldMs
+          << "," << eyeMs << "," << traceMs << "," << ssaoMs << "," << perPixel << "," << ratio(traceMs) << ","
+          << ratio(primaryMs + traceMs) << "," << ratio(eyeMs + primaryMs + traceMs) << "\n";
+    }
+  }
+  std::cerr << "wrote " << o.output << "/surface-scale.csv\n";
+  return 0;
+}
+}

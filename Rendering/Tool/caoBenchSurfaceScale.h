@@ -1,0 +1,21 @@
+/**
+ * caoBenchSurfaceScale — `cao bench surface-scale`: how the cost of surface
+ * AO grows with pixels and triangles, side by side with vtkSSAOPass in one
+ * run. The meshes are tiled into 1, 9, 81 ... copies (the design's "many
+ * instances of the CAD part"); at each image size it times, per frame, the
+ * G-buffer cast, the world grid (once per geometry), the eye grid (again at
+ * each camera turn), the cone tracing, and vtkSSAOPass at its default
+ * kernel; it prints the table with the ratios to vtkSSAOPass and writes
+ * DIR/surface-scale.csv. Time only: the accuracy is `cao bench surface`'s.
+ */
+#ifndef caoBenchSurfaceScale_h
+#define caoBenchSurfaceScale_h
+
+namespace caocli
+{
+extern const char* BenchSurfaceScaleUsage;
+/// `cao bench surface-scale MESH... [options]`; returns the process exit code.
+int RunBenchSurfaceScale(int argc, char* argv[]);
+}
+
+#endif
