@@ -11,7 +11,9 @@ resting on a box (ParaView sources, drawn by composite mappers):
 - a volume in the same view ("Contextual AO Volume" of a block of image
   data beside the sphere) occludes the box under it, through its opacity;
   carving it all away with its Cube clip shape gives the box its own AO
-  again, exactly; Volumes Occlude Surfaces off is the control.
+  again, exactly; Volumes Occlude Surfaces off is the control;
+- selecting cells on the box with a rectangle (the hardware selector)
+  works through the pass.
 Writes OUT_DIR/view-off.png, view-on.png and view-volume.png.
 
   pvpython TestContextualAOView.py PLUGIN.so OUT_DIR   (under run-with-xvfb.sh)"""
@@ -146,6 +148,15 @@ carved = pas.GetPixelAO(px, py)
 check("volumes" in pas.GetLastFrameStages() and carved == alone,
       "carving the block away with its Cube gives the box its own AO: %.3f (%s)"
       % (carved, pas.GetLastFrameStages()))
+
+# Selection through the pass (the renderer's own path draws the ids).
+blockDisplay.Visibility = 0
+SetActiveSource(box)
+SelectSurfaceCells(Rectangle=[20, 20, 280, 100], View=view)
+picked = ExtractSelection(Input=box)
+picked.UpdatePipeline()
+cells = picked.GetDataInformation().GetNumberOfCells()
+check(cells > 0, "a rectangle selection on the box through the pass selects %d cell(s)" % cells)
 print("%d failure(s)" % len(failures))
 sys.stdout.flush()
 os._exit(1 if failures else 0)

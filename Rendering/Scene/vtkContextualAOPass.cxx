@@ -19,6 +19,7 @@
 #include "vtkProperty.h"
 #include "vtkRenderPassCollection.h"
 #include "vtkRenderState.h"
+#include "vtkHardwareSelector.h"
 #include "vtkRenderer.h"
 #include "vtkSequencePass.h"
 #include "vtkSmartPointer.h"
@@ -93,6 +94,27 @@ public:
   }
 };
 vtkStandardNewMacro(vtkCAOAOStep);
+
+/// The renderer's own drawing (lights, then every prop with its selection,
+/// depth peeling and volumes), as ParaView's vtkPVDefaultPass: what a
+/// selection render (vtkHardwareSelector) needs, since VTK's step passes
+/// do not draw selection ids.
+class vtkCAORendererStep : public vtkRenderPass
+{
+public:
+  static vtkCAORendererStep* New();
+  vtkTypeMacro(vtkCAORendererStep, vtkRenderPass);
+  void Render(const vtkRenderState* s) override
+  {
+    vtkRenderer* ren = s->GetRenderer();
+    this->ClearLights(ren);
+    this->UpdateLightGeometry(ren);
+    this->UpdateLights(ren);
+    this->UpdateGeometry(ren, s->GetFrameBuffer());
+    this->NumberOfRenderedProps = ren->GetNumberOfPropsRendered();
+  }
+};
+vtkStandardNewMacro(vtkCAORendererStep);
 }
 
 struct vtkContextualAOPass::Internals
@@ -105,6 +127,7 @@ struct vtkContextualAOPass::Internals
   vtkNew<vtkTranslucentPass> translucent;
   vtkNew<vtkVolumetricPass> volumetric;
   vtkNew<vtkOverlayPass> overlay;
+  vtkNew<vtkCAORendererStep> rendererStep;
   // This frame's scene: one entry per polygonal piece; the volumes.
   std::vector<std::pair<vtkActor*, vtkPolyData*>> pieces;
   std::vector<vtkVolume*> volumes;
@@ -230,8 +253,13 @@ void vtkContextualAOPass::Render(const vtkRenderState* s)
   p.ms.clear();
   p.error.clear();
   p.combined = 0;
-  vtkRenderPass* scene = this->SetsCamera ? static_cast<vtkRenderPass*>(p.camera.Get())
-                                          : static_cast<vtkRenderPass*>(p.sequence.Get());
+  // A selection render draws ids through the renderer's own path; every
+  // other frame, VTK's steps with the AO after the opaque one.
+  const bool selecting = s->GetRenderer() && s->GetRenderer()->GetSelector();
+  vtkRenderPass* inner = selecting ? static_cast<vtkRenderPass*>(p.rendererStep.Get())
+                                   : static_cast<vtkRenderPass*>(p.sequence.Get());
+  p.camera->SetDelegatePass(inner);
+  vtkRenderPass* scene = this->SetsCamera ? static_cast<vtkRenderPass*>(p.camera.Get()) : inner;
   scene->Render(s); // lights, opaque, RunAO, translucent, volumes, overlay
   this->NumberOfRenderedProps = scene->GetNumberOfRenderedProps();
 }
@@ -239,8 +267,8 @@ void vtkContextualAOPass::Render(const vtkRenderState* s)
 void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkRenderState* s)
 {
   vtkRenderer* ren = s->GetRenderer();
-  if (self->Method == NONE || !ren)
-    return;
+  if (self->Method == NONE || !ren || ren->GetSelector())
+    return; // a selection pass draws ids, not colours: no AO there
   this->Collect(self, ren);
   if (this->pieces.empty())
   {

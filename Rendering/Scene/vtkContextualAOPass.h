@@ -36,7 +36,8 @@
  *  - "ambient" (AMBIENT_TERM only) and "combine": every frame that has
  *    surfaces (a colour, colour-map or light change re-runs the scene's own
  *    drawing and these steps alone).
- * No visible opaque polydata actor: none of them runs.
+ * No visible opaque polydata actor: none of them runs. A selection render
+ * (vtkHardwareSelector) draws ids, not colours: the pass leaves it alone.
  *
  * The AO is cao::VCTFrame's (Filters/Kernels/Surface), on the CPU; the
  * picture is read back and written through the window (so it works on any

@@ -427,12 +427,6 @@ double PSNR(vtkUnsignedCharArray* a, vtkUnsignedCharArray* b)
   return 10.0 * std::log10(255.0 * 255.0 / (sum / (3.0 * n)));
 }
 
-double Median(std::vector<double> v)
-{
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
-}
-
 /// One row of the results.
 struct Row
 {

@@ -159,12 +159,6 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
   return true;
 }
 
-double Median(std::vector<double> v)
-{
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
-}
-
 template <typename F>
 double Time(int repeats, F&& f, std::string& error, bool& ok)
 {

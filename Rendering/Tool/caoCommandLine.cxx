@@ -1,5 +1,7 @@
 #include "caoCommandLine.h"
 
+#include <algorithm>
+
 #include "vtkAlgorithm.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
@@ -180,6 +182,12 @@ void InstallOutputWindow()
 {
   vtkNew<CliOutputWindow> window;
   vtkOutputWindow::SetInstance(window);
+}
+
+double Median(std::vector<double> v)
+{
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
 }
 
 void SelectThreads(int threads)

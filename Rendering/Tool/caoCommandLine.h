@@ -102,6 +102,10 @@ void DefaultOpacityRamp(const double range[2], vtkPiecewiseFunction* tf);
 /// VTK_SMP_BACKEND_IN_USE chooses), at most `threads` threads (0: all).
 void SelectThreads(int threads);
 
+/// The median of the benchmarks' timed runs (the upper one of an even
+/// count; 0 for none).
+double Median(std::vector<double> v);
+
 }
 
 #endif

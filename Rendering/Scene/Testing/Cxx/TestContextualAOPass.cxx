@@ -17,6 +17,8 @@
 //   grid's;
 // - the pass's AO at a pixel equals cao::VCTFrame's for the same triangles
 //   and camera (the kernel's, not a second implementation);
+// - a hardware selection through the pass picks the sphere and the slab
+//   (the pass leaves selection renders alone);
 // - an open mesh is counted; bad Slices and a NaN Strength are refused with
 //   the reason;
 // - the volume occludes: a dense block of volume (vtkContextualAOVolumeMapper)
@@ -24,6 +26,7 @@
 //   carving it all away with the mapper's clip box gives the slab's own AO
 //   exactly; half carved and the other half probed fall between.
 #include "vtkContextualAOPass.h"
+#include "vtkHardwareSelector.h"
 #include "vtkContextualAOVolumeMapper.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
@@ -179,6 +182,36 @@ int TestContextualAOPass(int, char*[])
   Check(pass->GetLastFrameStages() == "voxelize,primary,trace,ambient,combine" &&
       pass->GetVoxelizeCount() == grids + 1,
     "moving an actor re-voxelizes (" + pass->GetLastFrameStages() + ")");
+
+  // Selection (vtkHardwareSelector) through the pass: drawn by the
+  // renderer's own path (VTK's step passes draw no ids: a plain
+  // vtkRenderStepsPass, or this pass drawing its steps during selection,
+  // picks nothing here: the negative control, run by hand), so the sphere
+  // is picked at its pixel and the slab by the contact.
+  {
+    int sx, sy;
+    project(sphereActor->GetCenter()[0], sphereActor->GetCenter()[1], sphereActor->GetCenter()[2] + 0.3, sx, sy);
+    project(0.3, -0.55, 0.0, cx, cy);
+    vtkNew<vtkHardwareSelector> selector;
+    selector->SetRenderer(renderer);
+    selector->SetArea(0, 0, 199, 159);
+    selector->SetFieldAssociation(vtkDataObject::FIELD_ASSOCIATION_CELLS);
+    const int framesBefore = pass->GetFrameCount();
+    if (selector->CaptureBuffers())
+    {
+      const unsigned int atSpherePixel[2] = { static_cast<unsigned int>(sx), static_cast<unsigned int>(sy) };
+      const unsigned int atSlabPixel[2] = { static_cast<unsigned int>(cx), static_cast<unsigned int>(cy) };
+      vtkHardwareSelector::PixelInformation atSphere = selector->GetPixelInformation(atSpherePixel);
+      vtkHardwareSelector::PixelInformation atSlab = selector->GetPixelInformation(atSlabPixel);
+      selector->ClearBuffers();
+      Check(atSphere.Prop == sphereActor.Get() && atSlab.Prop == slabActor.Get() &&
+          pass->GetFrameCount() > framesBefore,
+        "a hardware selection through the pass picks the sphere and the slab by the contact");
+    }
+    else
+      Check(false, "the hardware selector captured its buffers");
+    window->Render();
+  }
 
   // The pass's AO is the kernel's: the same triangles in world space, the
   // same camera, cao::VCTFrame.
