@@ -23,7 +23,7 @@
 #include "vtkRenderer.h"
 #include "vtkSequencePass.h"
 #include "vtkSmartPointer.h"
-#include "vtkTranslucentPass.h"
+#include "vtkProp.h"
 #include "vtkVolume.h"
 #include "vtkVolumeCollection.h"
 #include "vtkVolumetricPass.h"
@@ -115,6 +115,50 @@ public:
   }
 };
 vtkStandardNewMacro(vtkCAORendererStep);
+
+/// Translucent geometry as the renderer draws it (its depth peeling, dual
+/// with volumes when UseDepthPeelingForVolumes, or its order-independent
+/// blending), not VTK's plain vtkTranslucentPass.
+class vtkCAOTranslucentStep : public vtkRenderPass
+{
+public:
+  static vtkCAOTranslucentStep* New();
+  vtkTypeMacro(vtkCAOTranslucentStep, vtkRenderPass);
+  void Render(const vtkRenderState* s) override
+  {
+    vtkRenderer* ren = s->GetRenderer();
+    this->NumberOfRenderedProps = 0;
+    if (HasTranslucent(s))
+      ren->DeviceRenderTranslucentPolygonalGeometry(s->GetFrameBuffer());
+  }
+  static bool HasTranslucent(const vtkRenderState* s)
+  {
+    for (int i = 0; i < s->GetPropArrayCount(); ++i)
+      if (s->GetPropArray()[i]->HasTranslucentPolygonalGeometry())
+        return true;
+    return false;
+  }
+};
+vtkStandardNewMacro(vtkCAOTranslucentStep);
+
+/// The volumes, unless the translucent step's dual depth peeling drew them
+/// (as vtkRenderer::UpdateGeometry decides).
+class vtkCAOVolumetricStep : public vtkVolumetricPass
+{
+public:
+  static vtkCAOVolumetricStep* New();
+  vtkTypeMacro(vtkCAOVolumetricStep, vtkVolumetricPass);
+  void Render(const vtkRenderState* s) override
+  {
+    vtkRenderer* ren = s->GetRenderer();
+    this->NumberOfRenderedProps = 0;
+    if (ren->GetUseDepthPeeling() && ren->GetUseDepthPeelingForVolumes() &&
+      vtkCAOTranslucentStep::HasTranslucent(s))
+      return;
+    this->vtkVolumetricPass::Render(s);
+  }
+};
+vtkStandardNewMacro(vtkCAOVolumetricStep);
 }
 
 struct vtkContextualAOPass::Internals
@@ -124,8 +168,8 @@ struct vtkContextualAOPass::Internals
   vtkNew<vtkLightsPass> lights;
   vtkNew<vtkOpaquePass> opaque;
   vtkNew<vtkCAOAOStep> step;
-  vtkNew<vtkTranslucentPass> translucent;
-  vtkNew<vtkVolumetricPass> volumetric;
+  vtkNew<vtkCAOTranslucentStep> translucent;
+  vtkNew<vtkCAOVolumetricStep> volumetric;
   vtkNew<vtkOverlayPass> overlay;
   vtkNew<vtkCAORendererStep> rendererStep;
   // This frame's scene: one entry per polygonal piece; the volumes.

@@ -12,7 +12,8 @@
 //   Method NONE runs nothing;
 // - a translucent sheet drawn over the contact halves the darkening (the
 //   combine runs before translucent geometry; darkening the finished
-//   picture, the negative control, would darken the sheet too);
+//   picture, the negative control, would darken the sheet too), with the
+//   renderer's depth peeling too;
 // - the eye grid: built on a turn, kept on a dolly, its AO near the world
 //   grid's;
 // - the pass's AO at a pixel equals cao::VCTFrame's for the same triangles
@@ -311,6 +312,13 @@ int TestContextualAOPass(int, char*[])
       "a translucent sheet over the contact: AO darkens by %.1f grey levels, half of %.1f without the "
       "sheet (its own colour is not darkened; darkening after it would give %.1f)", behind, bare, afterAll);
     Check(bare > 10 && std::fabs(behind - 0.5 * bare) <= 1.5 && afterAll - behind > 10, text);
+    // The same with the renderer's depth peeling (ParaView's default): the
+    // translucent step draws through the renderer's own peeling.
+    renderer->UseDepthPeelingOn();
+    const double peeled = difference();
+    Check(std::fabs(peeled - 0.5 * bare) <= 1.5 && renderer->GetLastRenderingUsedDepthPeeling(),
+      "with depth peeling the sheet also halves the darkening (" + std::to_string(peeled) + ")");
+    renderer->UseDepthPeelingOff();
     renderer->RemoveActor(sheetActor);
     pass->SetMethod(vtkContextualAOPass::VCT);
     pass->SetApplyTo(vtkContextualAOPass::AMBIENT_TERM);
