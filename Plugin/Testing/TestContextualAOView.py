@@ -13,7 +13,12 @@ resting on a box (ParaView sources, drawn by composite mappers):
   carving it all away with its Cube clip shape gives the box its own AO
   again, exactly; Volumes Occlude Surfaces off is the control;
 - selecting cells on the box with a rectangle (the hardware selector)
-  works through the pass.
+  works through the pass;
+- with Surface AO Method None the view draws what ParaView's Render View
+  draws, Hidden Line Removal on a wireframe sphere included (the renderer's
+  own opaque path);
+- with Tone Mapping on (an outer framebuffer pass) the AO still darkens the
+  contact.
 Writes OUT_DIR/view-off.png, view-on.png and view-volume.png.
 
   pvpython TestContextualAOView.py PLUGIN.so OUT_DIR   (under run-with-xvfb.sh)"""
@@ -157,6 +162,42 @@ picked = ExtractSelection(Input=box)
 picked.UpdatePipeline()
 cells = picked.GetDataInformation().GetNumberOfCells()
 check(cells > 0, "a rectangle selection on the box through the pass selects %d cell(s)" % cells)
+
+# Method None draws as the Render View, hidden-line removal included.
+ballDisplay.SetRepresentationType("Wireframe")
+view.HiddenLineRemoval = 1
+view.SurfaceAOMethod = "None"
+plain = CreateView("RenderView")
+plain.OrientationAxesVisibility = 0
+plain.ViewSize = [300, 240]
+plain.HiddenLineRemoval = 1
+Show(box, plain)
+plainBall = Show(ball, plain)
+plainBall.SetRepresentationType("Wireframe")
+plainBall.AmbientColor = plainBall.DiffuseColor = [0.9, 0.3, 0.2]
+for prop in ("CameraPosition", "CameraFocalPoint", "CameraViewUp", "CameraViewAngle"):
+    setattr(plain, prop, getattr(view, prop))
+mine = shot("view-none-hlr")
+path = os.path.join(out, "render-view-hlr.png")
+SaveScreenshot(path, plain, ImageResolution=[300, 240])
+r = vtkPNGReader()
+r.SetFileName(path)
+r.Update()
+theirs = vtk_to_numpy(r.GetOutput().GetPointData().GetScalars()).astype(float)[:, :3].reshape(240, 300, 3)
+differ = int((abs(mine - theirs).max(axis=2) > 1).sum())
+check(differ == 0, "Method None with Hidden Line Removal draws as the Render View (%d pixels differ)" % differ)
+Delete(plain)
+ballDisplay.SetRepresentationType("Surface")
+view.HiddenLineRemoval = 0
+# Tone mapping: an outer framebuffer pass around the AO.
+view.UseToneMapping = 1
+view.SurfaceAOMethod = "None"
+toneOff = shot("view-tone-off")
+view.SurfaceAOMethod = "Voxel Cones"
+toneOn = shot("view-tone-on")
+darker = int(((toneOff - toneOn).mean(axis=2) > 10).sum())
+check(darker > 300, "with Tone Mapping the AO darkens %d pixels by more than 10 grey levels" % darker)
+view.UseToneMapping = 0
 print("%d failure(s)" % len(failures))
 sys.stdout.flush()
 os._exit(1 if failures else 0)

@@ -11,8 +11,9 @@
 #include "vtkMapper.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
-#include "vtkOpaquePass.h"
+#include "vtkOpenGLFXAAFilter.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLRenderer.h"
 #include "vtkOpenGLState.h"
 #include "vtkOverlayPass.h"
 #include "vtkPolyData.h"
@@ -29,8 +30,11 @@
 #include "vtkVolumetricPass.h"
 #include "vtk_glew.h"
 
+#include "vtkCAOFrameIO.h"
 #include "vtkCAOInput.h"
 #include "vtkCAOSceneVolume.h"
+#include "vtkCompositeDataDisplayAttributes.h"
+#include "vtkCompositePolyDataMapper2.h"
 
 #include "caoSurfaceReference.h"
 #include "caoVoxelConeTracing.h"
@@ -57,14 +61,19 @@ std::vector<vtkPolyData*> Pieces(vtkMapper* mapper)
     pieces.push_back(poly);
   else if (auto* composite = vtkCompositeDataSet::SafeDownCast(input))
   {
+    auto* cpdm = vtkCompositePolyDataMapper2::SafeDownCast(mapper);
+    vtkCompositeDataDisplayAttributes* attributes =
+      cpdm ? cpdm->GetCompositeDataDisplayAttributes() : nullptr;
     vtkSmartPointer<vtkCompositeDataIterator> it;
     it.TakeReference(composite->NewIterator());
     for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
       if (auto* leaf = vtkPolyData::SafeDownCast(it->GetCurrentDataObject()))
-        pieces.push_back(leaf);
+        if (!attributes || !attributes->HasBlockVisibility(leaf) || attributes->GetBlockVisibility(leaf))
+          pieces.push_back(leaf);
   }
+  // Only polygons and strips are surfaces (lines and vertices are not).
   pieces.erase(std::remove_if(pieces.begin(), pieces.end(),
-                 [](vtkPolyData* p) { return p->GetNumberOfCells() == 0; }),
+                 [](vtkPolyData* p) { return p->GetNumberOfPolys() + p->GetNumberOfStrips() == 0; }),
     pieces.end());
   return pieces;
 }
@@ -116,6 +125,23 @@ public:
 };
 vtkStandardNewMacro(vtkCAORendererStep);
 
+/// Opaque geometry as the renderer draws it (its hidden-line removal and
+/// its own SSAO included, as the Render View), not VTK's plain vtkOpaquePass.
+class vtkCAOOpaqueStep : public vtkRenderPass
+{
+public:
+  static vtkCAOOpaqueStep* New();
+  vtkTypeMacro(vtkCAOOpaqueStep, vtkRenderPass);
+  void Render(const vtkRenderState* s) override
+  {
+    vtkRenderer* ren = s->GetRenderer();
+    const int before = ren->GetNumberOfPropsRendered();
+    ren->DeviceRenderOpaqueGeometry(s->GetFrameBuffer());
+    this->NumberOfRenderedProps = ren->GetNumberOfPropsRendered() - before;
+  }
+};
+vtkStandardNewMacro(vtkCAOOpaqueStep);
+
 /// Translucent geometry as the renderer draws it (its depth peeling, dual
 /// with volumes when UseDepthPeelingForVolumes, or its order-independent
 /// blending), not VTK's plain vtkTranslucentPass.
@@ -140,6 +166,29 @@ public:
   }
 };
 vtkStandardNewMacro(vtkCAOTranslucentStep);
+
+/// The renderer's FXAA (UseFXAA, ParaView's default), where the renderer's
+/// own path applies it: after the opaque and translucent geometry, before
+/// the volumes and overlays.
+class vtkCAOFXAAStep : public vtkRenderPass
+{
+public:
+  static vtkCAOFXAAStep* New();
+  vtkTypeMacro(vtkCAOFXAAStep, vtkRenderPass);
+  void Render(const vtkRenderState* s) override
+  {
+    auto* ren = vtkOpenGLRenderer::SafeDownCast(s->GetRenderer());
+    this->NumberOfRenderedProps = 0;
+    if (!ren || !ren->GetUseFXAA())
+      return;
+    if (ren->GetFXAAOptions())
+      this->Filter->UpdateConfiguration(ren->GetFXAAOptions());
+    this->Filter->Execute(ren);
+  }
+  void ReleaseGraphicsResources(vtkWindow* w) override { this->Filter->ReleaseGraphicsResources(); }
+  vtkNew<vtkOpenGLFXAAFilter> Filter;
+};
+vtkStandardNewMacro(vtkCAOFXAAStep);
 
 /// The volumes, unless the translucent step's dual depth peeling drew them
 /// (as vtkRenderer::UpdateGeometry decides).
@@ -166,9 +215,10 @@ struct vtkContextualAOPass::Internals
   vtkNew<vtkCameraPass> camera;
   vtkNew<vtkSequencePass> sequence;
   vtkNew<vtkLightsPass> lights;
-  vtkNew<vtkOpaquePass> opaque;
+  vtkNew<vtkCAOOpaqueStep> opaque;
   vtkNew<vtkCAOAOStep> step;
   vtkNew<vtkCAOTranslucentStep> translucent;
+  vtkNew<vtkCAOFXAAStep> fxaa;
   vtkNew<vtkCAOVolumetricStep> volumetric;
   vtkNew<vtkOverlayPass> overlay;
   vtkNew<vtkCAORendererStep> rendererStep;
@@ -186,7 +236,9 @@ struct vtkContextualAOPass::Internals
   // The volumes' opacity.
   std::vector<double> volumeKey;
   std::vector<cao::OpacityVolume> opacity;
+  std::vector<std::string> skippedVolumes; ///< why a volume does not occlude
   int volumeSerial = 0;
+  std::vector<double> failedSceneKey; ///< a scene the grid failed on (not retried)
   // What the AO image was made for: camera, viewport, settings, grid, volumes.
   std::vector<double> viewKey;
   cao::SurfaceFrame frame;
@@ -194,7 +246,8 @@ struct vtkContextualAOPass::Internals
   std::vector<std::string> stages, reasons;
   std::vector<double> ms;
   std::string error;
-  std::int64_t combined = 0;
+  std::int64_t combined = 0, hidden = 0;
+  double ndcToWorld[16] = { 0 }; ///< the traced camera's
 
   void Stage(const char* name, Clock::time_point start)
   {
@@ -213,6 +266,7 @@ struct vtkContextualAOPass::Internals
   bool UpdateVolumes(vtkContextualAOPass* self);
   bool UpdateAO(vtkContextualAOPass* self, vtkRenderer* ren);
   bool Combine(vtkContextualAOPass* self, const vtkRenderState* s);
+  bool DrawAmbient(const vtkRenderState* s, std::vector<float>& ambient, std::string& error);
 };
 
 vtkContextualAOPass::vtkContextualAOPass()
@@ -221,7 +275,7 @@ vtkContextualAOPass::vtkContextualAOPass()
   Internals& p = *this->Internal;
   vtkNew<vtkRenderPassCollection> passes;
   for (vtkRenderPass* step : std::initializer_list<vtkRenderPass*>{ p.lights, p.opaque, p.step,
-         p.translucent, p.volumetric, p.overlay })
+         p.translucent, p.fxaa, p.volumetric, p.overlay })
     passes->AddItem(step);
   p.sequence->SetPasses(passes);
   p.camera->SetDelegatePass(p.sequence);
@@ -281,7 +335,14 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
   o << "], \"triangles\": " << p.bvh.NumberOfTriangles() << ", \"open_meshes\": " << p.open
     << ", \"occluding_volumes\": " << p.opacity.size() << ", \"radius\": " << p.radius
     << ", \"slices\": " << p.grid.slices << ", \"covered_pixels\": " << p.frame.covered
-    << ", \"combined_pixels\": " << p.combined;
+    << ", \"combined_pixels\": " << p.combined << ", \"hidden_pixels\": " << p.hidden;
+  if (!p.skippedVolumes.empty())
+  {
+    o << ", \"skipped_volumes\": [";
+    for (std::size_t i = 0; i < p.skippedVolumes.size(); ++i)
+      o << (i ? ", " : "") << "\"" << p.skippedVolumes[i] << "\"";
+    o << "]";
+  }
   if (!p.error.empty())
     o << ", \"error\": \"" << p.error << "\"";
   o << "}";
@@ -296,7 +357,7 @@ void vtkContextualAOPass::Render(const vtkRenderState* s)
   p.reasons.clear();
   p.ms.clear();
   p.error.clear();
-  p.combined = 0;
+  p.combined = p.hidden = 0;
   // A selection render draws ids through the renderer's own path; every
   // other frame, VTK's steps with the AO after the opaque one.
   const bool selecting = s->GetRenderer() && s->GetRenderer()->GetSelector();
@@ -313,6 +374,10 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
   vtkRenderer* ren = s->GetRenderer();
   if (self->Method == NONE || !ren || ren->GetSelector())
     return; // a selection pass draws ids, not colours: no AO there
+  int width = 0, height = 0, x0 = 0, y0 = 0;
+  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+  if (width < 1 || height < 1)
+    return; // nothing on screen: no work
   this->Collect(self, ren);
   if (this->pieces.empty())
   {
@@ -347,8 +412,9 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
   actors->InitTraversal(it);
   while (vtkActor* actor = actors->GetNextActor(it))
   {
-    if (!actor->GetVisibility() || !actor->HasOpaqueGeometry())
-      continue;
+    if (!actor->GetVisibility() || !actor->HasOpaqueGeometry() ||
+      actor->GetProperty()->GetRepresentation() != VTK_SURFACE)
+      continue; // wireframe and points are drawn, not surfaces: no AO on them, none from them
     for (vtkPolyData* data : Pieces(actor->GetMapper()))
     {
       this->pieces.emplace_back(actor, data);
@@ -385,6 +451,11 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
   // camera's orientation changed.
   if (this->frameSceneKey == this->sceneKey)
     return true;
+  if (this->frameSceneKey == this->failedSceneKey)
+  {
+    this->error = "the scene could not be voxelized (said once; change it to try again)";
+    return false;
+  }
   const auto start = Clock::now();
   this->reasons.push_back(this->sceneKey.empty() ? "first frame"
       : self->Grid == EYE_GRID                   ? "geometry, grid or camera orientation changed"
@@ -417,8 +488,11 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
   this->sceneKey.clear();
   std::string error;
   if (!this->bvh.Build(all, allTris, error) || this->bvh.NumberOfTriangles() == 0)
+  {
+    this->failedSceneKey = this->frameSceneKey;
     return this->Fail(self, "Cannot build the scene: " +
         (error.empty() ? std::string("the actors have no triangle with an area") : error));
+  }
   std::vector<cao::MeshView> views;
   for (std::size_t i = 0; i < points.size(); ++i)
     views.push_back({ &points[i], &triangles[i] });
@@ -440,7 +514,10 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
   else
     ok = cao::VoxelizeWorld(views, b, 1.05 * this->radius, self->Slices, this->grid, error);
   if (!ok)
+  {
+    this->failedSceneKey = this->frameSceneKey;
     return this->Fail(self, "Cannot voxelize the scene: " + error);
+  }
   this->open = 0;
   for (std::int64_t e : this->grid.openEdges)
     this->open += e > 0;
@@ -456,23 +533,28 @@ bool vtkContextualAOPass::Internals::UpdateVolumes(vtkContextualAOPass* self)
   if (this->frameVolumeKey == this->volumeKey)
     return true;
   const auto start = Clock::now();
-  this->volumeKey.clear();
   this->opacity.clear();
+  this->skippedVolumes.clear();
   ++this->volumeSerial;
+  this->volumeKey = this->frameVolumeKey;
   if (this->volumes.empty())
     return true; // the last volume went: the AO is traced again, without it
   this->reasons.push_back("volumes changed");
-  this->opacity.resize(this->volumes.size());
   for (std::size_t i = 0; i < this->volumes.size(); ++i)
   {
+    // A volume that cannot occlude (not image data, cell scalars, too
+    // large, an open clip mesh) is left out, said once (until it changes)
+    // and in the report; the others and the surfaces keep their AO.
+    cao::OpacityVolume volume;
     std::string error;
-    if (!vtkCAO::VolumeOpacity(this->volumes[i], this->opacity[i], error))
+    if (vtkCAO::VolumeOpacity(this->volumes[i], volume, error))
+      this->opacity.push_back(std::move(volume));
+    else
     {
-      this->opacity.clear();
-      return this->Fail(self, "Volume " + std::to_string(i) + " cannot occlude the surfaces: " + error);
+      this->skippedVolumes.push_back("volume " + std::to_string(i) + ": " + error);
+      vtkWarningWithObjectMacro(self, << "Volume " << i << " does not occlude the surfaces: " << error);
     }
   }
-  this->volumeKey = this->frameVolumeKey;
   ++self->VolumeCount;
   this->Stage("volumes", start);
   return true;
@@ -499,6 +581,7 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
   this->viewKey.clear();
   cao::PixelCamera pixels;
   vtkMatrix4x4::Invert(&toNDC->Element[0][0], pixels.ndcToWorld);
+  std::copy(pixels.ndcToWorld, pixels.ndcToWorld + 16, this->ndcToWorld);
   pixels.width = width;
   pixels.height = height;
   std::string error;
@@ -527,40 +610,89 @@ bool vtkContextualAOPass::Internals::Combine(vtkContextualAOPass* self, const vt
 {
   // Every frame: the colours are the scene's own drawing of the opaque props.
   vtkRenderer* ren = s->GetRenderer();
-  int width = 0, height = 0, x0 = 0, y0 = 0;
-  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
-  vtkRenderWindow* window = ren->GetRenderWindow();
-  const std::size_t count = static_cast<std::size_t>(width) * height;
-  vtkNew<vtkFloatArray> rgba, ambient;
-  window->GetRGBAPixelData(x0, y0, x0 + width - 1, y0 + height - 1, 0, rgba, 0);
-  if (static_cast<std::size_t>(rgba->GetNumberOfTuples()) != count ||
-    static_cast<std::size_t>(this->frame.width) * this->frame.height != count)
-    return this->Fail(self, "the frame could not be read back");
-  bool whole = self->ApplyTo == WHOLE_COLOR;
+  const std::size_t count = static_cast<std::size_t>(this->frame.width) * this->frame.height;
+  std::vector<float> rgba, ambient, depth;
+  std::string error;
+  if (!vtkCAO::ReadViewportColor(ren, rgba, error) || rgba.size() != 4 * count)
+    return this->Fail(self, error.empty() ? "the frame does not fit the traced image" : error);
+  // The AO goes only where the drawn surface is the traced one: not on a
+  // prop the grid does not hold (glyphs, wireframe, points) drawn in front.
+  const bool depthOk = vtkCAO::ReadViewportDepth(ren, depth, error);
+  const bool whole = self->ApplyTo == WHOLE_COLOR;
   if (!whole)
   {
-    // The ambient part: the opaque props again, diffuse and specular off,
-    // over a cleared colour buffer (same depth: VTK draws with LEQUAL).
     const auto start = Clock::now();
-    std::vector<std::pair<vtkProperty*, std::array<double, 2>>> saved;
-    for (const auto& piece : this->pieces)
+    if (!this->DrawAmbient(s, ambient, error))
+      return this->Fail(self, error);
+    this->Stage("ambient", start);
+  }
+  const auto start = Clock::now();
+  const double* m = this->ndcToWorld;
+  const double tolerance = std::max(0.5 * this->grid.voxel, 1e-9);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    const double ao = this->frame.ao[i];
+    if (!std::isfinite(ao))
+      continue;
+    if (depthOk)
     {
-      vtkProperty* property = piece.first->GetProperty();
-      if (std::none_of(saved.begin(), saved.end(), [property](const auto& e) { return e.first == property; }))
-        saved.push_back({ property, { { property->GetDiffuse(), property->GetSpecular() } } });
+      // The drawn point of this pixel, back to world space, against the traced one.
+      const int px = static_cast<int>(i % this->frame.width), py = static_cast<int>(i / this->frame.width);
+      const double ndc[4] = { (px + 0.5) / this->frame.width * 2.0 - 1.0,
+        (py + 0.5) / this->frame.height * 2.0 - 1.0, 2.0 * depth[i] - 1.0, 1.0 };
+      double q[4];
+      for (int r = 0; r < 4; ++r)
+        q[r] = m[4 * r] * ndc[0] + m[4 * r + 1] * ndc[1] + m[4 * r + 2] * ndc[2] + m[4 * r + 3] * ndc[3];
+      const double* p = &this->frame.position[3 * i];
+      const double dx = q[0] / q[3] - p[0], dy = q[1] / q[3] - p[1], dz = q[2] / q[3] - p[2];
+      if (!(dx * dx + dy * dy + dz * dz <= tolerance * tolerance))
+      {
+        ++this->hidden;
+        continue;
+      }
     }
-    auto* gl = vtkOpenGLRenderWindow::SafeDownCast(window);
-    if (!gl)
-      return this->Fail(self, "the ambient term needs an OpenGL window; use ApplyTo WHOLE_COLOR");
-    vtkOpenGLState* state = gl->GetState();
+    const float dark = static_cast<float>(self->Strength * (1.0 - std::min(1.0, std::max(0.0, ao))));
+    for (int k = 0; k < 3; ++k)
+      rgba[4 * i + k] = whole ? rgba[4 * i + k] * (1.0f - dark)
+                              : std::max(0.0f, rgba[4 * i + k] - dark * ambient[4 * i + k]);
+    ++this->combined;
+  }
+  if (!vtkCAO::WriteViewportColor(ren, rgba, error))
+    return this->Fail(self, error);
+  this->Stage("combine", start);
+  return true;
+}
+
+bool vtkContextualAOPass::Internals::DrawAmbient(
+  const vtkRenderState* s, std::vector<float>& ambient, std::string& error)
+{
+  // The opaque props again, diffuse and specular off, over a cleared colour
+  // buffer (the same depth: drawn with LEQUAL); only the properties that
+  // need it are touched, and restored.
+  std::vector<std::pair<vtkProperty*, std::array<double, 2>>> saved;
+  for (const auto& piece : this->pieces)
+  {
+    vtkProperty* property = piece.first->GetProperty();
+    if ((property->GetDiffuse() != 0.0 || property->GetSpecular() != 0.0) &&
+      std::none_of(saved.begin(), saved.end(), [property](const auto& e) { return e.first == property; }))
+      saved.push_back({ property, { { property->GetDiffuse(), property->GetSpecular() } } });
+  }
+  vtkRenderer* ren = s->GetRenderer();
+  auto* gl = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
+  if (!gl)
+    return error = "the ambient term needs an OpenGL window; use ApplyTo WHOLE_COLOR", false;
+  int width = 0, height = 0, x0 = 0, y0 = 0;
+  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+  vtkOpenGLState* state = gl->GetState();
+  {
     vtkOpenGLState::ScopedglEnableDisable scissor(state, GL_SCISSOR_TEST);
     vtkOpenGLState::ScopedglScissor box(state);
     vtkOpenGLState::ScopedglClearColor clearColor(state);
+    vtkOpenGLState::ScopedglDepthFunc depthFunc(state);
     state->vtkglEnable(GL_SCISSOR_TEST);
     state->vtkglScissor(x0, y0, width, height);
     state->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
     state->vtkglClear(GL_COLOR_BUFFER_BIT);
-    vtkOpenGLState::ScopedglDepthFunc depthFunc(state);
     state->vtkglDepthFunc(GL_LEQUAL);
     for (auto& e : saved)
     {
@@ -573,25 +705,8 @@ bool vtkContextualAOPass::Internals::Combine(vtkContextualAOPass* self, const vt
       e.first->SetDiffuse(e.second[0]);
       e.first->SetSpecular(e.second[1]);
     }
-    window->GetRGBAPixelData(x0, y0, x0 + width - 1, y0 + height - 1, 0, ambient, 0);
-    this->Stage("ambient", start);
   }
-  const auto start = Clock::now();
-  float* c = rgba->GetPointer(0);
-  const float* a = whole ? nullptr : ambient->GetPointer(0);
-  for (std::size_t i = 0; i < count; ++i)
-  {
-    const double ao = this->frame.ao[i];
-    if (!std::isfinite(ao))
-      continue;
-    const float dark = static_cast<float>(self->Strength * (1.0 - std::min(1.0, std::max(0.0, ao))));
-    for (int k = 0; k < 3; ++k)
-      c[4 * i + k] = whole ? c[4 * i + k] * (1.0f - dark) : std::max(0.0f, c[4 * i + k] - dark * a[4 * i + k]);
-    ++this->combined;
-  }
-  window->SetRGBAPixelData(x0, y0, x0 + width - 1, y0 + height - 1, rgba, 0, 0, 0);
-  this->Stage("combine", start);
-  return true;
+  return vtkCAO::ReadViewportColor(ren, ambient, error);
 }
 
 void vtkContextualAOPass::PrintSelf(ostream& os, vtkIndent indent)

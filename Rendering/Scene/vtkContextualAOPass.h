@@ -5,10 +5,20 @@
  *          vtkSSAOPass is: renderer->SetPass(pass)), with the scene's
  *          volumes occluding the surfaces.
  *
- * The pass draws the scene in VTK's steps: [camera], lights, opaque
- * geometry, then the AO combine, then translucent geometry, volumes and
- * overlays. So the AO darkens the opaque surfaces only: a translucent
- * surface or a volume drawn over them keeps its own colour.
+ * The pass draws the scene in steps, each through the renderer's own path
+ * (so that with Method NONE the picture is the renderer's default one):
+ * [camera], lights, opaque geometry (hidden-line removal included), the AO
+ * combine, translucent geometry (the renderer's depth peeling or
+ * order-independent blending), the renderer's FXAA, volumes (unless dual
+ * depth peeling drew them), overlays. So the AO darkens the opaque surfaces
+ * only: a translucent surface or a volume drawn over them keeps its own
+ * colour. The pixels are read from and written to the framebuffer the
+ * renderer draws into (an outer pass's, such as tone mapping, or the
+ * window's), and the AO goes only where the drawn surface is the traced
+ * one (the drawn depth within half a voxel of the traced point), so props
+ * the grid does not hold (glyph mappers, wireframe and points
+ * representations, lines) keep their colour. A selection render
+ * (vtkHardwareSelector) goes through the renderer's whole default path.
  *
  * ApplyTo AMBIENT_TERM (default) scales the opaque surfaces' ambient term
  * (colour - Strength (1 - AO) ambient, the ambient part from a second draw
@@ -30,14 +40,16 @@
  *  - "volumes": the clipped opacity of the visible volumes
  *    (vtkCAOSceneVolume), only when a volume, its data, its opacity
  *    function, its pose or its clip shapes changed (OccludingVolumes on);
+ *    a volume that cannot occlude is left out with a warning (the report's
+ *    "skipped_volumes");
  *  - "primary" and "trace": the pixels' first surfaces (a ray cast of the
  *    same triangles) and their cone tracing, only when the grid, the
  *    volumes' opacity, the camera, the viewport or the AO settings changed;
  *  - "ambient" (AMBIENT_TERM only) and "combine": every frame that has
  *    surfaces (a colour, colour-map or light change re-runs the scene's own
  *    drawing and these steps alone).
- * No visible opaque polydata actor: none of them runs. A selection render
- * (vtkHardwareSelector) draws ids, not colours: the pass leaves it alone.
+ * No visible opaque polygonal actor, or an empty viewport: none of them
+ * runs. A scene the grid failed on is not tried again until it changes.
  *
  * The AO is cao::VCTFrame's (Filters/Kernels/Surface), on the CPU; the
  * picture is read back and written through the window (so it works on any

@@ -115,7 +115,7 @@ struct SurfaceOptions
   std::string backend = "auto", grid = "world";
   // The occluding volume and its clip.
   std::string volume, preset, presetFile, shape, clipMesh, pose, mode = "subtract";
-  bool absolute = false;
+  bool absolute = false, volumeOptions = false; ///< any option of the occluding volume given
   double unitDistance = 1.0, size = 0.0;
 };
 
@@ -228,6 +228,7 @@ bool Parse(int argc, char* argv[], SurfaceOptions& o, std::string& error)
         : a == "--pose"                    ? o.pose
                                            : o.mode;
       field = v;
+      o.volumeOptions |= a != "--volume";
       if (a == "--mode" && v != "subtract" && v != "probe")
       {
         error = "--mode is subtract or probe (got '" + v + "')";
@@ -235,16 +236,18 @@ bool Parse(int argc, char* argv[], SurfaceOptions& o, std::string& error)
       }
     }
     else if (a == "--absolute")
-      o.absolute = true;
+      o.absolute = o.volumeOptions = true;
     else if (a == "--unit-distance")
     {
       if (!number(o.unitDistance, 1e-9, 1e12))
         return false;
+      o.volumeOptions = true;
     }
     else if (a == "--size")
     {
       if (!number(o.size, 1e-12, 1e12))
         return false;
+      o.volumeOptions = true;
     }
     else if (a == "--backend")
     {
@@ -392,10 +395,10 @@ bool Parse(int argc, char* argv[], SurfaceOptions& o, std::string& error)
     error = "give the output picture with -o out.png";
     return false;
   }
-  if (o.volume.empty() && (!o.preset.empty() || !o.presetFile.empty() || !o.shape.empty() ||
-                            !o.clipMesh.empty() || !o.pose.empty()))
+  if (o.volume.empty() && o.volumeOptions)
   {
-    error = "--preset, --preset-file, --shape, --mesh and --pose describe the occluding volume: give --volume";
+    error = "--preset, --preset-file, --absolute, --unit-distance, --shape, --size, --mesh, --pose and --mode "
+            "describe the occluding volume: give --volume";
     return false;
   }
   if (!o.volume.empty() && (o.method != "vct" || o.backend == "gl"))

@@ -283,6 +283,7 @@ for args, words in [(["--method", "magic", bunny, "-o", "x.png"], "--method is")
                     (["--slices", "100", bunny, "-o", "x.png"], "multiple of 32"),
                     (["--grid", "polar", bunny, "-o", "x.png"], "--grid is world or eye"),
                     (["--shape", "cube", bunny, "-o", "x.png"], "give --volume"),
+                    (["--size", "2", bunny, "-o", "x.png"], "give --volume"),
                     (["--volume", block_vti, "--method", "ssao", bunny, "-o", "x.png"], "--method vct on the CPU"),
                     (["--volume", block_vti, "--unit-distance", "0", bunny, "-o", "x.png"], "--unit-distance"),
                     (["--volume", block_vti, "--mode", "sideways", bunny, "-o", "x.png"], "--mode is"),

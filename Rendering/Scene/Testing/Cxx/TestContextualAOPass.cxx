@@ -25,8 +25,18 @@
 // - the volume occludes: a dense block of volume (vtkContextualAOVolumeMapper)
 //   darkens the slab under it; a camera turn does not rebuild its opacity;
 //   carving it all away with the mapper's clip box gives the slab's own AO
-//   exactly; half carved and the other half probed fall between.
+//   exactly; half carved and the other half probed fall between;
+// - inside VTK's tone mapping pass (an outer framebuffer) the AO reaches the
+//   picture; a glyph cube drawn in front of the contact keeps its colour; an
+//   outline and an unstructured volume are left out without an error; an
+//   empty viewport runs nothing.
 #include "vtkContextualAOPass.h"
+#include "vtkDataSetTriangleFilter.h"
+#include "vtkGlyph3DMapper.h"
+#include "vtkOutlineFilter.h"
+#include "vtkPoints.h"
+#include "vtkToneMappingPass.h"
+#include "vtkUnstructuredGridVolumeRayCastMapper.h"
 #include "vtkHardwareSelector.h"
 #include "vtkContextualAOVolumeMapper.h"
 #include "vtkDataArray.h"
@@ -453,6 +463,113 @@ int TestContextualAOPass(int, char*[])
         std::fabs(half + probed - under - alone) < 0.5,
       "half carved: AO " + std::to_string(half) + ", the other half probed: " + std::to_string(probed) +
         " (between " + std::to_string(under) + " and " + std::to_string(alone) + ")");
+  }
+  // What the review found, each with its control:
+  // - inside an outer framebuffer pass (VTK's tone mapping, as ParaView's
+  //   Tone Mapping): the AO reaches the picture (reading the window's own
+  //   framebuffer instead darkened nothing);
+  // - a glyph cube (vtkGlyph3DMapper: not polydata surfaces, so not in the
+  //   grid) drawn in front of the contact keeps its colour where the slab
+  //   behind it is darkened (the drawn point is not the traced one);
+  // - an outline (lines only) and a volume that is not image data are left
+  //   out without an error, and the surfaces keep their AO;
+  // - an empty viewport runs nothing.
+  {
+    renderer->RemoveAllViewProps();
+    pass->SetApplyTo(vtkContextualAOPass::WHOLE_COLOR);
+    pass->SetGrid(vtkContextualAOPass::WORLD_GRID);
+    pass->SetRadius(0.8);
+    sphereActor->SetPosition(0, 0, 0);
+    renderer->AddActor(slabActor);
+    renderer->AddActor(sphereActor);
+    camera->SetPosition(0, -6, 4);
+    camera->SetFocalPoint(0, 0, 0.2);
+    camera->SetViewUp(0, 0, 1);
+    renderer->ResetCameraClippingRange();
+    project(0.0, -0.55, 0.0, cx, cy);
+    auto greyWith = [&](int method) {
+      pass->SetMethod(method);
+      window->Render();
+      return Grey(window, cx, cy);
+    };
+    const double plainOn = greyWith(vtkContextualAOPass::VCT), plainOff = greyWith(vtkContextualAOPass::NONE);
+    vtkNew<vtkToneMappingPass> tone;
+    tone->SetToneMappingType(vtkToneMappingPass::Clamp);
+    tone->SetDelegatePass(pass);
+    renderer->SetPass(tone);
+    const double toneOn = greyWith(vtkContextualAOPass::VCT), toneOff = greyWith(vtkContextualAOPass::NONE);
+    // Clamp tone mapping leaves [0, 1] colours: the same greys as without it
+    // (reading the window's own framebuffer instead gives 95, not 134).
+    Check(plainOff - plainOn > 10 && std::fabs(toneOn - plainOn) <= 2 && std::fabs(toneOff - plainOff) <= 2,
+      "inside VTK's tone mapping pass the AO reaches the picture: grey " + std::to_string(toneOn) + " (" +
+        std::to_string(plainOn) + " without tone mapping), " + std::to_string(toneOff) + " without AO");
+    renderer->SetPass(pass);
+    // A glyph cube in front of the contact.
+    vtkNew<vtkPoints> at;
+    at->InsertNextPoint(0.0, -0.9, 0.25);
+    vtkNew<vtkPolyData> where;
+    where->SetPoints(at);
+    vtkNew<vtkCubeSource> cube;
+    cube->SetXLength(0.2);
+    cube->SetYLength(0.2);
+    cube->SetZLength(0.2);
+    vtkNew<vtkGlyph3DMapper> glyphs;
+    glyphs->SetInputData(where);
+    glyphs->SetSourceConnection(cube->GetOutputPort());
+    vtkNew<vtkActor> glyphActor;
+    glyphActor->SetMapper(glyphs);
+    renderer->AddActor(glyphActor);
+    int gx, gy;
+    project(0.0, -0.9, 0.25, gx, gy);
+    pass->SetMethod(vtkContextualAOPass::VCT);
+    window->Render();
+    const double cubeOn = Grey(window, gx, gy);
+    const std::string report = pass->GetLastFrameReport();
+    pass->SetMethod(vtkContextualAOPass::NONE);
+    window->Render();
+    const double cubeOff = Grey(window, gx, gy);
+    Check(std::fabs(cubeOn - cubeOff) <= 1 && report.find("\"hidden_pixels\": 0,") == std::string::npos &&
+        pass->GetPixelAO(gx, gy) >= 0.0 && pass->GetPixelAO(gx, gy) < 0.95,
+      "a glyph cube in front keeps its colour (" + std::to_string(cubeOn) + " / " + std::to_string(cubeOff) +
+        ") where the traced slab behind it has AO " + std::to_string(pass->GetPixelAO(gx, gy)));
+    renderer->RemoveActor(glyphActor);
+    // An outline and an unstructured volume.
+    vtkNew<vtkOutlineFilter> outline;
+    outline->SetInputConnection(slab->GetOutputPort());
+    vtkNew<vtkPolyDataMapper> outlineMapper;
+    outlineMapper->SetInputConnection(outline->GetOutputPort());
+    vtkNew<vtkActor> outlineActor;
+    outlineActor->SetMapper(outlineMapper);
+    renderer->AddActor(outlineActor);
+    vtkNew<vtkImageData> cells;
+    cells->SetDimensions(3, 3, 3);
+    cells->SetOrigin(1.0, 1.0, 0.1);
+    cells->SetSpacing(0.2, 0.2, 0.2);
+    cells->AllocateScalars(VTK_FLOAT, 1);
+    cells->GetPointData()->GetScalars()->Fill(1.0);
+    vtkNew<vtkDataSetTriangleFilter> tets;
+    tets->SetInputData(cells);
+    vtkNew<vtkUnstructuredGridVolumeRayCastMapper> ugMapper;
+    ugMapper->SetInputConnection(tets->GetOutputPort());
+    vtkNew<vtkVolume> ugVolume;
+    ugVolume->SetMapper(ugMapper);
+    vtkNew<vtkVolumeProperty> ugProperty;
+    ugVolume->SetProperty(ugProperty);
+    renderer->AddVolume(ugVolume);
+    pass->SetMethod(vtkContextualAOPass::VCT);
+    window->Render();
+    const std::string withBoth = pass->GetLastFrameReport();
+    Check(withBoth.find("\"error\"") == std::string::npos &&
+        withBoth.find("skipped_volumes") != std::string::npos && pass->GetPixelAO(cx, cy) < 0.9,
+      "an outline and an unstructured volume are left out, said in the report, the slab keeps its AO: " +
+        withBoth.substr(withBoth.find("\"combined_pixels\"")));
+    renderer->RemoveAllViewProps();
+    renderer->AddActor(slabActor);
+    renderer->SetViewport(0.2, 0.2, 0.2, 0.2);
+    window->Render();
+    Check(pass->GetLastFrameStages().empty() && pass->GetLastFrameReport().find("\"error\"") == std::string::npos,
+      "an empty viewport runs nothing, without an error");
+    renderer->SetViewport(0, 0, 1, 1);
   }
   std::printf("%d failure(s)\n", failures);
   return failures ? 1 : 0;
