@@ -22,8 +22,10 @@
  *
  * ApplyTo AMBIENT_TERM (default) scales the opaque surfaces' ambient term
  * (colour - Strength (1 - AO) ambient, the ambient part from a second draw
- * of the opaque props with diffuse and specular 0); WHOLE_COLOR scales the
- * whole colour (1 - Strength (1 - AO)), as vtkSSAOPass does.
+ * of the opaque props with diffuse and specular 0: the pass sets and
+ * restores their vtkProperty's Diffuse and Specular, so those properties'
+ * MTime moves every frame); WHOLE_COLOR scales the whole colour
+ * (1 - Strength (1 - AO)), as vtkSSAOPass does.
  *
  * The grid: WORLD_GRID (default) in world axes, built while the geometry
  * does not change; EYE_GRID aligned with the camera (its slices are depth

@@ -166,7 +166,8 @@ bool InsideMask(const MeshView& mesh, const int dims[3], const std::array<double
 /// per voxel the opacity of `unitDistance` world units of it (VTK's scalar
 /// opacity and its unit distance), clipped voxels 0. Along a cone, a
 /// sphere of radius r sees the mean opacity a of the volume at its centre
-/// and its prisms' points, over its diameter: 1 - (1 - a)^(2r / unit), the
+/// and its prisms' points (on the sphere's disk across the grid's z axis,
+/// where the bits are counted), over its diameter: 1 - (1 - a)^(2r / unit), the
 /// step-length correction LAO uses (seed 003 Eq. 2, seed 000 Sec. III-C2:
 /// one absorption model), composed with the sphere's voxel occupancy as
 /// 1 - (1 - occ)(1 - alpha).
