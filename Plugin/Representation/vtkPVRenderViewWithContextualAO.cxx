@@ -1,6 +1,7 @@
 #include "vtkPVRenderViewWithContextualAO.h"
 
 #include "vtkContextualAOPass.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPVSynchronizedRenderer.h"
 #include "vtkRenderWindow.h"
@@ -21,6 +22,22 @@ vtkPVRenderViewWithContextualAO::vtkPVRenderViewWithContextualAO()
 }
 
 vtkPVRenderViewWithContextualAO::~vtkPVRenderViewWithContextualAO() = default;
+
+void vtkPVRenderViewWithContextualAO::Update()
+{
+  this->Superclass::Update();
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  const int processes = controller ? controller->GetNumberOfProcesses() : 1;
+  if (processes > 1 && this->Pass->GetMethod() != vtkContextualAOPass::NONE && !this->WarnedParallel &&
+    controller->GetLocalProcessId() == 0)
+  {
+    this->WarnedParallel = true;
+    vtkWarningMacro("Surface AO on " << processes
+                                     << " processes: each process's AO sees only its own pieces of the "
+                                        "geometry (no occlusion between pieces on different processes), so "
+                                        "it is lighter than on one process.");
+  }
+}
 
 vtkContextualAOPass* vtkPVRenderViewWithContextualAO::GetSurfaceAOPass()
 {

@@ -48,6 +48,10 @@ public:
   /// The pass, for its frame report.
   vtkContextualAOPass* GetSurfaceAOPass();
 
+  /// As the Render View's; on several processes (MPI), warns once that each
+  /// process's AO sees only its own pieces of the geometry.
+  void Update() override;
+
 protected:
   vtkPVRenderViewWithContextualAO();
   ~vtkPVRenderViewWithContextualAO() override;
@@ -56,6 +60,7 @@ private:
   vtkPVRenderViewWithContextualAO(const vtkPVRenderViewWithContextualAO&) = delete;
   void operator=(const vtkPVRenderViewWithContextualAO&) = delete;
   vtkNew<vtkContextualAOPass> Pass;
+  bool WarnedParallel = false;
 };
 
 #endif
