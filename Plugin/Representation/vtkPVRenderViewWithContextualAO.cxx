@@ -59,6 +59,11 @@ void vtkPVRenderViewWithContextualAO::SetSurfaceAOGrid(int grid)
   this->Pass->SetGrid(grid);
   this->Modified();
 }
+void vtkPVRenderViewWithContextualAO::SetSurfaceAOGBuffer(int source)
+{
+  this->Pass->SetGBuffer(source);
+  this->Modified();
+}
 void vtkPVRenderViewWithContextualAO::SetVolumesOccludeSurfaces(int on)
 {
   this->Pass->SetOccludingVolumes(on != 0);

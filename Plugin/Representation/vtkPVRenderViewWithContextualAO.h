@@ -34,10 +34,11 @@ public:
 
   ///@{
   /// Forwarded to the pass (vtkContextualAOPass's Method, ApplyTo, Radius,
-  /// Strength, Quality, Slices, Grid, OccludingVolumes).
+  /// Strength, Quality, Slices, Grid, GBuffer, OccludingVolumes).
   void SetSurfaceAOMethod(int method);
   void SetApplyAOTo(int mode);
   void SetSurfaceAOGrid(int grid);
+  void SetSurfaceAOGBuffer(int source);
   void SetVolumesOccludeSurfaces(int on);
   void SetSurfaceAORadius(double radius);
   void SetSurfaceAOStrength(double strength);

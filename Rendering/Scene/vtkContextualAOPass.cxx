@@ -41,6 +41,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <cmath>
 #include <functional>
 #include <sstream>
@@ -326,7 +327,8 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
   o << "{\"frame\": " << this->FrameCount << ", \"method\": \""
     << (this->Method == VCT ? "vct" : "none") << "\", \"apply_to\": \""
     << (this->ApplyTo == AMBIENT_TERM ? "ambient" : "whole colour") << "\", \"grid\": \""
-    << (this->Grid == EYE_GRID ? "eye" : "world") << "\", \"stages\": {";
+    << (this->Grid == EYE_GRID ? "eye" : "world") << "\", \"gbuffer\": \""
+    << (this->GBuffer == DEPTH_BUFFER ? "depth buffer" : "ray cast") << "\", \"stages\": {";
   for (std::size_t i = 0; i < p.stages.size(); ++i)
     o << (i ? ", " : "") << "\"" << p.stages[i] << "\": " << p.ms[i];
   o << "}, \"reasons\": [";
@@ -574,20 +576,39 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
     static_cast<double>(height), static_cast<double>(self->Quality), this->radius };
   for (int i = 0; i < 16; ++i)
     key.push_back(toNDC->GetElement(i / 4, i % 4));
+  key.push_back(self->GBuffer);
+  std::string error;
+  std::vector<float> depth;
+  auto start = Clock::now();
+  if (self->GBuffer == DEPTH_BUFFER)
+  {
+    // The drawn depth is part of what the AO image was made for.
+    if (!vtkCAO::ReadViewportDepth(ren, depth, error))
+      return this->Fail(self, "GBuffer DEPTH_BUFFER: " + error);
+    std::uint64_t hash = 1469598103934665603ull;
+    for (float d : depth)
+    {
+      std::uint32_t bits;
+      std::memcpy(&bits, &d, sizeof(bits));
+      hash = (hash ^ bits) * 1099511628211ull;
+    }
+    key.push_back(static_cast<double>(hash >> 11));
+  }
   if (key == this->viewKey)
     return true;
-  auto start = Clock::now();
-  this->reasons.push_back(this->stages.empty() ? "camera or settings changed" : "new grid or volumes");
+  this->reasons.push_back(!this->stages.empty() ? "new grid or volumes"
+      : self->GBuffer == DEPTH_BUFFER           ? "camera, drawn depth or settings changed"
+                                                : "camera or settings changed");
   this->viewKey.clear();
   cao::PixelCamera pixels;
   vtkMatrix4x4::Invert(&toNDC->Element[0][0], pixels.ndcToWorld);
   std::copy(pixels.ndcToWorld, pixels.ndcToWorld + 16, this->ndcToWorld);
   pixels.width = width;
   pixels.height = height;
-  std::string error;
-  if (!cao::CastPrimary(this->bvh, pixels, this->frame, error))
+  if (self->GBuffer == DEPTH_BUFFER ? !cao::FrameFromDepth(pixels, depth, this->frame, error)
+                                    : !cao::CastPrimary(this->bvh, pixels, this->frame, error))
     return this->Fail(self, error);
-  this->Stage("primary", start);
+  this->Stage(self->GBuffer == DEPTH_BUFFER ? "gbuffer" : "primary", start);
   start = Clock::now();
   cao::VCTSettings settings;
   settings.quality = static_cast<cao::VCTQuality>(self->Quality);
@@ -715,6 +736,7 @@ void vtkContextualAOPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Method: " << this->Method << "\n"
      << indent << "ApplyTo: " << this->ApplyTo << "\n"
      << indent << "Grid: " << this->Grid << "\n"
+     << indent << "GBuffer: " << this->GBuffer << "\n"
      << indent << "OccludingVolumes: " << this->OccludingVolumes << "\n"
      << indent << "SetsCamera: " << this->SetsCamera << "\n"
      << indent << "Radius: " << this->Radius << "\n"

@@ -45,8 +45,10 @@
  *    a volume that cannot occlude is left out with a warning (the report's
  *    "skipped_volumes");
  *  - "primary" and "trace": the pixels' first surfaces (a ray cast of the
- *    same triangles) and their cone tracing, only when the grid, the
- *    volumes' opacity, the camera, the viewport or the AO settings changed;
+ *    same triangles, or with GBuffer DEPTH_BUFFER "gbuffer": the drawn
+ *    depth) and their cone tracing, only when the grid, the volumes'
+ *    opacity, the camera, the viewport, the AO settings or (DEPTH_BUFFER)
+ *    the drawn depth changed;
  *  - "ambient" (AMBIENT_TERM only) and "combine": every frame that has
  *    surfaces (a colour, colour-map or light change re-runs the scene's own
  *    drawing and these steps alone).
@@ -95,6 +97,11 @@ public:
     AMBIENT_TERM = 0, ///< AO scales the ambient term
     WHOLE_COLOR = 1   ///< AO scales the whole colour (vtkSSAOPass's way)
   };
+  enum GBufferSources
+  {
+    RAY_CAST = 0,    ///< the pixels' first surfaces by a CPU ray cast of the grid's triangles (exact)
+    DEPTH_BUFFER = 1 ///< the drawn depth buffer, back to world space, normals from neighbours (fast)
+  };
   enum GridKinds
   {
     WORLD_GRID = 0, ///< world axes, cached while the geometry does not change
@@ -111,6 +118,17 @@ public:
   /// AMBIENT_TERM (default) or WHOLE_COLOR.
   vtkSetClampMacro(ApplyTo, int, AMBIENT_TERM, WHOLE_COLOR);
   vtkGetMacro(ApplyTo, int);
+  ///@}
+
+  ///@{
+  /// Where the pixels' surface points and normals come from: RAY_CAST
+  /// (default: exact, the grid's own triangles; a CPU ray cast per camera
+  /// change) or DEPTH_BUFFER (the renderer's drawn depth, read back every
+  /// frame and traced again when it changes: no ray cast, normals from the
+  /// neighbouring pixels, and every drawn opaque pixel receives AO, glyphs
+  /// and wireframes included, though only the grid's triangles occlude).
+  vtkSetClampMacro(GBuffer, int, RAY_CAST, DEPTH_BUFFER);
+  vtkGetMacro(GBuffer, int);
   ///@}
 
   ///@{
@@ -179,6 +197,7 @@ protected:
   int Method = VCT;
   int ApplyTo = AMBIENT_TERM;
   int Grid = WORLD_GRID;
+  int GBuffer = RAY_CAST;
   bool OccludingVolumes = true;
   double Radius = 0.0;
   double Strength = 1.0;

@@ -292,4 +292,119 @@ bool ReferenceFrame(const TriangleBVH& scene, const SurfaceReferenceSettings& se
   return true;
 }
 
+
+bool FrameFromDepth(const PixelCamera& camera, const std::vector<float>& depth, SurfaceFrame& frame,
+  std::string& error)
+{
+  const int w = camera.width, h = camera.height;
+  if (w < 1 || h < 1 || w > PixelCamera::MaximumSide || h > PixelCamera::MaximumSide)
+  {
+    error = "the image must be 1 to " + std::to_string(PixelCamera::MaximumSide) + " pixels a side";
+    return false;
+  }
+  const std::size_t count = static_cast<std::size_t>(w) * h;
+  if (depth.size() != count)
+  {
+    error = "the depth buffer does not match the image size";
+    return false;
+  }
+  const double* m = camera.ndcToWorld;
+  auto unproject = [m](double x, double y, double z, double out[3]) {
+    double q[4];
+    for (int r = 0; r < 4; ++r)
+      q[r] = m[4 * r] * x + m[4 * r + 1] * y + m[4 * r + 2] * z + m[4 * r + 3];
+    for (int d = 0; d < 3; ++d)
+      out[d] = q[d] / q[3];
+    return std::isfinite(out[0]) && std::isfinite(out[1]) && std::isfinite(out[2]);
+  };
+  frame = SurfaceFrame();
+  frame.width = w;
+  frame.height = h;
+  frame.triangle.assign(count, -1);
+  frame.position.assign(3 * count, 0.0);
+  frame.normal.assign(3 * count, 0.0);
+  frame.depth.assign(count, std::numeric_limits<double>::quiet_NaN());
+  frame.ao.assign(count, std::numeric_limits<double>::quiet_NaN());
+  frame.facing.assign(count, 0.0);
+  std::vector<char> valid(count, 0);
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i)
+    {
+      const std::size_t k = static_cast<std::size_t>(j) * w + i;
+      const double d = depth[k];
+      if (!(d >= 0.0 && d < 1.0))
+        continue;
+      const double x = (i + 0.5) / w * 2.0 - 1.0, y = (j + 0.5) / h * 2.0 - 1.0;
+      valid[k] = unproject(x, y, 2.0 * d - 1.0, &frame.position[3 * k]);
+    }
+  auto distance2 = [&frame](std::size_t a, std::size_t b) {
+    double s = 0.0;
+    for (int d = 0; d < 3; ++d)
+    {
+      const double t = frame.position[3 * a + d] - frame.position[3 * b + d];
+      s += t * t;
+    }
+    return s;
+  };
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i)
+    {
+      const std::size_t k = static_cast<std::size_t>(j) * w + i;
+      if (!valid[k])
+        continue;
+      // Per axis the neighbour nearer in world space (the same surface at a step).
+      double tangent[2][3];
+      bool ok = true;
+      for (int axis = 0; axis < 2 && ok; ++axis)
+      {
+        const std::size_t step = axis == 0 ? 1 : static_cast<std::size_t>(w);
+        const bool hasMinus = axis == 0 ? i > 0 : j > 0;
+        const bool hasPlus = axis == 0 ? i + 1 < w : j + 1 < h;
+        const bool minus = hasMinus && valid[k - step], plus = hasPlus && valid[k + step];
+        if (!minus && !plus)
+        {
+          ok = false;
+          break;
+        }
+        const bool usePlus = plus && (!minus || distance2(k, k + step) <= distance2(k, k - step));
+        const std::size_t a = usePlus ? k + step : k, b = usePlus ? k : k - step;
+        for (int d = 0; d < 3; ++d)
+          tangent[axis][d] = frame.position[3 * a + d] - frame.position[3 * b + d];
+      }
+      if (!ok)
+        continue;
+      double n[3] = { tangent[0][1] * tangent[1][2] - tangent[0][2] * tangent[1][1],
+        tangent[0][2] * tangent[1][0] - tangent[0][0] * tangent[1][2],
+        tangent[0][0] * tangent[1][1] - tangent[0][1] * tangent[1][0] };
+      const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      if (!(length > 0.0) || !std::isfinite(length))
+        continue;
+      // The pixel's ray, near plane to far plane.
+      const double x = (i + 0.5) / w * 2.0 - 1.0, y = (j + 0.5) / h * 2.0 - 1.0;
+      double nearPoint[3], farPoint[3];
+      if (!unproject(x, y, -1.0, nearPoint) || !unproject(x, y, 1.0, farPoint))
+        continue;
+      double ray[3] = { farPoint[0] - nearPoint[0], farPoint[1] - nearPoint[1], farPoint[2] - nearPoint[2] };
+      const double rayLength = std::sqrt(ray[0] * ray[0] + ray[1] * ray[1] + ray[2] * ray[2]);
+      double cosine = 0.0;
+      for (int d = 0; d < 3; ++d)
+      {
+        n[d] /= length;
+        ray[d] /= rayLength;
+        cosine += n[d] * ray[d];
+      }
+      const double sign = cosine > 0.0 ? -1.0 : 1.0; // facing the camera
+      double along = 0.0;
+      for (int d = 0; d < 3; ++d)
+      {
+        frame.normal[3 * k + d] = sign * n[d];
+        along += (frame.position[3 * k + d] - nearPoint[d]) * ray[d];
+      }
+      frame.facing[k] = std::fabs(cosine);
+      frame.depth[k] = along;
+      frame.triangle[k] = 0;
+      ++frame.covered;
+    }
+  return true;
+}
 }

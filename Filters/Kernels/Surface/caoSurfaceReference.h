@@ -109,6 +109,17 @@ struct SurfaceFrame
 /// The camera's G-buffer by ray casting (no AO yet; `ao` is NaN).
 bool CastPrimary(const TriangleBVH& scene, const PixelCamera& camera, SurfaceFrame& frame,
   std::string& error);
+/// The camera's G-buffer from a drawn depth buffer instead of a ray cast:
+/// `depth` (width x height window depths, 0 near .. 1 far, 1 = background)
+/// back through `camera` to world positions; each normal from the
+/// neighbours (per axis the one nearer in world space, the pixel's own
+/// surface at a depth step), facing the camera; `triangle` 0 where covered
+/// (the drawn surface, whatever drew it), -1 on the background or where no
+/// neighbour gives a normal. Float depth: positions to about 1e-7 of the
+/// depth range, normals to about a degree on surfaces at grazing angles.
+bool FrameFromDepth(const PixelCamera& camera, const std::vector<float>& depth, SurfaceFrame& frame,
+  std::string& error);
+
 /// The reference AO of every covered pixel of `frame`.
 bool ReferenceFrame(const TriangleBVH& scene, const SurfaceReferenceSettings& settings,
   SurfaceFrame& frame, std::string& error);

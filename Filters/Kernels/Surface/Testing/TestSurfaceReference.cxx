@@ -386,6 +386,67 @@ int TestSurfaceReference(int, char*[])
     CAO_CHECK(!cao::CastPrimary(bvh, cam, f, error) && error.find("16384") != std::string::npos,
       "bad image size: %s", error.c_str());
   }
+  // The G-buffer from a depth buffer: an orthographic camera over [-1, 1]^2
+  // (looking along +z, depth range z in [-2, 2]) sees two tilted planes,
+  // z = 0.3 x - 0.2 y (left half) and z = 0.3 x - 0.2 y + 0.8 (right half):
+  // positions back on the planes, normals equal to theirs (facing the
+  // camera), the step's pixels taking their own side; negative control: the
+  // far neighbour across the step would tilt the normal by ~70 degrees.
+  {
+    std::string error;
+    cao::PixelCamera cam;
+    cam.width = 64;
+    cam.height = 48;
+    const double m[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 2, 0, 0, 0, 0, 1 }; // ndc -> world
+    std::copy(m, m + 16, cam.ndcToWorld);
+    std::vector<float> depth(64 * 48, 1.0f);
+    for (int j = 0; j < 48; ++j)
+      for (int i = 0; i < 60; ++i) // the last 4 columns stay background
+      {
+        const double x = (i + 0.5) / 64 * 2 - 1, y = (j + 0.5) / 48 * 2 - 1;
+        const double z = 0.3 * x - 0.2 * y + (i >= 32 ? 0.8 : 0.0);
+        depth[j * 64 + i] = static_cast<float>((z / 2.0 + 1.0) / 2.0);
+      }
+    cao::SurfaceFrame f;
+    CAO_CHECK(cao::FrameFromDepth(cam, depth, f, error), "%s", error.c_str());
+    const double nn = std::sqrt(0.09 + 0.04 + 1.0);
+    const double expected[3] = { 0.3 / nn, -0.2 / nn, -1.0 / nn }; // facing the camera (-z)
+    double worstAngle = 0.0, worstPlane = 0.0;
+    for (int j = 0; j < 48; ++j)
+      for (int i = 0; i < 60; ++i)
+      {
+        const std::size_t k = static_cast<std::size_t>(j) * 64 + i;
+        if (f.triangle[k] < 0)
+          continue;
+        const double* p = &f.position[3 * k];
+        worstPlane = std::max(worstPlane, std::fabs(p[2] - (0.3 * p[0] - 0.2 * p[1] + (i >= 32 ? 0.8 : 0.0))));
+        double dot = 0;
+        for (int d = 0; d < 3; ++d)
+          dot += f.normal[3 * k + d] * expected[d];
+        worstAngle = std::max(worstAngle, std::acos(std::min(1.0, dot)) * 180.0 / Pi);
+      }
+    // The far neighbour across the step (the negative control).
+    const std::size_t a = 20 * 64 + 31, b = 20 * 64 + 32, c = 21 * 64 + 31;
+    double tx[3], ty[3];
+    for (int d = 0; d < 3; ++d)
+    {
+      tx[d] = f.position[3 * b + d] - f.position[3 * a + d];
+      ty[d] = f.position[3 * c + d] - f.position[3 * a + d];
+    }
+    const double wrong[3] = { tx[1] * ty[2] - tx[2] * ty[1], tx[2] * ty[0] - tx[0] * ty[2], tx[0] * ty[1] - tx[1] * ty[0] };
+    const double wl = std::sqrt(wrong[0] * wrong[0] + wrong[1] * wrong[1] + wrong[2] * wrong[2]);
+    const double wrongAngle =
+      std::acos(std::fabs(wrong[0] * expected[0] + wrong[1] * expected[1] + wrong[2] * expected[2]) / wl) * 180.0 / Pi;
+    std::printf("depth G-buffer: %lld of %d pixels covered (60 x 48 drawn), positions within %.2e of the planes, "
+                "normals within %.3f degrees; across the step the far neighbour would tilt it %.1f degrees\n",
+      static_cast<long long>(f.covered), 64 * 48, worstPlane, worstAngle, wrongAngle);
+    CAO_CHECK(f.covered == 60 * 48 && worstPlane < 1e-5 && worstAngle < 0.1 && wrongAngle > 45.0,
+      "depth G-buffer: covered %lld, plane %.2e, angle %.3f, control %.1f", static_cast<long long>(f.covered),
+      worstPlane, worstAngle, wrongAngle);
+    std::vector<float> small(10, 0.5f);
+    CAO_CHECK(!cao::FrameFromDepth(cam, small, f, error) && error.find("does not match") != std::string::npos,
+      "a depth buffer of the wrong size is refused: %s", error.c_str());
+  }
   std::printf("%d failure(s)\n", failures);
   return failures ? 1 : 0;
 }

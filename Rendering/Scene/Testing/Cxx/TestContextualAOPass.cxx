@@ -26,6 +26,8 @@
 //   darkens the slab under it; a camera turn does not rebuild its opacity;
 //   carving it all away with the mapper's clip box gives the slab's own AO
 //   exactly; half carved and the other half probed fall between;
+// - GBuffer DEPTH_BUFFER: AO near the ray cast's, a colour change runs only
+//   the combine, a glyph drawn in front is traced again;
 // - inside VTK's tone mapping pass (an outer framebuffer) the AO reaches the
 //   picture; a glyph cube drawn in front of the contact keeps its colour; an
 //   outline and an unstructured volume are left out without an error; an
@@ -570,6 +572,68 @@ int TestContextualAOPass(int, char*[])
     Check(pass->GetLastFrameStages().empty() && pass->GetLastFrameReport().find("\"error\"") == std::string::npos,
       "an empty viewport runs nothing, without an error");
     renderer->SetViewport(0, 0, 1, 1);
+  }
+  // GBuffer DEPTH_BUFFER: the drawn depth instead of the ray cast. Its AO
+  // is near the ray cast's (normals from neighbouring pixels), its
+  // G-buffer stage is cheaper, a colour change still runs only the combine,
+  // and a glyph moved in front (drawn, not in the grid) is traced again.
+  {
+    renderer->RemoveAllViewProps();
+    renderer->AddActor(slabActor);
+    renderer->AddActor(sphereActor);
+    pass->SetMethod(vtkContextualAOPass::VCT);
+    pass->SetGBuffer(vtkContextualAOPass::RAY_CAST);
+    window->Render();
+    const std::string castReport = pass->GetLastFrameReport();
+    int w = 0, h = 0, ox = 0, oy = 0;
+    renderer->GetTiledSizeAndOrigin(&w, &h, &ox, &oy);
+    std::vector<double> cast(static_cast<std::size_t>(w) * h);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        cast[static_cast<std::size_t>(y) * w + x] = pass->GetPixelAO(x, y);
+    pass->SetGBuffer(vtkContextualAOPass::DEPTH_BUFFER);
+    window->Render();
+    const std::string depthReport = pass->GetLastFrameReport();
+    double sum = 0.0;
+    int both = 0, within = 0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+      {
+        const double a = cast[static_cast<std::size_t>(y) * w + x], b = pass->GetPixelAO(x, y);
+        if (a < 0 || b < 0)
+          continue;
+        ++both;
+        sum += std::fabs(a - b);
+        within += std::fabs(a - b) < 0.05;
+      }
+    char text[300];
+    std::snprintf(text, sizeof(text),
+      "GBuffer DEPTH_BUFFER: AO within 0.05 of the ray cast's at %d of %d pixels, mean |diff| %.4f (%s)", within,
+      both, both ? sum / both : 1.0, pass->GetLastFrameStages().c_str());
+    Check(pass->GetLastFrameStages() == "gbuffer,trace,combine" && both > 15000 && sum / both < 0.01 &&
+        within > 0.95 * both, text);
+    std::printf("ray cast: %s\ndepth buffer: %s\n", castReport.c_str(), depthReport.c_str());
+    sphereActor->GetProperty()->SetColor(0.2, 0.8, 0.3);
+    window->Render();
+    Check(pass->GetLastFrameStages() == "combine", "DEPTH_BUFFER: a colour change runs only the combine (" +
+        pass->GetLastFrameStages() + ")");
+    vtkNew<vtkPoints> at;
+    at->InsertNextPoint(0.8, -0.9, 0.25);
+    vtkNew<vtkPolyData> where;
+    where->SetPoints(at);
+    vtkNew<vtkCubeSource> cube;
+    vtkNew<vtkGlyph3DMapper> glyphs;
+    glyphs->SetInputData(where);
+    glyphs->SetSourceConnection(cube->GetOutputPort());
+    glyphs->SetScaleFactor(0.2);
+    vtkNew<vtkActor> glyphActor;
+    glyphActor->SetMapper(glyphs);
+    renderer->AddActor(glyphActor);
+    window->Render();
+    Check(pass->GetLastFrameStages() == "gbuffer,trace,combine" && pass->GetVoxelizeCount() > 0,
+      "DEPTH_BUFFER: a glyph drawn in front (not in the grid) is traced again without a new grid (" +
+        pass->GetLastFrameStages() + ")");
+    pass->SetGBuffer(vtkContextualAOPass::RAY_CAST);
   }
   std::printf("%d failure(s)\n", failures);
   return failures ? 1 : 0;
