@@ -203,36 +203,57 @@ bool SurfaceReferenceAO(const TriangleBVH& scene, const double* points, const do
   return true;
 }
 
-bool CastPrimary(const TriangleBVH& scene, const PixelCamera& camera, SurfaceFrame& frame,
-  std::string& error)
+namespace
+{
+/// Empty when `camera` is usable, else why not (with the limit).
+std::string CheckCamera(const PixelCamera& camera)
 {
   if (camera.width < 1 || camera.height < 1 || camera.width > PixelCamera::MaximumSide ||
     camera.height > PixelCamera::MaximumSide)
-  {
-    error = "the image must be 1.." + std::to_string(PixelCamera::MaximumSide) + " pixels a side (got " +
+    return "the image must be 1.." + std::to_string(PixelCamera::MaximumSide) + " pixels a side (got " +
       std::to_string(camera.width) + "x" + std::to_string(camera.height) + ")";
-    return false;
-  }
   for (double m : camera.ndcToWorld)
     if (!std::isfinite(m))
-    {
-      error = "the camera's matrix is not finite";
-      return false;
-    }
+      return "the camera's matrix is not finite";
+  return std::string();
+}
+
+/// A frame of `camera`'s size with nothing covered yet.
+void ResetFrame(const PixelCamera& camera, double depthFill, SurfaceFrame& frame)
+{
   const std::size_t pixels = static_cast<std::size_t>(camera.width) * camera.height;
+  frame = SurfaceFrame();
   frame.width = camera.width;
   frame.height = camera.height;
   frame.triangle.assign(pixels, -1);
   frame.position.assign(3 * pixels, 0.0);
   frame.normal.assign(3 * pixels, 0.0);
-  frame.depth.assign(pixels, std::numeric_limits<double>::infinity());
+  frame.depth.assign(pixels, depthFill);
   frame.ao.assign(pixels, std::numeric_limits<double>::quiet_NaN());
   frame.facing.assign(pixels, 0.0);
+}
+
+/// NDC (x, y, z) to world through the camera's inverse matrix.
+bool Unproject(const PixelCamera& camera, double x, double y, double z, double out[3])
+{
   const double* m = camera.ndcToWorld;
-  auto unproject = [m](double x, double y, double z, double out[3]) {
-    double w = m[12] * x + m[13] * y + m[14] * z + m[15];
-    for (int r = 0; r < 3; ++r)
-      out[r] = (m[4 * r] * x + m[4 * r + 1] * y + m[4 * r + 2] * z + m[4 * r + 3]) / w;
+  const double w = m[12] * x + m[13] * y + m[14] * z + m[15];
+  for (int r = 0; r < 3; ++r)
+    out[r] = (m[4 * r] * x + m[4 * r + 1] * y + m[4 * r + 2] * z + m[4 * r + 3]) / w;
+  return std::isfinite(out[0]) && std::isfinite(out[1]) && std::isfinite(out[2]);
+}
+}
+
+bool CastPrimary(const TriangleBVH& scene, const PixelCamera& camera, SurfaceFrame& frame,
+  std::string& error)
+{
+  error = CheckCamera(camera);
+  if (!error.empty())
+    return false;
+  const std::size_t pixels = static_cast<std::size_t>(camera.width) * camera.height;
+  ResetFrame(camera, std::numeric_limits<double>::infinity(), frame);
+  auto unproject = [&camera](double x, double y, double z, double out[3]) {
+    return Unproject(camera, x, y, z, out);
   };
   ParallelFor(pixels, 0, [&](std::size_t index) {
     const int i = static_cast<int>(index % camera.width), j = static_cast<int>(index / camera.width);
@@ -296,36 +317,20 @@ bool ReferenceFrame(const TriangleBVH& scene, const SurfaceReferenceSettings& se
 bool FrameFromDepth(const PixelCamera& camera, const std::vector<float>& depth, SurfaceFrame& frame,
   std::string& error)
 {
-  const int w = camera.width, h = camera.height;
-  if (w < 1 || h < 1 || w > PixelCamera::MaximumSide || h > PixelCamera::MaximumSide)
-  {
-    error = "the image must be 1 to " + std::to_string(PixelCamera::MaximumSide) + " pixels a side";
+  error = CheckCamera(camera);
+  if (!error.empty())
     return false;
-  }
+  const int w = camera.width, h = camera.height;
   const std::size_t count = static_cast<std::size_t>(w) * h;
   if (depth.size() != count)
   {
     error = "the depth buffer does not match the image size";
     return false;
   }
-  const double* m = camera.ndcToWorld;
-  auto unproject = [m](double x, double y, double z, double out[3]) {
-    double q[4];
-    for (int r = 0; r < 4; ++r)
-      q[r] = m[4 * r] * x + m[4 * r + 1] * y + m[4 * r + 2] * z + m[4 * r + 3];
-    for (int d = 0; d < 3; ++d)
-      out[d] = q[d] / q[3];
-    return std::isfinite(out[0]) && std::isfinite(out[1]) && std::isfinite(out[2]);
+  auto unproject = [&camera](double x, double y, double z, double out[3]) {
+    return Unproject(camera, x, y, z, out);
   };
-  frame = SurfaceFrame();
-  frame.width = w;
-  frame.height = h;
-  frame.triangle.assign(count, -1);
-  frame.position.assign(3 * count, 0.0);
-  frame.normal.assign(3 * count, 0.0);
-  frame.depth.assign(count, std::numeric_limits<double>::quiet_NaN());
-  frame.ao.assign(count, std::numeric_limits<double>::quiet_NaN());
-  frame.facing.assign(count, 0.0);
+  ResetFrame(camera, std::numeric_limits<double>::quiet_NaN(), frame);
   std::vector<char> valid(count, 0);
   for (int j = 0; j < h; ++j)
     for (int i = 0; i < w; ++i)
