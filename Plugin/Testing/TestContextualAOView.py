@@ -78,7 +78,10 @@ check(pas.GetLastFrameStages() == "", "Surface AO Method None runs nothing")
 # The AO only darkens, around the contact, and leaves most of the picture.
 darker = (off - on).mean(axis=2)
 changed = int((darker > 10).sum())
-check(darker.min() >= -1 and 300 < changed < 0.5 * darker.size,
+# FXAA (the Render View's default, now drawn by the pass too) re-blends the
+# edge pixels next to darkened ones: up to 1 grey level brighter here, so 3
+# is allowed; the AO itself never brightens.
+check(darker.min() >= -3 and 300 < changed < 0.5 * darker.size,
       "AO only darkens (largest brightening %.1f), around the contact: %d of %d pixels darker by more "
       "than 10 grey levels" % (-darker.min(), changed, darker.size))
 view.SurfaceAOMethod = "Voxel Cones"
