@@ -248,6 +248,9 @@ struct vtkContextualAOPass::Internals
   std::vector<double> ms;
   std::string error;
   std::int64_t combined = 0, hidden = 0;
+  std::vector<float> depth; ///< this frame's drawn depth (read once, after the opaque step)
+  bool depthOk = false;
+  std::string depthError;
   double ndcToWorld[16] = { 0 }; ///< the traced camera's
 
   void Stage(const char* name, Clock::time_point start)
@@ -398,6 +401,9 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
     this->Fail(self, "Radius (0 or more, world units) and Strength (0..1) must be numbers");
     return;
   }
+  // The drawn depth, once per frame: the depth G-buffer and the combine's
+  // drawn-is-traced test both read it.
+  this->depthOk = vtkCAO::ReadViewportDepth(ren, this->depth, this->depthError);
   if (this->UpdateGrid(self) && this->UpdateVolumes(self) && this->UpdateAO(self, ren))
     this->Combine(self, s);
 }
@@ -578,15 +584,14 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
     key.push_back(toNDC->GetElement(i / 4, i % 4));
   key.push_back(self->GBuffer);
   std::string error;
-  std::vector<float> depth;
   auto start = Clock::now();
   if (self->GBuffer == DEPTH_BUFFER)
   {
     // The drawn depth is part of what the AO image was made for.
-    if (!vtkCAO::ReadViewportDepth(ren, depth, error))
-      return this->Fail(self, "GBuffer DEPTH_BUFFER: " + error);
+    if (!this->depthOk)
+      return this->Fail(self, "GBuffer DEPTH_BUFFER: " + this->depthError);
     std::uint64_t hash = 1469598103934665603ull;
-    for (float d : depth)
+    for (float d : this->depth)
     {
       std::uint32_t bits;
       std::memcpy(&bits, &d, sizeof(bits));
@@ -605,7 +610,7 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
   std::copy(pixels.ndcToWorld, pixels.ndcToWorld + 16, this->ndcToWorld);
   pixels.width = width;
   pixels.height = height;
-  if (self->GBuffer == DEPTH_BUFFER ? !cao::FrameFromDepth(pixels, depth, this->frame, error)
+  if (self->GBuffer == DEPTH_BUFFER ? !cao::FrameFromDepth(pixels, this->depth, this->frame, error)
                                     : !cao::CastPrimary(this->bvh, pixels, this->frame, error))
     return this->Fail(self, error);
   this->Stage(self->GBuffer == DEPTH_BUFFER ? "gbuffer" : "primary", start);
@@ -632,13 +637,16 @@ bool vtkContextualAOPass::Internals::Combine(vtkContextualAOPass* self, const vt
   // Every frame: the colours are the scene's own drawing of the opaque props.
   vtkRenderer* ren = s->GetRenderer();
   const std::size_t count = static_cast<std::size_t>(this->frame.width) * this->frame.height;
-  std::vector<float> rgba, ambient, depth;
+  std::vector<float> rgba, ambient;
   std::string error;
   if (!vtkCAO::ReadViewportColor(ren, rgba, error) || rgba.size() != 4 * count)
     return this->Fail(self, error.empty() ? "the frame does not fit the traced image" : error);
   // The AO goes only where the drawn surface is the traced one: not on a
   // prop the grid does not hold (glyphs, wireframe, points) drawn in front.
-  const bool depthOk = vtkCAO::ReadViewportDepth(ren, depth, error);
+  // A G-buffer made from this very depth passes by construction: no test.
+  const bool depthOk = this->depthOk && self->GBuffer == RAY_CAST &&
+    this->depth.size() == count;
+  const std::vector<float>& depth = this->depth;
   const bool whole = self->ApplyTo == WHOLE_COLOR;
   if (!whole)
   {

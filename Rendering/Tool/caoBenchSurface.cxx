@@ -434,9 +434,7 @@ int RunBenchSurface(int argc, char* argv[])
         // The grid for a camera: world axes (one for both cameras), or the
         // camera's own (eye: one per camera, as a turn rebuilds it).
         auto build = [&](vtkCamera* cam, cao::BitGrid& g, double& ms) {
-          std::vector<cao::MeshView> views;
-          for (std::size_t m = 0; m < scene.points.size(); ++m)
-            views.push_back({ &scene.points[m], &scene.triangles[m] });
+          const std::vector<cao::MeshView> views = scene.Views();
           const auto t0 = std::chrono::steady_clock::now();
           bool ok = false;
           if (kind == "world")

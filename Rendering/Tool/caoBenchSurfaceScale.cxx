@@ -197,9 +197,7 @@ int RunBenchSurfaceScale(int argc, char* argv[])
     if (!scene.Load(o.meshes, error) || !scene.Replicate(copies, error))
       return Fail(2, error);
     const double radius = o.radiusFraction * scene.diagonal;
-    std::vector<cao::MeshView> views;
-    for (std::size_t m = 0; m < scene.points.size(); ++m)
-      views.push_back({ &scene.points[m], &scene.triangles[m] });
+    const std::vector<cao::MeshView> views = scene.Views();
     bool ok = true;
     cao::BitGrid world;
     const double worldMs = Time(o.repeats, [&]() {

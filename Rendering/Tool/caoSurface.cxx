@@ -490,9 +490,7 @@ bool VCTGPU::Voxelize(const SurfaceScene& scene, const cao::BitGrid& shape,
     error = "no OpenGL context (Open first)";
     return false;
   }
-  std::vector<cao::MeshView> views;
-  for (std::size_t m = 0; m < scene.points.size(); ++m)
-    views.push_back({ &scene.points[m], &scene.triangles[m] });
+  const std::vector<cao::MeshView> views = scene.Views();
   return this->P->engine->Voxelize(shape, views, openEdges, ms, error, surfaceVoxels);
 }
 
@@ -691,14 +689,12 @@ bool CastFrame(const SurfaceScene& scene, vtkCamera* camera, const SurfaceView& 
   return cao::CastPrimary(scene.bvh, pixels, frame, error);
 }
 
-bool VoxelizeScene(const SurfaceScene& scene, int slices, double radius, cao::BitGrid& grid,
-  std::string& error, bool surfaceVoxels)
+std::vector<cao::MeshView> SurfaceScene::Views() const
 {
   std::vector<cao::MeshView> views;
-  for (std::size_t m = 0; m < scene.points.size(); ++m)
-    views.push_back({ &scene.points[m], &scene.triangles[m] });
-  // Padding: the cones reach R (and the apex offset) beyond a surface.
-  return cao::VoxelizeWorld(views, scene.bvh.Bounds(), 1.05 * radius, slices, grid, error, surfaceVoxels);
+  for (std::size_t m = 0; m < this->points.size(); ++m)
+    views.push_back({ &this->points[m], &this->triangles[m] });
+  return views;
 }
 
 namespace
@@ -763,9 +759,7 @@ bool PlanSceneGrid(const SurfaceScene& scene, vtkCamera* camera, const SurfaceOp
   const double right[3] = { view->GetElement(0, 0), view->GetElement(0, 1), view->GetElement(0, 2) };
   const double up[3] = { view->GetElement(1, 0), view->GetElement(1, 1), view->GetElement(1, 2) };
   std::array<double, 9> axes;
-  std::vector<cao::MeshView> views;
-  for (std::size_t m = 0; m < scene.points.size(); ++m)
-    views.push_back({ &scene.points[m], &scene.triangles[m] });
+  const std::vector<cao::MeshView> views = scene.Views();
   return cao::EyeAxes(right, up, axes, error) &&
     cao::PlanEyeGrid(views, axes, 1.05 * radius, o.vct.slices, grid, error);
 }
@@ -892,9 +886,7 @@ int RunSurface(int argc, char* argv[])
     }
     else
     {
-      std::vector<cao::MeshView> views;
-      for (std::size_t m = 0; m < scene.points.size(); ++m)
-        views.push_back({ &scene.points[m], &scene.triangles[m] });
+      const std::vector<cao::MeshView> views = scene.Views();
       if (!cao::FillGrid(views, grid, error, o.vct.surfaceVoxels))
         return Fail(2, error);
       voxelizeMs = Milliseconds(start);

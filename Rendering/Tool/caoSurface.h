@@ -42,6 +42,8 @@ struct SurfaceScene
   cao::TriangleBVH bvh;
   double diagonal = 0.0;
   bool Load(const std::vector<std::string>& files, std::string& error);
+  /// The meshes as the voxelizer takes them (views of points and triangles).
+  std::vector<cao::MeshView> Views() const;
   /// `copies` instances of the loaded meshes (1 to 4096), tiled k x k in x
   /// and y 1.1 times their extent apart; the BVH is rebuilt.
   bool Replicate(int copies, std::string& error);
@@ -62,9 +64,6 @@ void FitCamera(vtkCamera* camera, const double bounds[6], const SurfaceView& vie
 /// The G-buffer of the camera, by ray casting the scene's BVH.
 bool CastFrame(const SurfaceScene& scene, vtkCamera* camera, const SurfaceView& view,
   cao::SurfaceFrame& frame, std::string& error);
-/// The world-space bit grid of the scene for cones of radius R.
-bool VoxelizeScene(const SurfaceScene& scene, int slices, double radius, cao::BitGrid& grid,
-  std::string& error, bool surfaceVoxels = true);
 
 /// Voxel cone tracing on the GPU: a headless context (EGL, then OSMesa) and
 /// the engine, kept between frames.
