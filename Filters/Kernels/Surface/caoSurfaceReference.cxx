@@ -205,19 +205,6 @@ bool SurfaceReferenceAO(const TriangleBVH& scene, const double* points, const do
 
 namespace
 {
-/// Empty when `camera` is usable, else why not (with the limit).
-std::string CheckCamera(const PixelCamera& camera)
-{
-  if (camera.width < 1 || camera.height < 1 || camera.width > PixelCamera::MaximumSide ||
-    camera.height > PixelCamera::MaximumSide)
-    return "the image must be 1.." + std::to_string(PixelCamera::MaximumSide) + " pixels a side (got " +
-      std::to_string(camera.width) + "x" + std::to_string(camera.height) + ")";
-  for (double m : camera.ndcToWorld)
-    if (!std::isfinite(m))
-      return "the camera's matrix is not finite";
-  return std::string();
-}
-
 /// A frame of `camera`'s size with nothing covered yet.
 void ResetFrame(const PixelCamera& camera, double depthFill, SurfaceFrame& frame)
 {
@@ -233,8 +220,22 @@ void ResetFrame(const PixelCamera& camera, double depthFill, SurfaceFrame& frame
   frame.facing.assign(pixels, 0.0);
 }
 
-/// NDC (x, y, z) to world through the camera's inverse matrix.
-bool Unproject(const PixelCamera& camera, double x, double y, double z, double out[3])
+}
+
+std::string CheckPixelCamera(const PixelCamera& camera)
+{
+  if (camera.width < 1 || camera.height < 1 || camera.width > PixelCamera::MaximumSide ||
+    camera.height > PixelCamera::MaximumSide)
+    return "the image must be 1.." + std::to_string(PixelCamera::MaximumSide) + " pixels a side (got " +
+      std::to_string(camera.width) + "x" + std::to_string(camera.height) + ")";
+  for (double m : camera.ndcToWorld)
+    if (!std::isfinite(m))
+      return "the camera's matrix is not finite";
+  return std::string();
+}
+
+
+bool NDCToWorld(const PixelCamera& camera, double x, double y, double z, double out[3])
 {
   const double* m = camera.ndcToWorld;
   const double w = m[12] * x + m[13] * y + m[14] * z + m[15];
@@ -242,18 +243,17 @@ bool Unproject(const PixelCamera& camera, double x, double y, double z, double o
     out[r] = (m[4 * r] * x + m[4 * r + 1] * y + m[4 * r + 2] * z + m[4 * r + 3]) / w;
   return std::isfinite(out[0]) && std::isfinite(out[1]) && std::isfinite(out[2]);
 }
-}
 
 bool CastPrimary(const TriangleBVH& scene, const PixelCamera& camera, SurfaceFrame& frame,
   std::string& error)
 {
-  error = CheckCamera(camera);
+  error = CheckPixelCamera(camera);
   if (!error.empty())
     return false;
   const std::size_t pixels = static_cast<std::size_t>(camera.width) * camera.height;
   ResetFrame(camera, std::numeric_limits<double>::infinity(), frame);
   auto unproject = [&camera](double x, double y, double z, double out[3]) {
-    return Unproject(camera, x, y, z, out);
+    return NDCToWorld(camera, x, y, z, out);
   };
   ParallelFor(pixels, 0, [&](std::size_t index) {
     const int i = static_cast<int>(index % camera.width), j = static_cast<int>(index / camera.width);
@@ -317,7 +317,7 @@ bool ReferenceFrame(const TriangleBVH& scene, const SurfaceReferenceSettings& se
 bool FrameFromDepth(const PixelCamera& camera, const std::vector<float>& depth, SurfaceFrame& frame,
   std::string& error)
 {
-  error = CheckCamera(camera);
+  error = CheckPixelCamera(camera);
   if (!error.empty())
     return false;
   const int w = camera.width, h = camera.height;
@@ -328,7 +328,7 @@ bool FrameFromDepth(const PixelCamera& camera, const std::vector<float>& depth, 
     return false;
   }
   auto unproject = [&camera](double x, double y, double z, double out[3]) {
-    return Unproject(camera, x, y, z, out);
+    return NDCToWorld(camera, x, y, z, out);
   };
   ResetFrame(camera, std::numeric_limits<double>::quiet_NaN(), frame);
   std::vector<char> valid(count, 0);

@@ -92,6 +92,12 @@ struct PixelCamera
   static constexpr int MaximumSide = 16384;
 };
 
+/// Empty when `camera` is usable, else why not (with the limit).
+std::string CheckPixelCamera(const PixelCamera& camera);
+/// NDC (x, y, z) to world through the camera's inverse matrix; false when
+/// the result is not finite.
+bool NDCToWorld(const PixelCamera& camera, double x, double y, double z, double out[3]);
+
 /// What the camera sees: per pixel the first surface (the G-buffer every
 /// method starts from), and the AO there.
 struct SurfaceFrame

@@ -1,0 +1,560 @@
+#include "caoScreenSpaceAO.h"
+
+#include "caoParallelFor.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace cao
+{
+namespace
+{
+constexpr double Pi = 3.14159265358979323846;
+
+struct Vec
+{
+  double x, y, z;
+};
+Vec operator+(Vec a, Vec b)
+{
+  return { a.x + b.x, a.y + b.y, a.z + b.z };
+}
+Vec operator-(Vec a, Vec b)
+{
+  return { a.x - b.x, a.y - b.y, a.z - b.z };
+}
+Vec operator*(double s, Vec a)
+{
+  return { s * a.x, s * a.y, s * a.z };
+}
+double Dot(Vec a, Vec b)
+{
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+Vec Cross(Vec a, Vec b)
+{
+  return { a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x };
+}
+Vec Normalized(Vec a)
+{
+  const double l = std::sqrt(Dot(a, a));
+  return l > 0.0 ? (1.0 / l) * a : a;
+}
+/// Two unit vectors completing n (unit) to an orthonormal frame.
+void Complete(Vec n, Vec& t1, Vec& t2)
+{
+  const Vec a = std::fabs(n.x) < 0.6 ? Vec{ 1, 0, 0 } : Vec{ 0, 1, 0 };
+  t1 = Normalized(Cross(a, n));
+  t2 = Cross(n, t1);
+}
+
+/// A deterministic uniform number in [0, 1) from (seed, index): splitmix64.
+double Hash01(std::uint64_t seed, std::uint64_t index)
+{
+  std::uint64_t z = seed * 0x9E3779B97F4A7C15ull + index + 0x632BE59BD9B4E019ull;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  z ^= z >> 31;
+  return (z >> 11) * (1.0 / 9007199254740992.0);
+}
+
+double RadicalInverse2(std::uint64_t i)
+{
+  double r = 0.0, f = 0.5;
+  for (; i; i >>= 1, f *= 0.5)
+    if (i & 1u)
+      r += f;
+  return r;
+}
+
+/// The inverse of a row-major 4 x 4 matrix (Gauss-Jordan, partial
+/// pivoting); false when singular.
+bool Invert4(const double* m, double* out)
+{
+  double a[4][8];
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 8; ++c)
+      a[r][c] = c < 4 ? m[4 * r + c] : (c - 4 == r ? 1.0 : 0.0);
+  for (int c = 0; c < 4; ++c)
+  {
+    int pivot = c;
+    for (int r = c + 1; r < 4; ++r)
+      if (std::fabs(a[r][c]) > std::fabs(a[pivot][c]))
+        pivot = r;
+    if (!(std::fabs(a[pivot][c]) > 0.0))
+      return false;
+    std::swap(a[c], a[pivot]);
+    const double inv = 1.0 / a[c][c];
+    for (double& v : a[c])
+      v *= inv;
+    for (int r = 0; r < 4; ++r)
+      if (r != c)
+      {
+        const double f = a[r][c];
+        for (int k = 0; k < 8; ++k)
+          a[r][k] -= f * a[c][k];
+      }
+  }
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c)
+      out[4 * r + c] = a[r][c + 4];
+  return true;
+}
+
+/// The screen both methods read: the frame, its camera both ways, and per
+/// pixel its surface's NDC depth, world size and direction to the camera.
+struct Screen
+{
+  const SurfaceFrame* frame = nullptr;
+  PixelCamera camera;
+  double worldToNDC[16];
+  int w = 0, h = 0;
+  std::vector<double> ndcDepth, footprint;
+  std::vector<Vec> toCamera;
+  Vec screenRight{ 1, 0, 0 };
+
+  bool Covered(std::size_t k) const { return this->frame->triangle[k] >= 0; }
+  Vec Position(std::size_t k) const
+  {
+    const double* p = &this->frame->position[3 * k];
+    return { p[0], p[1], p[2] };
+  }
+  Vec Normal(std::size_t k) const
+  {
+    const double* n = &this->frame->normal[3 * k];
+    return { n[0], n[1], n[2] };
+  }
+  /// The pixel a world point falls in and its NDC depth; -1 off the screen
+  /// or behind the camera.
+  long long Lookup(Vec q, double& z) const
+  {
+    const double* m = this->worldToNDC;
+    const double cw = m[12] * q.x + m[13] * q.y + m[14] * q.z + m[15];
+    z = std::numeric_limits<double>::quiet_NaN();
+    if (!(cw > 0.0))
+      return -1;
+    const double x = (m[0] * q.x + m[1] * q.y + m[2] * q.z + m[3]) / cw;
+    const double y = (m[4] * q.x + m[5] * q.y + m[6] * q.z + m[7]) / cw;
+    z = (m[8] * q.x + m[9] * q.y + m[10] * q.z + m[11]) / cw;
+    const double fi = std::floor((x + 1.0) * 0.5 * this->w), fj = std::floor((y + 1.0) * 0.5 * this->h);
+    if (!(fi >= 0.0 && fi < this->w && fj >= 0.0 && fj < this->h))
+      return -1;
+    return static_cast<long long>(fj) * this->w + static_cast<long long>(fi);
+  }
+
+  bool Build(const PixelCamera& cam, const SurfaceFrame& f, std::string& error)
+  {
+    error = CheckPixelCamera(cam);
+    if (!error.empty())
+      return false;
+    const std::size_t pixels = static_cast<std::size_t>(cam.width) * cam.height;
+    if (f.width != cam.width || f.height != cam.height || f.triangle.size() != pixels ||
+      f.position.size() != 3 * pixels || f.normal.size() != 3 * pixels || f.ao.size() != pixels)
+      return error = "the frame does not match the camera's image size", false;
+    if (!Invert4(cam.ndcToWorld, this->worldToNDC))
+      return error = "the camera's matrix is singular", false;
+    this->frame = &f;
+    this->camera = cam;
+    this->w = cam.width;
+    this->h = cam.height;
+    this->ndcDepth.assign(pixels, std::numeric_limits<double>::infinity());
+    this->footprint.assign(pixels, 0.0);
+    this->toCamera.assign(pixels, Vec{ 0, 0, 1 });
+    double a[3], b[3];
+    if (NDCToWorld(cam, -1, 0, 0, a) && NDCToWorld(cam, 1, 0, 0, b))
+      this->screenRight = Normalized(Vec{ b[0] - a[0], b[1] - a[1], b[2] - a[2] });
+    for (std::size_t k = 0; k < pixels; ++k)
+    {
+      if (!this->Covered(k))
+        continue;
+      const int i = static_cast<int>(k % this->w), j = static_cast<int>(k / this->w);
+      double z = 0.0;
+      const Vec p = this->Position(k);
+      this->Lookup(p, z);
+      if (!std::isfinite(z))
+        continue;
+      this->ndcDepth[k] = z;
+      const double x = (i + 0.5) / this->w * 2.0 - 1.0, y = (j + 0.5) / this->h * 2.0 - 1.0;
+      double n[3], fa[3], side[3];
+      if (NDCToWorld(cam, x, y, -1.0, n) && NDCToWorld(cam, x, y, 1.0, fa) &&
+        NDCToWorld(cam, x + 2.0 / this->w, y, z, side))
+      {
+        this->toCamera[k] = Normalized(Vec{ n[0] - fa[0], n[1] - fa[1], n[2] - fa[2] });
+        this->footprint[k] = std::sqrt(Dot(Vec{ side[0], side[1], side[2] } - p, Vec{ side[0], side[1], side[2] } - p));
+      }
+    }
+    return true;
+  }
+};
+
+std::string CheckFrameSettings(double radius)
+{
+  if (!(radius > 0.0) || !std::isfinite(radius))
+    return "the radius must be positive and finite";
+  return std::string();
+}
+
+/// Seed 002's configurations: N_d, N_s, N_n, attenuation.
+struct HBAOConfiguration
+{
+  int directions, steps, normalRays;
+  AOFalloff attenuation;
+};
+HBAOConfiguration Configuration(const HBAOSettings& s)
+{
+  switch (s.preset)
+  {
+    case HBAOPreset::Table1:
+      return { 7, 12, 1, AOFalloff::Step };
+    case HBAOPreset::Fig11a:
+      return { 6, 9, 0, AOFalloff::Linear };
+    case HBAOPreset::Fig11b:
+      return { 8, 18, 0, AOFalloff::Step };
+    case HBAOPreset::Fig11c:
+      return { 8, 18, 1, AOFalloff::Step };
+    case HBAOPreset::Fig11d:
+      return { 18, 25, 2, AOFalloff::Step };
+    default:
+      return { s.directions, s.steps, s.normalRays, s.attenuation };
+  }
+}
+}
+
+int HBAOSettings::EffectiveDirections() const
+{
+  return Configuration(*this).directions;
+}
+int HBAOSettings::EffectiveSteps() const
+{
+  return Configuration(*this).steps;
+}
+int HBAOSettings::EffectiveNormalRays() const
+{
+  return Configuration(*this).normalRays;
+}
+AOFalloff HBAOSettings::EffectiveAttenuation() const
+{
+  return Configuration(*this).attenuation;
+}
+
+std::string HBAOSettings::Validate() const
+{
+  if (static_cast<int>(this->preset) < 0 || static_cast<int>(this->preset) > 5)
+    return "unknown HBAO preset";
+  if (this->directions < 1 || this->directions > 64)
+    return "HBAO directions must be 1..64 (got " + std::to_string(this->directions) + ")";
+  if (this->steps < 1 || this->steps > 1024)
+    return "HBAO steps must be 1..1024 (got " + std::to_string(this->steps) + ")";
+  if (this->normalRays < 0 || this->normalRays > 16)
+    return "HBAO normal rays per direction must be 0..16 (got " + std::to_string(this->normalRays) + ")";
+  if (this->attenuation != AOFalloff::Step && this->attenuation != AOFalloff::Linear)
+    return "HBAO attenuation is step or linear";
+  if (!(this->offsetPixels >= 0.0 && this->offsetPixels <= 8.0))
+    return "the HBAO offset must be 0..8 pixels";
+  if (this->blurRadius < 0 || this->blurRadius > 8)
+    return "the HBAO blur radius must be 0..8 pixels";
+  if (!(this->blurTolerance > 0.0) || !std::isfinite(this->blurTolerance))
+    return "the blur tolerance must be positive and finite";
+  return CheckFrameSettings(this->radius);
+}
+
+const char* HBAOPresetName(HBAOPreset preset)
+{
+  switch (preset)
+  {
+    case HBAOPreset::Table1:
+      return "table1";
+    case HBAOPreset::Fig11a:
+      return "fig11a";
+    case HBAOPreset::Fig11b:
+      return "fig11b";
+    case HBAOPreset::Fig11c:
+      return "fig11c";
+    case HBAOPreset::Fig11d:
+      return "fig11d";
+    default:
+      return "custom";
+  }
+}
+
+bool ParseHBAOPreset(const std::string& text, HBAOPreset& preset)
+{
+  const std::pair<const char*, HBAOPreset> names[] = { { "table1", HBAOPreset::Table1 },
+    { "fig11a", HBAOPreset::Fig11a }, { "fig11b", HBAOPreset::Fig11b }, { "fig11c", HBAOPreset::Fig11c },
+    { "fig11d", HBAOPreset::Fig11d }, { "low", HBAOPreset::Fig11a }, { "medium", HBAOPreset::Table1 },
+    { "high", HBAOPreset::Fig11d }, { "custom", HBAOPreset::Custom } };
+  for (const auto& n : names)
+    if (text == n.first)
+      return preset = n.second, true;
+  return false;
+}
+
+int VAOSettings::EffectiveSamples() const
+{
+  switch (this->quality)
+  {
+    case VAOQuality::Low:
+      return 8;
+    case VAOQuality::Medium:
+      return 16;
+    case VAOQuality::High:
+      return 32;
+    default:
+      return this->samples;
+  }
+}
+
+std::string VAOSettings::Validate() const
+{
+  if (static_cast<int>(this->quality) < 0 || static_cast<int>(this->quality) > 3)
+    return "unknown VAO quality";
+  if (this->samples < 1 || this->samples > 256)
+    return "VAO samples per pixel must be 1..256 (got " + std::to_string(this->samples) + ")";
+  if (!(this->filterTolerance > 0.0) || !std::isfinite(this->filterTolerance))
+    return "the filter tolerance must be positive and finite";
+  return CheckFrameSettings(this->radius);
+}
+
+const char* VAOQualityName(VAOQuality quality)
+{
+  switch (quality)
+  {
+    case VAOQuality::Low:
+      return "low";
+    case VAOQuality::Medium:
+      return "medium";
+    case VAOQuality::High:
+      return "high";
+    default:
+      return "custom";
+  }
+}
+
+bool ParseVAOQuality(const std::string& text, VAOQuality& quality)
+{
+  if (text == "low")
+    quality = VAOQuality::Low;
+  else if (text == "medium")
+    quality = VAOQuality::Medium;
+  else if (text == "high")
+    quality = VAOQuality::High;
+  else if (text == "custom")
+    quality = VAOQuality::Custom;
+  else
+    return false;
+  return true;
+}
+
+void DepthAwareFilter(const SurfaceFrame& frame, const std::vector<double>& weights, double tolerance,
+  std::vector<double>& values, int threads)
+{
+  const int r = static_cast<int>(weights.size() / 2), w = frame.width, h = frame.height;
+  const std::vector<double> in = values;
+  ParallelFor(static_cast<std::size_t>(w) * h, threads, [&](std::size_t k) {
+    if (frame.triangle[k] < 0 || !std::isfinite(in[k]))
+      return;
+    const int i = static_cast<int>(k % w), j = static_cast<int>(k / w);
+    const double* p = &frame.position[3 * k];
+    const double* n = &frame.normal[3 * k];
+    double sum = 0.0, weight = 0.0;
+    for (int dj = -r; dj <= r; ++dj)
+      for (int di = -r; di <= r; ++di)
+      {
+        const int ii = i + di, jj = j + dj;
+        if (ii < 0 || jj < 0 || ii >= w || jj >= h)
+          continue;
+        const std::size_t q = static_cast<std::size_t>(jj) * w + ii;
+        if (frame.triangle[q] < 0 || !std::isfinite(in[q]))
+          continue;
+        const double* o = &frame.position[3 * q];
+        const double off = (o[0] - p[0]) * n[0] + (o[1] - p[1]) * n[1] + (o[2] - p[2]) * n[2];
+        if (!(std::fabs(off) <= tolerance))
+          continue;
+        const double wt = weights[di + r] * weights[dj + r];
+        sum += wt * in[q];
+        weight += wt;
+      }
+    if (weight > 0.0)
+      values[k] = sum / weight;
+  });
+}
+
+bool HBAOFrame(const PixelCamera& camera, const HBAOSettings& settings, SurfaceFrame& frame, int threads,
+  std::string& error, const std::vector<std::size_t>* only)
+{
+  error = settings.Validate();
+  if (!error.empty())
+    return false;
+  Screen screen;
+  if (!screen.Build(camera, frame, error))
+    return false;
+  const HBAOConfiguration c = Configuration(settings);
+  const double R = settings.radius, step = R / c.steps;
+  const int tile = HBAOSettings::Tile;
+  auto attenuation = [&](double r) { return c.attenuation == AOFalloff::Linear ? std::max(0.0, 1.0 - r / R) : 1.0; };
+  std::vector<double> ao(frame.ao.size(), std::numeric_limits<double>::quiet_NaN());
+  ParallelFor(only ? only->size() : ao.size(), threads, [&](std::size_t index) {
+    const std::size_t k = only ? (*only)[index] : index;
+    if (k >= ao.size() || !screen.Covered(k) || !std::isfinite(screen.ndcDepth[k]))
+      return;
+    const int i = static_cast<int>(k % screen.w), j = static_cast<int>(k / screen.w);
+    const std::uint64_t cell = static_cast<std::uint64_t>((j % tile) * tile + (i % tile));
+    const double rotation = Hash01(settings.seed, 2 * cell) * 2.0 * Pi / c.directions;
+    const double jitter = 1.0 - Hash01(settings.seed, 2 * cell + 1); // (0, 1]
+    const Vec n = screen.Normal(k);
+    const Vec p = screen.Position(k) + (settings.offsetPixels * screen.footprint[k]) * n;
+    Vec t1, t2;
+    Complete(n, t1, t2);
+    double horizonOcclusion = 0.0, normalOcclusion = 0.0;
+    for (int d = 0; d < c.directions; ++d)
+    {
+      const double theta = rotation + 2.0 * Pi * d / c.directions;
+      const Vec t = std::cos(theta) * t1 + std::sin(theta) * t2;
+      Vec dir = t;
+      double H = 0.0, occlusion = 0.0;
+      for (int m = 0; m < c.steps; ++m)
+      {
+        double z = 0.0;
+        const long long q = screen.Lookup(p + ((m + jitter) * step) * dir, z);
+        if (q < 0)
+          break; // off the screen: no more information this way
+        if (!screen.Covered(q) || (settings.deflect && !(z > screen.ndcDepth[q])))
+          continue;
+        const Vec v = screen.Position(q) - p;
+        const double r = std::sqrt(Dot(v, v)), up = Dot(v, n), along = Dot(v, t);
+        if (!(r < R) || !(along > 0.0))
+          continue;
+        const double length = std::sqrt(up * up + along * along);
+        const double height = up / length;
+        if (height > H)
+        {
+          occlusion += (height * height - H * H) * attenuation(r);
+          H = height;
+          if (settings.deflect)
+            dir = (1.0 / length) * (up * n + along * t);
+        }
+      }
+      horizonOcclusion += occlusion;
+      for (int ray = 0; ray < c.normalRays; ++ray)
+      {
+        const double z2 = H * H + (ray + jitter * 0.999) * (1.0 - H * H) / c.normalRays;
+        const Vec r = std::sqrt(z2) * n + std::sqrt(std::max(0.0, 1.0 - z2)) * t;
+        for (int m = 0; m < c.steps; ++m)
+        {
+          double z = 0.0;
+          const double distance = (m + jitter) * step;
+          const long long q = screen.Lookup(p + distance * r, z);
+          if (q < 0)
+            break;
+          if (!screen.Covered(q) || !(z > screen.ndcDepth[q]) || !(Dot(screen.Position(q) - p, n) > 0.0))
+            continue;
+          normalOcclusion += attenuation(distance) * (1.0 - H * H) / (c.directions * c.normalRays);
+          break;
+        }
+      }
+    }
+    ao[k] = std::min(1.0, std::max(0.0, 1.0 - (horizonOcclusion / c.directions + normalOcclusion)));
+  });
+  if (settings.blurRadius > 0 && !only)
+  {
+    std::vector<double> weights(2 * settings.blurRadius + 1);
+    for (int d = -settings.blurRadius; d <= settings.blurRadius; ++d)
+      weights[d + settings.blurRadius] = std::exp(-0.5 * d * d / (1.5 * 1.5));
+    DepthAwareFilter(frame, weights, settings.blurTolerance * R, ao, threads);
+  }
+  frame.ao = ao;
+  return true;
+}
+
+bool VAOFrame(const PixelCamera& camera, const VAOSettings& settings, SurfaceFrame& frame, int threads,
+  std::string& error, const std::vector<float>* colour, std::vector<float>* indirect,
+  const std::vector<std::size_t>* only)
+{
+  error = settings.Validate();
+  if (!error.empty())
+    return false;
+  Screen screen;
+  if (!screen.Build(camera, frame, error))
+    return false;
+  const std::size_t pixels = frame.ao.size();
+  if (colour && colour->size() != 3 * pixels)
+    return error = "the colour buffer does not match the image size", false;
+  const double R = settings.radius;
+  const int n = settings.EffectiveSamples(), tile = settings.interleave ? VAOSettings::Tile : 1;
+  const int sets = tile * tile, total = sets * n;
+  // Each set covers the whole disk: sample q of set s at radius^2 (q + (s
+  // + 1/2) / sets) / n (the sets interleave their radii) and angle the
+  // radical inverse of q turned by a per-set offset; sample g = set + sets q.
+  std::vector<double> diskX(total), diskY(total);
+  for (int set = 0; set < sets; ++set)
+  {
+    const double turn = Hash01(settings.seed, static_cast<std::uint64_t>(set));
+    for (int q = 0; q < n; ++q)
+    {
+      const double rho = R * std::sqrt((q + (set + 0.5) / sets) / n);
+      const double phi = 2.0 * Pi * (RadicalInverse2(static_cast<std::uint64_t>(q)) + turn);
+      diskX[set + sets * q] = rho * std::cos(phi);
+      diskY[set + sets * q] = rho * std::sin(phi);
+    }
+  }
+  std::vector<double> ao(pixels, std::numeric_limits<double>::quiet_NaN());
+  std::vector<double> mean(colour ? 3 * pixels : 0, 0.0);
+  const double scale = 4.0 / (R * R * R * R);
+  ParallelFor(only ? only->size() : pixels, threads, [&](std::size_t index) {
+    const std::size_t k = only ? (*only)[index] : index;
+    if (k >= pixels || !screen.Covered(k) || !std::isfinite(screen.ndcDepth[k]))
+      return;
+    const int i = static_cast<int>(k % screen.w), j = static_cast<int>(k / screen.w);
+    const int set = (j % tile) * tile + (i % tile);
+    const Vec p = screen.Position(k), N = screen.Normal(k), Z = screen.toCamera[k];
+    const Vec X = Normalized(screen.screenRight - Dot(screen.screenRight, Z) * Z), Y = Cross(Z, X);
+    const double nx = Dot(N, X), ny = Dot(N, Y), nz = std::max(1e-6, Dot(N, Z));
+    double sum = 0.0, light[3] = { 0, 0, 0 };
+    int lit = 0;
+    for (int s = 0; s < n; ++s)
+    {
+      const int g = set + sets * s;
+      const double x = diskX[g], y = diskY[g];
+      const double chord = std::sqrt(std::max(0.0, R * R - x * x - y * y));
+      const Vec o = p + x * X + y * Y;
+      double zNDC = 0.0, surface = -std::numeric_limits<double>::infinity();
+      const long long q = screen.Lookup(o, zNDC);
+      if (q >= 0 && screen.Covered(q))
+      {
+        const Vec s2 = screen.Position(q);
+        surface = Dot(s2 - p, Z);
+        if (colour && static_cast<std::size_t>(q) != k && Dot(screen.Normal(q), p - s2) > 0.0)
+        {
+          for (int c = 0; c < 3; ++c)
+            light[c] += (*colour)[3 * q + c];
+          ++lit;
+        }
+      }
+      const double tangent = -(x * nx + y * ny) / nz;
+      const double zMin = std::max(std::max(-chord, surface), tangent), zMax = chord;
+      if (zMin < zMax)
+        sum += scale * ((x * nx + y * ny) * (zMax - zMin) + nz * (zMax * zMax - zMin * zMin) * 0.5);
+    }
+    ao[k] = R * R * sum / n;
+    if (colour && lit > 0)
+      for (int c = 0; c < 3; ++c)
+        mean[3 * k + c] = light[c] / lit;
+  });
+  if (settings.interleave && !only)
+    DepthAwareFilter(frame, { 0.5, 1.0, 1.0, 1.0, 0.5 }, settings.filterTolerance * R, ao, threads);
+  for (double& a : ao)
+    if (std::isfinite(a))
+      a = std::min(1.0, std::max(0.0, a));
+  if (colour && indirect)
+  {
+    indirect->assign(3 * pixels, 0.0f);
+    for (std::size_t k = 0; k < pixels; ++k)
+      if (std::isfinite(ao[k]))
+        for (int c = 0; c < 3; ++c)
+          (*indirect)[3 * k + c] = static_cast<float>(mean[3 * k + c] * (1.0 - ao[k]));
+  }
+  frame.ao = ao;
+  return true;
+}
+}
