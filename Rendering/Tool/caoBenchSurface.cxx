@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <limits>
@@ -37,6 +38,8 @@ options:
   --qualities LIST     vct presets (default low,medium,high)
   --slices LIST        vct grid depth slices (default 128,256,512)
   --kernels LIST       vtkSSAOPass kernel sizes (default 16,32,64,128; 32 is VTK's)
+  --hbao LIST          hbao configurations (default fig11a,table1,fig11b,fig11c,fig11d; none)
+  --vao LIST           vao qualities (default low,medium,high; none)
   --orbit DEG          the second camera's azimuth step, for flicker (default 0.5)
   --band PX            the depth-discontinuity band's half-width (default 2)
   --vct-backends LIST  where vct runs: cpu, gl (default cpu; gl: the OpenGL 4.3 compute
@@ -63,6 +66,9 @@ struct Options
   std::string window = "auto", output = "surface-bench";
   bool vctCPU = true, vctGL = false;
   std::vector<std::string> grids{ "world" };
+  std::vector<cao::HBAOPreset> hbao{ cao::HBAOPreset::Fig11a, cao::HBAOPreset::Table1, cao::HBAOPreset::Fig11b,
+    cao::HBAOPreset::Fig11c, cao::HBAOPreset::Fig11d };
+  std::vector<cao::VAOQuality> vao{ cao::VAOQuality::Low, cao::VAOQuality::Medium, cao::VAOQuality::High };
 };
 
 int Fail(int code, const std::string& message)
@@ -216,6 +222,28 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
         o.grids.push_back(g);
       }
     }
+    else if (a == "--hbao" || a == "--vao")
+    {
+      if (!value())
+        return false;
+      if (a == "--hbao")
+        o.hbao.clear();
+      else
+        o.vao.clear();
+      for (const std::string& item : Split(v, ','))
+      {
+        cao::HBAOPreset h;
+        cao::VAOQuality q;
+        if (item == "none")
+          continue;
+        if (a == "--hbao" && cao::ParseHBAOPreset(item, h) && h != cao::HBAOPreset::Custom)
+          o.hbao.push_back(h);
+        else if (a == "--vao" && cao::ParseVAOQuality(item, q) && q != cao::VAOQuality::Custom)
+          o.vao.push_back(q);
+        else
+          return error = a + ": '" + item + "' is not a " + (a == "--hbao" ? "configuration" : "quality"), false;
+      }
+    }
     else if (a == "--repeats")
     {
       if (!value() || !IntList(v, 1, 100, list, error, "--repeats"))
@@ -266,8 +294,10 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
 struct Row
 {
   std::string mesh, method, label;
-  int series = 0; ///< 0 vct (CPU), 1 ssao, 2 none, 3 reference, 4 vct (GL)
+  int series = 0; ///< 0 vct (CPU), 1 ssao, 2 none, 3 reference, 4 vct (GL), 5 hbao, 6 vao
   double ms = 0, gridMs = -1;
+  double ownRmse = -1; ///< against the reference in the method's own falloff (-1: none)
+  std::string ownFalloff;
   double rmse = 0, bias = 0, p99 = 0, bandRmse = 0, flicker = 0, referenceFlicker = 0;
   std::int64_t pixels = 0;
 };
@@ -504,6 +534,78 @@ int RunBenchSurface(int argc, char* argv[])
         }
       }
     }
+    // The screen-space methods on the same G-buffers, each also against the
+    // reference in its own falloff (quartic for vao, linear for fig11a).
+    std::map<int, std::pair<cao::SurfaceFrame, cao::SurfaceFrame>> own;
+    auto ownReference = [&](cao::AOFalloff falloff) -> const std::pair<cao::SurfaceFrame, cao::SurfaceFrame>* {
+      const int key = static_cast<int>(falloff);
+      if (!own.count(key))
+      {
+        cao::SurfaceReferenceSettings fs = rs;
+        fs.falloff = falloff;
+        std::pair<cao::SurfaceFrame, cao::SurfaceFrame> pair{ frame, frame2 };
+        if (!cao::ReferenceFrame(scene.bvh, fs, pair.first, error) ||
+          !cao::ReferenceFrame(scene.bvh, fs, pair.second, error))
+          return nullptr;
+        own[key] = std::move(pair);
+      }
+      return &own[key];
+    };
+    const cao::PixelCamera pixels = MakePixelCamera(camera, o.view), pixels2 = MakePixelCamera(camera2, o.view);
+    auto screenSpace = [&](const std::string& method, const std::string& label, int series, cao::AOFalloff falloff,
+                         const std::function<bool(const cao::PixelCamera&, cao::SurfaceFrame&)>& run) {
+      std::vector<double> times;
+      cao::SurfaceFrame a = frame, b = frame2;
+      for (int r = 0; r < o.repeats; ++r)
+      {
+        a = frame;
+        start = std::chrono::steady_clock::now();
+        if (!run(pixels, a))
+          return false;
+        times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+      }
+      if (!run(pixels2, b))
+        return false;
+      Row row;
+      row.mesh = name;
+      row.method = method;
+      row.label = label;
+      row.series = series;
+      row.ms = Median(times);
+      Measure(row, a.ao, b.ao, ref.ao, ref2.ao, band);
+      row.ownFalloff = cao::FalloffName(falloff);
+      if (falloff == cao::AOFalloff::Step)
+        row.ownRmse = row.rmse;
+      else
+      {
+        const auto* pair = ownReference(falloff);
+        if (!pair)
+          return false;
+        Row mine;
+        Measure(mine, a.ao, b.ao, pair->first.ao, pair->second.ao, band);
+        row.ownRmse = mine.rmse;
+      }
+      rows.push_back(row);
+      return true;
+    };
+    for (cao::HBAOPreset preset : o.hbao)
+    {
+      cao::HBAOSettings hs;
+      hs.preset = preset;
+      hs.radius = radius;
+      if (!screenSpace("hbao", std::string("hbao ") + cao::HBAOPresetName(preset), 5, hs.EffectiveAttenuation(),
+            [&](const cao::PixelCamera& c, cao::SurfaceFrame& f) { return cao::HBAOFrame(c, hs, f, o.threads, error); }))
+        return Fail(1, error);
+    }
+    for (cao::VAOQuality q : o.vao)
+    {
+      cao::VAOSettings vs;
+      vs.quality = q;
+      vs.radius = radius;
+      if (!screenSpace("vao", std::string("vao ") + cao::VAOQualityName(q), 6, cao::AOFalloff::Quartic,
+            [&](const cao::PixelCamera& c, cao::SurfaceFrame& f) { return cao::VAOFrame(c, vs, f, o.threads, error); }))
+        return Fail(1, error);
+    }
     // vtkSSAOPass, one window for all kernel sizes.
     SSAORenderer ssao;
     if (!ssao.Setup(scene, o.window, o.view, error))
@@ -546,13 +648,13 @@ int RunBenchSurface(int argc, char* argv[])
   {
     std::string label;
     int series;
-    double ms, gridMs, rmse, bias, p99, bandRmse, flicker, referenceFlicker;
+    double ms, gridMs, rmse, bias, p99, bandRmse, flicker, referenceFlicker, ownRmse;
   };
   std::vector<Mean> means;
   for (const std::string& l : labels)
   {
     const auto& v = byLabel[l];
-    Mean m{ l, v[0]->series, 0, 0, 0, 0, 0, 0, 0, 0 };
+    Mean m{ l, v[0]->series, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
     for (const Row* r : v)
     {
       m.ms += r->ms / v.size();
@@ -563,17 +665,17 @@ int RunBenchSurface(int argc, char* argv[])
       m.bandRmse += r->bandRmse / v.size();
       m.flicker += r->flicker / v.size();
       m.referenceFlicker += r->referenceFlicker / v.size();
+      m.ownRmse += r->ownRmse / v.size();
     }
     means.push_back(m);
   }
   std::vector<PlotPoint> points;
   std::vector<std::size_t> pointOf;
   for (std::size_t i = 0; i < means.size(); ++i)
-    if ((means[i].series == 0 || means[i].series == 1 || means[i].series == 4) && means[i].ms > 0 &&
-      means[i].rmse > 0)
+    if (means[i].series != 2 && means[i].series != 3 && means[i].ms > 0 && means[i].rmse > 0)
     {
-      points.push_back({ means[i].ms, means[i].rmse, means[i].label,
-        means[i].series == 4 ? 2 : means[i].series });
+      const int plotSeries[] = { 0, 1, -1, -1, 2, 3, 4 };
+      points.push_back({ means[i].ms, means[i].rmse, means[i].label, plotSeries[means[i].series] });
       pointOf.push_back(i);
     }
   std::vector<char> front(means.size(), 0);
@@ -584,8 +686,8 @@ int RunBenchSurface(int argc, char* argv[])
             << " cosine-weighted rays, binary within R = " << o.radiusFraction
             << " x diagonal), " << o.view.width << "x" << o.view.height << ", mean over "
             << o.meshes.size() << " mesh(es):\n\n";
-  std::cout << "| configuration | ms/frame | grid ms | RMSE | bias | p99 | band RMSE | flicker (ref) | Pareto |\n";
-  std::cout << "|---|---:|---:|---:|---:|---:|---:|---:|:-:|\n";
+  std::cout << "| configuration | ms/frame | grid ms | RMSE | bias | p99 | band RMSE | flicker (ref) | own-definition RMSE | Pareto |\n";
+  std::cout << "|---|---:|---:|---:|---:|---:|---:|---:|---:|:-:|\n";
   std::cout << std::fixed;
   for (std::size_t i = 0; i < means.size(); ++i)
   {
@@ -594,22 +696,28 @@ int RunBenchSurface(int argc, char* argv[])
               << (m.gridMs > 0 ? std::to_string(static_cast<long long>(std::lround(m.gridMs))) : std::string("-"))
               << " | " << std::setprecision(4) << m.rmse << " | " << std::showpos << m.bias
               << std::noshowpos << " | " << m.p99 << " | " << m.bandRmse << " | " << m.flicker << " ("
-              << m.referenceFlicker << ") | " << (front[i] ? "yes" : "") << " |\n";
+              << m.referenceFlicker << ") | "
+              << (m.ownRmse > 0 && m.series >= 5 ? std::to_string(m.ownRmse).substr(0, 6) : std::string("-")) << " | "
+              << (front[i] ? "yes" : "") << " |\n";
   }
   std::cout << "\nreference row: its RMSE is against " << 4 * o.referenceRays
             << " rays (its own error); ms/frame: vct on the CPU (wall clock, "
             << (o.threads ? std::to_string(o.threads) : std::string("all")) << " threads), vct-gl on "
             << (o.vctGL ? gpu.Description() : std::string("-")) << " (GPU queries, the trace only), "
-            << "ssao in the offscreen window (wall clock, vtkSSAOPass with blur), the reference on the CPU.\n";
+            << "hbao and vao on the CPU (wall clock, their blur and filter included, the G-buffer not), "
+            << "ssao in the offscreen window (wall clock, vtkSSAOPass with blur), the reference on the CPU. "
+            << "Own-definition RMSE: against the reference in the method's own falloff (hbao: step, fig11a "
+            << "linear; vao: quartic, (r/R)^4).\n";
   for (const std::string& n : notes)
     std::cout << "note: " << n << "\n";
   // CSV and JSON, per mesh.
   std::ofstream csv(o.output + "/surface.csv");
-  csv << "mesh,configuration,method,ms,grid_ms,rmse,bias,p99,band_rmse,flicker,reference_flicker,pixels\n";
+  csv << "mesh,configuration,method,ms,grid_ms,rmse,bias,p99,band_rmse,flicker,reference_flicker,pixels,"
+         "own_falloff,own_rmse\n";
   for (const Row& r : rows)
     csv << r.mesh << "," << r.label << "," << r.method << "," << r.ms << "," << r.gridMs << "," << r.rmse
         << "," << r.bias << "," << r.p99 << "," << r.bandRmse << "," << r.flicker << ","
-        << r.referenceFlicker << "," << r.pixels << "\n";
+        << r.referenceFlicker << "," << r.pixels << "," << r.ownFalloff << "," << r.ownRmse << "\n";
   std::ofstream json(o.output + "/surface.json");
   json << std::setprecision(8) << "{\"image\": [" << o.view.width << ", " << o.view.height
        << "], \"reference_rays\": " << o.referenceRays << ", \"radius_fraction\": " << o.radiusFraction
@@ -621,7 +729,8 @@ int RunBenchSurface(int argc, char* argv[])
          << "\", \"method\": \"" << r.method << "\", \"ms\": " << r.ms << ", \"grid_ms\": " << r.gridMs
          << ", \"rmse\": " << r.rmse << ", \"bias\": " << r.bias << ", \"p99\": " << r.p99
          << ", \"band_rmse\": " << r.bandRmse << ", \"flicker\": " << r.flicker
-         << ", \"reference_flicker\": " << r.referenceFlicker << ", \"pixels\": " << r.pixels << "}";
+         << ", \"reference_flicker\": " << r.referenceFlicker << ", \"pixels\": " << r.pixels
+         << ", \"own_falloff\": \"" << r.ownFalloff << "\", \"own_rmse\": " << r.ownRmse << "}";
   }
   json << "], \"vct_gl_context\": \"" << (o.vctGL ? gpu.Description() : std::string()) << "\", \"pareto\": [";
   bool first = true;
@@ -634,7 +743,7 @@ int RunBenchSurface(int argc, char* argv[])
   json << "]}\n";
   if (!points.empty())
   {
-    if (!WriteErrorTimePlot(points, { "vct (CPU)", "vtkSSAOPass (GL)", "vct (GL)" },
+    if (!WriteErrorTimePlot(points, { "vct (CPU)", "vtkSSAOPass (GL)", "vct (GL)", "hbao (CPU)", "vao (CPU)" },
           "Surface AO: RMSE against the ray-traced reference", "ms per frame", "RMSE",
           o.output + "/surface.png", 900, 600, error))
       std::cout << "note: no plot: " << error << "\n";

@@ -2,7 +2,9 @@
  * caoBenchSurface — `cao bench surface`: what surface AO accuracy costs in
  * time. On each mesh, from one camera (and a second turned by a small
  * orbit, for flicker), every method and preset (voxel cone tracing at each
- * quality and grid size, vtkSSAOPass at several kernel sizes, no AO) is
+ * quality and grid size, horizon-based AO at the paper's configurations,
+ * volumetric AO at its qualities, vtkSSAOPass at several kernel sizes, no
+ * AO) is
  * timed and compared with the ray-traced reference: RMSE, signed bias,
  * p99, the RMSE in a band around depth discontinuities, and the mean frame
  * to frame change under the orbit beside the reference's own. The

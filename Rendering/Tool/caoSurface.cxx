@@ -51,15 +51,25 @@ namespace caocli
 const char* SurfaceUsage = R"(cao surface MESH... [options] -o out.png
   Ambient occlusion of closed or open triangle meshes (.vtp, .vtk, .stl,
   .ply, .obj) seen by one camera.
-  --method vct|reference|ssao|none   (default vct)
+  --method vct|hbao|vao|reference|ssao|none   (default vct)
         vct: voxel cone tracing (seed 000) on a bit grid of the meshes (CPU or OpenGL: --backend);
+        hbao: horizon-based AO (seed 002) on the G-buffer (CPU);
+        vao: volumetric AO (seed 001, base disk, mu = (r/R)^4) on the G-buffer (CPU);
         reference: CPU ray tracing in double precision (Kernels/Surface);
         ssao: VTK's vtkSSAOPass, its default kernel (32, --kernel) and bias, blurred,
               at the same radius, read back from an unlit white material;
         none: AO = 1.
   --radius R            world units (default: a tenth of the meshes' bounding-box diagonal)
-  --quality low|medium|high   vct: the paper's presets (spheres 3/5/7, prisms 3/6/12;
-                        default medium)
+  --quality NAME        vct: low|medium|high, the paper's presets (spheres 3/5/7, prisms
+                        3/6/12; default medium);
+                        hbao: the paper's configurations table1|fig11a|fig11b|fig11c|fig11d
+                        (directions/steps/normal rays 7/12/1, 6/9/0 with linear attenuation,
+                        8/18/0, 8/18/1, 18/25/2), or low|medium|high = fig11a|table1|fig11d
+                        (default table1);
+                        vao: low|medium|high, 8/16/32 samples per pixel (default medium)
+  --march deflect|sweep hbao: the horizon march (default deflect, the paper's Fig. 4)
+  --samples N           vao: samples per pixel, 1..256 (instead of --quality)
+  --filter on|off       hbao: its blur; vao: its 4 x 4 sample sets and filter (default on)
   --slices N            vct: depth slices of the grid, 32..1024, a multiple of 32
                         (default 128, the paper's)
   --grid world|eye      vct: the grid's axes (world: default, built once per geometry;
@@ -112,6 +122,9 @@ struct SurfaceOptions
   bool aoOnly = false, json = false;
   cao::SurfaceReferenceSettings reference;
   cao::VCTSettings vct;
+  cao::HBAOSettings hbao;
+  cao::VAOSettings vao;
+  std::string quality; ///< --quality as given, read per method
   std::string backend = "auto", grid = "world";
   // The occluding volume and its clip.
   std::string volume, preset, presetFile, shape, clipMesh, pose, mode = "subtract";
@@ -157,9 +170,9 @@ bool Parse(int argc, char* argv[], SurfaceOptions& o, std::string& error)
     {
       if (!value())
         return false;
-      if (v != "vct" && v != "reference" && v != "ssao" && v != "none")
+      if (v != "vct" && v != "hbao" && v != "vao" && v != "reference" && v != "ssao" && v != "none")
       {
-        error = "--method is vct, reference, ssao or none (got '" + v + "')";
+        error = "--method is vct, hbao, vao, reference, ssao or none (got '" + v + "')";
         return false;
       }
       o.method = v;
@@ -188,11 +201,31 @@ bool Parse(int argc, char* argv[], SurfaceOptions& o, std::string& error)
     {
       if (!value())
         return false;
-      if (!cao::ParseVCTQuality(v, o.vct.quality) || o.vct.quality == cao::VCTQuality::Custom)
-      {
-        error = "--quality is low, medium or high (got '" + v + "')";
+      o.quality = v;
+    }
+    else if (a == "--samples")
+    {
+      if (!number(d, 1, 256) || d != std::floor(d))
+        return error.empty() ? (error = "--samples must be a whole number", false) : false;
+      o.vao.quality = cao::VAOQuality::Custom;
+      o.vao.samples = static_cast<int>(d);
+    }
+    else if (a == "--filter")
+    {
+      if (!value())
         return false;
-      }
+      if (v != "on" && v != "off")
+        return error = "--filter is on or off (got '" + v + "')", false;
+      o.vao.interleave = v == "on";
+      o.hbao.blurRadius = v == "on" ? 2 : 0;
+    }
+    else if (a == "--march")
+    {
+      if (!value())
+        return false;
+      if (v != "deflect" && v != "sweep")
+        return error = "--march is deflect or sweep (got '" + v + "')", false;
+      o.hbao.deflect = v == "deflect";
     }
     else if (a == "--slices")
     {
@@ -394,6 +427,19 @@ bool Parse(int argc, char* argv[], SurfaceOptions& o, std::string& error)
   {
     error = "give the output picture with -o out.png";
     return false;
+  }
+  if (!o.quality.empty())
+  {
+    const std::string& q = o.quality;
+    if (o.method == "hbao" ? !cao::ParseHBAOPreset(q, o.hbao.preset) || o.hbao.preset == cao::HBAOPreset::Custom
+        : o.method == "vao" ? !cao::ParseVAOQuality(q, o.vao.quality) || o.vao.quality == cao::VAOQuality::Custom
+                            : !cao::ParseVCTQuality(q, o.vct.quality) || o.vct.quality == cao::VCTQuality::Custom)
+    {
+      error = "--quality for --method " + o.method + " is " +
+        (o.method == "hbao" ? std::string("table1, fig11a, fig11b, fig11c, fig11d, low, medium or high")
+                            : std::string("low, medium or high")) + " (got '" + q + "')";
+      return false;
+    }
   }
   if (o.volume.empty() && o.volumeOptions)
   {
@@ -677,8 +723,7 @@ bool SurfaceScene::Load(const std::vector<std::string>& files, std::string& erro
   return true;
 }
 
-bool CastFrame(const SurfaceScene& scene, vtkCamera* camera, const SurfaceView& view,
-  cao::SurfaceFrame& frame, std::string& error)
+cao::PixelCamera MakePixelCamera(vtkCamera* camera, const SurfaceView& view)
 {
   const double aspect = double(view.width) / view.height;
   vtkMatrix4x4* toNDC = camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
@@ -686,7 +731,13 @@ bool CastFrame(const SurfaceScene& scene, vtkCamera* camera, const SurfaceView& 
   vtkMatrix4x4::Invert(&toNDC->Element[0][0], pixels.ndcToWorld);
   pixels.width = view.width;
   pixels.height = view.height;
-  return cao::CastPrimary(scene.bvh, pixels, frame, error);
+  return pixels;
+}
+
+bool CastFrame(const SurfaceScene& scene, vtkCamera* camera, const SurfaceView& view,
+  cao::SurfaceFrame& frame, std::string& error)
+{
+  return cao::CastPrimary(scene.bvh, MakePixelCamera(camera, view), frame, error);
 }
 
 std::vector<cao::MeshView> SurfaceScene::Views() const
@@ -920,6 +971,15 @@ int RunSurface(int argc, char* argv[])
       return Fail(2, error);
     ao = frame.ao;
   }
+  else if (o.method == "hbao" || o.method == "vao")
+  {
+    const cao::PixelCamera pixels = MakePixelCamera(camera, o.view);
+    o.hbao.radius = o.vao.radius = radius;
+    if (!(o.method == "hbao" ? cao::HBAOFrame(pixels, o.hbao, frame, o.threads, error)
+                             : cao::VAOFrame(pixels, o.vao, frame, o.threads, error)))
+      return Fail(2, error);
+    ao = frame.ao;
+  }
   else if (o.method == "reference")
   {
     if (!cao::ReferenceFrame(scene.bvh, o.reference, frame, error))
@@ -966,6 +1026,16 @@ int RunSurface(int argc, char* argv[])
                 << "}";
     if (o.method == "ssao")
       std::cout << ", \"window\": \"" << window << "\"";
+    if (o.method == "hbao")
+      std::cout << ", \"hbao\": {\"preset\": \"" << cao::HBAOPresetName(o.hbao.preset) << "\", \"directions\": "
+                << o.hbao.EffectiveDirections() << ", \"steps\": " << o.hbao.EffectiveSteps()
+                << ", \"normal_rays\": " << o.hbao.EffectiveNormalRays() << ", \"attenuation\": \""
+                << cao::FalloffName(o.hbao.EffectiveAttenuation()) << "\", \"march\": \""
+                << (o.hbao.deflect ? "deflect" : "sweep") << "\", \"blur_radius\": " << o.hbao.blurRadius << "}";
+    if (o.method == "vao")
+      std::cout << ", \"vao\": {\"quality\": \"" << cao::VAOQualityName(o.vao.quality) << "\", \"samples\": "
+                << o.vao.EffectiveSamples() << ", \"measure\": \"quartic\", \"interleave\": "
+                << (o.vao.interleave ? 4 : 1) << "}";
     if (o.method == "vct")
     {
       std::cout << ", \"vct\": {\"quality\": \"" << cao::VCTQualityName(o.vct.quality)

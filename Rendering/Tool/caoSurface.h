@@ -1,7 +1,7 @@
 /**
  * caoSurface — `cao surface`: ambient occlusion of triangle meshes seen by
- * one camera, by one method (voxel cone tracing, the ray-traced reference,
- * VTK's vtkSSAOPass, or none), as a shaded picture or as the AO term alone
+ * one camera, by one method (voxel cone tracing, horizon-based AO,
+ * volumetric AO, the ray-traced reference, VTK's vtkSSAOPass, or none), as a shaded picture or as the AO term alone
  * (a 16-bit grey PNG, 1 = open, background transparent) so that two
  * methods' outputs compare pixel by pixel. Every method uses the same
  * camera and the same default radius (a tenth of the scene's bounding-box
@@ -10,6 +10,7 @@
 #ifndef caoSurface_h
 #define caoSurface_h
 
+#include "caoScreenSpaceAO.h"
 #include "caoSurfaceReference.h"
 #include "caoVoxelConeTracing.h"
 
@@ -61,6 +62,9 @@ struct SurfaceView
 /// narrower one when the image is taller than wide), then azimuth,
 /// elevation and zoom, and near/far planes around the bounding sphere.
 void FitCamera(vtkCamera* camera, const double bounds[6], const SurfaceView& view);
+/// The camera as the pixels see it (the inverse of its composite matrix
+/// at the view's aspect).
+cao::PixelCamera MakePixelCamera(vtkCamera* camera, const SurfaceView& view);
 /// The G-buffer of the camera, by ray casting the scene's BVH.
 bool CastFrame(const SurfaceScene& scene, vtkCamera* camera, const SurfaceView& view,
   cao::SurfaceFrame& frame, std::string& error);

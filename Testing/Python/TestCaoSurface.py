@@ -12,6 +12,11 @@
 - voxel cone tracing (the default): the reference's pixels, AO in [0, 1],
   dark by a sphere, open elsewhere; an open mesh is reported and voxelized
   as a shell;
+- horizon-based AO (--method hbao) and volumetric AO (--method vao): the
+  reference's pixels, AO in [0, 1]; on the open square hbao gives 1 at
+  every pixel and vao 1 on average; the resting sphere darkens both;
+  --json reports their settings; against the reference on Bunny, their
+  error is below no AO's (negative control: none);
 - cao bench surface: csv, json and plot; every configuration has a row;
   the reference's own error is below every method's; no AO is worse than
   any vct row; more slices and quality help; the Pareto front is exactly
@@ -149,6 +154,34 @@ w2.Write()
 (lit, _) = surface("square-ball", [square, ball], "--method", "reference", "--rays", "64", "--radius", "100")
 check(lit[2][lit[3]].min() < 0.3, "a sphere resting on the square darkens it (min AO %.3f)" % lit[2][lit[3]].min())
 
+# The screen-space methods on the same scenes.
+for method in ("hbao", "vao"):
+    got = surface("square-" + method, [square], "--method", method, "--elevation", "0", "--azimuth", "0",
+                  "--radius", "1")
+    ball_ss = surface("square-ball-" + method, [square, ball], "--method", method, "--radius", "1")
+    bun = surface("bunny-" + method, [bunny], "--method", method)
+    if not (got and ball_ss and bun):
+        continue
+    (img, js) = got
+    a = img[2][img[3]]
+    check(img[3].sum() == flat[3].sum() and ((a == 1.0).all() if method == "hbao" else abs(a.mean() - 1) < 0.01),
+          "%s on the open square: the reference's pixels, AO %s (min %.4f, mean %.4f)"
+          % (method, "1 everywhere" if method == "hbao" else "1 on average", a.min(), a.mean()))
+    b = ball_ss[0][2][ball_ss[0][3]]
+    # vao's quartic measure weighs near occluders less: lighter than the step's.
+    check(np.array_equal(ball_ss[0][3], lit[3]) and b.min() < (0.6 if method == "hbao" else 0.75) and
+          b.max() <= 1.0 and b.min() >= 0.0,
+          "%s: the resting sphere darkens the square (min %.3f), AO in [0, 1]" % (method, b.min()))
+    check(method in js and (js[method]["preset"] == "table1" and js[method]["directions"] == 7
+                            if method == "hbao" else js[method]["samples"] == 16),
+          "--json reports the %s settings: %s" % (method, js.get(method)))
+    mm = np.logical_and(covered, bun[0][3])
+    err = np.sqrt(np.mean((bun[0][2][mm] - ao[mm]) ** 2))
+    none_err = np.sqrt(np.mean((1.0 - ao[mm]) ** 2))
+    print("%s against the reference (Bunny, 256 rays): RMSE %.4f; no AO %.4f" % (method, err, none_err))
+    check(np.array_equal(bun[0][3], covered) and err < none_err,
+          "%s sees the reference's pixels; its error %.4f is below no AO's %.4f" % (method, err, none_err))
+
 # Voxel cone tracing (the default method): the same pixels as the
 # reference, AO in [0, 1], and darker under the ball than on the open
 # square far from it; the open square is reported and voxelized as a shell.
@@ -176,6 +209,7 @@ check(vb[3].sum() == covered.sum(), "vct sees the reference's pixels (%d, %d)" %
 bench = os.path.join(tmp, "bench")
 p = subprocess.run([tool, "bench", "surface", bunny, "--image", "96x96", "--reference-rays", "128",
                     "--slices", "128,256", "--qualities", "low,high", "--kernels", "32", "--repeats", "1",
+                    "--hbao", "fig11a,table1", "--vao", "medium",
                     "-o", bench], capture_output=True, text=True, timeout=600)
 check(p.returncode == 0 and all(os.path.exists(os.path.join(bench, f))
                                 for f in ("surface.csv", "surface.json", "surface.png")),
@@ -183,7 +217,8 @@ check(p.returncode == 0 and all(os.path.exists(os.path.join(bench, f))
 if p.returncode == 0:
     result = json.load(open(os.path.join(bench, "surface.json")))
     by = {r["configuration"]: r for r in result["rows"]}
-    expected = {"reference 128 rays", "none", "vct low 128", "vct high 128", "vct low 256", "vct high 256", "ssao k32"}
+    expected = {"reference 128 rays", "none", "vct low 128", "vct high 128", "vct low 256", "vct high 256", "ssao k32",
+                "hbao fig11a", "hbao table1", "vao medium"}
     check(set(by) == expected, "every configuration has a row: %s" % sorted(by))
     vct = [r for r in result["rows"] if r["method"] == "vct"]
     check(by["reference 128 rays"]["rmse"] < min(r["rmse"] for r in vct),
@@ -194,8 +229,13 @@ if p.returncode == 0:
     check(by["vct high 256"]["rmse"] < by["vct low 128"]["rmse"],
           "vct high at 256 slices beats low at 128 (%.4f < %.4f)"
           % (by["vct high 256"]["rmse"], by["vct low 128"]["rmse"]))
+    check(by["vao medium"]["own_falloff"] == "quartic" and by["vao medium"]["own_rmse"] > 0 and
+          by["hbao fig11a"]["own_falloff"] == "linear" and by["hbao table1"]["own_rmse"] == by["hbao table1"]["rmse"] and
+          by["vao medium"]["own_rmse"] != by["vao medium"]["rmse"],
+          "the screen-space rows carry their own-definition error (vao quartic %.4f, hbao fig11a linear %.4f)"
+          % (by["vao medium"]["own_rmse"], by["hbao fig11a"]["own_rmse"]))
     # The Pareto front is exactly the non-dominated method rows.
-    methods = [r for r in result["rows"] if r["method"] in ("vct", "ssao")]
+    methods = [r for r in result["rows"] if r["method"] in ("vct", "ssao", "hbao", "vao")]
     def dominated(r, rows):
         return any(o["ms"] <= r["ms"] and o["rmse"] <= r["rmse"] and (o["ms"] < r["ms"] or o["rmse"] < r["rmse"])
                    for o in rows)
@@ -288,7 +328,10 @@ for args, words in [(["--method", "magic", bunny, "-o", "x.png"], "--method is")
                     (["--volume", block_vti, "--unit-distance", "0", bunny, "-o", "x.png"], "--unit-distance"),
                     (["--volume", block_vti, "--mode", "sideways", bunny, "-o", "x.png"], "--mode is"),
                     (["--volume", bunny, bunny, "-o", "x.png"], "Bunny.vtp"),
-                    (["--quality", "ultra", bunny, "-o", "x.png"], "--quality is"),
+                    (["--quality", "ultra", bunny, "-o", "x.png"], "--quality for --method vct is"),
+                    (["--method", "hbao", "--quality", "fig12", bunny, "-o", "x.png"], "table1, fig11a"),
+                    (["--method", "vao", "--samples", "0", bunny, "-o", "x.png"], "--samples"),
+                    (["--march", "up", bunny, "-o", "x.png"], "--march is"),
                     ([volume_vtk, "-o", "x.png"], "not a polygonal mesh"),
                     ([bunny, "-o", os.path.join(tmp, "no", "such", "x.png")], "does not exist"),
                     ([os.path.join(tmp, "missing.vtp"), "-o", "x.png"], "missing.vtp"),

@@ -447,8 +447,11 @@ bool HBAOFrame(const PixelCamera& camera, const HBAOSettings& settings, SurfaceF
           const long long q = screen.Lookup(p + distance * r, z);
           if (q < 0)
             break;
-          if (!screen.Covered(q) || !(z > screen.ndcDepth[q]) || !(Dot(screen.Position(q) - p, n) > 0.0))
+          if (!screen.Covered(q) || !(z > screen.ndcDepth[q]))
             continue;
+          const Vec v = screen.Position(q) - p;
+          if (!(Dot(v, n) > 0.0) || !(Dot(v, v) < R * R))
+            continue; // the plane itself, or a surface beyond the reach in front of the ray
           normalOcclusion += attenuation(distance) * (1.0 - H * H) / (c.directions * c.normalRays);
           break;
         }
@@ -524,6 +527,8 @@ bool VAOFrame(const PixelCamera& camera, const VAOSettings& settings, SurfaceFra
       {
         const Vec s2 = screen.Position(q);
         surface = Dot(s2 - p, Z);
+        if (settings.haloGuard && surface >= chord)
+          surface = -std::numeric_limits<double>::infinity(); // in front of the whole sphere: not taken as reaching into it
         if (colour && static_cast<std::size_t>(q) != k && Dot(screen.Normal(q), p - s2) > 0.0)
         {
           for (int c = 0; c < 3; ++c)
