@@ -36,6 +36,7 @@
 #include "vtkCompositeDataDisplayAttributes.h"
 #include "vtkCompositePolyDataMapper2.h"
 
+#include "caoScreenSpaceAO.h"
 #include "caoSurfaceReference.h"
 #include "caoVoxelConeTracing.h"
 
@@ -252,6 +253,10 @@ struct vtkContextualAOPass::Internals
   bool depthOk = false;
   std::string depthError;
   double ndcToWorld[16] = { 0 }; ///< the traced camera's
+  cao::PixelCamera pixels;       ///< the traced camera, as the kernels take it
+  double tolerance = 1e-9;       ///< drawn against traced point: half a voxel
+  bool ignoredVolumes = false;   ///< volumes in view that a screen-space method does not see
+  cao::VAOSettings vao;          ///< the last VAO run's settings (its indirect term reuses them)
 
   void Stage(const char* name, Clock::time_point start)
   {
@@ -328,7 +333,8 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
   const Internals& p = *this->Internal;
   std::ostringstream o;
   o << "{\"frame\": " << this->FrameCount << ", \"method\": \""
-    << (this->Method == VCT ? "vct" : "none") << "\", \"apply_to\": \""
+    << (this->Method == VCT ? "vct" : this->Method == HBAO ? "hbao" : this->Method == VAO ? "vao" : "none")
+    << "\", \"apply_to\": \""
     << (this->ApplyTo == AMBIENT_TERM ? "ambient" : "whole colour") << "\", \"grid\": \""
     << (this->Grid == EYE_GRID ? "eye" : "world") << "\", \"gbuffer\": \""
     << (this->GBuffer == DEPTH_BUFFER ? "depth buffer" : "ray cast") << "\", \"stages\": {";
@@ -341,6 +347,10 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
     << ", \"occluding_volumes\": " << p.opacity.size() << ", \"radius\": " << p.radius
     << ", \"slices\": " << p.grid.slices << ", \"covered_pixels\": " << p.frame.covered
     << ", \"combined_pixels\": " << p.combined << ", \"hidden_pixels\": " << p.hidden;
+  if (p.ignoredVolumes)
+    o << ", \"volumes\": \"not seen: the screen-space methods read the opaque depth, drawn before the volumes\"";
+  if (this->Method == VAO)
+    o << ", \"indirect_light\": " << (this->IndirectLight ? "true" : "false");
   if (!p.skippedVolumes.empty())
   {
     o << ", \"skipped_volumes\": [";
@@ -414,7 +424,12 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
   this->pieces.clear();
   this->volumes.clear();
   std::vector<double>& key = this->frameSceneKey;
-  key = { static_cast<double>(self->Slices), self->Radius, static_cast<double>(self->Grid) };
+  // VCT needs the grid (its slices and kind count); the screen-space
+  // methods need the triangles for the ray cast, or only their bounds.
+  const bool vct = self->Method == VCT;
+  key = { self->Radius, vct ? 0.0 : self->GBuffer == RAY_CAST ? 1.0 : 2.0 };
+  if (vct)
+    key.insert(key.end(), { static_cast<double>(self->Slices), static_cast<double>(self->Grid) });
   vtkActorCollection* actors = ren->GetActors();
   vtkCollectionSimpleIterator it;
   actors->InitTraversal(it);
@@ -434,13 +449,14 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
         key.push_back(m->GetElement(i / 4, i % 4));
     }
   }
-  if (self->Grid == EYE_GRID) // the camera's orientation (a dolly or pan moves its last bits only)
+  if (vct && self->Grid == EYE_GRID) // the camera's orientation (a dolly or pan moves its last bits only)
   {
     vtkMatrix4x4* view = ren->GetActiveCamera()->GetViewTransformMatrix();
     for (int i = 0; i < 12; ++i)
       key.push_back(i % 4 < 3 ? std::round(view->GetElement(i / 4, i % 4) * 1e9) * 1e-9 : 0.0);
   }
   this->frameVolumeKey.clear();
+  this->ignoredVolumes = false;
   if (!self->OccludingVolumes)
     return;
   vtkVolumeCollection* volumes = ren->GetVolumes();
@@ -448,6 +464,11 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
   while (vtkVolume* volume = volumes->GetNextVolume(it))
     if (volume->GetVisibility() && volume->GetMapper() && volume->GetProperty())
     {
+      if (!vct)
+      {
+        this->ignoredVolumes = true; // drawn after the AO step: not in the depth it reads
+        continue;
+      }
       this->volumes.push_back(volume);
       vtkCAO::AppendVolumeOpacityKey(volume, this->frameVolumeKey);
     }
@@ -465,9 +486,11 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
     return false;
   }
   const auto start = Clock::now();
+  const bool vct = self->Method == VCT, needBVH = vct || self->GBuffer == RAY_CAST;
   this->reasons.push_back(this->sceneKey.empty() ? "first frame"
-      : self->Grid == EYE_GRID                   ? "geometry, grid or camera orientation changed"
-                                                 : "geometry or grid changed");
+      : vct && self->Grid == EYE_GRID            ? "geometry, grid or camera orientation changed"
+      : vct                                      ? "geometry or grid changed"
+                                                 : "geometry or method changed");
   std::vector<std::vector<double>> points;
   std::vector<std::vector<std::int64_t>> triangles;
   std::vector<double> all;
@@ -494,20 +517,49 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
     triangles.push_back(std::move(tris));
   }
   this->sceneKey.clear();
+  this->grid = cao::BitGrid();
+  this->bvh = cao::TriangleBVH();
+  this->open = 0;
   std::string error;
-  if (!this->bvh.Build(all, allTris, error) || this->bvh.NumberOfTriangles() == 0)
+  std::array<double, 6> b{ { 1, -1, 1, -1, 1, -1 } };
+  if (needBVH)
+  {
+    if (!this->bvh.Build(all, allTris, error) || this->bvh.NumberOfTriangles() == 0)
+    {
+      this->failedSceneKey = this->frameSceneKey;
+      return this->Fail(self, "Cannot build the scene: " +
+          (error.empty() ? std::string("the actors have no triangle with an area") : error));
+    }
+    b = this->bvh.Bounds();
+  }
+  else
+    for (std::size_t i = 0; i + 2 < all.size(); i += 3)
+      for (int d = 0; d < 3; ++d)
+      {
+        b[2 * d] = std::min(b[2 * d], all[i + d]);
+        b[2 * d + 1] = std::max(b[2 * d + 1], all[i + d]);
+      }
+  const double diagonal = b[1] < b[0] ? 0.0 : std::sqrt((b[1] - b[0]) * (b[1] - b[0]) +
+    (b[3] - b[2]) * (b[3] - b[2]) + (b[5] - b[4]) * (b[5] - b[4]));
+  if (!std::isfinite(diagonal) || (!(diagonal > 0.0) && !(self->Radius > 0)))
   {
     this->failedSceneKey = this->frameSceneKey;
-    return this->Fail(self, "Cannot build the scene: " +
-        (error.empty() ? std::string("the actors have no triangle with an area") : error));
+    return this->Fail(self, "Cannot build the scene: its bounds are empty or not finite");
+  }
+  this->radius = self->Radius > 0 ? self->Radius : 0.1 * diagonal;
+  // The drawn-is-traced test's tolerance: half a voxel (the screen-space
+  // methods: of a default 128-slice grid).
+  this->tolerance = std::max(0.5 * diagonal / 128.0, 1e-9);
+  if (!vct)
+  {
+    this->sceneKey = this->frameSceneKey;
+    ++this->serial;
+    this->Stage("scene", start);
+    return true;
   }
   std::vector<cao::MeshView> views;
   for (std::size_t i = 0; i < points.size(); ++i)
     views.push_back({ &points[i], &triangles[i] });
-  const std::array<double, 6>& b = this->bvh.Bounds();
-  const double diagonal = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
-    (b[5] - b[4]) * (b[5] - b[4]));
-  this->radius = self->Radius > 0 ? self->Radius : 0.1 * diagonal;
   bool ok = false;
   if (self->Grid == EYE_GRID)
   {
@@ -526,7 +578,7 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
     this->failedSceneKey = this->frameSceneKey;
     return this->Fail(self, "Cannot voxelize the scene: " + error);
   }
-  this->open = 0;
+  this->tolerance = std::max(0.5 * this->grid.voxel, 1e-9);
   for (std::int64_t e : this->grid.openEdges)
     this->open += e > 0;
   this->sceneKey = this->frameSceneKey;
@@ -579,7 +631,8 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
   vtkMatrix4x4* toNDC = camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
   std::vector<double> key{ static_cast<double>(this->serial),
     static_cast<double>(this->volumeSerial), static_cast<double>(width),
-    static_cast<double>(height), static_cast<double>(self->Quality), this->radius };
+    static_cast<double>(height), static_cast<double>(self->Quality), this->radius,
+    static_cast<double>(self->Method) };
   for (int i = 0; i < 16; ++i)
     key.push_back(toNDC->GetElement(i / 4, i % 4));
   key.push_back(self->GBuffer);
@@ -605,7 +658,7 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
       : self->GBuffer == DEPTH_BUFFER           ? "camera, drawn depth or settings changed"
                                                 : "camera or settings changed");
   this->viewKey.clear();
-  cao::PixelCamera pixels;
+  cao::PixelCamera& pixels = this->pixels;
   vtkMatrix4x4::Invert(&toNDC->Element[0][0], pixels.ndcToWorld);
   std::copy(pixels.ndcToWorld, pixels.ndcToWorld + 16, this->ndcToWorld);
   pixels.width = width;
@@ -615,17 +668,37 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
     return this->Fail(self, error);
   this->Stage(self->GBuffer == DEPTH_BUFFER ? "gbuffer" : "primary", start);
   start = Clock::now();
-  cao::VCTSettings settings;
-  settings.quality = static_cast<cao::VCTQuality>(self->Quality);
-  settings.slices = self->Slices;
-  settings.radius = this->radius;
-  cao::VCTPlan plan;
-  if (!cao::BuildVCTPlan(settings, this->grid, plan, error))
-    return this->Fail(self, error);
-  for (const cao::OpacityVolume& volume : this->opacity)
-    plan.volumes.push_back(&volume);
-  if (!cao::VCTFrame(this->grid, plan, this->frame, 0, error))
-    return this->Fail(self, error);
+  if (self->Method == HBAO)
+  {
+    cao::HBAOSettings settings;
+    const cao::HBAOPreset presets[] = { cao::HBAOPreset::Fig11a, cao::HBAOPreset::Table1, cao::HBAOPreset::Fig11d };
+    settings.preset = presets[self->Quality - 1];
+    settings.radius = this->radius;
+    if (!cao::HBAOFrame(pixels, settings, this->frame, 0, error))
+      return this->Fail(self, error);
+  }
+  else if (self->Method == VAO)
+  {
+    this->vao = cao::VAOSettings();
+    this->vao.quality = static_cast<cao::VAOQuality>(self->Quality);
+    this->vao.radius = this->radius;
+    if (!cao::VAOFrame(pixels, this->vao, this->frame, 0, error))
+      return this->Fail(self, error);
+  }
+  else
+  {
+    cao::VCTSettings settings;
+    settings.quality = static_cast<cao::VCTQuality>(self->Quality);
+    settings.slices = self->Slices;
+    settings.radius = this->radius;
+    cao::VCTPlan plan;
+    if (!cao::BuildVCTPlan(settings, this->grid, plan, error))
+      return this->Fail(self, error);
+    for (const cao::OpacityVolume& volume : this->opacity)
+      plan.volumes.push_back(&volume);
+    if (!cao::VCTFrame(this->grid, plan, this->frame, 0, error))
+      return this->Fail(self, error);
+  }
   this->viewKey = key;
   ++self->TraceCount;
   this->Stage("trace", start);
@@ -655,9 +728,22 @@ bool vtkContextualAOPass::Internals::Combine(vtkContextualAOPass* self, const vt
       return this->Fail(self, error);
     this->Stage("ambient", start);
   }
+  std::vector<float> indirect;
+  const bool bleeding = self->Method == VAO && self->IndirectLight;
+  if (bleeding)
+  {
+    const auto start = Clock::now();
+    std::vector<float> rgb(3 * count);
+    for (std::size_t i = 0; i < count; ++i)
+      for (int k = 0; k < 3; ++k)
+        rgb[3 * i + k] = rgba[4 * i + k];
+    if (!cao::VAOIndirect(this->pixels, this->vao, this->frame, rgb, indirect, 0, error))
+      return this->Fail(self, error);
+    this->Stage("indirect", start);
+  }
   const auto start = Clock::now();
   const double* m = this->ndcToWorld;
-  const double tolerance = std::max(0.5 * this->grid.voxel, 1e-9);
+  const double tolerance = this->tolerance;
   for (std::size_t i = 0; i < count; ++i)
   {
     const double ao = this->frame.ao[i];
@@ -682,8 +768,12 @@ bool vtkContextualAOPass::Internals::Combine(vtkContextualAOPass* self, const vt
     }
     const float dark = static_cast<float>(self->Strength * (1.0 - std::min(1.0, std::max(0.0, ao))));
     for (int k = 0; k < 3; ++k)
-      rgba[4 * i + k] = whole ? rgba[4 * i + k] * (1.0f - dark)
-                              : std::max(0.0f, rgba[4 * i + k] - dark * ambient[4 * i + k]);
+    {
+      const float own = rgba[4 * i + k];
+      rgba[4 * i + k] = whole ? own * (1.0f - dark) : std::max(0.0f, own - dark * ambient[4 * i + k]);
+      if (bleeding) // the neighbours' light, reflected by the pixel's own colour
+        rgba[4 * i + k] = std::min(1.0f, rgba[4 * i + k] + static_cast<float>(self->Strength) * indirect[3 * i + k] * own);
+    }
     ++this->combined;
   }
   if (!vtkCAO::WriteViewportColor(ren, rgba, error))
@@ -750,6 +840,7 @@ void vtkContextualAOPass::PrintSelf(ostream& os, vtkIndent indent)
      << indent << "Radius: " << this->Radius << "\n"
      << indent << "Strength: " << this->Strength << "\n"
      << indent << "Quality: " << this->Quality << "\n"
-     << indent << "Slices: " << this->Slices << "\n";
+     << indent << "Slices: " << this->Slices << "\n"
+     << indent << "IndirectLight: " << this->IndirectLight << "\n";
 }
 

@@ -1,9 +1,10 @@
 /**
  * @class   vtkContextualAOPass
  * @brief   Ambient occlusion for the opaque surfaces of a VTK scene, by voxel
- *          cone tracing (seed 000) on a bit grid, as a render pass (used as
- *          vtkSSAOPass is: renderer->SetPass(pass)), with the scene's
- *          volumes occluding the surfaces.
+ *          cone tracing (seed 000) on a bit grid, horizon-based AO (seed
+ *          002) or volumetric AO (seed 001) on the G-buffer, as a render
+ *          pass (used as vtkSSAOPass is: renderer->SetPass(pass)), with the
+ *          scene's volumes occluding the surfaces (voxel cone tracing).
  *
  * The pass draws the scene in steps, each through the renderer's own path
  * (so that with Method NONE the picture is the renderer's default one):
@@ -34,28 +35,34 @@
  *
  * Only the effects the scene calls for, and nothing its last frame already
  * has (GetLastFrameReport says what ran, and why, as JSON):
- *  - "voxelize": the grid of the visible opaque actors' triangles (a
+ *  - "voxelize" (VCT): the grid of the visible opaque actors' triangles (a
  *    mapper's polydata input, or the polydata leaves of a composite one),
  *    only when one of them, its data, its pose, the grid's settings or (eye
  *    grid) the camera's orientation changed; a closed mesh is filled, an
- *    open one is a shell (GetNumberOfOpenMeshes);
+ *    open one is a shell (GetNumberOfOpenMeshes); "scene" (HBAO, VAO): the
+ *    same triangles for the ray cast only (or, with DEPTH_BUFFER, their
+ *    bounds for the default radius), no grid;
  *  - "volumes": the clipped opacity of the visible volumes
  *    (vtkCAOSceneVolume), only when a volume, its data, its opacity
- *    function, its pose or its clip shapes changed (OccludingVolumes on);
+ *    function, its pose or its clip shapes changed (OccludingVolumes on,
+ *    VCT: the screen-space methods read the opaque depth, drawn before the
+ *    volumes, so volumes do not occlude in them: the report says so);
  *    a volume that cannot occlude is left out with a warning (the report's
  *    "skipped_volumes");
  *  - "primary" and "trace": the pixels' first surfaces (a ray cast of the
  *    same triangles, or with GBuffer DEPTH_BUFFER "gbuffer": the drawn
- *    depth) and their cone tracing, only when the grid, the volumes'
+ *    depth) and their AO (cones, horizons or pipes), only when the grid, the volumes'
  *    opacity, the camera, the viewport, the AO settings or (DEPTH_BUFFER)
  *    the drawn depth changed;
- *  - "ambient" (AMBIENT_TERM only) and "combine": every frame that has
- *    surfaces (a colour, colour-map or light change re-runs the scene's own
- *    drawing and these steps alone).
+ *  - "ambient" (AMBIENT_TERM only), "indirect" (VAO with IndirectLight:
+ *    the neighbours' colour, I = L (1 - AO)) and "combine": every frame
+ *    that has surfaces (a colour, colour-map or light change re-runs the
+ *    scene's own drawing and these steps alone).
  * No visible opaque polygonal actor, or an empty viewport: none of them
  * runs. A scene the grid failed on is not tried again until it changes.
  *
- * The AO is cao::VCTFrame's (Filters/Kernels/Surface), on the CPU; the
+ * The AO is cao::VCTFrame's, cao::HBAOFrame's or cao::VAOFrame's
+ * (Filters/Kernels/Surface), on the CPU; the
  * picture is read back and written through the window (so it works on any
  * OpenGL, slowly on large windows). The pass's GPU path is not built yet
  * (the `cao surface` tool has it).
@@ -90,7 +97,9 @@ public:
   enum Methods
   {
     NONE = 0, ///< draw the scene only
-    VCT = 1   ///< voxel cone tracing
+    VCT = 1,  ///< voxel cone tracing (seed 000)
+    HBAO = 2, ///< horizon-based AO (seed 002)
+    VAO = 3   ///< volumetric AO (seed 001)
   };
   enum ApplyToModes
   {
@@ -109,8 +118,8 @@ public:
   };
 
   ///@{
-  /// NONE or VCT (default).
-  vtkSetClampMacro(Method, int, NONE, VCT);
+  /// NONE, VCT (default), HBAO or VAO.
+  vtkSetClampMacro(Method, int, NONE, VAO);
   vtkGetMacro(Method, int);
   ///@}
 
@@ -158,10 +167,20 @@ public:
   ///@}
 
   ///@{
-  /// The paper's presets: 1 low, 2 medium (default), 3 high
-  /// (cao::VCTQuality).
+  /// The method's presets: 1 low, 2 medium (default), 3 high: VCT's
+  /// cao::VCTQuality; HBAO the paper's Fig. 11 (a), Table 1, Fig. 11 (d);
+  /// VAO 8, 16, 32 samples per pixel.
   vtkSetClampMacro(Quality, int, 1, 3);
   vtkGetMacro(Quality, int);
+  ///@}
+
+  ///@{
+  /// VAO's indirect light (seed 001's colour bleeding): the neighbours'
+  /// colour times (1 - AO), times the pixel's own colour, added (default
+  /// off).
+  vtkSetMacro(IndirectLight, bool);
+  vtkGetMacro(IndirectLight, bool);
+  vtkBooleanMacro(IndirectLight, bool);
   ///@}
 
   ///@{
@@ -203,6 +222,7 @@ protected:
   double Strength = 1.0;
   int Quality = 2;
   int Slices = 128;
+  bool IndirectLight = false;
   int FrameCount = 0;
   int VoxelizeCount = 0;
   int VolumeCount = 0;

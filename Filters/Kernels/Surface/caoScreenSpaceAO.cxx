@@ -188,6 +188,38 @@ struct Screen
   }
 };
 
+/// VAO's sample points on the disk of radius R: set s's sample q at index
+/// s + sets q. Each set covers the whole disk: radius^2 (q + (s + 1/2) /
+/// sets) / n (the sets interleave their radii), angle the radical inverse
+/// of q turned by a per-set offset.
+void DiskSamples(const VAOSettings& settings, std::vector<double>& diskX, std::vector<double>& diskY)
+{
+  const double R = settings.radius;
+  const int n = settings.EffectiveSamples(), tile = settings.interleave ? VAOSettings::Tile : 1;
+  const int sets = tile * tile, total = sets * n;
+  diskX.assign(total, 0.0);
+  diskY.assign(total, 0.0);
+  for (int set = 0; set < sets; ++set)
+  {
+    const double turn = Hash01(settings.seed, static_cast<std::uint64_t>(set));
+    for (int q = 0; q < n; ++q)
+    {
+      const double rho = R * std::sqrt((q + (set + 0.5) / sets) / n);
+      const double phi = 2.0 * Pi * (RadicalInverse2(static_cast<std::uint64_t>(q)) + turn);
+      diskX[set + sets * q] = rho * std::cos(phi);
+      diskY[set + sets * q] = rho * std::sin(phi);
+    }
+  }
+}
+
+/// The quasi-orthographic frame of pixel k: X, Y across its ray, Z toward the camera.
+void PixelFrame(const Screen& screen, std::size_t k, Vec& X, Vec& Y, Vec& Z)
+{
+  Z = screen.toCamera[k];
+  X = Normalized(screen.screenRight - Dot(screen.screenRight, Z) * Z);
+  Y = Cross(Z, X);
+}
+
 std::string CheckFrameSettings(double radius)
 {
   if (!(radius > 0.0) || !std::isfinite(radius))
@@ -471,8 +503,7 @@ bool HBAOFrame(const PixelCamera& camera, const HBAOSettings& settings, SurfaceF
 }
 
 bool VAOFrame(const PixelCamera& camera, const VAOSettings& settings, SurfaceFrame& frame, int threads,
-  std::string& error, const std::vector<float>* colour, std::vector<float>* indirect,
-  const std::vector<std::size_t>* only)
+  std::string& error, const std::vector<std::size_t>* only)
 {
   error = settings.Validate();
   if (!error.empty())
@@ -481,28 +512,12 @@ bool VAOFrame(const PixelCamera& camera, const VAOSettings& settings, SurfaceFra
   if (!screen.Build(camera, frame, error))
     return false;
   const std::size_t pixels = frame.ao.size();
-  if (colour && colour->size() != 3 * pixels)
-    return error = "the colour buffer does not match the image size", false;
   const double R = settings.radius;
   const int n = settings.EffectiveSamples(), tile = settings.interleave ? VAOSettings::Tile : 1;
-  const int sets = tile * tile, total = sets * n;
-  // Each set covers the whole disk: sample q of set s at radius^2 (q + (s
-  // + 1/2) / sets) / n (the sets interleave their radii) and angle the
-  // radical inverse of q turned by a per-set offset; sample g = set + sets q.
-  std::vector<double> diskX(total), diskY(total);
-  for (int set = 0; set < sets; ++set)
-  {
-    const double turn = Hash01(settings.seed, static_cast<std::uint64_t>(set));
-    for (int q = 0; q < n; ++q)
-    {
-      const double rho = R * std::sqrt((q + (set + 0.5) / sets) / n);
-      const double phi = 2.0 * Pi * (RadicalInverse2(static_cast<std::uint64_t>(q)) + turn);
-      diskX[set + sets * q] = rho * std::cos(phi);
-      diskY[set + sets * q] = rho * std::sin(phi);
-    }
-  }
+  const int sets = tile * tile;
+  std::vector<double> diskX, diskY;
+  DiskSamples(settings, diskX, diskY);
   std::vector<double> ao(pixels, std::numeric_limits<double>::quiet_NaN());
-  std::vector<double> mean(colour ? 3 * pixels : 0, 0.0);
   const double scale = 4.0 / (R * R * R * R);
   ParallelFor(only ? only->size() : pixels, threads, [&](std::size_t index) {
     const std::size_t k = only ? (*only)[index] : index;
@@ -510,11 +525,11 @@ bool VAOFrame(const PixelCamera& camera, const VAOSettings& settings, SurfaceFra
       return;
     const int i = static_cast<int>(k % screen.w), j = static_cast<int>(k / screen.w);
     const int set = (j % tile) * tile + (i % tile);
-    const Vec p = screen.Position(k), N = screen.Normal(k), Z = screen.toCamera[k];
-    const Vec X = Normalized(screen.screenRight - Dot(screen.screenRight, Z) * Z), Y = Cross(Z, X);
+    const Vec p = screen.Position(k), N = screen.Normal(k);
+    Vec X, Y, Z;
+    PixelFrame(screen, k, X, Y, Z);
     const double nx = Dot(N, X), ny = Dot(N, Y), nz = std::max(1e-6, Dot(N, Z));
-    double sum = 0.0, light[3] = { 0, 0, 0 };
-    int lit = 0;
+    double sum = 0.0;
     for (int s = 0; s < n; ++s)
     {
       const int g = set + sets * s;
@@ -529,12 +544,6 @@ bool VAOFrame(const PixelCamera& camera, const VAOSettings& settings, SurfaceFra
         surface = Dot(s2 - p, Z);
         if (settings.haloGuard && surface >= chord)
           surface = -std::numeric_limits<double>::infinity(); // in front of the whole sphere: not taken as reaching into it
-        if (colour && static_cast<std::size_t>(q) != k && Dot(screen.Normal(q), p - s2) > 0.0)
-        {
-          for (int c = 0; c < 3; ++c)
-            light[c] += (*colour)[3 * q + c];
-          ++lit;
-        }
       }
       const double tangent = -(x * nx + y * ny) / nz;
       const double zMin = std::max(std::max(-chord, surface), tangent), zMax = chord;
@@ -542,24 +551,59 @@ bool VAOFrame(const PixelCamera& camera, const VAOSettings& settings, SurfaceFra
         sum += scale * ((x * nx + y * ny) * (zMax - zMin) + nz * (zMax * zMax - zMin * zMin) * 0.5);
     }
     ao[k] = R * R * sum / n;
-    if (colour && lit > 0)
-      for (int c = 0; c < 3; ++c)
-        mean[3 * k + c] = light[c] / lit;
   });
   if (settings.interleave && !only)
     DepthAwareFilter(frame, { 0.5, 1.0, 1.0, 1.0, 0.5 }, settings.filterTolerance * R, ao, threads);
   for (double& a : ao)
     if (std::isfinite(a))
       a = std::min(1.0, std::max(0.0, a));
-  if (colour && indirect)
-  {
-    indirect->assign(3 * pixels, 0.0f);
-    for (std::size_t k = 0; k < pixels; ++k)
-      if (std::isfinite(ao[k]))
-        for (int c = 0; c < 3; ++c)
-          (*indirect)[3 * k + c] = static_cast<float>(mean[3 * k + c] * (1.0 - ao[k]));
-  }
   frame.ao = ao;
+  return true;
+}
+
+bool VAOIndirect(const PixelCamera& camera, const VAOSettings& settings, const SurfaceFrame& frame,
+  const std::vector<float>& colour, std::vector<float>& indirect, int threads, std::string& error)
+{
+  error = settings.Validate();
+  if (!error.empty())
+    return false;
+  Screen screen;
+  if (!screen.Build(camera, frame, error))
+    return false;
+  const std::size_t pixels = frame.ao.size();
+  if (colour.size() != 3 * pixels)
+    return error = "the colour buffer does not match the image size", false;
+  std::vector<double> diskX, diskY;
+  DiskSamples(settings, diskX, diskY);
+  const int n = settings.EffectiveSamples(), tile = settings.interleave ? VAOSettings::Tile : 1;
+  indirect.assign(3 * pixels, 0.0f);
+  ParallelFor(pixels, threads, [&](std::size_t k) {
+    if (!screen.Covered(k) || !std::isfinite(frame.ao[k]))
+      return;
+    const int i = static_cast<int>(k % screen.w), j = static_cast<int>(k / screen.w);
+    const int set = (j % tile) * tile + (i % tile);
+    const Vec p = screen.Position(k);
+    Vec X, Y, Z;
+    PixelFrame(screen, k, X, Y, Z);
+    double light[3] = { 0, 0, 0 };
+    int lit = 0;
+    for (int s = 0; s < n; ++s)
+    {
+      const int g = set + tile * tile * s;
+      double z = 0.0;
+      const long long q = screen.Lookup(p + diskX[g] * X + diskY[g] * Y, z);
+      if (q < 0 || static_cast<std::size_t>(q) == k || !screen.Covered(q))
+        continue;
+      if (!(Dot(screen.Normal(q), p - screen.Position(q)) > 0.0))
+        continue; // a neighbour facing away from P
+      for (int c = 0; c < 3; ++c)
+        light[c] += colour[3 * q + c];
+      ++lit;
+    }
+    if (lit > 0)
+      for (int c = 0; c < 3; ++c)
+        indirect[3 * k + c] = static_cast<float>(light[c] / lit * (1.0 - frame.ao[k]));
+  });
   return true;
 }
 }

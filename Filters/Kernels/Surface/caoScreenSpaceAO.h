@@ -142,12 +142,17 @@ bool HBAOFrame(const PixelCamera& camera, const HBAOSettings& settings, SurfaceF
   std::string& error, const std::vector<std::size_t>* only = nullptr);
 
 /// Volumetric AO of every covered pixel into frame.ao (`only`: just these
-/// pixels, unfiltered). With `colour` (RGB per pixel, the lit picture) and
-/// `indirect`, also the indirect term I = L (1 - O) per pixel (RGB; 0 on
-/// the background).
+/// pixels, unfiltered).
 bool VAOFrame(const PixelCamera& camera, const VAOSettings& settings, SurfaceFrame& frame, int threads,
-  std::string& error, const std::vector<float>* colour = nullptr, std::vector<float>* indirect = nullptr,
-  const std::vector<std::size_t>* only = nullptr);
+  std::string& error, const std::vector<std::size_t>* only = nullptr);
+
+/// VAO's indirect term on a frame whose AO VAOFrame made: per covered
+/// pixel I = L (1 - O), L the mean of `colour` (RGB per pixel, the lit
+/// picture) over the pixel's sample points whose surface faces it (the
+/// same samples as its AO); `indirect` RGB per pixel, 0 on the background.
+/// Only this runs again when the colours change.
+bool VAOIndirect(const PixelCamera& camera, const VAOSettings& settings, const SurfaceFrame& frame,
+  const std::vector<float>& colour, std::vector<float>& indirect, int threads, std::string& error);
 
 /// The depth-aware filter both methods end with: per covered pixel the
 /// weighted mean of the covered taps (i + di, j + dj), weight w[di] w[dj]

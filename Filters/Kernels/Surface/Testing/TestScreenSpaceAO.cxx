@@ -346,7 +346,7 @@ int TestScreenSpaceAO(int, char*[])
       v.seed = static_cast<std::uint64_t>(seed);
       cao::SurfaceFrame g = f;
       const std::vector<std::size_t> only{ p };
-      CAO_CHECK(cao::VAOFrame(cam, v, g, 0, error, nullptr, nullptr, &only), "%s", error.c_str());
+      CAO_CHECK(cao::VAOFrame(cam, v, g, 0, error, &only), "%s", error.c_str());
       o += g.ao[p] / 8;
     }
     cao::VAOSettings m; // the default: 16 samples, 4 x 4 sets and the filter
@@ -383,7 +383,8 @@ int TestScreenSpaceAO(int, char*[])
       }
     cao::VAOSettings v;
     v.radius = 1.0;
-    CAO_CHECK(cao::VAOFrame(cam, v, f, 0, error, &colour, &indirect), "%s", error.c_str());
+    CAO_CHECK(cao::VAOFrame(cam, v, f, 0, error) && cao::VAOIndirect(cam, v, f, colour, indirect, 0, error), "%s",
+      error.c_str());
     const std::size_t p = Nearest(f, 0.8, 0, 0);
     std::printf("VAO indirect on the floor 0.2 from a red face: O %.3f, indirect (%.3f, %.3f, %.3f)\n", f.ao[p],
       indirect[3 * p], indirect[3 * p + 1], indirect[3 * p + 2]);

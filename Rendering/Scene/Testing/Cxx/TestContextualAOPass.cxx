@@ -18,6 +18,10 @@
 //   grid's;
 // - the pass's AO at a pixel equals cao::VCTFrame's for the same triangles
 //   and camera (the kernel's, not a second implementation);
+// - HBAO and VAO: no grid, their AO the kernels' on the same G-buffer, a
+//   colour change or a grid setting runs only the combine, a turn casts and
+//   traces; VAO's indirect light reddens the slab by a red sphere (not by a
+//   blue one; off: not at all); on the depth G-buffer no BVH is built;
 // - a hardware selection through the pass picks the sphere and the slab
 //   (the pass leaves selection renders alone);
 // - an open mesh is counted; bad Slices and a NaN Strength are refused with
@@ -62,6 +66,7 @@
 #include "vtkPolyData.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "caoScreenSpaceAO.h"
 #include "caoVoxelConeTracing.h"
 #include "vtkCAOInput.h"
 
@@ -284,6 +289,138 @@ int TestContextualAOPass(int, char*[])
     std::snprintf(text, sizeof(text), "the pass's AO is cao::VCTFrame's on the same triangles and camera "
       "(%d pixels, largest difference %.2g)", compared, worst);
     Check(ran && compared > 1000 && worst == 0.0, text);
+  }
+
+  // The screen-space methods (HBAO, VAO): no grid (a "scene" stage builds
+  // only the ray cast's triangles), their AO is the kernel's on the same
+  // G-buffer, a colour change runs only the combine, a turn casts and
+  // traces; VAO's indirect light carries the red sphere's colour onto the
+  // white slab by the contact (negative control: off, no red); with the
+  // depth G-buffer no triangles are even gathered into a BVH.
+  {
+    const int grids = pass->GetVoxelizeCount();
+    std::vector<double> all;
+    std::vector<std::int64_t> allTris;
+    for (vtkActor* a : { slabActor.Get(), sphereActor.Get() })
+    {
+      std::vector<double> pts;
+      std::vector<std::int64_t> tris;
+      vtkCAO::TrianglesOf(vtkPolyData::SafeDownCast(a->GetMapper()->GetInputDataObject(0, 0)), pts, tris);
+      for (std::size_t i = 0; i < pts.size(); i += 3)
+      {
+        double in[4] = { pts[i], pts[i + 1], pts[i + 2], 1.0 }, out[4];
+        a->GetMatrix()->MultiplyPoint(in, out);
+        for (int d = 0; d < 3; ++d)
+          pts[i + d] = out[d];
+      }
+      const std::int64_t base = static_cast<std::int64_t>(all.size() / 3);
+      all.insert(all.end(), pts.begin(), pts.end());
+      for (std::int64_t id : tris)
+        allTris.push_back(id + base);
+    }
+    std::string error;
+    cao::TriangleBVH bvh;
+    bvh.Build(all, allTris, error);
+    for (int method : { vtkContextualAOPass::HBAO, vtkContextualAOPass::VAO })
+    {
+      const std::string name = method == vtkContextualAOPass::HBAO ? "HBAO" : "VAO";
+      pass->SetMethod(method);
+      window->Render();
+      const std::string first = pass->GetLastFrameStages();
+      int w = 0, h = 0, x0 = 0, y0 = 0;
+      renderer->GetTiledSizeAndOrigin(&w, &h, &x0, &y0);
+      cao::PixelCamera pixels;
+      vtkMatrix4x4::Invert(&camera->GetCompositeProjectionTransformMatrix(double(w) / h, -1, 1)->Element[0][0],
+        pixels.ndcToWorld);
+      pixels.width = w;
+      pixels.height = h;
+      cao::SurfaceFrame frame;
+      bool ran = cao::CastPrimary(bvh, pixels, frame, error);
+      if (method == vtkContextualAOPass::HBAO)
+      {
+        cao::HBAOSettings hs;
+        hs.radius = 0.8;
+        ran = ran && cao::HBAOFrame(pixels, hs, frame, 0, error);
+      }
+      else
+      {
+        cao::VAOSettings vs;
+        vs.radius = 0.8;
+        ran = ran && cao::VAOFrame(pixels, vs, frame, 0, error);
+      }
+      double worst = 0;
+      int compared = 0;
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+        {
+          const double a = frame.ao[static_cast<std::size_t>(y) * w + x];
+          if (std::isfinite(a))
+            worst = std::max(worst, std::fabs(a - pass->GetPixelAO(x, y))), ++compared;
+        }
+      // From VCT the triangles are gathered again (no grid); from HBAO to
+      // VAO they are kept: the AO alone is made again.
+      const std::string expected = method == vtkContextualAOPass::HBAO ? "scene,primary,trace,ambient,combine"
+                                                                       : "primary,trace,ambient,combine";
+      Check(first == expected && pass->GetVoxelizeCount() == grids && ran &&
+          compared > 1000 && worst == 0.0,
+        name + ": no grid (" + first + "); its AO is the kernel's on the same G-buffer (" +
+          std::to_string(compared) + " pixels, largest difference " + std::to_string(worst) + ")");
+      project(0.0, -0.55, 0.0, cx, cy);
+      Check(pass->GetPixelAO(cx, cy) < 0.9, name + " darkens the slab by the contact (AO " +
+          std::to_string(pass->GetPixelAO(cx, cy)) + ")");
+      sphereActor->GetProperty()->SetColor(0.9, 0.3, 0.2 + 0.1 * method);
+      window->Render();
+      Check(pass->GetLastFrameStages() == "ambient,combine",
+        name + ": a colour change runs only the combine (" + pass->GetLastFrameStages() + ")");
+      pass->SetSlices(256); // a grid setting: nothing for a screen-space method
+      window->Render();
+      Check(pass->GetLastFrameStages() == "ambient,combine",
+        name + ": a grid setting runs nothing new (" + pass->GetLastFrameStages() + ")");
+      pass->SetSlices(128);
+      camera->Azimuth(5);
+      window->Render();
+      Check(pass->GetLastFrameStages() == "primary,trace,ambient,combine",
+        name + ": a camera turn casts and traces (" + pass->GetLastFrameStages() + ")");
+      camera->Azimuth(-5);
+      window->Render();
+    }
+    // VAO's indirect light: a red sphere on the white slab.
+    sphereActor->GetProperty()->SetColor(1.0, 0.0, 0.0);
+    pass->SetApplyTo(vtkContextualAOPass::WHOLE_COLOR);
+    project(0.0, -0.55, 0.0, cx, cy);
+    auto redness = [&]() {
+      vtkNew<vtkUnsignedCharArray> c;
+      static_cast<vtkRenderWindow*>(window.Get())->GetPixelData(cx, cy, cx, cy, 0, c.Get());
+      return static_cast<double>(c->GetValue(0)) - c->GetValue(1);
+    };
+    window->Render();
+    const double plain = redness();
+    pass->IndirectLightOn();
+    window->Render();
+    const std::string bleedStages = pass->GetLastFrameStages();
+    const double bled = redness();
+    sphereActor->GetProperty()->SetColor(0.0, 0.0, 1.0);
+    window->Render();
+    const std::string recolour = pass->GetLastFrameStages();
+    const double blue = redness();
+    Check(bleedStages == "indirect,combine" && plain == 0.0 && bled > 3.0 && recolour == "indirect,combine" &&
+        blue <= 0.0,
+      "VAO's indirect light: the slab by a red sphere turns red by " + std::to_string(bled) +
+        " levels (off: " + std::to_string(plain) + "), not when the sphere is blue (" + std::to_string(blue) +
+        "); stages " + bleedStages + " then " + recolour);
+    pass->IndirectLightOff();
+    // The depth G-buffer: no BVH for a screen-space method.
+    pass->SetGBuffer(vtkContextualAOPass::DEPTH_BUFFER);
+    window->Render();
+    const std::string report = pass->GetLastFrameReport();
+    Check(pass->GetLastFrameStages() == "scene,gbuffer,trace,combine" &&
+        report.find("\"triangles\": 0,") != std::string::npos && pass->GetPixelAO(cx, cy) < 0.9,
+      "VAO on the depth G-buffer builds no BVH (" + pass->GetLastFrameStages() + ")");
+    pass->SetGBuffer(vtkContextualAOPass::RAY_CAST);
+    pass->SetApplyTo(vtkContextualAOPass::AMBIENT_TERM);
+    sphereActor->GetProperty()->SetColor(0.9, 0.3, 0.2);
+    pass->SetMethod(vtkContextualAOPass::VCT);
+    window->Render();
   }
 
   // Translucent geometry over the AO surface keeps its own colour (the
