@@ -90,6 +90,12 @@ void vtkPVRenderViewWithContextualAO::SetSurfaceAOSlices(int slices)
   this->Modified();
 }
 
+void vtkPVRenderViewWithContextualAO::SetSurfaceAOIndirectLight(int on)
+{
+  this->Pass->SetIndirectLight(on != 0);
+  this->Modified();
+}
+
 void vtkPVRenderViewWithContextualAO::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

@@ -34,7 +34,8 @@ public:
 
   ///@{
   /// Forwarded to the pass (vtkContextualAOPass's Method, ApplyTo, Radius,
-  /// Strength, Quality, Slices, Grid, GBuffer, OccludingVolumes).
+  /// Strength, Quality, Slices, Grid, GBuffer, OccludingVolumes,
+  /// IndirectLight).
   void SetSurfaceAOMethod(int method);
   void SetApplyAOTo(int mode);
   void SetSurfaceAOGrid(int grid);
@@ -44,6 +45,7 @@ public:
   void SetSurfaceAOStrength(double strength);
   void SetSurfaceAOQuality(int quality);
   void SetSurfaceAOSlices(int slices);
+  void SetSurfaceAOIndirectLight(int on);
   ///@}
 
   /// The pass, for its frame report.

@@ -8,6 +8,9 @@ resting on a box (ParaView sources, drawn by composite mappers):
 - a colour change runs only the combine; a camera turn casts and traces
   without a new grid; moving the sphere (its source) re-voxelizes;
 - the view's properties reach the pass (Strength 0 leaves the picture);
+- Surface AO Method Horizon Based and Volumetric: no grid, they darken
+  around the contact only; Surface AO Indirect Light runs its step, and a
+  colour change runs it and the combine alone;
 - a volume in the same view ("Contextual AO Volume" of a block of image
   data beside the sphere) occludes the box under it, through its opacity;
   carving it all away with its Cube clip shape gives the box its own AO
@@ -105,6 +108,29 @@ view.SurfaceAOMethod = "None"
 b = shot("view-none")
 check(abs(a - b).max() <= 1, "Strength 0 leaves the picture as Method None (max diff %.0f)" % abs(a - b).max())
 view.SurfaceAOStrength = 1.0
+# The screen-space methods: no grid; they darken around the contact only;
+# Volumetric's indirect light runs its own step (and only it and the
+# combine on a colour change).
+for method in ("Horizon Based", "Volumetric"):
+    grids = pas.GetVoxelizeCount()
+    view.SurfaceAOMethod = method
+    img = shot("view-" + method.split()[0].lower())
+    stages = pas.GetLastFrameStages()
+    d = (b - img).mean(axis=2)
+    check(pas.GetVoxelizeCount() == grids and "trace" in stages and "voxelize" not in stages and
+          d.min() >= -3 and 200 < int((d > 10).sum()) < 0.5 * d.size,
+          "%s: no grid (%s); darkens %d pixels by more than 10 grey levels, brightens none by more than 3"
+          % (method, stages, int((d > 10).sum())))
+view.SurfaceAOIndirectLight = 1
+Render(view)
+first = pas.GetLastFrameStages()
+ballDisplay.AmbientColor = ballDisplay.DiffuseColor = [0.2, 0.9, 0.3]
+Render(view)
+check("indirect" in first and pas.GetLastFrameStages() == "indirect,combine" and '"indirect_light": true' in
+      pas.GetLastFrameReport(), "Surface AO Indirect Light: its step runs (%s), a colour change runs it and the "
+      "combine only (%s)" % (first, pas.GetLastFrameStages()))
+view.SurfaceAOIndirectLight = 0
+ballDisplay.AmbientColor = ballDisplay.DiffuseColor = [0.9, 0.3, 0.2]
 view.SurfaceAOMethod = "Voxel Cones"
 
 # A volume in the same view: a block of image data on the box, beside the
