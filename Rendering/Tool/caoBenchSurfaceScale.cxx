@@ -187,10 +187,12 @@ int RunBenchSurfaceScale(int argc, char* argv[])
   if (!csv)
     return Fail(1, "cannot write '" + o.output + "/surface-scale.csv'");
   csv << "copies,triangles,width,height,covered_pixels,primary_ms,world_grid_ms,eye_grid_ms,trace_ms,ssao_ms,"
-         "trace_ns_per_covered_pixel,trace_over_ssao,frame_world_over_ssao,frame_eye_over_ssao\n";
+         "trace_ns_per_covered_pixel,trace_over_ssao,frame_world_over_ssao,frame_eye_over_ssao,hbao_ms,vao_ms,"
+         "hbao_over_ssao,vao_over_ssao\n";
   std::printf("| copies | triangles | image | covered pixels | G-buffer ms | world grid ms (once) | eye grid ms (per turn) | "
               "trace ms | trace ns / covered pixel | vtkSSAOPass ms | trace / SSAO | G-buffer + trace / SSAO | eye grid + G-buffer + trace / "
-              "SSAO |\n|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+              "SSAO | hbao ms | vao ms | hbao / SSAO | vao / SSAO |\n"
+              "|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (int copies : o.copies)
   {
     SurfaceScene scene;
@@ -235,6 +237,17 @@ int RunBenchSurfaceScale(int argc, char* argv[])
       cao::SurfaceFrame eyeFrame = frame;
       const double eyeTraceMs = Time(o.repeats,
         [&]() { return cao::VCTFrame(eye, eyePlan, eyeFrame, o.threads, error); }, error, ok);
+      // The screen-space methods at their default presets, on the same G-buffer.
+      const cao::PixelCamera pixels = MakePixelCamera(camera, view);
+      cao::HBAOSettings hbao;
+      hbao.radius = radius;
+      cao::VAOSettings vao;
+      vao.radius = radius;
+      cao::SurfaceFrame ss = frame;
+      const double hbaoMs = Time(o.repeats, [&]() { return cao::HBAOFrame(pixels, hbao, ss, o.threads, error); },
+        error, ok);
+      const double vaoMs = Time(o.repeats, [&]() { return cao::VAOFrame(pixels, vao, ss, o.threads, error); },
+        error, ok);
       if (!ok)
         return Fail(1, error);
       SSAORenderer ssao;
@@ -257,15 +270,17 @@ int RunBenchSurfaceScale(int argc, char* argv[])
       const double tri = static_cast<double>(scene.bvh.NumberOfTriangles());
       auto ratio = [ssaoMs](double v) { return ssaoMs > 0 ? v / ssaoMs : -1.0; };
       const double perPixel = frame.covered > 0 ? 1e6 * traceMs / static_cast<double>(frame.covered) : 0.0;
-      std::printf("| %d | %.0f | %dx%d | %lld | %.1f | %.1f | %.1f | %.1f | %.0f | %.1f | %.2f | %.2f | %.2f |\n",
+      std::printf("| %d | %.0f | %dx%d | %lld | %.1f | %.1f | %.1f | %.1f | %.0f | %.1f | %.2f | %.2f | %.2f | %.1f | %.1f | "
+                  "%.2f | %.2f |\n",
         copies, tri, view.width, view.height, static_cast<long long>(frame.covered), primaryMs, worldMs, eyeMs,
         traceMs, perPixel, ssaoMs, ratio(traceMs),
-        ratio(primaryMs + traceMs), ratio(eyeMs + primaryMs + eyeTraceMs));
+        ratio(primaryMs + traceMs), ratio(eyeMs + primaryMs + eyeTraceMs), hbaoMs, vaoMs, ratio(hbaoMs), ratio(vaoMs));
       std::fflush(stdout);
       csv << copies << "," << tri << "," << view.width << "," << view.height << "," << frame.covered << ","
           << primaryMs << "," << worldMs
           << "," << eyeMs << "," << traceMs << "," << ssaoMs << "," << perPixel << "," << ratio(traceMs) << ","
-          << ratio(primaryMs + traceMs) << "," << ratio(eyeMs + primaryMs + eyeTraceMs) << "\n";
+          << ratio(primaryMs + traceMs) << "," << ratio(eyeMs + primaryMs + eyeTraceMs) << "," << hbaoMs << ","
+          << vaoMs << "," << ratio(hbaoMs) << "," << ratio(vaoMs) << "\n";
     }
   }
   csv.close();

@@ -4,8 +4,9 @@
  * run. The meshes are tiled into 1, 9, 81 ... copies (the design's "many
  * instances of the CAD part"); at each image size it times, per frame, the
  * G-buffer cast, the world grid (once per geometry), the eye grid (again at
- * each camera turn), the cone tracing, and vtkSSAOPass at its default
- * kernel; it prints the table with the ratios to vtkSSAOPass and writes
+ * each camera turn), the cone tracing, horizon-based and volumetric AO at
+ * their default presets on the same G-buffer, and vtkSSAOPass at its
+ * default kernel; it prints the table with the ratios to vtkSSAOPass and writes
  * DIR/surface-scale.csv. Time only: the accuracy is `cao bench surface`'s.
  */
 #ifndef caoBenchSurfaceScale_h

@@ -110,8 +110,7 @@ struct Screen
   PixelCamera camera;
   double worldToNDC[16];
   int w = 0, h = 0;
-  std::vector<double> ndcDepth, footprint;
-  std::vector<Vec> toCamera;
+  std::vector<double> ndcDepth; ///< the only per-pixel array (the lookups read it anywhere)
   Vec screenRight{ 1, 0, 0 };
 
   bool Covered(std::size_t k) const { return this->frame->triangle[k] >= 0; }
@@ -159,8 +158,6 @@ struct Screen
     this->w = cam.width;
     this->h = cam.height;
     this->ndcDepth.assign(pixels, std::numeric_limits<double>::infinity());
-    this->footprint.assign(pixels, 0.0);
-    this->toCamera.assign(pixels, Vec{ 0, 0, 1 });
     double a[3], b[3];
     if (NDCToWorld(cam, -1, 0, 0, a) && NDCToWorld(cam, 1, 0, 0, b))
       this->screenRight = Normalized(Vec{ b[0] - a[0], b[1] - a[1], b[2] - a[2] });
@@ -169,22 +166,31 @@ struct Screen
       if (!this->Covered(k))
         continue;
       const int i = static_cast<int>(k % this->w), j = static_cast<int>(k / this->w);
+      (void)i;
+      (void)j;
       double z = 0.0;
-      const Vec p = this->Position(k);
-      this->Lookup(p, z);
-      if (!std::isfinite(z))
-        continue;
-      this->ndcDepth[k] = z;
-      const double x = (i + 0.5) / this->w * 2.0 - 1.0, y = (j + 0.5) / this->h * 2.0 - 1.0;
-      double n[3], fa[3], side[3];
-      if (NDCToWorld(cam, x, y, -1.0, n) && NDCToWorld(cam, x, y, 1.0, fa) &&
-        NDCToWorld(cam, x + 2.0 / this->w, y, z, side))
-      {
-        this->toCamera[k] = Normalized(Vec{ n[0] - fa[0], n[1] - fa[1], n[2] - fa[2] });
-        this->footprint[k] = std::sqrt(Dot(Vec{ side[0], side[1], side[2] } - p, Vec{ side[0], side[1], side[2] } - p));
-      }
+      this->Lookup(this->Position(k), z);
+      if (std::isfinite(z))
+        this->ndcDepth[k] = z;
     }
     return true;
+  }
+  /// Pixel k's direction to the camera (its ray, reversed) and its world
+  /// size at its surface's depth (0 when they cannot be had).
+  void Ray(std::size_t k, Vec& toCamera, double& footprint) const
+  {
+    const int i = static_cast<int>(k % this->w), j = static_cast<int>(k / this->w);
+    const double x = (i + 0.5) / this->w * 2.0 - 1.0, y = (j + 0.5) / this->h * 2.0 - 1.0;
+    double n[3], fa[3], side[3];
+    toCamera = Vec{ 0, 0, 1 };
+    footprint = 0.0;
+    if (NDCToWorld(this->camera, x, y, -1.0, n) && NDCToWorld(this->camera, x, y, 1.0, fa) &&
+      NDCToWorld(this->camera, x + 2.0 / this->w, y, this->ndcDepth[k], side))
+    {
+      toCamera = Normalized(Vec{ n[0] - fa[0], n[1] - fa[1], n[2] - fa[2] });
+      const Vec d = Vec{ side[0], side[1], side[2] } - this->Position(k);
+      footprint = std::sqrt(Dot(d, d));
+    }
   }
 };
 
@@ -215,7 +221,8 @@ void DiskSamples(const VAOSettings& settings, std::vector<double>& diskX, std::v
 /// The quasi-orthographic frame of pixel k: X, Y across its ray, Z toward the camera.
 void PixelFrame(const Screen& screen, std::size_t k, Vec& X, Vec& Y, Vec& Z)
 {
-  Z = screen.toCamera[k];
+  double footprint;
+  screen.Ray(k, Z, footprint);
   X = Normalized(screen.screenRight - Dot(screen.screenRight, Z) * Z);
   Y = Cross(Z, X);
 }
@@ -425,7 +432,8 @@ bool HBAOFrame(const PixelCamera& camera, const HBAOSettings& settings, SurfaceF
   const double R = settings.radius, step = R / c.steps;
   const int tile = HBAOSettings::Tile;
   auto attenuation = [&](double r) { return c.attenuation == AOFalloff::Linear ? std::max(0.0, 1.0 - r / R) : 1.0; };
-  std::vector<double> ao(frame.ao.size(), std::numeric_limits<double>::quiet_NaN());
+  std::vector<double>& ao = frame.ao; // in place: HBAO reads no AO
+  ao.assign(ao.size(), std::numeric_limits<double>::quiet_NaN());
   ParallelFor(only ? only->size() : ao.size(), threads, [&](std::size_t index) {
     const std::size_t k = only ? (*only)[index] : index;
     if (k >= ao.size() || !screen.Covered(k) || !std::isfinite(screen.ndcDepth[k]))
@@ -435,7 +443,10 @@ bool HBAOFrame(const PixelCamera& camera, const HBAOSettings& settings, SurfaceF
     const double rotation = Hash01(settings.seed, 2 * cell) * 2.0 * Pi / c.directions;
     const double jitter = 1.0 - Hash01(settings.seed, 2 * cell + 1); // (0, 1]
     const Vec n = screen.Normal(k);
-    const Vec p = screen.Position(k) + (settings.offsetPixels * screen.footprint[k]) * n;
+    Vec toCamera;
+    double footprint;
+    screen.Ray(k, toCamera, footprint);
+    const Vec p = screen.Position(k) + (settings.offsetPixels * footprint) * n;
     Vec t1, t2;
     Complete(n, t1, t2);
     double horizonOcclusion = 0.0, normalOcclusion = 0.0;
@@ -498,7 +509,6 @@ bool HBAOFrame(const PixelCamera& camera, const HBAOSettings& settings, SurfaceF
       weights[d + settings.blurRadius] = std::exp(-0.5 * d * d / (1.5 * 1.5));
     DepthAwareFilter(frame, weights, settings.blurTolerance * R, ao, threads);
   }
-  frame.ao = ao;
   return true;
 }
 
@@ -517,7 +527,8 @@ bool VAOFrame(const PixelCamera& camera, const VAOSettings& settings, SurfaceFra
   const int sets = tile * tile;
   std::vector<double> diskX, diskY;
   DiskSamples(settings, diskX, diskY);
-  std::vector<double> ao(pixels, std::numeric_limits<double>::quiet_NaN());
+  std::vector<double>& ao = frame.ao; // in place: VAO reads no AO
+  ao.assign(pixels, std::numeric_limits<double>::quiet_NaN());
   const double scale = 4.0 / (R * R * R * R);
   ParallelFor(only ? only->size() : pixels, threads, [&](std::size_t index) {
     const std::size_t k = only ? (*only)[index] : index;
@@ -557,7 +568,6 @@ bool VAOFrame(const PixelCamera& camera, const VAOSettings& settings, SurfaceFra
   for (double& a : ao)
     if (std::isfinite(a))
       a = std::min(1.0, std::max(0.0, a));
-  frame.ao = ao;
   return true;
 }
 
