@@ -43,7 +43,8 @@ options:
   --orbit DEG          the second camera's azimuth step, for flicker (default 0.5)
   --band PX            the depth-discontinuity band's half-width (default 2)
   --vct-backends LIST  where vct runs: cpu, gl (default cpu; gl: the OpenGL 4.3 compute
-                       twin, its grid voxelized on the GPU, timed by GPU queries)
+                       twin, its grid voxelized on the GPU, timed by GPU queries; gl also
+                       adds hbao-gl and vao-gl rows, the screen-space methods' GPU twins)
   --grids LIST         vct grids: world (default), eye (the camera's axes, built again for
                        each camera: its ms/frame includes its grid ms)
   --repeats N          timed runs per configuration, the median kept (default 3)
@@ -294,7 +295,7 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
 struct Row
 {
   std::string mesh, method, label;
-  int series = 0; ///< 0 vct (CPU), 1 ssao, 2 none, 3 reference, 4 vct (GL), 5 hbao, 6 vao
+  int series = 0; ///< 0 vct (CPU), 1 ssao, 2 none, 3 reference, 4 vct (GL), 5 hbao, 6 vao, 7 hbao (GL), 8 vao (GL)
   double ms = 0, gridMs = -1;
   double ownRmse = -1; ///< against the reference in the method's own falloff (-1: none)
   std::string ownFalloff;
@@ -552,17 +553,21 @@ int RunBenchSurface(int argc, char* argv[])
       return &own[key];
     };
     const cao::PixelCamera pixels = MakePixelCamera(camera, o.view), pixels2 = MakePixelCamera(camera2, o.view);
+    double gpuMs = 0.0; ///< the GPU estimator's query time (the gl rows)
     auto screenSpace = [&](const std::string& method, const std::string& label, int series, cao::AOFalloff falloff,
                          const std::function<bool(const cao::PixelCamera&, cao::SurfaceFrame&)>& run) {
       std::vector<double> times;
       cao::SurfaceFrame a = frame, b = frame2;
+      const bool onGPU = series >= 7;
       for (int r = 0; r < o.repeats; ++r)
       {
         a = frame;
         start = std::chrono::steady_clock::now();
+        gpuMs = 0.0;
         if (!run(pixels, a))
           return false;
-        times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+        times.push_back(onGPU ? gpuMs
+                              : std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
       }
       if (!run(pixels2, b))
         return false;
@@ -596,6 +601,10 @@ int RunBenchSurface(int argc, char* argv[])
       if (!screenSpace("hbao", std::string("hbao ") + cao::HBAOPresetName(preset), 5, hs.EffectiveAttenuation(),
             [&](const cao::PixelCamera& c, cao::SurfaceFrame& f) { return cao::HBAOFrame(c, hs, f, o.threads, error); }))
         return Fail(1, error);
+      if (o.vctGL &&
+        !screenSpace("hbao-gl", std::string("hbao-gl ") + cao::HBAOPresetName(preset), 7, hs.EffectiveAttenuation(),
+          [&](const cao::PixelCamera& c, cao::SurfaceFrame& f) { return gpu.ScreenAO(c, &hs, nullptr, f, gpuMs, error); }))
+        return Fail(1, error);
     }
     for (cao::VAOQuality q : o.vao)
     {
@@ -604,6 +613,10 @@ int RunBenchSurface(int argc, char* argv[])
       vs.radius = radius;
       if (!screenSpace("vao", std::string("vao ") + cao::VAOQualityName(q), 6, cao::AOFalloff::Quartic,
             [&](const cao::PixelCamera& c, cao::SurfaceFrame& f) { return cao::VAOFrame(c, vs, f, o.threads, error); }))
+        return Fail(1, error);
+      if (o.vctGL &&
+        !screenSpace("vao-gl", std::string("vao-gl ") + cao::VAOQualityName(q), 8, cao::AOFalloff::Quartic,
+          [&](const cao::PixelCamera& c, cao::SurfaceFrame& f) { return gpu.ScreenAO(c, nullptr, &vs, f, gpuMs, error); }))
         return Fail(1, error);
     }
     // vtkSSAOPass, one window for all kernel sizes.
@@ -674,7 +687,7 @@ int RunBenchSurface(int argc, char* argv[])
   for (std::size_t i = 0; i < means.size(); ++i)
     if (means[i].series != 2 && means[i].series != 3 && means[i].ms > 0 && means[i].rmse > 0)
     {
-      const int plotSeries[] = { 0, 1, -1, -1, 2, 3, 4 };
+      const int plotSeries[] = { 0, 1, -1, -1, 2, 3, 4, 5, 6 };
       points.push_back({ means[i].ms, means[i].rmse, means[i].label, plotSeries[means[i].series] });
       pointOf.push_back(i);
     }
@@ -705,6 +718,7 @@ int RunBenchSurface(int argc, char* argv[])
             << (o.threads ? std::to_string(o.threads) : std::string("all")) << " threads), vct-gl on "
             << (o.vctGL ? gpu.Description() : std::string("-")) << " (GPU queries, the trace only), "
             << "hbao and vao on the CPU (wall clock, their blur and filter included, the G-buffer not), "
+            << "hbao-gl and vao-gl (with --vct-backends gl) by GPU queries of the estimator (the host's blur not), "
             << "ssao in the offscreen window (wall clock, vtkSSAOPass with blur), the reference on the CPU. "
             << "Own-definition RMSE: against the reference in the method's own falloff (hbao: step, fig11a "
             << "linear; vao: quartic, (r/R)^4).\n";
@@ -743,7 +757,8 @@ int RunBenchSurface(int argc, char* argv[])
   json << "]}\n";
   if (!points.empty())
   {
-    if (!WriteErrorTimePlot(points, { "vct (CPU)", "vtkSSAOPass (GL)", "vct (GL)", "hbao (CPU)", "vao (CPU)" },
+    if (!WriteErrorTimePlot(points, { "vct (CPU)", "vtkSSAOPass (GL)", "vct (GL)", "hbao (CPU)", "vao (CPU)", "hbao (GL)",
+                                      "vao (GL)" },
           "Surface AO: RMSE against the ray-traced reference", "ms per frame", "RMSE",
           o.output + "/surface.png", 900, 600, error))
       std::cout << "note: no plot: " << error << "\n";

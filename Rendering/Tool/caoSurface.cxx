@@ -2,6 +2,7 @@
 
 #include "caoCommandLine.h"
 #include "caoSurfaceReference.h"
+#include "caoScreenAOGL.h"
 #include "caoVCTGL.h"
 #include "caoVoxelConeTracing.h"
 #include "caoWindow.h"
@@ -77,7 +78,7 @@ const char* SurfaceUsage = R"(cao surface MESH... [options] -o out.png
                         again whenever the camera turns; parallel columns, not the
                         paper's per-pixel perspective ones)
   --cone-weights cosine|equal   vct (default cosine; equal: the paper's average)
-  --backend auto|cpu|gl vct: where it runs (auto: OpenGL 4.3 on a hardware GPU, the CPU
+  --backend auto|cpu|gl vct, hbao, vao: where it runs (auto: OpenGL 4.3 on a hardware GPU, the CPU
                         with a software rasterizer such as llvmpipe or none; gl: OpenGL
                         even on llvmpipe, an error without a context)
   --fill surface|parity vct: a closed mesh's voxels: its parity plus the voxels its
@@ -493,6 +494,7 @@ struct VCTGPU::Impl
 {
   std::unique_ptr<cao::gl::Context> context;
   std::unique_ptr<cao::gl::VCTEngine> engine;
+  std::unique_ptr<cao::gl::ScreenAOEngine> screen;
 };
 
 VCTGPU::VCTGPU()
@@ -503,6 +505,18 @@ VCTGPU::VCTGPU()
 VCTGPU::~VCTGPU()
 {
   this->P->engine.reset(); // before its context
+  this->P->screen.reset();
+}
+
+bool VCTGPU::ScreenAO(const cao::PixelCamera& camera, const cao::HBAOSettings* hbao, const cao::VAOSettings* vao,
+  cao::SurfaceFrame& frame, double& ms, std::string& error)
+{
+  if (!this->P->context)
+    return error = "no OpenGL context (open one first)", false;
+  if (!this->P->screen)
+    this->P->screen.reset(new cao::gl::ScreenAOEngine(*this->P->context));
+  return hbao ? this->P->screen->HBAO(camera, *hbao, frame, ms, error)
+              : this->P->screen->VAO(camera, *vao, frame, ms, error);
 }
 
 bool VCTGPU::Open(std::string& error)
@@ -975,8 +989,26 @@ int RunSurface(int argc, char* argv[])
   {
     const cao::PixelCamera pixels = MakePixelCamera(camera, o.view);
     o.hbao.radius = o.vao.radius = radius;
-    if (!(o.method == "hbao" ? cao::HBAOFrame(pixels, o.hbao, frame, o.threads, error)
-                             : cao::VAOFrame(pixels, o.vao, frame, o.threads, error)))
+    VCTGPU gpu;
+    bool useGL = false;
+    if (o.backend != "cpu")
+    {
+      std::string why;
+      const bool opened = gpu.Open(why);
+      if (o.backend == "gl" && !opened)
+        return Fail(1, "--backend gl: no OpenGL 4.3 context: " + why);
+      useGL = opened && (o.backend == "gl" || !gpu.Software());
+    }
+    const bool hbao = o.method == "hbao";
+    double ms = 0.0;
+    if (useGL)
+    {
+      if (!gpu.ScreenAO(pixels, hbao ? &o.hbao : nullptr, hbao ? nullptr : &o.vao, frame, ms, error))
+        return Fail(1, error);
+      vctBackend = "OpenGL (" + gpu.Description() + ")";
+    }
+    else if (!(hbao ? cao::HBAOFrame(pixels, o.hbao, frame, o.threads, error)
+                    : cao::VAOFrame(pixels, o.vao, frame, o.threads, error)))
       return Fail(2, error);
     ao = frame.ao;
   }
@@ -1031,11 +1063,12 @@ int RunSurface(int argc, char* argv[])
                 << o.hbao.EffectiveDirections() << ", \"steps\": " << o.hbao.EffectiveSteps()
                 << ", \"normal_rays\": " << o.hbao.EffectiveNormalRays() << ", \"attenuation\": \""
                 << cao::FalloffName(o.hbao.EffectiveAttenuation()) << "\", \"march\": \""
-                << (o.hbao.deflect ? "deflect" : "sweep") << "\", \"blur_radius\": " << o.hbao.blurRadius << "}";
+                << (o.hbao.deflect ? "deflect" : "sweep") << "\", \"blur_radius\": " << o.hbao.blurRadius
+                << ", \"backend\": \"" << vctBackend << "\"}";
     if (o.method == "vao")
       std::cout << ", \"vao\": {\"quality\": \"" << cao::VAOQualityName(o.vao.quality) << "\", \"samples\": "
                 << o.vao.EffectiveSamples() << ", \"measure\": \"quartic\", \"interleave\": "
-                << (o.vao.interleave ? 4 : 1) << "}";
+                << (o.vao.interleave ? 4 : 1) << ", \"backend\": \"" << vctBackend << "\"}";
     if (o.method == "vct")
     {
       std::cout << ", \"vct\": {\"quality\": \"" << cao::VCTQualityName(o.vct.quality)

@@ -229,7 +229,29 @@ struct VCTParams
 #define CAO_BINDING_VCT_NORMALS 5  /* storage: vec4 per point (xyz unit normal) */
 #define CAO_BINDING_VCT_AO 6       /* storage: float AO per point */
 
+/* The screen-space surface AO (caoScreenSpaceAO.h, caoScreenAO.glsl): one
+ * block for horizon-based AO and volumetric AO; the frame's pixels as vec4
+ * buffers; VAO's disk samples (16 sets of up to 256) as a buffer. */
+#define CAO_SS_TILE 4
+#define CAO_SS_MAX_SAMPLES 4096
+struct ScreenAOParams
+{
+  vec4 worldToNDC[4]; /* rows */
+  vec4 ndcToWorld[4]; /* rows */
+  ivec4 image;        /* x: width, y: height, z: method (0 hbao, 1 vao), w: pattern tile side (4 or 1) */
+  ivec4 hbao;         /* x: directions, y: steps, z: normal rays, w: flags (1 deflect, 2 linear attenuation) */
+  ivec4 vao;          /* x: samples per pixel, y: sets, z: halo guard, w: 0 */
+  vec4 scalars;       /* x: radius R (world), y: offset (pixels), zw: 0 */
+  vec4 pattern[CAO_SS_TILE * CAO_SS_TILE]; /* hbao per tile cell: x rotation (radians), y jitter (0, 1] */
+};
+#define CAO_BINDING_SS_PARAMS 8    /* uniform block: ScreenAOParams */
+#define CAO_BINDING_SS_POSITIONS 9 /* storage: vec4 per pixel (xyz world, w NDC depth; w > 1e30: none) */
+#define CAO_BINDING_SS_NORMALS 10  /* storage: vec4 per pixel (xyz unit normal facing the camera) */
+#define CAO_BINDING_SS_AO 11       /* storage: float per pixel (-1: not covered) */
+#define CAO_BINDING_SS_DISK 12     /* storage: vec4 per sample (xy on the disk, world units; zw 0) */
+
 #ifdef __cplusplus
+static_assert(sizeof(ScreenAOParams) == (12 + CAO_SS_TILE * CAO_SS_TILE) * 16, "ScreenAOParams must match std140");
 static_assert(sizeof(DMTriangle) == 128, "DMTriangle must match std430");
 static_assert(sizeof(DMHit) == 16, "DMHit must match std430");
 static_assert(sizeof(DMOffset) == 16, "DMOffset must match std430");

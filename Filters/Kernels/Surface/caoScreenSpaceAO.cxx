@@ -198,7 +198,7 @@ struct Screen
 /// s + sets q. Each set covers the whole disk: radius^2 (q + (s + 1/2) /
 /// sets) / n (the sets interleave their radii), angle the radical inverse
 /// of q turned by a per-set offset.
-void DiskSamples(const VAOSettings& settings, std::vector<double>& diskX, std::vector<double>& diskY)
+void DiskSamplesOf(const VAOSettings& settings, std::vector<double>& diskX, std::vector<double>& diskY)
 {
   const double R = settings.radius;
   const int n = settings.EffectiveSamples(), tile = settings.interleave ? VAOSettings::Tile : 1;
@@ -258,6 +258,21 @@ HBAOConfiguration Configuration(const HBAOSettings& s)
       return { s.directions, s.steps, s.normalRays, s.attenuation };
   }
 }
+}
+
+void HBAOPattern(const HBAOSettings& settings, double rotation[16], double jitter[16])
+{
+  const int directions = settings.EffectiveDirections();
+  for (std::uint64_t cell = 0; cell < 16; ++cell)
+  {
+    rotation[cell] = Hash01(settings.seed, 2 * cell) * 2.0 * Pi / directions;
+    jitter[cell] = 1.0 - Hash01(settings.seed, 2 * cell + 1);
+  }
+}
+
+void VAODiskSamples(const VAOSettings& settings, std::vector<double>& x, std::vector<double>& y)
+{
+  DiskSamplesOf(settings, x, y);
 }
 
 int HBAOSettings::EffectiveDirections() const
@@ -419,6 +434,30 @@ void DepthAwareFilter(const SurfaceFrame& frame, const std::vector<double>& weig
   });
 }
 
+void FinishHBAO(const HBAOSettings& settings, SurfaceFrame& frame, int threads)
+{
+  if (settings.blurRadius < 1)
+    return;
+  std::vector<double> weights(2 * settings.blurRadius + 1);
+  for (int d = -settings.blurRadius; d <= settings.blurRadius; ++d)
+    weights[d + settings.blurRadius] = std::exp(-0.5 * d * d / (1.5 * 1.5));
+  DepthAwareFilter(frame, weights, settings.blurTolerance * settings.radius, frame.ao, threads);
+}
+
+void FinishVAO(const VAOSettings& settings, SurfaceFrame& frame, int threads)
+{
+  if (settings.interleave)
+    DepthAwareFilter(frame, { 0.5, 1.0, 1.0, 1.0, 0.5 }, settings.filterTolerance * settings.radius, frame.ao, threads);
+  for (double& a : frame.ao)
+    if (std::isfinite(a))
+      a = std::min(1.0, std::max(0.0, a));
+}
+
+bool WorldToNDC(const PixelCamera& camera, double out[16])
+{
+  return Invert4(camera.ndcToWorld, out);
+}
+
 bool HBAOFrame(const PixelCamera& camera, const HBAOSettings& settings, SurfaceFrame& frame, int threads,
   std::string& error, const std::vector<std::size_t>* only)
 {
@@ -431,6 +470,8 @@ bool HBAOFrame(const PixelCamera& camera, const HBAOSettings& settings, SurfaceF
   const HBAOConfiguration c = Configuration(settings);
   const double R = settings.radius, step = R / c.steps;
   const int tile = HBAOSettings::Tile;
+  double rotations[16], jitters[16];
+  HBAOPattern(settings, rotations, jitters);
   auto attenuation = [&](double r) { return c.attenuation == AOFalloff::Linear ? std::max(0.0, 1.0 - r / R) : 1.0; };
   std::vector<double>& ao = frame.ao; // in place: HBAO reads no AO
   ao.assign(ao.size(), std::numeric_limits<double>::quiet_NaN());
@@ -439,9 +480,8 @@ bool HBAOFrame(const PixelCamera& camera, const HBAOSettings& settings, SurfaceF
     if (k >= ao.size() || !screen.Covered(k) || !std::isfinite(screen.ndcDepth[k]))
       return;
     const int i = static_cast<int>(k % screen.w), j = static_cast<int>(k / screen.w);
-    const std::uint64_t cell = static_cast<std::uint64_t>((j % tile) * tile + (i % tile));
-    const double rotation = Hash01(settings.seed, 2 * cell) * 2.0 * Pi / c.directions;
-    const double jitter = 1.0 - Hash01(settings.seed, 2 * cell + 1); // (0, 1]
+    const int cell = (j % tile) * tile + (i % tile);
+    const double rotation = rotations[cell], jitter = jitters[cell];
     const Vec n = screen.Normal(k);
     Vec toCamera;
     double footprint;
@@ -502,13 +542,8 @@ bool HBAOFrame(const PixelCamera& camera, const HBAOSettings& settings, SurfaceF
     }
     ao[k] = std::min(1.0, std::max(0.0, 1.0 - (horizonOcclusion / c.directions + normalOcclusion)));
   });
-  if (settings.blurRadius > 0 && !only)
-  {
-    std::vector<double> weights(2 * settings.blurRadius + 1);
-    for (int d = -settings.blurRadius; d <= settings.blurRadius; ++d)
-      weights[d + settings.blurRadius] = std::exp(-0.5 * d * d / (1.5 * 1.5));
-    DepthAwareFilter(frame, weights, settings.blurTolerance * R, ao, threads);
-  }
+  if (!only)
+    FinishHBAO(settings, frame, threads);
   return true;
 }
 
@@ -526,7 +561,7 @@ bool VAOFrame(const PixelCamera& camera, const VAOSettings& settings, SurfaceFra
   const int n = settings.EffectiveSamples(), tile = settings.interleave ? VAOSettings::Tile : 1;
   const int sets = tile * tile;
   std::vector<double> diskX, diskY;
-  DiskSamples(settings, diskX, diskY);
+  DiskSamplesOf(settings, diskX, diskY);
   std::vector<double>& ao = frame.ao; // in place: VAO reads no AO
   ao.assign(pixels, std::numeric_limits<double>::quiet_NaN());
   const double scale = 4.0 / (R * R * R * R);
@@ -563,11 +598,12 @@ bool VAOFrame(const PixelCamera& camera, const VAOSettings& settings, SurfaceFra
     }
     ao[k] = R * R * sum / n;
   });
-  if (settings.interleave && !only)
-    DepthAwareFilter(frame, { 0.5, 1.0, 1.0, 1.0, 0.5 }, settings.filterTolerance * R, ao, threads);
-  for (double& a : ao)
-    if (std::isfinite(a))
-      a = std::min(1.0, std::max(0.0, a));
+  if (!only)
+    FinishVAO(settings, frame, threads);
+  else
+    for (double& a : ao)
+      if (std::isfinite(a))
+        a = std::min(1.0, std::max(0.0, a));
   return true;
 }
 
@@ -584,7 +620,7 @@ bool VAOIndirect(const PixelCamera& camera, const VAOSettings& settings, const S
   if (colour.size() != 3 * pixels)
     return error = "the colour buffer does not match the image size", false;
   std::vector<double> diskX, diskY;
-  DiskSamples(settings, diskX, diskY);
+  DiskSamplesOf(settings, diskX, diskY);
   const int n = settings.EffectiveSamples(), tile = settings.interleave ? VAOSettings::Tile : 1;
   indirect.assign(3 * pixels, 0.0f);
   ParallelFor(pixels, threads, [&](std::size_t k) {

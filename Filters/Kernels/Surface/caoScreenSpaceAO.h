@@ -154,6 +154,23 @@ bool VAOFrame(const PixelCamera& camera, const VAOSettings& settings, SurfaceFra
 bool VAOIndirect(const PixelCamera& camera, const VAOSettings& settings, const SurfaceFrame& frame,
   const std::vector<float>& colour, std::vector<float>& indirect, int threads, std::string& error);
 
+/// HBAO's per-pixel randomization (the same on CPU and GPU): per cell of
+/// the 4 x 4 tile (i % 4 + 4 (j % 4)), the directions' rotation in [0, 2
+/// pi / N_d) and the steps' jitter in (0, 1].
+void HBAOPattern(const HBAOSettings& settings, double rotation[16], double jitter[16]);
+/// VAO's sample points (x, y world units on the disk of radius R): set s's
+/// sample q at index s + sets q, sets = 16 (interleaved) or 1.
+void VAODiskSamples(const VAOSettings& settings, std::vector<double>& x, std::vector<double>& y);
+
+/// What each method does after its per-pixel estimate (CPU or GPU): HBAO
+/// its depth-aware Gaussian blur; VAO its depth-limited filter of the
+/// sample sets' size, then the clamp to [0, 1].
+void FinishHBAO(const HBAOSettings& settings, SurfaceFrame& frame, int threads);
+void FinishVAO(const VAOSettings& settings, SurfaceFrame& frame, int threads);
+/// The inverse of camera.ndcToWorld (world to NDC before the division);
+/// false when singular.
+bool WorldToNDC(const PixelCamera& camera, double out[16]);
+
 /// The depth-aware filter both methods end with: per covered pixel the
 /// weighted mean of the covered taps (i + di, j + dj), weight w[di] w[dj]
 /// (`weights` has 2r + 1 entries for offsets -r..r), leaving out a tap

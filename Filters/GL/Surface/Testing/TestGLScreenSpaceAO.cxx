@@ -1,0 +1,182 @@
+// Horizon-based AO and volumetric AO on the GPU (caoScreenAOGL) against
+// their CPU twins (caoScreenSpaceAO), on the ray-cast G-buffer of a sphere
+// resting on a slab with a block beside it, seen in perspective at 160 x
+// 120, each method at each preset, blur and filter on:
+// - the GPU's AO (float) against the CPU's (double): the mean |difference|
+//   under 2e-3 and at least 99% of the covered pixels within 0.02 (a
+//   step's below-the-buffer test or a sample's pixel can round the other
+//   way in float); the same covered pixels;
+// - negative control: the CPU at another preset (or with another seed)
+//   misses those bounds against the GPU;
+// - bad input: a frame of the wrong size, bad settings.
+#include "caoScreenAOGL.h"
+#include "caoGLTestUtilities.h"
+#include "caoTestUtilities.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace
+{
+int failures = 0;
+
+struct Scene
+{
+  std::vector<double> points;
+  std::vector<std::int64_t> tris;
+  void Quad(std::initializer_list<double> c)
+  {
+    const std::int64_t b = static_cast<std::int64_t>(this->points.size() / 3);
+    this->points.insert(this->points.end(), c);
+    this->tris.insert(this->tris.end(), { b, b + 1, b + 2, b, b + 2, b + 3 });
+  }
+  void Box(double x0, double x1, double y0, double y1, double z0, double z1)
+  {
+    this->Quad({ x0, y0, z1, x1, y0, z1, x1, y1, z1, x0, y1, z1 });
+    this->Quad({ x0, y0, z0, x0, y1, z0, x1, y1, z0, x1, y0, z0 });
+    this->Quad({ x0, y0, z0, x1, y0, z0, x1, y0, z1, x0, y0, z1 });
+    this->Quad({ x0, y1, z0, x0, y1, z1, x1, y1, z1, x1, y1, z0 });
+    this->Quad({ x0, y0, z0, x0, y0, z1, x0, y1, z1, x0, y1, z0 });
+    this->Quad({ x1, y0, z0, x1, y1, z0, x1, y1, z1, x1, y0, z1 });
+  }
+};
+
+/// ndcToWorld of a perspective camera at `eye` looking at the origin (up +z).
+cao::PixelCamera Camera(int w, int h, const double eye[3])
+{
+  double b[3] = { eye[0], eye[1], eye[2] };
+  double l = std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+  for (double& v : b)
+    v /= l;
+  double r[3] = { -b[1], b[0], 0 };
+  l = std::sqrt(r[0] * r[0] + r[1] * r[1]);
+  r[0] /= l;
+  r[1] /= l;
+  const double u[3] = { b[1] * r[2] - b[2] * r[1], b[2] * r[0] - b[0] * r[2], b[0] * r[1] - b[1] * r[0] };
+  const double sy = 1.0 / std::tan(0.5 * 40.0 * 3.14159265358979 / 180.0), sx = sy * h / w;
+  const double n = 0.5, f = 50.0, A = -(f + n) / (f - n), B = -2.0 * f * n / (f - n);
+  const double pinv[16] = { 1 / sx, 0, 0, 0, 0, 1 / sy, 0, 0, 0, 0, 0, -1, 0, 0, 1 / B, A / B };
+  const double view[16] = { r[0], u[0], b[0], eye[0], r[1], u[1], b[1], eye[1], r[2], u[2], b[2], eye[2], 0, 0, 0, 1 };
+  cao::PixelCamera c;
+  c.width = w;
+  c.height = h;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+    {
+      double s = 0;
+      for (int k = 0; k < 4; ++k)
+        s += view[4 * i + k] * pinv[4 * k + j];
+      c.ndcToWorld[4 * i + j] = s;
+    }
+  return c;
+}
+
+struct Agreement
+{
+  double mean = 0.0, within = 0.0;
+  bool samePixels = true;
+};
+
+Agreement Compare(const cao::SurfaceFrame& a, const cao::SurfaceFrame& b)
+{
+  Agreement r;
+  std::size_t n = 0, ok = 0;
+  for (std::size_t k = 0; k < a.ao.size(); ++k)
+  {
+    const bool fa = std::isfinite(a.ao[k]), fb = std::isfinite(b.ao[k]);
+    if (fa != fb)
+      r.samePixels = false;
+    if (!fa || !fb)
+      continue;
+    const double d = std::fabs(a.ao[k] - b.ao[k]);
+    r.mean += d;
+    ok += d <= 0.02;
+    ++n;
+  }
+  r.mean = n ? r.mean / n : 1.0;
+  r.within = n ? double(ok) / n : 0.0;
+  return r;
+}
+
+void Check(bool ok, const std::string& what)
+{
+  std::printf("%s: %s\n", ok ? "ok" : "FAIL", what.c_str());
+  failures += !ok;
+}
+}
+
+int TestGLScreenSpaceAO(int argc, char* argv[])
+{
+  auto context = caogltest::ContextOrSkip(caogltest::KindFromArgs(argc, argv));
+  if (!context)
+    return caogltest::Skip;
+  std::printf("context: %s\n", context->Description().c_str());
+  Scene s;
+  s.Box(-3, 3, -3, 3, -0.4, 0.0);
+  s.Box(0.8, 1.6, -0.6, 0.6, 0.0, 0.9);
+  std::vector<double> ball;
+  std::vector<std::int64_t> ballTris;
+  caotest::UVSphere(0.5, 48, ball, ballTris);
+  const std::int64_t base = static_cast<std::int64_t>(s.points.size() / 3);
+  for (std::size_t i = 0; i < ball.size(); ++i)
+    s.points.push_back(ball[i] + (i % 3 == 2 ? 0.5 : (i % 3 == 0 ? -0.6 : 0.0)));
+  for (std::int64_t id : ballTris)
+    s.tris.push_back(id + base);
+  cao::TriangleBVH bvh;
+  std::string error;
+  const double eye[3] = { -2.5, -5.0, 4.0 };
+  const cao::PixelCamera cam = Camera(160, 120, eye);
+  cao::SurfaceFrame frame;
+  CAO_CHECK(bvh.Build(s.points, s.tris, error) && cao::CastPrimary(bvh, cam, frame, error), "%s", error.c_str());
+  std::printf("%lld covered pixels\n", static_cast<long long>(frame.covered));
+  cao::gl::ScreenAOEngine engine(*context);
+  char text[300];
+  for (cao::HBAOPreset preset : { cao::HBAOPreset::Fig11a, cao::HBAOPreset::Table1, cao::HBAOPreset::Fig11d })
+  {
+    cao::HBAOSettings h;
+    h.preset = preset;
+    h.radius = 0.8;
+    cao::SurfaceFrame cpu = frame, gpu = frame, other = frame;
+    double ms = 0;
+    const bool ran = cao::HBAOFrame(cam, h, cpu, 0, error) && engine.HBAO(cam, h, gpu, ms, error);
+    cao::HBAOSettings o = h;
+    o.preset = preset == cao::HBAOPreset::Table1 ? cao::HBAOPreset::Fig11b : cao::HBAOPreset::Table1;
+    cao::HBAOFrame(cam, o, other, 0, error);
+    const Agreement a = Compare(cpu, gpu), c = Compare(other, gpu);
+    std::snprintf(text, sizeof(text), "HBAO %s: GPU against CPU mean |diff| %.2e, %.2f%% within 0.02 (%.3f ms); "
+      "another preset: %.2e, %.2f%%", cao::HBAOPresetName(preset), a.mean, 100 * a.within, ms, c.mean, 100 * c.within);
+    Check(ran && a.samePixels && a.mean < 2e-3 && a.within >= 0.99 && !(c.mean < 2e-3 && c.within >= 0.99), text);
+  }
+  for (cao::VAOQuality q : { cao::VAOQuality::Low, cao::VAOQuality::Medium, cao::VAOQuality::High })
+  {
+    cao::VAOSettings v;
+    v.quality = q;
+    v.radius = 0.8;
+    cao::SurfaceFrame cpu = frame, gpu = frame, other = frame;
+    double ms = 0;
+    const bool ran = cao::VAOFrame(cam, v, cpu, 0, error) && engine.VAO(cam, v, gpu, ms, error);
+    cao::VAOSettings o = v;
+    o.seed = 7;
+    o.interleave = false;
+    cao::VAOFrame(cam, o, other, 0, error);
+    const Agreement a = Compare(cpu, gpu), c = Compare(other, gpu);
+    std::snprintf(text, sizeof(text), "VAO %s: GPU against CPU mean |diff| %.2e, %.2f%% within 0.02 (%.3f ms); "
+      "other samples: %.2e, %.2f%%", cao::VAOQualityName(q), a.mean, 100 * a.within, ms, c.mean, 100 * c.within);
+    Check(ran && a.samePixels && a.mean < 2e-3 && a.within >= 0.99 && !(c.mean < 2e-3 && c.within >= 0.99), text);
+  }
+  {
+    cao::SurfaceFrame small;
+    small.width = small.height = 4;
+    double ms = 0;
+    cao::HBAOSettings h;
+    const bool refused = !engine.HBAO(cam, h, small, ms, error);
+    Check(refused && error.find("does not match") != std::string::npos, "a frame of the wrong size is refused: " + error);
+    cao::VAOSettings v;
+    v.samples = 0;
+    v.quality = cao::VAOQuality::Custom;
+    const bool bad = !engine.VAO(cam, v, frame, ms, error);
+    Check(bad && error.find("1..256") != std::string::npos, "bad settings are refused: " + error);
+  }
+  std::printf("%d failure(s)\n", failures);
+  return failures ? 1 : 0;
+}

@@ -1,0 +1,239 @@
+#include "caoScreenAOGL.h"
+
+#include "caoGLProgram.h"
+#include "caoGLStateGuard.h"
+#include "caoGLTimer.h"
+#include "caoGPULayout.h"
+
+#include "caoScreenAO_glsl.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace cao
+{
+namespace gl
+{
+struct ScreenAOEngine::Impl
+{
+  Context& Ctx;
+  const Functions& gl;
+  GLuint params = 0, positions = 0, normals = 0, ao = 0, disk = 0;
+  Program programs[2]; ///< 0 hbao, 1 vao
+  StageTimer timer{ 1 };
+  std::int64_t bytes = 0;
+  explicit Impl(Context& c)
+    : Ctx(c)
+    , gl(c.GL())
+  {
+  }
+  GLuint* Buffers[5] = { &params, &positions, &normals, &ao, &disk };
+  void Upload(GLuint& b, GLenum target, std::size_t size, const void* data)
+  {
+    if (!b)
+      gl.GenBuffers(1, &b);
+    gl.BindBuffer(target, b);
+    gl.BufferData(target, static_cast<GLsizeiptr>(std::max<std::size_t>(size, 16)), data, GL_DYNAMIC_DRAW);
+    gl.BindBuffer(target, 0);
+  }
+  void Release()
+  {
+    gl.UseProgram(0);
+    for (GLuint* b : this->Buffers)
+      if (*b)
+      {
+        gl.DeleteBuffers(1, b);
+        *b = 0;
+      }
+    for (Program& p : programs)
+      p.Release(gl);
+    timer.Release(gl);
+    bytes = 0;
+  }
+  /// Runs method 0 (hbao) or 1 (vao) with `block` over `frame`.
+  bool Run(int method, layout::ScreenAOParams& block, const std::vector<layout::vec4>& samples,
+    const PixelCamera& camera, SurfaceFrame& frame, double& ms, std::string& error);
+};
+
+namespace
+{
+layout::vec4 Row(const double* m, int r)
+{
+  return { static_cast<float>(m[4 * r]), static_cast<float>(m[4 * r + 1]), static_cast<float>(m[4 * r + 2]),
+    static_cast<float>(m[4 * r + 3]) };
+}
+
+/// The parts of the block both methods fill; false when the frame does not fit.
+bool CommonBlock(const PixelCamera& camera, const SurfaceFrame& frame, double radius, layout::ScreenAOParams& b,
+  double worldToNDC[16], std::string& error)
+{
+  error = CheckPixelCamera(camera);
+  if (!error.empty())
+    return false;
+  const std::size_t pixels = static_cast<std::size_t>(camera.width) * camera.height;
+  if (frame.width != camera.width || frame.height != camera.height || frame.triangle.size() != pixels ||
+    frame.position.size() != 3 * pixels || frame.normal.size() != 3 * pixels || frame.ao.size() != pixels)
+    return error = "the frame does not match the camera's image size", false;
+  if (pixels > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max() / 4))
+    return error = "the image is too large for the GPU estimator", false;
+  if (!WorldToNDC(camera, worldToNDC))
+    return error = "the camera's matrix is singular", false;
+  b = layout::ScreenAOParams();
+  for (int r = 0; r < 4; ++r)
+  {
+    b.worldToNDC[r] = Row(worldToNDC, r);
+    b.ndcToWorld[r] = Row(camera.ndcToWorld, r);
+  }
+  b.image = { camera.width, camera.height, 0, CAO_SS_TILE };
+  b.scalars = { static_cast<float>(radius), 0.0f, 0.0f, 0.0f };
+  return true;
+}
+}
+
+bool ScreenAOEngine::Impl::Run(int method, layout::ScreenAOParams& block, const std::vector<layout::vec4>& samples,
+  const PixelCamera& camera, SurfaceFrame& frame, double& ms, std::string& error)
+{
+  double worldToNDC[16];
+  for (int r = 0; r < 4; ++r)
+  {
+    const layout::vec4& v = block.worldToNDC[r];
+    worldToNDC[4 * r] = v.x, worldToNDC[4 * r + 1] = v.y, worldToNDC[4 * r + 2] = v.z, worldToNDC[4 * r + 3] = v.w;
+  }
+  // The pixels: world position and NDC depth (computed in double, as the
+  // CPU twin's), normal.
+  const std::size_t pixels = frame.ao.size();
+  std::vector<float> p4(4 * pixels), n4(4 * pixels);
+  double m[16];
+  WorldToNDC(camera, m);
+  for (std::size_t k = 0; k < pixels; ++k)
+  {
+    float w = 3.0e38f;
+    if (frame.triangle[k] >= 0)
+    {
+      const double* q = &frame.position[3 * k];
+      const double cw = m[12] * q[0] + m[13] * q[1] + m[14] * q[2] + m[15];
+      const double z = (m[8] * q[0] + m[9] * q[1] + m[10] * q[2] + m[11]) / cw;
+      if (cw > 0.0 && std::isfinite(z))
+        w = static_cast<float>(z);
+    }
+    for (int d = 0; d < 3; ++d)
+    {
+      p4[4 * k + d] = static_cast<float>(frame.position[3 * k + d]);
+      n4[4 * k + d] = static_cast<float>(frame.normal[3 * k + d]);
+    }
+    p4[4 * k + 3] = w;
+  }
+  (void)worldToNDC;
+  CurrentScope scope(this->Ctx);
+  if (!scope.Ok(error))
+    return false;
+  StateGuard guard(gl, this->Ctx.Kind() == ContextKind::External);
+  if (!this->programs[method].Valid() &&
+    !this->programs[method].BuildCompute(gl, { caoScreenAO_glsl }, { { "CAO_SS_METHOD", method ? "1" : "0" } }, error))
+    return false;
+  this->timer.Allocate(gl, this->Ctx.UsesHostClock());
+  this->Upload(this->params, GL_UNIFORM_BUFFER, sizeof(block), &block);
+  this->Upload(this->positions, GL_SHADER_STORAGE_BUFFER, p4.size() * sizeof(float), p4.data());
+  this->Upload(this->normals, GL_SHADER_STORAGE_BUFFER, n4.size() * sizeof(float), n4.data());
+  this->Upload(this->ao, GL_SHADER_STORAGE_BUFFER, pixels * sizeof(float), nullptr);
+  this->Upload(this->disk, GL_SHADER_STORAGE_BUFFER, samples.size() * sizeof(layout::vec4), samples.data());
+  this->bytes = static_cast<std::int64_t>(sizeof(block) + (p4.size() + n4.size() + pixels) * sizeof(float) +
+    samples.size() * sizeof(layout::vec4));
+  gl.BindBufferBase(GL_UNIFORM_BUFFER, CAO_BINDING_SS_PARAMS, this->params);
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_SS_POSITIONS, this->positions);
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_SS_NORMALS, this->normals);
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_SS_AO, this->ao);
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_SS_DISK, this->disk);
+  gl.UseProgram(this->programs[method].Id());
+  this->timer.Begin(gl, 0);
+  const std::int64_t groups = (static_cast<std::int64_t>(pixels) + 63) / 64;
+  const std::int64_t x = std::min<std::int64_t>(groups, 65535), y = (groups + x - 1) / x;
+  gl.DispatchCompute(static_cast<GLuint>(std::max<std::int64_t>(x, 1)), static_cast<GLuint>(std::max<std::int64_t>(y, 1)), 1);
+  this->timer.End(gl, 0);
+  gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  gl.UseProgram(0);
+  std::vector<float> out(pixels);
+  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, this->ao);
+  gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(std::max<std::size_t>(pixels, 1) * sizeof(float)), out.data());
+  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+  if (!CheckError(gl, method ? "the volumetric AO" : "the horizon-based AO", error))
+    return false;
+  ms = this->timer.Milliseconds(gl, 0);
+  for (std::size_t k = 0; k < pixels; ++k)
+    frame.ao[k] = out[k] >= 0.0f ? static_cast<double>(out[k]) : std::numeric_limits<double>::quiet_NaN();
+  return true;
+}
+
+ScreenAOEngine::ScreenAOEngine(Context& context)
+  : P(new Impl(context))
+{
+}
+
+ScreenAOEngine::~ScreenAOEngine()
+{
+  this->ReleaseGraphicsResources();
+}
+
+void ScreenAOEngine::ReleaseGraphicsResources()
+{
+  Impl& p = *this->P;
+  if (p.bytes == 0 && !p.programs[0].Valid() && !p.programs[1].Valid())
+    return;
+  CurrentScope scope(p.Ctx);
+  if (scope.Ok())
+    p.Release();
+}
+
+std::int64_t ScreenAOEngine::ResidentBytes() const
+{
+  return this->P->bytes;
+}
+
+bool ScreenAOEngine::HBAO(const PixelCamera& camera, const HBAOSettings& settings, SurfaceFrame& frame, double& ms,
+  std::string& error)
+{
+  error = settings.Validate();
+  layout::ScreenAOParams block;
+  double worldToNDC[16];
+  if (!error.empty() || !CommonBlock(camera, frame, settings.radius, block, worldToNDC, error))
+    return false;
+  block.image.z = 0;
+  block.hbao = { settings.EffectiveDirections(), settings.EffectiveSteps(), settings.EffectiveNormalRays(),
+    (settings.deflect ? 1 : 0) | (settings.EffectiveAttenuation() == AOFalloff::Linear ? 2 : 0) };
+  block.scalars.y = static_cast<float>(settings.offsetPixels);
+  double rotation[16], jitter[16];
+  HBAOPattern(settings, rotation, jitter);
+  for (int c = 0; c < CAO_SS_TILE * CAO_SS_TILE; ++c)
+    block.pattern[c] = { static_cast<float>(rotation[c]), static_cast<float>(jitter[c]), 0.0f, 0.0f };
+  if (!this->P->Run(0, block, { layout::vec4{ 0, 0, 0, 0 } }, camera, frame, ms, error))
+    return false;
+  FinishHBAO(settings, frame, 0);
+  return true;
+}
+
+bool ScreenAOEngine::VAO(const PixelCamera& camera, const VAOSettings& settings, SurfaceFrame& frame, double& ms,
+  std::string& error)
+{
+  error = settings.Validate();
+  layout::ScreenAOParams block;
+  double worldToNDC[16];
+  if (!error.empty() || !CommonBlock(camera, frame, settings.radius, block, worldToNDC, error))
+    return false;
+  const int tile = settings.interleave ? VAOSettings::Tile : 1;
+  block.image.z = 1;
+  block.image.w = tile;
+  block.vao = { settings.EffectiveSamples(), tile * tile, settings.haloGuard ? 1 : 0, 0 };
+  std::vector<double> x, y;
+  VAODiskSamples(settings, x, y);
+  std::vector<layout::vec4> samples(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i)
+    samples[i] = { static_cast<float>(x[i]), static_cast<float>(y[i]), 0.0f, 0.0f };
+  if (!this->P->Run(1, block, samples, camera, frame, ms, error))
+    return false;
+  FinishVAO(settings, frame, 0);
+  return true;
+}
+}
+}

@@ -1,0 +1,56 @@
+/**
+ * caoScreenAOGL — horizon-based AO (seed 002) and volumetric AO (seed 001)
+ * on the GPU, with no VTK: one compute shader (caoScreenAO.glsl,
+ * specialised per method) evaluates the CPU twin's estimator
+ * (caoScreenSpaceAO.h) in float per pixel, with the same randomization
+ * pattern and disk samples; the host then applies the twin's own blur or
+ * filter (FinishHBAO, FinishVAO), so the two differ only by float against
+ * double. The parameter block is caoGPULayout.h's ScreenAOParams. Every
+ * entry point runs in a CurrentScope and a StateGuard: a host
+ * application's context and GL state come back as they were.
+ */
+#ifndef caoScreenAOGL_h
+#define caoScreenAOGL_h
+
+#include "caoGLContext.h"
+#include "caoScreenSpaceAO.h"
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+namespace cao
+{
+namespace gl
+{
+class ScreenAOEngine
+{
+public:
+  /// The engine borrows the context; it must outlive the engine.
+  explicit ScreenAOEngine(Context& context);
+  ~ScreenAOEngine();
+  ScreenAOEngine(const ScreenAOEngine&) = delete;
+  ScreenAOEngine& operator=(const ScreenAOEngine&) = delete;
+
+  /// cao::HBAOFrame / cao::VAOFrame on the GPU: frame.ao of every covered
+  /// pixel, blurred or filtered on the host as the twin does. `ms`: the
+  /// estimator's GPU time. False with the reason on bad settings, a frame
+  /// that does not match the camera, or a GL error.
+  bool HBAO(const PixelCamera& camera, const HBAOSettings& settings, SurfaceFrame& frame, double& ms,
+    std::string& error);
+  bool VAO(const PixelCamera& camera, const VAOSettings& settings, SurfaceFrame& frame, double& ms,
+    std::string& error);
+
+  /// Bytes of GPU memory held.
+  std::int64_t ResidentBytes() const;
+  /// Delete the GL objects (the context must be alive; made current here).
+  void ReleaseGraphicsResources();
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> P;
+};
+}
+}
+
+#endif
