@@ -887,6 +887,21 @@ bool LoadOccludingVolume(const SurfaceOptions& o, cao::OpacityVolume& opacity, s
   return vtkCAO::VolumeOpacity(volume, opacity, error);
 }
 
+/// --backend: OpenGL for gl, or for auto on a hardware GPU (a context is
+/// opened to ask); false with the reason when gl has no context.
+bool ChooseBackend(const SurfaceOptions& o, VCTGPU& gpu, bool& useGL, std::string& error)
+{
+  useGL = false;
+  if (o.backend == "cpu")
+    return true;
+  std::string why;
+  const bool opened = gpu.Open(why);
+  if (o.backend == "gl" && !opened)
+    return error = "--backend gl: no OpenGL 4.3 context: " + why, false;
+  useGL = opened && (o.backend == "gl" || !gpu.Software());
+  return true;
+}
+
 double Milliseconds(std::chrono::steady_clock::time_point since)
 {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since).count();
@@ -929,14 +944,8 @@ int RunSurface(int argc, char* argv[])
     o.vct.radius = radius;
     VCTGPU gpu;
     bool useGL = false;
-    if (o.backend != "cpu")
-    {
-      std::string why;
-      const bool opened = gpu.Open(why);
-      if (o.backend == "gl" && !opened)
-        return Fail(1, "--backend gl: no OpenGL 4.3 context: " + why);
-      useGL = opened && (o.backend == "gl" || !gpu.Software());
-    }
+    if (!ChooseBackend(o, gpu, useGL, error))
+      return Fail(1, error);
     useGL = useGL && o.volume.empty(); // the OpenGL tracer does not read volumes yet
     cao::VCTPlan plan;
     if (!PlanSceneGrid(scene, camera, o, radius, grid, error))
@@ -991,14 +1000,8 @@ int RunSurface(int argc, char* argv[])
     o.hbao.radius = o.vao.radius = radius;
     VCTGPU gpu;
     bool useGL = false;
-    if (o.backend != "cpu")
-    {
-      std::string why;
-      const bool opened = gpu.Open(why);
-      if (o.backend == "gl" && !opened)
-        return Fail(1, "--backend gl: no OpenGL 4.3 context: " + why);
-      useGL = opened && (o.backend == "gl" || !gpu.Software());
-    }
+    if (!ChooseBackend(o, gpu, useGL, error))
+      return Fail(1, error);
     const bool hbao = o.method == "hbao";
     double ms = 0.0;
     if (useGL)

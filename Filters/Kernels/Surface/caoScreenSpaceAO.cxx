@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace cao
 {
@@ -313,35 +314,44 @@ std::string HBAOSettings::Validate() const
   return CheckFrameSettings(this->radius);
 }
 
+namespace
+{
+// One name table per enumeration: the names a preset prints and parses as
+// (the first of a value is its name; low / medium / high are aliases).
+const std::pair<const char*, HBAOPreset> HBAONames[] = { { "custom", HBAOPreset::Custom },
+  { "table1", HBAOPreset::Table1 }, { "fig11a", HBAOPreset::Fig11a }, { "fig11b", HBAOPreset::Fig11b },
+  { "fig11c", HBAOPreset::Fig11c }, { "fig11d", HBAOPreset::Fig11d }, { "low", HBAOPreset::Fig11a },
+  { "medium", HBAOPreset::Table1 }, { "high", HBAOPreset::Fig11d } };
+const std::pair<const char*, VAOQuality> VAONames[] = { { "custom", VAOQuality::Custom },
+  { "low", VAOQuality::Low }, { "medium", VAOQuality::Medium }, { "high", VAOQuality::High } };
+
+template <typename E, std::size_t N>
+const char* NameOf(const std::pair<const char*, E> (&table)[N], E value)
+{
+  for (const auto& entry : table)
+    if (entry.second == value)
+      return entry.first;
+  return "custom";
+}
+
+template <typename E, std::size_t N>
+bool Parse(const std::pair<const char*, E> (&table)[N], const std::string& text, E& value)
+{
+  for (const auto& entry : table)
+    if (text == entry.first)
+      return value = entry.second, true;
+  return false;
+}
+}
+
 const char* HBAOPresetName(HBAOPreset preset)
 {
-  switch (preset)
-  {
-    case HBAOPreset::Table1:
-      return "table1";
-    case HBAOPreset::Fig11a:
-      return "fig11a";
-    case HBAOPreset::Fig11b:
-      return "fig11b";
-    case HBAOPreset::Fig11c:
-      return "fig11c";
-    case HBAOPreset::Fig11d:
-      return "fig11d";
-    default:
-      return "custom";
-  }
+  return NameOf(HBAONames, preset);
 }
 
 bool ParseHBAOPreset(const std::string& text, HBAOPreset& preset)
 {
-  const std::pair<const char*, HBAOPreset> names[] = { { "table1", HBAOPreset::Table1 },
-    { "fig11a", HBAOPreset::Fig11a }, { "fig11b", HBAOPreset::Fig11b }, { "fig11c", HBAOPreset::Fig11c },
-    { "fig11d", HBAOPreset::Fig11d }, { "low", HBAOPreset::Fig11a }, { "medium", HBAOPreset::Table1 },
-    { "high", HBAOPreset::Fig11d }, { "custom", HBAOPreset::Custom } };
-  for (const auto& n : names)
-    if (text == n.first)
-      return preset = n.second, true;
-  return false;
+  return Parse(HBAONames, text, preset);
 }
 
 int VAOSettings::EffectiveSamples() const
@@ -372,32 +382,12 @@ std::string VAOSettings::Validate() const
 
 const char* VAOQualityName(VAOQuality quality)
 {
-  switch (quality)
-  {
-    case VAOQuality::Low:
-      return "low";
-    case VAOQuality::Medium:
-      return "medium";
-    case VAOQuality::High:
-      return "high";
-    default:
-      return "custom";
-  }
+  return NameOf(VAONames, quality);
 }
 
 bool ParseVAOQuality(const std::string& text, VAOQuality& quality)
 {
-  if (text == "low")
-    quality = VAOQuality::Low;
-  else if (text == "medium")
-    quality = VAOQuality::Medium;
-  else if (text == "high")
-    quality = VAOQuality::High;
-  else if (text == "custom")
-    quality = VAOQuality::Custom;
-  else
-    return false;
-  return true;
+  return Parse(VAONames, text, quality);
 }
 
 void DepthAwareFilter(const SurfaceFrame& frame, const std::vector<double>& weights, double tolerance,

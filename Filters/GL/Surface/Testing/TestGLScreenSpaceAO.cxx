@@ -13,6 +13,7 @@
 // at 1024 x 768 and 1920 x 1080 (a table; no assertion).
 #include "caoScreenAOGL.h"
 #include "caoGLTestUtilities.h"
+#include "caoSurfaceTestScenes.h"
 #include "caoTestUtilities.h"
 
 #include <algorithm>
@@ -25,55 +26,13 @@ namespace
 {
 int failures = 0;
 
-struct Scene
-{
-  std::vector<double> points;
-  std::vector<std::int64_t> tris;
-  void Quad(std::initializer_list<double> c)
-  {
-    const std::int64_t b = static_cast<std::int64_t>(this->points.size() / 3);
-    this->points.insert(this->points.end(), c);
-    this->tris.insert(this->tris.end(), { b, b + 1, b + 2, b, b + 2, b + 3 });
-  }
-  void Box(double x0, double x1, double y0, double y1, double z0, double z1)
-  {
-    this->Quad({ x0, y0, z1, x1, y0, z1, x1, y1, z1, x0, y1, z1 });
-    this->Quad({ x0, y0, z0, x0, y1, z0, x1, y1, z0, x1, y0, z0 });
-    this->Quad({ x0, y0, z0, x1, y0, z0, x1, y0, z1, x0, y0, z1 });
-    this->Quad({ x0, y1, z0, x0, y1, z1, x1, y1, z1, x1, y1, z0 });
-    this->Quad({ x0, y0, z0, x0, y0, z1, x0, y1, z1, x0, y1, z0 });
-    this->Quad({ x1, y0, z0, x1, y1, z0, x1, y1, z1, x1, y0, z1 });
-  }
-};
+using Scene = caotest::TriangleScene;
 
-/// ndcToWorld of a perspective camera at `eye` looking at the origin (up +z).
+/// A perspective camera at `eye` looking at the origin (up +z), 40 degrees.
 cao::PixelCamera Camera(int w, int h, const double eye[3])
 {
-  double b[3] = { eye[0], eye[1], eye[2] };
-  double l = std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
-  for (double& v : b)
-    v /= l;
-  double r[3] = { -b[1], b[0], 0 };
-  l = std::sqrt(r[0] * r[0] + r[1] * r[1]);
-  r[0] /= l;
-  r[1] /= l;
-  const double u[3] = { b[1] * r[2] - b[2] * r[1], b[2] * r[0] - b[0] * r[2], b[0] * r[1] - b[1] * r[0] };
-  const double sy = 1.0 / std::tan(0.5 * 40.0 * 3.14159265358979 / 180.0), sx = sy * h / w;
-  const double n = 0.5, f = 50.0, A = -(f + n) / (f - n), B = -2.0 * f * n / (f - n);
-  const double pinv[16] = { 1 / sx, 0, 0, 0, 0, 1 / sy, 0, 0, 0, 0, 0, -1, 0, 0, 1 / B, A / B };
-  const double view[16] = { r[0], u[0], b[0], eye[0], r[1], u[1], b[1], eye[1], r[2], u[2], b[2], eye[2], 0, 0, 0, 1 };
-  cao::PixelCamera c;
-  c.width = w;
-  c.height = h;
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j)
-    {
-      double s = 0;
-      for (int k = 0; k < 4; ++k)
-        s += view[4 * i + k] * pinv[4 * k + j];
-      c.ndcToWorld[4 * i + j] = s;
-    }
-  return c;
+  const double at[3] = { 0, 0, 0 };
+  return caotest::LookAt(w, h, eye, at, 40.0, 0.5, 50.0);
 }
 
 struct Agreement

@@ -12,6 +12,7 @@
 // their spread at 16 samples is printed (the table in the README); bad
 // settings are refused.
 #include "caoScreenSpaceAO.h"
+#include "caoSurfaceTestScenes.h"
 #include "caoTestUtilities.h"
 
 #include <algorithm>
@@ -25,28 +26,6 @@ namespace
 {
 const double Pi = 3.14159265358979323846;
 
-struct Scene
-{
-  std::vector<double> points;
-  std::vector<std::int64_t> tris;
-  void Quad(std::initializer_list<double> corners)
-  {
-    const std::int64_t base = static_cast<std::int64_t>(this->points.size() / 3);
-    this->points.insert(this->points.end(), corners);
-    this->tris.insert(this->tris.end(), { base, base + 1, base + 2, base, base + 2, base + 3 });
-  }
-  /// An axis-aligned box (closed).
-  void Box(double x0, double x1, double y0, double y1, double z0, double z1)
-  {
-    this->Quad({ x0, y0, z1, x1, y0, z1, x1, y1, z1, x0, y1, z1 });
-    this->Quad({ x0, y0, z0, x0, y1, z0, x1, y1, z0, x1, y0, z0 });
-    this->Quad({ x0, y0, z0, x1, y0, z0, x1, y0, z1, x0, y0, z1 });
-    this->Quad({ x0, y1, z0, x0, y1, z1, x1, y1, z1, x1, y1, z0 });
-    this->Quad({ x0, y0, z0, x0, y0, z1, x0, y1, z1, x0, y1, z0 });
-    this->Quad({ x1, y0, z0, x1, y1, z0, x1, y1, z1, x1, y0, z1 });
-  }
-};
-
 /// ndcToWorld of an orthographic camera looking down -z over [cx +- s] x
 /// [cy +- s], depth z in [-s, s] around 0 (NDC z = -1 at the top).
 cao::PixelCamera TopCamera(int side, double cx, double cy, double s)
@@ -58,35 +37,11 @@ cao::PixelCamera TopCamera(int side, double cx, double cy, double s)
   return c;
 }
 
-/// ndcToWorld of a perspective camera at `eye` looking at `at` (up +z),
-/// vertical view angle `fov` degrees, near / far planes.
+using Scene = caotest::TriangleScene;
+
 cao::PixelCamera LookAt(int side, const double eye[3], const double at[3], double fov, double n, double f)
 {
-  double b[3] = { eye[0] - at[0], eye[1] - at[1], eye[2] - at[2] }; // backward
-  double l = std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
-  for (double& v : b)
-    v /= l;
-  double r[3] = { -b[1], b[0], 0 }; // up (0, 0, 1) x backward
-  l = std::sqrt(r[0] * r[0] + r[1] * r[1]);
-  r[0] /= l;
-  r[1] /= l;
-  const double u[3] = { b[1] * r[2] - b[2] * r[1], b[2] * r[0] - b[0] * r[2], b[0] * r[1] - b[1] * r[0] };
-  const double sy = 1.0 / std::tan(fov * Pi / 360.0), sx = sy;
-  const double A = -(f + n) / (f - n), B = -2.0 * f * n / (f - n);
-  // Inverse projection: eye coordinates (x/sx, y/sy, -1, (z - A)/B) up to w.
-  const double pinv[16] = { 1 / sx, 0, 0, 0, 0, 1 / sy, 0, 0, 0, 0, 0, -1, 0, 0, 1 / B, A / B };
-  const double view[16] = { r[0], u[0], b[0], eye[0], r[1], u[1], b[1], eye[1], r[2], u[2], b[2], eye[2], 0, 0, 0, 1 };
-  cao::PixelCamera c;
-  c.width = c.height = side;
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j)
-    {
-      double s = 0;
-      for (int k = 0; k < 4; ++k)
-        s += view[4 * i + k] * pinv[4 * k + j];
-      c.ndcToWorld[4 * i + j] = s;
-    }
-  return c;
+  return caotest::LookAt(side, side, eye, at, fov, n, f);
 }
 
 bool Frame(const Scene& s, const cao::PixelCamera& cam, cao::SurfaceFrame& f)
