@@ -400,7 +400,7 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
     this->viewKey.clear();
     return; // no surfaces: no surface work
   }
-  if (self->Slices < 32 || self->Slices > 1024 || self->Slices % 32 != 0)
+  if (self->Method == VCT && (self->Slices < 32 || self->Slices > 1024 || self->Slices % 32 != 0))
   {
     this->Fail(self, "Slices must be 32..1024 and a multiple of 32 (got " +
         std::to_string(self->Slices) + ")");

@@ -54,8 +54,8 @@ const char* SurfaceUsage = R"(cao surface MESH... [options] -o out.png
   .ply, .obj) seen by one camera.
   --method vct|hbao|vao|reference|ssao|none   (default vct)
         vct: voxel cone tracing (seed 000) on a bit grid of the meshes (CPU or OpenGL: --backend);
-        hbao: horizon-based AO (seed 002) on the G-buffer (CPU);
-        vao: volumetric AO (seed 001, base disk, mu = (r/R)^4) on the G-buffer (CPU);
+        hbao: horizon-based AO (seed 002) on the G-buffer (CPU or OpenGL: --backend);
+        vao: volumetric AO (seed 001, base disk, mu = (r/R)^4) on the G-buffer (CPU or OpenGL);
         reference: CPU ray tracing in double precision (Kernels/Surface);
         ssao: VTK's vtkSSAOPass, its default kernel (32, --kernel) and bias, blurred,
               at the same radius, read back from an unlit white material;
@@ -126,6 +126,7 @@ struct SurfaceOptions
   cao::HBAOSettings hbao;
   cao::VAOSettings vao;
   std::string quality; ///< --quality as given, read per method
+  std::vector<std::string> screenOptions; ///< --march, --samples, --filter as given
   std::string backend = "auto", grid = "world";
   // The occluding volume and its clip.
   std::string volume, preset, presetFile, shape, clipMesh, pose, mode = "subtract";
@@ -206,6 +207,7 @@ bool Parse(int argc, char* argv[], SurfaceOptions& o, std::string& error)
     }
     else if (a == "--samples")
     {
+      o.screenOptions.push_back(a);
       if (!number(d, 1, 256) || d != std::floor(d))
         return error.empty() ? (error = "--samples must be a whole number", false) : false;
       o.vao.quality = cao::VAOQuality::Custom;
@@ -213,6 +215,7 @@ bool Parse(int argc, char* argv[], SurfaceOptions& o, std::string& error)
     }
     else if (a == "--filter")
     {
+      o.screenOptions.push_back(a);
       if (!value())
         return false;
       if (v != "on" && v != "off")
@@ -222,6 +225,7 @@ bool Parse(int argc, char* argv[], SurfaceOptions& o, std::string& error)
     }
     else if (a == "--march")
     {
+      o.screenOptions.push_back(a);
       if (!value())
         return false;
       if (v != "deflect" && v != "sweep")
@@ -429,6 +433,12 @@ bool Parse(int argc, char* argv[], SurfaceOptions& o, std::string& error)
     error = "give the output picture with -o out.png";
     return false;
   }
+  for (const std::string& option : o.screenOptions)
+    if (!(o.method == "vao" && option != "--march") && !(o.method == "hbao" && option != "--samples"))
+      return error = option + " is for --method " + (option == "--march" ? "hbao" : option == "--samples" ? "vao" : "hbao or vao") +
+          " (got --method " + o.method + ")", false;
+  if (!o.quality.empty() && o.vao.quality == cao::VAOQuality::Custom && o.method == "vao")
+    return error = "give --quality or --samples, not both", false;
   if (!o.quality.empty())
   {
     const std::string& q = o.quality;

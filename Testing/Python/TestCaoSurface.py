@@ -332,6 +332,8 @@ for args, words in [(["--method", "magic", bunny, "-o", "x.png"], "--method is")
                     (["--method", "hbao", "--quality", "fig12", bunny, "-o", "x.png"], "table1, fig11a"),
                     (["--method", "vao", "--samples", "0", bunny, "-o", "x.png"], "--samples"),
                     (["--march", "up", bunny, "-o", "x.png"], "--march is"),
+                    (["--march", "sweep", bunny, "-o", "x.png"], "--march is for --method hbao"),
+                    (["--method", "vao", "--quality", "low", "--samples", "8", bunny, "-o", "x.png"], "not both"),
                     ([volume_vtk, "-o", "x.png"], "not a polygonal mesh"),
                     ([bunny, "-o", os.path.join(tmp, "no", "such", "x.png")], "does not exist"),
                     ([os.path.join(tmp, "missing.vtp"), "-o", "x.png"], "missing.vtp"),

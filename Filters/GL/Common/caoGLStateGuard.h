@@ -28,7 +28,7 @@ public:
 
 private:
   static constexpr int StorageBindings = 8;
-  static constexpr int UniformBindings = 3;
+  static constexpr int UniformBindings = 4; // 0-3: the volume engine's and the cone tracer's blocks
   static constexpr int TextureUnits = 5; // CAO_UNIT_*
   const Functions& GL;
   bool Active;

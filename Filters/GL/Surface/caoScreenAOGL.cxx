@@ -101,8 +101,8 @@ bool ScreenAOEngine::Impl::Run(int method, layout::ScreenAOParams& block, const 
     const layout::vec4& v = block.worldToNDC[r];
     worldToNDC[4 * r] = v.x, worldToNDC[4 * r + 1] = v.y, worldToNDC[4 * r + 2] = v.z, worldToNDC[4 * r + 3] = v.w;
   }
-  // The pixels: world position and NDC depth (computed in double, as the
-  // CPU twin's), normal.
+  // The pixels: world position and NDC depth, normal and world size
+  // (computed in double, as the CPU twin's).
   const std::size_t pixels = frame.ao.size();
   std::vector<float> p4(4 * pixels), n4(4 * pixels);
   double m[16];
@@ -116,7 +116,16 @@ bool ScreenAOEngine::Impl::Run(int method, layout::ScreenAOParams& block, const 
       const double cw = m[12] * q[0] + m[13] * q[1] + m[14] * q[2] + m[15];
       const double z = (m[8] * q[0] + m[9] * q[1] + m[10] * q[2] + m[11]) / cw;
       if (cw > 0.0 && std::isfinite(z))
+      {
         w = static_cast<float>(z);
+        const int i = static_cast<int>(k % camera.width), j = static_cast<int>(k / camera.width);
+        const double x = (i + 0.5) / camera.width * 2.0 - 1.0, y = (j + 0.5) / camera.height * 2.0 - 1.0;
+        double side[3];
+        if (NDCToWorld(camera, x + 2.0 / camera.width, y, z, side))
+          n4[4 * k + 3] = static_cast<float>(
+            std::sqrt((side[0] - q[0]) * (side[0] - q[0]) + (side[1] - q[1]) * (side[1] - q[1]) +
+              (side[2] - q[2]) * (side[2] - q[2])));
+      }
     }
     for (int d = 0; d < 3; ++d)
     {

@@ -233,7 +233,7 @@ struct VCTParams
  * block for horizon-based AO and volumetric AO; the frame's pixels as vec4
  * buffers; VAO's disk samples (16 sets of up to 256) as a buffer. */
 #define CAO_SS_TILE 4
-#define CAO_SS_MAX_SAMPLES 4096
+#define CAO_SS_MAX_SAMPLES 4096 /* 16 sets x VAOSettings' 256 samples */
 struct ScreenAOParams
 {
   vec4 worldToNDC[4]; /* rows */
@@ -244,11 +244,13 @@ struct ScreenAOParams
   vec4 scalars;       /* x: radius R (world), y: offset (pixels), zw: 0 */
   vec4 pattern[CAO_SS_TILE * CAO_SS_TILE]; /* hbao per tile cell: x rotation (radians), y jitter (0, 1] */
 };
-#define CAO_BINDING_SS_PARAMS 8    /* uniform block: ScreenAOParams */
-#define CAO_BINDING_SS_POSITIONS 9 /* storage: vec4 per pixel (xyz world, w NDC depth; w > 1e30: none) */
-#define CAO_BINDING_SS_NORMALS 10  /* storage: vec4 per pixel (xyz unit normal facing the camera) */
-#define CAO_BINDING_SS_AO 11       /* storage: float per pixel (-1: not covered) */
-#define CAO_BINDING_SS_DISK 12     /* storage: vec4 per sample (xy on the disk, world units; zw 0) */
+/* Within the bindings OpenGL 4.3 guarantees (8 storage, uniform 0-3) and
+ * that caoGLStateGuard restores in a host's context. */
+#define CAO_BINDING_SS_PARAMS 2    /* uniform block: ScreenAOParams */
+#define CAO_BINDING_SS_POSITIONS 0 /* storage: vec4 per pixel (xyz world, w NDC depth; w > 1e30: none) */
+#define CAO_BINDING_SS_NORMALS 1   /* storage: vec4 per pixel (xyz unit normal facing the camera, w its world size) */
+#define CAO_BINDING_SS_AO 2        /* storage: float per pixel (-1: not covered) */
+#define CAO_BINDING_SS_DISK 3      /* storage: vec4 per sample (xy on the disk, world units; zw 0) */
 
 #ifdef __cplusplus
 static_assert(sizeof(ScreenAOParams) == (12 + CAO_SS_TILE * CAO_SS_TILE) * 16, "ScreenAOParams must match std140");

@@ -263,7 +263,7 @@ HBAOConfiguration Configuration(const HBAOSettings& s)
 
 void HBAOPattern(const HBAOSettings& settings, double rotation[16], double jitter[16])
 {
-  const int directions = settings.EffectiveDirections();
+  const int directions = std::max(1, settings.EffectiveDirections());
   for (std::uint64_t cell = 0; cell < 16; ++cell)
   {
     rotation[cell] = Hash01(settings.seed, 2 * cell) * 2.0 * Pi / directions;
@@ -303,6 +303,9 @@ std::string HBAOSettings::Validate() const
     return "HBAO steps must be 1..1024 (got " + std::to_string(this->steps) + ")";
   if (this->normalRays < 0 || this->normalRays > 16)
     return "HBAO normal rays per direction must be 0..16 (got " + std::to_string(this->normalRays) + ")";
+  if (static_cast<long long>(this->directions) * this->steps * (1 + this->normalRays) > 65536)
+    return "HBAO directions x steps x (1 + normal rays) must be at most 65536 per pixel (got " +
+      std::to_string(static_cast<long long>(this->directions) * this->steps * (1 + this->normalRays)) + ")";
   if (this->attenuation != AOFalloff::Step && this->attenuation != AOFalloff::Linear)
     return "HBAO attenuation is step or linear";
   if (!(this->offsetPixels >= 0.0 && this->offsetPixels <= 8.0))
@@ -525,7 +528,7 @@ bool HBAOFrame(const PixelCamera& camera, const HBAOSettings& settings, SurfaceF
           const Vec v = screen.Position(q) - p;
           if (!(Dot(v, n) > 0.0) || !(Dot(v, v) < R * R))
             continue; // the plane itself, or a surface beyond the reach in front of the ray
-          normalOcclusion += attenuation(distance) * (1.0 - H * H) / (c.directions * c.normalRays);
+          normalOcclusion += attenuation(std::sqrt(Dot(v, v))) * (1.0 - H * H) / (c.directions * c.normalRays);
           break;
         }
       }
@@ -612,6 +615,7 @@ bool VAOIndirect(const PixelCamera& camera, const VAOSettings& settings, const S
   std::vector<double> diskX, diskY;
   DiskSamplesOf(settings, diskX, diskY);
   const int n = settings.EffectiveSamples(), tile = settings.interleave ? VAOSettings::Tile : 1;
+  const double R = settings.radius;
   indirect.assign(3 * pixels, 0.0f);
   ParallelFor(pixels, threads, [&](std::size_t k) {
     if (!screen.Covered(k) || !std::isfinite(frame.ao[k]))
@@ -630,8 +634,9 @@ bool VAOIndirect(const PixelCamera& camera, const VAOSettings& settings, const S
       const long long q = screen.Lookup(p + diskX[g] * X + diskY[g] * Y, z);
       if (q < 0 || static_cast<std::size_t>(q) == k || !screen.Covered(q))
         continue;
-      if (!(Dot(screen.Normal(q), p - screen.Position(q)) > 0.0))
-        continue; // a neighbour facing away from P
+      const Vec toP = p - screen.Position(q);
+      if (!(Dot(toP, toP) < R * R) || !(Dot(screen.Normal(q), toP) > 1e-3 * R))
+        continue; // beyond the radius (across a depth gap), or facing away from P or coplanar with it
       for (int c = 0; c < 3; ++c)
         light[c] += colour[3 * q + c];
       ++lit;

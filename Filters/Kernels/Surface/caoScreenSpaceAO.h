@@ -18,7 +18,7 @@
 // direction N_n rays above the horizon at heights z^2 = H^2 + (k + xi)(1 -
 // H^2) / N_n, each of weight (1 - H^2) / (N_d N_n), marched as the horizon
 // is; a ray is occluded at its first step behind the buffer whose buffer
-// point lies above P's tangent plane and within R of P. A = 1 - (O_T + O_N), which cannot
+// point lies above P's tangent plane and within R of P'. A = 1 - (O_T + O_N), which cannot
 // exceed 1 (the design notes' consistent form of the seed's Eq. 10-11).
 // Choice recorded: the directions are uniform in azimuth around n (so that
 // the mean of H^2 is the cosine-weighted occlusion), not uniform in screen
@@ -36,9 +36,10 @@
 // which is 1 in expectation on an open plane. The pixels of each 4 x 4 tile
 // use 16 different sample sets (together one stratified set of 16 x
 // samples points), then a depth-limited low-pass filter of the same size
-// (a 5 x 5 tent: each of the 16 sets once). With a colour buffer, the
-// indirect term I = L (1 - O): L the mean colour of the sample pixels whose
-// surface faces P (neighbours facing away are ignored).
+// (5 x 5 taps weighted 1/2, 1, 1, 1, 1/2 per axis: each of the 16 sets
+// once). With a colour buffer, the indirect term I = L (1 - O): L the mean
+// colour of the sample pixels within R whose surface faces P (neighbours
+// facing away or coplanar are ignored).
 //
 // The depth-aware filters leave out a tap whose surface point is farther
 // than `tolerance` from the centre pixel's tangent plane (a slanted plane

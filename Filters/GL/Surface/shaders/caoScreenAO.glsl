@@ -57,15 +57,16 @@ vec3 NDCToWorld(vec3 ndc)
     dot(ss.ndcToWorld[3], p);
 }
 
-/// Pixel k's direction to the camera and its world size at its depth.
+/// Pixel k's direction to the camera, and its world size at its depth
+/// (computed by the host in double: float NDC depth loses it in deep
+/// frustums).
 void Ray(int k, out vec3 toCamera, out float footprint)
 {
   int i = k % ss.image.x, j = k / ss.image.x;
   float x = (float(i) + 0.5) / float(ss.image.x) * 2.0 - 1.0, y = (float(j) + 0.5) / float(ss.image.y) * 2.0 - 1.0;
   vec3 n = NDCToWorld(vec3(x, y, -1.0)), f = NDCToWorld(vec3(x, y, 1.0));
-  vec3 side = NDCToWorld(vec3(x + 2.0 / float(ss.image.x), y, positions[k].w));
   toCamera = normalize(n - f);
-  footprint = length(side - positions[k].xyz);
+  footprint = normals[k].w;
 }
 
 void Complete(vec3 n, out vec3 t1, out vec3 t2)
@@ -143,7 +144,7 @@ float PixelAO(int k)
         vec3 v = positions[q].xyz - p;
         if (!(dot(v, n) > 0.0) || !(dot(v, v) < R * R))
           continue;
-        normalOcclusion += Attenuation(distance) * (1.0 - H * H) / float(directions * normalRays);
+        normalOcclusion += Attenuation(length(v)) * (1.0 - H * H) / float(directions * normalRays);
         break;
       }
     }
