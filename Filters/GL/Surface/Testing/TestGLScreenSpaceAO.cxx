@@ -8,6 +8,8 @@
 //   way in float); the same covered pixels;
 // - negative control: the CPU at another preset (or with another seed)
 //   misses those bounds against the GPU;
+// - the same bounds for the raw estimators (no blur, no filter) with the
+//   sweep march, one sample set and the halo guard;
 // - bad input: a frame of the wrong size, bad settings.
 // With "time" on the command line it also prints the GPU estimator's time
 // at 1024 x 768 and 1920 x 1080 (a table; no assertion).
@@ -127,6 +129,27 @@ int TestGLScreenSpaceAO(int argc, char* argv[])
     std::snprintf(text, sizeof(text), "VAO %s: GPU against CPU mean |diff| %.2e, %.2f%% within 0.02 (%.3f ms); "
       "other samples: %.2e, %.2f%%", cao::VAOQualityName(q), a.mean, 100 * a.within, ms, c.mean, 100 * c.within);
     Check(ran && a.samePixels && a.mean < 2e-3 && a.within >= 0.99 && !(c.mean < 2e-3 && c.within >= 0.99), text);
+  }
+  // The raw estimators (no blur, no filter) and the other switches: the
+  // sweep march, one sample set, the halo guard.
+  {
+    cao::HBAOSettings h;
+    h.radius = 0.8;
+    h.blurRadius = 0;
+    h.deflect = false;
+    cao::VAOSettings v;
+    v.radius = 0.8;
+    v.interleave = false;
+    v.haloGuard = true;
+    cao::SurfaceFrame hc = frame, hg = frame, vc = frame, vg = frame;
+    double ms = 0;
+    const bool ran = cao::HBAOFrame(cam, h, hc, 0, error) && engine.HBAO(cam, h, hg, ms, error) &&
+      cao::VAOFrame(cam, v, vc, 0, error) && engine.VAO(cam, v, vg, ms, error);
+    const Agreement a = Compare(hc, hg), b = Compare(vc, vg);
+    std::snprintf(text, sizeof(text), "unblurred sweep HBAO: mean |diff| %.2e, %.2f%% within 0.02; unfiltered VAO "
+      "with the halo guard: %.2e, %.2f%%", a.mean, 100 * a.within, b.mean, 100 * b.within);
+    Check(ran && a.samePixels && b.samePixels && a.mean < 2e-3 && a.within >= 0.99 && b.mean < 2e-3 &&
+        b.within >= 0.99, text);
   }
   {
     cao::SurfaceFrame small;

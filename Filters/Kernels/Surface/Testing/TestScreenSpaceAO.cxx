@@ -3,7 +3,8 @@
 // ray-cast frame of a triangle scene) against the analytic cases in its
 // own definition:
 //   open plane            HBAO 1 exactly; VAO 1 in expectation
-//   A5 step, k = H/d      HBAO's horizon term (1 - 1/sqrt(1 + k^2)) / 2
+//   A5 step, k = H/d      HBAO's horizon term (1 - 1/sqrt(1 + k^2)) / 2, and
+//                         with linear attenuation (Fig. 11 (a))
 //   V1 wall at a.R        VAO (mu = (r/R)^4): 0.5000, 0.5845, 0.7434, 0.9228 at a = 0, 0.1, 0.3, 0.6
 // each with a negative control (the value of a changed geometry must be
 // missed); the depth-aware filter keeps the two sides of a depth edge apart
@@ -274,6 +275,36 @@ int TestScreenSpaceAO(int, char*[])
             CAO_CHECK(std::fabs(occlusion - target) < tolerance && std::fabs(occlusion - changed) > tolerance,
               "HBAO step k = %g: %.4f against %.4f", k, occlusion, target);
         }
+      if (view != 0)
+        continue;
+      // Linear attenuation (Fig. 11 (a)'s): seen from above, the horizon
+      // rises once, to the edge (d / cos theta along, H up) when it lies
+      // within R, weighted 1 - r / R; negative control: the step falloff's
+      // value is missed.
+      double linear = 0.0;
+      for (int i = 0; i < 100000; ++i)
+      {
+        const double c = std::cos(2.0 * Pi * (i + 0.5) / 100000);
+        const double u = c > 0.0 ? (d - f.position[3 * p]) / c : 1e300, r = std::sqrt(u * u + H * H);
+        if (r < R)
+          linear += H * H / (r * r) * (1.0 - r / R) / 100000;
+      }
+      cao::HBAOSettings h;
+      h.preset = cao::HBAOPreset::Custom;
+      h.directions = 64;
+      h.steps = 1024;
+      h.normalRays = 0;
+      h.blurRadius = 0;
+      h.offsetPixels = 0.0;
+      h.radius = R;
+      h.attenuation = cao::AOFalloff::Linear;
+      cao::SurfaceFrame g = f;
+      const std::vector<std::size_t> only{ p };
+      CAO_CHECK(cao::HBAOFrame(cam, h, g, 0, error, &only), "%s", error.c_str());
+      std::printf("HBAO step k = %.0f, top view, linear attenuation: occlusion %.4f, its definition %.4f (step: %.4f)\n",
+        k, 1.0 - g.ao[p], linear, target);
+      CAO_CHECK(std::fabs(1.0 - g.ao[p] - linear) < 0.003 && std::fabs(1.0 - g.ao[p] - target) > 0.003,
+        "HBAO linear attenuation k = %g: %.4f against %.4f", k, 1.0 - g.ao[p], linear);
     }
   }
   // 3. VAO on the wall case (V1): the plane z = 0 and a block filling x >=
