@@ -67,15 +67,13 @@ layout::vec4 Row(const double* m, int r)
 
 /// The parts of the block both methods fill; false when the frame does not fit.
 bool CommonBlock(const PixelCamera& camera, const SurfaceFrame& frame, double radius, layout::ScreenAOParams& b,
-  double worldToNDC[16], std::string& error)
+  std::string& error)
 {
-  error = CheckPixelCamera(camera);
+  error = CheckScreenFrame(camera, frame);
   if (!error.empty())
     return false;
   const std::size_t pixels = static_cast<std::size_t>(camera.width) * camera.height;
-  if (frame.width != camera.width || frame.height != camera.height || frame.triangle.size() != pixels ||
-    frame.position.size() != 3 * pixels || frame.normal.size() != 3 * pixels || frame.ao.size() != pixels)
-    return error = "the frame does not match the camera's image size", false;
+  double worldToNDC[16];
   if (pixels > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max() / 4))
     return error = "the image is too large for the GPU estimator", false;
   if (!WorldToNDC(camera, worldToNDC))
@@ -95,12 +93,6 @@ bool CommonBlock(const PixelCamera& camera, const SurfaceFrame& frame, double ra
 bool ScreenAOEngine::Impl::Run(int method, layout::ScreenAOParams& block, const std::vector<layout::vec4>& samples,
   const PixelCamera& camera, SurfaceFrame& frame, double& ms, std::string& error)
 {
-  double worldToNDC[16];
-  for (int r = 0; r < 4; ++r)
-  {
-    const layout::vec4& v = block.worldToNDC[r];
-    worldToNDC[4 * r] = v.x, worldToNDC[4 * r + 1] = v.y, worldToNDC[4 * r + 2] = v.z, worldToNDC[4 * r + 3] = v.w;
-  }
   // The pixels: world position and NDC depth, normal and world size
   // (computed in double, as the CPU twin's).
   const std::size_t pixels = frame.ao.size();
@@ -134,7 +126,6 @@ bool ScreenAOEngine::Impl::Run(int method, layout::ScreenAOParams& block, const 
     }
     p4[4 * k + 3] = w;
   }
-  (void)worldToNDC;
   CurrentScope scope(this->Ctx);
   if (!scope.Ok(error))
     return false;
@@ -205,8 +196,7 @@ bool ScreenAOEngine::HBAO(const PixelCamera& camera, const HBAOSettings& setting
 {
   error = settings.Validate();
   layout::ScreenAOParams block;
-  double worldToNDC[16];
-  if (!error.empty() || !CommonBlock(camera, frame, settings.radius, block, worldToNDC, error))
+  if (!error.empty() || !CommonBlock(camera, frame, settings.radius, block, error))
     return false;
   block.image.z = 0;
   block.hbao = { settings.EffectiveDirections(), settings.EffectiveSteps(), settings.EffectiveNormalRays(),
@@ -227,8 +217,7 @@ bool ScreenAOEngine::VAO(const PixelCamera& camera, const VAOSettings& settings,
 {
   error = settings.Validate();
   layout::ScreenAOParams block;
-  double worldToNDC[16];
-  if (!error.empty() || !CommonBlock(camera, frame, settings.radius, block, worldToNDC, error))
+  if (!error.empty() || !CommonBlock(camera, frame, settings.radius, block, error))
     return false;
   const int tile = settings.interleave ? VAOSettings::Tile : 1;
   block.image.z = 1;

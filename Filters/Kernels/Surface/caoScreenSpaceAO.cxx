@@ -145,13 +145,10 @@ struct Screen
 
   bool Build(const PixelCamera& cam, const SurfaceFrame& f, std::string& error)
   {
-    error = CheckPixelCamera(cam);
+    error = CheckScreenFrame(cam, f);
     if (!error.empty())
       return false;
     const std::size_t pixels = static_cast<std::size_t>(cam.width) * cam.height;
-    if (f.width != cam.width || f.height != cam.height || f.triangle.size() != pixels ||
-      f.position.size() != 3 * pixels || f.normal.size() != 3 * pixels || f.ao.size() != pixels)
-      return error = "the frame does not match the camera's image size", false;
     if (!Invert4(cam.ndcToWorld, this->worldToNDC))
       return error = "the camera's matrix is singular", false;
     this->frame = &f;
@@ -444,6 +441,17 @@ void FinishVAO(const VAOSettings& settings, SurfaceFrame& frame, int threads)
   for (double& a : frame.ao)
     if (std::isfinite(a))
       a = std::min(1.0, std::max(0.0, a));
+}
+
+std::string CheckScreenFrame(const PixelCamera& camera, const SurfaceFrame& frame)
+{
+  std::string error = CheckPixelCamera(camera);
+  const std::size_t pixels = static_cast<std::size_t>(camera.width) * camera.height;
+  if (error.empty() &&
+    (frame.width != camera.width || frame.height != camera.height || frame.triangle.size() != pixels ||
+      frame.position.size() != 3 * pixels || frame.normal.size() != 3 * pixels || frame.ao.size() != pixels))
+    error = "the frame does not match the camera's image size";
+  return error;
 }
 
 bool WorldToNDC(const PixelCamera& camera, double out[16])

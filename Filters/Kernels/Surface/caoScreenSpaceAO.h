@@ -168,6 +168,9 @@ void VAODiskSamples(const VAOSettings& settings, std::vector<double>& x, std::ve
 /// sample sets' size, then the clamp to [0, 1].
 void FinishHBAO(const HBAOSettings& settings, SurfaceFrame& frame, int threads);
 void FinishVAO(const VAOSettings& settings, SurfaceFrame& frame, int threads);
+/// Empty when `frame` is a frame of `camera`'s image (its buffers sized
+/// for it), else why not.
+std::string CheckScreenFrame(const PixelCamera& camera, const SurfaceFrame& frame);
 /// The inverse of camera.ndcToWorld (world to NDC before the division);
 /// false when singular.
 bool WorldToNDC(const PixelCamera& camera, double out[16]);

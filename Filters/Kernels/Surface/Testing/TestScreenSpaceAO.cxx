@@ -270,6 +270,10 @@ int TestScreenSpaceAO(int, char*[])
                       "(k 10%% higher: %.4f; unlimited R: %.4f)\n", k, view ? "45-degree" : "top",
             deflect ? "deflected (Fig. 4)" : "sweep", steps, occlusion, target, changed,
             0.5 * (1.0 - 1.0 / std::sqrt(1.0 + k * k)));
+          // From above, 0.003: the edge's pixel centre lies up to 0.012 d
+          // beyond it (257 pixels over 20 d), 0.002 in the occlusion. At 45
+          // degrees, 0.01: the deflected march still climbs at 1024 steps
+          // (0.1113 at 64, 0.1350 at 1024, against 0.1383).
           const double tolerance = view == 0 ? 0.003 : 0.01;
           if (steps == 1024 && (view == 0 || deflect))
             CAO_CHECK(std::fabs(occlusion - target) < tolerance && std::fabs(occlusion - changed) > tolerance,

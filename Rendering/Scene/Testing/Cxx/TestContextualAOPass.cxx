@@ -83,6 +83,56 @@ void Check(bool ok, const std::string& what)
   failures += !ok;
 }
 
+/// An actor's triangles in world space (appended to `all`, ids shifted),
+/// as the pass gathers them; the actor's own points and ids in `pts`,
+/// `tris`.
+void WorldTriangles(vtkActor* actor, std::vector<double>& all, std::vector<std::int64_t>& allTris,
+  std::vector<double>& pts, std::vector<std::int64_t>& tris)
+{
+  vtkCAO::TrianglesOf(vtkPolyData::SafeDownCast(actor->GetMapper()->GetInputDataObject(0, 0)), pts, tris);
+  for (std::size_t i = 0; i < pts.size(); i += 3)
+  {
+    double in[4] = { pts[i], pts[i + 1], pts[i + 2], 1.0 }, out[4];
+    actor->GetMatrix()->MultiplyPoint(in, out);
+    for (int d = 0; d < 3; ++d)
+      pts[i + d] = out[d];
+  }
+  const std::int64_t base = static_cast<std::int64_t>(all.size() / 3);
+  all.insert(all.end(), pts.begin(), pts.end());
+  for (std::int64_t id : tris)
+    allTris.push_back(id + base);
+}
+
+/// The renderer's camera as the kernels take it (its viewport's size).
+cao::PixelCamera PixelsOf(vtkRenderer* renderer)
+{
+  int w = 0, h = 0, x0 = 0, y0 = 0;
+  renderer->GetTiledSizeAndOrigin(&w, &h, &x0, &y0);
+  cao::PixelCamera pixels;
+  vtkMatrix4x4::Invert(
+    &renderer->GetActiveCamera()->GetCompositeProjectionTransformMatrix(double(w) / h, -1, 1)->Element[0][0],
+    pixels.ndcToWorld);
+  pixels.width = w;
+  pixels.height = h;
+  return pixels;
+}
+
+/// The largest |AO| difference between a kernel's frame and the pass's
+/// last frame over the frame's covered pixels (counted in `compared`).
+double WorstDifference(const cao::SurfaceFrame& frame, vtkContextualAOPass* pass, int& compared)
+{
+  double worst = 0.0;
+  compared = 0;
+  for (int y = 0; y < frame.height; ++y)
+    for (int x = 0; x < frame.width; ++x)
+    {
+      const double a = frame.ao[static_cast<std::size_t>(y) * frame.width + x];
+      if (std::isfinite(a))
+        worst = std::max(worst, std::fabs(a - pass->GetPixelAO(x, y))), ++compared;
+    }
+  return worst;
+}
+
 /// The grey level (mean of RGB) of pixel (x, y) of the window.
 double Grey(vtkRenderWindow* w, int x, int y)
 {
@@ -240,51 +290,22 @@ int TestContextualAOPass(int, char*[])
     std::vector<std::vector<std::int64_t>> meshTris(2);
     vtkActor* both[2] = { slabActor, sphereActor };
     for (int a = 0; a < 2; ++a)
-    {
-      vtkCAO::TrianglesOf(vtkPolyData::SafeDownCast(both[a]->GetMapper()->GetInputDataObject(0, 0)),
-        meshPoints[a], meshTris[a]);
-      for (std::size_t i = 0; i < meshPoints[a].size(); i += 3)
-      {
-        double in[4] = { meshPoints[a][i], meshPoints[a][i + 1], meshPoints[a][i + 2], 1.0 }, out[4];
-        both[a]->GetMatrix()->MultiplyPoint(in, out);
-        for (int d = 0; d < 3; ++d)
-          meshPoints[a][i + d] = out[d];
-      }
-      const std::int64_t base = static_cast<std::int64_t>(all.size() / 3);
-      all.insert(all.end(), meshPoints[a].begin(), meshPoints[a].end());
-      for (std::int64_t id : meshTris[a])
-        allTris.push_back(id + base);
-    }
+      WorldTriangles(both[a], all, allTris, meshPoints[a], meshTris[a]);
     std::string error;
     cao::TriangleBVH bvh;
     cao::BitGrid grid;
     bvh.Build(all, allTris, error);
     cao::VoxelizeWorld({ { &meshPoints[0], &meshTris[0] }, { &meshPoints[1], &meshTris[1] } }, bvh.Bounds(),
       1.05 * 0.8, 128, grid, error);
-    int w = 0, h = 0, x0 = 0, y0 = 0;
-    renderer->GetTiledSizeAndOrigin(&w, &h, &x0, &y0);
-    cao::PixelCamera pixels;
-    vtkMatrix4x4::Invert(&camera->GetCompositeProjectionTransformMatrix(double(w) / h, -1, 1)->Element[0][0],
-      pixels.ndcToWorld);
-    pixels.width = w;
-    pixels.height = h;
+    const cao::PixelCamera pixels = PixelsOf(renderer);
     cao::SurfaceFrame frame;
     cao::VCTSettings settings;
     settings.radius = 0.8;
     cao::VCTPlan plan;
     const bool ran = cao::CastPrimary(bvh, pixels, frame, error) && cao::BuildVCTPlan(settings, grid, plan, error) &&
       cao::VCTFrame(grid, plan, frame, 0, error);
-    double worst = 0;
     int compared = 0;
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x)
-      {
-        const double a = frame.ao[static_cast<std::size_t>(y) * w + x];
-        if (!std::isfinite(a))
-          continue;
-        worst = std::max(worst, std::fabs(a - pass->GetPixelAO(x, y)));
-        ++compared;
-      }
+    const double worst = WorstDifference(frame, pass, compared);
     char text[160];
     std::snprintf(text, sizeof(text), "the pass's AO is cao::VCTFrame's on the same triangles and camera "
       "(%d pixels, largest difference %.2g)", compared, worst);
@@ -305,18 +326,7 @@ int TestContextualAOPass(int, char*[])
     {
       std::vector<double> pts;
       std::vector<std::int64_t> tris;
-      vtkCAO::TrianglesOf(vtkPolyData::SafeDownCast(a->GetMapper()->GetInputDataObject(0, 0)), pts, tris);
-      for (std::size_t i = 0; i < pts.size(); i += 3)
-      {
-        double in[4] = { pts[i], pts[i + 1], pts[i + 2], 1.0 }, out[4];
-        a->GetMatrix()->MultiplyPoint(in, out);
-        for (int d = 0; d < 3; ++d)
-          pts[i + d] = out[d];
-      }
-      const std::int64_t base = static_cast<std::int64_t>(all.size() / 3);
-      all.insert(all.end(), pts.begin(), pts.end());
-      for (std::int64_t id : tris)
-        allTris.push_back(id + base);
+      WorldTriangles(a, all, allTris, pts, tris);
     }
     std::string error;
     cao::TriangleBVH bvh;
@@ -327,13 +337,7 @@ int TestContextualAOPass(int, char*[])
       pass->SetMethod(method);
       window->Render();
       const std::string first = pass->GetLastFrameStages();
-      int w = 0, h = 0, x0 = 0, y0 = 0;
-      renderer->GetTiledSizeAndOrigin(&w, &h, &x0, &y0);
-      cao::PixelCamera pixels;
-      vtkMatrix4x4::Invert(&camera->GetCompositeProjectionTransformMatrix(double(w) / h, -1, 1)->Element[0][0],
-        pixels.ndcToWorld);
-      pixels.width = w;
-      pixels.height = h;
+      const cao::PixelCamera pixels = PixelsOf(renderer);
       cao::SurfaceFrame frame;
       bool ran = cao::CastPrimary(bvh, pixels, frame, error);
       if (method == vtkContextualAOPass::HBAO)
@@ -348,15 +352,8 @@ int TestContextualAOPass(int, char*[])
         vs.radius = 0.8;
         ran = ran && cao::VAOFrame(pixels, vs, frame, 0, error);
       }
-      double worst = 0;
       int compared = 0;
-      for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-        {
-          const double a = frame.ao[static_cast<std::size_t>(y) * w + x];
-          if (std::isfinite(a))
-            worst = std::max(worst, std::fabs(a - pass->GetPixelAO(x, y))), ++compared;
-        }
+      const double worst = WorstDifference(frame, pass, compared);
       // From VCT the triangles are gathered again (no grid); from HBAO to
       // VAO they are kept: the AO alone is made again.
       const std::string expected = method == vtkContextualAOPass::HBAO ? "scene,primary,trace,ambient,combine"
