@@ -15,10 +15,6 @@
 
 namespace vtkCAO
 {
-namespace
-{
-/// Whether Auto should avoid this renderer: a software rasteriser, unless
-/// CAO_GL_ALLOW_SOFTWARE is set (and not "0").
 bool AvoidSoftware(const std::string& description)
 {
   const char* allow = std::getenv("CAO_GL_ALLOW_SOFTWARE");
@@ -28,7 +24,6 @@ bool AvoidSoftware(const std::string& description)
     if (description.find(s) != std::string::npos)
       return true;
   return false;
-}
 }
 
 const char* BackendName(int backend)

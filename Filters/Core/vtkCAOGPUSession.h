@@ -48,6 +48,10 @@ enum BackendChoice
   BACKEND_OPENGL = 2
 };
 CAOFILTERSCORE_EXPORT const char* BackendName(int backend);
+/// Whether Auto should avoid the renderer `description` names: a software
+/// rasteriser (llvmpipe, softpipe, SwiftShader), unless CAO_GL_ALLOW_SOFTWARE
+/// is set (and not "0").
+CAOFILTERSCORE_EXPORT bool AvoidSoftware(const std::string& description);
 
 class CAOFILTERSCORE_EXPORT GPUSession
 {

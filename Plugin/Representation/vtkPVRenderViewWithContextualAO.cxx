@@ -96,6 +96,12 @@ void vtkPVRenderViewWithContextualAO::SetSurfaceAOIndirectLight(int on)
   this->Modified();
 }
 
+void vtkPVRenderViewWithContextualAO::SetSurfaceAOBackend(int backend)
+{
+  this->Pass->SetBackend(backend);
+  this->Modified();
+}
+
 void vtkPVRenderViewWithContextualAO::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

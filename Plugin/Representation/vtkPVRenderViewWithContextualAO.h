@@ -35,7 +35,7 @@ public:
   ///@{
   /// Forwarded to the pass (vtkContextualAOPass's Method, ApplyTo, Radius,
   /// Strength, Quality, Slices, Grid, GBuffer, OccludingVolumes,
-  /// IndirectLight).
+  /// IndirectLight, Backend).
   void SetSurfaceAOMethod(int method);
   void SetApplyAOTo(int mode);
   void SetSurfaceAOGrid(int grid);
@@ -46,6 +46,7 @@ public:
   void SetSurfaceAOQuality(int quality);
   void SetSurfaceAOSlices(int slices);
   void SetSurfaceAOIndirectLight(int on);
+  void SetSurfaceAOBackend(int backend);
   ///@}
 
   /// The pass, for its frame report.

@@ -102,6 +102,19 @@ ball.Center = [0.3, 0.0, 0.5]
 Render(view)
 check(pas.GetVoxelizeCount() == grids + 1 and pas.GetLastFrameStages().startswith("voxelize"),
       "moving the sphere's source re-voxelizes (%s)" % pas.GetLastFrameStages())
+# Surface AO Backend OpenGL: the grid and the cones on the view's own
+# OpenGL (llvmpipe under Xvfb here; Auto keeps the CPU there): the same
+# picture to a grey level, and the report says where it ran.
+cpu = shot("view-cpu")
+view.SurfaceAOBackend = "OpenGL"
+gpu = shot("view-opengl")
+report = pas.GetLastFrameReport()
+check('"backend": "OpenGL' in report and pas.GetLastFrameStages().startswith("voxelize") and
+      abs(gpu - cpu).max() <= 2,
+      "Surface AO Backend OpenGL: voxelized and traced on the view's OpenGL (%s), the picture within %.0f grey "
+      "levels of the CPU's" % (pas.GetLastFrameStages(), abs(gpu - cpu).max()))
+view.SurfaceAOBackend = "Auto"
+Render(view)
 view.SurfaceAOStrength = 0.0
 a = shot("view-strength0")
 view.SurfaceAOMethod = "None"

@@ -31,6 +31,7 @@
 #include "vtk_glew.h"
 
 #include "vtkCAOFrameIO.h"
+#include "vtkCAOSceneGPU.h"
 #include "vtkCAOInput.h"
 #include "vtkCAOSceneVolume.h"
 #include "vtkCompositeDataDisplayAttributes.h"
@@ -257,6 +258,9 @@ struct vtkContextualAOPass::Internals
   double tolerance = 1e-9;       ///< drawn against traced point: half a voxel
   bool ignoredVolumes = false;   ///< volumes in view that a screen-space method does not see
   cao::VAOSettings vao;          ///< the last VAO run's settings (its indirect term reuses them)
+  vtkCAO::SceneGPU gpu;          ///< VCT on the window's OpenGL (Backend)
+  bool onGPU = false;            ///< this frame's VCT runs there
+  std::string backendNote;       ///< why not, when Auto or the volumes chose the CPU
 
   void Stage(const char* name, Clock::time_point start)
   {
@@ -271,6 +275,7 @@ struct vtkContextualAOPass::Internals
   }
   void RunAO(vtkContextualAOPass* self, const vtkRenderState* s);
   void Collect(vtkContextualAOPass* self, vtkRenderer* ren);
+  bool ResolveBackend(vtkContextualAOPass* self, vtkRenderer* ren);
   bool UpdateGrid(vtkContextualAOPass* self);
   bool UpdateVolumes(vtkContextualAOPass* self);
   bool UpdateAO(vtkContextualAOPass* self, vtkRenderer* ren);
@@ -298,7 +303,15 @@ vtkContextualAOPass::~vtkContextualAOPass()
 
 void vtkContextualAOPass::ReleaseGraphicsResources(vtkWindow* w)
 {
-  this->Internal->camera->ReleaseGraphicsResources(w);
+  Internals& p = *this->Internal;
+  p.camera->ReleaseGraphicsResources(w);
+  if (p.onGPU || p.gpu.ResidentBytes() > 0)
+  {
+    p.sceneKey.clear(); // the grid's bits were on the GPU: voxelize again
+    p.viewKey.clear();
+  }
+  p.gpu.Release(w);
+  p.onGPU = false;
 }
 
 int vtkContextualAOPass::GetNumberOfOpenMeshes() const
@@ -346,7 +359,12 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
   o << "], \"triangles\": " << p.bvh.NumberOfTriangles() << ", \"open_meshes\": " << p.open
     << ", \"occluding_volumes\": " << p.opacity.size() << ", \"radius\": " << p.radius
     << ", \"slices\": " << p.grid.slices << ", \"covered_pixels\": " << p.frame.covered
-    << ", \"combined_pixels\": " << p.combined << ", \"hidden_pixels\": " << p.hidden;
+    << ", \"combined_pixels\": " << p.combined << ", \"hidden_pixels\": " << p.hidden
+    << ", \"backend\": \"" << (p.onGPU ? p.gpu.Description() : std::string("CPU")) << "\"";
+  if (!p.backendNote.empty())
+    o << ", \"backend_note\": \"" << p.backendNote << "\"";
+  if (p.onGPU)
+    o << ", \"gpu_bytes\": " << p.gpu.ResidentBytes();
   if (p.ignoredVolumes)
     o << ", \"volumes\": \"not seen: the screen-space methods read the opaque depth, drawn before the volumes\"";
   if (this->Method == VAO)
@@ -400,6 +418,8 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
     this->viewKey.clear();
     return; // no surfaces: no surface work
   }
+  if (!this->ResolveBackend(self, ren))
+    return;
   if (self->Method == VCT && (self->Slices < 32 || self->Slices > 1024 || self->Slices % 32 != 0))
   {
     this->Fail(self, "Slices must be 32..1024 and a multiple of 32 (got " +
@@ -472,6 +492,27 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
       this->volumes.push_back(volume);
       vtkCAO::AppendVolumeOpacityKey(volume, this->frameVolumeKey);
     }
+}
+
+bool vtkContextualAOPass::Internals::ResolveBackend(vtkContextualAOPass* self, vtkRenderer* ren)
+{
+  // The AO on the window's OpenGL (Backend), unless volumes occlude in VCT
+  // (the GPU cone tracer does not read them); the grid is built where it
+  // is traced.
+  this->backendNote.clear();
+  std::string error;
+  const bool volumesOcclude = self->Method == VCT && !this->volumes.empty();
+  this->onGPU = self->Backend != BACKEND_CPU && !volumesOcclude &&
+    this->gpu.Resolve(ren->GetRenderWindow(), self->Backend, error);
+  if (!error.empty())
+    return this->Fail(self, error);
+  if (self->Backend != BACKEND_CPU && volumesOcclude)
+    this->backendNote = "volumes occlude the surfaces: the CPU (the GPU cone tracer does not read volumes)";
+  else if (!this->onGPU)
+    this->backendNote = this->gpu.Note;
+  if (self->Method == VCT)
+    this->frameSceneKey.push_back(this->onGPU ? 1.0 : 0.0); // where the grid is
+  return true;
 }
 
 bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
@@ -568,11 +609,12 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
     const double right[3] = { k[v], k[v + 1], k[v + 2] }, up[3] = { k[v + 4], k[v + 5], k[v + 6] };
     std::array<double, 9> axes;
     ok = cao::EyeAxes(right, up, axes, error) &&
-      cao::PlanEyeGrid(views, axes, 1.05 * this->radius, self->Slices, this->grid, error) &&
-      cao::FillGrid(views, this->grid, error);
+      cao::PlanEyeGrid(views, axes, 1.05 * this->radius, self->Slices, this->grid, error);
   }
   else
-    ok = cao::VoxelizeWorld(views, b, 1.05 * this->radius, self->Slices, this->grid, error);
+    ok = cao::PlanGrid(b, 1.05 * this->radius, self->Slices, this->grid, error);
+  ok = ok &&
+    (this->onGPU ? this->gpu.Voxelize(this->grid, views, error) : cao::FillGrid(views, this->grid, error));
   if (!ok)
   {
     this->failedSceneKey = this->frameSceneKey;
@@ -636,6 +678,7 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
   for (int i = 0; i < 16; ++i)
     key.push_back(toNDC->GetElement(i / 4, i % 4));
   key.push_back(self->GBuffer);
+  key.push_back(this->onGPU ? 1.0 : 0.0); // where it is traced
   std::string error;
   auto start = Clock::now();
   if (self->GBuffer == DEPTH_BUFFER)
@@ -674,7 +717,8 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
     const cao::HBAOPreset presets[] = { cao::HBAOPreset::Fig11a, cao::HBAOPreset::Table1, cao::HBAOPreset::Fig11d };
     settings.preset = presets[self->Quality - 1];
     settings.radius = this->radius;
-    if (!cao::HBAOFrame(pixels, settings, this->frame, 0, error))
+    if (this->onGPU ? !this->gpu.HBAO(pixels, settings, this->frame, error)
+                    : !cao::HBAOFrame(pixels, settings, this->frame, 0, error))
       return this->Fail(self, error);
   }
   else if (self->Method == VAO)
@@ -682,7 +726,8 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
     this->vao = cao::VAOSettings();
     this->vao.quality = static_cast<cao::VAOQuality>(self->Quality);
     this->vao.radius = this->radius;
-    if (!cao::VAOFrame(pixels, this->vao, this->frame, 0, error))
+    if (this->onGPU ? !this->gpu.VAO(pixels, this->vao, this->frame, error)
+                    : !cao::VAOFrame(pixels, this->vao, this->frame, 0, error))
       return this->Fail(self, error);
   }
   else
@@ -696,7 +741,8 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
       return this->Fail(self, error);
     for (const cao::OpacityVolume& volume : this->opacity)
       plan.volumes.push_back(&volume);
-    if (!cao::VCTFrame(this->grid, plan, this->frame, 0, error))
+    if (this->onGPU ? !this->gpu.Trace(this->grid, plan, this->frame, error)
+                    : !cao::VCTFrame(this->grid, plan, this->frame, 0, error))
       return this->Fail(self, error);
   }
   this->viewKey = key;
@@ -841,6 +887,7 @@ void vtkContextualAOPass::PrintSelf(ostream& os, vtkIndent indent)
      << indent << "Strength: " << this->Strength << "\n"
      << indent << "Quality: " << this->Quality << "\n"
      << indent << "Slices: " << this->Slices << "\n"
+     << indent << "Backend: " << this->Backend << "\n"
      << indent << "IndirectLight: " << this->IndirectLight << "\n";
 }
 

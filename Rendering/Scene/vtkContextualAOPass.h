@@ -62,10 +62,11 @@
  * runs. A scene the grid failed on is not tried again until it changes.
  *
  * The AO is cao::VCTFrame's, cao::HBAOFrame's or cao::VAOFrame's
- * (Filters/Kernels/Surface), on the CPU; the
- * picture is read back and written through the window (so it works on any
- * OpenGL, slowly on large windows). The pass's GPU path is not built yet
- * (the `cao surface` tool has it).
+ * (Filters/Kernels/Surface) on the CPU, or (Backend) their GL twins on the
+ * window's own OpenGL; the pixels' surface points come from the CPU ray
+ * cast or the drawn depth either way, and the picture is read back and
+ * written through the window (so it works on any OpenGL, slowly on large
+ * windows).
  */
 #ifndef vtkContextualAOPass_h
 #define vtkContextualAOPass_h
@@ -183,9 +184,28 @@ public:
   vtkBooleanMacro(IndirectLight, bool);
   ///@}
 
+  enum Backends
+  {
+    BACKEND_AUTO = 0,  ///< VCT on the window's OpenGL 4.3 on a hardware GPU, else the CPU
+    BACKEND_CPU = 1,   ///< the CPU kernels
+    BACKEND_OPENGL = 2 ///< the window's OpenGL 4.3 (even a software rasteriser); none: an error
+  };
   ///@{
-  /// Depth slices of the grid: 32 to 1024, a multiple of 32 (default 128,
-  /// the paper's); another value is refused at render time.
+  /// Where the AO runs (VCT's grid and cones, HBAO's and VAO's estimator):
+  /// AUTO (default), CPU or OPENGL, in the render window's own context (no
+  /// second context; the GL state comes back as it was). With volumes
+  /// occluding the surfaces VCT runs on the CPU (the GPU cone tracer does
+  /// not read volumes). The G-buffer (ray cast or drawn depth), HBAO's blur,
+  /// VAO's filter and indirect light run on the CPU. The report's "backend"
+  /// says what ran, and "backend_note" why not the GPU.
+  vtkSetClampMacro(Backend, int, BACKEND_AUTO, BACKEND_OPENGL);
+  vtkGetMacro(Backend, int);
+  ///@}
+
+  ///@{
+  /// Depth slices of the grid: 32 to 1024, a multiple of 32 (default 256,
+  /// cao::VCTSettings's; the paper's 128); another value is refused at
+  /// render time.
   vtkSetMacro(Slices, int);
   vtkGetMacro(Slices, int);
   ///@}
@@ -221,7 +241,8 @@ protected:
   double Radius = 0.0;
   double Strength = 1.0;
   int Quality = 2;
-  int Slices = 128;
+  int Slices = 256;
+  int Backend = BACKEND_AUTO;
   bool IndirectLight = false;
   int FrameCount = 0;
   int VoxelizeCount = 0;

@@ -36,6 +36,7 @@ options:
   --reference-rays N   directions per pixel of the reference (default 1024);
                        its own error is measured against 4N
   --qualities LIST     vct presets (default low,medium,high)
+  --occupancy LIST     vct occupancies: rays (default), volume (the paper's; rows "... volume")
   --slices LIST        vct grid depth slices (default 128,256,512)
   --kernels LIST       vtkSSAOPass kernel sizes (default 16,32,64,128; 32 is VTK's)
   --hbao LIST          hbao configurations (default fig11a,table1,fig11b,fig11c,fig11d; none)
@@ -63,6 +64,7 @@ struct Options
   int referenceRays = 1024, band = 2, repeats = 3, threads = 0;
   std::vector<cao::VCTQuality> qualities{ cao::VCTQuality::Low, cao::VCTQuality::Medium,
     cao::VCTQuality::High };
+  std::vector<cao::VCTOccupancy> occupancies{ cao::VCTOccupancy::Rays };
   std::vector<int> slices{ 128, 256, 512 }, kernels{ 16, 32, 64, 128 };
   std::string window = "auto", output = "surface-bench";
   bool vctCPU = true, vctGL = false;
@@ -161,6 +163,22 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
           return false;
         }
         o.qualities.push_back(quality);
+      }
+    }
+    else if (a == "--occupancy")
+    {
+      if (!value())
+        return false;
+      o.occupancies.clear();
+      for (const std::string& q : Split(v, ','))
+      {
+        cao::VCTOccupancy occupancy;
+        if (!cao::ParseVCTOccupancy(q, occupancy))
+        {
+          error = "--occupancy: '" + q + "' is not rays or volume";
+          return false;
+        }
+        o.occupancies.push_back(occupancy);
       }
     }
     else if (a == "--slices")
@@ -489,10 +507,12 @@ int RunBenchSurface(int argc, char* argv[])
         if (!build(camera, grid, gridMs) || (kind == "eye" && !build(camera2, grid2, grid2Ms)))
           return Fail(1, error);
         const cao::BitGrid& second = kind == "eye" ? grid2 : grid;
+        for (cao::VCTOccupancy occupancy : o.occupancies)
         for (cao::VCTQuality q : o.qualities)
         {
           cao::VCTSettings vs;
           vs.quality = q;
+          vs.occupancy = occupancy;
           vs.slices = slices;
           vs.radius = radius;
           cao::VCTPlan plan, plan2;
@@ -525,7 +545,7 @@ int RunBenchSurface(int argc, char* argv[])
           row.mesh = name;
           row.method = onGPU ? "vct-gl" : "vct";
           row.label = row.method + " " + cao::VCTQualityName(q) + " " + std::to_string(slices) +
-            (kind == "eye" ? " eye" : "");
+            (kind == "eye" ? " eye" : "") + (occupancy == cao::VCTOccupancy::Volume ? " volume" : "");
           row.series = onGPU ? 4 : 0;
           // An eye grid is built again at every camera turn: in the frame.
           row.ms = Median(times) + (kind == "eye" ? gridMs : 0.0);

@@ -37,7 +37,7 @@ options:
   --copies LIST        instances of the meshes, tiled in a square (default 1,9,81)
   --sizes LIST         image sizes WxH (default 256x256,1024x768,1920x1080)
   --quality NAME       vct preset low, medium (default) or high
-  --slices N           grid depth slices (default 128)
+  --slices N           grid depth slices (default 256, as cao surface)
   --radius-fraction F  R = F x the tiled scene's bounding-box diagonal (default 0.1)
   --repeats N          timed frames per configuration, the median kept (default 3)
   --threads N          CPU threads (0: all; default 0)
@@ -53,7 +53,7 @@ struct Options
   std::vector<int> copies{ 1, 9, 81 };
   std::vector<std::pair<int, int>> sizes{ { 256, 256 }, { 1024, 768 }, { 1920, 1080 } };
   cao::VCTQuality quality = cao::VCTQuality::Medium;
-  int slices = 128, repeats = 3, threads = 0;
+  int slices = cao::VCTSettings().slices, repeats = 3, threads = 0;
   double radiusFraction = 0.1;
   std::string window = "auto", output = "surface-scale";
 };

@@ -72,7 +72,7 @@ const char* SurfaceUsage = R"(cao surface MESH... [options] -o out.png
   --samples N           vao: samples per pixel, 1..256 (instead of --quality)
   --filter on|off       hbao: its blur; vao: its 4 x 4 sample sets and filter (default on)
   --slices N            vct: depth slices of the grid, 32..1024, a multiple of 32
-                        (default 128, the paper's)
+                        (default 256; the paper's 128)
   --grid world|eye      vct: the grid's axes (world: default, built once per geometry;
                         eye: the camera's, its slices in depth as in the paper, built
                         again whenever the camera turns; parallel columns, not the
@@ -83,6 +83,10 @@ const char* SurfaceUsage = R"(cao surface MESH... [options] -o out.png
                         even on llvmpipe, an error without a context)
   --fill surface|parity vct: a closed mesh's voxels: its parity plus the voxels its
                         surface crosses (default), or the paper's parity alone
+  --occupancy rays|volume  vct: a cone's occlusion: the cosine-weighted share of its rays
+                        that meet a set voxel (default), or the paper's solid volume
+                        fraction of its spheres (z-column prisms, bitCount)
+  --ray-step V          vct, rays: voxels between a ray's samples, 0.1..1 (default 0.5)
   --cone-angle DEG      vct: each cone's half-angle, 5..45 (default 30)
   --apex-offset V       vct: the cones' apex above the surface, in voxels, 0..4 (default 1)
   --rays N              reference: directions per pixel (default 1024, at most 1048576)
@@ -308,6 +312,21 @@ bool Parse(int argc, char* argv[], SurfaceOptions& o, std::string& error)
         return false;
       }
       o.vct.surfaceVoxels = v == "surface";
+    }
+    else if (a == "--occupancy")
+    {
+      if (!value())
+        return false;
+      if (!cao::ParseVCTOccupancy(v, o.vct.occupancy))
+      {
+        error = "--occupancy is rays or volume (got '" + v + "')";
+        return false;
+      }
+    }
+    else if (a == "--ray-step")
+    {
+      if (!number(o.vct.rayStep, 0.1, 1))
+        return false;
     }
     else if (a == "--apex-offset")
     {
@@ -572,27 +591,7 @@ bool VCTGPU::Trace(const cao::BitGrid& grid, const cao::VCTPlan& plan, cao::Surf
     error = "no OpenGL context (Open first)";
     return false;
   }
-  std::vector<float> points, normals;
-  std::vector<std::size_t> where;
-  for (std::size_t i = 0; i < frame.triangle.size(); ++i)
-    if (frame.triangle[i] >= 0)
-    {
-      where.push_back(i);
-      double p[3], n[3]; // in the grid's frame (an eye grid turns them)
-      grid.ToGrid(&frame.position[3 * i], p);
-      grid.ToGrid(&frame.normal[3 * i], n);
-      for (int d = 0; d < 3; ++d)
-      {
-        points.push_back(static_cast<float>(p[d]));
-        normals.push_back(static_cast<float>(n[d]));
-      }
-    }
-  std::vector<float> ao;
-  if (!this->P->engine->Trace(plan, points.data(), normals.data(), where.size(), ao, ms, error))
-    return false;
-  for (std::size_t k = 0; k < where.size(); ++k)
-    frame.ao[where[k]] = ao[k];
-  return true;
+  return this->P->engine->TraceFrame(grid, plan, frame, ms, error);
 }
 
 bool SSAORenderer::Setup(const SurfaceScene& scene, const std::string& windowKind,
@@ -1090,7 +1089,9 @@ int RunSurface(int argc, char* argv[])
                 << ", \"cone_weights\": \""
                 << (o.vct.weights == cao::ConeWeights::Cosine ? "cosine" : "equal")
                 << "\", \"fill\": \"" << (o.vct.surfaceVoxels ? "surface" : "parity")
-                << "\", \"backend\": \"" << vctBackend << "\", \"grid\": \"" << o.grid << "\", \"slices\": " << grid.slices << ", \"columns\": ["
+                << "\", \"occupancy\": \"" << cao::VCTOccupancyName(o.vct.occupancy)
+                << "\", \"ray_step\": " << o.vct.rayStep
+                << ", \"backend\": \"" << vctBackend << "\", \"grid\": \"" << o.grid << "\", \"slices\": " << grid.slices << ", \"columns\": ["
                 << grid.nx << ", " << grid.ny << "], \"voxel\": " << grid.voxel
                 << ", \"solid_voxels\": " << (grid.bits.empty() ? -1 : grid.CountAll())
                 << ", \"open_meshes\": [";

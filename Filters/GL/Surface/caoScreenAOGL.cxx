@@ -186,6 +186,17 @@ void ScreenAOEngine::ReleaseGraphicsResources()
     p.Release();
 }
 
+void ScreenAOEngine::AbandonGraphicsResources()
+{
+  Impl& p = *this->P;
+  for (GLuint* b : p.Buffers)
+    *b = 0;
+  for (Program& prog : p.programs)
+    prog.Abandon();
+  p.timer.Abandon();
+  p.bytes = 0;
+}
+
 std::int64_t ScreenAOEngine::ResidentBytes() const
 {
   return this->P->bytes;

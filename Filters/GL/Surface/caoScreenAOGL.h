@@ -45,6 +45,9 @@ public:
   std::int64_t ResidentBytes() const;
   /// Delete the GL objects (the context must be alive; made current here).
   void ReleaseGraphicsResources();
+  /// Forget the GL objects without a GL call, for when their context is
+  /// gone (or cannot be made current): the context's end frees them.
+  void AbandonGraphicsResources();
 
 private:
   struct Impl;

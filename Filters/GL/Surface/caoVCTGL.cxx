@@ -101,6 +101,47 @@ void VCTEngine::ReleaseGraphicsResources()
     p.Release();
 }
 
+void VCTEngine::AbandonGraphicsResources()
+{
+  Impl& p = *this->P;
+  for (GLuint* b : p.Buffers)
+    *b = 0;
+  for (Program* prog : { &p.rasterize, &p.combine, &p.trace })
+    prog->Abandon();
+  p.timer.Abandon();
+  p.bytes = 0;
+  p.shape = BitGrid();
+}
+
+bool VCTEngine::TraceFrame(const BitGrid& grid, const VCTPlan& plan, SurfaceFrame& frame, double& ms,
+  std::string& error)
+{
+  std::vector<float> points, normals;
+  std::vector<std::size_t> where;
+  for (std::size_t i = 0; i < frame.triangle.size(); ++i)
+    if (frame.triangle[i] >= 0)
+    {
+      where.push_back(i);
+      double p[3], n[3]; // in the grid's frame (an eye grid turns them)
+      grid.ToGrid(&frame.position[3 * i], p);
+      grid.ToGrid(&frame.normal[3 * i], n);
+      for (int d = 0; d < 3; ++d)
+      {
+        points.push_back(static_cast<float>(p[d]));
+        normals.push_back(static_cast<float>(n[d]));
+      }
+    }
+  ms = 0.0;
+  if (where.empty())
+    return true;
+  std::vector<float> ao;
+  if (!this->Trace(plan, points.data(), normals.data(), where.size(), ao, ms, error))
+    return false;
+  for (std::size_t k = 0; k < where.size(); ++k)
+    frame.ao[where[k]] = ao[k];
+  return true;
+}
+
 std::int64_t VCTEngine::ResidentBytes() const
 {
   return this->P->bytes;

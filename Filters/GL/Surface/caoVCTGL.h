@@ -50,10 +50,19 @@ public:
   bool Trace(const VCTPlan& plan, const float* points, const float* normals, std::size_t count,
     std::vector<float>& ao, double& ms, std::string& error);
 
+  /// The AO of every covered pixel of `frame` (cao::VCTFrame's twin):
+  /// its points and normals, turned into `grid`'s frame (an eye grid's
+  /// axes), traced on the grid voxelized or uploaded last.
+  bool TraceFrame(const BitGrid& grid, const VCTPlan& plan, SurfaceFrame& frame, double& ms,
+    std::string& error);
+
   /// Bytes of GPU memory held.
   std::int64_t ResidentBytes() const;
   /// Delete the GL objects (the context must be alive; made current here).
   void ReleaseGraphicsResources();
+  /// Forget the GL objects without a GL call, for when their context is
+  /// gone (or cannot be made current): the context's end frees them.
+  void AbandonGraphicsResources();
 
 private:
   struct Impl;

@@ -214,7 +214,8 @@ struct VCTParams
   ivec4 grid;   /* x: nx, y: ny, z: slices, w: words per column */
   vec4 origin;  /* xyz: the grid's corner (world); w: 1 / voxel size */
   ivec4 counts; /* x: cones, y: spheres, z: prisms, w: points */
-  vec4 apex;    /* x: apex offset along the normal (world units); yzw: 0 */
+  vec4 apex;    /* x: apex offset along the normal (world units); y: occupancy (1 rays, 0 volume);
+                   z: ray step (world units); w: tan(cone half-angle) */
   vec4 cones[CAO_VCT_MAX_CONES];     /* xyz: direction, z along the normal; w: weight */
   vec4 spheres[CAO_VCT_MAX_SPHERES]; /* x: centre distance t, y: radius r (world); zw: 0 */
   vec4 disk[CAO_VCT_MAX_PRISMS];     /* xy: unit-disk sample, z: sqrt(1 - x^2 - y^2); w: 0 */

@@ -111,6 +111,10 @@ std::string VCTSettings::Validate() const
     return "the radius must be positive and finite";
   if (!(this->apexOffset >= 0.0 && this->apexOffset <= 4.0))
     return "the apex offset must be 0..4 voxels";
+  if (this->occupancy != VCTOccupancy::Rays && this->occupancy != VCTOccupancy::Volume)
+    return "unknown occupancy (rays or volume)";
+  if (!(this->rayStep >= 0.1 && this->rayStep <= 1.0))
+    return "the ray step must be 0.1..1 voxel";
   return std::string();
 }
 
@@ -135,6 +139,22 @@ bool ParseVCTQuality(const std::string& text, VCTQuality& quality)
     if (text == VCTQualityName(q))
     {
       quality = q;
+      return true;
+    }
+  return false;
+}
+
+const char* VCTOccupancyName(VCTOccupancy occupancy)
+{
+  return occupancy == VCTOccupancy::Volume ? "volume" : "rays";
+}
+
+bool ParseVCTOccupancy(const std::string& text, VCTOccupancy& occupancy)
+{
+  for (VCTOccupancy o : { VCTOccupancy::Rays, VCTOccupancy::Volume })
+    if (text == VCTOccupancyName(o))
+    {
+      occupancy = o;
       return true;
     }
   return false;
@@ -494,6 +514,9 @@ bool BuildVCTPlan(const VCTSettings& settings, const BitGrid& grid, VCTPlan& pla
     plan.disk.push_back(best);
   }
   plan.apexOffset = settings.apexOffset * h;
+  plan.occupancy = settings.occupancy;
+  plan.rayStep = settings.rayStep * h;
+  plan.coneTangent = std::tan(settings.coneHalfAngle * Pi / 180.0);
   return true;
 }
 
@@ -507,7 +530,8 @@ layout::VCTParams MakeVCTParams(const BitGrid& grid, const VCTPlan& plan, int po
   const int spheres = std::min<int>(static_cast<int>(plan.spheres.size()), CAO_VCT_MAX_SPHERES);
   const int prisms = std::min<int>(static_cast<int>(plan.disk.size()), CAO_VCT_MAX_PRISMS);
   v.counts = { cones, spheres, prisms, points };
-  v.apex = { static_cast<float>(plan.apexOffset), 0, 0, 0 };
+  v.apex = { static_cast<float>(plan.apexOffset), plan.occupancy == VCTOccupancy::Rays ? 1.0f : 0.0f,
+    static_cast<float>(plan.rayStep), static_cast<float>(plan.coneTangent) };
   for (int c = 0; c < cones; ++c)
     v.cones[c] = { static_cast<float>(plan.cones[c][0]), static_cast<float>(plan.cones[c][1]),
       static_cast<float>(plan.cones[c][2]), static_cast<float>(plan.coneWeights[c]) };
@@ -615,6 +639,68 @@ double OpacityVolume::Sample(const double w[3]) const
   return value;
 }
 
+namespace
+{
+/// A cone's occlusion by rays (grid coordinates): one ray per prism point
+/// of the unit disk, apex + tau (dir + tan(beta) (x u + y v)), tau from the
+/// first sphere's near side to the last one's far side (R from the apex),
+/// sampled at the midpoints of steps of at most plan.rayStep; the
+/// cosine-weighted share of the rays that meet a set voxel (a ray's weight:
+/// its cosine with n). The GLSL's RayOcclusion is the same in float.
+double RayOcclusion(const BitGrid& grid, const VCTPlan& plan, const double apex[3], const double n[3],
+  const double dir[3], const double u[3], const double v[3])
+{
+  const double inv = 1.0 / grid.voxel;
+  const VCTPlan::Sphere& first = plan.spheres.front();
+  const double t0 = first.t - first.r, t1 = plan.spheres.back().t + plan.spheres.back().r;
+  double blocked = 0.0, all = 0.0;
+  for (const auto& sample : plan.disk)
+  {
+    double ray[3];
+    for (int d = 0; d < 3; ++d)
+      ray[d] = dir[d] + plan.coneTangent * (sample[0] * u[d] + sample[1] * v[d]);
+    const double length = std::sqrt(ray[0] * ray[0] + ray[1] * ray[1] + ray[2] * ray[2]);
+    const double weight = std::max(0.0, (ray[0] * n[0] + ray[1] * n[1] + ray[2] * n[2]) / length);
+    all += weight;
+    const int steps = std::max(1, static_cast<int>(std::ceil((t1 - t0) * length / plan.rayStep)));
+    const double step = (t1 - t0) / steps;
+    for (int m = 0; m < steps; ++m)
+    {
+      const double tau = t0 + (m + 0.5) * step;
+      const int i = static_cast<int>(std::floor((apex[0] + tau * ray[0] - grid.origin[0]) * inv));
+      const int j = static_cast<int>(std::floor((apex[1] + tau * ray[1] - grid.origin[1]) * inv));
+      const int k = static_cast<int>(std::floor((apex[2] + tau * ray[2] - grid.origin[2]) * inv));
+      if (i >= 0 && j >= 0 && k >= 0 && i < grid.nx && j < grid.ny && k < grid.slices && grid.Bit(i, j, k))
+      {
+        blocked += weight;
+        break;
+      }
+    }
+  }
+  return all > 0.0 ? blocked / all : 0.0;
+}
+
+/// The volume's opacity over a sphere: its mean at the centre and the prism
+/// points (on the disk across the grid's z axis), over the diameter.
+double SphereOpacity(const BitGrid& grid, const VCTPlan& plan, const OpacityVolume& volume,
+  const double centre[3], double r)
+{
+  double sum = 0.0, g[3], w[3];
+  g[0] = centre[0], g[1] = centre[1], g[2] = centre[2];
+  grid.ToWorld(g, w);
+  sum += volume.Sample(w);
+  for (const auto& sample : plan.disk)
+  {
+    g[0] = centre[0] + r * sample[0];
+    g[1] = centre[1] + r * sample[1];
+    grid.ToWorld(g, w);
+    sum += volume.Sample(w);
+  }
+  const double mean = sum / static_cast<double>(plan.disk.size() + 1);
+  return CorrectOpacity(mean, 2.0 * r / volume.unitDistance);
+}
+}
+
 double ConeTraceAO(const BitGrid& grid, const VCTPlan& plan, const double pWorld[3], const double nWorld[3])
 {
   double p[3], n[3];
@@ -637,7 +723,28 @@ double ConeTraceAO(const BitGrid& grid, const VCTPlan& plan, const double pWorld
     double dir[3];
     for (int d = 0; d < 3; ++d)
       dir[d] = l[0] * tx[d] + l[1] * ty[d] + l[2] * n[d];
+    // The rays' frame: (u, v) across the cone's axis, as the GLSL's.
+    const double cs = dir[2] >= 0.0 ? 1.0 : -1.0;
+    const double ca = -1.0 / (cs + dir[2]);
+    const double cb = dir[0] * dir[1] * ca;
+    const double u[3] = { 1.0 + cs * dir[0] * dir[0] * ca, cs * cb, -cs * dir[0] };
+    const double v[3] = { cb, cs + dir[1] * dir[1] * ca, -dir[1] };
     double open = 1.0;
+    if (plan.occupancy == VCTOccupancy::Rays)
+    {
+      // The rays' visibility, then the volumes' opacity over the cone's spheres.
+      open = 1.0 - RayOcclusion(grid, plan, apex, n, dir, u, v);
+      for (const VCTPlan::Sphere& sphere : plan.spheres)
+        for (const OpacityVolume* volume : plan.volumes)
+        {
+          double centre[3];
+          for (int d = 0; d < 3; ++d)
+            centre[d] = apex[d] + sphere.t * dir[d];
+          open *= 1.0 - SphereOpacity(grid, plan, *volume, centre, sphere.r);
+        }
+      occlusion += plan.coneWeights[c] * (1.0 - open);
+      continue;
+    }
     for (const VCTPlan::Sphere& sphere : plan.spheres)
     {
       double centre[3];
@@ -662,22 +769,7 @@ double ConeTraceAO(const BitGrid& grid, const VCTPlan& plan, const double pWorld
       const double occ = total > 0 ? static_cast<double>(set) / static_cast<double>(total) : 0.0;
       open *= 1.0 - occ;
       for (const OpacityVolume* volume : plan.volumes)
-      {
-        // The volume's mean opacity over the sphere's centre and prism points.
-        double sum = 0.0, g[3], w[3];
-        g[0] = centre[0], g[1] = centre[1], g[2] = centre[2];
-        grid.ToWorld(g, w);
-        sum += volume->Sample(w);
-        for (const auto& sample : plan.disk)
-        {
-          g[0] = centre[0] + sphere.r * sample[0];
-          g[1] = centre[1] + sphere.r * sample[1];
-          grid.ToWorld(g, w);
-          sum += volume->Sample(w);
-        }
-        const double mean = sum / static_cast<double>(plan.disk.size() + 1);
-        open *= 1.0 - CorrectOpacity(mean, 2.0 * sphere.r / volume->unitDistance);
-      }
+        open *= 1.0 - SphereOpacity(grid, plan, *volume, centre, sphere.r);
     }
     occlusion += plan.coneWeights[c] * (1.0 - open);
   }

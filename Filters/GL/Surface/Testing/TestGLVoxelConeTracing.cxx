@@ -176,21 +176,35 @@ int TestGLVoxelConeTracing(int argc, char* argv[])
   }
   std::vector<float> gpu;
   double ms = 0;
-  CAO_CHECK(engine.Trace(plan, points.data(), normals.data(), 4000, gpu, ms, error), "%s", error.c_str());
-  double sum = 0, worst = 0, meanAO = 0;
-  int exact = 0;
-  for (int i = 0; i < 4000; ++i)
+  // Both occupancies (rays, the default, and the paper's volume): the
+  // GPU's float trace against the CPU's double one at the same points.
+  for (cao::VCTOccupancy occupancy : { cao::VCTOccupancy::Volume, cao::VCTOccupancy::Rays })
   {
-    const double cpu = cao::ConeTraceAO(grid, plan, &dp[3 * i], &dn[3 * i]);
-    const double d = std::fabs(cpu - gpu[i]);
-    sum += d;
-    worst = std::max(worst, d);
-    exact += d < 1e-6;
-    meanAO += cpu / 4000;
+    settings.occupancy = occupancy;
+    CAO_CHECK(cao::BuildVCTPlan(settings, grid, plan, error), "%s", error.c_str());
+    CAO_CHECK(engine.Trace(plan, points.data(), normals.data(), 4000, gpu, ms, error), "%s", error.c_str());
+    double sum = 0, worst = 0, meanAO = 0;
+    int exact = 0;
+    for (int i = 0; i < 4000; ++i)
+    {
+      const double cpu = cao::ConeTraceAO(grid, plan, &dp[3 * i], &dn[3 * i]);
+      const double d = std::fabs(cpu - gpu[i]);
+      sum += d;
+      worst = std::max(worst, d);
+      exact += d < 1e-6;
+      meanAO += cpu / 4000;
+    }
+    std::printf("cone tracing (%s), 4000 points (mean AO %.4f): GPU float against CPU double: mean |diff| %.2e, "
+                "max %.2e, %d within 1e-6; GPU %.2f ms\n", cao::VCTOccupancyName(occupancy), meanAO, sum / 4000,
+      worst, exact, ms);
+    // A ray's sample within float rounding of a voxel face may fall on the
+    // other side on the GPU: one ray of one cone flips, at most a cone's
+    // weight times the ray's cosine share (about 0.25 / 12 here); the mean
+    // stays tiny.
+    const double limit = occupancy == cao::VCTOccupancy::Rays ? 0.025 : 0.01;
+    CAO_CHECK(sum / 4000 < 1e-4 && worst < limit && meanAO < 0.97, "GPU trace differs: mean %.2e max %.2e",
+      sum / 4000, worst);
   }
-  std::printf("cone tracing, 4000 points (mean AO %.4f): GPU float against CPU double: mean |diff| %.2e, max %.2e, "
-              "%d within 1e-6; GPU %.2f ms\n", meanAO, sum / 4000, worst, exact, ms);
-  CAO_CHECK(sum / 4000 < 1e-4 && worst < 0.01 && meanAO < 0.97, "GPU trace differs: mean %.2e max %.2e", sum / 4000, worst);
   // Negative control: fill the voxels around one point; its GPU AO drops.
   cao::BitGrid changed = grid;
   const int i0 = static_cast<int>(std::floor((dp[3] + 0.1 * dn[3] - grid.origin[0]) / grid.voxel));

@@ -1,8 +1,11 @@
 // caoConeTrace.glsl - the GPU side of cao::ConeTraceAO (caoVoxelConeTracing.cxx),
 // in float: per point, the six cones of tangent spheres, each sphere's
-// occlusion the set bits over the bits counted in its prisms (bitfieldExtract
-// and bitCount per word), the cones' front-to-back products, weighted. The
-// plan (cones, spheres, prism samples) comes from the host's VCTPlan.
+// occlusion the set bits over the bits counted in its z-column prisms
+// (bitfieldExtract and bitCount per word; occupancy "volume"), the cones'
+// front-to-back products, weighted; or (occupancy "rays", vct.apex.y = 1)
+// each cone's occlusion the cosine-weighted share of its rays that meet a
+// set voxel. The plan (cones, spheres, prism samples) comes from the
+// host's VCTPlan.
 layout(local_size_x = 64) in;
 
 layout(std140, binding = CAO_BINDING_VCT_PARAMS) uniform VCTBlock
@@ -45,6 +48,45 @@ int CountBits(int i, int j, int k0, int k1)
   return count;
 }
 
+bool Bit(int i, int j, int k)
+{
+  if (i < 0 || j < 0 || k < 0 || i >= vct.grid.x || j >= vct.grid.y || k >= vct.grid.z)
+    return false;
+  uint word = bits[uint(j * vct.grid.x + i) * uint(vct.grid.w) + uint(k >> 5)];
+  return ((word >> uint(k & 31)) & 1u) != 0u;
+}
+
+/// cao::RayOcclusion: the cosine-weighted share of the cone's rays (one per
+/// prism point, from the first sphere's near side to R) that meet a set voxel.
+float RayOcclusion(vec3 apex, vec3 n, vec3 dir, vec3 u, vec3 v)
+{
+  float invH = vct.origin.w;
+  float t0 = vct.spheres[0].x - vct.spheres[0].y;
+  float t1 = vct.spheres[vct.counts.y - 1].x + vct.spheres[vct.counts.y - 1].y;
+  float blocked = 0.0, all = 0.0;
+  for (int k = 0; k < vct.counts.z; ++k)
+  {
+    vec4 d = vct.disk[k];
+    vec3 ray = dir + vct.apex.w * (d.x * u + d.y * v);
+    float len = length(ray);
+    float weight = max(0.0, dot(ray, n) / len);
+    all += weight;
+    int steps = max(1, int(ceil((t1 - t0) * len / vct.apex.z)));
+    float step = (t1 - t0) / float(steps);
+    for (int m = 0; m < steps; ++m)
+    {
+      float tau = t0 + (float(m) + 0.5) * step;
+      vec3 g = floor((apex + tau * ray - vct.origin.xyz) * invH);
+      if (Bit(int(g.x), int(g.y), int(g.z)))
+      {
+        blocked += weight;
+        break;
+      }
+    }
+  }
+  return all > 0.0 ? blocked / all : 0.0;
+}
+
 void main()
 {
   int index = int(gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * 64u);
@@ -64,6 +106,17 @@ void main()
   {
     vec4 l = vct.cones[c];
     vec3 dir = l.x * tx + l.y * ty + l.z * n;
+    // The rays' frame across the cone's axis, as the CPU's.
+    float cs = dir.z >= 0.0 ? 1.0 : -1.0;
+    float ca = -1.0 / (cs + dir.z);
+    float cb = dir.x * dir.y * ca;
+    vec3 u = vec3(1.0 + cs * dir.x * dir.x * ca, cs * cb, -cs * dir.x);
+    vec3 v = vec3(cb, cs + dir.y * dir.y * ca, -dir.y);
+    if (vct.apex.y > 0.5)
+    {
+      occlusion += l.w * RayOcclusion(apex, n, dir, u, v);
+      continue;
+    }
     float open = 1.0;
     for (int s = 0; s < vct.counts.y; ++s)
     {

@@ -9,9 +9,12 @@
 //   reported (its boundary edges) and filled as a shell;
 // - cone tracing against its own definition: a solid half-space x > a
 //   voxelized finely, against the same cones, spheres and prisms with each
-//   prism's chord counted exactly;
+//   prism's chord counted exactly (occupancy "volume") or each ray's reach
+//   beyond the plane ("rays");
 //   negative control: a coarse grid misses it by more; an empty grid
 //   gives AO 1 exactly; a point on a solid floor stays open;
+// - a thin roof at 0.3 R over P: the rays within 0.1 of the reference's
+//   (H/R)^2; negative control: the volume fraction, more than 0.3 lighter;
 // - the eye grid: a scene turned by R^T in a grid of frame R gives the
 //   world grid's AO (to rounding) at the turned points; negative control:
 //   the wrong frame (R^T) does not;
@@ -167,7 +170,9 @@ int TestVoxelConeTracing(int, char*[])
   }
   // Cone tracing against its own definition: half-space x > a (a box
   // slab), P at the origin with n = +z: each sphere's occupied fraction is
-  // the cap beyond x = a.
+  // the cap beyond x = a (occupancy "volume", the paper's), or the share of
+  // its rays that reach beyond x = a ("rays").
+  for (cao::VCTOccupancy occupancy : { cao::VCTOccupancy::Volume, cao::VCTOccupancy::Rays })
   {
     for (double a : { 0.1, 0.3 })
     {
@@ -181,6 +186,7 @@ int TestVoxelConeTracing(int, char*[])
       s.prisms = 32;
       s.radius = 1.0;
       s.apexOffset = 0.0;
+      s.occupancy = occupancy;
       double error2[2] = { 0, 0 };
       double exactAO = 0;
       for (int fine = 1; fine >= 0; --fine)
@@ -196,14 +202,21 @@ int TestVoxelConeTracing(int, char*[])
         // The exact value of the same cones, spheres and prisms: a prism
         // (a chord along z) lies wholly in x > a or wholly out of it, so a
         // sphere's occupied fraction is the chord-weighted share of the
-        // prisms beyond the plane. (The spherical cap's volume fraction,
-        // the limit of many prisms, is printed beside it.)
+        // prisms beyond the plane (occupancy "volume"); a ray apex + tau r,
+        // sampled at tau = t0 + (m + 1/2) step up to t1 - step / 2, meets
+        // x > a if and only if (t1 - step / 2) r_x > a, so a cone's
+        // occlusion is the cosine-weighted share of those rays ("rays"). (The spherical cap's volume fraction, the limit of many
+        // prisms, is printed beside it.)
         const double n[3] = { 0, 0, 1 }, o[3] = { 0, 0, 0 };
         double occ = 0.0, capOcc = 0.0;
         for (std::size_t c = 0; c < plan.cones.size(); ++c)
         {
-          // ConeTraceAO's frame for n = +z: tx = (1, 0, 0), ty = (0, 1, 0).
-          const double dx = plan.cones[c][0];
+          // ConeTraceAO's frame for n = +z: tx = (1, 0, 0), ty = (0, 1, 0);
+          // the rays' frame across the cone (u, v), as the kernel's.
+          const double dx = plan.cones[c][0], dy = plan.cones[c][1], dz = plan.cones[c][2];
+          const double cs = dz >= 0.0 ? 1.0 : -1.0, ca = -1.0 / (cs + dz);
+          const double u[3] = { 1.0 + cs * dx * dx * ca, cs * dx * dy * ca, -cs * dx };
+          const double v[3] = { dx * dy * ca, cs + dy * dy * ca, -dy };
           double open = 1.0, capOpen = 1.0;
           for (const auto& sphere : plan.spheres)
           {
@@ -217,20 +230,70 @@ int TestVoxelConeTracing(int, char*[])
             open *= 1.0 - in / all;
             capOpen *= 1.0 - CapFraction(sphere.t * dx, sphere.r, a);
           }
+          if (occupancy == cao::VCTOccupancy::Rays)
+          {
+            const double t0 = plan.spheres.front().t - plan.spheres.front().r;
+            const double t1 = plan.spheres.back().t + plan.spheres.back().r;
+            double in = 0.0, all = 0.0;
+            for (const auto& d : plan.disk)
+            {
+              double r[3];
+              for (int k = 0; k < 3; ++k)
+                r[k] = plan.cones[c][k] + plan.coneTangent * (d[0] * u[k] + d[1] * v[k]);
+              const double length = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+              const int steps = std::max(1, static_cast<int>(std::ceil((t1 - t0) * length / plan.rayStep)));
+              const double w = r[2] / length;
+              all += w;
+              in += (t1 - 0.5 * (t1 - t0) / steps) * r[0] > a ? w : 0.0;
+            }
+            open = 1.0 - in / all;
+          }
           occ += plan.coneWeights[c] * (1.0 - open);
           capOcc += plan.coneWeights[c] * (1.0 - capOpen);
         }
         exactAO = 1.0 - occ;
         const double ao = cao::ConeTraceAO(grid, plan, o, n);
         error2[fine] = std::fabs(ao - exactAO);
-        std::printf("half-space x > %.1f, %4d slices, %zu spheres: VCT AO %.4f, exact for its cones and "
+        std::printf("half-space x > %.1f, %4d slices, %zu spheres, %s: VCT AO %.4f, exact for its cones and "
                     "prisms %.4f (spheres' true volume: %.4f)\n",
-          a, s.slices, plan.spheres.size(), ao, exactAO, 1.0 - capOcc);
+          a, s.slices, plan.spheres.size(), cao::VCTOccupancyName(occupancy), ao, exactAO, 1.0 - capOcc);
       }
       CAO_CHECK(error2[1] < 0.01, "fine grid: |VCT - exact| = %.4f", error2[1]);
       CAO_CHECK(error2[0] > error2[1], "negative control: the coarse grid should be further (%.4f vs %.4f)",
         error2[0], error2[1]);
     }
+  }
+  // A thin roof (a closed slab half a voxel thick) at height H over P, n = +z:
+  // every ray with cos(theta) > H / R meets it within R, so the reference
+  // (cosine-weighted, binary within R) is (H / R)^2. The cones' rays stop at
+  // the roof (within the six cones' coverage of the hemisphere: 0.1); the
+  // paper's volume fraction counts the little of each sphere the roof fills
+  // (the negative control: far lighter).
+  {
+    const double R = 0.5, H = 0.15, exact = (H / R) * (H / R);
+    double ao[2] = { 0, 0 };
+    for (cao::VCTOccupancy occupancy : { cao::VCTOccupancy::Rays, cao::VCTOccupancy::Volume })
+    {
+      cao::BitGrid grid;
+      CAO_CHECK(cao::PlanGrid({ { -1, 1, -1, 1, -1, 1 } }, 0.0, 128, grid, error), "%s", error.c_str());
+      std::vector<double> p;
+      std::vector<std::int64_t> t;
+      Box(-1, 1, p, t);
+      for (std::size_t c = 2; c < p.size(); c += 3)
+        p[c] = p[c] < 0 ? H : H + 0.5 * grid.voxel;
+      CAO_CHECK(cao::FillGrid({ { &p, &t } }, grid, error), "%s", error.c_str());
+      cao::VCTSettings s;
+      s.radius = R;
+      s.occupancy = occupancy;
+      cao::VCTPlan plan;
+      CAO_CHECK(cao::BuildVCTPlan(s, grid, plan, error), "%s", error.c_str());
+      const double o[3] = { 0.003, -0.002, 0.0 }, n[3] = { 0, 0, 1 };
+      ao[occupancy == cao::VCTOccupancy::Volume] = cao::ConeTraceAO(grid, plan, o, n);
+    }
+    std::printf("thin roof at H = 0.3 R: reference (H/R)^2 = %.4f; VCT rays %.4f, volume %.4f\n", exact, ao[0],
+      ao[1]);
+    CAO_CHECK(std::fabs(ao[0] - exact) < 0.1, "rays %.4f against %.4f", ao[0], exact);
+    CAO_CHECK(ao[1] - exact > 0.3, "negative control: the volume fraction should under-occlude (%.4f)", ao[1]);
   }
   // An empty grid: AO 1 exactly; a point on a solid floor: open.
   {

@@ -1,0 +1,157 @@
+#include "vtkCAOSceneGPU.h"
+
+#include "vtkCAOGPUSession.h"
+#include "vtkCAOWindowGL.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkWeakPointer.h"
+
+#include "caoGLContext.h"
+#include "caoScreenAOGL.h"
+#include "caoVCTGL.h"
+
+namespace vtkCAO
+{
+struct SceneGPU::Impl
+{
+  vtkWeakPointer<vtkRenderWindow> window; ///< whose context the engine's objects live in
+  std::unique_ptr<cao::gl::Context> context;
+  std::unique_ptr<cao::gl::VCTEngine> engine;
+  std::unique_ptr<cao::gl::ScreenAOEngine> screen;
+  std::string failure; ///< why the window's OpenGL cannot be used (tried once per window)
+  bool tried = false;
+
+  void Drop(bool release)
+  {
+    std::string why;
+    const bool current = release && this->window && (this->engine || this->screen) &&
+      MakeWindowCurrent(this->window, why);
+    if (this->engine)
+    {
+      if (current)
+        this->engine->ReleaseGraphicsResources();
+      else
+        this->engine->AbandonGraphicsResources(); // the context's end frees them
+    }
+    if (this->screen)
+    {
+      if (current)
+        this->screen->ReleaseGraphicsResources();
+      else
+        this->screen->AbandonGraphicsResources();
+    }
+    this->engine.reset();
+    this->screen.reset();
+    this->context.reset();
+    this->window = nullptr;
+    this->tried = false;
+    this->failure.clear();
+  }
+};
+
+SceneGPU::SceneGPU()
+  : P(new Impl)
+{
+}
+
+SceneGPU::~SceneGPU()
+{
+  this->P->Drop(true);
+}
+
+bool SceneGPU::Resolve(vtkRenderWindow* window, int backend, std::string& error)
+{
+  Impl& p = *this->P;
+  this->Note.clear();
+  if (backend == BACKEND_CPU)
+    return false;
+  if (p.window != window)
+    p.Drop(true); // another window: its objects go first
+  if (!p.tried)
+  {
+    p.tried = true;
+    p.window = window;
+    p.context = WrapWindowContext(window, p.failure);
+    if (p.context)
+    {
+      p.engine.reset(new cao::gl::VCTEngine(*p.context));
+      p.screen.reset(new cao::gl::ScreenAOEngine(*p.context));
+    }
+  }
+  if (!p.context)
+  {
+    if (backend == BACKEND_OPENGL)
+      error = "Backend is OpenGL but the render window's OpenGL cannot be used: " + p.failure;
+    else
+      this->Note = "Auto: the render window's OpenGL cannot be used (" + p.failure + "): CPU";
+    return false;
+  }
+  if (backend == BACKEND_AUTO && AvoidSoftware(p.context->Description()))
+  {
+    this->Note = "Auto: the render window's OpenGL is a software rasteriser (" +
+      p.context->Description() + "): CPU";
+    return false;
+  }
+  return true;
+}
+
+bool SceneGPU::Voxelize(cao::BitGrid& grid, const std::vector<cao::MeshView>& meshes, std::string& error)
+{
+  double ms = 0.0;
+  grid.bits.clear(); // they stay on the GPU
+  grid.openEdges.clear();
+  return this->P->engine && this->P->engine->Voxelize(grid, meshes, grid.openEdges, ms, error);
+}
+
+bool SceneGPU::Trace(const cao::BitGrid& grid, const cao::VCTPlan& plan, cao::SurfaceFrame& frame,
+  std::string& error)
+{
+  double ms = 0.0;
+  if (!this->P->engine)
+  {
+    error = "no OpenGL engine (resolve first)";
+    return false;
+  }
+  return this->P->engine->TraceFrame(grid, plan, frame, ms, error);
+}
+
+bool SceneGPU::HBAO(const cao::PixelCamera& camera, const cao::HBAOSettings& settings, cao::SurfaceFrame& frame,
+  std::string& error)
+{
+  double ms = 0.0;
+  if (!this->P->screen)
+  {
+    error = "no OpenGL engine (resolve first)";
+    return false;
+  }
+  return this->P->screen->HBAO(camera, settings, frame, ms, error);
+}
+
+bool SceneGPU::VAO(const cao::PixelCamera& camera, const cao::VAOSettings& settings, cao::SurfaceFrame& frame,
+  std::string& error)
+{
+  double ms = 0.0;
+  if (!this->P->screen)
+  {
+    error = "no OpenGL engine (resolve first)";
+    return false;
+  }
+  return this->P->screen->VAO(camera, settings, frame, ms, error);
+}
+
+std::string SceneGPU::Description() const
+{
+  return this->P->context ? "OpenGL (" + this->P->context->Description() + ")" : std::string("CPU");
+}
+
+long long SceneGPU::ResidentBytes() const
+{
+  return (this->P->engine ? static_cast<long long>(this->P->engine->ResidentBytes()) : 0) +
+    (this->P->screen ? static_cast<long long>(this->P->screen->ResidentBytes()) : 0);
+}
+
+void SceneGPU::Release(vtkWindow* window)
+{
+  (void)window;
+  this->P->Drop(true);
+}
+}

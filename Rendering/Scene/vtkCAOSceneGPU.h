@@ -1,0 +1,67 @@
+/**
+ * vtkCAOSceneGPU — private: vtkContextualAOPass's GPU path, in the render
+ * window's own OpenGL context (the pass runs inside the window's render,
+ * its context current): voxel cone tracing's grid and cones
+ * (cao::gl::VCTEngine) and the screen-space methods' estimators
+ * (cao::gl::ScreenAOEngine) of the VTK-free GL layer, whose state guard
+ * gives VTK's GL state back as it was. Backend choice as the filters'
+ * (vtkCAOGPUSession.h): CPU never touches OpenGL; OpenGL needs the window's
+ * OpenGL 4.3 (else an error); Auto uses it on a hardware GPU and the CPU
+ * with a software rasteriser (llvmpipe: slower than the CPU kernels) or
+ * without OpenGL 4.3, saying why in Note. Not wrapped, not installed.
+ */
+#ifndef vtkCAOSceneGPU_h
+#define vtkCAOSceneGPU_h
+
+#include "caoScreenSpaceAO.h"
+#include "caoVoxelConeTracing.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+class vtkRenderWindow;
+class vtkWindow;
+
+namespace vtkCAO
+{
+class SceneGPU
+{
+public:
+  SceneGPU();
+  ~SceneGPU();
+  SceneGPU(const SceneGPU&) = delete;
+  SceneGPU& operator=(const SceneGPU&) = delete;
+
+  /// Whether this frame's VCT runs on `window`'s OpenGL (backend: 0 Auto,
+  /// 1 CPU, 2 OpenGL). False and `error` set when OpenGL was asked for and
+  /// cannot be had; false with Note set when Auto chose the CPU.
+  bool Resolve(vtkRenderWindow* window, int backend, std::string& error);
+  /// cao::gl::VCTEngine::Voxelize into `grid`'s place (its bits stay on the GPU).
+  bool Voxelize(cao::BitGrid& grid, const std::vector<cao::MeshView>& meshes, std::string& error);
+  /// cao::gl::VCTEngine::TraceFrame on the grid voxelized last.
+  bool Trace(const cao::BitGrid& grid, const cao::VCTPlan& plan, cao::SurfaceFrame& frame,
+    std::string& error);
+  /// cao::gl::ScreenAOEngine's HBAO and VAO (cao::HBAOFrame's and
+  /// cao::VAOFrame's twins, their blur or filter on the host).
+  bool HBAO(const cao::PixelCamera& camera, const cao::HBAOSettings& settings, cao::SurfaceFrame& frame,
+    std::string& error);
+  bool VAO(const cao::PixelCamera& camera, const cao::VAOSettings& settings, cao::SurfaceFrame& frame,
+    std::string& error);
+  /// "OpenGL (renderer, version)" once resolved to the GPU.
+  std::string Description() const;
+  /// GPU memory held (bytes).
+  long long ResidentBytes() const;
+  /// Delete the GL objects in `window`'s context (the pass's
+  /// ReleaseGraphicsResources), or forget them when no window is alive.
+  void Release(vtkWindow* window);
+
+  std::string Note; ///< why Auto chose the CPU (empty otherwise)
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> P;
+};
+}
+
+#endif
