@@ -7,12 +7,9 @@
  *
  * Everything of the Render View, and the pass between ParaView's camera
  * pass and its default pass, with its properties forwarded (the
- * "Ambient Occlusion" group). The volume representations draw as in the
- * Render View, but the pass darkens the finished colour of every pixel
- * whose first opaque surface is occluded, so a translucent volume drawn in
- * front of such a surface is darkened with it (dark halos in a mixed
- * scene); the combine belongs between the opaque and the translucent
- * steps, which is not built yet.
+ * "Ambient Occlusion" group). The pass applies the AO right after the
+ * opaque geometry, so translucent geometry and volumes drawn in front of
+ * an occluded surface keep their own colour.
  * Builtin sessions and a single-process pvserver (the pass reads the
  * rendered frame back in the process that renders it).
  */

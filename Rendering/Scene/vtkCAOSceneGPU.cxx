@@ -20,11 +20,16 @@ struct SceneGPU::Impl
   std::string failure; ///< why the window's OpenGL cannot be used (tried once per window)
   bool tried = false;
 
-  void Drop(bool release)
+  int generation = 0; ///< engines made so far (a new one holds no grid)
+
+  /// Delete the GL objects when their window's context is current now
+  /// (VTK's ReleaseGraphicsResources runs so); otherwise forget them without
+  /// a GL call (no context is made current or created here: the pass may
+  /// be inside another window's render, or its window already gone), and
+  /// the context's end frees them.
+  void Drop()
   {
-    std::string why;
-    const bool current = release && this->window && (this->engine || this->screen) &&
-      MakeWindowCurrent(this->window, why);
+    const bool current = this->window && this->window->IsCurrent();
     if (this->engine)
     {
       if (current)
@@ -55,7 +60,7 @@ SceneGPU::SceneGPU()
 
 SceneGPU::~SceneGPU()
 {
-  this->P->Drop(true);
+  this->P->Drop();
 }
 
 bool SceneGPU::Resolve(vtkRenderWindow* window, int backend, std::string& error)
@@ -65,7 +70,7 @@ bool SceneGPU::Resolve(vtkRenderWindow* window, int backend, std::string& error)
   if (backend == BACKEND_CPU)
     return false;
   if (p.window != window)
-    p.Drop(true); // another window: its objects go first
+    p.Drop(); // another window: its objects go first
   if (!p.tried)
   {
     p.tried = true;
@@ -73,6 +78,7 @@ bool SceneGPU::Resolve(vtkRenderWindow* window, int backend, std::string& error)
     p.context = WrapWindowContext(window, p.failure);
     if (p.context)
     {
+      ++p.generation;
       p.engine.reset(new cao::gl::VCTEngine(*p.context));
       p.screen.reset(new cao::gl::ScreenAOEngine(*p.context));
     }
@@ -149,9 +155,14 @@ long long SceneGPU::ResidentBytes() const
     (this->P->screen ? static_cast<long long>(this->P->screen->ResidentBytes()) : 0);
 }
 
+int SceneGPU::Generation() const
+{
+  return this->P->generation;
+}
+
 void SceneGPU::Release(vtkWindow* window)
 {
-  (void)window;
-  this->P->Drop(true);
+  if (!this->P->window || window == this->P->window.GetPointer())
+    this->P->Drop();
 }
 }

@@ -52,8 +52,12 @@ public:
   std::string Description() const;
   /// GPU memory held (bytes).
   long long ResidentBytes() const;
-  /// Delete the GL objects in `window`'s context (the pass's
-  /// ReleaseGraphicsResources), or forget them when no window is alive.
+  /// Engines made so far: a new one (a new window, or after Release) holds
+  /// no grid, so the pass keys its grid on it.
+  int Generation() const;
+  /// The pass's ReleaseGraphicsResources for `window`: the GL objects are
+  /// deleted when their window's context is current, else forgotten (no
+  /// context is made current or created); another window's call is ignored.
   void Release(vtkWindow* window);
 
   std::string Note; ///< why Auto chose the CPU (empty otherwise)

@@ -309,6 +309,7 @@ void vtkContextualAOPass::ReleaseGraphicsResources(vtkWindow* w)
   {
     p.sceneKey.clear(); // the grid's bits were on the GPU: voxelize again
     p.viewKey.clear();
+    p.failedSceneKey.clear(); // and try again what failed there
   }
   p.gpu.Release(w);
   p.onGPU = false;
@@ -508,10 +509,11 @@ bool vtkContextualAOPass::Internals::ResolveBackend(vtkContextualAOPass* self, v
     return this->Fail(self, error);
   if (self->Backend != BACKEND_CPU && volumesOcclude)
     this->backendNote = "volumes occlude the surfaces: the CPU (the GPU cone tracer does not read volumes)";
-  else if (!this->onGPU)
+  else if (!this->onGPU && self->Backend != BACKEND_CPU)
     this->backendNote = this->gpu.Note;
-  if (self->Method == VCT)
-    this->frameSceneKey.push_back(this->onGPU ? 1.0 : 0.0); // where the grid is
+  if (self->Method == VCT) // where the grid is (before the eye grid's view rows, which end the key)
+    this->frameSceneKey.insert(this->frameSceneKey.begin() + 2,
+      { this->onGPU ? 1.0 : 0.0, static_cast<double>(this->onGPU ? this->gpu.Generation() : 0) });
   return true;
 }
 
@@ -589,7 +591,7 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
   }
   this->radius = self->Radius > 0 ? self->Radius : 0.1 * diagonal;
   // The drawn-is-traced test's tolerance: half a voxel (the screen-space
-  // methods: of a default 128-slice grid).
+  // methods, which have no grid: of a 128-slice grid, a fixed fraction).
   this->tolerance = std::max(0.5 * diagonal / 128.0, 1e-9);
   if (!vct)
   {

@@ -186,7 +186,7 @@ public:
 
   enum Backends
   {
-    BACKEND_AUTO = 0,  ///< VCT on the window's OpenGL 4.3 on a hardware GPU, else the CPU
+    BACKEND_AUTO = 0,  ///< the window's OpenGL 4.3 on a hardware GPU, else the CPU
     BACKEND_CPU = 1,   ///< the CPU kernels
     BACKEND_OPENGL = 2 ///< the window's OpenGL 4.3 (even a software rasteriser); none: an error
   };

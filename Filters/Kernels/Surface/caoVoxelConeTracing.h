@@ -196,7 +196,8 @@ bool InsideMask(const MeshView& mesh, const int dims[3], const std::array<double
 /// where the bits are counted), over its diameter: 1 - (1 - a)^(2r / unit), the
 /// step-length correction LAO uses (seed 003 Eq. 2, seed 000 Sec. III-C2:
 /// one absorption model), composed with the sphere's voxel occupancy as
-/// 1 - (1 - occ)(1 - alpha).
+/// 1 - (1 - occ)(1 - alpha) (occupancy "volume"), or with the cone's rays'
+/// occlusion as 1 - (1 - occ_rays) prod_k (1 - alpha_k) ("rays").
 struct OpacityVolume
 {
   int dims[3] = { 0, 0, 0 };
