@@ -102,6 +102,12 @@ void vtkPVRenderViewWithContextualAO::SetSurfaceAOBackend(int backend)
   this->Modified();
 }
 
+void vtkPVRenderViewWithContextualAO::SetSurfaceAOOccupancy(int occupancy)
+{
+  this->Pass->SetOccupancy(occupancy);
+  this->Modified();
+}
+
 void vtkPVRenderViewWithContextualAO::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

@@ -32,7 +32,7 @@ public:
   ///@{
   /// Forwarded to the pass (vtkContextualAOPass's Method, ApplyTo, Radius,
   /// Strength, Quality, Slices, Grid, GBuffer, OccludingVolumes,
-  /// IndirectLight, Backend).
+  /// IndirectLight, Backend, Occupancy).
   void SetSurfaceAOMethod(int method);
   void SetApplyAOTo(int mode);
   void SetSurfaceAOGrid(int grid);
@@ -44,6 +44,7 @@ public:
   void SetSurfaceAOSlices(int slices);
   void SetSurfaceAOIndirectLight(int on);
   void SetSurfaceAOBackend(int backend);
+  void SetSurfaceAOOccupancy(int occupancy);
   ///@}
 
   /// The pass, for its frame report.

@@ -350,7 +350,8 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
     << (this->Method == VCT ? "vct" : this->Method == HBAO ? "hbao" : this->Method == VAO ? "vao" : "none")
     << "\", \"apply_to\": \""
     << (this->ApplyTo == AMBIENT_TERM ? "ambient" : "whole colour") << "\", \"grid\": \""
-    << (this->Grid == EYE_GRID ? "eye" : "world") << "\", \"gbuffer\": \""
+    << (this->Grid == EYE_GRID ? "eye" : "world") << "\", \"occupancy\": \""
+    << (this->Occupancy == VOLUME ? "volume" : "rays") << "\", \"gbuffer\": \""
     << (this->GBuffer == DEPTH_BUFFER ? "depth buffer" : "ray cast") << "\", \"stages\": {";
   for (std::size_t i = 0; i < p.stages.size(); ++i)
     o << (i ? ", " : "") << "\"" << p.stages[i] << "\": " << p.ms[i];
@@ -676,7 +677,7 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
   std::vector<double> key{ static_cast<double>(this->serial),
     static_cast<double>(this->volumeSerial), static_cast<double>(width),
     static_cast<double>(height), static_cast<double>(self->Quality), this->radius,
-    static_cast<double>(self->Method) };
+    static_cast<double>(self->Method), static_cast<double>(self->Method == VCT ? self->Occupancy : 0) };
   for (int i = 0; i < 16; ++i)
     key.push_back(toNDC->GetElement(i / 4, i % 4));
   key.push_back(self->GBuffer);
@@ -738,6 +739,7 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
     settings.quality = static_cast<cao::VCTQuality>(self->Quality);
     settings.slices = self->Slices;
     settings.radius = this->radius;
+    settings.occupancy = static_cast<cao::VCTOccupancy>(self->Occupancy);
     cao::VCTPlan plan;
     if (!cao::BuildVCTPlan(settings, this->grid, plan, error))
       return this->Fail(self, error);
@@ -890,6 +892,7 @@ void vtkContextualAOPass::PrintSelf(ostream& os, vtkIndent indent)
      << indent << "Quality: " << this->Quality << "\n"
      << indent << "Slices: " << this->Slices << "\n"
      << indent << "Backend: " << this->Backend << "\n"
+     << indent << "Occupancy: " << this->Occupancy << "\n"
      << indent << "IndirectLight: " << this->IndirectLight << "\n";
 }
 

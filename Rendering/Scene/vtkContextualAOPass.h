@@ -184,6 +184,19 @@ public:
   vtkBooleanMacro(IndirectLight, bool);
   ///@}
 
+  enum Occupancies
+  {
+    RAYS = 0,  ///< a cone's occlusion: the cosine-weighted share of its rays that meet a set voxel
+    VOLUME = 1 ///< the paper's: each sphere's solid fraction (z-column prisms)
+  };
+  ///@{
+  /// VCT's occupancy (cao::VCTSettings::occupancy): RAYS (default) or
+  /// VOLUME (the paper's, 4 to 8 times cheaper, and lighter than the
+  /// reference behind thin walls).
+  vtkSetClampMacro(Occupancy, int, RAYS, VOLUME);
+  vtkGetMacro(Occupancy, int);
+  ///@}
+
   enum Backends
   {
     BACKEND_AUTO = 0,  ///< the window's OpenGL 4.3 on a hardware GPU, else the CPU
@@ -243,6 +256,7 @@ protected:
   int Quality = 2;
   int Slices = 256;
   int Backend = BACKEND_AUTO;
+  int Occupancy = RAYS;
   bool IndirectLight = false;
   int FrameCount = 0;
   int VoxelizeCount = 0;

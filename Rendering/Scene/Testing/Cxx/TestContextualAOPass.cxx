@@ -317,6 +317,32 @@ int TestContextualAOPass(int, char*[])
       "(%d pixels, largest difference %.2g)", compared, worst);
     Check(ran && compared > 1000 && worst == 0.0, text);
 
+    // Occupancy VOLUME (the paper's): traced again on the same grid, the
+    // kernel's AO with that occupancy exactly (and not the rays').
+    {
+      const int gridsBefore = pass->GetVoxelizeCount();
+      pass->SetOccupancy(vtkContextualAOPass::VOLUME);
+      window->Render();
+      cao::VCTSettings volumeSettings = settings;
+      volumeSettings.occupancy = cao::VCTOccupancy::Volume;
+      cao::VCTPlan volumePlan;
+      cao::SurfaceFrame volumeFrame = frame;
+      const bool volumeRan = cao::BuildVCTPlan(volumeSettings, grid, volumePlan, error) &&
+        cao::VCTFrame(grid, volumePlan, volumeFrame, 0, error);
+      int n = 0;
+      const double worstVolume = WorstDifference(volumeFrame, pass, n);
+      const double worstRays = WorstDifference(frame, pass, n);
+      std::snprintf(text, sizeof(text), "Occupancy VOLUME: traced again without a new grid (%s), the kernel's "
+        "volume AO (largest difference %.2g; the rays': %.2g)", pass->GetLastFrameStages().c_str(), worstVolume,
+        worstRays);
+      Check(volumeRan && pass->GetLastFrameStages() == "primary,trace,ambient,combine" &&
+          pass->GetVoxelizeCount() == gridsBefore && worstVolume == 0.0 && worstRays > 0.05 &&
+          pass->GetLastFrameReport().find("\"occupancy\": \"volume\"") != std::string::npos,
+        text);
+      pass->SetOccupancy(vtkContextualAOPass::RAYS);
+      window->Render();
+    }
+
     // Backend OPENGL: the grid voxelized and the cones traced by the GL
     // layer in this window's own context (llvmpipe here): the AO within
     // float rounding of the kernel's at every pixel, the picture the same,
