@@ -74,6 +74,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <initializer_list>
 #include <string>
 
 namespace
@@ -118,6 +119,30 @@ cao::PixelCamera PixelsOf(vtkRenderer* renderer)
   pixels.height = h;
   return pixels;
 }
+
+/// Several actors' world triangles: each actor's mesh (for the voxelizer)
+/// and all of them in one list (for the BVH), as the pass gathers them.
+struct WorldScene
+{
+  std::vector<double> all;
+  std::vector<std::int64_t> allTris;
+  std::vector<std::vector<double>> points;
+  std::vector<std::vector<std::int64_t>> tris;
+  std::vector<cao::MeshView> views;
+  explicit WorldScene(std::initializer_list<vtkActor*> actors)
+    : points(actors.size())
+    , tris(actors.size())
+  {
+    std::size_t a = 0;
+    for (vtkActor* actor : actors)
+    {
+      WorldTriangles(actor, this->all, this->allTris, this->points[a], this->tris[a]);
+      ++a;
+    }
+    for (std::size_t i = 0; i < this->points.size(); ++i)
+      this->views.push_back({ &this->points[i], &this->tris[i] });
+  }
+};
 
 /// The largest |AO| difference between a kernel's frame and the pass's
 /// last frame over the frame's covered pixels (counted in `compared`).
@@ -289,19 +314,12 @@ int TestContextualAOPass(int, char*[])
   // The pass's AO is the kernel's: the same triangles in world space, the
   // same camera, cao::VCTFrame.
   {
-    std::vector<double> all;
-    std::vector<std::int64_t> allTris;
-    std::vector<std::vector<double>> meshPoints(2);
-    std::vector<std::vector<std::int64_t>> meshTris(2);
-    vtkActor* both[2] = { slabActor, sphereActor };
-    for (int a = 0; a < 2; ++a)
-      WorldTriangles(both[a], all, allTris, meshPoints[a], meshTris[a]);
+    const WorldScene scene{ slabActor, sphereActor };
     std::string error;
     cao::TriangleBVH bvh;
     cao::BitGrid grid;
-    bvh.Build(all, allTris, error);
-    cao::VoxelizeWorld({ { &meshPoints[0], &meshTris[0] }, { &meshPoints[1], &meshTris[1] } }, bvh.Bounds(),
-      1.05 * 0.8, pass->GetSlices(), grid, error);
+    bvh.Build(scene.all, scene.allTris, error);
+    cao::VoxelizeWorld(scene.views, bvh.Bounds(), 1.05 * 0.8, pass->GetSlices(), grid, error);
     const cao::PixelCamera pixels = PixelsOf(renderer);
     cao::SurfaceFrame frame;
     cao::VCTSettings settings;
@@ -619,14 +637,8 @@ int TestContextualAOPass(int, char*[])
     // matrix's rows, as the pass keys them to 1e-9), exactly; the world
     // grid's differs (the control that the comparison sees the axes).
     {
-      std::vector<double> all;
-      std::vector<std::int64_t> allTris;
-      std::vector<std::vector<double>> meshPoints(2);
-      std::vector<std::vector<std::int64_t>> meshTris(2);
-      vtkActor* both[2] = { slabActor, sphereActor };
-      for (int a = 0; a < 2; ++a)
-        WorldTriangles(both[a], all, allTris, meshPoints[a], meshTris[a]);
-      const std::vector<cao::MeshView> views{ { &meshPoints[0], &meshTris[0] }, { &meshPoints[1], &meshTris[1] } };
+      const WorldScene scene{ slabActor, sphereActor };
+      const std::vector<cao::MeshView>& views = scene.views;
       vtkMatrix4x4* view = camera->GetViewTransformMatrix();
       double right[3], up[3];
       for (int i = 0; i < 3; ++i)
@@ -644,7 +656,7 @@ int TestContextualAOPass(int, char*[])
       cao::VCTPlan eyePlan, worldPlan;
       cao::SurfaceFrame eyeFrame, worldFrame;
       const cao::PixelCamera pixels = PixelsOf(renderer);
-      const bool ran = bvh.Build(all, allTris, error) && cao::EyeAxes(right, up, axes, error) &&
+      const bool ran = bvh.Build(scene.all, scene.allTris, error) && cao::EyeAxes(right, up, axes, error) &&
         cao::PlanEyeGrid(views, axes, 1.05 * 0.8, settings.slices, eye, error) && cao::FillGrid(views, eye, error) &&
         cao::BuildVCTPlan(settings, eye, eyePlan, error) && cao::CastPrimary(bvh, pixels, eyeFrame, error) &&
         cao::VCTFrame(eye, eyePlan, eyeFrame, 0, error) &&
