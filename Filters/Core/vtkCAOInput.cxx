@@ -589,6 +589,162 @@ vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path, std::string& e
   return copy;
 }
 
+namespace
+{
+/// Walks a PLY file's structure (header, then every element's properties)
+/// before vtkPLYReader sees it: VTK 9.2's reader aborts on a truncated ASCII
+/// body and crashes on a truncated binary one. False with the reason.
+bool CheckPLY(const std::string& path, std::string& error)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  const std::string name = "'" + path + "'";
+  if (!std::getline(in, line) || Trim(line) != "ply")
+  {
+    error = "cannot read " + name + ": not a PLY file (its first line is not 'ply')";
+    return false;
+  }
+  auto typeSize = [](const std::string& t) -> int {
+    if (t == "char" || t == "uchar" || t == "int8" || t == "uint8")
+      return 1;
+    if (t == "short" || t == "ushort" || t == "int16" || t == "uint16")
+      return 2;
+    if (t == "int" || t == "uint" || t == "int32" || t == "uint32" || t == "float" || t == "float32")
+      return 4;
+    if (t == "double" || t == "float64")
+      return 8;
+    return 0;
+  };
+  struct Property
+  {
+    int size = 0;      ///< a scalar's bytes, or a list's item bytes
+    int countSize = 0; ///< a list's count bytes (0: a scalar)
+  };
+  struct Element
+  {
+    std::string name;
+    long long count = 0;
+    std::vector<Property> properties;
+  };
+  std::vector<Element> elements;
+  std::string format;
+  bool ended = false;
+  while (std::getline(in, line))
+  {
+    std::istringstream words(line);
+    std::string word;
+    words >> word;
+    if (word == "end_header")
+    {
+      ended = true;
+      break;
+    }
+    if (word == "format")
+      words >> format;
+    else if (word == "element")
+    {
+      Element e;
+      if (!(words >> e.name >> e.count) || e.count < 0 || e.count > 2147483647LL)
+      {
+        error = "cannot read " + name + ": a bad element line in its header ('" + Trim(line) + "')";
+        return false;
+      }
+      elements.push_back(e);
+    }
+    else if (word == "property")
+    {
+      std::string type, count, item;
+      words >> type;
+      Property prop;
+      if (type == "list")
+      {
+        words >> count >> item;
+        prop.countSize = typeSize(count);
+        prop.size = typeSize(item);
+      }
+      else
+        prop.size = typeSize(type);
+      if (elements.empty() || prop.size == 0 || (type == "list" && prop.countSize == 0))
+      {
+        error = "cannot read " + name + ": a bad property line in its header ('" + Trim(line) + "')";
+        return false;
+      }
+      elements.back().properties.push_back(prop);
+    }
+  }
+  if (!ended)
+  {
+    error = "cannot read " + name + ": its header has no end_header (a truncated file?)";
+    return false;
+  }
+  const bool ascii = format == "ascii", little = format == "binary_little_endian";
+  if (!ascii && !little && format != "binary_big_endian")
+  {
+    error = "cannot read " + name + ": unknown PLY format '" + format + "'";
+    return false;
+  }
+  // Binary: the body's bytes, walked without reading the scalars.
+  std::streamoff pos = in.tellg(), end = pos;
+  if (!ascii)
+  {
+    in.seekg(0, std::ios::end);
+    end = in.tellg();
+  }
+  auto truncated = [&](const Element& e, long long i) {
+    error = "cannot read " + name + ": the file ends in element '" + e.name + "' " + std::to_string(i + 1) +
+      " of " + std::to_string(e.count) + " (truncated)";
+    return false;
+  };
+  for (const Element& e : elements)
+    for (long long i = 0; i < e.count; ++i)
+    {
+      if (ascii)
+      {
+        do
+        {
+          if (!std::getline(in, line))
+            return truncated(e, i);
+        } while (Trim(line).empty());
+        std::istringstream words(line);
+        std::string word;
+        for (const Property& prop : e.properties)
+        {
+          long long n = 1;
+          if (prop.countSize)
+          {
+            if (!(words >> n) || n < 0)
+              return truncated(e, i);
+          }
+          for (long long k = 0; k < n; ++k)
+            if (!(words >> word))
+              return truncated(e, i);
+        }
+      }
+      else
+        for (const Property& prop : e.properties)
+        {
+          long long n = 1;
+          if (prop.countSize)
+          {
+            unsigned char b[8] = { 0 };
+            if (pos + prop.countSize > end || !in.seekg(pos) ||
+              !in.read(reinterpret_cast<char*>(b), prop.countSize))
+              return truncated(e, i);
+            pos += prop.countSize;
+            unsigned long long v = 0;
+            for (int k = 0; k < prop.countSize; ++k)
+              v |= static_cast<unsigned long long>(b[little ? k : prop.countSize - 1 - k]) << (8 * k);
+            n = static_cast<long long>(v);
+          }
+          pos += static_cast<std::streamoff>(n) * prop.size;
+          if (pos > end)
+            return truncated(e, i);
+        }
+    }
+  return true;
+}
+}
+
 vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, std::string& error)
 {
   if (!Readable(path, error))
@@ -609,6 +765,8 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, std::string& erro
   }
   else if (EndsWith(p, ".ply"))
   {
+    if (!CheckPLY(path, error))
+      return nullptr;
     auto r = vtkSmartPointer<vtkPLYReader>::New();
     r->SetFileName(path.c_str());
     reader = r;

@@ -240,8 +240,7 @@ bool Parse(int argc, char* argv[], SurfaceOptions& o, std::string& error)
     {
       if (!number(d, 32, 1024) || d != std::floor(d) || static_cast<int>(d) % 32 != 0)
       {
-        if (error.empty())
-          error = "--slices must be 32..1024 and a multiple of 32 (got '" + v + "')";
+        error = "--slices must be 32..1024 and a multiple of 32 (got '" + v + "')";
         return false;
       }
       o.vct.slices = static_cast<int>(d);

@@ -313,6 +313,36 @@ if alone and vol and carved and probed:
           "carving the whole block away gives the square's own AO exactly")
     check(np.array_equal(probed[0][2], vol[0][2]), "probing the whole block keeps it all (the volume's AO)")
 
+# Truncated PLY files (VTK 9.2's reader aborts on a short ASCII body and
+# crashes on a short binary one): a cube written whole reads, and cut in its
+# body or header is refused with the element where it ends.
+import struct
+cube_v = [(x, y, z) for z in (0, 1) for y in (0, 1) for x in (0, 1)]
+cube_f = [(0, 2, 1), (1, 2, 3), (4, 5, 6), (5, 7, 6), (0, 1, 4), (1, 5, 4),
+          (2, 6, 3), (3, 6, 7), (0, 4, 2), (2, 4, 6), (1, 3, 5), (3, 7, 5)]
+def ply(path, binary, cut=None):
+    head = ("ply\nformat %s 1.0\nelement vertex 8\nproperty float x\nproperty float y\nproperty float z\n"
+            "element face 12\nproperty list uchar int vertex_indices\nend_header\n"
+            % ("binary_little_endian" if binary else "ascii")).encode()
+    if binary:
+        body = b"".join(struct.pack("<3f", *v) for v in cube_v) + b"".join(struct.pack("<B3i", 3, *f) for f in cube_f)
+    else:
+        body = ("".join("%d %d %d\n" % v for v in cube_v) + "".join("3 %d %d %d\n" % f for f in cube_f)).encode()
+    data = head + body
+    with open(path, "wb") as f:
+        f.write(data if cut is None else data[:cut])
+    return path, len(head)
+for binary in (False, True):
+    kind = "binary" if binary else "ascii"
+    whole, head_len = ply(os.path.join(tmp, "cube-%s.ply" % kind), binary)
+    rc, so, se = run("--method", "none", "--image", "32x32", whole, "-o", os.path.join(tmp, "cube-%s.png" % kind))
+    check(rc == 0, "a whole %s PLY cube reads (rc %d, %s)" % (kind, rc, se.strip()[:120]))
+    for cut, where in [(head_len + 40, "element"), (head_len - 20, "end_header")]:
+        short, _ = ply(os.path.join(tmp, "cut-%s-%d.ply" % (kind, cut)), binary, cut)
+        rc, so, se = run("--method", "none", "--image", "32x32", short, "-o", os.path.join(tmp, "cut.png"))
+        check(rc == 2 and where in se and "truncated" in se,
+              "a %s PLY cut at byte %d is refused: rc %d, %r" % (kind, cut, rc, se.strip()[:160]))
+
 # Bad input.
 for args, words in [(["--method", "magic", bunny, "-o", "x.png"], "--method is"),
                     (["--rays", "0", bunny, "-o", "x.png"], "--rays"),
