@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <functional>
 #include <iomanip>
@@ -37,6 +38,8 @@ options:
                        its own error is measured against 4N
   --qualities LIST     vct presets (default low,medium,high)
   --occupancy LIST     vct occupancies: rays (default), volume (the paper's; rows "... volume")
+  --ray-steps LIST     rays: voxels between a ray's samples, 0.1..1 (default 1; other
+                       values add " step S" to the rows)
   --slices LIST        vct grid depth slices (default 128,256,512)
   --kernels LIST       vtkSSAOPass kernel sizes (default 16,32,64,128; 32 is VTK's)
   --hbao LIST          hbao configurations (default fig11a,table1,fig11b,fig11c,fig11d; none)
@@ -65,6 +68,7 @@ struct Options
   std::vector<cao::VCTQuality> qualities{ cao::VCTQuality::Low, cao::VCTQuality::Medium,
     cao::VCTQuality::High };
   std::vector<cao::VCTOccupancy> occupancies{ cao::VCTOccupancy::Rays };
+  std::vector<double> raySteps{ cao::VCTSettings().rayStep };
   std::vector<int> slices{ 128, 256, 512 }, kernels{ 16, 32, 64, 128 };
   std::string window = "auto", output = "surface-bench";
   bool vctCPU = true, vctGL = false;
@@ -179,6 +183,23 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
           return false;
         }
         o.occupancies.push_back(occupancy);
+      }
+    }
+    else if (a == "--ray-steps")
+    {
+      if (!value())
+        return false;
+      o.raySteps.clear();
+      for (const std::string& q : Split(v, ','))
+      {
+        char* end = nullptr;
+        const double step = std::strtod(q.c_str(), &end);
+        if (q.empty() || *end || !(step >= 0.1 && step <= 1.0))
+        {
+          error = "--ray-steps: '" + q + "' is not a number in [0.1, 1]";
+          return false;
+        }
+        o.raySteps.push_back(step);
       }
     }
     else if (a == "--slices")
@@ -508,11 +529,15 @@ int RunBenchSurface(int argc, char* argv[])
           return Fail(1, error);
         const cao::BitGrid& second = kind == "eye" ? grid2 : grid;
         for (cao::VCTOccupancy occupancy : o.occupancies)
+        for (double step : occupancy == cao::VCTOccupancy::Rays ? o.raySteps : std::vector<double>{ 0.5 })
         for (cao::VCTQuality q : o.qualities)
         {
           cao::VCTSettings vs;
           vs.quality = q;
           vs.occupancy = occupancy;
+          vs.rayStep = step;
+          std::ostringstream stepLabel;
+          stepLabel << " step " << step;
           vs.slices = slices;
           vs.radius = radius;
           cao::VCTPlan plan, plan2;
@@ -545,7 +570,8 @@ int RunBenchSurface(int argc, char* argv[])
           row.mesh = name;
           row.method = onGPU ? "vct-gl" : "vct";
           row.label = row.method + " " + cao::VCTQualityName(q) + " " + std::to_string(slices) +
-            (kind == "eye" ? " eye" : "") + (occupancy == cao::VCTOccupancy::Volume ? " volume" : "");
+            (kind == "eye" ? " eye" : "") + (occupancy == cao::VCTOccupancy::Volume ? " volume" : "") +
+            (occupancy == cao::VCTOccupancy::Rays && step != cao::VCTSettings().rayStep ? stepLabel.str() : "");
           row.series = onGPU ? 4 : 0;
           // An eye grid is built again at every camera turn: in the frame.
           row.ms = Median(times) + (kind == "eye" ? gridMs : 0.0);

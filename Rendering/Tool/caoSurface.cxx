@@ -86,7 +86,7 @@ const char* SurfaceUsage = R"(cao surface MESH... [options] -o out.png
   --occupancy rays|volume  vct: a cone's occlusion: the cosine-weighted share of its rays
                         that meet a set voxel (default), or the paper's solid volume
                         fraction of its spheres (z-column prisms, bitCount)
-  --ray-step V          vct, rays: voxels between a ray's samples, 0.1..1 (default 0.5)
+  --ray-step V          vct, rays: voxels between a ray's samples, 0.1..1 (default 1)
   --cone-angle DEG      vct: each cone's half-angle, 5..45 (default 30)
   --apex-offset V       vct: the cones' apex above the surface, in voxels, 0..4 (default 1)
   --rays N              reference: directions per pixel (default 1024, at most 1048576)

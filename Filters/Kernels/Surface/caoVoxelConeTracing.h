@@ -33,7 +33,7 @@
 //    By default (occupancy "rays") a cone's occlusion is instead the share
 //    of its rays that meet a set voxel: one ray per prism point of the unit
 //    disk, apex + tau (axis + tan(beta) (x u + y v)), from the first
-//    sphere's near side to R, sampled every `rayStep` voxels, each ray
+//    sphere's near side to R, sampled every `rayStep` voxels (default 1), each ray
 //    weighted by its cosine with n. A thin wall across a cone stops all its
 //    rays, as it stops the reference's; the paper's volume fraction counts
 //    it as the little of each sphere it fills (under-occlusion, measured:
@@ -100,7 +100,11 @@ struct VCTSettings
   bool surfaceVoxels = true;
   /// Measured on the shared meshes (cao bench surface --occupancy).
   VCTOccupancy occupancy = VCTOccupancy::Rays;
-  double rayStep = 0.5;       ///< voxels between a ray's samples (rays), 0.1..1
+  /// Voxels between a ray's samples (rays), 0.1..1. Default 1 (measured:
+  /// RMSE 0.0485 at 1 against 0.0494 at 0.5, Medium, 256 slices, the
+  /// shared meshes, at 0.55 times the time: the denser samples meet more of
+  /// the surface's own voxels near the apex).
+  double rayStep = 1.0;
   static constexpr int MaximumPrisms = 32;
 
   /// The spheres and prisms the quality preset gives (Custom: the fields).

@@ -612,7 +612,7 @@ int TestContextualAOPass(int, char*[])
     pass->SetApplyTo(vtkContextualAOPass::AMBIENT_TERM);
   }
   // The eye grid: rebuilt when the camera turns, not when it dollies; its
-  // AO near the world grid's.
+  // AO the kernel's on the camera's axes.
   {
     window->Render();
     const double worldAO = pass->GetPixelAO(cx, cy);
@@ -620,9 +620,11 @@ int TestContextualAOPass(int, char*[])
     pass->SetGrid(vtkContextualAOPass::EYE_GRID);
     window->Render();
     const double eyeAO = pass->GetPixelAO(cx, cy);
-    Check(pass->GetVoxelizeCount() == before + 1 && std::fabs(eyeAO - worldAO) < 0.08,
+    // (Its AO is checked exactly against the kernel's eye grid below; by the
+    // contact it differs from the world grid's by the voxels' alignment.)
+    Check(pass->GetVoxelizeCount() == before + 1 && eyeAO >= 0.0 && eyeAO < 1.0,
       "the eye grid is built (" + pass->GetLastFrameStages() + "), AO by the contact " + std::to_string(eyeAO) +
-        " vs the world grid's " + std::to_string(worldAO));
+        " (the world grid's " + std::to_string(worldAO) + ")");
     camera->Dolly(1.1);
     renderer->ResetCameraClippingRange();
     window->Render();
