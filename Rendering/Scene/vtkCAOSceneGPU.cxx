@@ -18,6 +18,12 @@ struct SceneGPU::Impl
   std::unique_ptr<cao::gl::VCTEngine> engine;
   std::unique_ptr<cao::gl::ScreenAOEngine> screen;
   std::string failure; ///< why the window's OpenGL cannot be used (tried once per window)
+  bool Ready(std::string& error) const
+  {
+    if (!this->engine)
+      error = "no OpenGL engine (resolve first)";
+    return this->engine != nullptr;
+  }
   bool tried = false;
 
   int generation = 0; ///< engines made so far (a new one holds no grid)
@@ -30,20 +36,14 @@ struct SceneGPU::Impl
   void Drop()
   {
     const bool current = this->window && this->window->IsCurrent();
-    if (this->engine)
-    {
-      if (current)
-        this->engine->ReleaseGraphicsResources();
-      else
-        this->engine->AbandonGraphicsResources(); // the context's end frees them
-    }
-    if (this->screen)
-    {
-      if (current)
-        this->screen->ReleaseGraphicsResources();
-      else
-        this->screen->AbandonGraphicsResources();
-    }
+    auto drop = [current](auto& engine) {
+      if (engine && current)
+        engine->ReleaseGraphicsResources();
+      else if (engine)
+        engine->AbandonGraphicsResources(); // the context's end frees them
+    };
+    drop(this->engine);
+    drop(this->screen);
     this->engine.reset();
     this->screen.reset();
     this->context.reset();
@@ -105,43 +105,28 @@ bool SceneGPU::Voxelize(cao::BitGrid& grid, const std::vector<cao::MeshView>& me
   double ms = 0.0;
   grid.bits.clear(); // they stay on the GPU
   grid.openEdges.clear();
-  return this->P->engine && this->P->engine->Voxelize(grid, meshes, grid.openEdges, ms, error);
+  return this->P->Ready(error) && this->P->engine->Voxelize(grid, meshes, grid.openEdges, ms, error);
 }
 
 bool SceneGPU::Trace(const cao::BitGrid& grid, const cao::VCTPlan& plan, cao::SurfaceFrame& frame,
   std::string& error)
 {
   double ms = 0.0;
-  if (!this->P->engine)
-  {
-    error = "no OpenGL engine (resolve first)";
-    return false;
-  }
-  return this->P->engine->TraceFrame(grid, plan, frame, ms, error);
+  return this->P->Ready(error) && this->P->engine->TraceFrame(grid, plan, frame, ms, error);
 }
 
 bool SceneGPU::HBAO(const cao::PixelCamera& camera, const cao::HBAOSettings& settings, cao::SurfaceFrame& frame,
   std::string& error)
 {
   double ms = 0.0;
-  if (!this->P->screen)
-  {
-    error = "no OpenGL engine (resolve first)";
-    return false;
-  }
-  return this->P->screen->HBAO(camera, settings, frame, ms, error);
+  return this->P->Ready(error) && this->P->screen->HBAO(camera, settings, frame, ms, error);
 }
 
 bool SceneGPU::VAO(const cao::PixelCamera& camera, const cao::VAOSettings& settings, cao::SurfaceFrame& frame,
   std::string& error)
 {
   double ms = 0.0;
-  if (!this->P->screen)
-  {
-    error = "no OpenGL engine (resolve first)";
-    return false;
-  }
-  return this->P->screen->VAO(camera, settings, frame, ms, error);
+  return this->P->Ready(error) && this->P->screen->VAO(camera, settings, frame, ms, error);
 }
 
 std::string SceneGPU::Description() const

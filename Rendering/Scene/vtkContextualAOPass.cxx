@@ -258,8 +258,8 @@ struct vtkContextualAOPass::Internals
   double tolerance = 1e-9;       ///< drawn against traced point: half a voxel
   bool ignoredVolumes = false;   ///< volumes in view that a screen-space method does not see
   cao::VAOSettings vao;          ///< the last VAO run's settings (its indirect term reuses them)
-  vtkCAO::SceneGPU gpu;          ///< VCT on the window's OpenGL (Backend)
-  bool onGPU = false;            ///< this frame's VCT runs there
+  vtkCAO::SceneGPU gpu;          ///< the AO on the window's OpenGL (Backend)
+  bool onGPU = false;            ///< this frame's AO runs there
   std::string backendNote;       ///< why not, when Auto or the volumes chose the CPU
 
   void Stage(const char* name, Clock::time_point start)

@@ -529,7 +529,8 @@ int RunBenchSurface(int argc, char* argv[])
           return Fail(1, error);
         const cao::BitGrid& second = kind == "eye" ? grid2 : grid;
         for (cao::VCTOccupancy occupancy : o.occupancies)
-        for (double step : occupancy == cao::VCTOccupancy::Rays ? o.raySteps : std::vector<double>{ 0.5 })
+        for (double step : occupancy == cao::VCTOccupancy::Rays ? o.raySteps
+                                                                : std::vector<double>{ cao::VCTSettings().rayStep })
         for (cao::VCTQuality q : o.qualities)
         {
           cao::VCTSettings vs;

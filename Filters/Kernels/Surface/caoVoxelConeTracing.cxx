@@ -641,6 +641,21 @@ double OpacityVolume::Sample(const double w[3]) const
 
 namespace
 {
+/// An orthonormal frame (x, y) around the unit vector n (Duff et al. 2017),
+/// as the GLSL's Frame.
+void Frame(const double n[3], double x[3], double y[3])
+{
+  const double sign = n[2] >= 0.0 ? 1.0 : -1.0;
+  const double a = -1.0 / (sign + n[2]);
+  const double b = n[0] * n[1] * a;
+  x[0] = 1.0 + sign * n[0] * n[0] * a;
+  x[1] = sign * b;
+  x[2] = -sign * n[0];
+  y[0] = b;
+  y[1] = sign + n[1] * n[1] * a;
+  y[2] = -n[1];
+}
+
 /// A cone's occlusion by rays (grid coordinates): one ray per prism point
 /// of the unit disk, apex + tau (dir + tan(beta) (x u + y v)), tau from the
 /// first sphere's near side to the last one's far side (R from the apex),
@@ -680,6 +695,31 @@ double RayOcclusion(const BitGrid& grid, const VCTPlan& plan, const double apex[
   return all > 0.0 ? blocked / all : 0.0;
 }
 
+/// A sphere's occupancy (seed 000): the set bits over the bits counted in
+/// the prisms (z columns) through its disk points, each limited to the
+/// sphere's chord. The GLSL's volume branch is the same in float.
+double SphereOccupancy(const BitGrid& grid, const VCTPlan& plan, const double centre[3], double r)
+{
+  const double h = grid.voxel;
+  const double gz = (centre[2] - grid.origin[2]) / h;
+  std::int64_t set = 0, total = 0;
+  for (const auto& sample : plan.disk)
+  {
+    const double gx = (centre[0] + r * sample[0] - grid.origin[0]) / h;
+    const double gy = (centre[1] + r * sample[1] - grid.origin[1]) / h;
+    const int i = static_cast<int>(std::floor(gx)), j = static_cast<int>(std::floor(gy));
+    const double half = r * std::sqrt(std::max(0.0, 1.0 - sample[0] * sample[0] - sample[1] * sample[1])) / h;
+    // The slices whose centres lie on the chord [gz - half, gz + half].
+    int k0 = static_cast<int>(std::ceil(gz - half - 0.5));
+    int k1 = static_cast<int>(std::floor(gz + half - 0.5));
+    if (k1 < k0)
+      k0 = k1 = static_cast<int>(std::floor(gz)); // a chord under a slice: its slice
+    total += k1 - k0 + 1;
+    set += grid.CountBits(i, j, k0, k1);
+  }
+  return total > 0 ? static_cast<double>(set) / static_cast<double>(total) : 0.0;
+}
+
 /// The volume's opacity over a sphere: its mean at the centre and the prism
 /// points (on the disk across the grid's z axis), over the diameter.
 double SphereOpacity(const BitGrid& grid, const VCTPlan& plan, const OpacityVolume& volume,
@@ -706,13 +746,8 @@ double ConeTraceAO(const BitGrid& grid, const VCTPlan& plan, const double pWorld
   double p[3], n[3];
   grid.ToGrid(pWorld, p);
   grid.ToGrid(nWorld, n);
-  const double h = grid.voxel;
-  const double sign = n[2] >= 0.0 ? 1.0 : -1.0; // as the GLSL's
-
-  const double a = -1.0 / (sign + n[2]);
-  const double b = n[0] * n[1] * a;
-  const double tx[3] = { 1.0 + sign * n[0] * n[0] * a, sign * b, -sign * n[0] };
-  const double ty[3] = { b, sign + n[1] * n[1] * a, -n[1] };
+  double tx[3], ty[3];
+  Frame(n, tx, ty);
   double apex[3];
   for (int d = 0; d < 3; ++d)
     apex[d] = p[d] + plan.apexOffset * n[d];
@@ -723,51 +758,19 @@ double ConeTraceAO(const BitGrid& grid, const VCTPlan& plan, const double pWorld
     double dir[3];
     for (int d = 0; d < 3; ++d)
       dir[d] = l[0] * tx[d] + l[1] * ty[d] + l[2] * n[d];
-    // The rays' frame: (u, v) across the cone's axis, as the GLSL's.
-    const double cs = dir[2] >= 0.0 ? 1.0 : -1.0;
-    const double ca = -1.0 / (cs + dir[2]);
-    const double cb = dir[0] * dir[1] * ca;
-    const double u[3] = { 1.0 + cs * dir[0] * dir[0] * ca, cs * cb, -cs * dir[0] };
-    const double v[3] = { cb, cs + dir[1] * dir[1] * ca, -dir[1] };
-    double open = 1.0;
-    if (plan.occupancy == VCTOccupancy::Rays)
-    {
-      // The rays' visibility, then the volumes' opacity over the cone's spheres.
-      open = 1.0 - RayOcclusion(grid, plan, apex, n, dir, u, v);
-      for (const VCTPlan::Sphere& sphere : plan.spheres)
-        for (const OpacityVolume* volume : plan.volumes)
-        {
-          double centre[3];
-          for (int d = 0; d < 3; ++d)
-            centre[d] = apex[d] + sphere.t * dir[d];
-          open *= 1.0 - SphereOpacity(grid, plan, *volume, centre, sphere.r);
-        }
-      occlusion += plan.coneWeights[c] * (1.0 - open);
-      continue;
-    }
+    double u[3], v[3]; // the rays' frame across the cone's axis
+    Frame(dir, u, v);
+    // Rays: the cone's rays at once; volume: each sphere's prisms. Then the
+    // volumes' opacity over each sphere.
+    const bool rays = plan.occupancy == VCTOccupancy::Rays;
+    double open = rays ? 1.0 - RayOcclusion(grid, plan, apex, n, dir, u, v) : 1.0;
     for (const VCTPlan::Sphere& sphere : plan.spheres)
     {
       double centre[3];
       for (int d = 0; d < 3; ++d)
         centre[d] = apex[d] + sphere.t * dir[d];
-      const double gz = (centre[2] - grid.origin[2]) / h;
-      std::int64_t set = 0, total = 0;
-      for (const auto& sample : plan.disk)
-      {
-        const double gx = (centre[0] + sphere.r * sample[0] - grid.origin[0]) / h;
-        const double gy = (centre[1] + sphere.r * sample[1] - grid.origin[1]) / h;
-        const int i = static_cast<int>(std::floor(gx)), j = static_cast<int>(std::floor(gy));
-        const double half = sphere.r * std::sqrt(std::max(0.0, 1.0 - sample[0] * sample[0] - sample[1] * sample[1])) / h;
-        // The slices whose centres lie on the chord [gz - half, gz + half].
-        int k0 = static_cast<int>(std::ceil(gz - half - 0.5));
-        int k1 = static_cast<int>(std::floor(gz + half - 0.5));
-        if (k1 < k0)
-          k0 = k1 = static_cast<int>(std::floor(gz)); // a chord under a slice: its slice
-        total += k1 - k0 + 1;
-        set += grid.CountBits(i, j, k0, k1);
-      }
-      const double occ = total > 0 ? static_cast<double>(set) / static_cast<double>(total) : 0.0;
-      open *= 1.0 - occ;
+      if (!rays)
+        open *= 1.0 - SphereOccupancy(grid, plan, centre, sphere.r);
       for (const OpacityVolume* volume : plan.volumes)
         open *= 1.0 - SphereOpacity(grid, plan, *volume, centre, sphere.r);
     }

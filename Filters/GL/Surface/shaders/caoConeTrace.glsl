@@ -48,6 +48,17 @@ int CountBits(int i, int j, int k0, int k1)
   return count;
 }
 
+/// An orthonormal frame (x, y) around the unit vector n (Duff et al. 2017),
+/// as the CPU's Frame.
+void Frame(vec3 n, out vec3 x, out vec3 y)
+{
+  float sgn = n.z >= 0.0 ? 1.0 : -1.0;
+  float a = -1.0 / (sgn + n.z);
+  float b = n.x * n.y * a;
+  x = vec3(1.0 + sgn * n.x * n.x * a, sgn * b, -sgn * n.x);
+  y = vec3(b, sgn + n.y * n.y * a, -n.y);
+}
+
 bool Bit(int i, int j, int k)
 {
   if (i < 0 || j < 0 || k < 0 || i >= vct.grid.x || j >= vct.grid.y || k >= vct.grid.z)
@@ -94,24 +105,16 @@ void main()
     return;
   vec3 p = points[index].xyz, n = normals[index].xyz;
   float invH = vct.origin.w;
-  // An orthonormal frame around n (Duff et al. 2017), as the CPU's.
-  float sgn = n.z >= 0.0 ? 1.0 : -1.0;
-  float a = -1.0 / (sgn + n.z);
-  float b = n.x * n.y * a;
-  vec3 tx = vec3(1.0 + sgn * n.x * n.x * a, sgn * b, -sgn * n.x);
-  vec3 ty = vec3(b, sgn + n.y * n.y * a, -n.y);
+  vec3 tx, ty;
+  Frame(n, tx, ty);
   vec3 apex = p + vct.apex.x * n;
   float occlusion = 0.0;
   for (int c = 0; c < vct.counts.x; ++c)
   {
     vec4 l = vct.cones[c];
     vec3 dir = l.x * tx + l.y * ty + l.z * n;
-    // The rays' frame across the cone's axis, as the CPU's.
-    float cs = dir.z >= 0.0 ? 1.0 : -1.0;
-    float ca = -1.0 / (cs + dir.z);
-    float cb = dir.x * dir.y * ca;
-    vec3 u = vec3(1.0 + cs * dir.x * dir.x * ca, cs * cb, -cs * dir.x);
-    vec3 v = vec3(cb, cs + dir.y * dir.y * ca, -dir.y);
+    vec3 u, v; // the rays' frame across the cone's axis
+    Frame(dir, u, v);
     if (vct.apex.y > 0.5)
     {
       occlusion += l.w * RayOcclusion(apex, n, dir, u, v);

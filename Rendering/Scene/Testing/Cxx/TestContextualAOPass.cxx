@@ -433,17 +433,10 @@ int TestContextualAOPass(int, char*[])
   // depth G-buffer no triangles are even gathered into a BVH.
   {
     const int grids = pass->GetVoxelizeCount();
-    std::vector<double> all;
-    std::vector<std::int64_t> allTris;
-    for (vtkActor* a : { slabActor.Get(), sphereActor.Get() })
-    {
-      std::vector<double> pts;
-      std::vector<std::int64_t> tris;
-      WorldTriangles(a, all, allTris, pts, tris);
-    }
+    const WorldScene scene{ slabActor, sphereActor };
     std::string error;
     cao::TriangleBVH bvh;
-    bvh.Build(all, allTris, error);
+    bvh.Build(scene.all, scene.allTris, error);
     for (int method : { vtkContextualAOPass::HBAO, vtkContextualAOPass::VAO })
     {
       const std::string name = method == vtkContextualAOPass::HBAO ? "HBAO" : "VAO";
