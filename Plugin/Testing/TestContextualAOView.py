@@ -105,6 +105,7 @@ check(pas.GetVoxelizeCount() == grids + 1 and pas.GetLastFrameStages().startswit
 # Surface AO Backend OpenGL: the grid and the cones on the view's own
 # OpenGL (llvmpipe under Xvfb here): the same picture as the CPU's to a
 # grey level, and the report says where it ran.
+view.SurfaceAOGBuffer = "Ray Cast"
 view.SurfaceAOBackend = "CPU"
 cpu = shot("view-cpu")
 view.SurfaceAOBackend = "OpenGL"
@@ -114,6 +115,25 @@ check('"backend": "OpenGL' in report and pas.GetLastFrameStages().startswith("vo
       abs(gpu - cpu).max() <= 2,
       "Surface AO Backend OpenGL: voxelized and traced on the view's OpenGL (%s), the picture within %.0f grey "
       "levels of the CPU's" % (pas.GetLastFrameStages(), abs(gpu - cpu).max()))
+# G Buffer Auto (the default) with OpenGL: the drawn depth, and the whole
+# frame on the view's OpenGL (ParaView's own framebuffer): the picture as
+# the CPU's from the same depth G-buffer, to a grey level or two; Auto with
+# the CPU backend is the ray cast.
+view.SurfaceAOGBuffer = "Depth Buffer"
+view.SurfaceAOBackend = "CPU"
+cpuDepth = shot("view-cpu-depth")
+view.SurfaceAOGBuffer = "Auto"
+view.SurfaceAOBackend = "OpenGL"
+gpuFrame = shot("view-opengl-frame")
+report = pas.GetLastFrameReport()
+check('"frame_on_gpu": true' in report and '"gbuffer": "depth buffer (auto)"' in report and
+      abs(gpuFrame - cpuDepth).max() <= 2 and abs(gpuFrame - cpu).max() > 0,
+      "G Buffer Auto with OpenGL: the frame stays on the view's OpenGL (%s), the picture within %.0f grey levels "
+      "of the CPU's depth G-buffer (and not the ray cast's: %.0f)" % (pas.GetLastFrameStages(),
+      abs(gpuFrame - cpuDepth).max(), abs(gpuFrame - cpu).max()))
+view.SurfaceAOBackend = "CPU"
+Render(view)
+check('"gbuffer": "ray cast (auto)"' in pas.GetLastFrameReport(), "G Buffer Auto on the CPU: the ray cast")
 view.SurfaceAOBackend = "Auto"
 Render(view)
 view.SurfaceAOStrength = 0.0

@@ -136,6 +136,22 @@ bool ReadViewportDepth(vtkRenderer* ren, std::vector<float>& depth, std::string&
   return true;
 }
 
+bool DrawTarget(vtkRenderer* ren, unsigned& framebuffer, int rect[4], bool& multisampled, std::string& error)
+{
+  Target t;
+  if (!Find(ren, t, error))
+    return false;
+  GLint samples = 0;
+  glGetIntegerv(GL_SAMPLE_BUFFERS, &samples); // of the bound draw framebuffer
+  multisampled = samples > 0;
+  framebuffer = static_cast<unsigned>(t.draw);
+  rect[0] = t.x0;
+  rect[1] = t.y0;
+  rect[2] = t.width;
+  rect[3] = t.height;
+  return true;
+}
+
 bool WriteViewportColor(vtkRenderer* ren, std::vector<float>& rgba, std::string& error)
 {
   Target t;

@@ -21,6 +21,10 @@ bool ReadViewportColor(vtkRenderer* renderer, std::vector<float>& rgba, std::str
 /// Window depth (0 near .. 1 far) per pixel; false (with the reason) when
 /// the framebuffer has no depth the pass can read.
 bool ReadViewportDepth(vtkRenderer* renderer, std::vector<float>& depth, std::string& error);
+/// The framebuffer the renderer draws into now, its viewport (x0, y0,
+/// width, height) and whether it is multisampled, for the GPU frame; false
+/// when there is none.
+bool DrawTarget(vtkRenderer* renderer, unsigned& framebuffer, int rect[4], bool& multisampled, std::string& error);
 /// Writes `rgba` over the viewport, colour only (no blending, no depth).
 bool WriteViewportColor(vtkRenderer* renderer, std::vector<float>& rgba, std::string& error);
 }

@@ -5,6 +5,7 @@
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkWeakPointer.h"
 
+#include "caoFrameGL.h"
 #include "caoGLContext.h"
 #include "caoScreenAOGL.h"
 #include "caoVCTGL.h"
@@ -17,6 +18,7 @@ struct SceneGPU::Impl
   std::unique_ptr<cao::gl::Context> context;
   std::unique_ptr<cao::gl::VCTEngine> engine;
   std::unique_ptr<cao::gl::ScreenAOEngine> screen;
+  std::unique_ptr<cao::gl::FrameEngine> frame;
   std::string failure; ///< why the window's OpenGL cannot be used (tried once per window)
   bool Ready(std::string& error) const
   {
@@ -44,8 +46,10 @@ struct SceneGPU::Impl
     };
     drop(this->engine);
     drop(this->screen);
+    drop(this->frame);
     this->engine.reset();
     this->screen.reset();
+    this->frame.reset();
     this->context.reset();
     this->window = nullptr;
     this->tried = false;
@@ -81,6 +85,7 @@ bool SceneGPU::Resolve(vtkRenderWindow* window, int backend, std::string& error)
       ++p.generation;
       p.engine.reset(new cao::gl::VCTEngine(*p.context));
       p.screen.reset(new cao::gl::ScreenAOEngine(*p.context));
+      p.frame.reset(new cao::gl::FrameEngine(*p.context));
     }
   }
   if (!p.context)
@@ -129,6 +134,58 @@ bool SceneGPU::VAO(const cao::PixelCamera& camera, const cao::VAOSettings& setti
   return this->P->Ready(error) && this->P->screen->VAO(camera, settings, frame, ms, error);
 }
 
+bool SceneGPU::FrameDepth(unsigned framebuffer, const int rect[4], std::int64_t& changed, std::string& error)
+{
+  return this->P->Ready(error) &&
+    this->P->frame->Read(cao::gl::FrameEngine::Depth, framebuffer, rect[0], rect[1], rect[2], rect[3], error) &&
+    this->P->frame->ChangedPixels(changed, error);
+}
+
+bool SceneGPU::FrameGBuffer(const double ndcToWorld[16], const cao::BitGrid& grid, std::int64_t& covered,
+  std::string& error)
+{
+  return this->P->Ready(error) && this->P->frame->GBuffer(ndcToWorld, grid.axes, covered, error);
+}
+
+bool SceneGPU::FrameTrace(const cao::VCTPlan& plan, std::string& error)
+{
+  double ms = 0.0;
+  cao::gl::FrameEngine* f = this->P->frame.get();
+  return this->P->Ready(error) &&
+    this->P->engine->TracePixels(plan, f->PointBuffer(), f->NormalBuffer(), f->AOBuffer(), f->Pixels(), ms, error);
+}
+
+bool SceneGPU::FrameRead(bool ambient, unsigned framebuffer, const int rect[4], std::string& error)
+{
+  return this->P->Ready(error) &&
+    this->P->frame->Read(ambient ? cao::gl::FrameEngine::Ambient : cao::gl::FrameEngine::Color, framebuffer,
+      rect[0], rect[1], rect[2], rect[3], error);
+}
+
+bool SceneGPU::FrameCombine(double strength, bool wholeColor, unsigned framebuffer, const int rect[4],
+  std::string& error)
+{
+  return this->P->Ready(error) && this->P->frame->Combine(strength, wholeColor, error) &&
+    this->P->frame->Write(framebuffer, rect[0], rect[1], error);
+}
+
+bool SceneGPU::FrameAO(std::vector<float>& ao, std::string& error)
+{
+  Impl& p = *this->P;
+  if (!p.Ready(error))
+    return false;
+  if (!p.window)
+    return error = "the render window is gone", false;
+  if (!p.window->IsCurrent())
+    p.window->MakeCurrent(); // as VTK's own pixel getters do
+  return p.frame->ReadAO(ao, error);
+}
+
+std::string SceneGPU::FrameDepthPath() const
+{
+  return this->P->frame && this->P->frame->DepthBlitted() ? "blit" : "read";
+}
+
 std::string SceneGPU::Description() const
 {
   return this->P->context ? "OpenGL (" + this->P->context->Description() + ")" : std::string("CPU");
@@ -137,7 +194,8 @@ std::string SceneGPU::Description() const
 long long SceneGPU::ResidentBytes() const
 {
   return (this->P->engine ? static_cast<long long>(this->P->engine->ResidentBytes()) : 0) +
-    (this->P->screen ? static_cast<long long>(this->P->screen->ResidentBytes()) : 0);
+    (this->P->screen ? static_cast<long long>(this->P->screen->ResidentBytes()) : 0) +
+    (this->P->frame ? static_cast<long long>(this->P->frame->ResidentBytes()) : 0);
 }
 
 int SceneGPU::Generation() const

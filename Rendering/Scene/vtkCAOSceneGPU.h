@@ -16,6 +16,7 @@
 #include "caoScreenSpaceAO.h"
 #include "caoVoxelConeTracing.h"
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -48,6 +49,25 @@ public:
     std::string& error);
   bool VAO(const cao::PixelCamera& camera, const cao::VAOSettings& settings, cao::SurfaceFrame& frame,
     std::string& error);
+  ///@{
+  /// The frame kept on the GPU (cao::gl::FrameEngine; VCT with the depth
+  /// G-buffer): the drawn depth of `framebuffer`'s rectangle (x0, y0,
+  /// width, height) read on the GPU and its pixels that changed since the
+  /// last G-buffer counted; the G-buffer (`ndcToWorld` row-major, into
+  /// `grid`'s frame), its covered pixels counted; the cones on the grid
+  /// voxelized last; the drawn colour (or the ambient drawing) read; the
+  /// combine written into `framebuffer`. FrameAO reads the AO back (making
+  /// the window's context current if it is not).
+  bool FrameDepth(unsigned framebuffer, const int rect[4], std::int64_t& changed, std::string& error);
+  bool FrameGBuffer(const double ndcToWorld[16], const cao::BitGrid& grid, std::int64_t& covered,
+    std::string& error);
+  bool FrameTrace(const cao::VCTPlan& plan, std::string& error);
+  bool FrameRead(bool ambient, unsigned framebuffer, const int rect[4], std::string& error);
+  bool FrameCombine(double strength, bool wholeColor, unsigned framebuffer, const int rect[4], std::string& error);
+  bool FrameAO(std::vector<float>& ao, std::string& error);
+  /// "blit" or "read": how the GPU frame's depth came (FrameEngine::DepthBlitted).
+  std::string FrameDepthPath() const;
+  ///@}
   /// "OpenGL (renderer, version)" once resolved to the GPU.
   std::string Description() const;
   /// GPU memory held (bytes).

@@ -260,6 +260,12 @@ struct vtkContextualAOPass::Internals
   cao::VAOSettings vao;          ///< the last VAO run's settings (its indirect term reuses them)
   vtkCAO::SceneGPU gpu;          ///< the AO on the window's OpenGL (Backend)
   bool onGPU = false;            ///< this frame's AO runs there
+  bool gpuFrame = false;         ///< and its pixels stay there (VCT, depth G-buffer): no read-back
+  int gbuffer = RAY_CAST;        ///< this frame's G-buffer (GBuffer, Auto resolved)
+  bool hostAOStale = false;      ///< the GPU frame's AO not yet read into frame.ao (GetPixelAO)
+  int depthSerial = 0;           ///< GPU frame: drawn depths that differed from the traced one
+  unsigned target = 0;           ///< GPU frame: the framebuffer drawn into, and its viewport
+  int rect[4] = { 0, 0, 0, 0 };
   std::string backendNote;       ///< why not, when Auto or the volumes chose the CPU
 
   void Stage(const char* name, Clock::time_point start)
@@ -278,9 +284,11 @@ struct vtkContextualAOPass::Internals
   bool ResolveBackend(vtkContextualAOPass* self, vtkRenderer* ren);
   bool UpdateGrid(vtkContextualAOPass* self);
   bool UpdateVolumes(vtkContextualAOPass* self);
+  std::vector<double> ViewKey(vtkContextualAOPass* self, vtkRenderer* ren, vtkMatrix4x4*& toNDC);
   bool UpdateAO(vtkContextualAOPass* self, vtkRenderer* ren);
   bool Combine(vtkContextualAOPass* self, const vtkRenderState* s);
-  bool DrawAmbient(const vtkRenderState* s, std::vector<float>& ambient, std::string& error);
+  bool RunGPUFrame(vtkContextualAOPass* self, const vtkRenderState* s);
+  bool DrawAmbient(const vtkRenderState* s, std::vector<float>* ambient, std::string& error);
 };
 
 vtkContextualAOPass::vtkContextualAOPass()
@@ -313,6 +321,11 @@ void vtkContextualAOPass::ReleaseGraphicsResources(vtkWindow* w)
   }
   p.gpu.Release(w);
   p.onGPU = false;
+  if (p.gpuFrame) // its AO was on the GPU
+  {
+    p.frame.ao.clear();
+    p.hostAOStale = false;
+  }
 }
 
 int vtkContextualAOPass::GetNumberOfOpenMeshes() const
@@ -327,8 +340,24 @@ int vtkContextualAOPass::GetNumberOfOccludingVolumes() const
 
 double vtkContextualAOPass::GetPixelAO(int x, int y) const
 {
-  const cao::SurfaceFrame& f = this->Internal->frame;
-  if (x < 0 || y < 0 || x >= f.width || y >= f.height)
+  Internals& p = *this->Internal;
+  if (p.gpuFrame && p.hostAOStale)
+  {
+    // The GPU frame's AO, read back once per trace on demand.
+    std::vector<float> ao;
+    std::string error;
+    if (!p.gpu.FrameAO(ao, error) ||
+      ao.size() != static_cast<std::size_t>(p.frame.width) * static_cast<std::size_t>(p.frame.height))
+    {
+      vtkErrorMacro(<< "GetPixelAO: " << (error.empty() ? "the GPU frame's AO does not fit" : error));
+      return -1.0;
+    }
+    p.frame.ao.assign(ao.begin(), ao.end());
+    p.hostAOStale = false;
+  }
+  const cao::SurfaceFrame& f = p.frame;
+  if (x < 0 || y < 0 || x >= f.width || y >= f.height ||
+    f.ao.size() != static_cast<std::size_t>(f.width) * static_cast<std::size_t>(f.height))
     return -1.0;
   const double a = f.ao[static_cast<std::size_t>(y) * f.width + x];
   return std::isfinite(a) ? a : -1.0;
@@ -352,7 +381,9 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
     << (this->ApplyTo == AMBIENT_TERM ? "ambient" : "whole colour") << "\", \"grid\": \""
     << (this->Grid == EYE_GRID ? "eye" : "world") << "\", \"occupancy\": \""
     << (this->Occupancy == VOLUME ? "volume" : "rays") << "\", \"gbuffer\": \""
-    << (this->GBuffer == DEPTH_BUFFER ? "depth buffer" : "ray cast") << "\", \"stages\": {";
+    << (p.gbuffer == DEPTH_BUFFER ? "depth buffer" : "ray cast")
+    << (this->GBuffer == GBUFFER_AUTO ? " (auto)" : "") << "\", \"frame_on_gpu\": "
+    << (this->Internal->gpuFrame ? "true" : "false") << ", \"stages\": {";
   for (std::size_t i = 0; i < p.stages.size(); ++i)
     o << (i ? ", " : "") << "\"" << p.stages[i] << "\": " << p.ms[i];
   o << "}, \"reasons\": [";
@@ -367,6 +398,8 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
     o << ", \"backend_note\": \"" << p.backendNote << "\"";
   if (p.onGPU)
     o << ", \"gpu_bytes\": " << p.gpu.ResidentBytes();
+  if (p.gpuFrame) // the drawn depth: blitted (a GPU copy) or read into a buffer (on the GPU too)
+    o << ", \"frame_depth\": \"" << p.gpu.FrameDepthPath() << "\"";
   if (p.ignoredVolumes)
     o << ", \"volumes\": \"not seen: the screen-space methods read the opaque depth, drawn before the volumes\"";
   if (this->Method == VAO)
@@ -433,8 +466,28 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
     this->Fail(self, "Radius (0 or more, world units) and Strength (0..1) must be numbers");
     return;
   }
-  // The drawn depth, once per frame: the depth G-buffer and the combine's
-  // drawn-is-traced test both read it.
+  // VCT on the GPU with the depth G-buffer keeps the frame there (no
+  // read-back); every other frame reads the drawn depth once: the depth
+  // G-buffer and the combine's drawn-is-traced test both read it.
+  const bool wasOnGPU = this->gpuFrame;
+  this->gpuFrame = this->onGPU && self->Method == VCT && this->gbuffer == DEPTH_BUFFER;
+  bool multisampled = false;
+  if (this->gpuFrame &&
+    (!vtkCAO::DrawTarget(ren, this->target, this->rect, multisampled, this->depthError) || multisampled))
+  {
+    this->gpuFrame = false;
+    this->backendNote = multisampled
+      ? "the framebuffer is multisampled: the frame's pixels are read back (the cones still on the GPU)"
+      : "the frame's pixels are read back (the cones still on the GPU): " + this->depthError;
+  }
+  if (this->gpuFrame != wasOnGPU)
+    this->viewKey.clear(); // the AO image is on the other side now
+  if (this->gpuFrame)
+  {
+    if (this->UpdateGrid(self) && this->UpdateVolumes(self))
+      this->RunGPUFrame(self, s);
+    return;
+  }
   this->depthOk = vtkCAO::ReadViewportDepth(ren, this->depth, this->depthError);
   if (this->UpdateGrid(self) && this->UpdateVolumes(self) && this->UpdateAO(self, ren))
     this->Combine(self, s);
@@ -449,7 +502,9 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
   // VCT needs the grid (its slices and kind count); the screen-space
   // methods need the triangles for the ray cast, or only their bounds.
   const bool vct = self->Method == VCT;
-  key = { self->Radius, vct ? 0.0 : self->GBuffer == RAY_CAST ? 1.0 : 2.0 };
+  // (The G-buffer's Auto is resolved with the backend: ResolveBackend.)
+  this->gbuffer = self->GBuffer == GBUFFER_AUTO ? RAY_CAST : self->GBuffer;
+  key = { self->Radius, vct ? 0.0 : this->gbuffer == RAY_CAST ? 1.0 : 2.0 };
   if (vct)
     key.insert(key.end(), { static_cast<double>(self->Slices), static_cast<double>(self->Grid) });
   vtkActorCollection* actors = ren->GetActors();
@@ -512,6 +567,12 @@ bool vtkContextualAOPass::Internals::ResolveBackend(vtkContextualAOPass* self, v
     this->backendNote = "volumes occlude the surfaces: the CPU (the GPU cone tracer does not read volumes)";
   else if (!this->onGPU && self->Backend != BACKEND_CPU)
     this->backendNote = this->gpu.Note;
+  if (self->GBuffer == GBUFFER_AUTO)
+  {
+    this->gbuffer = this->onGPU ? DEPTH_BUFFER : RAY_CAST;
+    if (self->Method != VCT) // the screen-space methods' scene: the ray cast's triangles or not
+      this->frameSceneKey[1] = this->gbuffer == RAY_CAST ? 1.0 : 2.0;
+  }
   if (self->Method == VCT) // where the grid is (before the eye grid's view rows, which end the key)
     this->frameSceneKey.insert(this->frameSceneKey.begin() + 2,
       { this->onGPU ? 1.0 : 0.0, static_cast<double>(this->onGPU ? this->gpu.Generation() : 0) });
@@ -530,7 +591,7 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
     return false;
   }
   const auto start = Clock::now();
-  const bool vct = self->Method == VCT, needBVH = vct || self->GBuffer == RAY_CAST;
+  const bool vct = self->Method == VCT, needBVH = vct || this->gbuffer == RAY_CAST;
   this->reasons.push_back(this->sceneKey.empty() ? "first frame"
       : vct && self->Grid == EYE_GRID            ? "geometry, grid or camera orientation changed"
       : vct                                      ? "geometry or grid changed"
@@ -665,26 +726,97 @@ bool vtkContextualAOPass::Internals::UpdateVolumes(vtkContextualAOPass* self)
   return true;
 }
 
-bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRenderer* ren)
+std::vector<double> vtkContextualAOPass::Internals::ViewKey(
+  vtkContextualAOPass* self, vtkRenderer* ren, vtkMatrix4x4*& toNDC)
 {
-  // Only when the grid, the volumes, the camera, the viewport or the AO
-  // settings changed.
+  // What an AO image is made for: grid, volumes, viewport, settings, camera, where.
   int width = 0, height = 0, x0 = 0, y0 = 0;
   ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
-  vtkCamera* camera = ren->GetActiveCamera();
   const double aspect = width > 0 && height > 0 ? double(width) / height : 1.0;
-  vtkMatrix4x4* toNDC = camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
+  toNDC = ren->GetActiveCamera()->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
   std::vector<double> key{ static_cast<double>(this->serial),
     static_cast<double>(this->volumeSerial), static_cast<double>(width),
     static_cast<double>(height), static_cast<double>(self->Quality), this->radius,
     static_cast<double>(self->Method), static_cast<double>(self->Method == VCT ? self->Occupancy : 0) };
   for (int i = 0; i < 16; ++i)
     key.push_back(toNDC->GetElement(i / 4, i % 4));
-  key.push_back(self->GBuffer);
+  key.push_back(this->gbuffer);
   key.push_back(this->onGPU ? 1.0 : 0.0); // where it is traced
+  return key;
+}
+
+bool vtkContextualAOPass::Internals::RunGPUFrame(vtkContextualAOPass* self, const vtkRenderState* s)
+{
+  // The drawn depth, G-buffer, cones and combine on the window's OpenGL:
+  // the pixels never come back (only the changed and covered counts).
+  vtkRenderer* ren = s->GetRenderer();
+  const unsigned target = this->target;
+  const int* rect = this->rect;
+  std::string error;
+  std::int64_t changed = 0, covered = 0;
+  auto start = Clock::now();
+  if (!this->gpu.FrameDepth(target, rect, changed, error))
+    return this->Fail(self, "the GPU frame: " + error);
+  this->depthSerial += changed > 0;
+  vtkMatrix4x4* toNDC = nullptr;
+  std::vector<double> key = this->ViewKey(self, ren, toNDC);
+  key.push_back(this->depthSerial); // the drawn depth is part of what the AO was made for
+  if (key != this->viewKey)
+  {
+    this->reasons.push_back(!this->stages.empty() ? "new grid" : "camera, drawn depth or settings changed");
+    this->viewKey.clear();
+    vtkMatrix4x4::Invert(&toNDC->Element[0][0], this->ndcToWorld);
+    cao::VCTSettings settings;
+    settings.quality = static_cast<cao::VCTQuality>(self->Quality);
+    settings.slices = self->Slices;
+    settings.radius = this->radius;
+    settings.occupancy = static_cast<cao::VCTOccupancy>(self->Occupancy);
+    cao::VCTPlan plan;
+    if (!this->gpu.FrameGBuffer(this->ndcToWorld, this->grid, covered, error))
+      return this->Fail(self, "the GPU frame's G-buffer: " + error);
+    this->Stage("gbuffer", start);
+    start = Clock::now();
+    if (!cao::BuildVCTPlan(settings, this->grid, plan, error) || !this->gpu.FrameTrace(plan, error))
+      return this->Fail(self, error);
+    this->Stage("trace", start);
+    this->frame = cao::SurfaceFrame();
+    this->frame.width = rect[2];
+    this->frame.height = rect[3];
+    this->frame.covered = covered;
+    this->hostAOStale = true;
+    this->viewKey = key;
+    ++self->TraceCount;
+  }
+  // Every frame: the scene's own drawing, darkened there.
+  const bool whole = self->ApplyTo == WHOLE_COLOR;
+  start = Clock::now();
+  if (!this->gpu.FrameRead(false, target, rect, error))
+    return this->Fail(self, "the GPU frame: " + error);
+  if (!whole)
+  {
+    if (!this->DrawAmbient(s, nullptr, error) || !this->gpu.FrameRead(true, target, rect, error))
+      return this->Fail(self, "the GPU frame's ambient term: " + error);
+    this->Stage("ambient", start);
+    start = Clock::now();
+  }
+  if (!this->gpu.FrameCombine(self->Strength, whole, target, rect, error))
+    return this->Fail(self, "the GPU frame's combine: " + error);
+  this->combined = this->frame.covered;
+  this->Stage("combine", start);
+  return true;
+}
+
+bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRenderer* ren)
+{
+  // Only when the grid, the volumes, the camera, the viewport or the AO
+  // settings changed.
+  int width = 0, height = 0, x0 = 0, y0 = 0;
+  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+  vtkMatrix4x4* toNDC = nullptr;
+  std::vector<double> key = this->ViewKey(self, ren, toNDC);
   std::string error;
   auto start = Clock::now();
-  if (self->GBuffer == DEPTH_BUFFER)
+  if (this->gbuffer == DEPTH_BUFFER)
   {
     // The drawn depth is part of what the AO image was made for.
     if (!this->depthOk)
@@ -701,7 +833,7 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
   if (key == this->viewKey)
     return true;
   this->reasons.push_back(!this->stages.empty() ? "new grid or volumes"
-      : self->GBuffer == DEPTH_BUFFER           ? "camera, drawn depth or settings changed"
+      : this->gbuffer == DEPTH_BUFFER           ? "camera, drawn depth or settings changed"
                                                 : "camera or settings changed");
   this->viewKey.clear();
   cao::PixelCamera& pixels = this->pixels;
@@ -709,10 +841,10 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
   std::copy(pixels.ndcToWorld, pixels.ndcToWorld + 16, this->ndcToWorld);
   pixels.width = width;
   pixels.height = height;
-  if (self->GBuffer == DEPTH_BUFFER ? !cao::FrameFromDepth(pixels, this->depth, this->frame, error)
+  if (this->gbuffer == DEPTH_BUFFER ? !cao::FrameFromDepth(pixels, this->depth, this->frame, error)
                                     : !cao::CastPrimary(this->bvh, pixels, this->frame, error))
     return this->Fail(self, error);
-  this->Stage(self->GBuffer == DEPTH_BUFFER ? "gbuffer" : "primary", start);
+  this->Stage(this->gbuffer == DEPTH_BUFFER ? "gbuffer" : "primary", start);
   start = Clock::now();
   if (self->Method == HBAO)
   {
@@ -767,14 +899,14 @@ bool vtkContextualAOPass::Internals::Combine(vtkContextualAOPass* self, const vt
   // The AO goes only where the drawn surface is the traced one: not on a
   // prop the grid does not hold (glyphs, wireframe, points) drawn in front.
   // A G-buffer made from this very depth passes by construction: no test.
-  const bool depthOk = this->depthOk && self->GBuffer == RAY_CAST &&
+  const bool depthOk = this->depthOk && this->gbuffer == RAY_CAST &&
     this->depth.size() == count;
   const std::vector<float>& depth = this->depth;
   const bool whole = self->ApplyTo == WHOLE_COLOR;
   if (!whole)
   {
     const auto start = Clock::now();
-    if (!this->DrawAmbient(s, ambient, error))
+    if (!this->DrawAmbient(s, &ambient, error))
       return this->Fail(self, error);
     this->Stage("ambient", start);
   }
@@ -833,7 +965,7 @@ bool vtkContextualAOPass::Internals::Combine(vtkContextualAOPass* self, const vt
 }
 
 bool vtkContextualAOPass::Internals::DrawAmbient(
-  const vtkRenderState* s, std::vector<float>& ambient, std::string& error)
+  const vtkRenderState* s, std::vector<float>* ambient, std::string& error)
 {
   // The opaque props again, diffuse and specular off, over a cleared colour
   // buffer (the same depth: drawn with LEQUAL); only the properties that
@@ -875,7 +1007,7 @@ bool vtkContextualAOPass::Internals::DrawAmbient(
       e.first->SetSpecular(e.second[1]);
     }
   }
-  return vtkCAO::ReadViewportColor(ren, ambient, error);
+  return !ambient || vtkCAO::ReadViewportColor(ren, *ambient, error); // (the GPU frame reads it there)
 }
 
 void vtkContextualAOPass::PrintSelf(ostream& os, vtkIndent indent)

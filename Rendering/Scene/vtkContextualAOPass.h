@@ -109,8 +109,9 @@ public:
   };
   enum GBufferSources
   {
-    RAY_CAST = 0,    ///< the pixels' first surfaces by a CPU ray cast of the grid's triangles (exact)
-    DEPTH_BUFFER = 1 ///< the drawn depth buffer, back to world space, normals from neighbours (fast)
+    RAY_CAST = 0,     ///< the pixels' first surfaces by a CPU ray cast of the grid's triangles (exact)
+    DEPTH_BUFFER = 1, ///< the drawn depth buffer, back to world space, normals from neighbours (fast)
+    GBUFFER_AUTO = 2  ///< DEPTH_BUFFER where the AO runs on the GPU, RAY_CAST on the CPU (default)
   };
   enum GridKinds
   {
@@ -132,12 +133,16 @@ public:
 
   ///@{
   /// Where the pixels' surface points and normals come from: RAY_CAST
-  /// (default: exact, the grid's own triangles; a CPU ray cast per camera
-  /// change) or DEPTH_BUFFER (the renderer's drawn depth, read back every
-  /// frame and traced again when it changes: no ray cast, normals from the
-  /// neighbouring pixels, and every drawn opaque pixel receives AO, glyphs
-  /// and wireframes included, though only the grid's triangles occlude).
-  vtkSetClampMacro(GBuffer, int, RAY_CAST, DEPTH_BUFFER);
+  /// (exact, the grid's own triangles; a CPU ray cast per camera change),
+  /// DEPTH_BUFFER (the renderer's drawn depth, read every frame and traced
+  /// again when it changes: no ray cast, normals from the neighbouring
+  /// pixels, and every drawn opaque pixel receives AO, glyphs and
+  /// wireframes included, though only the grid's triangles occlude; with
+  /// VCT on the GPU the whole frame stays there: depth, G-buffer, cones and
+  /// combine, nothing read back), or GBUFFER_AUTO (default): DEPTH_BUFFER
+  /// where the AO runs on the GPU (Backend), RAY_CAST on the CPU. The
+  /// report's "gbuffer" says which one a frame used.
+  vtkSetClampMacro(GBuffer, int, RAY_CAST, GBUFFER_AUTO);
   vtkGetMacro(GBuffer, int);
   ///@}
 
@@ -249,7 +254,7 @@ protected:
   int Method = VCT;
   int ApplyTo = AMBIENT_TERM;
   int Grid = WORLD_GRID;
-  int GBuffer = RAY_CAST;
+  int GBuffer = GBUFFER_AUTO;
   bool OccludingVolumes = true;
   double Radius = 0.0;
   double Strength = 1.0;

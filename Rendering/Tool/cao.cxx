@@ -17,6 +17,7 @@
 #include "caoRender.h"
 #include "caoSurface.h"
 #include "caoBenchSurface.h"
+#include "caoBenchSurfaceFrame.h"
 #include "caoBenchSurfaceScale.h"
 
 #include "vtkCAOClipMaps.h"
@@ -962,6 +963,8 @@ int main(int argc, char* argv[])
         std::cout << caocli::BenchSurfaceUsage;
       else if (command == "bench" && argc > 2 && std::string(argv[2]) == "surface-scale")
         std::cout << caocli::BenchSurfaceScaleUsage;
+      else if (command == "bench" && argc > 2 && std::string(argv[2]) == "surface-frame")
+        std::cout << caocli::BenchSurfaceFrameUsage;
       else if (command == "bench")
         std::cout << caocli::BenchUsage;
       else if (command == "surface")
@@ -977,6 +980,8 @@ int main(int argc, char* argv[])
     return caocli::RunBenchSurface(argc, argv);
   if (argc >= 3 && std::string(argv[1]) == "bench" && std::string(argv[2]) == "surface-scale")
     return caocli::RunBenchSurfaceScale(argc, argv);
+  if (argc >= 3 && std::string(argv[1]) == "bench" && std::string(argv[2]) == "surface-frame")
+    return caocli::RunBenchSurfaceFrame(argc, argv);
   if (argc >= 2 && std::string(argv[1]) == "bench")
     return caocli::RunBench(argc, argv);
   if (argc >= 2 && std::string(argv[1]) == "surface")
@@ -986,7 +991,7 @@ int main(int argc, char* argv[])
   {
     std::cout << Usage << "\n" << caocli::RenderUsage << "\n" << caocli::BenchUsage << "\n"
               << caocli::SurfaceUsage << "\n" << caocli::BenchSurfaceUsage << "\n"
-              << caocli::BenchSurfaceScaleUsage;
+              << caocli::BenchSurfaceScaleUsage << "\n" << caocli::BenchSurfaceFrameUsage;
     return 0;
   }
   Options o;

@@ -334,7 +334,8 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
 struct Row
 {
   std::string mesh, method, label;
-  int series = 0; ///< 0 vct (CPU), 1 ssao, 2 none, 3 reference, 4 vct (GL), 5 hbao, 6 vao, 7 hbao (GL), 8 vao (GL)
+  int series = 0; ///< 0 vct (CPU), 1 ssao, 2 none, 3 reference, 4 vct (GL), 5 hbao, 6 vao, 7 hbao (GL), 8 vao (GL),
+                  ///< 9 ssao (GPU time the pass adds)
   double ms = 0, gridMs = -1;
   double ownRmse = -1; ///< against the reference in the method's own falloff (-1: none)
   std::string ownFalloff;
@@ -692,6 +693,26 @@ int RunBenchSurface(int argc, char* argv[])
         row.ms = Median(times);
         Measure(row, a, b, ref.ao, ref2.ao, band);
         rows.push_back(row);
+        if (!o.vctGL)
+          continue;
+        // Beside the GPU rows, in their measure: the GPU time the pass adds
+        // to a frame (timer queries: its frame less the plain frame).
+        double withPass = 0, plain = 0;
+        std::string why;
+        if (!ssao.RenderGPUTime(camera, radius, k, o.repeats, withPass, plain, why))
+        {
+          notes.push_back("ssao-gl k" + std::to_string(k) + " skipped: " + why);
+          continue;
+        }
+        row.label = "ssao-gl k" + std::to_string(k);
+        row.method = "ssao-gl";
+        row.series = 9;
+        row.ms = std::max(0.0, withPass - plain);
+        rows.push_back(row);
+        std::ostringstream note;
+        note << std::fixed << std::setprecision(3) << name << ": vtkSSAOPass k" << k << " frame " << withPass
+             << " ms GPU, the plain frame " << plain << " ms GPU";
+        notes.push_back(note.str());
       }
   }
   // The mean over meshes per configuration, the Pareto front over
@@ -734,7 +755,7 @@ int RunBenchSurface(int argc, char* argv[])
   for (std::size_t i = 0; i < means.size(); ++i)
     if (means[i].series != 2 && means[i].series != 3 && means[i].ms > 0 && means[i].rmse > 0)
     {
-      const int plotSeries[] = { 0, 1, -1, -1, 2, 3, 4, 5, 6 };
+      const int plotSeries[] = { 0, 1, -1, -1, 2, 3, 4, 5, 6, 7 };
       points.push_back({ means[i].ms, means[i].rmse, means[i].label, plotSeries[means[i].series] });
       pointOf.push_back(i);
     }
@@ -766,7 +787,9 @@ int RunBenchSurface(int argc, char* argv[])
             << (o.vctGL ? gpu.Description() : std::string("-")) << " (GPU queries, the trace only), "
             << "hbao and vao on the CPU (wall clock, their blur and filter included, the G-buffer not), "
             << "hbao-gl and vao-gl (with --vct-backends gl) by GPU queries of the estimator (the host's blur not), "
-            << "ssao in the offscreen window (wall clock, vtkSSAOPass with blur), the reference on the CPU. "
+            << "ssao in the offscreen window (wall clock, vtkSSAOPass with blur), ssao-gl (with --vct-backends gl) "
+            << "the GPU time vtkSSAOPass adds to a frame (timer queries around its frame less around the plain "
+            << "frame: its G-buffer draw, AO, blur and combine), the reference on the CPU. "
             << "Own-definition RMSE: against the reference in the method's own falloff (hbao: step, fig11a "
             << "linear; vao: quartic, (r/R)^4).\n";
   for (const std::string& n : notes)
@@ -805,7 +828,7 @@ int RunBenchSurface(int argc, char* argv[])
   if (!points.empty())
   {
     if (!WriteErrorTimePlot(points, { "vct (CPU)", "vtkSSAOPass (GL)", "vct (GL)", "hbao (CPU)", "vao (CPU)", "hbao (GL)",
-                                      "vao (GL)" },
+                                      "vao (GL)", "vtkSSAOPass (GPU time)" },
           "Surface AO: RMSE against the ray-traced reference", "ms per frame", "RMSE",
           o.output + "/surface.png", 900, 600, error))
       std::cout << "note: no plot: " << error << "\n";

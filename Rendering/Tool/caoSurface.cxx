@@ -14,6 +14,8 @@
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
+#include "vtkOpenGLRenderTimer.h"
+#include "vtkOpenGLRenderWindow.h"
 #include "vtkPNGWriter.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -657,6 +659,55 @@ bool SSAORenderer::Render(vtkCamera* camera, double radius, int kernelSize, int 
     if (z->GetValue(static_cast<vtkIdType>(i)) < 1.0f)
       ao[i] = rgba->GetValue(static_cast<vtkIdType>(4 * i));
   return true;
+}
+
+bool SSAORenderer::RenderGPUTime(vtkCamera* camera, double radius, int kernelSize, int repeats,
+  double& ssaoMs, double& plainMs, std::string& error)
+{
+  if (!this->Window)
+    return error = "the SSAO window is not set up", false;
+  this->Window->MakeCurrent();
+  if (!vtkOpenGLRenderWindow::SafeDownCast(this->Window) || !vtkOpenGLRenderTimer::IsSupported())
+    return error = "the window's OpenGL context has no timer queries", false;
+  this->Pass->SetRadius(radius);
+  this->Pass->SetKernelSize(static_cast<unsigned int>(kernelSize));
+  this->Renderer->GetActiveCamera()->DeepCopy(camera);
+  vtkOpenGLRenderTimer timer;
+  bool ok = true;
+  for (int mode = 0; mode < 2 && ok; ++mode)
+  {
+    // mode 0: with the pass; 1: the renderer's own steps (the scene drawn once)
+    this->Renderer->SetPass(mode == 0 ? static_cast<vtkRenderPass*>(this->Pass) : nullptr);
+    this->Window->Render(); // warm up: shaders, textures
+    std::vector<double> times;
+    for (int r = 0; r < std::max(1, repeats) && ok; ++r)
+    {
+      this->Window->MakeCurrent();
+      timer.Reset();
+      timer.Start();
+      this->Window->Render();
+      this->Window->MakeCurrent();
+      timer.Stop();
+      vtkNew<vtkFloatArray> probe; // wait for the frame
+      this->Window->GetRGBAPixelData(0, 0, 0, 0, 0, probe);
+      for (int spin = 0; !timer.Ready(); ++spin)
+        if (spin > 1000000)
+        {
+          ok = false;
+          error = "the timer query never became ready";
+          break;
+        }
+      times.push_back(timer.GetElapsedMilliseconds());
+    }
+    if (ok)
+    {
+      std::sort(times.begin(), times.end());
+      (mode == 0 ? ssaoMs : plainMs) = times[times.size() / 2];
+    }
+  }
+  timer.ReleaseGraphicsResources();
+  this->Renderer->SetPass(this->Pass);
+  return ok;
 }
 
 bool SurfaceScene::Replicate(int copies, std::string& error)

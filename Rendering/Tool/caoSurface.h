@@ -110,6 +110,12 @@ public:
   /// pixel to wait for it) and reads the AO.
   bool Render(vtkCamera* camera, double radius, int kernelSize, int repeats,
     std::vector<double>& ao, double& ms, std::string& error);
+  /// GPU time (timer queries around the whole frame, median of `repeats`)
+  /// of a frame with vtkSSAOPass and of the same frame without it (the
+  /// scene drawn once), so that their difference is what the pass adds.
+  /// False, with the reason, where the context has no timer queries.
+  bool RenderGPUTime(vtkCamera* camera, double radius, int kernelSize, int repeats,
+    double& ssaoMs, double& plainMs, std::string& error);
   std::string Description;
 
 private:

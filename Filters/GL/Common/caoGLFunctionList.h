@@ -19,6 +19,7 @@
   X(BindImageTexture, BINDIMAGETEXTURE)                                                          \
   X(BindTexture, BINDTEXTURE)                                                                    \
   X(BindVertexArray, BINDVERTEXARRAY)                                                            \
+  X(BlitFramebuffer, BLITFRAMEBUFFER)                                                            \
   X(BlendEquationSeparate, BLENDEQUATIONSEPARATE)                                                \
   X(BlendFuncSeparate, BLENDFUNCSEPARATE)                                                        \
   X(BufferData, BUFFERDATA)                                                                      \
@@ -50,6 +51,7 @@
   X(Finish, FINISH)                                                                              \
   X(Flush, FLUSH)                                                                                \
   X(FramebufferParameteri, FRAMEBUFFERPARAMETERI)                                                \
+  X(FramebufferTexture2D, FRAMEBUFFERTEXTURE2D)                                                  \
   X(GenBuffers, GENBUFFERS)                                                                      \
   X(GenFramebuffers, GENFRAMEBUFFERS)                                                            \
   X(GenQueries, GENQUERIES)                                                                      \
@@ -58,6 +60,7 @@
   X(GetBooleanv, GETBOOLEANV)                                                                    \
   X(GetBufferSubData, GETBUFFERSUBDATA)                                                          \
   X(GetError, GETERROR)                                                                          \
+  X(GetFramebufferAttachmentParameteriv, GETFRAMEBUFFERATTACHMENTPARAMETERIV)                    \
   X(GetIntegeri_v, GETINTEGERI_V)                                                                \
   X(GetIntegerv, GETINTEGERV)                                                                    \
   X(GetProgramInfoLog, GETPROGRAMINFOLOG)                                                        \
@@ -79,6 +82,8 @@
   X(MemoryBarrier, MEMORYBARRIER)                                                                \
   X(PixelStorei, PIXELSTOREI)                                                                    \
   X(QueryCounter, QUERYCOUNTER)                                                                  \
+  X(ReadBuffer, READBUFFER)                                                                      \
+  X(ReadPixels, READPIXELS)                                                                      \
   X(ShaderSource, SHADERSOURCE)                                                                  \
   X(TexImage2D, TEXIMAGE2D)                                                                      \
   X(TexParameteri, TEXPARAMETERI)                                                                \

@@ -16,6 +16,8 @@ StateGuard::StateGuard(const Functions& gl, bool active)
   gl.GetIntegerv(GL_UNIFORM_BUFFER_BINDING, &this->UniformBuffer);
   gl.GetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &this->StorageBuffer);
   gl.GetIntegerv(GL_COPY_READ_BUFFER_BINDING, &this->CopyRead);
+  gl.GetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &this->PixelPack);
+  gl.GetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &this->PixelUnpack);
   gl.GetIntegerv(GL_COPY_WRITE_BUFFER_BINDING, &this->CopyWrite);
   gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &this->DrawFramebuffer);
   gl.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &this->ReadFramebuffer);
@@ -68,6 +70,8 @@ StateGuard::~StateGuard()
   gl.BindBuffer(GL_UNIFORM_BUFFER, static_cast<GLuint>(this->UniformBuffer));
   gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, static_cast<GLuint>(this->StorageBuffer));
   gl.BindBuffer(GL_COPY_READ_BUFFER, static_cast<GLuint>(this->CopyRead));
+  gl.BindBuffer(GL_PIXEL_PACK_BUFFER, static_cast<GLuint>(this->PixelPack));
+  gl.BindBuffer(GL_PIXEL_UNPACK_BUFFER, static_cast<GLuint>(this->PixelUnpack));
   gl.BindBuffer(GL_COPY_WRITE_BUFFER, static_cast<GLuint>(this->CopyWrite));
   gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(this->DrawFramebuffer));
   gl.BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(this->ReadFramebuffer));

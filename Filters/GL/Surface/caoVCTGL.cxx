@@ -290,12 +290,49 @@ bool VCTEngine::Trace(const VCTPlan& plan, const float* points, const float* nor
   std::size_t count, std::vector<float>& ao, double& ms, std::string& error)
 {
   Impl& p = *this->P;
+  if (count > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
+  {
+    error = "too many points for one trace";
+    return false;
+  }
+  std::vector<float> p4(4 * count), n4(4 * count);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    for (int d = 0; d < 3; ++d)
+    {
+      p4[4 * i + d] = points[3 * i + d];
+      n4[4 * i + d] = normals[3 * i + d];
+    }
+    n4[4 * i + 3] = 1.0f; // a point
+  }
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
+    return false;
+  const Functions& gl = p.gl;
+  StateGuard guard(gl, p.Ctx.Kind() == ContextKind::External);
+  p.Upload(p.tracePoints, GL_SHADER_STORAGE_BUFFER, p4.size() * sizeof(float), p4.data());
+  p.Upload(p.traceNormals, GL_SHADER_STORAGE_BUFFER, n4.size() * sizeof(float), n4.data());
+  p.Upload(p.ao, GL_SHADER_STORAGE_BUFFER, count * sizeof(float), nullptr);
+  if (!this->TracePixels(plan, p.tracePoints, p.traceNormals, p.ao, static_cast<std::int64_t>(count), ms, error))
+    return false;
+  ao.resize(count);
+  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, p.ao);
+  gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(std::max<std::size_t>(count, 1) * sizeof(float)), ao.data());
+  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+  return CheckError(gl, "reading the cone tracing's AO", error);
+}
+
+bool VCTEngine::TracePixels(const VCTPlan& plan, unsigned points, unsigned normals, unsigned ao,
+  std::int64_t count, double& ms, std::string& error)
+{
+  Impl& p = *this->P;
+  ms = 0.0;
   if (!p.grid || p.shape.nx < 1)
   {
     error = "no grid on the GPU (voxelize or upload one first)";
     return false;
   }
-  if (count > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
+  if (count < 0 || count > std::numeric_limits<std::int32_t>::max())
   {
     error = "too many points for one trace";
     return false;
@@ -306,14 +343,9 @@ bool VCTEngine::Trace(const VCTPlan& plan, const float* points, const float* nor
     error = "the plan exceeds the GPU's limits (cones, spheres, prisms)";
     return false;
   }
+  if (count == 0)
+    return true;
   const layout::VCTParams params = MakeVCTParams(p.shape, plan, static_cast<int>(count));
-  std::vector<float> p4(4 * count), n4(4 * count);
-  for (std::size_t i = 0; i < count; ++i)
-    for (int d = 0; d < 3; ++d)
-    {
-      p4[4 * i + d] = points[3 * i + d];
-      n4[4 * i + d] = normals[3 * i + d];
-    }
   CurrentScope scope(p.Ctx);
   if (!scope.Ok(error))
     return false;
@@ -323,24 +355,18 @@ bool VCTEngine::Trace(const VCTPlan& plan, const float* points, const float* nor
     return false;
   p.timer.Allocate(gl, p.Ctx.UsesHostClock());
   p.Upload(p.params, GL_UNIFORM_BUFFER, sizeof(params), &params);
-  p.Upload(p.tracePoints, GL_SHADER_STORAGE_BUFFER, p4.size() * sizeof(float), p4.data());
-  p.Upload(p.traceNormals, GL_SHADER_STORAGE_BUFFER, n4.size() * sizeof(float), n4.data());
-  p.Upload(p.ao, GL_SHADER_STORAGE_BUFFER, count * sizeof(float), nullptr);
+  gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   gl.BindBufferBase(GL_UNIFORM_BUFFER, CAO_BINDING_VCT_PARAMS, p.params);
   gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VX_BITS, p.grid);
-  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VCT_POINTS, p.tracePoints);
-  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VCT_NORMALS, p.traceNormals);
-  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VCT_AO, p.ao);
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VCT_POINTS, points);
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VCT_NORMALS, normals);
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VCT_AO, ao);
   gl.UseProgram(p.trace.Id());
   p.timer.Begin(gl, STrace);
-  p.Dispatch((static_cast<std::int64_t>(count) + 63) / 64);
+  p.Dispatch((count + 63) / 64);
   p.timer.End(gl, STrace);
-  gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
   gl.UseProgram(0);
-  ao.resize(count);
-  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, p.ao);
-  gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(std::max<std::size_t>(count, 1) * sizeof(float)), ao.data());
-  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
   if (!CheckError(gl, "the cone tracing", error))
     return false;
   ms = p.timer.Milliseconds(gl, STrace);

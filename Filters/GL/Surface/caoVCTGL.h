@@ -50,6 +50,14 @@ public:
   bool Trace(const VCTPlan& plan, const float* points, const float* normals, std::size_t count,
     std::vector<float>& ao, double& ms, std::string& error);
 
+  /// The AO of `count` points already on the GPU (buffers of this context:
+  /// vec4 points in the grid's frame, vec4 normals whose w is 1 where there
+  /// is a point, 0 where not; float AO out, NaN where no point), with
+  /// `plan` on the grid voxelized or uploaded last; nothing is read back.
+  /// `ms`: GPU time (waits for it).
+  bool TracePixels(const VCTPlan& plan, unsigned points, unsigned normals, unsigned ao, std::int64_t count,
+    double& ms, std::string& error);
+
   /// The AO of every covered pixel of `frame` (cao::VCTFrame's twin):
   /// its points and normals, turned into `grid`'s frame (an eye grid's
   /// axes), traced on the grid voxelized or uploaded last.

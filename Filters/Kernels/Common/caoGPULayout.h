@@ -227,8 +227,33 @@ struct VCTParams
 #define CAO_BINDING_VX_GRID 3      /* storage: uint, the grid the mesh is OR'ed into */
 #define CAO_BINDING_VX_SURFACE 7   /* storage: uint, a closed mesh's surface voxels (OR'ed with its parity) */
 #define CAO_BINDING_VCT_POINTS 4   /* storage: vec4 per point (xyz world, w unused) */
-#define CAO_BINDING_VCT_NORMALS 5  /* storage: vec4 per point (xyz unit normal) */
+#define CAO_BINDING_VCT_NORMALS 5  /* storage: vec4 per point (xyz unit normal; w 0: no point, AO NaN) */
 #define CAO_BINDING_VCT_AO 6       /* storage: float AO per point */
+
+/* A frame kept on the GPU (caoFrameGL, caoFrame.glsl; the pass's GPU path
+ * with the depth G-buffer): the drawn depth read into a buffer, the colours
+ * blitted into textures,
+ * the G-buffer (cao::FrameFromDepth's twin, in double) written where the
+ * cone tracer reads its points and normals, the AO combined into the
+ * colours there. */
+struct FrameParams
+{
+  vec4 ndcToWorld[4]; /* rows (double on the host, float here: the shader gets them in double too, below) */
+  vec4 ndcToWorldLow[4]; /* rows: the double's remainder (ndcToWorld + low = the double) */
+  vec4 toGrid[3];     /* rows of the grid's axes (BitGrid::ToGrid), w 0 */
+  ivec4 image;        /* x: width, y: height, z: 1 whole colour, 0 ambient term; w: 0 */
+  vec4 scalars;       /* x: strength; yzw: 0 */
+};
+#define CAO_BINDING_FR_PARAMS 1    /* uniform block: FrameParams */
+#define CAO_BINDING_FR_DEPTH 0     /* storage: float per pixel, the drawn depth (0..1; 1: background),
+                                      where it cannot be blitted (else a texture on CAO_UNIT_DEPTH) */
+#define CAO_BINDING_FR_PREVIOUS 1  /* storage: float per pixel, the last traced frame's depth (else a
+                                      texture on CAO_UNIT_STATE) */
+#define CAO_IMAGE_FR_COLOR 0       /* image unit: rgba32f, the drawn colour (blitted in), combined in place */
+#define CAO_IMAGE_FR_AMBIENT 1     /* image unit: rgba32f, the ambient term's drawing (blitted in) */
+#define CAO_BINDING_FR_COUNT 7     /* storage: uint [2]: pixels whose depth changed, covered pixels */
+/* The G-buffer goes to CAO_BINDING_VCT_POINTS / _NORMALS (normal w: 1 covered, 0 not), the AO
+ * is read from CAO_BINDING_VCT_AO (NaN: not covered). */
 
 /* The screen-space surface AO (caoScreenSpaceAO.h, caoScreenAO.glsl): one
  * block for horizon-based AO and volumetric AO; the frame's pixels as vec4
@@ -255,6 +280,7 @@ struct ScreenAOParams
 
 #ifdef __cplusplus
 static_assert(sizeof(ScreenAOParams) == (12 + CAO_SS_TILE * CAO_SS_TILE) * 16, "ScreenAOParams must match std140");
+static_assert(sizeof(FrameParams) == 13 * 16, "FrameParams must match std140");
 static_assert(sizeof(DMTriangle) == 128, "DMTriangle must match std430");
 static_assert(sizeof(DMHit) == 16, "DMHit must match std430");
 static_assert(sizeof(DMOffset) == 16, "DMOffset must match std430");

@@ -103,6 +103,11 @@ void main()
   int index = int(gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * 64u);
   if (index >= vct.counts.w)
     return;
+  if (normals[index].w == 0.0) // no point (a pixel not covered)
+  {
+    ao[index] = uintBitsToFloat(0x7fc00000u);
+    return;
+  }
   vec3 p = points[index].xyz, n = normals[index].xyz;
   float invH = vct.origin.w;
   vec3 tx, ty;

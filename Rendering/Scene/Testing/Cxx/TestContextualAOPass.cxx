@@ -207,6 +207,11 @@ int TestContextualAOPass(int, char*[])
   renderer->ResetCameraClippingRange();
   vtkNew<vtkContextualAOPass> pass;
   pass->SetRadius(0.8);
+  // The exact G-buffer for the comparisons with the kernels' ray cast below
+  // (the default, Auto, takes the drawn depth on the GPU: checked with the
+  // GPU frame at the end).
+  Check(pass->GetGBuffer() == vtkContextualAOPass::GBUFFER_AUTO, "GBuffer defaults to Auto");
+  pass->SetGBuffer(vtkContextualAOPass::RAY_CAST);
   // The exact comparisons with the CPU kernels below want the CPU (Auto
   // would take a hardware GPU); Auto and OpenGL are checked on their own.
   pass->SetBackend(vtkContextualAOPass::BACKEND_CPU);
@@ -942,6 +947,187 @@ int TestContextualAOPass(int, char*[])
     Check(pass->GetLastFrameStages() == "gbuffer,trace,combine" && pass->GetVoxelizeCount() > 0,
       "DEPTH_BUFFER: a glyph drawn in front (not in the grid) is traced again without a new grid (" +
         pass->GetLastFrameStages() + ")");
+    pass->SetGBuffer(vtkContextualAOPass::RAY_CAST);
+  }
+  // The GPU frame (Backend OPENGL, VCT, DEPTH_BUFFER): the drawn depth,
+  // G-buffer, cones and combine stay on the window's OpenGL (only two
+  // counters come back). Against the same G-buffer on the CPU: the AO to
+  // float rounding, the picture within a grey level or two; a still frame
+  // or a colour change only combines; a glyph drawn in front changes the
+  // depth and is traced again (the control for the GPU's depth
+  // comparison: without it that frame would only combine); Strength 0
+  // leaves the picture as drawn (the control for the combine); the
+  // ambient-term combine as the CPU's; ReleaseGraphicsResources starts over.
+  {
+    renderer->RemoveAllViewProps();
+    renderer->AddActor(slabActor);
+    renderer->AddActor(sphereActor);
+    sphereActor->GetProperty()->SetColor(0.9, 0.9, 0.9);
+    pass->SetMethod(vtkContextualAOPass::VCT);
+    pass->SetGBuffer(vtkContextualAOPass::DEPTH_BUFFER);
+    vtkRenderWindow* shown = window;
+    auto picture = [shown](std::vector<unsigned char>& rgb) {
+      vtkNew<vtkUnsignedCharArray> c;
+      int* size = shown->GetSize();
+      shown->GetPixelData(0, 0, size[0] - 1, size[1] - 1, 0, c.Get());
+      rgb.assign(c->GetPointer(0), c->GetPointer(0) + c->GetNumberOfValues());
+    };
+    auto differ = [](const std::vector<unsigned char>& a, const std::vector<unsigned char>& b, int& worst) {
+      int count = 0;
+      worst = 0;
+      for (std::size_t i = 0; i < a.size() && i < b.size(); ++i)
+      {
+        const int d = std::abs(int(a[i]) - int(b[i]));
+        worst = std::max(worst, d);
+        count += d > 2;
+      }
+      return count;
+    };
+    int w = 0, h = 0, ox = 0, oy = 0;
+    renderer->GetTiledSizeAndOrigin(&w, &h, &ox, &oy);
+    for (int applyTo : { vtkContextualAOPass::WHOLE_COLOR, vtkContextualAOPass::AMBIENT_TERM })
+    {
+      const std::string mode = applyTo == vtkContextualAOPass::WHOLE_COLOR ? "whole colour" : "ambient term";
+      const std::string combine = applyTo == vtkContextualAOPass::WHOLE_COLOR ? "combine" : "ambient,combine";
+      pass->SetApplyTo(applyTo);
+      pass->SetBackend(vtkContextualAOPass::BACKEND_CPU);
+      window->Render();
+      std::vector<double> cpu(static_cast<std::size_t>(w) * h);
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+          cpu[static_cast<std::size_t>(y) * w + x] = pass->GetPixelAO(x, y);
+      std::vector<unsigned char> cpuPicture, gpuPicture, plain;
+      picture(cpuPicture);
+      pass->SetBackend(vtkContextualAOPass::BACKEND_OPENGL);
+      window->Render();
+      const std::string report = pass->GetLastFrameReport();
+      const std::string first = pass->GetLastFrameStages();
+      picture(gpuPicture);
+      // Against the CPU's AO from the same drawn depth: the depth comes by a
+      // blit into a texture there and by glReadPixels here, whose 24-bit to
+      // float conversions may differ in the last bit; a point moved by that
+      // may flip one ray of a cone at a voxel face (one ray: about 0.25 / 6
+      // at Medium). So: the same coverage, a tiny mean, few pixels apart.
+      struct Apart
+      {
+        double sum = 0.0, worst = 0.0;
+        int both = 0, coverage = 0, differing = 0;
+      };
+      auto apart = [&]() {
+        Apart r;
+        for (int y = 0; y < h; ++y)
+          for (int x = 0; x < w; ++x)
+          {
+            const double a = cpu[static_cast<std::size_t>(y) * w + x], b = pass->GetPixelAO(x, y);
+            r.coverage += (a < 0) != (b < 0);
+            if (a < 0 || b < 0)
+              continue;
+            ++r.both;
+            r.sum += std::fabs(a - b);
+            r.worst = std::max(r.worst, std::fabs(a - b));
+            r.differing += std::fabs(a - b) > 1e-3;
+          }
+        return r;
+      };
+      const Apart gpu = apart();
+      int worstLevel = 0;
+      const int off = differ(cpuPicture, gpuPicture, worstLevel);
+      char text[460];
+      std::snprintf(text, sizeof(text),
+        "GPU frame (%s): stages %s; AO against the CPU's depth G-buffer at %d pixels: mean %.2g, largest %.2g, "
+        "%d pixels apart by more than 1e-3, coverage differs at %d; picture: %d channel values off by more than 2 "
+        "(largest %d)",
+        mode.c_str(), first.c_str(), gpu.both, gpu.both ? gpu.sum / gpu.both : 1.0, gpu.worst, gpu.differing,
+        gpu.coverage, off, worstLevel);
+      // (The depth blitted: the EGL window's framebuffer has a depth format the GL reports.)
+      Check(report.find("\"frame_on_gpu\": true") != std::string::npos &&
+          report.find("\"frame_depth\": \"blit\"") != std::string::npos &&
+          first == "voxelize,gbuffer,trace," + combine && gpu.both > 15000 && gpu.coverage == 0 &&
+          gpu.sum / gpu.both < 1e-4 && gpu.differing < 0.002 * gpu.both &&
+          off < 0.002 * static_cast<double>(cpuPicture.size()),
+        text);
+      // Negative control: Low on the GPU frame is not the CPU's Medium, by
+      // ten times the check's bounds at least.
+      pass->SetQuality(1);
+      window->Render();
+      const Apart low = apart();
+      pass->SetQuality(2);
+      window->Render();
+      Check(low.sum / low.both > 1e-3 && low.differing > 0.02 * low.both,
+        "negative control: the GPU frame at Low is apart from the CPU's Medium (mean " +
+          std::to_string(low.sum / low.both) + ", " + std::to_string(low.differing) + " pixels)");
+      std::printf("GPU frame: %s\n", report.c_str());
+      window->Render();
+      const int traces = pass->GetTraceCount();
+      sphereActor->GetProperty()->SetColor(0.9, 0.6, 0.6);
+      window->Render();
+      Check(pass->GetLastFrameStages() == combine && pass->GetTraceCount() == traces,
+        "GPU frame (" + mode + "): a still frame and a colour change only combine (" + pass->GetLastFrameStages() +
+          ")");
+      sphereActor->GetProperty()->SetColor(0.9, 0.9, 0.9);
+      pass->SetStrength(0.0);
+      window->Render();
+      picture(gpuPicture);
+      pass->SetMethod(vtkContextualAOPass::NONE);
+      window->Render();
+      picture(plain);
+      pass->SetMethod(vtkContextualAOPass::VCT);
+      pass->SetStrength(1.0);
+      window->Render();
+      int worstPlain = 0;
+      const int offPlain = differ(plain, gpuPicture, worstPlain);
+      std::vector<unsigned char> dark;
+      picture(dark);
+      int worstDark = 0;
+      differ(plain, dark, worstDark);
+      Check(offPlain == 0 && worstDark > 20,
+        "GPU frame (" + mode + "): Strength 0 leaves the drawn picture (" + std::to_string(offPlain) +
+          " values off), Strength 1 darkens it (by up to " + std::to_string(worstDark) + " levels)");
+    }
+    vtkNew<vtkPoints> at;
+    at->InsertNextPoint(0.8, -0.9, 0.25);
+    vtkNew<vtkPolyData> where;
+    where->SetPoints(at);
+    vtkNew<vtkCubeSource> cube;
+    vtkNew<vtkGlyph3DMapper> glyphs;
+    glyphs->SetInputData(where);
+    glyphs->SetSourceConnection(cube->GetOutputPort());
+    glyphs->SetScaleFactor(0.2);
+    vtkNew<vtkActor> glyphActor;
+    glyphActor->SetMapper(glyphs);
+    renderer->AddActor(glyphActor);
+    const int voxelized = pass->GetVoxelizeCount();
+    window->Render();
+    Check(pass->GetLastFrameStages() == "gbuffer,trace,ambient,combine" && pass->GetVoxelizeCount() == voxelized,
+      "GPU frame: a glyph drawn in front (not in the grid) changes the depth: traced again, no new grid (" +
+        pass->GetLastFrameStages() + ")");
+    window->Render();
+    Check(pass->GetLastFrameStages() == "ambient,combine",
+      "GPU frame: the next frame's depth is the traced one: combine only (" + pass->GetLastFrameStages() + ")");
+    renderer->RemoveActor(glyphActor);
+    pass->ReleaseGraphicsResources(window);
+    window->Render();
+    Check(pass->GetLastFrameStages() == "voxelize,gbuffer,trace,ambient,combine" && pass->GetPixelAO(cx, cy) >= 0.0,
+      "GPU frame: after ReleaseGraphicsResources voxelized and traced again (" + pass->GetLastFrameStages() + ")");
+    window->SetMultiSamples(4);
+    window->Render();
+    const std::string msaa = pass->GetLastFrameReport();
+    Check(msaa.find("\"frame_on_gpu\": false") != std::string::npos &&
+        msaa.find("multisampled") != std::string::npos && pass->GetPixelAO(cx, cy) >= 0.0,
+      "GPU frame: a multisampled framebuffer is read back instead, and the report says so");
+    window->SetMultiSamples(0);
+    // GBuffer Auto: the drawn depth with the GPU frame on OpenGL, the ray
+    // cast on the CPU; the report says which.
+    pass->SetGBuffer(vtkContextualAOPass::GBUFFER_AUTO);
+    window->Render();
+    const std::string autoGPU = pass->GetLastFrameReport();
+    pass->SetBackend(vtkContextualAOPass::BACKEND_CPU);
+    window->Render();
+    const std::string autoCPU = pass->GetLastFrameReport();
+    Check(autoGPU.find("\"gbuffer\": \"depth buffer (auto)\", \"frame_on_gpu\": true") != std::string::npos &&
+        autoCPU.find("\"gbuffer\": \"ray cast (auto)\", \"frame_on_gpu\": false") != std::string::npos &&
+        pass->GetLastFrameStages() == "voxelize,primary,trace,ambient,combine",
+      "GBuffer Auto: the GPU frame on OpenGL, the ray cast on the CPU (" + pass->GetLastFrameStages() + ")");
     pass->SetGBuffer(vtkContextualAOPass::RAY_CAST);
   }
   std::printf("%d failure(s)\n", failures);
