@@ -27,6 +27,7 @@ struct FrameEngine::Impl
   GLuint depthTextures[2] = { 0, 0 }, depthFramebuffers[2] = { 0, 0 };
   GLenum depthFormat = 0;  ///< the textures' format (0: none made)
   bool blitRefused = false; ///< from then on the depth is read into buffers
+  bool blitAllowed = true;  ///< SetBlitDepth
   bool depthInTexture = false; ///< how the depth read last came
   int current = 0;  ///< the texture the depth read last is in
   int traced = -1;  ///< the texture the last G-buffer read (-1: none)
@@ -101,7 +102,7 @@ struct FrameEngine::Impl
   /// one; false when it cannot (then the buffers are used).
   bool BlitDepth(GLuint framebuffer, int x0, int y0, std::string& error)
   {
-    const GLenum format = blitRefused ? 0 : DepthFormatOf(framebuffer);
+    const GLenum format = blitRefused || !blitAllowed ? 0 : DepthFormatOf(framebuffer);
     if (!format)
       return false;
     if (format != depthFormat || depthWidth != width || depthHeight != height)
@@ -454,10 +455,10 @@ std::int64_t FrameEngine::Pixels() const
 bool FrameEngine::Combine(double strength, bool wholeColor, std::string& error)
 {
   Impl& p = *this->P;
-  if (!p.hasColor || !p.hasAO || (!wholeColor && !p.hasAmbient))
-    return error = "the combine needs the colour, the AO and (ambient term) the ambient drawing of this size", false;
   if (!(strength >= 0.0 && strength <= 1.0))
     return error = "the strength must be in [0, 1]", false;
+  if (!p.hasColor || !p.hasAO || (!wholeColor && !p.hasAmbient))
+    return error = "the combine needs the colour, the AO and (ambient term) the ambient drawing of this size", false;
   layout::FrameParams block = p.Block();
   block.image.z = wholeColor ? 1 : 0;
   block.scalars = { static_cast<float>(strength), 0.0f, 0.0f, 0.0f };
@@ -520,6 +521,11 @@ bool FrameEngine::ReadAO(std::vector<float>& ao, std::string& error)
   gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(4 * ao.size()), ao.data());
   gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
   return CheckError(gl, "reading the frame's AO", error);
+}
+
+void FrameEngine::SetBlitDepth(bool blit)
+{
+  this->P->blitAllowed = blit;
 }
 
 bool FrameEngine::DepthBlitted() const

@@ -71,6 +71,10 @@ public:
   /// The AO buffer, read back (NaN: not covered), for inspection.
   bool ReadAO(std::vector<float>& ao, std::string& error);
 
+  /// Whether Read may blit the depth (default true); false always reads it
+  /// into a buffer, the path for framebuffers whose depth format is not
+  /// known (the tests compare the two).
+  void SetBlitDepth(bool blit);
   /// Whether the depth read last was blitted into a texture of the
   /// framebuffer's own depth format (a GPU copy), rather than read into a
   /// buffer (a framebuffer whose depth format is not known, or refused).

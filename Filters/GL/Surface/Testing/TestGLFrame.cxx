@@ -1,0 +1,323 @@
+// The frame kept on the GPU (caoFrameGL), VTK-free, against the CPU:
+// - a sphere on a slab seen by a perspective camera; its exact depth (a CPU
+//   ray cast, into window depth) drawn into a framebuffer (a depth32f
+//   texture and an RGBA8 colour); the GPU frame's G-buffer (from the blitted
+//   depth) and cones against cao::FrameFromDepth and cao::VCTFrame on the
+//   same depth and grid: the same coverage, AO mean under 1e-4, under 0.2%
+//   of pixels apart by more than 1e-3 (float points may flip one ray at a
+//   voxel face); negative control: Low against Medium;
+// - the depth read into a buffer instead (SetBlitDepth(false), the path for
+//   framebuffers whose depth format is not known): the same AO exactly;
+// - ChangedPixels: 0 on the same depth, 1 after one texel changes;
+// - the combine written back into the framebuffer: whole colour c (1 - s
+//   (1 - AO)) and ambient term c - s (1 - AO) a, to the RGBA8 step, the
+//   background kept;
+// - bad input: a colour read before the depth, an empty rectangle, a
+//   combine without AO or with a strength out of [0, 1].
+#include "caoFrameGL.h"
+#include "caoGLTestUtilities.h"
+#include "caoTestUtilities.h"
+#include "caoVCTGL.h"
+
+#include "caoSurfaceReference.h"
+#include "caoVoxelConeTracing.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace
+{
+int failures = 0;
+void Check(bool ok, const std::string& what)
+{
+  std::printf("%s: %s\n", ok ? "ok" : "FAIL", what.c_str());
+  failures += !ok;
+}
+
+/// Row-major 4x4 inverse (Gauss-Jordan with partial pivoting).
+bool Invert(const double m[16], double out[16])
+{
+  double a[4][8];
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 8; ++c)
+      a[r][c] = c < 4 ? m[4 * r + c] : (c - 4 == r ? 1.0 : 0.0);
+  for (int c = 0; c < 4; ++c)
+  {
+    int p = c;
+    for (int r = c + 1; r < 4; ++r)
+      if (std::fabs(a[r][c]) > std::fabs(a[p][c]))
+        p = r;
+    if (std::fabs(a[p][c]) < 1e-300)
+      return false;
+    std::swap(a[p], a[c]);
+    const double d = a[c][c];
+    for (int k = 0; k < 8; ++k)
+      a[c][k] /= d;
+    for (int r = 0; r < 4; ++r)
+      if (r != c)
+      {
+        const double f = a[r][c];
+        for (int k = 0; k < 8; ++k)
+          a[r][k] -= f * a[c][k];
+      }
+  }
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c)
+      out[4 * r + c] = a[r][c + 4];
+  return true;
+}
+
+/// A look-at perspective camera (eye, centre, up z; 30 degrees, near 1, far 20).
+cao::PixelCamera Camera(int w, int h, double worldToNDC[16])
+{
+  const double eye[3] = { 0.0, -5.0, 3.0 }, centre[3] = { 0.0, 0.0, 0.2 };
+  double f[3] = { centre[0] - eye[0], centre[1] - eye[1], centre[2] - eye[2] };
+  const double lf = std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+  for (double& v : f)
+    v /= lf;
+  double s[3] = { f[1] * 1.0 - f[2] * 0.0, f[2] * 0.0 - f[0] * 1.0, 0.0 }; // f x (0, 0, 1)
+  const double ls = std::sqrt(s[0] * s[0] + s[1] * s[1]);
+  s[0] /= ls;
+  s[1] /= ls;
+  const double u[3] = { s[1] * f[2] - s[2] * f[1], s[2] * f[0] - s[0] * f[2], s[0] * f[1] - s[1] * f[0] };
+  const double view[16] = { s[0], s[1], s[2], -(s[0] * eye[0] + s[1] * eye[1] + s[2] * eye[2]), u[0], u[1], u[2],
+    -(u[0] * eye[0] + u[1] * eye[1] + u[2] * eye[2]), -f[0], -f[1], -f[2],
+    f[0] * eye[0] + f[1] * eye[1] + f[2] * eye[2], 0, 0, 0, 1 };
+  const double n = 1.0, fa = 20.0, t = std::tan(15.0 * 3.141592653589793 / 180.0), aspect = double(w) / h;
+  const double proj[16] = { 1.0 / (aspect * t), 0, 0, 0, 0, 1.0 / t, 0, 0, 0, 0, -(fa + n) / (fa - n),
+    -2.0 * fa * n / (fa - n), 0, 0, -1, 0 };
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c)
+    {
+      worldToNDC[4 * r + c] = 0.0;
+      for (int k = 0; k < 4; ++k)
+        worldToNDC[4 * r + c] += proj[4 * r + k] * view[4 * k + c];
+    }
+  cao::PixelCamera camera;
+  camera.width = w;
+  camera.height = h;
+  Invert(worldToNDC, camera.ndcToWorld);
+  return camera;
+}
+}
+
+int TestGLFrame(int argc, char* argv[])
+{
+  auto context = caogltest::ContextOrSkip(caogltest::KindFromArgs(argc, argv));
+  if (!context)
+    return caogltest::Skip;
+  // The scene and its grid.
+  std::vector<double> sphere, slab;
+  std::vector<std::int64_t> sphereTris, slabTris;
+  caotest::UVSphere(0.5, 64, sphere, sphereTris);
+  for (std::size_t i = 2; i < sphere.size(); i += 3)
+    sphere[i] += 0.5;
+  slab = { -2, -2, -0.4, 2, -2, -0.4, 2, 2, -0.4, -2, 2, -0.4, -2, -2, 0, 2, -2, 0, 2, 2, 0, -2, 2, 0 };
+  slabTris = { 0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4, 2, 3, 7, 2, 7, 6, 1, 2, 6, 1, 6, 5, 3, 0, 4,
+    3, 4, 7 };
+  const std::vector<cao::MeshView> meshes = { { &sphere, &sphereTris }, { &slab, &slabTris } };
+  std::vector<double> all = slab;
+  std::vector<std::int64_t> allTris = slabTris;
+  for (std::int64_t id : sphereTris)
+    allTris.push_back(id + 8);
+  all.insert(all.end(), sphere.begin(), sphere.end());
+  std::string error;
+  cao::TriangleBVH bvh;
+  cao::BitGrid grid;
+  CAO_CHECK(bvh.Build(all, allTris, error), "%s", error.c_str());
+  CAO_CHECK(cao::VoxelizeWorld(meshes, bvh.Bounds(), 0.85, 256, grid, error), "%s", error.c_str());
+  // The exact depth of each pixel, in window depth.
+  const int w = 160, h = 120;
+  double worldToNDC[16];
+  const cao::PixelCamera camera = Camera(w, h, worldToNDC);
+  cao::SurfaceFrame cast;
+  CAO_CHECK(cao::CastPrimary(bvh, camera, cast, error), "%s", error.c_str());
+  std::vector<float> depth(static_cast<std::size_t>(w) * h, 1.0f);
+  for (std::size_t k = 0; k < depth.size(); ++k)
+    if (cast.triangle[k] >= 0)
+    {
+      const double* p = &cast.position[3 * k];
+      const double* m = worldToNDC;
+      const double cw = m[12] * p[0] + m[13] * p[1] + m[14] * p[2] + m[15];
+      const double z = (m[8] * p[0] + m[9] * p[1] + m[10] * p[2] + m[11]) / cw;
+      depth[k] = static_cast<float>(0.5 * z + 0.5);
+    }
+  // The CPU's AO from that depth.
+  cao::VCTSettings settings;
+  settings.radius = 0.8;
+  cao::VCTPlan plan, low;
+  CAO_CHECK(cao::BuildVCTPlan(settings, grid, plan, error), "%s", error.c_str());
+  settings.quality = cao::VCTQuality::Low;
+  CAO_CHECK(cao::BuildVCTPlan(settings, grid, low, error), "%s", error.c_str());
+  cao::SurfaceFrame cpu;
+  CAO_CHECK(cao::FrameFromDepth(camera, depth, cpu, error) && cao::VCTFrame(grid, plan, cpu, 1, error), "%s",
+    error.c_str());
+  // A framebuffer holding that depth and a colour.
+  cao::gl::CurrentScope scope(*context);
+  CAO_CHECK(scope.Ok(error), "%s", error.c_str());
+  const cao::gl::Functions& gl = context->GL();
+  GLuint textures[2], fbo = 0;
+  gl.GenTextures(2, textures);
+  gl.BindTexture(GL_TEXTURE_2D, textures[0]);
+  gl.TexStorage2D(GL_TEXTURE_2D, 1, GL_DEPTH_COMPONENT32F, w, h);
+  gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  gl.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+  const unsigned char colour[4] = { 204, 153, 102, 255 }, ambientColour[4] = { 51, 51, 51, 255 };
+  auto fill = [&](const unsigned char c[4]) {
+    std::vector<unsigned char> px(4 * static_cast<std::size_t>(w) * h);
+    for (std::size_t i = 0; i < px.size(); ++i)
+      px[i] = c[i % 4];
+    gl.BindTexture(GL_TEXTURE_2D, textures[1]);
+    gl.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, px.data());
+  };
+  gl.BindTexture(GL_TEXTURE_2D, textures[1]);
+  gl.TexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, w, h);
+  fill(colour);
+  gl.GenFramebuffers(1, &fbo);
+  gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+  gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, textures[0], 0);
+  gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, textures[1], 0);
+  CAO_CHECK(gl.CheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE, "the test framebuffer");
+  gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+
+  // The GPU frame, the depth blitted and read.
+  cao::gl::VCTEngine cones(*context);
+  CAO_CHECK(cones.Upload(grid, error), "%s", error.c_str());
+  struct Apart
+  {
+    double sum = 0, worst = 0;
+    int both = 0, coverage = 0, differing = 0;
+  };
+  auto compare = [&](const std::vector<float>& ao, const cao::SurfaceFrame& ref) {
+    Apart r;
+    for (std::size_t k = 0; k < ao.size(); ++k)
+    {
+      const bool a = std::isfinite(ref.ao[k]), b = std::isfinite(ao[k]);
+      r.coverage += a != b;
+      if (!a || !b)
+        continue;
+      ++r.both;
+      const double d = std::fabs(ref.ao[k] - ao[k]);
+      r.sum += d;
+      r.worst = std::max(r.worst, d);
+      r.differing += d > 1e-3;
+    }
+    return r;
+  };
+  // (A fresh engine counts every pixel as changed; a traced one, none on the same depth.)
+  auto run = [&](cao::gl::FrameEngine& frame, const cao::VCTPlan& p, std::vector<float>& ao, bool fresh) {
+    std::int64_t changed = -1, covered = 0;
+    double ms = 0;
+    return frame.Read(cao::gl::FrameEngine::Depth, fbo, 0, 0, w, h, error) && frame.ChangedPixels(changed, error) &&
+      frame.GBuffer(camera.ndcToWorld, grid.axes, covered, error) &&
+      cones.TracePixels(p, frame.PointBuffer(), frame.NormalBuffer(), frame.AOBuffer(), frame.Pixels(), ms, error) &&
+      frame.ReadAO(ao, error) && changed == (fresh ? frame.Pixels() : 0) && covered == cpu.covered;
+  };
+  cao::gl::FrameEngine blitted(*context), read(*context);
+  read.SetBlitDepth(false);
+  std::vector<float> aoBlit, aoRead, aoLow;
+  CAO_CHECK(run(blitted, plan, aoBlit, true), "blit: %s", error.c_str());
+  CAO_CHECK(run(read, plan, aoRead, true), "read: %s", error.c_str());
+  const Apart gpu = compare(aoBlit, cpu);
+  char text[400];
+  std::snprintf(text, sizeof(text),
+    "the GPU frame (depth %s) against the CPU's FrameFromDepth + VCTFrame at %d pixels: mean %.2g, largest %.2g, "
+    "%d apart by more than 1e-3, coverage differs at %d", blitted.DepthBlitted() ? "blitted" : "read", gpu.both,
+    gpu.sum / std::max(gpu.both, 1), gpu.worst, gpu.differing, gpu.coverage);
+  Check(blitted.DepthBlitted() && gpu.both > 5000 && gpu.coverage == 0 && gpu.sum / gpu.both < 1e-4 &&
+      gpu.differing < 0.002 * gpu.both, text);
+  int same = 0;
+  for (std::size_t k = 0; k < aoBlit.size(); ++k)
+    same += (std::isnan(aoBlit[k]) && std::isnan(aoRead[k])) || aoBlit[k] == aoRead[k];
+  Check(!read.DepthBlitted() && same == static_cast<int>(aoBlit.size()),
+    "the depth read into a buffer gives the blitted path's AO exactly (" + std::to_string(same) + " of " +
+      std::to_string(aoBlit.size()) + " pixels)");
+  CAO_CHECK(run(blitted, low, aoLow, false), "low: %s", error.c_str());
+  const Apart lowApart = compare(aoLow, cpu);
+  Check(lowApart.sum / lowApart.both > 1e-3 && lowApart.differing > 0.02 * lowApart.both,
+    "negative control: Low is apart from the CPU's Medium (mean " + std::to_string(lowApart.sum / lowApart.both) +
+      ", " + std::to_string(lowApart.differing) + " pixels)");
+  CAO_CHECK(run(blitted, plan, aoBlit, false), "again: %s", error.c_str());
+
+  // ChangedPixels: nothing on the same depth; one texel moved, one pixel.
+  for (cao::gl::FrameEngine* frame : { &blitted, &read })
+  {
+    std::int64_t none = -1, one = -1;
+    const bool ok = frame->Read(cao::gl::FrameEngine::Depth, fbo, 0, 0, w, h, error) &&
+      frame->ChangedPixels(none, error);
+    const float moved = 0.25f;
+    gl.BindTexture(GL_TEXTURE_2D, textures[0]);
+    gl.TexSubImage2D(GL_TEXTURE_2D, 0, w / 2, h / 2, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, &moved);
+    const bool ok2 = frame->Read(cao::gl::FrameEngine::Depth, fbo, 0, 0, w, h, error) &&
+      frame->ChangedPixels(one, error);
+    gl.BindTexture(GL_TEXTURE_2D, textures[0]);
+    gl.TexSubImage2D(GL_TEXTURE_2D, 0, w / 2, h / 2, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT,
+      &depth[static_cast<std::size_t>(h / 2) * w + w / 2]);
+    Check(ok && ok2 && none == 0 && one == 1,
+      std::string("ChangedPixels (depth ") + (frame->DepthBlitted() ? "blitted" : "read") + "): " +
+        std::to_string(none) + " on the same depth, " + std::to_string(one) + " after one texel moved " + error);
+  }
+
+  // The combine, written back into the framebuffer.
+  for (int whole = 1; whole >= 0; --whole)
+  {
+    fill(ambientColour);
+    bool ok = blitted.Read(cao::gl::FrameEngine::Depth, fbo, 0, 0, w, h, error) &&
+      (whole || blitted.Read(cao::gl::FrameEngine::Ambient, fbo, 0, 0, w, h, error));
+    fill(colour);
+    std::int64_t changed = 0, covered = 0;
+    double ms = 0;
+    ok = ok && blitted.ChangedPixels(changed, error) &&
+      blitted.GBuffer(camera.ndcToWorld, grid.axes, covered, error) &&
+      cones.TracePixels(plan, blitted.PointBuffer(), blitted.NormalBuffer(), blitted.AOBuffer(), blitted.Pixels(), ms,
+        error) &&
+      blitted.Read(cao::gl::FrameEngine::Color, fbo, 0, 0, w, h, error) &&
+      blitted.Combine(0.8, whole == 1, error) && blitted.Write(fbo, 0, 0, error) && blitted.ReadAO(aoBlit, error);
+    std::vector<unsigned char> px(4 * static_cast<std::size_t>(w) * h);
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl.ReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, px.data());
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    double worst = 0.0, worstOther = 0.0; // (other: the formula at strength 1, the control)
+    int background = 0, darkened = 0;
+    for (std::size_t k = 0; k < aoBlit.size(); ++k)
+      for (int c = 0; c < 3; ++c)
+      {
+        const double own = colour[c] / 255.0, amb = ambientColour[c] / 255.0;
+        double expect = own;
+        if (std::isfinite(aoBlit[k]))
+        {
+          const double dark = 0.8 * (1.0 - std::min(1.0, std::max(0.0, double(aoBlit[k]))));
+          expect = whole ? own * (1.0 - dark) : std::max(0.0, own - dark * amb);
+          darkened += c == 0 && px[4 * k] < colour[0];
+          const double full = dark / 0.8;
+          worstOther = std::max(worstOther,
+            std::fabs(px[4 * k + c] / 255.0 - (whole ? own * (1.0 - full) : std::max(0.0, own - full * amb))));
+        }
+        else
+          background += c == 0 && px[4 * k] == colour[0];
+        worst = std::max(worst, std::fabs(px[4 * k + c] / 255.0 - expect));
+      }
+    std::snprintf(text, sizeof(text),
+      "the combine (%s) written back: every channel within %.4f of the formula (RGBA8: half a step is 0.0020; "
+      "control: %.4f from it at strength 1), %d pixels darkened, %d background pixels kept %s",
+      whole ? "whole colour" : "ambient term", worst, worstOther, darkened, background, error.c_str());
+    Check(ok && worst <= 0.5 / 255.0 + 1e-6 && worstOther > 2.0 / 255.0 && darkened > 1000 &&
+        background == static_cast<int>(aoBlit.size()) - static_cast<int>(cpu.covered), text);
+  }
+
+  // Bad input.
+  cao::gl::FrameEngine fresh(*context);
+  std::string e1, e2, e3, e4;
+  const bool colourFirst = fresh.Read(cao::gl::FrameEngine::Color, fbo, 0, 0, w, h, e1);
+  const bool empty = fresh.Read(cao::gl::FrameEngine::Depth, fbo, 0, 0, 0, h, e2);
+  const bool noAO = fresh.Read(cao::gl::FrameEngine::Depth, fbo, 0, 0, w, h, e3) && fresh.Combine(1.0, true, e3);
+  const bool strength = blitted.Combine(1.5, true, e4);
+  Check(!colourFirst && !empty && !noAO && !strength && !e1.empty() && !e2.empty() && !e3.empty() && !e4.empty(),
+    "bad input refused: " + e1 + "; " + e2 + "; " + e3 + "; " + e4);
+  gl.DeleteFramebuffers(1, &fbo);
+  gl.DeleteTextures(2, textures);
+  std::printf("%d failure(s)\n", failures);
+  return failures ? 1 : 0;
+}
