@@ -63,10 +63,15 @@
  *
  * The AO is cao::VCTFrame's, cao::HBAOFrame's or cao::VAOFrame's
  * (Filters/Kernels/Surface) on the CPU, or (Backend) their GL twins on the
- * window's own OpenGL; the pixels' surface points come from the CPU ray
- * cast or the drawn depth either way, and the picture is read back and
- * written through the window (so it works on any OpenGL, slowly on large
- * windows).
+ * window's own OpenGL. The pixels' surface points come from the CPU ray
+ * cast or the drawn depth, and the picture is read back and written
+ * through the window (any OpenGL, slowly on large windows); except VCT on
+ * the GPU with the drawn depth (GBuffer DEPTH_BUFFER, or the default
+ * GBUFFER_AUTO there): then the whole frame stays on the GPU (the depth
+ * and colours blitted in, the G-buffer, the cones and the combine there,
+ * cao::gl::FrameEngine), the report's "frame_on_gpu" says so, and nothing
+ * is read back but two counters; GetPixelAO then reads the AO back on
+ * demand (making the window's context current).
  */
 #ifndef vtkContextualAOPass_h
 #define vtkContextualAOPass_h

@@ -51,6 +51,10 @@ options:
                        adds hbao-gl and vao-gl rows, the screen-space methods' GPU twins)
   --grids LIST         vct grids: world (default), eye (the camera's axes, built again for
                        each camera: its ms/frame includes its grid ms)
+  --gbuffers LIST      the pixels' G-buffer: ray-cast (default: the exact first hits), depth
+                       (adds rows "... depth": the G-buffer from the drawn depth as the
+                       pass's Depth Buffer and GPU frame read it, here the ray cast's depth
+                       in a 24-bit buffer, normals from neighbouring pixels)
   --repeats N          timed runs per configuration, the median kept (default 3)
   --threads N          CPU threads (0: all; default 0)
   --window auto|egl|x  the SSAO window (default auto)
@@ -73,6 +77,7 @@ struct Options
   std::string window = "auto", output = "surface-bench";
   bool vctCPU = true, vctGL = false;
   std::vector<std::string> grids{ "world" };
+  std::vector<int> gbuffers{ 0 }; ///< 0 ray cast, 1 depth
   std::vector<cao::HBAOPreset> hbao{ cao::HBAOPreset::Fig11a, cao::HBAOPreset::Table1, cao::HBAOPreset::Fig11b,
     cao::HBAOPreset::Fig11c, cao::HBAOPreset::Fig11d };
   std::vector<cao::VAOQuality> vao{ cao::VAOQuality::Low, cao::VAOQuality::Medium, cao::VAOQuality::High };
@@ -262,6 +267,18 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
         o.grids.push_back(g);
       }
     }
+    else if (a == "--gbuffers")
+    {
+      if (!value())
+        return false;
+      o.gbuffers.clear();
+      for (const std::string& g : Split(v, ','))
+      {
+        if (g != "ray-cast" && g != "depth")
+          return error = "--gbuffers: '" + g + "' is not ray-cast or depth", false;
+        o.gbuffers.push_back(g == "depth" ? 1 : 0);
+      }
+    }
     else if (a == "--hbao" || a == "--vao")
     {
       if (!value())
@@ -376,6 +393,28 @@ std::vector<char> DiscontinuityBand(const cao::SurfaceFrame& f, int band)
   return out;
 }
 
+/// The pass's depth G-buffer from an exact frame: each covered pixel's
+/// window depth, rounded to a 24-bit depth buffer's step, made into points
+/// and normals by cao::FrameFromDepth.
+bool DepthFrame(const cao::SurfaceFrame& exact, const cao::PixelCamera& camera, cao::SurfaceFrame& out,
+  std::string& error)
+{
+  double m[16];
+  if (!cao::WorldToNDC(camera, m))
+    return error = "the camera's matrix is singular", false;
+  std::vector<float> depth(exact.triangle.size(), 1.0f);
+  const double steps = 16777215.0;
+  for (std::size_t k = 0; k < depth.size(); ++k)
+    if (exact.triangle[k] >= 0)
+    {
+      const double* p = &exact.position[3 * k];
+      const double w = m[12] * p[0] + m[13] * p[1] + m[14] * p[2] + m[15];
+      const double z = (m[8] * p[0] + m[9] * p[1] + m[10] * p[2] + m[11]) / w;
+      depth[k] = static_cast<float>(std::round((0.5 * z + 0.5) * steps) / steps);
+    }
+  return cao::FrameFromDepth(camera, depth, out, error);
+}
+
 void Measure(Row& row, const std::vector<double>& ao, const std::vector<double>& ao2,
   const std::vector<double>& ref, const std::vector<double>& ref2, const std::vector<char>& band)
 {
@@ -445,6 +484,13 @@ int RunBenchSurface(int argc, char* argv[])
     if (!CastFrame(scene, camera, o.view, frame, error) || !CastFrame(scene, camera2, o.view, frame2, error))
       return Fail(1, error);
     const std::vector<char> band = DiscontinuityBand(frame, o.band);
+    // The depth G-buffer's frames: the ray cast's depth, as a 24-bit depth
+    // buffer holds it, made into points and normals as the pass does.
+    cao::SurfaceFrame dframe, dframe2;
+    if (std::find(o.gbuffers.begin(), o.gbuffers.end(), 1) != o.gbuffers.end() &&
+      (!DepthFrame(frame, MakePixelCamera(camera, o.view), dframe, error) ||
+        !DepthFrame(frame2, MakePixelCamera(camera2, o.view), dframe2, error)))
+      return Fail(1, error);
     // The reference at both cameras, and its own error against 4x the rays.
     cao::SurfaceReferenceSettings rs;
     rs.radius = radius;
@@ -529,6 +575,7 @@ int RunBenchSurface(int argc, char* argv[])
         if (!build(camera, grid, gridMs) || (kind == "eye" && !build(camera2, grid2, grid2Ms)))
           return Fail(1, error);
         const cao::BitGrid& second = kind == "eye" ? grid2 : grid;
+        for (int gb : o.gbuffers)
         for (cao::VCTOccupancy occupancy : o.occupancies)
         for (double step : occupancy == cao::VCTOccupancy::Rays ? o.raySteps
                                                                 : std::vector<double>{ cao::VCTSettings().rayStep })
@@ -553,13 +600,14 @@ int RunBenchSurface(int argc, char* argv[])
             return ok;
           };
           std::vector<double> times;
-          cao::SurfaceFrame a = frame, b = frame2;
+          const cao::SurfaceFrame& f1 = gb ? dframe : frame;
+          cao::SurfaceFrame a = f1, b = gb ? dframe2 : frame2;
           double ms = 0, unused = 0;
           if (kind == "eye" && onGPU && !gpu.Voxelize(scene, grid, grid.openEdges, unused, error))
             return Fail(1, error); // the GPU holds one grid: the first camera's
           for (int r = 0; r < o.repeats; ++r)
           {
-            a = frame;
+            a = f1;
             if (!trace(grid, plan, a, ms))
               return Fail(1, error);
             times.push_back(ms);
@@ -573,7 +621,8 @@ int RunBenchSurface(int argc, char* argv[])
           row.method = onGPU ? "vct-gl" : "vct";
           row.label = row.method + " " + cao::VCTQualityName(q) + " " + std::to_string(slices) +
             (kind == "eye" ? " eye" : "") + (occupancy == cao::VCTOccupancy::Volume ? " volume" : "") +
-            (occupancy == cao::VCTOccupancy::Rays && step != cao::VCTSettings().rayStep ? stepLabel.str() : "");
+            (occupancy == cao::VCTOccupancy::Rays && step != cao::VCTSettings().rayStep ? stepLabel.str() : "") +
+            (gb ? " depth" : "");
           row.series = onGPU ? 4 : 0;
           // An eye grid is built again at every camera turn: in the frame.
           row.ms = Median(times) + (kind == "eye" ? gridMs : 0.0);
@@ -602,14 +651,16 @@ int RunBenchSurface(int argc, char* argv[])
     };
     const cao::PixelCamera pixels = MakePixelCamera(camera, o.view), pixels2 = MakePixelCamera(camera2, o.view);
     double gpuMs = 0.0; ///< the GPU estimator's query time (the gl rows)
+    int screenG = 0;    ///< the screen-space rows' G-buffer (o.gbuffers)
     auto screenSpace = [&](const std::string& method, const std::string& label, int series, cao::AOFalloff falloff,
                          const std::function<bool(const cao::PixelCamera&, cao::SurfaceFrame&)>& run) {
       std::vector<double> times;
-      cao::SurfaceFrame a = frame, b = frame2;
+      const cao::SurfaceFrame& f1 = screenG ? dframe : frame;
+      cao::SurfaceFrame a = f1, b = screenG ? dframe2 : frame2;
       const bool onGPU = series >= 7;
       for (int r = 0; r < o.repeats; ++r)
       {
-        a = frame;
+        a = f1;
         start = std::chrono::steady_clock::now();
         gpuMs = 0.0;
         if (!run(pixels, a))
@@ -622,7 +673,7 @@ int RunBenchSurface(int argc, char* argv[])
       Row row;
       row.mesh = name;
       row.method = method;
-      row.label = label;
+      row.label = label + (screenG ? " depth" : "");
       row.series = series;
       row.ms = Median(times);
       Measure(row, a.ao, b.ao, ref.ao, ref2.ao, band);
@@ -641,6 +692,9 @@ int RunBenchSurface(int argc, char* argv[])
       rows.push_back(row);
       return true;
     };
+    for (int gb : o.gbuffers)
+    {
+    screenG = gb;
     for (cao::HBAOPreset preset : o.hbao)
     {
       cao::HBAOSettings hs;
@@ -666,6 +720,7 @@ int RunBenchSurface(int argc, char* argv[])
         !screenSpace("vao-gl", std::string("vao-gl ") + cao::VAOQualityName(q), 8, cao::AOFalloff::Quartic,
           [&](const cao::PixelCamera& c, cao::SurfaceFrame& f) { return gpu.ScreenAO(c, nullptr, &vs, f, gpuMs, error); }))
         return Fail(1, error);
+    }
     }
     // vtkSSAOPass, one window for all kernel sizes.
     SSAORenderer ssao;

@@ -118,7 +118,9 @@ bool CastPrimary(const TriangleBVH& scene, const PixelCamera& camera, SurfaceFra
 /// The camera's G-buffer from a drawn depth buffer instead of a ray cast:
 /// `depth` (width x height window depths, 0 near .. 1 far, 1 = background)
 /// back through `camera` to world positions; each normal from the
-/// neighbours (per axis the one nearer in world space, the pixel's own
+/// neighbours (per axis, with two pixels on each side, the side whose
+/// second difference |2 p1 - p2 - p0| is smaller: the pixel's own face at a
+/// crease; else the neighbour nearer in world space: the pixel's own
 /// surface at a depth step), facing the camera; `triangle` 0 where covered
 /// (the drawn surface, whatever drew it), -1 on the background or where no
 /// neighbour gives a normal. Float depth: positions to about 1e-7 of the

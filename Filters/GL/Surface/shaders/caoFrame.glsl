@@ -3,7 +3,7 @@
 //  0  count the pixels whose drawn depth differs from the last traced one;
 //  1  the G-buffer from the drawn depth: cao::FrameFromDepth's twin, in
 //     double (the pixel's point unprojected, its normal the cross product of
-//     the nearer neighbour per axis, turned to face the camera), into the
+//     a neighbour per axis, turned to face the camera), into the
 //     grid's frame (BitGrid::ToGrid) for the cone tracer; counts covered pixels;
 //  2  the combine: the colour darkened by the AO, as the pass's CPU combine
 //     (ambient term: colour - s (1 - AO) ambient; whole colour: colour (1 - s (1 - AO))).
@@ -121,17 +121,26 @@ void main()
   normals[index] = vec4(0.0);
   if (!Point(i, j, p))
     return;
-  // Per axis the neighbour nearer in world space (the same surface at a step).
+  // Per axis: with two pixels on each side, the side that continues the
+  // pixel's own plane (the smaller |2 p1 - p2 - p0|); else the nearer
+  // neighbour (as cao::FrameFromDepth).
   dvec3 tangent[2];
   for (int axis = 0; axis < 2; ++axis)
   {
-    dvec3 minus, plus;
-    bool hasMinus = axis == 0 ? Point(i - 1, j, minus) : Point(i, j - 1, minus);
-    bool hasPlus = axis == 0 ? Point(i + 1, j, plus) : Point(i, j + 1, plus);
+    ivec2 step = axis == 0 ? ivec2(1, 0) : ivec2(0, 1);
+    dvec3 minus, plus, minus2, plus2;
+    bool hasMinus = Point(i - step.x, j - step.y, minus);
+    bool hasPlus = Point(i + step.x, j + step.y, plus);
     if (!hasMinus && !hasPlus)
       return;
     dvec3 a = plus - p, b = p - minus;
     bool usePlus = hasPlus && (!hasMinus || dot(a, a) <= dot(b, b));
+    if (hasMinus && hasPlus && Point(i - 2 * step.x, j - 2 * step.y, minus2) &&
+      Point(i + 2 * step.x, j + 2 * step.y, plus2))
+    {
+      dvec3 bendPlus = 2.0 * plus - plus2 - p, bendMinus = 2.0 * minus - minus2 - p;
+      usePlus = dot(bendPlus, bendPlus) <= dot(bendMinus, bendMinus);
+    }
     tangent[axis] = usePlus ? a : b;
   }
   dvec3 n = cross(tangent[0], tangent[1]);
