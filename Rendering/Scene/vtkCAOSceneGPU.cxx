@@ -151,8 +151,11 @@ bool SceneGPU::FrameTrace(const cao::VCTPlan& plan, std::string& error)
 {
   double ms = 0.0;
   cao::gl::FrameEngine* f = this->P->frame.get();
-  return this->P->Ready(error) &&
-    this->P->engine->TracePixels(plan, f->PointBuffer(), f->NormalBuffer(), f->AOBuffer(), f->Pixels(), ms, error);
+  if (!this->P->Ready(error) ||
+    !this->P->engine->TracePixels(plan, f->PointBuffer(), f->NormalBuffer(), f->AOBuffer(), f->Pixels(), ms, error))
+    return false;
+  f->AOWritten();
+  return true;
 }
 
 bool SceneGPU::FrameRead(bool ambient, unsigned framebuffer, const int rect[4], std::string& error)

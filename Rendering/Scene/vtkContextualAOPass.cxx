@@ -488,6 +488,7 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
       this->RunGPUFrame(self, s);
     return;
   }
+  this->hostAOStale = false; // frame.ao is the CPU's (or the read-back path's) from here
   this->depthOk = vtkCAO::ReadViewportDepth(ren, this->depth, this->depthError);
   if (this->UpdateGrid(self) && this->UpdateVolumes(self) && this->UpdateAO(self, ren))
     this->Combine(self, s);
@@ -765,6 +766,8 @@ bool vtkContextualAOPass::Internals::RunGPUFrame(vtkContextualAOPass* self, cons
   {
     this->reasons.push_back(!this->stages.empty() ? "new grid" : "camera, drawn depth or settings changed");
     this->viewKey.clear();
+    this->frame = cao::SurfaceFrame(); // no AO until this trace succeeds
+    this->hostAOStale = false;
     vtkMatrix4x4::Invert(&toNDC->Element[0][0], this->ndcToWorld);
     cao::VCTSettings settings;
     settings.quality = static_cast<cao::VCTQuality>(self->Quality);

@@ -317,8 +317,15 @@ int RunBenchSurfaceFrame(int argc, char* argv[])
       std::printf("| %s | %s | %.1f | %.2f | %.1f | %.2f | %s |\n", label.c_str(), where.c_str(), t.turning, a,
         t.still, b, stages.c_str());
       std::fflush(stdout);
-      csv << size.first << "," << size.second << "," << label << ",\"" << where << "\"," << t.turning << ","
-          << t.still << "," << a << "," << b << ",\"" << stages << "\"\n";
+      // (RFC 4180: text fields quoted, their quotes doubled.)
+      auto quoted = [](const std::string& text) {
+        std::string q = "\"";
+        for (char c : text)
+          q += c == '"' ? std::string("\"\"") : std::string(1, c);
+        return q + "\"";
+      };
+      csv << size.first << "," << size.second << "," << quoted(label) << "," << quoted(where) << "," << t.turning
+          << "," << t.still << "," << a << "," << b << "," << quoted(stages) << "\n";
     };
     auto none = []() {};
     // vtkSSAOPass first: the rows' ratios are to it.

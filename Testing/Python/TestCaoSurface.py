@@ -17,7 +17,10 @@
   every pixel and vao 1 on average; the resting sphere darkens both;
   --json reports their settings; against the reference on Bunny, their
   error is below no AO's (negative control: none);
-- cao bench surface: csv, json and plot; every configuration has a row;
+- cao bench surface: csv, json and plot; every configuration has a row
+  (also with the depth G-buffer, near the exact one);
+- cao bench surface-frame: a row per configuration with the pass's stages,
+  its csv, bad options refused;
   the reference's own error is below every method's; no AO is worse than
   any vct row; more slices and quality help; the Pareto front is exactly
   the non-dominated rows;
@@ -209,7 +212,7 @@ check(vb[3].sum() == covered.sum(), "vct sees the reference's pixels (%d, %d)" %
 bench = os.path.join(tmp, "bench")
 p = subprocess.run([tool, "bench", "surface", bunny, "--image", "96x96", "--reference-rays", "128",
                     "--slices", "128,256", "--qualities", "low,high", "--kernels", "32", "--repeats", "1",
-                    "--hbao", "fig11a,table1", "--vao", "medium",
+                    "--hbao", "fig11a,table1", "--vao", "medium", "--gbuffers", "ray-cast,depth",
                     "-o", bench], capture_output=True, text=True, timeout=600)
 check(p.returncode == 0 and all(os.path.exists(os.path.join(bench, f))
                                 for f in ("surface.csv", "surface.json", "surface.png")),
@@ -217,10 +220,16 @@ check(p.returncode == 0 and all(os.path.exists(os.path.join(bench, f))
 if p.returncode == 0:
     result = json.load(open(os.path.join(bench, "surface.json")))
     by = {r["configuration"]: r for r in result["rows"]}
-    expected = {"reference 128 rays", "none", "vct low 128", "vct high 128", "vct low 256", "vct high 256", "ssao k32",
-                "hbao fig11a", "hbao table1", "vao medium"}
-    check(set(by) == expected, "every configuration has a row: %s" % sorted(by))
-    vct = [r for r in result["rows"] if r["method"] == "vct"]
+    exact = {"vct low 128", "vct high 128", "vct low 256", "vct high 256", "hbao fig11a", "hbao table1", "vao medium"}
+    expected = {"reference 128 rays", "none", "ssao k32"} | exact | {c + " depth" for c in exact}
+    check(set(by) == expected, "every configuration has a row, each method's also with the depth G-buffer: %s"
+          % sorted(by))
+    # The depth G-buffer (the drawn depth, normals from neighbouring pixels)
+    # is near the exact one and not equal to it.
+    gap = max(abs(by[c + " depth"]["rmse"] - by[c]["rmse"]) for c in exact)
+    check(0 < gap < 0.05 and all(by[c + " depth"]["pixels"] > 0.95 * by[c]["pixels"] for c in exact),
+          "the depth G-buffer's rows are near the ray cast's (largest RMSE gap %.4f) on as many pixels" % gap)
+    vct = [r for r in result["rows"] if r["method"] == "vct" and not r["configuration"].endswith("depth")]
     check(by["reference 128 rays"]["rmse"] < min(r["rmse"] for r in vct),
           "the reference's own error (%.4f, against 4x the rays) is below every method's (%.4f)"
           % (by["reference 128 rays"]["rmse"], min(r["rmse"] for r in vct)))
@@ -246,6 +255,32 @@ if p.returncode == 0:
           "negative control: a dominated row is not on the front")
 rc = subprocess.run([tool, "bench", "surface", "--slices", "100", bunny], capture_output=True, text=True).returncode
 check(rc == 2, "cao bench surface with --slices 100 exits 2 (%d)" % rc)
+rc = subprocess.run([tool, "bench", "surface", "--gbuffers", "zbuffer", bunny], capture_output=True, text=True).returncode
+check(rc == 2, "cao bench surface with --gbuffers zbuffer exits 2 (%d)" % rc)
+
+# cao bench surface-frame: whole frames of the pass beside vtkSSAOPass, a
+# row per configuration with its stages, the csv; bad options exit 2.
+frames = os.path.join(tmp, "frames")
+p = subprocess.run([tool, "bench", "surface-frame", bunny, "--sizes", "96x64", "--methods", "vct,hbao",
+                    "--backends", "cpu", "--gbuffers", "ray-cast,depth", "--frames", "2", "-o", frames],
+                   capture_output=True, text=True, timeout=600)
+rows = [l for l in p.stdout.splitlines() if l.startswith("| ") and not l.startswith("| configuration")]
+labels = [l.split(" | ")[0][2:] for l in rows]
+check(p.returncode == 0 and labels == ["vtkSSAOPass k32", "plain frame (no AO)", "pass vct (backend cpu)",
+                                       "pass vct (backend cpu, depth G-buffer)", "pass hbao (backend cpu)",
+                                       "pass hbao (backend cpu, depth G-buffer)"] and
+      all('"trace"' in l for l in rows[2:]) and os.path.exists(os.path.join(frames, "surface-frame.csv")),
+      "cao bench surface-frame: a row per configuration with the pass's stages, and its csv (rc %d: %s)"
+      % (p.returncode, labels))
+if p.returncode == 0:
+    import csv
+    table = list(csv.DictReader(open(os.path.join(frames, "surface-frame.csv"))))
+    check(len(table) == 6 and all(float(r["turning_ms"]) > 0 and float(r["still_ms"]) > 0 for r in table) and
+          float(table[0]["turning_over_ssao"]) == 1.0,
+          "its csv: 6 rows, times above 0, ratios to vtkSSAOPass")
+for bad in (["--backends", "vulkan"], ["--frames", "0"], ["--sizes", "8x8"]):
+    rc = subprocess.run([tool, "bench", "surface-frame", bunny] + bad, capture_output=True, text=True).returncode
+    check(rc == 2, "cao bench surface-frame %s exits 2 (%d)" % (" ".join(bad), rc))
 
 # A legacy .vtk polygonal mesh reads as the .vtp does; a legacy volume is
 # refused with what it holds.

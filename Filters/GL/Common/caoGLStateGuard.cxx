@@ -38,6 +38,21 @@ StateGuard::StateGuard(const Functions& gl, bool active)
   gl.GetIntegerv(GL_BLEND_EQUATION_ALPHA, &this->BlendEquation[1]);
   gl.GetIntegerv(GL_UNPACK_ALIGNMENT, &this->UnpackAlignment);
   gl.GetIntegerv(GL_PACK_ALIGNMENT, &this->PackAlignment);
+  const GLenum packs[3] = { GL_PACK_ROW_LENGTH, GL_PACK_SKIP_PIXELS, GL_PACK_SKIP_ROWS };
+  const GLenum unpacks[3] = { GL_UNPACK_ROW_LENGTH, GL_UNPACK_SKIP_PIXELS, GL_UNPACK_SKIP_ROWS };
+  for (int i = 0; i < 3; ++i)
+  {
+    gl.GetIntegerv(packs[i], &this->PackLayout[i]);
+    gl.GetIntegerv(unpacks[i], &this->UnpackLayout[i]);
+  }
+  const GLenum image[5] = { GL_IMAGE_BINDING_NAME, GL_IMAGE_BINDING_LEVEL, GL_IMAGE_BINDING_LAYERED,
+    GL_IMAGE_BINDING_LAYER, GL_IMAGE_BINDING_ACCESS };
+  for (int u = 0; u < ImageUnits; ++u)
+  {
+    for (int k = 0; k < 5; ++k)
+      gl.GetIntegeri_v(image[k], static_cast<GLuint>(u), &this->Image[u][k]);
+    gl.GetIntegeri_v(GL_IMAGE_BINDING_FORMAT, static_cast<GLuint>(u), &this->ImageFormat[u]);
+  }
   for (int i = 0; i < StorageBindings; ++i)
     gl.GetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, static_cast<GLuint>(i),
       &this->StorageIndexed[i]);
@@ -90,6 +105,17 @@ StateGuard::~StateGuard()
     static_cast<GLenum>(this->BlendEquation[0]), static_cast<GLenum>(this->BlendEquation[1]));
   gl.PixelStorei(GL_UNPACK_ALIGNMENT, this->UnpackAlignment);
   gl.PixelStorei(GL_PACK_ALIGNMENT, this->PackAlignment);
+  const GLenum packs[3] = { GL_PACK_ROW_LENGTH, GL_PACK_SKIP_PIXELS, GL_PACK_SKIP_ROWS };
+  const GLenum unpacks[3] = { GL_UNPACK_ROW_LENGTH, GL_UNPACK_SKIP_PIXELS, GL_UNPACK_SKIP_ROWS };
+  for (int i = 0; i < 3; ++i)
+  {
+    gl.PixelStorei(packs[i], this->PackLayout[i]);
+    gl.PixelStorei(unpacks[i], this->UnpackLayout[i]);
+  }
+  for (int u = 0; u < ImageUnits; ++u)
+    gl.BindImageTexture(static_cast<GLuint>(u), static_cast<GLuint>(this->Image[u][0]), this->Image[u][1],
+      static_cast<GLboolean>(this->Image[u][2]), this->Image[u][3], static_cast<GLenum>(this->Image[u][4]),
+      static_cast<GLenum>(this->ImageFormat[u] ? this->ImageFormat[u] : GL_R8));
   enable(GL_DEPTH_TEST, this->DepthTest);
   enable(GL_BLEND, this->Blend);
   enable(GL_CULL_FACE, this->CullFace);

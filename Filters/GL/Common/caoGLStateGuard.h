@@ -3,7 +3,8 @@
  * layer may change, and restores it on destruction, so that running inside
  * a VTK render window leaves vtkOpenGLState's cached view of the context
  * true. Covers: program, vertex array, array/uniform/storage buffer generic
- * and indexed bindings used by caoGPULayout.h, pixel pack and unpack buffers,
+ * and indexed bindings used by caoGPULayout.h, pixel pack and unpack buffers
+ * and their row layout, the image units the frame's combine uses,
  * framebuffers, viewport, the
  * enables, masks and blend function the raster passes touch, pixel-store
  * alignment, the active texture unit, and the 2D and 3D bindings of the
@@ -35,6 +36,10 @@ private:
   bool Active;
   GLint Program = 0, VertexArray = 0, ArrayBuffer = 0, UniformBuffer = 0, StorageBuffer = 0;
   GLint CopyRead = 0, CopyWrite = 0, PixelPack = 0, PixelUnpack = 0;
+  static constexpr int ImageUnits = 2; // CAO_IMAGE_FR_*: the frame's combine
+  GLint Image[ImageUnits][5] = {};     // name, level, layered, layer, access (format: Format)
+  GLint ImageFormat[ImageUnits] = {};
+  GLint PackLayout[3] = {}, UnpackLayout[3] = {}; // row length, skip pixels, skip rows
   GLint DrawFramebuffer = 0, ReadFramebuffer = 0, Viewport[4] = { 0, 0, 0, 0 };
   GLint ActiveTexture = 0, Texture3D[TextureUnits] = {}, Texture2D[TextureUnits] = {}, UnpackAlignment = 4, PackAlignment = 4;
   GLint StorageIndexed[StorageBindings] = {}, UniformIndexed[UniformBindings] = {};

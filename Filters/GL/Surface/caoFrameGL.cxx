@@ -75,6 +75,9 @@ struct FrameEngine::Impl
   {
     if (framebuffer == 0)
       return 0;
+    while (gl.GetError() != GL_NO_ERROR)
+    {
+    } // (a host's pending error is not ours)
     GLint type = GL_NONE, bits = 0, stencil = 0, component = GL_NONE;
     gl.GetFramebufferAttachmentParameteriv(GL_READ_FRAMEBUFFER, GL_DEPTH_ATTACHMENT,
       GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
@@ -305,6 +308,7 @@ bool FrameEngine::Read(What what, unsigned framebuffer, int x0, int y0, int widt
   const Functions& gl = p.gl;
   StateGuard guard(gl, p.Ctx.Kind() == ContextKind::External);
   gl.BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
+  gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer); // GL_SAMPLE_BUFFERS is the draw binding's
   GLint samples = 0;
   gl.GetIntegerv(GL_SAMPLE_BUFFERS, &samples);
   if (samples > 0)
@@ -331,8 +335,11 @@ bool FrameEngine::Read(What what, unsigned framebuffer, int x0, int y0, int widt
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
     if (p.depthInTexture)
       return CheckError(gl, "copying the drawn depth", error);
-    // A depth format not blitted: read into a buffer, on the GPU.
+    // A depth format not blitted: read into a buffer, on the GPU (tightly packed).
     gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
+    gl.PixelStorei(GL_PACK_SKIP_PIXELS, 0);
+    gl.PixelStorei(GL_PACK_SKIP_ROWS, 0);
     gl.BindBuffer(GL_PIXEL_PACK_BUFFER, p.depth);
     gl.ReadPixels(x0, y0, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, nullptr);
     gl.BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
@@ -441,10 +448,14 @@ unsigned FrameEngine::NormalBuffer() const
   return this->P->normals;
 }
 
-unsigned FrameEngine::AOBuffer()
+unsigned FrameEngine::AOBuffer() const
 {
-  this->P->hasAO = true; // the tracer writes it
   return this->P->ao;
+}
+
+void FrameEngine::AOWritten()
+{
+  this->P->hasAO = true;
 }
 
 std::int64_t FrameEngine::Pixels() const

@@ -57,11 +57,12 @@ public:
   bool GBuffer(const double ndcToWorld[16], const std::array<double, 9>& axes, std::int64_t& covered,
     std::string& error);
   /// Buffers for the cone tracer: vec4 points and normals (w 1: covered),
-  /// float AO per pixel (asking for it marks the frame's AO as written by
-  /// the caller); the pixel count.
+  /// float AO per pixel; the pixel count. AOWritten: the caller's tracer
+  /// has written this G-buffer's AO (Combine and ReadAO refuse without it).
   unsigned PointBuffer() const;
   unsigned NormalBuffer() const;
-  unsigned AOBuffer();
+  unsigned AOBuffer() const;
+  void AOWritten();
   std::int64_t Pixels() const;
   /// The AO into the colour read last (`wholeColor`: colour (1 - s (1 -
   /// AO)); else colour - s (1 - AO) ambient, the ambient read last).

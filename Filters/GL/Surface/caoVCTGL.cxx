@@ -316,6 +316,8 @@ bool VCTEngine::Trace(const VCTPlan& plan, const float* points, const float* nor
   if (!this->TracePixels(plan, p.tracePoints, p.traceNormals, p.ao, static_cast<std::int64_t>(count), ms, error))
     return false;
   ao.resize(count);
+  if (count == 0)
+    return true;
   gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, p.ao);
   gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(std::max<std::size_t>(count, 1) * sizeof(float)), ao.data());
   gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
