@@ -285,6 +285,16 @@ struct vtkContextualAOPass::Internals
   bool UpdateGrid(vtkContextualAOPass* self);
   bool UpdateVolumes(vtkContextualAOPass* self);
   std::vector<double> ViewKey(vtkContextualAOPass* self, vtkRenderer* ren, vtkMatrix4x4*& toNDC);
+  /// VCT's plan from the pass's settings on this frame's grid.
+  bool BuildPlan(vtkContextualAOPass* self, cao::VCTPlan& plan, std::string& error) const
+  {
+    cao::VCTSettings settings;
+    settings.quality = static_cast<cao::VCTQuality>(self->Quality);
+    settings.slices = self->Slices;
+    settings.radius = this->radius;
+    settings.occupancy = static_cast<cao::VCTOccupancy>(self->Occupancy);
+    return cao::BuildVCTPlan(settings, this->grid, plan, error);
+  }
   bool UpdateAO(vtkContextualAOPass* self, vtkRenderer* ren);
   bool Combine(vtkContextualAOPass* self, const vtkRenderState* s);
   bool RunGPUFrame(vtkContextualAOPass* self, const vtkRenderState* s);
@@ -769,17 +779,12 @@ bool vtkContextualAOPass::Internals::RunGPUFrame(vtkContextualAOPass* self, cons
     this->frame = cao::SurfaceFrame(); // no AO until this trace succeeds
     this->hostAOStale = false;
     vtkMatrix4x4::Invert(&toNDC->Element[0][0], this->ndcToWorld);
-    cao::VCTSettings settings;
-    settings.quality = static_cast<cao::VCTQuality>(self->Quality);
-    settings.slices = self->Slices;
-    settings.radius = this->radius;
-    settings.occupancy = static_cast<cao::VCTOccupancy>(self->Occupancy);
     cao::VCTPlan plan;
     if (!this->gpu.FrameGBuffer(this->ndcToWorld, this->grid, covered, error))
       return this->Fail(self, "the GPU frame's G-buffer: " + error);
     this->Stage("gbuffer", start);
     start = Clock::now();
-    if (!cao::BuildVCTPlan(settings, this->grid, plan, error) || !this->gpu.FrameTrace(plan, error))
+    if (!this->BuildPlan(self, plan, error) || !this->gpu.FrameTrace(plan, error))
       return this->Fail(self, error);
     this->Stage("trace", start);
     this->frame = cao::SurfaceFrame();
@@ -870,13 +875,8 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
   }
   else
   {
-    cao::VCTSettings settings;
-    settings.quality = static_cast<cao::VCTQuality>(self->Quality);
-    settings.slices = self->Slices;
-    settings.radius = this->radius;
-    settings.occupancy = static_cast<cao::VCTOccupancy>(self->Occupancy);
     cao::VCTPlan plan;
-    if (!cao::BuildVCTPlan(settings, this->grid, plan, error))
+    if (!this->BuildPlan(self, plan, error))
       return this->Fail(self, error);
     for (const cao::OpacityVolume& volume : this->opacity)
       plan.volumes.push_back(&volume);

@@ -124,18 +124,8 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
     };
     if (a == "--sizes")
     {
-      if (!value())
+      if (!value() || !ParseSizes(v, a, o.sizes, error))
         return false;
-      o.sizes.clear();
-      for (const std::string& item : Split(v, ','))
-      {
-        int w = 0, h = 0;
-        char x = 0;
-        if (std::sscanf(item.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' || w < 16 || h < 16 ||
-          w > 8192 || h > 8192)
-          return error = "--sizes takes WxH, each 16..8192 (got '" + item + "')", false;
-        o.sizes.emplace_back(w, h);
-      }
     }
     else if (a == "--methods")
     {

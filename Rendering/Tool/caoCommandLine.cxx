@@ -34,6 +34,22 @@ std::vector<std::string> Split(const std::string& s, char sep)
   return out;
 }
 
+bool ParseSizes(const std::string& list, const std::string& option, std::vector<std::pair<int, int>>& sizes,
+  std::string& error)
+{
+  sizes.clear();
+  for (const std::string& item : Split(list, ','))
+  {
+    int w = 0, h = 0;
+    char x = 0;
+    if (std::sscanf(item.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' || w < 16 || h < 16 || w > 8192 ||
+      h > 8192)
+      return error = option + " takes WxH, each 16..8192 (got '" + item + "')", false;
+    sizes.emplace_back(w, h);
+  }
+  return !sizes.empty() || (error = option + " needs at least one size", false);
+}
+
 bool ToDouble(const std::string& s, double& v)
 {
   char* end = nullptr;

@@ -88,6 +88,10 @@ std::vector<std::string> Split(const std::string& s, char sep);
 
 /// A whole string as a finite double; false otherwise.
 bool ToDouble(const std::string& s, double& v);
+/// A comma list of image sizes WxH, each side 16..8192 (the benches'
+/// --sizes); false with the reason, naming `option`, otherwise.
+bool ParseSizes(const std::string& list, const std::string& option, std::vector<std::pair<int, int>>& sizes,
+  std::string& error);
 
 /// Component `component` of the first tuple of field array `name` of `d`;
 /// `missing` when there is no such array or component.

@@ -19,6 +19,7 @@
 #include "caoTestUtilities.h"
 #include "caoVCTGL.h"
 
+#include "caoScreenSpaceAO.h"
 #include "caoSurfaceReference.h"
 #include "caoVoxelConeTracing.h"
 
@@ -33,39 +34,6 @@ void Check(bool ok, const std::string& what)
 {
   std::printf("%s: %s\n", ok ? "ok" : "FAIL", what.c_str());
   failures += !ok;
-}
-
-/// Row-major 4x4 inverse (Gauss-Jordan with partial pivoting).
-bool Invert(const double m[16], double out[16])
-{
-  double a[4][8];
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 8; ++c)
-      a[r][c] = c < 4 ? m[4 * r + c] : (c - 4 == r ? 1.0 : 0.0);
-  for (int c = 0; c < 4; ++c)
-  {
-    int p = c;
-    for (int r = c + 1; r < 4; ++r)
-      if (std::fabs(a[r][c]) > std::fabs(a[p][c]))
-        p = r;
-    if (std::fabs(a[p][c]) < 1e-300)
-      return false;
-    std::swap(a[p], a[c]);
-    const double d = a[c][c];
-    for (int k = 0; k < 8; ++k)
-      a[c][k] /= d;
-    for (int r = 0; r < 4; ++r)
-      if (r != c)
-      {
-        const double f = a[r][c];
-        for (int k = 0; k < 8; ++k)
-          a[r][k] -= f * a[c][k];
-      }
-  }
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c)
-      out[4 * r + c] = a[r][c + 4];
-  return true;
 }
 
 /// A look-at perspective camera (eye, centre, up z; 30 degrees, near 1, far 20).
@@ -94,10 +62,12 @@ cao::PixelCamera Camera(int w, int h, double worldToNDC[16])
       for (int k = 0; k < 4; ++k)
         worldToNDC[4 * r + c] += proj[4 * r + k] * view[4 * k + c];
     }
-  cao::PixelCamera camera;
-  camera.width = w;
-  camera.height = h;
-  Invert(worldToNDC, camera.ndcToWorld);
+  // cao::WorldToNDC inverts a camera's matrix: here the other way round.
+  cao::PixelCamera forward, camera;
+  forward.width = camera.width = w;
+  forward.height = camera.height = h;
+  std::copy(worldToNDC, worldToNDC + 16, forward.ndcToWorld);
+  cao::WorldToNDC(forward, camera.ndcToWorld);
   return camera;
 }
 }

@@ -160,6 +160,24 @@ double WorstDifference(const cao::SurfaceFrame& frame, vtkContextualAOPass* pass
   return worst;
 }
 
+/// A cube of side `side` at (x, y, z) drawn by a glyph mapper (not polydata
+/// surfaces: not in the pass's grid).
+vtkSmartPointer<vtkActor> GlyphCube(double x, double y, double z, double side)
+{
+  vtkNew<vtkPoints> at;
+  at->InsertNextPoint(x, y, z);
+  vtkNew<vtkPolyData> where;
+  where->SetPoints(at);
+  vtkNew<vtkCubeSource> cube;
+  vtkNew<vtkGlyph3DMapper> glyphs;
+  glyphs->SetInputData(where);
+  glyphs->SetSourceConnection(cube->GetOutputPort());
+  glyphs->SetScaleFactor(side);
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(glyphs);
+  return actor;
+}
+
 /// The grey level (mean of RGB) of pixel (x, y) of the window.
 double Grey(vtkRenderWindow* w, int x, int y)
 {
@@ -821,19 +839,7 @@ int TestContextualAOPass(int, char*[])
         std::to_string(plainOn) + " without tone mapping), " + std::to_string(toneOff) + " without AO");
     renderer->SetPass(pass);
     // A glyph cube in front of the contact.
-    vtkNew<vtkPoints> at;
-    at->InsertNextPoint(0.0, -0.9, 0.25);
-    vtkNew<vtkPolyData> where;
-    where->SetPoints(at);
-    vtkNew<vtkCubeSource> cube;
-    cube->SetXLength(0.2);
-    cube->SetYLength(0.2);
-    cube->SetZLength(0.2);
-    vtkNew<vtkGlyph3DMapper> glyphs;
-    glyphs->SetInputData(where);
-    glyphs->SetSourceConnection(cube->GetOutputPort());
-    vtkNew<vtkActor> glyphActor;
-    glyphActor->SetMapper(glyphs);
+    vtkSmartPointer<vtkActor> glyphActor = GlyphCube(0.0, -0.9, 0.25, 0.2);
     renderer->AddActor(glyphActor);
     int gx, gy;
     project(0.0, -0.9, 0.25, gx, gy);
@@ -931,17 +937,7 @@ int TestContextualAOPass(int, char*[])
     window->Render();
     Check(pass->GetLastFrameStages() == "combine", "DEPTH_BUFFER: a colour change runs only the combine (" +
         pass->GetLastFrameStages() + ")");
-    vtkNew<vtkPoints> at;
-    at->InsertNextPoint(0.8, -0.9, 0.25);
-    vtkNew<vtkPolyData> where;
-    where->SetPoints(at);
-    vtkNew<vtkCubeSource> cube;
-    vtkNew<vtkGlyph3DMapper> glyphs;
-    glyphs->SetInputData(where);
-    glyphs->SetSourceConnection(cube->GetOutputPort());
-    glyphs->SetScaleFactor(0.2);
-    vtkNew<vtkActor> glyphActor;
-    glyphActor->SetMapper(glyphs);
+    vtkSmartPointer<vtkActor> glyphActor = GlyphCube(0.8, -0.9, 0.25, 0.2);
     renderer->AddActor(glyphActor);
     window->Render();
     Check(pass->GetLastFrameStages() == "gbuffer,trace,combine" && pass->GetVoxelizeCount() > 0,
@@ -1089,17 +1085,7 @@ int TestContextualAOPass(int, char*[])
         "GPU frame (" + mode + "): Strength 0 leaves the drawn picture exactly (largest difference " +
           std::to_string(worstPlain) + "), Strength 1 darkens it (by up to " + std::to_string(worstDark) + " levels)");
     }
-    vtkNew<vtkPoints> at;
-    at->InsertNextPoint(0.8, -0.9, 0.25);
-    vtkNew<vtkPolyData> where;
-    where->SetPoints(at);
-    vtkNew<vtkCubeSource> cube;
-    vtkNew<vtkGlyph3DMapper> glyphs;
-    glyphs->SetInputData(where);
-    glyphs->SetSourceConnection(cube->GetOutputPort());
-    glyphs->SetScaleFactor(0.2);
-    vtkNew<vtkActor> glyphActor;
-    glyphActor->SetMapper(glyphs);
+    vtkSmartPointer<vtkActor> glyphActor = GlyphCube(0.8, -0.9, 0.25, 0.2);
     renderer->AddActor(glyphActor);
     const int voxelized = pass->GetVoxelizeCount();
     window->Render();
