@@ -451,7 +451,11 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
 {
   vtkRenderer* ren = s->GetRenderer();
   if (self->Method == NONE || !ren || ren->GetSelector())
+  {
+    if (self->Method == NONE) // the report describes this frame: nothing on the GPU
+      this->gpuFrame = false;
     return; // a selection pass draws ids, not colours: no AO there
+  }
   int width = 0, height = 0, x0 = 0, y0 = 0;
   ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
   if (width < 1 || height < 1)

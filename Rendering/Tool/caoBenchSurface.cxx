@@ -838,8 +838,9 @@ int RunBenchSurface(int argc, char* argv[])
   }
   std::cout << "\nreference row: its RMSE is against " << 4 * o.referenceRays
             << " rays (its own error); ms/frame: vct on the CPU (wall clock, "
-            << (o.threads ? std::to_string(o.threads) : std::string("all")) << " threads), vct-gl on "
-            << (o.vctGL ? gpu.Description() : std::string("-")) << " (GPU queries, the trace only), "
+            << (o.threads ? std::to_string(o.threads) : std::string("all")) << " threads), "
+            << (o.vctGL ? "vct-gl on " + gpu.Description() + " (GPU queries, the trace only), "
+                        : std::string("no vct-gl rows (--vct-backends gl adds them), "))
             << "hbao and vao on the CPU (wall clock, their blur and filter included, the G-buffer not), "
             << "hbao-gl and vao-gl (with --vct-backends gl) by GPU queries of the estimator (the host's blur not), "
             << "ssao in the offscreen window (wall clock, vtkSSAOPass with blur), ssao-gl (with --vct-backends gl) "

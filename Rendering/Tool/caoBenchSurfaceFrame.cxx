@@ -20,6 +20,7 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -49,7 +50,8 @@ options:
   --sizes LIST         image sizes WxH (default 1024x768,1920x1080)
   --methods LIST       the pass's methods: vct, hbao, vao (default all three)
   --backends LIST      the pass's Backend: auto, cpu, gl (default cpu,gl)
-  --gbuffers LIST      the pass's G-buffer: ray-cast (default), depth
+  --gbuffers LIST      the pass's G-buffer: auto (default, as the pass: the drawn depth
+                       where the AO runs on the GPU, the ray cast on the CPU), ray-cast, depth
   --quality NAME       the pass's preset low, medium (default) or high
   --kernel N           vtkSSAOPass's kernel size (default 32, VTK's)
   --frames N           frames per configuration and camera state (default 10)
@@ -68,7 +70,7 @@ struct Options
   std::vector<std::pair<int, int>> sizes{ { 1024, 768 }, { 1920, 1080 } };
   std::vector<int> methods{ vtkContextualAOPass::VCT, vtkContextualAOPass::HBAO, vtkContextualAOPass::VAO };
   std::vector<int> backends{ vtkContextualAOPass::BACKEND_CPU, vtkContextualAOPass::BACKEND_OPENGL };
-  std::vector<int> gbuffers{ vtkContextualAOPass::RAY_CAST };
+  std::vector<int> gbuffers{ vtkContextualAOPass::GBUFFER_AUTO };
   int quality = 2, kernel = 32, frames = 10, threads = 0;
   double orbit = 0.5, radiusFraction = 0.1;
   std::string window = "auto", output = "surface-frame";
@@ -106,6 +108,8 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
       if (!value())
         return false;
       out.clear();
+      if (v.empty() || v.front() == ',' || v.back() == ',' || v.find(",,") != std::string::npos)
+        return error = a + " has an empty item (got '" + v + "')", false;
       for (const std::string& item : Split(v, ','))
       {
         std::size_t k = 0;
@@ -142,8 +146,8 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
     }
     else if (a == "--gbuffers")
     {
-      if (!names(o.gbuffers, { "ray-cast", "depth" },
-            { vtkContextualAOPass::RAY_CAST, vtkContextualAOPass::DEPTH_BUFFER }))
+      if (!names(o.gbuffers, { "auto", "ray-cast", "depth" },
+            { vtkContextualAOPass::GBUFFER_AUTO, vtkContextualAOPass::RAY_CAST, vtkContextualAOPass::DEPTH_BUFFER }))
         return false;
     }
     else if (a == "--quality")
@@ -182,6 +186,8 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
     {
       if (!value())
         return false;
+      if (v != "auto" && v != "egl" && v != "x")
+        return error = "--window is auto, egl or x (got '" + v + "')", false;
       o.window = v;
     }
     else if (a == "-o")
@@ -216,6 +222,27 @@ std::string ReportField(const std::string& report, const std::string& key)
   else
     end = report.find_first_of(",}", begin);
   return end == std::string::npos ? std::string() : report.substr(begin, end - begin);
+}
+
+/// `"primary": 15.8197, "trace": 46.89` as `primary 15.8, trace 46.9`.
+std::string CompactStages(const std::string& json)
+{
+  std::string out;
+  for (const std::string& item : Split(json, ','))
+  {
+    const std::size_t colon = item.find(':');
+    if (colon == std::string::npos)
+      continue;
+    std::string name = item.substr(0, colon);
+    name.erase(std::remove(name.begin(), name.end(), '"'), name.end());
+    name.erase(0, name.find_first_not_of(' '));
+    double ms = 0.0;
+    ToDouble(item.substr(colon + 1), ms);
+    char number[32];
+    std::snprintf(number, sizeof(number), "%.1f", ms);
+    out += (out.empty() ? "" : ", ") + name + " " + number;
+  }
+  return out;
 }
 
 struct Timing
@@ -354,12 +381,15 @@ int RunBenchSurfaceFrame(int argc, char* argv[])
           window->Render(); // the first frame: the grid (VCT) or the scene's triangles
           const std::string first = pass->GetLastFrameReport();
           const std::string label = std::string("pass ") + methodNames[method] + " (backend " +
-            backendNames[backend] + (gbuffer == vtkContextualAOPass::DEPTH_BUFFER ? ", depth G-buffer)" : ")");
+            backendNames[backend] +
+            (gbuffer == vtkContextualAOPass::DEPTH_BUFFER ? ", depth G-buffer)"
+                : gbuffer == vtkContextualAOPass::RAY_CAST ? ", ray-cast G-buffer)"
+                                                           : ")");
           std::string stages, where, depthPath;
           bool frameOnGPU = false;
           const Timing t = TimeFrames(window, renderer->GetActiveCamera(), o.frames, o.orbit, [&]() {
             const std::string report = pass->GetLastFrameReport();
-            stages = ReportField(report, "stages");
+            stages = CompactStages(ReportField(report, "stages"));
             where = ReportField(report, "backend");
             frameOnGPU = ReportField(report, "frame_on_gpu") == "true";
             depthPath = ReportField(report, "frame_depth");
@@ -367,9 +397,13 @@ int RunBenchSurfaceFrame(int argc, char* argv[])
             if (!refused.empty())
               stages = "error: " + refused;
           });
-          const std::string setup = ReportField(ReportField(first, "stages") + "}", "voxelize");
-          if (!setup.empty())
-            stages += "; first frame's voxelize " + setup;
+          double voxelize = 0.0;
+          if (ToDouble(ReportField(ReportField(first, "stages") + "}", "voxelize"), voxelize))
+          {
+            char text[64];
+            std::snprintf(text, sizeof(text), "; first frame's voxelize %.1f", voxelize);
+            stages += text;
+          }
           // "OpenGL (render window: NAME (details), version)": the device's name
           const std::size_t named = where.find("window: ");
           if (named != std::string::npos)

@@ -38,6 +38,8 @@ bool ParseSizes(const std::string& list, const std::string& option, std::vector<
   std::string& error)
 {
   sizes.clear();
+  if (list.empty() || list.front() == ',' || list.back() == ',' || list.find(",,") != std::string::npos)
+    return error = option + " has an empty item (got '" + list + "')", false;
   for (const std::string& item : Split(list, ','))
   {
     int w = 0, h = 0;

@@ -266,10 +266,11 @@ p = subprocess.run([tool, "bench", "surface-frame", bunny, "--sizes", "96x64", "
                    capture_output=True, text=True, timeout=600)
 rows = [l for l in p.stdout.splitlines() if l.startswith("| ") and not l.startswith("| configuration")]
 labels = [l.split(" | ")[0][2:] for l in rows]
-check(p.returncode == 0 and labels == ["vtkSSAOPass k32", "plain frame (no AO)", "pass vct (backend cpu)",
-                                       "pass vct (backend cpu, depth G-buffer)", "pass hbao (backend cpu)",
+check(p.returncode == 0 and labels == ["vtkSSAOPass k32", "plain frame (no AO)",
+                                       "pass vct (backend cpu, ray-cast G-buffer)",
+                                       "pass vct (backend cpu, depth G-buffer)", "pass hbao (backend cpu, ray-cast G-buffer)",
                                        "pass hbao (backend cpu, depth G-buffer)"] and
-      all('"trace"' in l for l in rows[2:]) and os.path.exists(os.path.join(frames, "surface-frame.csv")),
+      all("trace " in l for l in rows[2:]) and os.path.exists(os.path.join(frames, "surface-frame.csv")),
       "cao bench surface-frame: a row per configuration with the pass's stages, and its csv (rc %d: %s)"
       % (p.returncode, labels))
 if p.returncode == 0:
@@ -278,7 +279,8 @@ if p.returncode == 0:
     check(len(table) == 6 and all(float(r["turning_ms"]) > 0 and float(r["still_ms"]) > 0 for r in table) and
           float(table[0]["turning_over_ssao"]) == 1.0,
           "its csv: 6 rows, times above 0, ratios to vtkSSAOPass")
-for bad in (["--backends", "vulkan"], ["--frames", "0"], ["--sizes", "8x8"]):
+for bad in (["--backends", "vulkan"], ["--frames", "0"], ["--sizes", "8x8"], ["--sizes", "96x64,"],
+            ["--gbuffers", "ray-cast,,depth"], ["--window", "bogus"]):
     rc = subprocess.run([tool, "bench", "surface-frame", bunny] + bad, capture_output=True, text=True).returncode
     check(rc == 2, "cao bench surface-frame %s exits 2 (%d)" % (" ".join(bad), rc))
 
