@@ -465,6 +465,7 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
   {
     this->frame = cao::SurfaceFrame();
     this->viewKey.clear();
+    this->gpuFrame = false;
     return; // no surfaces: no surface work
   }
   if (!this->ResolveBackend(self, ren))

@@ -1,5 +1,7 @@
 #include "caoGLFunctions.h"
 
+#include <algorithm>
+
 #include <cstdio>
 
 namespace cao
@@ -29,6 +31,12 @@ bool CheckError(const Functions& gl, const char* what, std::string& error)
   if (e == GL_OUT_OF_MEMORY)
     error += " (out of GPU memory)";
   return false;
+}
+void DispatchLinear(const Functions& gl, std::int64_t groups)
+{
+  const std::int64_t x = std::max<std::int64_t>(std::min<std::int64_t>(groups, 65535), 1);
+  const std::int64_t y = std::max<std::int64_t>((groups + x - 1) / x, 1);
+  gl.DispatchCompute(static_cast<GLuint>(x), static_cast<GLuint>(y), 1);
 }
 }
 }

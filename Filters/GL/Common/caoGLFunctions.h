@@ -12,6 +12,7 @@
 
 #include <GL/glcorearb.h>
 
+#include <cstdint>
 #include <string>
 
 #include "caoGLFunctionList.h"
@@ -35,6 +36,11 @@ struct Functions
 /// glGetError after a step: false with "OpenGL error 0x.... in `what`"
 /// (and a note for GL_OUT_OF_MEMORY) when the step raised one.
 bool CheckError(const Functions& gl, const char* what, std::string& error);
+
+/// Dispatch `groups` workgroups of the bound compute program as a 2D grid
+/// within GL's per-axis limit (65535); the shaders index them as
+/// gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * local size.
+void DispatchLinear(const Functions& gl, std::int64_t groups);
 }
 }
 

@@ -57,7 +57,8 @@ struct FrameEngine::Impl
   {
     const std::int64_t n = PixelCount();
     const int depthBytes = depthFormat == GL_DEPTH32F_STENCIL8 ? 8 : depthFormat ? 4 : 0;
-    bytes = n * (4 + 4 + 16 + 16 + 4) + static_cast<std::int64_t>(textureWidth) * textureHeight * 2 * 16 +
+    bytes = n * (16 + 16 + 4) + 8 * depthBufferPixels +
+      static_cast<std::int64_t>(textureWidth) * textureHeight * 2 * 16 +
       static_cast<std::int64_t>(depthWidth) * depthHeight * 2 * depthBytes +
       static_cast<std::int64_t>(sizeof(layout::FrameParams)) + 16;
   }
@@ -101,34 +102,36 @@ struct FrameEngine::Impl
       return GL_DEPTH_COMPONENT32;
     return 0;
   }
+  /// A width x height texture of `format` (nearest filtering) made anew,
+  /// attached to `framebuffer` (made once) at `attachment`.
+  void RenderTarget(GLenum format, GLenum attachment, GLuint& texture, GLuint& framebuffer)
+  {
+    if (texture)
+      gl.DeleteTextures(1, &texture);
+    gl.GenTextures(1, &texture);
+    gl.ActiveTexture(GL_TEXTURE0 + CAO_UNIT_TABLE);
+    gl.BindTexture(GL_TEXTURE_2D, texture);
+    gl.TexStorage2D(GL_TEXTURE_2D, 1, format, width, height);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    if (!framebuffer)
+      gl.GenFramebuffers(1, &framebuffer);
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
+    gl.FramebufferTexture2D(GL_DRAW_FRAMEBUFFER, attachment, GL_TEXTURE_2D, texture, 0);
+  }
   /// Blits the rectangle's depth into the texture that is not the traced
   /// one; false when it cannot (then the buffers are used).
-  bool BlitDepth(GLuint framebuffer, int x0, int y0, std::string& error)
+  bool BlitDepth(GLuint framebuffer, int x0, int y0)
   {
     const GLenum format = blitRefused || !blitAllowed ? 0 : DepthFormatOf(framebuffer);
     if (!format)
       return false;
     if (format != depthFormat || depthWidth != width || depthHeight != height)
     {
+      const bool stencil = format == GL_DEPTH24_STENCIL8 || format == GL_DEPTH32F_STENCIL8;
       for (int k = 0; k < 2; ++k)
-      {
-        if (depthTextures[k])
-          gl.DeleteTextures(1, &depthTextures[k]);
-        gl.GenTextures(1, &depthTextures[k]);
-        gl.ActiveTexture(GL_TEXTURE0 + CAO_UNIT_DEPTH);
-        gl.BindTexture(GL_TEXTURE_2D, depthTextures[k]);
-        gl.TexStorage2D(GL_TEXTURE_2D, 1, format, width, height);
-        gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_NONE);
-        if (!depthFramebuffers[k])
-          gl.GenFramebuffers(1, &depthFramebuffers[k]);
-        gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, depthFramebuffers[k]);
-        gl.FramebufferTexture2D(GL_DRAW_FRAMEBUFFER,
-          format == GL_DEPTH24_STENCIL8 || format == GL_DEPTH32F_STENCIL8 ? GL_DEPTH_STENCIL_ATTACHMENT
-                                                                          : GL_DEPTH_ATTACHMENT,
-          GL_TEXTURE_2D, depthTextures[k], 0);
-      }
+        RenderTarget(format, stencil ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT, depthTextures[k],
+          depthFramebuffers[k]); // (compare mode: none, the default)
       depthFormat = format;
       depthWidth = width;
       depthHeight = height;
@@ -148,11 +151,11 @@ struct FrameEngine::Impl
       traced = -1;
       return false;
     }
-    (void)error;
     current = target;
     return true;
   }
   int depthWidth = 0, depthHeight = 0;
+  std::int64_t depthBufferPixels = 0; ///< of the read path's depth buffers (0: none made)
   /// The depth read last (and, `previous`, the traced one) where the shaders read them.
   void BindDepth(bool previousToo)
   {
@@ -174,10 +177,8 @@ struct FrameEngine::Impl
   void Dispatch(int stage)
   {
     const std::int64_t groups = (PixelCount() + 63) / 64;
-    const std::int64_t x = std::min<std::int64_t>(groups, 65535);
-    const std::int64_t y = (groups + x - 1) / x;
     gl.UseProgram(programs[depthInTexture ? 1 : 0][stage].Id());
-    gl.DispatchCompute(static_cast<GLuint>(std::max<std::int64_t>(x, 1)), static_cast<GLuint>(std::max<std::int64_t>(y, 1)), 1);
+    DispatchLinear(gl, groups);
     gl.UseProgram(0);
   }
   void Params(const layout::FrameParams& block)
@@ -217,18 +218,7 @@ struct FrameEngine::Impl
       return true;
     for (int k = 0; k < 2; ++k)
     {
-      if (textures[k])
-        gl.DeleteTextures(1, &textures[k]);
-      gl.GenTextures(1, &textures[k]);
-      gl.ActiveTexture(GL_TEXTURE0 + CAO_UNIT_TABLE);
-      gl.BindTexture(GL_TEXTURE_2D, textures[k]);
-      gl.TexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, width, height);
-      gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-      gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-      if (!framebuffers[k])
-        gl.GenFramebuffers(1, &framebuffers[k]);
-      gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffers[k]);
-      gl.FramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, textures[k], 0);
+      RenderTarget(GL_RGBA32F, GL_COLOR_ATTACHMENT0, textures[k], framebuffers[k]);
       if (gl.CheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         return error = "the frame's colour texture cannot be drawn into", false;
     }
@@ -276,6 +266,7 @@ struct FrameEngine::Impl
       for (Program& p : variant)
         p.Abandon();
     width = height = textureWidth = textureHeight = depthWidth = depthHeight = 0;
+    depthBufferPixels = 0;
     depthFormat = 0;
     blitRefused = depthInTexture = false;
     traced = -1;
@@ -319,8 +310,6 @@ bool FrameEngine::Read(What what, unsigned framebuffer, int x0, int y0, int widt
     p.height = height;
     p.hasPrevious = p.hasColor = p.hasAmbient = p.hasAO = false;
     const std::size_t n = static_cast<std::size_t>(p.PixelCount());
-    p.Allocate(p.depth, 4 * n);
-    p.Allocate(p.previous, 4 * n);
     p.Allocate(p.points, 16 * n);
     p.Allocate(p.normals, 16 * n);
     p.Allocate(p.ao, 4 * n);
@@ -329,13 +318,22 @@ bool FrameEngine::Read(What what, unsigned framebuffer, int x0, int y0, int widt
   if (what == Depth)
   {
     const bool wasTexture = p.depthInTexture;
-    p.depthInTexture = p.BlitDepth(framebuffer, x0, y0, error);
+    p.depthInTexture = p.BlitDepth(framebuffer, x0, y0);
     if (p.depthInTexture != wasTexture)
       p.hasPrevious = false; // compared only within one path
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
     if (p.depthInTexture)
       return CheckError(gl, "copying the drawn depth", error);
-    // A depth format not blitted: read into a buffer, on the GPU (tightly packed).
+    // A depth format not blitted: read into a buffer, on the GPU (tightly
+    // packed; the buffers made only when this path is taken).
+    if (p.depthBufferPixels != p.PixelCount())
+    {
+      p.Allocate(p.depth, 4 * static_cast<std::size_t>(p.PixelCount()));
+      p.Allocate(p.previous, 4 * static_cast<std::size_t>(p.PixelCount()));
+      p.depthBufferPixels = p.PixelCount();
+      p.hasPrevious = false;
+      p.CountBytes();
+    }
     gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
     gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
     gl.PixelStorei(GL_PACK_SKIP_PIXELS, 0);

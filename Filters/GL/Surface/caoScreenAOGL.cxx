@@ -148,9 +148,7 @@ bool ScreenAOEngine::Impl::Run(int method, layout::ScreenAOParams& block, const 
   gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_SS_DISK, this->disk);
   gl.UseProgram(this->programs[method].Id());
   this->timer.Begin(gl, 0);
-  const std::int64_t groups = (static_cast<std::int64_t>(pixels) + 63) / 64;
-  const std::int64_t x = std::min<std::int64_t>(groups, 65535), y = (groups + x - 1) / x;
-  gl.DispatchCompute(static_cast<GLuint>(std::max<std::int64_t>(x, 1)), static_cast<GLuint>(std::max<std::int64_t>(y, 1)), 1);
+  DispatchLinear(gl, (static_cast<std::int64_t>(pixels) + 63) / 64);
   this->timer.End(gl, 0);
   gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   gl.UseProgram(0);

@@ -72,13 +72,6 @@ struct VCTEngine::Impl
     bytes = 0;
     shape = BitGrid();
   }
-  /// Dispatch `groups` workgroups as a 2D grid within GL's per-axis limit.
-  void Dispatch(std::int64_t groups)
-  {
-    const std::int64_t x = std::min<std::int64_t>(groups, 65535);
-    const std::int64_t y = (groups + x - 1) / x;
-    gl.DispatchCompute(static_cast<GLuint>(std::max<std::int64_t>(x, 1)), static_cast<GLuint>(std::max<std::int64_t>(y, 1)), 1);
-  }
 };
 
 VCTEngine::VCTEngine(Context& context)
@@ -228,12 +221,12 @@ bool VCTEngine::Voxelize(const BitGrid& shape, const std::vector<MeshView>& mesh
       gl.Uniform1i(p.rasterize.Uniform(gl, "triangleCount"), triangles);
       gl.Uniform1i(p.rasterize.Uniform(gl, "solid"), openEdges[m] == 0 ? 1 : 0);
       gl.Uniform1i(p.rasterize.Uniform(gl, "surfaceVoxels"), surfaceVoxels ? 1 : 0);
-      p.Dispatch(triangles);
+      DispatchLinear(gl, triangles);
       gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
     gl.UseProgram(p.combine.Id());
     gl.Uniform1ui(p.combine.Uniform(gl, "wordCount"), static_cast<GLuint>(words));
-    p.Dispatch((words + 255) / 256);
+    DispatchLinear(gl, (words + 255) / 256);
     gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
   p.timer.End(gl, SVoxelize);
@@ -365,7 +358,7 @@ bool VCTEngine::TracePixels(const VCTPlan& plan, unsigned points, unsigned norma
   gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VCT_AO, ao);
   gl.UseProgram(p.trace.Id());
   p.timer.Begin(gl, STrace);
-  p.Dispatch((count + 63) / 64);
+  DispatchLinear(gl, (count + 63) / 64);
   p.timer.End(gl, STrace);
   gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
   gl.UseProgram(0);
