@@ -14,7 +14,8 @@ resting on a box (ParaView sources, drawn by composite mappers):
 - a volume in the same view ("Contextual AO Volume" of a block of image
   data beside the sphere) occludes the box under it, through its opacity;
   carving it all away with its Cube clip shape gives the box its own AO
-  again, exactly; Volumes Occlude Surfaces off is the control;
+  again, exactly; Volumes Occlude Surfaces off is the control; on the
+  view's OpenGL the cones read it as on the CPU;
 - selecting cells on the box with a rectangle (the hardware selector)
   works through the pass;
 - with Surface AO Method None the view draws what ParaView's Render View
@@ -217,6 +218,20 @@ carved = pas.GetPixelAO(px, py)
 check("volumes" in pas.GetLastFrameStages() and carved == alone,
       "carving the block away with its Cube gives the box its own AO: %.3f (%s)"
       % (carved, pas.GetLastFrameStages()))
+# On the view's own OpenGL (Surface AO Backend OpenGL; G Buffer Auto: the
+# frame on the GPU) the cones read the block as the CPU's do: the box's AO
+# under it as above (the drawn depth's positions against the ray cast's:
+# within 0.01; the block's darkening is over 0.1).
+blockDisplay.ClipShape = "None"
+view.SurfaceAOBackend = "OpenGL"
+Render(view)
+underGL = pas.GetPixelAO(px, py)
+reportGL = pas.GetLastFrameReport()
+check('"backend": "OpenGL' in reportGL and '"occluding_volumes": 1' in reportGL and
+      '"frame_on_gpu": true' in reportGL and abs(underGL - under) < 0.01,
+      "Surface AO Backend OpenGL: the cones read the block, AO %.4f against the CPU's %.4f (%s)"
+      % (underGL, under, reportGL))
+view.SurfaceAOBackend = "Auto"
 
 # Selection through the pass (the renderer's own path draws the ids).
 blockDisplay.Visibility = 0

@@ -40,6 +40,9 @@ public:
   bool Resolve(vtkRenderWindow* window, int backend, std::string& error);
   /// cao::gl::VCTEngine::Voxelize into `grid`'s place (its bits stay on the GPU).
   bool Voxelize(cao::BitGrid& grid, const std::vector<cao::MeshView>& meshes, std::string& error);
+  /// cao::gl::VCTEngine::UploadVolumes: the volumes' opacity for the plans
+  /// that name them (again whenever it was rebuilt).
+  bool Volumes(const std::vector<const cao::OpacityVolume*>& volumes, std::string& error);
   /// cao::gl::VCTEngine::TraceFrame on the grid voxelized last.
   bool Trace(const cao::BitGrid& grid, const cao::VCTPlan& plan, cao::SurfaceFrame& frame,
     std::string& error);

@@ -266,7 +266,7 @@ struct vtkContextualAOPass::Internals
   int depthSerial = 0;           ///< GPU frame: drawn depths that differed from the traced one
   unsigned target = 0;           ///< GPU frame: the framebuffer drawn into, and its viewport
   int rect[4] = { 0, 0, 0, 0 };
-  std::string backendNote;       ///< why not, when Auto or the volumes chose the CPU
+  std::string backendNote;       ///< why not, when Auto chose the CPU (or a multisampled frame read back)
 
   void Stage(const char* name, Clock::time_point start)
   {
@@ -285,16 +285,30 @@ struct vtkContextualAOPass::Internals
   bool UpdateGrid(vtkContextualAOPass* self);
   bool UpdateVolumes(vtkContextualAOPass* self);
   std::vector<double> ViewKey(vtkContextualAOPass* self, vtkRenderer* ren, vtkMatrix4x4*& toNDC);
-  /// VCT's plan from the pass's settings on this frame's grid.
-  bool BuildPlan(vtkContextualAOPass* self, cao::VCTPlan& plan, std::string& error) const
+  /// VCT's plan from the pass's settings on this frame's grid, with the
+  /// volumes' opacity (on the GPU: uploaded when it was rebuilt, or the
+  /// engine is new).
+  bool BuildPlan(vtkContextualAOPass* self, cao::VCTPlan& plan, std::string& error)
   {
     cao::VCTSettings settings;
     settings.quality = static_cast<cao::VCTQuality>(self->Quality);
     settings.slices = self->Slices;
     settings.radius = this->radius;
     settings.occupancy = static_cast<cao::VCTOccupancy>(self->Occupancy);
-    return cao::BuildVCTPlan(settings, this->grid, plan, error);
+    if (!cao::BuildVCTPlan(settings, this->grid, plan, error))
+      return false;
+    for (const cao::OpacityVolume& volume : this->opacity)
+      plan.volumes.push_back(&volume);
+    const int uploaded[2] = { this->volumeSerial, this->gpu.Generation() };
+    if (!this->onGPU || (uploaded[0] == this->uploadedVolumes[0] && uploaded[1] == this->uploadedVolumes[1]))
+      return true;
+    if (!this->gpu.Volumes(plan.volumes, error))
+      return false;
+    this->uploadedVolumes[0] = uploaded[0];
+    this->uploadedVolumes[1] = uploaded[1];
+    return true;
   }
+  int uploadedVolumes[2] = { -1, -1 }; ///< the volume serial and GPU generation on the GPU
   bool UpdateAO(vtkContextualAOPass* self, vtkRenderer* ren);
   bool Combine(vtkContextualAOPass* self, const vtkRenderState* s);
   bool RunGPUFrame(vtkContextualAOPass* self, const vtkRenderState* s);
@@ -569,19 +583,14 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
 
 bool vtkContextualAOPass::Internals::ResolveBackend(vtkContextualAOPass* self, vtkRenderer* ren)
 {
-  // The AO on the window's OpenGL (Backend), unless volumes occlude in VCT
-  // (the GPU cone tracer does not read them); the grid is built where it
-  // is traced.
+  // The AO on the window's OpenGL (Backend); the grid is built, and the
+  // volumes' opacity read, where it is traced.
   this->backendNote.clear();
   std::string error;
-  const bool volumesOcclude = self->Method == VCT && !this->volumes.empty();
-  this->onGPU = self->Backend != BACKEND_CPU && !volumesOcclude &&
-    this->gpu.Resolve(ren->GetRenderWindow(), self->Backend, error);
+  this->onGPU = self->Backend != BACKEND_CPU && this->gpu.Resolve(ren->GetRenderWindow(), self->Backend, error);
   if (!error.empty())
     return this->Fail(self, error);
-  if (self->Backend != BACKEND_CPU && volumesOcclude)
-    this->backendNote = "volumes occlude the surfaces: the CPU (the GPU cone tracer does not read volumes)";
-  else if (!this->onGPU && self->Backend != BACKEND_CPU)
+  if (!this->onGPU && self->Backend != BACKEND_CPU)
     this->backendNote = this->gpu.Note;
   if (self->GBuffer == GBUFFER_AUTO)
   {
@@ -883,8 +892,6 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
     cao::VCTPlan plan;
     if (!this->BuildPlan(self, plan, error))
       return this->Fail(self, error);
-    for (const cao::OpacityVolume& volume : this->opacity)
-      plan.volumes.push_back(&volume);
     if (this->onGPU ? !this->gpu.Trace(this->grid, plan, this->frame, error)
                     : !cao::VCTFrame(this->grid, plan, this->frame, 0, error))
       return this->Fail(self, error);

@@ -216,9 +216,10 @@ public:
   ///@{
   /// Where the AO runs (VCT's grid and cones, HBAO's and VAO's estimator):
   /// AUTO (default), CPU or OPENGL, in the render window's own context (no
-  /// second context; the GL state comes back as it was). With volumes
-  /// occluding the surfaces VCT runs on the CPU (the GPU cone tracer does
-  /// not read volumes). The G-buffer (ray cast or drawn depth), HBAO's blur,
+  /// second context; the GL state comes back as it was). The GPU cone
+  /// tracer reads the occluding volumes' opacity as the CPU's does (uploaded
+  /// when it is rebuilt, not on a camera change). The G-buffer (ray cast or
+  /// drawn depth; on the GPU frame the drawn depth stays there), HBAO's blur,
   /// VAO's filter and indirect light run on the CPU. The report's "backend"
   /// says what ran, and "backend_note" why not the GPU.
   vtkSetClampMacro(Backend, int, BACKEND_AUTO, BACKEND_OPENGL);

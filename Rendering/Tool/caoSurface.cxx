@@ -104,7 +104,7 @@ const char* SurfaceUsage = R"(cao surface MESH... [options] -o out.png
   --window auto|egl|x   ssao's offscreen window (default auto)
   --kernel N            ssao: vtkSSAOPass's kernel size (default 32, VTK's)
   -o out.png            the picture (required)
- The volume occluding the meshes (vct on the CPU): its opacity darkens the
+ The volume occluding the meshes (vct, CPU or OpenGL): its opacity darkens the
  meshes near it (the picture shows the meshes only):
   --volume FILE         a volume as for cao render (.vti, .mhd, .slc, .nii, .vtk)
   --preset NAME --preset-file FILE --absolute   its opacity, as for cao render
@@ -478,10 +478,10 @@ bool Parse(int argc, char* argv[], SurfaceOptions& o, std::string& error)
             "describe the occluding volume: give --volume";
     return false;
   }
-  if (!o.volume.empty() && (o.method != "vct" || o.backend == "gl"))
+  if (!o.volume.empty() && o.method != "vct")
   {
-    error = "--volume occludes the meshes in --method vct on the CPU (the OpenGL cone tracer does not "
-            "read volumes yet)";
+    error = "--volume occludes the meshes in --method vct (its cones read the volume's opacity; the "
+            "screen-space methods see only the meshes' depth, the reference and ssao only the meshes)";
     return false;
   }
   const std::filesystem::path folder = std::filesystem::path(o.output).parent_path();
@@ -1005,7 +1005,6 @@ int RunSurface(int argc, char* argv[])
     bool useGL = false;
     if (!ChooseBackend(o, gpu, useGL, error))
       return Fail(1, error);
-    useGL = useGL && o.volume.empty(); // the OpenGL tracer does not read volumes yet
     cao::VCTPlan plan;
     if (!PlanSceneGrid(scene, camera, o, radius, grid, error))
       return Fail(2, error);

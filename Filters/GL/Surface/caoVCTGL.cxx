@@ -30,17 +30,90 @@ struct VCTEngine::Impl
   Context& Ctx;
   const Functions& gl;
   GLuint points = 0, ids = 0, bits = 0, grid = 0, params = 0, tracePoints = 0, traceNormals = 0,
-         ao = 0, surface = 0;
+         ao = 0, surface = 0, opacity = 0;
   Program rasterize, combine, trace;
   StageTimer timer{ SCount };
   BitGrid shape; ///< size and place of the grid on the GPU (no bits)
-  std::int64_t bytes = 0;
+  std::int64_t bytes = 0, volumeBytes = 0;
+  /// What the opacity buffer holds: per volume, the object and its values.
+  struct VolumeKey
+  {
+    const OpacityVolume* volume;
+    const float* data;
+    std::size_t size;
+    int dims[3];
+    bool operator==(const VolumeKey& o) const
+    {
+      return volume == o.volume && data == o.data && size == o.size && dims[0] == o.dims[0] &&
+        dims[1] == o.dims[1] && dims[2] == o.dims[2];
+    }
+  };
+  std::vector<VolumeKey> volumes;
+  static std::vector<VolumeKey> KeysOf(const std::vector<const OpacityVolume*>& list)
+  {
+    std::vector<VolumeKey> keys;
+    for (const OpacityVolume* v : list)
+      keys.push_back({ v, v ? v->alpha.data() : nullptr, v ? v->alpha.size() : 0,
+        { v ? v->dims[0] : 0, v ? v->dims[1] : 0, v ? v->dims[2] : 0 } });
+    return keys;
+  }
+  /// The volumes' opacity into one buffer (the context current, its state guarded).
+  bool PutVolumes(const std::vector<const OpacityVolume*>& list, std::string& error)
+  {
+    if (list.size() > CAO_VCT_MAX_VOLUMES)
+      return error = "at most " + std::to_string(CAO_VCT_MAX_VOLUMES) + " volumes occlude the surfaces on the GPU (" +
+               std::to_string(list.size()) + " given)",
+             false;
+    std::size_t total = 0;
+    for (const OpacityVolume* v : list)
+    {
+      if (!v)
+        return error = "a null occluding volume", false;
+      const std::string why = v->Validate();
+      if (!why.empty())
+        return error = "an occluding volume: " + why, false;
+      total += v->alpha.size();
+    }
+    GLint largest = 0;
+    gl.GetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &largest);
+    const double limit = largest > 0 ? static_cast<double>(largest) : 2147483647.0;
+    if (static_cast<double>(total) * sizeof(float) > limit || total > std::numeric_limits<std::int32_t>::max())
+      return error = "the occluding volumes' opacity (" + std::to_string(total) + " voxels, " +
+               std::to_string(total * sizeof(float) >> 20) + " MiB) exceeds this OpenGL's largest storage block (" +
+               std::to_string(static_cast<long long>(limit) >> 20) + " MiB)",
+             false;
+    if (total == 0)
+    {
+      if (this->opacity)
+        gl.DeleteBuffers(1, &this->opacity);
+      this->opacity = 0;
+      this->volumeBytes = 0;
+      this->volumes.clear();
+      return true;
+    }
+    if (!this->opacity)
+      gl.GenBuffers(1, &this->opacity);
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, this->opacity);
+    gl.BufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(total * sizeof(float)), nullptr, GL_STATIC_DRAW);
+    std::size_t offset = 0;
+    for (const OpacityVolume* v : list)
+    {
+      gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, static_cast<GLintptr>(offset * sizeof(float)),
+        static_cast<GLsizeiptr>(v->alpha.size() * sizeof(float)), v->alpha.data());
+      offset += v->alpha.size();
+    }
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    this->volumeBytes = static_cast<std::int64_t>(total * sizeof(float));
+    this->volumes = KeysOf(list);
+    return CheckError(gl, "the occluding volumes' upload", error);
+  }
   explicit Impl(Context& c)
     : Ctx(c)
     , gl(c.GL())
   {
   }
-  GLuint* Buffers[9] = { &points, &ids, &bits, &grid, &params, &tracePoints, &traceNormals, &ao, &surface };
+  GLuint* Buffers[10] = { &points, &ids, &bits, &grid, &params, &tracePoints, &traceNormals, &ao, &surface,
+    &opacity };
   void Upload(GLuint& b, GLenum target, std::size_t size, const void* data)
   {
     if (!b)
@@ -70,6 +143,8 @@ struct VCTEngine::Impl
       p->Release(gl);
     timer.Release(gl);
     bytes = 0;
+    volumeBytes = 0;
+    volumes.clear();
     shape = BitGrid();
   }
 };
@@ -103,6 +178,8 @@ void VCTEngine::AbandonGraphicsResources()
     prog->Abandon();
   p.timer.Abandon();
   p.bytes = 0;
+  p.volumeBytes = 0;
+  p.volumes.clear();
   p.shape = BitGrid();
 }
 
@@ -137,7 +214,17 @@ bool VCTEngine::TraceFrame(const BitGrid& grid, const VCTPlan& plan, SurfaceFram
 
 std::int64_t VCTEngine::ResidentBytes() const
 {
-  return this->P->bytes;
+  return this->P->bytes + this->P->volumeBytes;
+}
+
+bool VCTEngine::UploadVolumes(const std::vector<const OpacityVolume*>& volumes, std::string& error)
+{
+  Impl& p = *this->P;
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
+    return false;
+  StateGuard guard(p.gl, p.Ctx.Kind() == ContextKind::External);
+  return p.PutVolumes(volumes, error);
 }
 
 bool VCTEngine::Voxelize(const BitGrid& shape, const std::vector<MeshView>& meshes,
@@ -333,9 +420,11 @@ bool VCTEngine::TracePixels(const VCTPlan& plan, unsigned points, unsigned norma
     return false;
   }
   if (plan.cones.size() > CAO_VCT_MAX_CONES || plan.spheres.size() > CAO_VCT_MAX_SPHERES ||
-    plan.disk.size() > CAO_VCT_MAX_PRISMS)
+    plan.disk.size() > CAO_VCT_MAX_PRISMS || plan.volumes.size() > CAO_VCT_MAX_VOLUMES)
   {
-    error = "the plan exceeds the GPU's limits (cones, spheres, prisms)";
+    error = "the plan exceeds the GPU's limits (cones, spheres, prisms, volumes: " +
+      std::to_string(CAO_VCT_MAX_CONES) + ", " + std::to_string(CAO_VCT_MAX_SPHERES) + ", " +
+      std::to_string(CAO_VCT_MAX_PRISMS) + ", " + std::to_string(CAO_VCT_MAX_VOLUMES) + ")";
     return false;
   }
   if (count == 0)
@@ -348,14 +437,19 @@ bool VCTEngine::TracePixels(const VCTPlan& plan, unsigned points, unsigned norma
   StateGuard guard(gl, p.Ctx.Kind() == ContextKind::External);
   if (!p.BuildPrograms(error))
     return false;
+  if (!(Impl::KeysOf(plan.volumes) == p.volumes) && !p.PutVolumes(plan.volumes, error))
+    return false;
   p.timer.Allocate(gl, p.Ctx.UsesHostClock());
   p.Upload(p.params, GL_UNIFORM_BUFFER, sizeof(params), &params);
+  if (!p.opacity) // the shader declares the block: something bound, never read
+    p.Upload(p.opacity, GL_SHADER_STORAGE_BUFFER, 16, nullptr);
   gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   gl.BindBufferBase(GL_UNIFORM_BUFFER, CAO_BINDING_VCT_PARAMS, p.params);
   gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VX_BITS, p.grid);
   gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VCT_POINTS, points);
   gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VCT_NORMALS, normals);
   gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VCT_AO, ao);
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VCT_OPACITY, p.opacity);
   gl.UseProgram(p.trace.Id());
   p.timer.Begin(gl, STrace);
   DispatchLinear(gl, (count + 63) / 64);

@@ -45,8 +45,17 @@ public:
   bool Upload(const BitGrid& grid, std::string& error);
   /// The grid's bits, as BitGrid::bits.
   bool Read(std::vector<std::uint32_t>& bits, std::string& error);
+  /// Puts the opacity of `volumes` (at most CAO_VCT_MAX_VOLUMES, together
+  /// at most the context's largest storage block and 2^31 values) on the
+  /// GPU, in this order, for the plans whose `volumes` are these; an empty
+  /// list frees them. A trace whose plan names other volumes (other
+  /// objects, or their opacity moved or resized) uploads them itself; a
+  /// volume whose opacity changed in place must be uploaded again here.
+  bool UploadVolumes(const std::vector<const OpacityVolume*>& volumes, std::string& error);
+
   /// The AO at `count` points (positions and unit normals, x y z each) with
-  /// `plan` on the grid voxelized or uploaded last. `ms`: GPU time.
+  /// `plan` on the grid voxelized or uploaded last, and its occluding
+  /// volumes (UploadVolumes). `ms`: GPU time.
   bool Trace(const VCTPlan& plan, const float* points, const float* normals, std::size_t count,
     std::vector<float>& ao, double& ms, std::string& error);
 

@@ -209,6 +209,19 @@ CAO_CONST CAO_DM_STAT_BOXES = 8;     /* then per layer: covered x0, y0, x1, y1 *
 #define CAO_VCT_MAX_CONES 8
 #define CAO_VCT_MAX_SPHERES 16
 #define CAO_VCT_MAX_PRISMS 32
+#define CAO_VCT_MAX_VOLUMES 8
+/* A volume occluding the surfaces (cao::OpacityVolume): its opacity per
+ * voxel in the buffer CAO_BINDING_VCT_OPACITY from `dims.w` on, x fastest;
+ * `toIndex` maps the grid's frame (world units, the frame the points come
+ * in) to its continuous voxel index (voxel centres at integers), composed
+ * on the host in double from the grid's axes and the volume's world to
+ * index matrix. */
+struct VCTVolume
+{
+  vec4 toIndex[3]; /* rows of a 3 x 4 matrix */
+  ivec4 dims;      /* xyz: voxels per axis; w: the first value's index in the opacity buffer */
+  vec4 scalars;    /* x: 1 / the opacity's unit distance (world); yzw: 0 */
+};
 struct VCTParams
 {
   ivec4 grid;   /* x: nx, y: ny, z: slices, w: words per column */
@@ -219,6 +232,8 @@ struct VCTParams
   vec4 cones[CAO_VCT_MAX_CONES];     /* xyz: direction, z along the normal; w: weight */
   vec4 spheres[CAO_VCT_MAX_SPHERES]; /* x: centre distance t, y: radius r (world); zw: 0 */
   vec4 disk[CAO_VCT_MAX_PRISMS];     /* xy: unit-disk sample, z: sqrt(1 - x^2 - y^2); w: 0 */
+  ivec4 volumeCount;                 /* x: occluding volumes (0..CAO_VCT_MAX_VOLUMES); yzw: 0 */
+  VCTVolume volumes[CAO_VCT_MAX_VOLUMES];
 };
 #define CAO_BINDING_VCT_PARAMS 3   /* uniform block: VCTParams */
 #define CAO_BINDING_VX_POINTS 0    /* storage: double xyz per point, grid units */
@@ -229,6 +244,7 @@ struct VCTParams
 #define CAO_BINDING_VCT_POINTS 4   /* storage: vec4 per point (xyz world, w unused) */
 #define CAO_BINDING_VCT_NORMALS 5  /* storage: vec4 per point (xyz unit normal; w 0: no point, AO NaN) */
 #define CAO_BINDING_VCT_AO 6       /* storage: float AO per point */
+#define CAO_BINDING_VCT_OPACITY 8  /* storage: float, the occluding volumes' opacity (VCTVolume) */
 
 /* A frame kept on the GPU (caoFrameGL, caoFrame.glsl; the pass's GPU path
  * with the depth G-buffer): the drawn depth read into a buffer, the colours
@@ -286,8 +302,10 @@ static_assert(sizeof(DMHit) == 16, "DMHit must match std430");
 static_assert(sizeof(DMOffset) == 16, "DMOffset must match std430");
 static_assert(sizeof(RenderParams) == (19 + 2 * CAO_MAX_LIGHTS) * 16, "RenderParams must match std140");
 static_assert(sizeof(LAOTap) == 32, "LAOTap must match std430");
+static_assert(sizeof(VCTVolume) == 5 * 16, "VCTVolume must match std140");
 static_assert(sizeof(VCTParams) ==
-    4 * 16 + (CAO_VCT_MAX_CONES + CAO_VCT_MAX_SPHERES + CAO_VCT_MAX_PRISMS) * 16,
+    5 * 16 + (CAO_VCT_MAX_CONES + CAO_VCT_MAX_SPHERES + CAO_VCT_MAX_PRISMS) * 16 +
+      CAO_VCT_MAX_VOLUMES * sizeof(VCTVolume),
   "VCTParams must match std140");
 static_assert(sizeof(LAOMarchBlock) == 96, "LAOMarchBlock must match std140/std430");
 static_assert(sizeof(ClipParams) == 3 * 16 + 4 * 16 + CAO_MAX_AA_EXTRA_SAMPLES * 16,

@@ -543,6 +543,30 @@ layout::VCTParams MakeVCTParams(const BitGrid& grid, const VCTPlan& plan, int po
     v.disk[k] = { static_cast<float>(x), static_cast<float>(y),
       static_cast<float>(std::sqrt(std::max(0.0, 1.0 - x * x - y * y))), 0 };
   }
+  // The occluding volumes, their opacity one after another in plan order;
+  // each maps the grid's frame to its voxel index: worldToIndex * axes^T.
+  const int volumes = std::min<int>(static_cast<int>(plan.volumes.size()), CAO_VCT_MAX_VOLUMES);
+  v.volumeCount = { volumes, 0, 0, 0 };
+  std::int64_t offset = 0;
+  for (int k = 0; k < volumes; ++k)
+  {
+    const OpacityVolume& volume = *plan.volumes[k];
+    const double* m = volume.worldToIndex.data();
+    const double* a = grid.axes.data();
+    layout::VCTVolume& out = v.volumes[k];
+    for (int r = 0; r < 3; ++r)
+    {
+      double row[4];
+      for (int c = 0; c < 3; ++c)
+        row[c] = m[4 * r] * a[3 * c] + m[4 * r + 1] * a[3 * c + 1] + m[4 * r + 2] * a[3 * c + 2];
+      row[3] = m[4 * r + 3];
+      out.toIndex[r] = { static_cast<float>(row[0]), static_cast<float>(row[1]), static_cast<float>(row[2]),
+        static_cast<float>(row[3]) };
+    }
+    out.dims = { volume.dims[0], volume.dims[1], volume.dims[2], static_cast<std::int32_t>(offset) };
+    out.scalars = { static_cast<float>(1.0 / volume.unitDistance), 0, 0, 0 };
+    offset += static_cast<std::int64_t>(volume.alpha.size());
+  }
   return v;
 }
 

@@ -246,7 +246,9 @@ bool PlanGrid(const std::array<double, 6>& bounds, double padding, int slices, B
 bool GridPoints(const BitGrid& grid, const std::vector<double>& points, std::vector<double>& out,
   std::string& error);
 /// The parameter block of the GPU cone tracer for `plan` on `grid`, for
-/// `points` points (caoGPULayout.h VCTParams).
+/// `points` points (caoGPULayout.h VCTParams); the plan's occluding
+/// volumes (at most CAO_VCT_MAX_VOLUMES) with their opacity one after
+/// another in plan order, as the GPU engine uploads them.
 layout::VCTParams MakeVCTParams(const BitGrid& grid, const VCTPlan& plan, int points);
 
 /// The AO (1 = open) at P with unit normal n (world coordinates).

@@ -11,7 +11,11 @@
 //   0.01 (a prism's slice range can round the other way in float);
 //   negative control: one changed bit near a point changes its GPU AO;
 // - a CPU grid uploaded traces as the GPU's own (the same bits);
-// - bad input: a plan beyond the GPU's limits, tracing with no grid.
+// - volumes occluding the surfaces: the cones read their opacity as the
+//   CPU's (both occupancies, a world and an eye grid; negative control: the
+//   GPU without them); an opacity changed in place counts once uploaded;
+// - bad input: a plan beyond the GPU's limits, tracing with no grid, too
+//   many volumes, a volume of the wrong size.
 #include "caoVCTGL.h"
 #include "caoGLTestUtilities.h"
 #include "caoTestUtilities.h"
@@ -78,6 +82,150 @@ bool SameGrid(cao::gl::VCTEngine& engine, const char* name, const std::vector<ca
   if (keep)
     *keep = cpu;
   return ok;
+}
+
+/// The GPU's and the CPU's AO at the same points (the CPU at `dp`, `dn` in
+/// world coordinates, the GPU at `points`, `normals` in the grid's frame):
+/// mean and largest |difference|, mean CPU AO.
+void Compare(cao::gl::VCTEngine& engine, const cao::BitGrid& grid, const cao::VCTPlan& plan,
+  const std::vector<double>& dp, const std::vector<double>& dn, const std::vector<float>& points,
+  const std::vector<float>& normals, double& mean, double& worst, double& meanAO, std::vector<float>& gpu)
+{
+  std::string error;
+  double ms = 0;
+  const int count = static_cast<int>(dp.size() / 3);
+  mean = worst = meanAO = 1e9;
+  if (!engine.Trace(plan, points.data(), normals.data(), count, gpu, ms, error))
+  {
+    std::printf("FAIL trace: %s\n", error.c_str());
+    ++failures;
+    return;
+  }
+  mean = worst = meanAO = 0;
+  for (int i = 0; i < count; ++i)
+  {
+    const double cpu = cao::ConeTraceAO(grid, plan, &dp[3 * i], &dn[3 * i]);
+    const double d = std::fabs(cpu - gpu[i]);
+    mean += d / count;
+    worst = std::max(worst, d);
+    meanAO += cpu / count;
+  }
+}
+
+/// Volumes occluding the surfaces: the GPU's cones read their opacity as
+/// the CPU's do (cao::SphereOpacity), on the world grid and on an eye
+/// grid (the volumes' index maps composed with the grid's axes).
+int VolumesOcclude(cao::gl::VCTEngine& engine, const cao::BitGrid& grid, cao::VCTSettings settings,
+  const std::vector<double>& dp, const std::vector<double>& dn, const std::vector<float>& points,
+  const std::vector<float>& normals)
+{
+  std::string error;
+  // A smooth field on a turned, anisotropic 21 x 17 x 13 grid over the
+  // spheres, and a dense block (0.6) over part of the floor.
+  cao::OpacityVolume field, block;
+  field.dims[0] = 21, field.dims[1] = 17, field.dims[2] = 13;
+  const double c = std::cos(0.4), s = std::sin(0.4);
+  // index = S R (x - corner): turned 0.4 rad about z, spacings 0.08, 0.1, 0.12.
+  field.worldToIndex = { c / 0.08, s / 0.08, 0, (-c * -0.8 - s * -0.7) / 0.08, -s / 0.1, c / 0.1, 0,
+    (s * -0.8 - c * -0.7) / 0.1, 0, 0, 1 / 0.12, 0.7 / 0.12 };
+  field.unitDistance = 0.3;
+  for (int k = 0; k < 13; ++k)
+    for (int j = 0; j < 17; ++j)
+      for (int i = 0; i < 21; ++i)
+        field.alpha.push_back(static_cast<float>(0.25 + 0.2 * std::sin(0.5 * i + 0.3 * j) * std::cos(0.4 * k)));
+  block.dims[0] = block.dims[1] = block.dims[2] = 8;
+  block.worldToIndex = { 7 / 1.2, 0, 0, 7 / 1.2 * 1.2, 0, 7 / 1.2, 0, 7 / 1.2 * 1.2, 0, 0, 7 / 0.5,
+    7 / 0.5 * 0.6 };
+  block.alpha.assign(512, 0.6f);
+  block.unitDistance = 0.5;
+  for (cao::VCTOccupancy occupancy : { cao::VCTOccupancy::Volume, cao::VCTOccupancy::Rays })
+  {
+    settings.occupancy = occupancy;
+    cao::VCTPlan plan;
+    CAO_CHECK(cao::BuildVCTPlan(settings, grid, plan, error), "%s", error.c_str());
+    double mean0, worst0, ao0, mean, worst, ao;
+    std::vector<float> none, gpu;
+    Compare(engine, grid, plan, dp, dn, points, normals, mean0, worst0, ao0, none);
+    plan.volumes = { &field, &block };
+    Compare(engine, grid, plan, dp, dn, points, normals, mean, worst, ao, gpu);
+    // Negative control: the GPU's AO without the volumes against the CPU's with them.
+    double missed = 0;
+    for (std::size_t i = 0; i < gpu.size() && i < none.size(); ++i)
+      missed += std::fabs(static_cast<double>(none[i]) - gpu[i]) / gpu.size();
+    std::printf("volumes occluding (%s): mean AO %.4f -> %.4f; GPU against CPU mean |diff| %.2e, max %.2e "
+                "(without the volumes on the GPU: %.2e)\n", cao::VCTOccupancyName(occupancy), ao0, ao, mean,
+      worst, missed);
+    const double limit = occupancy == cao::VCTOccupancy::Rays ? 0.025 : 0.01;
+    CAO_CHECK(ao < ao0 - 0.02 && mean < 1e-4 && worst < limit && missed > 100 * mean,
+      "the GPU's cones read the volumes as the CPU's: mean %.2e max %.2e", mean, worst);
+  }
+  // An opacity changed in place is not seen until uploaded again.
+  cao::VCTPlan plan;
+  CAO_CHECK(cao::BuildVCTPlan(settings, grid, plan, error), "%s", error.c_str());
+  plan.volumes = { &field, &block };
+  double mean, worst, ao;
+  std::vector<float> before, stale, after;
+  Compare(engine, grid, plan, dp, dn, points, normals, mean, worst, ao, before);
+  block.alpha.assign(512, 0.0f);
+  Compare(engine, grid, plan, dp, dn, points, normals, mean, worst, ao, stale);
+  const double staleMean = mean;
+  CAO_CHECK(engine.UploadVolumes(plan.volumes, error), "%s", error.c_str());
+  Compare(engine, grid, plan, dp, dn, points, normals, mean, worst, ao, after);
+  std::printf("the block cleared in place: GPU against CPU %.2e before UploadVolumes, %.2e after\n", staleMean, mean);
+  CAO_CHECK(stale == before && staleMean > 1e-3 && mean < 1e-4, "UploadVolumes takes an in-place change");
+  block.alpha.assign(512, 0.6f); // in place again: the trace without volumes below drops the upload
+  // An eye grid (turned axes): the points go in the grid's frame.
+  std::array<double, 9> axes;
+  const double right[3] = { 0.8, 0.6, 0.0 }, up[3] = { -0.36, 0.48, 0.8 };
+  CAO_CHECK(cao::EyeAxes(right, up, axes, error), "%s", error.c_str());
+  std::vector<double> sphere;
+  std::vector<std::int64_t> tris;
+  caotest::UVSphere(0.6, 48, sphere, tris);
+  cao::BitGrid eye;
+  CAO_CHECK(cao::PlanEyeGrid({ { &sphere, &tris } }, axes, 0.4, 128, eye, error) &&
+      cao::FillGrid({ { &sphere, &tris } }, eye, error) && engine.Upload(eye, error),
+    "%s", error.c_str());
+  settings.occupancy = cao::VCTOccupancy::Rays;
+  CAO_CHECK(cao::BuildVCTPlan(settings, eye, plan, error), "%s", error.c_str());
+  std::vector<double> wp, wn;
+  std::vector<float> gp, gn;
+  for (std::size_t i = 0; i + 2 < dp.size() && wp.size() < 3 * 1000; i += 3)
+  {
+    if (i % 2) // the points of the first sphere (centred at 0)
+      continue;
+    double g[3], h[3];
+    eye.ToGrid(&dp[i], g);
+    eye.ToGrid(&dn[i], h);
+    for (int d = 0; d < 3; ++d)
+    {
+      wp.push_back(dp[i + d]);
+      wn.push_back(dn[i + d]);
+      gp.push_back(static_cast<float>(g[d]));
+      gn.push_back(static_cast<float>(h[d]));
+    }
+  }
+  std::vector<float> gpu;
+  Compare(engine, eye, plan, wp, wn, gp, gn, mean, worst, ao, gpu);
+  std::printf("eye grid without the volumes: mean AO %.4f, mean |diff| %.2e, max %.2e\n", ao, mean, worst);
+  CAO_CHECK(mean < 1e-4 && worst < 0.025, "the eye grid: mean %.2e max %.2e", mean, worst);
+  const double openAO = ao;
+  plan.volumes = { &field, &block };
+  Compare(engine, eye, plan, wp, wn, gp, gn, mean, worst, ao, gpu);
+  std::printf("eye grid with the volumes, %zu points: mean AO %.4f, GPU against CPU mean |diff| %.2e, max %.2e\n",
+    wp.size() / 3, ao, mean, worst);
+  CAO_CHECK(mean < 1e-4 && worst < 0.025 && ao < openAO - 0.05, "the eye grid's volumes: mean %.2e max %.2e", mean, worst);
+  // Bad input: too many volumes; a volume whose opacity has the wrong size.
+  std::vector<const cao::OpacityVolume*> many(CAO_VCT_MAX_VOLUMES + 1, &block);
+  CAO_CHECK(!engine.UploadVolumes(many, error) && error.find("at most") != std::string::npos, "%s",
+    error.c_str());
+  std::printf("%d volumes: %s\n", CAO_VCT_MAX_VOLUMES + 1, error.c_str());
+  cao::OpacityVolume bad = block;
+  bad.alpha.resize(100);
+  CAO_CHECK(!engine.UploadVolumes({ &bad }, error) && error.find("wrong size") != std::string::npos, "%s",
+    error.c_str());
+  std::printf("a short volume: %s\n", error.c_str());
+  CAO_CHECK(engine.UploadVolumes({}, error) && engine.Upload(grid, error), "%s", error.c_str());
+  return 0;
 }
 }
 
@@ -228,6 +376,8 @@ int TestGLVoxelConeTracing(int argc, char* argv[])
   CAO_CHECK(engine.Upload(grid, error) && engine.Trace(plan, points.data(), normals.data(), 4000, gpu3, ms, error),
     "%s", error.c_str());
   CAO_CHECK(gpu3 == gpu, "the uploaded CPU grid traces as the GPU's own");
+  if (VolumesOcclude(engine, grid, settings, dp, dn, points, normals))
+    return 1;
   // Bad input.
   cao::VCTPlan big = plan;
   big.spheres.resize(CAO_VCT_MAX_SPHERES + 1, plan.spheres[0]);

@@ -5,7 +5,10 @@
 // front-to-back products, weighted; or (occupancy "rays", vct.apex.y = 1)
 // each cone's occlusion the cosine-weighted share of its rays that meet a
 // set voxel. The plan (cones, spheres, prism samples) comes from the
-// host's VCTPlan.
+// host's VCTPlan. Occluding volumes (vct.volumeCount.x of them): each
+// sphere also sees a volume's mean opacity at its centre and prism points,
+// over its diameter (cao::SphereOpacity's twin, trilinear by hand as the
+// CPU's OpacityVolume::Sample, so both read the same values).
 layout(local_size_x = 64) in;
 
 layout(std140, binding = CAO_BINDING_VCT_PARAMS) uniform VCTBlock
@@ -28,6 +31,51 @@ layout(std430, binding = CAO_BINDING_VCT_AO) writeonly buffer AOBlock
 {
   float ao[];
 };
+layout(std430, binding = CAO_BINDING_VCT_OPACITY) readonly buffer OpacityBlock
+{
+  float opacity[];
+};
+
+/// Volume v's trilinear opacity at g (the grid's frame); 0 outside it.
+float VolumeSample(int v, vec3 g)
+{
+  VCTVolume vol = vct.volumes[v];
+  vec3 x = vec3(dot(vol.toIndex[0].xyz, g) + vol.toIndex[0].w, dot(vol.toIndex[1].xyz, g) + vol.toIndex[1].w,
+    dot(vol.toIndex[2].xyz, g) + vol.toIndex[2].w);
+  ivec3 dims = vol.dims.xyz;
+  if (!(x.x >= 0.0 && x.y >= 0.0 && x.z >= 0.0) || x.x > float(dims.x - 1) || x.y > float(dims.y - 1) ||
+    x.z > float(dims.z - 1))
+    return 0.0;
+  ivec3 i0 = min(ivec3(x), max(ivec3(0), dims - 2));
+  vec3 f = x - vec3(i0);
+  ivec3 stride = ivec3(dims.x > 1 ? 1 : 0, dims.y > 1 ? dims.x : 0, dims.z > 1 ? dims.x * dims.y : 0);
+  int base = vol.dims.w + i0.x + i0.y * dims.x + i0.z * dims.x * dims.y;
+  float value = 0.0;
+  for (int c = 0; c < 8; ++c)
+  {
+    int bx = c & 1, by = (c >> 1) & 1, bz = (c >> 2) & 1;
+    float w = (bx != 0 ? f.x : 1.0 - f.x) * (by != 0 ? f.y : 1.0 - f.y) * (bz != 0 ? f.z : 1.0 - f.z);
+    if (w > 0.0)
+      value += w * opacity[base + bx * stride.x + by * stride.y + bz * stride.z];
+  }
+  return value;
+}
+
+/// cao::SphereOpacity: the mean opacity at the centre and the prism points
+/// (the sphere's disk across the grid's z axis), over the diameter
+/// (cao::CorrectOpacity).
+float SphereOpacity(int v, vec3 centre, float r)
+{
+  float sum = VolumeSample(v, centre);
+  for (int k = 0; k < vct.counts.z; ++k)
+    sum += VolumeSample(v, centre + r * vec3(vct.disk[k].xy, 0.0));
+  float mean = sum / float(vct.counts.z + 1);
+  if (!(mean > 0.0))
+    return 0.0;
+  if (mean >= 1.0)
+    return 1.0;
+  return 1.0 - pow(1.0 - mean, 2.0 * r * vct.volumes[v].scalars.x);
+}
 
 /// Set bits in slices [k0, k1] of column (i, j); 0 outside the grid.
 int CountBits(int i, int j, int k0, int k1)
@@ -120,16 +168,18 @@ void main()
     vec3 dir = l.x * tx + l.y * ty + l.z * n;
     vec3 u, v; // the rays' frame across the cone's axis
     Frame(dir, u, v);
-    if (vct.apex.y > 0.5)
-    {
-      occlusion += l.w * RayOcclusion(apex, n, dir, u, v);
-      continue;
-    }
-    float open = 1.0;
+    // Rays: the cone's rays at once; volume: each sphere's prisms. Then the
+    // volumes' opacity over each sphere.
+    bool rays = vct.apex.y > 0.5;
+    float open = rays ? 1.0 - RayOcclusion(apex, n, dir, u, v) : 1.0;
     for (int s = 0; s < vct.counts.y; ++s)
     {
       vec3 centre = apex + vct.spheres[s].x * dir;
       float r = vct.spheres[s].y;
+      for (int vol = 0; vol < vct.volumeCount.x; ++vol)
+        open *= 1.0 - SphereOpacity(vol, centre, r);
+      if (rays)
+        continue;
       float gz = (centre.z - vct.origin.z) * invH;
       int set = 0, total = 0;
       for (int k = 0; k < vct.counts.z; ++k)

@@ -27,6 +27,7 @@
 // - an open mesh is counted; bad Slices and a NaN Strength are refused with
 //   the reason;
 // - the volume occludes: a dense block of volume (vtkContextualAOVolumeMapper)
+//   (on OpenGL too, by the read-back path and the GPU frame, as the CPU)
 //   darkens the slab under it; a camera turn does not rebuild its opacity;
 //   carving it all away with the mapper's clip box gives the slab's own AO
 //   exactly; half carved and the other half probed fall between;
@@ -73,6 +74,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <initializer_list>
 #include <string>
@@ -797,6 +799,79 @@ int TestContextualAOPass(int, char*[])
         std::fabs(half + probed - under - alone) < 0.5,
       "half carved: AO " + std::to_string(half) + ", the other half probed: " + std::to_string(probed) +
         " (between " + std::to_string(under) + " and " + std::to_string(alone) + ")");
+    // On the window's OpenGL the cones read the volume as the CPU's do, by
+    // the read-back path (ray cast) and the GPU frame (drawn depth); a
+    // camera turn uploads nothing again; carved away, the slab's own AO.
+    mapper->SetModeToSubtraction();
+    mapper->SetClipShape(nullptr);
+    const int w = window->GetSize()[0], h = window->GetSize()[1];
+    auto image = [&](std::vector<double>& ao) {
+      window->Render();
+      ao.assign(static_cast<std::size_t>(w) * h, 0.0);
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+          ao[static_cast<std::size_t>(y) * w + x] = pass->GetPixelAO(x, y);
+    };
+    auto compare = [&](const std::vector<double>& a, const std::vector<double>& b, double& mean, double& worst) {
+      int n = 0, mismatched = 0;
+      mean = worst = 0.0;
+      for (std::size_t i = 0; i < a.size(); ++i)
+        if (std::isfinite(a[i]) != std::isfinite(b[i]))
+          ++mismatched;
+        else if (std::isfinite(a[i]))
+          mean += std::fabs(a[i] - b[i]), worst = std::max(worst, std::fabs(a[i] - b[i])), ++n;
+      mean /= std::max(n, 1);
+      return mismatched == 0 && n > 1000;
+    };
+    for (int gbuffer : { vtkContextualAOPass::RAY_CAST, vtkContextualAOPass::DEPTH_BUFFER })
+    {
+      const char* name = gbuffer == vtkContextualAOPass::RAY_CAST ? "ray cast" : "drawn depth";
+      pass->SetGBuffer(gbuffer);
+      pass->SetBackend(vtkContextualAOPass::BACKEND_CPU);
+      std::vector<double> cpu, gpu, gpuAlone, gpuCarved;
+      image(cpu);
+      pass->SetBackend(vtkContextualAOPass::BACKEND_OPENGL);
+      image(gpu);
+      const std::string report = pass->GetLastFrameReport();
+      std::printf("volume on OpenGL (%s): %s\n", name, report.c_str());
+      const bool gpuFrame = report.find("\"frame_on_gpu\": true") != std::string::npos;
+      const long long bytes = std::atoll(report.substr(report.find("\"gpu_bytes\": ") + 13).c_str());
+      camera->Azimuth(10);
+      renderer->ResetCameraClippingRange();
+      window->Render();
+      Check(pass->GetLastFrameStages().find("volumes") == std::string::npos &&
+          pass->GetLastFrameStages().find("trace") != std::string::npos,
+        std::string("OpenGL (") + name + "): a camera turn traces again without the volumes' opacity (" +
+          pass->GetLastFrameStages() + ")");
+      camera->Azimuth(-10);
+      renderer->ResetCameraClippingRange();
+      pass->OccludingVolumesOff();
+      image(gpuAlone);
+      pass->OccludingVolumesOn();
+      double mean = 0, worst = 0, controlMean = 0, controlWorst = 0;
+      const bool same = compare(cpu, gpu, mean, worst);
+      compare(cpu, gpuAlone, controlMean, controlWorst);
+      char text[512];
+      std::snprintf(text, sizeof(text), "OpenGL (%s): the cones read the volume as the CPU's (mean |diff| %.2g, "
+        "largest %.2g; without the volume %.2g), %s, GPU memory %lld bytes (the opacity %d)", name, mean, worst,
+        controlMean, gpuFrame ? "the frame on the GPU" : "pixels read back", bytes, 21 * 21 * 9 * 4);
+      // Float against double: a ray's sample by a voxel face may flip, one
+      // ray of one cone (0.25 / 6 at most at Medium); the drawn depth's
+      // positions come through float on the GPU frame (the GPU frame test's
+      // bound: 0.2% of the pixels beyond 1e-3).
+      Check(same && mean < 1e-3 && worst < 0.05 && controlMean > 10 * mean &&
+          report.find("\"backend\": \"OpenGL") != std::string::npos &&
+          gpuFrame == (gbuffer == vtkContextualAOPass::DEPTH_BUFFER) && bytes >= 21 * 21 * 9 * 4,
+        text);
+      mapper->SetClipShape(clip);
+      clip->SetPosition(0, 0, 0);
+      image(gpuCarved);
+      mapper->SetClipShape(nullptr);
+      Check(gpuCarved == gpuAlone, std::string("OpenGL (") + name + "): the block carved away gives the slab's "
+        "own AO exactly (" + pass->GetLastFrameStages() + ")");
+    }
+    pass->SetGBuffer(vtkContextualAOPass::RAY_CAST);
+    pass->SetBackend(vtkContextualAOPass::BACKEND_AUTO);
   }
   // What the review found, each with its control:
   // - inside an outer framebuffer pass (VTK's tone mapping, as ParaView's
