@@ -244,7 +244,9 @@ struct VCTParams
 #define CAO_BINDING_VCT_POINTS 4   /* storage: vec4 per point (xyz world, w unused) */
 #define CAO_BINDING_VCT_NORMALS 5  /* storage: vec4 per point (xyz unit normal; w 0: no point, AO NaN) */
 #define CAO_BINDING_VCT_AO 6       /* storage: float AO per point */
-#define CAO_BINDING_VCT_OPACITY 8  /* storage: float, the occluding volumes' opacity (VCTVolume) */
+#define CAO_BINDING_VCT_OPACITY 7  /* storage: float, the occluding volumes' opacity (VCTVolume; the
+                                      trace's, where the voxelizer binds VX_SURFACE: within the 8
+                                      bindings OpenGL 4.3 guarantees and the state guard restores) */
 
 /* A frame kept on the GPU (caoFrameGL, caoFrame.glsl; the pass's GPU path
  * with the depth G-buffer): the drawn depth read into a buffer, the colours
