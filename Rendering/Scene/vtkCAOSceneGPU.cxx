@@ -163,6 +163,31 @@ bool SceneGPU::FrameTrace(const cao::VCTPlan& plan, std::string& error)
   return true;
 }
 
+bool SceneGPU::FrameHBAO(const cao::PixelCamera& camera, const cao::HBAOSettings& settings, std::string& error)
+{
+  return this->FrameScreenAO(&camera, &settings, nullptr, error);
+}
+
+bool SceneGPU::FrameVAO(const cao::PixelCamera& camera, const cao::VAOSettings& settings, std::string& error)
+{
+  return this->FrameScreenAO(&camera, nullptr, &settings, error);
+}
+
+bool SceneGPU::FrameScreenAO(const cao::PixelCamera* camera, const cao::HBAOSettings* hbao,
+  const cao::VAOSettings* vao, std::string& error)
+{
+  double ms = 0.0;
+  if (!this->P->Ready(error))
+    return false;
+  cao::gl::FrameEngine* f = this->P->frame.get();
+  cao::gl::ScreenAOEngine* s = this->P->screen.get();
+  if (hbao ? !s->HBAOPixels(*camera, *hbao, f->PointBuffer(), f->NormalBuffer(), f->AOBuffer(), ms, error)
+           : !s->VAOPixels(*camera, *vao, f->PointBuffer(), f->NormalBuffer(), f->AOBuffer(), ms, error))
+    return false;
+  f->AOWritten();
+  return true;
+}
+
 bool SceneGPU::FrameRead(bool ambient, unsigned framebuffer, const int rect[4], std::string& error)
 {
   return this->P->Ready(error) &&

@@ -53,8 +53,8 @@ public:
   bool VAO(const cao::PixelCamera& camera, const cao::VAOSettings& settings, cao::SurfaceFrame& frame,
     std::string& error);
   ///@{
-  /// The frame kept on the GPU (cao::gl::FrameEngine; VCT with the depth
-  /// G-buffer): the drawn depth of `framebuffer`'s rectangle (x0, y0,
+  /// The frame kept on the GPU (cao::gl::FrameEngine; the depth G-buffer;
+  /// VCT, HBAO, VAO without indirect light): the drawn depth of `framebuffer`'s rectangle (x0, y0,
   /// width, height) read on the GPU and its pixels that changed since the
   /// last G-buffer counted; the G-buffer (`ndcToWorld` row-major, into
   /// `grid`'s frame), its covered pixels counted; the cones on the grid
@@ -65,6 +65,10 @@ public:
   bool FrameGBuffer(const double ndcToWorld[16], const cao::BitGrid& grid, std::int64_t& covered,
     std::string& error);
   bool FrameTrace(const cao::VCTPlan& plan, std::string& error);
+  /// HBAO or VAO on the GPU frame's G-buffer (made with world axes), their
+  /// blur or filter there too (cao::gl::ScreenAOEngine::HBAOPixels, VAOPixels).
+  bool FrameHBAO(const cao::PixelCamera& camera, const cao::HBAOSettings& settings, std::string& error);
+  bool FrameVAO(const cao::PixelCamera& camera, const cao::VAOSettings& settings, std::string& error);
   bool FrameRead(bool ambient, unsigned framebuffer, const int rect[4], std::string& error);
   bool FrameCombine(double strength, bool wholeColor, unsigned framebuffer, const int rect[4], std::string& error);
   bool FrameAO(std::vector<float>& ao, std::string& error);
@@ -86,6 +90,8 @@ public:
   std::string Note; ///< why Auto chose the CPU (empty otherwise)
 
 private:
+  bool FrameScreenAO(const cao::PixelCamera* camera, const cao::HBAOSettings* hbao, const cao::VAOSettings* vao,
+    std::string& error);
   struct Impl;
   std::unique_ptr<Impl> P;
 };

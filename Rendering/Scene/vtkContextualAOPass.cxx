@@ -309,6 +309,22 @@ struct vtkContextualAOPass::Internals
     return true;
   }
   int uploadedVolumes[2] = { -1, -1 }; ///< the volume serial and GPU generation on the GPU
+  /// HBAO's and VAO's settings from the pass's.
+  cao::HBAOSettings HBAOSettingsOf(vtkContextualAOPass* self) const
+  {
+    cao::HBAOSettings settings;
+    const cao::HBAOPreset presets[] = { cao::HBAOPreset::Fig11a, cao::HBAOPreset::Table1, cao::HBAOPreset::Fig11d };
+    settings.preset = presets[self->Quality - 1];
+    settings.radius = this->radius;
+    return settings;
+  }
+  cao::VAOSettings VAOSettingsOf(vtkContextualAOPass* self) const
+  {
+    cao::VAOSettings settings;
+    settings.quality = static_cast<cao::VAOQuality>(self->Quality);
+    settings.radius = this->radius;
+    return settings;
+  }
   bool UpdateAO(vtkContextualAOPass* self, vtkRenderer* ren);
   bool Combine(vtkContextualAOPass* self, const vtkRenderState* s);
   bool RunGPUFrame(vtkContextualAOPass* self, const vtkRenderState* s);
@@ -495,19 +511,20 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
     this->Fail(self, "Radius (0 or more, world units) and Strength (0..1) must be numbers");
     return;
   }
-  // VCT on the GPU with the depth G-buffer keeps the frame there (no
-  // read-back); every other frame reads the drawn depth once: the depth
-  // G-buffer and the combine's drawn-is-traced test both read it.
+  // The AO on the GPU with the depth G-buffer keeps the frame there (no
+  // read-back; VAO's indirect light, on the CPU, reads the pixels back);
+  // every other frame reads the drawn depth once: the depth G-buffer and
+  // the combine's drawn-is-traced test both read it.
   const bool wasOnGPU = this->gpuFrame;
-  this->gpuFrame = this->onGPU && self->Method == VCT && this->gbuffer == DEPTH_BUFFER;
+  this->gpuFrame = this->onGPU && this->gbuffer == DEPTH_BUFFER && !(self->Method == VAO && self->IndirectLight);
   bool multisampled = false;
   if (this->gpuFrame &&
     (!vtkCAO::DrawTarget(ren, this->target, this->rect, multisampled, this->depthError) || multisampled))
   {
     this->gpuFrame = false;
     this->backendNote = multisampled
-      ? "the framebuffer is multisampled: the frame's pixels are read back (the cones still on the GPU)"
-      : "the frame's pixels are read back (the cones still on the GPU): " + this->depthError;
+      ? "the framebuffer is multisampled: the frame's pixels are read back (the AO still on the GPU)"
+      : "the frame's pixels are read back (the AO still on the GPU): " + this->depthError;
   }
   if (this->gpuFrame != wasOnGPU)
     this->viewKey.clear(); // the AO image is on the other side now
@@ -793,12 +810,21 @@ bool vtkContextualAOPass::Internals::RunGPUFrame(vtkContextualAOPass* self, cons
     this->frame = cao::SurfaceFrame(); // no AO until this trace succeeds
     this->hostAOStale = false;
     vtkMatrix4x4::Invert(&toNDC->Element[0][0], this->ndcToWorld);
-    cao::VCTPlan plan;
-    if (!this->gpu.FrameGBuffer(this->ndcToWorld, this->grid, covered, error))
+    // The cones read the G-buffer in the grid's frame, the screen-space
+    // estimators in world coordinates.
+    const bool vct = self->Method == VCT;
+    if (!this->gpu.FrameGBuffer(this->ndcToWorld, vct ? this->grid : cao::BitGrid(), covered, error))
       return this->Fail(self, "the GPU frame's G-buffer: " + error);
     this->Stage("gbuffer", start);
     start = Clock::now();
-    if (!this->BuildPlan(self, plan, error) || !this->gpu.FrameTrace(plan, error))
+    cao::PixelCamera& pixels = this->pixels;
+    std::copy(this->ndcToWorld, this->ndcToWorld + 16, pixels.ndcToWorld);
+    pixels.width = rect[2];
+    pixels.height = rect[3];
+    cao::VCTPlan plan;
+    if (vct ? !this->BuildPlan(self, plan, error) || !this->gpu.FrameTrace(plan, error)
+        : self->Method == HBAO ? !this->gpu.FrameHBAO(pixels, this->HBAOSettingsOf(self), error)
+                               : !this->gpu.FrameVAO(pixels, this->vao = this->VAOSettingsOf(self), error))
       return this->Fail(self, error);
     this->Stage("trace", start);
     this->frame = cao::SurfaceFrame();
@@ -870,19 +896,14 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
   start = Clock::now();
   if (self->Method == HBAO)
   {
-    cao::HBAOSettings settings;
-    const cao::HBAOPreset presets[] = { cao::HBAOPreset::Fig11a, cao::HBAOPreset::Table1, cao::HBAOPreset::Fig11d };
-    settings.preset = presets[self->Quality - 1];
-    settings.radius = this->radius;
+    const cao::HBAOSettings settings = this->HBAOSettingsOf(self);
     if (this->onGPU ? !this->gpu.HBAO(pixels, settings, this->frame, error)
                     : !cao::HBAOFrame(pixels, settings, this->frame, 0, error))
       return this->Fail(self, error);
   }
   else if (self->Method == VAO)
   {
-    this->vao = cao::VAOSettings();
-    this->vao.quality = static_cast<cao::VAOQuality>(self->Quality);
-    this->vao.radius = this->radius;
+    this->vao = this->VAOSettingsOf(self);
     if (this->onGPU ? !this->gpu.VAO(pixels, this->vao, this->frame, error)
                     : !cao::VAOFrame(pixels, this->vao, this->frame, 0, error))
       return this->Fail(self, error);

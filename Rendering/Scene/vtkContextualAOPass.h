@@ -65,11 +65,12 @@
  * (Filters/Kernels/Surface) on the CPU, or (Backend) their GL twins on the
  * window's own OpenGL. The pixels' surface points come from the CPU ray
  * cast or the drawn depth, and the picture is read back and written
- * through the window (any OpenGL, slowly on large windows); except VCT on
- * the GPU with the drawn depth (GBuffer DEPTH_BUFFER, or the default
- * GBUFFER_AUTO there): then the whole frame stays on the GPU (the depth
- * and colours blitted in, the G-buffer, the cones and the combine there,
- * cao::gl::FrameEngine), the report's "frame_on_gpu" says so, and nothing
+ * through the window (any OpenGL, slowly on large windows); except the AO
+ * on the GPU with the drawn depth (GBuffer DEPTH_BUFFER, or the default
+ * GBUFFER_AUTO there; VAO without IndirectLight): then the whole frame
+ * stays on the GPU (the depth and colours blitted in, the G-buffer, the
+ * cones or HBAO's and VAO's estimator with their blur or filter, and the
+ * combine there, cao::gl::FrameEngine), the report's "frame_on_gpu" says so, and nothing
  * is read back but two counters; GetPixelAO then reads the AO back on
  * demand (making the window's context current).
  */
@@ -218,10 +219,12 @@ public:
   /// AUTO (default), CPU or OPENGL, in the render window's own context (no
   /// second context; the GL state comes back as it was). The GPU cone
   /// tracer reads the occluding volumes' opacity as the CPU's does (uploaded
-  /// when it is rebuilt, not on a camera change). The G-buffer (ray cast or
-  /// drawn depth; on the GPU frame the drawn depth stays there), HBAO's blur,
-  /// VAO's filter and indirect light run on the CPU. The report's "backend"
-  /// says what ran, and "backend_note" why not the GPU.
+  /// when it is rebuilt, not on a camera change). With the drawn-depth
+  /// G-buffer the whole frame stays on the GPU (its G-buffer, the AO, HBAO's
+  /// blur, VAO's filter, the combine; VAO's indirect light excepted, which
+  /// runs on the CPU); with the ray cast, the G-buffer, blur and filter run
+  /// on the CPU. The report's "backend" says what ran, "frame_on_gpu"
+  /// whether the pixels stayed there, and "backend_note" why not the GPU.
   vtkSetClampMacro(Backend, int, BACKEND_AUTO, BACKEND_OPENGL);
   vtkGetMacro(Backend, int);
   ///@}

@@ -56,7 +56,9 @@ public:
   /// one ChangedPixels compares with.
   bool GBuffer(const double ndcToWorld[16], const std::array<double, 9>& axes, std::int64_t& covered,
     std::string& error);
-  /// Buffers for the cone tracer: vec4 points and normals (w 1: covered),
+  /// Buffers for the cone tracer and the screen-space estimators: vec4
+  /// points (w: NDC depth; 3e38 where not covered) and normals (w: the
+  /// pixel's world size where covered, 0 where not),
   /// float AO per pixel; the pixel count. AOWritten: the caller's tracer
   /// has written this G-buffer's AO (Combine and ReadAO refuse without it).
   unsigned PointBuffer() const;

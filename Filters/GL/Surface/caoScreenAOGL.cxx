@@ -6,6 +6,8 @@
 #include "caoGPULayout.h"
 
 #include "caoScreenAO_glsl.h"
+#include "caoScreenCommon_glsl.h"
+#include "caoScreenFilter_glsl.h"
 
 #include <algorithm>
 #include <cmath>
@@ -22,7 +24,8 @@ struct ScreenAOEngine::Impl
   const Functions& gl;
   GLuint params = 0, positions = 0, normals = 0, ao = 0, disk = 0;
   Program programs[2]; ///< 0 hbao, 1 vao
-  StageTimer timer{ 1 };
+  Program filter;      ///< the blur or filter (GPU frames)
+  StageTimer timer{ 2 };
   std::int64_t bytes = 0;
   explicit Impl(Context& c)
     : Ctx(c)
@@ -49,12 +52,26 @@ struct ScreenAOEngine::Impl
       }
     for (Program& p : programs)
       p.Release(gl);
+    filter.Release(gl);
     timer.Release(gl);
     bytes = 0;
   }
   /// Runs method 0 (hbao) or 1 (vao) with `block` over `frame`.
   bool Run(int method, layout::ScreenAOParams& block, const std::vector<layout::vec4>& samples,
     const PixelCamera& camera, SurfaceFrame& frame, double& ms, std::string& error);
+  /// Runs method 0 or 1 over pixels already on the GPU, then the filter
+  /// into `out` (the context current, its state guarded).
+  bool RunPixels(int method, const layout::ScreenAOParams& block, const std::vector<layout::vec4>& samples,
+    GLuint points, GLuint pixelNormals, GLuint out, double& ms, std::string& error);
+  bool Build(int method, std::string& error)
+  {
+    if (!this->programs[method].Valid() &&
+      !this->programs[method].BuildCompute(gl, { caoScreenCommon_glsl, caoScreenAO_glsl },
+        { { "CAO_SS_METHOD", method ? "1" : "0" } }, error))
+      return false;
+    return this->filter.Valid() ||
+      this->filter.BuildCompute(gl, { caoScreenCommon_glsl, caoScreenFilter_glsl }, {}, error);
+  }
 };
 
 namespace
@@ -65,11 +82,10 @@ layout::vec4 Row(const double* m, int r)
     static_cast<float>(m[4 * r + 3]) };
 }
 
-/// The parts of the block both methods fill; false when the frame does not fit.
-bool CommonBlock(const PixelCamera& camera, const SurfaceFrame& frame, double radius, layout::ScreenAOParams& b,
-  std::string& error)
+/// The parts of the block both methods fill; false when the camera is not usable.
+bool CommonBlock(const PixelCamera& camera, double radius, layout::ScreenAOParams& b, std::string& error)
 {
-  error = CheckScreenFrame(camera, frame);
+  error = CheckPixelCamera(camera);
   if (!error.empty())
     return false;
   const std::size_t pixels = static_cast<std::size_t>(camera.width) * camera.height;
@@ -88,6 +104,83 @@ bool CommonBlock(const PixelCamera& camera, const SurfaceFrame& frame, double ra
   b.scalars = { static_cast<float>(radius), 0.0f, 0.0f, 0.0f };
   return true;
 }
+
+/// The filter's part of the block: taps each side, their weights, the
+/// tolerance, the clamp (as FinishHBAO and FinishVAO call DepthAwareFilter).
+void FilterBlock(const std::vector<double>& weights, double tolerance, bool clampUnit, layout::ScreenAOParams& b)
+{
+  float w[CAO_SS_MAX_FILTER_WEIGHTS] = { 0 };
+  const int taps = static_cast<int>(std::min<std::size_t>(weights.size(), CAO_SS_MAX_FILTER_WEIGHTS));
+  for (int i = 0; i < taps; ++i)
+    w[i] = static_cast<float>(weights[i]);
+  for (int r = 0; r < CAO_SS_MAX_FILTER_WEIGHTS / 4; ++r)
+    b.finishWeights[r] = { w[4 * r], w[4 * r + 1], w[4 * r + 2], w[4 * r + 3] };
+  b.finish = { static_cast<float>(taps / 2), static_cast<float>(tolerance), clampUnit ? 1.0f : 0.0f, 0.0f };
+}
+
+/// HBAO's part of the block (and its blur).
+void HBAOBlock(const HBAOSettings& settings, layout::ScreenAOParams& block)
+{
+  block.image.z = 0;
+  block.hbao = { settings.EffectiveDirections(), settings.EffectiveSteps(), settings.EffectiveNormalRays(),
+    (settings.deflect ? 1 : 0) | (settings.EffectiveAttenuation() == AOFalloff::Linear ? 2 : 0) };
+  block.scalars.y = static_cast<float>(settings.offsetPixels);
+  double rotation[16], jitter[16];
+  HBAOPattern(settings, rotation, jitter);
+  for (int c = 0; c < CAO_SS_TILE * CAO_SS_TILE; ++c)
+    block.pattern[c] = { static_cast<float>(rotation[c]), static_cast<float>(jitter[c]), 0.0f, 0.0f };
+  FilterBlock(HBAOBlurWeights(settings), settings.blurTolerance * settings.radius, false, block);
+}
+
+/// VAO's part of the block (and its filter), and its disk samples.
+void VAOBlock(const VAOSettings& settings, layout::ScreenAOParams& block, std::vector<layout::vec4>& samples)
+{
+  const int tile = settings.interleave ? VAOSettings::Tile : 1;
+  block.image.z = 1;
+  block.image.w = tile;
+  block.vao = { settings.EffectiveSamples(), tile * tile, settings.haloGuard ? 1 : 0, 0 };
+  std::vector<double> x, y;
+  VAODiskSamples(settings, x, y);
+  samples.resize(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i)
+    samples[i] = { static_cast<float>(x[i]), static_cast<float>(y[i]), 0.0f, 0.0f };
+  FilterBlock(VAOFilterWeights(settings), settings.filterTolerance * settings.radius, true, block);
+}
+}
+
+bool ScreenAOEngine::Impl::RunPixels(int method, const layout::ScreenAOParams& block,
+  const std::vector<layout::vec4>& samples, GLuint points, GLuint pixelNormals, GLuint out, double& ms,
+  std::string& error)
+{
+  const std::size_t pixels = static_cast<std::size_t>(block.image.x) * block.image.y;
+  if (!this->Build(method, error))
+    return false;
+  this->timer.Allocate(gl, this->Ctx.UsesHostClock());
+  this->Upload(this->params, GL_UNIFORM_BUFFER, sizeof(block), &block);
+  this->Upload(this->ao, GL_SHADER_STORAGE_BUFFER, pixels * sizeof(float), nullptr);
+  this->Upload(this->disk, GL_SHADER_STORAGE_BUFFER, samples.size() * sizeof(layout::vec4), samples.data());
+  this->bytes = static_cast<std::int64_t>(sizeof(block) + pixels * sizeof(float) + samples.size() * sizeof(layout::vec4));
+  gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  gl.BindBufferBase(GL_UNIFORM_BUFFER, CAO_BINDING_SS_PARAMS, this->params);
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_SS_POSITIONS, points);
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_SS_NORMALS, pixelNormals);
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_SS_AO, this->ao);
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_SS_DISK, this->disk);
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_SS_FILTERED, out);
+  const std::int64_t groups = (static_cast<std::int64_t>(pixels) + 63) / 64;
+  this->timer.Begin(gl, 1);
+  gl.UseProgram(this->programs[method].Id());
+  DispatchLinear(gl, groups);
+  gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  gl.UseProgram(this->filter.Id());
+  DispatchLinear(gl, groups);
+  this->timer.End(gl, 1);
+  gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  gl.UseProgram(0);
+  if (!CheckError(gl, method ? "the volumetric AO on the GPU frame" : "the horizon-based AO on the GPU frame", error))
+    return false;
+  ms = this->timer.Milliseconds(gl, 1);
+  return true;
 }
 
 bool ScreenAOEngine::Impl::Run(int method, layout::ScreenAOParams& block, const std::vector<layout::vec4>& samples,
@@ -130,8 +223,7 @@ bool ScreenAOEngine::Impl::Run(int method, layout::ScreenAOParams& block, const 
   if (!scope.Ok(error))
     return false;
   StateGuard guard(gl, this->Ctx.Kind() == ContextKind::External);
-  if (!this->programs[method].Valid() &&
-    !this->programs[method].BuildCompute(gl, { caoScreenAO_glsl }, { { "CAO_SS_METHOD", method ? "1" : "0" } }, error))
+  if (!this->Build(method, error))
     return false;
   this->timer.Allocate(gl, this->Ctx.UsesHostClock());
   this->Upload(this->params, GL_UNIFORM_BUFFER, sizeof(block), &block);
@@ -177,7 +269,7 @@ ScreenAOEngine::~ScreenAOEngine()
 void ScreenAOEngine::ReleaseGraphicsResources()
 {
   Impl& p = *this->P;
-  if (p.bytes == 0 && !p.programs[0].Valid() && !p.programs[1].Valid())
+  if (p.bytes == 0 && !p.programs[0].Valid() && !p.programs[1].Valid() && !p.filter.Valid())
     return;
   CurrentScope scope(p.Ctx);
   if (scope.Ok())
@@ -191,6 +283,7 @@ void ScreenAOEngine::AbandonGraphicsResources()
     *b = 0;
   for (Program& prog : p.programs)
     prog.Abandon();
+  p.filter.Abandon();
   p.timer.Abandon();
   p.bytes = 0;
 }
@@ -205,20 +298,45 @@ bool ScreenAOEngine::HBAO(const PixelCamera& camera, const HBAOSettings& setting
 {
   error = settings.Validate();
   layout::ScreenAOParams block;
-  if (!error.empty() || !CommonBlock(camera, frame, settings.radius, block, error))
+  if (!error.empty() || !CommonBlock(camera, settings.radius, block, error) ||
+    !(error = CheckScreenFrame(camera, frame)).empty())
     return false;
-  block.image.z = 0;
-  block.hbao = { settings.EffectiveDirections(), settings.EffectiveSteps(), settings.EffectiveNormalRays(),
-    (settings.deflect ? 1 : 0) | (settings.EffectiveAttenuation() == AOFalloff::Linear ? 2 : 0) };
-  block.scalars.y = static_cast<float>(settings.offsetPixels);
-  double rotation[16], jitter[16];
-  HBAOPattern(settings, rotation, jitter);
-  for (int c = 0; c < CAO_SS_TILE * CAO_SS_TILE; ++c)
-    block.pattern[c] = { static_cast<float>(rotation[c]), static_cast<float>(jitter[c]), 0.0f, 0.0f };
+  HBAOBlock(settings, block);
   if (!this->P->Run(0, block, { layout::vec4{ 0, 0, 0, 0 } }, camera, frame, ms, error))
     return false;
   FinishHBAO(settings, frame, 0);
   return true;
+}
+
+bool ScreenAOEngine::HBAOPixels(const PixelCamera& camera, const HBAOSettings& settings, unsigned points,
+  unsigned normals, unsigned ao, double& ms, std::string& error)
+{
+  error = settings.Validate();
+  layout::ScreenAOParams block;
+  if (!error.empty() || !CommonBlock(camera, settings.radius, block, error))
+    return false;
+  HBAOBlock(settings, block);
+  CurrentScope scope(this->P->Ctx);
+  if (!scope.Ok(error))
+    return false;
+  StateGuard guard(this->P->gl, this->P->Ctx.Kind() == ContextKind::External);
+  return this->P->RunPixels(0, block, { layout::vec4{ 0, 0, 0, 0 } }, points, normals, ao, ms, error);
+}
+
+bool ScreenAOEngine::VAOPixels(const PixelCamera& camera, const VAOSettings& settings, unsigned points,
+  unsigned normals, unsigned ao, double& ms, std::string& error)
+{
+  error = settings.Validate();
+  layout::ScreenAOParams block;
+  if (!error.empty() || !CommonBlock(camera, settings.radius, block, error))
+    return false;
+  std::vector<layout::vec4> samples;
+  VAOBlock(settings, block, samples);
+  CurrentScope scope(this->P->Ctx);
+  if (!scope.Ok(error))
+    return false;
+  StateGuard guard(this->P->gl, this->P->Ctx.Kind() == ContextKind::External);
+  return this->P->RunPixels(1, block, samples, points, normals, ao, ms, error);
 }
 
 bool ScreenAOEngine::VAO(const PixelCamera& camera, const VAOSettings& settings, SurfaceFrame& frame, double& ms,
@@ -226,17 +344,11 @@ bool ScreenAOEngine::VAO(const PixelCamera& camera, const VAOSettings& settings,
 {
   error = settings.Validate();
   layout::ScreenAOParams block;
-  if (!error.empty() || !CommonBlock(camera, frame, settings.radius, block, error))
+  if (!error.empty() || !CommonBlock(camera, settings.radius, block, error) ||
+    !(error = CheckScreenFrame(camera, frame)).empty())
     return false;
-  const int tile = settings.interleave ? VAOSettings::Tile : 1;
-  block.image.z = 1;
-  block.image.w = tile;
-  block.vao = { settings.EffectiveSamples(), tile * tile, settings.haloGuard ? 1 : 0, 0 };
-  std::vector<double> x, y;
-  VAODiskSamples(settings, x, y);
-  std::vector<layout::vec4> samples(x.size());
-  for (std::size_t i = 0; i < x.size(); ++i)
-    samples[i] = { static_cast<float>(x[i]), static_cast<float>(y[i]), 0.0f, 0.0f };
+  std::vector<layout::vec4> samples;
+  VAOBlock(settings, block, samples);
   if (!this->P->Run(1, block, samples, camera, frame, ms, error))
     return false;
   FinishVAO(settings, frame, 0);

@@ -5,7 +5,8 @@
  * (caoScreenSpaceAO.h) in float per pixel, with the same randomization
  * pattern and disk samples; the host then applies the twin's own blur or
  * filter (FinishHBAO, FinishVAO), so the two differ only by float against
- * double. The parameter block is caoGPULayout.h's ScreenAOParams. Every
+ * double. On a frame kept on the GPU (HBAOPixels, VAOPixels) the blur or
+ * filter runs there too (caoScreenFilter.glsl, DepthAwareFilter's twin). The parameter block is caoGPULayout.h's ScreenAOParams. Every
  * entry point runs in a CurrentScope and a StateGuard: a host
  * application's context and GL state come back as they were.
  */
@@ -40,6 +41,18 @@ public:
     std::string& error);
   bool VAO(const PixelCamera& camera, const VAOSettings& settings, SurfaceFrame& frame, double& ms,
     std::string& error);
+
+  /// The same on a frame kept on the GPU (cao::gl::FrameEngine's buffers,
+  /// its G-buffer made with world axes): the estimator reads the points
+  /// (w: NDC depth, 3e38 where not covered) and normals (w: the pixel's
+  /// world size) where they are, and the twin's blur or filter runs on the
+  /// GPU too (caoScreenFilter.glsl), writing the AO into `ao` (NaN: not
+  /// covered); nothing comes back. `ms`: the estimator's and the filter's
+  /// GPU time.
+  bool HBAOPixels(const PixelCamera& camera, const HBAOSettings& settings, unsigned points, unsigned normals,
+    unsigned ao, double& ms, std::string& error);
+  bool VAOPixels(const PixelCamera& camera, const VAOSettings& settings, unsigned points, unsigned normals,
+    unsigned ao, double& ms, std::string& error);
 
   /// Bytes of GPU memory held.
   std::int64_t ResidentBytes() const;

@@ -60,8 +60,8 @@ public:
     std::vector<float>& ao, double& ms, std::string& error);
 
   /// The AO of `count` points already on the GPU (buffers of this context:
-  /// vec4 points in the grid's frame, vec4 normals whose w is 1 where there
-  /// is a point, 0 where not; float AO out, NaN where no point), with
+  /// vec4 points in the grid's frame, vec4 normals whose w is not 0 where
+  /// there is a point, 0 where not; float AO out, NaN where no point), with
   /// `plan` on the grid voxelized or uploaded last; nothing is read back.
   /// `ms`: GPU time (waits for it).
   bool TracePixels(const VCTPlan& plan, unsigned points, unsigned normals, unsigned ao, std::int64_t count,

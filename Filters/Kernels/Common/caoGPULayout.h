@@ -278,6 +278,7 @@ struct FrameParams
  * buffers; VAO's disk samples (16 sets of up to 256) as a buffer. */
 #define CAO_SS_TILE 4
 #define CAO_SS_MAX_SAMPLES 4096 /* 16 sets x VAOSettings' 256 samples */
+#define CAO_SS_MAX_FILTER_WEIGHTS 20 /* 2 x HBAOSettings' 8 taps + 1, in whole vec4s */
 struct ScreenAOParams
 {
   vec4 worldToNDC[4]; /* rows */
@@ -287,6 +288,9 @@ struct ScreenAOParams
   ivec4 vao;          /* x: samples per pixel, y: sets, z: halo guard, w: 0 */
   vec4 scalars;       /* x: radius R (world), y: offset (pixels), zw: 0 */
   vec4 pattern[CAO_SS_TILE * CAO_SS_TILE]; /* hbao per tile cell: x rotation (radians), y jitter (0, 1] */
+  vec4 finish;        /* the blur or filter (caoScreenFilter.glsl, cao::DepthAwareFilter): x taps each side
+                         (0: none), y tolerance (world), z 1: clamp to [0, 1] after (VAO); w: 0 */
+  vec4 finishWeights[CAO_SS_MAX_FILTER_WEIGHTS / 4]; /* the taps' weights per axis, -r..r, 4 a row */
 };
 /* Within the bindings OpenGL 4.3 guarantees (8 storage, uniform 0-3) and
  * that caoGLStateGuard restores in a host's context. */
@@ -295,9 +299,12 @@ struct ScreenAOParams
 #define CAO_BINDING_SS_NORMALS 1   /* storage: vec4 per pixel (xyz unit normal facing the camera, w its world size) */
 #define CAO_BINDING_SS_AO 2        /* storage: float per pixel (-1: not covered) */
 #define CAO_BINDING_SS_DISK 3      /* storage: vec4 per sample (xy on the disk, world units; zw 0) */
+#define CAO_BINDING_SS_FILTERED 4  /* storage: float per pixel, the blurred or filtered AO (NaN: not
+                                      covered; the frame's AO buffer on the GPU frame) */
 
 #ifdef __cplusplus
-static_assert(sizeof(ScreenAOParams) == (12 + CAO_SS_TILE * CAO_SS_TILE) * 16, "ScreenAOParams must match std140");
+static_assert(sizeof(ScreenAOParams) == (13 + CAO_SS_MAX_FILTER_WEIGHTS / 4 + CAO_SS_TILE * CAO_SS_TILE) * 16,
+  "ScreenAOParams must match std140");
 static_assert(sizeof(FrameParams) == 13 * 16, "FrameParams must match std140");
 static_assert(sizeof(DMTriangle) == 128, "DMTriangle must match std430");
 static_assert(sizeof(DMHit) == 16, "DMHit must match std430");

@@ -424,20 +424,31 @@ void DepthAwareFilter(const SurfaceFrame& frame, const std::vector<double>& weig
   });
 }
 
+std::vector<double> HBAOBlurWeights(const HBAOSettings& settings)
+{
+  std::vector<double> weights;
+  for (int d = -settings.blurRadius; d <= settings.blurRadius && settings.blurRadius >= 1; ++d)
+    weights.push_back(std::exp(-0.5 * d * d / (1.5 * 1.5)));
+  return weights;
+}
+
+std::vector<double> VAOFilterWeights(const VAOSettings& settings)
+{
+  return settings.interleave ? std::vector<double>{ 0.5, 1.0, 1.0, 1.0, 0.5 } : std::vector<double>();
+}
+
 void FinishHBAO(const HBAOSettings& settings, SurfaceFrame& frame, int threads)
 {
-  if (settings.blurRadius < 1)
-    return;
-  std::vector<double> weights(2 * settings.blurRadius + 1);
-  for (int d = -settings.blurRadius; d <= settings.blurRadius; ++d)
-    weights[d + settings.blurRadius] = std::exp(-0.5 * d * d / (1.5 * 1.5));
-  DepthAwareFilter(frame, weights, settings.blurTolerance * settings.radius, frame.ao, threads);
+  const std::vector<double> weights = HBAOBlurWeights(settings);
+  if (!weights.empty())
+    DepthAwareFilter(frame, weights, settings.blurTolerance * settings.radius, frame.ao, threads);
 }
 
 void FinishVAO(const VAOSettings& settings, SurfaceFrame& frame, int threads)
 {
-  if (settings.interleave)
-    DepthAwareFilter(frame, { 0.5, 1.0, 1.0, 1.0, 0.5 }, settings.filterTolerance * settings.radius, frame.ao, threads);
+  const std::vector<double> weights = VAOFilterWeights(settings);
+  if (!weights.empty())
+    DepthAwareFilter(frame, weights, settings.filterTolerance * settings.radius, frame.ao, threads);
   for (double& a : frame.ao)
     if (std::isfinite(a))
       a = std::min(1.0, std::max(0.0, a));

@@ -168,6 +168,11 @@ void VAODiskSamples(const VAOSettings& settings, std::vector<double>& x, std::ve
 /// sample sets' size, then the clamp to [0, 1].
 void FinishHBAO(const HBAOSettings& settings, SurfaceFrame& frame, int threads);
 void FinishVAO(const VAOSettings& settings, SurfaceFrame& frame, int threads);
+/// Their filters' weights per axis, for offsets -r..r (empty: none): HBAO's
+/// Gaussian (sigma 1.5 pixels, blurRadius taps each side), VAO's 5 taps
+/// (1/2, 1, 1, 1, 1/2: each of the 4 x 4 sample sets once) when interleaved.
+std::vector<double> HBAOBlurWeights(const HBAOSettings& settings);
+std::vector<double> VAOFilterWeights(const VAOSettings& settings);
 /// Empty when `frame` is a frame of `camera`'s image (its buffers sized
 /// for it), else why not.
 std::string CheckScreenFrame(const PixelCamera& camera, const SurfaceFrame& frame);

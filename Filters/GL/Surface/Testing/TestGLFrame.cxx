@@ -8,6 +8,9 @@
 //   voxel face); negative control: Low against Medium;
 // - the depth read into a buffer instead (SetBlitDepth(false), the path for
 //   framebuffers whose depth format is not known): the same AO exactly;
+// - HBAO and VAO on the GPU frame (estimator, blur, filter on the GPU)
+//   against the CPU's on the same depth, with and without their blur and
+//   filter (another preset is the control);
 // - ChangedPixels: 0 on the same depth, 1 after one texel changes;
 // - the combine written back into the framebuffer: whole colour c (1 - s
 //   (1 - AO)) and ambient term c - s (1 - AO) a, to the RGBA8 step, the
@@ -16,6 +19,7 @@
 //   combine without AO or with a strength out of [0, 1].
 #include "caoFrameGL.h"
 #include "caoGLTestUtilities.h"
+#include "caoScreenAOGL.h"
 #include "caoTestUtilities.h"
 #include "caoVCTGL.h"
 
@@ -24,6 +28,7 @@
 #include "caoVoxelConeTracing.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 
@@ -210,6 +215,83 @@ int TestGLFrame(int argc, char* argv[])
     "negative control: Low is apart from the CPU's Medium (mean " + std::to_string(lowApart.sum / lowApart.both) +
       ", " + std::to_string(lowApart.differing) + " pixels)");
   CAO_CHECK(run(blitted, plan, aoBlit, false), "again: %s", error.c_str());
+
+  // HBAO and VAO on the GPU frame (its G-buffer in world axes, the
+  // estimator, blur and filter on the GPU) against the CPU's on the same
+  // depth (FrameFromDepth + HBAOFrame / VAOFrame, their blur and filter):
+  // GL.TestGLScreenSpaceAO's bounds (mean under 2e-3, 99% within 0.02);
+  // negative control: another preset; the blur turned off on both sides
+  // (the filter's control: the blurred ones differ from it).
+  {
+    cao::gl::ScreenAOEngine screen(*context);
+    const std::array<double, 9> world{ { 1, 0, 0, 0, 1, 0, 0, 0, 1 } };
+    std::int64_t covered = 0;
+    double ms = 0;
+    CAO_CHECK(blitted.Read(cao::gl::FrameEngine::Depth, fbo, 0, 0, w, h, error) &&
+        blitted.GBuffer(camera.ndcToWorld, world, covered, error), "%s", error.c_str());
+    auto within = [&](const std::vector<float>& ao, const cao::SurfaceFrame& ref, double& mean) {
+      const Apart a = compare(ao, ref);
+      int close = 0;
+      for (std::size_t k = 0; k < ao.size(); ++k)
+        close += std::isfinite(ref.ao[k]) && std::isfinite(ao[k]) && std::fabs(ref.ao[k] - ao[k]) <= 0.02;
+      mean = a.sum / std::max(a.both, 1);
+      return a.coverage == 0 && a.both > 5000 ? double(close) / a.both : 0.0;
+    };
+    for (int method = 0; method < 2; ++method)
+      for (int finish = 1; finish >= 0; --finish)
+      {
+        cao::HBAOSettings hbao, hbaoOther;
+        cao::VAOSettings vao, vaoOther;
+        hbao.radius = hbaoOther.radius = vao.radius = vaoOther.radius = 0.8;
+        hbaoOther.preset = cao::HBAOPreset::Fig11a;
+        vaoOther.quality = cao::VAOQuality::Low;
+        if (!finish)
+        {
+          hbao.blurRadius = hbaoOther.blurRadius = 0;
+          vao.interleave = vaoOther.interleave = false;
+        }
+        // The other preset, or (with the blur or filter) the estimator without it.
+        if (finish)
+        {
+          hbaoOther = hbao;
+          hbaoOther.blurRadius = 0;
+          vaoOther = vao;
+          vaoOther.interleave = false;
+        }
+        cao::SurfaceFrame ref, other;
+        CAO_CHECK(cao::FrameFromDepth(camera, depth, ref, error) && cao::FrameFromDepth(camera, depth, other, error),
+          "%s", error.c_str());
+        std::vector<float> ao;
+        const bool ran = method == 0
+          ? cao::HBAOFrame(camera, hbao, ref, 1, error) && cao::HBAOFrame(camera, hbaoOther, other, 1, error) &&
+            screen.HBAOPixels(camera, hbao, blitted.PointBuffer(), blitted.NormalBuffer(), blitted.AOBuffer(), ms,
+              error)
+          : cao::VAOFrame(camera, vao, ref, 1, error) && cao::VAOFrame(camera, vaoOther, other, 1, error) &&
+            screen.VAOPixels(camera, vao, blitted.PointBuffer(), blitted.NormalBuffer(), blitted.AOBuffer(), ms, error);
+        CAO_CHECK(ran && (blitted.AOWritten(), blitted.ReadAO(ao, error)), "%s", error.c_str());
+        double mean = 0, otherMean = 0;
+        const double share = within(ao, ref, mean), otherShare = within(ao, other, otherMean);
+        char line[320];
+        std::snprintf(line, sizeof(line), "the GPU frame's %s (%s) against the CPU's on the same depth: mean %.2g, "
+          "%.4f within 0.02 (%s: mean %.2g, %.4f within)", method ? "VAO" : "HBAO",
+          finish ? (method ? "filtered" : "blurred") : (method ? "one sample set, no filter" : "no blur"), mean,
+          share, finish ? (method ? "the CPU unfiltered" : "the CPU unblurred") : "another preset", otherMean,
+          otherShare);
+        Check(share >= 0.99 && mean < 2e-3 && otherMean > 10 * mean, line);
+      }
+    // Bad input: an empty camera, a negative radius.
+    cao::PixelCamera none = camera;
+    none.width = 0;
+    cao::HBAOSettings hbao;
+    hbao.radius = 0.8;
+    bool refused = !screen.HBAOPixels(none, hbao, blitted.PointBuffer(), blitted.NormalBuffer(), blitted.AOBuffer(),
+      ms, error);
+    Check(refused && error.find("pixels a side") != std::string::npos, "HBAOPixels refuses an empty camera: " + error);
+    hbao.radius = -1.0;
+    refused = !screen.HBAOPixels(camera, hbao, blitted.PointBuffer(), blitted.NormalBuffer(), blitted.AOBuffer(), ms,
+      error);
+    Check(refused && error.find("radius") != std::string::npos, "HBAOPixels refuses a negative radius: " + error);
+  }
 
   // ChangedPixels: nothing on the same depth; one texel moved, one pixel.
   for (cao::gl::FrameEngine* frame : { &blitted, &read })

@@ -4,7 +4,10 @@
 //  1  the G-buffer from the drawn depth: cao::FrameFromDepth's twin, in
 //     double (the pixel's point unprojected, its normal the cross product of
 //     a neighbour per axis, turned to face the camera), into the
-//     grid's frame (BitGrid::ToGrid) for the cone tracer; counts covered pixels;
+//     grid's frame (BitGrid::ToGrid) for the cone tracer (world axes for the
+//     screen-space estimators, which also read the NDC depth in the
+//     point's w and the pixel's world size in the normal's); counts covered
+//     pixels;
 //  2  the combine: the colour darkened by the AO, as the pass's CPU combine
 //     (ambient term: colour - s (1 - AO) ambient; whole colour: colour (1 - s (1 - AO))).
 layout(local_size_x = 64) in;
@@ -117,8 +120,8 @@ void main()
 #elif CAO_FRAME_STAGE == 1
   int i = index % fr.image.x, j = index / fr.image.x;
   dvec3 p;
-  points[index] = vec4(0.0);
-  normals[index] = vec4(0.0);
+  points[index] = vec4(0.0, 0.0, 0.0, 3.0e38); // w: no NDC depth (the screen-space estimators' "none")
+  normals[index] = vec4(0.0);                   // w 0: no point (the cone tracer's)
   if (!Point(i, j, p))
     return;
   // Per axis: with two pixels on each side, the side that continues the
@@ -156,8 +159,16 @@ void main()
   n /= len;
   double cosine = dot(n, ray);
   n *= cosine > 0.0 ? -1.0 : 1.0; // facing the camera
-  points[index] = vec4(ToGrid(p), 0.0);
-  normals[index] = vec4(ToGrid(n), 1.0);
+  // w: the point's NDC depth, and the world size of a pixel there (> 0),
+  // as the screen-space estimators read them (cao::gl::ScreenAOEngine's
+  // host path computes the same from the world position).
+  double z = 2.0 * double(Depth(index)) - 1.0;
+  dvec3 side;
+  float footprint = 0.0;
+  if (Unproject(x + 2.0 / double(fr.image.x), y, z, side))
+    footprint = float(length(side - p));
+  points[index] = vec4(ToGrid(p), float(z));
+  normals[index] = vec4(ToGrid(n), max(footprint, 1.0e-30));
   atomicAdd(counts[1], 1u);
 #else
   float a = ao[index];

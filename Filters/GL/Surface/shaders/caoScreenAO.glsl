@@ -1,22 +1,10 @@
 // caoScreenAO.glsl - the GPU side of cao::HBAOFrame and cao::VAOFrame
 // (caoScreenSpaceAO.cxx), in float, one invocation per pixel: the same
 // pattern, samples, marches and closed-form pipes as the CPU twin, before
-// its depth-aware blur or filter (the host applies it). Specialised with
-// CAO_SS_METHOD 0 (horizon-based AO, seed 002) or 1 (volumetric AO, seed 001).
-layout(local_size_x = 64) in;
-
-layout(std140, binding = CAO_BINDING_SS_PARAMS) uniform ScreenBlock
-{
-  ScreenAOParams ss;
-};
-layout(std430, binding = CAO_BINDING_SS_POSITIONS) readonly buffer PositionBlock
-{
-  vec4 positions[];
-};
-layout(std430, binding = CAO_BINDING_SS_NORMALS) readonly buffer NormalBlock
-{
-  vec4 normals[];
-};
+// its depth-aware blur or filter (the host applies it, or
+// caoScreenFilter.glsl on the GPU frame). Specialised with CAO_SS_METHOD 0
+// (horizon-based AO, seed 002) or 1 (volumetric AO, seed 001); after
+// caoScreenCommon.glsl.
 layout(std430, binding = CAO_BINDING_SS_AO) writeonly buffer AOBlock
 {
   float ao[];
@@ -27,11 +15,6 @@ layout(std430, binding = CAO_BINDING_SS_DISK) readonly buffer DiskBlock
 };
 
 const float Pi = 3.14159265358979;
-
-bool Covered(int k)
-{
-  return positions[k].w < 1e30;
-}
 
 /// The pixel a world point falls in (-1: off the screen or behind the
 /// camera) and its NDC depth.

@@ -162,6 +162,16 @@ double WorstDifference(const cao::SurfaceFrame& frame, vtkContextualAOPass* pass
   return worst;
 }
 
+/// The pass's AO at every pixel of a w x h viewport (-1: none), row by row.
+std::vector<double> PixelAOs(vtkContextualAOPass* pass, int w, int h)
+{
+  std::vector<double> ao(static_cast<std::size_t>(w) * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      ao[static_cast<std::size_t>(y) * w + x] = pass->GetPixelAO(x, y);
+  return ao;
+}
+
 /// A cube of side `side` at (x, y, z) drawn by a glyph mapper (not polydata
 /// surfaces: not in the pass's grid).
 vtkSmartPointer<vtkActor> GlyphCube(double x, double y, double z, double side)
@@ -807,10 +817,7 @@ int TestContextualAOPass(int, char*[])
     const int w = window->GetSize()[0], h = window->GetSize()[1];
     auto image = [&](std::vector<double>& ao) {
       window->Render();
-      ao.assign(static_cast<std::size_t>(w) * h, 0.0);
-      for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-          ao[static_cast<std::size_t>(y) * w + x] = pass->GetPixelAO(x, y);
+      ao = PixelAOs(pass, w, h);
     };
     auto compare = [&](const std::vector<double>& a, const std::vector<double>& b, double& mean, double& worst) {
       int n = 0, mismatched = 0;
@@ -1063,10 +1070,7 @@ int TestContextualAOPass(int, char*[])
       pass->SetApplyTo(applyTo);
       pass->SetBackend(vtkContextualAOPass::BACKEND_CPU);
       window->Render();
-      std::vector<double> cpu(static_cast<std::size_t>(w) * h);
-      for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-          cpu[static_cast<std::size_t>(y) * w + x] = pass->GetPixelAO(x, y);
+      const std::vector<double> cpu = PixelAOs(pass, w, h);
       std::vector<unsigned char> cpuPicture, gpuPicture, plain;
       picture(cpuPicture);
       pass->SetBackend(vtkContextualAOPass::BACKEND_OPENGL);
@@ -1194,6 +1198,74 @@ int TestContextualAOPass(int, char*[])
         autoCPU.find("\"gbuffer\": \"ray cast (auto)\", \"frame_on_gpu\": false") != std::string::npos &&
         pass->GetLastFrameStages() == "voxelize,primary,trace,ambient,combine",
       "GBuffer Auto: the GPU frame on OpenGL, the ray cast on the CPU (" + pass->GetLastFrameStages() + ")");
+    // HBAO and VAO on the GPU frame: estimator, blur or filter on the GPU,
+    // against the CPU's on the same drawn depth (the bounds of
+    // GL.TestGLScreenSpaceAO: mean under 2e-3, 99% within 0.02; float
+    // against double, and the depth's last bit, blit against glReadPixels);
+    // the other preset is the control; a still frame only combines; VAO's
+    // indirect light (on the CPU) reads the pixels back.
+    pass->SetGBuffer(vtkContextualAOPass::DEPTH_BUFFER);
+    pass->SetApplyTo(vtkContextualAOPass::WHOLE_COLOR);
+    for (int method : { vtkContextualAOPass::HBAO, vtkContextualAOPass::VAO })
+    {
+      const std::string name = method == vtkContextualAOPass::HBAO ? "HBAO" : "VAO";
+      pass->SetMethod(method);
+      pass->SetBackend(vtkContextualAOPass::BACKEND_CPU);
+      window->Render();
+      const std::vector<double> cpu = PixelAOs(pass, w, h);
+      pass->SetBackend(vtkContextualAOPass::BACKEND_OPENGL);
+      auto apart = [&](double& mean, double& within, int& coverage) {
+        int both = 0, close = 0;
+        mean = 0.0;
+        coverage = 0;
+        for (int y = 0; y < h; ++y)
+          for (int x = 0; x < w; ++x)
+          {
+            const double a = cpu[static_cast<std::size_t>(y) * w + x], b = pass->GetPixelAO(x, y);
+            coverage += (a < 0) != (b < 0);
+            if (a < 0 || b < 0)
+              continue;
+            ++both;
+            mean += std::fabs(a - b);
+            close += std::fabs(a - b) <= 0.02;
+          }
+        mean /= std::max(both, 1);
+        within = double(close) / std::max(both, 1);
+        return both;
+      };
+      window->Render();
+      const std::string report = pass->GetLastFrameReport();
+      const std::string stages = pass->GetLastFrameStages();
+      double mean = 0, within = 0;
+      int coverage = 0;
+      const int both = apart(mean, within, coverage);
+      pass->SetQuality(method == vtkContextualAOPass::HBAO ? 3 : 1);
+      window->Render();
+      double otherMean = 0, otherWithin = 0;
+      int otherCoverage = 0;
+      apart(otherMean, otherWithin, otherCoverage);
+      pass->SetQuality(2);
+      window->Render();
+      window->Render();
+      char text[420];
+      std::snprintf(text, sizeof(text), "GPU frame, %s: stages %s; against the CPU on the same drawn depth at %d "
+        "pixels: mean %.2g, %.4f within 0.02, coverage differs at %d (another preset: mean %.2g, %.4f within); "
+        "a still frame: %s", name.c_str(), stages.c_str(), both, mean, within, coverage, otherMean, otherWithin,
+        pass->GetLastFrameStages().c_str());
+      Check(report.find("\"frame_on_gpu\": true") != std::string::npos && stages == "gbuffer,trace,combine" &&
+          both > 15000 && coverage == 0 && mean < 2e-3 && within >= 0.99 && otherMean > 10 * mean &&
+          pass->GetLastFrameStages() == "combine",
+        text);
+    }
+    pass->SetIndirectLight(true);
+    window->Render();
+    const std::string indirect = pass->GetLastFrameReport();
+    Check(indirect.find("\"frame_on_gpu\": false") != std::string::npos &&
+        pass->GetLastFrameStages().find("indirect") != std::string::npos && pass->GetPixelAO(cx, cy) >= 0.0,
+      "GPU frame, VAO with indirect light: the pixels read back for the CPU's indirect step (" +
+        pass->GetLastFrameStages() + ")");
+    pass->SetIndirectLight(false);
+    pass->SetMethod(vtkContextualAOPass::VCT);
     pass->SetGBuffer(vtkContextualAOPass::RAY_CAST);
   }
   std::printf("%d failure(s)\n", failures);
