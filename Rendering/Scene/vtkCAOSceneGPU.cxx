@@ -118,6 +118,11 @@ bool SceneGPU::Volumes(const std::vector<const cao::OpacityVolume*>& volumes, st
   return this->P->Ready(error) && this->P->engine->UploadVolumes(volumes, error);
 }
 
+bool SceneGPU::FitsVolumes(long long voxels, long long count, std::string& error)
+{
+  return this->P->Ready(error) && this->P->engine->FitsVolumes(voxels, count, error);
+}
+
 bool SceneGPU::Trace(const cao::BitGrid& grid, const cao::VCTPlan& plan, cao::SurfaceFrame& frame,
   std::string& error)
 {
@@ -181,6 +186,8 @@ bool SceneGPU::FrameScreenAO(const cao::PixelCamera* camera, const cao::HBAOSett
     return false;
   cao::gl::FrameEngine* f = this->P->frame.get();
   cao::gl::ScreenAOEngine* s = this->P->screen.get();
+  if (static_cast<std::int64_t>(camera->width) * camera->height != f->Pixels())
+    return error = "the camera's image is not the GPU frame's", false;
   if (hbao ? !s->HBAOPixels(*camera, *hbao, f->PointBuffer(), f->NormalBuffer(), f->AOBuffer(), ms, error)
            : !s->VAOPixels(*camera, *vao, f->PointBuffer(), f->NormalBuffer(), f->AOBuffer(), ms, error))
     return false;

@@ -41,8 +41,10 @@ public:
   /// cao::gl::VCTEngine::Voxelize into `grid`'s place (its bits stay on the GPU).
   bool Voxelize(cao::BitGrid& grid, const std::vector<cao::MeshView>& meshes, std::string& error);
   /// cao::gl::VCTEngine::UploadVolumes: the volumes' opacity for the plans
-  /// that name them (again whenever it was rebuilt).
+  /// that name them (again whenever it was rebuilt); FitsVolumes: whether
+  /// `count` volumes of `voxels` voxels in all fit its limits here.
   bool Volumes(const std::vector<const cao::OpacityVolume*>& volumes, std::string& error);
+  bool FitsVolumes(long long voxels, long long count, std::string& error);
   /// cao::gl::VCTEngine::TraceFrame on the grid voxelized last.
   bool Trace(const cao::BitGrid& grid, const cao::VCTPlan& plan, cao::SurfaceFrame& frame,
     std::string& error);

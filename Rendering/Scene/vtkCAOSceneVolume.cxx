@@ -62,6 +62,15 @@ void AppendVolumeOpacityKey(vtkVolume* volume, std::vector<double>& key)
     }
 }
 
+long long VolumeVoxels(vtkVolume* volume)
+{
+  vtkImageData* input = InputOf(volume);
+  int dims[3] = { 0, 0, 0 };
+  if (input)
+    input->GetDimensions(dims);
+  return static_cast<long long>(dims[0]) * dims[1] * dims[2];
+}
+
 bool VolumeOpacity(vtkVolume* volume, cao::OpacityVolume& out, std::string& error)
 {
   vtkImageData* input = InputOf(volume);

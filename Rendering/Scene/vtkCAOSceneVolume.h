@@ -31,6 +31,9 @@ constexpr long long MaximumOccludingVoxels = 134217728LL;
 CAORENDERINGSCENE_EXPORT bool VolumeOpacity(vtkVolume* volume, cao::OpacityVolume& opacity,
   std::string& error);
 
+/// The voxels of `volume`'s image data (0: none), as VolumeOpacity reads it.
+CAORENDERINGSCENE_EXPORT long long VolumeVoxels(vtkVolume* volume);
+
 /// What VolumeOpacity's result depends on (the prop, its data, opacity
 /// function, unit distance, pose, and its clip shapes' poses, meshes and
 /// modes), appended to `key`.

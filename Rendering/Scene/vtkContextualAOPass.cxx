@@ -304,11 +304,13 @@ struct vtkContextualAOPass::Internals
       return true;
     if (!this->gpu.Volumes(plan.volumes, error))
       return false;
+    ++this->volumeUploads;
     this->uploadedVolumes[0] = uploaded[0];
     this->uploadedVolumes[1] = uploaded[1];
     return true;
   }
   int uploadedVolumes[2] = { -1, -1 }; ///< the volume serial and GPU generation on the GPU
+  int volumeUploads = 0;               ///< the volumes' opacity put on the GPU, so far (the report)
   /// HBAO's and VAO's settings from the pass's.
   cao::HBAOSettings HBAOSettingsOf(vtkContextualAOPass* self) const
   {
@@ -437,7 +439,7 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
   if (!p.backendNote.empty())
     o << ", \"backend_note\": \"" << p.backendNote << "\"";
   if (p.onGPU)
-    o << ", \"gpu_bytes\": " << p.gpu.ResidentBytes();
+    o << ", \"gpu_bytes\": " << p.gpu.ResidentBytes() << ", \"volume_uploads\": " << p.volumeUploads;
   if (p.gpuFrame) // the drawn depth: blitted (a GPU copy) or read into a buffer (on the GPU too)
     o << ", \"frame_depth\": \"" << p.gpu.FrameDepthPath() << "\"";
   if (p.ignoredVolumes)
@@ -607,7 +609,23 @@ bool vtkContextualAOPass::Internals::ResolveBackend(vtkContextualAOPass* self, v
   this->onGPU = self->Backend != BACKEND_CPU && this->gpu.Resolve(ren->GetRenderWindow(), self->Backend, error);
   if (!error.empty())
     return this->Fail(self, error);
-  if (!this->onGPU && self->Backend != BACKEND_CPU)
+  if (this->onGPU && self->Method == VCT && !this->volumes.empty())
+  {
+    // The volumes' opacity must fit the GPU cone tracer's limits: else the
+    // CPU under Auto, an error under OpenGL.
+    long long voxels = 0;
+    for (vtkVolume* volume : this->volumes)
+      voxels += vtkCAO::VolumeVoxels(volume);
+    std::string why;
+    if (!this->gpu.FitsVolumes(voxels, static_cast<long long>(this->volumes.size()), why))
+    {
+      if (self->Backend == BACKEND_OPENGL)
+        return this->Fail(self, "Backend OPENGL: " + why);
+      this->onGPU = false;
+      this->backendNote = "Auto: " + why + ": the CPU";
+    }
+  }
+  if (!this->onGPU && self->Backend != BACKEND_CPU && this->backendNote.empty())
     this->backendNote = this->gpu.Note;
   if (self->GBuffer == GBUFFER_AUTO)
   {

@@ -159,6 +159,12 @@ bool ScreenAOEngine::Impl::RunPixels(int method, const layout::ScreenAOParams& b
   this->Upload(this->params, GL_UNIFORM_BUFFER, sizeof(block), &block);
   this->Upload(this->ao, GL_SHADER_STORAGE_BUFFER, pixels * sizeof(float), nullptr);
   this->Upload(this->disk, GL_SHADER_STORAGE_BUFFER, samples.size() * sizeof(layout::vec4), samples.data());
+  for (GLuint* b : { &this->positions, &this->normals }) // the host path's pixels: not used here
+    if (*b)
+    {
+      gl.DeleteBuffers(1, b);
+      *b = 0;
+    }
   this->bytes = static_cast<std::int64_t>(sizeof(block) + pixels * sizeof(float) + samples.size() * sizeof(layout::vec4));
   gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   gl.BindBufferBase(GL_UNIFORM_BUFFER, CAO_BINDING_SS_PARAMS, this->params);
@@ -252,7 +258,7 @@ bool ScreenAOEngine::Impl::Run(int method, layout::ScreenAOParams& block, const 
     return false;
   ms = this->timer.Milliseconds(gl, 0);
   for (std::size_t k = 0; k < pixels; ++k)
-    frame.ao[k] = out[k] >= 0.0f ? static_cast<double>(out[k]) : std::numeric_limits<double>::quiet_NaN();
+    frame.ao[k] = std::isfinite(out[k]) ? static_cast<double>(out[k]) : std::numeric_limits<double>::quiet_NaN();
   return true;
 }
 

@@ -57,31 +57,47 @@ struct VCTEngine::Impl
         { v ? v->dims[0] : 0, v ? v->dims[1] : 0, v ? v->dims[2] : 0 } });
     return keys;
   }
-  /// The volumes' opacity into one buffer (the context current, its state guarded).
-  bool PutVolumes(const std::vector<const OpacityVolume*>& list, std::string& error)
+  /// UploadVolumes' limits (the context current).
+  bool Fits(std::int64_t total, std::int64_t count, std::string& error)
   {
-    if (list.size() > CAO_VCT_MAX_VOLUMES)
+    if (count > CAO_VCT_MAX_VOLUMES)
       return error = "at most " + std::to_string(CAO_VCT_MAX_VOLUMES) + " volumes occlude the surfaces on the GPU (" +
-               std::to_string(list.size()) + " given)",
+               std::to_string(count) + " given)",
              false;
-    std::size_t total = 0;
-    for (const OpacityVolume* v : list)
-    {
-      if (!v)
-        return error = "a null occluding volume", false;
-      const std::string why = v->Validate();
-      if (!why.empty())
-        return error = "an occluding volume: " + why, false;
-      total += v->alpha.size();
-    }
     GLint largest = 0;
     gl.GetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &largest);
     const double limit = largest > 0 ? static_cast<double>(largest) : 2147483647.0;
     if (static_cast<double>(total) * sizeof(float) > limit || total > std::numeric_limits<std::int32_t>::max())
       return error = "the occluding volumes' opacity (" + std::to_string(total) + " voxels, " +
-               std::to_string(total * sizeof(float) >> 20) + " MiB) exceeds this OpenGL's largest storage block (" +
+               std::to_string((total * 4) >> 20) + " MiB) exceeds this OpenGL's largest storage block (" +
                std::to_string(static_cast<long long>(limit) >> 20) + " MiB)",
              false;
+    return true;
+  }
+  /// Empty when every volume of `list` can be read, else why not.
+  static std::string CheckVolumes(const std::vector<const OpacityVolume*>& list)
+  {
+    for (const OpacityVolume* v : list)
+    {
+      if (!v)
+        return "a null occluding volume";
+      const std::string why = v->Validate();
+      if (!why.empty())
+        return "an occluding volume: " + why;
+    }
+    return std::string();
+  }
+  /// The volumes' opacity into one buffer (the context current, its state guarded).
+  bool PutVolumes(const std::vector<const OpacityVolume*>& list, std::string& error)
+  {
+    error = CheckVolumes(list);
+    if (!error.empty())
+      return false;
+    std::int64_t total = 0;
+    for (const OpacityVolume* v : list)
+      total += static_cast<std::int64_t>(v->alpha.size());
+    if (!this->Fits(total, static_cast<std::int64_t>(list.size()), error))
+      return false;
     if (total == 0)
     {
       if (this->opacity)
@@ -91,6 +107,8 @@ struct VCTEngine::Impl
       this->volumes.clear();
       return true;
     }
+    this->volumes.clear(); // nothing usable until the upload succeeds
+    this->volumeBytes = 0;
     if (!this->opacity)
       gl.GenBuffers(1, &this->opacity);
     gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, this->opacity);
@@ -103,9 +121,11 @@ struct VCTEngine::Impl
       offset += v->alpha.size();
     }
     gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-    this->volumeBytes = static_cast<std::int64_t>(total * sizeof(float));
+    if (!CheckError(gl, "the occluding volumes' upload", error))
+      return false;
+    this->volumeBytes = total * static_cast<std::int64_t>(sizeof(float));
     this->volumes = KeysOf(list);
-    return CheckError(gl, "the occluding volumes' upload", error);
+    return true;
   }
   explicit Impl(Context& c)
     : Ctx(c)
@@ -162,7 +182,7 @@ VCTEngine::~VCTEngine()
 void VCTEngine::ReleaseGraphicsResources()
 {
   Impl& p = *this->P;
-  if (p.bytes == 0 && !p.rasterize.Valid())
+  if (p.bytes == 0 && !p.rasterize.Valid() && !p.opacity)
     return;
   CurrentScope scope(p.Ctx);
   if (scope.Ok())
@@ -215,6 +235,15 @@ bool VCTEngine::TraceFrame(const BitGrid& grid, const VCTPlan& plan, SurfaceFram
 std::int64_t VCTEngine::ResidentBytes() const
 {
   return this->P->bytes + this->P->volumeBytes;
+}
+
+bool VCTEngine::FitsVolumes(std::int64_t voxels, std::int64_t count, std::string& error)
+{
+  Impl& p = *this->P;
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
+    return false;
+  return p.Fits(voxels, count, error);
 }
 
 bool VCTEngine::UploadVolumes(const std::vector<const OpacityVolume*>& volumes, std::string& error)
@@ -427,6 +456,9 @@ bool VCTEngine::TracePixels(const VCTPlan& plan, unsigned points, unsigned norma
       std::to_string(CAO_VCT_MAX_PRISMS) + ", " + std::to_string(CAO_VCT_MAX_VOLUMES) + ")";
     return false;
   }
+  error = Impl::CheckVolumes(plan.volumes);
+  if (!error.empty())
+    return false;
   if (count == 0)
     return true;
   const layout::VCTParams params = MakeVCTParams(p.shape, plan, static_cast<int>(count));

@@ -48,10 +48,14 @@ public:
   /// Puts the opacity of `volumes` (at most CAO_VCT_MAX_VOLUMES, together
   /// at most the context's largest storage block and 2^31 values) on the
   /// GPU, in this order, for the plans whose `volumes` are these; an empty
-  /// list frees them. A trace whose plan names other volumes (other
-  /// objects, or their opacity moved or resized) uploads them itself; a
-  /// volume whose opacity changed in place must be uploaded again here.
+  /// list frees them. A trace whose plan's list differs from the uploaded
+  /// one (by object, opacity address, size or dims) uploads it itself, a
+  /// convenience for one-shot callers; after any change to a volume's
+  /// opacity (in place, or rebuilt where the old one was) call this again.
   bool UploadVolumes(const std::vector<const OpacityVolume*>& volumes, std::string& error);
+  /// Whether `count` volumes of `voxels` voxels in all fit UploadVolumes'
+  /// limits on this context (false with the limit that does not hold).
+  bool FitsVolumes(std::int64_t voxels, std::int64_t count, std::string& error);
 
   /// The AO at `count` points (positions and unit normals, x y z each) with
   /// `plan` on the grid voxelized or uploaded last, and its occluding

@@ -297,7 +297,7 @@ struct ScreenAOParams
 #define CAO_BINDING_SS_PARAMS 2    /* uniform block: ScreenAOParams */
 #define CAO_BINDING_SS_POSITIONS 0 /* storage: vec4 per pixel (xyz world, w NDC depth; w > 1e30: none) */
 #define CAO_BINDING_SS_NORMALS 1   /* storage: vec4 per pixel (xyz unit normal facing the camera, w its world size) */
-#define CAO_BINDING_SS_AO 2        /* storage: float per pixel (-1: not covered) */
+#define CAO_BINDING_SS_AO 2        /* storage: float per pixel (NaN: not covered) */
 #define CAO_BINDING_SS_DISK 3      /* storage: vec4 per sample (xy on the disk, world units; zw 0) */
 #define CAO_BINDING_SS_FILTERED 4  /* storage: float per pixel, the blurred or filtered AO (NaN: not
                                       covered; the frame's AO buffer on the GPU frame) */

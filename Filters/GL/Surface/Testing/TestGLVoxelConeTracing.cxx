@@ -15,7 +15,8 @@
 //   CPU's (both occupancies, a world and an eye grid; negative control: the
 //   GPU without them); an opacity changed in place counts once uploaded;
 // - bad input: a plan beyond the GPU's limits, tracing with no grid, too
-//   many volumes, a volume of the wrong size.
+//   many volumes, a volume of the wrong size, a null one; FitsVolumes says
+//   the same limits beforehand.
 #include "caoVCTGL.h"
 #include "caoGLTestUtilities.h"
 #include "caoTestUtilities.h"
@@ -224,6 +225,19 @@ int VolumesOcclude(cao::gl::VCTEngine& engine, const cao::BitGrid& grid, cao::VC
   CAO_CHECK(!engine.UploadVolumes({ &bad }, error) && error.find("wrong size") != std::string::npos, "%s",
     error.c_str());
   std::printf("a short volume: %s\n", error.c_str());
+  // FitsVolumes: the same limits before any opacity is built; a null
+  // volume in a plan is refused, not read.
+  const bool nine = engine.FitsVolumes(512, CAO_VCT_MAX_VOLUMES + 1, error);
+  CAO_CHECK(!nine && error.find("at most") != std::string::npos, "%s", error.c_str());
+  const bool huge = engine.FitsVolumes(std::int64_t(1) << 31, 1, error);
+  CAO_CHECK(!huge && error.find("largest storage block") != std::string::npos, "%s", error.c_str());
+  std::printf("2^31 voxels: %s\n", error.c_str());
+  CAO_CHECK(engine.FitsVolumes(21 * 17 * 13 + 512, 2, error), "%s", error.c_str());
+  plan.volumes = { &field, nullptr };
+  std::vector<float> none;
+  double ms = 0;
+  const bool traced = engine.Trace(plan, gp.data(), gn.data(), 4, none, ms, error);
+  CAO_CHECK(!traced && error.find("null") != std::string::npos, "a null volume: %s", error.c_str());
   CAO_CHECK(engine.UploadVolumes({}, error) && engine.Upload(grid, error), "%s", error.c_str());
   return 0;
 }

@@ -177,5 +177,5 @@ void main()
   int k = int(gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x + gl_GlobalInvocationID.x);
   if (k >= ss.image.x * ss.image.y)
     return;
-  ao[k] = Covered(k) ? PixelAO(k) : -1.0;
+  ao[k] = Covered(k) ? PixelAO(k) : uintBitsToFloat(0x7fc00000u); // NaN: not covered
 }

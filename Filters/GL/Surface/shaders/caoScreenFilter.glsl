@@ -3,7 +3,7 @@
 // one invocation per pixel: the weighted mean of the covered taps of a
 // (2r + 1)^2 window whose points lie within the tolerance of the pixel's
 // tangent plane (weights per axis, multiplied), then (VAO) clamped to
-// [0, 1]. Reads the estimator's AO (-1: not covered), writes the filtered
+// [0, 1]. Reads the estimator's AO (NaN: not covered), writes the filtered
 // AO (NaN: not covered) where the frame's combine reads it. After
 // caoScreenCommon.glsl.
 layout(std430, binding = CAO_BINDING_SS_AO) readonly buffer RawBlock
@@ -27,7 +27,7 @@ void main()
   if (k >= w * h)
     return;
   float own = raw[k];
-  if (!(own >= 0.0) || !Covered(k))
+  if (!Covered(k) || isnan(own))
   {
     filtered[k] = uintBitsToFloat(0x7fc00000u);
     return;
@@ -47,7 +47,7 @@ void main()
           continue;
         int q = jj * w + ii;
         float a = raw[q];
-        if (!(a >= 0.0) || !Covered(q))
+        if (!Covered(q) || isnan(a))
           continue;
         if (!(abs(dot(positions[q].xyz - p, n)) <= ss.finish.y))
           continue;
