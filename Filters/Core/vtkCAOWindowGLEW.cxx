@@ -3,7 +3,12 @@
 // the same X-macro list as caoGLFunctions.h (caoGLFunctionList.h).
 #include "vtk_glew.h"
 
+#include "caoFiltersCoreModule.h"
 #include "caoGLFunctionList.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
+
+#include <functional>
 
 #include <cstring>
 
@@ -17,6 +22,30 @@ void* GlewLookup(const char* name, void*)
   CAO_GL_FUNCTIONS(CAO_GLEW_ENTRY)
 #undef CAO_GLEW_ENTRY
   return nullptr;
+}
+
+// Declared in vtkCAOWindowGL.h (which this file cannot include: it brings
+// the compute layer's GL declarations).
+CAOFILTERSCORE_EXPORT void AroundForeignEvents(vtkRenderWindow* window, const std::function<void()>& event)
+{
+  const bool current = window && window->IsCurrent();
+  GLint draw = 0, read = 0;
+  if (current)
+  {
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read);
+  }
+  event();
+  if (!current)
+    return;
+  if (!window->IsCurrent())
+    window->MakeCurrent();
+  // Through VTK's state, so that its cache holds what is bound.
+  if (auto* gl = vtkOpenGLRenderWindow::SafeDownCast(window))
+  {
+    gl->GetState()->vtkglBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<unsigned int>(draw));
+    gl->GetState()->vtkglBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<unsigned int>(read));
+  }
 }
 
 bool GlewReady()

@@ -275,10 +275,15 @@ struct vtkContextualAOPass::Internals
   }
   bool Fail(vtkContextualAOPass* self, const std::string& what)
   {
+    // In the report every frame; in the log once, until a frame succeeds
+    // or the reason changes (not one error per render of a still view).
     this->error = what;
-    vtkErrorWithObjectMacro(self, << what);
+    if (what != this->said)
+      vtkErrorWithObjectMacro(self, << what);
+    this->said = what;
     return false;
   }
+  std::string said; ///< the error last logged
   void RunAO(vtkContextualAOPass* self, const vtkRenderState* s);
   void Collect(vtkContextualAOPass* self, vtkRenderer* ren);
   bool ResolveBackend(vtkContextualAOPass* self, vtkRenderer* ren);
@@ -477,6 +482,8 @@ void vtkContextualAOPass::Render(const vtkRenderState* s)
   vtkRenderPass* scene = this->SetsCamera ? static_cast<vtkRenderPass*>(p.camera.Get()) : inner;
   scene->Render(s); // lights, opaque, RunAO, translucent, volumes, overlay
   this->NumberOfRenderedProps = scene->GetNumberOfRenderedProps();
+  if (p.error.empty())
+    p.said.clear();
 }
 
 void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkRenderState* s)
@@ -519,6 +526,8 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
   // the combine's drawn-is-traced test both read it.
   const bool wasOnGPU = this->gpuFrame;
   this->gpuFrame = this->onGPU && this->gbuffer == DEPTH_BUFFER && !(self->Method == VAO && self->IndirectLight);
+  if (this->onGPU && this->gbuffer == DEPTH_BUFFER && self->Method == VAO && self->IndirectLight)
+    this->backendNote = "VAO's indirect light runs on the CPU: the frame's pixels are read back (the AO still on the GPU)";
   bool multisampled = false;
   if (this->gpuFrame &&
     (!vtkCAO::DrawTarget(ren, this->target, this->rect, multisampled, this->depthError) || multisampled))

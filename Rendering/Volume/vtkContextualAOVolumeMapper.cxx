@@ -34,6 +34,7 @@
 #include "vtkCAOGPUSession.h"
 #include "vtkCAOLAOSettings.h"
 #include "vtkCAOOpacity.h"
+#include "vtkCAOWindowGL.h"
 
 #include "caoLAO.h"
 #include "caoLAOSettings.h"
@@ -622,9 +623,16 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
     computed = true;
   }
   else
-    vtkCAO::WithThreads(0, [&] {
-      computed = vtkCAO::ComputeOpacity(self, f.scalars, 0, f.opacityFunction,
-        this->Plan.step / f.unitDistance, opacity.data(), nonFinite);
+    // Its ProgressEvents (as the precompute's below) may run the
+    // application's event loop (ParaView's GUI paints its other OpenGL
+    // widgets): the window's context comes back current, its framebuffers
+    // bound as they were, before any more GL (else the frame went to the
+    // wrong context and the ray cast failed with GL_INVALID_OPERATION).
+    vtkCAO::AroundForeignEvents(f.window, [&] {
+      vtkCAO::WithThreads(0, [&] {
+        computed = vtkCAO::ComputeOpacity(self, f.scalars, 0, f.opacityFunction,
+          this->Plan.step / f.unitDistance, opacity.data(), nonFinite);
+      });
     });
   if (!computed)
   {
@@ -683,8 +691,8 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
   // nothing and starts again at the next frame.
   self->SetAbortExecute(0);
   const bool precomputed = engine.SetPlan(this->Plan, error) &&
-    engine.Precompute(error, [self](double fraction) {
-      self->UpdateProgress(0.1 + 0.9 * fraction);
+    engine.Precompute(error, [self, &f](double fraction) {
+      vtkCAO::AroundForeignEvents(f.window, [&] { self->UpdateProgress(0.1 + 0.9 * fraction); });
       return !self->GetAbortExecute();
     });
   if (!precomputed)

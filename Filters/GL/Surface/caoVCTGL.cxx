@@ -9,6 +9,7 @@
 #include "caoVoxelize_glsl.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <limits>
 
 namespace cao
@@ -68,10 +69,13 @@ struct VCTEngine::Impl
     gl.GetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &largest);
     const double limit = largest > 0 ? static_cast<double>(largest) : 2147483647.0;
     if (static_cast<double>(total) * sizeof(float) > limit || total > std::numeric_limits<std::int32_t>::max())
-      return error = "the occluding volumes' opacity (" + std::to_string(total) + " voxels, " +
-               std::to_string((total * 4) >> 20) + " MiB) exceeds this OpenGL's largest storage block (" +
-               std::to_string(static_cast<long long>(limit) >> 20) + " MiB)",
-             false;
+    {
+      char text[200];
+      std::snprintf(text, sizeof(text),
+        "the occluding volumes' opacity (%lld voxels, %.2f MiB) exceeds this OpenGL's largest storage block "
+        "(%.2f MiB)", static_cast<long long>(total), total * 4.0 / 1048576.0, limit / 1048576.0);
+      return error = text, false;
+    }
     return true;
   }
   /// Empty when every volume of `list` can be read, else why not.

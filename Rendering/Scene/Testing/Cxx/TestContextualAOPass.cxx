@@ -1290,6 +1290,7 @@ int TestContextualAOPass(int, char*[])
     window->Render();
     const std::string indirect = pass->GetLastFrameReport();
     Check(indirect.find("\"frame_on_gpu\": false") != std::string::npos &&
+        indirect.find("indirect light runs on the CPU") != std::string::npos &&
         pass->GetLastFrameStages().find("indirect") != std::string::npos && pass->GetPixelAO(cx, cy) >= 0.0,
       "GPU frame, VAO with indirect light: the pixels read back for the CPU's indirect step (" +
         pass->GetLastFrameStages() + ")");
