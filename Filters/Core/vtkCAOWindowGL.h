@@ -9,10 +9,8 @@
 #ifndef vtkCAOWindowGL_h
 #define vtkCAOWindowGL_h
 
-#include "caoFiltersCoreModule.h"
 #include "caoGLContext.h"
 
-#include <functional>
 #include <memory>
 #include <string>
 
@@ -27,15 +25,6 @@ bool MakeWindowCurrent(vtkRenderWindow* window, std::string& why);
 /// Wrap the window's context (MakeWindowCurrent first). Null with a reason
 /// when it lacks OpenGL 4.3 or an entry point.
 std::unique_ptr<cao::gl::Context> WrapWindowContext(vtkRenderWindow* window, std::string& why);
-
-/// Runs `event` (a ProgressEvent, whose observer may run the application's
-/// event loop inside a render: ParaView's GUI does, painting its other
-/// OpenGL widgets, whose context it leaves current, or repainting this one,
-/// which binds its widget's framebuffer) and then, when `window`'s context
-/// was current, makes it current again if it no longer is and binds its
-/// draw and read framebuffers as they were, so that the frame's next GL
-/// calls and VTK's cached GL state stay this window's.
-CAOFILTERSCORE_EXPORT void AroundForeignEvents(vtkRenderWindow* window, const std::function<void()>& event);
 }
 
 #endif

@@ -3,12 +3,11 @@
 // the same X-macro list as caoGLFunctions.h (caoGLFunctionList.h).
 #include "vtk_glew.h"
 
-#include "caoFiltersCoreModule.h"
 #include "caoGLFunctionList.h"
+#include "vtkCAOForeignEvents.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLState.h"
 
-#include <functional>
 
 #include <cstring>
 
@@ -24,9 +23,7 @@ void* GlewLookup(const char* name, void*)
   return nullptr;
 }
 
-// Declared in vtkCAOWindowGL.h (which this file cannot include: it brings
-// the compute layer's GL declarations).
-CAOFILTERSCORE_EXPORT void AroundForeignEvents(vtkRenderWindow* window, const std::function<void()>& event)
+bool AroundForeignEvents(vtkRenderWindow* window, const std::function<void()>& event)
 {
   const bool current = window && window->IsCurrent();
   GLint draw = 0, read = 0;
@@ -37,15 +34,18 @@ CAOFILTERSCORE_EXPORT void AroundForeignEvents(vtkRenderWindow* window, const st
   }
   event();
   if (!current)
-    return;
+    return true;
   if (!window->IsCurrent())
     window->MakeCurrent();
-  // Through VTK's state, so that its cache holds what is bound.
+  if (!window->IsCurrent())
+    return false;
+  // Bound directly (VTK's state skips a bind its cache already holds), then
+  // VTK's cache read back from the context.
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(read));
   if (auto* gl = vtkOpenGLRenderWindow::SafeDownCast(window))
-  {
-    gl->GetState()->vtkglBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<unsigned int>(draw));
-    gl->GetState()->vtkglBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<unsigned int>(read));
-  }
+    gl->GetState()->ResetFramebufferBindings();
+  return true;
 }
 
 bool GlewReady()

@@ -71,19 +71,26 @@ try:
     import contextualao  # noqa: F401  (wraps vtkContextualAOVolumeMapper)
     reader = OpenDataFile(os.path.join(os.environ["CAO_DATA_DIR"], "HeadMRVolume.mhd"))
     view = GetActiveViewOrCreate("RenderView")
+    # The known problem (README): with Depth Peeling For Volumes, the
+    # widget's translucent box peels with the volume, whose depth capture
+    # then fails; this test is about the widget, and its log is checked.
+    view.DepthPeelingForVolumes = 0
     display = Show(reader, view)
     ColorBy(display, ("POINTS", "MetaImage"))
     display.SetRepresentationType("Contextual AO Volume")
     display.ClipShape = "Sphere"
     SetActiveSource(reader)
     view.ResetCamera()
-    Render(view)
     mapper = display.GetClientSideObject().GetActiveRepresentation().GetActor().GetMapper()
+    errors = []
+    mapper.AddObserver("ErrorEvent", lambda obj, event: errors.append(obj.GetClassName()))
+    Render(view)
     # The first frame precomputes the LAO, whose ProgressEvents the GUI
-    # answers by painting its other widgets: the frame is still drawn (it
+    # answers by painting its other widgets: that frame is still drawn (it
     # once lost its context there and its ray cast failed).
-    check(mapper.GetFrameCount() >= 1 and "raycast" in mapper.GetLastFrameReport(),
-          "the first frame, through the GUI's progress, is drawn (%d frame(s))" % mapper.GetFrameCount())
+    check(mapper.GetFrameCount() >= 1 and not errors,
+          "the first frame, through the GUI's progress, precomputes and is drawn (%d frame(s), %d mapper "
+          "error(s))" % (mapper.GetFrameCount(), len(errors)))
     start = list(display.ClipPosition)
     x, y = to_display(view, start)
     # Negative control: drags in the view's corner, far from the widget.
@@ -123,6 +130,7 @@ try:
           "the mapper's clip matrix is the turned box's pose and %d frames were drawn during the turn"
           % (mapper.GetFrameCount() - frames))
     SaveScreenshot(os.environ["CAO_RESULT"] + ".png", view, ImageResolution=[400, 300])
+    check(not errors, "no mapper error in any frame (%d)" % len(errors))
 except Exception as e:  # noqa: BLE001  (reported as a failure)
     check(False, "exception: %r" % (e,))
 finally:

@@ -275,8 +275,9 @@ struct vtkContextualAOPass::Internals
   }
   bool Fail(vtkContextualAOPass* self, const std::string& what)
   {
-    // In the report every frame; in the log once, until a frame succeeds
-    // or the reason changes (not one error per render of a still view).
+    // In the report every frame; in the log once, until an AO frame goes
+    // through or the reason changes (not one error per render of a still
+    // view, nor again after each selection or empty render).
     this->error = what;
     if (what != this->said)
       vtkErrorWithObjectMacro(self, << what);
@@ -482,8 +483,6 @@ void vtkContextualAOPass::Render(const vtkRenderState* s)
   vtkRenderPass* scene = this->SetsCamera ? static_cast<vtkRenderPass*>(p.camera.Get()) : inner;
   scene->Render(s); // lights, opaque, RunAO, translucent, volumes, overlay
   this->NumberOfRenderedProps = scene->GetNumberOfRenderedProps();
-  if (p.error.empty())
-    p.said.clear();
 }
 
 void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkRenderState* s)
@@ -541,14 +540,14 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
     this->viewKey.clear(); // the AO image is on the other side now
   if (this->gpuFrame)
   {
-    if (this->UpdateGrid(self) && this->UpdateVolumes(self))
-      this->RunGPUFrame(self, s);
+    if (this->UpdateGrid(self) && this->UpdateVolumes(self) && this->RunGPUFrame(self, s))
+      this->said.clear(); // an AO frame went through: the next error is logged again
     return;
   }
   this->hostAOStale = false; // frame.ao is the CPU's (or the read-back path's) from here
   this->depthOk = vtkCAO::ReadViewportDepth(ren, this->depth, this->depthError);
-  if (this->UpdateGrid(self) && this->UpdateVolumes(self) && this->UpdateAO(self, ren))
-    this->Combine(self, s);
+  if (this->UpdateGrid(self) && this->UpdateVolumes(self) && this->UpdateAO(self, ren) && this->Combine(self, s))
+    this->said.clear();
 }
 
 void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRenderer* ren)

@@ -33,8 +33,8 @@
 #include "vtkCAOFilterUtilities.h"
 #include "vtkCAOGPUSession.h"
 #include "vtkCAOLAOSettings.h"
+#include "vtkCAOForeignEvents.h"
 #include "vtkCAOOpacity.h"
-#include "vtkCAOWindowGL.h"
 
 #include "caoLAO.h"
 #include "caoLAOSettings.h"
@@ -628,12 +628,14 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
     // widgets): the window's context comes back current, its framebuffers
     // bound as they were, before any more GL (else the frame went to the
     // wrong context and the ray cast failed with GL_INVALID_OPERATION).
-    vtkCAO::AroundForeignEvents(f.window, [&] {
-      vtkCAO::WithThreads(0, [&] {
-        computed = vtkCAO::ComputeOpacity(self, f.scalars, 0, f.opacityFunction,
-          this->Plan.step / f.unitDistance, opacity.data(), nonFinite);
-      });
-    });
+    if (!vtkCAO::AroundForeignEvents(f.window, [&] {
+          vtkCAO::WithThreads(0, [&] {
+            computed = vtkCAO::ComputeOpacity(self, f.scalars, 0, f.opacityFunction,
+              this->Plan.step / f.unitDistance, opacity.data(), nonFinite);
+          });
+        }))
+      return f.Fail("The render window's OpenGL context was lost while the application handled the "
+                    "opacity pass's progress; nothing is drawn.");
   if (!computed)
   {
     self->SetAbortExecute(0); // aborted: the next frame starts again
@@ -690,11 +692,15 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
   // observer, as ParaView's button does): an aborted precompute draws
   // nothing and starts again at the next frame.
   self->SetAbortExecute(0);
+  bool lost = false;
   const bool precomputed = engine.SetPlan(this->Plan, error) &&
-    engine.Precompute(error, [self, &f](double fraction) {
-      vtkCAO::AroundForeignEvents(f.window, [&] { self->UpdateProgress(0.1 + 0.9 * fraction); });
-      return !self->GetAbortExecute();
+    engine.Precompute(error, [self, &f, &lost](double fraction) {
+      lost = !vtkCAO::AroundForeignEvents(f.window, [&] { self->UpdateProgress(0.1 + 0.9 * fraction); });
+      return !lost && !self->GetAbortExecute();
     });
+  if (!precomputed && lost)
+    return f.Fail("The render window's OpenGL context was lost while the application handled the LAO "
+                  "precompute's progress; nothing is drawn.");
   if (!precomputed)
   {
     if (self->GetAbortExecute())

@@ -463,15 +463,11 @@ bool AOEngine::Precompute(std::string& error, const std::function<bool(double)>&
     error = "SetVolume and SetPlan must come before Precompute";
     return false;
   }
-  CurrentScope scope(p.Ctx);
-  if (!scope.Ok(error))
-    return false;
-  StateGuard guard(p.gl, p.External());
-  const Functions& gl = p.gl;
-  p.BindLAOBuffers();
-  p.BindImages(true, false, false, false, p.aoPre);
   // Slabs of z, so that progress is reported and an abort is honoured
-  // between dispatches; about 64 slabs, whole workgroups.
+  // between dispatches; about 64 slabs, whole workgroups. Each slab runs in
+  // its own scope and state guard, and the progress callback after it: an
+  // observer that runs the application's event loop (ParaView's GUI paints
+  // its widgets then) finds the host's context and GL state as they were.
   const int slab = std::max(LocalZ, (p.dims[2] + 63) / 64);
   double total = 0.0;
   for (int z0 = 0; z0 < p.dims[2]; z0 += slab)
@@ -479,17 +475,31 @@ bool AOEngine::Precompute(std::string& error, const std::function<bool(double)>&
     Box b = p.WholeVolume();
     b.lo[2] = z0;
     b.hi[2] = std::min(p.dims[2] - 1, z0 + slab - 1);
-    p.Begin(QPrecompute);
-    p.Dispatch(p.lao, b);
-    p.End(QPrecompute);
-    total += p.QueryMs(QPrecompute); // waits for this slab
+    {
+      CurrentScope scope(p.Ctx);
+      if (!scope.Ok(error))
+        return false;
+      StateGuard guard(p.gl, p.External());
+      p.BindLAOBuffers();
+      p.BindImages(true, false, false, false, p.aoPre);
+      p.Begin(QPrecompute);
+      p.Dispatch(p.lao, b);
+      p.End(QPrecompute);
+      total += p.QueryMs(QPrecompute); // waits for this slab
+      p.gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+      if (!p.CheckError("the LAO precompute", error))
+        return false;
+    }
     if (progress && !progress(static_cast<double>(b.hi[2] + 1) / p.dims[2]))
     {
       error = "aborted";
       return false;
     }
   }
-  gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
+    return false;
+  StateGuard guard(p.gl, p.External());
   p.times = StageTimes();
   p.times.precompute = total;
   p.InitialiseState();

@@ -7,7 +7,6 @@
 #include "caoRayCastVS_glsl.h"
 
 #include <algorithm>
-#include <vector>
 
 namespace cao
 {
@@ -207,32 +206,20 @@ bool RayCaster::CaptureDepth(const int viewport[4], std::string& error)
   gl.BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(draw));
   gl.ActiveTexture(GL_TEXTURE0 + CAO_UNIT_DEPTH);
   gl.BindTexture(GL_TEXTURE_2D, p.depth);
-  GLint attached = GL_NONE;
-  if (draw != 0)
-    gl.GetFramebufferAttachmentParameteriv(
-      GL_READ_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &attached);
-  if (draw != 0 && attached == GL_NONE)
-  {
-    // A framebuffer without depth (a host drawing the volume into a colour
-    // target only): no opaque geometry to stop the rays, all far.
-    const std::vector<float> far(static_cast<std::size_t>(viewport[2]) * viewport[3], 1.0f);
-    gl.BindBuffer(GL_PIXEL_UNPACK_BUFFER, 0); // (the guard gives the host's layout and buffer back)
-    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    gl.PixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-    gl.PixelStorei(GL_UNPACK_SKIP_ROWS, 0);
-    gl.PixelStorei(GL_UNPACK_SKIP_PIXELS, 0);
-    gl.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, viewport[2], viewport[3], GL_DEPTH_COMPONENT, GL_FLOAT, far.data());
-    return CheckError(gl, "the depth capture (no depth attachment: cleared to far)", error);
-  }
   gl.CopyTexSubImage2D(
     GL_TEXTURE_2D, 0, 0, 0, viewport[0], viewport[1], viewport[2], viewport[3]);
   if (CheckError(gl, "the depth capture", error))
     return true;
-  // Say what the framebuffer was (a multisampled one, or one without a
-  // depth attachment, cannot be copied from).
-  GLint samples = 0;
+  // Say what the framebuffer was: a multisampled one, or one without a
+  // depth attachment (VTK's depth peeling for volumes detaches it), cannot
+  // be copied from.
+  GLint samples = 0, attached = GL_NONE;
   gl.GetIntegerv(GL_SAMPLE_BUFFERS, &samples);
-  error += " (framebuffer " + std::to_string(draw) + (samples > 0 ? ", multisampled" : "") + ")";
+  if (draw != 0)
+    gl.GetFramebufferAttachmentParameteriv(
+      GL_READ_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &attached);
+  error += " (framebuffer " + std::to_string(draw) + (samples > 0 ? ", multisampled" : "") +
+    (draw != 0 && attached == GL_NONE ? ", no depth attachment" : "") + ")";
   for (int i = 0; i < 8 && gl.GetError() != GL_NO_ERROR; ++i)
   {
     // (clear what the queries may have raised)
