@@ -948,9 +948,10 @@ bool LoadOccludingVolume(const SurfaceOptions& o, cao::OpacityVolume& opacity, s
 
 /// --backend: OpenGL for gl, or for auto on a hardware GPU (a context is
 /// opened to ask); false with the reason when gl has no context.
-bool ChooseBackend(const SurfaceOptions& o, VCTGPU& gpu, bool& useGL, std::string& error)
+bool ChooseBackend(const SurfaceOptions& o, VCTGPU& gpu, bool& useGL, std::string& note, std::string& error)
 {
   useGL = false;
+  note.clear();
   if (o.backend == "cpu")
     return true;
   std::string why;
@@ -958,7 +959,19 @@ bool ChooseBackend(const SurfaceOptions& o, VCTGPU& gpu, bool& useGL, std::strin
   if (o.backend == "gl" && !opened)
     return error = "--backend gl: no OpenGL 4.3 context: " + why, false;
   useGL = opened && (o.backend == "gl" || !gpu.Software());
+  if (!useGL) // auto chose the CPU: say why (in --json's backend_note)
+    note = opened ? "auto: OpenGL is a software rasteriser (" + gpu.Description() + "): the CPU"
+                  : "auto: no OpenGL 4.3 context (" + why + "): the CPU";
+  for (char& c : note)
+    if (c == '"' || c == '\\')
+      c = '\'';
   return true;
+}
+
+/// `, "backend_note": "..."` when there is one.
+std::string NoteField(const std::string& note)
+{
+  return note.empty() ? std::string() : ", \"backend_note\": \"" + note + "\"";
 }
 
 double Milliseconds(std::chrono::steady_clock::time_point since)
@@ -997,13 +1010,13 @@ int RunSurface(int argc, char* argv[])
   cao::BitGrid grid;
   cao::OpacityVolume volume;
   std::vector<std::string> openReport;
-  std::string vctBackend = "CPU";
+  std::string vctBackend = "CPU", backendNote;
   if (o.method == "vct")
   {
     o.vct.radius = radius;
     VCTGPU gpu;
     bool useGL = false;
-    if (!ChooseBackend(o, gpu, useGL, error))
+    if (!ChooseBackend(o, gpu, useGL, backendNote, error))
       return Fail(1, error);
     cao::VCTPlan plan;
     if (!PlanSceneGrid(scene, camera, o, radius, grid, error))
@@ -1058,7 +1071,7 @@ int RunSurface(int argc, char* argv[])
     o.hbao.radius = o.vao.radius = radius;
     VCTGPU gpu;
     bool useGL = false;
-    if (!ChooseBackend(o, gpu, useGL, error))
+    if (!ChooseBackend(o, gpu, useGL, backendNote, error))
       return Fail(1, error);
     const bool hbao = o.method == "hbao";
     double ms = 0.0;
@@ -1125,11 +1138,11 @@ int RunSurface(int argc, char* argv[])
                 << ", \"normal_rays\": " << o.hbao.EffectiveNormalRays() << ", \"attenuation\": \""
                 << cao::FalloffName(o.hbao.EffectiveAttenuation()) << "\", \"march\": \""
                 << (o.hbao.deflect ? "deflect" : "sweep") << "\", \"blur_radius\": " << o.hbao.blurRadius
-                << ", \"backend\": \"" << vctBackend << "\"}";
+                << ", \"backend\": \"" << vctBackend << "\"" << NoteField(backendNote) << "}";
     if (o.method == "vao")
       std::cout << ", \"vao\": {\"quality\": \"" << cao::VAOQualityName(o.vao.quality) << "\", \"samples\": "
                 << o.vao.EffectiveSamples() << ", \"measure\": \"quartic\", \"interleave\": "
-                << (o.vao.interleave ? 4 : 1) << ", \"backend\": \"" << vctBackend << "\"}";
+                << (o.vao.interleave ? 4 : 1) << ", \"backend\": \"" << vctBackend << "\"" << NoteField(backendNote) << "}";
     if (o.method == "vct")
     {
       std::cout << ", \"vct\": {\"quality\": \"" << cao::VCTQualityName(o.vct.quality)
@@ -1140,7 +1153,7 @@ int RunSurface(int argc, char* argv[])
                 << "\", \"fill\": \"" << (o.vct.surfaceVoxels ? "surface" : "parity")
                 << "\", \"occupancy\": \"" << cao::VCTOccupancyName(o.vct.occupancy)
                 << "\", \"ray_step\": " << o.vct.rayStep
-                << ", \"backend\": \"" << vctBackend << "\", \"grid\": \"" << o.grid << "\", \"slices\": " << grid.slices << ", \"columns\": ["
+                << ", \"backend\": \"" << vctBackend << "\"" << NoteField(backendNote) << ", \"grid\": \"" << o.grid << "\", \"slices\": " << grid.slices << ", \"columns\": ["
                 << grid.nx << ", " << grid.ny << "], \"voxel\": " << grid.voxel
                 << ", \"solid_voxels\": " << (grid.bits.empty() ? -1 : grid.CountAll())
                 << ", \"open_meshes\": [";

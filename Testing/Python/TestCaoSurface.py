@@ -34,6 +34,7 @@
   exactly; probing keeps it; --json reports the volume and its bytes;
   --backend gl reads the volume as the CPU does (float rounding), and
   carved away gives its own AO without the volume exactly;
+- --backend auto says in --json why it took the CPU (--backend cpu: no note);
 - bad input exits 2 with the reason; an unreadable mesh too.
 Prints vtkSSAOPass's error against the reference on Bunny (informative)."""
 import json
@@ -209,6 +210,15 @@ d = vb[2][m] - ao[m]
 print("vct (medium, 128 slices) against the reference (Bunny): RMSE %.4f, bias %+.4f; %s"
       % (np.sqrt(np.mean(d * d)), d.mean(), vb_json["stages_ms"]))
 check(vb[3].sum() == covered.sum(), "vct sees the reference's pixels (%d, %d)" % (vb[3].sum(), covered.sum()))
+# --backend auto (the default) says in --json why it took the CPU (a
+# software rasteriser such as llvmpipe, or no OpenGL 4.3); --backend cpu,
+# the control, has no note.
+auto_vct = vb_json["vct"]
+cpu_vct = surface("bunny-vct-cpu", [bunny], "--backend", "cpu")
+check((auto_vct["backend"] == "CPU") == ("backend_note" in auto_vct) and
+      (auto_vct["backend"] != "CPU" or auto_vct["backend_note"].startswith("auto: ")) and
+      cpu_vct is not None and "backend_note" not in cpu_vct[1]["vct"],
+      "--backend auto's choice is explained in --json: %s / %s" % (auto_vct["backend"], auto_vct.get("backend_note")))
 
 # cao bench surface: the table's promises on a small run.
 bench = os.path.join(tmp, "bench")
