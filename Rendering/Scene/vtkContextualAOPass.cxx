@@ -233,6 +233,9 @@ struct vtkContextualAOPass::Internals
   std::vector<double> sceneKey;
   cao::TriangleBVH bvh;
   cao::BitGrid grid;
+  // The frustum grid's meshes, voxelized after each G-buffer.
+  std::vector<std::vector<double>> meshPoints;
+  std::vector<std::vector<std::int64_t>> meshTriangles;
   double radius = 0.0;
   int open = 0;
   int serial = 0; ///< grids built
@@ -289,6 +292,7 @@ struct vtkContextualAOPass::Internals
   void Collect(vtkContextualAOPass* self, vtkRenderer* ren);
   bool ResolveBackend(vtkContextualAOPass* self, vtkRenderer* ren);
   bool UpdateGrid(vtkContextualAOPass* self);
+  bool VoxelizeFrustum(vtkContextualAOPass* self, Clock::time_point& start);
   bool UpdateVolumes(vtkContextualAOPass* self);
   std::vector<double> ViewKey(vtkContextualAOPass* self, vtkRenderer* ren, vtkMatrix4x4*& toNDC);
   /// VCT's plan from the pass's settings on this frame's grid, with the
@@ -427,7 +431,7 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
     << (this->Method == VCT ? "vct" : this->Method == HBAO ? "hbao" : this->Method == VAO ? "vao" : "none")
     << "\", \"apply_to\": \""
     << (this->ApplyTo == AMBIENT_TERM ? "ambient" : "whole colour") << "\", \"grid\": \""
-    << (this->Grid == EYE_GRID ? "eye" : "world") << "\", \"occupancy\": \""
+    << (this->Grid == EYE_GRID ? "eye" : this->Grid == FRUSTUM_GRID ? "frustum" : "world") << "\", \"occupancy\": \""
     << (this->Occupancy == VOLUME ? "volume" : "rays") << "\", \"gbuffer\": \""
     << (p.gbuffer == DEPTH_BUFFER ? "depth buffer" : "ray cast")
     << (this->GBuffer == GBUFFER_AUTO ? " (auto)" : "") << "\", \"frame_on_gpu\": "
@@ -614,7 +618,13 @@ bool vtkContextualAOPass::Internals::ResolveBackend(vtkContextualAOPass* self, v
   // volumes' opacity read, where it is traced.
   this->backendNote.clear();
   std::string error;
-  this->onGPU = self->Backend != BACKEND_CPU && this->gpu.Resolve(ren->GetRenderWindow(), self->Backend, error);
+  const bool frustum = self->Method == VCT && self->Grid == FRUSTUM_GRID;
+  if (frustum && self->Backend == BACKEND_OPENGL)
+    return this->Fail(self, "Backend OPENGL: the frustum grid runs on the CPU only");
+  if (frustum && self->Backend == BACKEND_AUTO)
+    this->backendNote = "Auto: the frustum grid runs on the CPU only";
+  this->onGPU = self->Backend != BACKEND_CPU && !frustum &&
+    this->gpu.Resolve(ren->GetRenderWindow(), self->Backend, error);
   if (!error.empty())
     return this->Fail(self, error);
   if (this->onGPU && self->Method == VCT && !this->volumes.empty())
@@ -730,6 +740,19 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
     this->Stage("scene", start);
     return true;
   }
+  if (self->Grid == FRUSTUM_GRID)
+  {
+    // Voxelized after each G-buffer (UpdateAO): its slices start at the
+    // pixels' visible depths.
+    this->meshPoints = std::move(points);
+    this->meshTriangles = std::move(triangles);
+    this->sceneKey = this->frameSceneKey;
+    ++this->serial;
+    this->Stage("scene", start);
+    return true;
+  }
+  this->meshPoints.clear();
+  this->meshTriangles.clear();
   std::vector<cao::MeshView> views;
   for (std::size_t i = 0; i < points.size(); ++i)
     views.push_back({ &points[i], &triangles[i] });
@@ -936,6 +959,8 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
   }
   else
   {
+    if (self->Grid == FRUSTUM_GRID && !this->VoxelizeFrustum(self, start))
+      return false;
     cao::VCTPlan plan;
     if (!this->BuildPlan(self, plan, error))
       return this->Fail(self, error);
@@ -946,6 +971,27 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
   this->viewKey = key;
   ++self->TraceCount;
   this->Stage("trace", start);
+  return true;
+}
+
+bool vtkContextualAOPass::Internals::VoxelizeFrustum(vtkContextualAOPass* self, Clock::time_point& start)
+{
+  // The frustum grid of this camera and G-buffer (the CPU's).
+  std::vector<cao::MeshView> views;
+  for (std::size_t i = 0; i < this->meshPoints.size(); ++i)
+    views.push_back({ &this->meshPoints[i], &this->meshTriangles[i] });
+  std::string error;
+  this->grid = cao::BitGrid();
+  if (!cao::PlanFrustumGrid(views, this->pixels, &this->frame, self->Slices, this->grid, error) ||
+    !cao::FillGrid(views, this->grid, error))
+    return this->Fail(self, "Cannot voxelize the scene: " + error);
+  this->tolerance = std::max(0.5 * this->grid.voxel, 1e-9);
+  this->open = 0;
+  for (std::int64_t e : this->grid.openEdges)
+    this->open += e > 0;
+  ++self->VoxelizeCount;
+  this->Stage("voxelize", start);
+  start = Clock::now();
   return true;
 }
 

@@ -30,8 +30,11 @@
  *
  * The grid: WORLD_GRID (default) in world axes, built while the geometry
  * does not change; EYE_GRID aligned with the camera (its slices are depth
- * slices, as in the paper), rebuilt when the camera turns. Its columns are
- * parallel (orthographic), not the paper's per-pixel perspective columns.
+ * slices), rebuilt when the camera turns, its columns parallel; or
+ * FRUSTUM_GRID, the paper's eye-space grid: a column per pixel (the
+ * pixels' rays), slices from each pixel's visible depth to the scene's far
+ * depth, rebuilt after the G-buffer at every camera change (the CPU only:
+ * Backend Auto takes the CPU and says so, OPENGL refuses it).
  *
  * Only the effects the scene calls for, and nothing its last frame already
  * has (GetLastFrameReport says what ran, and why, as JSON):
@@ -122,7 +125,8 @@ public:
   enum GridKinds
   {
     WORLD_GRID = 0, ///< world axes, cached while the geometry does not change
-    EYE_GRID = 1    ///< camera axes, rebuilt when the camera turns
+    EYE_GRID = 1,   ///< camera axes, rebuilt when the camera turns
+    FRUSTUM_GRID = 2 ///< the paper's: a column per pixel, rebuilt at every camera change (CPU)
   };
 
   ///@{
@@ -153,8 +157,8 @@ public:
   ///@}
 
   ///@{
-  /// WORLD_GRID (default) or EYE_GRID.
-  vtkSetClampMacro(Grid, int, WORLD_GRID, EYE_GRID);
+  /// WORLD_GRID (default), EYE_GRID or FRUSTUM_GRID.
+  vtkSetClampMacro(Grid, int, WORLD_GRID, FRUSTUM_GRID);
   vtkGetMacro(Grid, int);
   ///@}
 

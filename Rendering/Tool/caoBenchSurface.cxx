@@ -50,7 +50,9 @@ options:
                        twin, its grid voxelized on the GPU, timed by GPU queries; gl also
                        adds hbao-gl and vao-gl rows, the screen-space methods' GPU twins)
   --grids LIST         vct grids: world (default), eye (the camera's axes, built again for
-                       each camera: its ms/frame includes its grid ms)
+                       each camera: its ms/frame includes its grid ms), frustum (the paper's
+                       eye-space grid: a column per pixel, slices from each pixel's visible
+                       depth; per camera, its grid ms in the frame; CPU, ray-cast G-buffer)
   --gbuffers LIST      the pixels' G-buffer: ray-cast (default: the exact first hits), depth
                        (adds rows "... depth": the G-buffer from the drawn depth as the
                        pass's Depth Buffer and GPU frame read it, here the ray cast's depth
@@ -262,8 +264,8 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
       o.grids.clear();
       for (const std::string& g : Split(v, ','))
       {
-        if (g != "world" && g != "eye")
-          return error = "--grids: '" + g + "' is not world or eye", false;
+        if (g != "world" && g != "eye" && g != "frustum")
+          return error = "--grids: '" + g + "' is not world, eye or frustum", false;
         o.grids.push_back(g);
       }
     }
@@ -548,14 +550,21 @@ int RunBenchSurface(int argc, char* argv[])
       for (const std::string& kind : o.grids)
       for (int slices : o.slices)
       {
+        if (kind == "frustum" && onGPU)
+          continue; // the frustum grid runs on the CPU only
         // The grid for a camera: world axes (one for both cameras), or the
-        // camera's own (eye: one per camera, as a turn rebuilds it).
+        // camera's own (eye: one per camera, as a turn rebuilds it;
+        // frustum: its pixels from the ray cast's visible depths).
+        const bool perCamera = kind != "world";
         auto build = [&](vtkCamera* cam, cao::BitGrid& g, double& ms) {
           const std::vector<cao::MeshView> views = scene.Views();
           const auto t0 = std::chrono::steady_clock::now();
           bool ok = false;
           if (kind == "world")
             ok = cao::PlanGrid(scene.bvh.Bounds(), 1.05 * radius, slices, g, error);
+          else if (kind == "frustum")
+            ok = cao::PlanFrustumGrid(views, MakePixelCamera(cam, o.view), cam == camera ? &frame : &frame2,
+              slices, g, error);
           else
           {
             vtkMatrix4x4* v = cam->GetViewTransformMatrix();
@@ -572,15 +581,17 @@ int RunBenchSurface(int argc, char* argv[])
         };
         cao::BitGrid grid, grid2;
         double gridMs = 0, grid2Ms = 0;
-        if (!build(camera, grid, gridMs) || (kind == "eye" && !build(camera2, grid2, grid2Ms)))
+        if (!build(camera, grid, gridMs) || (perCamera && !build(camera2, grid2, grid2Ms)))
           return Fail(1, error);
-        const cao::BitGrid& second = kind == "eye" ? grid2 : grid;
+        const cao::BitGrid& second = perCamera ? grid2 : grid;
         for (int gb : o.gbuffers)
         for (cao::VCTOccupancy occupancy : o.occupancies)
         for (double step : occupancy == cao::VCTOccupancy::Rays ? o.raySteps
                                                                 : std::vector<double>{ cao::VCTSettings().rayStep })
         for (cao::VCTQuality q : o.qualities)
         {
+          if (kind == "frustum" && gb)
+            continue; // its slices start at the ray cast's visible depths
           cao::VCTSettings vs;
           vs.quality = q;
           vs.occupancy = occupancy;
@@ -620,12 +631,12 @@ int RunBenchSurface(int argc, char* argv[])
           row.mesh = name;
           row.method = onGPU ? "vct-gl" : "vct";
           row.label = row.method + " " + cao::VCTQualityName(q) + " " + std::to_string(slices) +
-            (kind == "eye" ? " eye" : "") + (occupancy == cao::VCTOccupancy::Volume ? " volume" : "") +
+            (kind == "world" ? "" : " " + kind) + (occupancy == cao::VCTOccupancy::Volume ? " volume" : "") +
             (occupancy == cao::VCTOccupancy::Rays && step != cao::VCTSettings().rayStep ? stepLabel.str() : "") +
             (gb ? " depth" : "");
           row.series = onGPU ? 4 : 0;
           // An eye grid is built again at every camera turn: in the frame.
-          row.ms = Median(times) + (kind == "eye" ? gridMs : 0.0);
+          row.ms = Median(times) + (perCamera ? gridMs : 0.0);
           row.gridMs = gridMs;
           Measure(row, a.ao, b.ao, ref.ao, ref2.ao, band);
           rows.push_back(row);

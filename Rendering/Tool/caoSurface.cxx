@@ -75,10 +75,12 @@ const char* SurfaceUsage = R"(cao surface MESH... [options] -o out.png
   --filter on|off       hbao: its blur; vao: its 4 x 4 sample sets and filter (default on)
   --slices N            vct: depth slices of the grid, 32..1024, a multiple of 32
                         (default 256; the paper's 128)
-  --grid world|eye      vct: the grid's axes (world: default, built once per geometry;
-                        eye: the camera's, its slices in depth as in the paper, built
-                        again whenever the camera turns; parallel columns, not the
-                        paper's per-pixel perspective ones)
+  --grid world|eye|frustum   vct: the grid (world: default, built once per geometry;
+                        eye: the camera's axes, parallel columns, its slices in depth,
+                        built again whenever the camera turns; frustum: the paper's
+                        eye-space grid, a column per pixel, slices from each pixel's
+                        visible depth to the scene's far depth, built again at every
+                        camera change; the CPU only)
   --cone-weights cosine|equal   vct (default cosine; equal: the paper's average)
   --backend auto|cpu|gl vct, hbao, vao: where it runs (auto: OpenGL 4.3 on a hardware GPU, the CPU
                         with a software rasterizer such as llvmpipe or none; gl: OpenGL
@@ -251,9 +253,9 @@ bool Parse(int argc, char* argv[], SurfaceOptions& o, std::string& error)
     {
       if (!value())
         return false;
-      if (v != "world" && v != "eye")
+      if (v != "world" && v != "eye" && v != "frustum")
       {
-        error = "--grid is world or eye (got '" + v + "')";
+        error = "--grid is world, eye or frustum (got '" + v + "')";
         return false;
       }
       o.grid = v;
@@ -873,12 +875,15 @@ bool WritePicture(const SurfaceOptions& o, const cao::SurfaceFrame& frame,
   return true;
 }
 
-/// The grid's plan for the meshes: world axes, or the camera's (eye).
+/// The grid's plan for the meshes: world axes, the camera's (eye), or the
+/// camera's pixels from the frame's visible depths (frustum).
 bool PlanSceneGrid(const SurfaceScene& scene, vtkCamera* camera, const SurfaceOptions& o, double radius,
-  cao::BitGrid& grid, std::string& error)
+  const cao::SurfaceFrame& frame, cao::BitGrid& grid, std::string& error)
 {
   if (o.grid == "world")
     return cao::PlanGrid(scene.bvh.Bounds(), 1.05 * radius, o.vct.slices, grid, error);
+  if (o.grid == "frustum")
+    return cao::PlanFrustumGrid(scene.Views(), MakePixelCamera(camera, o.view), &frame, o.vct.slices, grid, error);
   vtkMatrix4x4* view = camera->GetViewTransformMatrix();
   const double right[3] = { view->GetElement(0, 0), view->GetElement(0, 1), view->GetElement(0, 2) };
   const double up[3] = { view->GetElement(1, 0), view->GetElement(1, 1), view->GetElement(1, 2) };
@@ -1016,10 +1021,14 @@ int RunSurface(int argc, char* argv[])
     o.vct.radius = radius;
     VCTGPU gpu;
     bool useGL = false;
-    if (!ChooseBackend(o, gpu, useGL, backendNote, error))
+    if (o.grid == "frustum" && o.backend == "gl")
+      return Fail(2, "--grid frustum runs on the CPU only (--backend cpu or auto)");
+    if (o.grid != "frustum" && !ChooseBackend(o, gpu, useGL, backendNote, error))
       return Fail(1, error);
+    if (o.grid == "frustum" && o.backend == "auto")
+      backendNote = "auto: the frustum grid runs on the CPU only";
     cao::VCTPlan plan;
-    if (!PlanSceneGrid(scene, camera, o, radius, grid, error))
+    if (!PlanSceneGrid(scene, camera, o, radius, frame, grid, error))
       return Fail(2, error);
     if (useGL)
     {

@@ -5,6 +5,7 @@
 
 #include "caoSurfaceReference.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <initializer_list>
@@ -34,6 +35,36 @@ struct TriangleScene
     this->Quad({ x1, y0, z0, x1, y1, z0, x1, y1, z1, x1, y0, z1 });
   }
 };
+
+/// The exact occlusion of cone `c` of `plan` by its rays (occupancy
+/// "rays") at a point with normal +z beside the solid half-space x > a:
+/// ConeTraceAO's frames for n = +z; a ray apex + tau r, sampled at tau = t0
+/// + (m + 1/2) step up to t1 - step / 2 (steps of at most `rayStep`),
+/// meets x > a if and only if (t1 - step / 2) r_x > a; the cosine-weighted
+/// share of the rays that do.
+template <class Plan>
+double HalfSpaceRayOcclusion(const Plan& plan, std::size_t c, double a, double rayStep)
+{
+  const double dx = plan.cones[c][0], dy = plan.cones[c][1], dz = plan.cones[c][2];
+  const double cs = dz >= 0.0 ? 1.0 : -1.0, ca = -1.0 / (cs + dz);
+  const double u[3] = { 1.0 + cs * dx * dx * ca, cs * dx * dy * ca, -cs * dx };
+  const double v[3] = { dx * dy * ca, cs + dy * dy * ca, -dy };
+  const double t0 = plan.spheres.front().t - plan.spheres.front().r;
+  const double t1 = plan.spheres.back().t + plan.spheres.back().r;
+  double in = 0.0, all = 0.0;
+  for (const auto& d : plan.disk)
+  {
+    double r[3];
+    for (int k = 0; k < 3; ++k)
+      r[k] = plan.cones[c][k] + plan.coneTangent * (d[0] * u[k] + d[1] * v[k]);
+    const double length = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+    const int steps = std::max(1, static_cast<int>(std::ceil((t1 - t0) * length / rayStep)));
+    const double w = r[2] / length;
+    all += w;
+    in += (t1 - 0.5 * (t1 - t0) / steps) * r[0] > a ? w : 0.0;
+  }
+  return in / all;
+}
 
 /// ndcToWorld of a perspective camera at `eye` looking at `at` (up +z),
 /// vertical view angle `fov` degrees, near and far planes, w x h pixels.

@@ -27,7 +27,10 @@
 - a legacy .vtk mesh reads as its .vtp (the same AO); a legacy volume is
   refused with what it holds;
 - the eye grid (--grid eye): the same pixels, its AO near the world
-  grid's (the grid's axes differ, so its voxels do);
+  grid's (the grid's axes differ, so its voxels do); the frustum grid
+  (--grid frustum): a column per pixel, its error against the reference
+  within 1.5 times the world grid's (control: no AO, over twice its
+  error), the CPU only (said under auto, refused under --backend gl);
 - the volume occluding (--volume): a block of volume on the square darkens
   it where the sphere alone does not reach; --shape cube at the block's
   centre carving it away gives the square's AO without the volume
@@ -330,6 +333,24 @@ if eye and world:
           "--grid eye: the same pixels, mean |dAO| %.4f against the world grid"
           % np.abs(eye[0][2][m] - world[0][2][m]).mean())
 
+# The frustum grid (the paper's): a column per pixel; the same pixels, its
+# error against the reference near the world grid's (the control: no AO);
+# the CPU only, said under auto, refused under gl.
+fr = surface("bunny-vct-frustum", [bunny], "--grid", "frustum")
+if fr and world:
+    m = fr[0][3] & covered
+    e_fr = np.sqrt(((fr[0][2][m] - ao[m]) ** 2).mean())
+    e_w = np.sqrt(((world[0][2][m] - ao[m]) ** 2).mean())
+    e_none = np.sqrt(((1.0 - ao[m]) ** 2).mean())
+    check(np.array_equal(fr[0][3], covered) and fr[1]["vct"]["grid"] == "frustum" and
+          fr[1]["vct"]["columns"] == [160, 120] and "CPU only" in fr[1]["vct"].get("backend_note", "") and
+          e_fr < 1.5 * e_w and e_none > 2 * e_fr,
+          "--grid frustum: 160 x 120 columns, RMSE against the reference %.4f (world grid %.4f, no AO %.4f), "
+          "note: %s" % (e_fr, e_w, e_none, fr[1]["vct"].get("backend_note")))
+rc, so, se = run(bunny, "--grid", "frustum", "--backend", "gl", "-o", os.path.join(tmp, "x.png"))
+check(rc == 2 and "CPU only" in se, "--grid frustum --backend gl is refused with the reason (rc %d: %s)"
+      % (rc, se.strip()[:120]))
+
 # The volume occluding: a block of image data standing on the open square.
 from vtkmodules.vtkCommonDataModel import vtkImageData
 from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
@@ -418,7 +439,7 @@ for args, words in [(["--method", "magic", bunny, "-o", "x.png"], "--method is")
                     ([bunny], "-o out.png"),
                     (["--falloff", "cubic", bunny, "-o", "x.png"], "--falloff is"),
                     (["--slices", "100", bunny, "-o", "x.png"], "multiple of 32"),
-                    (["--grid", "polar", bunny, "-o", "x.png"], "--grid is world or eye"),
+                    (["--grid", "polar", bunny, "-o", "x.png"], "--grid is world, eye or frustum"),
                     (["--shape", "cube", bunny, "-o", "x.png"], "give --volume"),
                     (["--size", "2", bunny, "-o", "x.png"], "give --volume"),
                     (["--volume", block_vti, "--method", "ssao", bunny, "-o", "x.png"], "in --method vct"),

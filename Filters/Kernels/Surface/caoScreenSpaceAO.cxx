@@ -69,40 +69,6 @@ double RadicalInverse2(std::uint64_t i)
   return r;
 }
 
-/// The inverse of a row-major 4 x 4 matrix (Gauss-Jordan, partial
-/// pivoting); false when singular.
-bool Invert4(const double* m, double* out)
-{
-  double a[4][8];
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 8; ++c)
-      a[r][c] = c < 4 ? m[4 * r + c] : (c - 4 == r ? 1.0 : 0.0);
-  for (int c = 0; c < 4; ++c)
-  {
-    int pivot = c;
-    for (int r = c + 1; r < 4; ++r)
-      if (std::fabs(a[r][c]) > std::fabs(a[pivot][c]))
-        pivot = r;
-    if (!(std::fabs(a[pivot][c]) > 0.0))
-      return false;
-    std::swap(a[c], a[pivot]);
-    const double inv = 1.0 / a[c][c];
-    for (double& v : a[c])
-      v *= inv;
-    for (int r = 0; r < 4; ++r)
-      if (r != c)
-      {
-        const double f = a[r][c];
-        for (int k = 0; k < 8; ++k)
-          a[r][k] -= f * a[c][k];
-      }
-  }
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c)
-      out[4 * r + c] = a[r][c + 4];
-  return true;
-}
-
 /// The screen both methods read: the frame, its camera both ways, and per
 /// pixel its surface's NDC depth, world size and direction to the camera.
 struct Screen
@@ -149,7 +115,7 @@ struct Screen
     if (!error.empty())
       return false;
     const std::size_t pixels = static_cast<std::size_t>(cam.width) * cam.height;
-    if (!Invert4(cam.ndcToWorld, this->worldToNDC))
+    if (!WorldToNDC(cam, this->worldToNDC))
       return error = "the camera's matrix is singular", false;
     this->frame = &f;
     this->camera = cam;
@@ -463,11 +429,6 @@ std::string CheckScreenFrame(const PixelCamera& camera, const SurfaceFrame& fram
       frame.position.size() != 3 * pixels || frame.normal.size() != 3 * pixels || frame.ao.size() != pixels))
     error = "the frame does not match the camera's image size";
   return error;
-}
-
-bool WorldToNDC(const PixelCamera& camera, double out[16])
-{
-  return Invert4(camera.ndcToWorld, out);
 }
 
 bool HBAOFrame(const PixelCamera& camera, const HBAOSettings& settings, SurfaceFrame& frame, int threads,

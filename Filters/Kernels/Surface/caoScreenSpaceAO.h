@@ -176,9 +176,6 @@ std::vector<double> VAOFilterWeights(const VAOSettings& settings);
 /// Empty when `frame` is a frame of `camera`'s image (its buffers sized
 /// for it), else why not.
 std::string CheckScreenFrame(const PixelCamera& camera, const SurfaceFrame& frame);
-/// The inverse of camera.ndcToWorld (world to NDC before the division);
-/// false when singular.
-bool WorldToNDC(const PixelCamera& camera, double out[16]);
 
 /// The depth-aware filter both methods end with: per covered pixel the
 /// weighted mean of the covered taps (i + di, j + dj), weight w[di] w[dj]

@@ -238,6 +238,43 @@ std::string CheckPixelCamera(const PixelCamera& camera)
 }
 
 
+bool WorldToNDC(const PixelCamera& camera, double out[16])
+{
+  // Gauss-Jordan with partial pivoting on [M | I].
+  const double* m = camera.ndcToWorld;
+  double a[4][8];
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 8; ++c)
+      a[r][c] = c < 4 ? m[4 * r + c] : (c - 4 == r ? 1.0 : 0.0);
+  for (int c = 0; c < 4; ++c)
+  {
+    int pivot = c;
+    for (int r = c + 1; r < 4; ++r)
+      if (std::fabs(a[r][c]) > std::fabs(a[pivot][c]))
+        pivot = r;
+    if (!(std::fabs(a[pivot][c]) > 0.0) || !std::isfinite(a[pivot][c]))
+      return false;
+    std::swap(a[c], a[pivot]);
+    const double inv = 1.0 / a[c][c];
+    for (double& v : a[c])
+      v *= inv;
+    for (int r = 0; r < 4; ++r)
+      if (r != c)
+      {
+        const double f = a[r][c];
+        for (int k = 0; k < 8; ++k)
+          a[r][k] -= f * a[c][k];
+      }
+  }
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c)
+      out[4 * r + c] = a[r][c + 4];
+  for (int k = 0; k < 16; ++k)
+    if (!std::isfinite(out[k]))
+      return false;
+  return true;
+}
+
 bool NDCToWorld(const PixelCamera& camera, double x, double y, double z, double out[3])
 {
   const double* m = camera.ndcToWorld;

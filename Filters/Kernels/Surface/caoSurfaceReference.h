@@ -97,6 +97,9 @@ std::string CheckPixelCamera(const PixelCamera& camera);
 /// NDC (x, y, z) to world through the camera's inverse matrix; false when
 /// the result is not finite.
 bool NDCToWorld(const PixelCamera& camera, double x, double y, double z, double out[3]);
+/// The inverse of camera.ndcToWorld (world to clip coordinates, before the
+/// division); false when singular or not finite.
+bool WorldToNDC(const PixelCamera& camera, double out[16]);
 
 /// What the camera sees: per pixel the first surface (the G-buffer every
 /// method starts from), and the AO there.

@@ -1,7 +1,10 @@
 // caoVoxelConeTracing.h - seed 000 (Dalla Favera & Celes, "Ambient
 // occlusion using cone tracing with scene voxelization"): the CPU twin of
 // the method, over a world-space bit grid (the paper's future work for
-// static scenes: built once while the geometry does not change).
+// static scenes: built once while the geometry does not change), an eye
+// grid (the camera's axes, parallel columns) or the paper's own eye-space
+// grid (PlanFrustumGrid: a column per pixel, slices from each pixel's
+// visible depth).
 //
 // 1. Voxelization. The meshes are rasterized along the grid's z axis, one
 //    column per (x, y) voxel centre, with the top-left rule of a GPU
@@ -144,6 +147,36 @@ struct BitGrid
   std::array<double, 9> axes{ { 1, 0, 0, 0, 1, 0, 0, 0, 1 } };
   void ToGrid(const double world[3], double out[3]) const;
   void ToWorld(const double grid[3], double out[3]) const;
+  /// The frustum grid (PlanFrustumGrid; seed 000 Sec. III-B, the paper's
+  /// eye-space grid): column (i, j) is the ray of pixel (i, j), slice k of
+  /// a column spans depths [near + k step, near + (k + 1) step), step =
+  /// (far - near) / slices, `near` the column's own (its pixel's visible
+  /// depth: the paper's z_nearest). The depth is the clip w (eye depth)
+  /// under a perspective camera, NDC z under a parallel one. Points enter
+  /// it in the grid frame (ToGrid: `axes` are the camera's right, up and
+  /// backward) and are mapped by `toClip`; origin and voxel are unused
+  /// there but `voxel` (a representative voxel: the smaller of a pixel's
+  /// width and a slice at the median visible depth) sets the plan's
+  /// smallest sphere. Off (empty toClip) for world and eye grids.
+  struct Frustum
+  {
+    bool perspective = true;
+    std::array<double, 16> toClip{};      ///< grid frame -> clip, row-major
+    std::vector<double> nearDepth;        ///< per column (j * nx + i)
+    std::vector<double> slicesPerDepth;   ///< per column: slices / (far - near)
+    double farDepth = 0.0;
+    double worldPerDepth = 1.0;           ///< world length of one unit of depth along the view
+  };
+  Frustum frustum;
+  bool IsFrustum() const { return !this->frustum.nearDepth.empty(); }
+  /// A frustum grid's cell of grid-frame point q: column (i, j) and slice
+  /// coordinate s (slice k spans [k, k + 1)); false outside its columns
+  /// or behind the eye.
+  bool FrustumCell(const double q[3], int& i, int& j, double& s) const;
+  /// A frustum grid's voxel at grid-frame point q in world units: the
+  /// smaller (or `larger`) of a pixel's width there and its column's slice.
+  double FrustumVoxel(const double q[3], bool larger = false) const;
+  static constexpr std::int64_t MaximumFrustumBytes = std::int64_t(1) << 30;
   std::vector<std::uint32_t> bits; ///< (j * nx + i) * words + word
   std::vector<std::int64_t> openEdges; ///< per mesh, as voxelized (0: solid fill)
   static constexpr std::int64_t MaximumColumns = std::int64_t(4096) * 4096;
@@ -168,7 +201,7 @@ struct BitGrid
 bool VoxelizeWorld(const std::vector<MeshView>& meshes, const std::array<double, 6>& bounds,
   double padding, int slices, BitGrid& grid, std::string& error, bool surfaceVoxels = true);
 
-/// Rasterizes `meshes` into `grid` as planned (PlanGrid or PlanEyeGrid;
+/// Rasterizes `meshes` into `grid` as planned (PlanGrid, PlanEyeGrid or PlanFrustumGrid;
 /// its bits are replaced): what VoxelizeWorld does after planning.
 bool FillGrid(const std::vector<MeshView>& meshes, BitGrid& grid, std::string& error,
   bool surfaceVoxels = true);
@@ -182,6 +215,20 @@ bool EyeAxes(const double right[3], const double up[3], std::array<double, 9>& a
 /// PlanGrid plans a world grid (bits empty).
 bool PlanEyeGrid(const std::vector<MeshView>& meshes, const std::array<double, 9>& axes,
   double padding, int slices, BitGrid& grid, std::string& error);
+
+/// The paper's eye-space grid for `camera` (seed 000 Sec. III-B and Eq. 2):
+/// a column per pixel (under a perspective camera the columns fan out with
+/// the pixels' rays), `slices` slices per column, linear in depth from the
+/// column's visible depth in `frame` (its z_nearest: Eisemann's local
+/// slice map; uncovered pixels, or all with a null `frame`, the meshes'
+/// nearest depth: the paper's Fig. 4 (a)) to the meshes' farthest depth
+/// plus one slice. Depends on the camera and the G-buffer: rebuilt with
+/// every camera change. FillGrid rasterizes it in screen space (1 / w
+/// interpolated, perspective-correct), with the parity counted from beyond
+/// the far depth, so that a camera inside a closed mesh or a mesh cut by
+/// the eye plane keeps a right inside. At most MaximumFrustumBytes of bits.
+bool PlanFrustumGrid(const std::vector<MeshView>& meshes, const PixelCamera& camera,
+  const SurfaceFrame* frame, int slices, BitGrid& grid, std::string& error);
 
 /// Which voxel centres of a regular grid lie inside a closed mesh, by the
 /// voxelizer's parity (top-left rule along the grid's k axis): inside[i +

@@ -26,6 +26,7 @@
 //   carved away (opacity 0) gives 1; a trilinear field is sampled exactly;
 // - bad input: slices, settings, ids.
 #include "caoVoxelConeTracing.h"
+#include "caoSurfaceTestScenes.h"
 #include "caoTestUtilities.h"
 
 #include <array>
@@ -211,12 +212,8 @@ int TestVoxelConeTracing(int, char*[])
         double occ = 0.0, capOcc = 0.0;
         for (std::size_t c = 0; c < plan.cones.size(); ++c)
         {
-          // ConeTraceAO's frame for n = +z: tx = (1, 0, 0), ty = (0, 1, 0);
-          // the rays' frame across the cone (u, v), as the kernel's.
-          const double dx = plan.cones[c][0], dy = plan.cones[c][1], dz = plan.cones[c][2];
-          const double cs = dz >= 0.0 ? 1.0 : -1.0, ca = -1.0 / (cs + dz);
-          const double u[3] = { 1.0 + cs * dx * dx * ca, cs * dx * dy * ca, -cs * dx };
-          const double v[3] = { dx * dy * ca, cs + dy * dy * ca, -dy };
+          // ConeTraceAO's frame for n = +z: tx = (1, 0, 0), ty = (0, 1, 0).
+          const double dx = plan.cones[c][0];
           double open = 1.0, capOpen = 1.0;
           for (const auto& sphere : plan.spheres)
           {
@@ -231,23 +228,7 @@ int TestVoxelConeTracing(int, char*[])
             capOpen *= 1.0 - CapFraction(sphere.t * dx, sphere.r, a);
           }
           if (occupancy == cao::VCTOccupancy::Rays)
-          {
-            const double t0 = plan.spheres.front().t - plan.spheres.front().r;
-            const double t1 = plan.spheres.back().t + plan.spheres.back().r;
-            double in = 0.0, all = 0.0;
-            for (const auto& d : plan.disk)
-            {
-              double r[3];
-              for (int k = 0; k < 3; ++k)
-                r[k] = plan.cones[c][k] + plan.coneTangent * (d[0] * u[k] + d[1] * v[k]);
-              const double length = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
-              const int steps = std::max(1, static_cast<int>(std::ceil((t1 - t0) * length / plan.rayStep)));
-              const double w = r[2] / length;
-              all += w;
-              in += (t1 - 0.5 * (t1 - t0) / steps) * r[0] > a ? w : 0.0;
-            }
-            open = 1.0 - in / all;
-          }
+            open = 1.0 - caotest::HalfSpaceRayOcclusion(plan, c, a, plan.rayStep);
           occ += plan.coneWeights[c] * (1.0 - open);
           capOcc += plan.coneWeights[c] * (1.0 - capOpen);
         }

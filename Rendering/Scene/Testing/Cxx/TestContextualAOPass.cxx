@@ -15,7 +15,10 @@
 //   picture, the negative control, would darken the sheet too), with the
 //   renderer's depth peeling too;
 // - the eye grid: built on a turn, kept on a dolly, its AO near the world
-//   grid's;
+//   grid's; the frustum grid: built after the G-buffer, again on a dolly,
+//   not on a colour change, its AO the kernel's exactly (the control:
+//   without the visible depths it differs), refused by OPENGL, Auto on the
+//   CPU with a note;
 // - the pass's AO at a pixel equals cao::VCTFrame's for the same triangles
 //   and camera (the kernel's, not a second implementation);
 // - HBAO and VAO: no grid, their AO the kernels' on the same G-buffer, a
@@ -703,6 +706,74 @@ int TestContextualAOPass(int, char*[])
       Check(ran && compared > 1000 && worst == 0.0 && worstWorld > 0.01, text);
     }
     pass->SetGrid(vtkContextualAOPass::WORLD_GRID);
+  }
+  // The frustum grid (the paper's): voxelized after each G-buffer, so every
+  // camera change (a dolly too) rebuilds it, a colour change does not; its
+  // AO the kernel's PlanFrustumGrid on the same pixels and G-buffer; on
+  // OPENGL refused with the reason, Auto keeps the CPU and says so.
+  {
+    pass->SetGrid(vtkContextualAOPass::FRUSTUM_GRID);
+    window->Render();
+    const std::string first = pass->GetLastFrameStages();
+    Check(first == "scene,primary,voxelize,trace,ambient,combine" &&
+        pass->GetLastFrameReport().find("\"grid\": \"frustum\"") != std::string::npos,
+      "frustum grid: built after the G-buffer (" + first + ")");
+    sphereActor->GetProperty()->SetColor(0.3, 0.9, 0.2);
+    window->Render();
+    Check(pass->GetLastFrameStages() == "ambient,combine",
+      "frustum grid: a colour change only combines (" + pass->GetLastFrameStages() + ")");
+    camera->Dolly(0.95);
+    renderer->ResetCameraClippingRange();
+    window->Render();
+    Check(pass->GetLastFrameStages() == "primary,voxelize,trace,ambient,combine",
+      "frustum grid: a dolly rebuilds it (" + pass->GetLastFrameStages() + "; the eye grid keeps its own)");
+    {
+      const WorldScene scene{ slabActor, sphereActor };
+      std::string error;
+      cao::TriangleBVH bvh;
+      cao::BitGrid frustum, eye;
+      cao::VCTSettings settings;
+      settings.radius = 0.8;
+      settings.slices = pass->GetSlices();
+      cao::VCTPlan plan;
+      cao::SurfaceFrame frame;
+      const cao::PixelCamera pixels = PixelsOf(renderer);
+      const bool ran = bvh.Build(scene.all, scene.allTris, error) && cao::CastPrimary(bvh, pixels, frame, error) &&
+        cao::PlanFrustumGrid(scene.views, pixels, &frame, settings.slices, frustum, error) &&
+        cao::FillGrid(scene.views, frustum, error) && cao::BuildVCTPlan(settings, frustum, plan, error) &&
+        cao::VCTFrame(frustum, plan, frame, 0, error);
+      int compared = 0;
+      const double worst = WorstDifference(frame, pass, compared);
+      // The control: the same pixels without the local slice map.
+      cao::SurfaceFrame plainFrame;
+      cao::BitGrid plain;
+      cao::VCTPlan plainPlan;
+      const bool ranPlain = cao::CastPrimary(bvh, pixels, plainFrame, error) &&
+        cao::PlanFrustumGrid(scene.views, pixels, nullptr, settings.slices, plain, error) &&
+        cao::FillGrid(scene.views, plain, error) && cao::BuildVCTPlan(settings, plain, plainPlan, error) &&
+        cao::VCTFrame(plain, plainPlan, plainFrame, 0, error);
+      int comparedPlain = 0;
+      const double worstPlain = WorstDifference(plainFrame, pass, comparedPlain);
+      char text[240];
+      std::snprintf(text, sizeof(text), "frustum grid: the pass's AO is the kernel's on the same pixels and "
+        "G-buffer (%d pixels, largest difference %.2g; without the visible depths: %.2g) %s", compared, worst,
+        worstPlain, error.c_str());
+      Check(ran && ranPlain && compared > 1000 && worst == 0.0 && worstPlain > 0.01, text);
+    }
+    pass->SetBackend(vtkContextualAOPass::BACKEND_OPENGL);
+    window->Render();
+    Check(pass->GetLastFrameReport().find("the frustum grid runs on the CPU only") != std::string::npos,
+      "frustum grid: OPENGL refuses it with the reason");
+    pass->SetBackend(vtkContextualAOPass::BACKEND_AUTO);
+    window->Render();
+    const std::string autoReport = pass->GetLastFrameReport();
+    Check(autoReport.find("\"error\"") == std::string::npos &&
+        autoReport.find("frustum grid runs on the CPU only") != std::string::npos,
+      "frustum grid: Auto runs it on the CPU and says so");
+    pass->SetGrid(vtkContextualAOPass::WORLD_GRID);
+    camera->Dolly(1.0 / 0.95);
+    renderer->ResetCameraClippingRange();
+    window->Render();
   }
 
   // An open mesh (a plane) is counted as open.
