@@ -933,6 +933,11 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
       : this->gbuffer == DEPTH_BUFFER           ? "camera, drawn depth or settings changed"
                                                 : "camera or settings changed");
   this->viewKey.clear();
+  if (self->Method == VCT && self->Grid == FRUSTUM_GRID &&
+    static_cast<std::int64_t>(width) * height * (self->Slices / 8) > cao::BitGrid::MaximumFrustumBytes)
+    return this->Fail(self, "the frustum grid of " + std::to_string(width) + " x " + std::to_string(height) +
+        " pixels and " + std::to_string(self->Slices) + " slices would take over " +
+        std::to_string(cao::BitGrid::MaximumFrustumBytes >> 20) + " MiB: fewer Slices or a smaller view");
   cao::PixelCamera& pixels = this->pixels;
   vtkMatrix4x4::Invert(&toNDC->Element[0][0], pixels.ndcToWorld);
   std::copy(pixels.ndcToWorld, pixels.ndcToWorld + 16, this->ndcToWorld);
@@ -985,7 +990,9 @@ bool vtkContextualAOPass::Internals::VoxelizeFrustum(vtkContextualAOPass* self, 
   if (!cao::PlanFrustumGrid(views, this->pixels, &this->frame, self->Slices, this->grid, error) ||
     !cao::FillGrid(views, this->grid, error))
     return this->Fail(self, "Cannot voxelize the scene: " + error);
-  this->tolerance = std::max(0.5 * this->grid.voxel, 1e-9);
+  // Half its voxel's larger side at the median depth (a pixel or a slice).
+  this->tolerance =
+    std::max(0.5 * std::max(this->grid.frustum.medianPixel, this->grid.frustum.medianSlice), 1e-9);
   this->open = 0;
   for (std::int64_t e : this->grid.openEdges)
     this->open += e > 0;

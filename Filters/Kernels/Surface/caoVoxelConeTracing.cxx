@@ -113,7 +113,12 @@ void RasterizeFrustum(const BitGrid& grid, const std::vector<double>& p,
         const double key = ((ea * a[2] + eb * b[2]) + ec * c[2]) / area;
         const double depth = f.perspective ? 1.0 / key : key;
         const std::size_t col = static_cast<std::size_t>(j) * grid.nx + i;
-        const double s = (depth - f.nearDepth[col]) * f.slicesPerDepth[col];
+        double s = (depth - f.nearDepth[col]) * f.slicesPerDepth[col];
+        // The column's visible surface: its crossing is at s = 0 but for
+        // rounding (the G-buffer's depth and this one are computed apart):
+        // its own slice 0, not slice -1, or a shell would lose it.
+        if (s < 0.0 && s > -0.5)
+          s = 0.0;
         Cross(&one[col * grid.words], grid.slices, grid.words, s, solid);
         if (surface)
           Cross(&(*surface)[col * grid.words], grid.slices, grid.words, s, false);
@@ -480,11 +485,18 @@ bool PlanFrustumGrid(const std::vector<MeshView>& meshes, const PixelCamera& cam
     return false;
   }
   const std::int64_t columns = static_cast<std::int64_t>(camera.width) * camera.height;
-  if (columns > BitGrid::MaximumColumns || columns * (slices / 8) > BitGrid::MaximumFrustumBytes)
+  if (columns > BitGrid::MaximumColumns)
+  {
+    error = "the frustum grid would have " + std::to_string(columns) + " columns (" +
+      std::to_string(camera.width) + " x " + std::to_string(camera.height) + " pixels); at most " +
+      std::to_string(BitGrid::MaximumColumns);
+    return false;
+  }
+  if (columns * (slices / 8) > BitGrid::MaximumFrustumBytes)
   {
     error = "the frustum grid would take " + std::to_string(columns * (slices / 8) >> 20) +
-      " MiB (" + std::to_string(camera.width) + " x " + std::to_string(camera.height) + " columns, " +
-      std::to_string(slices) + " slices); at most " +
+      " MiB of bits (" + std::to_string(camera.width) + " x " + std::to_string(camera.height) +
+      " columns, " + std::to_string(slices) + " slices); at most " +
       std::to_string(BitGrid::MaximumFrustumBytes >> 20) + " MiB";
     return false;
   }
@@ -534,7 +546,7 @@ bool PlanFrustumGrid(const std::vector<MeshView>& meshes, const PixelCamera& cam
   f.perspective = std::fabs(m[12]) + std::fabs(m[13]) + std::fabs(m[14]) > 1e-12 * std::fabs(m[15]);
   // The depth's rate along the view (the grid's -z), in depth per world unit.
   const double rate = f.perspective ? -m[14] : -m[10] / m[15];
-  if (!(std::fabs(rate) > 0.0) || !std::isfinite(rate) || (f.perspective && !(rate > 0.0)))
+  if (!(std::fabs(rate) > 0.0) || !std::isfinite(rate))
   {
     error = "the camera's matrix has no depth along its view";
     return false;
@@ -569,10 +581,7 @@ bool PlanFrustumGrid(const std::vector<MeshView>& meshes, const PixelCamera& cam
     }
   }
   if (!(hi >= lo))
-  {
-    error = "no mesh lies in front of the camera";
-    return false;
-  }
+    lo = hi = 1.0; // no mesh in front of the camera: an empty grid (nothing occludes)
   const double span = std::max(hi - lo, 1e-9 * std::max(1.0, std::fabs(hi)));
   f.farDepth = hi + span / slices;
   // Per column the visible depth (z_nearest), else the meshes' nearest.
@@ -602,7 +611,9 @@ bool PlanFrustumGrid(const std::vector<MeshView>& meshes, const PixelCamera& cam
     median = visible[visible.size() / 2];
   }
   const double pixel = 2.0 / (grid.nx * std::max(1e-300, std::fabs(m[0] / (f.perspective ? median : m[15]))));
-  grid.voxel = std::min(pixel, (f.farDepth - median) / slices * f.worldPerDepth);
+  f.medianPixel = pixel;
+  f.medianSlice = (f.farDepth - median) / slices * f.worldPerDepth;
+  grid.voxel = std::min(pixel, f.medianSlice);
   if (!(grid.voxel > 0.0) || !std::isfinite(grid.voxel))
     grid.voxel = span / slices * f.worldPerDepth;
   return true;
@@ -1052,11 +1063,12 @@ double SphereOccupancy(const BitGrid& grid, const VCTPlan& plan, const double ce
       // The chord along the view, in its column's slices.
       const double ds = half / grid.frustum.worldPerDepth *
         grid.frustum.slicesPerDepth[static_cast<std::size_t>(j) * grid.nx + i];
-      const double sn = s - ds, sf = s + ds;
+      const double sn = std::max(-1.0, std::min(s - ds, grid.slices + 1.0));
+      const double sf = std::max(-1.0, std::min(s + ds, grid.slices + 1.0));
       int k0 = static_cast<int>(std::ceil(std::min(sn, sf) - 0.5));
       int k1 = static_cast<int>(std::floor(std::max(sn, sf) - 0.5));
       if (k1 < k0)
-        k0 = k1 = static_cast<int>(std::floor(s));
+        k0 = k1 = static_cast<int>(std::floor(std::max(-1.0, std::min(s, grid.slices + 1.0))));
       total += k1 - k0 + 1;
       set += grid.CountBits(i, j, k0, k1);
     }

@@ -166,6 +166,7 @@ struct BitGrid
     std::vector<double> slicesPerDepth;   ///< per column: slices / (far - near)
     double farDepth = 0.0;
     double worldPerDepth = 1.0;           ///< world length of one unit of depth along the view
+    double medianPixel = 0.0, medianSlice = 0.0; ///< world sizes at the median visible depth
   };
   Frustum frustum;
   bool IsFrustum() const { return !this->frustum.nearDepth.empty(); }
@@ -223,7 +224,8 @@ bool PlanEyeGrid(const std::vector<MeshView>& meshes, const std::array<double, 9
 /// slice map; uncovered pixels, or all with a null `frame`, the meshes'
 /// nearest depth: the paper's Fig. 4 (a)) to the meshes' farthest depth
 /// plus one slice. Depends on the camera and the G-buffer: rebuilt with
-/// every camera change. FillGrid rasterizes it in screen space (1 / w
+/// every camera change. No mesh in front of the camera: an empty grid.
+/// FillGrid rasterizes it in screen space (1 / w
 /// interpolated, perspective-correct), with the parity counted from beyond
 /// the far depth, so that a camera inside a closed mesh or a mesh cut by
 /// the eye plane keeps a right inside. At most MaximumFrustumBytes of bits.
