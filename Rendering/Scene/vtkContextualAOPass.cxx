@@ -270,6 +270,7 @@ struct vtkContextualAOPass::Internals
   unsigned target = 0;           ///< GPU frame: the framebuffer drawn into, and its viewport
   int rect[4] = { 0, 0, 0, 0 };
   std::string backendNote;       ///< why not, when Auto chose the CPU (or a multisampled frame read back)
+  bool warnedTiles = false;      ///< a tiled render's seams said (until the tiling ends)
 
   void Stage(const char* name, Clock::time_point start)
   {
@@ -502,6 +503,19 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
   ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
   if (width < 1 || height < 1)
     return; // nothing on screen: no work
+  // A tiled render (an image larger than the window, drawn tile by tile):
+  // the methods that read the screen (HBAO, VAO, the frustum grid) see each
+  // tile alone, so its edges show as seams; said once per tiling.
+  int* tileScale = ren->GetRenderWindow() ? ren->GetRenderWindow()->GetTileScale() : nullptr;
+  const bool tiled = tileScale && (tileScale[0] > 1 || tileScale[1] > 1);
+  const bool screenBound = self->Method == HBAO || self->Method == VAO || self->Grid == FRUSTUM_GRID;
+  if (tiled && screenBound && !this->warnedTiles)
+    vtkWarningWithObjectMacro(self, << "A tiled render (" << tileScale[0] << " x " << tileScale[1]
+      << " tiles: an image larger than the window): "
+      << (self->Method == VCT ? "the frustum grid" : self->Method == HBAO ? "HBAO" : "VAO")
+      << " sees each tile alone, so the tiles' edges show as seams; render at the window's size, or use "
+         "Voxel Cones on the world or eye grid");
+  this->warnedTiles = tiled && screenBound;
   this->Collect(self, ren);
   if (this->pieces.empty())
   {

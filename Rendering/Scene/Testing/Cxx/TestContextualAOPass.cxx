@@ -18,7 +18,8 @@
 //   grid's; the frustum grid: built after the G-buffer, again on a dolly,
 //   not on a colour change, its AO the kernel's exactly (the control:
 //   without the visible depths it differs), refused by OPENGL, Auto on the
-//   CPU with a note;
+//   CPU with a note; a tiled render warns once of the tiles' seams (the
+//   world grid does not);
 // - the pass's AO at a pixel equals cao::VCTFrame's for the same triangles
 //   and camera (the kernel's, not a second implementation);
 // - HBAO and VAO: no grid, their AO the kernels' on the same G-buffer, a
@@ -57,6 +58,8 @@
 #include "vtkVolumeProperty.h"
 
 #include "vtkActor.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
 #include "vtkCamera.h"
 #include "vtkContextualAOEGLWindow.h"
 #include "vtkCubeSource.h"
@@ -770,6 +773,36 @@ int TestContextualAOPass(int, char*[])
     Check(autoReport.find("\"error\"") == std::string::npos &&
         autoReport.find("frustum grid runs on the CPU only") != std::string::npos,
       "frustum grid: Auto runs it on the CPU and says so");
+    // A tiled render (an image larger than the window): the frustum grid
+    // sees each tile alone; the pass says so once (the world grid, per
+    // pixel, has nothing to say: the control).
+    {
+      int warnings = 0;
+      vtkNew<vtkCallbackCommand> count;
+      count->SetClientData(&warnings);
+      count->SetCallback([](vtkObject*, unsigned long, void* data, void*) { ++*static_cast<int*>(data); });
+      const unsigned long tag = pass->AddObserver(vtkCommand::WarningEvent, count);
+      auto tiled = [&](int grid) {
+        warnings = 0;
+        pass->SetGrid(grid);
+        window->SetTileScale(2);
+        for (int t = 0; t < 4; ++t)
+        {
+          window->SetTileViewport(0.5 * (t % 2), 0.5 * (t / 2), 0.5 * (t % 2) + 0.5, 0.5 * (t / 2) + 0.5);
+          window->Render();
+        }
+        window->SetTileScale(1);
+        window->SetTileViewport(0, 0, 1, 1);
+        window->Render();
+        return warnings;
+      };
+      const int frustumWarnings = tiled(vtkContextualAOPass::FRUSTUM_GRID);
+      const int worldWarnings = tiled(vtkContextualAOPass::WORLD_GRID);
+      pass->RemoveObserver(tag);
+      Check(frustumWarnings == 1 && worldWarnings == 0,
+        "a tiled render: the frustum grid warns once of the tiles' seams (" + std::to_string(frustumWarnings) +
+          " warnings over 4 tiles; the world grid " + std::to_string(worldWarnings) + ")");
+    }
     pass->SetGrid(vtkContextualAOPass::WORLD_GRID);
     camera->Dolly(1.0 / 0.95);
     renderer->ResetCameraClippingRange();
