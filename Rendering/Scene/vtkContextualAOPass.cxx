@@ -542,9 +542,14 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
   // every other frame reads the drawn depth once: the depth G-buffer and
   // the combine's drawn-is-traced test both read it.
   const bool wasOnGPU = this->gpuFrame;
-  this->gpuFrame = this->onGPU && this->gbuffer == DEPTH_BUFFER && !(self->Method == VAO && self->IndirectLight);
+  const bool frustum = self->Method == VCT && self->Grid == FRUSTUM_GRID;
+  this->gpuFrame = this->onGPU && this->gbuffer == DEPTH_BUFFER && !(self->Method == VAO && self->IndirectLight) &&
+    !frustum;
   if (this->onGPU && this->gbuffer == DEPTH_BUFFER && self->Method == VAO && self->IndirectLight)
     this->backendNote = "VAO's indirect light runs on the CPU: the frame's pixels are read back (the AO still on the GPU)";
+  if (this->onGPU && this->gbuffer == DEPTH_BUFFER && frustum)
+    this->backendNote = "the frustum grid's columns start at the G-buffer's depths: the frame's pixels are read back "
+                        "(the grid and cones still on the GPU)";
   bool multisampled = false;
   if (this->gpuFrame &&
     (!vtkCAO::DrawTarget(ren, this->target, this->rect, multisampled, this->depthError) || multisampled))
@@ -632,13 +637,7 @@ bool vtkContextualAOPass::Internals::ResolveBackend(vtkContextualAOPass* self, v
   // volumes' opacity read, where it is traced.
   this->backendNote.clear();
   std::string error;
-  const bool frustum = self->Method == VCT && self->Grid == FRUSTUM_GRID;
-  if (frustum && self->Backend == BACKEND_OPENGL)
-    return this->Fail(self, "Backend OPENGL: the frustum grid runs on the CPU only");
-  if (frustum && self->Backend == BACKEND_AUTO)
-    this->backendNote = "Auto: the frustum grid runs on the CPU only";
-  this->onGPU = self->Backend != BACKEND_CPU && !frustum &&
-    this->gpu.Resolve(ren->GetRenderWindow(), self->Backend, error);
+  this->onGPU = self->Backend != BACKEND_CPU && this->gpu.Resolve(ren->GetRenderWindow(), self->Backend, error);
   if (!error.empty())
     return this->Fail(self, error);
   if (this->onGPU && self->Method == VCT && !this->volumes.empty())
@@ -1002,7 +1001,7 @@ bool vtkContextualAOPass::Internals::VoxelizeFrustum(vtkContextualAOPass* self, 
   std::string error;
   this->grid = cao::BitGrid();
   if (!cao::PlanFrustumGrid(views, this->pixels, &this->frame, self->Slices, this->grid, error) ||
-    !cao::FillGrid(views, this->grid, error))
+    !(this->onGPU ? this->gpu.Voxelize(this->grid, views, error) : cao::FillGrid(views, this->grid, error)))
     return this->Fail(self, "Cannot voxelize the scene: " + error);
   // Half its voxel's larger side at the median depth (a pixel or a slice).
   this->tolerance =

@@ -33,8 +33,8 @@
  * slices), rebuilt when the camera turns, its columns parallel; or
  * FRUSTUM_GRID, the paper's eye-space grid: a column per pixel (the
  * pixels' rays), slices from each pixel's visible depth to the scene's far
- * depth, rebuilt after the G-buffer at every camera change (the CPU only:
- * Backend Auto takes the CPU and says so, OPENGL refuses it).
+ * depth, rebuilt after the G-buffer at every camera change (on the GPU
+ * too, by the read-back path: its columns start at the G-buffer's depths).
  *
  * Only the effects the scene calls for, and nothing its last frame already
  * has (GetLastFrameReport says what ran, and why, as JSON):
@@ -126,7 +126,7 @@ public:
   {
     WORLD_GRID = 0, ///< world axes, cached while the geometry does not change
     EYE_GRID = 1,   ///< camera axes, rebuilt when the camera turns
-    FRUSTUM_GRID = 2 ///< the paper's: a column per pixel, rebuilt at every camera change (CPU)
+    FRUSTUM_GRID = 2 ///< the paper's: a column per pixel, rebuilt at every camera change
   };
 
   ///@{

@@ -52,7 +52,7 @@ options:
   --grids LIST         vct grids: world (default), eye (the camera's axes, built again for
                        each camera: its ms/frame includes its grid ms), frustum (the paper's
                        eye-space grid: a column per pixel, slices from each pixel's visible
-                       depth; per camera, its grid ms in the frame; CPU, ray-cast G-buffer)
+                       depth; per camera, its grid ms in the frame; the ray-cast G-buffer)
   --gbuffers LIST      the pixels' G-buffer: ray-cast (default: the exact first hits), depth
                        (adds rows "... depth": the G-buffer from the drawn depth as the
                        pass's Depth Buffer and GPU frame read it, here the ray cast's depth
@@ -550,8 +550,6 @@ int RunBenchSurface(int argc, char* argv[])
       for (const std::string& kind : o.grids)
       for (int slices : o.slices)
       {
-        if (kind == "frustum" && onGPU)
-          continue; // the frustum grid runs on the CPU only
         // The grid for a camera: world axes (one for both cameras), or the
         // camera's own (eye: one per camera, as a turn rebuilds it;
         // frustum: its pixels from the ray cast's visible depths).
@@ -614,7 +612,7 @@ int RunBenchSurface(int argc, char* argv[])
           const cao::SurfaceFrame& f1 = gb ? dframe : frame;
           cao::SurfaceFrame a = f1, b = gb ? dframe2 : frame2;
           double ms = 0, unused = 0;
-          if (kind == "eye" && onGPU && !gpu.Voxelize(scene, grid, grid.openEdges, unused, error))
+          if (perCamera && onGPU && !gpu.Voxelize(scene, grid, grid.openEdges, unused, error))
             return Fail(1, error); // the GPU holds one grid: the first camera's
           for (int r = 0; r < o.repeats; ++r)
           {
@@ -623,7 +621,7 @@ int RunBenchSurface(int argc, char* argv[])
               return Fail(1, error);
             times.push_back(ms);
           }
-          if (kind == "eye" && onGPU && !gpu.Voxelize(scene, grid2, grid2.openEdges, unused, error))
+          if (perCamera && onGPU && !gpu.Voxelize(scene, grid2, grid2.openEdges, unused, error))
             return Fail(1, error); // the GPU holds one grid: the second camera's
           if (!trace(second, plan2, b, ms))
             return Fail(1, error);

@@ -80,7 +80,7 @@ const char* SurfaceUsage = R"(cao surface MESH... [options] -o out.png
                         built again whenever the camera turns; frustum: the paper's
                         eye-space grid, a column per pixel, slices from each pixel's
                         visible depth to the scene's far depth, built again at every
-                        camera change; the CPU only)
+                        camera change)
   --cone-weights cosine|equal   vct (default cosine; equal: the paper's average)
   --backend auto|cpu|gl vct, hbao, vao: where it runs (auto: OpenGL 4.3 on a hardware GPU, the CPU
                         with a software rasterizer such as llvmpipe or none; gl: OpenGL
@@ -1021,12 +1021,8 @@ int RunSurface(int argc, char* argv[])
     o.vct.radius = radius;
     VCTGPU gpu;
     bool useGL = false;
-    if (o.grid == "frustum" && o.backend == "gl")
-      return Fail(2, "--grid frustum runs on the CPU only (--backend cpu or auto)");
-    if (o.grid != "frustum" && !ChooseBackend(o, gpu, useGL, backendNote, error))
+    if (!ChooseBackend(o, gpu, useGL, backendNote, error))
       return Fail(1, error);
-    if (o.grid == "frustum" && o.backend == "auto")
-      backendNote = "auto: the frustum grid runs on the CPU only";
     cao::VCTPlan plan;
     if (!PlanSceneGrid(scene, camera, o, radius, frame, grid, error))
       return Fail(2, error);

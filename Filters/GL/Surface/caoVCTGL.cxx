@@ -31,8 +31,8 @@ struct VCTEngine::Impl
   Context& Ctx;
   const Functions& gl;
   GLuint points = 0, ids = 0, bits = 0, grid = 0, params = 0, tracePoints = 0, traceNormals = 0,
-         ao = 0, surface = 0, opacity = 0;
-  Program rasterize, combine, trace;
+         ao = 0, surface = 0, opacity = 0, columns = 0, parity = 0, traceColumns = 0;
+  Program rasterize, combine, trace, rasterizeFrustum, combineFrustum;
   StageTimer timer{ SCount };
   BitGrid shape; ///< size and place of the grid on the GPU (no bits)
   std::int64_t bytes = 0, volumeBytes = 0;
@@ -136,8 +136,25 @@ struct VCTEngine::Impl
     , gl(c.GL())
   {
   }
-  GLuint* Buffers[10] = { &points, &ids, &bits, &grid, &params, &tracePoints, &traceNormals, &ao, &surface,
-    &opacity };
+  GLuint* Buffers[13] = { &points, &ids, &bits, &grid, &params, &tracePoints, &traceNormals, &ao, &surface,
+    &opacity, &columns, &parity, &traceColumns };
+  /// The frustum grid's columns (near depth, slices per depth) as the
+  /// tracer reads them (float); 16 bytes for any other grid.
+  std::int64_t PutTraceColumns(const BitGrid& shape)
+  {
+    std::vector<float> c;
+    if (shape.IsFrustum())
+    {
+      c.resize(2 * shape.frustum.nearDepth.size());
+      for (std::size_t k = 0; k < shape.frustum.nearDepth.size(); ++k)
+      {
+        c[2 * k] = static_cast<float>(shape.frustum.nearDepth[k]);
+        c[2 * k + 1] = static_cast<float>(shape.frustum.slicesPerDepth[k]);
+      }
+    }
+    this->Upload(this->traceColumns, GL_SHADER_STORAGE_BUFFER, c.size() * sizeof(float), c.empty() ? nullptr : c.data());
+    return static_cast<std::int64_t>(c.size() * sizeof(float));
+  }
   void Upload(GLuint& b, GLenum target, std::size_t size, const void* data)
   {
     if (!b)
@@ -150,9 +167,16 @@ struct VCTEngine::Impl
   {
     if (this->rasterize.Valid())
       return true;
-    return this->rasterize.BuildCompute(gl, { caoVoxelize_glsl }, { { "CAO_VX_STAGE", "0" } }, error) &&
-      this->combine.BuildCompute(gl, { caoVoxelize_glsl }, { { "CAO_VX_STAGE", "1" } }, error) &&
+    return this->rasterize.BuildCompute(gl, { caoVoxelize_glsl }, { { "CAO_VX_STAGE", "0" }, { "CAO_VX_FRUSTUM", "0" } }, error) &&
+      this->combine.BuildCompute(gl, { caoVoxelize_glsl }, { { "CAO_VX_STAGE", "1" }, { "CAO_VX_FRUSTUM", "0" } }, error) &&
       this->trace.BuildCompute(gl, { caoConeTrace_glsl }, {}, error);
+  }
+  bool BuildFrustumPrograms(std::string& error)
+  {
+    if (this->rasterizeFrustum.Valid())
+      return true;
+    return this->rasterizeFrustum.BuildCompute(gl, { caoVoxelize_glsl }, { { "CAO_VX_STAGE", "0" }, { "CAO_VX_FRUSTUM", "1" } }, error) &&
+      this->combineFrustum.BuildCompute(gl, { caoVoxelize_glsl }, { { "CAO_VX_STAGE", "1" }, { "CAO_VX_FRUSTUM", "1" } }, error);
   }
   void Release()
   {
@@ -163,7 +187,7 @@ struct VCTEngine::Impl
         gl.DeleteBuffers(1, b);
         *b = 0;
       }
-    for (Program* p : { &rasterize, &combine, &trace })
+    for (Program* p : { &rasterize, &combine, &trace, &rasterizeFrustum, &combineFrustum })
       p->Release(gl);
     timer.Release(gl);
     bytes = 0;
@@ -198,7 +222,7 @@ void VCTEngine::AbandonGraphicsResources()
   Impl& p = *this->P;
   for (GLuint* b : p.Buffers)
     *b = 0;
-  for (Program* prog : { &p.rasterize, &p.combine, &p.trace })
+  for (Program* prog : { &p.rasterize, &p.combine, &p.trace, &p.rasterizeFrustum, &p.combineFrustum })
     prog->Abandon();
   p.timer.Abandon();
   p.bytes = 0;
@@ -270,6 +294,7 @@ bool VCTEngine::Voxelize(const BitGrid& shape, const std::vector<MeshView>& mesh
     error = "the grid is empty or too large for the GPU voxelizer (at most 2^31 words)";
     return false;
   }
+  const bool frustum = shape.IsFrustum();
   // The inputs, checked and converted on the CPU as VoxelizeWorld does.
   std::vector<std::vector<double>> gridPoints(meshes.size());
   std::vector<std::vector<std::int32_t>> ids(meshes.size());
@@ -300,6 +325,20 @@ bool VCTEngine::Voxelize(const BitGrid& shape, const std::vector<MeshView>& mesh
     }
     if (!GridPoints(shape, *mesh.points, gridPoints[m], error))
       return false;
+    if (frustum)
+    {
+      // The frustum grid's screen triangles, as the CPU rasterizes them
+      // (each its own three points).
+      FrustumScreenTriangles(shape, mesh, gridPoints[m]);
+      if (gridPoints[m].size() / 3 > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
+      {
+        error = "a mesh is too large for the GPU voxelizer";
+        return false;
+      }
+      ids[m].resize(gridPoints[m].size() / 3);
+      for (std::size_t k = 0; k < ids[m].size(); ++k)
+        ids[m][k] = static_cast<std::int32_t>(k);
+    }
     openEdges.push_back(OpenEdges(mesh));
   }
   CurrentScope scope(p.Ctx);
@@ -307,13 +346,30 @@ bool VCTEngine::Voxelize(const BitGrid& shape, const std::vector<MeshView>& mesh
     return false;
   const Functions& gl = p.gl;
   StateGuard guard(gl, p.Ctx.Kind() == ContextKind::External);
-  if (!p.BuildPrograms(error))
+  if (!p.BuildPrograms(error) || (frustum && !p.BuildFrustumPrograms(error)))
     return false;
   p.timer.Allocate(gl, p.Ctx.UsesHostClock());
   const std::size_t bytes = static_cast<std::size_t>(words) * sizeof(std::uint32_t);
   p.Upload(p.grid, GL_SHADER_STORAGE_BUFFER, bytes, nullptr);
   p.Upload(p.bits, GL_SHADER_STORAGE_BUFFER, bytes, nullptr);
   p.Upload(p.surface, GL_SHADER_STORAGE_BUFFER, bytes, nullptr);
+  const std::size_t columnCount = static_cast<std::size_t>(shape.nx) * shape.ny;
+  std::int64_t frustumBytes = 0;
+  if (frustum)
+  {
+    std::vector<double> c(2 * columnCount);
+    for (std::size_t k = 0; k < columnCount; ++k)
+    {
+      c[2 * k] = shape.frustum.nearDepth[k];
+      c[2 * k + 1] = shape.frustum.slicesPerDepth[k];
+    }
+    p.Upload(p.columns, GL_SHADER_STORAGE_BUFFER, c.size() * sizeof(double), c.data());
+    p.Upload(p.parity, GL_SHADER_STORAGE_BUFFER, columnCount * sizeof(std::uint32_t), nullptr);
+    frustumBytes = static_cast<std::int64_t>(c.size() * sizeof(double) + columnCount * sizeof(std::uint32_t));
+  }
+  frustumBytes += p.PutTraceColumns(shape);
+  const Program& rasterize = frustum ? p.rasterizeFrustum : p.rasterize;
+  const Program& combine = frustum ? p.combineFrustum : p.combine;
   const GLuint zero = 0;
   gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, p.grid);
   gl.ClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
@@ -323,8 +379,10 @@ bool VCTEngine::Voxelize(const BitGrid& shape, const std::vector<MeshView>& mesh
     const int triangles = static_cast<int>(ids[m].size() / 3);
     p.Upload(p.points, GL_SHADER_STORAGE_BUFFER, gridPoints[m].size() * sizeof(double), gridPoints[m].data());
     p.Upload(p.ids, GL_SHADER_STORAGE_BUFFER, ids[m].size() * sizeof(std::int32_t), ids[m].data());
-    for (GLuint b : { p.bits, p.surface })
+    for (GLuint b : { p.bits, p.surface, frustum ? p.parity : 0u })
     {
+      if (!b)
+        continue;
       gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, b);
       gl.ClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     }
@@ -334,18 +392,27 @@ bool VCTEngine::Voxelize(const BitGrid& shape, const std::vector<MeshView>& mesh
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VX_BITS, p.bits);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VX_GRID, p.grid);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VX_SURFACE, p.surface);
+    if (frustum)
+    {
+      gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VX_COLUMNS, p.columns);
+      gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VX_PARITY, p.parity);
+    }
     if (triangles > 0)
     {
-      gl.UseProgram(p.rasterize.Id());
-      gl.Uniform4i(p.rasterize.Uniform(gl, "gridSize"), shape.nx, shape.ny, shape.slices, shape.words);
-      gl.Uniform1i(p.rasterize.Uniform(gl, "triangleCount"), triangles);
-      gl.Uniform1i(p.rasterize.Uniform(gl, "solid"), openEdges[m] == 0 ? 1 : 0);
-      gl.Uniform1i(p.rasterize.Uniform(gl, "surfaceVoxels"), surfaceVoxels ? 1 : 0);
+      gl.UseProgram(rasterize.Id());
+      gl.Uniform4i(rasterize.Uniform(gl, "gridSize"), shape.nx, shape.ny, shape.slices, shape.words);
+      gl.Uniform1i(rasterize.Uniform(gl, "triangleCount"), triangles);
+      gl.Uniform1i(rasterize.Uniform(gl, "solid"), openEdges[m] == 0 ? 1 : 0);
+      gl.Uniform1i(rasterize.Uniform(gl, "surfaceVoxels"), surfaceVoxels ? 1 : 0);
+      if (frustum)
+        gl.Uniform1i(rasterize.Uniform(gl, "perspective"), shape.frustum.perspective ? 1 : 0);
       DispatchLinear(gl, triangles);
       gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
-    gl.UseProgram(p.combine.Id());
-    gl.Uniform1ui(p.combine.Uniform(gl, "wordCount"), static_cast<GLuint>(words));
+    gl.UseProgram(combine.Id());
+    gl.Uniform1ui(combine.Uniform(gl, "wordCount"), static_cast<GLuint>(words));
+    if (frustum)
+      gl.Uniform4i(combine.Uniform(gl, "gridSize"), shape.nx, shape.ny, shape.slices, shape.words);
     DispatchLinear(gl, (words + 255) / 256);
     gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
@@ -356,7 +423,7 @@ bool VCTEngine::Voxelize(const BitGrid& shape, const std::vector<MeshView>& mesh
   ms = p.timer.Milliseconds(gl, SVoxelize);
   p.shape = shape;
   p.shape.bits.clear();
-  p.bytes = static_cast<std::int64_t>(3 * bytes);
+  p.bytes = static_cast<std::int64_t>(3 * bytes) + frustumBytes;
   return true;
 }
 
@@ -373,9 +440,10 @@ bool VCTEngine::Upload(const BitGrid& grid, std::string& error)
     return false;
   StateGuard guard(p.gl, p.Ctx.Kind() == ContextKind::External);
   p.Upload(p.grid, GL_SHADER_STORAGE_BUFFER, grid.bits.size() * sizeof(std::uint32_t), grid.bits.data());
+  const std::int64_t columnBytes = p.PutTraceColumns(grid);
   p.shape = grid;
   p.shape.bits.clear();
-  p.bytes = static_cast<std::int64_t>(grid.bits.size() * sizeof(std::uint32_t));
+  p.bytes = static_cast<std::int64_t>(grid.bits.size() * sizeof(std::uint32_t)) + columnBytes;
   return CheckError(p.gl, "the grid upload", error);
 }
 
@@ -486,6 +554,9 @@ bool VCTEngine::TracePixels(const VCTPlan& plan, unsigned points, unsigned norma
   gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VCT_NORMALS, normals);
   gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VCT_AO, ao);
   gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VCT_OPACITY, p.opacity);
+  if (!p.traceColumns) // the shader declares the block: something bound (read by a frustum grid only)
+    p.PutTraceColumns(p.shape);
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VCT_COLUMNS, p.traceColumns);
   gl.UseProgram(p.trace.Id());
   p.timer.Begin(gl, STrace);
   DispatchLinear(gl, (count + 63) / 64);

@@ -232,6 +232,10 @@ struct VCTParams
   vec4 cones[CAO_VCT_MAX_CONES];     /* xyz: direction, z along the normal; w: weight */
   vec4 spheres[CAO_VCT_MAX_SPHERES]; /* x: centre distance t, y: radius r (world); zw: 0 */
   vec4 disk[CAO_VCT_MAX_PRISMS];     /* xy: unit-disk sample, z: sqrt(1 - x^2 - y^2); w: 0 */
+  vec4 frustum[5];                   /* the frustum grid (BitGrid::Frustum): rows 0-3 the grid frame to
+                                        clip; [4] x: 1 a frustum grid (else 0), y: 1 perspective, z: world
+                                        length per unit of depth, w: 0; its columns' near depth and slices
+                                        per depth in CAO_BINDING_VCT_COLUMNS */
   ivec4 volumeCount;                 /* x: occluding volumes (0..CAO_VCT_MAX_VOLUMES); yzw: 0 */
   VCTVolume volumes[CAO_VCT_MAX_VOLUMES];
 };
@@ -241,6 +245,9 @@ struct VCTParams
 #define CAO_BINDING_VX_BITS 2      /* storage: uint, the mesh's own bits (voxelize) / the grid (trace) */
 #define CAO_BINDING_VX_GRID 3      /* storage: uint, the grid the mesh is OR'ed into */
 #define CAO_BINDING_VX_SURFACE 7   /* storage: uint, a closed mesh's surface voxels (OR'ed with its parity) */
+#define CAO_BINDING_VX_COLUMNS 4   /* storage: double per column, near depth and slices per depth (frustum) */
+#define CAO_BINDING_VX_PARITY 5    /* storage: uint per column, its crossings' parity (frustum, solid) */
+#define CAO_BINDING_VCT_COLUMNS 0  /* storage: vec2 per column, near depth and slices per depth (frustum) */
 #define CAO_BINDING_VCT_POINTS 4   /* storage: vec4 per point (xyz world, w unused) */
 #define CAO_BINDING_VCT_NORMALS 5  /* storage: vec4 per point (xyz unit normal; w 0: no point, AO NaN) */
 #define CAO_BINDING_VCT_AO 6       /* storage: float AO per point */
@@ -313,7 +320,7 @@ static_assert(sizeof(RenderParams) == (19 + 2 * CAO_MAX_LIGHTS) * 16, "RenderPar
 static_assert(sizeof(LAOTap) == 32, "LAOTap must match std430");
 static_assert(sizeof(VCTVolume) == 5 * 16, "VCTVolume must match std140");
 static_assert(sizeof(VCTParams) ==
-    5 * 16 + (CAO_VCT_MAX_CONES + CAO_VCT_MAX_SPHERES + CAO_VCT_MAX_PRISMS) * 16 +
+    5 * 16 + (CAO_VCT_MAX_CONES + CAO_VCT_MAX_SPHERES + CAO_VCT_MAX_PRISMS + 5) * 16 +
       CAO_VCT_MAX_VOLUMES * sizeof(VCTVolume),
   "VCTParams must match std140");
 static_assert(sizeof(LAOMarchBlock) == 96, "LAOMarchBlock must match std140/std430");

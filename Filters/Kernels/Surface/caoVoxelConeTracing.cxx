@@ -69,30 +69,25 @@ inline void ToClip(const std::array<double, 16>& m, const double q[3], double c[
     c[r] = m[4 * r] * q[0] + m[4 * r + 1] * q[1] + m[4 * r + 2] * q[2] + m[4 * r + 3];
 }
 
-/// One mesh into a frustum grid: each triangle's vertices to pixel x, y
-/// and a key linear in screen space (1 / w under a perspective camera,
-/// NDC z under a parallel one), clipped at the eye plane (w >= epsilon),
-/// rasterized at the pixel centres with the top-left rule; each crossing's
-/// depth to its column's slice coordinate. `parity` counts each column's
-/// crossings (closed meshes), so that a column with an odd count (its ray
-/// starts inside: the eye in the mesh, or the part behind the eye plane
-/// cut away) is inverted: the parity counted from beyond the far depth.
-void RasterizeFrustum(const BitGrid& grid, const std::vector<double>& p,
-  const std::vector<std::int64_t>& t, bool solid, std::vector<std::uint32_t>& one,
-  std::vector<std::uint32_t>* surface, std::vector<std::uint8_t>& parity)
+/// One mesh's screen triangles (FrustumScreenTriangles) into a frustum
+/// grid: rasterized at the pixel centres with the top-left rule; each
+/// crossing's depth to its column's slice coordinate. `parity` counts each
+/// column's crossings (closed meshes), so that a column with an odd count
+/// (its ray starts inside: the eye in the mesh, or the part behind the eye
+/// plane cut away) is inverted: the parity counted from beyond the far
+/// depth.
+void RasterizeFrustum(const BitGrid& grid, const std::vector<double>& soup, bool solid,
+  std::vector<std::uint32_t>& one, std::vector<std::uint32_t>* surface, std::vector<std::uint8_t>& parity)
 {
   const BitGrid::Frustum& f = grid.frustum;
-  const double epsilon = 1e-9 * std::max(1.0, std::fabs(f.farDepth));
-  auto project = [&](const double c[4], double out[3]) {
-    const double iw = 1.0 / c[3];
-    out[0] = (c[0] * iw + 1.0) * 0.5 * grid.nx;
-    out[1] = (c[1] * iw + 1.0) * 0.5 * grid.ny;
-    out[2] = f.perspective ? iw : c[2] * iw;
-  };
-  auto raster = [&](const double* a0, const double* b0, const double* c0) {
+  for (std::size_t tri = 0; tri + 8 < soup.size(); tri += 9)
+  {
+    const double* a0 = &soup[tri];
+    const double* b0 = a0 + 3;
+    const double* c0 = a0 + 6;
     double area = Edge(a0, b0, c0[0], c0[1]);
     if (area == 0.0 || !std::isfinite(area))
-      return;
+      continue;
     const double* a = a0;
     const double* b = area > 0.0 ? b0 : c0;
     const double* c = area > 0.0 ? c0 : b0;
@@ -124,18 +119,39 @@ void RasterizeFrustum(const BitGrid& grid, const std::vector<double>& p,
           Cross(&(*surface)[col * grid.words], grid.slices, grid.words, s, false);
         parity[col] ^= 1;
       }
+  }
+}
+
+}
+
+bool FrustumScreenTriangles(const BitGrid& grid, const MeshView& mesh, std::vector<double>& soup)
+{
+  soup.clear();
+  if (!grid.IsFrustum() || !mesh.points || !mesh.triangles)
+    return false;
+  const BitGrid::Frustum& f = grid.frustum;
+  const std::vector<double>& p = *mesh.points;
+  const std::vector<std::int64_t>& t = *mesh.triangles;
+  const double epsilon = 1e-9 * std::max(1.0, std::fabs(f.farDepth));
+  auto project = [&](const double c[4]) {
+    const double iw = 1.0 / c[3];
+    soup.push_back((c[0] * iw + 1.0) * 0.5 * grid.nx);
+    soup.push_back((c[1] * iw + 1.0) * 0.5 * grid.ny);
+    soup.push_back(f.perspective ? iw : c[2] * iw);
   };
   for (std::size_t tri = 0; tri + 2 < t.size(); tri += 3)
   {
     double c[3][4];
     for (int k = 0; k < 3; ++k)
-      ToClip(f.toClip, &p[3 * static_cast<std::size_t>(t[tri + k])], c[k]);
+    {
+      double q[3];
+      grid.ToGrid(&p[3 * static_cast<std::size_t>(t[tri + k])], q);
+      ToClip(f.toClip, q, c[k]);
+    }
     if (!f.perspective)
     {
-      double v[3][3];
       for (int k = 0; k < 3; ++k)
-        project(c[k], v[k]);
-      raster(v[0], v[1], v[2]);
+        project(c[k]);
       continue;
     }
     // Clip at w = epsilon (Sutherland-Hodgman; a cut edge's point is
@@ -162,15 +178,13 @@ void RasterizeFrustum(const BitGrid& grid, const std::vector<double>& p,
     }
     if (n < 3)
       continue;
-    double v[4][3];
-    for (int k = 0; k < n; ++k)
-      project(poly[k], v[k]);
-    raster(v[0], v[1], v[2]);
+    for (int k : { 0, 1, 2 })
+      project(poly[k]);
     if (n == 4)
-      raster(v[0], v[2], v[3]);
+      for (int k : { 0, 2, 3 })
+        project(poly[k]);
   }
-}
-
+  return true;
 }
 
 int VCTSettings::EffectiveSpheres() const
@@ -697,11 +711,10 @@ bool FillGrid(const std::vector<MeshView>& meshes, BitGrid& grid, std::string& e
     surface.assign(solid && surfaceVoxels ? columnWords : 0, 0u);
     if (grid.IsFrustum())
     {
-      std::vector<double> q(p.size()); // the grid frame (the camera's axes)
-      for (std::size_t i = 0; i + 2 < p.size(); i += 3)
-        grid.ToGrid(&p[i], &q[i]);
+      std::vector<double> soup;
+      FrustumScreenTriangles(grid, mesh, soup);
       std::vector<std::uint8_t> parity(static_cast<std::size_t>(grid.nx) * grid.ny, 0);
-      RasterizeFrustum(grid, q, t, solid, one, surface.empty() ? nullptr : &surface, parity);
+      RasterizeFrustum(grid, soup, solid, one, surface.empty() ? nullptr : &surface, parity);
       if (solid)
         for (std::size_t col = 0; col < parity.size(); ++col)
           if (parity[col]) // the ray starts inside: count from beyond the far depth
@@ -849,6 +862,14 @@ layout::VCTParams MakeVCTParams(const BitGrid& grid, const VCTPlan& plan, int po
     const double x = plan.disk[k][0], y = plan.disk[k][1];
     v.disk[k] = { static_cast<float>(x), static_cast<float>(y),
       static_cast<float>(std::sqrt(std::max(0.0, 1.0 - x * x - y * y))), 0 };
+  }
+  // The frustum grid's projection (its columns' depths go in a buffer).
+  if (grid.IsFrustum())
+  {
+    for (int r = 0; r < 4; ++r)
+      v.frustum[r] = { static_cast<float>(grid.frustum.toClip[4 * r]), static_cast<float>(grid.frustum.toClip[4 * r + 1]),
+        static_cast<float>(grid.frustum.toClip[4 * r + 2]), static_cast<float>(grid.frustum.toClip[4 * r + 3]) };
+    v.frustum[4] = { 1.0f, grid.frustum.perspective ? 1.0f : 0.0f, static_cast<float>(grid.frustum.worldPerDepth), 0.0f };
   }
   // The occluding volumes, their opacity one after another in plan order;
   // each maps the grid's frame to its voxel index: worldToIndex * axes^T.

@@ -232,6 +232,13 @@ bool PlanEyeGrid(const std::vector<MeshView>& meshes, const std::array<double, 9
 bool PlanFrustumGrid(const std::vector<MeshView>& meshes, const PixelCamera& camera,
   const SurfaceFrame* frame, int slices, BitGrid& grid, std::string& error);
 
+/// A mesh's triangles as a frustum grid's rasterizer sees them (the CPU's
+/// and the GPU's): per vertex pixel x, y and a key linear in screen space
+/// (1 / w under a perspective camera, NDC z under a parallel one), three
+/// vertices per triangle, clipped at the eye plane (a cut triangle may give
+/// two). False when `grid` is not a frustum grid or the mesh is empty.
+bool FrustumScreenTriangles(const BitGrid& grid, const MeshView& mesh, std::vector<double>& soup);
+
 /// Which voxel centres of a regular grid lie inside a closed mesh, by the
 /// voxelizer's parity (top-left rule along the grid's k axis): inside[i +
 /// dims0 * (j + dims1 * k)] = 1. `worldToIndex` (3 x 4, row-major) maps the

@@ -14,12 +14,18 @@
 // - volumes occluding the surfaces: the cones read their opacity as the
 //   CPU's (both occupancies, a world and an eye grid; negative control: the
 //   GPU without them); an opacity changed in place counts once uploaded;
+// - the frustum grid (the paper's): the GPU's bits equal the CPU's word for
+//   word (perspective, a camera inside a sphere, parallel, an open plane);
+//   its cones on the G-buffer's pixels against the CPU's, both occupancies;
+//   negative control: a grid started at another camera's visible depths;
 // - bad input: a plan beyond the GPU's limits, tracing with no grid, too
 //   many volumes, a volume of the wrong size, a null one; FitsVolumes says
 //   the same limits beforehand.
 #include "caoVCTGL.h"
 #include "caoGLTestUtilities.h"
+#include "caoSurfaceTestScenes.h"
 #include "caoTestUtilities.h"
+#include "caoTriangleBVH.h"
 
 #include <cmath>
 #include <cstdio>
@@ -243,6 +249,152 @@ int VolumesOcclude(cao::gl::VCTEngine& engine, const cao::BitGrid& grid, cao::VC
 }
 }
 
+/// The frustum grid (cao::PlanFrustumGrid, the paper's): the GPU's bits
+/// equal the CPU's word for word under a perspective camera outside the
+/// scene, one inside a sphere (the eye plane cuts it), a parallel camera and
+/// for an open plane; the GPU's cones on its G-buffer's pixels against the
+/// CPU's (both occupancies); the control: a grid whose columns start at
+/// another camera's visible depths traces differently.
+int FrustumGrids(cao::gl::VCTEngine& engine, const std::vector<cao::MeshView>& scene)
+{
+  std::vector<double> all;
+  std::vector<std::int64_t> allTris;
+  for (const cao::MeshView& m : scene)
+  {
+    const std::int64_t base = static_cast<std::int64_t>(all.size() / 3);
+    all.insert(all.end(), m.points->begin(), m.points->end());
+    for (std::int64_t id : *m.triangles)
+      allTris.push_back(id + base);
+  }
+  std::string error;
+  cao::TriangleBVH bvh;
+  CAO_CHECK(bvh.Build(all, allTris, error), "%s", error.c_str());
+  const double eye[3] = { 1.9, -2.7, 1.3 }, at[3] = { 0.1, 0.0, -0.3 }, inside[3] = { 0.05, 0.1, 0.1 },
+               ahead[3] = { 0.3, -1.0, 0.0 };
+  const std::vector<double> planePts = { -2, -2, 0.2, 2, -2, -0.1, 2, 2, 0.4, -2, 2, 0.1 };
+  const std::vector<std::int64_t> planeTris = { 0, 1, 2, 0, 2, 3 };
+  cao::PixelCamera parallel;
+  parallel.width = 72;
+  parallel.height = 64;
+  const double m[16] = { 1.6, 0, 0, 0, 0, 0, -2.5, 0.0, 0, 1.6, 0, 0, 0, 0, 0, 1 };
+  std::copy(m, m + 16, parallel.ndcToWorld);
+  struct Case
+  {
+    const char* name;
+    cao::PixelCamera camera;
+    std::vector<cao::MeshView> meshes;
+    int slices;
+  };
+  const std::vector<Case> cases = {
+    { "frustum: perspective", caotest::LookAt(160, 120, eye, at, 45, 0.1, 30), scene, 256 },
+    { "frustum: camera inside a sphere", caotest::LookAt(96, 80, inside, ahead, 100, 0.01, 30), scene, 128 },
+    { "frustum: parallel camera", parallel, scene, 128 },
+    { "frustum: an open plane", caotest::LookAt(90, 70, eye, at, 50, 0.1, 30), { { &planePts, &planeTris } }, 256 },
+  };
+  cao::SurfaceFrame keepFrame;
+  cao::BitGrid keepGrid;
+  for (const Case& c : cases)
+  {
+    cao::TriangleBVH b;
+    std::vector<double> pts;
+    std::vector<std::int64_t> tris;
+    for (const cao::MeshView& mv : c.meshes)
+    {
+      const std::int64_t base = static_cast<std::int64_t>(pts.size() / 3);
+      pts.insert(pts.end(), mv.points->begin(), mv.points->end());
+      for (std::int64_t id : *mv.triangles)
+        tris.push_back(id + base);
+    }
+    cao::SurfaceFrame frame;
+    cao::BitGrid cpu, shape;
+    std::vector<std::uint32_t> gpu;
+    std::vector<std::int64_t> open;
+    double ms = 0;
+    const bool ran = b.Build(pts, tris, error) && cao::CastPrimary(b, c.camera, frame, error) &&
+      cao::PlanFrustumGrid(c.meshes, c.camera, &frame, c.slices, cpu, error) &&
+      cao::FillGrid(c.meshes, cpu, error) && cao::PlanFrustumGrid(c.meshes, c.camera, &frame, c.slices, shape, error) &&
+      engine.Voxelize(shape, c.meshes, open, ms, error) && engine.Read(gpu, error);
+    std::int64_t differing = 0;
+    for (std::size_t w = 0; w < gpu.size() && w < cpu.bits.size(); ++w)
+      differing += gpu[w] != cpu.bits[w];
+    const bool ok = ran && gpu.size() == cpu.bits.size() && differing == 0 && open == cpu.openEdges &&
+      cpu.CountAll() > 1000;
+    std::printf("%-40s %4dx%-4d x %4d: %9lld set voxels, %lld words differ, GPU %.2f ms %s %s\n", c.name, cpu.nx,
+      cpu.ny, c.slices, static_cast<long long>(cpu.CountAll()), static_cast<long long>(differing), ms,
+      ok ? "ok" : "FAIL", error.c_str());
+    failures += ok ? 0 : 1;
+    if (c.name == cases[0].name)
+    {
+      keepFrame = frame;
+      keepGrid = cpu;
+    }
+  }
+  // The cones on the perspective case's pixels: the GPU (its own grid, the
+  // last voxelized is the plane's: voxelize the scene's again) against the
+  // CPU, both occupancies.
+  std::vector<std::int64_t> open;
+  double ms = 0;
+  CAO_CHECK(engine.Voxelize(keepGrid, scene, open, ms, error), "%s", error.c_str());
+  for (cao::VCTOccupancy occupancy : { cao::VCTOccupancy::Rays, cao::VCTOccupancy::Volume })
+  {
+    cao::VCTSettings settings;
+    settings.radius = 0.35;
+    settings.occupancy = occupancy;
+    cao::VCTPlan plan;
+    CAO_CHECK(cao::BuildVCTPlan(settings, keepGrid, plan, error), "%s", error.c_str());
+    cao::SurfaceFrame cpuFrame = keepFrame, gpuFrame = keepFrame;
+    CAO_CHECK(cao::VCTFrame(keepGrid, plan, cpuFrame, 0, error) && engine.TraceFrame(keepGrid, plan, gpuFrame, ms, error),
+      "%s", error.c_str());
+    double mean = 0, worst = 0, meanAO = 0;
+    long long n = 0, far = 0;
+    for (std::size_t k = 0; k < cpuFrame.ao.size(); ++k)
+      if (keepFrame.triangle[k] >= 0)
+      {
+        const double d = std::fabs(cpuFrame.ao[k] - gpuFrame.ao[k]);
+        mean += d;
+        worst = std::max(worst, d);
+        far += d > 0.01;
+        meanAO += cpuFrame.ao[k];
+        ++n;
+      }
+    mean /= n;
+    meanAO /= n;
+    std::printf("frustum grid, %s: the GPU's cones against the CPU's at %lld pixels: mean |diff| %.2g, largest "
+                "%.2g, %lld beyond 0.01 (mean AO %.3f), GPU %.2f ms\n",
+      cao::VCTOccupancyName(occupancy), n, mean, worst, far, meanAO, ms);
+    CAO_CHECK(n > 5000 && mean < 1e-3 && far <= n / 200 && meanAO < 0.97,
+      "frustum grid trace: mean %.3g, %lld of %lld beyond 0.01", mean, far, n);
+  }
+  // The control: columns started at another camera's visible depths.
+  {
+    const double elsewhere[3] = { -2.0, -2.4, 1.8 };
+    const cao::PixelCamera other = caotest::LookAt(160, 120, elsewhere, at, 45, 0.1, 30);
+    cao::SurfaceFrame otherFrame;
+    cao::BitGrid wrong;
+    CAO_CHECK(cao::CastPrimary(bvh, other, otherFrame, error) &&
+        cao::PlanFrustumGrid(scene, caotest::LookAt(160, 120, eye, at, 45, 0.1, 30), &otherFrame, 256, wrong, error) &&
+        engine.Voxelize(wrong, scene, open, ms, error),
+      "%s", error.c_str());
+    cao::VCTSettings settings;
+    settings.radius = 0.35;
+    cao::VCTPlan plan;
+    cao::SurfaceFrame cpuFrame = keepFrame, gpuFrame = keepFrame;
+    CAO_CHECK(cao::BuildVCTPlan(settings, keepGrid, plan, error) && cao::VCTFrame(keepGrid, plan, cpuFrame, 0, error) &&
+        engine.TraceFrame(wrong, plan, gpuFrame, ms, error),
+      "%s", error.c_str());
+    double mean = 0;
+    long long n = 0;
+    for (std::size_t k = 0; k < cpuFrame.ao.size(); ++k)
+      if (keepFrame.triangle[k] >= 0)
+        mean += std::fabs(cpuFrame.ao[k] - gpuFrame.ao[k]), ++n;
+    mean /= n;
+    std::printf("negative control: the GPU's grid started at another camera's visible depths: mean |diff| %.3f\n",
+      mean);
+    CAO_CHECK(mean > 0.01, "the control should differ (%.4f)", mean);
+  }
+  return 0;
+}
+
 int TestGLVoxelConeTracing(int argc, char* argv[])
 {
   auto context = caogltest::ContextOrSkip(caogltest::KindFromArgs(argc, argv));
@@ -391,6 +543,8 @@ int TestGLVoxelConeTracing(int argc, char* argv[])
     "%s", error.c_str());
   CAO_CHECK(gpu3 == gpu, "the uploaded CPU grid traces as the GPU's own");
   if (VolumesOcclude(engine, grid, settings, dp, dn, points, normals))
+    return 1;
+  if (FrustumGrids(engine, scene))
     return 1;
   // Bad input.
   cao::VCTPlan big = plan;

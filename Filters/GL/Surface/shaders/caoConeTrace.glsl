@@ -35,6 +35,51 @@ layout(std430, binding = CAO_BINDING_VCT_OPACITY) readonly buffer OpacityBlock
 {
   float opacity[];
 };
+layout(std430, binding = CAO_BINDING_VCT_COLUMNS) readonly buffer ColumnBlock
+{
+  vec2 columns[]; // the frustum grid's: per column near depth, slices per depth
+};
+
+/// The frustum grid (vct.frustum[4].x = 1): BitGrid::FrustumCell's twin,
+/// point g (the grid's frame) to column (i, j) and slice coordinate s;
+/// false off the screen or behind the eye.
+bool FrustumCell(vec3 g, out int i, out int j, out float s)
+{
+  vec4 c = vec4(dot(vct.frustum[0].xyz, g) + vct.frustum[0].w, dot(vct.frustum[1].xyz, g) + vct.frustum[1].w,
+    dot(vct.frustum[2].xyz, g) + vct.frustum[2].w, dot(vct.frustum[3].xyz, g) + vct.frustum[3].w);
+  bool perspective = vct.frustum[4].y > 0.5;
+  i = 0;
+  j = 0;
+  s = -1.0;
+  if (perspective && !(c.w > 0.0))
+    return false;
+  float x = (c.x / c.w + 1.0) * 0.5 * float(vct.grid.x), y = (c.y / c.w + 1.0) * 0.5 * float(vct.grid.y);
+  if (!(x >= 0.0 && y >= 0.0 && x < float(vct.grid.x) && y < float(vct.grid.y)))
+    return false;
+  i = int(x);
+  j = int(y);
+  vec2 column = columns[j * vct.grid.x + i];
+  s = ((perspective ? c.w : c.z / c.w) - column.x) * column.y;
+  return true;
+}
+
+/// BitGrid::FrustumVoxel(g, larger = true): the larger of a pixel's width
+/// and its column's slice at g (world units).
+float FrustumVoxel(vec3 g)
+{
+  float w = dot(vct.frustum[3].xyz, g) + vct.frustum[3].w;
+  float x = dot(vct.frustum[0].xyz, g) + vct.frustum[0].w;
+  float rate = abs((vct.frustum[0].x * w - x * vct.frustum[3].x) / (w * w));
+  float voxel = 1.0 / vct.origin.w;
+  float pixel = rate > 0.0 ? 2.0 / (float(vct.grid.x) * rate) : voxel;
+  int i, j;
+  float s;
+  float slice = voxel;
+  if (FrustumCell(g, i, j, s))
+    slice = vct.frustum[4].z / columns[j * vct.grid.x + i].y;
+  float v = max(pixel, slice);
+  return v > 0.0 && !isinf(v) && !isnan(v) ? v : voxel;
+}
 
 /// Volume v's trilinear opacity at g (the grid's frame); 0 outside it.
 float VolumeSample(int v, vec3 g)
@@ -117,8 +162,9 @@ bool Bit(int i, int j, int k)
 
 /// cao::RayOcclusion: the cosine-weighted share of the cone's rays (one per
 /// prism point, from the first sphere's near side to R) that meet a set voxel.
-float RayOcclusion(vec3 apex, vec3 n, vec3 dir, vec3 u, vec3 v)
+float RayOcclusion(vec3 apex, vec3 n, vec3 dir, vec3 u, vec3 v, float rayStep)
 {
+  bool frustum = vct.frustum[4].x > 0.5;
   float invH = vct.origin.w;
   float t0 = vct.spheres[0].x - vct.spheres[0].y;
   float t1 = vct.spheres[vct.counts.y - 1].x + vct.spheres[vct.counts.y - 1].y;
@@ -130,11 +176,23 @@ float RayOcclusion(vec3 apex, vec3 n, vec3 dir, vec3 u, vec3 v)
     float len = length(ray);
     float weight = max(0.0, dot(ray, n) / len);
     all += weight;
-    int steps = max(1, int(ceil((t1 - t0) * len / vct.apex.z)));
+    int steps = max(1, int(ceil((t1 - t0) * len / rayStep)));
     float step = (t1 - t0) / float(steps);
     for (int m = 0; m < steps; ++m)
     {
       float tau = t0 + (float(m) + 0.5) * step;
+      if (frustum)
+      {
+        int i, j;
+        float sl;
+        if (FrustumCell(apex + tau * ray, i, j, sl) && sl >= 0.0 && sl < float(vct.grid.z) &&
+          Bit(i, j, int(sl)))
+        {
+          blocked += weight;
+          break;
+        }
+        continue;
+      }
       vec3 g = floor((apex + tau * ray - vct.origin.xyz) * invH);
       if (Bit(int(g.x), int(g.y), int(g.z)))
       {
@@ -160,7 +218,11 @@ void main()
   float invH = vct.origin.w;
   vec3 tx, ty;
   Frame(n, tx, ty);
-  vec3 apex = p + vct.apex.x * n;
+  // The frustum grid's voxels grow with depth: the apex offset and the
+  // rays' step follow the local voxel's larger side (ConeTraceAO's).
+  bool frustum = vct.frustum[4].x > 0.5;
+  float scale = frustum ? FrustumVoxel(p) * vct.origin.w : 1.0;
+  vec3 apex = p + scale * vct.apex.x * n;
   float occlusion = 0.0;
   for (int c = 0; c < vct.counts.x; ++c)
   {
@@ -171,7 +233,7 @@ void main()
     // Rays: the cone's rays at once; volume: each sphere's prisms. Then the
     // volumes' opacity over each sphere.
     bool rays = vct.apex.y > 0.5;
-    float open = rays ? 1.0 - RayOcclusion(apex, n, dir, u, v) : 1.0;
+    float open = rays ? 1.0 - RayOcclusion(apex, n, dir, u, v, scale * vct.apex.z) : 1.0;
     for (int s = 0; s < vct.counts.y; ++s)
     {
       vec3 centre = apex + vct.spheres[s].x * dir;
@@ -182,7 +244,28 @@ void main()
         continue;
       float gz = (centre.z - vct.origin.z) * invH;
       int set = 0, total = 0;
-      for (int k = 0; k < vct.counts.z; ++k)
+      for (int k = 0; k < vct.counts.z && frustum; ++k)
+      {
+        // Each prism the column its disk point falls in, over its chord's
+        // slices (SphereOccupancy's frustum branch).
+        vec4 d = vct.disk[k];
+        int i, j;
+        float sc;
+        if (!FrustumCell(centre + r * vec3(d.xy, 0.0), i, j, sc))
+          continue;
+        float ds = r * d.z / vct.frustum[4].z * columns[j * vct.grid.x + i].y;
+        float sn = clamp(sc - ds, -1.0, float(vct.grid.z) + 1.0), sf = clamp(sc + ds, -1.0, float(vct.grid.z) + 1.0);
+        int k0 = int(ceil(min(sn, sf) - 0.5));
+        int k1 = int(floor(max(sn, sf) - 0.5));
+        if (k1 < k0)
+        {
+          k0 = int(floor(clamp(sc, -1.0, float(vct.grid.z) + 1.0)));
+          k1 = k0;
+        }
+        total += k1 - k0 + 1;
+        set += CountBits(i, j, k0, k1);
+      }
+      for (int k = 0; k < vct.counts.z && !frustum; ++k)
       {
         vec4 d = vct.disk[k];
         float gx = (centre.x + r * d.x - vct.origin.x) * invH;

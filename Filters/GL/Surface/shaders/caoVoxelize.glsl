@@ -8,6 +8,12 @@
 // CAO_VX_STAGE 0: rasterize one mesh into its own bits (XOR from the
 // crossing to the top for a solid mesh, the crossing's slice for a shell);
 // 1: OR the mesh's bits (and its surface voxels) into the grid.
+// CAO_VX_FRUSTUM 1: the frustum grid (cao::PlanFrustumGrid): the points
+// are the host's screen triangles (cao::FrustumScreenTriangles: pixel x, y
+// and 1 / w or NDC z), each crossing's depth goes to its column's slice
+// (near depth and slices per depth, in double), each column's crossings
+// are counted, and stage 1 inverts a solid mesh's column with an odd count
+// (the parity from beyond the far depth), as RasterizeFrustum does.
 #if CAO_VX_STAGE == 0
 layout(local_size_x = 64) in;
 #else
@@ -34,6 +40,18 @@ layout(std430, binding = CAO_BINDING_VX_SURFACE) buffer SurfaceBlock
 {
   uint surface[];
 };
+
+#if CAO_VX_FRUSTUM
+layout(std430, binding = CAO_BINDING_VX_COLUMNS) readonly buffer ColumnBlock
+{
+  double columnDepths[]; // per column: near depth, slices per depth
+};
+layout(std430, binding = CAO_BINDING_VX_PARITY) buffer ParityBlock
+{
+  uint parity[];
+};
+uniform int perspective; // stage 0: the key is 1 / w (else NDC z)
+#endif
 
 uniform ivec4 gridSize;    // nx, ny, slices, words
 uniform int triangleCount; // stage 0
@@ -80,8 +98,10 @@ void main()
   area = abs(area);
   double minX = min(a.x, min(b.x, c.x)), maxX = max(a.x, max(b.x, c.x));
   double minY = min(a.y, min(b.y, c.y)), maxY = max(a.y, max(b.y, c.y));
-  int i0 = max(0, int(ceil(minX - 0.5LF))), i1 = min(gridSize.x - 1, int(floor(maxX - 0.5LF)));
-  int j0 = max(0, int(ceil(minY - 0.5LF))), j1 = min(gridSize.y - 1, int(floor(maxY - 0.5LF)));
+  // Clamped in double first: a frustum grid's triangle cut at the eye plane
+  // reaches far beyond the screen (an int would overflow), as the C++ does.
+  int i0 = int(max(0.0LF, ceil(minX - 0.5LF))), i1 = int(min(double(gridSize.x - 1), floor(maxX - 0.5LF)));
+  int j0 = int(max(0.0LF, ceil(minY - 0.5LF))), j1 = int(min(double(gridSize.y - 1), floor(maxY - 0.5LF)));
   if (i1 < i0 || j1 < j0)
     return;
   int width = i1 - i0 + 1;
@@ -95,6 +115,18 @@ void main()
       continue;
     precise double num = (ea * a.z + eb * b.z) + ec * c.z;
     precise double s = num / area;
+#if CAO_VX_FRUSTUM
+    {
+      uint col = uint(j * gridSize.x + i);
+      precise double depth = perspective != 0 ? 1.0LF / s : s;
+      precise double d = depth - columnDepths[2u * col];
+      s = d * columnDepths[2u * col + 1u];
+      if (s < 0.0LF && s > -0.5LF) // the column's visible surface, but for rounding
+        s = 0.0LF;
+      if (solid != 0)
+        atomicXor(parity[col], 1u);
+    }
+#endif
     uint column = uint(j * gridSize.x + i) * uint(gridSize.w);
     if (solid != 0 && surfaceVoxels != 0)
     {
@@ -131,7 +163,13 @@ void main()
 void main()
 {
   uint w = gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * 256u;
-  if (w < wordCount)
-    grid[w] |= bits[w] | surface[w];
+  if (w >= wordCount)
+    return;
+#if CAO_VX_FRUSTUM
+  uint own = (parity[w / uint(gridSize.w)] & 1u) != 0u ? ~bits[w] : bits[w];
+  grid[w] |= own | surface[w];
+#else
+  grid[w] |= bits[w] | surface[w];
+#endif
 }
 #endif

@@ -17,8 +17,8 @@
 // - the eye grid: built on a turn, kept on a dolly, its AO near the world
 //   grid's; the frustum grid: built after the G-buffer, again on a dolly,
 //   not on a colour change, its AO the kernel's exactly (the control:
-//   without the visible depths it differs), refused by OPENGL, Auto on the
-//   CPU with a note; a tiled render warns once of the tiles' seams (the
+//   without the visible depths it differs), on OPENGL the CPU's AO to float
+//   rounding; a tiled render warns once of the tiles' seams (the
 //   world grid does not);
 // - the pass's AO at a pixel equals cao::VCTFrame's for the same triangles
 //   and camera (the kernel's, not a second implementation);
@@ -763,16 +763,46 @@ int TestContextualAOPass(int, char*[])
         worstPlain, error.c_str());
       Check(ran && ranPlain && compared > 1000 && worst == 0.0 && worstPlain > 0.01, text);
     }
-    pass->SetBackend(vtkContextualAOPass::BACKEND_OPENGL);
-    window->Render();
-    Check(pass->GetLastFrameReport().find("the frustum grid runs on the CPU only") != std::string::npos,
-      "frustum grid: OPENGL refuses it with the reason");
-    pass->SetBackend(vtkContextualAOPass::BACKEND_AUTO);
-    window->Render();
-    const std::string autoReport = pass->GetLastFrameReport();
-    Check(autoReport.find("\"error\"") == std::string::npos &&
-        autoReport.find("frustum grid runs on the CPU only") != std::string::npos,
-      "frustum grid: Auto runs it on the CPU and says so");
+    // On OPENGL: the grid and cones in the window's context, by the
+    // read-back path (the columns start at the G-buffer's depths), the
+    // CPU's AO to float rounding.
+    {
+      const std::vector<double> cpuAO = PixelAOs(pass, 200, 160);
+      pass->SetBackend(vtkContextualAOPass::BACKEND_OPENGL);
+      window->Render();
+      const std::string report = pass->GetLastFrameReport();
+      const std::vector<double> glAO = PixelAOs(pass, 200, 160);
+      double mean = 0.0, worst = 0.0;
+      long long n = 0;
+      for (std::size_t k = 0; k < cpuAO.size(); ++k)
+        if (cpuAO[k] >= 0.0 && glAO[k] >= 0.0)
+        {
+          const double d = std::fabs(cpuAO[k] - glAO[k]);
+          mean += d, worst = std::max(worst, d), ++n;
+        }
+      mean /= std::max<long long>(n, 1);
+      char text[300];
+      std::snprintf(text, sizeof(text), "frustum grid on OPENGL: %s, %lld pixels, mean |diff| from the CPU %.2g, "
+        "largest %.2g; stages %s", report.find("\"backend\": \"OpenGL") != std::string::npos ? "on the GPU" : "NOT on the GPU",
+        n, mean, worst, pass->GetLastFrameStages().c_str());
+      Check(report.find("\"backend\": \"OpenGL") != std::string::npos && report.find("\"error\"") == std::string::npos &&
+          n > 10000 && mean < 1e-5 && worst < 0.02 &&
+          pass->GetLastFrameStages().find("voxelize") != std::string::npos,
+        text);
+      // With the drawn depth: not the GPU frame (the pixels read back, said
+      // in the report), the grid built from those depths.
+      pass->SetGBuffer(vtkContextualAOPass::DEPTH_BUFFER);
+      window->Render();
+      const std::string depthReport = pass->GetLastFrameReport();
+      Check(depthReport.find("\"error\"") == std::string::npos &&
+          depthReport.find("\"frame_on_gpu\": false") != std::string::npos &&
+          depthReport.find("columns start at the G-buffer's depths") != std::string::npos &&
+          pass->GetLastFrameStages().find("voxelize") != std::string::npos,
+        "frustum grid on OPENGL with the drawn depth: read back and said (" + pass->GetLastFrameStages() + ")");
+      pass->SetGBuffer(vtkContextualAOPass::RAY_CAST);
+      pass->SetBackend(vtkContextualAOPass::BACKEND_AUTO);
+      window->Render();
+    }
     // A tiled render (an image larger than the window): the frustum grid
     // sees each tile alone; the pass says so once (the world grid, per
     // pixel, has nothing to say: the control).
