@@ -994,7 +994,7 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
 
 bool vtkContextualAOPass::Internals::VoxelizeFrustum(vtkContextualAOPass* self, Clock::time_point& start)
 {
-  // The frustum grid of this camera and G-buffer (the CPU's).
+  // The frustum grid of this camera and G-buffer (on the CPU or the GPU).
   std::vector<cao::MeshView> views;
   for (std::size_t i = 0; i < this->meshPoints.size(); ++i)
     views.push_back({ &this->meshPoints[i], &this->meshTriangles[i] });

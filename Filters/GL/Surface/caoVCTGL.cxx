@@ -139,7 +139,8 @@ struct VCTEngine::Impl
   GLuint* Buffers[13] = { &points, &ids, &bits, &grid, &params, &tracePoints, &traceNormals, &ao, &surface,
     &opacity, &columns, &parity, &traceColumns };
   /// The frustum grid's columns (near depth, slices per depth) as the
-  /// tracer reads them (float); 16 bytes for any other grid.
+  /// tracer reads them (float); a 16-byte stub for any other grid. The
+  /// bytes held.
   std::int64_t PutTraceColumns(const BitGrid& shape)
   {
     std::vector<float> c;
@@ -153,7 +154,11 @@ struct VCTEngine::Impl
       }
     }
     this->Upload(this->traceColumns, GL_SHADER_STORAGE_BUFFER, c.size() * sizeof(float), c.empty() ? nullptr : c.data());
-    return static_cast<std::int64_t>(c.size() * sizeof(float));
+    if (!shape.IsFrustum()) // the voxelizer's frustum buffers back to stubs
+      for (GLuint* b : { &this->columns, &this->parity })
+        if (*b)
+          this->Upload(*b, GL_SHADER_STORAGE_BUFFER, 16, nullptr);
+    return static_cast<std::int64_t>(std::max<std::size_t>(c.size() * sizeof(float), 16));
   }
   void Upload(GLuint& b, GLenum target, std::size_t size, const void* data)
   {
@@ -348,6 +353,8 @@ bool VCTEngine::Voxelize(const BitGrid& shape, const std::vector<MeshView>& mesh
   StateGuard guard(gl, p.Ctx.Kind() == ContextKind::External);
   if (!p.BuildPrograms(error) || (frustum && !p.BuildFrustumPrograms(error)))
     return false;
+  p.shape = BitGrid(); // no grid until this one is done
+  p.bytes = 0;
   p.timer.Allocate(gl, p.Ctx.UsesHostClock());
   const std::size_t bytes = static_cast<std::size_t>(words) * sizeof(std::uint32_t);
   p.Upload(p.grid, GL_SHADER_STORAGE_BUFFER, bytes, nullptr);

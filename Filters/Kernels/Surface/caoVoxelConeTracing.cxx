@@ -94,10 +94,12 @@ void RasterizeFrustum(const BitGrid& grid, const std::vector<double>& soup, bool
     area = std::fabs(area);
     const double minX = std::min({ a[0], b[0], c[0] }), maxX = std::max({ a[0], b[0], c[0] });
     const double minY = std::min({ a[1], b[1], c[1] }), maxY = std::max({ a[1], b[1], c[1] });
-    const int i0 = static_cast<int>(std::max(0.0, std::ceil(minX - 0.5)));
-    const int i1 = static_cast<int>(std::min(grid.nx - 1.0, std::floor(maxX - 0.5)));
-    const int j0 = static_cast<int>(std::max(0.0, std::ceil(minY - 0.5)));
-    const int j1 = static_cast<int>(std::min(grid.ny - 1.0, std::floor(maxY - 0.5)));
+    // Both ends clamped in double (a triangle cut at the eye plane reaches
+    // far off the screen, beyond an int), as the GLSL does.
+    const int i0 = static_cast<int>(std::min(static_cast<double>(grid.nx), std::max(0.0, std::ceil(minX - 0.5))));
+    const int i1 = static_cast<int>(std::max(-1.0, std::min(grid.nx - 1.0, std::floor(maxX - 0.5))));
+    const int j0 = static_cast<int>(std::min(static_cast<double>(grid.ny), std::max(0.0, std::ceil(minY - 0.5))));
+    const int j1 = static_cast<int>(std::max(-1.0, std::min(grid.ny - 1.0, std::floor(maxY - 0.5))));
     for (int j = j0; j <= j1; ++j)
       for (int i = i0; i <= i1; ++i)
       {

@@ -15,7 +15,8 @@
 //   CPU's (both occupancies, a world and an eye grid; negative control: the
 //   GPU without them); an opacity changed in place counts once uploaded;
 // - the frustum grid (the paper's): the GPU's bits equal the CPU's word for
-//   word (perspective, a camera inside a sphere, parallel, an open plane);
+//   word (perspective, a camera inside a sphere, parallel, an open plane, a
+//   triangle billions of pixels off the screen);
 //   its cones on the G-buffer's pixels against the CPU's, both occupancies;
 //   negative control: a grid started at another camera's visible depths;
 // - bad input: a plan beyond the GPU's limits, tracing with no grid, too
@@ -285,11 +286,29 @@ int FrustumGrids(cao::gl::VCTEngine& engine, const std::vector<cao::MeshView>& s
     std::vector<cao::MeshView> meshes;
     int slices;
   };
+  // A triangle 3e-8 ahead of the eye plane, 1 to the side: billions of
+  // pixels off the screen (the rasterizer's box clamped in double).
+  double fwd[3] = { at[0] - eye[0], at[1] - eye[1], at[2] - eye[2] };
+  const double lf = std::sqrt(fwd[0] * fwd[0] + fwd[1] * fwd[1] + fwd[2] * fwd[2]);
+  for (double& v : fwd)
+    v /= lf;
+  double right[3] = { fwd[1], -fwd[0], 0.0 };
+  const double lr = std::sqrt(right[0] * right[0] + right[1] * right[1]);
+  right[0] /= lr;
+  right[1] /= lr;
+  std::vector<double> offPts;
+  for (int k = 0; k < 3; ++k)
+    for (int d = 0; d < 3; ++d)
+      offPts.push_back(eye[d] + 3e-8 * fwd[d] + (1.0 + 0.1 * k) * right[d] + (k == 1 && d == 2 ? 0.1 : 0.0));
+  const std::vector<std::int64_t> offTris = { 0, 1, 2 };
+  std::vector<cao::MeshView> withOff = scene;
+  withOff.push_back({ &offPts, &offTris });
   const std::vector<Case> cases = {
     { "frustum: perspective", caotest::LookAt(160, 120, eye, at, 45, 0.1, 30), scene, 256 },
     { "frustum: camera inside a sphere", caotest::LookAt(96, 80, inside, ahead, 100, 0.01, 30), scene, 128 },
     { "frustum: parallel camera", parallel, scene, 128 },
     { "frustum: an open plane", caotest::LookAt(90, 70, eye, at, 50, 0.1, 30), { { &planePts, &planeTris } }, 256 },
+    { "frustum: a triangle far off the screen", caotest::LookAt(160, 120, eye, at, 45, 0.1, 30), withOff, 128 },
   };
   cao::SurfaceFrame keepFrame;
   cao::BitGrid keepGrid;

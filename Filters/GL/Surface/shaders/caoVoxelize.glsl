@@ -92,7 +92,7 @@ void main()
     return;
   dvec3 v0 = Point(ids[3 * t]), v1 = Point(ids[3 * t + 1]), v2 = Point(ids[3 * t + 2]);
   precise double area = Edge(v0, v1, v2.x, v2.y);
-  if (area == 0.0LF)
+  if (area == 0.0LF || isinf(area) || isnan(area))
     return;
   dvec3 a = v0, b = area > 0.0LF ? v1 : v2, c = area > 0.0LF ? v2 : v1;
   area = abs(area);
@@ -100,8 +100,10 @@ void main()
   double minY = min(a.y, min(b.y, c.y)), maxY = max(a.y, max(b.y, c.y));
   // Clamped in double first: a frustum grid's triangle cut at the eye plane
   // reaches far beyond the screen (an int would overflow), as the C++ does.
-  int i0 = int(max(0.0LF, ceil(minX - 0.5LF))), i1 = int(min(double(gridSize.x - 1), floor(maxX - 0.5LF)));
-  int j0 = int(max(0.0LF, ceil(minY - 0.5LF))), j1 = int(min(double(gridSize.y - 1), floor(maxY - 0.5LF)));
+  int i0 = int(clamp(ceil(minX - 0.5LF), 0.0LF, double(gridSize.x)));
+  int i1 = int(clamp(floor(maxX - 0.5LF), -1.0LF, double(gridSize.x - 1)));
+  int j0 = int(clamp(ceil(minY - 0.5LF), 0.0LF, double(gridSize.y)));
+  int j1 = int(clamp(floor(maxY - 0.5LF), -1.0LF, double(gridSize.y - 1)));
   if (i1 < i0 || j1 < j0)
     return;
   int width = i1 - i0 + 1;

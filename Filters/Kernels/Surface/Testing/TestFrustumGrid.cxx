@@ -20,6 +20,8 @@
 //   depths, beyond 1.5 times it;
 // - an open plane keeps its visible voxel in every covered column (its
 //   crossing rounds to just before slice 0);
+// - a triangle just in front of the eye plane and billions of pixels off the
+//   screen is skipped (the box clamped in double);
 // - bad input: slices, a grid over the memory limit (bits, then columns),
 //   a frame of another size; meshes behind the camera give an empty grid.
 #include "caoSurfaceTestScenes.h"
@@ -346,6 +348,39 @@ int TestFrustumGrid(int, char*[])
         error.find("size") != std::string::npos,
       "frame size: %s", error.c_str());
     std::printf("a frame of another size: %s\n", error.c_str());
+    // A triangle just in front of the eye plane, far to the side (its
+    // pixels beyond 2^31): skipped at once, the grid as without it.
+    {
+      double fwd[3] = { at[0] - eye[0], at[1] - eye[1], at[2] - eye[2] };
+      const double l = std::sqrt(fwd[0] * fwd[0] + fwd[1] * fwd[1] + fwd[2] * fwd[2]);
+      for (double& v : fwd)
+        v /= l;
+      double right[3] = { fwd[1], -fwd[0], 0.0 }; // fwd x (0, 0, 1)
+      const double lr = std::sqrt(right[0] * right[0] + right[1] * right[1]);
+      right[0] /= lr;
+      right[1] /= lr;
+      const double up[3] = { right[1] * fwd[2] - right[2] * fwd[1], right[2] * fwd[0] - right[0] * fwd[2],
+        right[0] * fwd[1] - right[1] * fwd[0] };
+      std::vector<double> tri;
+      for (int k = 0; k < 3; ++k)
+        for (int d = 0; d < 3; ++d) // 3e-8 ahead, 1 to the side
+          tri.push_back(eye[d] + 3e-8 * fwd[d] + (1.0 + 0.1 * k) * right[d] + (k == 1 ? 0.1 : 0.0) * up[d]);
+      const std::vector<std::int64_t> triIds = { 0, 1, 2 };
+      std::vector<cao::MeshView> withTri = scene;
+      withTri.push_back({ &tri, &triIds });
+      cao::BitGrid a, b;
+      // (One plan for both: the triangle's depth widens the planned range.)
+      CAO_CHECK(cao::PlanFrustumGrid(withTri, cam, &frame, 128, a, error) && cao::FillGrid(scene, a, error) &&
+          cao::PlanFrustumGrid(withTri, cam, &frame, 128, b, error) && cao::FillGrid(withTri, b, error),
+        "%s", error.c_str());
+      std::vector<double> soup;
+      cao::FrustumScreenTriangles(b, { &tri, &triIds }, soup);
+      double far = 0;
+      for (std::size_t k = 0; k < soup.size(); k += 3)
+        far = std::max(far, std::max(std::fabs(soup[k]), std::fabs(soup[k + 1])));
+      std::printf("a triangle %.1e pixels off the screen: the grid %s\n", far, a.bits == b.bits ? "as without it" : "CHANGED");
+      CAO_CHECK(far > 2.2e9 && a.bits == b.bits, "off-screen triangle: %.3g pixels", far);
+    }
     // Meshes behind the camera (turned away from the scene): an empty grid.
     const double behind[3] = { 0, 10, 0 }, away[3] = { 0, 20, 0.5 };
     const cao::PixelCamera back = caotest::LookAt(32, 32, behind, away, 45, 0.1, 30);
