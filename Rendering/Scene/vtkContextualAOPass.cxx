@@ -808,7 +808,18 @@ bool vtkContextualAOPass::Internals::UpdateVolumes(vtkContextualAOPass* self)
   ++this->volumeSerial;
   this->volumeKey = this->frameVolumeKey;
   if (this->volumes.empty())
-    return true; // the last volume went: the AO is traced again, without it
+  {
+    // The last volume went (or the method reads none): the AO is traced
+    // again without it, and its opacity leaves the GPU now, not at the next
+    // voxel cone trace.
+    std::string error;
+    if (this->onGPU && this->uploadedVolumes[0] >= 0 && this->gpu.Volumes({}, error))
+    {
+      this->uploadedVolumes[0] = this->volumeSerial;
+      this->uploadedVolumes[1] = this->gpu.Generation();
+    }
+    return true;
+  }
   this->reasons.push_back("volumes changed");
   for (std::size_t i = 0; i < this->volumes.size(); ++i)
   {

@@ -169,6 +169,13 @@ double WorstDifference(const cao::SurfaceFrame& frame, vtkContextualAOPass* pass
   return worst;
 }
 
+/// A whole-number field of the frame report ("key": value), -1 when absent.
+long long ReportField(const std::string& r, const char* key)
+{
+  const std::size_t at = r.find(std::string("\"") + key + "\": ");
+  return at == std::string::npos ? -1LL : std::atoll(r.c_str() + at + std::strlen(key) + 4);
+}
+
 /// The pass's AO at every pixel of a w x h viewport (-1: none), row by row.
 std::vector<double> PixelAOs(vtkContextualAOPass* pass, int w, int h)
 {
@@ -977,10 +984,7 @@ int TestContextualAOPass(int, char*[])
       const std::string report = pass->GetLastFrameReport();
       std::printf("volume on OpenGL (%s): %s\n", name, report.c_str());
       const bool gpuFrame = report.find("\"frame_on_gpu\": true") != std::string::npos;
-      auto field = [](const std::string& r, const char* key) {
-        const std::size_t at = r.find(std::string("\"") + key + "\": ");
-        return at == std::string::npos ? -1LL : std::atoll(r.c_str() + at + std::strlen(key) + 4);
-      };
+      auto field = ReportField;
       const long long bytes = field(report, "gpu_bytes"), uploads = field(report, "volume_uploads");
       camera->Azimuth(10);
       renderer->ResetCameraClippingRange();
@@ -1019,6 +1023,27 @@ int TestContextualAOPass(int, char*[])
       mapper->SetClipShape(nullptr);
       Check(gpuCarved == gpuAlone, std::string("OpenGL (") + name + "): the block carved away gives the slab's "
         "own AO exactly (" + pass->GetLastFrameStages() + ")");
+    }
+    // A method that reads no volume (HBAO) frees their opacity on the GPU:
+    // its GPU memory after a voxel cone frame with the volume equals that
+    // after one without it.
+    {
+      auto hbaoBytesAfter = [&](bool volumes) {
+        pass->SetOccludingVolumes(volumes);
+        pass->SetMethod(vtkContextualAOPass::VCT);
+        window->Render();
+        pass->SetMethod(vtkContextualAOPass::HBAO);
+        window->Render();
+        const long long b = ReportField(pass->GetLastFrameReport(), "gpu_bytes");
+        pass->SetMethod(vtkContextualAOPass::VCT);
+        pass->OccludingVolumesOn();
+        return b;
+      };
+      const long long withVolume = hbaoBytesAfter(true), without = hbaoBytesAfter(false);
+      Check(withVolume == without && withVolume > 0,
+        "HBAO after a voxel cone frame with the volume holds no opacity on the GPU (" + std::to_string(withVolume) +
+          " bytes; after one without it " + std::to_string(without) + ")");
+      window->Render();
     }
     // More volumes than the GPU cone tracer takes (8): OPENGL says so
     // (Auto would take the CPU; on llvmpipe it is there anyway).
