@@ -957,11 +957,13 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
       : this->gbuffer == DEPTH_BUFFER           ? "camera, drawn depth or settings changed"
                                                 : "camera or settings changed");
   this->viewKey.clear();
-  if (self->Method == VCT && self->Grid == FRUSTUM_GRID &&
-    static_cast<std::int64_t>(width) * height * (self->Slices / 8) > cao::BitGrid::MaximumFrustumBytes)
-    return this->Fail(self, "the frustum grid of " + std::to_string(width) + " x " + std::to_string(height) +
-        " pixels and " + std::to_string(self->Slices) + " slices would take over " +
-        std::to_string(cao::BitGrid::MaximumFrustumBytes >> 20) + " MiB: fewer Slices or a smaller view");
+  if (self->Method == VCT && self->Grid == FRUSTUM_GRID)
+  {
+    // Before the G-buffer: fewer Slices or a smaller view.
+    const std::string why = cao::CheckFrustumSize(width, height, self->Slices);
+    if (!why.empty())
+      return this->Fail(self, "Cannot voxelize the scene: " + why);
+  }
   cao::PixelCamera& pixels = this->pixels;
   vtkMatrix4x4::Invert(&toNDC->Element[0][0], pixels.ndcToWorld);
   std::copy(pixels.ndcToWorld, pixels.ndcToWorld + 16, this->ndcToWorld);

@@ -1002,6 +1002,13 @@ int RunSurface(int argc, char* argv[])
   o.reference.radius = radius;
   vtkNew<vtkCamera> camera;
   FitCamera(camera, b.data(), o.view);
+  if (o.method == "vct" && o.grid == "frustum")
+  {
+    // Its limits before the G-buffer (an image too large is refused at once).
+    error = cao::CheckFrustumSize(o.view.width, o.view.height, o.vct.slices);
+    if (!error.empty())
+      return Fail(2, error);
+  }
   start = std::chrono::steady_clock::now();
   cao::SurfaceFrame frame;
   if (!CastFrame(scene, camera, o.view, frame, error))
@@ -1023,6 +1030,7 @@ int RunSurface(int argc, char* argv[])
     bool useGL = false;
     if (!ChooseBackend(o, gpu, useGL, backendNote, error))
       return Fail(1, error);
+    start = std::chrono::steady_clock::now(); // the grid's time, not the OpenGL probe's
     cao::VCTPlan plan;
     if (!PlanSceneGrid(scene, camera, o, radius, frame, grid, error))
       return Fail(2, error);
@@ -1124,6 +1132,9 @@ int RunSurface(int argc, char* argv[])
       ++covered;
       sum += a;
     }
+  if (covered == 0)
+    std::cerr << "cao: warning: no pixel sees a mesh (the picture is empty: check --zoom, --azimuth, "
+                 "--elevation)\n";
   if (o.json)
   {
     std::cout << std::setprecision(10) << "{\"method\": \"" << o.method << "\", \"image\": [" << o.view.width

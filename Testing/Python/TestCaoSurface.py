@@ -30,7 +30,9 @@
   grid's (the grid's axes differ, so its voxels do); the frustum grid
   (--grid frustum): a column per pixel, its error against the reference
   within 1.5 times the world grid's (control: no AO, over twice its
-  error), on --backend gl the CPU's AO to float rounding;
+  error), on --backend gl the CPU's AO to float rounding; an image over
+  its limits refused before anything is cast; an empty picture written
+  with a warning;
 - the volume occluding (--volume): a block of volume on the square darkens
   it where the sphere alone does not reach; --shape cube at the block's
   centre carving it away gives the square's AO without the volume
@@ -434,6 +436,13 @@ for binary in (False, True):
         check(rc == 2 and where in se and "truncated" in se,
               "a %s PLY cut at byte %d is refused: rc %d, %r" % (kind, cut, rc, se.strip()[:160]))
 
+# A picture in which no pixel sees a mesh is written with a warning (the
+# control: the default camera's has none).
+rc, so, se = run(bunny, "--zoom", "0.05", "--image", "64x64", "-o", os.path.join(tmp, "empty.png"))
+rc2, so2, se2 = run(bunny, "--image", "64x64", "-o", os.path.join(tmp, "full.png"))
+check(rc == 0 and "no pixel sees a mesh" in se and rc2 == 0 and "no pixel sees a mesh" not in se2,
+      "an empty picture is written with a warning (rc %d: %s)" % (rc, se.strip()[:100]))
+
 # Bad input.
 for args, words in [(["--method", "magic", bunny, "-o", "x.png"], "--method is"),
                     (["--rays", "0", bunny, "-o", "x.png"], "--rays"),
@@ -443,6 +452,10 @@ for args, words in [(["--method", "magic", bunny, "-o", "x.png"], "--method is")
                     (["--falloff", "cubic", bunny, "-o", "x.png"], "--falloff is"),
                     (["--slices", "100", bunny, "-o", "x.png"], "multiple of 32"),
                     (["--grid", "polar", bunny, "-o", "x.png"], "--grid is world, eye or frustum"),
+                    (["--grid", "frustum", "--image", "5000x4000", "--slices", "32", bunny, "-o", "x.png"],
+                     "at most 16777216 (4096 x 4096)"),
+                    (["--grid", "frustum", "--image", "4096x4096", "--slices", "1024", bunny, "-o", "x.png"],
+                     "at most 1024 MiB"),
                     (["--shape", "cube", bunny, "-o", "x.png"], "give --volume"),
                     (["--size", "2", bunny, "-o", "x.png"], "give --volume"),
                     (["--volume", block_vti, "--method", "ssao", bunny, "-o", "x.png"], "in --method vct"),

@@ -412,7 +412,10 @@ bool VCTEngine::Voxelize(const BitGrid& shape, const std::vector<MeshView>& mesh
       gl.Uniform1i(rasterize.Uniform(gl, "solid"), openEdges[m] == 0 ? 1 : 0);
       gl.Uniform1i(rasterize.Uniform(gl, "surfaceVoxels"), surfaceVoxels ? 1 : 0);
       if (frustum)
+      {
         gl.Uniform1i(rasterize.Uniform(gl, "perspective"), shape.frustum.perspective ? 1 : 0);
+        gl.Uniform2d(rasterize.Uniform(gl, "shell"), shape.frustum.shellScale, 0.0);
+      }
       DispatchLinear(gl, triangles);
       gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }

@@ -116,7 +116,18 @@ void RasterizeFrustum(const BitGrid& grid, const std::vector<double>& soup, bool
         // its own slice 0, not slice -1, or a shell would lose it.
         if (s < 0.0 && s > -0.5)
           s = 0.0;
-        Cross(&one[col * grid.words], grid.slices, grid.words, s, solid);
+        if (solid)
+          Cross(&one[col * grid.words], grid.slices, grid.words, s, true);
+        else
+        {
+          // A shell a pixel deep (its voxels as wide as they are deep, as a
+          // world grid's): the rays, stepping a pixel, cannot skip it.
+          const double t = (f.perspective ? depth : 1.0) * f.shellScale * f.slicesPerDepth[col];
+          const double k = std::floor(s);
+          const double n = std::min(static_cast<double>(grid.slices), std::max(1.0, std::ceil(t)));
+          for (double kk = std::max(k, 0.0); kk < k + n && kk < grid.slices; kk += 1.0)
+            Cross(&one[col * grid.words], grid.slices, grid.words, kk, false);
+        }
         if (surface)
           Cross(&(*surface)[col * grid.words], grid.slices, grid.words, s, false);
         parity[col] ^= 1;
@@ -489,6 +500,20 @@ bool PlanEyeGrid(const std::vector<MeshView>& meshes, const std::array<double, 9
   return true;
 }
 
+std::string CheckFrustumSize(int width, int height, int slices)
+{
+  const std::int64_t columns = static_cast<std::int64_t>(std::max(width, 0)) * std::max(height, 0);
+  if (columns > BitGrid::MaximumColumns)
+    return "the frustum grid would have " + std::to_string(columns) + " columns (" + std::to_string(width) +
+      " x " + std::to_string(height) + " pixels); at most " + std::to_string(BitGrid::MaximumColumns) +
+      " (4096 x 4096)";
+  if (columns * (std::max(slices, 0) / 8) > BitGrid::MaximumFrustumBytes)
+    return "the frustum grid would take " + std::to_string(columns * (slices / 8) >> 20) + " MiB of bits (" +
+      std::to_string(width) + " x " + std::to_string(height) + " columns, " + std::to_string(slices) +
+      " slices); at most " + std::to_string(BitGrid::MaximumFrustumBytes >> 20) + " MiB";
+  return std::string();
+}
+
 bool PlanFrustumGrid(const std::vector<MeshView>& meshes, const PixelCamera& camera,
   const SurfaceFrame* frame, int slices, BitGrid& grid, std::string& error)
 {
@@ -501,21 +526,9 @@ bool PlanFrustumGrid(const std::vector<MeshView>& meshes, const PixelCamera& cam
     return false;
   }
   const std::int64_t columns = static_cast<std::int64_t>(camera.width) * camera.height;
-  if (columns > BitGrid::MaximumColumns)
-  {
-    error = "the frustum grid would have " + std::to_string(columns) + " columns (" +
-      std::to_string(camera.width) + " x " + std::to_string(camera.height) + " pixels); at most " +
-      std::to_string(BitGrid::MaximumColumns);
+  error = CheckFrustumSize(camera.width, camera.height, slices);
+  if (!error.empty())
     return false;
-  }
-  if (columns * (slices / 8) > BitGrid::MaximumFrustumBytes)
-  {
-    error = "the frustum grid would take " + std::to_string(columns * (slices / 8) >> 20) +
-      " MiB of bits (" + std::to_string(camera.width) + " x " + std::to_string(camera.height) +
-      " columns, " + std::to_string(slices) + " slices); at most " +
-      std::to_string(BitGrid::MaximumFrustumBytes >> 20) + " MiB";
-    return false;
-  }
   if (frame && (frame->width != camera.width || frame->height != camera.height ||
                  frame->position.size() != static_cast<std::size_t>(3 * columns) ||
                  frame->triangle.size() != static_cast<std::size_t>(columns)))
@@ -568,6 +581,11 @@ bool PlanFrustumGrid(const std::vector<MeshView>& meshes, const PixelCamera& cam
     return false;
   }
   f.worldPerDepth = 1.0 / std::fabs(rate);
+  // A pixel's world width at depth 1 (perspective) or anywhere (parallel),
+  // in units of depth.
+  f.shellScale = 2.0 / (camera.width * std::fabs(m[0] / (f.perspective ? 1.0 : m[15]))) / f.worldPerDepth;
+  if (!std::isfinite(f.shellScale))
+    f.shellScale = 0.0;
   auto depthOf = [&f](const double q[3]) {
     double c[4];
     ToClip(f.toClip, q, c);

@@ -167,6 +167,10 @@ struct BitGrid
     double farDepth = 0.0;
     double worldPerDepth = 1.0;           ///< world length of one unit of depth along the view
     double medianPixel = 0.0, medianSlice = 0.0; ///< world sizes at the median visible depth
+    /// An open mesh's shell is a pixel deep, not a slice: its slices at a
+    /// crossing of depth d are ceil((perspective ? d : 1) * shellScale *
+    /// slicesPerDepth) (a pixel's width over a slice's depth there).
+    double shellScale = 0.0;
   };
   Frustum frustum;
   bool IsFrustum() const { return !this->frustum.nearDepth.empty(); }
@@ -231,6 +235,11 @@ bool PlanEyeGrid(const std::vector<MeshView>& meshes, const std::array<double, 9
 /// the eye plane keeps a right inside. At most MaximumFrustumBytes of bits.
 bool PlanFrustumGrid(const std::vector<MeshView>& meshes, const PixelCamera& camera,
   const SurfaceFrame* frame, int slices, BitGrid& grid, std::string& error);
+/// Empty when a frustum grid of width x height pixels and `slices` slices
+/// fits the limits (MaximumColumns columns, MaximumFrustumBytes of bits),
+/// else why not, with the limit: PlanFrustumGrid's check, to be made
+/// before the G-buffer is cast.
+std::string CheckFrustumSize(int width, int height, int slices);
 
 /// A mesh's triangles as a frustum grid's rasterizer sees them (the CPU's
 /// and the GPU's): per vertex pixel x, y and a key linear in screen space

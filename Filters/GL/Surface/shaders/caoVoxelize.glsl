@@ -51,6 +51,7 @@ layout(std430, binding = CAO_BINDING_VX_PARITY) buffer ParityBlock
   uint parity[];
 };
 uniform int perspective; // stage 0: the key is 1 / w (else NDC z)
+uniform dvec2 shell;     // stage 0: x, an open mesh's shell depth in slices per (depth x slices per depth)
 #endif
 
 uniform ivec4 gridSize;    // nx, ny, slices, words
@@ -117,6 +118,7 @@ void main()
       continue;
     precise double num = (ea * a.z + eb * b.z) + ec * c.z;
     precise double s = num / area;
+    double shellSlices = 1.0LF; // an open mesh's slices per crossing
 #if CAO_VX_FRUSTUM
     {
       uint col = uint(j * gridSize.x + i);
@@ -127,6 +129,9 @@ void main()
         s = 0.0LF;
       if (solid != 0)
         atomicXor(parity[col], 1u);
+      // A shell a pixel deep (RasterizeFrustum's).
+      precise double t = ((perspective != 0 ? depth : 1.0LF) * shell.x) * columnDepths[2u * col + 1u];
+      shellSlices = min(double(gridSize.z), max(1.0LF, ceil(t)));
     }
 #endif
     uint column = uint(j * gridSize.x + i) * uint(gridSize.w);
@@ -154,10 +159,11 @@ void main()
     else
     {
       double k = floor(s);
-      if (k < 0.0LF || k >= double(gridSize.z))
-        continue;
-      int kk = int(k);
-      atomicOr(bits[column + uint(kk >> 5)], 1u << uint(kk & 31));
+      for (double kk = max(k, 0.0LF); kk < k + shellSlices && kk < double(gridSize.z); kk += 1.0LF)
+      {
+        int q = int(kk);
+        atomicOr(bits[column + uint(q >> 5)], 1u << uint(q & 31));
+      }
     }
   }
 }

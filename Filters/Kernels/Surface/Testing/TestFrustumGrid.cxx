@@ -19,7 +19,8 @@
 //   negative control: the slices started at another camera's visible
 //   depths, beyond 1.5 times it;
 // - an open plane keeps its visible voxel in every covered column (its
-//   crossing rounds to just before slice 0);
+//   crossing rounds to just before slice 0), its shell a pixel deep (the
+//   slices a pixel's width spans there), not one slice;
 // - a triangle just in front of the eye plane and billions of pixels off the
 //   screen is skipped (the box clamped in double);
 // - bad input: slices, a grid over the memory limit (bits, then columns),
@@ -222,15 +223,25 @@ int TestFrustumGrid(int, char*[])
         cao::PlanFrustumGrid({ { &planePts, &planeTris } }, pc, &pf, 256, g, error) &&
         cao::FillGrid({ { &planePts, &planeTris } }, g, error),
       "%s", error.c_str());
-    long long covered = 0, kept = 0;
+    long long covered = 0, kept = 0, deep = 0, thick = 0;
     for (int j = 0; j < g.ny; ++j)
       for (int i = 0; i < g.nx; ++i)
-        if (pf.triangle[static_cast<std::size_t>(j) * g.nx + i] >= 0)
-          ++covered, kept += g.Bit(i, j, 0);
-    std::printf("an open plane: %lld open edges, its visible voxel kept in %lld of %lld covered columns\n",
-      static_cast<long long>(g.openEdges[0]), kept, covered);
-    CAO_CHECK(g.openEdges[0] == 4 && covered > 2000 && kept == covered, "open plane: %lld of %lld", kept,
-      covered);
+      {
+        const std::size_t col = static_cast<std::size_t>(j) * g.nx + i;
+        if (pf.triangle[col] < 0)
+          continue;
+        ++covered, kept += g.Bit(i, j, 0);
+        // Its shell a pixel deep: ceil(depth x shellScale x slices per depth) slices.
+        const double expected = std::ceil(g.frustum.nearDepth[col] * g.frustum.shellScale * g.frustum.slicesPerDepth[col]);
+        const int bits = g.CountBits(i, j, 0, g.slices - 1);
+        deep += std::fabs(bits - std::max(1.0, expected)) <= 1.0; // the crossing's depth rounds either way
+        thick += bits > 1;
+      }
+    std::printf("an open plane: %lld open edges, its visible voxel kept in %lld of %lld covered columns; its shell a "
+                "pixel deep in %lld (more than one slice in %lld)\n",
+      static_cast<long long>(g.openEdges[0]), kept, covered, deep, thick);
+    CAO_CHECK(g.openEdges[0] == 4 && covered > 2000 && kept == covered && deep == covered && thick > covered / 2,
+      "open plane: %lld of %lld, %lld deep", kept, covered, deep);
   }
 
   // 3. Cone tracing against its own definition: the solid half-space x > a
