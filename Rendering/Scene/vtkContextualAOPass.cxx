@@ -233,9 +233,11 @@ struct vtkContextualAOPass::Internals
   std::vector<double> sceneKey;
   cao::TriangleBVH bvh;
   cao::BitGrid grid;
-  // The frustum grid's meshes, voxelized after each G-buffer.
+  // The frustum grid's meshes, voxelized after each G-buffer (their open
+  // edges counted once).
   std::vector<std::vector<double>> meshPoints;
   std::vector<std::vector<std::int64_t>> meshTriangles;
+  std::vector<std::int64_t> meshOpenEdges;
   double radius = 0.0;
   int open = 0;
   int serial = 0; ///< grids built
@@ -759,6 +761,9 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
     // pixels' visible depths.
     this->meshPoints = std::move(points);
     this->meshTriangles = std::move(triangles);
+    this->meshOpenEdges.clear();
+    for (std::size_t i = 0; i < this->meshPoints.size(); ++i)
+      this->meshOpenEdges.push_back(cao::OpenEdges({ &this->meshPoints[i], &this->meshTriangles[i] }));
     this->sceneKey = this->frameSceneKey;
     ++this->serial;
     this->Stage("scene", start);
@@ -766,6 +771,7 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
   }
   this->meshPoints.clear();
   this->meshTriangles.clear();
+  this->meshOpenEdges.clear();
   std::vector<cao::MeshView> views;
   for (std::size_t i = 0; i < points.size(); ++i)
     views.push_back({ &points[i], &triangles[i] });
@@ -1010,7 +1016,7 @@ bool vtkContextualAOPass::Internals::VoxelizeFrustum(vtkContextualAOPass* self, 
   // The frustum grid of this camera and G-buffer (on the CPU or the GPU).
   std::vector<cao::MeshView> views;
   for (std::size_t i = 0; i < this->meshPoints.size(); ++i)
-    views.push_back({ &this->meshPoints[i], &this->meshTriangles[i] });
+    views.push_back({ &this->meshPoints[i], &this->meshTriangles[i], this->meshOpenEdges[i] });
   std::string error;
   this->grid = cao::BitGrid();
   if (!cao::PlanFrustumGrid(views, this->pixels, &this->frame, self->Slices, this->grid, error) ||

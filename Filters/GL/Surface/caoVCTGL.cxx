@@ -344,7 +344,7 @@ bool VCTEngine::Voxelize(const BitGrid& shape, const std::vector<MeshView>& mesh
       for (std::size_t k = 0; k < ids[m].size(); ++k)
         ids[m][k] = static_cast<std::int32_t>(k);
     }
-    openEdges.push_back(OpenEdges(mesh));
+    openEdges.push_back(mesh.openEdges >= 0 ? mesh.openEdges : OpenEdges(mesh));
   }
   CurrentScope scope(p.Ctx);
   if (!scope.Ok(error))

@@ -406,7 +406,7 @@ bool PlanGrid(const std::array<double, 6>& bounds, double padding, int slices, B
 bool GridPoints(const BitGrid& grid, const std::vector<double>& points, std::vector<double>& out,
   std::string& error)
 {
-  out.resize(points.size());
+  out.clear();
   for (std::size_t i = 0; i < points.size(); ++i)
   {
     if (!std::isfinite(points[i]))
@@ -415,6 +415,9 @@ bool GridPoints(const BitGrid& grid, const std::vector<double>& points, std::vec
       return false;
     }
   }
+  if (grid.IsFrustum())
+    return true;
+  out.resize(points.size());
   for (std::size_t i = 0; i + 2 < points.size(); i += 3)
   {
     double g[3];
@@ -724,7 +727,7 @@ bool FillGrid(const std::vector<MeshView>& meshes, BitGrid& grid, std::string& e
     std::vector<double> g;
     if (!GridPoints(grid, p, g, error))
       return false;
-    const std::int64_t open = OpenEdges(mesh);
+    const std::int64_t open = mesh.openEdges >= 0 ? mesh.openEdges : OpenEdges(mesh);
     grid.openEdges.push_back(open);
     const bool solid = open == 0;
     one.assign(columnWords, 0u);

@@ -125,6 +125,10 @@ struct MeshView
 {
   const std::vector<double>* points = nullptr;
   const std::vector<std::int64_t>* triangles = nullptr;
+  /// Its OpenEdges when the caller knows them (a mesh voxelized again and
+  /// again, as a frustum grid's at every camera change); -1: counted by
+  /// the voxelizer.
+  std::int64_t openEdges = -1;
 };
 
 /// The number of edges of a triangle mesh used by exactly one triangle
@@ -307,7 +311,9 @@ bool BuildVCTPlan(const VCTSettings& settings, const BitGrid& grid, VCTPlan& pla
 bool PlanGrid(const std::array<double, 6>& bounds, double padding, int slices, BitGrid& grid,
   std::string& error);
 /// A mesh's points in the grid's units, (p - origin) / voxel, as the
-/// voxelizer (CPU or GPU) rasterizes them. False on a NaN or infinity.
+/// voxelizer (CPU or GPU) rasterizes them. False on a NaN or infinity. A
+/// frustum grid's points go through FrustumScreenTriangles instead: for it
+/// the check alone, `out` empty.
 bool GridPoints(const BitGrid& grid, const std::vector<double>& points, std::vector<double>& out,
   std::string& error);
 /// The parameter block of the GPU cone tracer for `plan` on `grid`, for
