@@ -35,6 +35,14 @@
 namespace
 {
 int failures = 0;
+
+/// How far an RGBA8 channel the combine writes may lie from the formula
+/// evaluated in double: 0.6 of a step. The shader computes in float and the
+/// GPU converts float to UNORM8; Direct3D's conversion rule (which NVIDIA's
+/// OpenGL follows) allows 0.6 ULP, not the 0.5 of exact rounding. Seen: 0.5
+/// step on Mesa llvmpipe, 0.56 on an NVIDIA H200 (driver 580.159.04).
+constexpr double kUnormTolerance = 0.6 / 255.0 + 1e-6;
+
 void Check(bool ok, const std::string& what)
 {
   std::printf("%s: %s\n", ok ? "ok" : "FAIL", what.c_str());
@@ -353,10 +361,11 @@ int TestGLFrame(int argc, char* argv[])
         worst = std::max(worst, std::fabs(px[4 * k + c] / 255.0 - expect));
       }
     std::snprintf(text, sizeof(text),
-      "the combine (%s) written back: every channel within %.4f of the formula (RGBA8: half a step is 0.0020; "
+      "the combine (%s) written back: every channel within %.4f of the formula (RGBA8: a float's conversion may be "
+      "0.6 of a step off, 0.0024; "
       "control: %.4f from it at strength 1), %d pixels darkened, %d background pixels kept %s",
       whole ? "whole colour" : "ambient term", worst, worstOther, darkened, background, error.c_str());
-    Check(ok && worst <= 0.5 / 255.0 + 1e-6 && worstOther > 2.0 / 255.0 && darkened > 1000 &&
+    Check(ok && worst <= kUnormTolerance && worstOther > 2.0 / 255.0 && darkened > 1000 &&
         background == static_cast<int>(aoBlit.size()) - static_cast<int>(cpu.covered), text);
   }
 
