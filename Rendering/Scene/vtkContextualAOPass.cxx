@@ -231,7 +231,8 @@ struct vtkContextualAOPass::Internals
   std::vector<double> frameSceneKey, frameVolumeKey;
   // What the grid was built from, and the grid.
   std::vector<double> sceneKey;
-  cao::TriangleBVH bvh;
+  cao::TriangleBVH bvh; ///< built only for a ray-cast G-buffer (EnsureBVH)
+  std::int64_t triangles = 0; ///< the scene's triangles (the report's)
   cao::BitGrid grid;
   // The frustum grid's meshes, voxelized after each G-buffer (their open
   // edges counted once).
@@ -295,6 +296,9 @@ struct vtkContextualAOPass::Internals
   void Collect(vtkContextualAOPass* self, vtkRenderer* ren);
   bool ResolveBackend(vtkContextualAOPass* self, vtkRenderer* ren);
   bool UpdateGrid(vtkContextualAOPass* self);
+  void Gather(std::vector<std::vector<double>>& points, std::vector<std::vector<std::int64_t>>& triangles,
+    std::vector<double>& all, std::vector<std::int64_t>& allTris) const;
+  bool EnsureBVH(vtkContextualAOPass* self);
   bool VoxelizeFrustum(vtkContextualAOPass* self, Clock::time_point& start);
   bool UpdateVolumes(vtkContextualAOPass* self);
   std::vector<double> ViewKey(vtkContextualAOPass* self, vtkRenderer* ren, vtkMatrix4x4*& toNDC);
@@ -444,7 +448,8 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
   o << "}, \"reasons\": [";
   for (std::size_t i = 0; i < p.reasons.size(); ++i)
     o << (i ? ", " : "") << "\"" << p.reasons[i] << "\"";
-  o << "], \"triangles\": " << p.bvh.NumberOfTriangles() << ", \"open_meshes\": " << p.open
+  o << "], \"triangles\": " << p.triangles << ", \"bvh\": " << (p.bvh.NumberOfTriangles() > 0 ? "true" : "false")
+    << ", \"open_meshes\": " << p.open
     << ", \"occluding_volumes\": " << p.opacity.size() << ", \"radius\": " << p.radius
     << ", \"slices\": " << p.grid.slices << ", \"covered_pixels\": " << p.frame.covered
     << ", \"combined_pixels\": " << p.combined << ", \"hidden_pixels\": " << p.hidden
@@ -672,27 +677,12 @@ bool vtkContextualAOPass::Internals::ResolveBackend(vtkContextualAOPass* self, v
   return true;
 }
 
-bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
+void vtkContextualAOPass::Internals::Gather(std::vector<std::vector<double>>& points,
+  std::vector<std::vector<std::int64_t>>& triangles, std::vector<double>& all,
+  std::vector<std::int64_t>& allTris) const
 {
-  // Only when the geometry, a pose, the grid settings or (eye grid) the
-  // camera's orientation changed.
-  if (this->frameSceneKey == this->sceneKey)
-    return true;
-  if (this->frameSceneKey == this->failedSceneKey)
-  {
-    this->error = "the scene could not be voxelized (said once; change it to try again)";
-    return false;
-  }
-  const auto start = Clock::now();
-  const bool vct = self->Method == VCT, needBVH = vct || this->gbuffer == RAY_CAST;
-  this->reasons.push_back(this->sceneKey.empty() ? "first frame"
-      : vct && self->Grid == EYE_GRID            ? "geometry, grid or camera orientation changed"
-      : vct                                      ? "geometry or grid changed"
-                                                 : "geometry or method changed");
-  std::vector<std::vector<double>> points;
-  std::vector<std::vector<std::int64_t>> triangles;
-  std::vector<double> all;
-  std::vector<std::int64_t> allTris;
+  // Each piece's triangles in world coordinates (its actor's matrix
+  // applied), per piece and all together.
   for (const auto& piece : this->pieces)
   {
     std::vector<double> pts;
@@ -714,9 +704,57 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
     points.push_back(std::move(pts));
     triangles.push_back(std::move(tris));
   }
+}
+
+bool vtkContextualAOPass::Internals::EnsureBVH(vtkContextualAOPass* self)
+{
+  // The ray-cast G-buffer's BVH, for a scene voxelized without one (the
+  // G-buffer was the drawn depth then); built once per scene.
+  if (this->bvh.NumberOfTriangles() > 0)
+    return true;
+  const auto start = Clock::now();
+  std::vector<std::vector<double>> points;
+  std::vector<std::vector<std::int64_t>> triangles;
+  std::vector<double> all;
+  std::vector<std::int64_t> allTris;
+  this->Gather(points, triangles, all, allTris);
+  std::string error;
+  if (!this->bvh.Build(all, allTris, error) || this->bvh.NumberOfTriangles() == 0)
+    return this->Fail(self, "Cannot build the scene: " +
+        (error.empty() ? std::string("the actors have no triangle with an area") : error));
+  this->triangles = this->bvh.NumberOfTriangles();
+  this->Stage("scene", start);
+  return true;
+}
+
+bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
+{
+  // Only when the geometry, a pose, the grid settings or (eye grid) the
+  // camera's orientation changed.
+  if (this->frameSceneKey == this->sceneKey)
+    return true;
+  if (this->frameSceneKey == this->failedSceneKey)
+  {
+    this->error = "the scene could not be voxelized (said once; change it to try again)";
+    return false;
+  }
+  const auto start = Clock::now();
+  // The BVH only for the ray-cast G-buffer (the grids are voxelized from
+  // the triangles; a G-buffer changed later builds it then: EnsureBVH).
+  const bool vct = self->Method == VCT, needBVH = this->gbuffer == RAY_CAST;
+  this->reasons.push_back(this->sceneKey.empty() ? "first frame"
+      : vct && self->Grid == EYE_GRID            ? "geometry, grid or camera orientation changed"
+      : vct                                      ? "geometry or grid changed"
+                                                 : "geometry or method changed");
+  std::vector<std::vector<double>> points;
+  std::vector<std::vector<std::int64_t>> triangles;
+  std::vector<double> all;
+  std::vector<std::int64_t> allTris;
+  this->Gather(points, triangles, all, allTris);
   this->sceneKey.clear();
   this->grid = cao::BitGrid();
   this->bvh = cao::TriangleBVH();
+  this->triangles = static_cast<std::int64_t>(allTris.size() / 3);
   this->open = 0;
   std::string error;
   std::array<double, 6> b{ { 1, -1, 1, -1, 1, -1 } };
@@ -729,11 +767,17 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
           (error.empty() ? std::string("the actors have no triangle with an area") : error));
     }
     b = this->bvh.Bounds();
+    this->triangles = this->bvh.NumberOfTriangles();
   }
   else
     for (std::size_t i = 0; i + 2 < all.size(); i += 3)
       for (int d = 0; d < 3; ++d)
       {
+        if (!std::isfinite(all[i + d]))
+        {
+          this->failedSceneKey = this->frameSceneKey;
+          return this->Fail(self, "Cannot build the scene: the mesh has a NaN or infinite coordinate");
+        }
         b[2 * d] = std::min(b[2 * d], all[i + d]);
         b[2 * d + 1] = std::max(b[2 * d + 1], all[i + d]);
       }
@@ -940,6 +984,8 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
   int width = 0, height = 0, x0 = 0, y0 = 0;
   ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
   vtkMatrix4x4* toNDC = nullptr;
+  if (this->gbuffer == RAY_CAST && !this->EnsureBVH(self))
+    return false;
   std::vector<double> key = this->ViewKey(self, ren, toNDC);
   std::string error;
   auto start = Clock::now();

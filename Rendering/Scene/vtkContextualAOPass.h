@@ -44,7 +44,9 @@
  *    grid) the camera's orientation changed; a closed mesh is filled, an
  *    open one is a shell (GetNumberOfOpenMeshes); "scene" (HBAO, VAO): the
  *    same triangles for the ray cast only (or, with DEPTH_BUFFER, their
- *    bounds for the default radius), no grid;
+ *    bounds for the default radius), no grid. The ray cast's BVH is built
+ *    only for the RAY_CAST G-buffer (the report's "bvh"); asked for later
+ *    on the same scene, it is built then ("scene"), without a new grid;
  *  - "volumes": the clipped opacity of the visible volumes
  *    (vtkCAOSceneVolume), only when a volume, its data, its opacity
  *    function, its pose or its clip shapes changed (OccludingVolumes on,

@@ -6,9 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <map>
 #include <thread>
-#include <unordered_map>
 
 namespace cao
 {
@@ -298,30 +296,49 @@ bool ParseVCTOccupancy(const std::string& text, VCTOccupancy& occupancy)
 
 std::int64_t OpenEdges(const MeshView& mesh)
 {
-  // Points at the same coordinates are one point (readers may duplicate them).
+  // Points at the same coordinates are one point (readers may duplicate
+  // them): each point's id is the first of its coordinates in sorted order.
+  // Then every edge (its two ids, smaller first) sorted: an edge used by
+  // other than two triangles is open. Sorting, not maps: 894 thousand
+  // triangles in a fraction of the maps' time.
   const std::vector<double>& p = *mesh.points;
-  std::map<std::array<double, 3>, std::int64_t> unique;
-  std::vector<std::int64_t> canonical(p.size() / 3);
-  for (std::size_t i = 0; i < canonical.size(); ++i)
-    canonical[i] = unique.emplace(std::array<double, 3>{ { p[3 * i], p[3 * i + 1], p[3 * i + 2] } },
-                           static_cast<std::int64_t>(unique.size()))
-                     .first->second;
-  std::unordered_map<std::uint64_t, int> uses;
+  const std::size_t n = p.size() / 3;
+  auto less = [&p](std::size_t a, std::size_t b) {
+    return std::lexicographical_compare(&p[3 * a], &p[3 * a + 3], &p[3 * b], &p[3 * b + 3]);
+  };
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i)
+    order[i] = i;
+  // (A NaN has no order: with one, no point is merged; the voxelizers
+  // refuse such a mesh.)
+  const bool finite = std::all_of(p.begin(), p.end(), [](double c) { return std::isfinite(c); });
+  if (finite)
+    std::sort(order.begin(), order.end(), less);
+  std::vector<std::uint64_t> canonical(n);
+  for (std::size_t k = 0; k < n; ++k)
+    canonical[order[k]] = finite && k > 0 && !less(order[k - 1], order[k]) ? canonical[order[k - 1]] : k;
   const std::vector<std::int64_t>& t = *mesh.triangles;
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> edges;
+  edges.reserve(t.size());
   for (std::size_t f = 0; f + 2 < t.size(); f += 3)
     for (int e = 0; e < 3; ++e)
     {
-      std::uint64_t a = static_cast<std::uint64_t>(canonical[static_cast<std::size_t>(t[f + e])]);
-      std::uint64_t b = static_cast<std::uint64_t>(canonical[static_cast<std::size_t>(t[f + (e + 1) % 3])]);
+      std::uint64_t a = canonical[static_cast<std::size_t>(t[f + e])];
+      std::uint64_t b = canonical[static_cast<std::size_t>(t[f + (e + 1) % 3])];
       if (a == b)
         continue;
-      if (a > b)
-        std::swap(a, b);
-      ++uses[(a << 32) ^ b];
+      edges.emplace_back(std::min(a, b), std::max(a, b));
     }
+  std::sort(edges.begin(), edges.end());
   std::int64_t open = 0;
-  for (const auto& u : uses)
-    open += u.second != 2;
+  for (std::size_t k = 0; k < edges.size();)
+  {
+    std::size_t run = k + 1;
+    while (run < edges.size() && edges[run] == edges[k])
+      ++run;
+    open += run - k != 2;
+    k = run;
+  }
   return open;
 }
 

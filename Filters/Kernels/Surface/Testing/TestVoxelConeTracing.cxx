@@ -61,6 +61,38 @@ double CapFraction(double cx, double r, double a)
 int TestVoxelConeTracing(int, char*[])
 {
   std::string error;
+  // OpenEdges: a box whose triangles each have their own three points (as
+  // STL gives them) is closed; one triangle less opens 3 edges; a third
+  // triangle on an edge makes it non-manifold (counted); with a NaN
+  // coordinate no point is merged (negative control: all 36 edges open).
+  {
+    std::vector<double> p, q;
+    std::vector<std::int64_t> t, s;
+    Box(0.0, 1.0, p, t);
+    for (std::int64_t id : t)
+    {
+      q.insert(q.end(), { p[3 * id], p[3 * id + 1], p[3 * id + 2] });
+      s.push_back(static_cast<std::int64_t>(s.size()));
+    }
+    const std::int64_t closed = cao::OpenEdges({ &q, &s });
+    std::vector<std::int64_t> cut(s.begin() + 3, s.end());
+    const std::int64_t opened = cao::OpenEdges({ &q, &cut });
+    std::vector<double> fin = q;
+    std::vector<std::int64_t> three = s;
+    fin.insert(fin.end(), { 0.5, 0.5, 2.0 });
+    three.insert(three.end(), { 0, 1, static_cast<std::int64_t>(fin.size() / 3 - 1) });
+    const std::int64_t nonManifold = cao::OpenEdges({ &fin, &three });
+    std::vector<double> nan = q;
+    nan[0] = std::nan("");
+    const std::int64_t unmerged = cao::OpenEdges({ &nan, &s });
+    std::printf("open edges: closed box (unshared points) %lld, one triangle less %lld, a third triangle on an "
+                "edge %lld, a NaN (no merging) %lld\n",
+      static_cast<long long>(closed), static_cast<long long>(opened), static_cast<long long>(nonManifold),
+      static_cast<long long>(unmerged));
+    CAO_CHECK(closed == 0 && opened == 3 && nonManifold == 3 && unmerged == 36, "open edges %lld %lld %lld %lld",
+      static_cast<long long>(closed), static_cast<long long>(opened), static_cast<long long>(nonManifold),
+      static_cast<long long>(unmerged));
+  }
   // The cube on column centres: h = 1/16, origin -1; vertices at
   // -1 + 8.5/16 and -1 + 23.5/16.
   {

@@ -595,7 +595,8 @@ int TestContextualAOPass(int, char*[])
     window->Render();
     const std::string report = pass->GetLastFrameReport();
     Check(pass->GetLastFrameStages() == "scene,gbuffer,trace,combine" &&
-        report.find("\"triangles\": 0,") != std::string::npos && pass->GetPixelAO(cx, cy) < 0.9,
+        report.find("\"bvh\": false") != std::string::npos && report.find("\"triangles\": 0,") == std::string::npos &&
+        pass->GetPixelAO(cx, cy) < 0.9,
       "VAO on the depth G-buffer builds no BVH (" + pass->GetLastFrameStages() + ")");
     pass->SetGBuffer(vtkContextualAOPass::RAY_CAST);
     pass->SetApplyTo(vtkContextualAOPass::AMBIENT_TERM);
@@ -1367,6 +1368,19 @@ int TestContextualAOPass(int, char*[])
     window->Render();
     Check(pass->GetLastFrameStages() == "voxelize,gbuffer,trace,ambient,combine" && pass->GetPixelAO(cx, cy) >= 0.0,
       "GPU frame: after ReleaseGraphicsResources voxelized and traced again (" + pass->GetLastFrameStages() + ")");
+    // The grid from the triangles, the G-buffer from the drawn depth: no
+    // BVH; a ray-cast G-buffer asked later builds it then, not the grid.
+    const std::string noBVH = pass->GetLastFrameReport();
+    const int grids = pass->GetVoxelizeCount();
+    pass->SetGBuffer(vtkContextualAOPass::RAY_CAST);
+    window->Render();
+    const std::string withBVH = pass->GetLastFrameReport();
+    const std::string rayStages = pass->GetLastFrameStages();
+    Check(noBVH.find("\"bvh\": false") != std::string::npos && noBVH.find("\"triangles\": 0,") == std::string::npos &&
+        withBVH.find("\"bvh\": true") != std::string::npos && rayStages == "scene,primary,trace,ambient,combine" &&
+        pass->GetVoxelizeCount() == grids && pass->GetPixelAO(cx, cy) >= 0.0,
+      "VCT on the depth G-buffer builds no BVH; the ray cast asked later builds it, not the grid (" + rayStages + ")");
+    pass->SetGBuffer(vtkContextualAOPass::DEPTH_BUFFER);
     window->SetMultiSamples(4);
     window->Render();
     const std::string msaa = pass->GetLastFrameReport();
