@@ -232,7 +232,7 @@ struct vtkContextualAOPass::Internals
   // What the grid was built from, and the grid.
   std::vector<double> sceneKey;
   cao::TriangleBVH bvh; ///< built only for a ray-cast G-buffer (EnsureBVH)
-  std::int64_t triangles = 0; ///< the scene's triangles (the report's)
+  std::int64_t triangles = 0; ///< the triangles the actors hold, degenerate ones too (the report's)
   cao::BitGrid grid;
   // The frustum grid's meshes, voxelized after each G-buffer (their open
   // edges counted once).
@@ -722,7 +722,6 @@ bool vtkContextualAOPass::Internals::EnsureBVH(vtkContextualAOPass* self)
   if (!this->bvh.Build(all, allTris, error) || this->bvh.NumberOfTriangles() == 0)
     return this->Fail(self, "Cannot build the scene: " +
         (error.empty() ? std::string("the actors have no triangle with an area") : error));
-  this->triangles = this->bvh.NumberOfTriangles();
   this->Stage("scene", start);
   return true;
 }
@@ -767,7 +766,6 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
           (error.empty() ? std::string("the actors have no triangle with an area") : error));
     }
     b = this->bvh.Bounds();
-    this->triangles = this->bvh.NumberOfTriangles();
   }
   else
     for (std::size_t i = 0; i + 2 < all.size(); i += 3)
