@@ -42,6 +42,7 @@
 #include "caoVoxelConeTracing.h"
 
 #include <algorithm>
+#include <limits>
 #include <chrono>
 #include <cstring>
 #include <cmath>
@@ -756,7 +757,8 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
   this->triangles = static_cast<std::int64_t>(allTris.size() / 3);
   this->open = 0;
   std::string error;
-  std::array<double, 6> b{ { 1, -1, 1, -1, 1, -1 } };
+  const double inf = std::numeric_limits<double>::infinity();
+  std::array<double, 6> b{ { inf, -inf, inf, -inf, inf, -inf } }; // min > max: empty
   if (needBVH)
   {
     if (!this->bvh.Build(all, allTris, error) || this->bvh.NumberOfTriangles() == 0)

@@ -1471,6 +1471,48 @@ int TestContextualAOPass(int, char*[])
     pass->SetMethod(vtkContextualAOPass::VCT);
     pass->SetGBuffer(vtkContextualAOPass::RAY_CAST);
   }
+  // The default radius (Radius 0): 0.1 x the diagonal of the scene's own
+  // bounds, also far from the origin and with the depth G-buffer, where no
+  // BVH gives the bounds (a box started as the unit cube around the origin
+  // reached from there to the scene: the radius of a larger scene).
+  {
+    const double shift = 100.0;
+    slabActor->SetPosition(shift, shift, shift);
+    sphereActor->SetPosition(shift, shift, shift);
+    camera->SetPosition(shift, shift - 6, shift + 4);
+    camera->SetFocalPoint(shift, shift, shift + 0.2);
+    renderer->ResetCameraClippingRange();
+    double b[6];
+    renderer->ComputeVisiblePropBounds(b);
+    const double expected = 0.1 * std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
+      (b[5] - b[4]) * (b[5] - b[4]));
+    pass->SetRadius(0.0);
+    pass->SetBackend(vtkContextualAOPass::BACKEND_CPU);
+    std::string seen;
+    bool all = true;
+    for (int method : { vtkContextualAOPass::VCT, vtkContextualAOPass::HBAO })
+      for (int gbuffer : { vtkContextualAOPass::RAY_CAST, vtkContextualAOPass::DEPTH_BUFFER })
+      {
+        pass->SetMethod(method);
+        pass->SetGBuffer(gbuffer);
+        window->Render();
+        const std::string report = pass->GetLastFrameReport();
+        const std::size_t at = report.find("\"radius\": ");
+        const double radius = at == std::string::npos ? -1.0 : std::atof(report.c_str() + at + 10);
+        all = all && std::fabs(radius - expected) <= 1e-5 * expected;
+        seen += (seen.empty() ? "" : ", ") + std::to_string(radius);
+      }
+    Check(all, "the default radius is 0.1 x the scene's diagonal far from the origin, VCT and HBAO on the ray cast "
+               "and the drawn depth: " + seen + " (expected " + std::to_string(expected) + ")");
+    slabActor->SetPosition(0, 0, 0);
+    sphereActor->SetPosition(0, 0, 0);
+    camera->SetPosition(0, -6, 4);
+    camera->SetFocalPoint(0, 0, 0.2);
+    renderer->ResetCameraClippingRange();
+    pass->SetRadius(0.8);
+    pass->SetMethod(vtkContextualAOPass::VCT);
+    pass->SetGBuffer(vtkContextualAOPass::RAY_CAST);
+  }
   std::printf("%d failure(s)\n", failures);
   return failures ? 1 : 0;
 }
