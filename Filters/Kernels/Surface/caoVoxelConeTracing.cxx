@@ -133,6 +133,69 @@ void RasterizeFrustum(const BitGrid& grid, const std::vector<double>& soup, bool
   }
 }
 
+/// One mesh's triangles (grid coordinates `g`, ids `t`) rasterized along a
+/// world or eye grid's columns at their centres with the top-left rule:
+/// `parity` XOR-filled from each crossing to the column's top (a closed
+/// mesh's inside), `surface` each crossing's own slice, `shell` an open
+/// mesh's slices (the triangle's plane over a column's width around each
+/// crossing, within the triangle's own slices: a steep surface leaves no
+/// gap between neighbouring columns). Null: not made.
+void RasterizeColumns(const BitGrid& grid, const std::vector<double>& g, const std::vector<std::int64_t>& t,
+  std::uint32_t* parity, std::uint32_t* surface, std::uint32_t* shell)
+{
+  const int slices = grid.slices;
+  for (std::size_t f = 0; f + 2 < t.size(); f += 3)
+  {
+    double v[3][3];
+    for (int k = 0; k < 3; ++k)
+      for (int d = 0; d < 3; ++d)
+        v[k][d] = g[static_cast<std::size_t>(3 * t[f + k] + d)];
+    double area = Edge(v[0], v[1], v[2][0], v[2][1]);
+    if (area == 0.0)
+      continue; // edge-on along z: no column crosses it
+    const double* a = v[0];
+    const double* b = area > 0.0 ? v[1] : v[2];
+    const double* c = area > 0.0 ? v[2] : v[1];
+    area = std::fabs(area);
+    const double minX = std::min({ a[0], b[0], c[0] }), maxX = std::max({ a[0], b[0], c[0] });
+    const double minY = std::min({ a[1], b[1], c[1] }), maxY = std::max({ a[1], b[1], c[1] });
+    const int i0 = std::max(0, static_cast<int>(std::ceil(minX - 0.5)));
+    const int i1 = std::min(grid.nx - 1, static_cast<int>(std::floor(maxX - 0.5)));
+    const int j0 = std::max(0, static_cast<int>(std::ceil(minY - 0.5)));
+    const int j1 = std::min(grid.ny - 1, static_cast<int>(std::floor(maxY - 0.5)));
+    // An open mesh's shell: at each crossing the slices the triangle's
+    // plane spans over a column's width around it (half its rise over
+    // one column in x plus one in y, each way), within the triangle's own
+    // slices, so that a steep surface leaves no gap between neighbouring
+    // columns for a ray to pass (one slice per crossing did).
+    const double gx = (-(c[1] - b[1]) * a[2] + -(a[1] - c[1]) * b[2]) + -(b[1] - a[1]) * c[2];
+    const double gy = ((c[0] - b[0]) * a[2] + (a[0] - c[0]) * b[2]) + (b[0] - a[0]) * c[2];
+    const double spread = 0.5 * ((std::fabs(gx) + std::fabs(gy)) / area);
+    const double lowest = std::floor(std::min({ a[2], b[2], c[2] }));
+    const double highest = std::floor(std::max({ a[2], b[2], c[2] }));
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i)
+      {
+        const double px = i + 0.5, py = j + 0.5;
+        const double ea = Edge(b, c, px, py), eb = Edge(c, a, px, py), ec = Edge(a, b, px, py);
+        if (!Inside(ea, b, c) || !Inside(eb, c, a) || !Inside(ec, a, b))
+          continue;
+        const double s = ((ea * a[2] + eb * b[2]) + ec * c[2]) / area;
+        const std::size_t column = (static_cast<std::size_t>(j) * grid.nx + i) * grid.words;
+        if (parity)
+          Cross(&parity[column], slices, grid.words, s, true);
+        if (surface)
+          Cross(&surface[column], slices, grid.words, s, false); // the crossing's own slice
+        if (!shell)
+          continue;
+        const double lo = std::max(std::max(std::floor(s - spread), lowest), 0.0);
+        const double hi = std::min(std::min(std::floor(s + spread), highest), slices - 1.0);
+        for (double k = lo; k <= hi; k += 1.0)
+          Cross(&shell[column], slices, grid.words, k, false);
+      }
+  }
+}
+
 }
 
 bool FrustumScreenTriangles(const BitGrid& grid, const MeshView& mesh, std::vector<double>& soup)
@@ -764,42 +827,56 @@ bool FillGrid(const std::vector<MeshView>& meshes, BitGrid& grid, std::string& e
         grid.bits[w] |= one[w] | (surface.empty() ? 0u : surface[w]);
       continue;
     }
-    for (std::size_t f = 0; f + 2 < t.size(); f += 3)
-    {
-      double v[3][3];
-      for (int k = 0; k < 3; ++k)
-        for (int d = 0; d < 3; ++d)
-          v[k][d] = g[static_cast<std::size_t>(3 * t[f + k] + d)];
-      double area = Edge(v[0], v[1], v[2][0], v[2][1]);
-      if (area == 0.0)
-        continue; // edge-on along z: no column crosses it
-      const double* a = v[0];
-      const double* b = area > 0.0 ? v[1] : v[2];
-      const double* c = area > 0.0 ? v[2] : v[1];
-      area = std::fabs(area);
-      const double minX = std::min({ a[0], b[0], c[0] }), maxX = std::max({ a[0], b[0], c[0] });
-      const double minY = std::min({ a[1], b[1], c[1] }), maxY = std::max({ a[1], b[1], c[1] });
-      const int i0 = std::max(0, static_cast<int>(std::ceil(minX - 0.5)));
-      const int i1 = std::min(grid.nx - 1, static_cast<int>(std::floor(maxX - 0.5)));
-      const int j0 = std::max(0, static_cast<int>(std::ceil(minY - 0.5)));
-      const int j1 = std::min(grid.ny - 1, static_cast<int>(std::floor(maxY - 0.5)));
-      for (int j = j0; j <= j1; ++j)
-        for (int i = i0; i <= i1; ++i)
-        {
-          const double px = i + 0.5, py = j + 0.5;
-          const double ea = Edge(b, c, px, py), eb = Edge(c, a, px, py), ec = Edge(a, b, px, py);
-          if (!Inside(ea, b, c) || !Inside(eb, c, a) || !Inside(ec, a, b))
-            continue;
-          const double s = ((ea * a[2] + eb * b[2]) + ec * c[2]) / area;
-          const std::size_t column = (static_cast<std::size_t>(j) * grid.nx + i) * grid.words;
-          Cross(&one[column], slices, grid.words, s, solid);
-          if (solid && surfaceVoxels)
-            Cross(&surface[column], slices, grid.words, s, false); // the crossing's own slice
-        }
-    }
+    RasterizeColumns(grid, g, t, solid ? one.data() : nullptr, surface.empty() ? nullptr : surface.data(),
+      solid ? nullptr : one.data());
     for (std::size_t w = 0; w < columnWords; ++w)
       grid.bits[w] |= one[w] | (surface.empty() ? 0u : surface[w]);
   }
+  return true;
+}
+
+bool PieceBits(const MeshView& mesh, const BitGrid& grid, std::vector<std::uint32_t>* parity,
+  std::vector<std::uint32_t>* surface, std::vector<std::uint32_t>* shell, std::string& error)
+{
+  if (grid.IsFrustum() || grid.nx < 1 || grid.ny < 1 || grid.words < 1)
+  {
+    error = "PieceBits takes a planned world or eye grid";
+    return false;
+  }
+  if (!mesh.points || !mesh.triangles || mesh.points->size() % 3 || mesh.triangles->size() % 3)
+  {
+    error = "a mesh needs 3 coordinates per point and 3 ids per triangle";
+    return false;
+  }
+  const std::int64_t numPoints = static_cast<std::int64_t>(mesh.points->size() / 3);
+  for (std::int64_t id : *mesh.triangles)
+    if (id < 0 || id >= numPoints)
+    {
+      error = "a triangle refers to point " + std::to_string(id) + " of " + std::to_string(numPoints);
+      return false;
+    }
+  std::vector<double> g;
+  if (!GridPoints(grid, *mesh.points, g, error))
+    return false;
+  const std::size_t words = static_cast<std::size_t>(grid.nx) * grid.ny * grid.words;
+  for (std::vector<std::uint32_t>* v : { parity, surface, shell })
+    if (v && v->size() != words)
+      v->assign(words, 0u);
+  RasterizeColumns(grid, g, *mesh.triangles, parity ? parity->data() : nullptr,
+    surface ? surface->data() : nullptr, shell ? shell->data() : nullptr);
+  return true;
+}
+
+bool ParityClosed(const BitGrid& grid, const std::vector<std::uint32_t>& parity)
+{
+  const std::size_t columns = static_cast<std::size_t>(grid.nx) * grid.ny;
+  if (grid.slices < 1 || parity.size() != columns * grid.words)
+    return false;
+  const int top = grid.slices - 1;
+  const std::uint32_t bit = 1u << (top & 31);
+  for (std::size_t c = 0; c < columns; ++c)
+    if (parity[c * grid.words + (top >> 5)] & bit)
+      return false;
   return true;
 }
 

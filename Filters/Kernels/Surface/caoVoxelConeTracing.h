@@ -215,6 +215,22 @@ bool VoxelizeWorld(const std::vector<MeshView>& meshes, const std::array<double,
 bool FillGrid(const std::vector<MeshView>& meshes, BitGrid& grid, std::string& error,
   bool surfaceVoxels = true);
 
+/// One mesh's (or one piece of a mesh's) bits in a planned world or eye
+/// grid's columns, accumulated into the vectors given (sized to the grid's
+/// words when empty; null: not made): `parity` XOR-filled from each
+/// crossing to the column's top, as a closed mesh's inside is (the pieces
+/// of a mesh XOR into the whole mesh's), `surface` each crossing's own
+/// slice, `shell` what an open mesh leaves (the slices its plane spans over
+/// a column's width around each crossing). FillGrid's rasterization, for
+/// grids combined from pieces (several processes' pieces of one scene).
+bool PieceBits(const MeshView& mesh, const BitGrid& grid, std::vector<std::uint32_t>* parity,
+  std::vector<std::uint32_t>* surface, std::vector<std::uint32_t>* shell, std::string& error);
+
+/// Whether `parity` (PieceBits' of a mesh's pieces, XOR-ed) is a closed
+/// surface's as the grid sees it: every column crossed an even number of
+/// times, so its last slice (padding beyond the meshes) is clear.
+bool ParityClosed(const BitGrid& grid, const std::vector<std::uint32_t>& parity);
+
 /// The frame of an eye grid: the rows of a camera's view matrix (right, up,
 /// backward), orthonormalised. False if they are degenerate.
 bool EyeAxes(const double right[3], const double up[3], std::array<double, 9>& axes,

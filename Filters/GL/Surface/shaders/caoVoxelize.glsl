@@ -109,6 +109,14 @@ void main()
     return;
   int width = i1 - i0 + 1;
   int columns = width * (j1 - j0 + 1);
+#if !CAO_VX_FRUSTUM
+  // An open mesh's shell: the slices the plane spans over a column's width
+  // around each crossing, within the triangle's own (VoxelizeWorld's).
+  precise double gx = (-(c.y - b.y) * a.z + -(a.y - c.y) * b.z) + -(b.y - a.y) * c.z;
+  precise double gy = ((c.x - b.x) * a.z + (a.x - c.x) * b.z) + (b.x - a.x) * c.z;
+  precise double spread = 0.5LF * ((abs(gx) + abs(gy)) / area);
+  double lowest = floor(min(a.z, min(b.z, c.z))), highest = floor(max(a.z, max(b.z, c.z)));
+#endif
   for (int n = int(gl_LocalInvocationID.x); n < columns; n += 64)
   {
     int i = i0 + n % width, j = j0 + n / width;
@@ -118,8 +126,8 @@ void main()
       continue;
     precise double num = (ea * a.z + eb * b.z) + ec * c.z;
     precise double s = num / area;
-    double shellSlices = 1.0LF; // an open mesh's slices per crossing
 #if CAO_VX_FRUSTUM
+    double shellSlices = 1.0LF; // an open mesh's slices per crossing
     {
       uint col = uint(j * gridSize.x + i);
       precise double depth = perspective != 0 ? 1.0LF / s : s;
@@ -158,8 +166,15 @@ void main()
     }
     else
     {
+#if CAO_VX_FRUSTUM
       double k = floor(s);
       for (double kk = max(k, 0.0LF); kk < k + shellSlices && kk < double(gridSize.z); kk += 1.0LF)
+#else
+      precise double below = s - spread, above = s + spread;
+      double lo = max(max(floor(below), lowest), 0.0LF);
+      double hi = min(min(floor(above), highest), double(gridSize.z) - 1.0LF);
+      for (double kk = lo; kk <= hi; kk += 1.0LF)
+#endif
       {
         int q = int(kk);
         atomicOr(bits[column + uint(q >> 5)], 1u << uint(q & 31));

@@ -200,6 +200,42 @@ int TestVoxelConeTracing(int, char*[])
     CAO_CHECK(shell.openEdges[0] == 3 && shell.CountAll() < grid.CountAll() / 4 && shell.CountAll() > 1000,
       "open mesh: %lld edges, %lld voxels", static_cast<long long>(shell.openEdges[0]),
       static_cast<long long>(shell.CountAll()));
+    // The sphere in two pieces (as on two processes): their PieceBits
+    // parities XOR into the whole sphere's, closed; with the pieces'
+    // surface voxels OR-ed, the grid FillGrid makes of the whole sphere,
+    // bit for bit (`filled`, with its surface voxels). One piece alone is
+    // not closed (the negative control).
+    std::vector<std::int64_t> west, east;
+    for (std::size_t f = 0; f + 2 < st.size(); f += 3)
+    {
+      const double x = sp[3 * st[f]] + sp[3 * st[f + 1]] + sp[3 * st[f + 2]];
+      (x < 0.1 ? west : east).insert((x < 0.1 ? west : east).end(), { st[f], st[f + 1], st[f + 2] });
+    }
+    std::vector<std::uint32_t> parityWest, parityEast, surface, shellBits;
+    const bool made = cao::PieceBits({ &sp, &west }, grid, &parityWest, &surface, &shellBits, error) &&
+      cao::PieceBits({ &sp, &east }, grid, &parityEast, &surface, &shellBits, error);
+    CAO_CHECK(made, "%s", error.c_str());
+    const bool halfClosed = cao::ParityClosed(grid, parityWest);
+    std::vector<std::uint32_t> joined(parityWest.size());
+    long long apart = 0, shellOutside = 0;
+    for (std::size_t w = 0; w < joined.size(); ++w)
+    {
+      joined[w] = (parityWest[w] ^ parityEast[w]) | surface[w];
+      apart += joined[w] != filled.bits[w];
+      shellOutside += __builtin_popcount(shellBits[w] & ~filled.bits[w]);
+    }
+    const bool closed = cao::ParityClosed(grid, [&] {
+      std::vector<std::uint32_t> x(parityWest.size());
+      for (std::size_t w = 0; w < x.size(); ++w)
+        x[w] = parityWest[w] ^ parityEast[w];
+      return x;
+    }());
+    std::printf("the sphere in two pieces: parities XOR-ed %s closed, one piece %s closed, with the surface "
+                "voxels %lld words apart from the whole sphere's grid; the pieces' shells: %lld voxels "
+                "outside it\n",
+      closed ? "are" : "are not", halfClosed ? "is" : "is not", apart, shellOutside);
+    CAO_CHECK(closed && !halfClosed && apart == 0, "pieces: closed %d, half closed %d, %lld words apart",
+      int(closed), int(halfClosed), apart);
   }
   // Cone tracing against its own definition: half-space x > a (a box
   // slab), P at the origin with n = +z: each sphere's occupied fraction is
