@@ -26,17 +26,33 @@ vtkPVRenderViewWithContextualAO::~vtkPVRenderViewWithContextualAO() = default;
 void vtkPVRenderViewWithContextualAO::Update()
 {
   this->Superclass::Update();
+  // Voxel cones on the world grid see every process's pieces; the other
+  // methods and grids only this process's.
   vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
   const int processes = controller ? controller->GetNumberOfProcesses() : 1;
-  if (processes > 1 && this->Pass->GetMethod() != vtkContextualAOPass::NONE && !this->WarnedParallel &&
+  const bool shared =
+    this->Pass->GetMethod() == vtkContextualAOPass::VCT && this->Pass->GetGrid() == vtkContextualAOPass::WORLD_GRID;
+  if (processes > 1 && this->Pass->GetMethod() != vtkContextualAOPass::NONE && !shared && !this->WarnedParallel &&
     controller->GetLocalProcessId() == 0)
   {
     this->WarnedParallel = true;
     vtkWarningMacro("Surface AO on " << processes
-                                     << " processes: each process's AO sees only its own pieces of the "
-                                        "geometry (no occlusion between pieces on different processes), so "
-                                        "it is lighter than on one process.");
+                                     << " processes: with this method and grid each process's AO sees only its "
+                                        "own pieces of the geometry (no occlusion between pieces on different "
+                                        "processes), so it is lighter than on one process; Voxel Cones on the "
+                                        "World grid sees them all.");
   }
+}
+
+void vtkPVRenderViewWithContextualAO::Render(bool interactive, bool skip_rendering)
+{
+  // Every process renders when the rendering is distributed: then, and
+  // only then, the pass's per-frame exchange is safe.
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  const bool distributed = controller && controller->GetNumberOfProcesses() > 1 &&
+    (interactive ? this->GetUseDistributedRenderingForLODRender() : this->GetUseDistributedRenderingForRender());
+  this->Pass->SetController(distributed ? controller : nullptr);
+  this->Superclass::Render(interactive, skip_rendering);
 }
 
 vtkContextualAOPass* vtkPVRenderViewWithContextualAO::GetSurfaceAOPass()

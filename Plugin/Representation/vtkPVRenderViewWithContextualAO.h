@@ -10,8 +10,11 @@
  * "Ambient Occlusion" group). The pass applies the AO right after the
  * opaque geometry, so translucent geometry and volumes drawn in front of
  * an occluded surface keep their own colour.
- * Builtin sessions and a single-process pvserver (the pass reads the
- * rendered frame back in the process that renders it).
+ * Builtin sessions, pvserver, and several MPI processes with distributed
+ * rendering: then the pass exchanges the scene between the processes (its
+ * controller, set at each render), so voxel cones on the world grid see
+ * every process's pieces; the other methods and grids see their own
+ * process's, with a warning.
  */
 #ifndef vtkPVRenderViewWithContextualAO_h
 #define vtkPVRenderViewWithContextualAO_h
@@ -56,6 +59,10 @@ public:
 
 protected:
   vtkPVRenderViewWithContextualAO();
+  /// With distributed rendering on several processes (every process draws
+  /// its pieces, the images composited), the pass exchanges the scene
+  /// between them (vtkContextualAOPass::SetController); else none.
+  void Render(bool interactive, bool skip_rendering) override;
   ~vtkPVRenderViewWithContextualAO() override;
 
 private:

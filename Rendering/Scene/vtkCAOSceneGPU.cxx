@@ -113,6 +113,11 @@ bool SceneGPU::Voxelize(cao::BitGrid& grid, const std::vector<cao::MeshView>& me
   return this->P->Ready(error) && this->P->engine->Voxelize(grid, meshes, grid.openEdges, ms, error);
 }
 
+bool SceneGPU::Upload(const cao::BitGrid& grid, std::string& error)
+{
+  return this->P->Ready(error) && this->P->engine->Upload(grid, error);
+}
+
 bool SceneGPU::Volumes(const std::vector<const cao::OpacityVolume*>& volumes, std::string& error)
 {
   return this->P->Ready(error) && this->P->engine->UploadVolumes(volumes, error);

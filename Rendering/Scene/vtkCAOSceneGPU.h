@@ -40,6 +40,8 @@ public:
   bool Resolve(vtkRenderWindow* window, int backend, std::string& error);
   /// cao::gl::VCTEngine::Voxelize into `grid`'s place (its bits stay on the GPU).
   bool Voxelize(cao::BitGrid& grid, const std::vector<cao::MeshView>& meshes, std::string& error);
+  /// cao::gl::VCTEngine::Upload: a grid made on the CPU, traced next.
+  bool Upload(const cao::BitGrid& grid, std::string& error);
   /// cao::gl::VCTEngine::UploadVolumes: the volumes' opacity for the plans
   /// that name them (again whenever it was rebuilt); FitsVolumes: whether
   /// `count` volumes of `voxels` voxels in all fit its limits here.

@@ -10,6 +10,8 @@
 #include "vtkLightsPass.h"
 #include "vtkMapper.h"
 #include "vtkMatrix4x4.h"
+#include "vtkCommunicator.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLFXAAFilter.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -31,6 +33,7 @@
 #include "vtk_glew.h"
 
 #include "vtkCAOFrameIO.h"
+#include "vtkCAOSceneExchange.h"
 #include "vtkCAOSceneGPU.h"
 #include "vtkCAOInput.h"
 #include "vtkCAOSceneVolume.h"
@@ -228,6 +231,8 @@ struct vtkContextualAOPass::Internals
   vtkNew<vtkCAORendererStep> rendererStep;
   // This frame's scene: one entry per polygonal piece; the volumes.
   std::vector<std::pair<vtkActor*, vtkPolyData*>> pieces;
+  std::vector<int> pieceActor; ///< each piece's actor, counted over the surface actors
+  int surfaceActors = 0;       ///< (with or without pieces here: the same count on every process)
   std::vector<vtkVolume*> volumes;
   std::vector<double> frameSceneKey, frameVolumeKey;
   // What the grid was built from, and the grid.
@@ -275,6 +280,15 @@ struct vtkContextualAOPass::Internals
   int rect[4] = { 0, 0, 0, 0 };
   std::string backendNote;       ///< why not, when Auto chose the CPU (or a multisampled frame read back)
   bool warnedTiles = false;      ///< a tiled render's seams said (until the tiling ends)
+  // Parallel rendering (SetController, several processes): the scene
+  // every process agrees on.
+  vtkSmartPointer<vtkMultiProcessController> controller;
+  vtkCAO::SceneExchange exchange;
+  bool rebuild = false;   ///< a process's scene changed: bounds, radius and grid again
+  cao::BitGrid sharedGrid; ///< the world grid, every process's voxels OR-ed
+  std::string sharedError; ///< why there is none
+  bool Distributed() const { return this->controller && this->controller->GetNumberOfProcesses() > 1; }
+  void Exchange(vtkContextualAOPass* self);
 
   void Stage(const char* name, Clock::time_point start)
   {
@@ -362,6 +376,20 @@ vtkContextualAOPass::vtkContextualAOPass()
   p.sequence->SetPasses(passes);
   p.camera->SetDelegatePass(p.sequence);
   p.step->Run = [this](const vtkRenderState* s) { this->Internal->RunAO(this, s); };
+}
+
+void vtkContextualAOPass::SetController(vtkMultiProcessController* controller)
+{
+  if (this->Internal->controller == controller)
+    return;
+  this->Internal->controller = controller;
+  this->Internal->sceneKey.clear(); // the grid is another one now
+  this->Modified();
+}
+
+vtkMultiProcessController* vtkContextualAOPass::GetController()
+{
+  return this->Internal->controller;
 }
 
 vtkContextualAOPass::~vtkContextualAOPass()
@@ -457,6 +485,9 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
     << ", \"backend\": \"" << (p.onGPU ? p.gpu.Description() : std::string("CPU")) << "\"";
   if (!p.backendNote.empty())
     o << ", \"backend_note\": \"" << p.backendNote << "\"";
+  if (p.Distributed()) // parallel rendering: does the grid hold every process's pieces
+    o << ", \"processes\": " << p.controller->GetNumberOfProcesses() << ", \"grid_of_all_processes\": "
+      << (this->Method == VCT && this->Grid == WORLD_GRID ? "true" : "false");
   if (p.onGPU)
     o << ", \"gpu_bytes\": " << p.gpu.ResidentBytes() << ", \"volume_uploads\": " << p.volumeUploads;
   if (p.gpuFrame) // the drawn depth: blitted (a GPU copy) or read into a buffer (on the GPU too)
@@ -525,6 +556,8 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
          "Voxel Cones on the world or eye grid");
   this->warnedTiles = tiled && screenBound;
   this->Collect(self, ren);
+  if (this->Distributed())
+    this->Exchange(self); // every process, every frame, before anything that may differ between them
   if (this->pieces.empty())
   {
     this->frame = cao::SurfaceFrame();
@@ -585,6 +618,8 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
 {
   // The visible opaque polygonal actors, and what the grid depends on.
   this->pieces.clear();
+  this->pieceActor.clear();
+  this->surfaceActors = 0;
   this->volumes.clear();
   std::vector<double>& key = this->frameSceneKey;
   // VCT needs the grid (its slices and kind count); the screen-space
@@ -603,9 +638,11 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
     if (!actor->GetVisibility() || !actor->HasOpaqueGeometry() ||
       actor->GetProperty()->GetRepresentation() != VTK_SURFACE)
       continue; // wireframe and points are drawn, not surfaces: no AO on them, none from them
+    const int index = this->surfaceActors++;
     for (vtkPolyData* data : Pieces(actor->GetMapper()))
     {
       this->pieces.emplace_back(actor, data);
+      this->pieceActor.push_back(index);
       key.push_back(Address(actor));
       key.push_back(Address(data));
       key.push_back(static_cast<double>(data->GetMTime()));
@@ -727,17 +764,121 @@ bool vtkContextualAOPass::Internals::EnsureBVH(vtkContextualAOPass* self)
   return true;
 }
 
+void vtkContextualAOPass::Internals::Exchange(vtkContextualAOPass* self)
+{
+  // Collective: every process calls it at every frame, whatever it holds.
+  std::vector<std::vector<double>> points;
+  std::vector<std::vector<std::int64_t>> triangles;
+  std::vector<double> all;
+  std::vector<std::int64_t> allTris;
+  bool gathered = false;
+  auto gather = [&]() {
+    if (!gathered)
+      this->Gather(points, triangles, all, allTris);
+    gathered = true;
+  };
+  auto localBounds = [&]() {
+    gather();
+    const double inf = std::numeric_limits<double>::infinity();
+    std::array<double, 6> b{ { inf, -inf, inf, -inf, inf, -inf } }; // min > max: empty
+    for (std::size_t i = 0; i + 2 < all.size(); i += 3)
+      for (int d = 0; d < 3; ++d)
+        if (std::isfinite(all[i + d])) // (a NaN fails this process's scene, not the others')
+        {
+          b[2 * d] = std::min(b[2 * d], all[i + d]);
+          b[2 * d + 1] = std::max(b[2 * d + 1], all[i + d]);
+        }
+    return b;
+  };
+  if (!this->exchange.Frame(this->controller, this->frameSceneKey, localBounds))
+    return;
+  this->rebuild = true;
+  this->sharedGrid = cao::BitGrid();
+  this->sharedError.clear();
+  if (self->Method != VCT || self->Grid != WORLD_GRID)
+    return;
+  // The world grid of the common bounds: this process's voxels OR-ed with
+  // the others' (every process plans the same grid from the same numbers).
+  const std::array<double, 6>& b = this->exchange.Bounds();
+  const double diagonal = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
+    (b[5] - b[4]) * (b[5] - b[4]));
+  const double radius = self->Radius > 0 ? self->Radius : 0.1 * diagonal;
+  cao::BitGrid g;
+  std::string error;
+  const bool planned = this->exchange.HasBounds() && std::isfinite(diagonal) && radius > 0 &&
+    std::isfinite(radius) && self->Slices >= 32 && self->Slices <= 1024 && self->Slices % 32 == 0 &&
+    cao::PlanGrid(b, 1.05 * radius, self->Slices, g, error);
+  if (!planned)
+  {
+    this->sharedError = error.empty() ? "the processes' pieces have no common bounds" : error;
+    return;
+  }
+  gather();
+  // Per surface actor: its pieces' parities XOR-ed across the processes
+  // make the whole mesh's; closed (every column crossed an even number of
+  // times), its inside and every process's surface voxels go in, as one
+  // process fills a closed mesh; else every process's shells (an open
+  // mesh's). The actors are counted alike on every process (the same
+  // representations); if the counts differ, shells only.
+  double counts[2] = { static_cast<double>(this->surfaceActors), -static_cast<double>(this->surfaceActors) };
+  double agreed[2] = { 0.0, 0.0 };
+  const bool same = this->controller->AllReduce(counts, agreed, 2, vtkCommunicator::MIN_OP) &&
+    agreed[0] == -agreed[1];
+  const std::size_t words = static_cast<std::size_t>(g.nx) * g.ny * g.words;
+  std::vector<std::uint32_t> mine(words, 0u);
+  bool failed = false;
+  g.openEdges.clear();
+  for (int a = 0; a < (same ? this->surfaceActors : 1); ++a)
+  {
+    std::vector<std::uint32_t> parity(words, 0u), surface(words, 0u), shell(words, 0u);
+    for (std::size_t k = 0; k < points.size() && !failed; ++k)
+      if (!same || this->pieceActor[k] == a)
+        failed = !cao::PieceBits({ &points[k], &triangles[k] }, g, same ? &parity : nullptr,
+          same ? &surface : nullptr, &shell, error);
+    bool closed = false;
+    if (same)
+    {
+      std::vector<std::uint32_t> whole(words, 0u);
+      static_assert(sizeof(unsigned int) == sizeof(std::uint32_t), "the grid's words are unsigned ints");
+      closed = words > 0 &&
+        this->controller->AllReduce(reinterpret_cast<const unsigned int*>(parity.data()),
+          reinterpret_cast<unsigned int*>(whole.data()), static_cast<vtkIdType>(words),
+          vtkCommunicator::BITWISE_XOR_OP) &&
+        cao::ParityClosed(g, whole);
+      if (closed)
+        for (std::size_t w = 0; w < words; ++w)
+          mine[w] |= whole[w] | surface[w];
+    }
+    if (!closed)
+      for (std::size_t w = 0; w < words; ++w)
+        mine[w] |= shell[w];
+    g.openEdges.push_back(closed ? 0 : 1);
+  }
+  if (failed)
+  {
+    this->sharedError = error; // this process's failure; its share is zeros
+    mine.assign(words, 0u);
+  }
+  g.bits.swap(mine);
+  if (!this->exchange.OrGrid(this->controller, g))
+    this->sharedError = "the processes' grids could not be combined";
+  else if (this->sharedError.empty())
+    this->sharedGrid = std::move(g);
+}
+
 bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
 {
   // Only when the geometry, a pose, the grid settings or (eye grid) the
   // camera's orientation changed.
-  if (this->frameSceneKey == this->sceneKey)
+  if (this->frameSceneKey == this->sceneKey && !this->rebuild)
     return true;
-  if (this->frameSceneKey == this->failedSceneKey)
+  if (this->frameSceneKey == this->failedSceneKey && !this->rebuild)
   {
     this->error = "the scene could not be voxelized (said once; change it to try again)";
     return false;
   }
+  const bool distributed = this->Distributed();
+  this->rebuild = false;
   const auto start = Clock::now();
   // The BVH only for the ray-cast G-buffer (the grids are voxelized from
   // the triangles; a G-buffer changed later builds it then: EnsureBVH).
@@ -781,6 +922,8 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
         b[2 * d] = std::min(b[2 * d], all[i + d]);
         b[2 * d + 1] = std::max(b[2 * d + 1], all[i + d]);
       }
+  if (distributed) // the radius and the world grid of every process's pieces
+    b = this->exchange.Bounds();
   const double diagonal = b[1] < b[0] ? 0.0 : std::sqrt((b[1] - b[0]) * (b[1] - b[0]) +
     (b[3] - b[2]) * (b[3] - b[2]) + (b[5] - b[4]) * (b[5] - b[4]));
   if (!std::isfinite(diagonal) || (!(diagonal > 0.0) && !(self->Radius > 0)))
@@ -829,10 +972,18 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
     ok = cao::EyeAxes(right, up, axes, error) &&
       cao::PlanEyeGrid(views, axes, 1.05 * this->radius, self->Slices, this->grid, error);
   }
+  else if (distributed)
+  {
+    // Made by Exchange for every process; on the GPU uploaded.
+    this->grid = this->sharedGrid;
+    error = this->sharedError;
+    ok = error.empty() && (!this->onGPU || this->gpu.Upload(this->grid, error));
+  }
   else
     ok = cao::PlanGrid(b, 1.05 * this->radius, self->Slices, this->grid, error);
-  ok = ok &&
-    (this->onGPU ? this->gpu.Voxelize(this->grid, views, error) : cao::FillGrid(views, this->grid, error));
+  ok = ok && (self->Grid == WORLD_GRID && distributed ||
+               (this->onGPU ? this->gpu.Voxelize(this->grid, views, error)
+                            : cao::FillGrid(views, this->grid, error)));
   if (!ok)
   {
     this->failedSceneKey = this->frameSceneKey;

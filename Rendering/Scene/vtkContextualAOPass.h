@@ -88,6 +88,8 @@
 #include <memory> // For the implementation
 #include <string> // For the report
 
+class vtkMultiProcessController;
+
 class CAORENDERINGSCENE_EXPORT vtkContextualAOPass : public vtkRenderPass
 {
 public:
@@ -162,6 +164,23 @@ public:
   /// WORLD_GRID (default), EYE_GRID or FRUSTUM_GRID.
   vtkSetClampMacro(Grid, int, WORLD_GRID, FRUSTUM_GRID);
   vtkGetMacro(Grid, int);
+  ///@}
+
+  ///@{
+  /// The processes that render this scene together (parallel rendering,
+  /// each drawing its own pieces and the images composited by depth, as
+  /// ParaView's view on several MPI processes does; the view sets it). With
+  /// a controller of several processes every process must render every
+  /// frame: the pass exchanges a few numbers each frame, and the default
+  /// Radius is 0.1 x the diagonal of every process's pieces together. VCT
+  /// on the world grid then sees every process's pieces: each voxelizes its
+  /// own into the grid of the common bounds and the bits are OR-ed across
+  /// the processes at each geometry change (a closed surface split between
+  /// processes is open on each: a shell there, its inside not filled). The
+  /// eye and frustum grids, HBAO and VAO see this process's pieces only.
+  /// Null (default): this process's pieces only, no exchange.
+  void SetController(vtkMultiProcessController* controller);
+  vtkMultiProcessController* GetController();
   ///@}
 
   ///@{

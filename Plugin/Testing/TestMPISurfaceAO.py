@@ -1,0 +1,128 @@
+"""Surface AO across MPI processes, in ParaView's view:
+
+    mpirun -np 1 pvbatch TestMPISurfaceAO.py PLUGIN.so OUTPUT_DIR
+    mpirun -np 2 pvbatch TestMPISurfaceAO.py PLUGIN.so OUTPUT_DIR
+
+A sphere resting on a slab, split into pieces over the ranks, drawn by
+every rank and composited (distributed rendering). Each run saves the view
+with the AO off, with voxel cones on the world grid (which holds every
+process's pieces: per actor the pieces' parities XOR-ed across the
+processes make the whole mesh's, so the sphere split in two is solid as in
+one process) and on the eye grid (this process's pieces only). The run on
+2 ranks compares itself with the run on 1: the world grid's picture must
+be the serial one; the eye grid, which does not exchange, loses most of
+the contact shadow (the negative control: the same comparison fails
+without the exchange)."""
+import json
+import os
+import sys
+
+from paraview.simple import *  # noqa: F401,F403
+from paraview import servermanager
+from vtkmodules.vtkIOImage import vtkPNGReader
+from vtkmodules.util.numpy_support import vtk_to_numpy
+
+plugin, outdir = sys.argv[1], sys.argv[2]
+LoadPlugin(plugin, remote=False, ns=globals())
+import contextualao  # noqa: F401,E402  (the pass's Python wrapping, for its report)
+
+ranks = servermanager.vtkProcessModule.GetProcessModule().GetNumberOfLocalPartitions()
+failures = []
+
+
+def check(ok, what):
+    print(("ok: " if ok else "FAIL: ") + what)
+    sys.stdout.flush()
+    if not ok:
+        failures.append(what)
+
+
+view = CreateView("ContextualAORenderView")
+view.OrientationAxesVisibility = 0
+view.ViewSize = [300, 240]
+view.RemoteRenderThreshold = 0  # distributed rendering, every rank draws its pieces
+slab = Box(XLength=4.0, YLength=4.0, ZLength=0.4, Center=[0.0, 0.0, -0.2])
+ball = Sphere(Center=[0.0, 0.0, 0.5], Radius=0.5, ThetaResolution=48, PhiResolution=24)
+for source in (slab, ball):
+    d = Show(source, view)
+    d.DiffuseColor = [1.0, 1.0, 1.0]
+view.CameraPosition = [0.0, -6.0, 4.0]
+view.CameraFocalPoint = [0.0, 0.0, 0.2]
+view.CameraViewUp = [0.0, 0.0, 1.0]
+view.SurfaceAORadius = 0.8
+view.SurfaceAOBackend = "CPU"
+pas = view.GetRenderer().GetPass()
+while pas is not None and pas.GetClassName() != "vtkContextualAOPass":  # (IceT's pass holds it in parallel)
+    pas = pas.GetDelegatePass() if hasattr(pas, "GetDelegatePass") else \
+        pas.GetRenderPass() if hasattr(pas, "GetRenderPass") else None
+check(pas is not None, "the pass is in the view's render pass chain")
+
+
+def grey(name):
+    path = os.path.join(outdir, "np%d-%s.png" % (ranks, name))
+    SaveScreenshot(path, view, ImageResolution=[300, 240])
+    return path
+
+
+def read(path):
+    r = vtkPNGReader()
+    r.SetFileName(path)
+    r.Update()
+    a = vtk_to_numpy(r.GetOutput().GetPointData().GetScalars()).astype(float)
+    return a[:, :3].mean(axis=1)
+
+
+view.SurfaceAOMethod = "None"
+grey("off")
+view.SurfaceAOMethod = "Voxel Cones"
+reports = {}
+for grid in ("World", "Eye"):
+    view.SurfaceAOGrid = grid
+    grey(grid.lower())
+    reports[grid] = json.loads(pas.GetLastFrameReport())
+# The grid on the window's OpenGL (the combined grid uploaded) with the
+# drawn-depth G-buffer (the GPU frame).
+view.SurfaceAOGrid = "World"
+view.SurfaceAOBackend = "OpenGL"
+grey("world-gl")
+reports["World OpenGL"] = json.loads(pas.GetLastFrameReport())
+print("rank 0's report (world grid): %s" % json.dumps(reports["World"]))
+if ranks == 1:
+    check("processes" not in reports["World"], "one process: no exchange (the report names no processes)")
+else:
+    world = reports["World"]
+    check(world.get("processes") == ranks and world.get("grid_of_all_processes") is True and
+          reports["Eye"].get("grid_of_all_processes") is False,
+          "on %d processes the report says the world grid holds every process's pieces, the eye grid not" % ranks)
+    serial = {n: read(os.path.join(outdir, "np1-%s.png" % n)) for n in ("off", "world", "eye")}
+    here = {n: read(os.path.join(outdir, "np%d-%s.png" % (ranks, n))) for n in ("off", "world", "eye")}
+    check(abs(serial["off"] - here["off"]).max() <= 2,
+          "the pictures without AO agree (largest difference %.1f levels)" % abs(serial["off"] - here["off"]).max())
+    # Darkening: what the AO takes from the picture, summed over the pixels.
+    dark = {(k, n): (pics["off"] - pics[n]).clip(min=0).sum() for k, pics in (("1", serial), ("n", here))
+            for n in ("world", "eye")}
+    diff = abs(serial["world"] - here["world"])
+    worldRatio = dark[("n", "world")] / dark[("1", "world")]
+    eyeRatio = dark[("n", "eye")] / dark[("1", "eye")]
+    check(diff.max() <= 2 and 0.99 <= worldRatio <= 1.01,
+          "the world grid on %d processes gives the serial picture: largest difference %.1f levels (bound 2: "
+          "the compositing), %.3f of the serial darkening" % (ranks, diff.max(), worldRatio))
+    # OpenGL, drawn depth: each process's depth holds its own pieces, so at a
+    # piece's silhouette over another process's piece the G-buffer's
+    # normals see background there (a few pixels, by up to ~100 levels).
+    glSerial = read(os.path.join(outdir, "np1-world-gl.png"))
+    glHere = read(os.path.join(outdir, "np%d-world-gl.png" % ranks))
+    glRatio = (serial["off"] - glHere).clip(min=0).sum() / (serial["off"] - glSerial).clip(min=0).sum()
+    glApart = (abs(glSerial - glHere) > 8).mean()
+    check(reports["World OpenGL"].get("frame_on_gpu") is True and reports["World OpenGL"].get("processes") == ranks
+          and 0.98 <= glRatio <= 1.02 and glApart < 0.005,
+          "on OpenGL with the drawn depth (the combined grid uploaded): %.3f of the serial darkening, %.2f%% of "
+          "pixels more than 8 levels apart (silhouettes between processes' pieces; bound 0.5%%)"
+          % (glRatio, 100 * glApart))
+    check(eyeRatio < 0.9,
+          "negative control: the eye grid (no exchange) keeps only %.3f of the serial darkening on %d processes"
+          % (eyeRatio, ranks))
+print("%d failure(s)" % len(failures))
+sys.stdout.flush()
+if failures:
+    sys.exit(1)

@@ -1,0 +1,59 @@
+#include "vtkCAOSceneExchange.h"
+
+#include "vtkCommunicator.h"
+#include "vtkMultiProcessController.h"
+
+#include <cstdint>
+#include <limits>
+
+namespace vtkCAO
+{
+bool SceneExchange::Frame(vtkMultiProcessController* controller, const std::vector<double>& key,
+  const std::function<std::array<double, 6>()>& localBounds)
+{
+  const bool changed = key != this->Key || this->Key.empty();
+  if (changed)
+  {
+    this->Local = localBounds();
+    this->Key = key;
+  }
+  // One reduction: the minima, the negated maxima, and the negated change.
+  const double inf = std::numeric_limits<double>::infinity();
+  const bool empty = !(this->Local[0] <= this->Local[1]);
+  double send[7], common[7];
+  for (int d = 0; d < 3; ++d)
+  {
+    send[d] = empty ? inf : this->Local[2 * d];
+    send[3 + d] = empty ? inf : -this->Local[2 * d + 1];
+  }
+  send[6] = changed ? -1.0 : 0.0;
+  if (!controller->AllReduce(send, common, 7, vtkCommunicator::MIN_OP))
+    return changed; // (a broken communicator: this process's own view)
+  for (int d = 0; d < 3; ++d)
+  {
+    this->Common[2 * d] = common[d];
+    this->Common[2 * d + 1] = -common[3 + d];
+  }
+  if (!(this->Common[0] <= this->Common[1]))
+    this->Common = { { 1, -1, 1, -1, 1, -1 } };
+  const bool any = common[6] < 0.0;
+  this->ChangeCount += any;
+  return any;
+}
+
+bool SceneExchange::OrGrid(vtkMultiProcessController* controller, cao::BitGrid& grid)
+{
+  const std::size_t words = static_cast<std::size_t>(grid.nx) * grid.ny * grid.words;
+  if (grid.bits.size() != words)
+    grid.bits.assign(words, 0u); // nothing here, or a failed fill: zeros
+  std::vector<std::uint32_t> merged(words, 0u);
+  static_assert(sizeof(unsigned int) == sizeof(std::uint32_t), "the grid's words are unsigned ints");
+  const bool ok = words == 0 ||
+    controller->AllReduce(reinterpret_cast<const unsigned int*>(grid.bits.data()),
+      reinterpret_cast<unsigned int*>(merged.data()), static_cast<vtkIdType>(words),
+      vtkCommunicator::BITWISE_OR_OP);
+  if (ok)
+    grid.bits.swap(merged);
+  return ok;
+}
+}
