@@ -46,13 +46,22 @@ void vtkPVRenderViewWithContextualAO::Update()
 
 void vtkPVRenderViewWithContextualAO::Render(bool interactive, bool skip_rendering)
 {
-  // Every process renders when the rendering is distributed: then, and
-  // only then, the pass's per-frame exchange is safe.
+  // The pass's exchange is collective: only for this render, only when
+  // every process draws its pieces (distributed rendering, not a tile or
+  // CAVE display, where a process may draw several times a frame), and
+  // with IceT told to draw every process even when its image would be
+  // empty (it skips such a process's drawing by default, which would leave
+  // the others waiting in the exchange).
   vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
   const bool distributed = controller && controller->GetNumberOfProcesses() > 1 &&
-    (interactive ? this->GetUseDistributedRenderingForLODRender() : this->GetUseDistributedRenderingForRender());
-  this->Pass->SetController(distributed ? controller : nullptr);
+    (interactive ? this->GetUseDistributedRenderingForLODRender() : this->GetUseDistributedRenderingForRender()) &&
+    !this->InTileDisplayMode() && !this->InCaveDisplayMode();
+  const bool exchange = distributed && this->Pass->GetMethod() != vtkContextualAOPass::NONE;
+  if (exchange)
+    this->RenderEmptyImages = true;
+  this->Pass->SetController(exchange ? controller : nullptr);
   this->Superclass::Render(interactive, skip_rendering);
+  this->Pass->SetController(nullptr); // a render outside the view's (one process alone) exchanges nothing
 }
 
 vtkContextualAOPass* vtkPVRenderViewWithContextualAO::GetSurfaceAOPass()

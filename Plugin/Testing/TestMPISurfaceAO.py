@@ -86,6 +86,14 @@ view.SurfaceAOGrid = "World"
 view.SurfaceAOBackend = "OpenGL"
 grey("world-gl")
 reports["World OpenGL"] = json.loads(pas.GetLastFrameReport())
+# The slab alone: a source that is not split (a Box) lies on rank 0 only,
+# so rank 1 draws nothing; IceT must still draw it (the exchange is
+# collective: by default IceT skips a process whose image would be empty,
+# and the other process then waited for ever, seen by hand).
+view.SurfaceAOBackend = "CPU"
+Hide(ball, view)
+grey("slab")
+reports["Slab"] = json.loads(pas.GetLastFrameReport())
 print("rank 0's report (world grid): %s" % json.dumps(reports["World"]))
 if ranks == 1:
     check("processes" not in reports["World"], "one process: no exchange (the report names no processes)")
@@ -119,6 +127,10 @@ else:
           "on OpenGL with the drawn depth (the combined grid uploaded): %.3f of the serial darkening, %.2f%% of "
           "pixels more than 8 levels apart (silhouettes between processes' pieces; bound 0.5%%)"
           % (glRatio, 100 * glApart))
+    slabDiff = abs(read(os.path.join(outdir, "np1-slab.png")) - read(os.path.join(outdir, "np%d-slab.png" % ranks)))
+    check(reports["Slab"].get("processes") == ranks and slabDiff.max() <= 2,
+          "a process with no pieces still takes part (the slab alone on rank 0): the serial picture, largest "
+          "difference %.1f levels" % slabDiff.max())
     check(eyeRatio < 0.9,
           "negative control: the eye grid (no exchange) keeps only %.3f of the serial darkening on %d processes"
           % (eyeRatio, ranks))

@@ -233,11 +233,14 @@ struct vtkContextualAOPass::Internals
   std::vector<std::pair<vtkActor*, vtkPolyData*>> pieces;
   std::vector<int> pieceActor; ///< each piece's actor, counted over the surface actors
   int surfaceActors = 0;       ///< (with or without pieces here: the same count on every process)
+  double actorSignature = 0.0; ///< which of the renderer's actors they are (compared across processes)
   std::vector<vtkVolume*> volumes;
   std::vector<double> frameSceneKey, frameVolumeKey;
   // What the grid was built from, and the grid.
   std::vector<double> sceneKey;
   cao::TriangleBVH bvh; ///< built only for a ray-cast G-buffer (EnsureBVH)
+  std::vector<double> bvhFailedKey; ///< the scene EnsureBVH failed on, and why
+  std::string bvhError;
   std::int64_t triangles = 0; ///< the triangles the actors hold, degenerate ones too (the report's)
   cao::BitGrid grid;
   // The frustum grid's meshes, voxelized after each G-buffer (their open
@@ -285,6 +288,7 @@ struct vtkContextualAOPass::Internals
   vtkSmartPointer<vtkMultiProcessController> controller;
   vtkCAO::SceneExchange exchange;
   bool rebuild = false;   ///< a process's scene changed: bounds, radius and grid again
+  int frameProcesses = 1; ///< the last frame's (the report's)
   cao::BitGrid sharedGrid; ///< the world grid, every process's voxels OR-ed
   std::string sharedError; ///< why there is none
   bool Distributed() const { return this->controller && this->controller->GetNumberOfProcesses() > 1; }
@@ -382,9 +386,7 @@ void vtkContextualAOPass::SetController(vtkMultiProcessController* controller)
 {
   if (this->Internal->controller == controller)
     return;
-  this->Internal->controller = controller;
-  this->Internal->sceneKey.clear(); // the grid is another one now
-  this->Modified();
+  this->Internal->controller = controller; // (whether it exchanges is part of the scene's key)
 }
 
 vtkMultiProcessController* vtkContextualAOPass::GetController()
@@ -485,9 +487,12 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
     << ", \"backend\": \"" << (p.onGPU ? p.gpu.Description() : std::string("CPU")) << "\"";
   if (!p.backendNote.empty())
     o << ", \"backend_note\": \"" << p.backendNote << "\"";
-  if (p.Distributed()) // parallel rendering: does the grid hold every process's pieces
-    o << ", \"processes\": " << p.controller->GetNumberOfProcesses() << ", \"grid_of_all_processes\": "
-      << (this->Method == VCT && this->Grid == WORLD_GRID ? "true" : "false");
+  if (p.frameProcesses > 1) // parallel rendering: does the grid hold every process's pieces
+    o << ", \"processes\": " << p.frameProcesses << ", \"grid_of_all_processes\": "
+      << (this->Method == VCT && this->Grid == WORLD_GRID && p.sharedError.empty() && !p.sharedGrid.bits.empty()
+             ? "true"
+             : "false")
+      << ", \"exchanged_changes\": " << p.exchange.Changes();
   if (p.onGPU)
     o << ", \"gpu_bytes\": " << p.gpu.ResidentBytes() << ", \"volume_uploads\": " << p.volumeUploads;
   if (p.gpuFrame) // the drawn depth: blitted (a GPU copy) or read into a buffer (on the GPU too)
@@ -556,7 +561,8 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
          "Voxel Cones on the world or eye grid");
   this->warnedTiles = tiled && screenBound;
   this->Collect(self, ren);
-  if (this->Distributed())
+  this->frameProcesses = this->Distributed() ? this->controller->GetNumberOfProcesses() : 1;
+  if (this->frameProcesses > 1)
     this->Exchange(self); // every process, every frame, before anything that may differ between them
   if (this->pieces.empty())
   {
@@ -620,6 +626,7 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
   this->pieces.clear();
   this->pieceActor.clear();
   this->surfaceActors = 0;
+  this->actorSignature = 0.0;
   this->volumes.clear();
   std::vector<double>& key = this->frameSceneKey;
   // VCT needs the grid (its slices and kind count); the screen-space
@@ -630,15 +637,20 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
   key = { self->Radius, vct ? 0.0 : this->gbuffer == RAY_CAST ? 1.0 : 2.0 };
   if (vct)
     key.insert(key.end(), { static_cast<double>(self->Slices), static_cast<double>(self->Grid) });
+  // The processes whose pieces the scene holds (1: this one's).
+  key.push_back(this->Distributed() ? static_cast<double>(this->controller->GetNumberOfProcesses()) : 1.0);
   vtkActorCollection* actors = ren->GetActors();
   vtkCollectionSimpleIterator it;
   actors->InitTraversal(it);
+  double position = 0.0; // an actor's place among the renderer's actors
   while (vtkActor* actor = actors->GetNextActor(it))
   {
+    position += 1.0;
     if (!actor->GetVisibility() || !actor->HasOpaqueGeometry() ||
       actor->GetProperty()->GetRepresentation() != VTK_SURFACE)
       continue; // wireframe and points are drawn, not surfaces: no AO on them, none from them
     const int index = this->surfaceActors++;
+    this->actorSignature = std::fmod(this->actorSignature * 31.0 + position, 1000000007.0); // which actors, by place
     for (vtkPolyData* data : Pieces(actor->GetMapper()))
     {
       this->pieces.emplace_back(actor, data);
@@ -750,6 +762,8 @@ bool vtkContextualAOPass::Internals::EnsureBVH(vtkContextualAOPass* self)
   // G-buffer was the drawn depth then); built once per scene.
   if (this->bvh.NumberOfTriangles() > 0)
     return true;
+  if (!this->bvhFailedKey.empty() && this->bvhFailedKey == this->sceneKey)
+    return this->Fail(self, this->bvhError); // said once; not built again until the scene changes
   const auto start = Clock::now();
   std::vector<std::vector<double>> points;
   std::vector<std::vector<std::int64_t>> triangles;
@@ -758,8 +772,12 @@ bool vtkContextualAOPass::Internals::EnsureBVH(vtkContextualAOPass* self)
   this->Gather(points, triangles, all, allTris);
   std::string error;
   if (!this->bvh.Build(all, allTris, error) || this->bvh.NumberOfTriangles() == 0)
-    return this->Fail(self, "Cannot build the scene: " +
-        (error.empty() ? std::string("the actors have no triangle with an area") : error));
+  {
+    this->bvhFailedKey = this->sceneKey;
+    this->bvhError = "Cannot build the scene: " +
+      (error.empty() ? std::string("the actors have no triangle with an area") : error);
+    return this->Fail(self, this->bvhError);
+  }
   this->Stage("scene", start);
   return true;
 }
@@ -820,10 +838,11 @@ void vtkContextualAOPass::Internals::Exchange(vtkContextualAOPass* self)
   // process fills a closed mesh; else every process's shells (an open
   // mesh's). The actors are counted alike on every process (the same
   // representations); if the counts differ, shells only.
-  double counts[2] = { static_cast<double>(this->surfaceActors), -static_cast<double>(this->surfaceActors) };
-  double agreed[2] = { 0.0, 0.0 };
-  const bool same = this->controller->AllReduce(counts, agreed, 2, vtkCommunicator::MIN_OP) &&
-    agreed[0] == -agreed[1];
+  const double n = static_cast<double>(this->surfaceActors), sig = this->actorSignature;
+  double counts[4] = { n, -n, sig, -sig };
+  double agreed[4] = { 0.0, 0.0, 0.0, 0.0 };
+  const bool same = this->controller->AllReduce(counts, agreed, 4, vtkCommunicator::MIN_OP) &&
+    agreed[0] == -agreed[1] && agreed[2] == -agreed[3];
   const std::size_t words = static_cast<std::size_t>(g.nx) * g.ny * g.words;
   std::vector<std::uint32_t> mine(words, 0u);
   bool failed = false;

@@ -175,9 +175,11 @@ public:
   /// Radius is 0.1 x the diagonal of every process's pieces together. VCT
   /// on the world grid then sees every process's pieces: each voxelizes its
   /// own into the grid of the common bounds and the bits are OR-ed across
-  /// the processes at each geometry change (a closed surface split between
-  /// processes is open on each: a shell there, its inside not filled). The
-  /// eye and frustum grids, HBAO and VAO see this process's pieces only.
+  /// the processes at each geometry change: per actor, its pieces'
+  /// parities XOR-ed across the processes (a closed surface split between
+  /// them is filled as on one process; one open as a whole takes its
+  /// pieces' shells). The eye and frustum grids, HBAO and VAO see this
+  /// process's pieces only.
   /// Null (default): this process's pieces only, no exchange.
   void SetController(vtkMultiProcessController* controller);
   vtkMultiProcessController* GetController();

@@ -188,10 +188,13 @@ void RasterizeColumns(const BitGrid& grid, const std::vector<double>& g, const s
           Cross(&surface[column], slices, grid.words, s, false); // the crossing's own slice
         if (!shell)
           continue;
-        const double lo = std::max(std::max(std::floor(s - spread), lowest), 0.0);
-        const double hi = std::min(std::min(std::floor(s + spread), highest), slices - 1.0);
-        for (double k = lo; k <= hi; k += 1.0)
-          Cross(&shell[column], slices, grid.words, k, false);
+        // (The crossing's own slice always: rounding may put s just outside
+        // the triangle's slices.)
+        const double k = std::floor(s);
+        const double lo = std::max(std::min(std::max(std::floor(s - spread), lowest), k), 0.0);
+        const double hi = std::min(std::max(std::min(std::floor(s + spread), highest), k), slices - 1.0);
+        for (double kk = lo; kk <= hi; kk += 1.0)
+          Cross(&shell[column], slices, grid.words, kk, false);
       }
   }
 }

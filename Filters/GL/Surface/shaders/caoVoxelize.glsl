@@ -171,8 +171,9 @@ void main()
       for (double kk = max(k, 0.0LF); kk < k + shellSlices && kk < double(gridSize.z); kk += 1.0LF)
 #else
       precise double below = s - spread, above = s + spread;
-      double lo = max(max(floor(below), lowest), 0.0LF);
-      double hi = min(min(floor(above), highest), double(gridSize.z) - 1.0LF);
+      double k = floor(s); // (its own slice always: rounding may put s just outside)
+      double lo = max(min(max(floor(below), lowest), k), 0.0LF);
+      double hi = min(max(min(floor(above), highest), k), double(gridSize.z) - 1.0LF);
       for (double kk = lo; kk <= hi; kk += 1.0LF)
 #endif
       {
