@@ -26,12 +26,12 @@ vtkPVRenderViewWithContextualAO::~vtkPVRenderViewWithContextualAO() = default;
 void vtkPVRenderViewWithContextualAO::Update()
 {
   this->Superclass::Update();
-  // Voxel cones on the world grid see every process's pieces; the other
-  // methods and grids only this process's.
+  // Voxel cones on the world and eye grids see every process's pieces; the
+  // frustum grid, HBAO and VAO only this process's.
   vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
   const int processes = controller ? controller->GetNumberOfProcesses() : 1;
   const bool shared =
-    this->Pass->GetMethod() == vtkContextualAOPass::VCT && this->Pass->GetGrid() == vtkContextualAOPass::WORLD_GRID;
+    this->Pass->GetMethod() == vtkContextualAOPass::VCT && this->Pass->GetGrid() != vtkContextualAOPass::FRUSTUM_GRID;
   if (processes > 1 && this->Pass->GetMethod() != vtkContextualAOPass::NONE && !shared && !this->WarnedParallel &&
     controller->GetLocalProcessId() == 0)
   {
@@ -40,7 +40,7 @@ void vtkPVRenderViewWithContextualAO::Update()
                                      << " processes: with this method and grid each process's AO sees only its "
                                         "own pieces of the geometry (no occlusion between pieces on different "
                                         "processes), so it is lighter than on one process; Voxel Cones on the "
-                                        "World grid sees them all.");
+                                        "World or Eye grid sees them all.");
   }
 }
 

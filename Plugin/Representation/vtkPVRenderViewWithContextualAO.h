@@ -12,9 +12,9 @@
  * an occluded surface keep their own colour.
  * Builtin sessions, pvserver, and several MPI processes with distributed
  * rendering: then the pass exchanges the scene between the processes (its
- * controller, set at each render), so voxel cones on the world grid see
- * every process's pieces; the other methods and grids see their own
- * process's, with a warning.
+ * controller, set at each render), so voxel cones on the world and eye
+ * grids see every process's pieces; the frustum grid, HBAO and VAO see
+ * their own process's, with a warning.
  */
 #ifndef vtkPVRenderViewWithContextualAO_h
 #define vtkPVRenderViewWithContextualAO_h

@@ -3,6 +3,7 @@
 #include "vtkCommunicator.h"
 #include "vtkMultiProcessController.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 
@@ -54,6 +55,27 @@ bool SceneExchange::OrGrid(vtkMultiProcessController* controller, cao::BitGrid& 
       vtkCommunicator::BITWISE_OR_OP);
   if (ok)
     grid.bits.swap(merged);
+  return ok;
+}
+
+bool SceneExchange::Xor(vtkMultiProcessController* controller, std::vector<std::uint32_t>& words)
+{
+  std::vector<std::uint32_t> merged(words.size(), 0u);
+  const bool ok = words.empty() ||
+    controller->AllReduce(reinterpret_cast<const unsigned int*>(words.data()),
+      reinterpret_cast<unsigned int*>(merged.data()), static_cast<vtkIdType>(words.size()),
+      vtkCommunicator::BITWISE_XOR_OP);
+  if (ok)
+    words.swap(merged);
+  return ok;
+}
+
+bool SceneExchange::Min(vtkMultiProcessController* controller, double* values, int count)
+{
+  std::vector<double> common(static_cast<std::size_t>(count));
+  const bool ok = controller->AllReduce(values, common.data(), count, vtkCommunicator::MIN_OP) != 0;
+  if (ok)
+    std::copy(common.begin(), common.end(), values);
   return ok;
 }
 }

@@ -2,10 +2,12 @@
  * vtkCAOSceneExchange — what the processes that render one scene together
  * (parallel rendering: each draws its own pieces, the images composited by
  * depth) agree on for the surface AO: whether any process's scene changed
- * this frame, the bounds of every process's pieces together, and the world
- * grid as the OR of every process's voxels. Every process calls Frame at
- * every frame, and OrGrid whenever Frame says a scene changed, whatever
- * it holds (no pieces, a failed voxelization: zeros): both are collective.
+ * this frame, the bounds of every process's pieces together, and the grid
+ * combined from every process's voxels (per actor its pieces' parities
+ * XOR-ed, then the processes' grids OR-ed). Every call here is collective:
+ * every process calls Frame at every frame, and the others in the same
+ * order whenever Frame says a scene changed, whatever it holds (no
+ * pieces, a failed voxelization: zeros).
  */
 #ifndef vtkCAOSceneExchange_h
 #define vtkCAOSceneExchange_h
@@ -15,6 +17,7 @@
 #include "caoVoxelConeTracing.h" // For cao::BitGrid
 
 #include <array>      // For the bounds
+#include <cstdint>    // For the words
 #include <functional> // For the local bounds
 #include <vector>     // For the key
 
@@ -37,6 +40,10 @@ public:
   /// when it has nothing or failed: taken as zeros) becomes the OR of every
   /// process's bits. False when the exchange failed.
   bool OrGrid(vtkMultiProcessController* controller, cao::BitGrid& grid);
+  /// `words` becomes the XOR of every process's (the same length on each).
+  static bool Xor(vtkMultiProcessController* controller, std::vector<std::uint32_t>& words);
+  /// `values` becomes the minimum over the processes, value by value.
+  static bool Min(vtkMultiProcessController* controller, double* values, int count);
   /// Exchanges that found a change (the grids rebuilt).
   int Changes() const { return this->ChangeCount; }
 

@@ -10,7 +10,6 @@
 #include "vtkLightsPass.h"
 #include "vtkMapper.h"
 #include "vtkMatrix4x4.h"
-#include "vtkCommunicator.h"
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLFXAAFilter.h"
@@ -489,7 +488,7 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
     o << ", \"backend_note\": \"" << p.backendNote << "\"";
   if (p.frameProcesses > 1) // parallel rendering: does the grid hold every process's pieces
     o << ", \"processes\": " << p.frameProcesses << ", \"grid_of_all_processes\": "
-      << (this->Method == VCT && this->Grid == WORLD_GRID && p.sharedError.empty() && !p.sharedGrid.bits.empty()
+      << (this->Method == VCT && this->Grid != FRUSTUM_GRID && p.sharedError.empty() && !p.sharedGrid.bits.empty()
              ? "true"
              : "false")
       << ", \"exchanged_changes\": " << p.exchange.Changes();
@@ -813,25 +812,48 @@ void vtkContextualAOPass::Internals::Exchange(vtkContextualAOPass* self)
   this->rebuild = true;
   this->sharedGrid = cao::BitGrid();
   this->sharedError.clear();
-  if (self->Method != VCT || self->Grid != WORLD_GRID)
+  if (self->Method != VCT || self->Grid == FRUSTUM_GRID)
     return;
-  // The world grid of the common bounds: this process's voxels OR-ed with
-  // the others' (every process plans the same grid from the same numbers).
+  // The world (or eye) grid of the common bounds: this process's voxels
+  // OR-ed with the others' (every process plans the same grid from the
+  // same numbers).
   const std::array<double, 6>& b = this->exchange.Bounds();
   const double diagonal = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
     (b[5] - b[4]) * (b[5] - b[4]));
   const double radius = self->Radius > 0 ? self->Radius : 0.1 * diagonal;
   cao::BitGrid g;
   std::string error;
-  const bool planned = this->exchange.HasBounds() && std::isfinite(diagonal) && radius > 0 &&
-    std::isfinite(radius) && self->Slices >= 32 && self->Slices <= 1024 && self->Slices % 32 == 0 &&
-    cao::PlanGrid(b, 1.05 * radius, self->Slices, g, error);
+  bool planned = this->exchange.HasBounds() && std::isfinite(diagonal) && radius > 0 && std::isfinite(radius) &&
+    self->Slices >= 32 && self->Slices <= 1024 && self->Slices % 32 == 0;
+  gather();
+  if (planned && self->Grid == EYE_GRID)
+  {
+    // The eye grid: every process's pieces' bounds in the camera's axes
+    // (the view rows end the scene's key), one more reduction.
+    const std::vector<double>& k = this->frameSceneKey;
+    const std::size_t v = k.size() - 12;
+    const double right[3] = { k[v], k[v + 1], k[v + 2] }, up[3] = { k[v + 4], k[v + 5], k[v + 6] };
+    std::array<double, 9> axes;
+    std::array<double, 6> local;
+    std::vector<cao::MeshView> views;
+    for (std::size_t i = 0; i < points.size(); ++i)
+      views.push_back({ &points[i], &triangles[i] });
+    planned = cao::EyeAxes(right, up, axes, error); // (the same camera everywhere)
+    if (planned && !cao::EyeBounds(views, axes, local, error))
+      local = { { 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 } }; // (this process's failure: none)
+    double common[6] = { local[0], local[2], local[4], -local[1], -local[3], -local[5] };
+    planned = vtkCAO::SceneExchange::Min(this->controller, common, 6) && planned;
+    const std::array<double, 6> eb{ { common[0], -common[3], common[1], -common[4], common[2], -common[5] } };
+    planned = planned && eb[0] <= eb[1] && cao::PlanGrid(eb, 1.05 * radius, self->Slices, g, error);
+    g.axes = axes;
+  }
+  else
+    planned = planned && cao::PlanGrid(b, 1.05 * radius, self->Slices, g, error);
   if (!planned)
   {
     this->sharedError = error.empty() ? "the processes' pieces have no common bounds" : error;
     return;
   }
-  gather();
   // Per surface actor: its pieces' parities XOR-ed across the processes
   // make the whole mesh's; closed (every column crossed an even number of
   // times), its inside and every process's surface voxels go in, as one
@@ -839,10 +861,9 @@ void vtkContextualAOPass::Internals::Exchange(vtkContextualAOPass* self)
   // mesh's). The actors are counted alike on every process (the same
   // representations); if the counts differ, shells only.
   const double n = static_cast<double>(this->surfaceActors), sig = this->actorSignature;
-  double counts[4] = { n, -n, sig, -sig };
-  double agreed[4] = { 0.0, 0.0, 0.0, 0.0 };
-  const bool same = this->controller->AllReduce(counts, agreed, 4, vtkCommunicator::MIN_OP) &&
-    agreed[0] == -agreed[1] && agreed[2] == -agreed[3];
+  double agreed[4] = { n, -n, sig, -sig };
+  const bool same = vtkCAO::SceneExchange::Min(this->controller, agreed, 4) && agreed[0] == -agreed[1] &&
+    agreed[2] == -agreed[3];
   const std::size_t words = static_cast<std::size_t>(g.nx) * g.ny * g.words;
   std::vector<std::uint32_t> mine(words, 0u);
   bool failed = false;
@@ -857,13 +878,8 @@ void vtkContextualAOPass::Internals::Exchange(vtkContextualAOPass* self)
     bool closed = false;
     if (same)
     {
-      std::vector<std::uint32_t> whole(words, 0u);
-      static_assert(sizeof(unsigned int) == sizeof(std::uint32_t), "the grid's words are unsigned ints");
-      closed = words > 0 &&
-        this->controller->AllReduce(reinterpret_cast<const unsigned int*>(parity.data()),
-          reinterpret_cast<unsigned int*>(whole.data()), static_cast<vtkIdType>(words),
-          vtkCommunicator::BITWISE_XOR_OP) &&
-        cao::ParityClosed(g, whole);
+      std::vector<std::uint32_t> whole = parity;
+      closed = vtkCAO::SceneExchange::Xor(this->controller, whole) && words > 0 && cao::ParityClosed(g, whole);
       if (closed)
         for (std::size_t w = 0; w < words; ++w)
           mine[w] |= whole[w] | surface[w];
@@ -982,7 +998,14 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
   for (std::size_t i = 0; i < points.size(); ++i)
     views.push_back({ &points[i], &triangles[i] });
   bool ok = false;
-  if (self->Grid == EYE_GRID)
+  if (distributed)
+  {
+    // Made by Exchange for every process; on the GPU uploaded.
+    this->grid = this->sharedGrid;
+    error = this->sharedError;
+    ok = error.empty() && (!this->onGPU || this->gpu.Upload(this->grid, error));
+  }
+  else if (self->Grid == EYE_GRID)
   {
     const std::vector<double>& k = this->frameSceneKey;
     const std::size_t v = k.size() - 12; // the view matrix's rows
@@ -991,18 +1014,10 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
     ok = cao::EyeAxes(right, up, axes, error) &&
       cao::PlanEyeGrid(views, axes, 1.05 * this->radius, self->Slices, this->grid, error);
   }
-  else if (distributed)
-  {
-    // Made by Exchange for every process; on the GPU uploaded.
-    this->grid = this->sharedGrid;
-    error = this->sharedError;
-    ok = error.empty() && (!this->onGPU || this->gpu.Upload(this->grid, error));
-  }
   else
     ok = cao::PlanGrid(b, 1.05 * this->radius, self->Slices, this->grid, error);
-  ok = ok && (self->Grid == WORLD_GRID && distributed ||
-               (this->onGPU ? this->gpu.Voxelize(this->grid, views, error)
-                            : cao::FillGrid(views, this->grid, error)));
+  ok = ok && (distributed || (this->onGPU ? this->gpu.Voxelize(this->grid, views, error)
+                                           : cao::FillGrid(views, this->grid, error)));
   if (!ok)
   {
     this->failedSceneKey = this->frameSceneKey;

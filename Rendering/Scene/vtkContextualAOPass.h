@@ -173,13 +173,13 @@ public:
   /// a controller of several processes every process must render every
   /// frame: the pass exchanges a few numbers each frame, and the default
   /// Radius is 0.1 x the diagonal of every process's pieces together. VCT
-  /// on the world grid then sees every process's pieces: each voxelizes its
-  /// own into the grid of the common bounds and the bits are OR-ed across
-  /// the processes at each geometry change: per actor, its pieces'
-  /// parities XOR-ed across the processes (a closed surface split between
-  /// them is filled as on one process; one open as a whole takes its
-  /// pieces' shells). The eye and frustum grids, HBAO and VAO see this
-  /// process's pieces only.
+  /// on the world and eye grids then sees every process's pieces: each
+  /// voxelizes its own into the grid of the common bounds (in the camera's
+  /// axes for the eye grid) and the bits are combined across the processes
+  /// at each change: per actor, its pieces' parities XOR-ed (a closed
+  /// surface split between them is filled as on one process; one open as
+  /// a whole takes its pieces' shells). The frustum grid, HBAO and VAO see
+  /// this process's pieces only.
   /// Null (default): this process's pieces only, no exchange.
   void SetController(vtkMultiProcessController* controller);
   vtkMultiProcessController* GetController();

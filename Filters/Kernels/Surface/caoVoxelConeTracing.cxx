@@ -556,9 +556,19 @@ bool EyeAxes(const double right[3], const double up[3], std::array<double, 9>& a
 bool PlanEyeGrid(const std::vector<MeshView>& meshes, const std::array<double, 9>& axes,
   double padding, int slices, BitGrid& grid, std::string& error)
 {
+  std::array<double, 6> b;
+  if (!EyeBounds(meshes, axes, b, error) || !PlanGrid(b, padding, slices, grid, error))
+    return false;
+  grid.axes = axes;
+  return true;
+}
+
+bool EyeBounds(const std::vector<MeshView>& meshes, const std::array<double, 9>& axes,
+  std::array<double, 6>& b, std::string& error)
+{
   BitGrid frame;
   frame.axes = axes;
-  std::array<double, 6> b{ { 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 } };
+  b = { { 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 } };
   for (const MeshView& mesh : meshes)
   {
     if (!mesh.points)
@@ -580,9 +590,6 @@ bool PlanEyeGrid(const std::vector<MeshView>& meshes, const std::array<double, 9
       }
     }
   }
-  if (!PlanGrid(b, padding, slices, grid, error))
-    return false;
-  grid.axes = axes;
   return true;
 }
 

@@ -240,6 +240,11 @@ bool EyeAxes(const double right[3], const double up[3], std::array<double, 9>& a
 /// PlanGrid plans a world grid (bits empty).
 bool PlanEyeGrid(const std::vector<MeshView>& meshes, const std::array<double, 9>& axes,
   double padding, int slices, BitGrid& grid, std::string& error);
+/// The meshes' bounds in the frame `axes` (min > max: no points), as
+/// PlanEyeGrid takes them; PlanGrid of several processes' bounds together,
+/// with grid.axes = axes, is the eye grid of all their meshes.
+bool EyeBounds(const std::vector<MeshView>& meshes, const std::array<double, 9>& axes,
+  std::array<double, 6>& bounds, std::string& error);
 
 /// The paper's eye-space grid for `camera` (seed 000 Sec. III-B and Eq. 2):
 /// a column per pixel (under a perspective camera the columns fan out with
