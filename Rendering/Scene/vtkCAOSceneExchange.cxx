@@ -78,4 +78,29 @@ bool SceneExchange::Min(vtkMultiProcessController* controller, double* values, i
     std::copy(common.begin(), common.end(), values);
   return ok;
 }
+
+bool SceneExchange::Gather(vtkMultiProcessController* controller, const std::vector<double>& mine,
+  std::vector<double>& all)
+{
+  const int processes = controller->GetNumberOfProcesses();
+  const long long length = static_cast<long long>(mine.size());
+  std::vector<long long> lengths(static_cast<std::size_t>(processes), 0);
+  if (!controller->AllGather(&length, lengths.data(), 1))
+    return false;
+  std::vector<vtkIdType> counts(lengths.size()), offsets(lengths.size());
+  vtkIdType total = 0;
+  for (std::size_t i = 0; i < lengths.size(); ++i)
+  {
+    counts[i] = static_cast<vtkIdType>(lengths[i]);
+    offsets[i] = total;
+    total += counts[i];
+  }
+  std::vector<double> send = mine; // (the buffers are never empty)
+  send.push_back(0.0);
+  all.assign(static_cast<std::size_t>(total) + 1, 0.0);
+  const bool ok = controller->AllGatherV(send.data(), all.data(), static_cast<vtkIdType>(mine.size()),
+                    counts.data(), offsets.data()) != 0;
+  all.resize(static_cast<std::size_t>(total));
+  return ok;
+}
 }

@@ -44,6 +44,9 @@ public:
   static bool Xor(vtkMultiProcessController* controller, std::vector<std::uint32_t>& words);
   /// `values` becomes the minimum over the processes, value by value.
   static bool Min(vtkMultiProcessController* controller, double* values, int count);
+  /// `all`: every process's `mine`, one after the other (any lengths).
+  static bool Gather(vtkMultiProcessController* controller, const std::vector<double>& mine,
+    std::vector<double>& all);
   /// Exchanges that found a change (the grids rebuilt).
   int Changes() const { return this->ChangeCount; }
 

@@ -855,11 +855,12 @@ void vtkContextualAOPass::Internals::Exchange(vtkContextualAOPass* self)
     return;
   }
   // Per surface actor: its pieces' parities XOR-ed across the processes
-  // make the whole mesh's; closed (every column crossed an even number of
-  // times), its inside and every process's surface voxels go in, as one
-  // process fills a closed mesh; else every process's shells (an open
-  // mesh's). The actors are counted alike on every process (the same
-  // representations); if the counts differ, shells only.
+  // make the whole mesh's; closed (its pieces' open edges matched up
+  // across the processes, as one process counts a mesh's, and every column
+  // crossed an even number of times), its inside and every process's
+  // surface voxels go in, as one process fills a closed mesh; else every
+  // process's shells (an open mesh's). The actors are counted alike on
+  // every process (the same representations); if they differ, shells only.
   const double n = static_cast<double>(this->surfaceActors), sig = this->actorSignature;
   double agreed[4] = { n, -n, sig, -sig };
   const bool same = vtkCAO::SceneExchange::Min(this->controller, agreed, 4) && agreed[0] == -agreed[1] &&
@@ -871,15 +872,26 @@ void vtkContextualAOPass::Internals::Exchange(vtkContextualAOPass* self)
   for (int a = 0; a < (same ? this->surfaceActors : 1); ++a)
   {
     std::vector<std::uint32_t> parity(words, 0u), surface(words, 0u), shell(words, 0u);
+    std::vector<double> edges, pieceEdges, allEdges;
     for (std::size_t k = 0; k < points.size() && !failed; ++k)
       if (!same || this->pieceActor[k] == a)
+      {
         failed = !cao::PieceBits({ &points[k], &triangles[k] }, g, same ? &parity : nullptr,
           same ? &surface : nullptr, &shell, error);
+        if (same && !failed)
+        {
+          cao::OpenEdges({ &points[k], &triangles[k] }, pieceEdges);
+          edges.insert(edges.end(), pieceEdges.begin(), pieceEdges.end());
+        }
+      }
     bool closed = false;
     if (same)
     {
       std::vector<std::uint32_t> whole = parity;
-      closed = vtkCAO::SceneExchange::Xor(this->controller, whole) && words > 0 && cao::ParityClosed(g, whole);
+      const bool matched = vtkCAO::SceneExchange::Gather(this->controller, edges, allEdges) &&
+        cao::OpenEdgesOfPieces(allEdges, 1e-9 * diagonal) == 0; // (a rounding apart: one point)
+      closed = vtkCAO::SceneExchange::Xor(this->controller, whole) && matched && words > 0 &&
+        cao::ParityClosed(g, whole);
       if (closed)
         for (std::size_t w = 0; w < words; ++w)
           mine[w] |= whole[w] | surface[w];

@@ -362,6 +362,47 @@ bool ParseVCTOccupancy(const std::string& text, VCTOccupancy& occupancy)
 
 std::int64_t OpenEdges(const MeshView& mesh)
 {
+  std::vector<double> edges;
+  return OpenEdges(mesh, edges);
+}
+
+std::int64_t OpenEdgesOfPieces(std::vector<double> edges, double tolerance)
+{
+  // The ends rounded to multiples of the tolerance and put in order again;
+  // then the records sorted by their ends, the uses of equal ends added up.
+  const std::size_t n = edges.size() / 7;
+  if (tolerance > 0.0 && std::isfinite(tolerance))
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      double* e = &edges[7 * i];
+      for (int d = 0; d < 6; ++d)
+        e[d] = std::round(e[d] / tolerance);
+      if (std::lexicographical_compare(e + 3, e + 6, e, e + 3))
+        std::swap_ranges(e, e + 3, e + 3);
+    }
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i)
+    order[i] = i;
+  auto ends = [&edges](std::size_t a, std::size_t b) {
+    return std::lexicographical_compare(&edges[7 * a], &edges[7 * a + 6], &edges[7 * b], &edges[7 * b + 6]);
+  };
+  std::sort(order.begin(), order.end(), ends);
+  std::int64_t open = 0;
+  for (std::size_t k = 0; k < n;)
+  {
+    double uses = 0.0;
+    std::size_t run = k;
+    while (run < n && !ends(order[k], order[run]) && !ends(order[run], order[k]))
+      uses += edges[7 * order[run++] + 6];
+    open += uses != 2.0;
+    k = run;
+  }
+  return open;
+}
+
+std::int64_t OpenEdges(const MeshView& mesh, std::vector<double>& list)
+{
+  list.clear();
   // Points at the same coordinates are one point (readers may duplicate
   // them): each point's id is the first of its coordinates in sorted order.
   // Then every edge (its two ids, smaller first) sorted: an edge used by
@@ -397,12 +438,21 @@ std::int64_t OpenEdges(const MeshView& mesh)
     }
   std::sort(edges.begin(), edges.end());
   std::int64_t open = 0;
+  std::vector<std::size_t> first(n); // a canonical id's first point
+  for (std::size_t k = 0; k < n; ++k)
+    first[canonical[order[k]]] = order[k];
   for (std::size_t k = 0; k < edges.size();)
   {
     std::size_t run = k + 1;
     while (run < edges.size() && edges[run] == edges[k])
       ++run;
-    open += run - k != 2;
+    if (run - k != 2)
+    {
+      ++open;
+      const std::size_t a = first[edges[k].first], b = first[edges[k].second];
+      list.insert(list.end(), { p[3 * a], p[3 * a + 1], p[3 * a + 2], p[3 * b], p[3 * b + 1], p[3 * b + 2],
+                                static_cast<double>(run - k) });
+    }
     k = run;
   }
   return open;

@@ -134,6 +134,16 @@ struct MeshView
 /// The number of edges of a triangle mesh used by exactly one triangle
 /// (0: closed; edges used by 3 or more count as well, as non-manifold).
 std::int64_t OpenEdges(const MeshView& mesh);
+/// The same, and those edges in `edges`: 7 numbers each, the two ends'
+/// coordinates (the lexicographically smaller first) and the triangles
+/// using it, so that the pieces of one mesh can be matched up (an edge
+/// whose uses over all pieces add up to 2 is not open).
+std::int64_t OpenEdges(const MeshView& mesh, std::vector<double>& edges);
+/// How many edges of `edges` (OpenEdges' records of several pieces, in any
+/// order) are open when their uses are added up over the pieces; ends
+/// within `tolerance` (rounded to its multiples) are one point, since
+/// pieces made apart may place a shared point a rounding apart.
+std::int64_t OpenEdgesOfPieces(std::vector<double> edges, double tolerance);
 
 /// A world-space bit grid: column (i, j) at x = origin[0] + (i + 1/2) h,
 /// y = origin[1] + (j + 1/2) h holds `slices` bits, slice k at

@@ -230,6 +230,33 @@ int TestVoxelConeTracing(int, char*[])
         x[w] = parityWest[w] ^ parityEast[w];
       return x;
     }());
+    // Their open edges matched up: none (each half alone has its cut).
+    std::vector<double> edgesWest, edgesEast, edgesHoled;
+    const std::int64_t cutWest = cao::OpenEdges({ &sp, &west }, edgesWest);
+    cao::OpenEdges({ &sp, &east }, edgesEast);
+    std::vector<double> both = edgesWest;
+    both.insert(both.end(), edgesEast.begin(), edgesEast.end());
+    std::vector<std::int64_t> eastHoled(east.begin() + 3, east.end());
+    cao::OpenEdges({ &sp, &eastHoled }, edgesHoled);
+    std::vector<double> holedBoth = edgesWest;
+    holedBoth.insert(holedBoth.end(), edgesHoled.begin(), edgesHoled.end());
+    // (One half's points moved by a rounding, as pieces made apart may place
+    // a shared point: matched within the tolerance, not without.)
+    std::vector<double> nudged = both;
+    for (std::size_t i = 0; i < edgesWest.size(); i += 7)
+      nudged[i] += 1e-15;
+    const std::int64_t matched = cao::OpenEdgesOfPieces(both, 1e-9),
+                       stillOpen = cao::OpenEdgesOfPieces(holedBoth, 1e-9),
+                       nudgedMatched = cao::OpenEdgesOfPieces(nudged, 1e-9),
+                       nudgedExact = cao::OpenEdgesOfPieces(nudged, 0.0);
+    std::printf("the two halves' open edges: %lld on the west half alone, %lld matched up, %lld with a triangle "
+                "less on the east half; one half moved by 1e-15: %lld within 1e-9, %lld compared exactly\n",
+      static_cast<long long>(cutWest), static_cast<long long>(matched), static_cast<long long>(stillOpen),
+      static_cast<long long>(nudgedMatched), static_cast<long long>(nudgedExact));
+    CAO_CHECK(cutWest > 0 && matched == 0 && stillOpen == 3 && nudgedMatched == 0 && nudgedExact > 0,
+      "pieces' open edges %lld %lld %lld %lld %lld", static_cast<long long>(cutWest),
+      static_cast<long long>(matched), static_cast<long long>(stillOpen), static_cast<long long>(nudgedMatched),
+      static_cast<long long>(nudgedExact));
     std::printf("the sphere in two pieces: parities XOR-ed %s closed, one piece %s closed, with the surface "
                 "voxels %lld words apart from the whole sphere's grid; the pieces' shells: %lld voxels "
                 "outside it\n",
