@@ -873,9 +873,13 @@ void vtkContextualAOPass::Internals::Exchange(vtkContextualAOPass* self)
   {
     std::vector<std::uint32_t> parity(words, 0u), surface(words, 0u), shell(words, 0u);
     std::vector<double> edges, pieceEdges, allEdges;
+    double count = 0.0, sum = 0.0; // this process's share of the actor, to find it on every process
     for (std::size_t k = 0; k < points.size() && !failed; ++k)
       if (!same || this->pieceActor[k] == a)
       {
+        count += static_cast<double>(triangles[k].size());
+        for (double c : points[k])
+          sum += c;
         failed = !cao::PieceBits({ &points[k], &triangles[k] }, g, same ? &parity : nullptr,
           same ? &surface : nullptr, &shell, error);
         if (same && !failed)
@@ -887,11 +891,22 @@ void vtkContextualAOPass::Internals::Exchange(vtkContextualAOPass* self)
     bool closed = false;
     if (same)
     {
+      // The same whole actor on every process (replicated, not split): its
+      // own parity, not the XOR of identical ones (which cancel).
+      double share[4] = { count, -count, sum, -sum };
+      const bool replicated = vtkCAO::SceneExchange::Min(this->controller, share, 4) && count > 0.0 &&
+        share[0] == -share[1] && share[2] == -share[3];
       std::vector<std::uint32_t> whole = parity;
-      const bool matched = vtkCAO::SceneExchange::Gather(this->controller, edges, allEdges) &&
-        cao::OpenEdgesOfPieces(allEdges, 1e-9 * diagonal) == 0; // (a rounding apart: one point)
-      closed = vtkCAO::SceneExchange::Xor(this->controller, whole) && matched && words > 0 &&
-        cao::ParityClosed(g, whole);
+      // Its open edges matched up over the processes (ends a rounding apart
+      // are one point); replicated, its own.
+      const bool gathered =
+        vtkCAO::SceneExchange::Gather(this->controller, replicated ? std::vector<double>() : edges, allEdges);
+      const bool matched =
+        gathered && (replicated ? edges.empty() : cao::OpenEdgesOfPieces(allEdges, 1e-9 * diagonal) == 0);
+      const bool xored = vtkCAO::SceneExchange::Xor(this->controller, whole); // (collective: always)
+      if (replicated)
+        whole = parity;
+      closed = xored && matched && words > 0 && cao::ParityClosed(g, whole);
       if (closed)
         for (std::size_t w = 0; w < words; ++w)
           mine[w] |= whole[w] | surface[w];
