@@ -5,9 +5,9 @@
  * this frame, the bounds of every process's pieces together, and the grid
  * combined from every process's voxels (per actor its pieces' parities
  * XOR-ed, then the processes' grids OR-ed). Every call here is collective:
- * every process calls Frame at every frame, and the others in the same
- * order whenever Frame says a scene changed, whatever it holds (no
- * pieces, a failed voxelization: zeros).
+ * every process calls Frame at every frame, and CommonBounds and
+ * CombineGrid in the same order whenever Frame says a scene changed,
+ * whatever it holds (no pieces, a failed voxelization: zeros).
  */
 #ifndef vtkCAOSceneExchange_h
 #define vtkCAOSceneExchange_h
@@ -19,6 +19,7 @@
 #include <array>      // For the bounds
 #include <cstdint>    // For the words
 #include <functional> // For the local bounds
+#include <string>     // For the reason
 #include <vector>     // For the key
 
 class vtkMultiProcessController;
@@ -36,21 +37,36 @@ public:
   /// Every process's pieces' bounds together (min > max: none has any).
   const std::array<double, 6>& Bounds() const { return this->Common; }
   bool HasBounds() const { return this->Common[0] <= this->Common[1]; }
-  /// `grid` (planned from Bounds(); its bits this process's voxels, or none
-  /// when it has nothing or failed: taken as zeros) becomes the OR of every
-  /// process's bits. False when the exchange failed.
-  bool OrGrid(vtkMultiProcessController* controller, cao::BitGrid& grid);
-  /// `words` becomes the XOR of every process's (the same length on each).
-  static bool Xor(vtkMultiProcessController* controller, std::vector<std::uint32_t>& words);
+  /// The world or eye grid `grid` (planned alike on every process) of the
+  /// pieces here, `pieceActor` naming each piece's actor among `actors`
+  /// (`signature`: which of the renderer's actors they are), combined with
+  /// every process's: per actor its pieces' parities XOR-ed across the
+  /// processes (a closed mesh split between them is filled as on one
+  /// process), or its own where the same whole actor is on every process
+  /// (replicated: XOR-ing identical parities would cancel its inside);
+  /// closed when its pieces' open edges match up over the processes (ends
+  /// within `tolerance` are one point) and every column is crossed an even
+  /// number of times, its inside and surface voxels, else its pieces'
+  /// shells; the processes' grids then OR-ed. If the actors differ between
+  /// processes, shells only. grid.openEdges: per actor 0 (closed) or 1.
+  /// False, with the reason, when this process's pieces failed (its share
+  /// then zeros) or the exchange failed.
+  static bool CombineGrid(vtkMultiProcessController* controller, const std::vector<cao::MeshView>& pieces,
+    const std::vector<int>& pieceActor, int actors, double signature, double tolerance, cao::BitGrid& grid,
+    std::string& error);
+  /// The bounds of every process's `local` bounds together (min > max: none).
+  static bool CommonBounds(vtkMultiProcessController* controller, std::array<double, 6>& bounds);
+  /// Exchanges that found a change (the grids rebuilt).
+  int Changes() const { return this->ChangeCount; }
+
+private:
   /// `values` becomes the minimum over the processes, value by value.
   static bool Min(vtkMultiProcessController* controller, double* values, int count);
   /// `all`: every process's `mine`, one after the other (any lengths).
   static bool Gather(vtkMultiProcessController* controller, const std::vector<double>& mine,
     std::vector<double>& all);
-  /// Exchanges that found a change (the grids rebuilt).
-  int Changes() const { return this->ChangeCount; }
-
-private:
+  /// `words` becomes the XOR of every process's (the same length on each).
+  static bool Xor(vtkMultiProcessController* controller, std::vector<std::uint32_t>& words);
   std::vector<double> Key;
   std::array<double, 6> Local{ { 1, -1, 1, -1, 1, -1 } };
   std::array<double, 6> Common{ { 1, -1, 1, -1, 1, -1 } };

@@ -214,6 +214,25 @@ public:
   }
 };
 vtkStandardNewMacro(vtkCAOVolumetricStep);
+
+/// The bounds of `points` (x, y, z triples; min > max: none) over their
+/// finite coordinates; false if one is NaN or infinite.
+bool PointBounds(const std::vector<double>& points, std::array<double, 6>& b)
+{
+  const double inf = std::numeric_limits<double>::infinity();
+  b = { { inf, -inf, inf, -inf, inf, -inf } };
+  bool finite = true;
+  for (std::size_t i = 0; i + 2 < points.size(); i += 3)
+    for (int d = 0; d < 3; ++d)
+      if (!std::isfinite(points[i + d]))
+        finite = false;
+      else
+      {
+        b[2 * d] = std::min(b[2 * d], points[i + d]);
+        b[2 * d + 1] = std::max(b[2 * d + 1], points[i + d]);
+      }
+  return finite;
+}
 }
 
 struct vtkContextualAOPass::Internals
@@ -288,10 +307,11 @@ struct vtkContextualAOPass::Internals
   vtkCAO::SceneExchange exchange;
   bool rebuild = false;   ///< a process's scene changed: bounds, radius and grid again
   int frameProcesses = 1; ///< the last frame's (the report's)
-  cao::BitGrid sharedGrid; ///< the world grid, every process's voxels OR-ed
+  cao::BitGrid sharedGrid; ///< the world or eye grid of every process's pieces (CombineGrid)
   std::string sharedError; ///< why there is none
   bool Distributed() const { return this->controller && this->controller->GetNumberOfProcesses() > 1; }
   void Exchange(vtkContextualAOPass* self);
+  bool EyeAxesOfKey(std::array<double, 9>& axes, std::string& error) const;
 
   void Stage(const char* name, Clock::time_point start)
   {
@@ -796,15 +816,8 @@ void vtkContextualAOPass::Internals::Exchange(vtkContextualAOPass* self)
   };
   auto localBounds = [&]() {
     gather();
-    const double inf = std::numeric_limits<double>::infinity();
-    std::array<double, 6> b{ { inf, -inf, inf, -inf, inf, -inf } }; // min > max: empty
-    for (std::size_t i = 0; i + 2 < all.size(); i += 3)
-      for (int d = 0; d < 3; ++d)
-        if (std::isfinite(all[i + d])) // (a NaN fails this process's scene, not the others')
-        {
-          b[2 * d] = std::min(b[2 * d], all[i + d]);
-          b[2 * d + 1] = std::max(b[2 * d + 1], all[i + d]);
-        }
+    std::array<double, 6> b;
+    PointBounds(all, b); // (a NaN fails this process's scene, not the others')
     return b;
   };
   if (!this->exchange.Frame(this->controller, this->frameSceneKey, localBounds))
@@ -814,9 +827,8 @@ void vtkContextualAOPass::Internals::Exchange(vtkContextualAOPass* self)
   this->sharedError.clear();
   if (self->Method != VCT || self->Grid == FRUSTUM_GRID)
     return;
-  // The world (or eye) grid of the common bounds: this process's voxels
-  // OR-ed with the others' (every process plans the same grid from the
-  // same numbers).
+  // The world (or eye) grid of the common bounds, planned alike on every
+  // process from the same numbers, then combined.
   const std::array<double, 6>& b = this->exchange.Bounds();
   const double diagonal = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
     (b[5] - b[4]) * (b[5] - b[4]));
@@ -826,106 +838,39 @@ void vtkContextualAOPass::Internals::Exchange(vtkContextualAOPass* self)
   bool planned = this->exchange.HasBounds() && std::isfinite(diagonal) && radius > 0 && std::isfinite(radius) &&
     self->Slices >= 32 && self->Slices <= 1024 && self->Slices % 32 == 0;
   gather();
+  std::vector<cao::MeshView> views;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    views.push_back({ &points[i], &triangles[i] });
   if (planned && self->Grid == EYE_GRID)
   {
-    // The eye grid: every process's pieces' bounds in the camera's axes
-    // (the view rows end the scene's key), one more reduction.
-    const std::vector<double>& k = this->frameSceneKey;
-    const std::size_t v = k.size() - 12;
-    const double right[3] = { k[v], k[v + 1], k[v + 2] }, up[3] = { k[v + 4], k[v + 5], k[v + 6] };
+    // The eye grid: every process's pieces' bounds in the camera's axes.
     std::array<double, 9> axes;
-    std::array<double, 6> local;
-    std::vector<cao::MeshView> views;
-    for (std::size_t i = 0; i < points.size(); ++i)
-      views.push_back({ &points[i], &triangles[i] });
-    planned = cao::EyeAxes(right, up, axes, error); // (the same camera everywhere)
-    if (planned && !cao::EyeBounds(views, axes, local, error))
-      local = { { 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 } }; // (this process's failure: none)
-    double common[6] = { local[0], local[2], local[4], -local[1], -local[3], -local[5] };
-    planned = vtkCAO::SceneExchange::Min(this->controller, common, 6) && planned;
-    const std::array<double, 6> eb{ { common[0], -common[3], common[1], -common[4], common[2], -common[5] } };
-    planned = planned && eb[0] <= eb[1] && cao::PlanGrid(eb, 1.05 * radius, self->Slices, g, error);
+    std::array<double, 6> eb;
+    planned = this->EyeAxesOfKey(axes, error); // (the same camera everywhere)
+    if (!planned || !cao::EyeBounds(views, axes, eb, error))
+      eb = { { 1, -1, 1, -1, 1, -1 } }; // (this process's failure: none)
+    planned = vtkCAO::SceneExchange::CommonBounds(this->controller, eb) && planned && eb[0] <= eb[1] &&
+      cao::PlanGrid(eb, 1.05 * radius, self->Slices, g, error);
     g.axes = axes;
   }
   else
     planned = planned && cao::PlanGrid(b, 1.05 * radius, self->Slices, g, error);
   if (!planned)
-  {
     this->sharedError = error.empty() ? "the processes' pieces have no common bounds" : error;
-    return;
-  }
-  // Per surface actor: its pieces' parities XOR-ed across the processes
-  // make the whole mesh's; closed (its pieces' open edges matched up
-  // across the processes, as one process counts a mesh's, and every column
-  // crossed an even number of times), its inside and every process's
-  // surface voxels go in, as one process fills a closed mesh; else every
-  // process's shells (an open mesh's). The actors are counted alike on
-  // every process (the same representations); if they differ, shells only.
-  const double n = static_cast<double>(this->surfaceActors), sig = this->actorSignature;
-  double agreed[4] = { n, -n, sig, -sig };
-  const bool same = vtkCAO::SceneExchange::Min(this->controller, agreed, 4) && agreed[0] == -agreed[1] &&
-    agreed[2] == -agreed[3];
-  const std::size_t words = static_cast<std::size_t>(g.nx) * g.ny * g.words;
-  std::vector<std::uint32_t> mine(words, 0u);
-  bool failed = false;
-  g.openEdges.clear();
-  for (int a = 0; a < (same ? this->surfaceActors : 1); ++a)
-  {
-    std::vector<std::uint32_t> parity(words, 0u), surface(words, 0u), shell(words, 0u);
-    std::vector<double> edges, pieceEdges, allEdges;
-    double count = 0.0, sum = 0.0; // this process's share of the actor, to find it on every process
-    for (std::size_t k = 0; k < points.size() && !failed; ++k)
-      if (!same || this->pieceActor[k] == a)
-      {
-        count += static_cast<double>(triangles[k].size());
-        for (double c : points[k])
-          sum += c;
-        failed = !cao::PieceBits({ &points[k], &triangles[k] }, g, same ? &parity : nullptr,
-          same ? &surface : nullptr, &shell, error);
-        if (same && !failed)
-        {
-          cao::OpenEdges({ &points[k], &triangles[k] }, pieceEdges);
-          edges.insert(edges.end(), pieceEdges.begin(), pieceEdges.end());
-        }
-      }
-    bool closed = false;
-    if (same)
-    {
-      // The same whole actor on every process (replicated, not split): its
-      // own parity, not the XOR of identical ones (which cancel).
-      double share[4] = { count, -count, sum, -sum };
-      const bool replicated = vtkCAO::SceneExchange::Min(this->controller, share, 4) && count > 0.0 &&
-        share[0] == -share[1] && share[2] == -share[3];
-      std::vector<std::uint32_t> whole = parity;
-      // Its open edges matched up over the processes (ends a rounding apart
-      // are one point); replicated, its own.
-      const bool gathered =
-        vtkCAO::SceneExchange::Gather(this->controller, replicated ? std::vector<double>() : edges, allEdges);
-      const bool matched =
-        gathered && (replicated ? edges.empty() : cao::OpenEdgesOfPieces(allEdges, 1e-9 * diagonal) == 0);
-      const bool xored = vtkCAO::SceneExchange::Xor(this->controller, whole); // (collective: always)
-      if (replicated)
-        whole = parity;
-      closed = xored && matched && words > 0 && cao::ParityClosed(g, whole);
-      if (closed)
-        for (std::size_t w = 0; w < words; ++w)
-          mine[w] |= whole[w] | surface[w];
-    }
-    if (!closed)
-      for (std::size_t w = 0; w < words; ++w)
-        mine[w] |= shell[w];
-    g.openEdges.push_back(closed ? 0 : 1);
-  }
-  if (failed)
-  {
-    this->sharedError = error; // this process's failure; its share is zeros
-    mine.assign(words, 0u);
-  }
-  g.bits.swap(mine);
-  if (!this->exchange.OrGrid(this->controller, g))
-    this->sharedError = "the processes' grids could not be combined";
-  else if (this->sharedError.empty())
+  else if (!vtkCAO::SceneExchange::CombineGrid(this->controller, views, this->pieceActor, this->surfaceActors,
+             this->actorSignature, 1e-9 * diagonal, g, error)) // (ends a rounding apart: one point)
+    this->sharedError = error;
+  else
     this->sharedGrid = std::move(g);
+}
+
+bool vtkContextualAOPass::Internals::EyeAxesOfKey(std::array<double, 9>& axes, std::string& error) const
+{
+  // The eye grid's frame: the view matrix's rows, which end its scene key.
+  const std::vector<double>& k = this->frameSceneKey;
+  const std::size_t v = k.size() - 12;
+  const double right[3] = { k[v], k[v + 1], k[v + 2] }, up[3] = { k[v + 4], k[v + 5], k[v + 6] };
+  return cao::EyeAxes(right, up, axes, error);
 }
 
 bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
@@ -960,8 +905,7 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
   this->triangles = static_cast<std::int64_t>(allTris.size() / 3);
   this->open = 0;
   std::string error;
-  const double inf = std::numeric_limits<double>::infinity();
-  std::array<double, 6> b{ { inf, -inf, inf, -inf, inf, -inf } }; // min > max: empty
+  std::array<double, 6> b{ { 1, -1, 1, -1, 1, -1 } };
   if (needBVH)
   {
     if (!this->bvh.Build(all, allTris, error) || this->bvh.NumberOfTriangles() == 0)
@@ -972,18 +916,11 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
     }
     b = this->bvh.Bounds();
   }
-  else
-    for (std::size_t i = 0; i + 2 < all.size(); i += 3)
-      for (int d = 0; d < 3; ++d)
-      {
-        if (!std::isfinite(all[i + d]))
-        {
-          this->failedSceneKey = this->frameSceneKey;
-          return this->Fail(self, "Cannot build the scene: the mesh has a NaN or infinite coordinate");
-        }
-        b[2 * d] = std::min(b[2 * d], all[i + d]);
-        b[2 * d + 1] = std::max(b[2 * d + 1], all[i + d]);
-      }
+  else if (!PointBounds(all, b))
+  {
+    this->failedSceneKey = this->frameSceneKey;
+    return this->Fail(self, "Cannot build the scene: the mesh has a NaN or infinite coordinate");
+  }
   if (distributed) // the radius and the world grid of every process's pieces
     b = this->exchange.Bounds();
   const double diagonal = b[1] < b[0] ? 0.0 : std::sqrt((b[1] - b[0]) * (b[1] - b[0]) +
@@ -1034,11 +971,8 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
   }
   else if (self->Grid == EYE_GRID)
   {
-    const std::vector<double>& k = this->frameSceneKey;
-    const std::size_t v = k.size() - 12; // the view matrix's rows
-    const double right[3] = { k[v], k[v + 1], k[v + 2] }, up[3] = { k[v + 4], k[v + 5], k[v + 6] };
     std::array<double, 9> axes;
-    ok = cao::EyeAxes(right, up, axes, error) &&
+    ok = this->EyeAxesOfKey(axes, error) &&
       cao::PlanEyeGrid(views, axes, 1.05 * this->radius, self->Slices, this->grid, error);
   }
   else

@@ -34,6 +34,21 @@ bool Inside(double e, const double* u, const double* v)
   return e > 0.0 || (e == 0.0 && Owned(u, v));
 }
 
+/// The columns whose centres a triangle's x, y box holds: i0..i1, j0..j1
+/// (empty when i1 < i0 or j1 < j0), both ends clamped to the grid in
+/// double before the cast (a triangle cut at the eye plane reaches far
+/// beyond an int), as the GLSL does.
+void ColumnBox(const double* a, const double* b, const double* c, int nx, int ny, int& i0, int& i1, int& j0,
+  int& j1)
+{
+  const double minX = std::min({ a[0], b[0], c[0] }), maxX = std::max({ a[0], b[0], c[0] });
+  const double minY = std::min({ a[1], b[1], c[1] }), maxY = std::max({ a[1], b[1], c[1] });
+  i0 = static_cast<int>(std::min(static_cast<double>(nx), std::max(0.0, std::ceil(minX - 0.5))));
+  i1 = static_cast<int>(std::max(-1.0, std::min(nx - 1.0, std::floor(maxX - 0.5))));
+  j0 = static_cast<int>(std::min(static_cast<double>(ny), std::max(0.0, std::ceil(minY - 0.5))));
+  j1 = static_cast<int>(std::max(-1.0, std::min(ny - 1.0, std::floor(maxY - 0.5))));
+}
+
 /// XOR (solid) or OR (shell) the slices of one crossing at slice
 /// coordinate s (slice k spans [k, k + 1)) into a column of `words` words.
 void Cross(std::uint32_t* column, int slices, int words, double s, bool solid)
@@ -90,14 +105,8 @@ void RasterizeFrustum(const BitGrid& grid, const std::vector<double>& soup, bool
     const double* b = area > 0.0 ? b0 : c0;
     const double* c = area > 0.0 ? c0 : b0;
     area = std::fabs(area);
-    const double minX = std::min({ a[0], b[0], c[0] }), maxX = std::max({ a[0], b[0], c[0] });
-    const double minY = std::min({ a[1], b[1], c[1] }), maxY = std::max({ a[1], b[1], c[1] });
-    // Both ends clamped in double (a triangle cut at the eye plane reaches
-    // far off the screen, beyond an int), as the GLSL does.
-    const int i0 = static_cast<int>(std::min(static_cast<double>(grid.nx), std::max(0.0, std::ceil(minX - 0.5))));
-    const int i1 = static_cast<int>(std::max(-1.0, std::min(grid.nx - 1.0, std::floor(maxX - 0.5))));
-    const int j0 = static_cast<int>(std::min(static_cast<double>(grid.ny), std::max(0.0, std::ceil(minY - 0.5))));
-    const int j1 = static_cast<int>(std::max(-1.0, std::min(grid.ny - 1.0, std::floor(maxY - 0.5))));
+    int i0, i1, j0, j1;
+    ColumnBox(a, b, c, grid.nx, grid.ny, i0, i1, j0, j1);
     for (int j = j0; j <= j1; ++j)
       for (int i = i0; i <= i1; ++i)
       {
@@ -157,12 +166,8 @@ void RasterizeColumns(const BitGrid& grid, const std::vector<double>& g, const s
     const double* b = area > 0.0 ? v[1] : v[2];
     const double* c = area > 0.0 ? v[2] : v[1];
     area = std::fabs(area);
-    const double minX = std::min({ a[0], b[0], c[0] }), maxX = std::max({ a[0], b[0], c[0] });
-    const double minY = std::min({ a[1], b[1], c[1] }), maxY = std::max({ a[1], b[1], c[1] });
-    const int i0 = std::max(0, static_cast<int>(std::ceil(minX - 0.5)));
-    const int i1 = std::min(grid.nx - 1, static_cast<int>(std::floor(maxX - 0.5)));
-    const int j0 = std::max(0, static_cast<int>(std::ceil(minY - 0.5)));
-    const int j1 = std::min(grid.ny - 1, static_cast<int>(std::floor(maxY - 0.5)));
+    int i0, i1, j0, j1;
+    ColumnBox(a, b, c, grid.nx, grid.ny, i0, i1, j0, j1);
     // An open mesh's shell: at each crossing the slices the triangle's
     // plane spans over a column's width around it (half its rise over
     // one column in x plus one in y, each way), within the triangle's own
