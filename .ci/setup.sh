@@ -17,8 +17,9 @@ packages=(
   # the GL compute layer: headers, GLM, and headless OpenGL at run time
   # (EGL and OSMesa on Mesa's llvmpipe when there is no GPU)
   libgl-dev libegl-dev libglm-dev libosmesa6-dev libegl1 libegl-mesa0 libgl1-mesa-dri libosmesa6
-  # an X server for the tests that run inside an ordinary VTK window
-  xvfb
+  # an X server for the tests that run inside an ordinary VTK window, and
+  # real pointer events for the GUI drag test
+  xvfb xdotool
   # image regression tests: OpenImageIO's library (comparison) and idiff
   libopenimageio-dev openimageio-tools
   # toolchain

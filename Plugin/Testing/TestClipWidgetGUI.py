@@ -71,10 +71,6 @@ try:
     import contextualao  # noqa: F401  (wraps vtkContextualAOVolumeMapper)
     reader = OpenDataFile(os.path.join(os.environ["CAO_DATA_DIR"], "HeadMRVolume.mhd"))
     view = GetActiveViewOrCreate("RenderView")
-    # The known problem (README): with Depth Peeling For Volumes, the
-    # widget's translucent box peels with the volume, whose depth capture
-    # then fails; this test is about the widget, and its log is checked.
-    view.DepthPeelingForVolumes = 0
     display = Show(reader, view)
     ColorBy(display, ("POINTS", "MetaImage"))
     display.SetRepresentationType("Contextual AO Volume")

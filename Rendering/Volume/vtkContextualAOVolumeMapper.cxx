@@ -29,6 +29,7 @@
 #include "vtkWeakPointer.h"
 
 #include "vtkCAOClipMaps.h"
+#include "vtkCAODepthPeeling.h"
 #include "caoClipComposite.h"
 #include "vtkCAOFilterUtilities.h"
 #include "vtkCAOGPUSession.h"
@@ -76,6 +77,7 @@ struct FrameReport
   std::int64_t clipped = -1, affected = -1, unaffected = -1;
   std::string backend;
   double sampleDistance = 0.0;
+  int peelStage = 0; // the host's depth-peeling stage this draw was (0: none)
 
   std::string Json() const
   {
@@ -92,8 +94,9 @@ struct FrameReport
     o << ", \"reasons\": [";
     for (std::size_t i = 0; i < reasons.size(); ++i)
       o << (i ? ", " : "") << "\"" << reasons[i] << "\"";
+    static const char* const peel[4] = { "off", "outside", "layer", "remainder" };
     o << "], \"sample_distance\": " << sampleDistance << ", \"context\": \"" << backend
-      << "\"}";
+      << "\", \"depth_peeling\": \"" << peel[peelStage & 3] << "\"}";
     return o.str();
   }
 };
@@ -1099,7 +1102,20 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     ren->GetTiledSizeAndOrigin(&size[0], &size[1], &origin[0], &origin[1]);
     const int viewport[4] = { origin[0], origin[1], size[0], size[1] };
     std::string error;
-    ok = in.Caster->CaptureDepth(viewport, error) &&
+    // Inside the host's dual depth peeling the framebuffer has no depth:
+    // the pass's textures bound each stage's ray segments instead.
+    vtkCAO::PeelState peel;
+    ok = vtkCAO::QueryDepthPeeling(ren, vol, this, peel, error);
+    if (ok && peel.stage)
+    {
+      params.dims.w = (params.dims.w & ~cao::layout::CAO_RENDER_OPAQUE_DEPTH) |
+        cao::layout::CAO_RENDER_PEEL;
+      params.limits.z = peel.stage;
+      params.viewport.x = params.viewport.y = 0.0f; // the pass draws at its own origin
+      in.Caster->SetPeelTextures({ peel.outer, peel.inner, peel.front, peel.opaque });
+      f.report.peelStage = peel.stage;
+    }
+    ok = ok && (peel.stage || in.Caster->CaptureDepth(viewport, error)) &&
       in.Caster->Draw(*f.engine, !f.clipping, params, error);
     if (!ok)
       f.why = "The ray cast failed: " + error + ".";
@@ -1115,6 +1131,15 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
   f.report.stages.push_back({ "raycast", in.Caster->LastMilliseconds(), f.glTimer });
   in.LastError.clear();
+  if (f.report.peelStage > cao::layout::CAO_PEEL_OUTSIDE)
+  {
+    // A later draw of the same frame inside the host's depth peeling: the
+    // frame's report gains its stages (the update ran in the first draw).
+    in.Last.stages.insert(in.Last.stages.end(), f.report.stages.begin(), f.report.stages.end());
+    in.Last.reasons.insert(in.Last.reasons.end(), f.report.reasons.begin(), f.report.reasons.end());
+    in.Last.peelStage = f.report.peelStage;
+    return;
+  }
   in.Last = f.report;
   ++this->FrameCount;
 }

@@ -26,6 +26,7 @@ struct RayCaster::Impl
   int depthSize[2] = { 0, 0 };
   int scalarDims[3] = { 0, 0, 0 };
   bool timed = false;
+  RayCaster::PeelTextures peel;
 
   Impl(Context& c)
     : Ctx(c)
@@ -227,6 +228,11 @@ bool RayCaster::CaptureDepth(const int viewport[4], std::string& error)
   return false;
 }
 
+void RayCaster::SetPeelTextures(const PeelTextures& textures)
+{
+  this->P->peel = textures;
+}
+
 bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
   const layout::RenderParams& params, std::string& error)
 {
@@ -251,6 +257,15 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
   if (r.source == OpacitySource::Float32 && !p.scalars)
   {
     error = "the engine holds opacity, not scalars: SetScalars first";
+    return false;
+  }
+  const bool peel = (params.dims.w & layout::CAO_RENDER_PEEL) != 0;
+  if (peel &&
+    (params.limits.z < layout::CAO_PEEL_OUTSIDE || params.limits.z > layout::CAO_PEEL_REMAINDER ||
+      !p.peel.outer || (params.limits.z != layout::CAO_PEEL_REMAINDER && !p.peel.inner) ||
+      (params.limits.z == layout::CAO_PEEL_LAYER && (!p.peel.front || !p.peel.opaque))))
+  {
+    error = "a depth-peeling draw without its stage's textures (SetPeelTextures)";
     return false;
   }
   if ((params.dims.w & layout::CAO_RENDER_OPAQUE_DEPTH) && !p.depth)
@@ -292,14 +307,29 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
     gl.ActiveTexture(GL_TEXTURE0 + u);
     gl.BindTexture(units[u][0], units[u][1]);
   }
+  if (peel)
+  {
+    const GLuint host[4][2] = { { CAO_UNIT_PEEL_OUTER, p.peel.outer },
+      { CAO_UNIT_PEEL_INNER, p.peel.inner }, { CAO_UNIT_PEEL_FRONT, p.peel.front },
+      { CAO_UNIT_PEEL_OPAQUE, p.peel.opaque } };
+    for (const auto& h : host)
+    {
+      gl.ActiveTexture(GL_TEXTURE0 + h[0]);
+      gl.BindTexture(GL_TEXTURE_2D, h[1]);
+    }
+  }
   gl.UseProgram(p.program.Id());
   gl.BindVertexArray(p.vertexArray);
   gl.Disable(GL_DEPTH_TEST);
   gl.Disable(GL_CULL_FACE);
   gl.DepthMask(GL_FALSE);
-  gl.Enable(GL_BLEND);
-  gl.BlendEquationSeparate(GL_FUNC_ADD, GL_FUNC_ADD);
-  gl.BlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  if (!peel)
+  {
+    gl.Enable(GL_BLEND);
+    gl.BlendEquationSeparate(GL_FUNC_ADD, GL_FUNC_ADD);
+    gl.BlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  }
+  // (Peeling: the host's blending, MAX or over, combines the outputs.)
   p.timer.Begin(gl, 0);
   gl.DrawArrays(GL_TRIANGLES, 0, 3);
   p.timer.End(gl, 0);

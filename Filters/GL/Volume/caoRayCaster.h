@@ -10,6 +10,12 @@
  * It draws into the framebuffer bound when Draw is called, blending
  * premultiplied colour over it, and restores every piece of state it
  * changes (StateGuard) in a caller's context. Timed with a GPU query.
+ *
+ * Inside a host's dual depth peeling (CAO_RENDER_PEEL, the stage in
+ * RenderParams::limits.z) it draws the ray segments that stage asks for
+ * between the host's peeled depths (SetPeelTextures), writes the back and
+ * front outputs the host's draw buffers expect, and leaves the host's
+ * blending as it is.
  */
 #ifndef caoRayCaster_h
 #define caoRayCaster_h
@@ -51,6 +57,16 @@ public:
   /// Copy the depth of the framebuffer bound for drawing, over `viewport`
   /// (x, y, width, height): what the opaque geometry left.
   bool CaptureDepth(const int viewport[4], std::string& error);
+
+  /// The host's depth-peeling textures for CAO_RENDER_PEEL draws (borrowed
+  /// GL names, 0 where the stage has none): outer and inner depths as
+  /// (-near, far) pairs (the remainder's range in `outer`), the front
+  /// colour accumulated so far, and the opaque geometry's depth.
+  struct PeelTextures
+  {
+    unsigned int outer = 0, inner = 0, front = 0, opaque = 0;
+  };
+  void SetPeelTextures(const PeelTextures& textures);
 
   /// Draw: `params` is the frame; `precomputedAO` samples the unclipped AO
   /// instead of the current one (no clip shape). `params.dims.w` carries

@@ -107,7 +107,8 @@ struct RenderParams
   vec4 sampling;  /* x: step (world units); y, z: table coordinate = texel * y + z; w: AO strength */
   vec4 invDims;   /* xyz: 1 / voxels per axis (texture coordinate = (index + 0.5) * invDims); w: 0 */
   ivec4 dims;     /* xyz: voxels per axis; w: CAO_RENDER_* flags */
-  ivec4 limits;   /* x: maximum samples per ray; y: lights (0 to CAO_MAX_LIGHTS); zw: 0 */
+  ivec4 limits;   /* x: maximum samples per ray; y: lights (0 to CAO_MAX_LIGHTS); z: the depth-peeling
+                     stage (CAO_PEEL_*; with CAO_RENDER_PEEL); w: 0 */
   vec4 boxMax;    /* xyz: the last voxel index (the box is [0, boxMax]); w: early termination alpha */
   vec4 aoCalibration; /* CAO_RENDER_AO_CALIBRATED (cao::AOCalibration): x: the LAO of an open flat
                          face's last empty voxel, y: of its first opaque voxel, z: of an enclosed
@@ -121,6 +122,13 @@ CAO_CONST CAO_RENDER_OPAQUE_DEPTH = 16; /* stop at the opaque geometry's depth *
 CAO_CONST CAO_RENDER_AO_CALIBRATED = 32; /* the AO as the light an open face would get (aoCalibration) */
 CAO_CONST CAO_RENDER_CLIP_SMOOTH = 64; /* the picture's clip test blends the 4 nearest map pixels */
 CAO_CONST CAO_RENDER_CLIP_ENTRY = 128; /* the first sample behind a cut moves onto the clip surface */
+CAO_CONST CAO_RENDER_PEEL = 256; /* drawn inside a host's dual depth peeling (limits.z: the stage) */
+/* The stages of VTK's dual depth peeling a volume is drawn in (vtkDualDepthPeelingPass): the
+ * ray segments outside the translucent geometry's depth range (front and back outputs), one
+ * peel between two translucent layers, and the alpha-blended remainder. */
+CAO_CONST CAO_PEEL_OUTSIDE = 1;
+CAO_CONST CAO_PEEL_LAYER = 2;
+CAO_CONST CAO_PEEL_REMAINDER = 3;
 
 /*
  * Binding points, shared so that the C++ side binds what the GLSL declares.
@@ -139,6 +147,11 @@ CAO_CONST CAO_RENDER_CLIP_ENTRY = 128; /* the first sample behind a cut moves on
 #define CAO_UNIT_TABLE 2            /* sampler2D: RGBA transfer-function table, 1 row */
 #define CAO_UNIT_DEPTH 3            /* sampler2D: the opaque geometry's depth */
 #define CAO_UNIT_STATE 4            /* usampler3D: the clip state (category << 6 | count) */
+/* CAO_RENDER_PEEL: the host's peeling textures, bound by the ray caster on units of its own. */
+#define CAO_UNIT_PEEL_OUTER 5       /* sampler2D RG: (-near, far) outer depths (the remainder's range) */
+#define CAO_UNIT_PEEL_INNER 6       /* sampler2D RG: (-near, far) inner depths */
+#define CAO_UNIT_PEEL_FRONT 7       /* sampler2D RGBA: the front colour accumulated so far */
+#define CAO_UNIT_PEEL_OPAQUE 8      /* sampler2D: the opaque geometry's depth */
 /* The depth-map programs (caoClipDepthMapsGL) are separate programs with their
  * own storage bindings, kept within the 8 that GL 4.3 guarantees. */
 #define CAO_BINDING_DM_POINTS 0    /* storage: double xyz per mesh point (local frame) */

@@ -19,6 +19,18 @@
 //    (each with its colour and intensity; two-sided, as VTK's ray caster
 //    lights a volume, so ParaView's light kit looks the same).
 // Front-to-back compositing, premultiplied output, early termination.
+//
+// CAO_RENDER_PEEL: drawn inside a host's dual depth peeling (VTK's
+// vtkDualDepthPeelingPass, ParaView's "Depth Peeling For Volumes"), where
+// the framebuffer has no depth to read. The host's peeled depths
+// (pairs (-near, far) in window depth) bound the ray segments each stage
+// composites, on the same per-pixel sample lattice as a whole ray, so the
+// segments join without seams:
+//  - CAO_PEEL_OUTSIDE: before the nearest translucent layer into the front
+//    output, and from the farthest one to the opaque depth into the back;
+//  - CAO_PEEL_LAYER: the segments between this peel's outer and inner
+//    depths, the front one under-blended with the front colour so far;
+//  - CAO_PEEL_REMAINDER: what the peels left, into the back output.
 layout(std140, binding = CAO_BINDING_RENDER_PARAMS) uniform RenderBlock
 {
   RenderParams rp;
@@ -28,8 +40,13 @@ layout(binding = CAO_UNIT_AO) uniform sampler3D aoTexture;
 layout(binding = CAO_UNIT_TABLE) uniform sampler2D tableTexture;
 layout(binding = CAO_UNIT_DEPTH) uniform sampler2D depthTexture;
 layout(binding = CAO_UNIT_STATE) uniform usampler3D stateTexture;
+layout(binding = CAO_UNIT_PEEL_OUTER) uniform sampler2D peelOuter;
+layout(binding = CAO_UNIT_PEEL_INNER) uniform sampler2D peelInner;
+layout(binding = CAO_UNIT_PEEL_FRONT) uniform sampler2D peelFront;
+layout(binding = CAO_UNIT_PEEL_OPAQUE) uniform sampler2D peelOpaque;
 
-layout(location = 0) out vec4 fragColor;
+layout(location = 0) out vec4 fragColor;  // peeling: the back output
+layout(location = 1) out vec4 frontColor; // peeling: the front output
 
 /// A deterministic per-pixel offset in [0, 1) (integer hash of the pixel):
 /// the same pixel gets the same jitter in every frame, so images repeat.
@@ -157,44 +174,38 @@ float Scalar(vec3 tc)
   return texture(scalarTexture, tc).r;
 }
 
-void main()
+// The ray of this pixel, set once by main().
+vec2 g_ndc;
+vec3 g_nearWorld, g_dirWorld, g_origin, g_dir;
+float g_tEnter, g_tExit, g_first;
+
+/// Window depth z (0 near, 1 far) as t, world units along the ray.
+float DepthToT(float z)
+{
+  if (z >= 1.0)
+    return 3.0e38;
+  if (z <= 0.0)
+    return 0.0;
+  return dot(Unproject(g_ndc, z * 2.0 - 1.0) - g_nearWorld, g_dirWorld);
+}
+
+/// Composite the samples with tFrom <= t < tTo (t <= tTo when `inclusive`)
+/// of the pixel's lattice t = first + k * step, within the volume's box:
+/// premultiplied colour, front to back.
+vec4 CastRay(float tFrom, float tTo, bool inclusive)
 {
   int flags = rp.dims.w;
-  ivec2 pixel = ivec2(gl_FragCoord.xy - rp.viewport.xy);
-  vec2 ndc = (gl_FragCoord.xy - rp.viewport.xy) * rp.viewport.zw * 2.0 - 1.0;
-  vec3 nearWorld = Unproject(ndc, -1.0);
-  vec3 farWorld = Unproject(ndc, 1.0);
-  vec3 dirWorld = normalize(farWorld - nearWorld);
-
-  mat4 toIndex = mat4(rp.worldToIndex[0], rp.worldToIndex[1], rp.worldToIndex[2],
-    rp.worldToIndex[3]);
-  vec3 origin = (toIndex * vec4(nearWorld, 1.0)).xyz;
-  vec3 dir = mat3(toIndex) * dirWorld; // index units per world unit
-
-  // Slab test against [0, boxMax]; t in world units from the near plane.
-  vec3 inv = 1.0 / dir;
-  vec3 t0 = (vec3(0.0) - origin) * inv;
-  vec3 t1 = (rp.boxMax.xyz - origin) * inv;
-  vec3 tLow = min(t0, t1), tHigh = max(t0, t1);
-  float tEnter = max(max(max(tLow.x, tLow.y), tLow.z), 0.0);
-  float tExit = min(min(tHigh.x, tHigh.y), tHigh.z);
-  if ((flags & CAO_RENDER_OPAQUE_DEPTH) != 0)
-  {
-    float depth = texelFetch(depthTexture, pixel, 0).r;
-    if (depth < 1.0)
-      tExit = min(tExit, dot(Unproject(ndc, depth * 2.0 - 1.0) - nearWorld, dirWorld));
-  }
-  if (!(tExit > tEnter))
-    discard;
-
   float step = rp.sampling.x;
-  float t = tEnter + step * ((flags & CAO_RENDER_JITTER) != 0 ? Jitter(pixel) : 0.5);
+  float tEnd = min(tTo, g_tExit);
+  float k0 = max(0.0, ceil((max(tFrom, g_tEnter) - g_first) / step));
+  float t = g_first + k0 * step;
+  vec3 origin = g_origin, dir = g_dir, dirWorld = g_dirWorld;
   mat3 normalMatrix = mat3(rp.normalToWorld[0].xyz, rp.normalToWorld[1].xyz,
     rp.normalToWorld[2].xyz);
   vec3 texel = rp.invDims.xyz;
   vec4 sum = vec4(0.0);
   bool wasRemoved = false;
-  for (int i = 0; i < rp.limits.x && t <= tExit; ++i, t += step)
+  for (int i = int(k0); i < rp.limits.x && (inclusive ? t <= tEnd : t < tEnd); ++i, t += step)
   {
     vec3 p = origin + t * dir;
     vec3 tc = (p + 0.5) * rp.invDims.xyz;
@@ -283,5 +294,110 @@ void main()
     if (sum.a >= rp.boxMax.w)
       break;
   }
-  fragColor = sum;
+  return sum;
+}
+
+/// The stages of the host's dual depth peeling, as vtkDualDepthPeelingPass
+/// draws its own volumes: which segments go to the back output (location
+/// 0) and which to the front one (location 1).
+void Peel(ivec2 pixel)
+{
+  int stage = rp.limits.z;
+  if (stage == CAO_PEEL_OUTSIDE)
+  {
+    vec2 inner = texelFetch(peelInner, pixel, 0).xy;
+    vec2 outer = texelFetch(peelOuter, pixel, 0).xy;
+    bool opaque = outer.y >= 0.0;
+    bool translucent = inner.x != -1.0;
+    vec4 front = vec4(0.0), back = vec4(0.0);
+    if (!opaque && !translucent)
+      back = CastRay(0.0, DepthToT(1.0), true);
+    else if (!translucent)
+      back = CastRay(0.0, DepthToT(inner.y), true);
+    else
+    {
+      front = CastRay(0.0, DepthToT(-inner.x), false);
+      if (front.a < rp.boxMax.w)
+        back = CastRay(DepthToT(inner.y), DepthToT(opaque ? outer.y : 1.0), true);
+    }
+    fragColor = back;
+    frontColor = front;
+  }
+  else if (stage == CAO_PEEL_LAYER)
+  {
+    vec2 inner = texelFetch(peelInner, pixel, 0).xy;
+    vec2 outer = texelFetch(peelOuter, pixel, 0).xy;
+    vec4 last = texelFetch(peelFront, pixel, 0);
+    if (outer.x == -1.0)
+      discard; // peeled already
+    float frontStart = -outer.x, frontEnd = -inner.x;
+    float backStart = inner.y, backEnd = outer.y;
+    bool onlyBack = frontStart == backStart && frontEnd == backEnd;
+    bool noInner = inner.x == -1.0;
+    if (noInner)
+      frontEnd = outer.y;
+    float opaqueDepth = texelFetch(peelOpaque, pixel, 0).x;
+    bool behindOpaque = frontEnd >= opaqueDepth;
+    vec4 front = onlyBack ?
+      vec4(0.0) :
+      CastRay(DepthToT(frontStart), DepthToT(behindOpaque ? opaqueDepth : frontEnd), false);
+    vec4 back = vec4(0.0);
+    if (!behindOpaque && !noInner)
+      back = CastRay(DepthToT(backStart), DepthToT(backEnd), false);
+    fragColor = back;
+    // Under-blend the front segment (the host keeps 1 - alpha for its MAX
+    // blending).
+    float transmitted = 1.0 - last.a;
+    frontColor = vec4(transmitted * front.rgb + last.rgb, 1.0 - transmitted * (1.0 - front.a));
+  }
+  else
+  {
+    vec2 range = texelFetch(peelOuter, pixel, 0).xy;
+    if (range.x == -1.0)
+      discard;
+    fragColor = CastRay(DepthToT(-range.x), DepthToT(range.y), true);
+    frontColor = vec4(0.0);
+  }
+}
+
+void main()
+{
+  int flags = rp.dims.w;
+  ivec2 pixel = ivec2(gl_FragCoord.xy - rp.viewport.xy);
+  g_ndc = (gl_FragCoord.xy - rp.viewport.xy) * rp.viewport.zw * 2.0 - 1.0;
+  g_nearWorld = Unproject(g_ndc, -1.0);
+  vec3 farWorld = Unproject(g_ndc, 1.0);
+  g_dirWorld = normalize(farWorld - g_nearWorld);
+
+  mat4 toIndex = mat4(rp.worldToIndex[0], rp.worldToIndex[1], rp.worldToIndex[2],
+    rp.worldToIndex[3]);
+  g_origin = (toIndex * vec4(g_nearWorld, 1.0)).xyz;
+  g_dir = mat3(toIndex) * g_dirWorld; // index units per world unit
+
+  // Slab test against [0, boxMax]; t in world units from the near plane.
+  vec3 inv = 1.0 / g_dir;
+  vec3 t0 = (vec3(0.0) - g_origin) * inv;
+  vec3 t1 = (rp.boxMax.xyz - g_origin) * inv;
+  vec3 tLow = min(t0, t1), tHigh = max(t0, t1);
+  g_tEnter = max(max(max(tLow.x, tLow.y), tLow.z), 0.0);
+  g_tExit = min(min(tHigh.x, tHigh.y), tHigh.z);
+  if (!(g_tExit > g_tEnter))
+    discard;
+  g_first = g_tEnter + rp.sampling.x * ((flags & CAO_RENDER_JITTER) != 0 ? Jitter(pixel) : 0.5);
+  if ((flags & CAO_RENDER_PEEL) != 0)
+  {
+    Peel(pixel);
+    return;
+  }
+  float tEnd = g_tExit;
+  if ((flags & CAO_RENDER_OPAQUE_DEPTH) != 0)
+  {
+    float depth = texelFetch(depthTexture, pixel, 0).r;
+    if (depth < 1.0)
+      tEnd = min(tEnd, DepthToT(depth));
+  }
+  if (!(tEnd > g_tEnter))
+    discard;
+  fragColor = CastRay(g_tEnter, tEnd, true);
+  frontColor = vec4(0.0);
 }

@@ -17,6 +17,7 @@
 #include "vtkFloatArray.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkCamera.h"
+#include "vtkCommand.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkConeSource.h"
 #include "vtkContextualAOEGLWindow.h"
@@ -977,6 +978,154 @@ void CutFace(const Options& o)
   Compare(o, frames[1][1], "cutface-at-surface");
 }
 
+/// Translucent geometry with depth peeling for volumes, as ParaView draws by
+/// default (Depth Peeling For Volumes on; the clip widget's faces, a
+/// translucent surface): VTK then draws the volume inside its dual depth
+/// peeling, several times a frame, into framebuffers with no depth. The
+/// frame must be the volume and a translucent sphere composited in depth
+/// order: with the sphere wholly in front, sphere over volume over the
+/// background; wholly behind, volume over sphere. The expected frame is
+/// composed from the volume alone and the sphere alone, each rendered over
+/// black and over white (premultiplied colour and alpha per pixel), and the
+/// composed scene is checked over both backgrounds, with a clip sphere
+/// carving the volume and AO on. Negative control: with Depth Peeling For
+/// Volumes off, VTK draws the volume after the translucent pass, over the
+/// sphere in front: the same check must then fail.
+void Peeling(const Options& o)
+{
+  Scene s;
+  if (!s.Open(o.window) || !s.Load(o.data + "/neghip.slc"))
+    return;
+  std::vector<std::string> errors;
+  vtkNew<vtkCallbackCommand> catcher;
+  catcher->SetClientData(&errors);
+  catcher->SetCallback([](vtkObject*, unsigned long, void* list, void* text) {
+    static_cast<std::vector<std::string>*>(list)->push_back(text ? static_cast<char*>(text) : "");
+  });
+  s.mapper->AddObserver(vtkCommand::ErrorEvent, catcher);
+  double b[6];
+  s.image->GetBounds(b);
+  const double centre[3] = { 0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]) };
+  const double radius =
+    0.5 * std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
+            (b[5] - b[4]) * (b[5] - b[4]));
+  s.Shape("sphere", 0.3 * radius);
+  s.clip->SetPosition(centre[0] + 0.3 * radius, centre[1], centre[2] + 0.2 * radius);
+
+  vtkNew<vtkSphereSource> ball;
+  ball->SetThetaResolution(48);
+  ball->SetPhiResolution(24);
+  ball->SetRadius(0.22 * radius);
+  vtkNew<vtkPolyDataMapper> ballMapper;
+  ballMapper->SetInputConnection(ball->GetOutputPort());
+  vtkNew<vtkActor> sphere;
+  sphere->SetMapper(ballMapper);
+  sphere->GetProperty()->SetColor(0.2, 0.45, 1.0);
+  sphere->GetProperty()->SetOpacity(0.45);
+  s.renderer->AddActor(sphere);
+  s.renderer->SetUseDepthPeeling(true);
+  s.renderer->SetUseDepthPeelingForVolumes(true);
+  s.renderer->SetMaximumNumberOfPeels(4); // ParaView's default
+  s.renderer->SetOcclusionRatio(0.0);
+  vtkCamera* camera = s.renderer->GetActiveCamera();
+  double eye[3], toward[3];
+  camera->GetPosition(eye);
+  for (int d = 0; d < 3; ++d)
+    toward[d] = eye[d] - centre[d];
+  const double length = std::sqrt(toward[0] * toward[0] + toward[1] * toward[1] + toward[2] * toward[2]);
+  auto frame = [&](bool volume, bool ball, double background) {
+    s.volume->SetVisibility(volume);
+    sphere->SetVisibility(ball);
+    s.renderer->SetBackground(background, background, background);
+    s.renderer->ResetCameraClippingRange(-2 * radius, 2 * radius, -2 * radius, 2 * radius,
+      -2 * radius, 2 * radius);
+    return s.Frame();
+  };
+  // (premultiplied colour, alpha) of a layer from its frames over black and white
+  auto compose = [](const caotest::Image& frontB, const caotest::Image& frontW,
+                   const caotest::Image& backB, const caotest::Image& backW, double bg) {
+    caotest::Image e = frontB;
+    for (std::size_t p = 0; p + 2 < e.rgb.size(); p += 3)
+    {
+      double af = 0, ab = 0;
+      for (int c = 0; c < 3; ++c)
+      {
+        af += (1.0 - (frontW.rgb[p + c] - frontB.rgb[p + c]) / 255.0) / 3.0;
+        ab += (1.0 - (backW.rgb[p + c] - backB.rgb[p + c]) / 255.0) / 3.0;
+      }
+      for (int c = 0; c < 3; ++c)
+      {
+        const double under = backB.rgb[p + c] / 255.0 + (1.0 - ab) * bg;
+        const double v = frontB.rgb[p + c] / 255.0 + (1.0 - af) * under;
+        e.rgb[p + c] = static_cast<unsigned char>(std::lround(255.0 * std::min(1.0, std::max(0.0, v))));
+      }
+    }
+    return e;
+  };
+  // Share of pixels more than 6 levels off, and the mean difference.
+  auto error = [](const caotest::Image& a, const caotest::Image& e, double& mean) {
+    long off = 0;
+    double sum = 0.0;
+    for (std::size_t p = 0; p + 2 < a.rgb.size(); p += 3)
+    {
+      int worst = 0;
+      for (int c = 0; c < 3; ++c)
+      {
+        const int d = std::abs(int(a.rgb[p + c]) - int(e.rgb[p + c]));
+        worst = std::max(worst, d);
+        sum += d;
+      }
+      off += worst > 6;
+    }
+    mean = sum / std::max<std::size_t>(1, a.rgb.size());
+    return double(off) / std::max<std::size_t>(1, a.rgb.size() / 3);
+  };
+  const caotest::Image volumeB = frame(true, false, 0.0), volumeW = frame(true, false, 1.0);
+  for (int behind = 0; behind < 2; ++behind)
+  {
+    const double t = (behind ? -1.0 : 1.0) * 1.3 * radius / length;
+    sphere->SetPosition(centre[0] + t * toward[0], centre[1] + t * toward[1], centre[2] + t * toward[2]);
+    const caotest::Image ballB = frame(false, true, 0.0), ballW = frame(false, true, 1.0);
+    for (int peelVolumes = 1; peelVolumes >= (behind ? 1 : 0); --peelVolumes)
+    {
+      s.renderer->SetUseDepthPeelingForVolumes(peelVolumes != 0);
+      for (int white = 0; white < 2; ++white)
+      {
+        errors.clear();
+        const caotest::Image got = frame(true, true, white);
+        const caotest::Image expected = behind ?
+          compose(volumeB, volumeW, ballB, ballW, white) :
+          compose(ballB, ballW, volumeB, volumeW, white);
+        double mean = 0.0;
+        const double off = error(got, expected, mean);
+        const std::string report = s.mapper->GetLastFrameReport();
+        std::printf("sphere %s the volume, depth peeling for volumes %s, background %s: %.4f of "
+                    "pixels more than 6 levels from the depth-ordered composite, mean %.3f levels; "
+                    "%zu error(s)\n",
+          behind ? "behind" : "in front of", peelVolumes ? "on" : "off", white ? "white" : "black",
+          off, mean, errors.size());
+        if (!white)
+        {
+          std::string why;
+          caotest::WritePNG(got, o.output + "/peeling-" + (behind ? "behind" : "front") +
+              (peelVolumes ? "" : "-volumes-unpeeled") + "-" + o.window + ".png", why);
+        }
+        if (peelVolumes)
+        {
+          CAO_EXPECT(errors.empty(), "the mapper reported: %s", errors.empty() ? "" : errors[0].c_str());
+          CAO_EXPECT(report.find("\"depth_peeling\": \"off\"") == std::string::npos,
+            "the volume was not drawn inside the peeling: %s", report.c_str());
+          CAO_EXPECT(off < 0.002 && mean < 0.5, "not the depth-ordered composite: %.4f, %.3f", off, mean);
+        }
+        else
+          CAO_EXPECT(off > 0.02, "negative control: drawn after the translucent pass, the volume "
+            "should cover the sphere in front of it (%.4f)", off);
+      }
+    }
+    s.renderer->SetUseDepthPeelingForVolumes(true);
+  }
+}
+
 int TestContextualAOVolumeMapper(int argc, char* argv[])
 {
   Options o;
@@ -996,10 +1145,11 @@ int TestContextualAOVolumeMapper(int argc, char* argv[])
   }
   if ((o.window != "egl" && o.window != "x") ||
     (o.mode != "images" && o.mode != "report" && o.mode != "badinput" &&
-      o.mode != "calibration" && o.mode != "silhouette" && o.mode != "cutface") ||
+      o.mode != "calibration" && o.mode != "silhouette" && o.mode != "cutface" &&
+      o.mode != "peeling") ||
     o.data.empty() || o.baselines.empty() || o.output.empty())
   {
-    std::printf("usage: TestContextualAOVolumeMapper <egl|x> <images|report|badinput|calibration|silhouette|cutface> -D data -B "
+    std::printf("usage: TestContextualAOVolumeMapper <egl|x> <images|report|badinput|calibration|silhouette|cutface|peeling> -D data -B "
                 "baselines -T output\n");
     return 1;
   }
@@ -1018,6 +1168,8 @@ int TestContextualAOVolumeMapper(int argc, char* argv[])
     Silhouette(o);
   else if (o.mode == "cutface")
     CutFace(o);
+  else if (o.mode == "peeling")
+    Peeling(o);
   else
     BadInput(o);
   std::printf("%s: %d failure(s)\n", failures ? "FAILED" : "PASSED", failures);

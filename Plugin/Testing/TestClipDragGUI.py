@@ -1,0 +1,132 @@
+"""The clip widget dragged with real window-system events (a startup script
+for test-gui-drag.sh, which drives the mouse with xdotool under Xvfb).
+
+ParaView at its default settings (Depth Peeling For Volumes on), HeadMR as a
+"Contextual AO Volume" with a Clip Shape Sphere, and a translucent sphere
+(Opacity 0.4) over part of the volume, so that VTK draws the volume inside
+its dual depth peeling in every frame; the box widget's face also turns
+translucent while it is dragged.
+
+This script sets the scene up and returns to the GUI's event loop. It
+writes, to CAO_RESULT.targets, the view's display coordinates of the
+widget's centre handle and of a point on its front face away from the
+handles, and appends to CAO_RESULT.events one JSON line per event:
+- "move": a mouse move the view's interactor received (its position), so
+  the driver can map screen to view coordinates;
+- "frame": each frame the mapper drew (time, its report's depth-peeling
+  stage and stages, the clip pose the widget shows and whether the
+  mapper's clip matrix is that pose);
+- "error": any error the mapper reported."""
+import json
+import os
+import time
+
+from paraview.simple import *  # noqa: F401,F403
+
+base = os.environ["CAO_RESULT"]
+# Appending (O_APPEND): the driver appends its own lines to the same file.
+log = open(base + ".events", "a", buffering=1)
+
+
+def emit(kind, **fields):
+    fields["kind"] = kind
+    fields["t"] = time.time()
+    log.write(json.dumps(fields) + "\n")
+
+
+def to_display(view, p):
+    renderer = view.GetRenderer()
+    renderer.SetWorldPoint(p[0], p[1], p[2], 1.0)
+    renderer.WorldToDisplay()
+    return renderer.GetDisplayPoint()[:2]
+
+
+def expected_matrix(display):
+    """vtkPVBox's pose of the reference box: the shape of half-extent 1 in the box."""
+    import vtk
+    b = list(display.ClipReferenceBounds)
+    t = vtk.vtkTransform()
+    t.Translate(list(display.ClipPosition))
+    r = list(display.ClipOrientation)
+    t.RotateZ(r[2])
+    t.RotateX(r[0])
+    t.RotateY(r[1])
+    t.Scale(list(display.ClipScale))
+    t.Translate(0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]))
+    t.Scale(0.5 * (b[1] - b[0]), 0.5 * (b[3] - b[2]), 0.5 * (b[5] - b[4]))
+    m = t.GetMatrix()
+    return [m.GetElement(i // 4, i % 4) for i in range(16)]
+
+
+LoadPlugin(os.environ["CAO_PLUGIN"], remote=False, ns=globals())
+import contextualao  # noqa: E402,F401  (wraps vtkContextualAOVolumeMapper)
+
+reader = OpenDataFile(os.path.join(os.environ["CAO_DATA_DIR"], "HeadMRVolume.mhd"))
+view = GetActiveViewOrCreate("RenderView")
+display = Show(reader, view)
+ColorBy(display, ("POINTS", "MetaImage"))
+display.SetRepresentationType("Contextual AO Volume")
+display.ClipShape = "Sphere"
+b = reader.GetDataInformation().GetBounds()
+centre = [0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5])]
+size = max(b[1] - b[0], b[3] - b[2], b[5] - b[4])
+ball = Sphere(Center=[centre[0] - 0.25 * size, centre[1] + 0.2 * size, b[5] + 0.05 * size],
+              Radius=0.18 * size, ThetaResolution=32, PhiResolution=16)
+ballDisplay = Show(ball, view)
+ballDisplay.Opacity = 0.4
+SetActiveSource(reader)
+view.ResetCamera()
+# An oblique view: the widget's handles then stand apart on the screen (head
+# on, the front face's handle hides the centre handle).
+camera = GetActiveCamera()
+camera.Azimuth(30.0)
+camera.Elevation(20.0)
+view.ResetCamera()
+Render(view)
+
+mapper = display.GetClientSideObject().GetActiveRepresentation().GetActor().GetMapper()
+frames = [mapper.GetFrameCount()]
+
+
+def on_error(obj, event):
+    emit("error", cls=obj.GetClassName())
+
+
+def on_frame(obj, event):
+    count = mapper.GetFrameCount()
+    if count == frames[0]:
+        return
+    frames[0] = count
+    report = json.loads(mapper.GetLastFrameReport() or "{}")
+    m = mapper.GetClipShape().GetMatrix()
+    actual = [m.GetElement(i // 4, i % 4) for i in range(16)]
+    follows = max(abs(a - e) for a, e in zip(actual, expected_matrix(display))) < 1e-9
+    emit("frame", count=count, peel=report.get("depth_peeling", "?"),
+         sample_distance=report.get("sample_distance"), reasons=report.get("reasons", []),
+         ms={s["name"]: s["ms"] for s in report.get("stages", []) if s["name"] != "raycast"},
+         raycast_ms=sum(s["ms"] for s in report.get("stages", []) if s["name"] == "raycast"),
+         stages=[s["name"] for s in report.get("stages", [])],
+         position=list(display.ClipPosition), rotation=list(display.ClipOrientation),
+         scale=list(display.ClipScale),
+         follows=follows)
+
+
+def on_move(obj, event):
+    x, y = obj.GetEventPosition()
+    emit("move", x=x, y=y, size=list(obj.GetRenderWindow().GetSize()))
+
+
+errorTag = mapper.AddObserver("ErrorEvent", on_error)
+frameTag = view.GetRenderWindow().AddObserver("EndEvent", on_frame)
+moveTag = view.GetRenderWindow().GetInteractor().AddObserver("MouseMoveEvent", on_move)
+
+start = list(display.ClipPosition)
+scale = list(display.ClipScale)
+# The +z face (it faces the camera), halfway between its centre and its +x
+# edge: away from the face's handle.
+face = [start[0] + 0.5 * scale[0], start[1], start[2] + scale[2]]
+targets = {"centre": to_display(view, start), "face": to_display(view, face),
+           "size": list(view.GetRenderWindow().GetSize()),
+           "depth_peeling_for_volumes": int(view.DepthPeelingForVolumes)}
+with open(base + ".targets", "w") as f:
+    json.dump(targets, f)

@@ -1,0 +1,52 @@
+"""Check the log of test-gui-drag.sh (see there): prints ok/FAIL lines and
+PASSED or FAILED, exits 1 on a failure."""
+import json
+import sys
+
+base = sys.argv[1]
+events = [json.loads(line) for line in open(base + ".events") if line.strip()]
+targets = json.load(open(base + ".targets"))
+failures = []
+
+
+def check(ok, what):
+    print(("ok: " if ok else "FAIL: ") + what)
+    if not ok:
+        failures.append(what)
+
+
+def at(what):
+    return next(e["t"] for e in events if e["kind"] == "driver" and e["what"] == what)
+
+
+check(targets["depth_peeling_for_volumes"] == 1,
+      "ParaView's default: Depth Peeling For Volumes on (%d)" % targets["depth_peeling_for_volumes"])
+errors = [e for e in events if e["kind"] == "error"]
+check(not errors, "no mapper error in any frame (%d)" % len(errors))
+frames = [e for e in events if e["kind"] == "frame"]
+before = [f for f in frames if f["t"] < at("centre-press")]
+check(before and before[-1]["follows"], "the first frames are drawn (%d)" % len(before))
+for name in ("centre", "face"):
+    press, release, idle = at(name + "-press"), at(name + "-release"), at(name + "-idle")
+    during = [f for f in frames if press <= f["t"] <= release]
+    after = [f for f in frames if release < f["t"] <= idle]
+    last = (after or during or before)[-1]
+    first = ([f for f in frames if f["t"] < press] or before)[-1]
+    settle = (after[-1]["t"] - release) if after else 0.0
+    print("driver: %s drag: %d frames during the 2.5 s drag, %d after the release, the last "
+          "%.2f s after it; depth peeling in %d of them"
+          % (name, len(during), len(after), settle,
+             sum(1 for f in during + after if f["peel"] != "off")))
+    check(len(during) >= 2, "%s drag: the view draws during the drag (%d frames)" % (name, len(during)))
+    check(any(f["peel"] != "off" for f in during + after),
+          "%s drag: the volume was drawn inside the depth peeling" % name)
+    check(last["follows"], "%s drag: the last frame draws the clip at the widget's pose" % name)
+    if name == "centre":
+        moved = [b - a for a, b in zip(first["position"], last["position"])]
+        check(abs(moved[0]) > 1.0 and max(abs(v) for v in last["rotation"]) < 1e-9,
+              "centre drag: Clip Position moves along x by %.2f, no turn" % moved[0])
+    else:
+        turned = max(abs(v) for v in last["rotation"])
+        check(turned > 5.0, "face drag: the box turns (Clip Rotation %s)" % last["rotation"])
+print("PASSED" if not failures else "FAILED")
+sys.exit(1 if failures else 0)

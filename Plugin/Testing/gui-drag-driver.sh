@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# Run under Xvfb by test-gui-drag.sh: start the GUI with the startup script,
+# find the render view on the screen, drag, wait for the GUI to go idle.
+set -uo pipefail
+script=$1
+events="$CAO_RESULT.events"
+now() { date +%s.%N; }
+mark() { echo "{\"kind\": \"driver\", \"what\": \"$1\", \"t\": $(now)}" >>"$events"; }
+paraview --dr --script="$script" >"$CAO_RESULT.gui.log" 2>&1 &
+pv=$!
+trap 'kill $pv 2>/dev/null; wait $pv 2>/dev/null' EXIT
+for _ in $(seq 300); do
+  [ -s "$CAO_RESULT.targets" ] && break
+  kill -0 $pv 2>/dev/null || { echo "driver: the GUI exited"; tail -20 "$CAO_RESULT.gui.log"; exit 1; }
+  if grep -q Traceback "$CAO_RESULT.gui.log"; then
+    echo "driver: the startup script failed:"; grep -A8 Traceback "$CAO_RESULT.gui.log"; exit 1
+  fi
+  sleep 1
+done
+[ -s "$CAO_RESULT.targets" ] || { echo "driver: no targets after 300 s"; exit 1; }
+# Wait for the GUI to draw no more (no frame logged for 3 s, at most 180 s).
+idle() {
+  local last size
+  for _ in $(seq 180); do
+    size=$(stat -c %s "$events")
+    sleep 3
+    [ "$(stat -c %s "$events")" = "$size" ] && return 0
+  done
+  echo "driver: the GUI was still drawing after 180 s"
+}
+idle
+# Where is the view? Move over a grid of screen points until the view's
+# interactor reports a move, then map its display coordinates to the screen.
+read -r width height < <(/usr/bin/python3 -c "import json,sys; t=json.load(open(sys.argv[1])); print(*t['size'])" "$CAO_RESULT.targets")
+origin=""
+for sy in 450 350 550 250 650; do
+  for sx in 650 550 750 450 850; do
+    xdotool mousemove $sx $sy
+    sleep 0.5
+    last=$(grep '"kind": "move"' "$events" | tail -1)
+    if [ -n "$last" ]; then
+      origin=$(/usr/bin/python3 -c "import json,sys; m=json.loads(sys.argv[1]); print(int(sys.argv[2]) - m['x'], int(sys.argv[3]) + m['y'] - (m['size'][1] - 1))" "$last" $sx $sy)
+      break 2
+    fi
+  done
+done
+[ -n "$origin" ] || { echo "driver: no mouse move reached the render view"; exit 1; }
+read -r ox oy <<<"$origin"
+echo "driver: the render view's top-left pixel is at ($ox, $oy) on the screen, ${width}x${height}"
+screen() { # display (x, y) of target $1 -> screen x y
+  /usr/bin/python3 -c "import json,sys; t=json.load(open(sys.argv[1]))[sys.argv[2]]; print(int(round(t[0])) + $ox, $oy + $height - 1 - int(round(t[1])))" "$CAO_RESULT.targets" "$1"
+}
+# A user's drag: press, 25 moves 0.1 s apart (2.5 s), release.
+drag() { # name x y dx dy
+  local name=$1 x=$2 y=$3 dx=$4 dy=$5 k
+  xdotool mousemove "$x" "$y"
+  sleep 0.5
+  mark "$name-press"
+  xdotool mousedown 1
+  for k in $(seq 25); do
+    xdotool mousemove $((x + dx * k / 25)) $((y + dy * k / 25))
+    sleep 0.1
+  done
+  xdotool mouseup 1
+  mark "$name-release"
+  idle
+  mark "$name-idle"
+}
+# A first click in an empty corner of the view, as a user's first click
+# there: the view takes the keyboard focus (ParaView's first press on a
+# view without focus did not reach the widget).
+xdotool mousemove $((ox + 20)) $((oy + height - 21)) click 1
+sleep 0.5
+idle
+read -r cx cy < <(screen centre)
+drag centre "$cx" "$cy" 80 0
+read -r fx fy < <(screen face)
+
+drag face "$fx" "$fy" 0 -70
+import -window root "$CAO_RESULT.png" 2>/dev/null || true
+exit 0
