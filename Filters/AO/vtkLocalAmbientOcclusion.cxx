@@ -20,8 +20,11 @@
 #include "vtkSMPThreadLocal.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
+#include "vtkStringArray.h"
+
 #include "caoLAO.h"
 #include "caoLAOSettings.h"
+#include "caoOpacityEdit.h"
 
 #include <algorithm>
 #include <atomic>
@@ -36,6 +39,81 @@ vtkInformationKeyMacro(vtkLocalAmbientOcclusion, REACH, Double);
 struct vtkLocalAmbientOcclusion::Internals
 {
   cao::LAOSettings Settings; // the one definition: defaults and limits in caoLAOSettings.h
+
+  // The last CPU run, kept for an edit of the opacity alone (a new
+  // transfer function): its opacity and AO (the arrays the output holds)
+  // and what they were computed from. The scalars are compared by identity
+  // and modification time, never dereferenced.
+  vtkSmartPointer<vtkFloatArray> LastOpacity, LastAO;
+  const vtkDataArray* LastScalars = nullptr;
+  vtkMTimeType LastScalarsTime = 0;
+  int LastComponent = -1;
+  cao::VolumeGeometry LastGeometry;
+  cao::LAOSettings LastSettings;
+  double LastUnitDistance = 0.0;
+
+  /// Why the last run's AO cannot be edited into this one's ("" when it can).
+  std::string FullReason(vtkDataArray* scalars, int component,
+    const cao::VolumeGeometry& geometry, const cao::LAOSettings& settings, double unit) const
+  {
+    if (!this->LastAO)
+      return "first run";
+    if (scalars != this->LastScalars || scalars->GetMTime() != this->LastScalarsTime ||
+      component != this->LastComponent)
+      return "the scalars changed";
+    if (geometry != this->LastGeometry)
+      return "the grid changed";
+    if (settings != this->LastSettings || unit != this->LastUnitDistance)
+      return "the ray settings changed";
+    return "";
+  }
+
+  /// The march on the CPU: an edit of the last run's AO where only the
+  /// opacity changed (caoOpacityEdit: the voxels within the plan's
+  /// footprint of a changed voxel, bit for bit as a full run), else every
+  /// voxel. `reason` says which, `edit` what the edit did.
+  bool March(vtkLocalAmbientOcclusion* self, const cao::LAOPlan& plan, vtkDataArray* scalars,
+    int component, const cao::VolumeGeometry& geometry, const cao::LAOSettings& settings,
+    vtkFloatArray* opacity, vtkFloatArray* ao, std::string& reason, cao::OpacityEditStats& edit)
+  {
+    const std::int64_t voxels = geometry.NumberOfVoxels();
+    const double unit = self->GetScalarOpacityUnitDistance();
+    reason = this->FullReason(scalars, component, geometry, settings, unit);
+    edit = cao::OpacityEditStats();
+    bool ok = false;
+    if (reason.empty())
+    {
+      std::copy_n(this->LastAO->GetPointer(0), voxels, ao->GetPointer(0));
+      const cao::ContextualUpdate::ParallelFor parallel =
+        [self](std::int64_t n, std::int64_t grain, double p0, double p1,
+          const std::function<void(std::int64_t, std::int64_t)>& body) {
+          return vtkCAO::ParallelFor(self, n, grain, 0.1 + 0.9 * p0, 0.1 + 0.9 * p1, body);
+        };
+      ok = cao::UpdateLAOAfterOpacityEdit(plan, this->LastOpacity->GetPointer(0),
+        opacity->GetPointer(0), ao->GetPointer(0), parallel, edit);
+      reason = "opacity edit";
+    }
+    else
+    {
+      ok = vtkCAO::ParallelFor(self, voxels, 1024, 0.1, 1.0, [&](std::int64_t b, std::int64_t e) {
+        cao::LAORange(plan, opacity->GetPointer(0), ao->GetPointer(0), b, e);
+      });
+      edit.changed = -1;
+      edit.recomputed = voxels;
+    }
+    this->LastAO = nullptr; // kept again only when complete
+    if (!ok)
+      return false;
+    this->LastOpacity = opacity;
+    this->LastAO = ao;
+    this->LastScalars = scalars;
+    this->LastScalarsTime = scalars->GetMTime();
+    this->LastComponent = component;
+    this->LastGeometry = geometry;
+    this->LastSettings = settings;
+    this->LastUnitDistance = unit;
+    return true;
+  }
 };
 
 vtkCAOLAOSettingMacro(vtkLocalAmbientOcclusion, RayPattern, int, this->Internal->Settings.pattern);
@@ -281,18 +359,27 @@ int vtkLocalAmbientOcclusion::RequestData(
   ao->SetNumberOfTuples(voxels);
   bool ok = true, aborted = false;
   std::int64_t nonFinite = 0;
+  std::string reason = "full recompute on the GPU";
+  cao::OpacityEditStats edit;
+  edit.changed = -1;
+  edit.recomputed = voxels;
   vtkCAO::WithThreads(this->NumberOfThreads, [&] {
     ok = vtkCAO::ComputeOpacity(this, scalars, component, this->OpacityFunction,
       plan.step / this->ScalarOpacityUnitDistance, opacity->GetPointer(0), nonFinite);
     if (ok && !gpu)
-      ok = vtkCAO::ParallelFor(this, voxels, 1024, 0.1, 1.0, [&](std::int64_t b, std::int64_t e) {
-        cao::LAORange(plan, opacity->GetPointer(0), ao->GetPointer(0), b, e);
-      });
+      ok = this->Internal->March(
+        this, plan, scalars, component, geometry, settings, opacity, ao, reason, edit);
   });
   if (nonFinite > 0)
     vtkWarningMacro(<< nonFinite << " NaN or Inf scalar value(s) treated as transparent.");
   if (!ok)
     return 1; // aborted: the executive flags the output
+  if (gpu)
+  {
+    // (An opacity edit's state is the CPU's; free it.)
+    this->Internal->LastAO = nullptr;
+    this->Internal->LastOpacity = nullptr;
+  }
   if (gpu && !this->RunOnGPU(scalars, component, geometry.dims, plan, opacity, ao, aborted))
     return aborted ? 1 : 0;
 
@@ -308,6 +395,7 @@ int vtkLocalAmbientOcclusion::RequestData(
   run.milliseconds = vtkCAO::MillisecondsSince(start);
   run.preset = this->Internal->Settings.preset;
   vtkCAO::WriteLAOSettings(output->GetFieldData(), settings, run);
+  vtkCAO::WriteLAOUpdate(output->GetFieldData(), reason, edit.changed, edit.recomputed);
   this->GPU->AddBackendLabel(output->GetFieldData(), gpu);
   if (gpu)
     vtkCAO::AddGPUStatistics(output->GetFieldData(), this->GPU->Engine(), voxels);

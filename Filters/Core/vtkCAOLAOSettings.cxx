@@ -1,5 +1,7 @@
 #include "vtkCAOLAOSettings.h"
 
+#include "vtkStringArray.h"
+
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -45,6 +47,23 @@ void WriteLAOSettings(vtkFieldData* fd, const cao::LAOSettings& resolved, const 
     a->SetComponent(0, count + c, extra[c]);
   }
   fd->AddArray(a);
+}
+
+void WriteLAOUpdate(
+  vtkFieldData* fd, const std::string& reason, std::int64_t changed, std::int64_t recomputed)
+{
+  vtkNew<vtkStringArray> why;
+  why->SetName("LAOUpdate");
+  why->InsertNextValue(reason);
+  fd->AddArray(why);
+  vtkNew<vtkDoubleArray> counts;
+  counts->SetName("LAOUpdateVoxels");
+  counts->SetNumberOfComponents(2);
+  counts->SetComponentName(0, "ChangedVoxels");
+  counts->SetComponentName(1, "RecomputedVoxels");
+  const double values[2] = { static_cast<double>(changed), static_cast<double>(recomputed) };
+  counts->InsertNextTuple(values);
+  fd->AddArray(counts);
 }
 
 bool ReadLAOSettings(vtkFieldData* fd, cao::LAOSettings& settings, LAORun* run)

@@ -10,6 +10,9 @@
 #include "caoFiltersCoreModule.h" // For export macro
 #include "caoLAO.h"
 
+#include <cstdint> // For WriteLAOUpdate
+#include <string>  // For WriteLAOUpdate
+
 #include <type_traits> // For vtkCAOLAOSettingMacro
 
 #include "vtkIndent.h" // For PrintLAOSettings
@@ -39,6 +42,13 @@ struct LAORun
 /// the run in `fd`.
 CAOFILTERSCORE_EXPORT void WriteLAOSettings(
   vtkFieldData* fd, const cao::LAOSettings& resolved, const LAORun& run);
+
+/// Record how the LAO was updated: `reason` ("opacity edit", or why every
+/// voxel was computed) as the string array LAOUpdate, and the voxels whose
+/// opacity changed (-1: not compared) and the voxels marched as the two
+/// components (ChangedVoxels, RecomputedVoxels) of LAOUpdateVoxels.
+CAOFILTERSCORE_EXPORT void WriteLAOUpdate(
+  vtkFieldData* fd, const std::string& reason, std::int64_t changed, std::int64_t recomputed);
 
 /**
  * Read back what WriteLAOSettings recorded, by component name: the

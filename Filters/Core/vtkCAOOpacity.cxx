@@ -4,6 +4,7 @@
 
 #include "vtkCAOFilterUtilities.h"
 #include "vtkDataArray.h"
+#include "vtkType.h"
 #include "vtkPiecewiseFunction.h"
 
 #include "caoLAO.h"
@@ -48,6 +49,41 @@ bool ComputeOpacity(vtkAlgorithm* self, vtkDataArray* scalars, int component,
     for (std::size_t i = 0; i < size; ++i)
     {
       table[i] = cao::CorrectOpacity(tf->GetValue(static_cast<double>(lo + i)), stepOverUnit);
+    }
+    // Arrays in VTK's standard layout are read through their pointer, by
+    // type (GetComponent is a virtual call per voxel: 0.3 s on 256^3).
+    const int components = scalars->GetNumberOfComponents();
+    auto typed = [&](auto* values) {
+      return vtkCAO::ParallelFor(self, n, 4096, 0.0, 0.1, [&](std::int64_t b, std::int64_t e) {
+        for (std::int64_t i = b; i < e; ++i)
+        {
+          const long long s = static_cast<long long>(values[i * components + component]);
+          opacity[i] = table[static_cast<std::size_t>(s - lo)];
+        }
+      });
+    };
+    if (scalars->HasStandardMemoryLayout())
+    {
+      void* p = scalars->GetVoidPointer(0);
+      switch (type)
+      {
+        case VTK_UNSIGNED_CHAR:
+          return typed(static_cast<const unsigned char*>(p));
+        case VTK_SIGNED_CHAR:
+          return typed(static_cast<const signed char*>(p));
+        case VTK_CHAR:
+          return typed(static_cast<const char*>(p));
+        case VTK_UNSIGNED_SHORT:
+          return typed(static_cast<const unsigned short*>(p));
+        case VTK_SHORT:
+          return typed(static_cast<const short*>(p));
+        case VTK_UNSIGNED_INT:
+          return typed(static_cast<const unsigned int*>(p));
+        case VTK_INT:
+          return typed(static_cast<const int*>(p));
+        default:
+          break;
+      }
     }
     return vtkCAO::ParallelFor(self, n, 4096, 0.0, 0.1, [&](std::int64_t b, std::int64_t e) {
       for (std::int64_t i = b; i < e; ++i)

@@ -29,6 +29,7 @@
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
@@ -51,6 +52,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <iostream>
 #include <map>
 #include <sstream>
@@ -66,6 +68,7 @@ using caocli::ToDouble;
 const char* Usage = R"(usage:
   cao lao   VOLUME [common options] [-o OUT.vti]
   cao carve VOLUME [common options] [clip options] [--verify] [-o OUT.vti]
+  cao tf    VOLUME --from S,A,... --to S,A,... [common options] [--verify] [-o OUT.vti]
 
 VOLUME: .vti, .mhd/.mha, .slc, legacy .vtk, .nii/.nii.gz
 
@@ -128,6 +131,13 @@ clip options (carve):
                        by more must not be (exit 3 otherwise)
   --no-progress        no progress line on stderr (shown only on a terminal)
 
+tf (a transfer-function edit): the LAO with the --from opacity, then the
+opacity changed to --to, updated by recomputing only the voxels within the
+rays' reach of a voxel whose opacity changed (on the CPU), then a full LAO
+with --to. It prints the voxels whose opacity changed, the voxels
+recomputed, the update's and the full LAO's milliseconds, and max|diff|
+between them; --verify requires them equal bit for bit (exit 3 otherwise).
+
 The depth maps are made for each pose scale of the path: pixels of half a
 voxel and the dilation of the reach, in the world, however the clip's size is
 split between --size and the pose scale; a mesh much larger than the volume
@@ -139,7 +149,7 @@ struct Options
   std::string command, volume, output, arrayName, mesh, posesFile, shape = "sphere",
                                                                     mode = "subtract";
   std::vector<std::string> rays{ cao::RayPatternName(cao::LAOSettings().pattern) };
-  std::vector<double> opacity;
+  std::vector<double> opacity, from, to; // tf: --from and --to
   std::vector<std::string> poseTexts;
   double reach = 0.0, unitDistance = 1.0, size = 0.0, pixelSize = 0.0;
   caocli::LAOCommandLine lao;             // --quality, --density, --offset, --variation
@@ -172,9 +182,9 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
     return false;
   }
   o.command = argv[1];
-  if (o.command != "lao" && o.command != "carve")
+  if (o.command != "lao" && o.command != "carve" && o.command != "tf")
   {
-    error = "unknown command '" + o.command + "' (expected lao, carve, render or bench)";
+    error = "unknown command '" + o.command + "' (expected lao, carve, tf, render, surface or bench)";
     return false;
   }
   for (int i = 2; i < argc; ++i)
@@ -264,26 +274,34 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
       ok = integer(o.layers, 1, 64, "an integer, 1 to 64");
     else if (a == "--aa")
       ok = integer(o.aa, 0, 32, "an integer, 0 to 32");
-    else if (a == "--opacity")
+    else if (a == "--opacity" || (o.command == "tf" && (a == "--from" || a == "--to")))
     {
+      std::vector<double>& points = a == "--from" ? o.from : a == "--to" ? o.to : o.opacity;
       ok = value(v);
       if (ok)
       {
+        points.clear();
         for (const auto& s : Split(v, ','))
         {
           double x;
           if (!ToDouble(s, x))
           {
-            error = "bad number '" + s + "' in --opacity";
+            error = "bad number '" + s + "' in " + a;
             return false;
           }
-          o.opacity.push_back(x);
+          points.push_back(x);
         }
-        if (o.opacity.size() < 2 || o.opacity.size() % 2 != 0)
+        if (points.size() < 2 || points.size() % 2 != 0)
         {
-          error = "--opacity needs scalar,opacity pairs";
+          error = a + " needs scalar,opacity pairs";
           return false;
         }
+        for (std::size_t p = 1; p < points.size(); p += 2)
+          if (!(points[p] >= 0.0 && points[p] <= 1.0))
+          {
+            error = "bad opacity " + std::to_string(points[p]) + " in " + a + " (0 to 1)";
+            return false;
+          }
       }
     }
     else if (a == "--direction")
@@ -365,10 +383,28 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
     error = "missing VOLUME";
     return false;
   }
-  if (o.command == "lao" && o.rays.size() != 1)
+  if ((o.command == "lao" || o.command == "tf") && o.rays.size() != 1)
   {
-    error = "lao takes a single ray pattern";
+    error = o.command + " takes a single ray pattern";
     return false;
+  }
+  if (o.command == "tf")
+  {
+    if (o.from.empty() || o.to.empty())
+    {
+      error = "tf needs --from and --to (scalar,opacity pairs)";
+      return false;
+    }
+    if (!o.opacity.empty())
+    {
+      error = "tf takes --from and --to, not --opacity";
+      return false;
+    }
+    if (o.backend == vtkLocalAmbientOcclusion::OPENGL)
+    {
+      error = "tf runs on the CPU (--backend cpu or auto): the opacity edit has no GPU path yet";
+      return false;
+    }
   }
   return caocli::CheckLAOCommandLine(o.lao, error);
 }
@@ -948,6 +984,103 @@ int RunCarve(const Options& o, vtkImageData* volume)
 }
 }
 
+/// `cao tf`: a transfer-function edit, updated, against a full LAO.
+int RunTF(const Options& o, vtkImageData* volume)
+{
+  vtkNew<vtkPiecewiseFunction> from, to;
+  for (std::size_t i = 0; i < o.from.size(); i += 2)
+    from->AddPoint(o.from[i], o.from[i + 1]);
+  for (std::size_t i = 0; i < o.to.size(); i += 2)
+    to->AddPoint(o.to[i], o.to[i + 1]);
+  vtkNew<vtkLocalAmbientOcclusion> lao;
+  caocli::ErrorLog log;
+  log.Watch(lao);
+  ConfigureLAO(o, o.rays[0], lao, from);
+  lao->SetBackend(vtkLocalAmbientOcclusion::CPU);
+  lao->SetInputData(volume);
+  caocli::Progress progress(o.quiet);
+  progress.Watch(lao, "LAO");
+  lao->Update();
+  if (!log.messages.empty())
+    return Fail(1, log.Last());
+  const double fullMs = LAOUsed(lao->GetOutput()).run.milliseconds;
+  lao->SetOpacityFunction(to);
+  lao->Update();
+  if (!log.messages.empty())
+    return Fail(1, log.Last());
+  vtkImageData* out = lao->GetOutput();
+  const LAOUsed used(out);
+  const double updateMs = used.run.milliseconds;
+  const std::string reason = FieldString(out, "LAOUpdate");
+  double counts[2] = { -1, -1 };
+  if (vtkDataArray* c = out->GetFieldData()->GetArray("LAOUpdateVoxels"))
+    c->GetTuple(0, counts);
+  const double voxels = static_cast<double>(out->GetNumberOfPoints());
+  // A full LAO with the new opacity: its time, and the update against it
+  // bit for bit (--verify requires them equal).
+  double verifyMs = -1.0, maxDiff = -1.0;
+  long long differing = -1;
+  {
+    vtkNew<vtkLocalAmbientOcclusion> full;
+    log.Watch(full);
+    ConfigureLAO(o, o.rays[0], full, to);
+    full->SetBackend(vtkLocalAmbientOcclusion::CPU);
+    full->SetInputData(volume);
+    progress.Watch(full, "full LAO");
+    full->Update();
+    if (!log.messages.empty())
+      return Fail(1, log.Last());
+    verifyMs = LAOUsed(full->GetOutput()).run.milliseconds;
+    auto* a = vtkFloatArray::SafeDownCast(out->GetPointData()->GetArray("AmbientOcclusion"));
+    auto* b = vtkFloatArray::SafeDownCast(
+      full->GetOutput()->GetPointData()->GetArray("AmbientOcclusion"));
+    if (!a || !b || a->GetNumberOfTuples() != b->GetNumberOfTuples())
+      return Fail(1, "the AO arrays to compare are missing");
+    differing = 0;
+    maxDiff = 0.0;
+    for (vtkIdType v = 0; v < a->GetNumberOfTuples(); ++v)
+    {
+      const float x = a->GetValue(v), y = b->GetValue(v);
+      if (std::memcmp(&x, &y, sizeof(float)) != 0)
+      {
+        ++differing;
+        maxDiff = std::max(maxDiff, std::fabs(double(x) - double(y)));
+      }
+    }
+  }
+  const double speedup = updateMs > 0.0 ? verifyMs / updateMs : 0.0;
+  const double limit = counts[1] > 0 ? voxels / counts[1] : 0.0;
+  if (o.json)
+    std::printf("{\"command\": \"tf\", \"volume\": \"%s\", \"voxels\": %.0f, \"rays\": %d, "
+                "\"samples\": %d, %s, \"threads\": %d, \"update\": \"%s\", "
+                "\"changed_voxels\": %.0f, \"recomputed_voxels\": %.0f, \"update_ms\": %.3f, "
+                "\"first_full_ms\": %.3f, \"full_ms\": %.3f, \"speedup\": %.4g, "
+                "\"limit\": %.4g, \"share_of_limit\": %.4g, \"differing_voxels\": %lld, "
+                "\"max_diff\": %.9g}\n",
+      JsonEscape(o.volume).c_str(), voxels, used.run.rays, used.run.samples, used.Json().c_str(),
+      vtkSMPTools::GetEstimatedNumberOfThreads(), JsonEscape(reason).c_str(), counts[0], counts[1],
+      updateMs, fullMs, verifyMs, speedup, limit, limit > 0 ? speedup / limit : 0.0, differing,
+      maxDiff);
+  else
+  {
+    std::printf("transfer-function edit of %s (%.0f voxels): %d rays x %d samples (%s), %d thread(s)\n"
+                "update: %s\n"
+                "  voxels whose opacity changed   %12.0f\n"
+                "  voxels recomputed              %12.0f\n"
+                "  update                         %12.1f ms\n"
+                "  full LAO (--to)                %12.1f ms  (the first, with --from: %.1f ms)\n"
+                "  speed-up                       %12.2f x  (all / recomputed: %.2f x; %.0f%% of it)\n"
+                "  max|diff| against the full LAO %12.3g  (%lld voxels differ)\n",
+      o.volume.c_str(), voxels, used.run.rays, used.run.samples, used.Text().c_str(),
+      vtkSMPTools::GetEstimatedNumberOfThreads(), reason.c_str(), counts[0], counts[1], updateMs,
+      verifyMs, fullMs, speedup, limit, limit > 0 ? 100.0 * speedup / limit : 0.0, maxDiff, differing);
+  }
+  std::string error;
+  if (!o.output.empty() && !Write(out, o.output, error))
+    return Fail(1, error);
+  return o.verify && differing != 0 ? 3 : 0;
+}
+
 int main(int argc, char* argv[])
 {
   caocli::InstallOutputWindow();
@@ -1005,5 +1138,7 @@ int main(int argc, char* argv[])
   vtkSmartPointer<vtkImageData> volume = vtkCAO::ReadVolume(o.volume, error);
   if (!volume)
     return Fail(2, error);
+  if (o.command == "tf")
+    return RunTF(o, volume);
   return o.command == "lao" ? RunLAO(o, volume) : RunCarve(o, volume);
 }

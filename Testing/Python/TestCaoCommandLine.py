@@ -425,5 +425,26 @@ check(p.returncode == 0 and b"LAO:" in shown and b"%" in shown,
 rc, out, err = run("lao", neghip, "--rays", "fib:200")
 check(rc == 0 and "LAO:" not in err, "a pipe gets no progress line")
 
+# cao tf: a transfer-function edit updated in place, against a full LAO.
+rc, out, err = run("tf", neghip, "--from", "0,0,255,0.8", "--to", "0,0,191,0.6,255,0.8", "--rays", "14",
+                   "--verify", "--json")
+t = json.loads(out) if rc == 0 else {}
+check(rc == 0 and t.get("update") == "opacity edit" and t.get("max_diff") == 0 and
+      t.get("differing_voxels") == 0 and 0 < t.get("changed_voxels", 0) <= t.get("recomputed_voxels", 0) <
+      t.get("voxels", 0) and t.get("full_ms", 0) > 0 and t.get("update_ms", 0) > 0,
+      f"tf --verify: the edit equals the full LAO and recomputes fewer voxels: {out.strip()[:400]} {err[-200:]}")
+rc, out, err = run("tf", neghip, "--from", "0,0,255,0.8", "--to", "0,0,255,0.8", "--json")
+t = json.loads(out) if rc == 0 else {}
+check(rc == 0 and t.get("changed_voxels") == 0 and t.get("recomputed_voxels") == 0,
+      f"tf with no change recomputes nothing: {out.strip()[:300]}")
+rc, out, err = run("tf", neghip, "--from", "0,0,255,0.8", "--to", "0,0,255,0.8")
+check(rc == 0 and "voxels recomputed" in out and "max|diff|" in out, f"tf prints a table: {out[:300]}")
+expect_error(["tf", neghip, "--from", "0,0,255,0.8"], 2, "--from and --to", "tf without --to")
+expect_error(["tf", neghip, "--from", "0,0,255,0.8", "--to", "0,0,255,5"], 2, "0 to 1",
+             "tf with an opacity above 1")
+expect_error(["tf", neghip, "--from", "0,0,255,0.8", "--to", "0,0,255"], 2, "pairs", "tf with an odd list")
+expect_error(["tf", neghip, "--from", "0,0,255,0.8", "--to", "0,0,255,1", "--backend", "gl"], 2,
+             "CPU", "tf on the GPU")
+
 print(f"{passed} passed, {len(failures)} failed")
 sys.exit(1 if failures else 0)

@@ -1,0 +1,192 @@
+#include "caoOpacityEdit.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <memory>
+
+namespace cao
+{
+namespace
+{
+double Since(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+    .count();
+}
+
+/// Dilate `in` (0/1 per voxel) along axis `axis` into `out`: out[v] = 1
+/// when in[v + o] is 1 for some o in [lo, hi] along that axis. Each output
+/// row is the OR of input rows shifted by o (contiguous byte runs the
+/// compiler vectorises); `inAny` says which input rows hold a 1, so empty
+/// rows cost nothing but their fill, and `outAny` is set for the output.
+bool DilateAxis(const int dims[3], int axis, int lo, int hi, const std::uint8_t* in,
+  const std::uint8_t* inAny, std::uint8_t* out, std::uint8_t* outAny,
+  const ContextualUpdate::ParallelFor& parallel, double p0, double p1)
+{
+  const std::int64_t nx = dims[0], ny = dims[1], nz = dims[2];
+  const std::int64_t rows = ny * nz; // rows of nx voxels
+  return parallel(rows, 64, p0, p1, [&](std::int64_t begin, std::int64_t end) {
+    for (std::int64_t row = begin; row < end; ++row)
+    {
+      const std::int64_t j = row % ny, k = row / ny;
+      std::uint8_t* o = out + row * nx;
+      std::fill(o, o + nx, std::uint8_t(0));
+      bool any = false;
+      for (int d = lo; d <= hi; ++d)
+      {
+        if (axis == 0)
+        {
+          if (!inAny[row])
+            break;
+          // o[x] |= in[x + d] where x + d lies inside the row.
+          const std::int64_t x0 = std::max<std::int64_t>(0, -d), x1 = std::min<std::int64_t>(nx, nx - d);
+          const std::uint8_t* src = in + row * nx + d;
+          for (std::int64_t x = x0; x < x1; ++x)
+            o[x] |= src[x];
+          any = true;
+        }
+        else
+        {
+          const std::int64_t jj = axis == 1 ? j + d : j, kk = axis == 2 ? k + d : k;
+          if (jj < 0 || jj >= ny || kk < 0 || kk >= nz || !inAny[kk * ny + jj])
+            continue;
+          const std::uint8_t* src = in + (kk * ny + jj) * nx;
+          for (std::int64_t x = 0; x < nx; ++x)
+            o[x] |= src[x];
+          any = true;
+        }
+      }
+      outAny[row] = any;
+    }
+  });
+}
+}
+
+void OpacityFootprint(const LAOPlan& plan, int lo[3], int hi[3])
+{
+  for (int d = 0; d < 3; ++d)
+  {
+    lo[d] = 0;
+    hi[d] = 0;
+  }
+  for (const layout::LAOTap& t : plan.taps)
+  {
+    const int c[3] = { t.cell.x, t.cell.y, t.cell.z };
+    for (int d = 0; d < 3; ++d)
+    {
+      lo[d] = std::min(lo[d], c[d]);
+      hi[d] = std::max(hi[d], c[d] + 1); // the upper trilinear corner
+    }
+  }
+}
+
+bool OpacityEditReach(const LAOPlan& plan, const float* before, const float* after,
+  std::vector<std::int64_t>& reached, std::int64_t& changed,
+  const ContextualUpdate::ParallelFor& parallel)
+{
+  const layout::LAOMarchBlock& p = plan.params;
+  const int dims[3] = { p.dims.x, p.dims.y, p.dims.z };
+  const std::int64_t nx = dims[0], rows = std::int64_t(dims[1]) * dims[2], n = nx * rows;
+  reached.clear();
+  changed = 0;
+  // Two masks of a byte per voxel (every byte written before it is read)
+  // and a flag per row: whether the row holds a 1.
+  std::unique_ptr<std::uint8_t[]> mask(new std::uint8_t[static_cast<std::size_t>(n)]),
+    other(new std::uint8_t[static_cast<std::size_t>(n)]);
+  std::vector<std::uint8_t> any(static_cast<std::size_t>(rows)), otherAny(any.size());
+  std::vector<std::int64_t> perRow(static_cast<std::size_t>(rows), 0);
+  // The changed voxels. Bit patterns: -0 and 0, or two NaNs, differ as the
+  // march reads them.
+  if (!parallel(rows, 64, 0.0, 0.2, [&](std::int64_t r0, std::int64_t r1) {
+        for (std::int64_t r = r0; r < r1; ++r)
+        {
+          std::int64_t count = 0;
+          for (std::int64_t v = r * nx; v < (r + 1) * nx; ++v)
+          {
+            std::uint32_t x, y;
+            std::memcpy(&x, before + v, sizeof x);
+            std::memcpy(&y, after + v, sizeof y);
+            const std::uint8_t differs = x != y;
+            mask[v] = differs;
+            count += differs;
+          }
+          perRow[r] = count;
+          any[r] = count > 0;
+        }
+      }))
+    return false;
+  for (std::int64_t c : perRow)
+    changed += c;
+  if (changed == 0)
+    return true;
+  // A voxel v reads v + o, o in [lo, hi]: v is reached when a changed voxel
+  // lies in that box, so the changed set is dilated by [lo, hi] itself.
+  int lo[3], hi[3];
+  OpacityFootprint(plan, lo, hi);
+  if (!DilateAxis(dims, 0, lo[0], hi[0], mask.get(), any.data(), other.get(), otherAny.data(),
+        parallel, 0.2, 0.4) ||
+    !DilateAxis(dims, 1, lo[1], hi[1], other.get(), otherAny.data(), mask.get(), any.data(),
+      parallel, 0.4, 0.6) ||
+    !DilateAxis(dims, 2, lo[2], hi[2], mask.get(), any.data(), other.get(), otherAny.data(),
+      parallel, 0.6, 0.8))
+    return false;
+  // Gather in increasing order: count per row, then write at the rows' offsets.
+  const std::uint8_t* reach = other.get();
+  if (!parallel(rows, 64, 0.8, 0.9, [&](std::int64_t r0, std::int64_t r1) {
+        for (std::int64_t r = r0; r < r1; ++r)
+        {
+          std::int64_t count = 0;
+          if (otherAny[r])
+            for (std::int64_t v = r * nx; v < (r + 1) * nx; ++v)
+              count += reach[v];
+          perRow[r] = count;
+        }
+      }))
+    return false;
+  std::int64_t total = 0;
+  for (std::int64_t& c : perRow)
+  {
+    const std::int64_t count = c;
+    c = total; // the row's offset
+    total += count;
+  }
+  reached.resize(static_cast<std::size_t>(total));
+  return parallel(rows, 64, 0.9, 1.0, [&](std::int64_t r0, std::int64_t r1) {
+    for (std::int64_t r = r0; r < r1; ++r)
+    {
+      if (!otherAny[r])
+        continue;
+      std::int64_t* outList = reached.data() + perRow[r];
+      for (std::int64_t v = r * nx; v < (r + 1) * nx; ++v)
+        if (reach[v])
+          *outList++ = v;
+    }
+  });
+}
+
+bool UpdateLAOAfterOpacityEdit(const LAOPlan& plan, const float* before, const float* after,
+  float* ao, const ContextualUpdate::ParallelFor& parallel, OpacityEditStats& stats)
+{
+  stats = OpacityEditStats();
+  auto start = std::chrono::steady_clock::now();
+  std::vector<std::int64_t> reached;
+  // The reach's own progress is the first tenth of the edit's.
+  const ContextualUpdate::ParallelFor scaled =
+    [&](std::int64_t n, std::int64_t grain, double p0, double p1,
+      const std::function<void(std::int64_t, std::int64_t)>& body) {
+      return parallel(n, grain, 0.1 * p0, 0.1 * p1, body);
+    };
+  if (!OpacityEditReach(plan, before, after, reached, stats.changed, scaled))
+    return false;
+  stats.findMs = Since(start);
+  stats.recomputed = static_cast<std::int64_t>(reached.size());
+  start = std::chrono::steady_clock::now();
+  const bool ok = reached.empty() ||
+    parallel(stats.recomputed, 4096, 0.1, 1.0, [&](std::int64_t begin, std::int64_t end) {
+      LAOList(plan, after, ao, reached.data(), begin, end);
+    });
+  stats.recomputeMs = Since(start);
+  return ok;
+}
+}

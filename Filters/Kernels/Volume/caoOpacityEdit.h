@@ -1,0 +1,60 @@
+/**
+ * caoOpacityEdit — the LAO after an edit of the opacity (a transfer-function
+ * change) without a full recompute. No VTK.
+ *
+ * A voxel's LAO reads the opacity only at the corners its plan's taps read
+ * (caoLAO.h: the value depends on the plan and those opacities alone, bit
+ * for bit). Every tap of every ray and variant reads cells at offsets
+ * within the plan's footprint box [lo, hi] per axis (OpacityFootprint), so
+ * a voxel whose box holds no voxel whose opacity changed keeps its LAO
+ * exactly. The edit finds the changed voxels (bitwise: -0 and 0, or two
+ * NaNs, compare as the march reads them), dilates them by the footprint
+ * (three separable passes of per-line prefix counts: linear in the
+ * voxels), and recomputes the voxels so reached with the march's own list
+ * path (LAOList); the result equals a full recompute on the new opacity
+ * bit for bit. The footprint box contains the plan's ball of rays, so a
+ * reached voxel may keep its value (about 6/pi as many voxels as the ball
+ * would reach); it is never missed.
+ *
+ * A contextual state built on the old precomputed AO (ContextualUpdate)
+ * is re-made after the edit by Reset() and the pose's Update: its affected
+ * voxels are recomputed on the new clipped opacity.
+ */
+#ifndef caoOpacityEdit_h
+#define caoOpacityEdit_h
+
+#include "caoContextualUpdate.h"
+#include "caoLAO.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace cao
+{
+/// The offsets (in voxels, per axis) of every opacity value the plan's
+/// march reads from voxel v: v + o for o in [lo[d], hi[d]].
+void OpacityFootprint(const LAOPlan& plan, int lo[3], int hi[3]);
+
+struct OpacityEditStats
+{
+  std::int64_t changed = 0;    ///< voxels whose opacity changed
+  std::int64_t recomputed = 0; ///< voxels whose LAO was marched again
+  double findMs = 0, dilateMs = 0, recomputeMs = 0;
+};
+
+/// The voxels whose LAO can change, in increasing linear order: those with
+/// a changed opacity within the footprint. `changed` counts the changed
+/// voxels. False when aborted.
+bool OpacityEditReach(const LAOPlan& plan, const float* before, const float* after,
+  std::vector<std::int64_t>& reached, std::int64_t& changed,
+  const ContextualUpdate::ParallelFor& parallel);
+
+/// `ao` holds the LAO of `before` with `plan`; afterwards the LAO of
+/// `after`, bit for bit as LAORange over every voxel would give, having
+/// recomputed only the reached voxels. False when aborted (`ao` is then
+/// partly updated: recompute it in full).
+bool UpdateLAOAfterOpacityEdit(const LAOPlan& plan, const float* before, const float* after,
+  float* ao, const ContextualUpdate::ParallelFor& parallel, OpacityEditStats& stats);
+}
+
+#endif
