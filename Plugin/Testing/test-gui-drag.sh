@@ -9,7 +9,7 @@
 # drags the widget's centre handle and then its face, each for about 2.5 s,
 # waits until the GUI draws no more, and checks the log:
 # - no mapper error, and no ray-cast or GL-state error in the GUI's log;
-# - frames drawn during each drag, some inside the depth peeling;
+# - frames drawn for each drag, some inside the depth peeling;
 # - the drag moved (centre) and turned (face) the clip, and the last frame
 #   draws the clip at the pose the widget shows.
 # It prints what the user saw: frames during the drag and the time from the

@@ -1,0 +1,106 @@
+"""What a frame costs in ParaView: the "Contextual AO Volume" representation
+against ParaView's own Volume representation, side by side in one pvpython
+run, same view, volume and colour map.
+
+  pvpython frame_cost.py --plugin ContextualAO.so VOLUME [--size 800x600] [--frames 10]
+
+Rows: ParaView's Volume (Shade on, and off); ours with AO off; ours with AO
+on while the camera turns 2 degrees a frame; ours with AO on while the clip
+sphere moves (the camera still). Each row renders one warm-up frame (the
+first frame precomputes), then --frames frames, and prints the median
+milliseconds per frame and its ratio to ParaView's shaded Volume. No
+assertion: a table to read (docs/ has measured ones, with the machine)."""
+import argparse
+import statistics
+import sys
+import time
+
+from paraview.simple import *  # noqa: F401,F403
+
+parser = argparse.ArgumentParser()
+parser.add_argument("volume")
+parser.add_argument("--plugin", required=True)
+parser.add_argument("--size", default="800x600")
+parser.add_argument("--frames", type=int, default=10)
+args = parser.parse_args()
+width, height = (int(v) for v in args.size.split("x"))
+LoadPlugin(args.plugin, remote=False, ns=globals())
+
+reader = OpenDataFile(args.volume)
+reader.UpdatePipeline()
+info = reader.GetDataInformation()
+bounds = info.GetBounds()
+array = reader.PointData.keys()[0]
+lo, hi = reader.PointData[array].GetRange()
+centre = [0.5 * (bounds[2 * d] + bounds[2 * d + 1]) for d in range(3)]
+extent = max(bounds[2 * d + 1] - bounds[2 * d] for d in range(3))
+view = CreateView("RenderView")
+view.ViewSize = [width, height]
+view.OrientationAxesVisibility = 0
+lut = GetColorTransferFunction(array)
+lut.ApplyPreset("Cool to Warm", True)
+lut.RescaleTransferFunction(lo, hi)
+pwf = GetOpacityTransferFunction(array)
+pwf.Points = [lo, 0.0, 0.5, 0.0, lo + 0.25 * (hi - lo), 0.0, 0.5, 0.0, hi, 0.8, 0.5, 0.0]
+display = Show(reader, view)
+ColorBy(display, ("POINTS", array))
+display.Shade = 1
+
+
+def frames(setup, step):
+    setup()
+    view.ResetCamera()
+    Render(view)  # warm-up: the first frame precomputes
+    times = []
+    for k in range(args.frames):
+        step(k)
+        start = time.perf_counter()
+        Render(view)
+        times.append(1000.0 * (time.perf_counter() - start))
+    return statistics.median(times), min(times), max(times)
+
+
+def camera(k):
+    view.GetActiveCamera().Azimuth(2.0)
+
+
+def clip(k):
+    p = list(display.ClipPosition)
+    p[0] = centre[0] + 0.15 * extent * ((k % 6) - 2.5) / 2.5
+    display.ClipPosition = p
+
+
+def paraview_volume(shade):
+    def setup():
+        display.SetRepresentationType("Volume")
+        display.Shade = shade
+    return setup
+
+
+def ours(ao):
+    def setup():
+        display.SetRepresentationType("Contextual AO Volume")
+        display.Shade = 1
+        display.ClipShape = "Sphere"
+        display.AmbientOcclusion = ao
+    return setup
+
+
+rows = [("ParaView Volume, Shade on", paraview_volume(1), camera),
+        ("ParaView Volume, Shade off", paraview_volume(0), camera),
+        ("ours, AO off, camera turning", ours(0), camera),
+        ("ours, AO on, camera turning", ours(1), camera),
+        ("ours, AO on, clip moving", ours(1), clip)]
+results = []
+for name, setup, step in rows:
+    results.append((name,) + frames(setup, step))
+base = results[0][1]
+print("%s, %dx%d, %d frames a row (median, min-max ms)" % (args.volume, width, height, args.frames))
+print("| renderer | ms per frame | min-max | x ParaView Volume, shaded |")
+print("|---|---:|---:|---:|")
+for name, median, low, high in results:
+    print("| %s | %.0f | %.0f-%.0f | %.2f |" % (name, median, low, high, median / base))
+mapper = display.GetClientSideObject().GetActiveRepresentation().GetActor().GetMapper()
+if hasattr(mapper, "GetLastFrameReport"):
+    print("last frame report: %s" % mapper.GetLastFrameReport())
+sys.stdout.flush()
