@@ -64,6 +64,7 @@ struct PoseResult
 {
   cao::CategoryCounts counts;
   std::int64_t classifiedVoxels = 0, restoredVoxels = 0, brickVoxels = -1;
+  std::int64_t recomputedAffected = -1; ///< b voxels marched (-1: every b voxel, the GPU)
   double classifyMs = 0, copyMs = 0, recomputeMs = 0, totalMs = 0;
   double fullMs = -1, maxDifference = -1;
   std::int64_t differing = 0;
@@ -417,7 +418,8 @@ bool vtkContextualAmbientOcclusion::Internals::RunCPU(
     r.classifiedVoxels = stats.classifiedVoxels;
     r.restoredVoxels = stats.restoredVoxels;
     r.brickVoxels = stats.counts.byBrick;
-    r.classifyMs = stats.classifyMs;
+    r.classifyMs = stats.classifyMs + stats.narrowMs;
+    r.recomputedAffected = stats.recomputedVoxels;
     r.copyMs = stats.copyMs;
     r.recomputeMs = stats.recomputeMs;
     if (ok && self->Verify)
@@ -609,8 +611,9 @@ int vtkContextualAmbientOcclusion::RequestData(
     { "Classify", "CopyUnaffected", "RecomputeAffected", "Total" },
     { r.classifyMs, r.copyMs, r.recomputeMs, r.totalMs });
   vtkCAO::AddFieldTuple(fd, "UpdateRegion",
-    { "ClassifiedVoxels", "RestoredVoxels", "DecidedByBrick" },
-    { double(r.classifiedVoxels), double(r.restoredVoxels), double(r.brickVoxels) });
+    { "ClassifiedVoxels", "RestoredVoxels", "DecidedByBrick", "RecomputedAffected" },
+    { double(r.classifiedVoxels), double(r.restoredVoxels), double(r.brickVoxels),
+      double(r.recomputedAffected >= 0 ? r.recomputedAffected : r.counts.affected) });
   if (this->Verify)
     vtkCAO::AddFieldTuple(fd, "Verification",
       { "MaxAbsDifference", "DifferingVoxels", "FullRecomputeMilliseconds" },

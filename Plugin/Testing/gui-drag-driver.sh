@@ -9,7 +9,7 @@ mark() { echo "{\"kind\": \"driver\", \"what\": \"$1\", \"t\": $(now)}" >>"$even
 paraview --dr --script="$script" >"$CAO_RESULT.gui.log" 2>&1 &
 pv=$!
 trap 'kill $pv 2>/dev/null; wait $pv 2>/dev/null' EXIT
-for _ in $(seq 300); do
+for _ in $(seq 240); do
   [ -s "$CAO_RESULT.targets" ] && break
   kill -0 $pv 2>/dev/null || { echo "driver: the GUI exited"; tail -20 "$CAO_RESULT.gui.log"; exit 1; }
   if grep -q Traceback "$CAO_RESULT.gui.log"; then
@@ -17,16 +17,17 @@ for _ in $(seq 300); do
   fi
   sleep 1
 done
-[ -s "$CAO_RESULT.targets" ] || { echo "driver: no targets after 300 s"; exit 1; }
-# Wait for the GUI to draw no more (no frame logged for 3 s, at most 180 s).
+[ -s "$CAO_RESULT.targets" ] || { echo "driver: no targets after 240 s"; exit 1; }
+# Wait for the GUI to draw no more (no frame logged for 3 s, at most 150 s;
+# four waits and the start fit test-gui-drag.sh's 900 s).
 idle() {
-  local last size
-  for _ in $(seq 180); do
+  local size
+  for _ in $(seq 50); do
     size=$(stat -c %s "$events")
     sleep 3
     [ "$(stat -c %s "$events")" = "$size" ] && return 0
   done
-  echo "driver: the GUI was still drawing after 180 s"
+  echo "driver: the GUI was still drawing after 150 s"
 }
 idle
 # Where is the view? Move over a grid of screen points until the view's

@@ -21,7 +21,7 @@ command -v paraview >/dev/null || { echo "SKIP: no paraview executable"; exit 12
 command -v xdotool >/dev/null || { echo "FAIL: xdotool is missing (.ci/setup.sh installs it)"; exit 1; }
 export CAO_PLUGIN=$1 CAO_DATA_DIR=$2 CAO_RESULT=$3
 rm -f "$CAO_RESULT".*
-timeout 600 bash "$here/../../Testing/run-with-xvfb.sh" bash "$here/gui-drag-driver.sh" \
+timeout 900 bash "$here/../../Testing/run-with-xvfb.sh" bash "$here/gui-drag-driver.sh" \
   "$here/TestClipDragGUI.py" >"$CAO_RESULT.log" 2>&1
 status=$?
 cat "$CAO_RESULT.log" | grep -E "^(driver|ok|FAIL|PASSED|FAILED)" || true

@@ -590,6 +590,7 @@ struct PoseResult
   double counts[3];
   double ms[4];
   double fullMs = -1.0, maxDiff = -1.0, differing = -1.0;
+  double recomputed = -1.0; ///< b voxels marched (after the opacity narrowing)
   bool newMaps = false;         ///< the maps were (re)made for this pose's scale
   bool geometryChecked = false; ///< --verify-geometry ran
   cao::ClipGeometryReport geometry;
@@ -785,6 +786,7 @@ int CarveRun(const Options& o, vtkImageData* volume, vtkPiecewiseFunction* tf,
       r.counts[c] = FieldValue(out, "CategoryCounts", c);
     for (int c = 0; c < 4; ++c)
       r.ms[c] = FieldValue(out, "StageMilliseconds", c);
+    r.recomputed = FieldValue(out, "UpdateRegion", 3);
     if (o.verify)
     {
       r.maxDiff = FieldValue(out, "Verification", 0);
@@ -843,7 +845,7 @@ void PrintCarveJson(const Options& o, vtkImageData* volume, const std::vector<Ru
          : "host clock",
       run.gpuBytesPerVoxel, run.precomputeMs, run.depthMs, run.mapsBuilt,
       JsonEscape(run.mapsBackend).c_str());
-    double sumFull = 0, sumCao = 0, sumB = 0, maxDiff = o.verify ? 0.0 : -1.0;
+    double sumFull = 0, sumCao = 0, sumB = 0, sumMarched = 0, maxDiff = o.verify ? 0.0 : -1.0;
     for (std::size_t j = 0; j < run.poses.size(); ++j)
     {
       const PoseResult& r = run.poses[j];
@@ -851,14 +853,16 @@ void PrintCarveJson(const Options& o, vtkImageData* volume, const std::vector<Ru
       sumFull += full;
       sumCao += r.ms[3];
       sumB += r.counts[1];
+      sumMarched += r.recomputed;
       maxDiff = std::max(maxDiff, r.maxDiff);
       std::printf("%s\n  {\"pose\": [%g, %g, %g, %g, %g, %g, %g], "
                   "\"counts\": {\"clipped\": %.0f, \"affected\": %.0f, \"unaffected\": %.0f}, "
+                  "\"affected_recomputed\": %.0f, "
                   "\"ms\": {\"classify\": %.3f, \"copy\": %.3f, \"recompute\": %.3f, \"cao_total\": %.3f}, "
                   "\"full_lao_ms\": %.3f, \"full_lao_measured_at_pose\": %s, \"speedup\": %.4f",
         j ? "," : "", r.pose.translation[0], r.pose.translation[1], r.pose.translation[2],
         r.pose.rotation[0], r.pose.rotation[1], r.pose.rotation[2], r.pose.scale, r.counts[0],
-        r.counts[1], r.counts[2], r.ms[0], r.ms[1], r.ms[2], r.ms[3], full,
+        r.counts[1], r.counts[2], r.recomputed, r.ms[0], r.ms[1], r.ms[2], r.ms[3], full,
         r.fullMs >= 0.0 ? "true" : "false", full / std::max(r.ms[3], 1e-9));
       if (o.verify)
         std::printf(", \"max_abs_difference\": %.9g, \"differing_voxels\": %.0f", r.maxDiff, r.differing);
@@ -874,9 +878,12 @@ void PrintCarveJson(const Options& o, vtkImageData* volume, const std::vector<Ru
     }
     const double n = static_cast<double>(run.poses.size());
     std::printf("],\n  \"summary\": {\"full_lao_ms\": %.3f, \"cao_ms\": %.3f, \"speedup\": %.4f, "
-                "\"affected_percent\": %.4f, \"physical_limit\": %.4f, \"max_abs_difference\": %.9g}}",
+                "\"affected_percent\": %.4f, \"physical_limit\": %.4f, "
+                "\"affected_recomputed_percent\": %.4f, \"share_of_limit\": %.4f, "
+                "\"max_abs_difference\": %.9g}}",
       sumFull / n, sumCao / n, sumFull / std::max(sumCao, 1e-9), 100.0 * sumB / (n * voxels),
-      sumB > 0 ? n * voxels / sumB : 0.0, maxDiff);
+      sumB > 0 ? n * voxels / sumB : 0.0, 100.0 * sumMarched / (n * voxels),
+      sumB > 0 ? (sumFull / std::max(sumCao, 1e-9)) / (n * voxels / sumB) : 0.0, maxDiff);
   }
   std::printf("]}\n");
 }

@@ -228,6 +228,7 @@ struct vtkContextualAOVolumeMapper::Internals
   std::vector<std::uint16_t> EditAO;
   double EditNsPerVoxel = 0.0, PrecomputeNsPerVoxel = 0.0;
   bool OpacityEdit = false; ///< this upload follows a change of the opacity alone
+  bool PeelDrawn = false;   ///< the last draw was a peeling stage that drew
   ::MeshKey Mesh;
   bool HaveMesh = false;
   std::vector<double> MapsUploadKey, PoseKey, TableKey; // numbers only
@@ -242,6 +243,11 @@ struct vtkContextualAOVolumeMapper::Internals
   {
     this->HaveVolume = false;
     this->HaveMesh = false;
+    // (An edit's state belongs to the engine's stored AO, and its costs to
+    // that context.)
+    std::vector<float>().swap(this->EditOpacity);
+    std::vector<std::uint16_t>().swap(this->EditAO);
+    this->EditNsPerVoxel = this->PrecomputeNsPerVoxel = 0.0;
     this->MapsUploadKey.clear();
     this->PoseKey.clear();
     this->TableKey.clear();
@@ -764,10 +770,13 @@ bool vtkContextualAOVolumeMapper::Internals::EditLAO(
 {
   // The opacity alone changed: the voxels within the plan's footprint of a
   // changed voxel are marched on the CPU (caoOpacityEdit) and the others
-  // keep their stored AO, which equals the GPU precompute (the march is the
-  // same arithmetic in the same order, stored as the same 16-bit value).
-  // Chosen when it is estimated faster than the precompute on this
-  // context, from what each cost per voxel when it last ran.
+  // keep their stored AO. The CPU march is the GPU's arithmetic in the same
+  // order, stored as the same 16-bit value: equal on llvmpipe, within one
+  // 16-bit step where a GPU rounds a division or sum differently
+  // (TestGLBackendAgreement). The precompute on the GPU runs instead when
+  // it is estimated faster, from what each cost per voxel when it last ran
+  // (the CPU march alone, without the upload), or, before an edit has run,
+  // when the edit would reach over half of the voxels.
   done = false;
   if (!this->OpacityEdit || this->EditOpacity.size() != opacity.size() ||
     this->EditAO.size() != opacity.size())
@@ -781,7 +790,7 @@ bool vtkContextualAOVolumeMapper::Internals::EditLAO(
       return vtkCAO::ParallelFor(self, n, grain, 0.1 + 0.9 * p0, 0.1 + 0.9 * p1, body);
     };
   bool ok = false;
-  vtkCAO::AroundForeignEvents(f.window, [&] {
+  const bool kept = vtkCAO::AroundForeignEvents(f.window, [&] {
     vtkCAO::WithThreads(0, [&] {
       ok = cao::OpacityEditReach(this->Plan, this->EditOpacity.data(), opacity.data(), reached,
         changed, [&](std::int64_t n, std::int64_t grain, double p0, double p1,
@@ -790,14 +799,28 @@ bool vtkContextualAOVolumeMapper::Internals::EditLAO(
         });
     });
   });
-  if (!ok)
-    return true; // (aborted: the precompute runs instead)
-  const double estimate = this->EditNsPerVoxel > 0.0 ? this->EditNsPerVoxel * 1e-6 * reached.size() : 0.0;
-  const double precompute = this->PrecomputeNsPerVoxel * 1e-6 * static_cast<double>(f.voxels);
-  if (this->EditNsPerVoxel > 0.0 && this->PrecomputeNsPerVoxel > 0.0 && estimate > precompute)
-    return true; // the precompute is faster here
+  auto aborted = [&](bool lost) {
+    this->EditAO.clear(); // read back again next time
+    if (lost)
+      return f.Fail("The render window's OpenGL context was lost while the application handled "
+                    "the opacity edit's progress; nothing is drawn.");
+    self->SetAbortExecute(0); // aborted (no error): the next frame starts again
+    f.why.clear();
+    return false;
+  };
+  if (!ok || !kept)
+    return aborted(!kept);
+  const double share = static_cast<double>(reached.size()) / static_cast<double>(f.voxels);
+  const bool gpuFaster = this->EditNsPerVoxel > 0.0
+    ? this->PrecomputeNsPerVoxel > 0.0 &&
+      this->EditNsPerVoxel * static_cast<double>(reached.size()) >
+        this->PrecomputeNsPerVoxel * static_cast<double>(f.voxels)
+    : share > 0.5;
+  if (gpuFaster)
+    return true;
+  const auto marchStart = std::chrono::steady_clock::now();
   std::vector<float> ao(opacity.size());
-  vtkCAO::AroundForeignEvents(f.window, [&] {
+  const bool keptMarch = vtkCAO::AroundForeignEvents(f.window, [&] {
     vtkCAO::WithThreads(0, [&] {
       ok = parallel(static_cast<std::int64_t>(reached.size()), 4096, 0.1, 1.0,
         [&](std::int64_t b, std::int64_t e) {
@@ -807,20 +830,17 @@ bool vtkContextualAOVolumeMapper::Internals::EditLAO(
         });
     });
   });
+  if (!ok || !keptMarch)
+    return aborted(!keptMarch);
+  if (!reached.empty())
+    this->EditNsPerVoxel =
+      1e6 * vtkCAO::MillisecondsSince(marchStart) / static_cast<double>(reached.size());
   std::string error;
-  if (!ok)
-  {
-    this->EditAO.clear(); // partly edited: read back again next time
-    return true;
-  }
   cao::gl::AOEngine& engine = *f.engine;
   if (!engine.SetPlan(this->Plan, error) || !engine.SetPrecomputed(this->EditAO.data(), error))
     return f.Fail("The AO upload after an opacity edit failed: " + error + ".");
-  const double ms = vtkCAO::MillisecondsSince(start);
-  if (!reached.empty())
-    this->EditNsPerVoxel = 1e6 * ms / static_cast<double>(reached.size());
   this->EditOpacity.swap(opacity);
-  f.report.stages.push_back({ "opacity_edit", ms, "host" });
+  f.report.stages.push_back({ "opacity_edit", vtkCAO::MillisecondsSince(start), "host" });
   f.report.reasons.emplace_back("scalar opacity changed: " + std::to_string(changed) +
     " voxels' opacity changed, " + std::to_string(reached.size()) +
     " within reach recomputed on the CPU");
@@ -1199,7 +1219,19 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   f.volume = vol;
   double step = 0.0;
   cao::layout::RenderParams params{};
-  bool ok = this->CheckSettings(f.why) && in.GatherInput(this, f) &&
+  // Inside the host's dual depth peeling the framebuffer has no depth: the
+  // pass's textures bound each stage's ray segments instead. The later
+  // stages of a peeled frame whose first stage drew nothing (a failure or
+  // an abort) draw nothing either: nothing is retried once per stage.
+  vtkCAO::PeelState peel;
+  std::string error;
+  bool ok = vtkCAO::QueryDepthPeeling(ren, vol, this, peel, error);
+  if (!ok)
+    f.why = "The depth peeling's state could not be read: " + error + ".";
+  if (ok && peel.stage > cao::layout::CAO_PEEL_OUTSIDE && !in.PeelDrawn)
+    return;
+  in.PeelDrawn = false;
+  ok = ok && this->CheckSettings(f.why) && in.GatherInput(this, f) &&
     in.AcquireContext(this, f) && in.UpdateVolume(this, f) && in.UpdateClip(this, f) &&
     in.UpdateTable(this, f, step);
   if (ok)
@@ -1209,12 +1241,7 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     int size[2], origin[2];
     ren->GetTiledSizeAndOrigin(&size[0], &size[1], &origin[0], &origin[1]);
     const int viewport[4] = { origin[0], origin[1], size[0], size[1] };
-    std::string error;
-    // Inside the host's dual depth peeling the framebuffer has no depth:
-    // the pass's textures bound each stage's ray segments instead.
-    vtkCAO::PeelState peel;
-    ok = vtkCAO::QueryDepthPeeling(ren, vol, this, peel, error);
-    if (ok && peel.stage)
+    if (peel.stage)
     {
       params.dims.w = (params.dims.w & ~cao::layout::CAO_RENDER_OPAQUE_DEPTH) |
         cao::layout::CAO_RENDER_PEEL;
@@ -1239,6 +1266,7 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
   f.report.stages.push_back({ "raycast", in.Caster->LastMilliseconds(), f.glTimer });
   in.LastError.clear();
+  in.PeelDrawn = peel.stage != 0;
   if (f.report.peelStage > cao::layout::CAO_PEEL_OUTSIDE)
   {
     // A later draw of the same frame inside the host's depth peeling: the

@@ -1,4 +1,5 @@
 #include "caoContextualUpdate.h"
+#include "caoOpacityEdit.h"
 
 #include <algorithm>
 #include <chrono>
@@ -138,6 +139,48 @@ bool ContextualUpdate::Update(const Volume& volume, const layout::ClipParams& cl
   for (int s = 0; s < slabs; ++s)
     this->Current.insert(
       this->Current.end(), this->SliceLists[s].begin(), this->SliceLists[s].end());
+  // 2b. Narrow b by opacity: keep the b voxels whose footprint holds a
+  // voxel whose clipped opacity differs from its opacity. Every such voxel
+  // within reach of the region's b voxels lies in the region grown by the
+  // footprint (outside the region the state is the unclipped one: equal
+  // opacities in subtraction, and in probing the clipped voxels are
+  // compared there too).
+  stats.classifyMs = MillisecondsSince(t0);
+  t0 = std::chrono::steady_clock::now();
+  stats.recomputedVoxels = static_cast<std::int64_t>(this->Current.size());
+  if (!this->Current.empty())
+  {
+    int lo[3], hi[3];
+    OpacityFootprint(*volume.plan, lo, hi);
+    int grown[6];
+    for (int d = 0; d < 3; ++d)
+    {
+      grown[2 * d] = std::max(0, region[2 * d] + lo[d]);
+      grown[2 * d + 1] = std::min(dims[d] - 1, region[2 * d + 1] + hi[d]);
+    }
+    std::vector<std::uint8_t>& reach = this->Reach;
+    if (!FootprintDiffers(*volume.plan, grown, volume.opacity, out.clippedOpacity, reach,
+          [&](std::int64_t n, std::int64_t grain, double p0, double p1,
+            const std::function<void(std::int64_t, std::int64_t)>& body) {
+            return parallel(n, grain, 0.2 + 0.05 * p0, 0.2 + 0.05 * p1, body);
+          }))
+    {
+      this->Reset();
+      return false;
+    }
+    const std::int64_t gx = grown[1] - grown[0] + 1, gy = grown[3] - grown[2] + 1;
+    const std::int64_t nx = dims[0], nxy = std::int64_t(dims[0]) * dims[1];
+    std::size_t kept = 0;
+    for (std::int64_t v : this->Current)
+    {
+      const std::int64_t k = v / nxy, j = (v - k * nxy) / nx, i = v - k * nxy - j * nx;
+      if (reach[static_cast<std::size_t>((i - grown[0]) + gx * ((j - grown[2]) + gy * (k - grown[4])))])
+        this->Current[kept++] = v;
+    }
+    this->Current.resize(kept);
+    stats.recomputedVoxels = static_cast<std::int64_t>(kept);
+  }
+  stats.narrowMs = MillisecondsSince(t0);
   // Outside the region every voxel holds the unclipped state.
   const std::int64_t outside = voxels - stats.classifiedVoxels;
   if (mode == layout::CAO_MODE_SUBTRACT)
@@ -145,7 +188,6 @@ bool ContextualUpdate::Update(const Volume& volume, const layout::ClipParams& cl
   else
     counts.clipped += outside;
   stats.counts = counts;
-  stats.classifyMs = MillisecondsSince(t0);
 
   // 3. Recompute the b voxels on the clipped opacity.
   t0 = std::chrono::steady_clock::now();

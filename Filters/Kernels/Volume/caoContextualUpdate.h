@@ -8,6 +8,15 @@
  * march. The result equals a full recompute of the clipped volume bit for
  * bit (Verify checks it).
  *
+ * Narrowed by opacity: a b voxel whose footprint (caoOpacityEdit) holds no
+ * voxel whose clipped opacity differs from its opacity (the clip removed
+ * only transparent matter near it) reads the same opacities as the
+ * precompute did, so it keeps its precomputed AO bit for bit and is not
+ * marched. The categories stay the paper's (geometric); Stats says how
+ * many b voxels were marched. Like the c voxels, such a voxel keeps the
+ * given precomputed AO: it equals a full recompute when that AO is the
+ * LAO of `opacity` with `plan` (Verify's contract for c voxels too).
+ *
  * The buffers (AO, clipped opacity, category) are the caller's and persist
  * between poses: a pose touches only what can have changed since the
  * previous one, as the GPU engine does. Outside the union of this pose's
@@ -62,7 +71,12 @@ public:
   {
     CategoryCounts counts; ///< counts.byBrick: voxels decided brick by brick
     std::int64_t classifiedVoxels = 0; ///< the union region's
-    std::int64_t restoredVoxels = 0;   ///< previous b voxels given their precomputed AO back
+    std::int64_t restoredVoxels = 0;   ///< previous recomputed voxels given their precomputed AO back
+    /// b voxels marched: those whose footprint holds a voxel whose clipped
+    /// opacity differs from its opacity (the others keep their precomputed
+    /// AO exactly); counts.affected is the paper's geometric b
+    std::int64_t recomputedVoxels = 0;
+    double narrowMs = 0; ///< the footprint test of the b voxels
     double classifyMs = 0, copyMs = 0, recomputeMs = 0;
   };
 
@@ -93,6 +107,7 @@ private:
   int Box[6] = { 0, -1, 0, -1, 0, -1 }; ///< the previous pose's candidate box (inclusive)
   std::vector<std::int64_t> Previous; ///< the last pose's b voxels
   std::vector<std::int64_t> Current;  ///< scratch: this pose's, until it completes
+  std::vector<std::uint8_t> Reach;    ///< scratch: the footprint test over the grown region
   std::vector<std::vector<std::int64_t>> SliceLists; ///< scratch: b voxels per slice
   ClipMapsTiles Tiles;
   std::uint64_t TilesVersion = 0;

@@ -41,9 +41,9 @@ bool DilateAxis(const int dims[3], int axis, int lo, int hi, const std::uint8_t*
             break;
           // o[x] |= in[x + d] where x + d lies inside the row.
           const std::int64_t x0 = std::max<std::int64_t>(0, -d), x1 = std::min<std::int64_t>(nx, nx - d);
-          const std::uint8_t* src = in + row * nx + d;
+          const std::uint8_t* src = in + row * nx;
           for (std::int64_t x = x0; x < x1; ++x)
-            o[x] |= src[x];
+            o[x] |= src[x + d];
           any = true;
         }
         else
@@ -163,6 +163,54 @@ bool OpacityEditReach(const LAOPlan& plan, const float* before, const float* aft
           *outList++ = v;
     }
   });
+}
+
+bool FootprintDiffers(const LAOPlan& plan, const int boxIn[6], const float* a, const float* b,
+  std::vector<std::uint8_t>& reach, const ContextualUpdate::ParallelFor& parallel)
+{
+  const layout::LAOMarchBlock& p = plan.params;
+  const int full[3] = { p.dims.x, p.dims.y, p.dims.z };
+  int box[6];
+  for (int d = 0; d < 3; ++d)
+  {
+    box[2 * d] = std::max(0, boxIn[2 * d]);
+    box[2 * d + 1] = std::min(full[d] - 1, boxIn[2 * d + 1]);
+  }
+  const int dims[3] = { std::max(0, box[1] - box[0] + 1), std::max(0, box[3] - box[2] + 1),
+    std::max(0, box[5] - box[4] + 1) };
+  const std::int64_t nx = dims[0], rows = std::int64_t(dims[1]) * dims[2], n = nx * rows;
+  reach.assign(static_cast<std::size_t>(n), 0);
+  if (n == 0)
+    return true;
+  std::vector<std::uint8_t> mask(static_cast<std::size_t>(n)), any(static_cast<std::size_t>(rows)),
+    otherAny(static_cast<std::size_t>(rows));
+  const std::int64_t sy = full[0], sz = std::int64_t(full[0]) * full[1];
+  if (!parallel(rows, 64, 0.0, 0.25, [&](std::int64_t r0, std::int64_t r1) {
+        for (std::int64_t r = r0; r < r1; ++r)
+        {
+          const std::int64_t j = r % dims[1], k = r / dims[1];
+          const std::int64_t base = box[0] + (box[2] + j) * sy + (box[4] + k) * sz;
+          bool differs = false;
+          for (std::int64_t x = 0; x < nx; ++x)
+          {
+            std::uint32_t u, v;
+            std::memcpy(&u, a + base + x, sizeof u);
+            std::memcpy(&v, b + base + x, sizeof v);
+            mask[r * nx + x] = u != v;
+            differs = differs || u != v;
+          }
+          any[r] = differs;
+        }
+      }))
+    return false;
+  int lo[3], hi[3];
+  OpacityFootprint(plan, lo, hi);
+  return DilateAxis(dims, 0, lo[0], hi[0], mask.data(), any.data(), reach.data(), otherAny.data(),
+           parallel, 0.25, 0.5) &&
+    DilateAxis(dims, 1, lo[1], hi[1], reach.data(), otherAny.data(), mask.data(), any.data(),
+      parallel, 0.5, 0.75) &&
+    DilateAxis(dims, 2, lo[2], hi[2], mask.data(), any.data(), reach.data(), otherAny.data(),
+      parallel, 0.75, 1.0);
 }
 
 bool UpdateLAOAfterOpacityEdit(const LAOPlan& plan, const float* before, const float* after,

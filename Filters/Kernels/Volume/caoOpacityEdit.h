@@ -49,6 +49,16 @@ bool OpacityEditReach(const LAOPlan& plan, const float* before, const float* aft
   std::vector<std::int64_t>& reached, std::int64_t& changed,
   const ContextualUpdate::ParallelFor& parallel);
 
+/// Within `box` (inclusive voxel bounds, clamped to the volume) of a volume
+/// of the plan's dimensions: for every voxel of the box, whether its
+/// footprint holds a voxel of the box where `a` and `b` differ (bit
+/// patterns), one byte per box voxel, x fastest. Voxels outside the box
+/// are not compared: the caller passes a box that holds every voxel that
+/// can differ within the footprint of the voxels it asks about. False when
+/// aborted.
+bool FootprintDiffers(const LAOPlan& plan, const int box[6], const float* a, const float* b,
+  std::vector<std::uint8_t>& reach, const ContextualUpdate::ParallelFor& parallel);
+
 /// `ao` holds the LAO of `before` with `plan`; afterwards the LAO of
 /// `after`, bit for bit as LAORange over every voxel would give, having
 /// recomputed only the reached voxels. False when aborted (`ao` is then

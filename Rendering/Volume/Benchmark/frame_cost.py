@@ -25,6 +25,7 @@ parser.add_argument("--frames", type=int, default=10)
 args = parser.parse_args()
 width, height = (int(v) for v in args.size.split("x"))
 LoadPlugin(args.plugin, remote=False, ns=globals())
+import contextualao  # noqa: E402,F401  (the mapper's report)
 
 reader = OpenDataFile(args.volume)
 reader.UpdatePipeline()

@@ -25,7 +25,9 @@
 // the framebuffer has no depth to read. The host's peeled depths
 // (pairs (-near, far) in window depth) bound the ray segments each stage
 // composites, on the same per-pixel sample lattice as a whole ray, so the
-// segments join without seams:
+// segments join without seams (a sample moved onto the clip surface moves
+// the lattice after it within its segment only; the next segment starts on
+// the pixel's lattice again):
 //  - CAO_PEEL_OUTSIDE: before the nearest translucent layer into the front
 //    output, and from the farthest one to the opaque depth into the back;
 //  - CAO_PEEL_LAYER: the segments between this peel's outer and inner
@@ -204,7 +206,11 @@ vec4 CastRay(float tFrom, float tTo, bool inclusive)
     rp.normalToWorld[2].xyz);
   vec3 texel = rp.invDims.xyz;
   vec4 sum = vec4(0.0);
-  bool wasRemoved = false;
+  // A segment that starts after the ray's first sample carries on from
+  // the sample before it: whether that one was clipped away (so that the
+  // first sample behind a cut still moves onto the clip surface).
+  bool wasRemoved = k0 > 0.0 && (flags & CAO_RENDER_CLIP) != 0 &&
+    Removed(origin + (t - step) * dir, flags);
   for (int i = int(k0); i < rp.limits.x && (inclusive ? t <= tEnd : t < tEnd); ++i, t += step)
   {
     vec3 p = origin + t * dir;
