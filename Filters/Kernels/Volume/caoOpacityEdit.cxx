@@ -81,34 +81,51 @@ void OpacityFootprint(const LAOPlan& plan, int lo[3], int hi[3])
   }
 }
 
-bool OpacityEditReach(const LAOPlan& plan, const float* before, const float* after,
-  std::vector<std::int64_t>& reached, std::int64_t& changed,
-  const ContextualUpdate::ParallelFor& parallel)
+namespace
+{
+/// The footprint test over `box` (clamped): `reach` (a byte per box voxel,
+/// x fastest) says whether a voxel's footprint holds a box voxel where `a`
+/// and `b` differ by bit pattern (-0 and 0, or two NaNs, differ as the
+/// march reads them), `rowAny` whether a box row holds any such voxel,
+/// `changed` how many voxels differ. Both buffers are written in full.
+bool Reach(const LAOPlan& plan, const int boxIn[6], const float* a, const float* b,
+  std::vector<std::uint8_t>& reach, std::vector<std::uint8_t>& rowAny, int dims[3],
+  std::int64_t& changed, const ContextualUpdate::ParallelFor& parallel)
 {
   const layout::LAOMarchBlock& p = plan.params;
-  const int dims[3] = { p.dims.x, p.dims.y, p.dims.z };
+  const int full[3] = { p.dims.x, p.dims.y, p.dims.z };
+  int box[6];
+  for (int d = 0; d < 3; ++d)
+  {
+    box[2 * d] = std::max(0, boxIn[2 * d]);
+    box[2 * d + 1] = std::min(full[d] - 1, boxIn[2 * d + 1]);
+    dims[d] = std::max(0, box[2 * d + 1] - box[2 * d] + 1);
+  }
   const std::int64_t nx = dims[0], rows = std::int64_t(dims[1]) * dims[2], n = nx * rows;
-  reached.clear();
   changed = 0;
+  reach.resize(static_cast<std::size_t>(n));
+  rowAny.resize(static_cast<std::size_t>(rows));
+  if (n == 0)
+    return true;
   // Two masks of a byte per voxel (every byte written before it is read)
-  // and a flag per row: whether the row holds a 1.
-  std::unique_ptr<std::uint8_t[]> mask(new std::uint8_t[static_cast<std::size_t>(n)]),
-    other(new std::uint8_t[static_cast<std::size_t>(n)]);
-  std::vector<std::uint8_t> any(static_cast<std::size_t>(rows)), otherAny(any.size());
-  std::vector<std::int64_t> perRow(static_cast<std::size_t>(rows), 0);
-  // The changed voxels. Bit patterns: -0 and 0, or two NaNs, differ as the
-  // march reads them.
-  if (!parallel(rows, 64, 0.0, 0.2, [&](std::int64_t r0, std::int64_t r1) {
+  // and a flag per row.
+  std::unique_ptr<std::uint8_t[]> mask(new std::uint8_t[static_cast<std::size_t>(n)]);
+  std::vector<std::uint8_t> any(static_cast<std::size_t>(rows));
+  std::vector<std::int64_t> perRow(static_cast<std::size_t>(rows));
+  const std::int64_t sy = full[0], sz = std::int64_t(full[0]) * full[1];
+  if (!parallel(rows, 64, 0.0, 0.25, [&](std::int64_t r0, std::int64_t r1) {
         for (std::int64_t r = r0; r < r1; ++r)
         {
+          const std::int64_t j = r % dims[1], k = r / dims[1];
+          const std::int64_t base = box[0] + (box[2] + j) * sy + (box[4] + k) * sz;
           std::int64_t count = 0;
-          for (std::int64_t v = r * nx; v < (r + 1) * nx; ++v)
+          for (std::int64_t x = 0; x < nx; ++x)
           {
-            std::uint32_t x, y;
-            std::memcpy(&x, before + v, sizeof x);
-            std::memcpy(&y, after + v, sizeof y);
-            const std::uint8_t differs = x != y;
-            mask[v] = differs;
+            std::uint32_t u, v;
+            std::memcpy(&u, a + base + x, sizeof u);
+            std::memcpy(&v, b + base + x, sizeof v);
+            const std::uint8_t differs = u != v;
+            mask[r * nx + x] = differs;
             count += differs;
           }
           perRow[r] = count;
@@ -119,25 +136,51 @@ bool OpacityEditReach(const LAOPlan& plan, const float* before, const float* aft
   for (std::int64_t c : perRow)
     changed += c;
   if (changed == 0)
+  {
+    std::fill(reach.begin(), reach.end(), std::uint8_t(0));
+    std::fill(rowAny.begin(), rowAny.end(), std::uint8_t(0));
     return true;
-  // A voxel v reads v + o, o in [lo, hi]: v is reached when a changed voxel
-  // lies in that box, so the changed set is dilated by [lo, hi] itself.
+  }
+  // A voxel v reads v + o, o in [lo, hi]: v is reached when a differing
+  // voxel lies in that box, so the differing set is dilated by [lo, hi].
   int lo[3], hi[3];
   OpacityFootprint(plan, lo, hi);
-  if (!DilateAxis(dims, 0, lo[0], hi[0], mask.get(), any.data(), other.get(), otherAny.data(),
-        parallel, 0.2, 0.4) ||
-    !DilateAxis(dims, 1, lo[1], hi[1], other.get(), otherAny.data(), mask.get(), any.data(),
-      parallel, 0.4, 0.6) ||
-    !DilateAxis(dims, 2, lo[2], hi[2], mask.get(), any.data(), other.get(), otherAny.data(),
-      parallel, 0.6, 0.8))
+  return DilateAxis(dims, 0, lo[0], hi[0], mask.get(), any.data(), reach.data(), rowAny.data(),
+           parallel, 0.25, 0.5) &&
+    DilateAxis(dims, 1, lo[1], hi[1], reach.data(), rowAny.data(), mask.get(), any.data(),
+      parallel, 0.5, 0.75) &&
+    DilateAxis(dims, 2, lo[2], hi[2], mask.get(), any.data(), reach.data(), rowAny.data(),
+      parallel, 0.75, 1.0);
+}
+}
+
+bool OpacityEditReach(const LAOPlan& plan, const float* before, const float* after,
+  std::vector<std::int64_t>& reached, std::int64_t& changed,
+  const ContextualUpdate::ParallelFor& parallel)
+{
+  const layout::LAOMarchBlock& p = plan.params;
+  const int whole[6] = { 0, p.dims.x - 1, 0, p.dims.y - 1, 0, p.dims.z - 1 };
+  std::vector<std::uint8_t> reach, rowAny;
+  int dims[3];
+  reached.clear();
+  const auto part = [&](double p0, double p1) {
+    return [&, p0, p1](std::int64_t n, std::int64_t grain, double q0, double q1,
+             const std::function<void(std::int64_t, std::int64_t)>& body) {
+      return parallel(n, grain, p0 + (p1 - p0) * q0, p0 + (p1 - p0) * q1, body);
+    };
+  };
+  if (!Reach(plan, whole, before, after, reach, rowAny, dims, changed, part(0.0, 0.8)))
     return false;
+  if (changed == 0)
+    return true;
   // Gather in increasing order: count per row, then write at the rows' offsets.
-  const std::uint8_t* reach = other.get();
+  const std::int64_t nx = dims[0], rows = std::int64_t(dims[1]) * dims[2];
+  std::vector<std::int64_t> perRow(static_cast<std::size_t>(rows));
   if (!parallel(rows, 64, 0.8, 0.9, [&](std::int64_t r0, std::int64_t r1) {
         for (std::int64_t r = r0; r < r1; ++r)
         {
           std::int64_t count = 0;
-          if (otherAny[r])
+          if (rowAny[r])
             for (std::int64_t v = r * nx; v < (r + 1) * nx; ++v)
               count += reach[v];
           perRow[r] = count;
@@ -155,7 +198,7 @@ bool OpacityEditReach(const LAOPlan& plan, const float* before, const float* aft
   return parallel(rows, 64, 0.9, 1.0, [&](std::int64_t r0, std::int64_t r1) {
     for (std::int64_t r = r0; r < r1; ++r)
     {
-      if (!otherAny[r])
+      if (!rowAny[r])
         continue;
       std::int64_t* outList = reached.data() + perRow[r];
       for (std::int64_t v = r * nx; v < (r + 1) * nx; ++v)
@@ -165,52 +208,13 @@ bool OpacityEditReach(const LAOPlan& plan, const float* before, const float* aft
   });
 }
 
-bool FootprintDiffers(const LAOPlan& plan, const int boxIn[6], const float* a, const float* b,
+bool FootprintDiffers(const LAOPlan& plan, const int box[6], const float* a, const float* b,
   std::vector<std::uint8_t>& reach, const ContextualUpdate::ParallelFor& parallel)
 {
-  const layout::LAOMarchBlock& p = plan.params;
-  const int full[3] = { p.dims.x, p.dims.y, p.dims.z };
-  int box[6];
-  for (int d = 0; d < 3; ++d)
-  {
-    box[2 * d] = std::max(0, boxIn[2 * d]);
-    box[2 * d + 1] = std::min(full[d] - 1, boxIn[2 * d + 1]);
-  }
-  const int dims[3] = { std::max(0, box[1] - box[0] + 1), std::max(0, box[3] - box[2] + 1),
-    std::max(0, box[5] - box[4] + 1) };
-  const std::int64_t nx = dims[0], rows = std::int64_t(dims[1]) * dims[2], n = nx * rows;
-  reach.assign(static_cast<std::size_t>(n), 0);
-  if (n == 0)
-    return true;
-  std::vector<std::uint8_t> mask(static_cast<std::size_t>(n)), any(static_cast<std::size_t>(rows)),
-    otherAny(static_cast<std::size_t>(rows));
-  const std::int64_t sy = full[0], sz = std::int64_t(full[0]) * full[1];
-  if (!parallel(rows, 64, 0.0, 0.25, [&](std::int64_t r0, std::int64_t r1) {
-        for (std::int64_t r = r0; r < r1; ++r)
-        {
-          const std::int64_t j = r % dims[1], k = r / dims[1];
-          const std::int64_t base = box[0] + (box[2] + j) * sy + (box[4] + k) * sz;
-          bool differs = false;
-          for (std::int64_t x = 0; x < nx; ++x)
-          {
-            std::uint32_t u, v;
-            std::memcpy(&u, a + base + x, sizeof u);
-            std::memcpy(&v, b + base + x, sizeof v);
-            mask[r * nx + x] = u != v;
-            differs = differs || u != v;
-          }
-          any[r] = differs;
-        }
-      }))
-    return false;
-  int lo[3], hi[3];
-  OpacityFootprint(plan, lo, hi);
-  return DilateAxis(dims, 0, lo[0], hi[0], mask.data(), any.data(), reach.data(), otherAny.data(),
-           parallel, 0.25, 0.5) &&
-    DilateAxis(dims, 1, lo[1], hi[1], reach.data(), otherAny.data(), mask.data(), any.data(),
-      parallel, 0.5, 0.75) &&
-    DilateAxis(dims, 2, lo[2], hi[2], mask.data(), any.data(), reach.data(), otherAny.data(),
-      parallel, 0.75, 1.0);
+  std::vector<std::uint8_t> rowAny;
+  int dims[3];
+  std::int64_t changed = 0;
+  return Reach(plan, box, a, b, reach, rowAny, dims, changed, parallel);
 }
 
 bool UpdateLAOAfterOpacityEdit(const LAOPlan& plan, const float* before, const float* after,

@@ -896,6 +896,29 @@ void Calibration(const Options& o)
     std::printf("wrote %s (AO off | raw LAO | half-space calibrated)\n", path.c_str());
 }
 
+/// Pixels of two frames of one size whose largest channel difference
+/// exceeds `levels` grey levels; `mean`, if given, gets the mean difference
+/// over every value.
+long PixelsBeyond(const caotest::Image& a, const caotest::Image& b, int levels, double* mean = nullptr)
+{
+  long beyond = 0;
+  double sum = 0.0;
+  for (std::size_t p = 0; p + 2 < a.rgb.size() && p + 2 < b.rgb.size(); p += 3)
+  {
+    int worst = 0;
+    for (int c = 0; c < 3; ++c)
+    {
+      const int d = std::abs(int(a.rgb[p + c]) - int(b.rgb[p + c]));
+      worst = std::max(worst, d);
+      sum += d;
+    }
+    beyond += worst > levels;
+  }
+  if (mean)
+    *mean = sum / std::max<std::size_t>(1, a.rgb.size());
+  return beyond;
+}
+
 /// Mean |a - b| over the RGB values of two frames (grey levels).
 double MeanDifference(const caotest::Image& a, const caotest::Image& b)
 {
@@ -1073,21 +1096,7 @@ void Peeling(const Options& o)
   };
   // Share of pixels more than 6 levels off, and the mean difference.
   auto error = [](const caotest::Image& a, const caotest::Image& e, double& mean) {
-    long off = 0;
-    double sum = 0.0;
-    for (std::size_t p = 0; p + 2 < a.rgb.size(); p += 3)
-    {
-      int worst = 0;
-      for (int c = 0; c < 3; ++c)
-      {
-        const int d = std::abs(int(a.rgb[p + c]) - int(e.rgb[p + c]));
-        worst = std::max(worst, d);
-        sum += d;
-      }
-      off += worst > 6;
-    }
-    mean = sum / std::max<std::size_t>(1, a.rgb.size());
-    return double(off) / std::max<std::size_t>(1, a.rgb.size() / 3);
+    return double(PixelsBeyond(a, e, 6, &mean)) / std::max<std::size_t>(1, a.rgb.size() / 3);
   };
   const caotest::Image volumeB = frame(true, false, 0.0), volumeW = frame(true, false, 1.0);
   for (int behind = 0; behind < 2; ++behind)
@@ -1252,14 +1261,9 @@ void TFEdit(const Options& o)
       CAO_EXPECT(e.all ? recomputed >= voxels : (recomputed > 0 && recomputed < voxels),
         "%s: %.0f voxels recomputed", e.name, recomputed);
     }
-    long failing = 0; // pixels beyond the image tolerance
-    for (std::size_t p = 0; p + 2 < after.rgb.size() && p + 2 < reference.rgb.size(); p += 3)
-    {
-      int worst = 0;
-      for (int c = 0; c < 3; ++c)
-        worst = std::max(worst, std::abs(int(after.rgb[p + c]) - int(reference.rgb[p + c])));
-      failing += worst > int(ImageTolerance.pixelThreshold * 255.0f + 0.5f);
-    }
+    // Pixels beyond the image tolerance (as the baselines are compared).
+    const long failing =
+      PixelsBeyond(after, reference, int(ImageTolerance.pixelThreshold * 255.0f + 0.5f));
     CAO_EXPECT(after.rgb.size() == reference.rgb.size() &&
         failing <= ImageTolerance.failFraction * (after.rgb.size() / 3),
       "%s: the edited frame is not the full precompute's (%ld pixels differ, %ld beyond the "
