@@ -61,7 +61,8 @@ bool FootprintDiffers(const LAOPlan& plan, const int box[6], const float* a, con
 
 /// `ao` holds the LAO of `before` with `plan`; afterwards the LAO of
 /// `after`, bit for bit as LAORange over every voxel would give, having
-/// recomputed only the reached voxels. False when aborted (`ao` is then
+/// recomputed only the reached voxels (every voxel, by rows, when over
+/// three quarters are reached: cheaper than the list's runs then). False when aborted (`ao` is then
 /// partly updated: recompute it in full).
 bool UpdateLAOAfterOpacityEdit(const LAOPlan& plan, const float* before, const float* after,
   float* ao, const ContextualUpdate::ParallelFor& parallel, OpacityEditStats& stats);
