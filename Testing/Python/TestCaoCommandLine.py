@@ -426,13 +426,20 @@ rc, out, err = run("lao", neghip, "--rays", "fib:200")
 check(rc == 0 and "LAO:" not in err, "a pipe gets no progress line")
 
 # cao tf: a transfer-function edit updated in place, against a full LAO.
-rc, out, err = run("tf", neghip, "--from", "0,0,255,0.8", "--to", "0,0,191,0.6,255,0.8", "--rays", "14",
-                   "--verify", "--json")
+# (A local edit: the opacity of the scalars above 240 only; an edit that
+# reaches most voxels marches them all.)
+rc, out, err = run("tf", neghip, "--from", "0,0,100,0,101,0.8,255,0.8", "--to",
+                   "0,0,100,0,101,0.8,240,0.8,255,1", "--rays", "14", "--verify", "--json")
 t = json.loads(out) if rc == 0 else {}
 check(rc == 0 and t.get("update") == "opacity edit" and t.get("max_diff") == 0 and
       t.get("differing_voxels") == 0 and 0 < t.get("changed_voxels", 0) <= t.get("recomputed_voxels", 0) <
       t.get("voxels", 0) and t.get("full_ms", 0) > 0 and t.get("update_ms", 0) > 0,
       f"tf --verify: the edit equals the full LAO and recomputes fewer voxels: {out.strip()[:400]} {err[-200:]}")
+rc, out, err = run("tf", neghip, "--from", "0,0,255,0.8", "--to", "0,0,191,0.6,255,0.8", "--rays", "14",
+                   "--verify", "--json")
+t = json.loads(out) if rc == 0 else {}
+check(rc == 0 and t.get("max_diff") == 0 and t.get("recomputed_voxels") == t.get("voxels"),
+      f"tf reaching most voxels marches them all, exactly: {out.strip()[:300]}")
 rc, out, err = run("tf", neghip, "--from", "0,0,255,0.8", "--to", "0,0,255,0.8", "--json")
 t = json.loads(out) if rc == 0 else {}
 check(rc == 0 and t.get("changed_voxels") == 0 and t.get("recomputed_voxels") == 0,
