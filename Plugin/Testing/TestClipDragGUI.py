@@ -120,12 +120,18 @@ errorTag = mapper.AddObserver("ErrorEvent", on_error)
 frameTag = view.GetRenderWindow().AddObserver("EndEvent", on_frame)
 moveTag = view.GetRenderWindow().GetInteractor().AddObserver("MouseMoveEvent", on_move)
 
-start = list(display.ClipPosition)
-scale = list(display.ClipScale)
-# The +z face (it faces the camera), halfway between its centre and its +x
-# edge: away from the face's handle.
-face = [start[0] + 0.5 * scale[0], start[1], start[2] + scale[2]]
-targets = {"centre": to_display(view, start), "face": to_display(view, face),
+# The widget's box is the unit shape's box under its pose: its centre
+# handle, and on its +z face (it faces the camera) a point halfway between
+# the face's centre and its +x edge, away from the face's handle.
+pose = expected_matrix(display)
+
+
+def box_point(u):
+    return [sum(pose[4 * r + c] * (list(u) + [1.0])[c] for c in range(4)) for r in range(3)]
+
+
+targets = {"centre": to_display(view, box_point([0, 0, 0])),
+           "face": to_display(view, box_point([0.5, 0, 1])),
            "size": list(view.GetRenderWindow().GetSize()),
            "depth_peeling_for_volumes": int(view.DepthPeelingForVolumes)}
 with open(base + ".targets", "w") as f:
