@@ -33,14 +33,21 @@ for name in ("centre", "face"):
     last = (after or during or before)[-1]
     first = ([f for f in frames if f["t"] < press] or before)[-1]
     settle = (after[-1]["t"] - release) if after else 0.0
-    print("driver: %s drag: %d frames during the 2.5 s drag, %d after the release, the last "
-          "%.2f s after it; depth peeling in %d of them"
-          % (name, len(during), len(after), settle,
-             sum(1 for f in during + after if f["peel"] != "off")))
+    final = [f for f in after if not f.get("interactive") and f["follows"] and
+             f["rotation"] == last["rotation"] and f["position"] == last["position"]]
+    exact = (final[0]["t"] - release) if final else float("nan")
+    print("driver: %s drag: %d frames during the 2.5 s drag (interactive: %d, image sample "
+          "distances %s), %d after the release, the last %.2f s after it, the first still frame "
+          "of the final pose %.2f s after it; depth peeling in %d of them"
+          % (name, len(during), sum(1 for f in during if f.get("interactive")),
+             sorted(set(f.get("image_sample_distance") for f in during)), len(after), settle,
+             exact, sum(1 for f in during + after if f["peel"] != "off")))
     # (How many frames fit in the drag depends on the machine's load: said,
     # not asserted. What must hold: frames were drawn for the drag.)
     check(len(during + after) >= 1, "%s drag: the view draws for the drag (%d frames during it, %d after)"
           % (name, len(during), len(after)))
+    check(any(f.get("interactive") for f in during + after),
+          "%s drag: ParaView asked for interactive frames, and the mapper drew them" % name)
     check(any(f["peel"] != "off" for f in during + after),
           "%s drag: the volume was drawn inside the depth peeling" % name)
     check(last["follows"], "%s drag: the last frame draws the clip at the widget's pose" % name)

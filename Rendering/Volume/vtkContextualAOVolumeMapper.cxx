@@ -22,6 +22,7 @@
 #include "vtkPolyData.h"
 #include "vtkProp3D.h"
 #include "vtkRenderWindow.h"
+#include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
 #include "vtkVolume.h"
@@ -78,6 +79,8 @@ struct FrameReport
   std::int64_t clipped = -1, affected = -1, unaffected = -1;
   std::string backend;
   double sampleDistance = 0.0;
+  int imageSampleDistance = 1; // one ray per k x k pixels
+  bool interactive = false;    // the window asked for an interactive frame
   int peelStage = 0; // the host's depth-peeling stage this draw was (0: none)
 
   std::string Json() const
@@ -96,7 +99,9 @@ struct FrameReport
     for (std::size_t i = 0; i < reasons.size(); ++i)
       o << (i ? ", " : "") << "\"" << reasons[i] << "\"";
     static const char* const peel[4] = { "off", "outside", "layer", "remainder" };
-    o << "], \"sample_distance\": " << sampleDistance << ", \"context\": \"" << backend
+    o << "], \"sample_distance\": " << sampleDistance
+      << ", \"image_sample_distance\": " << imageSampleDistance
+      << ", \"interactive\": " << (interactive ? "true" : "false") << ", \"context\": \"" << backend
       << "\", \"depth_peeling\": \"" << peel[peelStage & 3] << "\"}";
     return o.str();
   }
@@ -192,6 +197,7 @@ struct Frame
   cao::gl::AOEngine* engine = nullptr;
   const char* glTimer = "gl_timestamp";
   bool clipping = false;
+  bool interactive = false; ///< the window's desired update rate asks for an interactive frame
   FrameReport report;
   std::string why; ///< the error that stopped the frame (empty: aborted)
 
@@ -229,6 +235,12 @@ struct vtkContextualAOVolumeMapper::Internals
   double EditNsPerVoxel = 0.0, PrecomputeNsPerVoxel = 0.0;
   bool OpacityEdit = false; ///< this upload follows a change of the opacity alone
   bool PeelDrawn = false;   ///< the last draw was a peeling stage that drew
+  // What the ray cast covers and at which image sample distance; what the
+  // ray cast cost per ray in the frames before (ms), and this frame's sum
+  // over its peeling stages and its rays (one stage's).
+  cao::gl::RayCaster::DrawOptions Options;
+  double CastMsPerRay = 0.0, FrameCastMs = 0.0, FrameCastRays = 0.0;
+  double UpdateMs = 0.0; ///< the last interactive frame's work before its ray cast
   ::MeshKey Mesh;
   bool HaveMesh = false;
   std::vector<double> MapsUploadKey, PoseKey, TableKey; // numbers only
@@ -290,6 +302,7 @@ struct vtkContextualAOVolumeMapper::Internals
     vtkMatrix4x4* pose);
   std::vector<std::pair<vtkSmartPointer<vtkProp3D>, int>> AddedShapes;
   bool UpdateTable(vtkContextualAOVolumeMapper* self, Frame& f, double& step);
+  int ChooseImageSampleDistance(vtkContextualAOVolumeMapper* self, const Frame& f);
   void MakeRenderParams(vtkContextualAOVolumeMapper* self, const Frame& f, double step,
     cao::layout::RenderParams& params);
 };
@@ -332,6 +345,7 @@ vtkContextualAOVolumeMapper::~vtkContextualAOVolumeMapper()
 }
 
 //------------------------------------------------------------------------------
+static_assert(cao::gl::RayCaster::MaximumImageSampleDistance == 8, "CheckSettings says 8");
 static_assert(vtkContextualAOVolumeMapper::MAX_CLIP_SHAPES == cao::MaximumClipParts,
   "the mapper's clip-shape limit is the kernel's");
 
@@ -482,6 +496,10 @@ bool vtkContextualAOVolumeMapper::CheckSettings(std::string& why) const
     !std::isfinite(this->InteractiveSampleDistance))
     outside("InteractiveSampleDistance", this->InteractiveSampleDistance,
       "0 (derived) or a positive length");
+  else if (this->InteractiveImageSampleDistance < 0 ||
+    this->InteractiveImageSampleDistance > cao::gl::RayCaster::MaximumImageSampleDistance)
+    outside("InteractiveImageSampleDistance", this->InteractiveImageSampleDistance,
+      "0 (automatic) to 8");
   why = bad.str();
   return why.empty();
 }
@@ -1064,6 +1082,7 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateTable(
 {
   // The transfer-function table: colour and opacity, step-corrected.
   const bool interactive = f.window->GetDesiredUpdateRate() > 1.0;
+  f.interactive = f.report.interactive = interactive;
   step = self->SampleDistance > 0.0 ? self->SampleDistance : 0.5 * f.minSpacing;
   if (interactive)
     step = self->InteractiveSampleDistance > 0.0 ? self->InteractiveSampleDistance : 2.0 * step;
@@ -1206,6 +1225,62 @@ void vtkContextualAOVolumeMapper::Internals::MakeRenderParams(vtkContextualAOVol
     0 };
   params.boxMax = { static_cast<float>(dims[0] - 1), static_cast<float>(dims[1] - 1),
     static_cast<float>(dims[2] - 1), EarlyTermination };
+  // The pixels the volume's box covers (a pixel of margin); all of the
+  // viewport when a corner is at or behind the eye.
+  vtkNew<vtkMatrix4x4> indexToClip;
+  vtkMatrix4x4::Multiply4x4(worldToNDC, indexToWorld, indexToClip);
+  double low[2] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX }, high[2] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+  bool whole = false;
+  for (int c = 0; c < 8 && !whole; ++c)
+  {
+    const double corner[4] = { (c & 1) ? dims[0] - 1.0 : 0.0, (c & 2) ? dims[1] - 1.0 : 0.0,
+      (c & 4) ? dims[2] - 1.0 : 0.0, 1.0 };
+    double clip[4];
+    indexToClip->MultiplyPoint(corner, clip);
+    whole = !(clip[3] > 1e-9 * (std::abs(clip[0]) + std::abs(clip[1]) + std::abs(clip[2])));
+    for (int a = 0; a < 2 && !whole; ++a)
+    {
+      const double pixel = 0.5 * (clip[a] / clip[3] + 1.0) * size[a];
+      low[a] = std::min(low[a], pixel);
+      high[a] = std::max(high[a], pixel);
+    }
+  }
+  int* region = this->Options.region;
+  region[0] = region[1] = 0;
+  region[2] = size[0];
+  region[3] = size[1];
+  for (int a = 0; a < 2 && !whole; ++a)
+  {
+    region[a] = static_cast<int>(std::max(0.0, std::min<double>(size[a], std::floor(low[a]) - 1.0)));
+    region[a + 2] =
+      static_cast<int>(std::max(0.0, std::min<double>(size[a], std::ceil(high[a]) + 1.0)));
+  }
+}
+
+//------------------------------------------------------------------------------
+int vtkContextualAOVolumeMapper::Internals::ChooseImageSampleDistance(
+  vtkContextualAOVolumeMapper* self, const Frame& f)
+{
+  // The cost of the frame before, per ray, summed over its peeling stages.
+  if (this->FrameCastRays > 0.0 && this->FrameCastMs > 0.0)
+    this->CastMsPerRay = this->FrameCastMs / this->FrameCastRays;
+  this->FrameCastMs = this->FrameCastRays = 0.0;
+  if (!f.interactive)
+    return 1;
+  if (self->InteractiveImageSampleDistance > 0)
+    return self->InteractiveImageSampleDistance;
+  // Automatic: the smallest k whose rays fit the time the window allows a
+  // frame (1 / desired update rate) less what the last interactive frame's
+  // AO update took (at least a quarter of it left to the rays), at most
+  // MaximumAutomaticImageSampleDistance; 2 before any frame was timed.
+  if (!(this->CastMsPerRay > 0.0))
+    return 2;
+  const int* r = this->Options.region;
+  const double rays = std::max(1.0, static_cast<double>(r[2] - r[0]) * (r[3] - r[1]));
+  const double frame = 1000.0 / f.window->GetDesiredUpdateRate();
+  const double budget = std::max(0.25 * frame, frame - this->UpdateMs);
+  const double k = std::ceil(std::sqrt(this->CastMsPerRay * rays / budget) - 1e-9);
+  return static_cast<int>(std::max(1.0, std::min<double>(MaximumAutomaticImageSampleDistance, k)));
 }
 
 //------------------------------------------------------------------------------
@@ -1238,6 +1313,14 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     // Draw over what the opaque geometry left.
     in.MakeRenderParams(this, f, step, params);
+    // (the stages of one peeled frame share the first stage's choice)
+    const int k = peel.stage <= cao::layout::CAO_PEEL_OUTSIDE ?
+      in.ChooseImageSampleDistance(this, f) :
+      in.Options.imageSampleDistance;
+    in.Options.imageSampleDistance = k;
+    in.Options.prepareInteractive = f.window->GetInteractor() != nullptr;
+    f.report.imageSampleDistance = k;
+    in.Caster->SetDrawOptions(in.Options);
     int size[2], origin[2];
     ren->GetTiledSizeAndOrigin(&size[0], &size[1], &origin[0], &origin[1]);
     const int viewport[4] = { origin[0], origin[1], size[0], size[1] };
@@ -1264,7 +1347,20 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       in.LastError = f.why;
     return;
   }
-  f.report.stages.push_back({ "raycast", in.Caster->LastMilliseconds(), f.glTimer });
+  const double castMs = in.Caster->LastMilliseconds();
+  if (f.interactive && f.report.peelStage <= cao::layout::CAO_PEEL_OUTSIDE)
+  {
+    in.UpdateMs = 0.0;
+    for (const Stage& stage : f.report.stages)
+      in.UpdateMs += std::max(0.0, stage.ms);
+  }
+  f.report.stages.push_back({ "raycast", castMs, f.glTimer });
+  {
+    const int* r = in.Options.region;
+    const double k = in.Options.imageSampleDistance;
+    in.FrameCastMs += std::max(0.0, castMs);
+    in.FrameCastRays = static_cast<double>(r[2] - r[0]) * (r[3] - r[1]) / (k * k);
+  }
   in.LastError.clear();
   in.PeelDrawn = peel.stage != 0;
   if (f.report.peelStage > cao::layout::CAO_PEEL_OUTSIDE)
@@ -1310,6 +1406,7 @@ void vtkContextualAOVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "SampleDistance: " << this->SampleDistance << "\n";
   os << indent << "InteractiveSampleDistance: " << this->InteractiveSampleDistance << "\n";
+  os << indent << "InteractiveImageSampleDistance: " << this->InteractiveImageSampleDistance << "\n";
   os << indent << "UseJittering: " << (this->UseJittering ? "On" : "Off") << "\n";
   os << indent << "SmoothClipSurface: " << (this->SmoothClipSurface ? "On" : "Off") << "\n";
   os << indent << "SampleAtClipSurface: " << (this->SampleAtClipSurface ? "On" : "Off") << "\n";

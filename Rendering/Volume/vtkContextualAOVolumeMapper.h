@@ -324,6 +324,22 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Image sample distance while the user interacts, as
+   * vtkGPUVolumeRayCastMapper's: one ray per k x k pixels, spread over the
+   * viewport (linearly; nearest inside depth peeling), so that a frame
+   * dragged or turned keeps up with the hand; still frames cast a ray per
+   * pixel. 0 (default): automatic, the smallest k whose rays fit the time
+   * the window allows an interactive frame (1 / its desired update rate)
+   * at the cost per ray the frames before took, from 1 to
+   * MaximumAutomaticImageSampleDistance; 1 to 8: that k.
+   */
+  vtkSetMacro(InteractiveImageSampleDistance, int);
+  vtkGetMacro(InteractiveImageSampleDistance, int);
+  ///@}
+  static constexpr int MaximumAutomaticImageSampleDistance = 4;
+
+  ///@{
   /// Per-pixel jittered ray starts (deterministic per pixel). Default on.
   vtkSetMacro(UseJittering, bool);
   vtkGetMacro(UseJittering, bool);
@@ -406,6 +422,7 @@ protected:
   int AOUpdate = CONTEXTUAL;
   double SampleDistance = 0.0;
   double InteractiveSampleDistance = 0.0;
+  int InteractiveImageSampleDistance = 0;
   bool UseJittering = true;
   bool SmoothClipSurface = true;
   bool SampleAtClipSurface = true;

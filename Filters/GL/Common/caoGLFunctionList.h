@@ -25,6 +25,7 @@
   X(BufferData, BUFFERDATA)                                                                      \
   X(BufferSubData, BUFFERSUBDATA)                                                                \
   X(CheckFramebufferStatus, CHECKFRAMEBUFFERSTATUS)                                              \
+  X(ClearBufferfv, CLEARBUFFERFV)                                                                \
   X(ClearBufferData, CLEARBUFFERDATA)                                                            \
   X(ColorMask, COLORMASK)                                                                        \
   X(CompileShader, COMPILESHADER)                                                                \
@@ -43,6 +44,7 @@
   X(Disable, DISABLE)                                                                            \
   X(DisableVertexAttribArray, DISABLEVERTEXATTRIBARRAY)                                          \
   X(DispatchCompute, DISPATCHCOMPUTE)                                                            \
+  X(DrawBuffers, DRAWBUFFERS)                                                                    \
   X(DrawArrays, DRAWARRAYS)                                                                      \
   X(DrawArraysInstanced, DRAWARRAYSINSTANCED)                                                    \
   X(Enable, ENABLE)                                                                              \
@@ -84,6 +86,7 @@
   X(QueryCounter, QUERYCOUNTER)                                                                  \
   X(ReadBuffer, READBUFFER)                                                                      \
   X(ReadPixels, READPIXELS)                                                                      \
+  X(Scissor, SCISSOR)                                                                            \
   X(ShaderSource, SHADERSOURCE)                                                                  \
   X(TexImage2D, TEXIMAGE2D)                                                                      \
   X(TexParameteri, TEXPARAMETERI)                                                                \

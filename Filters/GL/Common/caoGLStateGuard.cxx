@@ -22,6 +22,7 @@ StateGuard::StateGuard(const Functions& gl, bool active)
   gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &this->DrawFramebuffer);
   gl.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &this->ReadFramebuffer);
   gl.GetIntegerv(GL_VIEWPORT, this->Viewport);
+  gl.GetIntegerv(GL_SCISSOR_BOX, this->ScissorBox);
   gl.GetIntegerv(GL_ACTIVE_TEXTURE, &this->ActiveTexture);
   for (int u = 0; u < TextureUnits; ++u)
   {
@@ -91,6 +92,7 @@ StateGuard::~StateGuard()
   gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(this->DrawFramebuffer));
   gl.BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(this->ReadFramebuffer));
   gl.Viewport(this->Viewport[0], this->Viewport[1], this->Viewport[2], this->Viewport[3]);
+  gl.Scissor(this->ScissorBox[0], this->ScissorBox[1], this->ScissorBox[2], this->ScissorBox[3]);
   for (int u = 0; u < TextureUnits; ++u)
   {
     gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + u));

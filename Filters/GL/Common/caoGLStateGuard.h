@@ -31,7 +31,7 @@ public:
 private:
   static constexpr int StorageBindings = 8;
   static constexpr int UniformBindings = 4; // 0-3: the volume engine's and the cone tracer's blocks
-  static constexpr int TextureUnits = 9; // CAO_UNIT_* (the peeling units included)
+  static constexpr int TextureUnits = 11; // CAO_UNIT_* (the peeling and upsampling units included)
   const Functions& GL;
   bool Active;
   GLint Program = 0, VertexArray = 0, ArrayBuffer = 0, UniformBuffer = 0, StorageBuffer = 0;
@@ -41,6 +41,7 @@ private:
   GLint ImageFormat[ImageUnits] = {};
   GLint PackLayout[3] = {}, UnpackLayout[3] = {}; // row length, skip pixels, skip rows
   GLint DrawFramebuffer = 0, ReadFramebuffer = 0, Viewport[4] = { 0, 0, 0, 0 };
+  GLint ScissorBox[4] = { 0, 0, 0, 0 };
   GLint ActiveTexture = 0, Texture3D[TextureUnits] = {}, Texture2D[TextureUnits] = {}, UnpackAlignment = 4, PackAlignment = 4;
   GLint StorageIndexed[StorageBindings] = {}, UniformIndexed[UniformBindings] = {};
   GLboolean DepthTest = 0, Blend = 0, CullFace = 0, ScissorTest = 0, DepthWrite = 1;

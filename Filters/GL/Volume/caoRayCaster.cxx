@@ -5,8 +5,10 @@
 #include "caoClipTest_glsl.h"
 #include "caoRayCastFS_glsl.h"
 #include "caoRayCastVS_glsl.h"
+#include "caoUpsampleFS_glsl.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace cao
 {
@@ -16,9 +18,14 @@ struct RayCaster::Impl
 {
   Context& Ctx;
   const Functions& gl;
-  Program program;
+  Program program, upsample;
   StageTimer timer{ 1 };
-  GLuint vertexArray = 0, table = 0, scalars = 0, depth = 0, block = 0;
+  // The target of a ray cast at one pixel in k x k: back and front outputs.
+  GLuint lowFbo = 0, lowBack = 0, lowFront = 0;
+  int lowSize[2] = { 0, 0 };
+  RayCaster::DrawOptions options;
+  bool prepared[4] = { false, false, false, false }; // reduced-resolution variants drawn once
+  GLuint vertexArray = 0, table = 0, scalars = 0, depth = 0, block = 0, spreadBlock = 0;
   // Normalised views of the engine's integer volumes, and what they view.
   GLuint scalarView = 0, currentView = 0, precomputedView = 0;
   std::uint64_t viewGeneration = 0;
@@ -83,18 +90,62 @@ struct RayCaster::Impl
     viewGeneration = r.generation;
     viewedVolume = r.volume;
   }
+  void FreeLowTarget()
+  {
+    if (lowFbo)
+      gl.DeleteFramebuffers(1, &lowFbo);
+    lowFbo = 0;
+    this->Free(lowBack);
+    this->Free(lowFront);
+    lowSize[0] = lowSize[1] = 0;
+  }
+  /// The half-float target of a reduced-resolution ray cast, w x h.
+  bool LowTarget(int w, int h, std::string& error)
+  {
+    if (lowFbo && lowSize[0] == w && lowSize[1] == h)
+      return true;
+    this->FreeLowTarget();
+    gl.GenFramebuffers(1, &lowFbo);
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, lowFbo);
+    GLuint* textures[2] = { &lowBack, &lowFront };
+    for (int i = 0; i < 2; ++i)
+    {
+      gl.GenTextures(1, textures[i]);
+      gl.BindTexture(GL_TEXTURE_2D, *textures[i]);
+      gl.TexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA16F, w, h);
+      Linear(gl, GL_TEXTURE_2D);
+      gl.FramebufferTexture2D(
+        GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D, *textures[i], 0);
+    }
+    if (gl.CheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    {
+      this->FreeLowTarget();
+      error = "the reduced-resolution target (" + std::to_string(w) + "x" + std::to_string(h) +
+        " RGBA16F) is incomplete";
+      return false;
+    }
+    lowSize[0] = w;
+    lowSize[1] = h;
+    return CheckError(gl, "the reduced-resolution target", error);
+  }
   void ReleaseAll()
   {
     gl.UseProgram(0);
     this->FreeViews();
+    this->FreeLowTarget();
+    upsample.Release(gl);
+    std::fill(prepared, prepared + 4, false);
     for (GLuint* t : { &table, &scalars, &depth })
       this->Free(*t);
     if (vertexArray)
       gl.DeleteVertexArrays(1, &vertexArray);
     vertexArray = 0;
-    if (block)
-      gl.DeleteBuffers(1, &block);
-    block = 0;
+    for (GLuint* b : { &block, &spreadBlock })
+    {
+      if (*b)
+        gl.DeleteBuffers(1, b);
+      *b = 0;
+    }
     program.Release(gl);
     timer.Release(gl);
     depthSize[0] = depthSize[1] = 0;
@@ -233,6 +284,11 @@ void RayCaster::SetPeelTextures(const PeelTextures& textures)
   this->P->peel = textures;
 }
 
+void RayCaster::SetDrawOptions(const DrawOptions& options)
+{
+  this->P->options = options;
+}
+
 bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
   const layout::RenderParams& params, std::string& error)
 {
@@ -282,16 +338,55 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
     !p.program.BuildRaster(
       gl, { caoRayCastVS_glsl }, { caoClipTest_glsl, caoRayCastFS_glsl }, {}, error))
     return false;
+  const int k = std::max(1, std::min(p.options.imageSampleDistance, MaximumImageSampleDistance));
+  if (k > 1 && !p.upsample.Valid() &&
+    !p.upsample.BuildRaster(gl, { caoRayCastVS_glsl }, { caoUpsampleFS_glsl }, {}, error))
+    return false;
   if (!p.vertexArray)
     gl.GenVertexArrays(1, &p.vertexArray);
   p.timer.Allocate(gl, p.Ctx.UsesHostClock());
   p.SyncViews(r);
 
+  // The viewport, and the part of it the draw covers: the region asked
+  // for, within the host's scissor box (outside depth peeling, whose
+  // framebuffers start at the pass's own origin).
+  const int width = static_cast<int>(std::lround(1.0 / params.viewport.z));
+  const int height = static_cast<int>(std::lround(1.0 / params.viewport.w));
+  const int x0 = static_cast<int>(params.viewport.x), y0 = static_cast<int>(params.viewport.y);
+  int box[4] = { x0, y0, x0 + width, y0 + height };
+  const int* region = p.options.region;
+  if (region[2] > region[0] && region[3] > region[1])
+  {
+    box[0] = x0 + std::max(region[0], 0);
+    box[1] = y0 + std::max(region[1], 0);
+    box[2] = x0 + std::min(region[2], width);
+    box[3] = y0 + std::min(region[3], height);
+  }
+  if (!peel && gl.IsEnabled(GL_SCISSOR_TEST))
+  {
+    GLint host[4] = { 0, 0, 0, 0 };
+    gl.GetIntegerv(GL_SCISSOR_BOX, host);
+    box[0] = std::max(box[0], host[0]);
+    box[1] = std::max(box[1], host[1]);
+    box[2] = std::min(box[2], host[0] + host[2]);
+    box[3] = std::min(box[3], host[1] + host[3]);
+  }
+  const bool hostBlend = gl.IsEnabled(GL_BLEND);
+  GLboolean hostMask[4] = { 1, 1, 1, 1 };
+  gl.GetBooleanv(GL_COLOR_WRITEMASK, hostMask);
+  GLint hostFramebuffer = 0, hostViewport[4] = { 0, 0, 0, 0 };
+  gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &hostFramebuffer);
+  gl.GetIntegerv(GL_VIEWPORT, hostViewport);
+
   // The frame's parameters: one uniform buffer, rewritten per draw.
   if (!p.block)
     gl.GenBuffers(1, &p.block);
   gl.BindBuffer(GL_UNIFORM_BUFFER, p.block);
-  gl.BufferData(GL_UNIFORM_BUFFER, sizeof(params), &params, GL_STREAM_DRAW);
+  layout::RenderParams cast = params;
+  cast.limits.w = k;
+  if (k > 1)
+    cast.viewport.x = cast.viewport.y = 0.0f; // the caster's own target
+  gl.BufferData(GL_UNIFORM_BUFFER, sizeof(cast), &cast, GL_STREAM_DRAW);
   gl.BindBufferBase(GL_UNIFORM_BUFFER, CAO_BINDING_RENDER_PARAMS, p.block);
   gl.BindBufferBase(GL_UNIFORM_BUFFER, CAO_BINDING_CLIP_PARAMS, r.clipParams);
   gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_MAPS, r.maps);
@@ -323,16 +418,105 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
   gl.Disable(GL_DEPTH_TEST);
   gl.Disable(GL_CULL_FACE);
   gl.DepthMask(GL_FALSE);
-  if (!peel)
-  {
+  // Blending premultiplied colour over the host's framebuffer (peeling:
+  // the host's blending, MAX or over, combines the outputs).
+  auto blendOver = [&gl, peel, hostBlend]() {
+    if (peel)
+    {
+      hostBlend ? gl.Enable(GL_BLEND) : gl.Disable(GL_BLEND);
+      return;
+    }
     gl.Enable(GL_BLEND);
     gl.BlendEquationSeparate(GL_FUNC_ADD, GL_FUNC_ADD);
     gl.BlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-  }
-  // (Peeling: the host's blending, MAX or over, combines the outputs.)
+  };
+  auto scissor = [&gl](const int b[4]) {
+    gl.Enable(GL_SCISSOR_TEST);
+    gl.Scissor(b[0], b[1], std::max(0, b[2] - b[0]), std::max(0, b[3] - b[1]));
+  };
   p.timer.Begin(gl, 0);
-  gl.DrawArrays(GL_TRIANGLES, 0, 3);
+  if (k == 1)
+  {
+    blendOver();
+    scissor(box);
+    gl.DrawArrays(GL_TRIANGLES, 0, 3);
+  }
+  else
+  {
+    // One ray per k x k pixels into the caster's target (cleared to "drew
+    // nothing": alpha -1 inside depth peeling, transparent otherwise)...
+    const int lw = (width + k - 1) / k, lh = (height + k - 1) / k;
+    if (!p.LowTarget(lw, lh, error))
+    {
+      p.timer.End(gl, 0);
+      return false;
+    }
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, p.lowFbo);
+    const GLenum buffers[2] = { GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1 };
+    gl.DrawBuffers(2, buffers);
+    gl.Viewport(0, 0, lw, lh);
+    gl.Disable(GL_SCISSOR_TEST);
+    gl.Disable(GL_BLEND);
+    gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    const float none[4] = { 0.0f, 0.0f, 0.0f, peel ? -1.0f : 0.0f }, zero[4] = { 0, 0, 0, 0 };
+    gl.ClearBufferfv(GL_COLOR, 0, none);
+    gl.ClearBufferfv(GL_COLOR, 1, zero);
+    // (a texel of margin: the linear spread reads one beyond the box)
+    const int low[4] = { std::max(0, (box[0] - x0) / k - 1), std::max(0, (box[1] - y0) / k - 1),
+      std::min(lw, (box[2] - x0 + k - 1) / k + 1), std::min(lh, (box[3] - y0 + k - 1) / k + 1) };
+    scissor(low);
+    gl.DrawArrays(GL_TRIANGLES, 0, 3);
+    // ... then spread over the host's viewport.
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(hostFramebuffer));
+    gl.Viewport(hostViewport[0], hostViewport[1], hostViewport[2], hostViewport[3]);
+    gl.ColorMask(hostMask[0], hostMask[1], hostMask[2], hostMask[3]);
+    // (its own block: re-specifying the one the ray cast just read made
+    // llvmpipe's later ray casts 3-4 times slower, measured)
+    cast = params;
+    cast.limits.w = k;
+    if (!p.spreadBlock)
+      gl.GenBuffers(1, &p.spreadBlock);
+    gl.BindBuffer(GL_UNIFORM_BUFFER, p.spreadBlock);
+    gl.BufferData(GL_UNIFORM_BUFFER, sizeof(cast), &cast, GL_STREAM_DRAW);
+    gl.BindBufferBase(GL_UNIFORM_BUFFER, CAO_BINDING_RENDER_PARAMS, p.spreadBlock);
+    const GLenum filter = peel ? GL_NEAREST : GL_LINEAR;
+    const GLuint lowUnits[2][2] = { { CAO_UNIT_LOW_BACK, p.lowBack },
+      { CAO_UNIT_LOW_FRONT, p.lowFront } };
+    for (const auto& u : lowUnits)
+    {
+      gl.ActiveTexture(GL_TEXTURE0 + u[0]);
+      gl.BindTexture(GL_TEXTURE_2D, u[1]);
+      gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, static_cast<GLint>(filter));
+      gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, static_cast<GLint>(filter));
+    }
+    gl.UseProgram(p.upsample.Id());
+    blendOver();
+    scissor(box);
+    gl.DrawArrays(GL_TRIANGLES, 0, 3);
+  }
   p.timer.End(gl, 0);
+  // The first full-resolution draw of each kind (outside depth peeling,
+  // and each peeling stage) in a window a user interacts with also draws
+  // one pixel of the reduced-resolution pass: Mesa's llvmpipe compiles a
+  // shader variant per target and texture state at its first draw (2.4 s
+  // measured for the peel's layer stage), which the first frame of a drag
+  // would otherwise wait for.
+  const int kind = peel ? (params.limits.z & 3) : 0;
+  if (k == 1 && p.options.prepareInteractive && !p.prepared[kind])
+  {
+    p.prepared[kind] = true;
+    if (!p.LowTarget((width + 1) / 2, (height + 1) / 2, error))
+      return false;
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, p.lowFbo);
+    const GLenum buffers[2] = { GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1 };
+    gl.DrawBuffers(2, buffers);
+    gl.Viewport(0, 0, p.lowSize[0], p.lowSize[1]);
+    gl.Disable(GL_BLEND);
+    gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    const int pixel[4] = { 0, 0, 1, 1 };
+    scissor(pixel);
+    gl.DrawArrays(GL_TRIANGLES, 0, 3);
+  }
   p.timed = true;
   return CheckError(gl, "the ray cast", error);
 }
@@ -352,13 +536,19 @@ std::vector<std::pair<char, unsigned int>> RayCaster::ObjectNames() const
 {
   const Impl& p = *this->P;
   std::vector<std::pair<char, unsigned int>> names;
-  for (GLuint t : { p.table, p.scalars, p.depth, p.scalarView, p.currentView, p.precomputedView })
+  for (GLuint t : { p.table, p.scalars, p.depth, p.scalarView, p.currentView, p.precomputedView,
+         p.lowBack, p.lowFront })
     if (t)
       names.emplace_back('t', t);
+  if (p.lowFbo)
+    names.emplace_back('f', p.lowFbo);
+  if (p.upsample.Valid())
+    names.emplace_back('p', p.upsample.Id());
   if (p.vertexArray)
     names.emplace_back('v', p.vertexArray);
-  if (p.block)
-    names.emplace_back('b', p.block);
+  for (GLuint b : { p.block, p.spreadBlock })
+    if (b)
+      names.emplace_back('b', b);
   if (p.program.Valid())
     names.emplace_back('p', p.program.Id());
   for (GLuint q : p.timer.Names())
@@ -388,9 +578,12 @@ void RayCaster::AbandonGraphicsResources()
 {
   Impl& p = *this->P;
   for (GLuint* t : { &p.table, &p.scalars, &p.depth, &p.scalarView, &p.currentView,
-         &p.precomputedView, &p.vertexArray, &p.block })
+         &p.precomputedView, &p.vertexArray, &p.block, &p.spreadBlock, &p.lowFbo, &p.lowBack, &p.lowFront })
     *t = 0;
+  p.lowSize[0] = p.lowSize[1] = 0;
+  std::fill(p.prepared, p.prepared + 4, false);
   p.program.Abandon();
+  p.upsample.Abandon();
   p.timer.Abandon();
   p.viewGeneration = 0;
   p.viewedVolume = 0;

@@ -16,6 +16,14 @@
  * between the host's peeled depths (SetPeelTextures), writes the back and
  * front outputs the host's draw buffers expect, and leaves the host's
  * blending as it is.
+ *
+ * Two economies (SetDrawOptions): the draw covers only a region of the
+ * viewport (the volume's projected box, intersected with the host's scissor
+ * box), and, for interactive frames, one ray per k x k pixels (the image
+ * sample distance, as vtkGPUVolumeRayCastMapper's): the rays go into the
+ * caster's own half-float target, which a second draw (caoUpsampleFS.glsl)
+ * spreads over the viewport, filtered linearly, or, inside depth peeling,
+ * nearest, with each pixel's own peeled depths deciding whether it draws.
  */
 #ifndef caoRayCaster_h
 #define caoRayCaster_h
@@ -67,6 +75,23 @@ public:
     unsigned int outer = 0, inner = 0, front = 0, opaque = 0;
   };
   void SetPeelTextures(const PeelTextures& textures);
+
+  /// What the next draws cover: `region` (x0, y0, x1, y1: pixels of the
+  /// viewport, relative to its first pixel, x1 and y1 past the last; all of
+  /// it when empty) and the image sample distance (1: a ray per pixel; k in
+  /// [2, MaximumImageSampleDistance]: a ray per k x k pixels);
+  /// `prepareInteractive`: the first full-resolution draw of each kind
+  /// (outside depth peeling, each peeling stage) also draws one pixel at
+  /// reduced resolution, so that a driver compiling shader variants lazily
+  /// (llvmpipe: seconds) does so before the first interactive frame.
+  struct DrawOptions
+  {
+    int region[4] = { 0, 0, 0, 0 };
+    int imageSampleDistance = 1;
+    bool prepareInteractive = false;
+  };
+  static constexpr int MaximumImageSampleDistance = 8;
+  void SetDrawOptions(const DrawOptions& options);
 
   /// Draw: `params` is the frame; `precomputedAO` samples the unclipped AO
   /// instead of the current one (no clip shape). `params.dims.w` carries

@@ -108,7 +108,9 @@ struct RenderParams
   vec4 invDims;   /* xyz: 1 / voxels per axis (texture coordinate = (index + 0.5) * invDims); w: 0 */
   ivec4 dims;     /* xyz: voxels per axis; w: CAO_RENDER_* flags */
   ivec4 limits;   /* x: maximum samples per ray; y: lights (0 to CAO_MAX_LIGHTS); z: the depth-peeling
-                     stage (CAO_PEEL_*; with CAO_RENDER_PEEL); w: 0 */
+                     stage (CAO_PEEL_*; with CAO_RENDER_PEEL); w: the image sample distance k (0 or
+                     1: every pixel; k > 1: one ray per k x k pixels into the caster's own target,
+                     which caoUpsampleFS.glsl spreads over the viewport) */
   vec4 boxMax;    /* xyz: the last voxel index (the box is [0, boxMax]); w: early termination alpha */
   vec4 aoCalibration; /* CAO_RENDER_AO_CALIBRATED (cao::AOCalibration): x: the LAO of an open flat
                          face's last empty voxel, y: of its first opaque voxel, z: of an enclosed
@@ -152,6 +154,9 @@ CAO_CONST CAO_PEEL_REMAINDER = 3;
 #define CAO_UNIT_PEEL_INNER 6       /* sampler2D RG: (-near, far) inner depths */
 #define CAO_UNIT_PEEL_FRONT 7       /* sampler2D RGBA: the front colour accumulated so far */
 #define CAO_UNIT_PEEL_OPAQUE 8      /* sampler2D: the opaque geometry's depth */
+/* caoUpsampleFS.glsl (another program): the ray cast drawn at one pixel in k x k */
+#define CAO_UNIT_LOW_BACK 9         /* sampler2D RGBA16F: its back (or only) output */
+#define CAO_UNIT_LOW_FRONT 10       /* sampler2D RGBA16F: its front output (depth peeling) */
 /* The depth-map programs (caoClipDepthMapsGL) are separate programs with their
  * own storage bindings, kept within the 8 that GL 4.3 guarantees. */
 #define CAO_BINDING_DM_POINTS 0    /* storage: double xyz per mesh point (local frame) */

@@ -33,6 +33,9 @@
 //  - CAO_PEEL_LAYER: the segments between this peel's outer and inner
 //    depths, the front one under-blended with the front colour so far;
 //  - CAO_PEEL_REMAINDER: what the peels left, into the back output.
+//
+// limits.w = k > 1 (interactive frames): drawn into the caster's own
+// target, one fragment per k x k pixels; caoUpsampleFS.glsl spreads it.
 layout(std140, binding = CAO_BINDING_RENDER_PARAMS) uniform RenderBlock
 {
   RenderParams rp;
@@ -352,9 +355,11 @@ void Peel(ivec2 pixel)
       back = CastRay(DepthToT(backStart), DepthToT(backEnd), false);
     fragColor = back;
     // Under-blend the front segment (the host keeps 1 - alpha for its MAX
-    // blending).
+    // blending); at one ray per k x k pixels the spread does it per pixel.
     float transmitted = 1.0 - last.a;
-    frontColor = vec4(transmitted * front.rgb + last.rgb, 1.0 - transmitted * (1.0 - front.a));
+    frontColor = rp.limits.w > 1 ?
+      front :
+      vec4(transmitted * front.rgb + last.rgb, 1.0 - transmitted * (1.0 - front.a));
   }
   else
   {
@@ -369,8 +374,13 @@ void Peel(ivec2 pixel)
 void main()
 {
   int flags = rp.dims.w;
-  ivec2 pixel = ivec2(gl_FragCoord.xy - rp.viewport.xy);
-  g_ndc = (gl_FragCoord.xy - rp.viewport.xy) * rp.viewport.zw * 2.0 - 1.0;
+  // The pixel's position in the viewport; with an image sample distance k
+  // > 1, this fragment is one ray for k x k pixels, through their centre,
+  // reading the peeled depths and the opaque depth of one of them.
+  float k = float(max(rp.limits.w, 1));
+  vec2 frag = (gl_FragCoord.xy - rp.viewport.xy) * k;
+  ivec2 pixel = min(ivec2(frag), ivec2(round(1.0 / rp.viewport.zw)) - 1);
+  g_ndc = frag * rp.viewport.zw * 2.0 - 1.0;
   g_nearWorld = Unproject(g_ndc, -1.0);
   vec3 farWorld = Unproject(g_ndc, 1.0);
   g_dirWorld = normalize(farWorld - g_nearWorld);

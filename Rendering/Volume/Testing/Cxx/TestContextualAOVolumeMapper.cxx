@@ -199,6 +199,21 @@ struct Scene
   }
 };
 
+/// The error messages an object reports (its ErrorEvents), kept in order.
+struct ErrorLog
+{
+  std::vector<std::string> errors;
+  vtkNew<vtkCallbackCommand> catcher;
+  explicit ErrorLog(vtkObject* watched)
+  {
+    this->catcher->SetClientData(&this->errors);
+    this->catcher->SetCallback([](vtkObject*, unsigned long, void* list, void* text) {
+      static_cast<std::vector<std::string>*>(list)->push_back(text ? static_cast<char*>(text) : "");
+    });
+    watched->AddObserver(vtkCommand::ErrorEvent, this->catcher);
+  }
+};
+
 bool Compare(const Options& o, const caotest::Image& image, const std::string& name)
 {
   const bool ok = caotest::CompareWithBaseline(image, o.baselines + "/" + name + ".png",
@@ -619,13 +634,8 @@ void BadInput(const Options& o)
   if (!s.Open(o.window) || !s.Load(o.data + "/neghip.slc"))
     return;
   vtkContextualAOVolumeMapper* m = s.mapper;
-  std::vector<std::string> errors;
-  vtkNew<vtkCallbackCommand> catcher;
-  catcher->SetClientData(&errors);
-  catcher->SetCallback([](vtkObject*, unsigned long, void* list, void* text) {
-    static_cast<std::vector<std::string>*>(list)->push_back(text ? static_cast<char*>(text) : "");
-  });
-  m->AddObserver(vtkCommand::ErrorEvent, catcher);
+  ErrorLog log(m);
+  std::vector<std::string>& errors = log.errors;
   auto expect = [&](const char* what, const char* words) {
     errors.clear();
     const int frames = m->GetFrameCount();
@@ -709,7 +719,7 @@ void BadInput(const Options& o)
   if (!second.Open(o.window) || !second.Load(o.data + "/neghip.slc"))
     return;
   second.volume->SetMapper(kept);
-  kept->AddObserver(vtkCommand::ErrorEvent, catcher);
+  kept->AddObserver(vtkCommand::ErrorEvent, log.catcher);
   errors.clear();
   const int before = kept->GetFrameCount();
   second.window->Render();
@@ -928,6 +938,30 @@ double MeanDifference(const caotest::Image& a, const caotest::Image& b)
   return a.rgb.empty() ? 0.0 : sum / a.rgb.size();
 }
 
+/// Mean |a - b| of two frames averaged over blocks of `block` x `block`
+/// pixels (grey levels): what the pictures show at a coarser resolution.
+double BlockMeanDifference(const caotest::Image& a, const caotest::Image& b, int block)
+{
+  const int w = a.width, h = a.height;
+  double sum = 0.0;
+  long count = 0;
+  for (int by = 0; by + block <= h; by += block)
+    for (int bx = 0; bx + block <= w; bx += block)
+      for (int c = 0; c < 3; ++c)
+      {
+        double d = 0.0;
+        for (int y = by; y < by + block; ++y)
+          for (int x = bx; x < bx + block; ++x)
+          {
+            const std::size_t i = 3 * (static_cast<std::size_t>(y) * w + x) + c;
+            d += double(a.rgb[i]) - double(b.rgb[i]);
+          }
+        sum += std::fabs(d) / (block * block);
+        ++count;
+      }
+  return count ? sum / count : 0.0;
+}
+
 /// A sphere clips the same at every orientation; only the clipping
 /// camera (attached to the sphere's frame) turns. The frames at two
 /// orientations differ only by how the depth maps' pixels represent the
@@ -1028,13 +1062,8 @@ void Peeling(const Options& o)
   Scene s;
   if (!s.Open(o.window) || !s.Load(o.data + "/neghip.slc"))
     return;
-  std::vector<std::string> errors;
-  vtkNew<vtkCallbackCommand> catcher;
-  catcher->SetClientData(&errors);
-  catcher->SetCallback([](vtkObject*, unsigned long, void* list, void* text) {
-    static_cast<std::vector<std::string>*>(list)->push_back(text ? static_cast<char*>(text) : "");
-  });
-  s.mapper->AddObserver(vtkCommand::ErrorEvent, catcher);
+  ErrorLog log(s.mapper);
+  std::vector<std::string>& errors = log.errors;
   double b[6];
   s.image->GetBounds(b);
   const double centre[3] = { 0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]) };
@@ -1273,6 +1302,144 @@ void TFEdit(const Options& o)
   }
 }
 
+/// Frames while the user drags the clip or turns the camera. An
+/// interactor raises the render window's desired update rate while the
+/// user interacts (ParaView: 5 frames a second); the mapper then casts one
+/// ray per k x k pixels and spreads them over the viewport. Checked, on a
+/// carved HeadMR with AO, without and with a translucent sphere over the
+/// volume (depth peeling for volumes):
+/// - the report says "interactive" and the k in use (2, 4; automatic: 4
+///   when the window allows a microsecond a frame, 1 when it allows a
+///   second);
+/// - at k = 2 and 4, with the still frame's sample distance, the picture
+///   over blocks of 4 x 4 rays is the still picture's within half of what
+///   separates the still picture of the pose before (the clip a tenth of
+///   the volume away): the negative control, measured in the same run;
+/// - the first still frame after the interaction is the still frame before
+///   it, bit for bit;
+/// - the latest pose wins: poses set between two frames give one AO
+///   update, for the last pose, whose frame equals a fresh mapper's.
+void Interactive(const Options& o)
+{
+  Scene s;
+  if (!s.Open(o.window) || !s.Load(o.data + "/HeadMRVolume.mhd"))
+    return;
+  ErrorLog log(s.mapper);
+  std::vector<std::string>& errors = log.errors;
+  double b[6];
+  s.image->GetBounds(b);
+  const double centre[3] = { 0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]) };
+  const double size = b[1] - b[0];
+  auto carve = [&](Scene& scene, double dx) {
+    scene.Shape("sphere", 0.3 * size);
+    scene.clip->SetPosition(centre[0] + dx, centre[1], centre[2] + 0.2 * size);
+  };
+  carve(s, 0.0);
+  vtkNew<vtkSphereSource> ball;
+  ball->SetCenter(centre[0] - 0.2 * size, centre[1], centre[2]);
+  ball->SetRadius(0.3 * size);
+  ball->SetThetaResolution(48);
+  ball->SetPhiResolution(24);
+  vtkNew<vtkPolyDataMapper> ballMapper;
+  ballMapper->SetInputConnection(ball->GetOutputPort());
+  vtkNew<vtkActor> sphere;
+  sphere->SetMapper(ballMapper);
+  sphere->GetProperty()->SetColor(0.2, 0.45, 1.0);
+  sphere->GetProperty()->SetOpacity(0.3);
+  s.renderer->AddActor(sphere);
+  s.renderer->SetUseDepthPeeling(true);
+  s.renderer->SetUseDepthPeelingForVolumes(true);
+  s.renderer->SetMaximumNumberOfPeels(4);
+  s.renderer->SetOcclusionRatio(0.0);
+  auto still = [&]() {
+    s.window->SetDesiredUpdateRate(0.0001); // vtkRenderWindow's default
+    return s.Frame();
+  };
+  auto interactive = [&](int k, double rate = 5.0) {
+    s.mapper->SetInteractiveImageSampleDistance(k);
+    s.window->SetDesiredUpdateRate(rate);
+    return s.Frame();
+  };
+  auto number = [&](const char* key) {
+    const std::string r = s.mapper->GetLastFrameReport();
+    const std::size_t at = r.find(std::string("\"") + key + "\": ");
+    return at == std::string::npos ? -1 : std::atoi(r.c_str() + at + std::strlen(key) + 4);
+  };
+  for (int peel = 0; peel < 2; ++peel)
+  {
+    sphere->SetVisibility(peel);
+    const char* scene = peel ? "a translucent sphere over the volume (depth peeling)" : "the volume alone";
+    carve(s, 0.1 * size);
+    const caotest::Image before = still(); // the pose before, for the control
+    carve(s, 0.0);
+    const caotest::Image reference = still();
+    // (the still frame's sample distance: the frames differ by k alone)
+    const std::string stillReport = s.mapper->GetLastFrameReport();
+    const std::size_t at = stillReport.find("\"sample_distance\": ");
+    s.mapper->SetInteractiveSampleDistance(std::atof(stillReport.c_str() + at + 19));
+    for (int k : { 2, 4 })
+    {
+      errors.clear();
+      const caotest::Image got = interactive(k);
+      const std::string report = s.mapper->GetLastFrameReport();
+      // Compared over blocks of 4 x 4 rays (4k x 4k pixels).
+      const double mean = BlockMeanDifference(got, reference, 4 * k);
+      const double control = BlockMeanDifference(before, reference, 4 * k);
+      std::printf("%s, k = %d: mean %.3f levels from the still frame over %dx%d blocks, %.3f per "
+                  "pixel (the pose before: %.3f over blocks)\n", scene, k, mean, 4 * k, 4 * k,
+        MeanDifference(got, reference), control);
+      std::string why;
+      caotest::WritePNG(got, o.output + "/interactive-k" + std::to_string(k) +
+          (peel ? "-peeling-" : "-") + o.window + ".png", why);
+      CAO_EXPECT(errors.empty(), "the mapper reported: %s", errors.empty() ? "" : errors[0].c_str());
+      CAO_EXPECT(report.find("\"interactive\": true") != std::string::npos &&
+          number("image_sample_distance") == k, "not an interactive frame at k = %d: %s", k,
+        report.c_str());
+      CAO_EXPECT(!peel || report.find("\"depth_peeling\": \"off\"") == std::string::npos,
+        "not drawn inside the depth peeling: %s", report.c_str());
+      CAO_EXPECT(mean < 0.5 * control, "%s, k = %d: the interactive frame is %.3f levels from the "
+        "still one, not under half of the pose before's %.3f", scene, k, mean, control);
+    }
+    const caotest::Image after = still();
+    const long differing = caotest::DifferingPixels(after, reference);
+    std::printf("%s: the still frame after the interaction: %ld pixel(s) differ from the one "
+                "before\n", scene, differing);
+    CAO_EXPECT(differing == 0 && number("image_sample_distance") == 1,
+      "the still frame after the interaction is not the one before (%ld pixels)", differing);
+  }
+  sphere->SetVisibility(false);
+  // Automatic k: from the cost per ray measured in the frames before.
+  interactive(0, 1e6);
+  const int fast = number("image_sample_distance");
+  interactive(0, 1e6);
+  const int fastest = number("image_sample_distance");
+  still(); // (the cost per ray at full resolution: a k = 4 frame's includes the spread)
+  interactive(0, 1.0001);
+  const int slow = number("image_sample_distance");
+  std::printf("automatic image sample distance: %d then %d for a microsecond a frame, %d for a "
+              "second\n", fast, fastest, slow);
+  CAO_EXPECT(fastest == vtkContextualAOVolumeMapper::MaximumAutomaticImageSampleDistance && slow == 1,
+    "automatic k: %d for a microsecond, %d for a second", fastest, slow);
+  // The latest pose wins: five poses between two frames, one update.
+  still();
+  const int updates = s.mapper->GetClassifyCount();
+  for (int i = 1; i <= 5; ++i)
+    carve(s, 1.5 * i);
+  const caotest::Image last = still();
+  const std::string stages = s.mapper->GetLastFrameStages();
+  Scene fresh;
+  if (!fresh.Open(o.window) || !fresh.Load(o.data + "/HeadMRVolume.mhd"))
+    return;
+  carve(fresh, 7.5);
+  const long differing = caotest::DifferingPixels(last, fresh.Frame());
+  std::printf("five poses set between two frames: %d AO update(s); the frame differs from a fresh "
+              "mapper's at the last pose in %ld pixel(s)\n",
+    s.mapper->GetClassifyCount() - updates, differing);
+  CAO_EXPECT(s.mapper->GetClassifyCount() - updates == 1, "%d updates for five queued poses",
+    s.mapper->GetClassifyCount() - updates);
+  CAO_EXPECT(differing == 0, "the last pose's frame is not a fresh mapper's (%ld pixels)", differing);
+}
+
 int TestContextualAOVolumeMapper(int argc, char* argv[])
 {
   Options o;
@@ -1293,10 +1460,10 @@ int TestContextualAOVolumeMapper(int argc, char* argv[])
   if ((o.window != "egl" && o.window != "x") ||
     (o.mode != "images" && o.mode != "report" && o.mode != "badinput" &&
       o.mode != "calibration" && o.mode != "silhouette" && o.mode != "cutface" &&
-      o.mode != "peeling" && o.mode != "tfedit") ||
+      o.mode != "peeling" && o.mode != "tfedit" && o.mode != "interactive") ||
     o.data.empty() || o.baselines.empty() || o.output.empty())
   {
-    std::printf("usage: TestContextualAOVolumeMapper <egl|x> <images|report|badinput|calibration|silhouette|cutface|peeling|tfedit> -D data -B "
+    std::printf("usage: TestContextualAOVolumeMapper <egl|x> <images|report|badinput|calibration|silhouette|cutface|peeling|tfedit|interactive> -D data -B "
                 "baselines -T output\n");
     return 1;
   }
@@ -1319,6 +1486,8 @@ int TestContextualAOVolumeMapper(int argc, char* argv[])
     Peeling(o);
   else if (o.mode == "tfedit")
     TFEdit(o);
+  else if (o.mode == "interactive")
+    Interactive(o);
   else
     BadInput(o);
   std::printf("%s: %d failure(s)\n", failures ? "FAILED" : "PASSED", failures);
