@@ -173,15 +173,25 @@ namespace
 /// points merged, closed, oriented consistently and outward (VTK's filters
 /// do the merging and orienting; the checks are the kernel's). False with
 /// an error on `self` when the mesh cannot clip.
+/// `why` given: the reason goes there, and nothing is reported (nor the
+/// warnings); else to `self`'s error and warning output.
 bool PrepareMesh(vtkAlgorithm* self, vtkPolyData* input, std::vector<double>& points,
-  std::vector<std::int64_t>& tris)
+  std::vector<std::int64_t>& tris, std::string* why = nullptr)
 {
-  if (input->GetNumberOfPoints() < 4 || input->GetNumberOfPolys() + input->GetNumberOfStrips() < 4)
-  {
-    vtkErrorWithObjectMacro(
-      self, "The clip mesh is empty: it needs at least 4 polygons enclosing a volume.");
+  auto fail = [self, why](const std::string& text) {
+    if (why)
+      *why = text;
+    else
+      vtkErrorWithObjectMacro(self, << text);
     return false;
-  }
+  };
+  if (input->GetNumberOfPoints() < 4 || input->GetNumberOfPolys() + input->GetNumberOfStrips() < 4)
+    return fail(std::string("The clip mesh ") +
+      (input->GetNumberOfPoints() == 0 ? "is empty" :
+        "has " + std::to_string(input->GetNumberOfPoints()) + " points and " +
+          std::to_string(input->GetNumberOfPolys() + input->GetNumberOfStrips()) + " polygons") +
+      ": it needs at least 4 polygons enclosing a volume (an open surface, such as a Plane "
+      "source, cannot clip).");
   // NaN or infinite vertices first: merging and orienting would hide them
   // behind a misleading "open mesh".
   for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
@@ -189,11 +199,8 @@ bool PrepareMesh(vtkAlgorithm* self, vtkPolyData* input, std::vector<double>& po
     double p[3];
     input->GetPoint(i, p);
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
-    {
-      vtkErrorWithObjectMacro(
-        self, "The clip mesh has a NaN or infinite coordinate (point " << i << ").");
-      return false;
-    }
+      return fail(
+        "The clip mesh has a NaN or infinite coordinate (point " + std::to_string(i) + ").");
   }
   vtkNew<vtkPolyData> surface;
   surface->SetPoints(input->GetPoints());
@@ -215,11 +222,8 @@ bool PrepareMesh(vtkAlgorithm* self, vtkPolyData* input, std::vector<double>& po
   cao::ClosedMeshCheck check;
   std::string error;
   if (!cao::CheckClosedMesh(cao::ViewMesh(points, tris), check, error))
-  {
-    vtkErrorWithObjectMacro(self, "Cannot clip with this mesh: " << error << ".");
-    return false;
-  }
-  if (check.nonManifoldEdges > 0)
+    return fail("Cannot clip with this mesh: " + error + ".");
+  if (check.nonManifoldEdges > 0 && !why)
     vtkWarningWithObjectMacro(self, << check.nonManifoldEdges
                                     << " non-manifold edge(s) in the clip mesh; "
                                        "inside/outside follows the winding number.");
@@ -234,10 +238,7 @@ bool PrepareMesh(vtkAlgorithm* self, vtkPolyData* input, std::vector<double>& po
   orient->Update();
   Flatten(orient->GetOutput(), points, tris);
   if (!cao::CheckClosedMesh(cao::ViewMesh(points, tris), check, error))
-  {
-    vtkErrorWithObjectMacro(self, "Cannot clip with this mesh: " << error << ".");
-    return false;
-  }
+    return fail("Cannot clip with this mesh: " + error + ".");
   if (check.signedVolume < 0.0)
     for (std::size_t t = 0; t < tris.size(); t += 3)
       std::swap(tris[t + 1], tris[t + 2]); // outward
@@ -271,10 +272,25 @@ bool CheckRawMaps(vtkClipDepthMaps* self, const cao::ClipDepthMaps& raw,
     vtkWarningWithObjectMacro(self, << raw.overflowPixels << " pixel(s) have more than "
                                     << cam.layers
                                     << " inside intervals; the extra ones were merged into the "
-                                       "last layer. Increase NumberOfLayers to clip this mesh "
+                                       "last layer. Increase NumberOfLayers (Clip Layers in "
+                                       "ParaView's Contextual AO Volume) to clip this mesh "
                                        "exactly.");
   return true;
 }
+}
+
+//------------------------------------------------------------------------------
+bool vtkClipDepthMaps::CheckMesh(vtkPolyData* mesh, std::string& why)
+{
+  why.clear();
+  if (!mesh)
+  {
+    why = "no clip mesh";
+    return false;
+  }
+  std::vector<double> points;
+  std::vector<std::int64_t> tris;
+  return PrepareMesh(nullptr, mesh, points, tris, &why);
 }
 
 //------------------------------------------------------------------------------
@@ -482,7 +498,7 @@ bool vtkClipDepthMaps::PrepareComposite(
     }
     if (!PrepareMesh(this, mesh, points[i], tris[i]))
     {
-      vtkErrorMacro("(that was clip shape " << i << " of " << n << ")");
+      vtkErrorMacro("(that was input mesh " << i + 1 << " of " << n << ")");
       return false;
     }
     parts[i].mesh = cao::ViewMesh(points[i], tris[i]);

@@ -69,6 +69,7 @@
 #include "vtkAOAlgorithm.h"
 #include "vtkSmartPointer.h" // For the shape poses
 
+#include <string> // For CheckMesh
 #include <vector> // For the shape poses
 
 class vtkMatrix4x4;
@@ -82,9 +83,20 @@ struct CompositeClipMesh;
 struct TriangleMesh;
 }
 
+class vtkPolyData;
+
 class CAOFILTERSAO_EXPORT vtkClipDepthMaps : public vtkAOAlgorithm
 {
 public:
+  /**
+   * Whether `mesh` can clip (at least 4 polygons, finite points, closed
+   * once merged), as the filter checks each input: false with the reason.
+   * Reports nothing.
+   */
+#ifndef __VTK_WRAP__
+  static bool CheckMesh(vtkPolyData* mesh, std::string& why);
+#endif
+
   static vtkClipDepthMaps* New();
   vtkTypeMacro(vtkClipDepthMaps, vtkAOAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;

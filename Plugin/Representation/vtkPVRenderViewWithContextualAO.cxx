@@ -60,7 +60,14 @@ void vtkPVRenderViewWithContextualAO::Render(bool interactive, bool skip_renderi
   if (exchange)
     this->RenderEmptyImages = true;
   this->Pass->SetController(exchange ? controller : nullptr);
+  // ParaView's own screen-space AO (the Render View's "Use Ambient
+  // Occlusion") would darken the surfaces a second time: it applies only
+  // while Surface AO Method is None.
+  const bool ssao = this->UseSSAO;
+  if (this->Pass->GetMethod() != vtkContextualAOPass::NONE)
+    this->UseSSAO = false;
   this->Superclass::Render(interactive, skip_rendering);
+  this->UseSSAO = ssao;
   this->Pass->SetController(nullptr); // a render outside the view's (one process alone) exchanges nothing
 }
 

@@ -12,7 +12,8 @@ pvpython:
   - two probing meshes keep their intersection: fewer volume pixels than
     either probe alone;
   - negative control: an open mesh (a Plane source) is refused with the
-    reason, and nothing crashes.
+    reason, and nothing crashes; beside a closed mesh it is left out with
+    a warning and the closed one carves as alone;
   - the built-in shape is inscribed in the box widget's box: a Cube equals
     a Transform of a unit Box with the same Translate, Rotate and Scale
     (negative control: turned further, it differs); without reference
@@ -241,6 +242,22 @@ vtkOutputWindow.SetInstance(previous)
 text = errors.GetOutput()
 check("open" in text and "closed" in text, "an open mesh is refused with the reason: %s"
       % " ".join(text.split())[:300])
+# Beside a closed mesh, an open one is left out with a warning that says
+# why, and the closed one still carves: the frame is the closed one's alone.
+# (Negative control: the open mesh alone, above, carves nothing.)
+sphere.Center = [centre[0], centre[1] - 60.0, centre[2]]
+display.ClipMeshes = [sphere]
+alone = frame("sphere-alone")
+errors = vtkStringOutputWindow()
+vtkOutputWindow.SetInstance(errors)
+display.ClipMeshes = [sphere, Plane(Origin=[0, 0, 82], Point1=[200, 0, 82], Point2=[0, 250, 82])]
+withOpen = frame("sphere-and-open")
+vtkOutputWindow.SetInstance(previous)
+text = " ".join(errors.GetOutput().split())
+check("is left out" in text and "cannot clip" in text and changed(alone, withOpen) == 0 and
+      changed(plain, alone) > 100,
+      "an open mesh beside a closed one is left out (%s) and the closed one carves as alone "
+      "(%d pixels differ)" % (text[:240], changed(alone, withOpen)))
 print("%d failure(s)" % len(failures))
 sys.stdout.flush()
 os._exit(1 if failures else 0)  # (teardown under Xvfb: see TestSameLook.py)

@@ -75,6 +75,8 @@ try:
     ColorBy(display, ("POINTS", "MetaImage"))
     display.SetRepresentationType("Contextual AO Volume")
     display.ClipShape = "Sphere"
+    b = reader.GetDataInformation().GetBounds()
+    display.ClipPosition = [0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5])]
     SetActiveSource(reader)
     view.ResetCamera()
     mapper = display.GetClientSideObject().GetActiveRepresentation().GetActor().GetMapper()

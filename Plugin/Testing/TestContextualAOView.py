@@ -22,7 +22,9 @@ resting on a box (ParaView sources, drawn by composite mappers):
   draws, Hidden Line Removal on a wireframe sphere included (the renderer's
   own opaque path);
 - with Tone Mapping on (an outer framebuffer pass) the AO still darkens the
-  contact.
+  contact;
+- ParaView's own Use Ambient Occlusion (vtkSSAOPass) applies only with
+  Surface AO Method None (control: it darkens the picture there).
 Writes OUT_DIR/view-off.png, view-on.png and view-volume.png.
 
   pvpython TestContextualAOView.py PLUGIN.so OUT_DIR   (under run-with-xvfb.sh)"""
@@ -88,6 +90,17 @@ changed = int((darker > 10).sum())
 check(darker.min() >= -3 and 300 < changed < 0.5 * darker.size,
       "AO only darkens (largest brightening %.1f), around the contact: %d of %d pixels darker by more "
       "than 10 grey levels" % (-darker.min(), changed, darker.size))
+# ParaView's own screen-space AO (Use Ambient Occlusion) applies only while
+# the method is None: with a method it would darken the surfaces twice.
+view.UseAmbientOcclusion = 1
+ssaoOff = shot("view-ssao-method-none")
+view.SurfaceAOMethod = "Horizon Based"
+ssaoOn = shot("view-ssao-hbao")
+view.UseAmbientOcclusion = 0
+hbao = shot("view-hbao")
+check(abs(ssaoOff - off).max() > 30 and abs(ssaoOn - hbao).max() == 0,
+      "Use Ambient Occlusion darkens the picture with Method None (by up to %.0f levels: the control) "
+      "and changes nothing with Horizon Based (%.0f)" % (abs(ssaoOff - off).max(), abs(ssaoOn - hbao).max()))
 view.SurfaceAOMethod = "Voxel Cones"
 Render(view)
 grids, traces = pas.GetVoxelizeCount(), pas.GetTraceCount()

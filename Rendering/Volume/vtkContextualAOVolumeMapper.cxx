@@ -47,6 +47,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <sstream>
 #include <utility>
 #include <vector>
@@ -217,7 +218,7 @@ struct vtkContextualAOVolumeMapper::Internals
   const cao::gl::Context* CasterContext = nullptr; // the context the caster's objects live in
   bool WarnedBlend = false;
   vtkSmartPointer<vtkClipDepthMaps> ClipDepthMaps;
-  vtkNew<vtkCallbackCommand> DepthMapsErrors; // keeps the filter's last error
+  vtkNew<vtkCallbackCommand> DepthMapsErrors; // keeps the filter's errors of one update
   std::string DepthMapsError;
   // The window whose context holds our objects; weak, so that a window
   // destroyed first is noticed (its objects are then forgotten, not deleted).
@@ -235,6 +236,16 @@ struct vtkContextualAOVolumeMapper::Internals
   double EditNsPerVoxel = 0.0, PrecomputeNsPerVoxel = 0.0;
   bool OpacityEdit = false; ///< this upload follows a change of the opacity alone
   bool PeelDrawn = false;   ///< the last draw was a peeling stage that drew
+  // Whether each clip mesh can clip (several shapes: the others carve
+  // without one that cannot), per mesh version; what was left out last.
+  struct MeshCheck
+  {
+    vtkMTimeType mtime = 0;
+    bool ok = false;
+    std::string why;
+  };
+  std::map<vtkPolyData*, MeshCheck> MeshChecks;
+  std::string SkippedShapes;
   // What the ray cast covers and at which image sample distance; what the
   // ray cast cost per ray in the frames before (ms), and this frame's sum
   // over its peeling stages and its rays (one stage's).
@@ -330,7 +341,9 @@ vtkContextualAOVolumeMapper::vtkContextualAOVolumeMapper()
       m = m.substr(colon + 3);
     while (!m.empty() && (m.back() == '\n' || m.back() == ' '))
       m.pop_back();
-    *static_cast<std::string*>(out) = m;
+    // Every error of the update, in order: the reason, then which shape.
+    std::string& all = *static_cast<std::string*>(out);
+    all += (all.empty() ? "" : " ") + m;
   });
   in.ClipDepthMaps->AddObserver(vtkCommand::ErrorEvent, in.DepthMapsErrors);
 }
@@ -877,6 +890,7 @@ bool vtkContextualAOVolumeMapper::Internals::GatherClipParts(
       std::to_string(shapes) + " are set.");
   vtkNew<vtkMatrix4x4> worldToVolume;
   vtkMatrix4x4::Invert(f.volume->GetMatrix(), worldToVolume);
+  std::string skipped;
   for (int i = 0; i < shapes; ++i)
   {
     ClipPart part;
@@ -885,6 +899,25 @@ bool vtkContextualAOVolumeMapper::Internals::GatherClipParts(
       return f.Fail("Clip shape " + std::to_string(i) +
         " has no mesh: give it a vtkPolyDataMapper input" +
         (i == 0 && self->ClipShape ? " or set ClipMesh." : "."));
+    if (shapes > 1)
+    {
+      // Several shapes: one that cannot clip (an open surface, a NaN) is
+      // left out and the others carve. Checked once per mesh version.
+      if (this->MeshChecks.size() > 64)
+        this->MeshChecks.clear();
+      MeshCheck& c = this->MeshChecks[part.mesh];
+      if (c.mtime != part.mesh->GetMTime())
+      {
+        c.mtime = part.mesh->GetMTime();
+        c.ok = vtkClipDepthMaps::CheckMesh(part.mesh, c.why);
+      }
+      if (!c.ok)
+      {
+        skipped += (skipped.empty() ? "" : " ") + std::string("Clip shape ") +
+          std::to_string(i) + " of " + std::to_string(shapes) + " is left out: " + c.why;
+        continue;
+      }
+    }
     // Pose: the mesh's local frame to the volume's physical frame.
     part.pose = vtkSmartPointer<vtkMatrix4x4>::New();
     vtkMatrix4x4::Multiply4x4(worldToVolume, self->GetClipShapeAt(i)->GetMatrix(), part.pose);
@@ -892,6 +925,11 @@ bool vtkContextualAOVolumeMapper::Internals::GatherClipParts(
       self->GetClipShapeModeAt(i) == SUBTRACTION ? cao::layout::CAO_MODE_SUBTRACT : cao::layout::CAO_MODE_PROBE;
     parts.push_back(part);
   }
+  if (parts.empty() && !skipped.empty())
+    return f.Fail("No clip shape can clip. " + skipped);
+  if (skipped != this->SkippedShapes && !skipped.empty())
+    vtkWarningWithObjectMacro(self, << skipped);
+  this->SkippedShapes = skipped;
   return true;
 }
 
