@@ -1293,6 +1293,13 @@ void vtkContextualAOVolumeMapper::Internals::MakeRenderParams(vtkContextualAOVol
     region[a + 2] =
       static_cast<int>(std::max(0.0, std::min<double>(size[a], std::ceil(high[a]) + 1.0)));
   }
+  if (region[2] <= region[0] || region[3] <= region[1])
+  {
+    // The box is off the view: one pixel, whose ray misses it (an empty
+    // region would mean the whole viewport to the caster).
+    region[0] = region[1] = 0;
+    region[2] = region[3] = 1;
+  }
 }
 
 //------------------------------------------------------------------------------

@@ -110,6 +110,8 @@ struct RayCaster::Impl
     GLuint* textures[2] = { &lowBack, &lowFront };
     for (int i = 0; i < 2; ++i)
     {
+      // (on its own unit: the active one may hold a texture a draw reads)
+      gl.ActiveTexture(GL_TEXTURE0 + (i ? CAO_UNIT_LOW_FRONT : CAO_UNIT_LOW_BACK));
       gl.GenTextures(1, textures[i]);
       gl.BindTexture(GL_TEXTURE_2D, *textures[i]);
       gl.TexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA16F, w, h);
@@ -501,24 +503,36 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
   // shader variant per target and texture state at its first draw (2.4 s
   // measured for the peel's layer stage), which the first frame of a drag
   // would otherwise wait for.
+  p.timed = true;
+  if (!CheckError(gl, "the ray cast", error))
+    return false;
   const int kind = peel ? (params.limits.z & 3) : 0;
   if (k == 1 && p.options.prepareInteractive && !p.prepared[kind])
   {
+    // (a preparation: the frame is drawn; its failure is not the frame's)
     p.prepared[kind] = true;
-    if (!p.LowTarget((width + 1) / 2, (height + 1) / 2, error))
-      return false;
-    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, p.lowFbo);
-    const GLenum buffers[2] = { GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1 };
-    gl.DrawBuffers(2, buffers);
-    gl.Viewport(0, 0, p.lowSize[0], p.lowSize[1]);
-    gl.Disable(GL_BLEND);
-    gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    const int pixel[4] = { 0, 0, 1, 1 };
-    scissor(pixel);
-    gl.DrawArrays(GL_TRIANGLES, 0, 3);
+    std::string ignored;
+    if (!p.upsample.Valid())
+      p.upsample.BuildRaster(gl, { caoRayCastVS_glsl }, { caoUpsampleFS_glsl }, {}, ignored);
+    if (p.LowTarget((width + 1) / 2, (height + 1) / 2, ignored))
+    {
+      gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, p.lowFbo);
+      const GLenum buffers[2] = { GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1 };
+      gl.DrawBuffers(2, buffers);
+      gl.Viewport(0, 0, p.lowSize[0], p.lowSize[1]);
+      gl.Disable(GL_BLEND);
+      gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+      const int pixel[4] = { 0, 0, 1, 1 };
+      scissor(pixel);
+      gl.UseProgram(p.program.Id());
+      gl.DrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    for (int i = 0; i < 8 && gl.GetError() != GL_NO_ERROR; ++i)
+    {
+      // (what the preparation raised is not the frame's)
+    }
   }
-  p.timed = true;
-  return CheckError(gl, "the ray cast", error);
+  return true;
 }
 
 double RayCaster::LastMilliseconds()

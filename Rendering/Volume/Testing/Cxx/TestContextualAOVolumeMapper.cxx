@@ -1399,6 +1399,10 @@ void Interactive(const Options& o)
         "not drawn inside the depth peeling: %s", report.c_str());
       CAO_EXPECT(mean < 0.5 * control, "%s, k = %d: the interactive frame is %.3f levels from the "
         "still one, not under half of the pose before's %.3f", scene, k, mean, control);
+      // (and it was drawn at reduced resolution: it is not the still frame)
+      const long lowered = caotest::DifferingPixels(got, reference);
+      CAO_EXPECT(lowered > 100, "%s, k = %d: only %ld pixels differ from the still frame: not "
+        "drawn at one ray per %d x %d pixels", scene, k, lowered, k, k);
     }
     const caotest::Image after = still();
     const long differing = caotest::DifferingPixels(after, reference);
