@@ -23,6 +23,8 @@ import time
 
 from paraview.simple import *  # noqa: F401,F403
 
+from clip_widget_pose import expected_matrix, matrix_list, to_display
+
 base = os.environ["CAO_RESULT"]
 # Appending (O_APPEND): the driver appends its own lines to the same file.
 log = open(base + ".events", "a", buffering=1)
@@ -32,30 +34,6 @@ def emit(kind, **fields):
     fields["kind"] = kind
     fields["t"] = time.time()
     log.write(json.dumps(fields) + "\n")
-
-
-def to_display(view, p):
-    renderer = view.GetRenderer()
-    renderer.SetWorldPoint(p[0], p[1], p[2], 1.0)
-    renderer.WorldToDisplay()
-    return renderer.GetDisplayPoint()[:2]
-
-
-def expected_matrix(display):
-    """vtkPVBox's pose of the reference box: the shape of half-extent 1 in the box."""
-    import vtk
-    b = list(display.ClipReferenceBounds)
-    t = vtk.vtkTransform()
-    t.Translate(list(display.ClipPosition))
-    r = list(display.ClipOrientation)
-    t.RotateZ(r[2])
-    t.RotateX(r[0])
-    t.RotateY(r[1])
-    t.Scale(list(display.ClipScale))
-    t.Translate(0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]))
-    t.Scale(0.5 * (b[1] - b[0]), 0.5 * (b[3] - b[2]), 0.5 * (b[5] - b[4]))
-    m = t.GetMatrix()
-    return [m.GetElement(i // 4, i % 4) for i in range(16)]
 
 
 LoadPlugin(os.environ["CAO_PLUGIN"], remote=False, ns=globals())
@@ -98,8 +76,7 @@ def on_frame(obj, event):
         return
     frames[0] = count
     report = json.loads(mapper.GetLastFrameReport() or "{}")
-    m = mapper.GetClipShape().GetMatrix()
-    actual = [m.GetElement(i // 4, i % 4) for i in range(16)]
+    actual = matrix_list(mapper.GetClipShape().GetMatrix())
     follows = max(abs(a - e) for a, e in zip(actual, expected_matrix(display))) < 1e-9
     emit("frame", count=count, peel=report.get("depth_peeling", "?"),
          sample_distance=report.get("sample_distance"), reasons=report.get("reasons", []),

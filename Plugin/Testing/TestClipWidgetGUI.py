@@ -15,6 +15,8 @@ import os
 
 from paraview.simple import *  # noqa: F401,F403
 
+from clip_widget_pose import expected_matrix, matrix_list, to_display
+
 out = open(os.environ["CAO_RESULT"], "w")
 failures = []
 
@@ -36,34 +38,8 @@ def drag(view, x, y, dx, dy=0):
     iren.InvokeEvent("LeftButtonReleaseEvent")
 
 
-def to_display(view, p):
-    renderer = view.GetRenderer()
-    renderer.SetWorldPoint(p[0], p[1], p[2], 1.0)
-    renderer.WorldToDisplay()
-    return renderer.GetDisplayPoint()[:2]
-
-
-def expected_matrix(display):
-    """vtkPVBox's pose of the reference box, then the box's centre and
-    half-extents: the matrix of the shape of half-extent 1 in the box."""
-    import vtk
-    b = list(display.ClipReferenceBounds)
-    t = vtk.vtkTransform()
-    t.Translate(list(display.ClipPosition))
-    r = list(display.ClipOrientation)
-    t.RotateZ(r[2])
-    t.RotateX(r[0])
-    t.RotateY(r[1])
-    t.Scale(list(display.ClipScale))
-    t.Translate(0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]))
-    t.Scale(0.5 * (b[1] - b[0]), 0.5 * (b[3] - b[2]), 0.5 * (b[5] - b[4]))
-    m = t.GetMatrix()
-    return [m.GetElement(i // 4, i % 4) for i in range(16)]
-
-
 def shape_matrix(mapper):
-    m = mapper.GetClipShape().GetMatrix()
-    return [m.GetElement(i // 4, i % 4) for i in range(16)]
+    return matrix_list(mapper.GetClipShape().GetMatrix())
 
 
 try:

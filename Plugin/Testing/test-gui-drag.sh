@@ -17,6 +17,7 @@
 #   test-gui-drag.sh PLUGIN.so DATA_DIR RESULT_BASE
 set -uo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
+export PYTHONPATH="$here${PYTHONPATH:+:$PYTHONPATH}" # clip_widget_pose.py
 command -v paraview >/dev/null || { echo "SKIP: no paraview executable"; exit 125; }
 command -v xdotool >/dev/null || { echo "FAIL: xdotool is missing (.ci/setup.sh installs it)"; exit 1; }
 export CAO_PLUGIN=$1 CAO_DATA_DIR=$2 CAO_RESULT=$3

@@ -7,6 +7,7 @@ set -uo pipefail
 script=$1
 export CAO_PLUGIN=$2 CAO_DATA_DIR=$3 CAO_RESULT=$4
 here=$(cd "$(dirname "$0")" && pwd)
+export PYTHONPATH="$here${PYTHONPATH:+:$PYTHONPATH}" # clip_widget_pose.py
 command -v paraview >/dev/null || { echo "SKIP: no paraview executable"; exit 125; }
 rm -f "$CAO_RESULT"
 timeout 300 bash "$here/../../Testing/run-with-xvfb.sh" paraview --dr --script="$script" \
