@@ -1,5 +1,7 @@
 #include "vtkContextualAmbientOcclusion.h"
 
+#include "caoMemory.h"
+
 #include "vtkCAOClipMaps.h"
 #include "vtkCAOFilterUtilities.h"
 #include "vtkCAOGPUSession.h"
@@ -63,7 +65,7 @@ struct PoseInputs
 struct PoseResult
 {
   cao::CategoryCounts counts;
-  std::int64_t classifiedVoxels = 0, restoredVoxels = 0, brickVoxels = -1;
+  std::int64_t classifiedVoxels = 0, restoredVoxels = 0, brickVoxels = -1, unchangedVoxels = -1;
   std::int64_t recomputedAffected = -1; ///< b voxels marched (-1: every b voxel, the GPU)
   double classifyMs = 0, copyMs = 0, recomputeMs = 0, totalMs = 0;
   double fullMs = -1, maxDifference = -1;
@@ -124,6 +126,7 @@ void KeepOrCopy(vtkSmartPointer<Array>& kept, const char* name, std::int64_t n, 
   {
     fresh->SetName(name);
     fresh->SetNumberOfTuples(n);
+    cao::AdviseHugePages(fresh->GetVoidPointer(0), static_cast<std::size_t>(n) * fresh->GetDataTypeSize());
   }
   kept = fresh;
 }
@@ -418,6 +421,7 @@ bool vtkContextualAmbientOcclusion::Internals::RunCPU(
     r.classifiedVoxels = stats.classifiedVoxels;
     r.restoredVoxels = stats.restoredVoxels;
     r.brickVoxels = stats.counts.byBrick;
+    r.unchangedVoxels = stats.counts.unchanged;
     r.classifyMs = stats.classifyMs + stats.narrowMs;
     r.recomputedAffected = stats.recomputedVoxels;
     r.copyMs = stats.copyMs;
@@ -611,9 +615,11 @@ int vtkContextualAmbientOcclusion::RequestData(
     { "Classify", "CopyUnaffected", "RecomputeAffected", "Total" },
     { r.classifyMs, r.copyMs, r.recomputeMs, r.totalMs });
   vtkCAO::AddFieldTuple(fd, "UpdateRegion",
-    { "ClassifiedVoxels", "RestoredVoxels", "DecidedByBrick", "RecomputedAffected" },
+    { "ClassifiedVoxels", "RestoredVoxels", "DecidedByBrick", "RecomputedAffected",
+      "UnchangedByBrick" },
     { double(r.classifiedVoxels), double(r.restoredVoxels), double(r.brickVoxels),
-      double(r.recomputedAffected >= 0 ? r.recomputedAffected : r.counts.affected) });
+      double(r.recomputedAffected >= 0 ? r.recomputedAffected : r.counts.affected),
+      double(r.unchangedVoxels) });
   if (this->Verify)
     vtkCAO::AddFieldTuple(fd, "Verification",
       { "MaxAbsDifference", "DifferingVoxels", "FullRecomputeMilliseconds" },

@@ -1,5 +1,7 @@
 #include "vtkLocalAmbientOcclusion.h"
 
+#include "caoMemory.h"
+
 #include "vtkCAOFilterUtilities.h"
 #include "vtkCAOOpacity.h"
 #include "vtkCAOGPUSession.h"
@@ -357,6 +359,8 @@ int vtkLocalAmbientOcclusion::RequestData(
   opacity->SetNumberOfTuples(voxels);
   ao->SetName(vtkCAO::AmbientOcclusionName);
   ao->SetNumberOfTuples(voxels);
+  cao::AdviseHugePages(opacity->GetPointer(0), sizeof(float) * voxels);
+  cao::AdviseHugePages(ao->GetPointer(0), sizeof(float) * voxels);
   bool ok = true, aborted = false;
   std::int64_t nonFinite = 0;
   std::string reason = "full recompute on the GPU";

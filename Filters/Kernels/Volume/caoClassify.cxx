@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace cao
@@ -54,21 +55,69 @@ inline void FillOutside(const layout::ClipParams& p, const float* opacity, float
 {
   if (begin >= end)
     return;
+  FillUnclipped(p.map.w, opacity, clipped, category, begin, end);
   if (p.map.w == layout::CAO_MODE_SUBTRACT)
+    counts.unaffected += end - begin;
+  else
+    counts.clipped += end - begin;
+}
+
+inline std::uint32_t Bits(float f)
+{
+  std::uint32_t u;
+  std::memcpy(&u, &f, sizeof u);
+  return u;
+}
+}
+
+void FillUnclipped(int mode, const float* opacity, float* clipped, std::uint8_t* category,
+  std::int64_t begin, std::int64_t end)
+{
+  if (begin >= end)
+    return;
+  if (mode == layout::CAO_MODE_SUBTRACT)
   {
     std::copy(opacity + begin, opacity + end, clipped + begin);
     std::fill(category + begin, category + end,
       static_cast<std::uint8_t>(layout::CAO_CATEGORY_UNAFFECTED));
-    counts.unaffected += end - begin;
   }
   else
   {
     std::fill(clipped + begin, clipped + end, 0.0f);
     std::fill(
       category + begin, category + end, static_cast<std::uint8_t>(layout::CAO_CATEGORY_CLIPPED));
-    counts.clipped += end - begin;
   }
 }
+
+void BrickMemory::Allocate(const int dims[3], std::uint8_t value)
+{
+  std::size_t n = 1;
+  for (int d = 0; d < 3; ++d)
+  {
+    this->bricks[d] = (dims[d] + BrickSize - 1) / BrickSize;
+    n *= static_cast<std::size_t>(this->bricks[d]);
+  }
+  this->category.assign(n, value);
+  this->opaque.assign(n, 0);
+  this->differs.assign(n, 0);
+}
+
+void BrickMemory::FindOpaque(const int dims[3], const float* opacity, int zBegin, int zEnd)
+{
+  const std::int64_t nx = dims[0], nxy = std::int64_t(dims[0]) * dims[1];
+  for (int bk = zBegin; bk < zEnd; ++bk)
+  {
+    std::uint8_t* layer = &this->opaque[this->Index(0, 0, bk)];
+    std::fill(layer, layer + static_cast<std::size_t>(this->bricks[0]) * this->bricks[1], 0);
+    for (int k = bk * BrickSize; k < std::min(dims[2], (bk + 1) * BrickSize); ++k)
+      for (int j = 0; j < dims[1]; ++j)
+      {
+        const float* row = opacity + k * nxy + j * nx;
+        std::uint8_t* flags = layer + static_cast<std::size_t>(j / BrickSize) * this->bricks[0];
+        for (int i = 0; i < dims[0]; ++i)
+          flags[i / BrickSize] |= Bits(row[i]) != 0u;
+      }
+  }
 }
 
 void SetAntiAliasingSamples(layout::ClipParams& params, int extraSamples)
@@ -317,18 +366,18 @@ ClipMapsTiles::Coverage BoxCoverage(const layout::ClipParams& p, const ClipMapsT
     pixel(range[1][1], H), range[2][0], range[2][1], allInMap);
 }
 
-enum BrickState : std::uint8_t
-{
-  BrickMixed = 0,
-  BrickClipped,
-  BrickAffected,
-  BrickUnaffected
-};
+using BrickState = BrickCategory;
+
+/// Set on a BrickMixed brick whose clip coverage is proven the same for
+/// every voxel (none of the samples in the clip in subtraction, all of them
+/// in probing: the opacity factor is 1); only the candidate test is mixed.
+constexpr std::uint8_t BrickClipUniform = 0x40;
 
 /// The category every voxel of the brick [i0, i1] x [j0, j1] x [k0, k1]
-/// provably gets, or BrickMixed. Clip samples lie within half a voxel of
+/// provably gets, or BrickMixed (with BrickClipUniform when only the
+/// candidate test is undecided). Clip samples lie within half a voxel of
 /// the centres; the candidate test reads the centres only.
-BrickState ClassifyBrick(const layout::ClipParams& p, const ClipMapsTiles& tiles, int i0, int i1,
+std::uint8_t ClassifyBrick(const layout::ClipParams& p, const ClipMapsTiles& tiles, int i0, int i1,
   int j0, int j1, int k0, int k1)
 {
   const double slo[3] = { i0 - 0.5, j0 - 0.5, k0 - 0.5 }, shi[3] = { i1 + 0.5, j1 + 0.5, k1 + 0.5 };
@@ -344,7 +393,7 @@ BrickState ClassifyBrick(const layout::ClipParams& p, const ClipMapsTiles& tiles
     double(k1) };
   const ClipMapsTiles::Coverage cand = BoxCoverage(p, tiles, 1, clo, chi);
   if (cand == ClipMapsTiles::Mixed)
-    return BrickMixed;
+    return BrickMixed | BrickClipUniform;
   // Subtraction: not clipped; a candidate is affected. Probing: fully
   // inside; a candidate (deep inside) is unaffected.
   const bool candidate = cand == ClipMapsTiles::All;
@@ -353,13 +402,15 @@ BrickState ClassifyBrick(const layout::ClipParams& p, const ClipMapsTiles& tiles
   return candidate ? BrickUnaffected : BrickAffected;
 }
 
-constexpr int BrickSize = 4;
+/// Set on a brick of the layer (with its category) when `memory` says its
+/// voxels already hold that category: nothing to write.
+constexpr std::uint8_t BrickUnchanged = 0x80;
 }
 
 void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMapsView& maps,
   const float* opacity, float* clipped, std::uint8_t* category, const int region[6], int zBegin,
   int zEnd, std::vector<std::int64_t>* affectedBySlice, CategoryCounts& counts,
-  const ClipMapsTiles* tiles)
+  const ClipMapsTiles* tiles, BrickMemory* memory)
 {
   for (int k = zBegin; k < zEnd; ++k)
     affectedBySlice[k - zBegin].clear();
@@ -381,7 +432,7 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
   const int nbx = boxValid ? (bx1 - bx0) / BrickSize + 1 : 0;
   const int nby = boxValid ? (by1 - by0) / BrickSize + 1 : 0;
   std::vector<std::uint8_t> bricks;
-  int brickLayer = -1;
+  int brickLayer = -1, memoryLayer = -1;
   if (boxValid)
   {
     lower.assign(static_cast<std::size_t>(cw) * ch, Unknown);
@@ -457,8 +508,34 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
         for (int bx = 0; bx < nbx; ++bx)
         {
           const int i0 = bx0 + bx * BrickSize, j0 = by0 + by * BrickSize;
-          bricks[static_cast<std::size_t>(by) * nbx + bx] = ClassifyBrick(p, *tiles, i0,
+          std::uint8_t state = ClassifyBrick(p, *tiles, i0,
             std::min(bx1, i0 + BrickSize - 1), j0, std::min(by1, j0 + BrickSize - 1), k0, k1);
+          if (memory)
+          {
+            std::uint8_t& held = memory->category[memory->Index(
+              i0 / BrickSize, j0 / BrickSize, k0 / BrickSize)];
+            const std::uint8_t decided = state & ~BrickClipUniform;
+            const bool same = decided != BrickMixed && held == decided;
+            held = decided;
+            if (same)
+              state |= BrickUnchanged;
+          }
+          bricks[static_cast<std::size_t>(by) * nbx + bx] = state;
+        }
+    }
+    if (memory && (k - bz0) / BrickSize != memoryLayer)
+    {
+      // A new layer of bricks: their Mixed flags are found below; without
+      // tiles every brick is tested voxel by voxel.
+      memoryLayer = (k - bz0) / BrickSize;
+      for (int by = 0; by < nby; ++by)
+        for (int bx = 0; bx < nbx; ++bx)
+        {
+          const std::size_t m = memory->Index((bx0 + bx * BrickSize) / BrickSize,
+            (by0 + by * BrickSize) / BrickSize, k / BrickSize);
+          memory->differs[m] = 0;
+          if (!tiles)
+            memory->category[m] = BrickMixed;
         }
     }
     // The box lies inside the region: the region's rest is default.
@@ -476,7 +553,34 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
       {
         const int bx = (i - bx0) / BrickSize;
         const int iEnd = std::min(bx1, bx0 + (bx + 1) * BrickSize - 1);
-        const BrickState state = brickRow ? static_cast<BrickState>(brickRow[bx]) : BrickMixed;
+        const std::uint8_t held = brickRow ? brickRow[bx] : std::uint8_t(BrickMixed);
+        if (held & BrickUnchanged)
+        {
+          // Its voxels hold this category already: count, list, no writes.
+          const std::int64_t n = iEnd + 1 - i;
+          counts.byBrick += n;
+          counts.unchanged += n;
+          switch (held & ~BrickUnchanged)
+          {
+            case BrickClipped:
+              counts.clipped += n;
+              break;
+            case BrickUnaffected:
+              counts.unaffected += n;
+              break;
+            default:
+              counts.affected += n;
+              for (std::int64_t v = row + i; v <= row + iEnd; ++v)
+                affected.push_back(v);
+          }
+          i = iEnd + 1;
+          continue;
+        }
+        const BrickState state = static_cast<BrickState>(held & ~BrickClipUniform);
+        const bool clipUniform = (held & BrickClipUniform) != 0;
+        std::uint8_t* mixedDiffers = memory
+          ? &memory->differs[memory->Index(i / BrickSize, j / BrickSize, k / BrickSize)]
+          : nullptr;
         if (state != BrickMixed)
         {
           fillBrick(state, row + i, row + iEnd + 1);
@@ -490,6 +594,27 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
           const std::size_t ci = static_cast<std::size_t>(cx);
           const Projection centre =
             Project(p, static_cast<float>(i), static_cast<float>(j), static_cast<float>(k));
+          const bool candidate = InLayers(p, maps.candFront, maps.candBack, centre);
+          if (clipUniform)
+          {
+            // Every sample proven out of the clip (subtraction) or in it
+            // (probing): the factor is 1, the voxel is not clipped.
+            clipped[v] = opacity[v];
+            std::uint8_t cat;
+            if (subtract == candidate)
+            {
+              cat = layout::CAO_CATEGORY_AFFECTED;
+              ++counts.affected;
+              affected.push_back(v);
+            }
+            else
+            {
+              cat = layout::CAO_CATEGORY_UNAFFECTED;
+              ++counts.unaffected;
+            }
+            category[v] = cat;
+            continue;
+          }
           int inside = InLayers(p, maps.front, maps.back, centre) +
             corner(lower, c0 + ci, cx, cy0, zLower) + corner(lower, c0 + ci + 1, cx + 1, cy0, zLower) +
             corner(lower, c1 + ci, cx, cy1, zLower) + corner(lower, c1 + ci + 1, cx + 1, cy1, zLower) +
@@ -511,7 +636,6 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
             }
             coverage = static_cast<float>(inside) / total;
           }
-          const bool candidate = InLayers(p, maps.candFront, maps.candBack, centre);
           std::uint8_t cat;
           if (subtract)
           {
@@ -540,6 +664,8 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
             }
           }
           category[v] = cat;
+          if (mixedDiffers && Bits(clipped[v]) != Bits(opacity[v]))
+            *mixedDiffers = 1;
           if (cat == layout::CAO_CATEGORY_CLIPPED)
             ++counts.clipped;
           else if (cat == layout::CAO_CATEGORY_AFFECTED)

@@ -44,12 +44,16 @@ struct CategoryCounts
   /// Of those, the voxels of the candidate box decided brick by brick
   /// (ClipMapsTiles) rather than sample by sample.
   std::int64_t byBrick = 0;
+  /// Of those, the voxels of bricks (BrickMemory) that hold the category
+  /// they held at the previous pose: nothing was written.
+  std::int64_t unchanged = 0;
   void Add(const CategoryCounts& o)
   {
     clipped += o.clipped;
     affected += o.affected;
     unaffected += o.unaffected;
     byBrick += o.byBrick;
+    unchanged += o.unchanged;
   }
 };
 
@@ -103,6 +107,63 @@ private:
   std::vector<Level> Levels;
 };
 
+/// A brick of 4^3 voxels as the classification decided it: every voxel in
+/// one category (its clipped opacity 0, or its opacity), or Mixed (voxel by
+/// voxel).
+enum BrickCategory : std::uint8_t
+{
+  BrickMixed = 0,
+  BrickClipped = 1,
+  BrickAffected = 2,
+  BrickUnaffected = 3
+};
+constexpr int BrickSize = 4;
+
+/**
+ * What the classification keeps between poses, per brick of 4^3 voxels
+ * aligned to the volume (brick (I, J, K) holds voxels 4I..4I+3, ...):
+ * the category every voxel of the brick holds in the buffers (or Mixed),
+ * whether some voxel's opacity is not 0 (bit pattern), and, for Mixed
+ * bricks, whether some voxel's clipped opacity differs from its opacity
+ * (bit pattern). A brick whose category is the mode's default (Default())
+ * holds the unclipped state: subtraction c and the opacity, probing a and 0.
+ * A brick decided uniform at a pose with the category it already holds is
+ * not written again.
+ */
+struct BrickMemory
+{
+  int bricks[3] = { 0, 0, 0 };
+  std::vector<std::uint8_t> category; ///< BrickCategory per brick, x fastest
+  std::vector<std::uint8_t> opaque;
+  std::vector<std::uint8_t> differs;
+  static std::uint8_t Default(int mode)
+  {
+    return mode == layout::CAO_MODE_SUBTRACT ? BrickUnaffected : BrickClipped;
+  }
+  /// Size for a volume of `dims`, every brick `category`; `opaque` from
+  /// the opacity, bricks [zBegin, zEnd) of z (call over every layer).
+  void Allocate(const int dims[3], std::uint8_t category);
+  void FindOpaque(const int dims[3], const float* opacity, int zBegin, int zEnd);
+  std::size_t Index(int bi, int bj, int bk) const
+  {
+    return static_cast<std::size_t>(bi) +
+      static_cast<std::size_t>(bricks[0]) * (static_cast<std::size_t>(bj) +
+        static_cast<std::size_t>(bricks[1]) * static_cast<std::size_t>(bk));
+  }
+  /// Whether brick m's voxels may hold a clipped opacity that differs from
+  /// their opacity (bit pattern).
+  bool MayDiffer(std::size_t m) const
+  {
+    return category[m] == BrickClipped ? opaque[m] != 0
+                                       : (category[m] == BrickMixed && differs[m] != 0);
+  }
+};
+
+/// Give voxels [begin, end) the unclipped state of `mode`: subtraction c
+/// and the opacity, probing a and 0.
+void FillUnclipped(int mode, const float* opacity, float* clippedOpacity,
+  std::uint8_t* category, std::int64_t begin, std::int64_t end);
+
 /// The factor a voxel's opacity is multiplied by when `count` of its
 /// `total` = 9 + N inside samples fall in the clip (counts above total are
 /// clamped): 1 - c in subtraction, c in probing, with c = count / total in
@@ -145,10 +206,15 @@ void ClassifySlices(const layout::ClipParams& p, const int dims[3], const ClipMa
 /// first; the caller keeps these lists between poses, so their memory is
 /// reused). With `tiles` (built from `maps`), bricks proven uniform are
 /// decided at once; the result is the same bit for bit.
+/// With `memory` (whose buffers describe `clippedOpacity` and `category`),
+/// the candidate box must start on a brick (a multiple of BrickSize on
+/// each axis), `region` must equal it, and each call must cover whole
+/// layers of bricks: a brick decided uniform with the category it holds
+/// is not written, and `memory` is updated for every brick of the slices.
 void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMapsView& maps,
   const float* opacity, float* clippedOpacity, std::uint8_t* category, const int region[6],
   int zBegin, int zEnd, std::vector<std::int64_t>* affectedBySlice, CategoryCounts& counts,
-  const ClipMapsTiles* tiles = nullptr);
+  const ClipMapsTiles* tiles = nullptr, BrickMemory* memory = nullptr);
 }
 
 #endif

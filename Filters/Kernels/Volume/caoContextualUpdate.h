@@ -12,24 +12,27 @@
  * voxel whose clipped opacity differs from its opacity (the clip removed
  * only transparent matter near it) reads the same opacities as the
  * precompute did, so it keeps its precomputed AO bit for bit and is not
- * marched. The categories stay the paper's (geometric); Stats says how
- * many b voxels were marched. Like the c voxels, such a voxel keeps the
- * given precomputed AO: it equals a full recompute when that AO is the
- * LAO of `opacity` with `plan` (Verify's contract for c voxels too).
+ * marched. The test runs per brick of 4^3 voxels (BrickMemory::MayDiffer,
+ * dilated by the footprint in bricks): conservative, so a voxel is marched
+ * whenever its brick's footprint may hold such a voxel. The categories stay
+ * the paper's (geometric); Stats says how many b voxels were marched. Like
+ * the c voxels, an unmarched b voxel keeps the given precomputed AO: it
+ * equals a full recompute when that AO is the LAO of `opacity` with `plan`
+ * (Verify's contract for c voxels too).
  *
  * The buffers (AO, clipped opacity, category) are the caller's and persist
- * between poses: a pose touches only what can have changed since the
- * previous one, as the GPU engine does. Outside the union of this pose's
- * candidate box and the previous pose's, every voxel holds the unclipped
- * state already (category c and the opacity in subtraction; a and 0 in
- * probing), so classification runs over that union only; and the AO
- * differs from the precomputed AO only at the previous pose's b voxels,
- * which are restored before this pose's are recomputed. The first pose,
- * and any after Reset() or a change of mode, writes every voxel.
+ * between poses, with a BrickMemory that says which category every brick
+ * holds: a pose touches only what can have changed since the previous one.
+ * The previous pose's marched voxels get their precomputed AO back; the
+ * bricks of the previous pose's box (grown to whole bricks) outside this
+ * pose's box that hold a clipped state get the unclipped one; this pose's
+ * box is classified, and a brick proven uniform with the category it
+ * already holds is not written. The first pose, and any after Reset() or a
+ * change of mode, writes every voxel.
  *
  * Parallel work goes through a ParallelFor the caller provides (the VTK
  * layer passes vtkSMPTools with progress and abort), so the results never
- * depend on the thread count: lists are concatenated in slab order.
+ * depend on the thread count: the b voxels are kept per slice, in order.
  */
 #ifndef caoContextualUpdate_h
 #define caoContextualUpdate_h
@@ -70,13 +73,16 @@ public:
   struct Stats
   {
     CategoryCounts counts; ///< counts.byBrick: voxels decided brick by brick
-    std::int64_t classifiedVoxels = 0; ///< the union region's
+    /// voxels written by the classification: every voxel at a first pose;
+    /// then this pose's box less its unchanged bricks, and the bricks reset
+    /// to the unclipped state
+    std::int64_t classifiedVoxels = 0;
     std::int64_t restoredVoxels = 0;   ///< previous recomputed voxels given their precomputed AO back
     /// b voxels marched: those whose footprint holds a voxel whose clipped
     /// opacity differs from its opacity (the others keep their precomputed
     /// AO exactly); counts.affected is the paper's geometric b
     std::int64_t recomputedVoxels = 0;
-    double narrowMs = 0; ///< the footprint test of the b voxels
+    double narrowMs = 0; ///< the footprint test of the b voxels (per brick)
     double classifyMs = 0, copyMs = 0, recomputeMs = 0;
   };
 
@@ -92,8 +98,6 @@ public:
     std::uint64_t mapsVersion, const Buffers& buffers, const ParallelFor& parallel, Stats& stats,
     bool useTiles = true);
 
-  /// The voxels recomputed at the last pose (category b), in increasing order.
-  const std::vector<std::int64_t>& Affected() const { return this->Previous; }
 
   /// The full recompute of the clipped volume (LAORange over every voxel)
   /// against the buffers' AO, over the voxels not clipped, bit for bit:
@@ -102,13 +106,16 @@ public:
     std::int64_t& differing, double& maxDifference, double& ms);
 
 private:
+  bool NarrowByBricks(const Volume& volume, const int box[6]);
+
   bool Valid = false;
   int Mode = -1;
-  int Box[6] = { 0, -1, 0, -1, 0, -1 }; ///< the previous pose's candidate box (inclusive)
-  std::vector<std::int64_t> Previous; ///< the last pose's b voxels
-  std::vector<std::int64_t> Current;  ///< scratch: this pose's, until it completes
-  std::vector<std::uint8_t> Reach;    ///< scratch: the footprint test over the grown region
-  std::vector<std::vector<std::int64_t>> SliceLists; ///< scratch: b voxels per slice
+  int Box[6] = { 0, -1, 0, -1, 0, -1 }; ///< the previous pose's candidate box grown to bricks (inclusive)
+  BrickMemory Bricks;
+  std::vector<std::uint8_t> Reach, ReachScratch; ///< scratch: the footprint test over bricks
+  /// Per slice of the volume: the b voxels to march, in increasing order;
+  /// after the pose, those marched (restored at the next pose).
+  std::vector<std::vector<std::int64_t>> SliceLists;
   ClipMapsTiles Tiles;
   std::uint64_t TilesVersion = 0;
   const float* TilesOf[4] = { nullptr, nullptr, nullptr, nullptr };

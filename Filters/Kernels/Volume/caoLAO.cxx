@@ -121,6 +121,10 @@ struct RunScratch
   /// Only voxels with x in [writeBegin, writeEnd) are stored (a run padded
   /// for the vector width computes a few more than it keeps).
   int writeBegin = std::numeric_limits<int>::min(), writeEnd = std::numeric_limits<int>::max();
+  /// When set, of those only the voxels x with writeMask[x] (runs of a
+  /// list marched as one padded span).
+  const std::uint8_t* writeMask = nullptr;
+  std::vector<std::uint8_t> mask;
 };
 
 /// floor(a / b) and ceil(a / b) for b > 0 and any sign of a.
@@ -228,7 +232,7 @@ void MarchRunOf(const LAOPlan& plan, const layout::LAOTap* rayTapsBase, const fl
   for (int q = 0; q < n; ++q)
   {
     const int x = x0 + q * Stride;
-    if (x >= s.writeBegin && x < s.writeEnd)
+    if (x >= s.writeBegin && x < s.writeEnd && (!s.writeMask || s.writeMask[x]))
       ao[base + std::int64_t(q) * Stride] = total[q] / p.norm.x;
   }
 }
@@ -538,6 +542,15 @@ void LAOList(const LAOPlan& plan, const float* opacity, float* ao, const std::in
   RunScratch scratch;
   const MarchRunFunction march = ActiveMarchRun();
   std::int64_t n = begin;
+  const int unit = p.rays.w == 1 ? 16 : 32;
+  // A span's own cost (the taps' set-up for a few vectors) in voxels: a
+  // gap up to this much longer than the padding is marched rather than
+  // starting another span (measured on embryo.slc's b voxels at 54 rays:
+  // 5% less recompute time than with no slack).
+  const int slack = unit + unit / 2;
+  const auto padded = [&](int length) {
+    return std::min<int>(static_cast<int>(nx), (length + unit - 1) / unit * unit);
+  };
   while (n < end)
   {
     // A run: consecutive linear indices within one row.
@@ -546,23 +559,50 @@ void LAOList(const LAOPlan& plan, const float* opacity, float* ao, const std::in
     const std::int64_t rem = v - k * nxy;
     const int j = static_cast<int>(rem / nx);
     const int i = static_cast<int>(rem - j * nx);
+    const std::int64_t rowEnd = v - i + nx;
     std::int64_t last = n;
     while (last + 1 < end && list[last + 1] == list[last] + 1 && i + (last + 1 - n) < nx)
       ++last;
-    // Affected voxels come in short runs (about 20): march the run grown to
-    // a whole number of vectors (16 voxels; 32 with a variation, which
-    // splits it by x parity) so that no scalar remainder loop runs, and
-    // store only the run. A voxel's value does not depend on the run it is
-    // marched in (the run path equals the scalar path bit for bit).
-    const int i1 = i + static_cast<int>(last - n) + 1;
-    const int unit = p.rays.w == 1 ? 16 : 32;
-    const int padded = std::min<int>(static_cast<int>(nx), (i1 - i + unit - 1) / unit * unit);
-    const int p1 = std::min<int>(static_cast<int>(nx), i + padded);
-    const int p0 = std::max(0, p1 - padded);
+    // Affected voxels come in short runs (about 20) with short gaps
+    // between them: march a span grown to a whole number of vectors (16
+    // voxels; 32 with a variation, which splits it by x parity) so that no
+    // scalar remainder loop runs, and store only the listed voxels. The
+    // next runs of the row join the span while one padded span costs no
+    // more than separate ones and the slack. A voxel's value does not depend on the span
+    // it is marched in (the run path equals the scalar path bit for bit).
+    int i1 = i + static_cast<int>(last - n) + 1;
+    int cost = padded(i1 - i);
+    std::int64_t spanLast = last;
+    bool gaps = false;
+    while (spanLast + 1 < end && list[spanLast + 1] < rowEnd)
+    {
+      const int next = static_cast<int>(list[spanLast + 1] - (rowEnd - nx));
+      std::int64_t runLast = spanLast + 1;
+      while (runLast + 1 < end && list[runLast + 1] == list[runLast] + 1 && list[runLast + 1] < rowEnd)
+        ++runLast;
+      const int nextEnd = next + static_cast<int>(runLast - spanLast);
+      if (padded(nextEnd - i) > cost + padded(nextEnd - next) + slack)
+        break;
+      cost = padded(nextEnd - i);
+      if (!gaps)
+      {
+        scratch.mask.assign(static_cast<std::size_t>(nx), 0);
+        std::fill(scratch.mask.begin() + i, scratch.mask.begin() + i1, std::uint8_t(1));
+        gaps = true;
+      }
+      std::fill(scratch.mask.begin() + next, scratch.mask.begin() + nextEnd, std::uint8_t(1));
+      i1 = nextEnd;
+      spanLast = runLast;
+    }
+    const int p1 = std::min<int>(static_cast<int>(nx), i + padded(i1 - i));
+    const int p0 = std::max(0, p1 - padded(i1 - i));
     scratch.writeBegin = i;
     scratch.writeEnd = i1;
+    scratch.writeMask = gaps ? scratch.mask.data() : nullptr;
     march(plan, opacity, ao, j, k, p0, p1, scratch);
-    n = last + 1;
+    if (gaps)
+      std::fill(scratch.mask.begin() + i, scratch.mask.begin() + i1, std::uint8_t(0));
+    n = spanLast + 1;
   }
 }
 

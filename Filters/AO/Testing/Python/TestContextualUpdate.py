@@ -140,6 +140,7 @@ path = [("first pose", "sphere", SUB, 16, pose(30, 34, 33)),
 kept = vtkContextualAmbientOcclusion()
 previous = None
 small_regions = []
+small_unchanged = []
 bricks_used = []
 for i, (what, mesh, mode, aa, matrix) in enumerate(path):
     configure(kept, mesh, mode, aa, matrix)
@@ -156,6 +157,7 @@ for i, (what, mesh, mode, aa, matrix) in enumerate(path):
           "voxels classified)" % (i, what, counts, classified, voxels))
     if what.startswith("small move") or what == "cube, small move":
         small_regions.append(classified)
+        small_unchanged.append(field(got, "UpdateRegion", 4))
     # Bricks proven uniform (cao::ClipMapsTiles) against every voxel tested
     # sample by sample: the same bits.
     slow = arrays(fresh(mesh, mode, aa, matrix, per_sample=True))
@@ -175,8 +177,11 @@ check(sum(1 for b in bricks_used if b > 0) >= len(path) - 1,
 check(field(fresh(*path[0][1:]), "UpdateRegion", 0) == voxels,
       "a new filter classifies the whole volume (%d voxels)" % voxels)
 check(small_regions and max(small_regions) < voxels / 2,
-      "small moves classify only the union of two boxes: %s of %d voxels"
-      % ([int(r) for r in small_regions], voxels))
+      "small moves write only this pose's box and the previous box's bricks that "
+      "held a clipped state: %s of %d voxels" % ([int(r) for r in small_regions], voxels))
+check(small_unchanged and min(small_unchanged) > 0,
+      "small moves leave bricks that keep their category unwritten: %s voxels"
+      % [int(u) for u in small_unchanged])
 
 # A new opacity upstream: the LAO re-executes, the kept state is dropped.
 tf.AddPoint(120, 0.5)

@@ -113,6 +113,15 @@ int TestLAOKernel(int, char*[])
     cao::LAOList(plan, a.data(), partial.data(), list.data(), 0, static_cast<std::int64_t>(list.size()));
     for (std::int64_t v : list)
       CAO_CHECK(partial[v] == full[v], "list path differs at %lld", static_cast<long long>(v));
+    // Runs of a row are marched as one span across short gaps: the voxels
+    // of the gaps, not listed, keep their values.
+    {
+      std::vector<std::uint8_t> listed(a.size(), 0);
+      for (std::int64_t v : list)
+        listed[static_cast<std::size_t>(v)] = 1;
+      for (std::size_t v = 0; v < listed.size(); ++v)
+        CAO_CHECK(listed[v] || partial[v] == -1.0f, "the list path wrote voxel %zu, not listed", v);
+    }
     // The march built for the baseline instruction set gives the bits of
     // the one this processor runs (AVX2 where it has it), whole and listed.
     const std::string isa = cao::LAOMarchInstructionSet();
