@@ -23,6 +23,71 @@
 
 namespace caocli
 {
+bool FramePattern::Parse(const std::string& pattern, std::string& error)
+{
+  const std::string rule = "-o '" + pattern +
+    "': the pattern needs exactly one frame-number conversion, %d or %i with an optional 0 "
+    "flag and width up to 9 (e.g. frame_%03d.png), and %% for a literal percent sign";
+  this->prefix.clear();
+  this->suffix.clear();
+  this->width = 0;
+  this->zeroPad = false;
+  int conversions = 0;
+  std::string* out = &this->prefix;
+  for (std::size_t i = 0; i < pattern.size(); ++i)
+  {
+    if (pattern[i] != '%')
+    {
+      *out += pattern[i];
+      continue;
+    }
+    if (i + 1 < pattern.size() && pattern[i + 1] == '%')
+    {
+      *out += '%';
+      ++i;
+      continue;
+    }
+    std::size_t j = i + 1;
+    bool zero = false;
+    if (j < pattern.size() && pattern[j] == '0')
+    {
+      zero = true;
+      ++j;
+    }
+    int width = 0, digits = 0;
+    while (j < pattern.size() && pattern[j] >= '0' && pattern[j] <= '9')
+    {
+      width = 10 * width + (pattern[j] - '0');
+      ++digits;
+      ++j;
+    }
+    if (j >= pattern.size() || (pattern[j] != 'd' && pattern[j] != 'i') || digits > 1 ||
+      ++conversions > 1)
+    {
+      error = rule;
+      return false;
+    }
+    this->width = width;
+    this->zeroPad = zero;
+    out = &this->suffix;
+    i = j;
+  }
+  if (conversions != 1)
+  {
+    error = rule;
+    return false;
+  }
+  return true;
+}
+
+std::string FramePattern::Name(long long frame) const
+{
+  std::string number = std::to_string(frame < 0 ? 0 : frame);
+  if (number.size() < static_cast<std::size_t>(this->width))
+    number.insert(0, std::string(this->width - number.size(), this->zeroPad ? '0' : ' '));
+  return this->prefix + number + this->suffix;
+}
+
 std::vector<std::string> Split(const std::string& s, char sep)
 {
   std::vector<std::string> out;

@@ -26,6 +26,24 @@ class vtkTransform;
 
 namespace caocli
 {
+/**
+ * An output name with one frame number in it: `frame_%03d.png`. The
+ * pattern holds exactly one integer conversion, %d or %i with an optional
+ * 0 flag and width (at most 9), and %% for a percent sign; anything else
+ * (%s, %n, two numbers, a width over 9) is refused with the reason. The
+ * name is built here, never by printf on the user's text.
+ */
+struct FramePattern
+{
+  std::string prefix, suffix;
+  int width = 0;
+  bool zeroPad = false;
+  /// Parse `pattern`; false with `error` naming the pattern and the rule.
+  bool Parse(const std::string& pattern, std::string& error);
+  /// The name of frame `frame` (0 or more).
+  std::string Name(long long frame) const;
+};
+
 /// A VTK message without its "vtkClass (0x...): " prefix and trailing blanks.
 std::string CleanMessage(const char* text);
 

@@ -260,11 +260,9 @@ bool Parse(int argc, char* argv[], RenderOptions& o, std::string& error)
     error = "missing VOLUME";
     return false;
   }
-  if (o.output.find('%') == std::string::npos)
-  {
-    error = "-o needs a printf pattern for the frame number, e.g. frame_%03d.png";
+  caocli::FramePattern frames;
+  if (!frames.Parse(o.output, error))
     return false;
-  }
   return CheckLAOCommandLine(o.lao, error);
 }
 
@@ -276,6 +274,8 @@ int RunRender(int argc, char* argv[])
   std::string error;
   if (!Parse(argc, argv, o, error))
     return Fail(2, error + "\nusage:\n" + RenderUsage);
+  caocli::FramePattern frames;
+  frames.Parse(o.output, error); // checked by Parse
   vtkSmartPointer<vtkImageData> volume = ReadVolume(o.volume, error);
   if (!volume)
     return Fail(2, error);
@@ -424,20 +424,19 @@ int RunRender(int argc, char* argv[])
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     if (!errors.messages.empty())
       return Fail(1, errors.messages.back());
-    std::vector<char> name(o.output.size() + 32);
-    std::snprintf(name.data(), name.size(), o.output.c_str(), static_cast<int>(f));
+    const std::string name = frames.Name(static_cast<long long>(f));
     grab->Modified();
-    png->SetFileName(name.data());
+    png->SetFileName(name.c_str());
     png->Write();
     if (png->GetErrorCode())
-      return Fail(1, std::string("cannot write '") + name.data() + "'");
+      return Fail(1, "cannot write '" + name + "'");
     if (o.json)
       std::printf("%s\n  {\"file\": \"%s\", \"wall_ms\": %.3f, \"report\": %s}", f ? "," : "",
-        name.data(), ms, mapper->GetLastFrameReport().c_str());
+        name.c_str(), ms, mapper->GetLastFrameReport().c_str());
     else
       std::printf("frame %3zu  %8.1f ms  recomputed %9lld voxels  [%s]  %s\n", f, ms,
         static_cast<long long>(mapper->GetLastFrameRecomputedVoxels()),
-        mapper->GetLastFrameStages().c_str(), name.data());
+        mapper->GetLastFrameStages().c_str(), name.c_str());
   }
   if (o.json)
     std::printf("\n]\n");

@@ -258,6 +258,11 @@ else:
                        "--rays", "6", "--preset-file", preset, "--preset", "mine", "-o",
                        os.path.join(tmp, "p_%d.png"))
     check(rc == 0 and os.path.exists(os.path.join(tmp, "p_0.png")), "render with a ParaView preset: " + err)
+    # %% is a literal percent sign and the width pads with zeros.
+    rc, out, err = run("render", neghip, "--image", "64x64", "--no-clip", "--window", "egl",
+                       "--rays", "6", "-o", os.path.join(tmp, "pct%%_%04i.png"))
+    check(rc == 0 and os.path.exists(os.path.join(tmp, "pct%_0000.png")),
+          "render -o with %%%% and %%04i: " + err)
     # A quality preset (not a colour preset) for the mapper's LAO.
     rc, out, err = run("render", neghip, "--image", "64x64", "--no-clip", "--window", "egl",
                        "--quality", "interactive", "--reach", "4", "--json", "-o",
@@ -268,8 +273,13 @@ expect_error(["render", neghip, "--preset", "nope", "-o", os.path.join(tmp, "x_%
              "no preset named", "unknown preset")
 expect_error(["render", neghip, "--preset-file", os.path.join(tmp, "none.json"), "-o",
               os.path.join(tmp, "x_%d.png")], 2, "cannot read the preset", "missing preset file")
-expect_error(["render", neghip, "-o", os.path.join(tmp, "x.png")], 2, "printf pattern",
+expect_error(["render", neghip, "-o", os.path.join(tmp, "x.png")], 2, "frame-number conversion",
              "output without a frame pattern")
+# -o is a frame pattern, never a printf format: conversions other than one
+# %d or %i are refused (before, %s%n crashed and %s wrote "(null)").
+for pattern in ("x_%s%s%s%s%n.png", "x_%s.png", "x_%d_%d.png", "x_%-3d.png", "x_%10d.png"):
+    expect_error(["render", neghip, "-o", os.path.join(tmp, pattern)], 2,
+                 "frame-number conversion", "-o %r refused" % pattern)
 expect_error(["render", neghip, "--image", "5x5"], 2, "--image", "tiny image")
 
 # Held-out defects (issue 13), each with the case that found it.
