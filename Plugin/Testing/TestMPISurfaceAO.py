@@ -1,7 +1,7 @@
 """Surface AO across MPI processes, in ParaView's view:
 
-    mpirun -np 1 pvbatch TestMPISurfaceAO.py PLUGIN.so OUTPUT_DIR
-    mpirun -np 2 pvbatch TestMPISurfaceAO.py PLUGIN.so OUTPUT_DIR
+    mpirun -np 1 pvbatch TestMPISurfaceAO.py PLUGIN.so OUTPUT_DIR 1
+    mpirun -np 2 pvbatch TestMPISurfaceAO.py PLUGIN.so OUTPUT_DIR 2
 
 A sphere resting on a slab, split into pieces over the ranks, drawn by
 every rank and composited (distributed rendering). Each run saves the view
@@ -37,6 +37,12 @@ def check(ok, what):
     if not ok:
         failures.append(what)
 
+
+# The run must have the ranks it was started with (mpirun -np N passes N):
+# a pvbatch that fell back to one process would compare the serial run
+# with itself.
+if len(sys.argv) > 3:
+    check(ranks == int(sys.argv[3]), "%d MPI ranks, as started (%s)" % (ranks, sys.argv[3]))
 
 view = CreateView("ContextualAORenderView")
 view.OrientationAxesVisibility = 0

@@ -160,7 +160,12 @@ for i, (what, mesh, mode, aa, matrix) in enumerate(path):
         small_unchanged.append(field(got, "UpdateRegion", 4))
     # Bricks proven uniform (cao::ClipMapsTiles) against every voxel tested
     # sample by sample: the same bits.
-    slow = arrays(fresh(mesh, mode, aa, matrix, per_sample=True))
+    slow_image = fresh(mesh, mode, aa, matrix, per_sample=True)
+    slow = arrays(slow_image)
+    # The per-sample run really tested every voxel sample by sample.
+    check(field(slow_image, "UpdateRegion", 2) == 0,
+          "pose %d: CAO_CLASSIFY_PER_SAMPLE=1 decided no voxel by brick (%d)"
+          % (i, field(slow_image, "UpdateRegion", 2)))
     by_brick = field(got, "UpdateRegion", 2)
     check(all(np.array_equal(a[n], slow[n]) for n in ARRAYS),
           "pose %d: deciding %d voxels by brick gives the bits of testing every sample"

@@ -89,7 +89,7 @@ int TestGLFrame(int argc, char* argv[])
 {
   auto context = caogltest::ContextOrSkip(caogltest::KindFromArgs(argc, argv));
   if (!context)
-    return caogltest::Skip;
+    return caogltest::Skip();
   // The scene and its grid.
   std::vector<double> sphere, slab;
   std::vector<std::int64_t> sphereTris, slabTris;

@@ -75,7 +75,7 @@ int TestGLScreenSpaceAO(int argc, char* argv[])
 {
   auto context = caogltest::ContextOrSkip(caogltest::KindFromArgs(argc, argv));
   if (!context)
-    return caogltest::Skip;
+    return caogltest::Skip();
   std::printf("context: %s\n", context->Description().c_str());
   Scene s;
   s.Box(-3, 3, -3, 3, -0.4, 0.0);

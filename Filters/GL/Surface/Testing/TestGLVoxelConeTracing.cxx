@@ -418,7 +418,7 @@ int TestGLVoxelConeTracing(int argc, char* argv[])
 {
   auto context = caogltest::ContextOrSkip(caogltest::KindFromArgs(argc, argv));
   if (!context)
-    return caogltest::Skip;
+    return caogltest::Skip();
   std::printf("context: %s\n", context->Description().c_str());
   cao::gl::VCTEngine engine(*context);
   std::vector<double> cube;

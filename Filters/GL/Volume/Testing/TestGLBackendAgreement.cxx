@@ -23,7 +23,7 @@ int TestGLBackendAgreement(int argc, char* argv[])
 {
   auto context = caogltest::ContextOrSkip(caogltest::KindFromArgs(argc, argv));
   if (!context)
-    return caogltest::Skip;
+    return caogltest::Skip();
   const int dims[3] = { 40, 36, 32 };
   std::vector<std::uint8_t> scalars;
   std::vector<float> table, opacity;

@@ -237,7 +237,7 @@ int TestGLDepthMaps(int argc, char* argv[])
 {
   auto context = caogltest::ContextOrSkip(caogltest::KindFromArgs(argc, argv));
   if (!context)
-    return caogltest::Skip;
+    return caogltest::Skip();
   cao::gl::ClipDepthMapsGL raster(*context);
   const double down[3] = { 0, 0, 1 };
   bool ok = true;

@@ -139,7 +139,7 @@ int TestGLResourceHygiene(int argc, char* argv[])
   const cao::gl::ContextKind kind = caogltest::KindFromArgs(argc, argv);
   auto context = caogltest::ContextOrSkip(kind);
   if (!context)
-    return caogltest::Skip;
+    return caogltest::Skip();
 #ifdef CAO_TEST_WITH_LSAN
   PinDriverLibraries();
 #endif

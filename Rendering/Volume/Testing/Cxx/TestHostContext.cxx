@@ -19,6 +19,7 @@
 // context before the window exists.
 // Exits 125 when there is no display ("x") or no EGL context ("egl").
 #include "vtk_glew.h" // first: GLEW must see no other GL header before it
+#include "caoTestSkip.h"
 
 #include "caoFilterTestUtilities.h"
 #include "vtkCAOInput.h"
@@ -221,27 +222,18 @@ int TestHostContext(int argc, char* argv[])
   if (egl)
   {
     auto eglWindow = vtkSmartPointer<vtkContextualAOEGLWindow>::New();
-    if (!eglWindow->IsUsable())
-    {
-      std::printf("SKIP: no EGL OpenGL context: %s\n", eglWindow->GetContextError());
-      return 125;
-    }
+    if (caotest::PretendNoGL() || !eglWindow->IsUsable())
+      return caotest::NoGL(std::string("no EGL OpenGL context: ") + eglWindow->GetContextError());
     window = eglWindow;
   }
   else
   {
     const char* display = std::getenv("DISPLAY");
-    if (!display || !*display)
-    {
-      std::printf("SKIP: no X display (run under xvfb-run)\n");
-      return 125;
-    }
+    if (caotest::PretendNoGL() || !display || !*display)
+      return caotest::NoGL("no X display (run under Testing/run-with-xvfb.sh)");
     window = vtkSmartPointer<vtkRenderWindow>::New();
     if (!vtkOpenGLRenderWindow::SafeDownCast(window) || !window->SupportsOpenGL())
-    {
-      std::printf("SKIP: the X display has no usable OpenGL\n");
-      return 125;
-    }
+      return caotest::NoGL("the X display has no usable OpenGL");
   }
   window->SetSize(160, 120);
   window->SetMultiSamples(0);
