@@ -73,10 +73,10 @@ render options:
                        of them without --quality means custom).
                        Not to be confused with --preset, the colours
   --ao-strength S      0..1 (default 1); --no-ao renders without AO
-  --ao-calibration C   half-space (default: per voxel (AO - 1/M) / (H - 1/M),
-                       clamped to [0, 1], H the LAO of an open flat face at the
-                       voxel's opacity: open faces keep their light, crevices
-                       darken) or none (the raw LAO)
+  --ao-calibration C   half-space (default: each sample against the LAO of an
+                       open flat half-space of its opacity at the depth the
+                       ray has gone into the matter: open faces keep their
+                       light, crevices darken) or none (the raw LAO)
   --no-shade           no gradient shading (ambient only)
   --sample-distance D  ray-cast sample distance, world units (default half a voxel)
   --window W           auto (default: X when DISPLAY is set, else EGL), egl or x

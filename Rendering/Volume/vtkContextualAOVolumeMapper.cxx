@@ -226,6 +226,7 @@ struct vtkContextualAOVolumeMapper::Internals
   bool HaveWindow = false;
   cao::LAOPlan Plan;
   cao::AOCalibration Calibration; ///< SurfaceCalibration(Plan): the half-space calibration
+  std::vector<float> HalfSpace;   ///< HalfSpaceTable(Plan): what the ray caster calibrates with
   ::VolumeKey Volume;
   bool HaveVolume = false;
   // For an edit of the opacity alone: the opacity the precomputed AO was
@@ -665,6 +666,7 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
   if (!cao::BuildLAOPlan(vtkCAO::GeometryOf(f.input), this->PlanSettings(f, givenAO), this->Plan, error))
     return f.Fail("Cannot plan the LAO: " + error + ".");
   this->Calibration = cao::SurfaceCalibration(this->Plan);
+  this->HalfSpace = cao::HalfSpaceTable(this->Plan);
   const auto start = std::chrono::steady_clock::now();
   std::vector<float> opacity(static_cast<std::size_t>(f.voxels));
   std::int64_t nonFinite = 0;
@@ -1230,9 +1232,15 @@ void vtkContextualAOVolumeMapper::Internals::MakeRenderParams(vtkContextualAOVol
     static_cast<float>(self->AOStrength) };
   const int* dims = f.dims;
   params.invDims = { 1.0f / dims[0], 1.0f / dims[1], 1.0f / dims[2], 0.0f };
-  const cao::AOCalibration& c = this->Calibration;
-  params.aoCalibration = { static_cast<float>(c.openEmpty), static_cast<float>(c.openOpaque),
-    static_cast<float>(c.enclosed), static_cast<float>(this->Plan.step / step) };
+  // The half-space table, and the LAO of a voxel enclosed by opaque matter
+  // (its deepest layer at opacity 1).
+  float enclosed = 0.0f;
+  if (this->HalfSpace.size() == 4u * CAO_HALF_SPACE_VEC4S)
+  {
+    std::memcpy(params.halfSpace, this->HalfSpace.data(), sizeof(params.halfSpace));
+    enclosed = this->HalfSpace.back();
+  }
+  params.aoCalibration = { enclosed, 0.0f, 0.0f, static_cast<float>(this->Plan.step / step) };
   int flags = cao::layout::CAO_RENDER_OPAQUE_DEPTH;
   if (property->GetShade(0))
     flags |= cao::layout::CAO_RENDER_SHADE;

@@ -97,12 +97,17 @@ public:
     /// The LAO as computed: an open flat face gets about 0.5 (half of its
     /// rays run into the matter it bounds), so AO darkens every surface.
     AO_CALIBRATION_NONE = 0,
-    /// Per voxel, (LAO - E) / (H - E) clamped to [0, 1]: E the LAO of an
-    /// enclosed voxel (1/M), H that of a voxel of the same opacity on the
-    /// open flat face of an opaque half-space, for the ray settings in use
-    /// (cao::SurfaceCalibration). A surface sees at most its hemisphere, so
-    /// open faces keep their light and only what occludes more than the
-    /// half-space (crevices, slots, concave corners) darkens.
+    /// Per ray-cast sample, 1 - (H - LAO) / R clamped to [0, 1]: H the LAO
+    /// of an open flat half-space of matter of the sample's opacity at the
+    /// depth the ray has gone into the matter (from the optical depth of
+    /// the samples since it left empty space or a cut), R the range between
+    /// that half-space's face and its enclosed interior (at least the
+    /// opaque one's), for the ray settings in use (cao::HalfSpaceTable).
+    /// The ray caster composites the samples behind a face too, where even
+    /// an open half-space's LAO is low; compared with the half-space at
+    /// their depth, open faces keep their light in the picture, of any
+    /// opacity, and only what occludes more than the half-space (crevices,
+    /// slots, concave corners) darkens.
     AO_CALIBRATION_HALF_SPACE = 1
   };
 
@@ -110,10 +115,10 @@ public:
   /// The AO calibration, AO_CALIBRATION_HALF_SPACE (default) or
   /// AO_CALIBRATION_NONE. A given AO array (AmbientOcclusionArrayName) is
   /// calibrated with the LAO settings of the input's LAOSettings field array
-  /// when it has one, else with this mapper's; the voxel's opacity the
-  /// calibration interpolates H at is the rendered one (the volume
-  /// property's opacity function), so a given AO made with another opacity
-  /// function is calibrated at the opacity shown.
+  /// when it has one, else with this mapper's; the sample's opacity the
+  /// calibration reads H at is the rendered one (the volume property's
+  /// opacity function), so a given AO made with another opacity function
+  /// is calibrated at the opacity shown.
   vtkSetMacro(AOCalibration, int);
   vtkGetMacro(AOCalibration, int);
   ///@}

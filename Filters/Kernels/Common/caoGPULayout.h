@@ -94,6 +94,11 @@ struct ClipParams
  * normal (the inverse transpose of index-to-world's linear part).
  */
 #define CAO_MAX_LIGHTS 8 /* lights the ray caster shades with (the renderer's first 8 switched on) */
+/* The half-space table the calibration reads (cao::HalfSpaceTable): integer depths below an open
+ * face, 0 (the last empty layer) to LAYERS - 1, times LAO-step opacities 0, 1/16, ..., 1. */
+#define CAO_HALF_SPACE_LAYERS 16
+#define CAO_HALF_SPACE_OPACITIES 17
+#define CAO_HALF_SPACE_VEC4S 68 /* 16 * 17 floats, four to a vec4 */
 struct RenderParams
 {
   vec4 ndcToWorld[4];
@@ -112,9 +117,11 @@ struct RenderParams
                      1: every pixel; k > 1: one ray per k x k pixels into the caster's own target,
                      which caoUpsampleFS.glsl spreads over the viewport) */
   vec4 boxMax;    /* xyz: the last voxel index (the box is [0, boxMax]); w: early termination alpha */
-  vec4 aoCalibration; /* CAO_RENDER_AO_CALIBRATED (cao::AOCalibration): x: the LAO of an open flat
-                         face's last empty voxel, y: of its first opaque voxel, z: of an enclosed
-                         voxel (1/M); w: LAO step / ray-cast step (table opacity -> LAO opacity) */
+  vec4 aoCalibration; /* CAO_RENDER_AO_CALIBRATED: x: the LAO of a voxel enclosed by opaque matter
+                         (halfSpace's deepest layer at opacity 1); y, z: 0; w: LAO step / ray-cast
+                         step (table opacity -> LAO opacity) */
+  vec4 halfSpace[CAO_HALF_SPACE_VEC4S]; /* CAO_RENDER_AO_CALIBRATED: cao::HalfSpaceTable, element
+                         depth * CAO_HALF_SPACE_OPACITIES + opacity step */
 };
 CAO_CONST CAO_RENDER_SHADE = 1;        /* gradient Blinn-Phong */
 CAO_CONST CAO_RENDER_AO = 2;           /* the AO volume scales the ambient term */
@@ -334,7 +341,8 @@ static_assert(sizeof(FrameParams) == 13 * 16, "FrameParams must match std140");
 static_assert(sizeof(DMTriangle) == 128, "DMTriangle must match std430");
 static_assert(sizeof(DMHit) == 16, "DMHit must match std430");
 static_assert(sizeof(DMOffset) == 16, "DMOffset must match std430");
-static_assert(sizeof(RenderParams) == (19 + 2 * CAO_MAX_LIGHTS) * 16, "RenderParams must match std140");
+static_assert(sizeof(RenderParams) == (19 + 2 * CAO_MAX_LIGHTS + CAO_HALF_SPACE_VEC4S) * 16,
+  "RenderParams must match std140");
 static_assert(sizeof(LAOTap) == 32, "LAOTap must match std430");
 static_assert(sizeof(VCTVolume) == 5 * 16, "VCTVolume must match std140");
 static_assert(sizeof(VCTParams) ==

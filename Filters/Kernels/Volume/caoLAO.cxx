@@ -640,9 +640,14 @@ double LAOVoxelDouble(const LAOPlan& plan, const float* a, int i, int j, int k)
   return total / (static_cast<double>(rays) * samples);
 }
 
-double HalfSpaceAO(const LAOPlan& plan, double depth)
+namespace
 {
-  const double weight = std::min(1.0, std::max(0.0, depth));
+/// HalfSpaceLayer: the LAO of a voxel of integer layer `layer` (0: the last
+/// empty one, 1: the first full one) of an axis-aligned half-space whose
+/// full layers have LAO-step opacity `opacity`, averaged over the six
+/// axis-aligned faces and every ray variant.
+double HalfSpaceLayer(const LAOPlan& plan, int layer, double opacity)
+{
   const layout::LAOMarchBlock& p = plan.params;
   const int rays = p.rays.x, samples = p.rays.y, tapsPerRay = p.rays.z, variants = p.rays.w;
   if (rays <= 0 || samples <= 0 || variants <= 0)
@@ -651,34 +656,59 @@ double HalfSpaceAO(const LAOPlan& plan, double depth)
   int count = 0;
   for (int axis = 0; axis < 3; ++axis)
     for (int sign = -1; sign <= 1; sign += 2)
-      for (int layer = 0; layer < 2; ++layer) // 0: the last empty layer; 1: the first full one
-        for (int v = 0; v < variants; ++v)
+      for (int v = 0; v < variants; ++v)
+      {
+        const layout::LAOTap* taps = VariantTaps(plan, v);
+        double sum = 0.0;
+        for (int r = 0; r < rays; ++r)
         {
-          const layout::LAOTap* taps = VariantTaps(plan, v);
-          double sum = 0.0;
-          for (int r = 0; r < rays; ++r)
+          double transmittance = 1.0;
+          for (int m = 0; m < samples; ++m)
           {
-            double transmittance = 1.0;
-            for (int m = 0; m < samples; ++m)
-            {
-              sum += transmittance;
-              if (m == tapsPerRay)
-                break;
-              const layout::LAOTap& tap = taps[static_cast<std::ptrdiff_t>(r) * tapsPerRay + m];
-              const double offset = axis == 0 ? tap.cell.x + double(tap.frac.x)
-                : axis == 1                   ? tap.cell.y + double(tap.frac.y)
-                                              : tap.cell.z + double(tap.frac.z);
-              // Voxel layers beyond the face (depth >= 1) are full, those
-              // before it empty; trilinear interpolation is linear across.
-              const double into = sign * offset + layer;
-              transmittance *= 1.0 - std::min(1.0, std::max(0.0, into));
-            }
+            sum += transmittance;
+            if (m == tapsPerRay)
+              break;
+            const layout::LAOTap& tap = taps[static_cast<std::ptrdiff_t>(r) * tapsPerRay + m];
+            const double offset = axis == 0 ? tap.cell.x + double(tap.frac.x)
+              : axis == 1                   ? tap.cell.y + double(tap.frac.y)
+                                            : tap.cell.z + double(tap.frac.z);
+            // Voxel layers beyond the face (depth >= 1) are full, those
+            // before it empty; trilinear interpolation is linear across.
+            const double into = sign * offset + layer;
+            transmittance *= 1.0 - opacity * std::min(1.0, std::max(0.0, into));
           }
-          // Trilinear between the layers: weight 1 - t on the empty one.
-          total += (layer == 0 ? 1.0 - weight : weight) * sum / (static_cast<double>(rays) * samples);
-          ++count;
         }
-  return 2.0 * total / count;
+        total += sum / (static_cast<double>(rays) * samples);
+        ++count;
+      }
+  return total / count;
+}
+}
+
+double HalfSpaceAO(const LAOPlan& plan, double depth, double opacity)
+{
+  depth = std::max(0.0, depth);
+  const int below = static_cast<int>(std::floor(depth));
+  const double t = depth - below;
+  const double a = HalfSpaceLayer(plan, below, opacity);
+  return t > 0.0 ? (1.0 - t) * a + t * HalfSpaceLayer(plan, below + 1, opacity) : a;
+}
+
+double HalfSpaceAO(const LAOPlan& plan, double depth)
+{
+  return HalfSpaceAO(plan, std::min(1.0, std::max(0.0, depth)), 1.0);
+}
+
+std::vector<float> HalfSpaceTable(const LAOPlan& plan)
+{
+  constexpr int layers = CAO_HALF_SPACE_LAYERS, opacities = CAO_HALF_SPACE_OPACITIES;
+  static_assert(layers * opacities == 4 * CAO_HALF_SPACE_VEC4S, "the table fills its vec4s");
+  std::vector<float> table(static_cast<std::size_t>(layers) * opacities);
+  for (int d = 0; d < layers; ++d)
+    for (int o = 0; o < opacities; ++o)
+      table[static_cast<std::size_t>(d) * opacities + o] =
+        static_cast<float>(HalfSpaceLayer(plan, d, o / double(opacities - 1)));
+  return table;
 }
 
 AOCalibration SurfaceCalibration(const LAOPlan& plan)

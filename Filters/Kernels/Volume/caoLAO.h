@@ -114,18 +114,28 @@ void LAOList(const LAOPlan& plan, const float* opacity, float* ao, const std::in
 /// coordinate), in double, with the march's order of operations.
 double HalfSpaceAO(const LAOPlan& plan, double depth);
 
-/// The range the plan's LAO spans at a surface, for the renderer's
-/// calibration (vtkContextualAOVolumeMapper::AO_CALIBRATION_HALF_SPACE).
+/// The same for a half-space of matter whose full voxel layers have the
+/// LAO-step opacity `opacity` (the layer before the face empty, the
+/// trilinear ramp between), at any depth >= 0 (linear between layers;
+/// deep inside it tends to the enclosed value of that matter).
+double HalfSpaceAO(const LAOPlan& plan, double depth, double opacity);
+
+/// HalfSpaceAO at the integer depths 0 .. CAO_HALF_SPACE_LAYERS - 1 and the
+/// opacities o / (CAO_HALF_SPACE_OPACITIES - 1), as the ray caster reads it
+/// (RenderParams::halfSpace, element depth * CAO_HALF_SPACE_OPACITIES + o).
+std::vector<float> HalfSpaceTable(const LAOPlan& plan);
+
+/// The range the plan's LAO spans at the surface of opaque matter
+/// (reported by vtkContextualAOVolumeMapper::GetAOCalibrationRange; the
+/// ray caster's calibration reads HalfSpaceTable, which holds these at
+/// opacity 1).
 ///
 /// A point on a surface receives ambient light from its outer hemisphere
 /// only. LAO averages over the whole sphere, and its first sample is never
 /// occluded, so the LAO of a surface voxel runs from `enclosed` (1/M: every
 /// ray blocked at once, a closed cavity) to the value of an open flat face
 /// (`openEmpty` for the last empty voxel, `openOpaque` for the first opaque
-/// one, HalfSpaceAO at depth 0 and 1). (AO - enclosed) / (open - enclosed),
-/// clamped to [0, 1], with `open` taken at the voxel's own opacity, is then
-/// the fraction of an open face's light that reaches the point: 1 on open
-/// faces (which raw LAO leaves at about one half), 0 in a closed cavity.
+/// one, HalfSpaceAO at depth 0 and 1).
 struct AOCalibration
 {
   double openEmpty = 1.0, openOpaque = 1.0, enclosed = 0.0;

@@ -12,7 +12,6 @@
 //    runs again.
 // Exits 125 when there is no display ("x") or no EGL context ("egl").
 #include "vtk_glew.h" // first: GLEW must see no other GL header before it
-#include "caoTestSkip.h"
 
 #include "caoFilterTestUtilities.h"
 #include "vtkCAOInput.h"
@@ -35,6 +34,7 @@
 #include "vtkUnsignedCharArray.h"
 #include "vtkWindowToImageFilter.h"
 
+#include "caoTestSkip.h"
 #include <cstdlib>
 #include <cstring>
 

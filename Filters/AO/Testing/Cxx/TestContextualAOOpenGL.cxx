@@ -17,7 +17,6 @@
 //    fail, so this test can fail.
 // Exits 125 when there is no OpenGL 4.3 context.
 #include "caoFilterTestUtilities.h"
-#include "caoTestSkip.h"
 #include "caoGLContext.h"
 #include "vtkCAOInput.h"
 
@@ -32,6 +31,7 @@
 #include "vtkTransform.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "caoTestSkip.h"
 #include <algorithm>
 #include <cmath>
 #include <cstring>

@@ -12,8 +12,9 @@
 //    sample moves onto the clip surface (bisection; CAO_RENDER_CLIP_ENTRY),
 //    and the samples after it follow from there;
 //  - the AO (trilinear; with clipping, over the unclipped voxels only;
-//    calibrated per voxel with CAO_RENDER_AO_CALIBRATED) scales the ambient
-//    term: 1 - strength * (1 - AO);
+//    with CAO_RENDER_AO_CALIBRATED, against an open half-space of the
+//    sample's opacity at the depth the ray has gone into the matter: see
+//    Calibrated) scales the ambient term: 1 - strength * (1 - AO);
 //  - with shading, gradient Blinn-Phong adds the diffuse and specular terms
 //    as vtkVolumeProperty defines them, summed over the renderer's lights
 //    (each with its colour and intensity; two-sided, as VTK's ray caster
@@ -116,34 +117,64 @@ vec3 Unproject(vec2 ndc, float z)
   return p.xyz / p.w;
 }
 
-/// Voxel v's AO as the share of an open face's light that reaches it
-/// (cao::AOCalibration): (AO - enclosed) / (open - enclosed), clamped, the
-/// open-face value taken at the voxel's own LAO opacity (the table's
-/// opacity for the ray-cast step, converted to the LAO's step).
-float Calibrated(ivec3 v, float ao)
+/// The LAO at `depth` voxels below an open flat face (0: the last empty
+/// layer) of matter of LAO-step opacity `a` (cao::HalfSpaceTable, linear in
+/// both; depths past the table's read its deepest layer).
+float HalfSpaceAt(int d, int o)
+{
+  int i = d * CAO_HALF_SPACE_OPACITIES + o;
+  return rp.halfSpace[i >> 2][i & 3];
+}
+float HalfSpace(float depth, float a)
+{
+  float x = clamp(depth, 0.0, float(CAO_HALF_SPACE_LAYERS - 1));
+  float y = clamp(a, 0.0, 1.0) * float(CAO_HALF_SPACE_OPACITIES - 1);
+  int x0 = min(int(x), CAO_HALF_SPACE_LAYERS - 2), y0 = min(int(y), CAO_HALF_SPACE_OPACITIES - 2);
+  float tx = x - float(x0), ty = y - float(y0);
+  return mix(mix(HalfSpaceAt(x0, y0), HalfSpaceAt(x0, y0 + 1), ty),
+    mix(HalfSpaceAt(x0 + 1, y0), HalfSpaceAt(x0 + 1, y0 + 1), ty), tx);
+}
+
+/// The least share of the way from an open half-space's LAO down to opaque
+/// enclosure that the calibration divides the shortfall by (0.4: the grain
+/// of 0.5, and more of a slot's darkening kept).
+#define CAO_CALIBRATION_FLOOR 0.4
+
+/// Voxel v's opacity for the LAO's step (the table's is for the ray
+/// cast's).
+float LAOOpacity(ivec3 v)
 {
   float s = texelFetch(scalarTexture, v, 0).r;
   float alpha = texture(tableTexture, vec2(s * rp.sampling.y + rp.sampling.z, 0.5)).a;
-  float a = 1.0 - pow(max(1.0 - alpha, 0.0), rp.aoCalibration.w);
-  float open = mix(rp.aoCalibration.x, rp.aoCalibration.y, a);
-  float enclosed = rp.aoCalibration.z;
-  // With one sample per ray an open face and an enclosed voxel both get 1:
-  // the LAO then occludes nothing, and neither does its calibration.
-  float range = open - enclosed;
-  return range > 1e-6 ? clamp((ao - enclosed) / range, 0.0, 1.0) : 1.0;
+  return 1.0 - pow(max(1.0 - alpha, 0.0), rp.aoCalibration.w);
 }
 
-/// The AO at index-space point p, trilinear over the voxels that are not
-/// clipped (category a) only when `clipped`: a clipped voxel holds an AO
-/// that no longer means anything (its matter is gone), and blending it in
-/// would darken the cut surfaces. Weights are renormalised; 1 when all 8
-/// are clipped. Each voxel's value calibrated when `calibrated`.
-float VoxelAO(vec3 p, bool clipped, bool calibrated)
+/// The AO at index-space point p: trilinear over the 8 voxels around it,
+/// over those the clip leaves only when `clipped` (a clipped voxel holds an
+/// AO that no longer means anything: its matter is gone, and blending it in
+/// would darken the cut surfaces; weights renormalised; 1 when all 8 are
+/// clipped).
+///
+/// `calibrated` (CAO_RENDER_AO_CALIBRATED): the AO as the share of the
+/// light that an open flat half-space of the same matter gives at the same
+/// depth. The ray caster composites the samples behind a face too, inside
+/// the matter, where even an open half-space's LAO is low: that is the
+/// matter's own depth, not occlusion by the scene. The matter's opacity is
+/// the mean of the voxels' that hold matter, by their trilinear weights
+/// (`a`: continuous from voxel to voxel, as their largest is not, which
+/// showed as blocks); the depth is, in the face's layer,
+/// the weight of the voxels that hold matter (0 at the last empty layer, 1
+/// at the first full one, as the trilinear ramp between them), and where
+/// all 8 hold matter, `inMatter` (the ray's estimate: see CastRay; on an
+/// oblique face it overestimates the depth, so an open face stays at 1).
+/// The shortfall from that half-space, over the range between it and the
+/// matter's enclosed interior (see `range`), is what the scene occludes. `depth` returns the depth used.
+float VoxelAO(vec3 p, bool clipped, bool calibrated, float inMatter, out float depth)
 {
   vec3 q = clamp(p, vec3(0.0), rp.boxMax.xyz);
   ivec3 base = min(ivec3(floor(q)), rp.dims.xyz - 2);
   vec3 f = q - vec3(base);
-  float sum = 0.0, weight = 0.0;
+  float sum = 0.0, weight = 0.0, matter = 0.0, a = 0.0;
   for (int n = 0; n < 8; ++n)
   {
     ivec3 o = ivec3(n & 1, (n >> 1) & 1, (n >> 2) & 1);
@@ -156,11 +187,34 @@ float VoxelAO(vec3 p, bool clipped, bool calibrated)
     }
     vec3 t = mix(1.0 - f, f, vec3(o));
     float w = t.x * t.y * t.z;
-    float ao = texelFetch(aoTexture, v, 0).r;
-    sum += w * (calibrated ? Calibrated(v, ao) : ao);
+    sum += w * texelFetch(aoTexture, v, 0).r;
     weight += w;
+    if (calibrated)
+    {
+      float av = LAOOpacity(v);
+      a += w * av;
+      matter += av > 0.0 ? w : 0.0;
+    }
   }
-  return weight > 0.0 ? sum / weight : 1.0;
+  depth = weight > 0.0 && matter < weight ? matter / weight : inMatter;
+  if (!(weight > 0.0))
+    return 1.0;
+  float ao = sum / weight;
+  if (!calibrated)
+    return ao;
+  a = matter > 0.0 ? a / matter : 0.0;
+  float open = HalfSpace(depth, a);
+  // The range: down to this matter enclosed on all sides, but at least
+  // CAO_CALIBRATION_FLOOR of the way down to opaque matter enclosing it
+  // (aoCalibration.x: the LAO enclosed by opaque matter). Clear matter's
+  // own range is small, and dividing by it made the rays' noise in fog a
+  // grain of dark specks (carotid.vtk: local luminance deviation 1.25x AO
+  // off's; with the floor at 0.4 or 0.5, 1.00x).
+  float range = max(open - HalfSpace(float(CAO_HALF_SPACE_LAYERS - 1), a),
+    CAO_CALIBRATION_FLOOR * (open - rp.aoCalibration.x));
+  // With one sample per ray every LAO is 1: the range is empty and nothing
+  // is occluded.
+  return range > 1e-6 ? clamp(1.0 - (open - ao) / range, 0.0, 1.0) : 1.0;
 }
 
 /// Whether the clip removes the sample at index-space point p.
@@ -194,6 +248,36 @@ float DepthToT(float z)
   return dot(Unproject(g_ndc, z * 2.0 - 1.0) - g_nearWorld, g_dirWorld);
 }
 
+/// CAO_RENDER_AO_CALIBRATED: the depth into the matter (and its optical
+/// depth per step) that CastRay's samples from the ray's start would have
+/// reached at lattice sample k0, from the samples before it (as far back as
+/// the half-space table is deep): a segment of a peeled ray starts where the
+/// whole ray would be, so that the segments add up to the ray.
+void DepthBefore(float k0, int flags, float stepVoxels, out float depth, out float mu)
+{
+  depth = 0.0;
+  mu = 1.0;
+  float step = rp.sampling.x;
+  float first = max(0.0, ceil((g_tEnter - g_first) / step));
+  float from = max(first, k0 - ceil(float(CAO_HALF_SPACE_LAYERS + 1) / max(stepVoxels, 1e-6)));
+  bool clipped = (flags & CAO_RENDER_CLIP) != 0;
+  for (float k = from; k < k0; k += 1.0)
+  {
+    vec3 p = g_origin + (g_first + k * step) * g_dir;
+    vec4 c = texture(tableTexture, vec2(Scalar((p + 0.5) * rp.invDims.xyz) * rp.sampling.y +
+        rp.sampling.z, 0.5));
+    if (c.a <= 0.0 || (clipped && Removed(p, flags)))
+    {
+      depth = 0.0;
+      continue;
+    }
+    float m = -log(max(1.0 - c.a, 1e-6));
+    float inMatter = max(1.0, min(depth, 1.0) + max(depth - 1.0, 0.0) * mu / m + stepVoxels);
+    VoxelAO(p, clipped, true, inMatter, depth);
+    mu = m;
+  }
+}
+
 /// Composite the samples with tFrom <= t < tTo (t <= tTo when `inclusive`)
 /// of the pixel's lattice t = first + k * step, within the volume's box:
 /// premultiplied colour, front to back.
@@ -209,6 +293,17 @@ vec4 CastRay(float tFrom, float tTo, bool inclusive)
     rp.normalToWorld[2].xyz);
   vec3 texel = rp.invDims.xyz;
   vec4 sum = vec4(0.0);
+  // CAO_RENDER_AO_CALIBRATED (see VoxelAO): the previous sample's depth
+  // into the matter (voxels; 0 after empty space or a cut) and its optical
+  // depth per step. Where a sample's voxels all hold matter its depth is
+  // the previous one's plus a step, the part past the face's layer first
+  // converted to this sample's matter by the ratio of optical depths (so
+  // that clear matter in front of dense matter counts for little).
+  float depthBefore = 0.0, muBefore = 1.0;
+  float stepVoxels = step * length(dir);
+  if ((flags & (CAO_RENDER_AO | CAO_RENDER_AO_CALIBRATED)) ==
+      (CAO_RENDER_AO | CAO_RENDER_AO_CALIBRATED) && k0 > 0.0)
+    DepthBefore(k0, flags, stepVoxels, depthBefore, muBefore);
   // A segment that starts after the ray's first sample carries on from
   // the sample before it: whether that one was clipped away (so that the
   // first sample behind a cut still moves onto the clip surface).
@@ -221,12 +316,16 @@ vec4 CastRay(float tFrom, float tTo, bool inclusive)
     float s = Scalar(tc);
     vec4 c = texture(tableTexture, vec2(s * rp.sampling.y + rp.sampling.z, 0.5));
     if (c.a <= 0.0)
+    {
+      depthBefore = 0.0;
       continue;
+    }
     if ((flags & CAO_RENDER_CLIP) != 0)
     {
       if (Removed(p, flags))
       {
         wasRemoved = true;
+        depthBefore = 0.0;
         continue;
       }
       // (With CAO_RENDER_CLIP_ENTRY off, the first sample stays where the
@@ -263,8 +362,15 @@ vec4 CastRay(float tFrom, float tTo, bool inclusive)
     {
       bool clipped = (flags & CAO_RENDER_CLIP) != 0;
       bool calibrated = (flags & CAO_RENDER_AO_CALIBRATED) != 0;
-      float ao = clipped || calibrated ? VoxelAO(p, clipped, calibrated) : texture(aoTexture, tc).r;
+      float mu = -log(max(1.0 - c.a, 1e-6));
+      float past = max(depthBefore - 1.0, 0.0) * muBefore / mu;
+      float inMatter = max(1.0, min(depthBefore, 1.0) + past + stepVoxels);
+      float depth;
+      float ao = clipped || calibrated ? VoxelAO(p, clipped, calibrated, inMatter, depth)
+                                       : texture(aoTexture, tc).r;
       ambient = 1.0 - rp.sampling.w * (1.0 - ao);
+      depthBefore = depth;
+      muBefore = mu;
     }
     vec3 color;
     if ((flags & CAO_RENDER_SHADE) != 0)

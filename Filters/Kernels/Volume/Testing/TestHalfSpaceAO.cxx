@@ -3,6 +3,9 @@
 // (six faces, both layers, two face positions so every variant appears),
 // for every pattern and variation; the 6-ray value worked by hand; and a
 // face one layer off gives a clearly different value (negative control).
+// The general form (matter of any opacity, any depth) equals the march on
+// a half-space of that opacity at layers 0 to 4, and the table the ray
+// caster reads holds it.
 #include "caoLAO.h"
 #include "caoTestUtilities.h"
 
@@ -13,7 +16,8 @@ namespace
 {
 /// The mean LAO (LAOVoxelDouble) on the faces of opaque half-spaces whose
 /// first full layer is `shift` layers past the layer HalfSpaceAO assumes.
-double MarchedHalfSpace(const cao::LAOPlan& plan, const cao::VolumeGeometry& g, int shift)
+double MarchedHalfSpace(const cao::LAOPlan& plan, const cao::VolumeGeometry& g, int shift,
+  float opacity = 1.0f, int onlyLayer = -1)
 {
   std::vector<float> a(static_cast<std::size_t>(g.NumberOfVoxels()));
   double total = 0.0;
@@ -29,9 +33,10 @@ double MarchedHalfSpace(const cao::LAOPlan& plan, const cao::VolumeGeometry& g, 
             {
               const int x = axis == 0 ? i : axis == 1 ? j : k;
               const int depth = sign * (x - c) - shift;
-              a[i + g.dims[0] * (j + std::size_t(g.dims[1]) * k)] = depth >= 1 ? 1.0f : 0.0f;
+              a[i + g.dims[0] * (j + std::size_t(g.dims[1]) * k)] = depth >= 1 ? opacity : 0.0f;
             }
-        for (int layer = 0; layer < 2; ++layer)
+        for (int layer = onlyLayer < 0 ? 0 : onlyLayer; layer < (onlyLayer < 0 ? 2 : onlyLayer + 1);
+             ++layer)
           for (int u = 0; u < 2; ++u)
             for (int w = 0; w < 2; ++w)
             {
@@ -83,6 +88,30 @@ int TestHalfSpaceAO(int, char*[])
         const double shifted = MarchedHalfSpace(plan, g, 1);
         CAO_CHECK(std::fabs(shifted - closed) > 0.05,
           "a face one layer off should differ: %.6g vs %.6g", shifted, closed);
+        // Matter of opacity 0.553 (0.8 per unit at half-voxel steps), layer
+        // by layer into it: the general form, and the table at its steps.
+        if (pattern == cao::RayPattern::Rays14 || pattern == cao::RayPattern::Fibonacci)
+        {
+          const std::vector<float> table = cao::HalfSpaceTable(plan);
+          for (int layer = 0; layer <= 4; ++layer)
+          {
+            const double general = cao::HalfSpaceAO(plan, layer, 0.553);
+            const double march = MarchedHalfSpace(plan, g, 0, 0.553f, layer);
+            CAO_CHECK(std::fabs(general - march) < 1e-6,
+              "pattern %d variation %d: layer %d of opacity 0.553: closed %.9g, march %.9g",
+              static_cast<int>(pattern), static_cast<int>(variation), layer, general, march);
+            const double at = table[static_cast<std::size_t>(layer) * CAO_HALF_SPACE_OPACITIES + 8];
+            CAO_CHECK(std::fabs(at - cao::HalfSpaceAO(plan, layer, 0.5)) < 1e-6,
+              "the table at layer %d, opacity 0.5: %.9g", layer, at);
+          }
+          CAO_CHECK(cao::HalfSpaceAO(plan, 3.0, 0.553) < cao::HalfSpaceAO(plan, 1.0, 0.553) &&
+              cao::HalfSpaceAO(plan, 1.0, 0.3) > cao::HalfSpaceAO(plan, 1.0, 0.553),
+            "deeper is darker, clearer matter lighter");
+          // Negative control: opacity 1 is not the matter's own half-space.
+          CAO_CHECK(std::fabs(cao::HalfSpaceAO(plan, 1.0, 1.0) -
+                      MarchedHalfSpace(plan, g, 0, 0.553f, 1)) > 0.02,
+            "an opaque half-space should differ from matter of opacity 0.553");
+        }
       }
 
   // By hand: 6 rays, reach 8 voxels, 8 samples at (m - 1/2) voxels. The

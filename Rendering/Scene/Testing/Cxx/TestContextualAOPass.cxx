@@ -42,7 +42,6 @@
 //   outline and an unstructured volume are left out without an error; an
 //   empty viewport runs nothing.
 #include "vtkContextualAOPass.h"
-#include "caoTestSkip.h"
 #include "vtkDataSetTriangleFilter.h"
 #include "vtkGlyph3DMapper.h"
 #include "vtkOutlineFilter.h"
@@ -78,6 +77,7 @@
 #include "caoVoxelConeTracing.h"
 #include "vtkCAOInput.h"
 
+#include "caoTestSkip.h"
 #include <algorithm>
 #include <array>
 #include <cmath>

@@ -13,7 +13,6 @@
 //   shapes, then recovery.
 // Exits 125 (skip) when the window kind is not available here.
 #include "vtkActor.h"
-#include "caoTestSkip.h"
 #include "vtkCallbackCommand.h"
 #include "vtkFloatArray.h"
 #include "vtkUnsignedCharArray.h"
@@ -26,6 +25,7 @@
 #include "vtkDataArray.h"
 #include "vtkImageChangeInformation.h"
 #include "vtkImageData.h"
+#include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkPiecewiseFunction.h"
@@ -41,6 +41,8 @@
 #include "caoImageRegression.h"
 #include "vtkCAOInput.h"
 
+#include "caoTestSkip.h"
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cmath>
@@ -809,8 +811,175 @@ struct Phantom
   }
 };
 
+/// The picture of matter that is not opaque: the block phantom
+/// (64^3: a block 48 x 48 x 32 on the volume's floor with a slot 4 voxels
+/// wide and 16 deep), under a map like the tools' default (0 up to a
+/// quarter of the range, then a ramp to 0.8 per unit). The ray caster
+/// composites the samples behind each face, inside the matter; the
+/// calibration must keep open faces lit in the picture, ambient-only and
+/// shaded, from above and from four oblique views, and darken the slot.
+/// Negative control: the raw LAO darkens the open faces.
+struct MatterViews
+{
+  double topFace = 0, slotFloor = 0, median[2][4] = { { 0 } }; // [shade][view], of AO off
+};
+
+bool MatterPhantom(const Options& o, int calibration, MatterViews& out, caotest::Image* top,
+  int preset = vtkContextualAOVolumeMapper::INTERACTIVE, bool oblique = true)
+{
+  Scene s;
+  if (!s.Open(o.window))
+    return false;
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(64, 64, 64);
+  image->AllocateScalars(VTK_UNSIGNED_CHAR, 1);
+  auto* v = static_cast<unsigned char*>(image->GetScalarPointer());
+  for (int k = 0; k < 64; ++k)
+    for (int j = 0; j < 64; ++j)
+      for (int i = 0; i < 64; ++i)
+      {
+        const bool block = i >= 8 && i <= 55 && j >= 8 && j <= 55 && k <= 31;
+        const bool slot = i >= 30 && i <= 33 && k >= 16;
+        v[i + 64 * (j + 64 * k)] = block && !slot ? 255 : 0;
+      }
+  s.image = image;
+  s.mapper->SetInputData(image);
+  s.opacity->RemoveAllPoints();
+  s.opacity->AddPoint(0.0, 0.0);
+  s.opacity->AddPoint(63.75, 0.0);
+  s.opacity->AddPoint(255.0, 0.8);
+  s.color->RemoveAllPoints();
+  s.color->AddRGBPoint(0.0, 0.9, 0.85, 0.7);
+  s.color->AddRGBPoint(255.0, 0.9, 0.85, 0.7);
+  s.renderer->SetBackground(0.0, 0.0, 0.0);
+  s.mapper->SetAOCalibration(calibration);
+  s.mapper->SetQualityPreset(preset);
+  vtkCamera* camera = s.renderer->GetActiveCamera();
+  camera->ParallelProjectionOn();
+  const auto frame = [&](bool ao) {
+    s.mapper->SetAmbientOcclusion(ao);
+    return s.Frame();
+  };
+  const auto luminance = [](const caotest::Image& im, std::size_t p) {
+    return 0.2126 * im.rgb[3 * p] + 0.7152 * im.rgb[3 * p + 1] + 0.0722 * im.rgb[3 * p + 2];
+  };
+  // From above, ambient only: the open face (6+ voxels from every edge and
+  // from the slot) and the slot's floor, mean luminance, AO on / AO off.
+  s.property->ShadeOff();
+  camera->SetFocalPoint(31.5, 31.5, 16.0);
+  camera->SetPosition(31.5, 31.5, 200.0);
+  camera->SetViewUp(0.0, 1.0, 0.0);
+  camera->SetParallelScale(32.0);
+  s.renderer->ResetCameraClippingRange();
+  const caotest::Image off = frame(false), on = frame(true);
+  if (top)
+    *top = on;
+  const auto mean = [&](const caotest::Image& im, double x0, double x1, double y0, double y1) {
+    double lo[3], hi[3];
+    s.renderer->SetWorldPoint(x0, y0, 31.0, 1.0);
+    s.renderer->WorldToDisplay();
+    s.renderer->GetDisplayPoint(lo);
+    s.renderer->SetWorldPoint(x1, y1, 31.0, 1.0);
+    s.renderer->WorldToDisplay();
+    s.renderer->GetDisplayPoint(hi);
+    double sum = 0.0;
+    long n = 0;
+    for (int y = static_cast<int>(std::ceil(lo[1])); y <= static_cast<int>(std::floor(hi[1])); ++y)
+      for (int x = static_cast<int>(std::ceil(lo[0])); x <= static_cast<int>(std::floor(hi[0])); ++x, ++n)
+        sum += luminance(im, static_cast<std::size_t>(y) * im.width + x);
+    return n ? sum / n : 0.0;
+  };
+  out.topFace = mean(on, 14.0, 24.0, 14.0, 50.0) / std::max(1e-9, mean(off, 14.0, 24.0, 14.0, 50.0));
+  out.slotFloor = mean(on, 31.0, 32.0, 14.0, 50.0) / std::max(1e-9, mean(off, 31.0, 32.0, 14.0, 50.0));
+  // Four oblique views (elevation 45 degrees), ambient only and shaded: the
+  // median over the block's pixels (what AO off draws) of AO on / AO off.
+  for (int shade = 0; shade < (oblique ? 2 : 0); ++shade)
+  {
+    s.property->SetShade(shade);
+    for (int view = 0; view < 4; ++view)
+    {
+      const double azimuth = vtkMath::RadiansFromDegrees(30.0 + 90.0 * view);
+      camera->SetFocalPoint(31.5, 31.5, 16.0);
+      camera->SetPosition(31.5 + 150.0 * std::cos(azimuth), 31.5 + 150.0 * std::sin(azimuth), 166.0);
+      camera->SetViewUp(0.0, 0.0, 1.0);
+      camera->SetParallelScale(45.0);
+      s.renderer->ResetCameraClippingRange();
+      const caotest::Image a = frame(false), b = frame(true);
+      std::vector<double> ratios;
+      for (std::size_t p = 0; p < static_cast<std::size_t>(a.width) * a.height; ++p)
+        if (luminance(a, p) > 20.0)
+          ratios.push_back(luminance(b, p) / luminance(a, p));
+      std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
+      out.median[shade][view] = ratios.empty() ? 0.0 : ratios[ratios.size() / 2];
+    }
+  }
+  return true;
+}
+
+void MatterCalibration(const Options& o)
+{
+  MatterViews cal, raw;
+  caotest::Image calTop, rawTop;
+  if (!MatterPhantom(o, vtkContextualAOVolumeMapper::AO_CALIBRATION_HALF_SPACE, cal, &calTop) ||
+    !MatterPhantom(o, vtkContextualAOVolumeMapper::AO_CALIBRATION_NONE, raw, &rawTop))
+    return;
+  for (const auto* m : { &cal, &raw })
+    std::printf("block of opacity 0.8, %s: from above, ambient only: open face %.3f, slot floor "
+                "%.3f; oblique, ambient only %.3f %.3f %.3f %.3f, shaded %.3f %.3f %.3f %.3f\n",
+      m == &cal ? "half-space" : "raw LAO", m->topFace, m->slotFloor, m->median[0][0],
+      m->median[0][1], m->median[0][2], m->median[0][3], m->median[1][0], m->median[1][1],
+      m->median[1][2], m->median[1][3]);
+  CAO_EXPECT(cal.topFace >= 0.95, "the open face from above: %.3f of AO off", cal.topFace);
+  // The slot: the 0.70 holds for Balanced (measured 0.65); the
+  // accurate LAO (Reference) measured 0.70 and the default's 6
+  // axis-aligned rays, which see the sky along the slot and across its
+  // width, 0.75: a visible darkening each, bounded at 0.75 and 0.80, the
+  // accuracy trade-off the presets exist for.
+  CAO_EXPECT(cal.slotFloor <= 0.80, "the slot's floor from above: %.3f of AO off", cal.slotFloor);
+  for (int preset : { vtkContextualAOVolumeMapper::BALANCED, vtkContextualAOVolumeMapper::REFERENCE })
+  {
+    MatterViews accurate;
+    if (!MatterPhantom(o, vtkContextualAOVolumeMapper::AO_CALIBRATION_HALF_SPACE, accurate, nullptr,
+          preset, false))
+      return;
+    std::printf("block of opacity 0.8, half-space, %s: open face %.3f, slot floor %.3f\n",
+      preset == vtkContextualAOVolumeMapper::BALANCED ? "Balanced" : "Reference", accurate.topFace,
+      accurate.slotFloor);
+    CAO_EXPECT(accurate.topFace >= 0.95 &&
+        accurate.slotFloor <= (preset == vtkContextualAOVolumeMapper::BALANCED ? 0.70 : 0.75),
+      "preset %d: open face %.3f, slot floor %.3f of AO off", preset, accurate.topFace,
+      accurate.slotFloor);
+  }
+  double worst = 1.0, worstRaw = 1.0;
+  for (int shade = 0; shade < 2; ++shade)
+    for (int view = 0; view < 4; ++view)
+    {
+      worst = std::min(worst, cal.median[shade][view]);
+      worstRaw = std::min(worstRaw, raw.median[shade][view]);
+    }
+  CAO_EXPECT(worst >= 0.95, "the block's median in the oblique views: %.3f of AO off", worst);
+  // Negative control: the same checks fail on the raw LAO.
+  CAO_EXPECT(raw.topFace < 0.95 && worstRaw < 0.95,
+    "the raw LAO should darken the open faces: %.3f from above, %.3f oblique", raw.topFace,
+    worstRaw);
+  std::string error;
+  caotest::Image row;
+  row.width = 2 * calTop.width;
+  row.height = calTop.height;
+  row.rgb.resize(static_cast<std::size_t>(row.width) * row.height * 3);
+  const caotest::Image* parts[2] = { &rawTop, &calTop };
+  for (int part = 0; part < 2; ++part)
+    for (int y = 0; y < calTop.height; ++y)
+      std::memcpy(&row.rgb[3 * (static_cast<std::size_t>(y) * row.width + part * calTop.width)],
+        &parts[part]->rgb[3 * static_cast<std::size_t>(y) * calTop.width], 3 * calTop.width);
+  const std::string path = o.output + "/calibration-matter-" + o.window + ".png";
+  if (caotest::WritePNG(row, path, error))
+    std::printf("wrote %s (raw LAO | half-space calibrated, from above, ambient only)\n", path.c_str());
+}
+
 void Calibration(const Options& o)
 {
+  MatterCalibration(o);
   // A slot 3 voxels wide (3/8 of the default 8-voxel reach) and 24 deep.
   // How much a slot darkens depends on its width against the reach: the
   // table below measures widths 2, 3 and 4 at each preset (the accurate
@@ -1371,8 +1540,11 @@ void Interactive(const Options& o)
   {
     sphere->SetVisibility(peel);
     const char* scene = peel ? "a translucent sphere over the volume (depth peeling)" : "the volume alone";
-    carve(s, 0.1 * size);
-    const caotest::Image before = still(); // the pose before, for the control
+    // The pose before, for the control: a move of a fifth of the volume (a
+    // tenth changed the calibrated picture by under 2 levels over blocks:
+    // open faces keep their light, so a move shows only where it occludes).
+    carve(s, 0.2 * size);
+    const caotest::Image before = still();
     carve(s, 0.0);
     const caotest::Image reference = still();
     // (the still frame's sample distance: the frames differ by k alone)

@@ -19,7 +19,6 @@
 // context before the window exists.
 // Exits 125 when there is no display ("x") or no EGL context ("egl").
 #include "vtk_glew.h" // first: GLEW must see no other GL header before it
-#include "caoTestSkip.h"
 
 #include "caoFilterTestUtilities.h"
 #include "vtkCAOInput.h"
@@ -43,6 +42,7 @@
 #include "vtkUnsignedCharArray.h"
 #include "vtkWindowToImageFilter.h"
 
+#include "caoTestSkip.h"
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
