@@ -733,6 +733,32 @@ void BadInput(const Options& o)
     kept->GetLastFrameStages().c_str());
 }
 
+/// A 64^3 phantom in the scene: 255 where `matter` holds, else 0; opacity 0
+/// up to `clear`, a ramp to `full` at `solid` and beyond; one colour.
+void SetPhantom(Scene& s, const std::function<bool(int, int, int)>& matter, double clear,
+  double solid, double full, double r, double g, double b)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(64, 64, 64);
+  image->AllocateScalars(VTK_UNSIGNED_CHAR, 1);
+  auto* v = static_cast<unsigned char*>(image->GetScalarPointer());
+  for (int k = 0; k < 64; ++k)
+    for (int j = 0; j < 64; ++j)
+      for (int i = 0; i < 64; ++i)
+        v[i + 64 * (j + 64 * k)] = matter(i, j, k) ? 255 : 0;
+  s.image = image;
+  s.mapper->SetInputData(image);
+  s.opacity->RemoveAllPoints();
+  s.opacity->AddPoint(0.0, 0.0);
+  s.opacity->AddPoint(clear, 0.0);
+  s.opacity->AddPoint(solid, full);
+  if (solid < 255.0)
+    s.opacity->AddPoint(255.0, full);
+  s.color->RemoveAllPoints();
+  s.color->AddRGBPoint(0.0, r, g, b);
+  s.color->AddRGBPoint(255.0, r, g, b);
+}
+
 /// The slot phantom: an opaque block (x, y in [8, 55], z in [8, 40], one
 /// voxel per world unit) with a slot 4 voxels wide (x in [30, 33]) and 24
 /// deep (z from 17 up to the top face), seen from straight above in
@@ -748,29 +774,12 @@ struct Phantom
   {
     if (!s.Open(kind))
       return false;
-    auto image = vtkSmartPointer<vtkImageData>::New();
     const int slotFirst = 32 - slotWidth / 2, slotLast = slotFirst + slotWidth - 1;
-    image->SetDimensions(64, 64, 64);
-    image->AllocateScalars(VTK_UNSIGNED_CHAR, 1);
-    auto* v = static_cast<unsigned char*>(image->GetScalarPointer());
-    for (int k = 0; k < 64; ++k)
-      for (int j = 0; j < 64; ++j)
-        for (int i = 0; i < 64; ++i)
-        {
-          const bool block = i >= 8 && i <= 55 && j >= 8 && j <= 55 && k >= 8 && k <= 40;
-          const bool inSlot = i >= slotFirst && i <= slotLast && j >= 12 && j <= 51 && k >= 17;
-          v[i + 64 * (j + 64 * k)] = block && !inSlot ? 255 : 0;
-        }
-    s.image = image;
-    s.mapper->SetInputData(image);
-    s.opacity->RemoveAllPoints();
-    s.opacity->AddPoint(0.0, 0.0);
-    s.opacity->AddPoint(100.0, 0.0);
-    s.opacity->AddPoint(155.0, 1.0);
-    s.opacity->AddPoint(255.0, 1.0);
-    s.color->RemoveAllPoints();
-    s.color->AddRGBPoint(0.0, 0.9, 0.9, 0.9);
-    s.color->AddRGBPoint(255.0, 0.9, 0.9, 0.9);
+    SetPhantom(s, [&](int i, int j, int k) {
+      const bool block = i >= 8 && i <= 55 && j >= 8 && j <= 55 && k >= 8 && k <= 40;
+      const bool inSlot = i >= slotFirst && i <= slotLast && j >= 12 && j <= 51 && k >= 17;
+      return block && !inSlot;
+    }, 100.0, 155.0, 1.0, 0.9, 0.9, 0.9);
     s.property->ShadeOff();
     s.renderer->SetBackground(0.0, 0.0, 0.0);
     vtkCamera* camera = s.renderer->GetActiveCamera();
@@ -830,27 +839,11 @@ bool MatterPhantom(const Options& o, int calibration, MatterViews& out, caotest:
   Scene s;
   if (!s.Open(o.window))
     return false;
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(64, 64, 64);
-  image->AllocateScalars(VTK_UNSIGNED_CHAR, 1);
-  auto* v = static_cast<unsigned char*>(image->GetScalarPointer());
-  for (int k = 0; k < 64; ++k)
-    for (int j = 0; j < 64; ++j)
-      for (int i = 0; i < 64; ++i)
-      {
-        const bool block = i >= 8 && i <= 55 && j >= 8 && j <= 55 && k <= 31;
-        const bool slot = i >= 30 && i <= 33 && k >= 16;
-        v[i + 64 * (j + 64 * k)] = block && !slot ? 255 : 0;
-      }
-  s.image = image;
-  s.mapper->SetInputData(image);
-  s.opacity->RemoveAllPoints();
-  s.opacity->AddPoint(0.0, 0.0);
-  s.opacity->AddPoint(63.75, 0.0);
-  s.opacity->AddPoint(255.0, 0.8);
-  s.color->RemoveAllPoints();
-  s.color->AddRGBPoint(0.0, 0.9, 0.85, 0.7);
-  s.color->AddRGBPoint(255.0, 0.9, 0.85, 0.7);
+  SetPhantom(s, [](int i, int j, int k) {
+    const bool block = i >= 8 && i <= 55 && j >= 8 && j <= 55 && k <= 31;
+    const bool slot = i >= 30 && i <= 33 && k >= 16;
+    return block && !slot;
+  }, 63.75, 255.0, 0.8, 0.9, 0.85, 0.7);
   s.renderer->SetBackground(0.0, 0.0, 0.0);
   s.mapper->SetAOCalibration(calibration);
   s.mapper->SetQualityPreset(preset);
