@@ -38,6 +38,28 @@ def drag(view, x, y, dx, dy=0):
     iren.InvokeEvent("LeftButtonReleaseEvent")
 
 
+def box_shown(view):
+    """Whether a visible box widget representation is in the view's renderers."""
+    renderers = view.GetRenderWindow().GetRenderers()
+    renderers.InitTraversal()
+    for _ in range(renderers.GetNumberOfItems()):
+        props = renderers.GetNextItem().GetViewProps()
+        props.InitTraversal()
+        for _ in range(props.GetNumberOfItems()):
+            prop = props.GetNextProp()
+            if prop.IsA("vtkWidgetRepresentation") and "Box" in prop.GetClassName() and prop.GetVisibility():
+                return True
+    return False
+
+
+def reselect(source):
+    """The panel as a user finds it after a change made from Python: the
+    representation's panel made again (its decorators re-read the
+    properties when the source is selected)."""
+    SetActiveSource(None)
+    SetActiveSource(source)
+
+
 def shape_matrix(mapper):
     return matrix_list(mapper.GetClipShape().GetMatrix())
 
@@ -54,6 +76,7 @@ try:
     b = reader.GetDataInformation().GetBounds()
     display.ClipPosition = [0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5])]
     SetActiveSource(reader)
+    reselect(reader)
     view.ResetCamera()
     mapper = display.GetClientSideObject().GetActiveRepresentation().GetActor().GetMapper()
     errors = []
@@ -105,6 +128,25 @@ try:
           % (mapper.GetFrameCount() - frames))
     SaveScreenshot(os.environ["CAO_RESULT"] + ".png", view, ImageResolution=[400, 300])
     check(not errors, "no mapper error in any frame (%d)" % len(errors))
+    # Clip Shape None: no box in the view (nor in screenshots), and a drag
+    # where its centre handle was moves nothing. Positive control: the box
+    # is there while a shape clips.
+    shown = box_shown(view)
+    display.ClipShape = "None"
+    reselect(reader)
+    Render(view)
+    hidden = not box_shown(view)
+    before = list(display.ClipPosition)
+    x, y = to_display(view, before)
+    drag(view, x, y, 60)
+    Render(view)
+    check(shown and hidden and list(display.ClipPosition) == before,
+          "the box widget is shown while a shape clips (%s), hidden at Clip Shape None (%s), and a drag "
+          "there leaves Clip Position %s (%s)" % (shown, hidden, before, list(display.ClipPosition)))
+    display.ClipShape = "Sphere"
+    reselect(reader)
+    Render(view)
+    check(box_shown(view), "the box comes back with a shape")
 except Exception as e:  # noqa: BLE001  (reported as a failure)
     check(False, "exception: %r" % (e,))
 finally:
