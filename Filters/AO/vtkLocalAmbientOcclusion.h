@@ -153,8 +153,10 @@ public:
 
   ///@{
   /**
-   * Ray variation (RayVariations). Default ROTATE (the Interactive
-   * preset's); NONE: every voxel uses the same rays. The variant follows the global voxel index, so a piece of a
+   * Ray variation (RayVariations). Default NONE (the Interactive
+   * preset's): every voxel uses the same rays. The interleaved variations
+   * lower the per-voxel error of few rays, but a picture shows the 2x2x2
+   * interleave as grain. The variant follows the global voxel index, so a piece of a
    * volume gets the values the whole volume gets.
    */
   void SetRayVariation(int variation);

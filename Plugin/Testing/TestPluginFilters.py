@@ -66,12 +66,12 @@ def range_domain(proxy, name):
 check(list(lao.GetProperty("QualityPreset").Available) == PRESETS and lao.QualityPreset == "Interactive",
       "QualityPreset: Custom, Interactive, Balanced, Reference; default Interactive (%s)"
       % lao.QualityPreset)
-check(list(lao.GetProperty("RayVariation").Available) == VARIATIONS and lao.RayVariation == "Rotate",
-      "RayVariation: None, Rotate, Jitter, Rotate + Jitter; default Rotate, the Interactive "
+check(list(lao.GetProperty("RayVariation").Available) == VARIATIONS and lao.RayVariation == "None",
+      "RayVariation: None, Rotate, Jitter, Rotate + Jitter; default None, the Interactive "
       "preset's (%s)" % lao.RayVariation)
 density, offset = range_domain(lao, "SampleDensity"), range_domain(lao, "StartOffset")
-check(lao.SampleDensity == 2.0 and density is not None and density.GetMinimum(0) == 0.001,
-      "SampleDensity: default 2 (the Interactive preset's), at least 0.001 (%s)" % lao.SampleDensity)
+check(lao.SampleDensity == 1.0 and density is not None and density.GetMinimum(0) == 0.001,
+      "SampleDensity: default 1 (the Interactive preset's), at least 0.001 (%s)" % lao.SampleDensity)
 check(lao.StartOffset == 0.5 and offset is not None and offset.GetMinimum(0) == 0.0 and
       offset.GetMaximum(0) == 0.999, "StartOffset: default 0.5, in [0, 0.999] (%s)" % lao.StartOffset)
 
@@ -89,8 +89,8 @@ if rep is not None:
           "the representation has documented %s" % (names,))
     check(entries("AOQualityPreset") == PRESETS and entries("AORayVariation") == VARIATIONS and
           rep.GetProperty("AOQualityPreset").GetElement(0) == 1 and
-          rep.GetProperty("AORayVariation").GetElement(0) == 1 and
-          rep.GetProperty("AOSampleDensity").GetElement(0) == 2.0 and
+          rep.GetProperty("AORayVariation").GetElement(0) == 0 and
+          rep.GetProperty("AOSampleDensity").GetElement(0) == 1.0 and
           rep.GetProperty("AOStartOffset").GetElement(0) == 0.5,
           "the representation's quality enumerations and defaults")
     rep.GetProperty("AOQualityPreset").SetElement(0, 2)

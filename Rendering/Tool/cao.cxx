@@ -75,14 +75,14 @@ VOLUME: .vti, .mhd/.mha, .slc, legacy .vtk, .nii/.nii.gz
 common options:
   --rays LIST          ray patterns: 6, 14, 26, 54, rubiks54 (the paper's
                        54 rays, jittered) or fib:K (K = 1 to 65536); carve
-                       takes a comma list and runs each (default 6)
+                       takes a comma list and runs each (default 14)
   --reach R            ray length in world units (default 8 voxels)
   --samples M          samples per ray, 1 to 65536 (default: --density per voxel)
   --density D          samples per smallest voxel spacing when --samples is
-                       not given (default 2; 0.001 to 1000)
+                       not given (default 1; 0.001 to 1000)
   --offset F           start offset of the samples along a ray, in steps,
                        in [0, 1) (default 0.5: mid-step; 0 is the paper's march)
-  --variation NAME     per-voxel ray variation: none, rotate (default),
+  --variation NAME     per-voxel ray variation: none (default), rotate,
                        jitter or rotate+jitter (interleaved 2x2x2)
   --quality NAME       LAO quality preset: interactive (the default, equal
                        to the defaults above), balanced, reference or

@@ -59,12 +59,12 @@ render options:
   --preset NAME        built-in transfer function: warm (default), bone, cool, grayscale
   --preset-file FILE   a ParaView colour-map preset (.json); --preset picks a name in it
   --absolute           use the preset's values as they are (default: rescale to the data)
-  --rays P             LAO ray pattern: 6 (default), 14, 26, 54, rubiks54 or
+  --rays P             LAO ray pattern: 6, 14 (default), 26, 54, rubiks54 or
                        fib:K (K = 1 to 65536)
   --reach R            LAO reach in world units (default 8 voxels)
-  --density D          LAO samples per smallest voxel spacing (default 2)
+  --density D          LAO samples per smallest voxel spacing (default 1)
   --offset F           LAO sample start offset in steps, in [0, 1) (default 0.5)
-  --variation NAME     LAO ray variation: none, rotate (default), jitter or
+  --variation NAME     LAO ray variation: none (default), rotate, jitter or
                        rotate+jitter
   --quality NAME       LAO quality preset: interactive (the default, equal to
                        the defaults above), balanced, reference or custom
@@ -308,21 +308,11 @@ int RunRender(int argc, char* argv[])
 
   vtkNew<vtkContextualAOVolumeMapper> mapper;
   mapper->SetInputData(volume);
-  int pattern = 2, fib = 64;
-  if (o.rays == "6")
-    pattern = 0;
-  else if (o.rays == "14")
-    pattern = 1;
-  else if (o.rays == "26")
-    pattern = 2;
-  else if (o.rays == "54")
-    pattern = 3;
-  else if (o.rays.rfind("fib:", 0) == 0 && std::sscanf(o.rays.c_str() + 4, "%d", &fib) == 1 &&
-    fib >= 1 && fib <= 4096)
-    pattern = 4;
-  else
-    return Fail(2, "--rays is 6, 14, 26, 54 or fib:K (K in 1..4096)");
-  mapper->SetRayPattern(pattern);
+  cao::RayPattern parsed = cao::RayPattern::Rays14;
+  int fib = 64;
+  if (!cao::ParseRayPattern(o.rays, parsed, fib))
+    return Fail(2, "--rays '" + o.rays + "': 6, 14, 26, 54, rubiks54 or fib:K (K = 1 to 65536)");
+  mapper->SetRayPattern(static_cast<int>(parsed));
   mapper->SetNumberOfRays(fib);
   mapper->SetReach(o.reach);
   mapper->SetSampleDensity(o.lao.settings.sampleDensity);

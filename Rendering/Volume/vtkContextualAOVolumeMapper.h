@@ -192,7 +192,7 @@ public:
   ///@{
   /**
    * How the LAO rays vary from voxel to voxel (interleaved over 2x2x2
-   * blocks, see vtkLocalAmbientOcclusion::SetRayVariation). Default ROTATE.
+   * blocks, see vtkLocalAmbientOcclusion::SetRayVariation). Default NONE.
    */
   virtual void SetRayVariation(int value);
   virtual int GetRayVariation();

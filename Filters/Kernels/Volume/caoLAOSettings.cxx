@@ -52,12 +52,15 @@ struct PresetSettings
   double sampleDensity;
   RayVariation variation;
 };
-// Interactive: the 6 axes rotated per voxel (interleaved), 2 samples per voxel.
+// Interactive: 14 rays, 1 sample per voxel, the same rays at every voxel.
+// (Before: the 6 axes rotated per voxel, 2 samples per voxel: less error per
+// voxel, but the picture showed the 2x2x2 interleave as grain, and the 6
+// axes barely darkened a slot along an axis: docs/pictures.md, "Grain".)
 // Balanced: 14 rays, 4 samples per voxel.
 // Reference: 100 Fibonacci rays, 4 samples per voxel.
 // All mid-step (start offset 0.5).
 constexpr PresetSettings Presets[] = {
-  { RayPattern::Rays6, 64, 2.0, RayVariation::Rotate },
+  { RayPattern::Rays14, 64, 1.0, RayVariation::None },
   { RayPattern::Rays14, 14, 4.0, RayVariation::None },
   { RayPattern::Fibonacci, 100, 4.0, RayVariation::None },
 };
@@ -182,15 +185,18 @@ LAOSettings ResolveLAOSettings(const LAOSettings& settings, const double spacing
 namespace
 {
 constexpr double Unbounded = std::numeric_limits<double>::infinity();
+// The defaults are LAOSettings' own (one definition).
+constexpr LAOSettings Defaults{};
 constexpr LAOSettingInfo Table[] = {
-  { "RayPattern", 0, 0, 5, true },
-  { "NumberOfRays", 64, 1, LAOLimits::MaxRays, true },
-  { "Reach", 0, 0, Unbounded, false },
-  { "NumberOfSamples", 0, 0, LAOLimits::MaxSamples, true },
-  { "SampleDensity", 2, LAOLimits::MinSampleDensity, LAOLimits::MaxSampleDensity, false },
-  { "StartOffset", 0.5, 0, 0.999, false },
-  { "RayVariation", 1, 0, 3, true },
-  { "QualityPreset", 1, 0, 3, true },
+  { "RayPattern", static_cast<double>(Defaults.pattern), 0, 5, true },
+  { "NumberOfRays", static_cast<double>(Defaults.fibonacciRays), 1, LAOLimits::MaxRays, true },
+  { "Reach", Defaults.reach, 0, Unbounded, false },
+  { "NumberOfSamples", static_cast<double>(Defaults.samples), 0, LAOLimits::MaxSamples, true },
+  { "SampleDensity", Defaults.sampleDensity, LAOLimits::MinSampleDensity,
+    LAOLimits::MaxSampleDensity, false },
+  { "StartOffset", Defaults.startOffset, 0, 0.999, false },
+  { "RayVariation", static_cast<double>(Defaults.variation), 0, 3, true },
+  { "QualityPreset", static_cast<double>(Defaults.preset), 0, 3, true },
 };
 }
 

@@ -88,13 +88,13 @@ bool ParseQualityPreset(const std::string& text, QualityPreset& preset);
  */
 struct LAOSettings
 {
-  RayPattern pattern = RayPattern::Rays6;
+  RayPattern pattern = RayPattern::Rays14;
   int fibonacciRays = 64;
   double reach = 0.0;
   int samples = 0;
-  double sampleDensity = 2.0;
+  double sampleDensity = 1.0;
   double startOffset = 0.5;
-  RayVariation variation = RayVariation::Rotate;
+  RayVariation variation = RayVariation::None;
   QualityPreset preset = QualityPreset::Interactive;
 };
 

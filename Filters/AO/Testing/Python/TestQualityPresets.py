@@ -81,9 +81,9 @@ def lao_filter(**settings):
 f = LAO()
 check((f.GetRayPattern(), f.GetSampleDensity(), f.GetStartOffset(), f.GetRayVariation(),
        f.GetQualityPreset())
-      == (LAO.RAYS_6, 2.0, 0.5, LAO.ROTATE, LAO.INTERACTIVE),
-      "defaults: the Interactive preset, the individual settings equal to its (6 rays, density 2, "
-      "offset 0.5, rotate)")
+      == (LAO.RAYS_14, 1.0, 0.5, LAO.NONE, LAO.INTERACTIVE),
+      "defaults: the Interactive preset, the individual settings equal to its (14 rays, density 1, "
+      "offset 0.5, no variation)")
 errors = []
 for name, value, limit in (("StartOffset", 1.5, "[0, 1)"), ("SampleDensity", -1.0, "0.001 to 1000"),
                            ("RayVariation", 7, "unknown ray variation"),
@@ -334,7 +334,7 @@ direct.SetRayVariation(LAO.ROTATE)
 direct.Update()
 p = parameters(direct.GetOutput())
 check((direct.GetStartOffset(), direct.GetRayVariation(), direct.GetSampleDensity()) ==
-      (0.5, LAO.ROTATE, 2.0) and (p["StartOffset"], p["RayVariation"], p["QualityPreset"]) ==
+      (0.5, LAO.ROTATE, 1.0) and (p["StartOffset"], p["RayVariation"], p["QualityPreset"]) ==
       (0.5, LAO.ROTATE, LAO.CUSTOM) and direct.GetPrecomputeCount() == 2,
       "forwarded StartOffset and RayVariation reach the internal LAO")
 

@@ -923,12 +923,10 @@ void MatterCalibration(const Options& o)
       m->median[0][1], m->median[0][2], m->median[0][3], m->median[1][0], m->median[1][1],
       m->median[1][2], m->median[1][3]);
   CAO_EXPECT(cal.topFace >= 0.95, "the open face from above: %.3f of AO off", cal.topFace);
-  // The slot: the 0.70 holds for Balanced (measured 0.65); the
-  // accurate LAO (Reference) measured 0.70 and the default's 6
-  // axis-aligned rays, which see the sky along the slot and across its
-  // width, 0.75: a visible darkening each, bounded at 0.75 and 0.80, the
-  // accuracy trade-off the presets exist for.
-  CAO_EXPECT(cal.slotFloor <= 0.80, "the slot's floor from above: %.3f of AO off", cal.slotFloor);
+  // The slot: at most 0.70 of AO off at the default (14 rays, measured
+  // 0.68; the former default's 6 rotated axes gave 0.75) and at Balanced
+  // (0.65); the accurate LAO (Reference) measured 0.70, bounded at 0.75.
+  CAO_EXPECT(cal.slotFloor <= 0.70, "the slot's floor from above: %.3f of AO off", cal.slotFloor);
   for (int preset : { vtkContextualAOVolumeMapper::BALANCED, vtkContextualAOVolumeMapper::REFERENCE })
   {
     MatterViews accurate;
@@ -970,9 +968,165 @@ void MatterCalibration(const Options& o)
     std::printf("wrote %s (raw LAO | half-space calibrated, from above, ambient only)\n", path.c_str());
 }
 
+/// Grain on flat faces: the block phantom with its slot and a raised L on
+/// its top face, four oblique views (elevation 45 degrees, perspective),
+/// shaded and ambient only. Over the pixels whose 5 x 5 neighbourhood is
+/// matter and flat in the shaded AO-off frame (luminance deviation under 2
+/// of 255: one face, no edge), the mean local RMS (5 x 5) of the grain, the
+/// luminance less its 3 x 3 mean, with AO on over that with AO off, the
+/// latter floored at 0.5 of 255 (an 8-bit frame's quantisation). `rotated`: the former default (6 axes
+/// rotated per voxel, 2 samples per voxel), whose 2x2x2 interleave showed
+/// as grain.
+bool GrainPhantom(const Options& o, bool rotated, double ratio[2][4], caotest::Image* shown)
+{
+  Scene s;
+  if (!s.Open(o.window))
+    return false;
+  SetPhantom(s, [](int i, int j, int k) {
+    const bool block = i >= 8 && i <= 55 && j >= 8 && j <= 55 && k <= 31;
+    const bool slot = i >= 30 && i <= 33 && k >= 16;
+    const bool marker = k >= 32 && k <= 34 && i >= 12 &&
+      ((i <= 16 && j >= 14 && j <= 40) || (i <= 24 && j >= 14 && j <= 18));
+    return (block && !slot) || marker;
+  }, 63.75, 255.0, 0.8, 0.9, 0.85, 0.7);
+  s.renderer->SetBackground(0.0, 0.0, 0.0);
+  s.window->SetSize(400, 400); // a few pixels per voxel, as a user sees a volume
+  if (rotated)
+  {
+    s.mapper->SetQualityPresetToCustom();
+    s.mapper->SetRayPattern(vtkContextualAOVolumeMapper::RAYS_6);
+    s.mapper->SetSampleDensity(2.0);
+    s.mapper->SetRayVariation(vtkContextualAOVolumeMapper::ROTATE);
+  }
+  vtkCamera* camera = s.renderer->GetActiveCamera();
+  const auto luminance = [](const caotest::Image& im) {
+    std::vector<double> l(static_cast<std::size_t>(im.width) * im.height);
+    for (std::size_t p = 0; p < l.size(); ++p)
+      l[p] = 0.2126 * im.rgb[3 * p] + 0.7152 * im.rgb[3 * p + 1] + 0.0722 * im.rgb[3 * p + 2];
+    return l;
+  };
+  constexpr int R = 2; // 5 x 5
+  for (int view = 0; view < 4; ++view)
+  {
+    const double azimuth = vtkMath::RadiansFromDegrees(30.0 + 90.0 * view);
+    camera->SetFocalPoint(31.5, 31.5, 16.0);
+    camera->SetPosition(31.5 + 110.0 * std::cos(azimuth), 31.5 + 110.0 * std::sin(azimuth), 126.0);
+    camera->SetViewUp(0.0, 0.0, 1.0);
+    s.renderer->ResetCameraClippingRange();
+    std::vector<char> flat;
+    for (int shade = 1; shade >= 0; --shade)
+    {
+      s.property->SetShade(shade);
+      s.mapper->SetAmbientOcclusion(false);
+      const caotest::Image offImage = s.Frame();
+      s.mapper->SetAmbientOcclusion(true);
+      const caotest::Image onImage = s.Frame();
+      if (shown && shade == 1 && view == 0)
+        *shown = onImage;
+      const std::vector<double> off = luminance(offImage), on = luminance(onImage);
+      const int w = offImage.width, h = offImage.height;
+      // Grain is what a 3 x 3 mean removes: the luminance less that mean
+      // (a smooth gradient of the AO, across a face towards a crevice,
+      // leaves nothing).
+      const auto highPass = [&](const std::vector<double>& l) {
+        std::vector<double> r(l.size(), 0.0);
+        for (int y = 1; y < h - 1; ++y)
+          for (int x = 1; x < w - 1; ++x)
+          {
+            double sum = 0.0;
+            for (int dy = -1; dy <= 1; ++dy)
+              for (int dx = -1; dx <= 1; ++dx)
+                sum += l[static_cast<std::size_t>(y + dy) * w + x + dx];
+            r[static_cast<std::size_t>(y) * w + x] = l[static_cast<std::size_t>(y) * w + x] - sum / 9.0;
+          }
+        return r;
+      };
+      const std::vector<double> offGrain = highPass(off), onGrain = highPass(on);
+      // The local deviation of `l` over 5 x 5, and the residual's RMS in `grain`.
+      const auto deviation = [&](const std::vector<double>& l, const std::vector<double>& residual,
+                               int x, int y, bool& matter, double& grain) {
+        double sum = 0.0, sum2 = 0.0, g2 = 0.0;
+        matter = true;
+        for (int dy = -R; dy <= R; ++dy)
+          for (int dx = -R; dx <= R; ++dx)
+          {
+            const std::size_t q = static_cast<std::size_t>(y + dy) * w + x + dx;
+            const double v = l[q];
+            matter = matter && off[q] > 20.0;
+            sum += v;
+            sum2 += v * v;
+            g2 += residual[q] * residual[q];
+          }
+        const double n = (2 * R + 1) * (2 * R + 1), mean = sum / n;
+        grain = std::sqrt(g2 / n);
+        return std::sqrt(std::max(0.0, sum2 / n - mean * mean));
+      };
+      if (shade == 1)
+        flat.assign(static_cast<std::size_t>(w) * h, 0);
+      double sumOn = 0.0, sumOff = 0.0;
+      long n = 0;
+      for (int y = R + 1; y < h - R - 1; ++y)
+        for (int x = R + 1; x < w - R - 1; ++x)
+        {
+          bool matter = false;
+          double gOff = 0.0, gOn = 0.0;
+          const double dOff = deviation(off, offGrain, x, y, matter, gOff);
+          if (shade == 1)
+            flat[static_cast<std::size_t>(y) * w + x] = matter && dOff < 2.0;
+          if (!flat[static_cast<std::size_t>(y) * w + x])
+            continue;
+          deviation(on, onGrain, x, y, matter, gOn);
+          sumOff += gOff;
+          sumOn += gOn;
+          ++n;
+        }
+      ratio[shade][view] = n > 0 ? (sumOn / n) / std::max(sumOff / n, 0.5) : 0.0;
+    }
+  }
+  return true;
+}
+
+void Grain(const Options& o)
+{
+  double now[2][4], before[2][4];
+  caotest::Image nowImage, beforeImage;
+  if (!GrainPhantom(o, false, now, &nowImage) || !GrainPhantom(o, true, before, &beforeImage))
+    return;
+  double worst = 0.0, worstBefore = 0.0;
+  for (int shade = 0; shade < 2; ++shade)
+  {
+    std::printf("grain on flat faces, AO on / AO off local luminance deviation, %s, 4 views: "
+                "default %.2f %.2f %.2f %.2f; 6 axes rotated per voxel %.2f %.2f %.2f %.2f\n",
+      shade ? "shaded" : "ambient only", now[shade][0], now[shade][1], now[shade][2],
+      now[shade][3], before[shade][0], before[shade][1], before[shade][2], before[shade][3]);
+    for (int view = 0; view < 4; ++view)
+    {
+      worst = std::max(worst, now[shade][view]);
+      worstBefore = std::max(worstBefore, before[shade][view]);
+    }
+  }
+  CAO_EXPECT(worst > 0.0 && worst <= 1.2, "grain at the default: %.2f x AO off's deviation", worst);
+  // Negative control: the measure sees the interleave's grain.
+  CAO_EXPECT(worstBefore > 1.2, "the rotated 6 axes should show grain: %.2f", worstBefore);
+  caotest::Image row;
+  row.width = 2 * nowImage.width;
+  row.height = nowImage.height;
+  row.rgb.resize(static_cast<std::size_t>(row.width) * row.height * 3);
+  const caotest::Image* parts[2] = { &beforeImage, &nowImage };
+  for (int part = 0; part < 2; ++part)
+    for (int y = 0; y < row.height; ++y)
+      std::memcpy(&row.rgb[3 * (static_cast<std::size_t>(y) * row.width + part * nowImage.width)],
+        &parts[part]->rgb[3 * static_cast<std::size_t>(y) * nowImage.width], 3 * nowImage.width);
+  std::string error;
+  const std::string path = o.output + "/grain-" + o.window + ".png";
+  if (caotest::WritePNG(row, path, error))
+    std::printf("wrote %s (6 axes rotated per voxel | the default, shaded, AO on)\n", path.c_str());
+}
+
 void Calibration(const Options& o)
 {
   MatterCalibration(o);
+  Grain(o);
   // A slot 3 voxels wide (3/8 of the default 8-voxel reach) and 24 deep.
   // How much a slot darkens depends on its width against the reach: the
   // table below measures widths 2, 3 and 4 at each preset (the accurate
@@ -1039,11 +1193,17 @@ void Calibration(const Options& o)
           "the accurate LAO (Reference) should agree: top %.3f, slot %.3f", q.top / qTop,
           q.slot / qSlot);
     }
-    // The default's picture follows the accurate one at every width.
+    // The default's picture follows the accurate one at every width:
+    // within 0.1, and 0.12 for the 2-voxel slot, where 14 fixed rays see
+    // its sky through 2 directions against Reference's 100 (measured 0.117;
+    // Balanced, 14 rays at 4 samples per voxel, 0.140, so the directions,
+    // not the step, set it).
+    const double agree = width == 2 ? 0.12 : 0.1;
     CAO_EXPECT(std::fabs(slotAt[vtkContextualAOVolumeMapper::INTERACTIVE] -
-                 slotAt[vtkContextualAOVolumeMapper::REFERENCE]) <= 0.1,
-      "slot %d wide: the default (%.3f) and Reference (%.3f) differ by more than 0.1", width,
-      slotAt[vtkContextualAOVolumeMapper::INTERACTIVE], slotAt[vtkContextualAOVolumeMapper::REFERENCE]);
+                 slotAt[vtkContextualAOVolumeMapper::REFERENCE]) <= agree,
+      "slot %d wide: the default (%.3f) and Reference (%.3f) differ by more than %.2f", width,
+      slotAt[vtkContextualAOVolumeMapper::INTERACTIVE], slotAt[vtkContextualAOVolumeMapper::REFERENCE],
+      agree);
   }
   // One sample per ray: every LAO is 1 (its only sample is never occluded),
   // so nothing darkens, calibrated or not (the calibration's range is empty).
