@@ -230,6 +230,12 @@ int vtkContextualAmbientOcclusion::FillInputPortInformation(int, vtkInformation*
 int vtkContextualAmbientOcclusion::RequestInformation(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  const std::string tooLarge = vtkCAO::WholeExtentTooLarge(inputVector[0]->GetInformationObject(0));
+  if (!tooLarge.empty())
+  {
+    vtkErrorMacro(<< tooLarge);
+    return 0;
+  }
   vtkCAO::ProduceSubExtents(
     inputVector[0]->GetInformationObject(0), outputVector->GetInformationObject(0));
   return 1;
@@ -245,6 +251,11 @@ int vtkContextualAmbientOcclusion::RequestUpdateExtent(
   // the whole extent.
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (!vtkCAO::WholeExtentTooLarge(inInfo).empty())
+  {
+    vtkCAO::RequestNothing(inInfo);
+    return 0;
+  }
   if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
   {
     double spacing[3] = { 1.0, 1.0, 1.0 };

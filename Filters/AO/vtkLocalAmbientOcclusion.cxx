@@ -223,6 +223,12 @@ int vtkLocalAmbientOcclusion::RequestInformation(
 {
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  const std::string tooLarge = vtkCAO::WholeExtentTooLarge(inInfo);
+  if (!tooLarge.empty())
+  {
+    vtkErrorMacro(<< tooLarge);
+    return 0;
+  }
   vtkCAO::ProduceSubExtents(inInfo, outInfo);
   double spacing[3] = { 1.0, 1.0, 1.0 };
   if (inInfo->Has(vtkDataObject::SPACING()))
@@ -240,6 +246,11 @@ int vtkLocalAmbientOcclusion::RequestUpdateExtent(
   // extent. A piece's AO then equals the serial AO of the same voxels.
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (!vtkCAO::WholeExtentTooLarge(inInfo).empty())
+  {
+    vtkCAO::RequestNothing(inInfo);
+    return 0;
+  }
   double spacing[3] = { 1.0, 1.0, 1.0 };
   if (inInfo->Has(vtkDataObject::SPACING()))
     inInfo->Get(vtkDataObject::SPACING(), spacing);

@@ -197,6 +197,38 @@ inline void RequestGhostedExtent(vtkInformation* inInfo, vtkInformation* outInfo
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), request, 6);
 }
 
+/// Why an input whose information declares `inInfo`'s whole extent cannot
+/// be held (empty when it can): more voxels than the kernels index,
+/// 2^31 - 1. Checked in RequestInformation, before any upstream reader
+/// allocates what its header claims (ParaView's own readers included: a
+/// header of 100000^3 voxels then fails here instead of aborting there).
+inline std::string WholeExtentTooLarge(vtkInformation* inInfo)
+{
+  if (!inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+    return std::string();
+  int e[6];
+  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), e);
+  double voxels = 1.0;
+  for (int d = 0; d < 3; ++d)
+    voxels *= std::max(0.0, static_cast<double>(e[2 * d + 1]) - e[2 * d] + 1.0);
+  if (voxels <= 2147483647.0)
+    return std::string();
+  return "the input declares " + std::to_string(static_cast<long long>(e[1]) - e[0] + 1) + " x " +
+    std::to_string(static_cast<long long>(e[3]) - e[2] + 1) + " x " +
+    std::to_string(static_cast<long long>(e[5]) - e[4] + 1) +
+    " voxels, above the limit of 2^31-1 (2147483647); refused before anything upstream reads it";
+}
+
+/// In RequestUpdateExtent, after WholeExtentTooLarge: ask the input for
+/// nothing, so that an upstream reader whose header claims too much
+/// allocates nothing even when the pipeline runs its data pass anyway (as
+/// ParaView's does after a failed information pass).
+inline void RequestNothing(vtkInformation* inInfo)
+{
+  static const int empty[6] = { 0, -1, 0, -1, 0, -1 };
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), empty, 6);
+}
+
 /// The output's information: the input's whole extent, any sub-extent of
 /// which can be produced (from a ghosted input extent), so that parallel
 /// pipelines split the volume into pieces here.

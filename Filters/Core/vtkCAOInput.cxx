@@ -7,6 +7,7 @@
 #include "vtkCommand.h"
 #include "vtkCubeSource.h"
 #include "vtkDataObject.h"
+#include "caoFileChecks.h"
 #include "vtkDataSetReader.h"
 #include "vtkExecutive.h"
 #include "vtkImageData.h"
@@ -497,7 +498,7 @@ bool Run(Reader* reader, const std::string& path, std::string& error)
 
 vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path, std::string& error)
 {
-  if (!Readable(path, error))
+  if (!Readable(path, error) || !cao::CheckFileByExtension(path, error))
     return nullptr;
   const std::string p = Lower(path);
   vtkSmartPointer<vtkImageData> image;
@@ -747,7 +748,7 @@ bool CheckPLY(const std::string& path, std::string& error)
 
 vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, std::string& error)
 {
-  if (!Readable(path, error))
+  if (!Readable(path, error) || !cao::CheckFileByExtension(path, error))
     return nullptr;
   const std::string p = Lower(path);
   vtkSmartPointer<vtkAlgorithm> reader;

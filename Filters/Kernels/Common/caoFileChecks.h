@@ -1,0 +1,60 @@
+/**
+ * caoFileChecks — a file's header against its own contents, before a reader
+ * allocates what the header claims. No VTK.
+ *
+ * VTK 9.2's readers trust their headers: an .slc, .nii or .vti claiming
+ * 100000^3 voxels, or a binary STL claiming 10^9 triangles, aborts inside
+ * the allocation (or fills gigabytes with zeros), and a corrupt SLC slice
+ * overruns vtkSLCReader's decoder. Each check reads the header (and, for
+ * SLC, walks every slice), and returns false with one line that names the
+ * file, the claim and the limit:
+ *  - the kernels' voxel limit, 2^31 - 1 (MaxFileVoxels);
+ *  - what the file can hold: raw data needs its bytes; compressed data
+ *    cannot expand by more than its format allows (MaxCompressionRatio).
+ * A file whose sizes cannot be known up front passes; the reader then
+ * reports what it finds.
+ *
+ * Used by `cao` (vtkCAOInput) and by the plugin's readers
+ * (vtkCAOSLCReader, vtkCAONIfTIReader), so the CLI and ParaView refuse the
+ * same files with the same words.
+ */
+#ifndef caoFileChecks_h
+#define caoFileChecks_h
+
+#include <cstdint>
+#include <string>
+
+namespace cao
+{
+/// The most voxels (points) a volume may have: the kernels index with int.
+constexpr std::int64_t MaxFileVoxels = 2147483647;
+
+/// The most a compressed stream can expand: deflate's bound (1032:1) with
+/// room for the other compressors VTK writes (LZ4 at most 255:1; LZMA's
+/// bound is higher, so LZMA data is only held to the voxel limit).
+constexpr double MaxCompressionRatio = 1032.0;
+
+/// The file's size in bytes, or -1 when it cannot be opened.
+std::int64_t FileBytes(const std::string& path);
+
+/// An SLC volume: magic, sizes, icon and every slice (raw or run-length
+/// encoded, each run inside its slice and its stream).
+bool CheckSLCFile(const std::string& path, std::string& error);
+
+/// A NIfTI-1 or NIfTI-2 volume (.nii, or .nii.gz read through zlib): the
+/// dimensions and bit depth against the data after vox_offset.
+bool CheckNIfTIFile(const std::string& path, std::string& error);
+
+/// A binary STL's triangle count against its size (ASCII STL passes).
+bool CheckSTLFile(const std::string& path, std::string& error);
+
+/// A VTK XML image (.vti): its WholeExtent against the voxel limit, and,
+/// for inline data, against the bytes the file holds.
+bool CheckVTIFile(const std::string& path, std::string& error);
+
+/// The check for `path` by its extension (.slc, .nii, .nii.gz, .stl, .vti;
+/// other extensions pass).
+bool CheckFileByExtension(const std::string& path, std::string& error);
+}
+
+#endif
