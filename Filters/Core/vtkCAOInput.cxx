@@ -817,7 +817,9 @@ double DefaultShapeSize(vtkImageData* volume)
   double smallest = HUGE_VAL;
   for (int d = 0; d < 3; ++d)
     smallest = std::min(smallest, dims[d] * std::fabs(spacing[d]));
-  return std::max(0.25 * smallest, 1e-6);
+  // A quarter of the smallest extent, however small the spacing (a floor
+  // in absolute units made every voxel of a volume of spacing 1e-9 clipped).
+  return smallest > 0.0 && std::isfinite(smallest) ? 0.25 * smallest : 1.0;
 }
 
 namespace

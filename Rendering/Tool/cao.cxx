@@ -156,6 +156,7 @@ struct Options
   double direction[3] = { 0, 0, 1 };
   int samples = 0, component = -1, threads = 0, path = 24, layers = 2, aa = 16;
   bool json = false, verify = false, verifyGeometry = false, quiet = false;
+  bool shapeGiven = false; // --shape on the command line
   int backend = 0;                    // vtkLocalAmbientOcclusion::AUTO
   std::vector<int> backends{ 0 };     // carve: each is run, side by side
 };
@@ -318,7 +319,10 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
     else if (a == "--array")
       ok = value(o.arrayName);
     else if (a == "--shape")
+    {
       ok = value(o.shape);
+      o.shapeGiven = true;
+    }
     else if (a == "--mesh")
       ok = value(o.mesh);
     else if (a == "--pose")
@@ -383,6 +387,12 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
     error = "missing VOLUME";
     return false;
   }
+  if (o.shapeGiven && !o.mesh.empty())
+  {
+    error = "--shape and --mesh both name the clip: give one (--shape " + o.shape + ", --mesh " +
+      o.mesh + ")";
+    return false;
+  }
   if ((o.command == "lao" || o.command == "tf") && o.rays.size() != 1)
   {
     error = o.command + " takes a single ray pattern";
@@ -445,6 +455,9 @@ void BuildTransferFunction(const Options& o, vtkImageData* volume, vtkPiecewiseF
   double range[2] = { 0.0, 1.0 };
   if (s)
     s->GetRange(range, std::max(0, o.component));
+  if (s && range[0] == range[1])
+    std::cerr << "cao: warning: '" << o.volume << "' is constant (every voxel " << range[0]
+              << "): the default opacity map makes it transparent and every AO 1; give --opacity\n";
   caocli::DefaultOpacityRamp(range, tf);
 }
 

@@ -177,7 +177,8 @@ bool Parse(int argc, char* argv[], BenchOptions& o, std::string& error)
 {
   if (argc < 3 || std::string(argv[2]) != "accuracy")
   {
-    error = "the only benchmark is `cao bench accuracy`";
+    error = std::string("unknown benchmark") + (argc >= 3 ? " '" + std::string(argv[2]) + "'" : "") +
+      " (expected accuracy, surface, surface-frame or surface-scale: cao bench NAME --help)";
     return false;
   }
   for (int i = 3; i < argc; ++i)

@@ -467,6 +467,13 @@ int RunBenchSurface(int argc, char* argv[])
     return Fail(2, error + "\n" + BenchSurfaceUsage);
   SelectThreads(o.threads);
   ::mkdir(o.output.c_str(), 0755);
+  {
+    // Before the runs: an output folder that cannot be written is an error
+    // now, not a "wrote" at the end for files that are not there.
+    std::ofstream probe(o.output + "/surface.csv");
+    if (!probe)
+      return Fail(2, "-o '" + o.output + "': cannot write '" + o.output + "/surface.csv' there");
+  }
   std::vector<Row> rows;
   std::vector<std::string> notes;
   VCTGPU gpu;
@@ -890,15 +897,22 @@ int RunBenchSurface(int argc, char* argv[])
       first = false;
     }
   json << "]}\n";
+  csv.close();
+  json.close();
+  if (!csv || !json)
+    return Fail(1, "cannot write '" + o.output + "/surface.csv' and surface.json");
+  bool plotted = false;
   if (!points.empty())
   {
-    if (!WriteErrorTimePlot(points, { "vct (CPU)", "vtkSSAOPass (GL)", "vct (GL)", "hbao (CPU)", "vao (CPU)", "hbao (GL)",
+    plotted = WriteErrorTimePlot(points, { "vct (CPU)", "vtkSSAOPass (GL)", "vct (GL)", "hbao (CPU)", "vao (CPU)", "hbao (GL)",
                                       "vao (GL)", "vtkSSAOPass (GPU time)" },
           "Surface AO: RMSE against the ray-traced reference", "ms per frame", "RMSE",
-          o.output + "/surface.png", 900, 600, error))
+          o.output + "/surface.png", 900, 600, error);
+    if (!plotted)
       std::cout << "note: no plot: " << error << "\n";
   }
-  std::cout << "wrote " << o.output << "/surface.csv, surface.json, surface.png\n";
+  std::cout << "wrote " << o.output << "/surface.csv, surface.json"
+            << (plotted ? ", surface.png" : "") << "\n";
   return 0;
 }
 }

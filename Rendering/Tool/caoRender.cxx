@@ -36,6 +36,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -99,6 +100,7 @@ struct RenderOptions
   double azimuth = 30, elevation = 20, zoom = 1.4, reach = 0, strength = 1, size = 0,
          sampleDistance = 0;
   bool absolute = false, ao = true, shade = true, json = false, clip = true, full = false;
+  bool shapeGiven = false; // --shape on the command line
   LAOCommandLine lao; // --quality, --density, --offset, --variation
 };
 
@@ -203,7 +205,13 @@ bool Parse(int argc, char* argv[], RenderOptions& o, std::string& error)
     else if (a == "--no-shade")
       o.shade = false;
     else if (a == "--sample-distance")
+    {
       ok = number(o.sampleDistance, 0, 1e300);
+      if (ok && !(o.sampleDistance > 0.0))
+        return error = "--sample-distance is a positive length in world units (omit it for half a "
+                       "voxel)",
+               false;
+    }
     else if (a == "--window")
     {
       ok = value(o.window);
@@ -218,7 +226,10 @@ bool Parse(int argc, char* argv[], RenderOptions& o, std::string& error)
     else if (a == "--json")
       o.json = true;
     else if (a == "--shape")
+    {
       ok = value(o.shape);
+      o.shapeGiven = true;
+    }
     else if (a == "--size")
       ok = number(o.size, 1e-300, 1e300);
     else if (a == "--mesh")
@@ -260,6 +271,19 @@ bool Parse(int argc, char* argv[], RenderOptions& o, std::string& error)
     error = "missing VOLUME";
     return false;
   }
+  if (o.shapeGiven && !o.mesh.empty())
+  {
+    error = "--shape and --mesh both name the clip: give one (--shape " + o.shape + ", --mesh " +
+      o.mesh + ")";
+    return false;
+  }
+  if (!o.clip && (o.shapeGiven || !o.mesh.empty() || !o.poseTexts.empty() || !o.posesFile.empty()))
+  {
+    error = std::string("--no-clip renders the unclipped volume, but ") +
+      (o.shapeGiven ? "--shape" : !o.mesh.empty() ? "--mesh" : !o.poseTexts.empty() ? "--pose" : "--poses") +
+      " was given: drop one of them";
+    return false;
+  }
   caocli::FramePattern frames;
   if (!frames.Parse(o.output, error))
     return false;
@@ -287,7 +311,26 @@ int RunRender(int argc, char* argv[])
   if (!std::isfinite(range[0]) || !std::isfinite(range[1]))
     return Fail(2, "the scalars contain NaN or infinite values");
   if (!(range[1] > range[0]))
+  {
+    std::cerr << "cao: warning: '" << o.volume << "' is constant (every voxel " << range[0]
+              << "): the colour map spans " << range[0] << " to " << range[0] + 1.0
+              << " and the default opacity keeps nothing below a quarter of it, so the "
+                 "volume draws transparent\n";
     range[1] = range[0] + 1.0;
+  }
+  if (o.sampleDistance > 0.0)
+  {
+    const double* spacing = volume->GetSpacing();
+    const double smallest =
+      std::min({ std::fabs(spacing[0]), std::fabs(spacing[1]), std::fabs(spacing[2]) });
+    if (o.sampleDistance < smallest / 200.0)
+    {
+      std::ostringstream msg;
+      msg << "--sample-distance " << o.sampleDistance << " is below 1/200 of the smallest voxel "
+          << "spacing (" << smallest << "): at most 200 samples a voxel";
+      return Fail(2, msg.str());
+    }
+  }
 
   // The transfer function.
   vtkNew<vtkColorTransferFunction> color;

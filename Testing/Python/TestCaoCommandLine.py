@@ -466,5 +466,68 @@ expect_error(["tf", neghip, "--from", "0,0,255,0.8", "--to", "0,0,255"], 2, "pai
 expect_error(["tf", neghip, "--from", "0,0,255,0.8", "--to", "0,0,255,1", "--backend", "gl"], 2,
              "CPU", "tf on the GPU")
 
+# Silent results (the bad-input issue): each is now an error or a warning.
+from vtkmodules.vtkCommonDataModel import vtkImageData  # noqa: E402
+
+
+def write_volume(name, dims, spacing=(1.0, 1.0, 1.0), value=None):
+    im = vtkImageData()
+    im.SetDimensions(*dims)
+    im.SetSpacing(*spacing)
+    im.AllocateScalars(3, 1)  # unsigned char
+    a = vtk_to_numpy(im.GetPointData().GetScalars())
+    a[:] = value if value is not None else (np.arange(a.size) * 37 % 256)
+    w = vtkXMLImageDataWriter()
+    w.SetInputData(im)
+    w.SetFileName(os.path.join(tmp, name))
+    w.Write()
+    return os.path.join(tmp, name)
+
+
+# A volume one voxel thick is a slab: its in-plane rays see its matter, so
+# its AO is below 1 (the filters' hard-cases test has the exact value of an
+# opaque slab); reported once as exactly 1 everywhere.
+for dims in ((32, 32, 1), (1, 32, 32)):
+    flat = write_volume("flat_%d_%d_%d.vti" % dims, dims)
+    rc, out, err = run("lao", flat, "--json")
+    lo = json.loads(out)["ao_range"][0] if rc == 0 else 1.0
+    check(rc == 0 and lo < 0.9, f"lao on a {dims} slab darkens it (lowest AO {lo}): {err.strip()[:200]}")
+rc, out, err = run("lao", write_volume("thin.vti", (32, 32, 2)), "--json")
+check(rc == 0, f"a 32x32x2 volume runs: rc={rc} {err.strip()[:200]}")
+# Tiny spacing: the default sphere is a quarter of the volume's smallest
+# extent, not floored at 1e-6 (which clipped every voxel).
+tiny = write_volume("tiny.vti", (24, 24, 24), spacing=(1e-9, 1e-9, 1e-9))
+rc, out, err = run("carve", tiny, "--path", "1", "--json")
+t = json.loads(out) if rc == 0 else {}
+try:
+    clipped = t["runs"][0]["poses"][0]["counts"]["clipped"]
+except (KeyError, IndexError, TypeError):
+    clipped = -1
+check(rc == 0 and 0 < clipped < 24 ** 3,
+      f"spacing 1e-9: the default sphere clips part of the volume, not all ({clipped} of {24 ** 3}): "
+      f"{out.strip()[:200]} {err.strip()[:200]}")
+frame = os.path.join(tmp, "f_%d.png")
+expect_error(["render", neghip, "--sample-distance", "0", "-o", frame], 2, "positive length",
+             "render --sample-distance 0")
+expect_error(["render", neghip, "--sample-distance", "1e-9", "-o", frame], 2, "1/200 of the smallest",
+             "render --sample-distance 1e-9")
+expect_error(["render", neghip, "--shape", "cube", "--mesh", os.path.join(data, "Bunny.vtp"), "-o", frame],
+             2, "--shape and --mesh", "render --shape with --mesh")
+expect_error(["carve", neghip, "--shape", "cube", "--mesh", os.path.join(data, "Bunny.vtp")], 2,
+             "--shape and --mesh", "carve --shape with --mesh")
+expect_error(["render", neghip, "--no-clip", "--shape", "torus", "-o", frame], 2, "--no-clip",
+             "render --no-clip with --shape")
+const = write_volume("constant.vti", (16, 16, 16), value=7)
+rc, out, err = run("lao", const, "--json")
+check(rc == 0 and "warning" in err and "constant" in err,
+      f"a constant volume is read, with a warning that the default map hides it: {err.strip()[:200]}")
+rc, out, err = run("lao", thin := os.path.join(tmp, "thin.vti"), "--json")
+check(rc == 0 and "warning" not in err, f"negative control: no warning for a volume that varies: {err[:200]}")
+bad_dir = os.path.join(tmp, "not-a-folder")
+open(bad_dir, "w").close()
+rc, out, err = run("bench", "surface", os.path.join(data, "Bunny.vtp"), "--image", "32x32", "-o", bad_dir)
+check(rc != 0 and "cannot write" in err and "wrote" not in out,
+      f"bench surface -o to a place it cannot write: an error, no 'wrote': rc={rc} {err.strip()[:200]}")
+
 print(f"{passed} passed, {len(failures)} failed")
 sys.exit(1 if failures else 0)
