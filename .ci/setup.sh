@@ -22,8 +22,8 @@ packages=(
   xvfb xdotool
   # image regression tests: OpenImageIO's library (comparison) and idiff
   libopenimageio-dev openimageio-tools
-  # toolchain
-  cmake g++ ninja-build
+  # toolchain; clang for the libFuzzer targets of the file-header checks
+  cmake g++ ninja-build clang libclang-rt-14-dev
 )
 missing=()
 for p in "${packages[@]}"; do
