@@ -8,6 +8,9 @@
 #include "vtkCubeSource.h"
 #include "vtkDataObject.h"
 #include "caoFileChecks.h"
+
+#include <sys/stat.h>
+
 #include "vtkDataSetReader.h"
 #include "vtkExecutive.h"
 #include "vtkImageData.h"
@@ -470,10 +473,28 @@ bool CheckLegacyBinary(const std::string& path, std::string& error)
 
 bool Readable(const std::string& path, std::string& error)
 {
+  // Before any VTK reader, whose messages for these ("Error parsing XML in
+  // stream at line 1") name neither the file nor the reason.
+  struct stat info;
+  if (::stat(path.c_str(), &info) != 0)
+  {
+    error = "cannot open '" + path + "': no such file";
+    return false;
+  }
+  if (S_ISDIR(info.st_mode))
+  {
+    error = "cannot read '" + path + "': it is a directory";
+    return false;
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in)
   {
-    error = "cannot open '" + path + "'";
+    error = "cannot open '" + path + "': permission denied or not a regular file";
+    return false;
+  }
+  if (S_ISREG(info.st_mode) && info.st_size == 0)
+  {
+    error = "cannot read '" + path + "': the file is empty (0 bytes)";
     return false;
   }
   return true;

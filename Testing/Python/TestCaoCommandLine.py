@@ -131,6 +131,17 @@ wv.SetFileName(open_mesh)
 wv.Write()
 neghip = os.path.join(data, "neghip.slc")
 expect_error(["lao", os.path.join(tmp, "missing.vti")], 2, "cannot open", "missing file")
+# An empty file and a directory: our words, not VTK's XML parser's.
+empty_vti = os.path.join(tmp, "empty.vti")
+open(empty_vti, "w").close()
+os.makedirs(os.path.join(tmp, "folder.vti"), exist_ok=True)
+for args, words, what in ((["lao", empty_vti], "empty (0 bytes)", "an empty .vti"),
+                          (["lao", os.path.join(tmp, "folder.vti")], "is a directory", "a directory"),
+                          (["carve", neghip, "--mesh", empty_vti.replace(".vti", ".stl")], "no such file",
+                           "a missing mesh")):
+    rc, out, err = run(*args)
+    check(rc == 2 and words in err and "ERR|" not in err and "XML" not in err,
+          f"{what}: one clear line, no VTK output: rc={rc} {err.strip()[:200]!r}")
 expect_error(["lao", garbage], 2, "cannot read", "unreadable volume")
 expect_error(["lao", os.path.join(tmp, "poses.txt")], 2, "unknown volume format", "unknown format")
 expect_error(["lao", neghip, "--rays", "7"], 2, "bad ray pattern", "bad ray pattern")

@@ -733,6 +733,25 @@ void BadInput(const Options& o)
     kept->GetLastFrameStages().c_str());
 }
 
+/// Frames of one size side by side, left to right, written to `path`
+/// (for the eye); prints `what` when written.
+void WriteSideBySide(const std::vector<const caotest::Image*>& parts, const std::string& path,
+  const char* what)
+{
+  caotest::Image row;
+  const int w = parts.front()->width;
+  row.width = static_cast<int>(parts.size()) * w;
+  row.height = parts.front()->height;
+  row.rgb.resize(static_cast<std::size_t>(row.width) * row.height * 3);
+  for (std::size_t part = 0; part < parts.size(); ++part)
+    for (int y = 0; y < row.height; ++y)
+      std::memcpy(&row.rgb[3 * (static_cast<std::size_t>(y) * row.width + part * w)],
+        &parts[part]->rgb[3 * static_cast<std::size_t>(y) * w], 3 * static_cast<std::size_t>(w));
+  std::string error;
+  if (caotest::WritePNG(row, path, error))
+    std::printf("wrote %s (%s)\n", path.c_str(), what);
+}
+
 /// A 64^3 phantom in the scene: 255 where `matter` holds, else 0; opacity 0
 /// up to `clear`, a ramp to `full` at `solid` and beyond; one colour.
 void SetPhantom(Scene& s, const std::function<bool(int, int, int)>& matter, double clear,
@@ -953,19 +972,8 @@ void MatterCalibration(const Options& o)
   CAO_EXPECT(raw.topFace < 0.95 && worstRaw < 0.95,
     "the raw LAO should darken the open faces: %.3f from above, %.3f oblique", raw.topFace,
     worstRaw);
-  std::string error;
-  caotest::Image row;
-  row.width = 2 * calTop.width;
-  row.height = calTop.height;
-  row.rgb.resize(static_cast<std::size_t>(row.width) * row.height * 3);
-  const caotest::Image* parts[2] = { &rawTop, &calTop };
-  for (int part = 0; part < 2; ++part)
-    for (int y = 0; y < calTop.height; ++y)
-      std::memcpy(&row.rgb[3 * (static_cast<std::size_t>(y) * row.width + part * calTop.width)],
-        &parts[part]->rgb[3 * static_cast<std::size_t>(y) * calTop.width], 3 * calTop.width);
-  const std::string path = o.output + "/calibration-matter-" + o.window + ".png";
-  if (caotest::WritePNG(row, path, error))
-    std::printf("wrote %s (raw LAO | half-space calibrated, from above, ambient only)\n", path.c_str());
+  WriteSideBySide({ &rawTop, &calTop }, o.output + "/calibration-matter-" + o.window + ".png",
+    "raw LAO | half-space calibrated, from above, ambient only");
 }
 
 /// Grain on flat faces: the block phantom with its slot and a raised L on
@@ -1108,19 +1116,8 @@ void Grain(const Options& o)
   CAO_EXPECT(worst > 0.0 && worst <= 1.2, "grain at the default: %.2f x AO off's deviation", worst);
   // Negative control: the measure sees the interleave's grain.
   CAO_EXPECT(worstBefore > 1.2, "the rotated 6 axes should show grain: %.2f", worstBefore);
-  caotest::Image row;
-  row.width = 2 * nowImage.width;
-  row.height = nowImage.height;
-  row.rgb.resize(static_cast<std::size_t>(row.width) * row.height * 3);
-  const caotest::Image* parts[2] = { &beforeImage, &nowImage };
-  for (int part = 0; part < 2; ++part)
-    for (int y = 0; y < row.height; ++y)
-      std::memcpy(&row.rgb[3 * (static_cast<std::size_t>(y) * row.width + part * nowImage.width)],
-        &parts[part]->rgb[3 * static_cast<std::size_t>(y) * nowImage.width], 3 * nowImage.width);
-  std::string error;
-  const std::string path = o.output + "/grain-" + o.window + ".png";
-  if (caotest::WritePNG(row, path, error))
-    std::printf("wrote %s (6 axes rotated per voxel | the default, shaded, AO on)\n", path.c_str());
+  WriteSideBySide({ &beforeImage, &nowImage }, o.output + "/grain-" + o.window + ".png",
+    "6 axes rotated per voxel | the default, shaded, AO on");
 }
 
 void Calibration(const Options& o)
@@ -1215,19 +1212,8 @@ void Calibration(const Options& o)
     p.slot / slotOff);
   p.s.mapper->SetNumberOfSamples(0);
   // The three frames side by side, for the eye.
-  caotest::Image row;
-  row.width = 3 * off.width;
-  row.height = off.height;
-  row.rgb.resize(static_cast<std::size_t>(row.width) * row.height * 3);
-  const caotest::Image* parts[3] = { &off, &raw, &calibrated };
-  for (int part = 0; part < 3; ++part)
-    for (int y = 0; y < off.height; ++y)
-      std::memcpy(&row.rgb[3 * (static_cast<std::size_t>(y) * row.width + part * off.width)],
-        &parts[part]->rgb[3 * static_cast<std::size_t>(y) * off.width], 3 * off.width);
-  std::string error;
-  const std::string path = o.output + "/calibration-phantom-" + o.window + ".png";
-  if (caotest::WritePNG(row, path, error))
-    std::printf("wrote %s (AO off | raw LAO | half-space calibrated)\n", path.c_str());
+  WriteSideBySide({ &off, &raw, &calibrated },
+    o.output + "/calibration-phantom-" + o.window + ".png", "AO off | raw LAO | half-space calibrated");
 }
 
 /// Pixels of two frames of one size whose largest channel difference
