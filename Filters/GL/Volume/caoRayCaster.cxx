@@ -18,7 +18,11 @@ struct RayCaster::Impl
 {
   Context& Ctx;
   const Functions& gl;
-  Program program, upsample;
+  /// The ray-cast program per variant (AO on, its calibration on): each
+  /// compiles only the code its frames run (CAO_WITH_AO,
+  /// CAO_WITH_AO_CALIBRATION); `program` is the one in use.
+  Program variants[4], upsample;
+  Program* programInUse = nullptr;
   StageTimer timer{ 1 };
   // The target of a ray cast at one pixel in k x k: back and front outputs.
   GLuint lowFbo = 0, lowBack = 0, lowFront = 0;
@@ -148,7 +152,9 @@ struct RayCaster::Impl
         gl.DeleteBuffers(1, b);
       *b = 0;
     }
-    program.Release(gl);
+    for (Program& v : variants)
+      v.Release(gl);
+    programInUse = nullptr;
     timer.Release(gl);
     depthSize[0] = depthSize[1] = 0;
     std::fill(scalarDims, scalarDims + 3, 0);
@@ -336,10 +342,20 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
     return false;
   StateGuard guard(p.gl, p.External());
   const Functions& gl = p.gl;
-  if (!p.program.Valid() &&
-    !p.program.BuildRaster(
-      gl, { caoRayCastVS_glsl }, { caoClipTest_glsl, caoRayCastFS_glsl }, {}, error))
+  const int flags = params.dims.w;
+  const bool withAO = (flags & layout::CAO_RENDER_AO) != 0;
+  const bool withCalibration = withAO && (flags & layout::CAO_RENDER_AO_CALIBRATED) != 0;
+  Program& program = p.variants[(withAO ? 1 : 0) + (withCalibration ? 2 : 0)];
+  Defines defines;
+  if (withAO)
+    defines.emplace_back("CAO_WITH_AO", "1");
+  if (withCalibration)
+    defines.emplace_back("CAO_WITH_AO_CALIBRATION", "1");
+  if (!program.Valid() &&
+    !program.BuildRaster(
+      gl, { caoRayCastVS_glsl }, { caoClipTest_glsl, caoRayCastFS_glsl }, defines, error))
     return false;
+  p.programInUse = &program;
   const int k = std::max(1, std::min(p.options.imageSampleDistance, MaximumImageSampleDistance));
   if (k > 1 && !p.upsample.Valid() &&
     !p.upsample.BuildRaster(gl, { caoRayCastVS_glsl }, { caoUpsampleFS_glsl }, {}, error))
@@ -415,7 +431,7 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
       gl.BindTexture(GL_TEXTURE_2D, h[1]);
     }
   }
-  gl.UseProgram(p.program.Id());
+  gl.UseProgram(p.programInUse->Id());
   gl.BindVertexArray(p.vertexArray);
   gl.Disable(GL_DEPTH_TEST);
   gl.Disable(GL_CULL_FACE);
@@ -524,7 +540,7 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
       gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
       const int pixel[4] = { 0, 0, 1, 1 };
       scissor(pixel);
-      gl.UseProgram(p.program.Id());
+      gl.UseProgram(p.programInUse->Id());
       gl.DrawArrays(GL_TRIANGLES, 0, 3);
     }
     for (int i = 0; i < 8 && gl.GetError() != GL_NO_ERROR; ++i)
@@ -563,8 +579,9 @@ std::vector<std::pair<char, unsigned int>> RayCaster::ObjectNames() const
   for (GLuint b : { p.block, p.spreadBlock })
     if (b)
       names.emplace_back('b', b);
-  if (p.program.Valid())
-    names.emplace_back('p', p.program.Id());
+  for (const Program& v : p.variants)
+    if (v.Valid())
+      names.emplace_back('p', v.Id());
   for (GLuint q : p.timer.Names())
     if (q)
       names.emplace_back('q', q);
@@ -596,7 +613,9 @@ void RayCaster::AbandonGraphicsResources()
     *t = 0;
   p.lowSize[0] = p.lowSize[1] = 0;
   std::fill(p.prepared, p.prepared + 4, false);
-  p.program.Abandon();
+  for (Program& v : p.variants)
+    v.Abandon();
+  p.programInUse = nullptr;
   p.upsample.Abandon();
   p.timer.Abandon();
   p.viewGeneration = 0;

@@ -217,6 +217,21 @@ float VoxelAO(vec3 p, bool clipped, bool calibrated, float inMatter, out float d
   return range > 1e-6 ? clamp(1.0 - (open - ao) / range, 0.0, 1.0) : 1.0;
 }
 
+/// The program is specialised per variant (RayCaster): without
+/// CAO_WITH_AO or CAO_WITH_AO_CALIBRATION the code that only those frames
+/// run is not compiled (a constant false removes it), so a frame with AO
+/// off or uncalibrated runs a smaller program.
+#ifdef CAO_WITH_AO
+const bool CAO_AO_COMPILED = true;
+#else
+const bool CAO_AO_COMPILED = false;
+#endif
+#ifdef CAO_WITH_AO_CALIBRATION
+const bool CAO_CALIBRATION_COMPILED = true;
+#else
+const bool CAO_CALIBRATION_COMPILED = false;
+#endif
+
 /// Whether the clip removes the sample at index-space point p.
 bool Removed(vec3 p, int flags)
 {
@@ -301,7 +316,7 @@ vec4 CastRay(float tFrom, float tTo, bool inclusive)
   // that clear matter in front of dense matter counts for little).
   float depthBefore = 0.0, muBefore = 1.0;
   float stepVoxels = step * length(dir);
-  if ((flags & (CAO_RENDER_AO | CAO_RENDER_AO_CALIBRATED)) ==
+  if (CAO_CALIBRATION_COMPILED && (flags & (CAO_RENDER_AO | CAO_RENDER_AO_CALIBRATED)) ==
       (CAO_RENDER_AO | CAO_RENDER_AO_CALIBRATED) && k0 > 0.0)
     DepthBefore(k0, flags, stepVoxels, depthBefore, muBefore);
   // A segment that starts after the ray's first sample carries on from
@@ -358,10 +373,10 @@ vec4 CastRay(float tFrom, float tTo, bool inclusive)
       }
     }
     float ambient = 1.0;
-    if ((flags & CAO_RENDER_AO) != 0)
+    if (CAO_AO_COMPILED && (flags & CAO_RENDER_AO) != 0)
     {
       bool clipped = (flags & CAO_RENDER_CLIP) != 0;
-      bool calibrated = (flags & CAO_RENDER_AO_CALIBRATED) != 0;
+      bool calibrated = CAO_CALIBRATION_COMPILED && (flags & CAO_RENDER_AO_CALIBRATED) != 0;
       float mu = -log(max(1.0 - c.a, 1e-6));
       float past = max(depthBefore - 1.0, 0.0) * muBefore / mu;
       float inMatter = max(1.0, min(depthBefore, 1.0) + past + stepVoxels);
