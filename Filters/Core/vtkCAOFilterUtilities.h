@@ -211,7 +211,7 @@ inline std::string WholeExtentTooLarge(vtkInformation* inInfo)
   double voxels = 1.0;
   for (int d = 0; d < 3; ++d)
     voxels *= std::max(0.0, static_cast<double>(e[2 * d + 1]) - e[2 * d] + 1.0);
-  if (voxels <= 2147483647.0)
+  if (voxels <= static_cast<double>(cao::MaxVoxels))
     return std::string();
   return "the input declares " + std::to_string(static_cast<long long>(e[1]) - e[0] + 1) + " x " +
     std::to_string(static_cast<long long>(e[3]) - e[2] + 1) + " x " +

@@ -105,8 +105,8 @@ long long FileSize(const std::string& path)
   return in ? static_cast<long long>(in.tellg()) : -1;
 }
 
-/// The voxel limit of the kernels (2^31 - 1, cao::MaxVoxels), stated in errors.
-constexpr double MaxVolumeVoxels = 2147483647.0;
+/// The voxel limit of the kernels (2^31 - 1), stated in errors.
+constexpr double MaxVolumeVoxels = static_cast<double>(cao::MaxVoxels);
 
 /**
  * A MetaImage header's promise against its data, before any reader

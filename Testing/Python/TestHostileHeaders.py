@@ -128,7 +128,7 @@ def run(args):
 def refused(args, words, what):
     rc, out, err = run(args)
     lines = [l for l in err.strip().splitlines() if l.strip()]
-    check(rc not in (0,) and rc > 0 and len(lines) >= 1 and lines[0].startswith("cao: error:") and
+    check(rc > 0 and len(lines) >= 1 and lines[0].startswith("cao: error:") and
           all(w in lines[0] for w in words) and "Unable to allocate" not in err and "ERR|" not in err,
           "%s: refused with one clear line (rc=%d): %r" % (what, rc, lines[:2]))
 

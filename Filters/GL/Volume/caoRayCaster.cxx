@@ -20,9 +20,8 @@ struct RayCaster::Impl
   const Functions& gl;
   /// The ray-cast program per variant (AO on, its calibration on): each
   /// compiles only the code its frames run (CAO_WITH_AO,
-  /// CAO_WITH_AO_CALIBRATION); `program` is the one in use.
+  /// CAO_WITH_AO_CALIBRATION).
   Program variants[4], upsample;
-  Program* programInUse = nullptr;
   StageTimer timer{ 1 };
   // The target of a ray cast at one pixel in k x k: back and front outputs.
   GLuint lowFbo = 0, lowBack = 0, lowFront = 0;
@@ -154,7 +153,6 @@ struct RayCaster::Impl
     }
     for (Program& v : variants)
       v.Release(gl);
-    programInUse = nullptr;
     timer.Release(gl);
     depthSize[0] = depthSize[1] = 0;
     std::fill(scalarDims, scalarDims + 3, 0);
@@ -355,7 +353,6 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
     !program.BuildRaster(
       gl, { caoRayCastVS_glsl }, { caoClipTest_glsl, caoRayCastFS_glsl }, defines, error))
     return false;
-  p.programInUse = &program;
   const int k = std::max(1, std::min(p.options.imageSampleDistance, MaximumImageSampleDistance));
   if (k > 1 && !p.upsample.Valid() &&
     !p.upsample.BuildRaster(gl, { caoRayCastVS_glsl }, { caoUpsampleFS_glsl }, {}, error))
@@ -431,7 +428,7 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
       gl.BindTexture(GL_TEXTURE_2D, h[1]);
     }
   }
-  gl.UseProgram(p.programInUse->Id());
+  gl.UseProgram(program.Id());
   gl.BindVertexArray(p.vertexArray);
   gl.Disable(GL_DEPTH_TEST);
   gl.Disable(GL_CULL_FACE);
@@ -540,7 +537,7 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
       gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
       const int pixel[4] = { 0, 0, 1, 1 };
       scissor(pixel);
-      gl.UseProgram(p.programInUse->Id());
+      gl.UseProgram(program.Id());
       gl.DrawArrays(GL_TRIANGLES, 0, 3);
     }
     for (int i = 0; i < 8 && gl.GetError() != GL_NO_ERROR; ++i)
@@ -615,7 +612,6 @@ void RayCaster::AbandonGraphicsResources()
   std::fill(p.prepared, p.prepared + 4, false);
   for (Program& v : p.variants)
     v.Abandon();
-  p.programInUse = nullptr;
   p.upsample.Abandon();
   p.timer.Abandon();
   p.viewGeneration = 0;

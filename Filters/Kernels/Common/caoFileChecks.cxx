@@ -59,7 +59,7 @@ bool VoxelLimit(const std::string& path, const std::vector<std::int64_t>& dims,
   const char* what, std::string& error)
 {
   const std::int64_t n = Product(dims);
-  if (n < 0 || n > MaxFileVoxels)
+  if (n < 0 || n > MaxVoxels)
   {
     error = "cannot read " + Quoted(path) + ": its header declares " + Shape(dims) + " " + what +
       ", above the limit of 2^31-1 (2147483647)";

@@ -8,7 +8,7 @@
  * overruns vtkSLCReader's decoder. Each check reads the header (and, for
  * SLC, walks every slice), and returns false with one line that names the
  * file, the claim and the limit:
- *  - the kernels' voxel limit, 2^31 - 1 (MaxFileVoxels);
+ *  - the kernels' voxel limit, 2^31 - 1 (MaxVoxels, caoMemory.h);
  *  - what the file can hold: raw data needs its bytes; compressed data
  *    cannot expand by more than its format allows (MaxCompressionRatio).
  * A file whose sizes cannot be known up front passes; the reader then
@@ -21,14 +21,13 @@
 #ifndef caoFileChecks_h
 #define caoFileChecks_h
 
+#include "caoMemory.h" // MaxVoxels
+
 #include <cstdint>
 #include <string>
 
 namespace cao
 {
-/// The most voxels (points) a volume may have: the kernels index with int.
-constexpr std::int64_t MaxFileVoxels = 2147483647;
-
 /// The most a compressed stream can expand: deflate's bound (1032:1) with
 /// room for the other compressors VTK writes (LZ4 at most 255:1; LZMA's
 /// bound is higher, so LZMA data is only held to the voxel limit).

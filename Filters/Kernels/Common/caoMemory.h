@@ -13,9 +13,14 @@
 #define caoMemory_h
 
 #include <cstddef>
+#include <cstdint>
 
 namespace cao
 {
+/// Largest volume the kernels index with 32-bit strides (GPU-compatible),
+/// 2^31 - 1 voxels: the limit every reader check and filter states.
+constexpr std::int64_t MaxVoxels = (std::int64_t(1) << 31) - 1;
+
 /// Advise the kernel to back [data, data + bytes) with huge pages (the
 /// 2 MiB-aligned part of it; nothing below 4 MiB). Returns whether it did.
 bool AdviseHugePages(void* data, std::size_t bytes);

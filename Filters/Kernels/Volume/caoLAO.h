@@ -25,6 +25,7 @@
 #include "caoLAOSettings.h"
 #include "caoRayPattern.h"
 #include "caoGPULayout.h"
+#include "caoMemory.h" // MaxVoxels
 
 #include <algorithm>
 #include <cstdint>
@@ -68,9 +69,6 @@ struct LAOPlan
   int rays = 0;
   int samples = 0;
 };
-
-/// Largest volume the kernels index with 32-bit strides (GPU-compatible).
-constexpr std::int64_t MaxVoxels = (std::int64_t(1) << 31) - 1;
 
 /// Default number of samples for a reach: `density` per smallest voxel
 /// spacing, max(1, round(density * R / h_min)); above LAOLimits::MaxSamples
