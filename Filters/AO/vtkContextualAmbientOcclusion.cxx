@@ -65,7 +65,8 @@ struct PoseInputs
 struct PoseResult
 {
   cao::CategoryCounts counts;
-  std::int64_t classifiedVoxels = 0, restoredVoxels = 0, brickVoxels = -1, unchangedVoxels = -1;
+  std::int64_t classifiedVoxels = 0, restoredVoxels = 0, brickVoxels = -1, unchangedVoxels = -1,
+               centreVoxels = -1;
   std::int64_t recomputedAffected = -1; ///< b voxels marched (-1: every b voxel, the GPU)
   double classifyMs = 0, copyMs = 0, recomputeMs = 0, totalMs = 0;
   double fullMs = -1, maxDifference = -1;
@@ -425,13 +426,16 @@ bool vtkContextualAmbientOcclusion::Internals::RunCPU(
     // The maps' version: a new maps object, new contents or another mode.
     const std::uint64_t mapsVersion =
       (static_cast<std::uint64_t>(in.maps->GetMTime()) << 1) | (in.clipMaps.mode & 1);
+    // The maps' pixel sizes (local units): for the proof maps.
+    const double pixelSize[2] = { in.clipMaps.camera[12], in.clipMaps.camera[13] };
     ok = this->CPU.Update(volume, in.clip, in.view, mapsVersion, buffers, parallel, stats,
-      !vtkCAO::BrickClassificationDisabled());
+      !vtkCAO::BrickClassificationDisabled(), pixelSize);
     r.totalMs = vtkCAO::MillisecondsSince(start);
     r.counts = stats.counts;
     r.classifiedVoxels = stats.classifiedVoxels;
     r.restoredVoxels = stats.restoredVoxels;
     r.brickVoxels = stats.counts.byBrick;
+    r.centreVoxels = stats.counts.byCentre;
     r.unchangedVoxels = stats.counts.unchanged;
     r.classifyMs = stats.classifyMs + stats.narrowMs;
     r.recomputedAffected = stats.recomputedVoxels;
@@ -627,10 +631,10 @@ int vtkContextualAmbientOcclusion::RequestData(
     { r.classifyMs, r.copyMs, r.recomputeMs, r.totalMs });
   vtkCAO::AddFieldTuple(fd, "UpdateRegion",
     { "ClassifiedVoxels", "RestoredVoxels", "DecidedByBrick", "RecomputedAffected",
-      "UnchangedByBrick" },
+      "UnchangedByBrick", "DecidedByCentre" },
     { double(r.classifiedVoxels), double(r.restoredVoxels), double(r.brickVoxels),
       double(r.recomputedAffected >= 0 ? r.recomputedAffected : r.counts.affected),
-      double(r.unchangedVoxels) });
+      double(r.unchangedVoxels), double(r.centreVoxels) });
   if (this->Verify)
     vtkCAO::AddFieldTuple(fd, "Verification",
       { "MaxAbsDifference", "DifferingVoxels", "FullRecomputeMilliseconds" },

@@ -270,7 +270,15 @@ bool MakeClipParams(vtkImageData* volume, const ClipMaps& maps, vtkMatrix4x4* po
   cao::SetAntiAliasingSamples(clip, antiAliasingSamples);
   int boxMin[3], boxMax[3];
   const bool nonEmptyRegion = maps.region[0] <= maps.region[1];
-  if (nonEmptyRegion && cao::CandidateBox(affine, maps.region, dims, boxMin, boxMax))
+  cao::ClipMapsView view;
+  if (maps.arrays[0] && maps.arrays[1] && maps.arrays[2] && maps.arrays[3])
+    view = { maps.arrays[0]->GetPointer(0), maps.arrays[1]->GetPointer(0),
+      maps.arrays[2]->GetPointer(0), maps.arrays[3]->GetPointer(0) };
+  // The box of the maps' camera-space bounds, narrowed to the voxels near
+  // pixels that hold an interval (a turned shape fills far less than it).
+  if (nonEmptyRegion && cao::CandidateBox(affine, maps.region, dims, boxMin, boxMax) &&
+    (!view.front ||
+      cao::NarrowCandidateBox(affine, view, maps.width, maps.height, maps.layers, boxMin, boxMax)))
   {
     clip.boxMin = { boxMin[0], boxMin[1], boxMin[2], 0 };
     clip.boxMax = { boxMax[0], boxMax[1], boxMax[2], 0 };

@@ -62,6 +62,8 @@ inline void FillOutside(const layout::ClipParams& p, const float* opacity, float
     counts.clipped += end - begin;
 }
 
+constexpr float PosInfinity = std::numeric_limits<float>::infinity();
+
 inline std::uint32_t Bits(float f)
 {
   std::uint32_t u;
@@ -174,6 +176,195 @@ bool CandidateBox(const double M[12], const double box[6], const int dims[3], in
     boxMin[r] = static_cast<int>(std::max(0.0, l));
     boxMax[r] = static_cast<int>(std::min<double>(dims[r] - 1, u));
   }
+  return true;
+}
+
+bool NarrowCandidateBox(const double M[12], const ClipMapsView& maps, int width, int height,
+  int layers, int boxMin[3], int boxMax[3])
+{
+  if (width < 1 || height < 1 || layers < 1 || boxMin[0] > boxMax[0] || boxMin[1] > boxMax[1] ||
+    boxMin[2] > boxMax[2])
+    return false;
+  const double a = M[0], b = M[1], c = M[2], d = M[4], e = M[5], f = M[6], g = M[8], h = M[9],
+               k = M[10];
+  const double det = a * (e * k - f * h) - b * (d * k - f * g) + c * (d * h - e * g);
+  if (!(std::fabs(det) > 0.0) || !std::isfinite(det))
+    return true; // CandidateBox refuses these; keep the box as it is
+  const double inv[9] = { (e * k - f * h) / det, (c * h - b * k) / det, (b * f - c * e) / det,
+    (f * g - d * k) / det, (a * k - c * g) / det, (c * d - a * f) / det, (d * h - e * g) / det,
+    (b * g - a * h) / det, (a * e - b * d) / det };
+  const float* fronts[2] = { maps.front, maps.candFront };
+  const float* backs[2] = { maps.back, maps.candBack };
+  double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
+  double magnitude = 0.0; // of the camera coordinates met, for the rounding pad
+  bool any = false;
+  for (int py = 0; py < height; ++py)
+    for (int px = 0; px < width; ++px)
+    {
+      // The pixel's intervals, both sets and every layer, as one depth range.
+      float d0 = PosInfinity, d1 = -PosInfinity;
+      const std::size_t base = (static_cast<std::size_t>(py) * width + px) * layers;
+      for (int set = 0; set < 2; ++set)
+        for (int l = 0; l < layers; ++l)
+        {
+          const float fr = fronts[set][base + l], bk = backs[set][base + l];
+          if (fr <= bk) // NaN and empty intervals hold nothing
+          {
+            d0 = std::min(d0, fr);
+            d1 = std::max(d1, bk);
+          }
+        }
+      if (!(d0 <= d1))
+        continue;
+      const double q[3][2] = { { px - M[3], px + 1.0 - M[3] }, { py - M[7], py + 1.0 - M[7] },
+        { d0 - M[11], d1 - M[11] } };
+      if (!std::isfinite(q[2][0]) || !std::isfinite(q[2][1]))
+        return true; // an unbounded interval: keep the box
+      any = true;
+      magnitude = std::max({ magnitude, std::fabs(double(px + 1)), std::fabs(double(py + 1)),
+        std::fabs(double(d0)), std::fabs(double(d1)) });
+      for (int r = 0; r < 3; ++r)
+      {
+        double mn = 0.0, mx = 0.0;
+        for (int cc = 0; cc < 3; ++cc)
+        {
+          const double x0 = inv[3 * r + cc] * q[cc][0], x1 = inv[3 * r + cc] * q[cc][1];
+          mn += std::min(x0, x1);
+          mx += std::max(x0, x1);
+        }
+        lo[r] = std::min(lo[r], mn);
+        hi[r] = std::max(hi[r], mx);
+      }
+    }
+  if (!any)
+  {
+    boxMin[0] = boxMin[1] = boxMin[2] = 1;
+    boxMax[0] = boxMax[1] = boxMax[2] = 0;
+    return false;
+  }
+  for (int r = 0; r < 3; ++r)
+  {
+    // The point test evaluates the affine in float: a sample can land in a
+    // pixel or depth range a few ulps of the coordinates' magnitudes away.
+    const double rowNorm =
+      std::fabs(inv[3 * r]) + std::fabs(inv[3 * r + 1]) + std::fabs(inv[3 * r + 2]);
+    const double pad = 1e-5 * (magnitude + std::fabs(M[3]) + std::fabs(M[7]) + std::fabs(M[11])) * rowNorm;
+    const double l = std::floor(lo[r] - pad) - 1.0, u = std::ceil(hi[r] + pad) + 1.0;
+    if (!std::isfinite(l) || !std::isfinite(u))
+      return true;
+    boxMin[r] = std::max(boxMin[r], static_cast<int>(std::max<double>(l, boxMin[r])));
+    boxMax[r] = std::min(boxMax[r], static_cast<int>(std::min<double>(u, boxMax[r])));
+  }
+  if (boxMin[0] > boxMax[0] || boxMin[1] > boxMax[1] || boxMin[2] > boxMax[2])
+  {
+    boxMin[0] = boxMin[1] = boxMin[2] = 1;
+    boxMax[0] = boxMax[1] = boxMax[2] = 0;
+    return false;
+  }
+  return true;
+}
+
+double ProofMaps::SampleReach(const layout::ClipParams& clip, const double pixelSize[2])
+{
+  const double scale[3] = { pixelSize[0], pixelSize[1], 1.0 };
+  double reach = 0.0;
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const double d[3] = { corner & 1 ? 0.5 : -0.5, corner & 2 ? 0.5 : -0.5,
+      corner & 4 ? 0.5 : -0.5 };
+    double sum = 0.0;
+    for (int r = 0; r < 3; ++r)
+    {
+      const layout::vec4& m = clip.toCamera[r];
+      const double c = scale[r] * (double(m.x) * d[0] + double(m.y) * d[1] + double(m.z) * d[2]);
+      sum += c * c;
+    }
+    reach = std::max(reach, std::sqrt(sum));
+  }
+  return reach;
+}
+
+double ProofMaps::RoundingReach(
+  const layout::ClipParams& clip, const double pixelSize[2], const int dims[3])
+{
+  // Project sums four float terms in float: each operation rounds by at
+  // most 2^-24 of a partial sum, bounded by the terms' magnitudes at the
+  // volume's far corner (samples lie within half a voxel of it).
+  const double scale[3] = { pixelSize[0], pixelSize[1], 1.0 };
+  double bound = 0.0;
+  for (int r = 0; r < 3; ++r)
+  {
+    const layout::vec4& m = clip.toCamera[r];
+    const double magnitude = std::fabs(double(m.x)) * (dims[0] + 0.5) +
+      std::fabs(double(m.y)) * (dims[1] + 0.5) + std::fabs(double(m.z)) * (dims[2] + 0.5) +
+      std::fabs(double(m.w));
+    bound += scale[r] * 8.0 * std::ldexp(magnitude, -24);
+  }
+  return bound;
+}
+
+bool ProofMaps::Prepare(const layout::ClipParams& clip, const ClipMapsView& maps,
+  std::uint64_t mapsVersion, const double pixelSize[2], const int dims[3], View& view)
+{
+  if (!pixelSize || !(pixelSize[0] > 0.0) || !(pixelSize[1] > 0.0) || !maps.front ||
+    !maps.back || !maps.candFront || !maps.candBack || clip.map.x < 1 || clip.map.y < 1 ||
+    clip.map.z < 1)
+    return false;
+  const double reach = SampleReach(clip, pixelSize);
+  const double rounding = 2.0 * RoundingReach(clip, pixelSize, dims);
+  const double needed = reach + rounding;
+  if (!std::isfinite(needed) || !(needed > 0.0))
+    return false;
+  const float* layers[4] = { maps.front, maps.back, maps.candFront, maps.candBack };
+  const bool same = mapsVersion != 0 && mapsVersion == this->version &&
+    std::equal(layers, layers + 4, this->of) && this->clip.width == clip.map.x &&
+    this->clip.height == clip.map.y && this->clip.layers == clip.map.z;
+  if (!same || needed > this->radius || needed < 0.67 * this->radius)
+  {
+    // 10% of headroom: a pose whose scale moves a little reuses them. The
+    // brick radii scale with the voxel's (a brick spans 4 voxels, its
+    // centres 3), with the rounding bound added once.
+    const double grow = 1.1;
+    this->radius = grow * needed;
+    const double brickClipRadius = grow * (4.0 * reach + rounding);
+    const double brickCandRadius = grow * (3.0 * reach + rounding);
+    const std::size_t n = static_cast<std::size_t>(clip.map.x) * clip.map.y * clip.map.z;
+    ClipDepthMaps* copies[2] = { &this->clip, &this->cand };
+    for (int c = 0; c < 2; ++c)
+    {
+      copies[c]->Allocate(clip.map.x, clip.map.y, clip.map.z);
+      std::copy(layers[2 * c], layers[2 * c] + n, copies[c]->front.begin());
+      std::copy(layers[2 * c + 1], layers[2 * c + 1] + n, copies[c]->back.begin());
+    }
+    ClipCamera camera;
+    camera.pixelSize[0] = pixelSize[0];
+    camera.pixelSize[1] = pixelSize[1];
+    camera.width = clip.map.x;
+    camera.height = clip.map.y;
+    camera.layers = clip.map.z;
+    struct Job
+    {
+      const ClipDepthMaps* in;
+      double radius;
+      ClipDepthMaps* out;
+    };
+    const Job jobs[3] = { { &this->clip, this->radius, this->sample },
+      { &this->clip, brickClipRadius, this->brickClip }, { &this->cand, brickCandRadius, this->brickCand } };
+    for (const Job& job : jobs)
+    {
+      job.out[0].Allocate(clip.map.x, clip.map.y, clip.map.z);
+      job.out[1].Allocate(clip.map.x, clip.map.y, clip.map.z);
+      DilateErodeRows(*job.in, camera, job.radius, job.out[0], job.out[1], 0, clip.map.y);
+    }
+    this->version = mapsVersion;
+    std::copy(layers, layers + 4, this->of);
+    ++this->builds;
+  }
+  const auto viewOf = [](const ClipDepthMaps* m) {
+    return ClipMapsView{ m[0].front.data(), m[0].back.data(), m[1].front.data(),
+      m[1].back.data() };
+  };
+  view = { viewOf(this->sample), viewOf(this->brickClip), viewOf(this->brickCand) };
   return true;
 }
 
@@ -402,6 +593,40 @@ std::uint8_t ClassifyBrick(const layout::ClipParams& p, const ClipMapsTiles& til
   return candidate ? BrickUnaffected : BrickAffected;
 }
 
+/// ClassifyBrick from the brick's centre and the proof maps (ProofMaps):
+/// the same categories where they decide, BrickMixed where they do not.
+std::uint8_t ClassifyBrickByProof(
+  const layout::ClipParams& p, const ProofMaps::View& proof, int i0, int j0, int k0)
+{
+  const float h = 0.5f * (BrickSize - 1);
+  const Projection c = Project(p, static_cast<float>(i0) + h, static_cast<float>(j0) + h,
+    static_cast<float>(k0) + h);
+  if (!c.inMap)
+    return BrickMixed;
+  ClipMapsTiles::Coverage clip = ClipMapsTiles::Mixed;
+  if (!InLayers(p, proof.brickClip.front, proof.brickClip.back, c))
+    clip = ClipMapsTiles::None;
+  else if (InLayers(p, proof.brickClip.candFront, proof.brickClip.candBack, c))
+    clip = ClipMapsTiles::All;
+  if (clip == ClipMapsTiles::Mixed)
+    return BrickMixed;
+  const bool subtract = p.map.w == layout::CAO_MODE_SUBTRACT;
+  if (subtract && clip == ClipMapsTiles::All)
+    return BrickClipped;
+  if (!subtract && clip == ClipMapsTiles::None)
+    return BrickClipped;
+  bool candidate;
+  if (!InLayers(p, proof.brickCand.front, proof.brickCand.back, c))
+    candidate = false;
+  else if (InLayers(p, proof.brickCand.candFront, proof.brickCand.candBack, c))
+    candidate = true;
+  else
+    return BrickMixed | BrickClipUniform;
+  if (subtract)
+    return candidate ? BrickAffected : BrickUnaffected;
+  return candidate ? BrickUnaffected : BrickAffected;
+}
+
 /// Set on a brick of the layer (with its category) when `memory` says its
 /// voxels already hold that category: nothing to write.
 constexpr std::uint8_t BrickUnchanged = 0x80;
@@ -410,7 +635,7 @@ constexpr std::uint8_t BrickUnchanged = 0x80;
 void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMapsView& maps,
   const float* opacity, float* clipped, std::uint8_t* category, const int region[6], int zBegin,
   int zEnd, std::vector<std::int64_t>* affectedBySlice, CategoryCounts& counts,
-  const ClipMapsTiles* tiles, BrickMemory* memory)
+  const ClipMapsTiles* tiles, BrickMemory* memory, const ProofMaps::View* proof)
 {
   for (int k = zBegin; k < zEnd; ++k)
     affectedBySlice[k - zBegin].clear();
@@ -508,8 +733,14 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
         for (int bx = 0; bx < nbx; ++bx)
         {
           const int i0 = bx0 + bx * BrickSize, j0 = by0 + by * BrickSize;
-          std::uint8_t state = ClassifyBrick(p, *tiles, i0,
-            std::min(bx1, i0 + BrickSize - 1), j0, std::min(by1, j0 + BrickSize - 1), k0, k1);
+          std::uint8_t state = proof ? ClassifyBrickByProof(p, *proof, i0, j0, k0) : BrickMixed;
+          if ((state & ~BrickClipUniform) == BrickMixed)
+          {
+            const std::uint8_t byTiles = ClassifyBrick(p, *tiles, i0,
+              std::min(bx1, i0 + BrickSize - 1), j0, std::min(by1, j0 + BrickSize - 1), k0, k1);
+            if (byTiles != BrickMixed)
+              state = byTiles;
+          }
           if (memory)
           {
             std::uint8_t& held = memory->category[memory->Index(
@@ -615,26 +846,42 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
             category[v] = cat;
             continue;
           }
-          int inside = InLayers(p, maps.front, maps.back, centre) +
-            corner(lower, c0 + ci, cx, cy0, zLower) + corner(lower, c0 + ci + 1, cx + 1, cy0, zLower) +
-            corner(lower, c1 + ci, cx, cy1, zLower) + corner(lower, c1 + ci + 1, cx + 1, cy1, zLower) +
-            corner(upper, c0 + ci, cx, cy0, zUpper) + corner(upper, c0 + ci + 1, cx + 1, cy0, zUpper) +
-            corner(upper, c1 + ci, cx, cy1, zUpper) + corner(upper, c1 + ci + 1, cx + 1, cy1, zUpper);
           float coverage;
-          if (inside == 0)
+          if (proof && centre.inMap && !InLayers(p, proof->sample.front, proof->sample.back, centre))
+          {
+            // Outside the clip grown by the samples' reach: none is in it.
             coverage = 0.0f;
-          else if (inside == 9)
+            ++counts.byCentre;
+          }
+          else if (proof && centre.inMap &&
+            InLayers(p, proof->sample.candFront, proof->sample.candBack, centre))
+          {
+            // Inside it shrunk by that reach: every sample is in it.
             coverage = 1.0f;
+            ++counts.byCentre;
+          }
           else
           {
-            for (int n = 0; n < p.aa.x; ++n)
+            int inside = InLayers(p, maps.front, maps.back, centre) +
+              corner(lower, c0 + ci, cx, cy0, zLower) + corner(lower, c0 + ci + 1, cx + 1, cy0, zLower) +
+              corner(lower, c1 + ci, cx, cy1, zLower) + corner(lower, c1 + ci + 1, cx + 1, cy1, zLower) +
+              corner(upper, c0 + ci, cx, cy0, zUpper) + corner(upper, c0 + ci + 1, cx + 1, cy0, zUpper) +
+              corner(upper, c1 + ci, cx, cy1, zUpper) + corner(upper, c1 + ci + 1, cx + 1, cy1, zUpper);
+            if (inside == 0)
+              coverage = 0.0f;
+            else if (inside == 9)
+              coverage = 1.0f;
+            else
             {
-              const layout::vec4& o = p.aaOffsets[n];
-              inside += InLayers(p, maps.front, maps.back,
-                Project(p, static_cast<float>(i) + o.x, static_cast<float>(j) + o.y,
-                  static_cast<float>(k) + o.z));
+              for (int n = 0; n < p.aa.x; ++n)
+              {
+                const layout::vec4& o = p.aaOffsets[n];
+                inside += InLayers(p, maps.front, maps.back,
+                  Project(p, static_cast<float>(i) + o.x, static_cast<float>(j) + o.y,
+                    static_cast<float>(k) + o.z));
+              }
+              coverage = static_cast<float>(inside) / total;
             }
-            coverage = static_cast<float>(inside) / total;
           }
           std::uint8_t cat;
           if (subtract)

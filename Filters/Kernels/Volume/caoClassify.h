@@ -23,6 +23,7 @@
 #ifndef caoClassify_h
 #define caoClassify_h
 
+#include "caoClipDepthMaps.h"
 #include "caoGPULayout.h"
 
 #include <cstdint>
@@ -47,8 +48,12 @@ struct CategoryCounts
   /// Of those, the voxels of bricks (BrickMemory) that hold the category
   /// they held at the previous pose: nothing was written.
   std::int64_t unchanged = 0;
+  /// Of the voxels tested one by one, those decided from their centre alone
+  /// (the proof maps of ClassifyRegion) rather than from every sample.
+  std::int64_t byCentre = 0;
   void Add(const CategoryCounts& o)
   {
+    byCentre += o.byCentre;
     clipped += o.clipped;
     affected += o.affected;
     unaffected += o.unaffected;
@@ -187,6 +192,18 @@ void SetAntiAliasingSamples(layout::ClipParams& params, int extraSamples);
 bool CandidateBox(const double indexToCamera[12], const double cameraBox[6], const int dims[3],
   int boxMin[3], int boxMax[3]);
 
+/// Narrow a candidate box to the maps' contents: the voxels whose samples
+/// (within half a voxel of the centre) can map into a non-empty interval of
+/// either map set, i.e. into the prism [px, px+1] x [py, py+1] x [front,
+/// back] of a pixel that holds one. A shape turned against the volume's axes
+/// fills far less than the box of its camera-space bounds (a sphere turned
+/// by 45 degrees: about a third of it). The prisms' index-space bounds are
+/// taken in double, grown by the float evaluation error of the point test
+/// and by one voxel, and intersected with [boxMin, boxMax]. Returns false
+/// (the box is then empty) when no pixel holds an interval in the box.
+bool NarrowCandidateBox(const double indexToCamera[12], const ClipMapsView& maps, int width,
+  int height, int layers, int boxMin[3], int boxMax[3]);
+
 /// Inside test of a continuous index point against a set of layer maps.
 bool InsideClip(const layout::ClipParams& p, const float* front, const float* back, float x,
   float y, float z);
@@ -198,6 +215,54 @@ bool InsideClip(const layout::ClipParams& p, const float* front, const float* ba
 void ClassifySlices(const layout::ClipParams& p, const int dims[3], const ClipMapsView& maps,
   const float* opacity, float* clippedOpacity, std::uint8_t* category, int zBegin, int zEnd,
   std::vector<std::int64_t>& affected, CategoryCounts& counts);
+/**
+ * The proof maps of ClassifyRegion: layers dilated and eroded
+ * (DilateErodeRows) so that one point's test decides many samples. A point
+ * outside the layers dilated by r has no point within r inside them; a point
+ * inside a layer eroded by r has every point within r inside it.
+ *  - per voxel: the clip layers by the reach of a voxel's samples (centre,
+ *    corners, anti-aliasing samples: its cube, at most SampleReach from the
+ *    centre), so the centre decides the coverage away from the surface;
+ *  - per brick (BrickSize^3 voxels, from its centre): the clip layers by the
+ *    reach of the brick's samples (4 x SampleReach), and the candidate
+ *    layers by the reach of its voxels' centres (3 x SampleReach).
+ * Each radius is grown by twice RoundingReach (the float point test moves
+ * the deciding point and the samples). Built once per maps and radius.
+ */
+struct ProofMaps
+{
+  /// The largest distance (local units) from a voxel's centre to a point
+  /// of its cube under `clip`'s index-to-camera map, for pixels of
+  /// `pixelSize` local units.
+  static double SampleReach(const layout::ClipParams& clip, const double pixelSize[2]);
+  /// A bound on how far (local units) the float point test moves a point of
+  /// a volume of `dims` voxels from where it lies.
+  static double RoundingReach(
+    const layout::ClipParams& clip, const double pixelSize[2], const int dims[3]);
+
+  /// What ClassifyRegion reads; each ClipMapsView holds the dilated layers
+  /// in front/back and the eroded ones in candFront/candBack.
+  struct View
+  {
+    ClipMapsView sample;    ///< clip layers, per voxel
+    ClipMapsView brickClip; ///< clip layers, per brick
+    ClipMapsView brickCand; ///< candidate layers, per brick
+  };
+
+  /// The maps for `clip` (pixel sizes as the maps were made with; null: none,
+  /// false): rebuilt only when `version` or the layers change or the radius
+  /// needed leaves [0.67, 1] of the built one.
+  bool Prepare(const layout::ClipParams& clip, const ClipMapsView& maps, std::uint64_t version,
+    const double pixelSize[2], const int dims[3], View& view);
+
+  ClipDepthMaps clip, cand;                                  ///< copies of the layers
+  ClipDepthMaps sample[2], brickClip[2], brickCand[2];       ///< dilated, eroded
+  double radius = -1.0; ///< the per-voxel radius they were built for (local units)
+  std::uint64_t version = 0;
+  const float* of[4] = { nullptr, nullptr, nullptr, nullptr };
+  int builds = 0; ///< how many times they were built (tests)
+};
+
 /// ClassifySlices within `region` (x0, x1, y0, y1, z0, z1, inclusive, which
 /// must contain the candidate box) only: voxels outside it are not written
 /// and not counted. The contextual update classifies the union of this
@@ -211,10 +276,17 @@ void ClassifySlices(const layout::ClipParams& p, const int dims[3], const ClipMa
 /// each axis), `region` must equal it, and each call must cover whole
 /// layers of bricks: a brick decided uniform with the category it holds
 /// is not written, and `memory` is updated for every brick of the slices.
+/// With `proof` (ProofMaps), a voxel whose centre lies outside the clip
+/// dilated by its samples' reach, or inside it eroded, has every sample out
+/// of the clip or in it and is decided from its centre alone; a brick is
+/// decided from its centre likewise before the tiles are asked; the result
+/// is the same bit for bit.
 void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMapsView& maps,
   const float* opacity, float* clippedOpacity, std::uint8_t* category, const int region[6],
   int zBegin, int zEnd, std::vector<std::int64_t>* affectedBySlice, CategoryCounts& counts,
-  const ClipMapsTiles* tiles = nullptr, BrickMemory* memory = nullptr);
+  const ClipMapsTiles* tiles = nullptr, BrickMemory* memory = nullptr,
+  const ProofMaps::View* proof = nullptr);
+
 }
 
 #endif

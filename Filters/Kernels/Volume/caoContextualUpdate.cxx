@@ -39,7 +39,7 @@ void ContextualUpdate::Reset()
 
 bool ContextualUpdate::Update(const Volume& volume, const layout::ClipParams& clip,
   const ClipMapsView& maps, std::uint64_t mapsVersion, const Buffers& out,
-  const ParallelFor& parallel, Stats& stats, bool useTiles)
+  const ParallelFor& parallel, Stats& stats, bool useTiles, const double* pixelSize)
 {
   stats = Stats();
   const int* dims = volume.geometry.dims;
@@ -188,6 +188,14 @@ bool ContextualUpdate::Update(const Volume& volume, const layout::ClipParams& cl
     std::copy(of, of + 4, this->TilesOf);
   }
   const ClipMapsTiles* tiles = useTiles ? &this->Tiles : nullptr;
+  ProofMaps::View proofView;
+  const auto tp = std::chrono::steady_clock::now();
+  const int builds = this->Proof.builds;
+  const ProofMaps::View* proof = useTiles && pixelSize &&
+      this->Proof.Prepare(clip, maps, mapsVersion, pixelSize, dims, proofView)
+    ? &proofView
+    : nullptr;
+  stats.proofMs = this->Proof.builds != builds ? MillisecondsSince(tp) : 0.0;
   const int slabs = Empty(box) ? 0 : box[5] - box[4] + 1;
   const int groups = (slabs + BrickSize - 1) / BrickSize;
   std::mutex mutex;
@@ -197,7 +205,7 @@ bool ContextualUpdate::Update(const Volume& volume, const layout::ClipParams& cl
         const int zBegin = box[4] + static_cast<int>(b) * BrickSize;
         const int zEnd = std::min(box[4] + static_cast<int>(e) * BrickSize, box[5] + 1);
         ClassifyRegion(aligned, dims, maps, volume.opacity, out.clippedOpacity, out.category, box,
-          zBegin, zEnd, lists + zBegin, local, tiles, &memory);
+          zBegin, zEnd, lists + zBegin, local, tiles, &memory, proof);
         std::lock_guard<std::mutex> lock(mutex);
         counts.Add(local);
       }))

@@ -83,6 +83,7 @@ public:
     /// AO exactly); counts.affected is the paper's geometric b
     std::int64_t recomputedVoxels = 0;
     double narrowMs = 0; ///< the footprint test of the b voxels (per brick)
+    double proofMs = 0;  ///< building the proof maps (0 when reused)
     double classifyMs = 0, copyMs = 0, recomputeMs = 0;
   };
 
@@ -94,9 +95,12 @@ public:
   /// The maps' tile summaries (ClipMapsTiles) are rebuilt only then.
   /// `useTiles` false classifies sample by sample everywhere (same result).
   /// False when aborted (the buffers are then incomplete and the state reset).
+  /// `pixelSize`: the maps' pixel sizes in their local units (null: unknown);
+  /// with them (and `useTiles`), voxels near the clip surface are decided
+  /// from their centre where the proof maps allow (ProofMaps; same result).
   bool Update(const Volume& volume, const layout::ClipParams& clip, const ClipMapsView& maps,
     std::uint64_t mapsVersion, const Buffers& buffers, const ParallelFor& parallel, Stats& stats,
-    bool useTiles = true);
+    bool useTiles = true, const double* pixelSize = nullptr);
 
 
   /// The full recompute of the clipped volume (LAORange over every voxel)
@@ -117,6 +121,7 @@ private:
   /// after the pose, those marched (restored at the next pose).
   std::vector<std::vector<std::int64_t>> SliceLists;
   ClipMapsTiles Tiles;
+  ProofMaps Proof;
   std::uint64_t TilesVersion = 0;
   const float* TilesOf[4] = { nullptr, nullptr, nullptr, nullptr };
 };

@@ -19,8 +19,10 @@ voxels than the volume has (so the region logic is exercised), and bricks
 decide voxels at every pose inside the volume (so the brick path is).
 
 At every pose, the classification that decides provably uniform bricks at
-once (cao::ClipMapsTiles) equals testing every voxel sample by sample
-(CAO_CLASSIFY_PER_SAMPLE=1), bit for bit."""
+once (cao::ClipMapsTiles, and the brick proof maps of cao::ProofMaps) and
+voxels from their centre (the per-voxel proof maps) equals testing every
+voxel sample by sample (CAO_CLASSIFY_PER_SAMPLE=1, which decides nothing by
+brick or centre: checked), bit for bit."""
 import os
 import sys
 
@@ -142,6 +144,7 @@ previous = None
 small_regions = []
 small_unchanged = []
 bricks_used = []
+centres_used = []
 for i, (what, mesh, mode, aa, matrix) in enumerate(path):
     configure(kept, mesh, mode, aa, matrix)
     kept.Update()
@@ -166,11 +169,16 @@ for i, (what, mesh, mode, aa, matrix) in enumerate(path):
     check(field(slow_image, "UpdateRegion", 2) == 0,
           "pose %d: CAO_CLASSIFY_PER_SAMPLE=1 decided no voxel by brick (%d)"
           % (i, field(slow_image, "UpdateRegion", 2)))
+    check(field(slow_image, "UpdateRegion", 5) == 0,
+          "pose %d: CAO_CLASSIFY_PER_SAMPLE=1 decided no voxel from its centre (%d)"
+          % (i, field(slow_image, "UpdateRegion", 5)))
     by_brick = field(got, "UpdateRegion", 2)
+    by_centre = field(got, "UpdateRegion", 5)
     check(all(np.array_equal(a[n], slow[n]) for n in ARRAYS),
-          "pose %d: deciding %d voxels by brick gives the bits of testing every sample"
-          % (i, by_brick))
+          "pose %d: deciding %d voxels by brick and %d from their centre (proof maps) gives "
+          "the bits of testing every sample" % (i, by_brick, by_centre))
     bricks_used.append(by_brick)
+    centres_used.append(by_centre)
     if previous is not None:
         # Negative control: the previous pose's output is not this pose's.
         differs = any(not np.array_equal(previous[n], b[n]) for n in ARRAYS)
@@ -179,6 +187,9 @@ for i, (what, mesh, mode, aa, matrix) in enumerate(path):
     previous = a
 check(sum(1 for b in bricks_used if b > 0) >= len(path) - 1,
       "bricks decide voxels at the poses inside the volume: %s" % [int(b) for b in bricks_used])
+check(sum(1 for c in centres_used if c > 0) >= len(path) - 2,
+      "the proof maps decide voxels from their centre at the poses inside the volume: %s"
+      % [int(c) for c in centres_used])
 check(field(fresh(*path[0][1:]), "UpdateRegion", 0) == voxels,
       "a new filter classifies the whole volume (%d voxels)" % voxels)
 check(small_regions and max(small_regions) < voxels / 2,

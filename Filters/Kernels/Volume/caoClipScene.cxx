@@ -63,7 +63,7 @@ bool ClipScene::BuildSphere(
 }
 
 layout::ClipParams ClipScene::Pose(
-  const double c[3], double angle, const int dims[3], int mode, int aaSamples) const
+  const double c[3], double angle, const int dims[3], int mode, int aaSamples, bool narrow) const
 {
   // index x -> local q = R^T (x - c); camera u = (q - o).right / ps, etc.
   const double cs = std::cos(angle), sn = std::sin(angle);
@@ -90,7 +90,12 @@ layout::ClipParams ClipScene::Pose(
   clip.map = { camera.width, camera.height, camera.layers, mode };
   SetAntiAliasingSamples(clip, aaSamples);
   int lo[3], hi[3];
-  if (CandidateBox(affine, region, dims, lo, hi))
+  const ClipDepthMaps& cand = mode == layout::CAO_MODE_SUBTRACT ? dilated : eroded;
+  const ClipMapsView view{ maps.front.data(), maps.back.data(), cand.front.data(),
+    cand.back.data() };
+  if (CandidateBox(affine, region, dims, lo, hi) &&
+    (!narrow ||
+      NarrowCandidateBox(affine, view, camera.width, camera.height, camera.layers, lo, hi)))
   {
     clip.boxMin = { lo[0], lo[1], lo[2], 0 };
     clip.boxMax = { hi[0], hi[1], hi[2], 0 };

@@ -1,0 +1,189 @@
+// The classification's shortcuts give the bits of testing every sample of
+// every voxel (ClassifySlices), in subtraction and probing, for a sphere
+// turned about the maps' view axis and moved through, across and out of a
+// volume:
+//  1. the candidate box narrowed to the depth maps' contents
+//     (NarrowCandidateBox) against the box of the maps' camera-space bounds
+//     (CandidateBox alone); it holds fewer voxels once the shape is turned.
+//     Negative control: the narrowed box shrunk by a few voxels on every
+//     side it does not share with the volume changes the classification
+//     (the comparison sees a box that is too small, and the narrowed box is
+//     within those few voxels of the least box that is right);
+//  2. bricks decided by the tiles and the brick proof maps, voxels decided
+//     from their centre by the per-voxel proof maps (ClassifyRegion with
+//     ClipMapsTiles and ProofMaps). Negative controls: the bricks proven
+//     with the per-voxel maps (a quarter of the radius a brick's samples
+//     need), and the voxels with the clip layers themselves (radius 0),
+//     change the classification.
+#include "caoClassify.h"
+#include "caoClipScene.h"
+#include "caoTestUtilities.h"
+
+#include <algorithm>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace
+{
+struct Result
+{
+  std::vector<float> clipped;
+  std::vector<std::uint8_t> category;
+  cao::CategoryCounts counts;
+};
+
+Result Classify(const cao::layout::ClipParams& clip, const int dims[3],
+  const cao::ClipMapsView& view, const std::vector<float>& opacity)
+{
+  Result r;
+  r.clipped.assign(opacity.size(), -1.0f);
+  r.category.assign(opacity.size(), 255);
+  std::vector<std::int64_t> affected;
+  cao::ClassifySlices(clip, dims, view, opacity.data(), r.clipped.data(), r.category.data(), 0,
+    dims[2], affected, r.counts);
+  return r;
+}
+
+std::int64_t Differences(const Result& a, const Result& b)
+{
+  std::int64_t n = 0;
+  for (std::size_t v = 0; v < a.category.size(); ++v)
+    n += a.category[v] != b.category[v] ||
+      std::memcmp(&a.clipped[v], &b.clipped[v], sizeof(float)) != 0;
+  return n;
+}
+
+std::int64_t BoxVoxels(const cao::layout::ClipParams& c)
+{
+  if (c.boxMin.x > c.boxMax.x || c.boxMin.y > c.boxMax.y || c.boxMin.z > c.boxMax.z)
+    return 0;
+  return std::int64_t(c.boxMax.x - c.boxMin.x + 1) * (c.boxMax.y - c.boxMin.y + 1) *
+    (c.boxMax.z - c.boxMin.z + 1);
+}
+}
+
+int TestClassifyShortcuts(int, char*[])
+{
+  const int dims[3] = { 48, 44, 40 };
+  const std::size_t n = std::size_t(dims[0]) * dims[1] * dims[2];
+  std::vector<float> opacity(n);
+  for (std::size_t v = 0; v < n; ++v)
+    opacity[v] = 0.05f + 0.9f * static_cast<float>((v * 2654435761u) % 1000) / 1000.0f;
+
+  cao::ClipScene scene;
+  std::string error;
+  CAO_CHECK(scene.BuildSphere(10.0, 0.75, 2, 4.0, error), "%s", error.c_str());
+  // Centre, angle about the view axis: inside, turned by 45 degrees, across
+  // a face, at a corner, covering most of the volume, outside it.
+  const double path[][4] = { { 24, 22, 20, 0.0 }, { 24, 22, 20, 0.785398 }, { 20, 18, 16, 0.4 },
+    { -6, 22, 20, 0.9 }, { 47.5, 43.5, 39.5, 0.3 }, { 0.5, 0.5, 0.5, 2.0 }, { 100, 100, 100, 0.0 },
+    { 30, 25, 12, 1.1 } };
+  int tooSmallSeen = 0, narrower = 0;
+  for (int mode : { cao::layout::CAO_MODE_SUBTRACT, cao::layout::CAO_MODE_PROBE })
+  {
+    const cao::ClipDepthMaps& cand =
+      mode == cao::layout::CAO_MODE_SUBTRACT ? scene.dilated : scene.eroded;
+    const cao::ClipMapsView view{ scene.maps.front.data(), scene.maps.back.data(),
+      cand.front.data(), cand.back.data() };
+    for (const auto& pose : path)
+    {
+      const cao::layout::ClipParams wide = scene.Pose(pose, pose[3], dims, mode, 16, false);
+      const cao::layout::ClipParams tight = scene.Pose(pose, pose[3], dims, mode, 16, true);
+      const Result a = Classify(wide, dims, view, opacity);
+      const Result b = Classify(tight, dims, view, opacity);
+      const std::int64_t diff = Differences(a, b);
+      // The least shrink of the narrowed box that changes the result.
+      int shrinkSeen = 0;
+      if (BoxVoxels(tight) > 0)
+        for (int shrink = 1; shrink <= 3 && !shrinkSeen; ++shrink)
+        {
+          cao::layout::ClipParams small = tight;
+          int* lo[3] = { &small.boxMin.x, &small.boxMin.y, &small.boxMin.z };
+          int* hi[3] = { &small.boxMax.x, &small.boxMax.y, &small.boxMax.z };
+          for (int d = 0; d < 3; ++d)
+          {
+            if (*lo[d] > 0)
+              *lo[d] += shrink;
+            if (*hi[d] < dims[d] - 1)
+              *hi[d] -= shrink;
+          }
+          if (Differences(a, Classify(small, dims, view, opacity)) > 0)
+            shrinkSeen = shrink;
+        }
+      std::printf("mode %d pose (%g %g %g, %.2f rad): a/b/c %lld/%lld/%lld, box %lld -> %lld "
+                  "voxels, %lld differ; the least shrink that differs: %d voxels (0: none up to 3)\n",
+        mode, pose[0], pose[1], pose[2], pose[3], (long long)a.counts.clipped,
+        (long long)a.counts.affected, (long long)a.counts.unaffected, (long long)BoxVoxels(wide),
+        (long long)BoxVoxels(tight), (long long)diff, shrinkSeen);
+      CAO_CHECK(diff == 0, "the narrowed box changes %lld voxels", (long long)diff);
+      CAO_CHECK(BoxVoxels(tight) <= BoxVoxels(wide), "the narrowed box is larger");
+      tooSmallSeen += shrinkSeen > 0;
+      narrower += BoxVoxels(tight) < BoxVoxels(wide);
+      if (pose[3] == 0.785398)
+        CAO_CHECK(BoxVoxels(tight) * 10 <= BoxVoxels(wide) * 7,
+          "turned by 45 degrees the box holds %lld of %lld voxels (at most 70%% expected)",
+          (long long)BoxVoxels(tight), (long long)BoxVoxels(wide));
+    }
+  }
+  // 2. Tiles and proof maps against every sample.
+  std::int64_t byCentre = 0, byBrick = 0, wrongBricks = 0, wrongVoxels = 0;
+  for (int mode : { cao::layout::CAO_MODE_SUBTRACT, cao::layout::CAO_MODE_PROBE })
+  {
+    const cao::ClipDepthMaps& cand =
+      mode == cao::layout::CAO_MODE_SUBTRACT ? scene.dilated : scene.eroded;
+    const cao::ClipMapsView view{ scene.maps.front.data(), scene.maps.back.data(),
+      cand.front.data(), cand.back.data() };
+    cao::ClipMapsTiles tiles;
+    tiles.Build(view, scene.camera.width, scene.camera.height, scene.camera.layers);
+    cao::ProofMaps proof;
+    for (const auto& pose : path)
+    {
+      const cao::layout::ClipParams clip = scene.Pose(pose, pose[3], dims, mode, 16);
+      const Result every = Classify(clip, dims, view, opacity);
+      cao::ProofMaps::View pv;
+      CAO_CHECK(proof.Prepare(clip, view, 1 + mode, scene.camera.pixelSize, dims, pv),
+        "no proof maps");
+      cao::ProofMaps::View smallBricks = pv, noRadius = pv;
+      smallBricks.brickClip = pv.sample;
+      noRadius.sample = { view.front, view.back, view.front, view.back };
+      const int whole[6] = { 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1 };
+      const auto shortcut = [&](const cao::ProofMaps::View* maps) {
+        Result r;
+        r.clipped.assign(n, -1.0f);
+        r.category.assign(n, 255);
+        std::vector<std::vector<std::int64_t>> lists(static_cast<std::size_t>(dims[2]));
+        cao::ClassifyRegion(clip, dims, view, opacity.data(), r.clipped.data(),
+          r.category.data(), whole, 0, dims[2], lists.data(), r.counts, &tiles, nullptr, maps);
+        return r;
+      };
+      const Result fast = shortcut(&pv);
+      const std::int64_t diff = Differences(every, fast);
+      const std::int64_t bricksWrong = Differences(every, shortcut(&smallBricks));
+      const std::int64_t voxelsWrong = Differences(every, shortcut(&noRadius));
+      std::printf("mode %d pose (%g %g %g): by brick %lld, by centre %lld, %lld differ; "
+                  "controls: bricks with the voxels' radius %lld differ, voxels with radius 0 "
+                  "%lld\n",
+        mode, pose[0], pose[1], pose[2], (long long)fast.counts.byBrick,
+        (long long)fast.counts.byCentre, (long long)diff, (long long)bricksWrong,
+        (long long)voxelsWrong);
+      CAO_CHECK(diff == 0, "the shortcuts change %lld voxels", (long long)diff);
+      byCentre += fast.counts.byCentre;
+      byBrick += fast.counts.byBrick;
+      wrongBricks += bricksWrong;
+      wrongVoxels += voxelsWrong;
+    }
+    CAO_CHECK(proof.builds == 1, "the proof maps were built %d times for one set of maps",
+      proof.builds);
+  }
+  CAO_CHECK(byCentre > 0 && byBrick > 0, "shortcuts unused: by brick %lld, by centre %lld",
+    (long long)byBrick, (long long)byCentre);
+  CAO_CHECK(wrongBricks > 0 && wrongVoxels > 0,
+    "radii too small gave the same bits (the comparison is blind): %lld and %lld differ",
+    (long long)wrongBricks, (long long)wrongVoxels);
+
+  // Every pose that reaches into the volume sees the too small box.
+  CAO_CHECK(tooSmallSeen >= 12, "a box shrunk by up to 3 voxels changed %d poses", tooSmallSeen);
+  CAO_CHECK(narrower >= 8, "the box narrowed at %d poses", narrower);
+  return 0;
+}
