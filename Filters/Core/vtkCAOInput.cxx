@@ -31,6 +31,7 @@
 #include "vtkXMLPolyDataReader.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -1107,5 +1108,38 @@ void TrianglesOf(vtkPolyData* mesh, std::vector<double>& points, std::vector<std
   for (polys->InitTraversal(); polys->GetNextCell(n, ids);)
     if (n == 3)
       tris.insert(tris.end(), { ids[0], ids[1], ids[2] });
+}
+
+bool CheckPoseScales(const std::vector<Pose>& poses, vtkPolyData* mesh, vtkImageData* volume,
+  std::string& error)
+{
+  if (!mesh || !volume || mesh->GetNumberOfPoints() == 0)
+    return true; // the mesh's own checks report it
+  double b[6], spacing[3];
+  mesh->GetBounds(b);
+  volume->GetSpacing(spacing);
+  const double size = std::max({ b[1] - b[0], b[3] - b[2], b[5] - b[4] });
+  const double voxel = std::min({ std::fabs(spacing[0]), std::fabs(spacing[1]),
+    std::fabs(spacing[2]) });
+  if (!(size > 0.0) || !std::isfinite(size) || !(voxel > 0.0))
+    return true;
+  const double lo = 0.5 * voxel / size, hi = MaxClipVoxels * voxel / size;
+  for (std::size_t i = 0; i < poses.size(); ++i)
+  {
+    const double s = poses[i].scale, across = s * size / voxel;
+    if (s >= lo && s <= hi)
+      continue;
+    char text[400];
+    std::snprintf(text, sizeof text,
+      "pose %zu: scale %g makes the clip shape %g voxels across (%g world units at spacing "
+      "%g); %s; the scale must lie in [%g, %g] for this shape and volume",
+      i, s, across, s * size, voxel,
+      s < lo ? "under half a voxel it covers no depth-map pixel and clips nothing"
+             : "over 2^23 voxels the depth maps' float32 depths cannot resolve a voxel",
+      lo, hi);
+    error = text;
+    return false;
+  }
+  return true;
 }
 }

@@ -80,6 +80,16 @@ CAOFILTERSCORE_EXPORT double PlaneSlabSize(vtkImageData* volume, const std::vect
 /// in the shape's frame, of a corner of the volume's bounds. 0 when the
 /// matrix is singular.
 CAOFILTERSCORE_EXPORT double PlaneSlabSize(vtkImageData* volume, const double shapeToWorld[16]);
+
+/// Whether every pose's scale gives the clip `mesh` a size the clip can
+/// carve `volume` with: at least half its smallest spacing (smaller covers
+/// no depth-map pixel and clips nothing), at most MaxClipVoxels of it (the
+/// depth maps hold float32 depths, which resolve one voxel only up to 2^23
+/// of them). False with one line naming the pose, its scale, the size it
+/// gives and the scales allowed.
+CAOFILTERSCORE_EXPORT bool CheckPoseScales(const std::vector<Pose>& poses, vtkPolyData* mesh,
+  vtkImageData* volume, std::string& error);
+constexpr double MaxClipVoxels = 8388608.0; // 2^23
 }
 
 #endif

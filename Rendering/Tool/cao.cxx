@@ -989,12 +989,21 @@ void PrintCarveTables(const Options& o, vtkImageData* volume, const std::vector<
     const double speedup = sumFull / std::max(sumCao, 1e-9);
     const double limit = sumB > 0 ? n * voxels / sumB : 0.0;
     const std::string context = ContextOf(run.backend);
-    std::printf("| %d | %s | %.1f | %.1f | %.2fx | %.2f | %.2fx | %.0f%% |", run.numRays,
+    // With no b voxel at any pose there is no limit to compare with: n/a.
+    char limitText[32] = "n/a", shareText[32] = "n/a", laterText[32] = "n/a";
+    if (limit > 0)
+    {
+      std::snprintf(limitText, sizeof limitText, "%.2fx", limit);
+      std::snprintf(shareText, sizeof shareText, "%.0f%%", 100.0 * speedup / limit);
+    }
+    std::printf("| %d | %s | %.1f | %.1f | %.2fx | %.2f | %s | %s |", run.numRays,
       context == "none" ? "CPU" : ("GL " + context).c_str(), sumFull / n,
-      sumCao / n, speedup, 100.0 * sumB / (n * voxels), limit, limit > 0 ? 100.0 * speedup / limit : 0.0);
+      sumCao / n, speedup, 100.0 * sumB / (n * voxels), limitText, shareText);
     const LaterPoses later = AfterTheFirst(run, voxels);
-    std::printf(" %.1f | %.1f | %.0f%% |", run.poses.empty() ? 0.0 : run.poses[0].ms[3],
-      later.caoMs, 100.0 * later.Share());
+    if (later.Share() > 0)
+      std::snprintf(laterText, sizeof laterText, "%.0f%%", 100.0 * later.Share());
+    std::printf(" %.1f | %.1f | %s |", run.poses.empty() ? 0.0 : run.poses[0].ms[3],
+      later.caoMs, laterText);
     if (o.verify)
       std::printf(" %g |", maxDiff);
     std::printf("\n");
@@ -1008,6 +1017,9 @@ int RunCarve(const Options& o, vtkImageData* volume)
     return rc;
   if (const int rc = MakeClip(o, volume, setup))
     return rc;
+  std::string scaleError;
+  if (!vtkCAO::CheckPoseScales(setup.poses, setup.mesh, volume, scaleError))
+    return Fail(2, "--pose: " + scaleError);
   vtkNew<vtkPiecewiseFunction> tf;
   BuildTransferFunction(o, volume, tf);
   std::vector<RunResult> runs;

@@ -414,6 +414,8 @@ int RunRender(int argc, char* argv[])
       o.mesh.empty() ? MakeShape(o.shape, size, error) : ReadMesh(o.mesh, error);
     if (!mesh)
       return Fail(2, error);
+    if (!vtkCAO::CheckPoseScales(poses, mesh, volume, error))
+      return Fail(2, "--pose: " + error);
     shapeMapper->SetInputData(mesh);
     shape->SetMapper(shapeMapper);
     mapper->SetClipShape(shape);

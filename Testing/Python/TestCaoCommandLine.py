@@ -528,6 +528,18 @@ expect_error(["carve", neghip, "--shape", "cube", "--mesh", os.path.join(data, "
              "--shape and --mesh", "carve --shape with --mesh")
 expect_error(["render", neghip, "--no-clip", "--shape", "torus", "-o", frame], 2, "--no-clip",
              "render --no-clip with --shape")
+# Pose scales out of the clip's range: one line naming the pose, the scale and
+# the range, before any VTK output (they failed inside vtkClipDepthMaps).
+for command in (["carve", neghip], ["render", neghip, "-o", frame]):
+    for scale, words in (("1e9", "over 2^23 voxels"), ("1e-9", "under half a voxel")):
+        rc, out, err = run(*command, "--pose", "30 30 30 0 0 0 " + scale)
+        lines = [l for l in err.splitlines() if l.strip()]
+        check(rc == 2 and len(lines) == 1 and words in err and "the scale must lie in" in err and
+              "ERR|" not in err and "WARN|" not in err,
+              f"{command[0]} --pose scale {scale}: one clear line: rc={rc} {err.strip()[:300]!r}")
+# The control: a scale inside the range carves.
+rc, out, err = run("carve", neghip, "--pose", "30 30 30 0 0 0 2", "--rays", "6")
+check(rc == 0, f"carve --pose scale 2 runs: rc={rc} {err.strip()[:200]!r}")
 const = write_volume("constant.vti", (16, 16, 16), value=7)
 rc, out, err = run("lao", const, "--json")
 check(rc == 0 and "warning" in err and "constant" in err,
