@@ -18,7 +18,11 @@
 #include "vtkMetaImageReader.h"
 #include "vtkNIFTIImageReader.h"
 #include "vtkNew.h"
+#include "vtkLogger.h"
 #include "vtkOBJReader.h"
+#include "vtkObjectFactory.h"
+#include "vtkOutputWindow.h"
+#include "vtkSmartPointer.h"
 #include "vtkPLYReader.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -120,10 +124,10 @@ bool CheckMetaImage(const std::string& path, std::string& error)
 {
   std::ifstream in(path, std::ios::binary);
   std::string line, dataFile;
-  std::vector<double> dims;
+  std::vector<double> dims, spacing;
   std::string type;
-  double channels = 1.0, headerSize = 0.0;
-  bool compressed = false;
+  double channels = 1.0, headerSize = 0.0, ndims = -1.0;
+  bool compressed = false, haveSpacing = false;
   long long headerEnd = -1;
   for (int n = 0; n < 1000 && std::getline(in, line); ++n)
   {
@@ -141,6 +145,20 @@ bool CheckMetaImage(const std::string& path, std::string& error)
     }
     else if (key == "elementtype")
       type = value;
+    else if (key == "ndims")
+      values >> ndims;
+    else if (key == "elementspacing" || key == "elementsize")
+    {
+      double d;
+      std::vector<double>& list = spacing;
+      if (key == "elementspacing")
+      {
+        haveSpacing = true;
+        list.clear();
+        while (values >> d)
+          list.push_back(d);
+      }
+    }
     else if (key == "elementnumberofchannels")
       values >> channels;
     else if (key == "headersize")
@@ -154,8 +172,41 @@ bool CheckMetaImage(const std::string& path, std::string& error)
       break;
     }
   }
+  // What MetaIO would refuse by printing to the console: said here instead.
+  const std::string where = "cannot read '" + path + "': its MetaImage header ";
   if (dims.empty())
-    return true; // the reader reports a header without DimSize
+  {
+    error = where + "has no DimSize (the sizes, e.g. 'DimSize = 64 64 64')";
+    return false;
+  }
+  if (ndims >= 0.0 && ndims != static_cast<double>(dims.size()))
+  {
+    error = where + "says NDims = " + std::to_string(static_cast<long long>(ndims)) +
+      " but DimSize has " + std::to_string(dims.size()) + " sizes";
+    return false;
+  }
+  if (haveSpacing && spacing.size() != dims.size())
+  {
+    error = where + "has " + std::to_string(spacing.size()) + " ElementSpacing values for " +
+      std::to_string(dims.size()) + " dimensions";
+    return false;
+  }
+  for (double d : spacing)
+    if (!std::isfinite(d) || d == 0.0)
+    {
+      error = where + "has an ElementSpacing of 0 or not a number";
+      return false;
+    }
+  if (type.empty())
+  {
+    error = where + "has no ElementType (e.g. 'ElementType = MET_UCHAR')";
+    return false;
+  }
+  if (dataFile.empty())
+  {
+    error = where + "has no ElementDataFile (LOCAL, or the data file's name) as its last line";
+    return false;
+  }
   double voxels = 1.0;
   std::string shape;
   for (double d : dims)
@@ -182,6 +233,12 @@ bool CheckMetaImage(const std::string& path, std::string& error)
   for (const auto& t : sizes)
     if (type == t.first)
       elementSize = t.second;
+  if (elementSize == 0 && type != "MET_FLOAT_ARRAY" && type.rfind("MET_", 0) != 0)
+  {
+    error = where + "has ElementType '" + type + "', not a MetaImage type (MET_UCHAR, MET_SHORT, " +
+      "MET_FLOAT, ...)";
+    return false;
+  }
   if (compressed || elementSize == 0 || dataFile.empty() || Lower(dataFile) == "list" ||
     dataFile.find('%') != std::string::npos || headerSize < 0.0)
     return true; // the sizes cannot be known up front: the reader checks what it can
@@ -501,17 +558,80 @@ bool Readable(const std::string& path, std::string& error)
   return true;
 }
 
+/// VTK's output window replaced while it lives by one that keeps the error
+/// and warning texts instead of printing them (restored after).
+class CaptureWindow : public vtkOutputWindow
+{
+public:
+  static CaptureWindow* New();
+  vtkTypeMacro(CaptureWindow, vtkOutputWindow);
+  void DisplayErrorText(const char* text) override { this->Keep(text); }
+  void DisplayWarningText(const char* text) override { this->Keep(text); }
+  void DisplayGenericWarningText(const char* text) override { this->Keep(text); }
+  void DisplayText(const char*) override {}
+  void DisplayDebugText(const char*) override {}
+  std::string first;
+
+private:
+  void Keep(const char* text)
+  {
+    if (this->first.empty() && text)
+      this->first = text;
+  }
+};
+vtkStandardNewMacro(CaptureWindow);
+
+struct OutputCapture
+{
+  vtkSmartPointer<vtkOutputWindow> previous = vtkOutputWindow::GetInstance();
+  vtkNew<CaptureWindow> window;
+  // vtkErrorMacro also logs to stderr through vtkLogger, whatever the window.
+  vtkLogger::Verbosity verbosity = vtkLogger::GetCurrentVerbosityCutoff();
+  OutputCapture()
+  {
+    vtkOutputWindow::SetInstance(window);
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  }
+  ~OutputCapture()
+  {
+    vtkLogger::SetStderrVerbosity(verbosity);
+    vtkOutputWindow::SetInstance(previous);
+  }
+  std::string FirstError() const { return window->first; }
+};
+
+/// A VTK message as one line: without its "ERROR: In FILE, line N" and
+/// "vtkClass (0x...): " prefixes, its lines joined.
+std::string OneLine(std::string m)
+{
+  if (m.rfind("ERROR: In ", 0) == 0 || m.rfind("Warning: In ", 0) == 0)
+  {
+    const auto eol = m.find('\n');
+    m = eol == std::string::npos ? std::string() : m.substr(eol + 1);
+  }
+  const auto object = m.find("): ");
+  if (m.rfind("vtk", 0) == 0 && object != std::string::npos && object < 80)
+    m = m.substr(object + 3);
+  for (char& c : m)
+    if (c == '\n' || c == '\r' || c == '\t')
+      c = ' ';
+  m = Trim(m);
+  return m.empty() ? std::string("the reader failed") : m;
+}
+
 template <typename Reader>
 bool Run(Reader* reader, const std::string& path, std::string& error)
 {
+  // Readers run readers of their own (vtkDataSetReader a
+  // vtkStructuredPointsReader) whose errors reach no observer of ours:
+  // VTK's output window is swapped for one that keeps them while reading.
+  OutputCapture capture;
   ErrorCatcher catcher(reader);
   reader->Update();
-  if (!catcher.message.empty())
+  const std::string first = !catcher.message.empty() ? catcher.message : capture.FirstError();
+  if (!first.empty())
   {
-    std::string m = catcher.message;
-    while (!m.empty() && std::isspace(static_cast<unsigned char>(m.back())))
-      m.pop_back();
-    error = "cannot read '" + path + "': " + m;
+    error = "cannot read '" + path + "': " + OneLine(first);
     return false;
   }
   return true;

@@ -528,6 +528,42 @@ expect_error(["carve", neghip, "--shape", "cube", "--mesh", os.path.join(data, "
              "--shape and --mesh", "carve --shape with --mesh")
 expect_error(["render", neghip, "--no-clip", "--shape", "torus", "-o", frame], 2, "--no-clip",
              "render --no-clip with --shape")
+# Readers' own messages: one line, the file named, no VTK log line, no
+# MetaIO console text, no "ERROR: In file, line" prefix.
+def write(name, text, tail=b""):
+    path = os.path.join(tmp, name)
+    with open(path, "wb") as f:
+        f.write(text.encode() + tail)
+    return path
+
+
+header = "ObjectType = Image\nNDims = 3\nDimSize = 4 4 4\n"
+for path, command, words, what in (
+        (write("badspacing.vtk", "# vtk DataFile Version 3.0\nx\nASCII\nDATASET STRUCTURED_POINTS\n"
+               "DIMENSIONS 4 4 4\nSPACING 1 1\nORIGIN 0 0 0\nPOINT_DATA 64\n"), "lao",
+         "Error reading spacing", "a legacy .vtk with two spacing values"),
+        (write("twospacings.mhd", header + "ElementSpacing = 1 1\nElementType = MET_UCHAR\n"
+               "ElementDataFile = LOCAL\n", bytes(64)), "lao", "2 ElementSpacing values for 3",
+         "a .mhd with two spacing values"),
+        (write("notype.mhd", header + "ElementDataFile = LOCAL\n", bytes(64)), "lao",
+         "no ElementType", "a .mhd without ElementType"),
+        (write("badtype.mhd", header + "ElementType = UCHAR\nElementDataFile = LOCAL\n", bytes(64)),
+         "lao", "not a MetaImage type", "a .mhd with an unknown ElementType"),
+        (write("cut.stl", "solid x\nfacet normal 0 0 1\n"), "carve", "Premature EOF",
+         "an ASCII STL cut after its first facet line")):
+    args = [command, path] if command == "lao" else [command, neghip, "--mesh", path]
+    rc, out, err = run(*args)
+    lines = [l for l in err.splitlines() if l.strip()]
+    check(rc == 2 and len(lines) == 1 and words in err and os.path.basename(path) in err and
+          "ERR|" not in err and "MetaObject" not in err and "MetaImage:" not in err and
+          "ERROR: In" not in err,
+          f"{what}: one line naming the file: rc={rc} {err.strip()[:300]!r}")
+# The control: the same header, complete, reads.
+rc, out, err = run("lao", write("complete.mhd", header + "ElementSpacing = 1 1 1\n"
+                                "ElementType = MET_UCHAR\nElementDataFile = LOCAL\n", bytes(64)),
+                   "--rays", "6")
+check(rc == 0, f"a complete .mhd of the same header reads: rc={rc} {err.strip()[:200]!r}")
+
 # Pose scales out of the clip's range: one line naming the pose, the scale and
 # the range, before any VTK output (they failed inside vtkClipDepthMaps).
 for command in (["carve", neghip], ["render", neghip, "-o", frame]):
