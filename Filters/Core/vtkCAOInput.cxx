@@ -6,6 +6,7 @@
 #include "vtkCleanPolyData.h"
 #include "vtkCommand.h"
 #include "vtkCubeSource.h"
+#include "vtkDataArray.h"
 #include "vtkDataObject.h"
 #include "caoFileChecks.h"
 
@@ -347,6 +348,8 @@ bool CheckXMLAppendedData(const std::string& path, std::string& error)
     return text.substr(at + key.size(), end - at - key.size());
   };
   const std::size_t fileTag = head.find("<VTKFile");
+  if (fileTag == std::string::npos || fileTag > marker)
+    return true; // not a VTK XML file: its reader says so
   const std::string fileHead = head.substr(fileTag, head.find('>', fileTag) - fileTag);
   const int headerBytes = attribute(fileHead, "header_type") == "UInt64" ? 8 : 4;
   const bool compressed = !attribute(fileHead, "compressor").empty();
@@ -612,10 +615,19 @@ std::string OneLine(std::string m)
   const auto object = m.find("): ");
   if (m.rfind("vtk", 0) == 0 && object != std::string::npos && object < 80)
     m = m.substr(object + 3);
+  // Control characters (a reader quotes the damaged bytes it met) and
+  // bytes outside ASCII would break the line or the terminal: '?'.
   for (char& c : m)
+  {
+    const unsigned char u = static_cast<unsigned char>(c);
     if (c == '\n' || c == '\r' || c == '\t')
       c = ' ';
+    else if (u < 0x20 || u >= 0x7f)
+      c = '?';
+  }
   m = Trim(m);
+  if (m.size() > 300)
+    m = m.substr(0, 300) + "...";
   return m.empty() ? std::string("the reader failed") : m;
 }
 
@@ -945,6 +957,35 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, std::string& erro
   {
     error = "cannot read '" + path + "': no geometry";
     return nullptr;
+  }
+  // Cells that name points the file does not hold (readers take the ids as
+  // written; every filter after would read out of bounds).
+  const vtkIdType points = mesh->GetNumberOfPoints();
+  vtkCellArray* cells[4] = { mesh->GetVerts(), mesh->GetLines(), mesh->GetPolys(),
+    mesh->GetStrips() };
+  for (vtkCellArray* c : cells)
+  {
+    if (!c)
+      continue;
+    // Offsets that run backwards or past the connectivity (a damaged
+    // OFFSETS block of a legacy 5.1 file) make cells read anywhere.
+    if (!c->IsValid())
+    {
+      error = "cannot read '" + path + "': its cell offsets are not increasing from 0 to the " +
+        "number of point ids (the file is damaged)";
+      return nullptr;
+    }
+    if (c->GetNumberOfConnectivityIds() == 0)
+      continue;
+    double range[2];
+    c->GetConnectivityArray()->GetRange(range, 0);
+    if (range[0] < 0.0 || range[1] >= static_cast<double>(points))
+    {
+      error = "cannot read '" + path + "': its cells name point " +
+        std::to_string(static_cast<long long>(range[0] < 0.0 ? range[0] : range[1])) +
+        " but it holds points 0 to " + std::to_string(static_cast<long long>(points - 1));
+      return nullptr;
+    }
   }
   auto copy = vtkSmartPointer<vtkPolyData>::New();
   copy->ShallowCopy(mesh);

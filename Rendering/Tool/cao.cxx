@@ -13,6 +13,7 @@
 #include "caoCommandLine.h"
 #include "vtkCAOInput.h"
 #include "vtkCAOLAOSettings.h"
+#include "caoLAO.h"
 #include "caoLAOCommandLine.h"
 #include "caoRender.h"
 #include "caoSurface.h"
@@ -231,6 +232,11 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
     {
       caocli::NoteOverridden(o.lao, a);
       ok = value(v);
+      if (ok && caocli::HasEmptyItem(v))
+      {
+        error = "--rays has an empty item (got '" + v + "')";
+        return false;
+      }
       if (ok)
       {
         o.rays = Split(v, ',');
@@ -279,6 +285,11 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
     {
       std::vector<double>& points = a == "--from" ? o.from : a == "--to" ? o.to : o.opacity;
       ok = value(v);
+      if (ok && caocli::HasEmptyItem(v))
+      {
+        error = a + " has an empty item (got '" + v + "')";
+        return false;
+      }
       if (ok)
       {
         points.clear();
@@ -349,6 +360,11 @@ bool Parse(int argc, char* argv[], Options& o, std::string& error)
     else if (a == "--backend")
     {
       const std::string list = i + 1 < argc ? argv[++i] : "";
+      if (caocli::HasEmptyItem(list))
+      {
+        error = "--backend has an empty item (got '" + list + "')";
+        return false;
+      }
       o.backends.clear();
       for (const std::string& b : Split(list, ','))
       {
@@ -1198,13 +1214,43 @@ int main(int argc, char* argv[])
   std::string error;
   if (!Parse(argc, argv, o, error))
   {
-    std::cerr << "cao: error: " << error << "\n" << Usage;
+    std::cerr << "cao: error: " << error << "\n";
     return 2;
   }
   caocli::SelectThreads(o.threads);
   vtkSmartPointer<vtkImageData> volume = vtkCAO::ReadVolume(o.volume, error);
   if (!volume)
     return Fail(2, error);
+  // The array and component asked for, before any filter runs on them.
+  vtkDataArray* scalars = o.arrayName.empty()
+    ? volume->GetPointData()->GetScalars()
+    : volume->GetPointData()->GetArray(o.arrayName.c_str());
+  if (!scalars)
+    return Fail(2, o.arrayName.empty()
+        ? "'" + o.volume + "' has no point scalars (name an array with --array)"
+        : "--array '" + o.arrayName + "': '" + o.volume + "' has no such point array");
+  if (o.component >= scalars->GetNumberOfComponents())
+    return Fail(2, "--component " + std::to_string(o.component) + ": the array '" +
+        std::string(scalars->GetName() ? scalars->GetName() : "(scalars)") + "' has " +
+        std::to_string(scalars->GetNumberOfComponents()) + " component(s), from 0 to " +
+        std::to_string(scalars->GetNumberOfComponents() - 1));
+  // Each ray set's plan on this volume, as the filters will build it: a
+  // reach or density the kernels refuse is bad input (exit 2), said now.
+  for (const std::string& rays : o.rays.empty() ? std::vector<std::string>{ "" } : o.rays)
+  {
+    cao::LAOSettings settings = o.lao.settings;
+    if (!rays.empty())
+      cao::ParseRayPattern(rays, settings.pattern, settings.fibonacciRays);
+    settings.reach = o.reach;
+    settings.samples = o.samples;
+    cao::VolumeGeometry geometry;
+    volume->GetDimensions(geometry.dims);
+    volume->GetSpacing(geometry.spacing);
+    cao::LAOPlan plan;
+    if (!cao::BuildLAOPlan(
+          geometry, cao::ResolveLAOSettings(settings, geometry.spacing), plan, error))
+      return Fail(2, error);
+  }
   if (o.command == "tf")
     return RunTF(o, volume);
   return o.command == "lao" ? RunLAO(o, volume) : RunCarve(o, volume);

@@ -1349,7 +1349,7 @@ int RunBench(int argc, char* argv[])
   Bench bench;
   std::string error;
   if (!Parse(argc, argv, bench.o, error))
-    return Fail(2, error + "\n" + BenchUsage);
+    return Fail(2, error);
   int rc = 0;
   if ((rc = bench.Load()) || (rc = bench.SelectVoxels()) || (rc = bench.MakeReference()) ||
     (rc = bench.ResolveReference()) || (rc = bench.SetupBackends()) || (rc = bench.SweepLAO()))

@@ -464,7 +464,7 @@ int RunBenchSurface(int argc, char* argv[])
   Options o;
   std::string error;
   if (!Parse(argc, argv, o, error))
-    return Fail(2, error + "\n" + BenchSurfaceUsage);
+    return Fail(2, error);
   SelectThreads(o.threads);
   ::mkdir(o.output.c_str(), 0755);
   {

@@ -284,7 +284,7 @@ int RunBenchSurfaceFrame(int argc, char* argv[])
   Options o;
   std::string error;
   if (!Parse(argc, argv, o, error))
-    return Fail(2, error + "\n" + BenchSurfaceFrameUsage);
+    return Fail(2, error);
   SelectThreads(o.threads);
   SurfaceScene scene;
   if (!scene.Load(o.meshes, error))

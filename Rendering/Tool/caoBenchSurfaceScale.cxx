@@ -170,7 +170,7 @@ int RunBenchSurfaceScale(int argc, char* argv[])
   Options o;
   std::string error;
   if (!Parse(argc, argv, o, error))
-    return Fail(2, error + "\n" + BenchSurfaceScaleUsage);
+    return Fail(2, error);
   SelectThreads(o.threads);
   ::mkdir(o.output.c_str(), 0755);
   std::ofstream csv(o.output + "/surface-scale.csv");

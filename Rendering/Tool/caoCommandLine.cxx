@@ -10,6 +10,7 @@
 #include "vtkFieldData.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkLogger.h"
 #include "vtkOutputWindow.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkSMPTools.h"
@@ -86,6 +87,12 @@ std::string FramePattern::Name(long long frame) const
   if (number.size() < static_cast<std::size_t>(this->width))
     number.insert(0, std::string(this->width - number.size(), this->zeroPad ? '0' : ' '));
   return this->prefix + number + this->suffix;
+}
+
+bool HasEmptyItem(const std::string& list)
+{
+  return list.empty() || list.front() == ',' || list.back() == ',' ||
+    list.find(",,") != std::string::npos;
 }
 
 std::vector<std::string> Split(const std::string& s, char sep)
@@ -265,6 +272,10 @@ void InstallOutputWindow()
 {
   vtkNew<CliOutputWindow> window;
   vtkOutputWindow::SetInstance(window);
+  // vtkErrorMacro and vtkWarningMacro also log to stderr through vtkLogger
+  // ("WARN| vtkClipDepthMaps (0x...): ..."), before the window gets the
+  // same text: the window's line is the only one.
+  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
 }
 
 double Median(std::vector<double> v)

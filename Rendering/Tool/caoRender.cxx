@@ -297,7 +297,7 @@ int RunRender(int argc, char* argv[])
   RenderOptions o;
   std::string error;
   if (!Parse(argc, argv, o, error))
-    return Fail(2, error + "\nusage:\n" + RenderUsage);
+    return Fail(2, error);
   caocli::FramePattern frames;
   frames.Parse(o.output, error); // checked by Parse
   vtkSmartPointer<vtkImageData> volume = ReadVolume(o.volume, error);

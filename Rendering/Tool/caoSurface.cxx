@@ -1012,7 +1012,7 @@ int RunSurface(int argc, char* argv[])
   SurfaceOptions o;
   std::string error;
   if (!Parse(argc, argv, o, error))
-    return Fail(2, error + "\nusage:\n" + SurfaceUsage);
+    return Fail(2, error);
   error = CheckFrameMemory(o.view.width, o.view.height);
   if (!error.empty())
     return Fail(2, error);
