@@ -17,8 +17,12 @@ silent result. The undamaged files and the default options are the
 negative controls: they must exit 0 (so the matrix does not pass by
 refusing everything).
 
+The plugin's readers (.slc, NIfTI) and the LAO filter run in pvpython on
+the same damaged volumes (CAO_PVPYTHON, CAO_PLUGIN): no signal, no
+allocation abort, voxels from the files as written, none from an empty one.
+
 Prints one line per failing case and a table of outcomes; exit 1 on any
-failure. Environment: CAO_TOOL, CAO_DATA_DIR."""
+failure. Environment: CAO_TOOL, CAO_DATA_DIR, CAO_PVPYTHON, CAO_PLUGIN."""
 import os
 import re
 import shutil
@@ -306,6 +310,73 @@ for value in ("1 2", "nan 0 0", "0 0 0 0 0 0 -1", "0 0 0 0 0 0 0", "inf 0 0", "a
           must_refuse=value != "0 0 0 1e308 0 0")
 for value in ("7", "fib:0", "fib:65537", "fib:-1", "fib:x", "", "6,", ",6", "rubiks", "54x"):
     judge("lao --rays '%s'" % value, ["lao", volume, "--rays", value], must_refuse=True)
+
+# ---------------------------------------------------------------- pvpython
+# The plugin's readers (.slc, .nii, .nii.gz) and the LAO filter in pvpython,
+# on the same damaged files: no signal, no allocation abort; a file as
+# written gives voxels, an empty one none.
+PV = r'''
+import sys
+from paraview.simple import *
+LoadPlugin(sys.argv[1], remote=False, ns=globals())
+reader = OpenDataFile(sys.argv[2])
+lao = LocalAmbientOcclusion(Input=reader)
+lao.Backend = "CPU"
+lao.UpdatePipeline()
+print("POINTS", lao.GetDataInformation().GetNumberOfPoints())
+'''
+pvpython = os.environ.get("CAO_PVPYTHON", "")
+plugin = os.environ.get("CAO_PLUGIN", "")
+if pvpython and plugin:
+    script = path("pv_case.py")
+    with open(script, "w") as f:
+        f.write(PV)
+    for name in ("neghip.slc", "plain.nii", "packed.nii.gz"):
+        variants = [("as written", open(volumes[name], "rb").read())] + damaged(volumes[name])
+        for tag, content in variants:
+            damaged_path = path("pv-" + name)
+            with open(damaged_path, "wb") as f:
+                f.write(content)
+            case = "pvpython: %s, %s" % (name, tag)
+            try:
+                p = subprocess.run([pvpython, "--force-offscreen-rendering", script, plugin,
+                                    damaged_path], capture_output=True, text=True, timeout=120)
+                rc, text = p.returncode, p.stdout + p.stderr
+            except subprocess.TimeoutExpired:
+                rc, text = "timeout", ""
+            points = [int(l.split()[1]) for l in (p.stdout if rc != "timeout" else "").splitlines()
+                      if l.startswith("POINTS")]
+            problems = []
+            if rc == "timeout":
+                kind = "slow"
+                problems.append("no end within 120 s")
+            elif rc < 0 or rc >= 128:
+                kind = "crash"
+                problems.append("signal %d" % (-rc if rc < 0 else rc - 128))
+            elif rc != 0 and not (rc == 1 and re.search(r"^\w+Error: .+", text, re.M)):
+                # pvpython ends with 1 on a Python exception: ParaView's own
+                # "No reader found for ..." is a clear refusal.
+                kind = "unclear"
+                problems.append("exit %d without an exception's message" % rc)
+            elif any(w in text for w in ("Unable to allocate", "terminate called", "Segmentation")):
+                kind = "crash"
+                problems.append("an abort or allocation failure in the output")
+            elif tag == "as written" and not (rc == 0 and points and points[0] > 0):
+                kind = "control refused"
+                problems.append("the file as written gave no voxels")
+            elif tag == "empty" and points and points[0] > 0:
+                kind = "silent"
+                problems.append("an empty file gave voxels")
+            else:
+                kind = "ok (pvpython)"
+            outcomes[kind] = outcomes.get(kind, 0) + 1
+            if problems:
+                failures.append(case)
+                print("FAIL: %s: %s" % (case, ", ".join(problems)))
+else:
+    print("no CAO_PVPYTHON or CAO_PLUGIN: the pvpython cases did not run")
+    if os.environ.get("CAO_REQUIRE_PVPYTHON"):
+        failures.append("pvpython required")
 
 total = sum(outcomes.values())
 print("\n| outcome | cases |\n|---|---:|")
