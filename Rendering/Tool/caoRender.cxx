@@ -80,6 +80,8 @@ render options:
                        light, crevices darken) or none (the raw LAO)
   --no-shade           no gradient shading (ambient only)
   --sample-distance D  ray-cast sample distance, world units (default half a voxel)
+  --unit-distance U    the length the opacities refer to, world units (default 1,
+                       VTK's ScalarOpacityUnitDistance, as for lao)
   --window W           auto (default: X when DISPLAY is set, else EGL), egl or x
   --full               recompute the full LAO at every pose (the reference)
   --json               print each frame's work report as a JSON list on stdout
@@ -98,7 +100,7 @@ struct RenderOptions
   int width = 512, height = 512, path = 12, layers = 2, aa = 16,
       calibration = 1; // vtkContextualAOVolumeMapper::AO_CALIBRATION_HALF_SPACE
   double azimuth = 30, elevation = 20, zoom = 1.4, reach = 0, strength = 1, size = 0,
-         sampleDistance = 0;
+         sampleDistance = 0, unitDistance = 1;
   bool absolute = false, ao = true, shade = true, json = false, clip = true, full = false;
   bool shapeGiven = false; // --shape on the command line
   LAOCommandLine lao; // --quality, --density, --offset, --variation
@@ -212,6 +214,8 @@ bool Parse(int argc, char* argv[], RenderOptions& o, std::string& error)
                        "voxel)",
                false;
     }
+    else if (a == "--unit-distance")
+      ok = number(o.unitDistance, 1e-300, 1e300);
     else if (a == "--window")
     {
       ok = value(o.window);
@@ -349,15 +353,64 @@ int RunRender(int argc, char* argv[])
   renderer->SetBackground(1.0, 1.0, 1.0);
   window->AddRenderer(renderer);
 
+  {
+    // A unit distance far above the voxels makes every voxel nearly clear
+    // (spacing 1e-6 under the default 1: a blank frame): said, not drawn
+    // silently.
+    const double* sp = volume->GetSpacing();
+    const double mean = std::cbrt(std::fabs(sp[0] * sp[1] * sp[2]));
+    if (mean > 0.0 && o.unitDistance > 100.0 * mean)
+      std::cerr << "cao: warning: the voxels are " << mean << " world units across and the "
+                << "opacities refer to " << o.unitDistance << " (--unit-distance): each voxel "
+                << "is nearly transparent and the frame nearly empty; give --unit-distance "
+                << mean << " to see it as at spacing 1\n";
+  }
+  // OpenGL draws in float from a camera VTK places in world units: a volume
+  // a few micrometres across (spacing 1e-6) or far from the origin (1e10)
+  // drew a blank frame, as it does in ParaView's own Volume. Such a volume
+  // is drawn in a world moved to its centre and scaled to 100 units across,
+  // with every world length (the clip's pose, the reach, the sample and
+  // opacity unit distances) mapped the same way: the same picture.
+  double worldScale = 1.0, worldCentre[3] = { 0.0, 0.0, 0.0 };
+  vtkSmartPointer<vtkImageData> drawn = volume;
+  {
+    double b[6];
+    volume->GetBounds(b);
+    double diagonal = 0.0, farthest = 0.0;
+    for (int d = 0; d < 3; ++d)
+    {
+      diagonal += (b[2 * d + 1] - b[2 * d]) * (b[2 * d + 1] - b[2 * d]);
+      farthest = std::max(farthest, std::fabs(0.5 * (b[2 * d] + b[2 * d + 1])));
+    }
+    diagonal = std::sqrt(diagonal);
+    if (diagonal > 0.0 && std::isfinite(diagonal) &&
+      (diagonal < 1e-2 || diagonal > 1e6 || farthest > 1e4 * diagonal))
+    {
+      worldScale = diagonal / 100.0;
+      double origin[3], spacing[3];
+      volume->GetOrigin(origin);
+      volume->GetSpacing(spacing);
+      for (int d = 0; d < 3; ++d)
+      {
+        worldCentre[d] = 0.5 * (b[2 * d] + b[2 * d + 1]);
+        origin[d] = (origin[d] - worldCentre[d]) / worldScale;
+        spacing[d] /= worldScale;
+      }
+      drawn = vtkSmartPointer<vtkImageData>::New();
+      drawn->ShallowCopy(volume);
+      drawn->SetOrigin(origin);
+      drawn->SetSpacing(spacing);
+    }
+  }
   vtkNew<vtkContextualAOVolumeMapper> mapper;
-  mapper->SetInputData(volume);
+  mapper->SetInputData(drawn);
   cao::RayPattern parsed = cao::RayPattern::Rays14;
   int fib = 64;
   if (!cao::ParseRayPattern(o.rays, parsed, fib))
     return Fail(2, "--rays '" + o.rays + "': 6, 14, 26, 54, rubiks54 or fib:K (K = 1 to 65536)");
   mapper->SetRayPattern(static_cast<int>(parsed));
   mapper->SetNumberOfRays(fib);
-  mapper->SetReach(o.reach);
+  mapper->SetReach(o.reach / worldScale);
   mapper->SetSampleDensity(o.lao.settings.sampleDensity);
   mapper->SetStartOffset(o.lao.settings.startOffset);
   mapper->SetRayVariation(static_cast<int>(o.lao.settings.variation));
@@ -365,7 +418,7 @@ int RunRender(int argc, char* argv[])
   mapper->SetAOStrength(o.strength);
   mapper->SetAOCalibration(o.calibration);
   mapper->SetAmbientOcclusion(o.ao);
-  mapper->SetSampleDistance(o.sampleDistance);
+  mapper->SetSampleDistance(o.sampleDistance / worldScale);
   mapper->SetMode(o.mode == "probe" ? vtkContextualAOVolumeMapper::PROBING
                                     : vtkContextualAOVolumeMapper::SUBTRACTION);
   mapper->SetNumberOfClipLayers(o.layers);
@@ -381,6 +434,7 @@ int RunRender(int argc, char* argv[])
   property->SetDiffuse(0.5);
   property->SetSpecular(0.2);
   property->SetSpecularPower(20.0);
+  property->SetScalarOpacityUnitDistance(o.unitDistance / worldScale);
   vtkNew<vtkVolume> prop;
   prop->SetMapper(mapper);
   prop->SetProperty(property);
@@ -449,8 +503,12 @@ int RunRender(int argc, char* argv[])
   {
     if (o.clip)
     {
-      vtkNew<vtkTransform> t;
-      PoseToTransform(poses[f], t);
+      vtkNew<vtkTransform> pose, t;
+      PoseToTransform(poses[f], pose);
+      t->PostMultiply();
+      t->Concatenate(pose);
+      t->Translate(-worldCentre[0], -worldCentre[1], -worldCentre[2]);
+      t->Scale(1.0 / worldScale, 1.0 / worldScale, 1.0 / worldScale);
       shape->SetUserTransform(t);
     }
     const auto start = std::chrono::steady_clock::now();

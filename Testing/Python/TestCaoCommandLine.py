@@ -528,6 +528,61 @@ expect_error(["carve", neghip, "--shape", "cube", "--mesh", os.path.join(data, "
              "--shape and --mesh", "carve --shape with --mesh")
 expect_error(["render", neghip, "--no-clip", "--shape", "torus", "-o", frame], 2, "--no-clip",
              "render --no-clip with --shape")
+# Scale and place do not change the picture: neghip at spacing 1e-6 (with
+# its opacities referring to 1e-6) and at an origin of 1e10 and 1e15 renders
+# as at spacing 1 and origin 0 (blank frames with exit 0 before: OpenGL's
+# float camera). The control: spacing 1e-6 under the default unit distance
+# is nearly transparent, and a warning says why.
+from vtkmodules.vtkIOImage import vtkPNGReader, vtkSLCReader as _SLC
+from vtkmodules.vtkImagingCore import vtkImageChangeInformation
+
+
+def moved(name, spacing, origin):
+    r = _SLC()
+    r.SetFileName(neghip)
+    c = vtkImageChangeInformation()
+    c.SetInputConnection(r.GetOutputPort())
+    c.SetOutputSpacing(spacing, spacing, spacing)
+    c.SetOutputOrigin(origin, origin, origin)
+    w = vtkXMLImageDataWriter()
+    w.SetInputConnection(c.GetOutputPort())
+    w.SetFileName(os.path.join(tmp, name))
+    w.Write()
+    return os.path.join(tmp, name)
+
+
+def grey(png):
+    r = vtkPNGReader()
+    r.SetFileName(png)
+    r.Update()
+    return vtk_to_numpy(r.GetOutput().GetPointData().GetScalars()).astype(float)
+
+
+def render_one(volume, *extra):
+    out = os.path.join(tmp, "scale_%d.png")
+    rc, _, err = run("render", volume, "--path", "1", "--image", "96x96", *extra, "-o", out)
+    return rc, err, grey(out % 0) if rc == 0 else None
+
+
+rc, err, reference = render_one(neghip)
+no_gl = rc == 125 or "no EGL" in err
+if no_gl:
+    check(os.environ.get("CAO_REQUIRE_GL", "0") in ("", "0"),
+          "render ran (CAO_REQUIRE_GL is set): rc=%d %s" % (rc, err.strip()[:200]))
+for what, volume, extra in [] if no_gl else (("spacing 1e-6", moved("tiny.vti", 1e-6, 0.0), ["--unit-distance", "1e-6"]),
+                            ("origin 1e10", moved("far10.vti", 1.0, 1e10), []),
+                            ("origin 1e15", moved("far15.vti", 1.0, 1e15), [])):
+    rc, err, picture = render_one(volume, *extra)
+    diff = np.abs(picture - reference) if picture is not None and reference is not None else None
+    check(rc == 0 and diff is not None and diff.mean() < 0.05 and diff.max() <= 8,
+          f"render at {what} is the picture at spacing 1, origin 0: rc={rc} "
+          f"{'' if diff is None else (diff.mean(), diff.max())} {err.strip()[:200]!r}")
+rc, err, picture = (0, "nearly transparent", reference + 10) if no_gl else \
+    render_one(os.path.join(tmp, "tiny.vti"))
+check(rc == 0 and "nearly transparent" in err and picture is not None and
+      np.abs(picture - reference).mean() > 5,
+      f"control: spacing 1e-6 with opacities referring to 1 is nearly empty, with a warning: {err.strip()[:200]!r}")
+
 # Readers' own messages: one line, the file named, no VTK log line, no
 # MetaIO console text, no "ERROR: In file, line" prefix.
 def write(name, text, tail=b""):
