@@ -564,6 +564,29 @@ using BrickState = BrickCategory;
 /// in probing: the opacity factor is 1); only the candidate test is mixed.
 constexpr std::uint8_t BrickClipUniform = 0x40;
 
+/// A brick's category from the coverage of its samples by the clip (None
+/// or All: proven) and, asked only when it matters, of its centres by the
+/// candidate layers (Mixed: BrickMixed | BrickClipUniform).
+template <typename CandidateCoverage>
+std::uint8_t BrickOf(
+  const layout::ClipParams& p, ClipMapsTiles::Coverage clip, CandidateCoverage candidateCoverage)
+{
+  const bool subtract = p.map.w == layout::CAO_MODE_SUBTRACT;
+  if (subtract && clip == ClipMapsTiles::All)
+    return BrickClipped;
+  if (!subtract && clip == ClipMapsTiles::None)
+    return BrickClipped;
+  const ClipMapsTiles::Coverage cand = candidateCoverage();
+  if (cand == ClipMapsTiles::Mixed)
+    return BrickMixed | BrickClipUniform;
+  // Subtraction: not clipped; a candidate is affected. Probing: fully
+  // inside; a candidate (deep inside) is unaffected.
+  const bool candidate = cand == ClipMapsTiles::All;
+  if (subtract)
+    return candidate ? BrickAffected : BrickUnaffected;
+  return candidate ? BrickUnaffected : BrickAffected;
+}
+
 /// The category every voxel of the brick [i0, i1] x [j0, j1] x [k0, k1]
 /// provably gets, or BrickMixed (with BrickClipUniform when only the
 /// candidate test is undecided). Clip samples lie within half a voxel of
@@ -575,22 +598,9 @@ std::uint8_t ClassifyBrick(const layout::ClipParams& p, const ClipMapsTiles& til
   const ClipMapsTiles::Coverage clip = BoxCoverage(p, tiles, 0, slo, shi);
   if (clip == ClipMapsTiles::Mixed)
     return BrickMixed;
-  const bool subtract = p.map.w == layout::CAO_MODE_SUBTRACT;
-  if (subtract && clip == ClipMapsTiles::All)
-    return BrickClipped;
-  if (!subtract && clip == ClipMapsTiles::None)
-    return BrickClipped;
   const double clo[3] = { double(i0), double(j0), double(k0) }, chi[3] = { double(i1), double(j1),
     double(k1) };
-  const ClipMapsTiles::Coverage cand = BoxCoverage(p, tiles, 1, clo, chi);
-  if (cand == ClipMapsTiles::Mixed)
-    return BrickMixed | BrickClipUniform;
-  // Subtraction: not clipped; a candidate is affected. Probing: fully
-  // inside; a candidate (deep inside) is unaffected.
-  const bool candidate = cand == ClipMapsTiles::All;
-  if (subtract)
-    return candidate ? BrickAffected : BrickUnaffected;
-  return candidate ? BrickUnaffected : BrickAffected;
+  return BrickOf(p, clip, [&] { return BoxCoverage(p, tiles, 1, clo, chi); });
 }
 
 /// ClassifyBrick from the brick's centre and the proof maps (ProofMaps):
@@ -603,28 +613,16 @@ std::uint8_t ClassifyBrickByProof(
     static_cast<float>(k0) + h);
   if (!c.inMap)
     return BrickMixed;
-  ClipMapsTiles::Coverage clip = ClipMapsTiles::Mixed;
-  if (!InLayers(p, proof.brickClip.front, proof.brickClip.back, c))
-    clip = ClipMapsTiles::None;
-  else if (InLayers(p, proof.brickClip.candFront, proof.brickClip.candBack, c))
-    clip = ClipMapsTiles::All;
+  // Outside the layers dilated by the reach: none; inside them eroded: all.
+  const auto coverage = [&](const ClipMapsView& m) {
+    if (!InLayers(p, m.front, m.back, c))
+      return ClipMapsTiles::None;
+    return InLayers(p, m.candFront, m.candBack, c) ? ClipMapsTiles::All : ClipMapsTiles::Mixed;
+  };
+  const ClipMapsTiles::Coverage clip = coverage(proof.brickClip);
   if (clip == ClipMapsTiles::Mixed)
     return BrickMixed;
-  const bool subtract = p.map.w == layout::CAO_MODE_SUBTRACT;
-  if (subtract && clip == ClipMapsTiles::All)
-    return BrickClipped;
-  if (!subtract && clip == ClipMapsTiles::None)
-    return BrickClipped;
-  bool candidate;
-  if (!InLayers(p, proof.brickCand.front, proof.brickCand.back, c))
-    candidate = false;
-  else if (InLayers(p, proof.brickCand.candFront, proof.brickCand.candBack, c))
-    candidate = true;
-  else
-    return BrickMixed | BrickClipUniform;
-  if (subtract)
-    return candidate ? BrickAffected : BrickUnaffected;
-  return candidate ? BrickUnaffected : BrickAffected;
+  return BrickOf(p, clip, [&] { return coverage(proof.brickCand); });
 }
 
 /// Set on a brick of the layer (with its category) when `memory` says its
