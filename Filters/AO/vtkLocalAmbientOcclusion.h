@@ -130,7 +130,7 @@ public:
    * (m - StartOffset) * R / M. 0 is the paper's march; 0.5 (default) puts
    * each sample in the middle of the step it decides: against the reference
    * AO it measured a third less error at the same cost, on every pattern
-   * and density (README.md, "Accuracy versus time"). In [0, 1). The
+   * and density (docs/accuracy.md). In [0, 1). The
    * JITTER variations replace it with their own per-variant offsets.
    */
   void SetStartOffset(double offset);

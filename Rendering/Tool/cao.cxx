@@ -985,7 +985,7 @@ void PrintCarveTables(const Options& o, vtkImageData* volume, const std::vector<
         std::printf("     geometry: %s\n", r.geometry.firstWrong.c_str());
     }
   }
-  // The summary table: one row per ray set (the README's benchmark table).
+  // The summary table: one row per ray set (docs/benchmarks.md's table).
   std::printf("\nSummary (means over %zu poses; full LAO %s):\n", runs[0].poses.size(),
     o.verify ? "recomputed on the clipped opacity at every pose" : "= the unclipped precompute");
   std::printf("| rays | backend | full-LAO ms | CAO update ms | speed-up | %% voxels in b | physical limit | speed-up / limit | first pose ms | after it: CAO ms | speed-up / limit |%s\n",

@@ -1,10 +1,25 @@
-"""The README's Python examples, run as they are written there: every
-```python block whose first line is "# README example: <name>", each in a
-fresh directory holding a link to Data/, then its results checked.
+"""The README's and the docs' Python examples, run as they are written there.
+
+README.md: every ```python block whose first line is "# README example:
+<name>", each in a fresh directory holding a link to Data/, then its results
+checked.
 
   filter pipeline  -> /usr/bin/python3 (PYTHONPATH=build/python)
   mapper           -> /usr/bin/python3 (EGL window, no X)
   paraview.simple  -> pvpython, the plugin through PV_PLUGIN_PATH, under Xvfb
+
+docs/*.md: every ```python block whose first line is "# docs example:
+<name>", run the same way by one generic runner: under pvpython (the
+plugin through PV_PLUGIN_PATH, under a private Xvfb:
+Testing/run-with-xvfb.sh, the tests' race-free xvfb-run -a) when the block
+imports paraview.simple, else with /usr/bin/python3 and
+PYTHONPATH=build/python. A block must exit 0. Exit 125 counts as a skip only
+when the block itself printed a line saying "skip" and why.
+
+And the documentation's shape: README.md at most 300 lines, every relative
+link of README.md and docs/*.md to an existing file (and heading, for a
+#anchor into a .md file), every docs page starting with its summary and a
+link back to the README.
 """
 import json
 import os
@@ -105,6 +120,111 @@ if "paraview.simple" in blocks:
         logged = [l for l in (p.stdout + p.stderr).splitlines()
                   if "ERR|" in l or "WARN|" in l or "outside the whole extent" in l]
         check(not logged, "it logs no error or warning: %s" % logged[:3])
+
+
+# The docs' examples: every "# docs example:" block of docs/*.md, by one
+# generic runner.
+import glob  # noqa: E402
+import shutil  # noqa: E402
+
+FENCE = re.compile(r"^```python\n(.*?)^```", re.S | re.M)
+docs_blocks = []
+for page in sorted(glob.glob(os.path.join(root, "docs", "*.md"))):
+    for b in FENCE.findall(open(page).read()):
+        m = re.match(r"# docs example: (.+)\n", b)
+        if m:
+            docs_blocks.append((os.path.basename(page), m.group(1).strip(), b))
+names = [n for _, n, _ in docs_blocks]
+check(len(docs_blocks) > 0 and len(set(names)) == len(names),
+      "docs/*.md hold %d \"# docs example:\" blocks, each named once: %s" % (len(names), names))
+pvpython = shutil.which("pvpython")
+for page, name, code in docs_blocks:
+    uses_paraview = re.search(r"^\s*(from paraview\.simple import|import paraview\.simple)", code, re.M)
+    label = "docs/%s: %s" % (page, name)
+    if uses_paraview and not pvpython:
+        print("%s: skipped, no pvpython" % label)
+        continue
+    if uses_paraview:
+        env["PV_PLUGIN_PATH"] = os.environ["CAO_PLUGIN_DIR"]
+        command = ["bash", os.path.join(root, "Testing", "run-with-xvfb.sh"), pvpython, "--dr"]
+    else:
+        command = ["/usr/bin/python3"]
+    blocks[label] = code
+    try:
+        p, work = run(label, command)
+    except subprocess.TimeoutExpired:
+        check(False, "%s runs within 600 s" % label)
+        continue
+    said_why = [l for l in p.stdout.splitlines() if "skip" in l.lower()]
+    if p.returncode == 125 and said_why:
+        print("%s: skipped (%s)" % (label, said_why[-1].strip()))
+        continue
+    check(p.returncode == 0, "%s runs under %s and exits 0 (exit %d%s)"
+          % (label, "pvpython" if uses_paraview else "/usr/bin/python3", p.returncode,
+             ": 125 without saying why" if p.returncode == 125 else ""))
+
+# The documentation's shape.
+readme_lines = readme.count("\n") + (0 if readme.endswith("\n") else 1)
+check(readme_lines <= 300, "README.md is at most 300 lines (%d)" % readme_lines)
+
+
+def slug(heading):
+    """GitHub's anchor for a heading: lower case, punctuation dropped, spaces to hyphens."""
+    h = re.sub(r"`", "", heading.strip().lower())
+    h = re.sub(r"[^\w\- ]", "", h)
+    return h.replace(" ", "-")
+
+
+def anchors(path):
+    seen, out, fence = {}, set(), False
+    for line in open(path).read().splitlines():
+        if line.startswith("```"):
+            fence = not fence
+        m = None if fence else re.match(r"^#{1,6} (.*)", line)
+        if m:
+            a = slug(m.group(1))
+            n = seen.get(a, 0)
+            seen[a] = n + 1
+            out.add(a if n == 0 else "%s-%d" % (a, n))
+    return out
+
+
+def links(path):
+    """The relative link targets of a Markdown file, outside code."""
+    text, fence, out = open(path).read(), False, []
+    for number, line in enumerate(text.splitlines(), 1):
+        if line.lstrip().startswith("```"):
+            fence = not fence
+            continue
+        if fence:
+            continue
+        line = re.sub(r"`[^`]*`", "", line)
+        for target in re.findall(r"\]\(([^)\s]+)\)", line):
+            if not re.match(r"^[a-z][a-z0-9+.-]*:", target):
+                out.append((number, target))
+    return out
+
+
+pages = [os.path.join(root, "README.md")] + sorted(glob.glob(os.path.join(root, "docs", "*.md")))
+broken, checked = [], 0
+for page in pages:
+    for number, target in links(page):
+        checked += 1
+        file_part, _, anchor = target.partition("#")
+        dest = os.path.normpath(os.path.join(os.path.dirname(page), file_part)) if file_part else page
+        where = "%s:%d -> %s" % (os.path.relpath(page, root), number, target)
+        if not os.path.exists(dest):
+            broken.append(where + " (no such file)")
+        elif anchor and dest.endswith(".md") and anchor not in anchors(dest):
+            broken.append(where + " (no such heading)")
+check(checked > 0 and not broken, "the %d relative links of README.md and docs/*.md lead to existing files "
+      "and headings%s" % (checked, (": " + "; ".join(broken)) if broken else ""))
+for page in pages[1:]:
+    head = open(page).read().split("\n\n")
+    ok = len(head) >= 3 and head[0].startswith("# ") and not head[1].startswith(("#", "```", "|", "-")) \
+        and "](../README.md)" in head[2]
+    check(ok, "docs/%s starts with its title, a summary paragraph and a link back to the README"
+          % os.path.basename(page))
 
 print("%d failure(s)" % len(failures))
 sys.exit(1 if failures else 0)

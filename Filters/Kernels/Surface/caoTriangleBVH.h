@@ -7,7 +7,7 @@
 // of about 1e-4 of the scene's size, which biases the occlusion in the
 // concave corners the analytic cases test. A reference must be the most
 // accurate thing in the comparison, so it pays the speed (measured in the
-// README's surface section) for exactness.
+// docs/surfaces.md) for exactness.
 #ifndef caoTriangleBVH_h
 #define caoTriangleBVH_h
 

@@ -44,7 +44,7 @@ bool ParseRayVariation(const std::string& text, RayVariation& variation)
 namespace
 {
 /// One preset's settings. Values chosen from the measured front: see
-/// README.md, "Accuracy versus time" (embryo.slc and neghip.slc).
+/// docs/accuracy.md (embryo.slc and neghip.slc).
 struct PresetSettings
 {
   RayPattern pattern;

@@ -54,8 +54,7 @@ bool ParseRayVariation(const std::string& text, RayVariation& variation);
 
 /**
  * Quality presets: fixed accuracy/time trade-offs chosen from the Pareto
- * front that `cao bench accuracy` measures (README.md, "Accuracy versus
- * time"). A preset fixes the pattern, the sample density, the start offset
+ * front that `cao bench accuracy` measures (docs/accuracy.md). A preset fixes the pattern, the sample density, the start offset
  * and the variation; the reach stays the user's.
  */
 enum class QualityPreset : int
@@ -72,8 +71,8 @@ bool ParseQualityPreset(const std::string& text, QualityPreset& preset);
 
 /**
  * The LAO settings; reach in world units. Defaults are the product's: the
- * Interactive preset, a point on the measured accuracy front (README,
- * "The presets"), with the individual settings equal to that preset's, so
+ * Interactive preset, a point on the measured accuracy front
+ * (docs/accuracy.md, "The presets"), with the individual settings equal to that preset's, so
  * that switching to Custom starts from the same point. (Before: 26 rays,
  * one sample per voxel, off the front.)
  *  - reach 0: 8 times the smallest voxel spacing (ResolveLAOSettings);

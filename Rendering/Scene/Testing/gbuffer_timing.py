@@ -1,4 +1,4 @@
-"""The pass's two G-buffers timed at 1920 x 1080 (the README's table):
+"""The pass's two G-buffers timed at 1920 x 1080 (docs/surface-benchmarks.md's table):
 42400-IDGH.stl tiled COPIES times in the project's EGL window, whole-colour
 AO, three camera turns per G-buffer, the last frame's report printed.
 

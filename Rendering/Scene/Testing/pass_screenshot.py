@@ -1,4 +1,4 @@
-"""The README's picture of vtkContextualAOPass: Data/Bunny.vtp on a slab in
+"""docs/surfaces.md's picture of vtkContextualAOPass: Data/Bunny.vtp on a slab in
 the project's EGL window (Ambient 0.4, Diffuse 0.6), the pass off (Method
 NONE), on the ambient term (the pass's default) and on the whole colour,
 written to OUT_DIR/pass-off.png, pass-ambient.png and pass-whole.png.

@@ -10,7 +10,7 @@
 // missed); the depth-aware filter keeps the two sides of a depth edge apart
 // (negative control: an unlimited tolerance mixes them); seed 001's five
 // estimators of the obscurance on the wall case agree in the limit, and
-// their spread at 16 samples is printed (the table in the README); bad
+// their spread at 16 samples is printed (the table in docs/surfaces.md); bad
 // settings are refused.
 #include "caoScreenSpaceAO.h"
 #include "caoSurfaceTestScenes.h"
