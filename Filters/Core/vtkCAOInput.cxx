@@ -19,7 +19,6 @@
 #include "vtkMetaImageReader.h"
 #include "vtkNIFTIImageReader.h"
 #include "vtkNew.h"
-#include "vtkLogger.h"
 #include "vtkOBJReader.h"
 #include "vtkObjectFactory.h"
 #include "vtkOutputWindow.h"
@@ -569,8 +568,10 @@ public:
   static CaptureWindow* New();
   vtkTypeMacro(CaptureWindow, vtkOutputWindow);
   void DisplayErrorText(const char* text) override { this->Keep(text); }
-  void DisplayWarningText(const char* text) override { this->Keep(text); }
-  void DisplayGenericWarningText(const char* text) override { this->Keep(text); }
+  // Warnings fail the read only when they report an error (as the
+  // reader's own observer takes them: "Error reading binary data!").
+  void DisplayWarningText(const char* text) override { this->KeepIfError(text); }
+  void DisplayGenericWarningText(const char* text) override { this->KeepIfError(text); }
   void DisplayText(const char*) override {}
   void DisplayDebugText(const char*) override {}
   std::string first;
@@ -581,6 +582,12 @@ private:
     if (this->first.empty() && text)
       this->first = text;
   }
+  void KeepIfError(const char* text)
+  {
+    if (text && (std::strstr(text, "Error") || std::strstr(text, "error") ||
+                  std::strstr(text, "truncat")))
+      this->Keep(text);
+  }
 };
 vtkStandardNewMacro(CaptureWindow);
 
@@ -588,18 +595,11 @@ struct OutputCapture
 {
   vtkSmartPointer<vtkOutputWindow> previous = vtkOutputWindow::GetInstance();
   vtkNew<CaptureWindow> window;
-  // vtkErrorMacro also logs to stderr through vtkLogger, whatever the window.
-  vtkLogger::Verbosity verbosity = vtkLogger::GetCurrentVerbosityCutoff();
-  OutputCapture()
-  {
-    vtkOutputWindow::SetInstance(window);
-    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
-  }
-  ~OutputCapture()
-  {
-    vtkLogger::SetStderrVerbosity(verbosity);
-    vtkOutputWindow::SetInstance(previous);
-  }
+  // (vtkErrorMacro also logs through vtkLogger, whatever the window: the
+  // cao tool turns vtkLogger's stderr off for its whole run; a library
+  // caller keeps its own logging.)
+  OutputCapture() { vtkOutputWindow::SetInstance(window); }
+  ~OutputCapture() { vtkOutputWindow::SetInstance(previous); }
   std::string FirstError() const { return window->first; }
 };
 
@@ -1147,6 +1147,13 @@ vtkSmartPointer<vtkPolyData> MakeShape(const std::string& name, double size, std
 
 bool ParsePose(const std::string& text, Pose& pose, std::string& error)
 {
+  const std::string trimmed = Trim(text);
+  if (!trimmed.empty() && (trimmed.front() == ',' || trimmed.back() == ',' ||
+                            trimmed.find(",,") != std::string::npos))
+  {
+    error = "an empty item in pose '" + text + "'";
+    return false;
+  }
   std::string t = text;
   std::replace(t.begin(), t.end(), ',', ' ');
   std::istringstream in(t);

@@ -101,9 +101,9 @@ private:
 /// Returns false with the reason in `error`.
 bool TakeArgument(const std::string& a, std::string& volume, std::string& error);
 
-/// The non-empty items of `s` between separators `sep`.
 /// A comma list with an empty item ("", ",6", "6,", "6,,14").
 bool HasEmptyItem(const std::string& list);
+/// The non-empty items of `s` between separators `sep`.
 std::vector<std::string> Split(const std::string& s, char sep);
 
 /// A whole string as a finite double; false otherwise.

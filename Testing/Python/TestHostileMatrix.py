@@ -174,14 +174,13 @@ def run_measured(args):
             p.kill()
             timed_out = True
             break
-        events = sel.select(timeout=min(left, 1.0))
-        if events:
+        # The child closing stderr (its end) ends the loop; wait4 reaps it
+        # below (poll here could reap it first).
+        if sel.select(timeout=min(left, 1.0)):
             chunk = p.stderr.read1(65536)
             if not chunk:
                 break
             chunks.append(chunk)
-        elif p.poll() is not None:
-            break
     rest = p.stderr.read()
     if rest:
         chunks.append(rest)
@@ -216,6 +215,9 @@ def judge(case, args, must_refuse=False, must_run=False):
                                 "Segmentation", "Unable to allocate")):
         kind = "unclear"
         problems.append("VTK or runtime output on stderr")
+    elif rc == 0 and "cao: error:" in err:
+        kind = "unclear"
+        problems.append("an error printed, exit 0")
     elif rc == 0 and must_refuse:
         kind = "silent"
         problems.append("accepted")
@@ -240,7 +242,7 @@ for name, source in sorted(volumes.items()):
         damaged_path = path("damaged-" + name)
         with open(damaged_path, "wb") as f:
             f.write(content)
-        # A split .mhd's data file is separate: damage it too.
+        # (A split .mhd's header is damaged here; its data file below.)
         judge("volume %s, %s: lao" % (name, tag), ["lao", damaged_path, "--rays", "6"],
               must_refuse=tag in ("empty",))
         if tag in ("cut 50%", "sizes huge", "header bytes 0xFF"):

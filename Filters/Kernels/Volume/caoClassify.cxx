@@ -316,6 +316,12 @@ bool ProofMaps::Prepare(const layout::ClipParams& clip, const ClipMapsView& maps
   if (!std::isfinite(needed) || !(needed > 0.0))
     return false;
   const float* layers[4] = { maps.front, maps.back, maps.candFront, maps.candBack };
+  // The dilation's window grows with the radius in pixels: past
+  // MaxProofPixels (a very anisotropic voxel against the pixel, sized by
+  // the smallest spacing) the maps would cost more than they save.
+  const double pixel = std::min(pixelSize[0], pixelSize[1]);
+  if (1.1 * needed > MaxProofPixels * pixel)
+    return false;
   const bool same = mapsVersion != 0 && mapsVersion == this->version &&
     std::equal(layers, layers + 4, this->of) && this->clip.width == clip.map.x &&
     this->clip.height == clip.map.y && this->clip.layers == clip.map.z;
@@ -326,8 +332,11 @@ bool ProofMaps::Prepare(const layout::ClipParams& clip, const ClipMapsView& maps
     // centres 3), with the rounding bound added once.
     const double grow = 1.1;
     this->radius = grow * needed;
-    const double brickClipRadius = grow * (4.0 * reach + rounding);
-    const double brickCandRadius = grow * (3.0 * reach + rounding);
+    // A later pose reuses these while its own per-voxel need is at most
+    // `radius`; its brick needs (4 or 3 x its reach, plus its rounding)
+    // are then at most 4 and 3 x `radius`.
+    const double brickClipRadius = 4.0 * this->radius;
+    const double brickCandRadius = 3.0 * this->radius;
     const std::size_t n = static_cast<std::size_t>(clip.map.x) * clip.map.y * clip.map.z;
     ClipDepthMaps* copies[2] = { &this->clip, &this->cand };
     for (int c = 0; c < 2; ++c)
@@ -352,6 +361,14 @@ bool ProofMaps::Prepare(const layout::ClipParams& clip, const ClipMapsView& maps
       { &this->clip, brickClipRadius, this->brickClip }, { &this->cand, brickCandRadius, this->brickCand } };
     for (const Job& job : jobs)
     {
+      // Bricks whose reach spans too many pixels get no maps (the tiles
+      // decide them): ClassifyBrickByProof then says Mixed.
+      if (job.out != this->sample && job.radius > 1.5 * MaxProofPixels * pixel)
+      {
+        job.out[0] = ClipDepthMaps();
+        job.out[1] = ClipDepthMaps();
+        continue;
+      }
       job.out[0].Allocate(clip.map.x, clip.map.y, clip.map.z);
       job.out[1].Allocate(clip.map.x, clip.map.y, clip.map.z);
       DilateErodeRows(*job.in, camera, job.radius, job.out[0], job.out[1], 0, clip.map.y);
@@ -361,8 +378,9 @@ bool ProofMaps::Prepare(const layout::ClipParams& clip, const ClipMapsView& maps
     ++this->builds;
   }
   const auto viewOf = [](const ClipDepthMaps* m) {
-    return ClipMapsView{ m[0].front.data(), m[0].back.data(), m[1].front.data(),
-      m[1].back.data() };
+    return m[0].front.empty() ? ClipMapsView{}
+                              : ClipMapsView{ m[0].front.data(), m[0].back.data(),
+                                  m[1].front.data(), m[1].back.data() };
   };
   view = { viewOf(this->sample), viewOf(this->brickClip), viewOf(this->brickCand) };
   return true;
@@ -609,6 +627,8 @@ std::uint8_t ClassifyBrickByProof(
   const layout::ClipParams& p, const ProofMaps::View& proof, int i0, int j0, int k0)
 {
   const float h = 0.5f * (BrickSize - 1);
+  if (!proof.brickClip.front || !proof.brickCand.front)
+    return BrickMixed;
   const Projection c = Project(p, static_cast<float>(i0) + h, static_cast<float>(j0) + h,
     static_cast<float>(k0) + h);
   if (!c.inMap)

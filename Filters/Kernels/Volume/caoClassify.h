@@ -231,6 +231,11 @@ void ClassifySlices(const layout::ClipParams& p, const int dims[3], const ClipMa
  */
 struct ProofMaps
 {
+  /// The largest per-voxel radius, in pixels, the maps are built for
+  /// (beyond, Prepare builds none); the brick maps are built up to 1.5
+  /// times it (beyond, bricks are left to the tiles): the dilation's window
+  /// grows with the square of the radius in pixels.
+  static constexpr double MaxProofPixels = 8.0;
   /// The largest distance (local units) from a voxel's centre to a point
   /// of its cube under `clip`'s index-to-camera map, for pixels of
   /// `pixelSize` local units.
