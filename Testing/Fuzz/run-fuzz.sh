@@ -4,19 +4,26 @@
 # (new inputs that add coverage are kept in a scratch copy, not in the
 # repository). Usage: run-fuzz.sh SOURCE_DIR BUILD_DIR [SECONDS] [FORMATS]
 # Exit 0: no crash; 1: a crash (its input is printed and kept under
-# BUILD_DIR/fuzz/); 125: clang++ or libFuzzer is missing (the skip says so).
+# BUILD_DIR/fuzz/); 125: clang++ or libFuzzer is missing (the skip says so),
+# or 1 instead when CAO_REQUIRE_FUZZ=1 (.ci/run: its set-up installs clang).
 set -u
 src=$(cd "$1" && pwd) build=$(cd "$2" && pwd) seconds=${3:-20} formats=${4:-"slc nii niigz stl vti"}
 out="$build/fuzz"
 mkdir -p "$out"
-if ! command -v clang++ > /dev/null; then
-  echo "skip: clang++ is not installed (Debian: clang), so libFuzzer targets cannot be built"
+skip() {
+  if [ "${CAO_REQUIRE_FUZZ:-0}" = 1 ]; then
+    echo "FAIL (CAO_REQUIRE_FUZZ is set): $1"
+    exit 1
+  fi
+  echo "skip: $1"
   exit 125
+}
+if ! command -v clang++ > /dev/null; then
+  skip "clang++ is not installed (Debian: clang), so libFuzzer targets cannot be built"
 fi
 echo 'extern "C" int LLVMFuzzerTestOneInput(const unsigned char*, unsigned long) { return 0; }' > "$out/probe.cxx"
 if ! clang++ -fsanitize=fuzzer "$out/probe.cxx" -o "$out/probe" 2> "$out/probe.log"; then
-  echo "skip: clang++ cannot link -fsanitize=fuzzer (libFuzzer missing): $(head -c 300 "$out/probe.log")"
-  exit 125
+  skip "clang++ cannot link -fsanitize=fuzzer (libFuzzer missing): $(head -c 300 "$out/probe.log")"
 fi
 status=0
 for format in $formats; do

@@ -66,13 +66,19 @@ image = shrink.GetOutput()
 volumes = {}
 
 
-def volume_writer(name, writer, configure=None):
-    writer.SetInputData(image)
-    writer.SetFileName(path(name))
-    if configure:
-        configure(writer)
-    writer.Write()
-    volumes[name] = path(name)
+def written(data_object, into):
+    """A writer of `data_object` into the dict `into`: name, writer, setup."""
+    def write(name, writer, configure=None):
+        writer.SetInputData(data_object)
+        writer.SetFileName(path(name))
+        if configure:
+            configure(writer)
+        writer.Write()
+        into[name] = path(name)
+    return write
+
+
+volume_writer = written(image, volumes)
 
 
 volume_writer("ascii.vti", vtkXMLImageDataWriter(), lambda w: w.SetDataModeToAscii())
@@ -107,15 +113,7 @@ triangles.SetInputConnection(sphere.GetOutputPort())
 triangles.Update()
 mesh = triangles.GetOutput()
 meshes = {}
-
-
-def mesh_writer(name, writer, configure=None):
-    writer.SetInputData(mesh)
-    writer.SetFileName(path(name))
-    if configure:
-        configure(writer)
-    writer.Write()
-    meshes[name] = path(name)
+mesh_writer = written(mesh, meshes)
 
 
 mesh_writer("ascii.stl", vtkSTLWriter(), lambda w: w.SetFileTypeToASCII())

@@ -188,14 +188,11 @@ bool ContextualUpdate::Update(const Volume& volume, const layout::ClipParams& cl
     std::copy(of, of + 4, this->TilesOf);
   }
   const ClipMapsTiles* tiles = useTiles ? &this->Tiles : nullptr;
-  ProofMaps::View proofView;
-  const auto tp = std::chrono::steady_clock::now();
-  const int builds = this->Proof.builds;
+  ProofMaps::View proofView; // built in the classification's time (classifyMs)
   const ProofMaps::View* proof = useTiles && pixelSize &&
       this->Proof.Prepare(clip, maps, mapsVersion, pixelSize, dims, proofView)
     ? &proofView
     : nullptr;
-  stats.proofMs = this->Proof.builds != builds ? MillisecondsSince(tp) : 0.0;
   const int slabs = Empty(box) ? 0 : box[5] - box[4] + 1;
   const int groups = (slabs + BrickSize - 1) / BrickSize;
   std::mutex mutex;

@@ -83,7 +83,6 @@ public:
     /// AO exactly); counts.affected is the paper's geometric b
     std::int64_t recomputedVoxels = 0;
     double narrowMs = 0; ///< the footprint test of the b voxels (per brick)
-    double proofMs = 0;  ///< building the proof maps (0 when reused)
     double classifyMs = 0, copyMs = 0, recomputeMs = 0;
   };
 
