@@ -83,6 +83,7 @@ struct FrameReport
   int imageSampleDistance = 1; // one ray per k x k pixels
   bool interactive = false;    // the window asked for an interactive frame
   int peelStage = 0; // the host's depth-peeling stage this draw was (0: none)
+  std::int64_t aoSampleVoxels = 0; // the ray caster's AO samples remade (RayCaster)
 
   std::string Json() const
   {
@@ -92,7 +93,7 @@ struct FrameReport
     for (std::size_t i = 0; i < stages.size(); ++i)
       o << (i ? ", " : "") << "{\"name\": \"" << stages[i].name << "\", \"ms\": "
         << stages[i].ms << ", \"timer\": \"" << stages[i].timer << "\"}";
-    o << "], \"recomputed_voxels\": " << recomputed;
+    o << "], \"recomputed_voxels\": " << recomputed << ", \"ao_sample_voxels\": " << aoSampleVoxels;
     if (clipped >= 0)
       o << ", \"categories\": {\"clipped\": " << clipped << ", \"affected\": " << affected
         << ", \"unaffected\": " << unaffected << "}";
@@ -1401,6 +1402,7 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     return;
   }
   const double castMs = in.Caster->LastMilliseconds();
+  f.report.aoSampleVoxels = in.Caster->LastAOSampleVoxels();
   if (f.interactive && f.report.peelStage <= cao::layout::CAO_PEEL_OUTSIDE)
   {
     in.UpdateMs = 0.0;

@@ -84,6 +84,18 @@ struct AOEngine::Impl
   StageTimes times;
   layout::LAOMarchBlock params{};
   std::uint64_t generation = 0;
+  // What a renderer's copies of the state and AO must follow (Resources):
+  // a count of the writes to them, and the box the last one wrote.
+  std::uint64_t contents = 0, changedFrom = 0;
+  Box changed;
+
+  /// A write to the state or the AO over `box`.
+  void Changed(const Box& box)
+  {
+    changedFrom = contents;
+    ++contents;
+    changed = box;
+  }
 
   Impl(Context& c)
     : Ctx(c)
@@ -261,6 +273,7 @@ struct AOEngine::Impl
     }
     this->UploadFactors(layout::CAO_MODE_SUBTRACT, 9);
     this->ClassifyAndCopy(this->WholeVolume());
+    this->Changed(this->WholeVolume());
     gl.Finish();
     havePrecomputed = true;
     previous = Box();
@@ -371,6 +384,7 @@ bool AOEngine::SetVolume(const VolumeUpload& v, std::string& error)
   gl.BindTexture(GL_TEXTURE_3D, 0);
   p.state = p.NewVolume(GL_R8UI);
   ++p.generation;
+  p.Changed(p.WholeVolume());
   p.aoPre = p.NewVolume(GL_R16UI);
   p.aoCur = p.NewVolume(GL_R16UI);
   const std::int64_t n = p.Voxels();
@@ -625,6 +639,7 @@ bool AOEngine::Update(
   p.UploadFactors(clip.map.w, 9 + clip.aa.x);
   p.BufferUpload(p.clipParams, GL_UNIFORM_BUFFER, sizeof(clip), &clip);
   p.ClassifyAndCopy(region);
+  p.Changed(region);
   p.BindLAOBuffers();
   p.BindImages(true, true, false, false, p.aoCur);
   p.Begin(QRecompute);
@@ -701,9 +716,17 @@ AOEngine::Resources AOEngine::GetResources() const
   r.precomputedAO = p.aoPre;
   r.maps = p.maps;
   r.clipParams = p.clipParams;
+  r.opacityTable = p.opacityTable;
   r.source = p.source;
   std::copy(p.dims, p.dims + 3, r.dims);
   r.generation = p.generation;
+  r.contents = p.contents;
+  r.changedFrom = p.changedFrom;
+  for (int d = 0; d < 3; ++d)
+  {
+    r.changedMin[d] = p.changed.lo[d];
+    r.changedMax[d] = p.changed.hi[d];
+  }
   return r;
 }
 

@@ -146,9 +146,17 @@ public:
   struct Resources
   {
     unsigned int volume = 0, state = 0, currentAO = 0, precomputedAO = 0, maps = 0, clipParams = 0;
+    unsigned int opacityTable = 0; ///< storage: the LAO's opacity per scalar value (Scalars8/16)
     OpacitySource source = OpacitySource::Float32;
     int dims[3] = { 0, 0, 0 };
     std::uint64_t generation = 0;
+    /// `contents` counts the writes to the state and the AO; the last one
+    /// took it from `changedFrom` and wrote the voxels in
+    /// [changedMin, changedMax] (inclusive; empty when min > max). A
+    /// renderer that derived something from them at `changedFrom` needs to
+    /// redo only that box.
+    std::uint64_t contents = 0, changedFrom = 0;
+    int changedMin[3] = { 0, 0, 0 }, changedMax[3] = { -1, -1, -1 };
   };
   Resources GetResources() const;
   /// Bytes resident on the GPU now: volumes, tables, maps, parameters.

@@ -2,6 +2,7 @@
 
 #include "caoGLStateGuard.h"
 
+#include "caoAOSamples_glsl.h"
 #include "caoClipTest_glsl.h"
 #include "caoRayCastFS_glsl.h"
 #include "caoRayCastVS_glsl.h"
@@ -35,6 +36,29 @@ struct RayCaster::Impl
   GLuint viewedVolume = 0;
   int depthSize[2] = { 0, 0 };
   int scalarDims[3] = { 0, 0, 0 };
+  // The AO samples (caoAOSamples.glsl, a program per opacity source) and
+  // what they were made from: the engine's volumes and their contents, the
+  // AO volume drawn and whether the frame clips. The ray cast's table,
+  // scalars and step do not enter them.
+  GLuint aoSamples = 0;
+  Program samples[3];
+  int samplesDims[3] = { 0, 0, 0 };
+  struct SamplesKey
+  {
+    std::uint64_t generation = 0;
+    GLuint volume = 0;
+    bool precomputed = false, clip = false;
+    bool operator==(const SamplesKey& o) const
+    {
+      return generation == o.generation && volume == o.volume && precomputed == o.precomputed &&
+        clip == o.clip;
+    }
+  };
+  SamplesKey samplesKey;
+  std::uint64_t samplesContents = 0;
+  bool samplesValid = false;
+  /// Voxels the last Draw wrote into the AO samples (0: they were current).
+  std::int64_t samplesVoxels = 0;
   bool timed = false;
   RayCaster::PeelTextures peel;
 
@@ -93,6 +117,82 @@ struct RayCaster::Impl
     viewGeneration = r.generation;
     viewedVolume = r.volume;
   }
+  void FreeSamples()
+  {
+    this->Free(aoSamples);
+    std::fill(samplesDims, samplesDims + 3, 0);
+    samplesValid = false;
+  }
+  /// Bring the AO samples up to date for a draw (the engine's AO and state
+  /// views on their units): all
+  /// of them when what they are made from changed, else only the box of
+  /// the engine's last write when they follow the one before it, else
+  /// nothing.
+  bool SyncSamples(const AOEngine::Resources& r, bool precomputedAO, bool clip, std::string& error)
+  {
+    samplesVoxels = 0;
+    SamplesKey key;
+    key.generation = r.generation;
+    key.volume = r.volume;
+    key.precomputed = precomputedAO;
+    key.clip = clip;
+    int lo[3] = { 0, 0, 0 }, hi[3] = { r.dims[0] - 1, r.dims[1] - 1, r.dims[2] - 1 };
+    if (samplesValid && aoSamples && key == samplesKey && std::equal(r.dims, r.dims + 3, samplesDims))
+    {
+      if (r.contents == samplesContents)
+        return true;
+      if (r.changedFrom == samplesContents)
+        for (int d = 0; d < 3; ++d)
+        {
+          lo[d] = std::max(0, r.changedMin[d]);
+          hi[d] = std::min(r.dims[d] - 1, r.changedMax[d]);
+        }
+    }
+    if (!std::equal(r.dims, r.dims + 3, samplesDims) || !aoSamples)
+    {
+      this->FreeSamples();
+      gl.GenTextures(1, &aoSamples);
+      gl.ActiveTexture(GL_TEXTURE0 + CAO_UNIT_AO_SAMPLES);
+      gl.BindTexture(GL_TEXTURE_3D, aoSamples);
+      gl.TexStorage3D(GL_TEXTURE_3D, 1, GL_RGBA16, r.dims[0], r.dims[1], r.dims[2]);
+      Linear(gl, GL_TEXTURE_3D);
+      std::copy(r.dims, r.dims + 3, samplesDims);
+      std::fill(lo, lo + 3, 0);
+      for (int d = 0; d < 3; ++d)
+        hi[d] = r.dims[d] - 1;
+    }
+    samplesValid = false;
+    const int source = static_cast<int>(r.source);
+    Program& program = samples[source];
+    if (!program.Valid() &&
+      !program.BuildCompute(gl, { caoAOSamples_glsl },
+        { { "CAO_OPACITY_SOURCE", std::to_string(source) } }, error))
+      return false;
+    gl.UseProgram(program.Id());
+    gl.Uniform3i(program.Uniform(gl, "regionMin"), lo[0], lo[1], lo[2]);
+    gl.Uniform3i(program.Uniform(gl, "regionMax"), hi[0], hi[1], hi[2]);
+    gl.Uniform1i(program.Uniform(gl, "clipped"), clip ? 1 : 0);
+    const GLenum volumeFormat = r.source == OpacitySource::Float32
+      ? GL_R32F
+      : (r.source == OpacitySource::Scalars8 ? GL_R8UI : GL_R16UI);
+    gl.BindImageTexture(CAO_IMAGE_VOLUME, r.volume, 0, GL_TRUE, 0, GL_READ_ONLY, volumeFormat);
+    gl.BindImageTexture(CAO_IMAGE_AO_SAMPLES, aoSamples, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_OPACITY_TABLE, r.opacityTable);
+    if (hi[0] >= lo[0] && hi[1] >= lo[1] && hi[2] >= lo[2])
+    {
+      const int n[3] = { hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1 };
+      gl.DispatchCompute(static_cast<GLuint>((n[0] + 7) / 8), static_cast<GLuint>((n[1] + 7) / 8),
+        static_cast<GLuint>(n[2]));
+      samplesVoxels = std::int64_t(n[0]) * n[1] * n[2];
+    }
+    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    if (!CheckError(gl, "the AO samples", error))
+      return false;
+    samplesKey = key;
+    samplesContents = r.contents;
+    samplesValid = true;
+    return true;
+  }
   void FreeLowTarget()
   {
     if (lowFbo)
@@ -139,7 +239,10 @@ struct RayCaster::Impl
     this->FreeViews();
     this->FreeLowTarget();
     upsample.Release(gl);
+    for (Program& q : samples)
+      q.Release(gl);
     std::fill(prepared, prepared + 4, false);
+    this->FreeSamples();
     for (GLuint* t : { &table, &scalars, &depth })
       this->Free(*t);
     if (vertexArray)
@@ -417,6 +520,16 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
     gl.ActiveTexture(GL_TEXTURE0 + u);
     gl.BindTexture(units[u][0], units[u][1]);
   }
+  // The AO samples, where VoxelAO reads them (clipped or calibrated AO).
+  if (withAO && (clip || withCalibration))
+  {
+    if (!p.SyncSamples(r, precomputedAO, clip, error))
+      return false;
+    gl.ActiveTexture(GL_TEXTURE0 + CAO_UNIT_AO_SAMPLES);
+    gl.BindTexture(GL_TEXTURE_3D, p.aoSamples);
+  }
+  else
+    p.samplesVoxels = 0;
   if (peel)
   {
     const GLuint host[4][2] = { { CAO_UNIT_PEEL_OUTER, p.peel.outer },
@@ -559,18 +672,24 @@ double RayCaster::LastMilliseconds()
   return p.timer.Milliseconds(p.gl, 0);
 }
 
+std::int64_t RayCaster::LastAOSampleVoxels() const
+{
+  return this->P->samplesVoxels;
+}
+
 std::vector<std::pair<char, unsigned int>> RayCaster::ObjectNames() const
 {
   const Impl& p = *this->P;
   std::vector<std::pair<char, unsigned int>> names;
   for (GLuint t : { p.table, p.scalars, p.depth, p.scalarView, p.currentView, p.precomputedView,
-         p.lowBack, p.lowFront })
+         p.lowBack, p.lowFront, p.aoSamples })
     if (t)
       names.emplace_back('t', t);
   if (p.lowFbo)
     names.emplace_back('f', p.lowFbo);
-  if (p.upsample.Valid())
-    names.emplace_back('p', p.upsample.Id());
+  for (const Program* q : { &p.upsample, &p.samples[0], &p.samples[1], &p.samples[2] })
+    if (q->Valid())
+      names.emplace_back('p', q->Id());
   if (p.vertexArray)
     names.emplace_back('v', p.vertexArray);
   for (GLuint b : { p.block, p.spreadBlock })
@@ -606,8 +725,13 @@ void RayCaster::AbandonGraphicsResources()
 {
   Impl& p = *this->P;
   for (GLuint* t : { &p.table, &p.scalars, &p.depth, &p.scalarView, &p.currentView,
-         &p.precomputedView, &p.vertexArray, &p.block, &p.spreadBlock, &p.lowFbo, &p.lowBack, &p.lowFront })
+         &p.precomputedView, &p.vertexArray, &p.block, &p.spreadBlock, &p.lowFbo, &p.lowBack, &p.lowFront,
+         &p.aoSamples })
     *t = 0;
+  std::fill(p.samplesDims, p.samplesDims + 3, 0);
+  p.samplesValid = false;
+  for (Program& q : p.samples)
+    q.Abandon();
   p.lowSize[0] = p.lowSize[1] = 0;
   std::fill(p.prepared, p.prepared + 4, false);
   for (Program& v : p.variants)

@@ -2,8 +2,8 @@
  * caoRayCaster — the volume ray caster of the contextual-AO mapper, with no
  * VTK: a full-viewport triangle whose fragment shader (caoRayCastFS.glsl)
  * marches each pixel's ray through the AO engine's own GPU volumes. The
- * scalars and the AO are sampled through texture views of the engine's
- * integer volumes (normalised, trilinear), so nothing is copied; clipping
+ * scalars and the unclipped AO are sampled through texture views of the
+ * engine's integer volumes (normalised, trilinear); clipping
  * uses the engine's depth maps and ClipParams with the classifier's own
  * shadow test (caoClipTest.glsl).
  *
@@ -16,6 +16,11 @@
  * between the host's peeled depths (SetPeelTextures), writes the back and
  * front outputs the host's draw buffers expect, and leaves the host's
  * blending as it is.
+ *
+ * A clipped or calibrated AO is sampled from the caster's own RGBA16
+ * volume (caoAOSamples.glsl): one filtered fetch per sample gives the
+ * trilinear sums over the voxels the clip leaves, and over those holding
+ * matter, that the 8 voxels' state, AO and opacity gave before.
  *
  * Two economies (SetDrawOptions): the draw covers only a region of the
  * viewport (the volume's projected box, intersected with the host's scissor
@@ -101,6 +106,14 @@ public:
 
   /// GPU milliseconds of the last Draw (timer query; waits for the GPU).
   double LastMilliseconds();
+
+  /// Voxels of the AO samples the last Draw remade (0 when they were
+  /// current or the draw read none): the ray caster samples a clipped or
+  /// calibrated AO from one RGBA16 volume of its own (caoAOSamples.glsl,
+  /// 8 bytes per voxel), remade where the engine's state or AO changed
+  /// since, whole when the table, the scalars, the clip test or the AO
+  /// volume drawn changed.
+  std::int64_t LastAOSampleVoxels() const;
 
   int LiveObjects() const;
   std::vector<std::pair<char, unsigned int>> ObjectNames() const;

@@ -164,6 +164,12 @@ CAO_CONST CAO_PEEL_REMAINDER = 3;
 /* caoUpsampleFS.glsl (another program): the ray cast drawn at one pixel in k x k */
 #define CAO_UNIT_LOW_BACK 9         /* sampler2D RGBA16F: its back (or only) output */
 #define CAO_UNIT_LOW_FRONT 10       /* sampler2D RGBA16F: its front output (depth peeling) */
+/* The AO samples (caoAOSamples.glsl, the ray caster's own volume): per voxel, keep = 0 where the
+ * clip removed it (with CAO_RENDER_CLIP), else 1: (keep * AO, keep, keep * the LAO step's opacity,
+ * keep * (opacity > 0)), with the LAO's own opacity (the AO engine's), RGBA16; linear filtering gives VoxelAO's trilinear sums in one fetch. */
+#define CAO_UNIT_AO_SAMPLES 11      /* sampler3D RGBA16: the AO samples */
+#define CAO_IMAGE_AO_SAMPLES 1      /* image unit rgba16: the AO samples, written (the engine's
+                                       volume read at CAO_IMAGE_VOLUME) */
 /* The depth-map programs (caoClipDepthMapsGL) are separate programs with their
  * own storage bindings, kept within the 8 that GL 4.3 guarantees. */
 #define CAO_BINDING_DM_POINTS 0    /* storage: double xyz per mesh point (local frame) */

@@ -45,7 +45,7 @@ layout(binding = CAO_UNIT_SCALARS) uniform sampler3D scalarTexture;
 layout(binding = CAO_UNIT_AO) uniform sampler3D aoTexture;
 layout(binding = CAO_UNIT_TABLE) uniform sampler2D tableTexture;
 layout(binding = CAO_UNIT_DEPTH) uniform sampler2D depthTexture;
-layout(binding = CAO_UNIT_STATE) uniform usampler3D stateTexture;
+layout(binding = CAO_UNIT_AO_SAMPLES) uniform sampler3D aoSamplesTexture;
 layout(binding = CAO_UNIT_PEEL_OUTER) uniform sampler2D peelOuter;
 layout(binding = CAO_UNIT_PEEL_INNER) uniform sampler2D peelInner;
 layout(binding = CAO_UNIT_PEEL_FRONT) uniform sampler2D peelFront;
@@ -140,20 +140,13 @@ float HalfSpace(float depth, float a)
 /// of 0.5, and more of a slot's darkening kept).
 #define CAO_CALIBRATION_FLOOR 0.4
 
-/// Voxel v's opacity for the LAO's step (the table's is for the ray
-/// cast's).
-float LAOOpacity(ivec3 v)
-{
-  float s = texelFetch(scalarTexture, v, 0).r;
-  float alpha = texture(tableTexture, vec2(s * rp.sampling.y + rp.sampling.z, 0.5)).a;
-  return 1.0 - pow(max(1.0 - alpha, 0.0), rp.aoCalibration.w);
-}
-
 /// The AO at index-space point p: trilinear over the 8 voxels around it,
-/// over those the clip leaves only when `clipped` (a clipped voxel holds an
+/// over those the clip leaves when the frame clips (a clipped voxel holds an
 /// AO that no longer means anything: its matter is gone, and blending it in
 /// would darken the cut surfaces; weights renormalised; 1 when all 8 are
-/// clipped).
+/// clipped). One filtered fetch of the AO samples (caoAOSamples.glsl: the
+/// RayCaster made them for this frame's clip, AO and opacity) gives the
+/// four trilinear sums.
 ///
 /// `calibrated` (CAO_RENDER_AO_CALIBRATED): the AO as the share of the
 /// light that an open flat half-space of the same matter gives at the same
@@ -169,34 +162,14 @@ float LAOOpacity(ivec3 v)
 /// oblique face it overestimates the depth, so an open face stays at 1).
 /// The shortfall from that half-space, over the range between it and the
 /// matter's enclosed interior (see `range`), is what the scene occludes. `depth` returns the depth used.
-float VoxelAO(vec3 p, bool clipped, bool calibrated, float inMatter, out float depth)
+float VoxelAO(vec3 p, bool calibrated, float inMatter, out float depth)
 {
-  vec3 q = clamp(p, vec3(0.0), rp.boxMax.xyz);
-  ivec3 base = min(ivec3(floor(q)), rp.dims.xyz - 2);
-  vec3 f = q - vec3(base);
-  float sum = 0.0, weight = 0.0, matter = 0.0, a = 0.0;
-  for (int n = 0; n < 8; ++n)
-  {
-    ivec3 o = ivec3(n & 1, (n >> 1) & 1, (n >> 2) & 1);
-    ivec3 v = base + o;
-    if (clipped)
-    {
-      int category = int(texelFetch(stateTexture, v, 0).r) >> CAO_STATE_CATEGORY_SHIFT;
-      if (category == CAO_CATEGORY_CLIPPED)
-        continue;
-    }
-    vec3 t = mix(1.0 - f, f, vec3(o));
-    float w = t.x * t.y * t.z;
-    sum += w * texelFetch(aoTexture, v, 0).r;
-    weight += w;
-    if (calibrated)
-    {
-      float av = LAOOpacity(v);
-      a += w * av;
-      matter += av > 0.0 ? w : 0.0;
-    }
-  }
-  depth = weight > 0.0 && matter < weight ? matter / weight : inMatter;
+  vec4 sums = texture(aoSamplesTexture, (clamp(p, vec3(0.0), rp.boxMax.xyz) + 0.5) * rp.invDims.xyz);
+  float sum = sums.r, weight = sums.g, a = sums.b, matter = sums.a;
+  // (every voxel holds matter where the two weights agree; a filter's
+  // rounding must not make that a face's layer)
+  bool partial = matter < weight - 1.0e-4;
+  depth = weight > 0.0 && partial ? matter / weight : inMatter;
   if (!(weight > 0.0))
     return 1.0;
   float ao = sum / weight;
@@ -288,7 +261,7 @@ void DepthBefore(float k0, int flags, float stepVoxels, out float depth, out flo
     }
     float m = -log(max(1.0 - c.a, 1e-6));
     float inMatter = max(1.0, min(depth, 1.0) + max(depth - 1.0, 0.0) * mu / m + stepVoxels);
-    VoxelAO(p, clipped, true, inMatter, depth);
+    VoxelAO(p, true, inMatter, depth);
     mu = m;
   }
 }
@@ -381,7 +354,7 @@ vec4 CastRay(float tFrom, float tTo, bool inclusive)
       float past = max(depthBefore - 1.0, 0.0) * muBefore / mu;
       float inMatter = max(1.0, min(depthBefore, 1.0) + past + stepVoxels);
       float depth;
-      float ao = clipped || calibrated ? VoxelAO(p, clipped, calibrated, inMatter, depth)
+      float ao = clipped || calibrated ? VoxelAO(p, calibrated, inMatter, depth)
                                        : texture(aoTexture, tc).r;
       ambient = 1.0 - rp.sampling.w * (1.0 - ao);
       depthBefore = depth;

@@ -462,23 +462,38 @@ void Report(const Options& o)
   CAO_EXPECT(firstAffected > 0 && firstAffected < 66 * 66 * 66 / 2, "%lld",
     static_cast<long long>(firstAffected));
 
+  // The ray caster's AO samples (the clipped, calibrated AO it reads with
+  // one fetch per sample) are remade where the AO or the clip state
+  // changed, and only there.
+  auto sampleVoxels = [m]() {
+    const std::string r = m->GetLastFrameReport();
+    const std::size_t at = r.find("\"ao_sample_voxels\": ");
+    return at == std::string::npos ? -1LL : std::atoll(r.c_str() + at + 20);
+  };
+  CAO_EXPECT(sampleVoxels() == 66 * 66 * 66, "the first clipped frame made %lld AO samples",
+    sampleVoxels());
+
   // Camera, colour, lighting: no AO work at all.
   s.renderer->GetActiveCamera()->Azimuth(20.0);
   st = frame("camera moved");
   CAO_EXPECT(st == onlyRaycast && m->GetLastFrameRecomputedVoxels() == 0, "%s", Join(st).c_str());
+  CAO_EXPECT(sampleVoxels() == 0, "camera moved: %lld AO samples remade", sampleVoxels());
   s.color->AddRGBPoint(120.0, 0.2, 0.8, 0.3);
   st = frame("colour transfer function edited");
   CAO_EXPECT(st == onlyRaycast, "%s", Join(st).c_str());
+  CAO_EXPECT(sampleVoxels() == 0, "colour edited: %lld AO samples remade", sampleVoxels());
   s.property->SetDiffuse(0.8);
   s.property->SetSpecularPower(40.0);
   st = frame("lighting edited");
   CAO_EXPECT(st == onlyRaycast, "%s", Join(st).c_str());
+  CAO_EXPECT(sampleVoxels() == 0, "lighting edited: %lld AO samples remade", sampleVoxels());
 
   // Interacting (the rate an interactor sets while the user drags): the
   // interactive sample distance (twice the still one), no AO work.
   s.window->SetDesiredUpdateRate(15.0);
   st = frame("interacting");
   CAO_EXPECT(st == onlyRaycast, "%s", Join(st).c_str());
+  CAO_EXPECT(sampleVoxels() == 0, "interacting: %lld AO samples remade", sampleVoxels());
   CAO_EXPECT(m->GetLastFrameReport().find("\"sample_distance\": 1,") != std::string::npos,
     "the interactive sample distance is not 2 x 0.5");
   s.window->SetDesiredUpdateRate(0.0001);
@@ -494,6 +509,10 @@ void Report(const Options& o)
   CAO_EXPECT(m->GetLastFrameRecomputedVoxels() > 0 &&
       m->GetLastFrameRecomputedVoxels() < 66 * 66 * 66 / 2,
     "%lld", static_cast<long long>(m->GetLastFrameRecomputedVoxels()));
+  CAO_EXPECT(sampleVoxels() >= m->GetLastFrameRecomputedVoxels() &&
+      sampleVoxels() < 66 * 66 * 66,
+    "clip pose moved: %lld AO samples remade (the classified region only, not all)",
+    sampleVoxels());
 
   // The clip's world size split between the mesh and the actor's scale
   // (held-out: a scale > 1 kept maps made for scale 1, 3x too coarse): the
