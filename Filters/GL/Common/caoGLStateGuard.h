@@ -31,7 +31,7 @@ public:
 private:
   static constexpr int StorageBindings = 8;
   static constexpr int UniformBindings = 4; // 0-3: the volume engine's and the cone tracer's blocks
-  static constexpr int TextureUnits = 12; // CAO_UNIT_* (the peeling, upsampling and AO-sample units included)
+  static constexpr int TextureUnits = 13; // CAO_UNIT_* (the peeling, upsampling, AO-sample and half-space units included)
   const Functions& GL;
   bool Active;
   GLint Program = 0, VertexArray = 0, ArrayBuffer = 0, UniformBuffer = 0, StorageBuffer = 0;

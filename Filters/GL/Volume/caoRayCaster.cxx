@@ -42,6 +42,9 @@ struct RayCaster::Impl
   // scalars and step do not enter them.
   GLuint aoSamples = 0;
   Program samples[3];
+  // RenderParams::halfSpace as a filtered texture, and the table it holds.
+  GLuint halfSpace = 0;
+  float halfSpaceTable[CAO_HALF_SPACE_LAYERS * CAO_HALF_SPACE_OPACITIES] = {};
   int samplesDims[3] = { 0, 0, 0 };
   struct SamplesKey
   {
@@ -193,6 +196,32 @@ struct RayCaster::Impl
     samplesValid = true;
     return true;
   }
+  /// The half-space table (CAO_RENDER_AO_CALIBRATED) on its unit,
+  /// uploaded when it changed.
+  void SyncHalfSpace(const layout::RenderParams& params)
+  {
+    constexpr int n = CAO_HALF_SPACE_LAYERS * CAO_HALF_SPACE_OPACITIES;
+    const float* values = &params.halfSpace[0].x;
+    gl.ActiveTexture(GL_TEXTURE0 + CAO_UNIT_HALF_SPACE);
+    if (halfSpace && std::equal(values, values + n, halfSpaceTable))
+    {
+      gl.BindTexture(GL_TEXTURE_2D, halfSpace);
+      return;
+    }
+    if (!halfSpace)
+    {
+      gl.GenTextures(1, &halfSpace);
+      gl.BindTexture(GL_TEXTURE_2D, halfSpace);
+      gl.TexStorage2D(
+        GL_TEXTURE_2D, 1, GL_R32F, CAO_HALF_SPACE_OPACITIES, CAO_HALF_SPACE_LAYERS);
+      Linear(gl, GL_TEXTURE_2D);
+    }
+    gl.BindTexture(GL_TEXTURE_2D, halfSpace);
+    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    gl.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, CAO_HALF_SPACE_OPACITIES, CAO_HALF_SPACE_LAYERS,
+      GL_RED, GL_FLOAT, values);
+    std::copy(values, values + n, halfSpaceTable);
+  }
   void FreeLowTarget()
   {
     if (lowFbo)
@@ -243,7 +272,7 @@ struct RayCaster::Impl
       q.Release(gl);
     std::fill(prepared, prepared + 4, false);
     this->FreeSamples();
-    for (GLuint* t : { &table, &scalars, &depth })
+    for (GLuint* t : { &table, &scalars, &depth, &halfSpace })
       this->Free(*t);
     if (vertexArray)
       gl.DeleteVertexArrays(1, &vertexArray);
@@ -530,6 +559,8 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
   }
   else
     p.samplesVoxels = 0;
+  if (withCalibration)
+    p.SyncHalfSpace(params);
   if (peel)
   {
     const GLuint host[4][2] = { { CAO_UNIT_PEEL_OUTER, p.peel.outer },
@@ -682,7 +713,7 @@ std::vector<std::pair<char, unsigned int>> RayCaster::ObjectNames() const
   const Impl& p = *this->P;
   std::vector<std::pair<char, unsigned int>> names;
   for (GLuint t : { p.table, p.scalars, p.depth, p.scalarView, p.currentView, p.precomputedView,
-         p.lowBack, p.lowFront, p.aoSamples })
+         p.lowBack, p.lowFront, p.aoSamples, p.halfSpace })
     if (t)
       names.emplace_back('t', t);
   if (p.lowFbo)
@@ -726,7 +757,7 @@ void RayCaster::AbandonGraphicsResources()
   Impl& p = *this->P;
   for (GLuint* t : { &p.table, &p.scalars, &p.depth, &p.scalarView, &p.currentView,
          &p.precomputedView, &p.vertexArray, &p.block, &p.spreadBlock, &p.lowFbo, &p.lowBack, &p.lowFront,
-         &p.aoSamples })
+         &p.aoSamples, &p.halfSpace })
     *t = 0;
   std::fill(p.samplesDims, p.samplesDims + 3, 0);
   p.samplesValid = false;

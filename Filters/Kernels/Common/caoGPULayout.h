@@ -168,6 +168,8 @@ CAO_CONST CAO_PEEL_REMAINDER = 3;
  * clip removed it (with CAO_RENDER_CLIP), else 1: (keep * AO, keep, keep * the LAO step's opacity,
  * keep * (opacity > 0)), with the LAO's own opacity (the AO engine's), RGBA16; linear filtering gives VoxelAO's trilinear sums in one fetch. */
 #define CAO_UNIT_AO_SAMPLES 11      /* sampler3D RGBA16: the AO samples */
+#define CAO_UNIT_HALF_SPACE 12      /* sampler2D R32F: RenderParams::halfSpace, CAO_HALF_SPACE_OPACITIES
+                                       wide, CAO_HALF_SPACE_LAYERS high, filtered (one fetch per lookup) */
 #define CAO_IMAGE_AO_SAMPLES 1      /* image unit rgba16: the AO samples, written (the engine's
                                        volume read at CAO_IMAGE_VOLUME) */
 /* The depth-map programs (caoClipDepthMapsGL) are separate programs with their

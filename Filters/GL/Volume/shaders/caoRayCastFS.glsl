@@ -46,6 +46,7 @@ layout(binding = CAO_UNIT_AO) uniform sampler3D aoTexture;
 layout(binding = CAO_UNIT_TABLE) uniform sampler2D tableTexture;
 layout(binding = CAO_UNIT_DEPTH) uniform sampler2D depthTexture;
 layout(binding = CAO_UNIT_AO_SAMPLES) uniform sampler3D aoSamplesTexture;
+layout(binding = CAO_UNIT_HALF_SPACE) uniform sampler2D halfSpaceTexture;
 layout(binding = CAO_UNIT_PEEL_OUTER) uniform sampler2D peelOuter;
 layout(binding = CAO_UNIT_PEEL_INNER) uniform sampler2D peelInner;
 layout(binding = CAO_UNIT_PEEL_FRONT) uniform sampler2D peelFront;
@@ -120,19 +121,15 @@ vec3 Unproject(vec2 ndc, float z)
 /// The LAO at `depth` voxels below an open flat face (0: the last empty
 /// layer) of matter of LAO-step opacity `a` (cao::HalfSpaceTable, linear in
 /// both; depths past the table's read its deepest layer).
-float HalfSpaceAt(int d, int o)
-{
-  int i = d * CAO_HALF_SPACE_OPACITIES + o;
-  return rp.halfSpace[i >> 2][i & 3];
-}
 float HalfSpace(float depth, float a)
 {
-  float x = clamp(depth, 0.0, float(CAO_HALF_SPACE_LAYERS - 1));
-  float y = clamp(a, 0.0, 1.0) * float(CAO_HALF_SPACE_OPACITIES - 1);
-  int x0 = min(int(x), CAO_HALF_SPACE_LAYERS - 2), y0 = min(int(y), CAO_HALF_SPACE_OPACITIES - 2);
-  float tx = x - float(x0), ty = y - float(y0);
-  return mix(mix(HalfSpaceAt(x0, y0), HalfSpaceAt(x0, y0 + 1), ty),
-    mix(HalfSpaceAt(x0 + 1, y0), HalfSpaceAt(x0 + 1, y0 + 1), ty), tx);
+  // (the table as a texture, texel centres at the table's points: one
+  // filtered fetch is the bilinear lookup, clamped at its edges)
+  return texture(halfSpaceTexture,
+    vec2((clamp(a, 0.0, 1.0) * float(CAO_HALF_SPACE_OPACITIES - 1) + 0.5) /
+        float(CAO_HALF_SPACE_OPACITIES),
+      (clamp(depth, 0.0, float(CAO_HALF_SPACE_LAYERS - 1)) + 0.5) / float(CAO_HALF_SPACE_LAYERS)))
+    .r;
 }
 
 /// The least share of the way from an open half-space's LAO down to opaque
