@@ -1403,6 +1403,8 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
   const double castMs = in.Caster->LastMilliseconds();
   f.report.aoSampleVoxels = in.Caster->LastAOSampleVoxels();
+  if (f.report.aoSampleVoxels > 0)
+    f.report.stages.push_back({ "ao_samples", in.Caster->LastAOSampleMilliseconds(), f.glTimer });
   if (f.interactive && f.report.peelStage <= cao::layout::CAO_PEEL_OUTSIDE)
   {
     in.UpdateMs = 0.0;

@@ -23,7 +23,7 @@ struct RayCaster::Impl
   /// compiles only the code its frames run (CAO_WITH_AO,
   /// CAO_WITH_AO_CALIBRATION).
   Program variants[4], upsample;
-  StageTimer timer{ 1 };
+  StageTimer timer{ 2 }; // 0: the draw, 1: the AO samples
   // The target of a ray cast at one pixel in k x k: back and front outputs.
   GLuint lowFbo = 0, lowBack = 0, lowFront = 0;
   int lowSize[2] = { 0, 0 };
@@ -184,8 +184,10 @@ struct RayCaster::Impl
     if (hi[0] >= lo[0] && hi[1] >= lo[1] && hi[2] >= lo[2])
     {
       const int n[3] = { hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1 };
+      timer.Begin(gl, 1);
       gl.DispatchCompute(static_cast<GLuint>((n[0] + 7) / 8), static_cast<GLuint>((n[1] + 7) / 8),
         static_cast<GLuint>(n[2]));
+      timer.End(gl, 1);
       samplesVoxels = std::int64_t(n[0]) * n[1] * n[2];
     }
     gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -706,6 +708,17 @@ double RayCaster::LastMilliseconds()
 std::int64_t RayCaster::LastAOSampleVoxels() const
 {
   return this->P->samplesVoxels;
+}
+
+double RayCaster::LastAOSampleMilliseconds()
+{
+  Impl& p = *this->P;
+  if (p.samplesVoxels == 0)
+    return -1.0;
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok())
+    return -1.0;
+  return p.timer.Milliseconds(p.gl, 1);
 }
 
 std::vector<std::pair<char, unsigned int>> RayCaster::ObjectNames() const

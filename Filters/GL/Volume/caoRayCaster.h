@@ -114,6 +114,8 @@ public:
   /// since, whole when the table, the scalars, the clip test or the AO
   /// volume drawn changed.
   std::int64_t LastAOSampleVoxels() const;
+  /// GPU milliseconds of that remake (-1 when there was none).
+  double LastAOSampleMilliseconds();
 
   int LiveObjects() const;
   std::vector<std::pair<char, unsigned int>> ObjectNames() const;

@@ -148,7 +148,7 @@ def main():
         print("| %s | %.0f | %.1f | %.2fx |" % (label, warm, mean, mean / ref))
     stages = rows[0][3]
     if stages:
-        names = ["classify", "copy", "recompute", "raycast"]
+        names = ["classify", "copy", "recompute", "ao_samples", "raycast"]
         mean = {n: sum(s2["ms"] for f in stages for s2 in f["stages"] if s2["name"] == n)
                 / len(stages) for n in names}
         vox = sum(f["recomputed_voxels"] for f in stages) / len(stages)
