@@ -5,7 +5,9 @@
 // sanitizers and libFuzzer's -rss_limit_mb catch each), and when it passes
 // a file, what the file claims is within the limits the check states.
 // Built by run-fuzz.sh with clang++ -fsanitize=fuzzer,address,undefined;
-// CAO_FUZZ_FORMAT is slc, nii, niigz, stl or vti.
+// CAO_FUZZ_FORMAT is slc, nii, niigz, stl, vti, vtp, mhd, vtk or ply: each
+// format through the checks `cao` runs before its reader (vti: the header
+// and the appended data).
 #include "caoFileChecks.h"
 
 #include <cstdint>
@@ -32,7 +34,21 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     std::abort();
   std::fclose(f);
   std::string error;
-  const bool ok = cao::CheckFileByExtension(path, error);
+  bool ok;
+  if (format == "mhd")
+    ok = cao::CheckMetaImageFile(path, error);
+  else if (format == "vtk")
+    ok = cao::CheckLegacyVTKFile(path, error);
+  else if (format == "ply")
+    ok = cao::CheckPLYFile(path, error);
+  else if (format == "vtp")
+    ok = cao::CheckXMLAppendedFile(path, error);
+  else
+  {
+    ok = cao::CheckFileByExtension(path, error);
+    if (ok && format == "vti")
+      ok = cao::CheckXMLAppendedFile(path, error);
+  }
   // A refusal always says why; a pass says nothing.
   if (ok != error.empty())
     std::abort();

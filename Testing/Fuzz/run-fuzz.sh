@@ -7,7 +7,7 @@
 # BUILD_DIR/fuzz/); 125: clang++ or libFuzzer is missing (the skip says so),
 # or 1 instead when CAO_REQUIRE_FUZZ=1 (.ci/run: its set-up installs clang).
 set -u
-src=$(cd "$1" && pwd) build=$(cd "$2" && pwd) seconds=${3:-20} formats=${4:-"slc nii niigz stl vti"}
+src=$(cd "$1" && pwd) build=$(cd "$2" && pwd) seconds=${3:-20} formats=${4:-"slc nii niigz stl vti vtp mhd vtk ply"}
 out="$build/fuzz"
 mkdir -p "$out"
 skip() {

@@ -14,7 +14,7 @@
  * A file whose sizes cannot be known up front passes; the reader then
  * reports what it finds.
  *
- * Used by `cao` (vtkCAOInput) and by the plugin's readers
+ * Used by `cao` (vtkCAOInput: every format it reads) and by the plugin's readers
  * (vtkCAOSLCReader, vtkCAONIfTIReader), so the CLI and ParaView refuse the
  * same files with the same words.
  */
@@ -51,8 +51,26 @@ bool CheckSTLFile(const std::string& path, std::string& error);
 /// for inline data, against the bytes the file holds.
 bool CheckVTIFile(const std::string& path, std::string& error);
 
+/// A MetaImage header (.mhd, .mha): its DimSize, ElementType, spacing and
+/// data file, and for raw data in one file, the bytes the sizes need.
+bool CheckMetaImageFile(const std::string& path, std::string& error);
+
+/// A VTK XML file's appended data (.vti, .vtp; raw or base64, compressed
+/// or not): every array's block header followed by the bytes it claims.
+/// VTK's readers fill a short block with zeros without a word.
+bool CheckXMLAppendedFile(const std::string& path, std::string& error);
+
+/// A legacy VTK file's first binary point array against the file's length.
+bool CheckLegacyVTKFile(const std::string& path, std::string& error);
+
+/// A PLY file's header and every element's properties (ASCII or binary):
+/// VTK 9.2's reader aborts on a truncated ASCII body and crashes on a
+/// truncated binary one.
+bool CheckPLYFile(const std::string& path, std::string& error);
+
 /// The check for `path` by its extension (.slc, .nii, .nii.gz, .stl, .vti;
-/// other extensions pass).
+/// other extensions pass; `cao` and the plugin call the four above where
+/// they read those formats).
 bool CheckFileByExtension(const std::string& path, std::string& error);
 }
 
