@@ -10,6 +10,7 @@
 #include "caoClipTest_glsl.h"
 #include "caoCopyUnaffected_glsl.h"
 #include "caoLAOMarch_glsl.h"
+#include "caoVolumeOpacity_glsl.h"
 
 #include <algorithm>
 #include <array>
@@ -447,16 +448,16 @@ bool AOEngine::SetPlan(const LAOPlan& plan, std::string& error)
     extra.insert(extra.end(), local.begin(), local.end());
     return extra;
   };
-  if (!p.lao.BuildCompute(p.gl, { caoLAOMarch_glsl },
+  if (!p.lao.BuildCompute(p.gl, { caoVolumeOpacity_glsl, caoLAOMarch_glsl },
         with({ { "CAO_OPACITY_SOURCE", src }, { "CAO_CLIPPED", "0" }, { "CAO_SELECT", "0" } }),
         error) ||
-    !p.laoAffected.BuildCompute(p.gl, { caoLAOMarch_glsl },
+    !p.laoAffected.BuildCompute(p.gl, { caoVolumeOpacity_glsl, caoLAOMarch_glsl },
       with({ { "CAO_OPACITY_SOURCE", src }, { "CAO_CLIPPED", "1" }, { "CAO_SELECT", "1" } }),
       error) ||
-    !p.laoFull.BuildCompute(p.gl, { caoLAOMarch_glsl },
+    !p.laoFull.BuildCompute(p.gl, { caoVolumeOpacity_glsl, caoLAOMarch_glsl },
       with({ { "CAO_OPACITY_SOURCE", src }, { "CAO_CLIPPED", "1" }, { "CAO_SELECT", "2" } }),
       error) ||
-    !p.laoVerify.BuildCompute(p.gl, { caoLAOMarch_glsl },
+    !p.laoVerify.BuildCompute(p.gl, { caoVolumeOpacity_glsl, caoLAOMarch_glsl },
       with({ { "CAO_OPACITY_SOURCE", src }, { "CAO_CLIPPED", "1" }, { "CAO_SELECT", "3" } }),
       error) ||
     !p.classify.BuildCompute(p.gl, { caoClipTest_glsl, caoClassify_glsl }, with({}), error) ||

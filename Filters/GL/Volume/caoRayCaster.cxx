@@ -7,6 +7,7 @@
 #include "caoRayCastFS_glsl.h"
 #include "caoRayCastVS_glsl.h"
 #include "caoUpsampleFS_glsl.h"
+#include "caoVolumeOpacity_glsl.h"
 
 #include <algorithm>
 #include <cmath>
@@ -168,7 +169,7 @@ struct RayCaster::Impl
     const int source = static_cast<int>(r.source);
     Program& program = samples[source];
     if (!program.Valid() &&
-      !program.BuildCompute(gl, { caoAOSamples_glsl },
+      !program.BuildCompute(gl, { caoVolumeOpacity_glsl, caoAOSamples_glsl },
         { { "CAO_OPACITY_SOURCE", std::to_string(source) } }, error))
       return false;
     gl.UseProgram(program.Id());

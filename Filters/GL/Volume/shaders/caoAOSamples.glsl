@@ -16,24 +16,9 @@
 #endif
 layout(local_size_x = CAO_LOCAL_X, local_size_y = CAO_LOCAL_Y, local_size_z = CAO_LOCAL_Z) in;
 
-// The LAO's own opacity, as the march reads it (caoLAOMarch.glsl's
-// CAO_OPACITY_SOURCE): 0 the engine's float opacity, 1 and 2 its 8- or
-// 16-bit scalars through its opacity table. The AO engine's, not the ray
-// cast's table: a colour, lighting or sample-distance change leaves it.
-#ifndef CAO_OPACITY_SOURCE
-#define CAO_OPACITY_SOURCE 1
-#endif
-layout(std430, binding = CAO_BINDING_OPACITY_TABLE) readonly buffer OpacityTableBlock
-{
-  float opacityTable[];
-};
-#if CAO_OPACITY_SOURCE == 0
-layout(binding = CAO_IMAGE_VOLUME, r32f) uniform readonly image3D volumeImage;
-#elif CAO_OPACITY_SOURCE == 1
-layout(binding = CAO_IMAGE_VOLUME, r8ui) uniform readonly uimage3D volumeImage;
-#else
-layout(binding = CAO_IMAGE_VOLUME, r16ui) uniform readonly uimage3D volumeImage;
-#endif
+// (after caoVolumeOpacity.glsl: the LAO's own opacity, VolumeOpacity, as
+// the march reads it; the AO engine's, not the ray cast's table, so that a
+// colour, lighting or sample-distance change leaves the samples as they are)
 layout(binding = CAO_UNIT_AO) uniform sampler3D aoTexture;
 layout(binding = CAO_UNIT_STATE) uniform usampler3D stateTexture;
 layout(binding = CAO_IMAGE_AO_SAMPLES, rgba16) uniform writeonly image3D samplesImage;
@@ -53,10 +38,6 @@ void main()
     imageStore(samplesImage, v, vec4(0.0));
     return;
   }
-#if CAO_OPACITY_SOURCE == 0
-  float a = clamp(imageLoad(volumeImage, v).r, 0.0, 1.0);
-#else
-  float a = clamp(opacityTable[imageLoad(volumeImage, v).r], 0.0, 1.0);
-#endif
+  float a = clamp(VolumeOpacity(v), 0.0, 1.0);
   imageStore(samplesImage, v, vec4(texelFetch(aoTexture, v, 0).r, 1.0, a, a > 0.0 ? 1.0 : 0.0));
 }

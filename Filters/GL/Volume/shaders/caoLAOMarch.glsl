@@ -3,10 +3,9 @@
 // same taps, the same trilinear blend (x, then y, then z; a + t * (b - a)),
 // the same loop order; `precise` forbids FMA contraction and reassociation.
 //
+// After caoVolumeOpacity.glsl (the input's opacity, VolumeOpacity).
 // Specialisation (prepended #defines; the defaults let the file compile alone):
-//   CAO_OPACITY_SOURCE  0: float opacity image (r32f)
-//                       1: 8-bit scalars + opacity table
-//                       2: 16-bit scalars + opacity table
+//   CAO_OPACITY_SOURCE  see caoVolumeOpacity.glsl
 //   CAO_CLIPPED         0: unclipped opacity (the precompute)
 //                       1: opacity * clipFactor[coverage count] (the clipped volume)
 //   CAO_SELECT          0: every voxel of the box
@@ -42,22 +41,11 @@ layout(std430, binding = CAO_BINDING_TAPS) readonly buffer TapBlock
 {
   LAOTap taps[];
 };
-layout(std430, binding = CAO_BINDING_OPACITY_TABLE) readonly buffer OpacityTableBlock
-{
-  float opacityTable[];
-};
 layout(std430, binding = CAO_BINDING_CLIP_FACTORS) readonly buffer ClipFactorBlock
 {
   float clipFactor[];
 };
 
-#if CAO_OPACITY_SOURCE == 0
-layout(binding = CAO_IMAGE_VOLUME, r32f) uniform readonly image3D volumeImage;
-#elif CAO_OPACITY_SOURCE == 1
-layout(binding = CAO_IMAGE_VOLUME, r8ui) uniform readonly uimage3D volumeImage;
-#else
-layout(binding = CAO_IMAGE_VOLUME, r16ui) uniform readonly uimage3D volumeImage;
-#endif
 #if CAO_CLIPPED || CAO_SELECT != 0
 layout(binding = CAO_IMAGE_STATE, r8ui) uniform readonly uimage3D stateImage;
 #endif
@@ -79,11 +67,7 @@ float OpacityAt(ivec3 p, bool clippedOpacity)
 {
   if (any(lessThan(p, ivec3(0))) || any(greaterThanEqual(p, lao.dims.xyz)))
     return 0.0;
-#if CAO_OPACITY_SOURCE == 0
-  float a = imageLoad(volumeImage, p).r;
-#else
-  float a = opacityTable[imageLoad(volumeImage, p).r];
-#endif
+  float a = VolumeOpacity(p);
 #if CAO_CLIPPED
   if (clippedOpacity)
   {
