@@ -386,10 +386,13 @@ public:
   /**
    * The last rendered frame's work report, as JSON: frame number, the
    * stages that ran with milliseconds each (and the timer used), the voxels recomputed, the
-   * category counts and why AO work was done. Empty before the first frame.
+   * ray caster's AO samples remade (`ao_sample_voxels`, stage `ao_samples`: only where
+   * the AO or the clip state changed), the category counts and why AO work was done.
+   * Empty before the first frame.
    */
   std::string GetLastFrameReport() const;
-  /// Stage names of the last frame, comma-separated (e.g. "classify,copy,recompute,raycast").
+  /// Stage names of the last frame, comma-separated (e.g.
+  /// "classify,copy,recompute,ao_samples,raycast").
   std::string GetLastFrameStages() const;
   /// GPU milliseconds of a stage of the last frame; -1 when it did not run.
   double GetLastFrameStageMilliseconds(const char* stage) const;
