@@ -160,12 +160,25 @@ struct RayCaster::Impl
       gl.BindTexture(GL_TEXTURE_3D, aoSamples);
       gl.TexStorage3D(GL_TEXTURE_3D, 1, GL_RGBA16, r.dims[0], r.dims[1], r.dims[2]);
       Linear(gl, GL_TEXTURE_3D);
+      if (!CheckError(gl, "the AO samples' allocation", error))
+      {
+        // (say what was asked; the next draw tries again)
+        error += " (" + std::to_string(r.dims[0]) + " x " + std::to_string(r.dims[1]) + " x " +
+          std::to_string(r.dims[2]) + " RGBA16, " +
+          std::to_string(8LL * r.dims[0] * r.dims[1] * r.dims[2] / (1 << 20)) +
+          " MiB: the calibrated or clipped AO needs them; AO off or Calibration None does not)";
+        this->FreeSamples();
+        return false;
+      }
       std::copy(r.dims, r.dims + 3, samplesDims);
       std::fill(lo, lo + 3, 0);
       for (int d = 0; d < 3; ++d)
         hi[d] = r.dims[d] - 1;
     }
     samplesValid = false;
+    // (the engine's image writes to the state and the AO, before this pass
+    // fetches them as textures)
+    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     const int source = static_cast<int>(r.source);
     Program& program = samples[source];
     if (!program.Valid() &&
@@ -496,6 +509,8 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
     gl.GenVertexArrays(1, &p.vertexArray);
   p.timer.Allocate(gl, p.Ctx.UsesHostClock());
   p.SyncViews(r);
+  // The engine writes its volumes as images; the draw fetches them as textures.
+  gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 
   // The viewport, and the part of it the draw covers: the region asked
   // for, within the host's scissor box (outside depth peeling, whose

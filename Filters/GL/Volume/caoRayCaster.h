@@ -110,9 +110,12 @@ public:
   /// Voxels of the AO samples the last Draw remade (0 when they were
   /// current or the draw read none): the ray caster samples a clipped or
   /// calibrated AO from one RGBA16 volume of its own (caoAOSamples.glsl,
-  /// 8 bytes per voxel), remade where the engine's state or AO changed
-  /// since, whole when the table, the scalars, the clip test or the AO
-  /// volume drawn changed.
+  /// 8 bytes per voxel, kept until the graphics resources are released),
+  /// remade over the box of the engine's last write to its state or AO
+  /// (a pose's classified region), whole when the engine's volumes were
+  /// re-created (a new volume or opacity), when the AO volume drawn or the
+  /// clipping changed, or after more than one write since the last draw.
+  /// The ray cast's table, scalars and step do not enter them.
   std::int64_t LastAOSampleVoxels() const;
   /// GPU milliseconds of that remake (-1 when there was none).
   double LastAOSampleMilliseconds();

@@ -1038,6 +1038,10 @@ bool CheckPLYFile(const std::string& path, std::string& error)
             unsigned long long v = 0;
             for (int k = 0; k < prop.countSize; ++k)
               v |= static_cast<unsigned long long>(b[little ? k : prop.countSize - 1 - k]) << (8 * k);
+            // (a count past what the rest of the file can hold, or one that
+            // is negative as an integer, is a truncated or broken body)
+            if (v > static_cast<unsigned long long>(end - pos) / static_cast<unsigned>(prop.size))
+              return truncated(e, i);
             n = static_cast<long long>(v);
           }
           pos += static_cast<std::streamoff>(n) * prop.size;

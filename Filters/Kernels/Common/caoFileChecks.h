@@ -69,8 +69,8 @@ bool CheckLegacyVTKFile(const std::string& path, std::string& error);
 bool CheckPLYFile(const std::string& path, std::string& error);
 
 /// The check for `path` by its extension (.slc, .nii, .nii.gz, .stl, .vti;
-/// other extensions pass; `cao` and the plugin call the four above where
-/// they read those formats).
+/// other extensions pass; `cao` (vtkCAOInput) calls the four above where
+/// it reads those formats).
 bool CheckFileByExtension(const std::string& path, std::string& error);
 }
 

@@ -163,10 +163,9 @@ float VoxelAO(vec3 p, bool calibrated, float inMatter, out float depth)
 {
   vec4 sums = texture(aoSamplesTexture, (clamp(p, vec3(0.0), rp.boxMax.xyz) + 0.5) * rp.invDims.xyz);
   float sum = sums.r, weight = sums.g, a = sums.b, matter = sums.a;
-  // (every voxel holds matter where the two weights agree; a filter's
-  // rounding must not make that a face's layer)
-  bool partial = matter < weight - 1.0e-4;
-  depth = weight > 0.0 && partial ? matter / weight : inMatter;
+  // (where every voxel the clip leaves holds matter, the two channels hold
+  // the same values and filter to the same sum)
+  depth = weight > 0.0 && matter < weight ? matter / weight : inMatter;
   if (!(weight > 0.0))
     return 1.0;
   float ao = sum / weight;
