@@ -175,10 +175,8 @@ struct RayCaster::Impl
       for (int d = 0; d < 3; ++d)
         hi[d] = r.dims[d] - 1;
     }
-    samplesValid = false;
-    // (the engine's image writes to the state and the AO, before this pass
-    // fetches them as textures)
-    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    samplesValid = false; // (until the pass below succeeds; Draw's barrier has ordered the
+                          // engine's image writes before these texture fetches)
     const int source = static_cast<int>(r.source);
     Program& program = samples[source];
     if (!program.Valid() &&
