@@ -198,9 +198,11 @@ int vtkContextualAOVolumeRepresentation::GetNumberOfClipMeshSources() const
 //------------------------------------------------------------------------------
 void vtkContextualAOVolumeRepresentation::SetClipScale(double x, double y, double z)
 {
-  // Keep the sign (a negative scale mirrors, as a prop's), never zero.
-  auto clamp = [](double v) { return std::abs(v) < 1e-9 ? std::copysign(1e-9, v) : v; };
-  const double scale[3] = { clamp(x), clamp(y), clamp(z) };
+  // As given: a negative scale mirrors, as a prop's; a zero one is refused
+  // when the shape is placed (UpdateBuiltInShape). (A floor of 1e-9 here
+  // made the clip of a volume 1e-10 across cover all of it: the volume
+  // vanished without a word.)
+  const double scale[3] = { x, y, z };
   if (!std::equal(scale, scale + 3, this->ClipScale))
   {
     std::copy(scale, scale + 3, this->ClipScale);
@@ -242,9 +244,11 @@ void vtkContextualAOVolumeRepresentation::UpdateBuiltInShape(vtkImageData* data)
   double matrix[16];
   this->GetClipShapeMatrix(matrix);
   const double det = vtkMatrix4x4::Determinant(matrix);
+  const double* s = this->ClipScale;
   if (!boundsOk || !std::isfinite(det) || det == 0.0)
   {
-    vtkErrorMacro("The clip box is empty or not finite (reference bounds "
+    vtkErrorMacro("The clip box is empty or not finite (Clip Scale "
+      << s[0] << " " << s[1] << " " << s[2] << ", each axis non-zero and finite; reference bounds "
       << b[0] << " " << b[1] << " " << b[2] << " " << b[3] << " " << b[4] << " " << b[5]
       << ", each max above its min): nothing is clipped.");
     mapper->SetClipShape(nullptr);

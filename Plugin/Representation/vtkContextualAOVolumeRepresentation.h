@@ -80,8 +80,10 @@ public:
   ///@{
   /// The clip box's pose, as vtkPVBox's (the box widget's Position, Rotation
   /// and Scale): translation, rotation in degrees (Z, then X, then Y, as a
-  /// prop's) and a scale per axis. A zero scale is refused (the shape would
-  /// be flat): SetClipScale clamps each axis to at least 1e-9 in magnitude.
+  /// prop's) and a scale per axis, kept as given however small (a volume
+  /// micrometres across takes a clip its size). A zero or non-finite scale
+  /// is refused with an error when the shape is placed (it would be flat),
+  /// and nothing is clipped.
   vtkSetVector3Macro(ClipPosition, double);
   vtkGetVector3Macro(ClipPosition, double);
   vtkSetVector3Macro(ClipOrientation, double);

@@ -1174,7 +1174,6 @@ void vtkContextualAOVolumeMapper::Internals::MakeRenderParams(vtkContextualAOVol
   worldToNDC->DeepCopy(
     camera->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1.0, 1.0));
   vtkMatrix4x4::Invert(worldToNDC, ndcToWorld);
-  Columns(ndcToWorld, params.ndcToWorld, 4);
   int extent[6];
   f.input->GetExtent(extent);
   vtkNew<vtkMatrix4x4> shift, indexToPhysical, indexToWorld, worldToIndex;
@@ -1185,7 +1184,25 @@ void vtkContextualAOVolumeMapper::Internals::MakeRenderParams(vtkContextualAOVol
   vtkMatrix4x4::Multiply4x4(f.input->GetIndexToPhysicalMatrix(), shift, indexToPhysical);
   vtkMatrix4x4::Multiply4x4(f.volume->GetMatrix(), indexToPhysical, indexToWorld);
   vtkMatrix4x4::Invert(indexToWorld, worldToIndex);
-  Columns(worldToIndex, params.worldToIndex, 4);
+  // The shader's world is the scene's world moved so that the volume's
+  // centre is its origin (a translation: distances, directions and the
+  // lights are the same), composed here in double. In the world itself a
+  // volume at 1e10 kept no placement in float: the shader's positions
+  // were 1e10 +- 1e3, and the picture a flat box.
+  const double middle[4] = { 0.5 * (f.dims[0] - 1), 0.5 * (f.dims[1] - 1),
+    0.5 * (f.dims[2] - 1), 1.0 };
+  double centre[4];
+  indexToWorld->MultiplyPoint(middle, centre);
+  vtkNew<vtkMatrix4x4> toLocal, fromLocal, ndcToLocal, localToIndex;
+  for (int r = 0; r < 3; ++r)
+  {
+    toLocal->SetElement(r, 3, -centre[r]);
+    fromLocal->SetElement(r, 3, centre[r]);
+  }
+  vtkMatrix4x4::Multiply4x4(toLocal, ndcToWorld, ndcToLocal);
+  vtkMatrix4x4::Multiply4x4(worldToIndex, fromLocal, localToIndex);
+  Columns(ndcToLocal, params.ndcToWorld, 4);
+  Columns(localToIndex, params.worldToIndex, 4);
   // Normal matrix: the inverse transpose of index-to-world's linear part;
   // its columns are worldToIndex's rows.
   vtkNew<vtkMatrix4x4> normal;

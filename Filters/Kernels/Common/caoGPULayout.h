@@ -91,7 +91,10 @@ struct ClipParams
  * window's normalised device coordinates to world space, worldToIndex takes
  * world space to the volume's 0-based voxel index (x, y, z), and
  * normalToWorld (3 columns) takes an index-space gradient to a world-space
- * normal (the inverse transpose of index-to-world's linear part).
+ * normal (the inverse transpose of index-to-world's linear part). "World"
+ * here is the scene's world translated so that the volume's centre is its
+ * origin: a volume far from the origin keeps its placement in float, and
+ * distances and directions are the world's.
  */
 #define CAO_MAX_LIGHTS 8 /* lights the ray caster shades with (the renderer's first 8 switched on) */
 /* The half-space table the calibration reads (cao::HalfSpaceTable): integer depths below an open
