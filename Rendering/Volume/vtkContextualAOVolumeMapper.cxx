@@ -4,6 +4,7 @@
 #include "vtkAlgorithm.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
+#include "vtkCellData.h"
 #include "vtkCommand.h"
 #include "vtkClipDepthMaps.h"
 #include "vtkColorTransferFunction.h"
@@ -230,6 +231,12 @@ struct vtkContextualAOVolumeMapper::Internals
   std::vector<float> HalfSpace;   ///< HalfSpaceTable(Plan): what the ray caster calibrates with
   ::VolumeKey Volume;
   bool HaveVolume = false;
+  // Cell scalars: the cells as voxels at their centres (CellsAsVoxels),
+  // remade only when the input or its cell data change.
+  vtkNew<vtkImageData> CellImage;
+  const void* CellSource = nullptr;
+  vtkMTimeType CellSourceTime = 0;
+  vtkImageData* CellsAsVoxels(vtkImageData* input);
   // For an edit of the opacity alone: the opacity the precomputed AO was
   // made from, and that AO as the engine stores it (read back at the
   // first edit), and what an edit and a GPU precompute cost per voxel here.
@@ -520,6 +527,39 @@ bool vtkContextualAOVolumeMapper::CheckSettings(std::string& why) const
 }
 
 //------------------------------------------------------------------------------
+vtkImageData* vtkContextualAOVolumeMapper::Internals::CellsAsVoxels(vtkImageData* input)
+{
+  // An image of the input's cells: one voxel per cell at its centre (half
+  // a spacing in along each index axis, the same spacing and direction),
+  // its point data the input's cell arrays (shared, not copied). Remade
+  // only when the input changes, so that the volume's key (and the AO)
+  // stays as it is between frames.
+  const vtkMTimeType time = std::max(input->GetMTime(), input->GetCellData()->GetMTime());
+  if (this->CellSource == input && this->CellSourceTime == time)
+    return this->CellImage;
+  int extent[6];
+  input->GetExtent(extent);
+  for (int d = 0; d < 3; ++d)
+    extent[2 * d + 1] = std::max(extent[2 * d], extent[2 * d + 1] - 1);
+  // Index (i, j, k) of the cells' image is the centre of the cell whose
+  // lowest point is (i, j, k): the origin moves by half a spacing along
+  // each of the direction's axes.
+  double centre[3];
+  const double half[3] = { 0.5, 0.5, 0.5 };
+  input->TransformContinuousIndexToPhysicalPoint(half, centre);
+  vtkImageData* image = this->CellImage;
+  image->Initialize();
+  image->SetExtent(extent);
+  image->SetSpacing(input->GetSpacing());
+  image->SetDirectionMatrix(input->GetDirectionMatrix());
+  image->SetOrigin(centre);
+  image->GetPointData()->ShallowCopy(input->GetCellData());
+  this->CellSource = input;
+  this->CellSourceTime = time;
+  return image;
+}
+
+//------------------------------------------------------------------------------
 bool vtkContextualAOVolumeMapper::Internals::GatherInput(
   vtkContextualAOVolumeMapper* self, Frame& f)
 {
@@ -528,17 +568,28 @@ bool vtkContextualAOVolumeMapper::Internals::GatherInput(
   f.input = vtkImageData::SafeDownCast(self->GetInputDataObject(0, 0));
   if (!f.input)
     return f.Fail("No input image.");
-  f.input->GetDimensions(f.dims);
-  f.voxels = std::int64_t(f.dims[0]) * f.dims[1] * f.dims[2];
-  if (f.dims[0] < 2 || f.dims[1] < 2 || f.dims[2] < 2)
-    return f.Fail("The input must have at least 2 voxels along each axis.");
-  if (f.voxels > cao::MaxVoxels)
-    return f.Fail("The input has more voxels than the GPU kernels index (2^31 - 1).");
   int cellFlag = 0;
   f.scalars = vtkAbstractMapper::GetScalars(f.input, self->ScalarMode, self->ArrayAccessMode,
     self->ArrayId, self->ArrayName, cellFlag);
-  if (!f.scalars || cellFlag != 0)
-    return f.Fail("The input has no point scalars (cell scalars are not supported).");
+  if (!f.scalars || (cellFlag != 0 && cellFlag != 1))
+    return f.Fail("The input has no point or cell scalars to draw.");
+  if (cellFlag == 1)
+  {
+    // Cell scalars: each cell is a voxel at its centre, as VTK's own
+    // volume mappers draw them.
+    vtkDataArray* cells = f.scalars;
+    f.input = this->CellsAsVoxels(f.input);
+    f.scalars = f.input->GetPointData()->GetArray(cells->GetName());
+    if (!f.scalars || f.scalars->GetNumberOfTuples() != cells->GetNumberOfTuples())
+      f.scalars = f.input->GetPointData()->GetScalars();
+  }
+  f.input->GetDimensions(f.dims);
+  f.voxels = std::int64_t(f.dims[0]) * f.dims[1] * f.dims[2];
+  if (f.dims[0] < 2 || f.dims[1] < 2 || f.dims[2] < 2)
+    return f.Fail(std::string("The input must have at least 2 voxels along each axis") +
+      (cellFlag == 1 ? " (cell scalars: 2 cells, 3 points)." : "."));
+  if (f.voxels > cao::MaxVoxels)
+    return f.Fail("The input has more voxels than the GPU kernels index (2^31 - 1).");
   if (f.scalars->GetNumberOfComponents() != 1)
     return f.Fail("The scalars must have 1 component (they have " +
       std::to_string(f.scalars->GetNumberOfComponents()) + ").");
