@@ -41,6 +41,7 @@
 #include "vtkSMPTools.h"
 #include "vtkStringArray.h"
 #include "vtkTransform.h"
+#include "vtkVersion.h"
 #include "vtkXMLImageDataWriter.h"
 
 #include "caoClipGeometry.h"
@@ -70,6 +71,7 @@ const char* Usage = R"(usage:
   cao lao   VOLUME [common options] [-o OUT.vti]
   cao carve VOLUME [common options] [clip options] [--verify] [-o OUT.vti]
   cao tf    VOLUME --from S,A,... --to S,A,... [common options] [--verify] [-o OUT.vti]
+  cao --version        the tool's and VTK's versions
 
 VOLUME: .vti, .mhd/.mha, .slc, legacy .vtk, .nii/.nii.gz
 
@@ -1167,6 +1169,12 @@ int RunTF(const Options& o, vtkImageData* volume)
 int main(int argc, char* argv[])
 {
   caocli::InstallOutputWindow();
+  if (argc == 2 && (std::string(argv[1]) == "--version" || std::string(argv[1]) == "version"))
+  {
+    std::cout << "cao (ContextualAO) " << CAO_VERSION << ", VTK " << vtkVersion::GetVTKVersion()
+              << "\n";
+    return 0;
+  }
   for (int i = 2; i < argc; ++i)
   {
     const std::string a = argv[i];

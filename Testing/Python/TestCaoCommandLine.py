@@ -156,6 +156,10 @@ rc, out, err = run("--help")
 check(rc == 0 and "cao carve" in out and "cao render" in out, "--help")
 check(all(o in out for o in ("--quality", "--density", "--offset", "--variation")),
       "--help lists --quality, --density, --offset and --variation")
+rc, out, err = run("--version")
+check(rc == 0 and out.startswith("cao (ContextualAO) ") and "VTK 9." in out and not err,
+      f"--version: rc={rc} {out.strip()[:100]}")
+expect_error(["--versions"], 2, "unknown command", "--versions is not --version")
 
 # Quality presets: `--quality interactive` runs, reports (JSON) and records
 # (LAOSettings in the .vti) the settings in effect, and its AO equals the
