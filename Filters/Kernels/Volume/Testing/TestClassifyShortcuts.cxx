@@ -14,7 +14,10 @@
 //     ClipMapsTiles and ProofMaps). Negative controls: the bricks proven
 //     with the per-voxel maps (a quarter of the radius a brick's samples
 //     need), and the voxels with the clip layers themselves (radius 0),
-//     change the classification.
+//     change the classification;
+//  3. transparent voxels whose 9 samples disagree skip the anti-aliasing
+//     samples, against an independent test of every sample (InsideClip).
+//     Negative control: skipping them for opaque voxels too differs.
 #include "caoClassify.h"
 #include "caoClipScene.h"
 #include "caoTestUtilities.h"
@@ -181,6 +184,85 @@ int TestClassifyShortcuts(int, char*[])
   CAO_CHECK(wrongBricks > 0 && wrongVoxels > 0,
     "radii too small gave the same bits (the comparison is blind): %lld and %lld differ",
     (long long)wrongBricks, (long long)wrongVoxels);
+
+  // 3. Transparent voxels skip their anti-aliasing samples: against an
+  // independent classification that tests every sample with InsideClip
+  // (the header's rules), on a volume where a third of the voxels are
+  // transparent. Negative control: the same reference skipping the samples
+  // of opaque voxels too differs.
+  {
+    std::vector<float> holes = opacity;
+    for (std::size_t v = 0; v < n; ++v)
+      if ((v * 2246822519u) % 3 == 0)
+        holes[v] = 0.0f;
+    std::int64_t skipped = 0, wrongWhenOpaqueSkip = 0;
+    for (int mode : { cao::layout::CAO_MODE_SUBTRACT, cao::layout::CAO_MODE_PROBE })
+    {
+      const cao::ClipDepthMaps& cand =
+        mode == cao::layout::CAO_MODE_SUBTRACT ? scene.dilated : scene.eroded;
+      const cao::ClipMapsView view{ scene.maps.front.data(), scene.maps.back.data(),
+        cand.front.data(), cand.back.data() };
+      for (const auto& pose : path)
+      {
+        const cao::layout::ClipParams clip = scene.Pose(pose, pose[3], dims, mode, 16);
+        const Result kernel = Classify(clip, dims, view, holes);
+        const auto reference = [&](bool skipOpaqueToo) {
+          Result r;
+          r.clipped.assign(n, -1.0f);
+          r.category.assign(n, 255);
+          const bool subtract = mode == cao::layout::CAO_MODE_SUBTRACT;
+          const float total = static_cast<float>(9 + clip.aa.x);
+          for (int k = 0; k < dims[2]; ++k)
+            for (int j = 0; j < dims[1]; ++j)
+              for (int i = 0; i < dims[0]; ++i)
+              {
+                const std::size_t v = (std::size_t(k) * dims[1] + j) * dims[0] + i;
+                const float x = static_cast<float>(i), y = static_cast<float>(j),
+                            z = static_cast<float>(k);
+                int inside = cao::InsideClip(clip, view.front, view.back, x, y, z);
+                for (int c = 0; c < 8; ++c)
+                  inside += cao::InsideClip(clip, view.front, view.back,
+                    x + ((c & 1) ? 0.5f : -0.5f), y + ((c & 2) ? 0.5f : -0.5f),
+                    z + ((c & 4) ? 0.5f : -0.5f));
+                float coverage = inside == 0 ? 0.0f : inside == 9 ? 1.0f : -1.0f;
+                if (coverage < 0.0f)
+                {
+                  if (!(holes[v] == 0.0f || skipOpaqueToo))
+                    for (int a = 0; a < clip.aa.x; ++a)
+                      inside += cao::InsideClip(clip, view.front, view.back,
+                        x + clip.aaOffsets[a].x, y + clip.aaOffsets[a].y,
+                        z + clip.aaOffsets[a].z);
+                  coverage = static_cast<float>(inside) / total;
+                }
+                const bool candidate = cao::InsideClip(clip, view.candFront, view.candBack, x, y, z);
+                if (subtract ? coverage == 1.0f : coverage == 0.0f)
+                {
+                  r.category[v] = cao::layout::CAO_CATEGORY_CLIPPED;
+                  r.clipped[v] = 0.0f;
+                  continue;
+                }
+                r.category[v] = (subtract == candidate) ? cao::layout::CAO_CATEGORY_AFFECTED
+                                                        : cao::layout::CAO_CATEGORY_UNAFFECTED;
+                r.clipped[v] = holes[v] * (subtract ? 1.0f - coverage : coverage);
+              }
+          return r;
+        };
+        const std::int64_t diff = Differences(kernel, reference(false));
+        const std::int64_t control = Differences(kernel, reference(true));
+        std::printf("mode %d pose (%g %g %g), a third transparent: %lld skipped the "
+                    "anti-aliasing samples, %lld differ from every sample; control (opaque "
+                    "voxels skipping them too): %lld differ\n",
+          mode, pose[0], pose[1], pose[2], (long long)kernel.counts.transparentShortcut,
+          (long long)diff, (long long)control);
+        CAO_CHECK(diff == 0, "the transparent shortcut changes %lld voxels", (long long)diff);
+        skipped += kernel.counts.transparentShortcut;
+        wrongWhenOpaqueSkip += control;
+      }
+    }
+    CAO_CHECK(skipped > 0, "no transparent voxel skipped its anti-aliasing samples");
+    CAO_CHECK(wrongWhenOpaqueSkip > 0,
+      "skipping the samples of opaque voxels too gave the same bits (the comparison is blind)");
+  }
 
   // Every pose that reaches into the volume sees the too small box.
   CAO_CHECK(tooSmallSeen >= 12, "a box shrunk by up to 3 voxels changed %d poses", tooSmallSeen);
