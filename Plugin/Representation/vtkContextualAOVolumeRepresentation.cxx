@@ -243,9 +243,10 @@ void vtkContextualAOVolumeRepresentation::UpdateBuiltInShape(vtkImageData* data)
       std::all_of(b, b + 6, [](double v) { return std::isfinite(v); }));
   double matrix[16];
   this->GetClipShapeMatrix(matrix);
-  const double det = vtkMatrix4x4::Determinant(matrix);
   const double* s = this->ClipScale;
-  if (!boundsOk || !std::isfinite(det) || det == 0.0)
+  const bool scaleOk = std::all_of(s, s + 3, [](double v) { return std::isfinite(v) && v != 0.0; }) &&
+    std::all_of(matrix, matrix + 16, [](double v) { return std::isfinite(v); });
+  if (!boundsOk || !scaleOk)
   {
     vtkErrorMacro("The clip box is empty or not finite (Clip Scale "
       << s[0] << " " << s[1] << " " << s[2] << ", each axis non-zero and finite; reference bounds "

@@ -187,6 +187,7 @@ struct Frame
   vtkRenderer* renderer = nullptr;
   vtkVolume* volume = nullptr;
   vtkImageData* input = nullptr;
+  bool cells = false; ///< the input's cell scalars, drawn as voxels (input: CellsAsVoxels)
   vtkDataArray* scalars = nullptr;
   int dims[3] = { 0, 0, 0 };
   std::int64_t voxels = 0;
@@ -573,15 +574,31 @@ bool vtkContextualAOVolumeMapper::Internals::GatherInput(
     self->ArrayId, self->ArrayName, cellFlag);
   if (!f.scalars || (cellFlag != 0 && cellFlag != 1))
     return f.Fail("The input has no point or cell scalars to draw.");
+  if (cellFlag != 1 && this->CellSource)
+  {
+    // Back to point scalars: let go of the cells' arrays.
+    this->CellImage->Initialize();
+    this->CellSource = nullptr;
+    this->CellSourceTime = 0;
+  }
   if (cellFlag == 1)
   {
-    // Cell scalars: each cell is a voxel at its centre, as VTK's own
-    // volume mappers draw them.
+    // Cell scalars: each cell is a voxel at its centre, from the first
+    // cell's centre to the last's (VTK's ray caster also draws the outer
+    // half cells, with the edge values).
+    f.cells = true;
+    // The same array object, found by position (ShallowCopy keeps the
+    // cell data's order and shares the arrays; a name may be missing).
     vtkDataArray* cells = f.scalars;
+    vtkCellData* cellData = f.input->GetCellData();
+    int index = -1;
+    for (int a = 0; a < cellData->GetNumberOfArrays() && index < 0; ++a)
+      if (cellData->GetAbstractArray(a) == cells)
+        index = a;
     f.input = this->CellsAsVoxels(f.input);
-    f.scalars = f.input->GetPointData()->GetArray(cells->GetName());
-    if (!f.scalars || f.scalars->GetNumberOfTuples() != cells->GetNumberOfTuples())
-      f.scalars = f.input->GetPointData()->GetScalars();
+    f.scalars = index >= 0 ? f.input->GetPointData()->GetArray(index) : nullptr;
+    if (f.scalars != cells)
+      return f.Fail("The cell scalars could not be drawn as voxels.");
   }
   f.input->GetDimensions(f.dims);
   f.voxels = std::int64_t(f.dims[0]) * f.dims[1] * f.dims[2];
@@ -661,7 +678,9 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateVolume(
   // is computed at all. A given AO array replaces the precompute.
   const bool ao = self->AmbientOcclusion;
   vtkDataArray* givenAO = nullptr;
-  if (ao && self->AmbientOcclusionArrayName && *self->AmbientOcclusionArrayName)
+  // A given AO is a point array: it does not belong to cell scalars, which
+  // get the mapper's own LAO.
+  if (ao && !f.cells && self->AmbientOcclusionArrayName && *self->AmbientOcclusionArrayName)
   {
     givenAO = f.input->GetPointData()->GetArray(self->AmbientOcclusionArrayName);
     if (!givenAO || givenAO->GetNumberOfComponents() != 1 ||

@@ -51,8 +51,9 @@ struct CategoryCounts
   /// Of the voxels tested one by one, those decided from their centre alone
   /// (the proof maps of ClassifyRegion) rather than from every sample.
   std::int64_t byCentre = 0;
-  /// Of those, the transparent voxels whose 9 samples disagree: their
-  /// anti-aliasing samples are not tested (they could change no bit).
+  /// Of the voxels tested sample by sample, the transparent ones whose 9
+  /// samples disagree: their anti-aliasing samples are not tested (they
+  /// could change no bit).
   std::int64_t transparentShortcut = 0;
   void Add(const CategoryCounts& o)
   {

@@ -3,7 +3,9 @@ same view, AO off and AO on: over the pixels whose 5 x 5 neighbourhood is
 matter (not the white background) and flat in the AO-off frame (luminance
 deviation under 2 of 255), the mean 5 x 5 RMS of the luminance less its
 3 x 3 mean, AO on over AO off (AO off's floored at 0.5, an 8-bit frame's
-quantisation). The mapper's test computes the same in C++.
+quantisation). The definition of the mapper's test (`calibration` mode),
+for frames on `cao render`'s white background (that test's frames are on
+black, and it treats the frame's border its own way).
 
   /usr/bin/python3 grain.py AO_OFF.png AO_ON.png"""
 import sys
