@@ -21,21 +21,18 @@ and the same comparison reports it.
 import os
 import sys
 
-import numpy
 from paraview.simple import *  # noqa: F401,F403
-from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.util.numpy_support import numpy_to_vtk
 from vtkmodules.vtkCommonDataModel import vtkImageData
-from vtkmodules.vtkIOImage import vtkPNGReader
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from volume_phantom import N as n, apart, ball_with_tunnel  # noqa: E402
+import volume_phantom  # noqa: E402
 
 LoadPlugin(sys.argv[1], remote=False, ns=globals())
 out = sys.argv[2]
 os.makedirs(out, exist_ok=True)
-
-n = 48
-z, y, x = numpy.mgrid[0:n, 0:n, 0:n]
-ball = numpy.clip(255 - 10 * numpy.sqrt((x - 24.0) ** 2 + (y - 24.0) ** 2 + (z - 24.0) ** 2), 0, 255)
-ball[20:28, :, 20:28] = 0  # a tunnel along y
-scalars = ball.astype(numpy.uint8).ravel()
+scalars = ball_with_tunnel()
 
 PLACEMENTS = [
     ("home", (0.0, 0.0, 0.0), 1.0),
@@ -60,27 +57,7 @@ def source(origin, spacing):
 
 
 def picture(view, name):
-    path = os.path.join(out, name + ".png")
-    SaveScreenshot(path, view, ImageResolution=[200, 200])
-    r = vtkPNGReader()
-    r.SetFileName(path)
-    r.Update()
-    return vtk_to_numpy(r.GetOutput().GetPointData().GetScalars()).astype(float)[:, :3]
-
-
-def apart(a, b, shift=0):
-    """The share of pixels whose colour differs by more than 2 levels from
-    b's at the same pixel, or, with `shift`, from every pixel of b within
-    `shift` pixels (a picture moved by less than a pixel)."""
-    side = int(round(len(a) ** 0.5))
-    a = a.reshape(side, side, 3)
-    b = b.reshape(side, side, 3)
-    near = numpy.zeros((side, side), dtype=bool)
-    for dy in range(-shift, shift + 1):
-        for dx in range(-shift, shift + 1):
-            moved = numpy.roll(numpy.roll(b, dy, axis=0), dx, axis=1)
-            near |= numpy.abs(a - moved).max(axis=2) <= 2.0
-    return float((~near).mean())
+    return volume_phantom.picture(view, os.path.join(out, name + ".png"))
 
 
 failures = []

@@ -57,6 +57,15 @@ std::int64_t Differences(const Result& a, const Result& b)
   return n;
 }
 
+/// The clip layers and the mode's candidate layers (dilated to subtract,
+/// eroded to probe).
+cao::ClipMapsView ViewFor(const cao::ClipScene& scene, int mode)
+{
+  const cao::ClipDepthMaps& cand =
+    mode == cao::layout::CAO_MODE_SUBTRACT ? scene.dilated : scene.eroded;
+  return { scene.maps.front.data(), scene.maps.back.data(), cand.front.data(), cand.back.data() };
+}
+
 std::int64_t BoxVoxels(const cao::layout::ClipParams& c)
 {
   if (c.boxMin.x > c.boxMax.x || c.boxMin.y > c.boxMax.y || c.boxMin.z > c.boxMax.z)
@@ -85,10 +94,7 @@ int TestClassifyShortcuts(int, char*[])
   int tooSmallSeen = 0, narrower = 0;
   for (int mode : { cao::layout::CAO_MODE_SUBTRACT, cao::layout::CAO_MODE_PROBE })
   {
-    const cao::ClipDepthMaps& cand =
-      mode == cao::layout::CAO_MODE_SUBTRACT ? scene.dilated : scene.eroded;
-    const cao::ClipMapsView view{ scene.maps.front.data(), scene.maps.back.data(),
-      cand.front.data(), cand.back.data() };
+    const cao::ClipMapsView view = ViewFor(scene, mode);
     for (const auto& pose : path)
     {
       const cao::layout::ClipParams wide = scene.Pose(pose, pose[3], dims, mode, 16, false);
@@ -133,10 +139,7 @@ int TestClassifyShortcuts(int, char*[])
   std::int64_t byCentre = 0, byBrick = 0, wrongBricks = 0, wrongVoxels = 0;
   for (int mode : { cao::layout::CAO_MODE_SUBTRACT, cao::layout::CAO_MODE_PROBE })
   {
-    const cao::ClipDepthMaps& cand =
-      mode == cao::layout::CAO_MODE_SUBTRACT ? scene.dilated : scene.eroded;
-    const cao::ClipMapsView view{ scene.maps.front.data(), scene.maps.back.data(),
-      cand.front.data(), cand.back.data() };
+    const cao::ClipMapsView view = ViewFor(scene, mode);
     cao::ClipMapsTiles tiles;
     tiles.Build(view, scene.camera.width, scene.camera.height, scene.camera.layers);
     cao::ProofMaps proof;
@@ -198,10 +201,7 @@ int TestClassifyShortcuts(int, char*[])
     std::int64_t skipped = 0, wrongWhenOpaqueSkip = 0;
     for (int mode : { cao::layout::CAO_MODE_SUBTRACT, cao::layout::CAO_MODE_PROBE })
     {
-      const cao::ClipDepthMaps& cand =
-        mode == cao::layout::CAO_MODE_SUBTRACT ? scene.dilated : scene.eroded;
-      const cao::ClipMapsView view{ scene.maps.front.data(), scene.maps.back.data(),
-        cand.front.data(), cand.back.data() };
+      const cao::ClipMapsView view = ViewFor(scene, mode);
       for (const auto& pose : path)
       {
         const cao::layout::ClipParams clip = scene.Pose(pose, pose[3], dims, mode, 16);
