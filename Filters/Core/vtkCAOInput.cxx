@@ -3,6 +3,7 @@
 #include "vtkAlgorithm.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
+#include "vtkCellData.h"
 #include "vtkCleanPolyData.h"
 #include "vtkCommand.h"
 #include "vtkCubeSource.h"
@@ -24,6 +25,7 @@
 #include "vtkOutputWindow.h"
 #include "vtkSmartPointer.h"
 #include "vtkPLYReader.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSLCReader.h"
@@ -218,6 +220,25 @@ bool Run(Reader* reader, const std::string& path, std::string& error)
   }
   return true;
 }
+}
+
+void CellsAsVoxels(vtkImageData* input, vtkImageData* out)
+{
+  int extent[6];
+  input->GetExtent(extent);
+  for (int d = 0; d < 3; ++d)
+    extent[2 * d + 1] = std::max(extent[2 * d], extent[2 * d + 1] - 1);
+  // Index (i, j, k) of the cells' image is the centre of the cell whose
+  // lowest point is (i, j, k): index (1/2, 1/2, 1/2) of the input's.
+  double centre[3];
+  const double half[3] = { 0.5, 0.5, 0.5 };
+  input->TransformContinuousIndexToPhysicalPoint(half, centre);
+  out->Initialize();
+  out->SetExtent(extent);
+  out->SetSpacing(input->GetSpacing());
+  out->SetDirectionMatrix(input->GetDirectionMatrix());
+  out->SetOrigin(centre);
+  out->GetPointData()->ShallowCopy(input->GetCellData());
 }
 
 vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path, std::string& error)

@@ -25,6 +25,14 @@ namespace vtkCAO
 /// .vti, .mhd/.mha, .slc, legacy .vtk, .nii/.nii.gz.
 CAOFILTERSCORE_EXPORT vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path, std::string& error);
 
+/// An image of `input`'s cells in `out`: one voxel per cell at its centre
+/// (the same spacing and direction, the origin moved by half a spacing
+/// along each axis, the extent one less at its top), its point data the
+/// input's cell data (the arrays shared, not copied): cell scalars drawn
+/// or processed as voxels, as VTK's volume mappers treat them (less the
+/// outer half cells, between the outermost centres and the points' bounds).
+CAOFILTERSCORE_EXPORT void CellsAsVoxels(vtkImageData* input, vtkImageData* out);
+
 /// .vtp, .stl, .ply, .obj.
 CAOFILTERSCORE_EXPORT vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, std::string& error);
 

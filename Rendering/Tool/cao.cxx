@@ -1229,13 +1229,14 @@ int main(int argc, char* argv[])
   vtkSmartPointer<vtkImageData> volume = vtkCAO::ReadVolume(o.volume, error);
   if (!volume)
     return Fail(2, error);
+  caocli::CellScalarsAsVoxels(volume, o.volume, o.arrayName);
   // The array and component asked for, before any filter runs on them.
   vtkDataArray* scalars = o.arrayName.empty()
     ? volume->GetPointData()->GetScalars()
     : volume->GetPointData()->GetArray(o.arrayName.c_str());
   if (!scalars)
     return Fail(2, o.arrayName.empty()
-        ? "'" + o.volume + "' has no point scalars (name an array with --array)"
+        ? "'" + o.volume + "' has no point or cell scalars (name an array with --array)"
         : "--array '" + o.arrayName + "': '" + o.volume + "' has no such point array");
   if (o.component >= scalars->GetNumberOfComponents())
     return Fail(2, "--component " + std::to_string(o.component) + ": the array '" +

@@ -3,16 +3,20 @@
 #include <algorithm>
 
 #include "vtkAlgorithm.h"
+#include "vtkCAOInput.h"
+#include "vtkCellData.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
+#include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkLogger.h"
 #include "vtkOutputWindow.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
 #include "vtkSMPTools.h"
 
 #include <cctype>
@@ -276,6 +280,27 @@ void InstallOutputWindow()
   // ("WARN| vtkClipDepthMaps (0x...): ..."), before the window gets the
   // same text: the window's line is the only one.
   vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+}
+
+bool CellScalarsAsVoxels(vtkSmartPointer<vtkImageData>& volume, const std::string& path,
+  const std::string& array)
+{
+  const bool onPoints = array.empty() ? volume->GetPointData()->GetScalars() != nullptr
+                                      : volume->GetPointData()->GetArray(array.c_str()) != nullptr;
+  const bool onCells = array.empty() ? volume->GetCellData()->GetScalars() != nullptr
+                                     : volume->GetCellData()->GetArray(array.c_str()) != nullptr;
+  if (onPoints || !onCells)
+    return false;
+  vtkNew<vtkImageData> cells;
+  vtkCAO::CellsAsVoxels(volume, cells);
+  int dims[3];
+  cells->GetDimensions(dims);
+  std::fprintf(stderr,
+    "cao: note: '%s' holds cell scalars: each cell is read as a voxel at its centre "
+    "(%d x %d x %d voxels)\n",
+    path.c_str(), dims[0], dims[1], dims[2]);
+  volume = cells.GetPointer();
+  return true;
 }
 
 double Median(std::vector<double> v)

@@ -126,6 +126,13 @@ void DefaultOpacityRamp(const double range[2], vtkPiecewiseFunction* tf);
 /// VTK_SMP_BACKEND_IN_USE chooses), at most `threads` threads (0: all).
 void SelectThreads(int threads);
 
+/// A volume whose scalars (the array `array`, or the active scalars when it
+/// is empty) are cell data and not point data becomes an image of its
+/// cells (vtkCAO::CellsAsVoxels: a voxel at each cell's centre), with a
+/// note on stderr naming `path`. True when it did.
+bool CellScalarsAsVoxels(vtkSmartPointer<vtkImageData>& volume, const std::string& path,
+  const std::string& array = std::string());
+
 /// The median of the benchmarks' timed runs (the upper one of an even
 /// count; 0 for none).
 double Median(std::vector<double> v);

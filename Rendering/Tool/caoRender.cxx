@@ -307,9 +307,10 @@ int RunRender(int argc, char* argv[])
   vtkSmartPointer<vtkImageData> volume = ReadVolume(o.volume, error);
   if (!volume)
     return Fail(2, error);
+  caocli::CellScalarsAsVoxels(volume, o.volume);
   vtkDataArray* scalars = volume->GetPointData()->GetScalars();
   if (!scalars)
-    return Fail(2, "'" + o.volume + "' has no point scalars");
+    return Fail(2, "'" + o.volume + "' has no point or cell scalars");
   double range[2];
   scalars->GetRange(range, 0);
   if (!std::isfinite(range[0]) || !std::isfinite(range[1]))

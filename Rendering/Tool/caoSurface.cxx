@@ -900,9 +900,10 @@ bool LoadOccludingVolume(const SurfaceOptions& o, cao::OpacityVolume& opacity, s
   vtkSmartPointer<vtkImageData> image = vtkCAO::ReadVolume(o.volume, error);
   if (!image)
     return false;
+  caocli::CellScalarsAsVoxels(image, o.volume);
   vtkDataArray* scalars = image->GetPointData()->GetScalars();
   if (!scalars)
-    return error = "'" + o.volume + "' has no point scalars", false;
+    return error = "'" + o.volume + "' has no point or cell scalars", false;
   double range[2];
   scalars->GetRange(range, 0);
   if (!std::isfinite(range[0]) || !std::isfinite(range[1]))

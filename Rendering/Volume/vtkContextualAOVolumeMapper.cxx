@@ -35,6 +35,7 @@
 #include "caoClipComposite.h"
 #include "vtkCAOFilterUtilities.h"
 #include "vtkCAOGPUSession.h"
+#include "vtkCAOInput.h"
 #include "vtkCAOLAOSettings.h"
 #include "vtkCAOForeignEvents.h"
 #include "vtkCAOOpacity.h"
@@ -538,26 +539,10 @@ vtkImageData* vtkContextualAOVolumeMapper::Internals::CellsAsVoxels(vtkImageData
   const vtkMTimeType time = std::max(input->GetMTime(), input->GetCellData()->GetMTime());
   if (this->CellSource == input && this->CellSourceTime == time)
     return this->CellImage;
-  int extent[6];
-  input->GetExtent(extent);
-  for (int d = 0; d < 3; ++d)
-    extent[2 * d + 1] = std::max(extent[2 * d], extent[2 * d + 1] - 1);
-  // Index (i, j, k) of the cells' image is the centre of the cell whose
-  // lowest point is (i, j, k): the origin moves by half a spacing along
-  // each of the direction's axes.
-  double centre[3];
-  const double half[3] = { 0.5, 0.5, 0.5 };
-  input->TransformContinuousIndexToPhysicalPoint(half, centre);
-  vtkImageData* image = this->CellImage;
-  image->Initialize();
-  image->SetExtent(extent);
-  image->SetSpacing(input->GetSpacing());
-  image->SetDirectionMatrix(input->GetDirectionMatrix());
-  image->SetOrigin(centre);
-  image->GetPointData()->ShallowCopy(input->GetCellData());
+  vtkCAO::CellsAsVoxels(input, this->CellImage);
   this->CellSource = input;
   this->CellSourceTime = time;
-  return image;
+  return this->CellImage;
 }
 
 //------------------------------------------------------------------------------
