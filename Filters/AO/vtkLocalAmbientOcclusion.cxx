@@ -6,6 +6,7 @@
 #include "vtkCAOOpacity.h"
 #include "vtkCAOGPUSession.h"
 #include "vtkCAOLAOSettings.h"
+#include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -276,9 +277,19 @@ vtkDataArray* vtkLocalAmbientOcclusion::SelectScalars(
   component = this->Component < 0 ? 0 : this->Component;
   if (!scalars)
     vtkErrorMacro("The input has no point scalars to compute opacity from "
-                  "(set the input array to process).");
+                  "(set the input array to process"
+      << (input->GetCellData()->GetScalars() ? "; its scalars are cell data: the filters take point "
+                                              "data (Cell Data to Point Data), the Contextual AO "
+                                              "Volume representation draws cell scalars as voxels"
+                                            : "")
+      << ").");
   else if (scalars->GetNumberOfTuples() != input->GetNumberOfPoints())
-    vtkErrorMacro("Array '" << name << "' is not a point array of the volume.");
+    vtkErrorMacro("Array '" << name << "' is not a point array of the volume"
+      << (scalars->GetNumberOfTuples() == input->GetNumberOfCells()
+             ? " (it is cell data: the filters take point data; Cell Data to Point Data "
+               "converts it, the Contextual AO Volume representation draws it as voxels)"
+             : "")
+      << ".");
   else if (this->Component < 0 && nc != 1)
     vtkErrorMacro("Array '" << name << "' has " << nc
                             << " components; choose one with SetComponent().");
