@@ -365,7 +365,7 @@ bool Parse(int argc, char* argv[], BenchOptions& o, std::string& error)
 
 int Fail(int code, const std::string& message)
 {
-  std::cerr << "cao bench: " << message << "\n";
+  std::cerr << "cao: error: " << message << "\n";
   return code;
 }
 

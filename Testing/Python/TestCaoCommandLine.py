@@ -190,6 +190,9 @@ expect_error(["lao", neghip, "--rays", "7"], 2, "bad ray pattern", "bad ray patt
 expect_error(["lao", neghip, "--bogus"], 2, "unknown option", "unknown option")
 expect_error(["lao", neghip, "--reach", "-3"], 2, "a positive length", "negative reach")
 expect_error(["frobnicate", neghip], 2, "unknown command", "unknown command")
+rc, out, err = run("bench", "frobnicate")
+check(rc == 2 and err.strip().splitlines()[-1:] and err.strip().splitlines()[-1].startswith(
+    "cao: error: unknown benchmark"), f"an unknown benchmark, in the tool's words: rc={rc} {err.strip()[:160]!r}")
 expect_error(["carve", neghip, "--pose", "1 2"], 2, "a pose is", "malformed pose")
 expect_error(["carve", neghip, "--mesh", open_mesh], 2, "open", "open clip mesh")
 expect_error(["carve", neghip, "--shape", "teapot"], 2, "unknown shape", "unknown shape")
