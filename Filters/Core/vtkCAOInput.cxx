@@ -249,8 +249,6 @@ vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path, std::string& e
   vtkSmartPointer<vtkImageData> image;
   if (EndsWith(p, ".vti"))
   {
-    if (!cao::CheckXMLAppendedFile(path, error))
-      return nullptr;
     vtkNew<vtkXMLImageDataReader> r;
     r->SetFileName(path.c_str());
     if (!Run(r.Get(), path, error))
@@ -300,8 +298,6 @@ vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path, std::string& e
   }
   else if (EndsWith(p, ".vtk"))
   {
-    if (!cao::CheckLegacyVTKFile(path, error))
-      return nullptr;
     vtkNew<vtkDataSetReader> r;
     r->SetFileName(path.c_str());
     if (!Run(r.Get(), path, error))
@@ -343,8 +339,6 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, std::string& erro
   vtkSmartPointer<vtkAlgorithm> reader;
   if (EndsWith(p, ".vtp"))
   {
-    if (!cao::CheckXMLAppendedFile(path, error))
-      return nullptr;
     auto r = vtkSmartPointer<vtkXMLPolyDataReader>::New();
     r->SetFileName(path.c_str());
     reader = r;
@@ -357,8 +351,6 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, std::string& erro
   }
   else if (EndsWith(p, ".ply"))
   {
-    if (!cao::CheckPLYFile(path, error))
-      return nullptr;
     auto r = vtkSmartPointer<vtkPLYReader>::New();
     r->SetFileName(path.c_str());
     reader = r;

@@ -531,11 +531,8 @@ bool vtkContextualAOVolumeMapper::CheckSettings(std::string& why) const
 //------------------------------------------------------------------------------
 vtkImageData* vtkContextualAOVolumeMapper::Internals::CellsAsVoxels(vtkImageData* input)
 {
-  // An image of the input's cells: one voxel per cell at its centre (half
-  // a spacing in along each index axis, the same spacing and direction),
-  // its point data the input's cell arrays (shared, not copied). Remade
-  // only when the input changes, so that the volume's key (and the AO)
-  // stays as it is between frames.
+  // vtkCAO::CellsAsVoxels, remade only when the input changes, so that the
+  // volume's key (and the AO) stays as it is between frames.
   const vtkMTimeType time = std::max(input->GetMTime(), input->GetCellData()->GetMTime());
   if (this->CellSource == input && this->CellSourceTime == time)
     return this->CellImage;

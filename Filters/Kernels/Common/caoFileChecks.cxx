@@ -544,7 +544,7 @@ bool CheckMetaImageFile(const std::string& path, std::string& error)
     }
   }
   // What MetaIO would refuse by printing to the console: said here instead.
-  const std::string where = "cannot read '" + path + "': its MetaImage header ";
+  const std::string where = "cannot read " + Quoted(path) + ": its MetaImage header ";
   if (dims.empty())
   {
     error = where + "has no DimSize (the sizes, e.g. 'DimSize = 64 64 64')";
@@ -584,7 +584,7 @@ bool CheckMetaImageFile(const std::string& path, std::string& error)
   {
     if (!(d >= 1.0) || d != std::floor(d))
     {
-      error = "cannot read '" + path + "': its DimSize has a non-positive or fractional size";
+      error = "cannot read " + Quoted(path) + ": its DimSize has a non-positive or fractional size";
       return false;
     }
     voxels *= d;
@@ -592,7 +592,7 @@ bool CheckMetaImageFile(const std::string& path, std::string& error)
   }
   if (voxels > MaxVolumeVoxels)
   {
-    error = "cannot read '" + path + "': its header declares " + shape + " voxels, above the " +
+    error = "cannot read " + Quoted(path) + ": its header declares " + shape + " voxels, above the " +
       "limit of 2^31-1 (2147483647) voxels";
     return false;
   }
@@ -625,7 +625,7 @@ bool CheckMetaImageFile(const std::string& path, std::string& error)
   if (Lower(dataFile) == "local")
   {
     available = FileSize(path) - headerEnd;
-    source = "'" + path + "' after its header";
+    source = Quoted(path) + " after its header";
   }
   else
   {
@@ -634,14 +634,14 @@ bool CheckMetaImageFile(const std::string& path, std::string& error)
     source = "'" + data + "'";
     if (available < 0)
     {
-      error = "cannot read '" + path + "': its data file '" + data + "' cannot be opened";
+      error = "cannot read " + Quoted(path) + ": its data file '" + data + "' cannot be opened";
       return false;
     }
   }
   if (static_cast<double>(available) - headerSize < needed)
   {
     std::ostringstream msg;
-    msg << "cannot read '" << path << "': its header declares " << shape << " voxels of "
+    msg << "cannot read " << Quoted(path) << ": its header declares " << shape << " voxels of "
         << type << " (" << Number(needed) << " bytes), but " << source
         << " holds " << Number(std::max(0.0, static_cast<double>(available) - headerSize))
         << " bytes: the data is short";
@@ -797,7 +797,7 @@ bool CheckXMLAppendedFile(const std::string& path, std::string& error)
     if (end < 0 || end > fileSize)
     {
       std::ostringstream msg;
-      msg << "cannot read '" << path << "': the file is short: array '" << name;
+      msg << "cannot read " << Quoted(path) << ": the file is short: array '" << name;
       if (offset < 0 || offset > fileSize)
         msg << "' starts at appended offset " << offset;
       else
@@ -884,7 +884,7 @@ bool CheckLegacyVTKFile(const std::string& path, std::string& error)
     {
       std::ostringstream msg;
       msg.precision(15);
-      msg << "cannot read '" << path << "': the file is short: point array '" << name
+      msg << "cannot read " << Quoted(path) << ": the file is short: point array '" << name
           << "' needs " << needed << " bytes of binary data but the file holds "
           << std::max(0LL, have) << " after its header";
       error = msg.str();
@@ -902,7 +902,7 @@ bool CheckPLYFile(const std::string& path, std::string& error)
 {
   std::ifstream in(path, std::ios::binary);
   std::string line;
-  const std::string name = "'" + path + "'";
+  const std::string name = Quoted(path);
   if (!std::getline(in, line) || Trim(line) != "ply")
   {
     error = "cannot read " + name + ": not a PLY file (its first line is not 'ply')";
@@ -1062,7 +1062,13 @@ bool CheckFileByExtension(const std::string& path, std::string& error)
   if (EndsWith(p, ".stl"))
     return CheckSTLFile(path, error);
   if (EndsWith(p, ".vti"))
-    return CheckVTIFile(path, error);
+    return CheckVTIFile(path, error) && CheckXMLAppendedFile(path, error);
+  if (EndsWith(p, ".vtp"))
+    return CheckXMLAppendedFile(path, error);
+  if (EndsWith(p, ".vtk"))
+    return CheckLegacyVTKFile(path, error);
+  if (EndsWith(p, ".ply"))
+    return CheckPLYFile(path, error);
   return true;
 }
 }

@@ -68,9 +68,10 @@ bool CheckLegacyVTKFile(const std::string& path, std::string& error);
 /// truncated binary one.
 bool CheckPLYFile(const std::string& path, std::string& error);
 
-/// The check for `path` by its extension (.slc, .nii, .nii.gz, .stl, .vti;
-/// other extensions pass; `cao` (vtkCAOInput) calls the four above where
-/// it reads those formats).
+/// The checks for `path` by its extension: .slc, .nii, .nii.gz, .stl, .vti
+/// (its header, then its appended data), .vtp, .vtk and .ply; other
+/// extensions pass. A MetaImage header is checked by CheckMetaImageFile
+/// once VTK's reader has recognised the file (vtkCAOInput).
 bool CheckFileByExtension(const std::string& path, std::string& error);
 }
 
