@@ -22,6 +22,8 @@ packages=(
   xvfb xdotool
   # image regression tests: OpenImageIO's library (comparison) and idiff
   libopenimageio-dev openimageio-tools
+  # the command line's option parser (header-only)
+  libcli11-dev
   # toolchain; clang for the libFuzzer targets of the file-header checks
   cmake g++ ninja-build clang libclang-rt-14-dev
 )

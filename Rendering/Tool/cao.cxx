@@ -15,6 +15,7 @@
 #include "vtkCAOLAOSettings.h"
 #include "caoLAO.h"
 #include "caoLAOCommandLine.h"
+#include "caoOptions.h"
 #include "caoRender.h"
 #include "caoSurface.h"
 #include "caoBenchSurface.h"
@@ -63,378 +64,101 @@
 
 namespace
 {
+using caocli::Fail;
 using caocli::FieldValue;
 using caocli::Split;
 using caocli::ToDouble;
 
-const char* Usage = R"(usage:
-  cao lao   VOLUME [common options] [-o OUT.vti]
-  cao carve VOLUME [common options] [clip options] [--verify] [-o OUT.vti]
-  cao tf    VOLUME --from S,A,... --to S,A,... [common options] [--verify] [-o OUT.vti]
-  cao --version        the tool's and VTK's versions
-
-VOLUME: .vti, .mhd/.mha, .slc, legacy .vtk, .nii/.nii.gz
-
-common options:
-  --rays LIST          ray patterns: 6, 14, 26, 54, rubiks54 (the paper's
-                       54 rays, jittered) or fib:K (K = 1 to 65536); carve
-                       takes a comma list and runs each (default 14)
-  --reach R            ray length in world units (default 8 voxels)
-  --samples M          samples per ray, 1 to 65536 (default: --density per voxel)
-  --density D          samples per smallest voxel spacing when --samples is
-                       not given (default 1; 0.001 to 1000)
-  --offset F           start offset of the samples along a ray, in steps,
-                       in [0, 1) (default 0.5: mid-step; 0 is the paper's march)
-  --variation NAME     per-voxel ray variation: none (default), rotate,
-                       jitter or rotate+jitter (interleaved 2x2x2)
-  --quality NAME       LAO quality preset: interactive (the default, equal
-                       to the defaults above), balanced, reference or
-                       custom; a preset sets the rays, samples, density,
-                       offset and variation (so it is not combined with
-                       those options; giving any of them without --quality
-                       means custom); --reach still applies
-  --opacity S,A,...    opacity transfer function points (scalar, opacity);
-                       default: 0 up to 25% of the scalar range, then a ramp
-                       to 0.8 at its maximum
-  --unit-distance U    scalar opacity unit distance (default 1)
-  --array NAME         point array to use (default: the active scalars)
-  --component C        component of a multi-component array
-  --threads N          at most N threads (default: all cores)
-  --backend B          auto (default: OpenGL on a hardware GPU, else CPU),
-                       cpu, or gl (OpenGL 4.3 compute, headless EGL or
-                       OSMesa; an error when there is no such context);
-                       carve takes a comma list (cpu,gl) and runs each
-  --json               print a JSON summary instead of tables
-  -o, --output FILE    write the (last) AO volume as .vti
-
-clip options (carve):
-  --shape NAME         sphere, cube, torus or plane (default sphere); plane:
-                       the half-space on the +z side of the pose's frame
-                       (the pose's orientation turns it)
-  --size S             shape size in world units (default: 1/4 of the
-                       volume's smallest extent; for a plane, its slab's
-                       half width: 1.25 x the farthest volume corner from
-                       any pose)
-  --mesh FILE          clip mesh (.vtp, .vtk, .stl, .ply, .obj) instead of a shape
-  --pose "tx ty tz [rx ry rz [s]]"   a pose (repeatable); rotation in degrees
-  --poses FILE         one pose per line
-  --path N             N poses along the volume diagonal (default 24; at most
-                       100000, as poses from --pose and --poses)
-  --mode MODE          subtract (default) or probe
-  --layers L           depth-peel layers, 1 to 64 (default 2)
-  --aa N               extra anti-aliasing samples, 0 to 32 (default 16)
-  --pixel-size P       depth-map pixel size (default: half a voxel)
-  --direction X,Y,Z    clipping camera direction in the mesh frame (default 0,0,1)
-  --verify             recompute the full LAO at every pose and require the
-                       CAO result to equal it bit for bit (exit 3 otherwise)
-  --verify-geometry    check the clip against the exact shape (the closed-form
-                       sphere, cube, torus or plane; the mesh itself by point location)
-                       at every pose, without the depth maps: a voxel inside
-                       by more than one map pixel must be clipped, one outside
-                       by more must not be (exit 3 otherwise)
-  --no-progress        no progress line on stderr (shown only on a terminal)
-
-tf (a transfer-function edit): the LAO with the --from opacity, then the
-opacity changed to --to, updated by recomputing only the voxels within the
-rays' reach of a voxel whose opacity changed (on the CPU), then a full LAO
-with --to. It prints the voxels whose opacity changed, the voxels
-recomputed, the update's and the full LAO's milliseconds, and max|diff|
-between them; --verify requires them equal bit for bit (exit 3 otherwise).
-
-The depth maps are made for each pose scale of the path: pixels of half a
-voxel and the dilation of the reach, in the world, however the clip's size is
-split between --size and the pose scale; a mesh much larger than the volume
-is mapped only where the volume can be.
-)";
-
+/// What `cao lao`, `cao carve` and `cao tf` take (each its own copy).
 struct Options
 {
-  std::string command, volume, output, arrayName, mesh, posesFile, shape = "sphere",
-                                                                    mode = "subtract";
+  std::string command, volume, output, arrayName;
   std::vector<std::string> rays{ cao::RayPatternName(cao::LAOSettings().pattern) };
   std::vector<double> opacity, from, to; // tf: --from and --to
-  std::vector<std::string> poseTexts;
-  double reach = 0.0, unitDistance = 1.0, size = 0.0, pixelSize = 0.0;
-  caocli::LAOCommandLine lao;             // --quality, --density, --offset, --variation
-  double direction[3] = { 0, 0, 1 };
-  int samples = 0, component = -1, threads = 0, path = 24, layers = 2, aa = 16;
+  caocli::ClipOptions clipping;           // carve
+  double reach = 0.0, unitDistance = 1.0, pixelSize = 0.0;
+  std::vector<double> direction{ 0, 0, 1 };
+  caocli::LAOCommandLine lao; // --quality, --density, --offset, --variation
+  int samples = 0, component = -1, threads = 0;
   bool json = false, verify = false, verifyGeometry = false, quiet = false;
-  bool shapeGiven = false; // --shape on the command line
-  int backend = 0;                    // vtkLocalAmbientOcclusion::AUTO
-  std::vector<int> backends{ 0 };     // carve: each is run, side by side
+  int backend = 0;                // vtkLocalAmbientOcclusion::AUTO
+  std::vector<int> backends{ 0 }; // carve: each is run, side by side
 };
 
-int Fail(int code, const std::string& message)
-{
-  std::cerr << "cao: error: " << message << "\n";
-  return code;
-}
+const char* CarveFooter = R"(The depth maps are made for each pose scale of the path: pixels of half a
+voxel and the dilation of the reach, in the world, however the clip's size is
+split between --size and the pose scale; a mesh much larger than the volume
+is mapped only where the volume can be.)";
 
-bool ToInt(const std::string& s, int& v)
-{
-  char* end = nullptr;
-  const long x = std::strtol(s.c_str(), &end, 10);
-  v = static_cast<int>(x);
-  return !s.empty() && *end == '\0' && x >= -1000000000L && x <= 1000000000L;
-}
+const char* TFFooter = R"(The LAO with the --from opacity, then the opacity changed to --to, updated
+by recomputing only the voxels within the rays' reach of a voxel whose opacity
+changed (on the CPU), then a full LAO with --to. It prints the voxels whose
+opacity changed, the voxels recomputed, the update's and the full LAO's
+milliseconds, and max|diff| between them.)";
 
-bool Parse(int argc, char* argv[], Options& o, std::string& error)
+int Run(Options& o, const CLI::App* app);
+
+/// `cao lao`, `cao carve` or `cao tf` (`name`) with the options it takes.
+caocli::Command AddVolumeCommand(CLI::App& cao, const std::string& name)
 {
-  if (argc < 2)
+  using namespace caocli;
+  auto o = std::make_shared<Options>();
+  o->command = name;
+  const bool carve = name == "carve", tf = name == "tf";
+  CLI::App* app = cao.add_subcommand(name,
+    name == "lao"     ? "local ambient occlusion of a volume (Hernell et al.)"
+      : carve         ? "contextual AO along a clip path: only the voxels a pose affects are "
+                        "recomputed (Titov et al.)"
+                      : "a transfer-function edit: the voxels whose AO can change are recomputed");
+  AddVolume(app, o->volume);
+  AddRays(app, o->rays, carve);
+  AddReach(app, o->reach);
+  AddSamples(app, o->samples);
+  AddLAOOptions(app, o->lao);
+  if (tf)
   {
-    error = "missing command";
-    return false;
+    AddOpacity(app, "--from", o->from, "opacity before the edit: scalar,opacity pairs")->required();
+    AddOpacity(app, "--to", o->to, "opacity after the edit: scalar,opacity pairs")->required();
   }
-  o.command = argv[1];
-  if (o.command != "lao" && o.command != "carve" && o.command != "tf")
+  else
+    AddOpacity(app, "--opacity", o->opacity,
+      "opacity transfer function points (scalar, opacity); default: 0 up to 25% of the scalar "
+      "range, then a ramp to 0.8 at its maximum");
+  AddUnitDistance(app, o->unitDistance);
+  AddArray(app, o->arrayName, o->component);
+  AddThreads(app, o->threads);
+  AddBackend(app, o->backends, carve);
+  AddJson(app, o->json);
+  AddOutput(app, o->output, carve ? "write the last AO volume as .vti" : "write the AO volume as .vti");
+  AddNoProgress(app, o->quiet);
+  if (carve)
   {
-    error = "unknown command '" + o.command + "' (expected lao, carve, tf, render, surface or bench)";
-    return false;
+    AddClipOptions(app, o->clipping, 64);
+    AddNumber(app, "--pixel-size", o->pixelSize, 0.0, HUGE_VAL, true,
+      "a positive length in the mesh's units", "depth-map pixel size (default: half a voxel)")
+      ->type_name("P");
+    AddNumberList(app, "--direction", o->direction, "X,Y,Z",
+      "clipping camera direction in the mesh frame (default 0,0,1)")
+      ->check(CLI::Validator(
+        [](std::string& v) -> std::string {
+          return Split(v, ',').size() == 3 ? "" : "'" + v + "' is not X,Y,Z";
+        },
+        ""));
+    app->add_flag("--verify-geometry", o->verifyGeometry,
+      Wrap("check the clip against the exact shape (the closed-form sphere, cube, torus or "
+           "plane; the mesh itself by point location) at every pose, without the depth maps: a "
+           "voxel inside by more than one map pixel must be clipped, one outside by more must "
+           "not be (exit 3 otherwise)"));
+    app->footer(CarveFooter);
   }
-  for (int i = 2; i < argc; ++i)
-  {
-    const std::string a = argv[i];
-    auto value = [&](std::string& out) {
-      if (i + 1 >= argc)
-      {
-        error = "option " + a + " needs a value";
-        return false;
-      }
-      out = argv[++i];
-      return true;
-    };
-    std::string v;
-    // A number and the range it must lie in, stated in the error.
-    auto number = [&](double& out, double lo, const char* range) {
-      if (!value(v))
-        return false;
-      if (!ToDouble(v, out) || out < lo)
-      {
-        error = "bad value '" + v + "' for " + a + " (" + range + ")";
-        return false;
-      }
-      return true;
-    };
-    auto integer = [&](int& out, int lo, int hi, const char* range) {
-      if (!value(v))
-        return false;
-      double x = 0.0;
-      if (!ToDouble(v, x) || x != std::floor(x) || x < lo || x > hi)
-      {
-        error = "bad value '" + v + "' for " + a + " (" + range + ")";
-        return false;
-      }
-      out = static_cast<int>(x);
-      return true;
-    };
-    bool ok = true;
-    if (caocli::TakeLAOOption(a, argc, argv, i, o.lao, error))
-      ok = error.empty();
-    else if (a == "--rays")
-    {
-      caocli::NoteOverridden(o.lao, a);
-      ok = value(v);
-      if (ok && caocli::HasEmptyItem(v))
-      {
-        error = "--rays has an empty item (got '" + v + "')";
-        return false;
-      }
-      if (ok)
-      {
-        o.rays = Split(v, ',');
-        for (const auto& r : o.rays)
-        {
-          cao::RayPattern p;
-          int k = 0;
-          if (!cao::ParseRayPattern(r, p, k))
-          {
-            error = "bad ray pattern '" + r + "' (expected 6, 14, 26, 54, rubiks54 or fib:K "
-                    "with K from 1 to 65536)";
-            return false;
-          }
-        }
-        if (o.rays.empty())
-        {
-          error = "--rays needs at least one pattern";
-          return false;
-        }
-      }
-    }
-    else if (a == "--reach")
-      ok = number(o.reach, 1e-300, "a positive length in world units");
-    else if (a == "--samples")
-    {
-      caocli::NoteOverridden(o.lao, a);
-      ok = integer(o.samples, 1, cao::LAOLimits::MaxSamples, "an integer, 1 to 65536");
-    }
-    else if (a == "--unit-distance")
-      ok = number(o.unitDistance, 1e-300, "a positive length in world units");
-    else if (a == "--size")
-      ok = number(o.size, 1e-300, "a positive length in world units");
-    else if (a == "--pixel-size")
-      ok = number(o.pixelSize, 1e-300, "a positive length in the mesh's units");
-    else if (a == "--component")
-      ok = integer(o.component, 0, 1 << 20, "a component index, from 0");
-    else if (a == "--threads")
-      ok = integer(o.threads, 1, 4096, "an integer, 1 to 4096");
-    else if (a == "--path")
-      ok = integer(o.path, 1, vtkCAO::MaxPoses, "an integer, 1 to 100000");
-    else if (a == "--layers")
-      ok = integer(o.layers, 1, 64, "an integer, 1 to 64");
-    else if (a == "--aa")
-      ok = integer(o.aa, 0, 32, "an integer, 0 to 32");
-    else if (a == "--opacity" || (o.command == "tf" && (a == "--from" || a == "--to")))
-    {
-      std::vector<double>& points = a == "--from" ? o.from : a == "--to" ? o.to : o.opacity;
-      ok = value(v);
-      if (ok && caocli::HasEmptyItem(v))
-      {
-        error = a + " has an empty item (got '" + v + "')";
-        return false;
-      }
-      if (ok)
-      {
-        points.clear();
-        for (const auto& s : Split(v, ','))
-        {
-          double x;
-          if (!ToDouble(s, x))
-          {
-            error = "bad number '" + s + "' in " + a;
-            return false;
-          }
-          points.push_back(x);
-        }
-        if (points.size() < 2 || points.size() % 2 != 0)
-        {
-          error = a + " needs scalar,opacity pairs";
-          return false;
-        }
-        for (std::size_t p = 1; p < points.size(); p += 2)
-          if (!(points[p] >= 0.0 && points[p] <= 1.0))
-          {
-            error = "bad opacity " + std::to_string(points[p]) + " in " + a + " (0 to 1)";
-            return false;
-          }
-      }
-    }
-    else if (a == "--direction")
-    {
-      ok = value(v);
-      const auto parts = Split(v, ',');
-      if (ok && (parts.size() != 3 || !ToDouble(parts[0], o.direction[0]) ||
-                  !ToDouble(parts[1], o.direction[1]) || !ToDouble(parts[2], o.direction[2])))
-      {
-        error = "--direction needs X,Y,Z";
-        return false;
-      }
-    }
-    else if (a == "--array")
-      ok = value(o.arrayName);
-    else if (a == "--shape")
-    {
-      ok = value(o.shape);
-      o.shapeGiven = true;
-    }
-    else if (a == "--mesh")
-      ok = value(o.mesh);
-    else if (a == "--pose")
-    {
-      ok = value(v);
-      if (ok)
-        o.poseTexts.push_back(v);
-    }
-    else if (a == "--poses")
-      ok = value(o.posesFile);
-    else if (a == "--mode")
-    {
-      ok = value(o.mode);
-      if (ok && o.mode != "subtract" && o.mode != "probe")
-      {
-        error = "--mode is subtract or probe";
-        return false;
-      }
-    }
-    else if (a == "-o" || a == "--output")
-      ok = value(o.output);
-    else if (a == "--json")
-      o.json = true;
-    else if (a == "--backend")
-    {
-      const std::string list = i + 1 < argc ? argv[++i] : "";
-      if (caocli::HasEmptyItem(list))
-      {
-        error = "--backend has an empty item (got '" + list + "')";
-        return false;
-      }
-      o.backends.clear();
-      for (const std::string& b : Split(list, ','))
-      {
-        if (b == "auto")
-          o.backends.push_back(vtkLocalAmbientOcclusion::AUTO);
-        else if (b == "cpu")
-          o.backends.push_back(vtkLocalAmbientOcclusion::CPU);
-        else if (b == "gl" || b == "opengl")
-          o.backends.push_back(vtkLocalAmbientOcclusion::OPENGL);
-        else
-        {
-          error = "--backend must be auto, cpu or gl (carve: a comma list), not '" + b + "'";
-          return false;
-        }
-      }
-      if (o.backends.empty())
-      {
-        error = "--backend needs a value";
-        return false;
-      }
-      o.backend = o.backends[0];
-    }
-    else if (a == "--verify")
-      o.verify = true;
-    else if (a == "--verify-geometry")
-      o.verifyGeometry = true;
-    else if (a == "--no-progress")
-      o.quiet = true;
-    else
-      ok = caocli::TakeArgument(a, o.volume, error);
-    if (!ok)
-      return false;
-  }
-  if (o.volume.empty())
-  {
-    error = "missing VOLUME";
-    return false;
-  }
-  if (o.shapeGiven && !o.mesh.empty())
-  {
-    error = "--shape and --mesh both name the clip: give one (--shape " + o.shape + ", --mesh " +
-      o.mesh + ")";
-    return false;
-  }
-  if ((o.command == "lao" || o.command == "tf") && o.rays.size() != 1)
-  {
-    error = o.command + " takes a single ray pattern";
-    return false;
-  }
-  if (o.command == "tf")
-  {
-    if (o.from.empty() || o.to.empty())
-    {
-      error = "tf needs --from and --to (scalar,opacity pairs)";
-      return false;
-    }
-    if (!o.opacity.empty())
-    {
-      error = "tf takes --from and --to, not --opacity";
-      return false;
-    }
-    if (o.backend == vtkLocalAmbientOcclusion::OPENGL)
-    {
-      error = "tf runs on the CPU (--backend cpu or auto): the opacity edit has no GPU path yet";
-      return false;
-    }
-  }
-  return caocli::CheckLAOCommandLine(o.lao, error);
+  if (carve || tf)
+    app->add_flag("--verify", o->verify,
+      Wrap(carve ? "recompute the full LAO at every pose and require the CAO result to equal it "
+                   "bit for bit (exit 3 otherwise)"
+                 : "require the update to equal the full LAO bit for bit (exit 3 otherwise)"));
+  if (tf)
+    app->footer(TFFooter);
+  return { app, [o, app] { return Run(*o, app); } };
 }
 
 void ConfigureLAO(const Options& o, const std::string& rays, vtkLocalAmbientOcclusion* lao,
@@ -660,10 +384,10 @@ int MakeClip(const Options& o, vtkImageData* volume, CarveSetup& s)
 {
   std::string error;
   // (A plane's slab covers the volume at every pose: sized from the poses.)
-  const double size = o.size > 0.0 ? o.size
-    : o.shape == "plane"           ? vtkCAO::PlaneSlabSize(volume, s.poses)
+  const double size = o.clipping.size > 0.0 ? o.clipping.size
+    : o.clipping.shape == "plane"           ? vtkCAO::PlaneSlabSize(volume, s.poses)
                                    : vtkCAO::DefaultShapeSize(volume);
-  s.mesh = o.mesh.empty() ? vtkCAO::MakeShape(o.shape, size, error) : vtkCAO::ReadMesh(o.mesh, error);
+  s.mesh = o.clipping.mesh.empty() ? vtkCAO::MakeShape(o.clipping.shape, size, error) : vtkCAO::ReadMesh(o.clipping.mesh, error);
   if (!s.mesh)
     return Fail(2, error);
   if (!o.verifyGeometry)
@@ -672,21 +396,21 @@ int MakeClip(const Options& o, vtkImageData* volume, CarveSetup& s)
   std::vector<std::int64_t> tris;
   vtkCAO::TrianglesOf(s.mesh, points, tris);
   const cao::TriangleMesh view = cao::ViewMesh(points, tris);
-  if (!o.mesh.empty())
+  if (!o.clipping.mesh.empty())
   {
     if (!cao::ClipShape::FromMesh(view, s.exact, error))
       return Fail(2, "--verify-geometry: " + error);
     return 0;
   }
-  if (o.shape == "plane")
+  if (o.clipping.shape == "plane")
   {
     // The true half-space: a slab that does not cover the volume is caught.
     s.exact = cao::ClipShape::Plane();
     s.deviation = 0.0; // the slab's plane face is the plane, exactly
     return 0;
   }
-  s.exact = o.shape == "cube" ? cao::ClipShape::Cube(size)
-    : o.shape == "torus"      ? cao::ClipShape::Torus(size, size / 3.0)
+  s.exact = o.clipping.shape == "cube" ? cao::ClipShape::Cube(size)
+    : o.clipping.shape == "torus"      ? cao::ClipShape::Torus(size, size / 3.0)
                               : cao::ClipShape::Sphere(size);
   s.deviation = s.exact.Deviation(view);
   return 0;
@@ -697,21 +421,21 @@ int MakeClip(const Options& o, vtkImageData* volume, CarveSetup& s)
 int MakePoses(const Options& o, vtkImageData* volume, CarveSetup& s)
 {
   std::string error;
-  for (const auto& t : o.poseTexts)
+  for (const auto& t : o.clipping.poseTexts)
   {
     vtkCAO::Pose p;
     if (!vtkCAO::ParsePose(t, p, error))
       return Fail(2, error);
     s.poses.push_back(p);
   }
-  if (!o.posesFile.empty() && !vtkCAO::ReadPoses(o.posesFile, s.poses, error))
+  if (!o.clipping.posesFile.empty() && !vtkCAO::ReadPoses(o.clipping.posesFile, s.poses, error))
     return Fail(2, error);
   if (s.poses.size() > static_cast<std::size_t>(vtkCAO::MaxPoses))
     return Fail(2, "more than " + std::to_string(vtkCAO::MaxPoses) + " poses");
   double bounds[6];
   volume->GetBounds(bounds);
   if (s.poses.empty())
-    s.poses = vtkCAO::DefaultPath(bounds, o.path);
+    s.poses = vtkCAO::DefaultPath(bounds, o.clipping.path);
   // The maps are made for each pose scale of the path (pixels of half a
   // voxel and the dilation of the reach, in the world, at that scale),
   // over the region the volume occupies in the mesh's frame at the poses
@@ -769,9 +493,9 @@ int CarveRun(const Options& o, vtkImageData* volume, vtkPiecewiseFunction* tf,
   maps->SetInputData(s.mesh);
   maps->SetReach(run.reach);
   maps->SetVoxelSpacing(volume->GetSpacing());
-  maps->SetNumberOfLayers(o.layers);
+  maps->SetNumberOfLayers(o.clipping.layers);
   maps->SetPixelSize(o.pixelSize);
-  maps->SetDirection(o.direction);
+  maps->SetDirection(o.direction.data());
   maps->SetNumberOfThreads(o.threads);
   maps->SetBackend(backend);
 
@@ -779,15 +503,15 @@ int CarveRun(const Options& o, vtkImageData* volume, vtkPiecewiseFunction* tf,
   log.Watch(cao);
   cao->SetInputConnection(0, lao->GetOutputPort());
   cao->SetInputConnection(1, maps->GetOutputPort());
-  cao->SetMode(o.mode == "probe" ? vtkContextualAmbientOcclusion::PROBING
+  cao->SetMode(o.clipping.mode == "probe" ? vtkContextualAmbientOcclusion::PROBING
                                  : vtkContextualAmbientOcclusion::SUBTRACTION);
-  cao->SetAntiAliasingSamples(o.aa);
+  cao->SetAntiAliasingSamples(o.clipping.aa);
   cao->SetVerify(o.verify);
   cao->SetNumberOfThreads(o.threads);
   cao->SetBackend(backend);
   vtkNew<vtkTransform> pose;
   cao->SetPoseTransform(pose);
-  const int mode = o.mode == "probe" ? cao::layout::CAO_MODE_PROBE : cao::layout::CAO_MODE_SUBTRACT;
+  const int mode = o.clipping.mode == "probe" ? cao::layout::CAO_MODE_PROBE : cao::layout::CAO_MODE_SUBTRACT;
   for (std::size_t index = 0; index < s.poses.size(); ++index)
   {
     const vtkCAO::Pose& p = s.poses[index];
@@ -886,7 +610,7 @@ void PrintCarveJson(const Options& o, vtkImageData* volume, const std::vector<Ru
   const long long voxels = volume->GetNumberOfPoints();
   std::printf("{\"command\": \"carve\", \"volume\": \"%s\", \"dims\": [%d, %d, %d], "
               "\"voxels\": %lld, \"mode\": \"%s\", \"threads\": %d, \"runs\": [",
-    o.volume.c_str(), dims[0], dims[1], dims[2], voxels, o.mode.c_str(),
+    o.volume.c_str(), dims[0], dims[1], dims[2], voxels, o.clipping.mode.c_str(),
     vtkSMPTools::GetEstimatedNumberOfThreads());
   for (std::size_t i = 0; i < runs.size(); ++i)
   {
@@ -959,7 +683,7 @@ void PrintCarveTables(const Options& o, vtkImageData* volume, const std::vector<
   for (const RunResult& run : runs)
   {
     std::printf("\n%s (%d x %d x %d = %lld voxels), %s mode, %d rays x %d samples, reach %g\n",
-      o.volume.c_str(), dims[0], dims[1], dims[2], voxels, o.mode.c_str(), run.numRays,
+      o.volume.c_str(), dims[0], dims[1], dims[2], voxels, o.clipping.mode.c_str(), run.numRays,
       run.samples, run.reach);
     std::printf("backend: %s\n", run.backend.c_str());
     std::printf("LAO precompute %.1f ms; depth maps %.1f ms (%d made: one per pose scale; %s)\n",
@@ -1166,65 +890,19 @@ int RunTF(const Options& o, vtkImageData* volume)
   return o.verify && differing != 0 ? 3 : 0;
 }
 
-int main(int argc, char* argv[])
+namespace
 {
-  caocli::InstallOutputWindow();
-  if (argc == 2 && (std::string(argv[1]) == "--version" || std::string(argv[1]) == "version"))
-  {
-    std::cout << "cao (ContextualAO) " << CAO_VERSION << ", VTK " << vtkVersion::GetVTKVersion()
-              << "\n";
-    return 0;
-  }
-  for (int i = 2; i < argc; ++i)
-  {
-    const std::string a = argv[i];
-    if (a == "-h" || a == "--help")
-    {
-      const std::string command = argv[1];
-      if (command == "render")
-        std::cout << caocli::RenderUsage;
-      else if (command == "bench" && argc > 2 && std::string(argv[2]) == "surface")
-        std::cout << caocli::BenchSurfaceUsage;
-      else if (command == "bench" && argc > 2 && std::string(argv[2]) == "surface-scale")
-        std::cout << caocli::BenchSurfaceScaleUsage;
-      else if (command == "bench" && argc > 2 && std::string(argv[2]) == "surface-frame")
-        std::cout << caocli::BenchSurfaceFrameUsage;
-      else if (command == "bench")
-        std::cout << caocli::BenchUsage;
-      else if (command == "surface")
-        std::cout << caocli::SurfaceUsage;
-      else
-        std::cout << Usage;
-      return 0;
-    }
-  }
-  if (argc >= 2 && std::string(argv[1]) == "render")
-    return caocli::RunRender(argc, argv);
-  if (argc >= 3 && std::string(argv[1]) == "bench" && std::string(argv[2]) == "surface")
-    return caocli::RunBenchSurface(argc, argv);
-  if (argc >= 3 && std::string(argv[1]) == "bench" && std::string(argv[2]) == "surface-scale")
-    return caocli::RunBenchSurfaceScale(argc, argv);
-  if (argc >= 3 && std::string(argv[1]) == "bench" && std::string(argv[2]) == "surface-frame")
-    return caocli::RunBenchSurfaceFrame(argc, argv);
-  if (argc >= 2 && std::string(argv[1]) == "bench")
-    return caocli::RunBench(argc, argv);
-  if (argc >= 2 && std::string(argv[1]) == "surface")
-    return caocli::RunSurface(argc, argv);
-  if (argc >= 2 && (std::string(argv[1]) == "-h" || std::string(argv[1]) == "--help" ||
-                     std::string(argv[1]) == "help"))
-  {
-    std::cout << Usage << "\n" << caocli::RenderUsage << "\n" << caocli::BenchUsage << "\n"
-              << caocli::SurfaceUsage << "\n" << caocli::BenchSurfaceUsage << "\n"
-              << caocli::BenchSurfaceScaleUsage << "\n" << caocli::BenchSurfaceFrameUsage;
-    return 0;
-  }
-  Options o;
+/// `cao lao`, `carve` or `tf` after the parse: the checks between options,
+/// then the run.
+int Run(Options& o, const CLI::App* app)
+{
   std::string error;
-  if (!Parse(argc, argv, o, error))
-  {
-    std::cerr << "cao: error: " << error << "\n";
-    return 2;
-  }
+  if (!o.backends.empty())
+    o.backend = o.backends[0];
+  if (o.command == "tf" && o.backend == vtkLocalAmbientOcclusion::OPENGL)
+    return Fail(2, "tf runs on the CPU (--backend cpu or auto): the opacity edit has no GPU path yet");
+  if (!caocli::FinishLAO(app, o.lao, error))
+    return Fail(2, error);
   caocli::SelectThreads(o.threads);
   vtkSmartPointer<vtkImageData> volume = vtkCAO::ReadVolume(o.volume, error);
   if (!volume)
@@ -1263,4 +941,30 @@ int main(int argc, char* argv[])
   if (o.command == "tf")
     return RunTF(o, volume);
   return o.command == "lao" ? RunLAO(o, volume) : RunCarve(o, volume);
+}
+}
+
+int main(int argc, char* argv[])
+{
+  caocli::InstallOutputWindow();
+  CLI::App cao("cao: ambient occlusion for volumes (local and contextual, as a clip moves) and "
+               "surfaces, from the command line. Exit codes: 0 success, 1 runtime error, 2 bad "
+               "arguments or unreadable input, 3 --verify found a difference.",
+    "cao");
+  cao.get_formatter()->column_width(30);
+  cao.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::Throw);
+  cao.set_version_flag("--version",
+    std::string("cao (ContextualAO) ") + CAO_VERSION + ", VTK " + vtkVersion::GetVTKVersion());
+  cao.set_help_all_flag("--help-all", "print the help of every command");
+  cao.require_subcommand(1);
+  std::vector<caocli::Command> commands{ AddVolumeCommand(cao, "lao"),
+    AddVolumeCommand(cao, "carve"), AddVolumeCommand(cao, "tf"), caocli::AddRenderCommand(cao),
+    caocli::AddSurfaceCommand(cao) };
+  CLI::App* bench = cao.add_subcommand("bench", "benchmarks: accuracy against time, surface AO");
+  bench->require_subcommand(1);
+  commands.push_back(caocli::AddBenchAccuracyCommand(*bench));
+  commands.push_back(caocli::AddBenchSurfaceCommand(*bench));
+  commands.push_back(caocli::AddBenchSurfaceScaleCommand(*bench));
+  commands.push_back(caocli::AddBenchSurfaceFrameCommand(*bench));
+  return caocli::Run(cao, commands, argc, argv);
 }

@@ -52,6 +52,7 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <sys/stat.h>
@@ -60,53 +61,6 @@
 namespace caocli
 {
 using vtkCAO::ReadVolume;
-const char* BenchUsage = R"(usage:
-  cao bench accuracy VOLUME [options]
-
-Measures what LAO accuracy costs in time. Every configuration of the sweep
-is timed on each backend and compared with a reference AO (2 x 4096
-stratified directions, steps of at most 1/4 voxel, double) over the
-visible voxels (opacity > 0), and through the volume mapper with a frame
-rendered from the reference AO (PSNR). Writes DIR/accuracy.csv,
-DIR/accuracy.json and DIR/accuracy.png (error against time, log-log, with
-the Pareto front).
-
-options:
-  --crop X0,X1,Y0,Y1,Z0,Z1   voxel extent to use (default: the whole volume)
-  --reach R            ray length, world units (default 8 voxels)
-  --patterns LIST      ray patterns (default 6,14,26,54,fib:100,fib:256)
-  --densities LIST     samples per voxel along a ray (default 0.5,1,2)
-  --variants LIST      ray sampling variants (default
-                       paper,offset,rotate,jitter,rotate+offset):
-                       paper = the CAO paper's fixed pattern; offset = start
-                       offset 0.5 step; rotate / jitter = interleaved per-voxel
-                       rotations / start offsets over 2x2x2 voxels
-  --storage LIST       AO storage precisions (default float32,uint16,uint8)
-  --map-pixels LIST    CAO depth-map pixel sizes in voxels (default
-                       4,2,1,0.5,0.25); "none" skips the contextual sweep
-  --backends LIST      cpu, gl (default: cpu, and gl when an OpenGL 4.3
-                       context exists)
-  --gl-limit-ms T      time the GL backend only for configurations whose CPU
-                       time is at most T ms (default 400; a software GL is
-                       ~40x slower than the CPU here)
-  --reference-rays K   directions per reference set (default 4096; two sets)
-  --reference-step S   reference step, in voxels (default 0.25)
-  --no-step-check      skip the reference's step check (S vs S/2)
-  --reference-resolve F   refine the reference (halve its step, double its
-                       directions) until its own error (S vs S/2, K vs 2K;
-                       max over the visible voxels) is at most F times the
-                       max error of the sweep's most accurate configuration,
-                       at most --reference-rounds times (default 0.1; 0: off)
-  --reference-rounds N refinements at most (default 3)
-  --size WxH           rendered frame size (default 256x256)
-  --opacity S,A,...    opacity transfer function points (default: 0 up to
-                       25% of the scalar range, then a ramp to 0.8)
-  --repeat N           timed CPU runs per configuration, median (default 3)
-  --gl-repeat N        timed GL runs per configuration, median (default 1)
-  --threads N          CPU threads (default: all cores)
-  -o, --output DIR     output directory (default: accuracy)
-)";
-
 namespace
 {
 
@@ -133,25 +87,8 @@ struct BenchOptions
   int repeat = 3;
   int glRepeat = 1;
   int threads = 0;
+  std::vector<double> cropValues; // --crop as given, into crop
 };
-
-std::vector<std::string> SplitList(const std::string& s)
-{
-  return Split(s, ',');
-}
-
-bool ParseNumbers(const std::string& s, std::vector<double>& out)
-{
-  out.clear();
-  for (const std::string& item : SplitList(s))
-  {
-    double x = 0.0;
-    if (!ToDouble(item, x))
-      return false;
-    out.push_back(x);
-  }
-  return !out.empty();
-}
 
 /// A variant name: the kernels' variation and start offset.
 bool ParseVariant(const std::string& name, cao::RayVariation& variation, double& offset)
@@ -173,200 +110,40 @@ bool ParseVariant(const std::string& name, cao::RayVariation& variation, double&
   return false;
 }
 
-bool Parse(int argc, char* argv[], BenchOptions& o, std::string& error)
+/// A comma list of names, each one `valid` accepts, into `target`; an item
+/// it refuses is "bad value 'ITEM' (`limit`)".
+CLI::Option* AddNames(CLI::App* app, const std::string& name, std::vector<std::string>& target,
+  std::function<bool(const std::string&)> valid, const std::string& limit, const std::string& help)
 {
-  if (argc < 3 || std::string(argv[2]) != "accuracy")
-  {
-    error = std::string("unknown benchmark") + (argc >= 3 ? " '" + std::string(argv[2]) + "'" : "") +
-      " (expected accuracy, surface, surface-frame or surface-scale: cao bench NAME --help)";
-    return false;
-  }
-  for (int i = 3; i < argc; ++i)
-  {
-    const std::string a = argv[i];
-    auto value = [&](std::string& out) {
-      if (i + 1 >= argc)
-      {
-        error = a + " needs a value";
-        return false;
-      }
-      out = argv[++i];
-      return true;
-    };
-    std::string v;
-    std::vector<double> numbers;
-    if (a == "--crop")
-    {
-      if (!value(v) || !ParseNumbers(v, numbers) || numbers.size() != 6)
-        return error = "--crop needs X0,X1,Y0,Y1,Z0,Z1", false;
-      for (int d = 0; d < 6; ++d)
-        o.crop[d] = static_cast<int>(numbers[d]);
-      o.cropSet = true;
-    }
-    else if (a == "--reach")
-    {
-      if (!value(v) || !ParseNumbers(v, numbers) || numbers.size() != 1 || !(numbers[0] > 0))
-        return error = "--reach needs a positive number", false;
-      o.reach = numbers[0];
-    }
-    else if (a == "--patterns")
-    {
-      if (!value(v))
-        return false;
-      o.patterns = SplitList(v);
-      for (const std::string& p : o.patterns)
-      {
-        cao::RayPattern pattern;
-        int k = 0;
-        if (!cao::ParseRayPattern(p, pattern, k))
-          return error = "unknown ray pattern '" + p + "' (6, 14, 26, 54 or fib:K)", false;
-      }
-      if (o.patterns.empty())
-        return error = "--patterns is empty", false;
-    }
-    else if (a == "--densities")
-    {
-      if (!value(v) || !ParseNumbers(v, o.densities))
-        return error = "--densities needs numbers", false;
-      for (double d : o.densities)
-        if (!(d > 0.0))
-          return error = "densities must be positive", false;
-    }
-    else if (a == "--variants")
-    {
-      if (!value(v))
-        return false;
-      o.variants = SplitList(v);
-      for (const std::string& name : o.variants)
-      {
-        cao::RayVariation variation;
-        double offset;
-        if (!ParseVariant(name, variation, offset))
-          return error = "unknown variant '" + name +
-              "' (paper, offset, rotate, rotate+offset, jitter, rotate+jitter)",
-                 false;
-      }
-      if (o.variants.empty())
-        return error = "--variants is empty", false;
-    }
-    else if (a == "--storage")
-    {
-      if (!value(v))
-        return false;
-      o.storage = SplitList(v);
-      for (const std::string& s : o.storage)
-        if (s != "float32" && s != "uint16" && s != "uint8")
-          return error = "unknown storage '" + s + "' (float32, uint16, uint8)", false;
-      if (o.storage.empty() || o.storage[0] != "float32")
-        return error = "--storage must start with float32 (the timed precision)", false;
-    }
-    else if (a == "--map-pixels")
-    {
-      if (!value(v))
-        return false;
-      if (v == "none")
-        o.mapPixels.clear();
-      else if (!ParseNumbers(v, o.mapPixels))
-        return error = "--map-pixels needs numbers or none", false;
-      for (double p : o.mapPixels)
-        if (!(p > 0.0))
-          return error = "map pixel sizes must be positive", false;
-    }
-    else if (a == "--backends")
-    {
-      if (!value(v))
-        return false;
-      o.backends = SplitList(v);
-      for (const std::string& b : o.backends)
-        if (b != "cpu" && b != "gl")
-          return error = "unknown backend '" + b + "' (cpu, gl)", false;
-      if (o.backends.empty() || o.backends[0] != "cpu")
-        return error = "--backends must start with cpu (errors are measured on it)", false;
-    }
-    else if (a == "--gl-limit-ms")
-    {
-      if (!value(v) || !ParseNumbers(v, numbers) || numbers.size() != 1 || numbers[0] < 0)
-        return error = "--gl-limit-ms needs a number >= 0", false;
-      o.glLimitMs = numbers[0];
-    }
-    else if (a == "--reference-rays")
-    {
-      if (!value(v) || !ParseNumbers(v, numbers) || numbers.size() != 1 || numbers[0] < 1 ||
-        numbers[0] > 1e6)
-        return error = "--reference-rays needs a count", false;
-      o.referenceRays = static_cast<int>(numbers[0]);
-    }
-    else if (a == "--reference-step")
-    {
-      if (!value(v) || !ParseNumbers(v, numbers) || numbers.size() != 1 || !(numbers[0] > 0))
-        return error = "--reference-step needs a positive number of voxels", false;
-      o.referenceStep = numbers[0];
-    }
-    else if (a == "--no-step-check")
-      o.stepCheck = false;
-    else if (a == "--reference-resolve")
-    {
-      if (!value(v) || !ParseNumbers(v, numbers) || numbers.size() != 1 || !(numbers[0] >= 0) ||
-        numbers[0] > 1)
-        return error = "--reference-resolve needs a fraction in [0, 1]", false;
-      o.referenceResolve = numbers[0];
-    }
-    else if (a == "--reference-rounds")
-    {
-      if (!value(v) || !ParseNumbers(v, numbers) || numbers.size() != 1 || numbers[0] < 0 ||
-        numbers[0] > 6)
-        return error = "--reference-rounds needs a count from 0 to 6", false;
-      o.referenceRounds = static_cast<int>(numbers[0]);
-    }
-    else if (a == "--size")
-    {
-      if (!value(v) || std::sscanf(v.c_str(), "%dx%d", &o.width, &o.height) != 2 ||
-        o.width < 16 || o.height < 16 || o.width > 4096 || o.height > 4096)
-        return error = "--size needs WxH between 16 and 4096", false;
-    }
-    else if (a == "--opacity")
-    {
-      if (!value(v) || !ParseNumbers(v, o.opacity) || o.opacity.size() < 2 ||
-        o.opacity.size() % 2 != 0)
-        return error = "--opacity needs scalar,opacity pairs", false;
-    }
-    else if (a == "--repeat")
-    {
-      if (!value(v) || !ParseNumbers(v, numbers) || numbers.size() != 1 || numbers[0] < 1 ||
-        numbers[0] > 100)
-        return error = "--repeat needs 1 to 100", false;
-      o.repeat = static_cast<int>(numbers[0]);
-    }
-    else if (a == "--gl-repeat")
-    {
-      if (!value(v) || !ParseNumbers(v, numbers) || numbers.size() != 1 || numbers[0] < 1 ||
-        numbers[0] > 100)
-        return error = "--gl-repeat needs 1 to 100", false;
-      o.glRepeat = static_cast<int>(numbers[0]);
-    }
-    else if (a == "--threads")
-    {
-      if (!value(v) || !ParseNumbers(v, numbers) || numbers.size() != 1 || numbers[0] < 0)
-        return error = "--threads needs a count", false;
-      o.threads = static_cast<int>(numbers[0]);
-    }
-    else if (a == "-o" || a == "--output")
-    {
-      if (!value(o.output) || o.output.empty())
-        return error = "-o needs a directory", false;
-    }
-    else if (!TakeArgument(a, o.volume, error))
-      return false;
-  }
-  if (o.volume.empty())
-    return error = "missing VOLUME", false;
-  return true;
+  return AddList(
+    app, name, "LIST", help,
+    [valid, limit](const std::string& item) {
+      return valid(item) ? std::string() : "bad value '" + item + "' (" + limit + ")";
+    },
+    [&target](const std::vector<std::string>& items) { target = items; });
 }
 
-int Fail(int code, const std::string& message)
+/// A list's first item must be `first`: "bad value 'V' (`limit`)" otherwise.
+CLI::Validator StartsWith(const std::string& first, const std::string& limit)
 {
-  std::cerr << "cao: error: " << message << "\n";
-  return code;
+  return Check([first, limit](std::string& v) -> std::string {
+    const auto items = Split(v, ',');
+    return !items.empty() && items.front() == first ? "" : "bad value '" + v + "' (" + limit + ")";
+  });
+}
+
+/// Each number of a list above 0: "bad value 'X' in 'V' (`limit`)" otherwise.
+CLI::Validator AllPositive(const std::string& limit)
+{
+  return Check([limit](std::string& v) -> std::string {
+    for (const std::string& s : Split(v, ','))
+    {
+      double x = 0.0;
+      if (!ToDouble(s, x) || !(x > 0.0))
+        return "bad value '" + s + "' in '" + v + "' (" + limit + ")";
+    }
+    return "";
+  });
 }
 
 /// RMSE, maximum and 99th percentile of |a - b| over `voxels`.
@@ -549,7 +326,7 @@ struct Frames
 namespace
 {
 /// One `cao bench accuracy` run: the volume, the reference and the rows,
-/// built by the steps RunBench calls in order (each returns 0 or the exit
+/// built by the steps its run function calls in order (each returns 0 or the exit
 /// code of its failure, with the message printed).
 struct Bench
 {
@@ -1344,12 +1121,26 @@ void Bench::Report(const std::string& csvPath)
 }
 }
 
-int RunBench(int argc, char* argv[])
+namespace
+{
+const char* AccuracyFooter = R"(Measures what LAO accuracy costs in time. Every configuration of the sweep
+is timed on each backend and compared with a reference AO (2 x 4096
+stratified directions, steps of at most 1/4 voxel, double) over the
+visible voxels (opacity > 0), and through the volume mapper with a frame
+rendered from the reference AO (PSNR). Writes DIR/accuracy.csv,
+DIR/accuracy.json and DIR/accuracy.png (error against time, log-log, with
+the Pareto front).)";
+
+int Run(const BenchOptions& options, const CLI::App* /*app*/)
 {
   Bench bench;
-  std::string error;
-  if (!Parse(argc, argv, bench.o, error))
-    return Fail(2, error);
+  bench.o = options;
+  if (!bench.o.cropValues.empty())
+  {
+    for (int d = 0; d < 6; ++d)
+      bench.o.crop[d] = static_cast<int>(bench.o.cropValues[d]);
+    bench.o.cropSet = true;
+  }
   int rc = 0;
   if ((rc = bench.Load()) || (rc = bench.SelectVoxels()) || (rc = bench.MakeReference()) ||
     (rc = bench.ResolveReference()) || (rc = bench.SetupBackends()) || (rc = bench.SweepLAO()))
@@ -1361,5 +1152,127 @@ int RunBench(int argc, char* argv[])
     return rc;
   bench.Report(csvPath);
   return 0;
+}
+}
+
+Command AddBenchAccuracyCommand(CLI::App& bench)
+{
+  auto o = std::make_shared<BenchOptions>();
+  CLI::App* app = bench.add_subcommand(
+    "accuracy", "what accuracy costs in time: LAO settings against a reference AO, on each backend");
+  AddVolume(app, o->volume);
+  AddNumberList(app, "--crop", o->cropValues, "X0,X1,Y0,Y1,Z0,Z1",
+    "voxel extent to use (default: the whole volume)")
+    ->check(Check([](std::string& v) -> std::string {
+      const auto items = Split(v, ',');
+      bool whole = items.size() == 6;
+      for (const std::string& s : items)
+      {
+        double x = 0.0;
+        whole = whole && ToDouble(s, x) && x == std::floor(x) && std::abs(x) <= 1e9;
+      }
+      return whole ? "" : "bad value '" + v + "' (X0,X1,Y0,Y1,Z0,Z1: six whole voxel indices)";
+    }));
+  AddReach(app, o->reach);
+  AddNames(
+    app, "--patterns", o->patterns,
+    [](const std::string& p) {
+      cao::RayPattern pattern;
+      int k = 0;
+      return cao::ParseRayPattern(p, pattern, k);
+    },
+    "a ray pattern: 6, 14, 26, 54, rubiks54 or fib:K, K = 1 to 65536",
+    "ray patterns: 6, 14, 26, 54, rubiks54 or fib:K (default 6,14,26,54,fib:100,fib:256)");
+  AddNumberList(app, "--densities", o->densities, "LIST",
+    "samples per voxel along a ray (default 0.5,1,2)")
+    ->check(AllPositive("samples per voxel, above 0"));
+  AddNames(
+    app, "--variants", o->variants,
+    [](const std::string& name) {
+      cao::RayVariation variation;
+      double offset;
+      return ParseVariant(name, variation, offset);
+    },
+    "expected paper, offset, rotate, rotate+offset, jitter or rotate+jitter",
+    "ray sampling variants (default paper,offset,rotate,jitter,rotate+offset): paper = the CAO "
+    "paper's fixed pattern; offset = start offset 0.5 step; rotate / jitter = interleaved "
+    "per-voxel rotations / start offsets over 2x2x2 voxels; rotate+offset and rotate+jitter "
+    "combine them");
+  AddNames(
+    app, "--storage", o->storage,
+    [](const std::string& s) { return s == "float32" || s == "uint16" || s == "uint8"; },
+    "expected float32, uint16 or uint8",
+    "AO storage precisions: float32, uint16 or uint8, starting with float32, the timed precision "
+    "(default float32,uint16,uint8)")
+    ->check(StartsWith("float32", "a list starting with float32, the timed precision"));
+  app
+    ->add_option_function<std::string>(
+      "--map-pixels",
+      [o](const std::string& v) {
+        o->mapPixels.clear();
+        if (v != "none")
+          for (const std::string& s : Split(v, ','))
+          {
+            double x = 0.0;
+            ToDouble(s, x);
+            o->mapPixels.push_back(x);
+          }
+      },
+      Wrap("CAO depth-map pixel sizes in voxels (default 4,2,1,0.5,0.25); \"none\" skips the "
+           "contextual sweep"))
+    ->type_name("LIST")
+    ->check(Check([](std::string& v) -> std::string {
+      if (v == "none")
+        return "";
+      if (v.empty() || HasEmptyItem(v))
+        return "an empty item in '" + v + "'";
+      for (const std::string& s : Split(v, ','))
+      {
+        double x = 0.0;
+        if (!ToDouble(s, x))
+          return "bad number '" + s + "' in '" + v + "'";
+        if (!(x > 0.0))
+          return "bad value '" + s + "' in '" + v + "' (pixel sizes in voxels, above 0, or none)";
+      }
+      return "";
+    }));
+  AddNames(
+    app, "--backends", o->backends,
+    [](const std::string& b) { return b == "cpu" || b == "gl"; }, "expected cpu or gl",
+    "backends: cpu or gl, starting with cpu, on which the errors are measured (default: cpu, and "
+    "gl when an OpenGL 4.3 context exists)")
+    ->check(StartsWith("cpu", "a list starting with cpu, on which the errors are measured"));
+  AddNumber(app, "--gl-limit-ms", o->glLimitMs, 0.0, HUGE_VAL, false, "milliseconds, 0 or more",
+    "time the GL backend only for configurations whose CPU time is at most T ms (default 400; "
+    "a software GL is ~40x slower than the CPU here)")
+    ->type_name("T");
+  AddInteger(app, "--reference-rays", o->referenceRays, 1, 1000000,
+    "directions per reference set (default 4096; two sets)")
+    ->type_name("K");
+  AddNumber(app, "--reference-step", o->referenceStep, 0.0, HUGE_VAL, true,
+    "a positive number of voxels", "reference step, in voxels (default 0.25)")
+    ->type_name("S");
+  app->add_flag_callback("--no-step-check", [o] { o->stepCheck = false; },
+    Wrap("skip the reference's step check (S vs S/2)"));
+  AddNumber(app, "--reference-resolve", o->referenceResolve, 0.0, 1.0, false,
+    "a fraction, 0 to 1",
+    "refine the reference (halve its step, double its directions) until its own error (S vs "
+    "S/2, K vs 2K; max over the visible voxels) is at most F times the max error of the sweep's "
+    "most accurate configuration, at most --reference-rounds times (default 0.1; 0: off)")
+    ->type_name("F");
+  AddInteger(
+    app, "--reference-rounds", o->referenceRounds, 0, 6, "refinements at most (default 3)");
+  AddImageSize(app, "--size", o->width, o->height, 16, 4096, "rendered frame size (default 256x256)");
+  AddOpacity(app, "--opacity", o->opacity,
+    "opacity transfer function points (default: 0 up to 25% of the scalar range, then a ramp "
+    "to 0.8)");
+  AddInteger(
+    app, "--repeat", o->repeat, 1, 100, "timed CPU runs per configuration, median (default 3)");
+  AddInteger(
+    app, "--gl-repeat", o->glRepeat, 1, 100, "timed GL runs per configuration, median (default 1)");
+  AddThreads(app, o->threads);
+  AddOutput(app, o->output, "output directory (default: accuracy)")->type_name("DIR");
+  app->footer(AccuracyFooter);
+  return { app, [o, app] { return Run(*o, app); } };
 }
 }

@@ -14,13 +14,14 @@
 #ifndef caoBench_h
 #define caoBench_h
 
+#include "caoOptions.h"
+
 namespace caocli
 {
-/// The usage text of `cao bench accuracy`.
-extern const char* BenchUsage;
 
-/// `cao bench accuracy VOLUME [options]`; returns the process exit code.
-int RunBench(int argc, char* argv[]);
+/// Adds `cao bench accuracy` under `bench` (the `cao bench` app). Its options are bound to
+/// options the command owns; run() runs it after the parse (the exit code).
+Command AddBenchAccuracyCommand(CLI::App& bench);
 }
 
 #endif

@@ -23,46 +23,6 @@
 
 namespace caocli
 {
-const char* BenchSurfaceUsage = R"(usage:
-  cao bench surface MESH... [options]
-
-Measures what surface AO accuracy costs in time, against the ray-traced
-reference (cosine-weighted, binary within R: the common definition), from
-the same camera for every method. Writes DIR/surface.csv, DIR/surface.json
-and DIR/surface.png (error against time, log-log, with the Pareto front).
-
-options:
-  --image WxH          default 256x256
-  --radius-fraction F  R = F x each scene's bounding-box diagonal (default 0.1)
-  --reference-rays N   directions per pixel of the reference (default 1024);
-                       its own error is measured against 4N
-  --qualities LIST     vct presets (default low,medium,high)
-  --occupancy LIST     vct occupancies: rays (default), volume (the paper's; rows "... volume")
-  --ray-steps LIST     rays: voxels between a ray's samples, 0.1..1 (default 1; other
-                       values add " step S" to the rows)
-  --slices LIST        vct grid depth slices (default 128,256,512)
-  --kernels LIST       vtkSSAOPass kernel sizes (default 16,32,64,128; 32 is VTK's)
-  --hbao LIST          hbao configurations (default fig11a,table1,fig11b,fig11c,fig11d; none)
-  --vao LIST           vao qualities (default low,medium,high; none)
-  --orbit DEG          the second camera's azimuth step, for flicker (default 0.5)
-  --band PX            the depth-discontinuity band's half-width (default 2)
-  --vct-backends LIST  where vct runs: cpu, gl (default cpu; gl: the OpenGL 4.3 compute
-                       twin, its grid voxelized on the GPU, timed by GPU queries; gl also
-                       adds hbao-gl and vao-gl rows, the screen-space methods' GPU twins)
-  --grids LIST         vct grids: world (default), eye (the camera's axes, built again for
-                       each camera: its ms/frame includes its grid ms), frustum (the paper's
-                       eye-space grid: a column per pixel, slices from each pixel's visible
-                       depth; per camera, its grid ms in the frame; the ray-cast G-buffer)
-  --gbuffers LIST      the pixels' G-buffer: ray-cast (default: the exact first hits), depth
-                       (adds rows "... depth": the G-buffer from the drawn depth as the
-                       pass's Depth Buffer and GPU frame read it, here the ray cast's depth
-                       in a 24-bit buffer, normals from neighbouring pixels)
-  --repeats N          timed runs per configuration, the median kept (default 3)
-  --threads N          CPU threads (0: all; default 0)
-  --window auto|egl|x  the SSAO window (default auto)
-  -o DIR               output folder (default surface-bench)
-)";
-
 namespace
 {
 struct Options
@@ -85,270 +45,20 @@ struct Options
   std::vector<cao::VAOQuality> vao{ cao::VAOQuality::Low, cao::VAOQuality::Medium, cao::VAOQuality::High };
 };
 
-int Fail(int code, const std::string& message)
+const char* Footer = R"(Measures what surface AO accuracy costs in time, against the ray-traced
+reference (cosine-weighted, binary within R: the common definition), from
+the same camera for every method. Writes DIR/surface.csv, DIR/surface.json
+and DIR/surface.png (error against time, log-log, with the Pareto front).)";
+
+/// "bad value 'ITEM' (expected ...)" unless `ok`.
+std::string Refused(bool ok, const std::string& item, const std::string& expected)
 {
-  std::cerr << "cao: error: " << message << "\n";
-  return code;
+  return ok ? std::string() : "bad value '" + item + "' (expected " + expected + ")";
+}
 }
 
-bool IntList(const std::string& text, int lo, int hi, std::vector<int>& out, std::string& error,
-  const std::string& what)
+namespace
 {
-  out.clear();
-  for (const std::string& item : Split(text, ','))
-  {
-    double v = 0;
-    if (!ToDouble(item, v) || v != std::floor(v) || v < lo || v > hi)
-    {
-      error = what + ": '" + item + "' is not a whole number in " + std::to_string(lo) + ".." +
-        std::to_string(hi);
-      return false;
-    }
-    out.push_back(static_cast<int>(v));
-  }
-  if (out.empty())
-  {
-    error = what + " is empty";
-    return false;
-  }
-  return true;
-}
-
-bool Parse(int argc, char* argv[], Options& o, std::string& error)
-{
-  for (int i = 3; i < argc; ++i)
-  {
-    const std::string a = argv[i];
-    std::string v;
-    auto value = [&]() {
-      if (i + 1 >= argc)
-      {
-        error = "option " + a + " needs a value";
-        return false;
-      }
-      v = argv[++i];
-      return true;
-    };
-    double d = 0;
-    std::vector<int> list;
-    if (a == "--image")
-    {
-      if (!value())
-        return false;
-      int w = 0, h = 0;
-      char x = 0;
-      std::istringstream s(v);
-      if (!(s >> w >> x >> h) || x != 'x' || w < 8 || h < 8 || w > 4096 || h > 4096)
-      {
-        error = "--image is WxH, each 8..4096 (got '" + v + "')";
-        return false;
-      }
-      o.view.width = w;
-      o.view.height = h;
-    }
-    else if (a == "--radius-fraction")
-    {
-      if (!value() || !ToDouble(v, o.radiusFraction) || !(o.radiusFraction > 0) || o.radiusFraction > 10)
-      {
-        error = "--radius-fraction must be in (0, 10]";
-        return false;
-      }
-    }
-    else if (a == "--reference-rays")
-    {
-      if (!value() || !IntList(v, 16, 65536, list, error, "--reference-rays") || list.size() != 1)
-        return false;
-      o.referenceRays = list[0];
-    }
-    else if (a == "--qualities")
-    {
-      if (!value())
-        return false;
-      o.qualities.clear();
-      for (const std::string& q : Split(v, ','))
-      {
-        cao::VCTQuality quality;
-        if (!cao::ParseVCTQuality(q, quality) || quality == cao::VCTQuality::Custom)
-        {
-          error = "--qualities: '" + q + "' is not low, medium or high";
-          return false;
-        }
-        o.qualities.push_back(quality);
-      }
-    }
-    else if (a == "--occupancy")
-    {
-      if (!value())
-        return false;
-      o.occupancies.clear();
-      for (const std::string& q : Split(v, ','))
-      {
-        cao::VCTOccupancy occupancy;
-        if (!cao::ParseVCTOccupancy(q, occupancy))
-        {
-          error = "--occupancy: '" + q + "' is not rays or volume";
-          return false;
-        }
-        o.occupancies.push_back(occupancy);
-      }
-    }
-    else if (a == "--ray-steps")
-    {
-      if (!value())
-        return false;
-      o.raySteps.clear();
-      for (const std::string& q : Split(v, ','))
-      {
-        char* end = nullptr;
-        const double step = std::strtod(q.c_str(), &end);
-        if (q.empty() || *end || !(step >= 0.1 && step <= 1.0))
-        {
-          error = "--ray-steps: '" + q + "' is not a number in [0.1, 1]";
-          return false;
-        }
-        o.raySteps.push_back(step);
-      }
-    }
-    else if (a == "--slices")
-    {
-      if (!value() || !IntList(v, 32, 1024, o.slices, error, "--slices"))
-        return false;
-      for (int s : o.slices)
-        if (s % 32)
-        {
-          error = "--slices: each must be a multiple of 32";
-          return false;
-        }
-    }
-    else if (a == "--kernels")
-    {
-      if (!value() || !IntList(v, 1, 1024, o.kernels, error, "--kernels"))
-        return false;
-    }
-    else if (a == "--orbit")
-    {
-      if (!value() || !ToDouble(v, o.orbit) || !(o.orbit > 0) || o.orbit > 45)
-      {
-        error = "--orbit must be in (0, 45] degrees";
-        return false;
-      }
-    }
-    else if (a == "--band")
-    {
-      if (!value() || !IntList(v, 1, 32, list, error, "--band"))
-        return false;
-      o.band = list[0];
-    }
-    else if (a == "--vct-backends")
-    {
-      if (!value())
-        return false;
-      o.vctCPU = o.vctGL = false;
-      for (const std::string& b : Split(v, ','))
-      {
-        if (b == "cpu")
-          o.vctCPU = true;
-        else if (b == "gl")
-          o.vctGL = true;
-        else
-        {
-          error = "--vct-backends: '" + b + "' is not cpu or gl";
-          return false;
-        }
-      }
-    }
-    else if (a == "--grids")
-    {
-      if (!value())
-        return false;
-      o.grids.clear();
-      for (const std::string& g : Split(v, ','))
-      {
-        if (g != "world" && g != "eye" && g != "frustum")
-          return error = "--grids: '" + g + "' is not world, eye or frustum", false;
-        o.grids.push_back(g);
-      }
-    }
-    else if (a == "--gbuffers")
-    {
-      if (!value())
-        return false;
-      o.gbuffers.clear();
-      for (const std::string& g : Split(v, ','))
-      {
-        if (g != "ray-cast" && g != "depth")
-          return error = "--gbuffers: '" + g + "' is not ray-cast or depth", false;
-        o.gbuffers.push_back(g == "depth" ? 1 : 0);
-      }
-    }
-    else if (a == "--hbao" || a == "--vao")
-    {
-      if (!value())
-        return false;
-      if (a == "--hbao")
-        o.hbao.clear();
-      else
-        o.vao.clear();
-      for (const std::string& item : Split(v, ','))
-      {
-        cao::HBAOPreset h;
-        cao::VAOQuality q;
-        if (item == "none")
-          continue;
-        if (a == "--hbao" && cao::ParseHBAOPreset(item, h) && h != cao::HBAOPreset::Custom)
-          o.hbao.push_back(h);
-        else if (a == "--vao" && cao::ParseVAOQuality(item, q) && q != cao::VAOQuality::Custom)
-          o.vao.push_back(q);
-        else
-          return error = a + ": '" + item + "' is not a " + (a == "--hbao" ? "configuration" : "quality"), false;
-      }
-    }
-    else if (a == "--repeats")
-    {
-      if (!value() || !IntList(v, 1, 100, list, error, "--repeats"))
-        return false;
-      o.repeats = list[0];
-    }
-    else if (a == "--threads")
-    {
-      if (!value() || !ToDouble(v, d) || d < 0 || d > 1024)
-      {
-        error = "--threads must be 0..1024";
-        return false;
-      }
-      o.threads = static_cast<int>(d);
-    }
-    else if (a == "--window")
-    {
-      if (!value() || (v != "auto" && v != "egl" && v != "x"))
-      {
-        error = "--window is auto, egl or x";
-        return false;
-      }
-      o.window = v;
-    }
-    else if (a == "-o" || a == "--output")
-    {
-      if (!value())
-        return false;
-      o.output = v;
-    }
-    else if (!a.empty() && a[0] == '-')
-    {
-      error = "unknown option " + a;
-      return false;
-    }
-    else
-      o.meshes.push_back(a);
-  }
-  if (o.meshes.empty())
-  {
-    error = "give at least one mesh";
-    return false;
-  }
-  return true;
-}
-
 /// One configuration's result on one mesh.
 struct Row
 {
@@ -459,12 +169,12 @@ void Measure(Row& row, const std::vector<double>& ao, const std::vector<double>&
 }
 }
 
-int RunBenchSurface(int argc, char* argv[])
+namespace
 {
-  Options o;
+/// `cao bench surface` after the parse.
+int Run(Options& o, const CLI::App*)
+{
   std::string error;
-  if (!Parse(argc, argv, o, error))
-    return Fail(2, error);
   SelectThreads(o.threads);
   ::mkdir(o.output.c_str(), 0755);
   {
@@ -914,5 +624,123 @@ int RunBenchSurface(int argc, char* argv[])
   std::cout << "wrote " << o.output << "/surface.csv, surface.json"
             << (plotted ? ", surface.png" : "") << "\n";
   return 0;
+}
+}
+
+Command AddBenchSurfaceCommand(CLI::App& bench)
+{
+  auto o = std::make_shared<Options>();
+  CLI::App* app = bench.add_subcommand("surface",
+    "what surface AO accuracy costs in time, against the ray-traced reference");
+  AddMeshes(app, o->meshes);
+  AddSurfaceImage(app, o->view, 8, 4096);
+  AddRadiusFraction(app, o->radiusFraction, 10.0,
+    "R = F x each scene's bounding-box diagonal, in (0, 10] (default 0.1)");
+  AddInteger(app, "--reference-rays", o->referenceRays, 16, 65536,
+    "directions per pixel of the reference, 16 to 65536 (default 1024); its own error is "
+    "measured against 4N");
+  AddList(app, "--qualities", "LIST", "vct presets (default low,medium,high)",
+    [](const std::string& item) {
+      cao::VCTQuality q;
+      return Refused(cao::ParseVCTQuality(item, q) && q != cao::VCTQuality::Custom, item,
+        "low, medium or high");
+    },
+    [o](const std::vector<std::string>& items) {
+      o->qualities.clear();
+      for (const std::string& item : items)
+      {
+        cao::VCTQuality q;
+        cao::ParseVCTQuality(item, q);
+        o->qualities.push_back(q);
+      }
+    });
+  AddSurfaceOccupancy(app, o->occupancies,
+    "vct occupancies: rays (default), volume (the paper's; rows \"... volume\")");
+  AddList(app, "--ray-steps", "LIST",
+    "rays: voxels between a ray's samples, 0.1 to 1 (default 1; other values add \" step S\" to "
+    "the rows)",
+    [](const std::string& item) {
+      double step = 0.0;
+      return ToDouble(item, step) && step >= 0.1 && step <= 1.0
+        ? std::string()
+        : "bad value '" + item + "' (a number in [0.1, 1])";
+    },
+    [o](const std::vector<std::string>& items) {
+      o->raySteps.clear();
+      for (const std::string& item : items)
+      {
+        double step = 0.0;
+        ToDouble(item, step);
+        o->raySteps.push_back(step);
+      }
+    });
+  AddSurfaceSlices(app, o->slices, "vct grid depth slices, each 32 to 1024, a multiple of 32 (default 128,256,512)");
+  AddIntegerList(app, "--kernels", o->kernels, 1, 1024,
+    "vtkSSAOPass kernel sizes, 1 to 1024 (default 16,32,64,128; 32 is VTK's)");
+  AddList(app, "--hbao", "LIST", "hbao configurations (default fig11a,table1,fig11b,fig11c,fig11d; none)",
+    [](const std::string& item) {
+      cao::HBAOPreset h;
+      return Refused(item == "none" || (cao::ParseHBAOPreset(item, h) && h != cao::HBAOPreset::Custom),
+        item, "table1, fig11a, fig11b, fig11c, fig11d, low, medium, high or none");
+    },
+    [o](const std::vector<std::string>& items) {
+      o->hbao.clear();
+      for (const std::string& item : items)
+      {
+        cao::HBAOPreset h;
+        if (item != "none" && cao::ParseHBAOPreset(item, h))
+          o->hbao.push_back(h);
+      }
+    });
+  AddList(app, "--vao", "LIST", "vao qualities (default low,medium,high; none)",
+    [](const std::string& item) {
+      cao::VAOQuality q;
+      return Refused(item == "none" || (cao::ParseVAOQuality(item, q) && q != cao::VAOQuality::Custom),
+        item, "low, medium, high or none");
+    },
+    [o](const std::vector<std::string>& items) {
+      o->vao.clear();
+      for (const std::string& item : items)
+      {
+        cao::VAOQuality q;
+        if (item != "none" && cao::ParseVAOQuality(item, q))
+          o->vao.push_back(q);
+      }
+    });
+  AddOrbit(app, o->orbit, 45.0,
+    "the second camera's azimuth step, for flicker, in (0, 45] degrees (default 0.5)");
+  AddInteger(app, "--band", o->band, 1, 32,
+    "the depth-discontinuity band's half-width, pixels, 1 to 32 (default 2)")
+    ->type_name("PX");
+  AddList(app, "--vct-backends", "LIST",
+    "where vct runs: cpu, gl (default cpu; gl: the OpenGL 4.3 compute twin, its grid voxelized on "
+    "the GPU, timed by GPU queries; gl also adds hbao-gl and vao-gl rows, the screen-space "
+    "methods' GPU twins)",
+    [](const std::string& item) { return Refused(item == "cpu" || item == "gl", item, "cpu or gl"); },
+    [o](const std::vector<std::string>& items) {
+      o->vctCPU = std::find(items.begin(), items.end(), "cpu") != items.end();
+      o->vctGL = std::find(items.begin(), items.end(), "gl") != items.end();
+    });
+  AddList(app, "--grids", "LIST",
+    "vct grids: world (default), eye (the camera's axes, built again for each camera: its "
+    "ms/frame includes its grid ms), frustum (the paper's eye-space grid: a column per pixel, "
+    "slices from each pixel's visible depth; per camera, its grid ms in the frame; the ray-cast "
+    "G-buffer)",
+    [](const std::string& item) {
+      const auto& names = SurfaceGridNames();
+      return Refused(std::find(names.begin(), names.end(), item) != names.end(), item,
+        "world, eye or frustum");
+    },
+    [o](const std::vector<std::string>& items) { o->grids = items; });
+  AddGBuffers(app, o->gbuffers, { "ray-cast", "depth" }, { 0, 1 },
+    "the pixels' G-buffer: ray-cast (default: the exact first hits), depth (adds rows \"... "
+    "depth\": the G-buffer from the drawn depth as the pass's Depth Buffer and GPU frame read it, "
+    "here the ray cast's depth in a 24-bit buffer, normals from neighbouring pixels)");
+  AddRepeats(app, o->repeats, "timed runs per configuration, 1 to 100, the median kept (default 3)");
+  AddSurfaceThreads(app, o->threads);
+  AddSurfaceWindow(app, o->window, "the SSAO window");
+  AddOutput(app, o->output, "output folder (default surface-bench)")->type_name("DIR");
+  app->footer(Footer);
+  return { app, [o, app] { return Run(*o, app); } };
 }
 }

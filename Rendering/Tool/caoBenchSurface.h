@@ -15,11 +15,13 @@
 #ifndef caoBenchSurface_h
 #define caoBenchSurface_h
 
+#include "caoOptions.h"
+
 namespace caocli
 {
-extern const char* BenchSurfaceUsage;
-/// `cao bench surface MESH... [options]`; returns the process exit code.
-int RunBenchSurface(int argc, char* argv[]);
+/// Adds `cao bench surface` under `bench` (the `cao bench` app). Its options are bound to
+/// options the command owns; run() runs it after the parse (the exit code).
+Command AddBenchSurfaceCommand(CLI::App& bench);
 }
 
 #endif

@@ -32,36 +32,6 @@
 
 namespace caocli
 {
-const char* BenchSurfaceFrameUsage = R"usage(usage:
-  cao bench surface-frame MESH... [options]
-
-Whole VTK frames, wall clock: the product's pass (vtkContextualAOPass, the
-"Render View (Contextual AO)" of ParaView) against vtkSSAOPass and a plain
-frame, in one offscreen window, at the same size and radius, in one run.
-Each configuration draws --frames frames turning the camera by --orbit
-degrees (each method computes its AO again, as under an interaction), then
---frames frames with the camera still (the pass only combines); every
-frame waits for the GPU (a one-pixel read-back); the medians are kept.
-The pass's rows say where its time goes (its frame report's stages, ms, of
-the last turning frame). Time only: `cao bench surface` measures the error.
-Writes DIR/surface-frame.csv.
-
-options:
-  --sizes LIST         image sizes WxH (default 1024x768,1920x1080)
-  --methods LIST       the pass's methods: vct, hbao, vao (default all three)
-  --backends LIST      the pass's Backend: auto, cpu, gl (default cpu,gl)
-  --gbuffers LIST      the pass's G-buffer: auto (default, as the pass: the drawn depth
-                       where the AO runs on the GPU, the ray cast on the CPU), ray-cast, depth
-  --quality NAME       the pass's preset low, medium (default) or high
-  --kernel N           vtkSSAOPass's kernel size (default 32, VTK's)
-  --frames N           frames per configuration and camera state (default 10)
-  --orbit DEG          the camera's azimuth step per turning frame (default 0.5)
-  --radius-fraction F  R = F x the scene's bounding-box diagonal (default 0.1)
-  --threads N          CPU threads (0: all; default 0)
-  --window auto|egl|x  the window (default auto)
-  -o DIR               output folder (default surface-frame)
-)usage";
-
 namespace
 {
 struct Options
@@ -71,140 +41,22 @@ struct Options
   std::vector<int> methods{ vtkContextualAOPass::VCT, vtkContextualAOPass::HBAO, vtkContextualAOPass::VAO };
   std::vector<int> backends{ vtkContextualAOPass::BACKEND_CPU, vtkContextualAOPass::BACKEND_OPENGL };
   std::vector<int> gbuffers{ vtkContextualAOPass::GBUFFER_AUTO };
+  std::string qualityName = "medium"; ///< --quality: low, medium or high (quality 1, 2, 3)
   int quality = 2, kernel = 32, frames = 10, threads = 0;
   double orbit = 0.5, radiusFraction = 0.1;
   std::string window = "auto", output = "surface-frame";
 };
 
-int Fail(int code, const std::string& message)
-{
-  std::cerr << "cao: error: " << message << "\n";
-  return code;
-}
-
-bool Parse(int argc, char* argv[], Options& o, std::string& error)
-{
-  for (int i = 3; i < argc; ++i)
-  {
-    const std::string a = argv[i];
-    std::string v;
-    auto value = [&]() {
-      if (i + 1 >= argc)
-        return error = "option " + a + " needs a value", false;
-      v = argv[++i];
-      return true;
-    };
-    auto integer = [&](int& out, int lo, int hi) {
-      double d = 0;
-      if (!value() || !ToDouble(v, d) || d != std::floor(d) || d < lo || d > hi)
-        return error = a + " must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
-                 "] (got '" + v + "')",
-               false;
-      out = static_cast<int>(d);
-      return true;
-    };
-    // A list of names, each one of `names` (its index, or `codes[index]`).
-    auto names = [&](std::vector<int>& out, const std::vector<std::string>& allowed, const std::vector<int>& codes) {
-      if (!value())
-        return false;
-      out.clear();
-      if (v.empty() || v.front() == ',' || v.back() == ',' || v.find(",,") != std::string::npos)
-        return error = a + " has an empty item (got '" + v + "')", false;
-      for (const std::string& item : Split(v, ','))
-      {
-        std::size_t k = 0;
-        while (k < allowed.size() && allowed[k] != item)
-          ++k;
-        if (k == allowed.size())
-        {
-          std::string list;
-          for (const std::string& n : allowed)
-            list += (list.empty() ? "" : ", ") + n;
-          return error = a + " takes " + list + " (got '" + item + "')", false;
-        }
-        out.push_back(codes[k]);
-      }
-      return !out.empty() || (error = a + " needs at least one name", false);
-    };
-    if (a == "--sizes")
-    {
-      if (!value() || !ParseSizes(v, a, o.sizes, error))
-        return false;
-    }
-    else if (a == "--methods")
-    {
-      if (!names(o.methods, { "vct", "hbao", "vao" },
-            { vtkContextualAOPass::VCT, vtkContextualAOPass::HBAO, vtkContextualAOPass::VAO }))
-        return false;
-    }
-    else if (a == "--backends")
-    {
-      if (!names(o.backends, { "auto", "cpu", "gl" },
-            { vtkContextualAOPass::BACKEND_AUTO, vtkContextualAOPass::BACKEND_CPU,
-              vtkContextualAOPass::BACKEND_OPENGL }))
-        return false;
-    }
-    else if (a == "--gbuffers")
-    {
-      if (!names(o.gbuffers, { "auto", "ray-cast", "depth" },
-            { vtkContextualAOPass::GBUFFER_AUTO, vtkContextualAOPass::RAY_CAST, vtkContextualAOPass::DEPTH_BUFFER }))
-        return false;
-    }
-    else if (a == "--quality")
-    {
-      std::vector<int> q;
-      if (!names(q, { "low", "medium", "high" }, { 1, 2, 3 }))
-        return false;
-      o.quality = q.back();
-    }
-    else if (a == "--kernel")
-    {
-      if (!integer(o.kernel, 1, 1024))
-        return false;
-    }
-    else if (a == "--frames")
-    {
-      if (!integer(o.frames, 1, 1000))
-        return false;
-    }
-    else if (a == "--orbit")
-    {
-      if (!value() || !ToDouble(v, o.orbit) || !(o.orbit > 0) || o.orbit > 90)
-        return error = "--orbit must be in (0, 90] degrees (got '" + v + "')", false;
-    }
-    else if (a == "--radius-fraction")
-    {
-      if (!value() || !ToDouble(v, o.radiusFraction) || !(o.radiusFraction > 0) || o.radiusFraction > 1)
-        return error = "--radius-fraction must be in (0, 1] (got '" + v + "')", false;
-    }
-    else if (a == "--threads")
-    {
-      if (!integer(o.threads, 0, 1024))
-        return false;
-    }
-    else if (a == "--window")
-    {
-      if (!value())
-        return false;
-      if (v != "auto" && v != "egl" && v != "x")
-        return error = "--window is auto, egl or x (got '" + v + "')", false;
-      o.window = v;
-    }
-    else if (a == "-o")
-    {
-      if (!value())
-        return false;
-      o.output = v;
-    }
-    else if (!a.empty() && a[0] == '-')
-      return error = "unknown option " + a, false;
-    else
-      o.meshes.push_back(a);
-  }
-  if (o.meshes.empty())
-    return error = "give at least one mesh", false;
-  return true;
-}
+const char* Footer = R"footer(Whole VTK frames, wall clock: the product's pass (vtkContextualAOPass, the
+"Render View (Contextual AO)" of ParaView) against vtkSSAOPass and a plain
+frame, in one offscreen window, at the same size and radius, in one run.
+Each configuration draws --frames frames turning the camera by --orbit
+degrees (each method computes its AO again, as under an interaction), then
+--frames frames with the camera still (the pass only combines); every
+frame waits for the GPU (a one-pixel read-back); the medians are kept.
+The pass's rows say where its time goes (its frame report's stages, ms, of
+the last turning frame). Time only: `cao bench surface` measures the error.
+Writes DIR/surface-frame.csv.)footer";
 
 /// The value of `"key": ...` in the pass's JSON report (an object's braces
 /// or a string's quotes kept off), or "".
@@ -279,12 +131,13 @@ Timing TimeFrames(vtkRenderWindow* window, vtkCamera* camera, int frames, double
 }
 }
 
-int RunBenchSurfaceFrame(int argc, char* argv[])
+namespace
 {
-  Options o;
+/// `cao bench surface-frame` after the parse.
+int Run(Options& o, const CLI::App*)
+{
   std::string error;
-  if (!Parse(argc, argv, o, error))
-    return Fail(2, error);
+  o.quality = o.qualityName == "low" ? 1 : o.qualityName == "high" ? 3 : 2;
   SelectThreads(o.threads);
   SurfaceScene scene;
   if (!scene.Load(o.meshes, error))
@@ -423,5 +276,40 @@ int RunBenchSurfaceFrame(int argc, char* argv[])
     return Fail(1, "cannot write '" + o.output + "/surface-frame.csv'");
   std::cerr << "wrote " << o.output << "/surface-frame.csv\n";
   return 0;
+}
+}
+
+Command AddBenchSurfaceFrameCommand(CLI::App& bench)
+{
+  auto o = std::make_shared<Options>();
+  CLI::App* app = bench.add_subcommand("surface-frame",
+    "whole VTK frames, wall clock: vtkContextualAOPass against vtkSSAOPass and a plain frame");
+  AddMeshes(app, o->meshes);
+  AddSizes(app, o->sizes, "image sizes WxH, each side 16 to 8192 (default 1024x768,1920x1080)");
+  AddNameList(app, "--methods", o->methods, { "vct", "hbao", "vao" },
+    { vtkContextualAOPass::VCT, vtkContextualAOPass::HBAO, vtkContextualAOPass::VAO },
+    "the pass's methods: vct, hbao, vao (default all three)");
+  AddNameList(app, "--backends", o->backends, { "auto", "cpu", "gl" },
+    { vtkContextualAOPass::BACKEND_AUTO, vtkContextualAOPass::BACKEND_CPU,
+      vtkContextualAOPass::BACKEND_OPENGL },
+    "the pass's Backend: auto, cpu, gl (default cpu,gl)");
+  AddGBuffers(app, o->gbuffers, { "auto", "ray-cast", "depth" },
+    { vtkContextualAOPass::GBUFFER_AUTO, vtkContextualAOPass::RAY_CAST,
+      vtkContextualAOPass::DEPTH_BUFFER },
+    "the pass's G-buffer: auto (default, as the pass: the drawn depth where the AO runs on the "
+    "GPU, the ray cast on the CPU), ray-cast, depth");
+  AddSurfaceQuality(app, o->qualityName, false, "the pass's preset low, medium (default) or high");
+  AddSurfaceKernel(app, o->kernel, "vtkSSAOPass's kernel size, 1 to 1024 (default 32, VTK's)");
+  AddInteger(app, "--frames", o->frames, 1, 1000,
+    "frames per configuration and camera state, 1 to 1000 (default 10)");
+  AddOrbit(app, o->orbit, 90.0,
+    "the camera's azimuth step per turning frame, in (0, 90] degrees (default 0.5)");
+  AddRadiusFraction(app, o->radiusFraction, 1.0,
+    "R = F x the scene's bounding-box diagonal, in (0, 1] (default 0.1)");
+  AddSurfaceThreads(app, o->threads);
+  AddSurfaceWindow(app, o->window, "the window");
+  AddOutput(app, o->output, "output folder (default surface-frame)")->type_name("DIR");
+  app->footer(Footer);
+  return { app, [o, app] { return Run(*o, app); } };
 }
 }

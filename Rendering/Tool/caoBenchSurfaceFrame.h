@@ -11,11 +11,13 @@
 #ifndef caoBenchSurfaceFrame_h
 #define caoBenchSurfaceFrame_h
 
+#include "caoOptions.h"
+
 namespace caocli
 {
-extern const char* BenchSurfaceFrameUsage;
-/// `cao bench surface-frame MESH... [options]`; returns the process exit code.
-int RunBenchSurfaceFrame(int argc, char* argv[]);
+/// Adds `cao bench surface-frame` under `bench` (the `cao bench` app). Its options are bound to
+/// options the command owns; run() runs it after the parse (the exit code).
+Command AddBenchSurfaceFrameCommand(CLI::App& bench);
 }
 
 #endif

@@ -21,30 +21,6 @@
 
 namespace caocli
 {
-const char* BenchSurfaceScaleUsage = R"(usage:
-  cao bench surface-scale MESH... [options]
-
-How the cost of surface AO grows with pixels and triangles, beside
-vtkSSAOPass in the same run (time only; `cao bench surface` measures the
-error). Per configuration, the median of --repeats frames of: the G-buffer
-(a CPU ray cast of the BVH), the world grid (built once per geometry), the
-eye grid (built again at each camera turn), the cone tracing (CPU; the eye
-ratio traces the eye grid), and
-vtkSSAOPass at its default kernel (32) and the same radius, a whole VTK
-frame timed by the wall clock. Writes DIR/surface-scale.csv.
-
-options:
-  --copies LIST        instances of the meshes, tiled in a square (default 1,9,81)
-  --sizes LIST         image sizes WxH (default 256x256,1024x768,1920x1080)
-  --quality NAME       vct preset low, medium (default) or high
-  --slices N           grid depth slices (default 256, as cao surface)
-  --radius-fraction F  R = F x the tiled scene's bounding-box diagonal (default 0.1)
-  --repeats N          timed frames per configuration, the median kept (default 3)
-  --threads N          CPU threads (0: all; default 0)
-  --window auto|egl|x  the SSAO window (default auto)
-  -o DIR               output folder (default surface-scale)
-)";
-
 namespace
 {
 struct Options
@@ -52,103 +28,21 @@ struct Options
   std::vector<std::string> meshes;
   std::vector<int> copies{ 1, 9, 81 };
   std::vector<std::pair<int, int>> sizes{ { 256, 256 }, { 1024, 768 }, { 1920, 1080 } };
+  std::string qualityName = "medium"; ///< --quality, into `quality`
   cao::VCTQuality quality = cao::VCTQuality::Medium;
   int slices = cao::VCTSettings().slices, repeats = 3, threads = 0;
   double radiusFraction = 0.1;
   std::string window = "auto", output = "surface-scale";
 };
 
-int Fail(int code, const std::string& message)
-{
-  std::cerr << "cao: error: " << message << "\n";
-  return code;
-}
-
-bool Parse(int argc, char* argv[], Options& o, std::string& error)
-{
-  for (int i = 3; i < argc; ++i)
-  {
-    const std::string a = argv[i];
-    std::string v;
-    auto value = [&]() {
-      if (i + 1 >= argc)
-        return error = "option " + a + " needs a value", false;
-      v = argv[++i];
-      return true;
-    };
-    auto integer = [&](int& out, int lo, int hi) {
-      double d = 0;
-      if (!value() || !ToDouble(v, d) || d != std::floor(d) || d < lo || d > hi)
-        return error = a + " must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
-                 "] (got '" + v + "')",
-               false;
-      out = static_cast<int>(d);
-      return true;
-    };
-    if (a == "--copies")
-    {
-      if (!value())
-        return false;
-      o.copies.clear();
-      for (const std::string& item : Split(v, ','))
-      {
-        double d = 0;
-        if (!ToDouble(item, d) || d != std::floor(d) || d < 1 || d > 4096)
-          return error = "--copies takes integers 1..4096 (got '" + item + "')", false;
-        o.copies.push_back(static_cast<int>(d));
-      }
-    }
-    else if (a == "--sizes")
-    {
-      if (!value() || !ParseSizes(v, a, o.sizes, error))
-        return false;
-    }
-    else if (a == "--quality")
-    {
-      if (!value() || !cao::ParseVCTQuality(v, o.quality) || o.quality == cao::VCTQuality::Custom)
-        return error = "--quality is low, medium or high (got '" + v + "')", false;
-    }
-    else if (a == "--slices")
-    {
-      if (!integer(o.slices, 32, 1024) || o.slices % 32)
-        return error = error.empty() ? "--slices must be a multiple of 32" : error, false;
-    }
-    else if (a == "--radius-fraction")
-    {
-      if (!value() || !ToDouble(v, o.radiusFraction) || !(o.radiusFraction > 0) || o.radiusFraction > 1)
-        return error = "--radius-fraction must be in (0, 1] (got '" + v + "')", false;
-    }
-    else if (a == "--repeats")
-    {
-      if (!integer(o.repeats, 1, 100))
-        return false;
-    }
-    else if (a == "--threads")
-    {
-      if (!integer(o.threads, 0, 1024))
-        return false;
-    }
-    else if (a == "--window")
-    {
-      if (!value())
-        return false;
-      o.window = v;
-    }
-    else if (a == "-o")
-    {
-      if (!value())
-        return false;
-      o.output = v;
-    }
-    else if (!a.empty() && a[0] == '-')
-      return error = "unknown option " + a, false;
-    else
-      o.meshes.push_back(a);
-  }
-  if (o.meshes.empty())
-    return error = "give at least one mesh", false;
-  return true;
-}
+const char* Footer = R"footer(How the cost of surface AO grows with pixels and triangles, beside
+vtkSSAOPass in the same run (time only; `cao bench surface` measures the
+error). Per configuration, the median of --repeats frames of: the G-buffer
+(a CPU ray cast of the BVH), the world grid (built once per geometry), the
+eye grid (built again at each camera turn), the cone tracing (CPU; the eye
+ratio traces the eye grid), and vtkSSAOPass at its default kernel (32) and
+the same radius, a whole VTK frame timed by the wall clock. Writes
+DIR/surface-scale.csv.)footer";
 
 template <typename F>
 double Time(int repeats, F&& f, std::string& error, bool& ok)
@@ -165,12 +59,13 @@ double Time(int repeats, F&& f, std::string& error, bool& ok)
 }
 }
 
-int RunBenchSurfaceScale(int argc, char* argv[])
+namespace
 {
-  Options o;
+/// `cao bench surface-scale` after the parse.
+int Run(Options& o, const CLI::App*)
+{
   std::string error;
-  if (!Parse(argc, argv, o, error))
-    return Fail(2, error);
+  cao::ParseVCTQuality(o.qualityName, o.quality);
   SelectThreads(o.threads);
   ::mkdir(o.output.c_str(), 0755);
   std::ofstream csv(o.output + "/surface-scale.csv");
@@ -278,5 +173,29 @@ int RunBenchSurfaceScale(int argc, char* argv[])
     return Fail(1, "cannot write '" + o.output + "/surface-scale.csv'");
   std::cerr << "wrote " << o.output << "/surface-scale.csv\n";
   return 0;
+}
+}
+
+Command AddBenchSurfaceScaleCommand(CLI::App& bench)
+{
+  auto o = std::make_shared<Options>();
+  CLI::App* app = bench.add_subcommand("surface-scale",
+    "how the cost of surface AO grows with pixels and triangles, beside vtkSSAOPass");
+  AddMeshes(app, o->meshes);
+  AddIntegerList(app, "--copies", o->copies, 1, 4096,
+    "instances of the meshes, tiled in a square, each 1 to 4096 (default 1,9,81)");
+  AddSizes(app, o->sizes,
+    "image sizes WxH, each side 16 to 8192 (default 256x256,1024x768,1920x1080)");
+  AddSurfaceQuality(app, o->qualityName, false, "vct preset low, medium (default) or high");
+  AddSurfaceSlices(app, o->slices,
+    "grid depth slices, 32 to 1024, a multiple of 32 (default 256, as cao surface)");
+  AddRadiusFraction(app, o->radiusFraction, 1.0,
+    "R = F x the tiled scene's bounding-box diagonal, in (0, 1] (default 0.1)");
+  AddRepeats(app, o->repeats, "timed frames per configuration, 1 to 100, the median kept (default 3)");
+  AddSurfaceThreads(app, o->threads);
+  AddSurfaceWindow(app, o->window, "the SSAO window");
+  AddOutput(app, o->output, "output folder (default surface-scale)")->type_name("DIR");
+  app->footer(Footer);
+  return { app, [o, app] { return Run(*o, app); } };
 }
 }

@@ -12,11 +12,13 @@
 #ifndef caoBenchSurfaceScale_h
 #define caoBenchSurfaceScale_h
 
+#include "caoOptions.h"
+
 namespace caocli
 {
-extern const char* BenchSurfaceScaleUsage;
-/// `cao bench surface-scale MESH... [options]`; returns the process exit code.
-int RunBenchSurfaceScale(int argc, char* argv[]);
+/// Adds `cao bench surface-scale` under `bench` (the `cao bench` app). Its options are bound to
+/// options the command owns; run() runs it after the parse (the exit code).
+Command AddBenchSurfaceScaleCommand(CLI::App& bench);
 }
 
 #endif

@@ -152,22 +152,6 @@ void DefaultOpacityRamp(const double range[2], vtkPiecewiseFunction* tf)
   tf->AddPoint(hi, 0.8);
 }
 
-bool TakeArgument(const std::string& a, std::string& volume, std::string& error)
-{
-  if (!a.empty() && a[0] == '-')
-  {
-    error = "unknown option '" + a + "'";
-    return false;
-  }
-  if (!volume.empty())
-  {
-    error = "unexpected argument '" + a + "'";
-    return false;
-  }
-  volume = a;
-  return true;
-}
-
 Progress::Progress(bool disabled)
   : Enabled(!disabled && isatty(2))
 {

@@ -96,11 +96,6 @@ private:
   vtkNew<vtkCallbackCommand> Callback;
 };
 
-/// The part of a command line that is not an option: `a` is an unknown
-/// option (an error), the volume (the first plain argument) or one too many.
-/// Returns false with the reason in `error`.
-bool TakeArgument(const std::string& a, std::string& volume, std::string& error);
-
 /// A comma list with an empty item ("", ",6", "6,", "6,,14").
 bool HasEmptyItem(const std::string& list);
 /// The non-empty items of `s` between separators `sep`.

@@ -36,6 +36,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -50,260 +51,111 @@ using vtkCAO::ParsePose;
 using vtkCAO::ReadPoses;
 using vtkCAO::DefaultPath;
 using vtkCAO::PoseToTransform;
-const char* RenderUsage = R"(  cao render VOLUME [render options] [clip options] [-o FRAMES_%03d.png]
-
-render options:
-  --image WxH          frame size in pixels (default 512x512)
-  --azimuth A          camera azimuth, degrees, after a reset (default 30)
-  --elevation E        camera elevation, degrees (default 20)
-  --zoom Z             camera zoom (default 1.4)
-  --preset NAME        built-in transfer function: warm (default), bone, cool, grayscale
-  --preset-file FILE   a ParaView colour-map preset (.json); --preset picks a name in it
-  --absolute           use the preset's values as they are (default: rescale to the data)
-  --rays P             LAO ray pattern: 6, 14 (default), 26, 54, rubiks54 or
-                       fib:K (K = 1 to 65536)
-  --reach R            LAO reach in world units (default 8 voxels)
-  --density D          LAO samples per smallest voxel spacing (default 1)
-  --offset F           LAO sample start offset in steps, in [0, 1) (default 0.5)
-  --variation NAME     LAO ray variation: none (default), rotate, jitter or
-                       rotate+jitter
-  --quality NAME       LAO quality preset: interactive (the default, equal to
-                       the defaults above), balanced, reference or custom
-                       (a preset sets the rays, density, offset and
-                       variation; not combined with those options, and any
-                       of them without --quality means custom).
-                       Not to be confused with --preset, the colours
-  --ao-strength S      0..1 (default 1); --no-ao renders without AO
-  --ao-calibration C   half-space (default: each sample against the LAO of an
-                       open flat half-space of its opacity at the depth the
-                       ray has gone into the matter: open faces keep their
-                       light, crevices darken) or none (the raw LAO)
-  --no-shade           no gradient shading (ambient only)
-  --sample-distance D  ray-cast sample distance, world units (default half a voxel)
-  --unit-distance U    the length the opacities refer to, world units (default 1,
-                       VTK's ScalarOpacityUnitDistance, as for lao)
-  --window W           auto (default: X when DISPLAY is set, else EGL), egl or x
-  --full               recompute the full LAO at every pose (the reference)
-  --json               print each frame's work report as a JSON list on stdout
-  clip options as for carve: --shape, --size, --mesh, --pose, --poses, --path
-  (default 12), --mode, --layers, --aa; --no-clip renders the unclipped volume
-)";
-
 namespace
 {
 struct RenderOptions
 {
-  std::string volume, output = "cao-frame_%03d.png", preset, presetFile, shape = "sphere", mesh,
-                      posesFile, mode = "subtract", window = "auto",
-                      rays = cao::RayPatternName(cao::LAOSettings().pattern);
-  std::vector<std::string> poseTexts;
-  int width = 512, height = 512, path = 12, layers = 2, aa = 16,
-      calibration = 1; // vtkContextualAOVolumeMapper::AO_CALIBRATION_HALF_SPACE
-  double azimuth = 30, elevation = 20, zoom = 1.4, reach = 0, strength = 1, size = 0,
-         sampleDistance = 0, unitDistance = 1;
+  std::string volume, output = "cao-frame_%03d.png", preset, presetFile, window = "auto",
+                      calibration = "half-space"; // --ao-calibration
+  std::vector<std::string> rays{ cao::RayPatternName(cao::LAOSettings().pattern) }; // one
+  caocli::ClipOptions clipping; // --shape, --size, --mesh, --pose(s), --path, --mode, --layers, --aa
+  int width = 512, height = 512;
+  double azimuth = 30, elevation = 20, zoom = 1.4, reach = 0, strength = 1, sampleDistance = 0,
+         unitDistance = 1;
   bool absolute = false, ao = true, shade = true, json = false, clip = true, full = false;
-  bool shapeGiven = false; // --shape on the command line
   LAOCommandLine lao; // --quality, --density, --offset, --variation
 };
 
-int Fail(int code, const std::string& message)
-{
-  std::cerr << "cao: error: " << message << "\n";
-  return code;
+const char* RenderFooter = R"(One frame per pose of the clip, written to -o's pattern; the clip options
+are carve's, with --path 12 by default, and --no-clip renders one frame of the
+unclipped volume. The camera is reset to the volume, then turned by --azimuth
+and --elevation and zoomed by --zoom. --preset picks the colours; it is not
+to be confused with --quality, the LAO's settings.)";
+
+int Render(RenderOptions& o, const CLI::App* app);
 }
 
-bool Parse(int argc, char* argv[], RenderOptions& o, std::string& error)
+Command AddRenderCommand(CLI::App& cao)
 {
-  for (int i = 2; i < argc; ++i)
-  {
-    const std::string a = argv[i];
-    auto value = [&](std::string& out) {
-      if (i + 1 >= argc)
-      {
-        error = "option " + a + " needs a value";
-        return false;
-      }
-      out = argv[++i];
-      return true;
-    };
-    auto number = [&](double& out, double lo, double hi) {
-      std::string v;
-      if (!value(v))
-        return false;
-      char* end = nullptr;
-      out = std::strtod(v.c_str(), &end);
-      if (v.empty() || *end || !std::isfinite(out) || out < lo || out > hi)
-      {
-        char range[96];
-        if (lo <= 1e-300 && hi >= 1e300)
-          std::snprintf(range, sizeof(range), "a positive number");
-        else if (hi >= 1e300)
-          std::snprintf(range, sizeof(range), "a number from %g", lo);
-        else
-          std::snprintf(range, sizeof(range), "from %g to %g", lo, hi);
-        error = "bad value '" + v + "' for " + a + " (" + range + ")";
-        return false;
-      }
-      return true;
-    };
-    auto integer = [&](int& out, int lo, int hi) {
-      double d = 0;
-      if (!number(d, lo, hi))
-        return false;
-      out = static_cast<int>(d);
-      if (out != d)
-      {
-        error = a + " needs an integer (from " + std::to_string(lo) + " to " + std::to_string(hi) + ")";
-        return false;
-      }
-      return true;
-    };
-    bool ok = true;
-    if (TakeLAOOption(a, argc, argv, i, o.lao, error))
-      ok = error.empty();
-    else if (a == "--image")
-    {
-      std::string v;
-      ok = value(v);
-      if (ok && (std::sscanf(v.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 16 ||
-                  o.height < 16 || o.width > 8192 || o.height > 8192))
-      {
-        error = "--image needs WxH, each 16..8192";
-        ok = false;
-      }
-    }
-    else if (a == "--azimuth")
-      ok = number(o.azimuth, -360, 360);
-    else if (a == "--elevation")
-      ok = number(o.elevation, -90, 90);
-    else if (a == "--zoom")
-      ok = number(o.zoom, 1e-3, 1e3);
-    else if (a == "--preset")
-      ok = value(o.preset);
-    else if (a == "--preset-file")
-      ok = value(o.presetFile);
-    else if (a == "--absolute")
-      o.absolute = true;
-    else if (a == "--rays")
-    {
-      NoteOverridden(o.lao, a);
-      ok = value(o.rays);
-    }
-    else if (a == "--reach")
-      ok = number(o.reach, 0, 1e300);
-    else if (a == "--ao-strength")
-      ok = number(o.strength, 0, 1);
-    else if (a == "--ao-calibration")
-    {
-      std::string c;
-      ok = value(c);
-      if (ok && c != "half-space" && c != "none")
-        return error = "--ao-calibration is half-space or none, not '" + c + "'", false;
-      o.calibration = c == "none" ? vtkContextualAOVolumeMapper::AO_CALIBRATION_NONE
-                                  : vtkContextualAOVolumeMapper::AO_CALIBRATION_HALF_SPACE;
-    }
-    else if (a == "--no-ao")
-      o.ao = false;
-    else if (a == "--no-shade")
-      o.shade = false;
-    else if (a == "--sample-distance")
-    {
-      ok = number(o.sampleDistance, 0, 1e300);
-      if (ok && !(o.sampleDistance > 0.0))
-        return error = "--sample-distance is a positive length in world units (omit it for half a "
-                       "voxel)",
-               false;
-    }
-    else if (a == "--unit-distance")
-      ok = number(o.unitDistance, 1e-300, 1e300);
-    else if (a == "--window")
-    {
-      ok = value(o.window);
-      if (ok && o.window != "auto" && o.window != "egl" && o.window != "x")
-      {
-        error = "--window is auto, egl or x";
-        ok = false;
-      }
-    }
-    else if (a == "--full")
-      o.full = true;
-    else if (a == "--json")
-      o.json = true;
-    else if (a == "--shape")
-    {
-      ok = value(o.shape);
-      o.shapeGiven = true;
-    }
-    else if (a == "--size")
-      ok = number(o.size, 1e-300, 1e300);
-    else if (a == "--mesh")
-      ok = value(o.mesh);
-    else if (a == "--pose")
-    {
-      std::string v;
-      ok = value(v);
-      o.poseTexts.push_back(v);
-    }
-    else if (a == "--poses")
-      ok = value(o.posesFile);
-    else if (a == "--path")
-      ok = integer(o.path, 1, 100000);
-    else if (a == "--mode")
-    {
-      ok = value(o.mode);
-      if (ok && o.mode != "subtract" && o.mode != "probe")
-      {
-        error = "--mode is subtract or probe";
-        ok = false;
-      }
-    }
-    else if (a == "--layers")
-      ok = integer(o.layers, 1, 16);
-    else if (a == "--aa")
-      ok = integer(o.aa, 0, 32);
-    else if (a == "--no-clip")
-      o.clip = false;
-    else if (a == "-o" || a == "--output")
-      ok = value(o.output);
-    else
-      ok = TakeArgument(a, o.volume, error);
-    if (!ok)
-      return false;
-  }
-  if (o.volume.empty())
-  {
-    error = "missing VOLUME";
-    return false;
-  }
-  if (o.shapeGiven && !o.mesh.empty())
-  {
-    error = "--shape and --mesh both name the clip: give one (--shape " + o.shape + ", --mesh " +
-      o.mesh + ")";
-    return false;
-  }
-  if (!o.clip && (o.shapeGiven || !o.mesh.empty() || !o.poseTexts.empty() || !o.posesFile.empty()))
-  {
-    error = std::string("--no-clip renders the unclipped volume, but ") +
-      (o.shapeGiven ? "--shape" : !o.mesh.empty() ? "--mesh" : !o.poseTexts.empty() ? "--pose" : "--poses") +
-      " was given: drop one of them";
-    return false;
-  }
+  auto o = std::make_shared<RenderOptions>();
+  CLI::App* app = cao.add_subcommand(
+    "render", "PNG frames of a clip moving through a volume, drawn by the Contextual AO volume mapper");
+  AddVolume(app, o->volume);
+  AddImageSize(app, "--image", o->width, o->height, 16, 8192, "frame size in pixels (default 512x512)");
+  AddNumber(app, "--azimuth", o->azimuth, -360, 360, false, "from -360 to 360",
+    "camera azimuth, degrees, -360 to 360, after a reset (default 30)")
+    ->type_name("A");
+  AddNumber(app, "--elevation", o->elevation, -90, 90, false, "from -90 to 90",
+    "camera elevation, degrees, -90 to 90 (default 20)")
+    ->type_name("E");
+  AddNumber(app, "--zoom", o->zoom, 1e-3, 1e3, false, "from 0.001 to 1000",
+    "camera zoom, 0.001 to 1000 (default 1.4)")
+    ->type_name("Z");
+  AddText(app, "--preset", o->preset, "NAME",
+    "built-in transfer function: warm (default), bone, cool, grayscale; with --preset-file, a "
+    "name in that file (the colours; not --quality, the LAO's settings)");
+  AddText(app, "--preset-file", o->presetFile, "FILE",
+    "a ParaView colour-map preset (.json); --preset picks a name in it");
+  app->add_flag("--absolute", o->absolute,
+    Wrap("use the preset's values as they are (default: rescale to the data)"));
+  AddRays(app, o->rays, false);
+  AddNumber(app, "--reach", o->reach, 0.0, HUGE_VAL, false, "a length in world units, 0 or more",
+    "LAO reach in world units (default, or 0: 8 voxels)")
+    ->type_name("R");
+  AddLAOOptions(app, o->lao);
+  AddNumber(app, "--ao-strength", o->strength, 0, 1, false, "from 0 to 1",
+    "AO strength, 0 to 1 (default 1); --no-ao renders without AO")
+    ->type_name("S");
+  AddChoice(app, "--ao-calibration", o->calibration, { "half-space", "none" },
+    "half-space (default: each sample against the LAO of an open flat half-space of its opacity "
+    "at the depth the ray has gone into the matter: open faces keep their light, crevices "
+    "darken) or none (the raw LAO)");
+  app->add_flag_callback("--no-ao", [o] { o->ao = false; }, Wrap("render without AO"));
+  app->add_flag_callback(
+    "--no-shade", [o] { o->shade = false; }, Wrap("no gradient shading (ambient only)"));
+  AddNumber(app, "--sample-distance", o->sampleDistance, 0.0, HUGE_VAL, true,
+    "a positive length in world units; omit it for half a voxel",
+    "ray-cast sample distance, world units (default half a voxel)")
+    ->type_name("D");
+  AddUnitDistance(app, o->unitDistance);
+  AddChoice(app, "--window", o->window, { "auto", "egl", "x" },
+    "auto (default: X when DISPLAY is set, else EGL), egl or x");
+  app->add_flag("--full", o->full, Wrap("recompute the full LAO at every pose (the reference)"));
+  AddJson(app, o->json, "print each frame's work report as a JSON list on stdout");
+  AddOutput(app, o->output,
+    "the frames' file pattern, with one frame-number conversion, %d or %i with an optional 0 flag "
+    "and width up to 9, and %% for a literal percent sign (default cao-frame_%03d.png)");
+  o->clipping.path = 12;
+  AddClipOptions(app, o->clipping, 16);
+  app->get_option("--path")->description(Wrap("N poses along the volume diagonal (default 12; at "
+                                               "most 100000, as poses from --pose and --poses)"));
+  app->add_flag_callback(
+    "--no-clip", [o] { o->clip = false; }, Wrap("render the unclipped volume (one frame)"));
+  app->footer(RenderFooter);
+  return { app, [o, app] { return Render(*o, app); } };
+}
+
+namespace
+{
+int Render(RenderOptions& o, const CLI::App* app)
+{
+  std::string error;
+  const bool shapeGiven = app->count("--shape") > 0;
+  if (!o.clip &&
+    (shapeGiven || !o.clipping.mesh.empty() || !o.clipping.poseTexts.empty() ||
+      !o.clipping.posesFile.empty()))
+    return Fail(2,
+      std::string("--no-clip renders the unclipped volume, but ") +
+        (shapeGiven                         ? "--shape"
+            : !o.clipping.mesh.empty()      ? "--mesh"
+            : !o.clipping.poseTexts.empty() ? "--pose"
+                                            : "--poses") +
+        " was given: drop one of them");
   caocli::FramePattern frames;
   if (!frames.Parse(o.output, error))
-    return false;
-  return CheckLAOCommandLine(o.lao, error);
-}
-
-}
-
-int RunRender(int argc, char* argv[])
-{
-  RenderOptions o;
-  std::string error;
-  if (!Parse(argc, argv, o, error))
     return Fail(2, error);
-  caocli::FramePattern frames;
-  frames.Parse(o.output, error); // checked by Parse
+  if (!FinishLAO(app, o.lao, error))
+    return Fail(2, error);
   vtkSmartPointer<vtkImageData> volume = ReadVolume(o.volume, error);
   if (!volume)
     return Fail(2, error);
@@ -407,8 +259,8 @@ int RunRender(int argc, char* argv[])
   mapper->SetInputData(drawn);
   cao::RayPattern parsed = cao::RayPattern::Rays14;
   int fib = 64;
-  if (!cao::ParseRayPattern(o.rays, parsed, fib))
-    return Fail(2, "--rays '" + o.rays + "': 6, 14, 26, 54, rubiks54 or fib:K (K = 1 to 65536)");
+  if (!cao::ParseRayPattern(o.rays[0], parsed, fib))
+    return Fail(2, "--rays '" + o.rays[0] + "': 6, 14, 26, 54, rubiks54 or fib:K (K = 1 to 65536)");
   mapper->SetRayPattern(static_cast<int>(parsed));
   mapper->SetNumberOfRays(fib);
   mapper->SetReach(o.reach / worldScale);
@@ -417,13 +269,15 @@ int RunRender(int argc, char* argv[])
   mapper->SetRayVariation(static_cast<int>(o.lao.settings.variation));
   mapper->SetQualityPreset(static_cast<int>(o.lao.settings.preset));
   mapper->SetAOStrength(o.strength);
-  mapper->SetAOCalibration(o.calibration);
+  mapper->SetAOCalibration(o.calibration == "none"
+      ? vtkContextualAOVolumeMapper::AO_CALIBRATION_NONE
+      : vtkContextualAOVolumeMapper::AO_CALIBRATION_HALF_SPACE);
   mapper->SetAmbientOcclusion(o.ao);
   mapper->SetSampleDistance(o.sampleDistance / worldScale);
-  mapper->SetMode(o.mode == "probe" ? vtkContextualAOVolumeMapper::PROBING
+  mapper->SetMode(o.clipping.mode == "probe" ? vtkContextualAOVolumeMapper::PROBING
                                     : vtkContextualAOVolumeMapper::SUBTRACTION);
-  mapper->SetNumberOfClipLayers(o.layers);
-  mapper->SetAntiAliasingSamples(o.aa);
+  mapper->SetNumberOfClipLayers(o.clipping.layers);
+  mapper->SetAntiAliasingSamples(o.clipping.aa);
   mapper->SetAOUpdate(o.full ? vtkContextualAOVolumeMapper::FULL_RECOMPUTE
                              : vtkContextualAOVolumeMapper::CONTEXTUAL);
   vtkNew<vtkVolumeProperty> property;
@@ -451,22 +305,23 @@ int RunRender(int argc, char* argv[])
   vtkNew<vtkPolyDataMapper> shapeMapper;
   if (o.clip)
   {
-    for (const auto& t : o.poseTexts)
+    for (const auto& t : o.clipping.poseTexts)
     {
       Pose p;
       if (!ParsePose(t, p, error))
         return Fail(2, error);
       poses.push_back(p);
     }
-    if (!o.posesFile.empty() && !ReadPoses(o.posesFile, poses, error))
+    if (!o.clipping.posesFile.empty() && !ReadPoses(o.clipping.posesFile, poses, error))
       return Fail(2, error);
     if (poses.empty())
-      poses = DefaultPath(bounds, o.path);
-    const double size = o.size > 0.0 ? o.size
-      : o.shape == "plane"           ? vtkCAO::PlaneSlabSize(volume, poses)
-                                     : vtkCAO::DefaultShapeSize(volume);
-    vtkSmartPointer<vtkPolyData> mesh =
-      o.mesh.empty() ? MakeShape(o.shape, size, error) : ReadMesh(o.mesh, error);
+      poses = DefaultPath(bounds, o.clipping.path);
+    const double size = o.clipping.size > 0.0 ? o.clipping.size
+      : o.clipping.shape == "plane"           ? vtkCAO::PlaneSlabSize(volume, poses)
+                                              : vtkCAO::DefaultShapeSize(volume);
+    vtkSmartPointer<vtkPolyData> mesh = o.clipping.mesh.empty()
+      ? MakeShape(o.clipping.shape, size, error)
+      : ReadMesh(o.clipping.mesh, error);
     if (!mesh)
       return Fail(2, error);
     if (!vtkCAO::CheckPoseScales(poses, mesh, volume, error))
@@ -535,5 +390,6 @@ int RunRender(int argc, char* argv[])
   if (o.json)
     std::printf("\n]\n");
   return 0;
+}
 }
 }

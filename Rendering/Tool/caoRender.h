@@ -8,11 +8,13 @@
 #ifndef caoRender_h
 #define caoRender_h
 
+#include "caoOptions.h"
+
 namespace caocli
 {
-extern const char* RenderUsage;
-/// argv[1] is "render". Exit codes as the rest of `cao`.
-int RunRender(int argc, char* argv[]);
+/// Adds `cao render` under `cao` (the root app). Its options are bound to
+/// options the command owns; run() runs it after the parse (the exit code).
+Command AddRenderCommand(CLI::App& cao);
 }
 
 #endif

@@ -30,6 +30,7 @@
 
 #include "vtkCAOInput.h"
 #include "vtkCAOSceneVolume.h"
+#include "vtkLocalAmbientOcclusion.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkContextualAOVolumeMapper.h"
 #include "vtkDataArray.h"
@@ -52,74 +53,6 @@
 
 namespace caocli
 {
-const char* SurfaceUsage = R"(cao surface MESH... [options] -o out.png
-  Ambient occlusion of closed or open triangle meshes (.vtp, .vtk, .stl,
-  .ply, .obj) seen by one camera.
-  --method vct|hbao|vao|reference|ssao|none   (default vct)
-        vct: voxel cone tracing (seed 000) on a bit grid of the meshes (CPU or OpenGL: --backend);
-        hbao: horizon-based AO (seed 002) on the G-buffer (CPU or OpenGL: --backend);
-        vao: volumetric AO (seed 001, base disk, mu = (r/R)^4) on the G-buffer (CPU or OpenGL);
-        reference: CPU ray tracing in double precision (Kernels/Surface);
-        ssao: VTK's vtkSSAOPass, its default kernel (32, --kernel) and bias, blurred,
-              at the same radius, read back from an unlit white material;
-        none: AO = 1.
-  --radius R            world units (default: a tenth of the meshes' bounding-box diagonal)
-  --quality NAME        vct: low|medium|high, the paper's presets (spheres 3/5/7, prisms
-                        3/6/12; default medium);
-                        hbao: the paper's configurations table1|fig11a|fig11b|fig11c|fig11d
-                        (directions/steps/normal rays 7/12/1, 6/9/0 with linear attenuation,
-                        8/18/0, 8/18/1, 18/25/2), or low|medium|high = fig11a|table1|fig11d
-                        (default table1);
-                        vao: low|medium|high, 8/16/32 samples per pixel (default medium)
-  --march deflect|sweep hbao: the horizon march (default deflect, the paper's Fig. 4)
-  --samples N           vao: samples per pixel, 1..256 (instead of --quality)
-  --filter on|off       hbao: its blur; vao: its 4 x 4 sample sets and filter (default on)
-  --slices N            vct: depth slices of the grid, 32..1024, a multiple of 32
-                        (default 256; the paper's 128)
-  --grid world|eye|frustum   vct: the grid (world: default, built once per geometry;
-                        eye: the camera's axes, parallel columns, its slices in depth,
-                        built again whenever the camera turns; frustum: the paper's
-                        eye-space grid, a column per pixel, slices from each pixel's
-                        visible depth to the scene's far depth, built again at every
-                        camera change)
-  --cone-weights cosine|equal   vct (default cosine; equal: the paper's average)
-  --backend auto|cpu|gl vct, hbao, vao: where it runs (auto: OpenGL 4.3 on a hardware GPU, the CPU
-                        with a software rasterizer such as llvmpipe or none; gl: OpenGL
-                        even on llvmpipe, an error without a context)
-  --fill surface|parity vct: a closed mesh's voxels: its parity plus the voxels its
-                        surface crosses (default), or the paper's parity alone
-  --occupancy rays|volume  vct: a cone's occlusion: the cosine-weighted share of its rays
-                        that meet a set voxel (default), or the paper's solid volume
-                        fraction of its spheres (z-column prisms, bitCount)
-  --ray-step V          vct, rays: voxels between a ray's samples, 0.1..1 (default 1)
-  --cone-angle DEG      vct: each cone's half-angle, 5..45 (default 30)
-  --apex-offset V       vct: the cones' apex above the surface, in voxels, 0..4 (default 1)
-  --rays N              reference: directions per pixel (default 1024, at most 1048576)
-  --falloff step|linear|quartic   reference (default step)
-  --weighting cosine|uniform      reference (default cosine)
-  --image WxH           default 512x512 (at most 16384 a side)
-  --azimuth A --elevation E --zoom Z   the camera after fitting the meshes
-                        (defaults 30, 20, 1.0), as vtkCamera's
-  --ao-only             write the AO term alone: 16-bit grey and alpha (1 = open;
-                        background transparent)
-  --json                print the settings, per-stage times and counts as JSON
-  --threads N           CPU threads (0: all; default 0)
-  --window auto|egl|x   ssao's offscreen window (default auto)
-  --kernel N            ssao: vtkSSAOPass's kernel size (default 32, VTK's)
-  -o out.png            the picture (required)
- The volume occluding the meshes (vct, CPU or OpenGL): its opacity darkens the
- meshes near it (the picture shows the meshes only):
-  --volume FILE         a volume as for cao render (.vti, .mhd, .slc, .nii, .vtk)
-  --preset NAME --preset-file FILE --absolute   its opacity, as for cao render
-                        (default preset warm)
-  --unit-distance D     the length the opacity refers to, world units (default 1,
-                        VTK's ScalarOpacityUnitDistance)
-  --shape sphere|cube|torus|plane --size S --mesh FILE --pose "tx ty tz [rx ry rz [s]]"
-  --mode subtract|probe the clip that carves it, as for cao render (default: no clip;
-                        a --shape or --mesh clips, at --pose, default the volume's centre)
-Exit codes: 0 done, 2 bad input, 1 failure.
-)";
-
 namespace
 {
 struct SurfaceOptions
@@ -135,368 +68,194 @@ struct SurfaceOptions
   cao::HBAOSettings hbao;
   cao::VAOSettings vao;
   std::string quality; ///< --quality as given, read per method
-  std::vector<std::string> screenOptions; ///< --march, --samples, --filter as given
+  std::string filter, march, fill, coneWeights, falloff, weighting; ///< as given, applied after the parse
+  std::vector<int> backends{ vtkLocalAmbientOcclusion::AUTO }; ///< --backend
   std::string backend = "auto", grid = "world";
   // The occluding volume and its clip.
   std::string volume, preset, presetFile, shape, clipMesh, pose, mode = "subtract";
-  bool absolute = false, volumeOptions = false; ///< any option of the occluding volume given
+  bool absolute = false;
   double unitDistance = 1.0, size = 0.0;
 };
 
-int Fail(int code, const std::string& message)
+/// "a number in [lo, hi]" ("(lo, hi]" when `openLow`), as the limit of a
+/// refused value.
+std::string Interval(double lo, double hi, bool openLow = false)
 {
-  std::cerr << "cao: error: " << message << "\n";
-  return code;
+  std::ostringstream s;
+  s << "a number in " << (openLow ? "(" : "[") << lo << ", " << hi << "]";
+  return s.str();
 }
 
-bool Parse(int argc, char* argv[], SurfaceOptions& o, std::string& error)
+/// A further limit on a value an adder of caoOptions has already checked
+/// (and written in its shortest form): [lo, hi].
+CLI::Validator Within(double lo, double hi, const std::string& limit)
 {
-  for (int i = 2; i < argc; ++i)
-  {
-    const std::string a = argv[i];
-    std::string v;
-    auto value = [&]() {
-      if (i + 1 >= argc)
-      {
-        error = "option " + a + " needs a value";
-        return false;
-      }
-      v = argv[++i];
-      return true;
-    };
-    auto number = [&](double& out, double lo, double hi) {
-      if (!value())
-        return false;
-      if (!ToDouble(v, out) || out < lo || out > hi)
-      {
-        std::ostringstream s;
-        s << a << " must be a number in [" << lo << ", " << hi << "] (got '" << v << "')";
-        error = s.str();
-        return false;
-      }
-      return true;
-    };
-    double d = 0;
-    if (a == "--method")
-    {
-      if (!value())
-        return false;
-      if (v != "vct" && v != "hbao" && v != "vao" && v != "reference" && v != "ssao" && v != "none")
-      {
-        error = "--method is vct, hbao, vao, reference, ssao or none (got '" + v + "')";
-        return false;
-      }
-      o.method = v;
-    }
-    else if (a == "--radius")
-    {
-      if (!number(o.radius, 0, std::numeric_limits<double>::max()) )
-        return false;
-      if (!(o.radius > 0))
-      {
-        error = "--radius must be positive";
-        return false;
-      }
-    }
-    else if (a == "--rays")
-    {
-      if (!number(d, 1, cao::SurfaceReferenceSettings::MaximumRays) || d != std::floor(d))
-      {
-        if (error.empty())
-          error = "--rays must be a whole number";
-        return false;
-      }
-      o.reference.rays = static_cast<int>(d);
-    }
-    else if (a == "--quality")
-    {
-      if (!value())
-        return false;
-      o.quality = v;
-    }
-    else if (a == "--samples")
-    {
-      o.screenOptions.push_back(a);
-      if (!number(d, 1, 256) || d != std::floor(d))
-        return error.empty() ? (error = "--samples must be a whole number", false) : false;
-      o.vao.quality = cao::VAOQuality::Custom;
-      o.vao.samples = static_cast<int>(d);
-    }
-    else if (a == "--filter")
-    {
-      o.screenOptions.push_back(a);
-      if (!value())
-        return false;
-      if (v != "on" && v != "off")
-        return error = "--filter is on or off (got '" + v + "')", false;
-      o.vao.interleave = v == "on";
-      o.hbao.blurRadius = v == "on" ? 2 : 0;
-    }
-    else if (a == "--march")
-    {
-      o.screenOptions.push_back(a);
-      if (!value())
-        return false;
-      if (v != "deflect" && v != "sweep")
-        return error = "--march is deflect or sweep (got '" + v + "')", false;
-      o.hbao.deflect = v == "deflect";
-    }
-    else if (a == "--slices")
-    {
-      if (!number(d, 32, 1024) || d != std::floor(d) || static_cast<int>(d) % 32 != 0)
-      {
-        error = "--slices must be 32..1024 and a multiple of 32 (got '" + v + "')";
-        return false;
-      }
-      o.vct.slices = static_cast<int>(d);
-    }
-    else if (a == "--grid")
-    {
-      if (!value())
-        return false;
-      if (v != "world" && v != "eye" && v != "frustum")
-      {
-        error = "--grid is world, eye or frustum (got '" + v + "')";
-        return false;
-      }
-      o.grid = v;
-    }
-    else if (a == "--volume" || a == "--preset" || a == "--preset-file" || a == "--shape" || a == "--mesh" ||
-      a == "--pose" || a == "--mode")
-    {
-      if (!value())
-        return false;
-      std::string& field = a == "--volume" ? o.volume
-        : a == "--preset"                  ? o.preset
-        : a == "--preset-file"             ? o.presetFile
-        : a == "--shape"                   ? o.shape
-        : a == "--mesh"                    ? o.clipMesh
-        : a == "--pose"                    ? o.pose
-                                           : o.mode;
-      field = v;
-      o.volumeOptions |= a != "--volume";
-      if (a == "--mode" && v != "subtract" && v != "probe")
-      {
-        error = "--mode is subtract or probe (got '" + v + "')";
-        return false;
-      }
-    }
-    else if (a == "--absolute")
-      o.absolute = o.volumeOptions = true;
-    else if (a == "--unit-distance")
-    {
-      if (!number(o.unitDistance, 1e-9, 1e12))
-        return false;
-      o.volumeOptions = true;
-    }
-    else if (a == "--size")
-    {
-      if (!number(o.size, 1e-12, 1e12))
-        return false;
-      o.volumeOptions = true;
-    }
-    else if (a == "--backend")
-    {
-      if (!value())
-        return false;
-      if (v != "auto" && v != "cpu" && v != "gl")
-      {
-        error = "--backend is auto, cpu or gl (got '" + v + "')";
-        return false;
-      }
-      o.backend = v;
-    }
-    else if (a == "--fill")
-    {
-      if (!value())
-        return false;
-      if (v != "surface" && v != "parity")
-      {
-        error = "--fill is surface or parity (got '" + v + "')";
-        return false;
-      }
-      o.vct.surfaceVoxels = v == "surface";
-    }
-    else if (a == "--occupancy")
-    {
-      if (!value())
-        return false;
-      if (!cao::ParseVCTOccupancy(v, o.vct.occupancy))
-      {
-        error = "--occupancy is rays or volume (got '" + v + "')";
-        return false;
-      }
-    }
-    else if (a == "--ray-step")
-    {
-      if (!number(o.vct.rayStep, 0.1, 1))
-        return false;
-    }
-    else if (a == "--apex-offset")
-    {
-      if (!number(o.vct.apexOffset, 0, 4))
-        return false;
-    }
-    else if (a == "--cone-angle")
-    {
-      if (!number(o.vct.coneHalfAngle, 5, 45))
-        return false;
-    }
-    else if (a == "--cone-weights")
-    {
-      if (!value())
-        return false;
-      if (v != "cosine" && v != "equal")
-      {
-        error = "--cone-weights is cosine or equal (got '" + v + "')";
-        return false;
-      }
-      o.vct.weights = v == "cosine" ? cao::ConeWeights::Cosine : cao::ConeWeights::Equal;
-    }
-    else if (a == "--falloff")
-    {
-      if (!value())
-        return false;
-      if (!cao::ParseFalloff(v, o.reference.falloff))
-      {
-        error = "--falloff is step, linear or quartic (got '" + v + "')";
-        return false;
-      }
-    }
-    else if (a == "--weighting")
-    {
-      if (!value())
-        return false;
-      if (!cao::ParseWeighting(v, o.reference.weighting))
-      {
-        error = "--weighting is cosine or uniform (got '" + v + "')";
-        return false;
-      }
-    }
-    else if (a == "--image")
-    {
-      if (!value())
-        return false;
-      int w = 0, h = 0;
-      char x = 0, extra = 0;
-      std::istringstream s(v);
-      if (!(s >> w >> x >> h) || x != 'x' || (s >> extra) || w < 1 || h < 1 ||
-        w > cao::PixelCamera::MaximumSide || h > cao::PixelCamera::MaximumSide)
-      {
-        error = "--image is WxH, each 1.." + std::to_string(cao::PixelCamera::MaximumSide) +
-          " (got '" + v + "')";
-        return false;
-      }
-      o.view.width = w;
-      o.view.height = h;
-    }
-    else if (a == "--azimuth")
-    {
-      if (!number(o.view.azimuth, -3600, 3600))
-        return false;
-    }
-    else if (a == "--elevation")
-    {
-      if (!number(o.view.elevation, -89.9, 89.9))
-        return false;
-    }
-    else if (a == "--zoom")
-    {
-      if (!number(o.view.zoom, 1e-3, 1e3))
-        return false;
-    }
-    else if (a == "--kernel")
-    {
-      if (!number(d, 1, 1024) || d != std::floor(d))
-        return false;
-      o.kernel = static_cast<int>(d);
-    }
-    else if (a == "--threads")
-    {
-      if (!number(d, 0, 1024))
-        return false;
-      o.threads = static_cast<int>(d);
-    }
-    else if (a == "--window")
-    {
-      if (!value())
-        return false;
-      if (v != "auto" && v != "egl" && v != "x")
-      {
-        error = "--window is auto, egl or x";
-        return false;
-      }
-      o.window = v;
-    }
-    else if (a == "--ao-only")
-      o.aoOnly = true;
-    else if (a == "--json")
-      o.json = true;
-    else if (a == "-o" || a == "--output")
-    {
-      if (!value())
-        return false;
-      o.output = v;
-    }
-    else if (!a.empty() && a[0] == '-')
-    {
-      error = "unknown option " + a;
-      return false;
-    }
-    else
-      o.meshes.push_back(a);
-  }
-  if (o.meshes.empty())
-  {
-    error = "give at least one mesh";
-    return false;
-  }
-  if (o.output.empty())
-  {
-    error = "give the output picture with -o out.png";
-    return false;
-  }
-  for (const std::string& option : o.screenOptions)
-    if (!(o.method == "vao" && option != "--march") && !(o.method == "hbao" && option != "--samples"))
-      return error = option + " is for --method " + (option == "--march" ? "hbao" : option == "--samples" ? "vao" : "hbao or vao") +
-          " (got --method " + o.method + ")", false;
-  if (!o.quality.empty() && o.vao.quality == cao::VAOQuality::Custom && o.method == "vao")
-    return error = "give --quality or --samples, not both", false;
-  if (!o.quality.empty())
-  {
-    const std::string& q = o.quality;
-    if (o.method == "hbao" ? !cao::ParseHBAOPreset(q, o.hbao.preset) || o.hbao.preset == cao::HBAOPreset::Custom
-        : o.method == "vao" ? !cao::ParseVAOQuality(q, o.vao.quality) || o.vao.quality == cao::VAOQuality::Custom
-                            : !cao::ParseVCTQuality(q, o.vct.quality) || o.vct.quality == cao::VCTQuality::Custom)
-    {
-      error = "--quality for --method " + o.method + " is " +
-        (o.method == "hbao" ? std::string("table1, fig11a, fig11b, fig11c, fig11d, low, medium or high")
-                            : std::string("low, medium or high")) + " (got '" + q + "')";
-      return false;
-    }
-  }
-  if (o.volume.empty() && o.volumeOptions)
-  {
-    error = "--preset, --preset-file, --absolute, --unit-distance, --shape, --size, --mesh, --pose and --mode "
-            "describe the occluding volume: give --volume";
-    return false;
-  }
-  if (!o.volume.empty() && o.method != "vct")
-  {
-    error = "--volume occludes the meshes in --method vct (its cones read the volume's opacity; the "
-            "screen-space methods see only the meshes' depth, the reference and ssao only the meshes)";
-    return false;
-  }
-  const std::filesystem::path folder = std::filesystem::path(o.output).parent_path();
-  if (!folder.empty() && !std::filesystem::is_directory(folder))
-  {
-    error = "cannot write '" + o.output + "': the folder '" + folder.string() + "' does not exist";
-    return false;
-  }
-  o.reference.threads = o.threads;
-  return true;
+  return CLI::Validator(
+    [=](std::string& v) -> std::string {
+      double x = 0.0;
+      return ToDouble(v, x) && x >= lo && x <= hi ? std::string()
+                                                  : "bad value '" + v + "' (" + limit + ")";
+    },
+    "");
 }
 
+std::string SlicesReason(const std::string& v)
+{
+  double x = 0.0;
+  return ToDouble(v, x) && x == std::floor(x) && x >= 32 && x <= 1024 &&
+      static_cast<int>(x) % 32 == 0
+    ? std::string()
+    : "bad value '" + v + "' (an integer, 32 to 1024, a multiple of 32)";
+}
+
+std::string OccupancyReason(const std::string& v)
+{
+  cao::VCTOccupancy occupancy;
+  return cao::ParseVCTOccupancy(v, occupancy) ? std::string()
+                                              : "bad value '" + v + "' (expected rays or volume)";
+}
+
+}
+
+// ------------------------------------------------------------ shared options
+CLI::Option* AddSurfaceImage(CLI::App* app, SurfaceView& view, int lo, int hi)
+{
+  return AddImageSize(app, "--image", view.width, view.height, lo, hi,
+    "the image, each side " + std::to_string(lo) + " to " + std::to_string(hi) +
+      " pixels (default " + std::to_string(view.width) + "x" + std::to_string(view.height) + ")");
+}
+
+CLI::Option* AddSurfaceThreads(CLI::App* app, int& threads)
+{
+  return AddInteger(app, "--threads", threads, 0, 1024, "CPU threads (0: all; default 0)");
+}
+
+CLI::Option* AddSurfaceWindow(CLI::App* app, std::string& window, const std::string& what)
+{
+  return AddChoice(
+    app, "--window", window, { "auto", "egl", "x" }, what + " (default auto)");
+}
+
+CLI::Option* AddSurfaceKernel(CLI::App* app, int& kernel, const std::string& help)
+{
+  return AddInteger(app, "--kernel", kernel, 1, 1024, help);
+}
+
+CLI::Option* AddSurfaceQuality(
+  CLI::App* app, std::string& quality, bool perMethod, const std::string& help)
+{
+  if (perMethod)
+    return AddText(app, "--quality", quality, "NAME", help);
+  return AddChoice(app, "--quality", quality, { "low", "medium", "high" }, help);
+}
+
+CLI::Option* AddSurfaceSlices(CLI::App* app, int& slices, const std::string& help)
+{
+  return app->add_option("--slices", slices, Wrap(help))
+    ->type_name("N")
+    ->check(CLI::Validator(
+      [](std::string& v) -> std::string {
+        const std::string reason = SlicesReason(v);
+        double x = 0.0;
+        if (reason.empty() && ToDouble(v, x))
+          v = std::to_string(static_cast<int>(x));
+        return reason;
+      },
+      ""));
+}
+
+CLI::Option* AddSurfaceSlices(CLI::App* app, std::vector<int>& slices, const std::string& help)
+{
+  return AddList(app, "--slices", "N,...", help, SlicesReason,
+    [&slices](const std::vector<std::string>& items) {
+      slices.clear();
+      for (const std::string& item : items)
+      {
+        double x = 0.0;
+        ToDouble(item, x);
+        slices.push_back(static_cast<int>(x));
+      }
+    });
+}
+
+CLI::Option* AddSurfaceOccupancy(
+  CLI::App* app, cao::VCTOccupancy& occupancy, const std::string& help)
+{
+  return app
+    ->add_option_function<std::string>(
+      "--occupancy",
+      [&occupancy](const std::string& v) { cao::ParseVCTOccupancy(v, occupancy); }, Wrap(help))
+    ->type_name("rays|volume")
+    ->check(CLI::Validator([](std::string& v) { return OccupancyReason(v); }, ""));
+}
+
+CLI::Option* AddSurfaceOccupancy(
+  CLI::App* app, std::vector<cao::VCTOccupancy>& occupancies, const std::string& help)
+{
+  return AddList(app, "--occupancy", "rays|volume,...", help, OccupancyReason,
+    [&occupancies](const std::vector<std::string>& items) {
+      occupancies.clear();
+      for (const std::string& item : items)
+      {
+        cao::VCTOccupancy occupancy;
+        cao::ParseVCTOccupancy(item, occupancy);
+        occupancies.push_back(occupancy);
+      }
+    });
+}
+
+const std::vector<std::string>& SurfaceGridNames()
+{
+  static const std::vector<std::string> names{ "world", "eye", "frustum" };
+  return names;
+}
+
+CLI::Option* AddRadiusFraction(
+  CLI::App* app, double& fraction, double hi, const std::string& help)
+{
+  return AddNumber(app, "--radius-fraction", fraction, 0.0, hi, true, Interval(0.0, hi, true), help)
+    ->type_name("F");
+}
+
+CLI::Option* AddOrbit(CLI::App* app, double& orbit, double hi, const std::string& help)
+{
+  return AddNumber(app, "--orbit", orbit, 0.0, hi, true, Interval(0.0, hi, true) + " degrees", help)
+    ->type_name("DEG");
+}
+
+CLI::Option* AddRepeats(CLI::App* app, int& repeats, const std::string& help)
+{
+  return AddInteger(app, "--repeats", repeats, 1, 100, help);
+}
+
+CLI::Option* AddSizes(
+  CLI::App* app, std::vector<std::pair<int, int>>& sizes, const std::string& help)
+{
+  return AddList(
+    app, "--sizes", "WxH,...", help,
+    [](const std::string& item) {
+      std::vector<std::pair<int, int>> one;
+      std::string error;
+      return ParseSizes(item, "--sizes", one, error)
+        ? std::string()
+        : "bad value '" + item + "' (WxH, each side 16 to 8192 pixels)";
+    },
+    [&sizes](const std::vector<std::string>& items) {
+      sizes.clear();
+      for (const std::string& item : items)
+      {
+        std::vector<std::pair<int, int>> one;
+        std::string error;
+        ParseSizes(item, "--sizes", one, error);
+        sizes.insert(sizes.end(), one.begin(), one.end());
+      }
+    });
+}
+
+CLI::Option* AddGBuffers(CLI::App* app, std::vector<int>& gbuffers,
+  const std::vector<std::string>& choices, const std::vector<int>& codes, const std::string& help)
+{
+  return AddNameList(app, "--gbuffers", gbuffers, choices, codes, help);
 }
 
 void FitCamera(vtkCamera* camera, const double b[6], const SurfaceView& o)
@@ -1008,13 +767,77 @@ std::string CheckFrameMemory(int width, int height)
   return msg.str();
 }
 
-int RunSurface(int argc, char* argv[])
+namespace
 {
-  SurfaceOptions o;
-  std::string error;
-  if (!Parse(argc, argv, o, error))
-    return Fail(2, error);
-  error = CheckFrameMemory(o.view.width, o.view.height);
+/// `cao surface` after the parse: the checks between options, then the run.
+int Run(SurfaceOptions& o, const CLI::App* app)
+{
+  if (o.output.empty())
+    return Fail(2, "give the output picture with -o out.png");
+  // --march, --samples and --filter are for hbao or vao (the first that is
+  // not for --method, in the command line's order).
+  for (const CLI::Option* option : app->parse_order())
+  {
+    const std::string name = option->get_name();
+    if (name != "--march" && name != "--samples" && name != "--filter")
+      continue;
+    if (!(o.method == "vao" && name != "--march") && !(o.method == "hbao" && name != "--samples"))
+      return Fail(2,
+        name + " is for --method " +
+          (name == "--march" ? "hbao" : name == "--samples" ? "vao" : "hbao or vao") +
+          " (got --method " + o.method + ")");
+  }
+  if (app->count("--samples") > 0)
+    o.vao.quality = cao::VAOQuality::Custom;
+  if (!o.quality.empty() && o.vao.quality == cao::VAOQuality::Custom && o.method == "vao")
+    return Fail(2, "give --quality or --samples, not both");
+  if (!o.quality.empty())
+  {
+    const std::string& q = o.quality;
+    if (o.method == "hbao" ? !cao::ParseHBAOPreset(q, o.hbao.preset) || o.hbao.preset == cao::HBAOPreset::Custom
+        : o.method == "vao" ? !cao::ParseVAOQuality(q, o.vao.quality) || o.vao.quality == cao::VAOQuality::Custom
+                            : !cao::ParseVCTQuality(q, o.vct.quality) || o.vct.quality == cao::VCTQuality::Custom)
+      return Fail(2,
+        "--quality for --method " + o.method + " is " +
+          (o.method == "hbao" ? std::string("table1, fig11a, fig11b, fig11c, fig11d, low, medium or high")
+                              : std::string("low, medium or high")) +
+          " (got '" + q + "')");
+  }
+  if (!o.filter.empty())
+  {
+    o.vao.interleave = o.filter == "on";
+    o.hbao.blurRadius = o.filter == "on" ? 2 : 0;
+  }
+  if (!o.march.empty())
+    o.hbao.deflect = o.march == "deflect";
+  if (!o.fill.empty())
+    o.vct.surfaceVoxels = o.fill == "surface";
+  if (!o.coneWeights.empty())
+    o.vct.weights = o.coneWeights == "cosine" ? cao::ConeWeights::Cosine : cao::ConeWeights::Equal;
+  if (!o.falloff.empty())
+    cao::ParseFalloff(o.falloff, o.reference.falloff);
+  if (!o.weighting.empty())
+    cao::ParseWeighting(o.weighting, o.reference.weighting);
+  o.backend = o.backends.empty() || o.backends[0] == vtkLocalAmbientOcclusion::AUTO ? "auto"
+    : o.backends[0] == vtkLocalAmbientOcclusion::CPU                               ? "cpu"
+                                                                         : "gl";
+  bool volumeOptions = false; // any option of the occluding volume but --volume
+  for (const char* name : { "--preset", "--preset-file", "--absolute", "--unit-distance", "--shape",
+         "--size", "--mesh", "--pose", "--mode" })
+    volumeOptions |= app->count(name) > 0;
+  if (o.volume.empty() && volumeOptions)
+    return Fail(2,
+      "--preset, --preset-file, --absolute, --unit-distance, --shape, --size, --mesh, --pose and "
+      "--mode describe the occluding volume: give --volume");
+  if (!o.volume.empty() && o.method != "vct")
+    return Fail(2,
+      "--volume occludes the meshes in --method vct (its cones read the volume's opacity; the "
+      "screen-space methods see only the meshes' depth, the reference and ssao only the meshes)");
+  const std::filesystem::path folder = std::filesystem::path(o.output).parent_path();
+  if (!folder.empty() && !std::filesystem::is_directory(folder))
+    return Fail(2, "cannot write '" + o.output + "': the folder '" + folder.string() + "' does not exist");
+  o.reference.threads = o.threads;
+  std::string error = CheckFrameMemory(o.view.width, o.view.height);
   if (!error.empty())
     return Fail(2, error);
   SelectThreads(o.threads);
@@ -1221,5 +1044,141 @@ int RunSurface(int argc, char* argv[])
               << radius << ", mean AO " << (covered ? sum / covered : 0.0) << ", AO "
               << std::fixed << std::setprecision(1) << aoMs << " ms)\n";
   return 0;
+}
+}
+
+namespace
+{
+const char* SurfaceFooter = R"(The occluding volume (vct, CPU or OpenGL): its opacity darkens the meshes
+near it (the picture shows the meshes only); its options describe it and
+need --volume.
+
+Exit codes: 0 done, 2 bad input, 1 failure.)";
+}
+
+Command AddSurfaceCommand(CLI::App& cao)
+{
+  auto o = std::make_shared<SurfaceOptions>();
+  CLI::App* app = cao.add_subcommand("surface",
+    "ambient occlusion of triangle meshes seen by one camera (voxel cone tracing, HBAO, VAO, "
+    "the ray-traced reference, vtkSSAOPass or none), as a picture or the AO term alone");
+  AddMeshes(app, o->meshes);
+  AddChoice(app, "--method", o->method, { "vct", "hbao", "vao", "reference", "ssao", "none" },
+    "the method (default vct):\n"
+    "vct: voxel cone tracing (seed 000) on a bit grid of the meshes (CPU or OpenGL: --backend);\n"
+    "hbao: horizon-based AO (seed 002) on the G-buffer (CPU or OpenGL: --backend);\n"
+    "vao: volumetric AO (seed 001, base disk, mu = (r/R)^4) on the G-buffer (CPU or OpenGL);\n"
+    "reference: CPU ray tracing in double precision (Kernels/Surface);\n"
+    "ssao: VTK's vtkSSAOPass, its default kernel (32, --kernel) and bias, blurred, at the same "
+    "radius, read back from an unlit white material;\n"
+    "none: AO = 1");
+  AddLength(app, "--radius", o->radius,
+    "world units (default: a tenth of the meshes' bounding-box diagonal)")
+    ->type_name("R");
+  AddSurfaceQuality(app, o->quality, true,
+    "vct: low|medium|high, the paper's presets (spheres 3/5/7, prisms 3/6/12; default medium);\n"
+    "hbao: the paper's configurations table1|fig11a|fig11b|fig11c|fig11d (directions/steps/normal "
+    "rays 7/12/1, 6/9/0 with linear attenuation, 8/18/0, 8/18/1, 18/25/2), or low|medium|high = "
+    "fig11a|table1|fig11d (default table1);\n"
+    "vao: low|medium|high, 8/16/32 samples per pixel (default medium)");
+  AddChoice(app, "--march", o->march, { "deflect", "sweep" },
+    "hbao: the horizon march (default deflect, the paper's Fig. 4)");
+  AddInteger(app, "--samples", o->vao.samples, 1, 256,
+    "vao: samples per pixel, 1 to 256 (instead of --quality)");
+  AddChoice(app, "--filter", o->filter, { "on", "off" },
+    "hbao: its blur; vao: its 4 x 4 sample sets and filter (default on)");
+  AddSurfaceSlices(app, o->vct.slices,
+    "vct: depth slices of the grid, 32 to 1024, a multiple of 32 (default 256; the paper's 128)");
+  AddChoice(app, "--grid", o->grid, SurfaceGridNames(),
+    "vct: the grid (world: default, built once per geometry; eye: the camera's axes, parallel "
+    "columns, its slices in depth, built again whenever the camera turns; frustum: the paper's "
+    "eye-space grid, a column per pixel, slices from each pixel's visible depth to the scene's "
+    "far depth, built again at every camera change)");
+  AddChoice(app, "--cone-weights", o->coneWeights, { "cosine", "equal" },
+    "vct (default cosine; equal: the paper's average)");
+  AddBackend(app, o->backends, false)
+    ->description(Wrap("vct, hbao, vao: where it runs (auto: OpenGL 4.3 on a hardware GPU, the "
+                       "CPU with a software rasterizer such as llvmpipe or none; gl: OpenGL even "
+                       "on llvmpipe, an error without a context)"));
+  AddChoice(app, "--fill", o->fill, { "surface", "parity" },
+    "vct: a closed mesh's voxels: its parity plus the voxels its surface crosses (default), or "
+    "the paper's parity alone");
+  AddSurfaceOccupancy(app, o->vct.occupancy,
+    "vct: a cone's occlusion: the cosine-weighted share of its rays that meet a set voxel "
+    "(default), or the paper's solid volume fraction of its spheres (z-column prisms, bitCount)");
+  AddNumber(app, "--ray-step", o->vct.rayStep, 0.1, 1.0, false, Interval(0.1, 1.0),
+    "vct, rays: voxels between a ray's samples, 0.1 to 1 (default 1)")
+    ->type_name("V");
+  AddNumber(app, "--cone-angle", o->vct.coneHalfAngle, 5.0, 45.0, false, Interval(5.0, 45.0),
+    "vct: each cone's half-angle, 5 to 45 (default 30)")
+    ->type_name("DEG");
+  AddNumber(app, "--apex-offset", o->vct.apexOffset, 0.0, 4.0, false, Interval(0.0, 4.0),
+    "vct: the cones' apex above the surface, in voxels, 0 to 4 (default 1)")
+    ->type_name("V");
+  AddInteger(app, "--rays", o->reference.rays, 1, cao::SurfaceReferenceSettings::MaximumRays,
+    "reference: directions per pixel (default 1024, at most 1048576)");
+  AddChoice(app, "--falloff", o->falloff, { "step", "linear", "quartic" },
+    "reference (default step)");
+  AddChoice(app, "--weighting", o->weighting, { "cosine", "uniform" },
+    "reference (default cosine)");
+  AddSurfaceImage(app, o->view, 1, cao::PixelCamera::MaximumSide);
+  AddNumber(app, "--azimuth", o->view.azimuth, -3600, 3600, false, Interval(-3600, 3600),
+    "the camera's azimuth after fitting the meshes, degrees (default 30), as vtkCamera's")
+    ->type_name("A");
+  AddNumber(app, "--elevation", o->view.elevation, -89.9, 89.9, false, Interval(-89.9, 89.9),
+    "the camera's elevation after fitting the meshes, degrees (default 20), as vtkCamera's")
+    ->type_name("E");
+  AddNumber(app, "--zoom", o->view.zoom, 1e-3, 1e3, false, Interval(1e-3, 1e3),
+    "the camera's zoom after fitting the meshes (default 1.0), as vtkCamera's")
+    ->type_name("Z");
+  app->add_flag("--ao-only", o->aoOnly,
+    Wrap("write the AO term alone: 16-bit grey and alpha (1 = open; background transparent)"));
+  AddJson(app, o->json, "print the settings, per-stage times and counts as JSON");
+  AddSurfaceThreads(app, o->threads);
+  AddSurfaceWindow(app, o->window, "ssao's offscreen window");
+  AddSurfaceKernel(app, o->kernel, "ssao: vtkSSAOPass's kernel size, 1 to 1024 (default 32, VTK's)");
+  AddOutput(app, o->output, "the picture, .png (required)");
+  // The occluding volume and the clip that carves it.
+  const std::string volume = "Occluding volume (vct)";
+  AddText(app, "--volume", o->volume, "FILE",
+    "a volume as for cao render (.vti, .mhd, .slc, .nii, .vtk) occluding the meshes")
+    ->group(volume);
+  AddText(app, "--preset", o->preset, "NAME",
+    "its opacity, as for cao render: a built-in transfer function, warm (default), bone, cool or "
+    "grayscale, or a name in --preset-file")
+    ->group(volume);
+  AddText(app, "--preset-file", o->presetFile, "FILE",
+    "its opacity from a ParaView colour-map preset (.json), as for cao render")
+    ->group(volume);
+  app->add_flag("--absolute", o->absolute, Wrap("use the preset's values as they are (default: rescale to the data), as for cao render"))
+    ->group(volume);
+  AddUnitDistance(app, o->unitDistance)
+    ->check(Within(1e-9, 1e12, Interval(1e-9, 1e12)))
+    ->description(Wrap("the length the opacity refers to, world units, 1e-09 to 1e+12 (default "
+                       "1, VTK's ScalarOpacityUnitDistance)"))
+    ->group(volume);
+  CLI::Option* shape = AddChoice(app, "--shape", o->shape, { "sphere", "cube", "torus", "plane" },
+    "the clip shape that carves it, as for cao render (default: no clip; a --shape or --mesh "
+    "clips, at --pose)")
+    ->group(volume);
+  AddLength(app, "--size", o->size,
+    "the clip shape's size, world units, 1e-12 to 1e+12 (default: 1/4 of the volume's smallest "
+    "extent)")
+    ->check(Within(1e-12, 1e12, Interval(1e-12, 1e12)))
+    ->type_name("S")
+    ->group(volume);
+  CLI::Option* mesh =
+    AddText(app, "--mesh", o->clipMesh, "FILE", "a clip mesh (.vtp, .vtk, .stl, .ply, .obj) instead of a shape")
+      ->group(volume);
+  shape->excludes(mesh);
+  mesh->excludes(shape);
+  AddText(app, "--pose", o->pose, "POSE",
+    "the clip's pose, \"tx ty tz [rx ry rz [s]]\", rotation in degrees (default: the volume's "
+    "centre)")
+    ->group(volume);
+  AddChoice(app, "--mode", o->mode, { "subtract", "probe" }, "the clip's mode (default subtract)")
+    ->group(volume);
+  app->footer(SurfaceFooter);
+  return { app, [o, app] { return Run(*o, app); } };
 }
 }

@@ -10,14 +10,18 @@
 #ifndef caoSurface_h
 #define caoSurface_h
 
+#include "caoOptions.h"
+
 #include "caoScreenSpaceAO.h"
 #include "caoSurfaceReference.h"
 #include "caoVoxelConeTracing.h"
 
 #include "vtkSmartPointer.h"
 
+#include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 class vtkCamera;
@@ -28,9 +32,9 @@ class vtkSSAOPass;
 
 namespace caocli
 {
-extern const char* SurfaceUsage;
-/// argv[1] is "surface". Exit codes as the rest of `cao`.
-int RunSurface(int argc, char* argv[]);
+/// Adds `cao surface` under `cao` (the root app). Its options are bound to
+/// options the command owns; run() runs it after the parse (the exit code).
+Command AddSurfaceCommand(CLI::App& cao);
 
 /// The meshes of a scene, as read (for VTK's renderers), as triangles (for
 /// the voxelizer) and as one BVH (for the G-buffer and the reference).
@@ -56,6 +60,50 @@ struct SurfaceView
   int width = 512, height = 512;
   double azimuth = 30, elevation = 20, zoom = 1.0;
 };
+
+// ------------------------------------------------------------------------
+// The options `cao surface` and `cao bench surface`, `surface-frame` and
+// `surface-scale` share, each defined once here (caoSurface.cxx). Where the
+// commands' limits or defaults differ, they are parameters.
+
+/// --image WxH into `view` (its width and height are the default), each
+/// side `lo` to `hi` pixels (surface 1 to 16384, bench surface 8 to 4096).
+CLI::Option* AddSurfaceImage(CLI::App* app, SurfaceView& view, int lo, int hi);
+/// --threads N: CPU threads, 0 (all cores, the default) to 1024.
+CLI::Option* AddSurfaceThreads(CLI::App* app, int& threads);
+/// --window auto|egl|x: the offscreen window (`what` it is for).
+CLI::Option* AddSurfaceWindow(CLI::App* app, std::string& window, const std::string& what);
+/// --kernel N: vtkSSAOPass's kernel size, 1 to 1024.
+CLI::Option* AddSurfaceKernel(CLI::App* app, int& kernel, const std::string& help);
+/// --quality NAME. `perMethod` (cao surface): any name, checked against
+/// --method after the parse; otherwise low, medium or high.
+CLI::Option* AddSurfaceQuality(
+  CLI::App* app, std::string& quality, bool perMethod, const std::string& help);
+/// --slices: vct grid depth slices, 32 to 1024, a multiple of 32; one, or a
+/// comma list (bench surface).
+CLI::Option* AddSurfaceSlices(CLI::App* app, int& slices, const std::string& help);
+CLI::Option* AddSurfaceSlices(CLI::App* app, std::vector<int>& slices, const std::string& help);
+/// --occupancy rays|volume: one, or a comma list (bench surface).
+CLI::Option* AddSurfaceOccupancy(
+  CLI::App* app, cao::VCTOccupancy& occupancy, const std::string& help);
+CLI::Option* AddSurfaceOccupancy(
+  CLI::App* app, std::vector<cao::VCTOccupancy>& occupancies, const std::string& help);
+/// The vct grids: world, eye, frustum (--grid, --grids).
+const std::vector<std::string>& SurfaceGridNames();
+/// --radius-fraction F in (0, `hi`] (bench surface 10, the others 1).
+CLI::Option* AddRadiusFraction(
+  CLI::App* app, double& fraction, double hi, const std::string& help);
+/// --orbit DEG in (0, `hi`] (bench surface 45, surface-frame 90).
+CLI::Option* AddOrbit(CLI::App* app, double& orbit, double hi, const std::string& help);
+/// --repeats N: 1 to 100.
+CLI::Option* AddRepeats(CLI::App* app, int& repeats, const std::string& help);
+/// --sizes: a comma list of WxH, each side 16 to 8192 (ParseSizes).
+CLI::Option* AddSizes(
+  CLI::App* app, std::vector<std::pair<int, int>>& sizes, const std::string& help);
+/// --gbuffers: a comma list of `choices` (bench surface: ray-cast, depth;
+/// surface-frame: auto, ray-cast, depth) stored as `codes`.
+CLI::Option* AddGBuffers(CLI::App* app, std::vector<int>& gbuffers,
+  const std::vector<std::string>& choices, const std::vector<int>& codes, const std::string& help);
 
 /// VTK's renderer fit (vtkRenderer::ResetCamera, VTK 9.2): the focal point
 /// at the bounds' centre, the bounding sphere filling the view angle (the

@@ -3,6 +3,7 @@ poses from the command line and from a file, --json, --verify (exact at
 every pose), the .vti it writes, and clear errors with non-zero exit codes
 for unreadable files, bad arguments and bad clip meshes."""
 import json
+import re
 import os
 import subprocess
 import sys
@@ -195,16 +196,27 @@ check(rc == 2 and err.strip().splitlines()[-1:] and err.strip().splitlines()[-1]
     "cao: error: unknown benchmark"), f"an unknown benchmark, in the tool's words: rc={rc} {err.strip()[:160]!r}")
 expect_error(["carve", neghip, "--pose", "1 2"], 2, "a pose is", "malformed pose")
 expect_error(["carve", neghip, "--mesh", open_mesh], 2, "open", "open clip mesh")
-expect_error(["carve", neghip, "--shape", "teapot"], 2, "unknown shape", "unknown shape")
+expect_error(["carve", neghip, "--shape", "teapot"], 2, "--shape: bad value 'teapot' (expected sphere",
+             "unknown shape")
 expect_error(["carve", neghip, "--poses", os.path.join(tmp, "nope.txt")], 2, "cannot open", "missing pose file")
 rc, out, err = run("--help")
-check(rc == 0 and "cao carve" in out and "cao render" in out, "--help")
-check(all(o in out for o in ("--quality", "--density", "--offset", "--variation")),
-      "--help lists --quality, --density, --offset and --variation")
+check(rc == 0 and all(re.search(r"^  %s " % c, out, re.M) for c in ("lao", "carve", "tf", "render", "surface", "bench")),
+      "--help lists the commands")
+rc, out, err = run("--help-all")
+check(rc == 0 and all(o in out for o in ("--quality", "--density", "--offset", "--variation", "--image")),
+      "--help-all lists every command's options (--quality, --density, --offset, --variation, --image)")
+# Options that conflict or repeat are refused, naming both.
+expect_error(["carve", neghip, "--shape", "cube", "--mesh", open_mesh], 2, "--shape excludes --mesh",
+             "--shape and --mesh together")
+expect_error(["lao", neghip, "--reach", "2", "--reach", "3"], 2, "--reach is given more than once",
+             "a repeated option")
+expect_error(["lao"], 2, "missing VOLUME", "no volume")
+expect_error(["bench"], 2, "missing benchmark (expected accuracy", "no benchmark")
+expect_error([], 2, "missing command (expected lao, carve", "no command")
 rc, out, err = run("--version")
 check(rc == 0 and out.startswith("cao (ContextualAO) ") and "VTK 9." in out and not err,
       f"--version: rc={rc} {out.strip()[:100]}")
-expect_error(["--versions"], 2, "unknown command", "--versions is not --version")
+expect_error(["--versions"], 2, "unknown option '--versions'", "--versions is not --version")
 
 # Quality presets: `--quality interactive` runs, reports (JSON) and records
 # (LAOSettings in the .vti) the settings in effect, and its AO equals the
@@ -272,16 +284,18 @@ rc, out, err = run("lao", neghip, "--reach", "4", "--rays", "6", "--density", "2
 check(rc == 0 and json.loads(out)["samples"] == 8 and json.loads(out)["start_offset"] == 0.5 and
       json.loads(out)["variation"] == "rotate+jitter",
       f"lao --density 2 --offset 0.5 --variation rotate+jitter: rc={rc} {out.strip()[:300]}")
-expect_error(["lao", neghip, "--quality", "bogus"], 2, "bad quality preset", "unknown quality preset")
-expect_error(["carve", neghip, "--variation", "bogus"], 2, "bad ray variation", "unknown variation")
+expect_error(["lao", neghip, "--quality", "bogus"], 2, "--quality: bad value 'bogus' (expected custom",
+             "unknown quality preset")
+expect_error(["carve", neghip, "--variation", "bogus"], 2, "--variation: bad value 'bogus' (expected none",
+             "unknown variation")
 expect_error(["lao", neghip, "--offset", "1.5"], 2, "--offset", "offset out of range")
 expect_error(["lao", neghip, "--density", "0"], 2, "--density", "zero density")
 expect_error(["lao", neghip, "--quality", "reference", "--rays", "6"], 2, "cannot be combined",
              "a preset and an explicit ray pattern")
 expect_error(["render", neghip, "--quality", "bogus", "-o", os.path.join(tmp, "x_%d.png")], 2,
-             "bad quality preset", "render: unknown quality preset")
+             "--quality: bad value 'bogus'", "render: unknown quality preset")
 expect_error(["render", neghip, "--variation", "spin", "-o", os.path.join(tmp, "x_%d.png")], 2,
-             "bad ray variation", "render: unknown variation")
+             "--variation: bad value 'spin'", "render: unknown variation")
 expect_error(["render", neghip, "--offset", "1.5", "-o", os.path.join(tmp, "x_%d.png")], 2,
              "--offset", "render: offset out of range")
 
@@ -469,7 +483,7 @@ for size in ("1000", "10000"):
 for command, words in (("lao", "--offset"), ("carve", "--verify-geometry"), ("render", "--image")):
     rc, out, err = run(command, "--help")
     check(rc == 0 and words in out, f"cao {command} --help: rc={rc} {err.strip()[:100]}")
-rc, out, err = run("--help")
+rc, out, err = run("lao", "--help")
 check("default 0.5: mid-step" in out and "default 0;" not in out, "--help gives the offset default 0.5")
 rc, out, err = run("lao", neghip, "--rays", "rubiks54", "--reach", "4", "--json")
 check(rc == 0 and json.loads(out)["pattern"] == "rubiks54" and json.loads(out)["rays"] == 54 and
@@ -519,7 +533,7 @@ check(rc == 0 and t.get("changed_voxels") == 0 and t.get("recomputed_voxels") ==
       f"tf with no change recomputes nothing: {out.strip()[:300]}")
 rc, out, err = run("tf", neghip, "--from", "0,0,255,0.8", "--to", "0,0,255,0.8")
 check(rc == 0 and "voxels recomputed" in out and "max|diff|" in out, f"tf prints a table: {out[:300]}")
-expect_error(["tf", neghip, "--from", "0,0,255,0.8"], 2, "--from and --to", "tf without --to")
+expect_error(["tf", neghip, "--from", "0,0,255,0.8"], 2, "--to is required", "tf without --to")
 expect_error(["tf", neghip, "--from", "0,0,255,0.8", "--to", "0,0,255,5"], 2, "0 to 1",
              "tf with an opacity above 1")
 expect_error(["tf", neghip, "--from", "0,0,255,0.8", "--to", "0,0,255"], 2, "pairs", "tf with an odd list")
@@ -572,9 +586,9 @@ expect_error(["render", neghip, "--sample-distance", "0", "-o", frame], 2, "posi
 expect_error(["render", neghip, "--sample-distance", "1e-9", "-o", frame], 2, "1/200 of the smallest",
              "render --sample-distance 1e-9")
 expect_error(["render", neghip, "--shape", "cube", "--mesh", os.path.join(data, "Bunny.vtp"), "-o", frame],
-             2, "--shape and --mesh", "render --shape with --mesh")
+             2, "--shape excludes --mesh", "render --shape with --mesh")
 expect_error(["carve", neghip, "--shape", "cube", "--mesh", os.path.join(data, "Bunny.vtp")], 2,
-             "--shape and --mesh", "carve --shape with --mesh")
+             "--shape excludes --mesh", "carve --shape with --mesh")
 expect_error(["render", neghip, "--no-clip", "--shape", "torus", "-o", frame], 2, "--no-clip",
              "render --no-clip with --shape")
 # Scale and place do not change the picture: neghip at spacing 1e-6 (with

@@ -1,0 +1,609 @@
+#include "caoOptions.h"
+
+#include "caoCommandLine.h"
+#include "caoLAO.h"
+#include "caoLAOSettings.h"
+#include "vtkCAOInput.h"
+#include "vtkLocalAmbientOcclusion.h"
+
+#include <cctype>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+namespace caocli
+{
+namespace
+{
+constexpr std::size_t NameColumn = 30, HelpWidth = 79;
+
+std::string Shortest(double x)
+{
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.17g", x);
+  return text;
+}
+
+std::string Or(const std::vector<std::string>& items)
+{
+  std::string s;
+  for (std::size_t i = 0; i < items.size(); ++i)
+    s += (i == 0 ? "" : i + 1 == items.size() ? " or " : ", ") + items[i];
+  return s;
+}
+}
+
+CLI::Validator Check(std::function<std::string(std::string&)> check)
+{
+  return CLI::Validator(std::move(check), "");
+}
+
+std::string Expected(const std::vector<std::string>& choices)
+{
+  return "expected " + Or(choices);
+}
+
+int Fail(int code, const std::string& message)
+{
+  std::cerr << "cao: error: " << message << "\n";
+  return code;
+}
+
+std::string Wrap(const std::string& text)
+{
+  const std::size_t width = HelpWidth - NameColumn;
+  std::string out, line;
+  std::istringstream paragraphs(text);
+  std::string paragraph;
+  bool firstParagraph = true;
+  while (std::getline(paragraphs, paragraph))
+  {
+    if (!firstParagraph)
+      out += "\n";
+    firstParagraph = false;
+    std::istringstream words(paragraph);
+    std::string word;
+    line.clear();
+    bool first = true;
+    while (words >> word)
+    {
+      if (!line.empty() && line.size() + 1 + word.size() > width)
+      {
+        out += (first ? "" : "\n") + line;
+        first = false;
+        line.clear();
+      }
+      line += (line.empty() ? "" : " ") + word;
+    }
+    out += (first ? "" : "\n") + line;
+  }
+  return out;
+}
+
+CLI::Option* AddNumber(CLI::App* app, const std::string& name, double& target, double lo,
+  double hi, bool openLow, const std::string& limit, const std::string& help)
+{
+  return app->add_option(name, target, Wrap(help))
+    ->type_name("X")
+    ->check(Check([=](std::string& v) -> std::string {
+      double x = 0.0;
+      if (!ToDouble(v, x) || x < lo || x > hi || (openLow && x <= lo))
+        return "bad value '" + v + "' (" + limit + ")";
+      v = Shortest(x);
+      return "";
+    }));
+}
+
+CLI::Option* AddLength(
+  CLI::App* app, const std::string& name, double& target, const std::string& help)
+{
+  return AddNumber(app, name, target, 0.0, HUGE_VAL, true, "a positive length in world units",
+    help)
+    ->type_name("L");
+}
+
+CLI::Option* AddInteger(
+  CLI::App* app, const std::string& name, int& target, int lo, int hi, const std::string& help)
+{
+  const std::string limit = "an integer, " + std::to_string(lo) + " to " + std::to_string(hi);
+  return app->add_option(name, target, Wrap(help))
+    ->type_name("N")
+    ->check(Check([=](std::string& v) -> std::string {
+      double x = 0.0;
+      if (!ToDouble(v, x) || x != std::floor(x) || x < lo || x > hi)
+        return "bad value '" + v + "' (" + limit + ")";
+      v = std::to_string(static_cast<long long>(x));
+      return "";
+    }));
+}
+
+CLI::Option* AddChoice(CLI::App* app, const std::string& name, std::string& target,
+  const std::vector<std::string>& choices, const std::string& help)
+{
+  std::string type;
+  for (const std::string& c : choices)
+    type += (type.empty() ? "" : "|") + c;
+  return app->add_option(name, target, Wrap(help))
+    ->type_name(type)
+    ->check(Check([=](std::string& v) -> std::string {
+      for (const std::string& c : choices)
+        if (v == c)
+          return "";
+      return "bad value '" + v + "' (expected " + Or(choices) + ")";
+    }));
+}
+
+CLI::Option* AddText(CLI::App* app, const std::string& name, std::string& target,
+  const std::string& typeName, const std::string& help)
+{
+  return app->add_option(name, target, Wrap(help))
+    ->type_name(typeName)
+    ->check(Check([](std::string& v) -> std::string {
+      return v.empty() ? std::string("an empty value") : std::string();
+    }));
+}
+
+CLI::Option* AddNumberList(CLI::App* app, const std::string& name, std::vector<double>& target,
+  const std::string& typeName, const std::string& help)
+{
+  return app
+    ->add_option_function<std::string>(
+      name,
+      [&target](const std::string& v) {
+        target.clear();
+        for (const std::string& s : Split(v, ','))
+        {
+          double x = 0.0;
+          ToDouble(s, x);
+          target.push_back(x);
+        }
+      },
+      Wrap(help))
+    ->type_name(typeName)
+    ->check(Check([](std::string& v) -> std::string {
+      if (v.empty() || HasEmptyItem(v))
+        return "an empty item in '" + v + "'";
+      for (const std::string& s : Split(v, ','))
+      {
+        double x = 0.0;
+        if (!ToDouble(s, x))
+          return "bad number '" + s + "' in '" + v + "'";
+      }
+      return "";
+    }));
+}
+
+CLI::Option* AddList(CLI::App* app, const std::string& name, const std::string& typeName,
+  const std::string& help, std::function<std::string(const std::string&)> check,
+  std::function<void(const std::vector<std::string>&)> store)
+{
+  return app
+    ->add_option_function<std::string>(
+      name, [store](const std::string& v) { store(Split(v, ',')); }, Wrap(help))
+    ->type_name(typeName)
+    ->check(CLI::Validator(
+      [check](std::string& v) -> std::string {
+        if (v.empty() || HasEmptyItem(v))
+          return "an empty item in '" + v + "'";
+        for (const std::string& item : Split(v, ','))
+        {
+          const std::string reason = check(item);
+          if (!reason.empty())
+            return reason;
+        }
+        return "";
+      },
+      ""));
+}
+
+CLI::Option* AddNameList(CLI::App* app, const std::string& name, std::vector<int>& target,
+  const std::vector<std::string>& choices, const std::vector<int>& codes, const std::string& help)
+{
+  std::string type;
+  for (const std::string& c : choices)
+    type += (type.empty() ? "" : "|") + c;
+  auto index = [choices](const std::string& item) {
+    return static_cast<std::size_t>(
+      std::find(choices.begin(), choices.end(), item) - choices.begin());
+  };
+  return AddList(
+    app, name, type + ",...", help,
+    [index, choices](const std::string& item) {
+      return index(item) < choices.size() ? std::string()
+                                          : "bad value '" + item + "' (" + Expected(choices) + ")";
+    },
+    [&target, index, codes](const std::vector<std::string>& items) {
+      target.clear();
+      for (const std::string& item : items)
+        target.push_back(codes[index(item)]);
+    });
+}
+
+CLI::Option* AddIntegerList(CLI::App* app, const std::string& name, std::vector<int>& target,
+  int lo, int hi, const std::string& help)
+{
+  return AddList(
+    app, name, "N,...", help,
+    [lo, hi](const std::string& item) {
+      double x = 0.0;
+      return ToDouble(item, x) && x == std::floor(x) && x >= lo && x <= hi
+        ? std::string()
+        : "bad value '" + item + "' (an integer, " + std::to_string(lo) + " to " +
+          std::to_string(hi) + ")";
+    },
+    [&target](const std::vector<std::string>& items) {
+      target.clear();
+      for (const std::string& item : items)
+      {
+        double x = 0.0;
+        ToDouble(item, x);
+        target.push_back(static_cast<int>(x));
+      }
+    });
+}
+
+CLI::Option* AddImageSize(CLI::App* app, const std::string& name, int& width, int& height, int lo,
+  int hi, const std::string& help)
+{
+  auto parse = [lo, hi](const std::string& v, int& w, int& h) {
+    char x = 0;
+    char rest = 0;
+    return std::sscanf(v.c_str(), "%d%c%d%c", &w, &x, &h, &rest) == 3 && x == 'x' && w >= lo &&
+      h >= lo && w <= hi && h <= hi;
+  };
+  return app
+    ->add_option_function<std::string>(
+      name, [&width, &height, parse](const std::string& v) { parse(v, width, height); },
+      Wrap(help))
+    ->type_name("WxH")
+    ->check(Check([parse, lo, hi](std::string& v) -> std::string {
+      int w = 0, h = 0;
+      return parse(v, w, h) ? ""
+                            : "bad value '" + v + "' (WxH, each side " + std::to_string(lo) +
+          " to " + std::to_string(hi) + " pixels)";
+    }));
+}
+
+CLI::Option* AddVolume(CLI::App* app, std::string& volume)
+{
+  return app->add_option("VOLUME", volume, Wrap(".vti, .mhd/.mha, .slc, legacy .vtk, .nii/.nii.gz"))
+    ->type_name("")
+    ->required();
+}
+
+CLI::Option* AddMeshes(CLI::App* app, std::vector<std::string>& meshes)
+{
+  return app
+    ->add_option("MESH", meshes, Wrap("closed or open triangle meshes (.vtp, .vtk, .stl, .ply, .obj)"))
+    ->type_name("")
+    ->required();
+}
+
+void AddLAOOptions(CLI::App* app, LAOCommandLine& lao)
+{
+  app
+    ->add_option_function<std::string>(
+      "--quality", [&lao](const std::string& v) { cao::ParseQualityPreset(v, lao.settings.preset); },
+      Wrap("LAO quality preset: interactive (the default, equal to the defaults of the options "
+           "below), balanced, reference or custom; a preset sets the rays, samples, density, "
+           "offset and variation (so it is not combined with those options; giving any of them "
+           "without --quality means custom); --reach still applies"))
+    ->type_name("NAME")
+    ->check(Check([](std::string& v) -> std::string {
+      cao::QualityPreset p;
+      return cao::ParseQualityPreset(v, p)
+        ? ""
+        : "bad value '" + v + "' (expected custom, interactive, balanced or reference)";
+    }));
+  AddNumber(app, "--density", lao.settings.sampleDensity, MinDensity, MaxDensity, false,
+    "samples per voxel, 0.001 to 1000",
+    "samples per smallest voxel spacing when --samples is not given (default 1; 0.001 to 1000)")
+    ->type_name("D");
+  AddNumber(app, "--offset", lao.settings.startOffset, 0.0, std::nextafter(1.0, 0.0), false,
+    "steps, in [0, 1)",
+    "start offset of the samples along a ray, in steps, in [0, 1) (default 0.5: mid-step; 0 is "
+    "the paper's march)")
+    ->type_name("F");
+  app
+    ->add_option_function<std::string>(
+      "--variation",
+      [&lao](const std::string& v) { cao::ParseRayVariation(v, lao.settings.variation); },
+      Wrap("per-voxel ray variation: none (default), rotate, jitter or rotate+jitter "
+           "(interleaved 2x2x2)"))
+    ->type_name("NAME")
+    ->check(Check([](std::string& v) -> std::string {
+      cao::RayVariation r;
+      return cao::ParseRayVariation(v, r)
+        ? ""
+        : "bad value '" + v + "' (expected none, rotate, jitter or rotate+jitter)";
+    }));
+}
+
+CLI::Option* AddRays(CLI::App* app, std::vector<std::string>& rays, bool list)
+{
+  return app
+    ->add_option_function<std::string>(
+      "--rays", [&rays](const std::string& v) { rays = Split(v, ','); },
+      Wrap(std::string("ray patterns: 6, 14, 26, 54, rubiks54 (the paper's 54 rays, jittered) or "
+                       "fib:K (K = 1 to 65536)") +
+        (list ? "; a comma list runs each" : "") + " (default 14)"))
+    ->type_name(list ? "LIST" : "PATTERN")
+    ->check(Check([list](std::string& v) -> std::string {
+      if (v.empty() || HasEmptyItem(v))
+        return "an empty item in '" + v + "'";
+      const auto items = Split(v, ',');
+      if (!list && items.size() != 1)
+        return "'" + v + "' is a list; this command takes a single ray pattern";
+      for (const auto& r : items)
+      {
+        cao::RayPattern p;
+        int k = 0;
+        if (!cao::ParseRayPattern(r, p, k))
+          return "bad ray pattern '" + r +
+            "' (expected 6, 14, 26, 54, rubiks54 or fib:K with K from 1 to 65536)";
+      }
+      return "";
+    }));
+}
+
+CLI::Option* AddReach(CLI::App* app, double& reach)
+{
+  return AddLength(app, "--reach", reach, "ray length in world units (default 8 voxels)")
+    ->type_name("R");
+}
+
+CLI::Option* AddSamples(CLI::App* app, int& samples)
+{
+  return AddInteger(app, "--samples", samples, 1, cao::LAOLimits::MaxSamples,
+    "samples per ray, 1 to 65536 (default: --density per voxel)")
+    ->type_name("M");
+}
+
+CLI::Option* AddOpacity(
+  CLI::App* app, const std::string& name, std::vector<double>& points, const std::string& help)
+{
+  return AddNumberList(app, name, points, "S,A,...", help)
+    ->check(Check([](std::string& v) -> std::string {
+      const auto items = Split(v, ',');
+      if (items.size() < 2 || items.size() % 2 != 0)
+        return "'" + v + "' is not scalar,opacity pairs";
+      for (std::size_t p = 1; p < items.size(); p += 2)
+      {
+        double a = 0.0;
+        ToDouble(items[p], a);
+        if (!(a >= 0.0 && a <= 1.0))
+          return "bad opacity " + items[p] + " in '" + v + "' (0 to 1)";
+      }
+      return "";
+    }));
+}
+
+CLI::Option* AddUnitDistance(CLI::App* app, double& unitDistance)
+{
+  return AddLength(
+    app, "--unit-distance", unitDistance, "scalar opacity unit distance (default 1)")
+    ->type_name("U");
+}
+
+void AddArray(CLI::App* app, std::string& array, int& component)
+{
+  AddText(app, "--array", array, "NAME", "point array to use (default: the active scalars)");
+  AddInteger(app, "--component", component, 0, 1 << 20,
+    "component of a multi-component array")
+    ->type_name("C");
+}
+
+CLI::Option* AddThreads(CLI::App* app, int& threads)
+{
+  return AddInteger(app, "--threads", threads, 1, 4096, "at most N threads (default: all cores)");
+}
+
+CLI::Option* AddBackend(CLI::App* app, std::vector<int>& backends, bool list)
+{
+  auto parse = [](const std::string& b, int& backend) {
+    if (b == "auto")
+      backend = vtkLocalAmbientOcclusion::AUTO;
+    else if (b == "cpu")
+      backend = vtkLocalAmbientOcclusion::CPU;
+    else if (b == "gl" || b == "opengl")
+      backend = vtkLocalAmbientOcclusion::OPENGL;
+    else
+      return false;
+    return true;
+  };
+  return app
+    ->add_option_function<std::string>(
+      "--backend",
+      [&backends, parse](const std::string& v) {
+        backends.clear();
+        for (const std::string& b : Split(v, ','))
+        {
+          int backend = 0;
+          parse(b, backend);
+          backends.push_back(backend);
+        }
+      },
+      Wrap(std::string("auto (default: OpenGL on a hardware GPU, else CPU), cpu, or gl (OpenGL "
+                       "4.3 compute, headless EGL or OSMesa; an error when there is no such "
+                       "context)") +
+        (list ? "; a comma list (cpu,gl) runs each" : "")))
+    ->type_name(list ? "LIST" : "B")
+    ->check(Check([list, parse](std::string& v) -> std::string {
+      if (v.empty() || HasEmptyItem(v))
+        return "an empty item in '" + v + "'";
+      const auto items = Split(v, ',');
+      if (!list && items.size() != 1)
+        return "'" + v + "' is a list; this command takes one backend";
+      for (const std::string& b : items)
+      {
+        int backend = 0;
+        if (!parse(b, backend))
+          return "bad value '" + b + "' (expected auto, cpu or gl)";
+      }
+      return "";
+    }));
+}
+
+CLI::Option* AddJson(CLI::App* app, bool& json, const std::string& help)
+{
+  return app->add_flag(
+    "--json", json, Wrap(help.empty() ? "print a JSON summary instead of tables" : help));
+}
+
+CLI::Option* AddOutput(CLI::App* app, std::string& output, const std::string& help)
+{
+  return AddText(app, "-o,--output", output, "FILE", help);
+}
+
+CLI::Option* AddNoProgress(CLI::App* app, bool& quiet)
+{
+  return app->add_flag(
+    "--no-progress", quiet, Wrap("no progress line on stderr (shown only on a terminal)"));
+}
+
+void AddClipOptions(CLI::App* app, ClipOptions& clip, int maxLayers)
+{
+  auto* shape = AddChoice(app, "--shape", clip.shape, { "sphere", "cube", "torus", "plane" },
+    "the clip shape (default sphere); plane: the half-space on the +z side of the pose's frame "
+    "(the pose's orientation turns it)");
+  AddLength(app, "--size", clip.size,
+    "shape size in world units (default: 1/4 of the volume's smallest extent; for a plane, its "
+    "slab's half width: 1.25 x the farthest volume corner from any pose)")
+    ->type_name("S");
+  auto* mesh = AddText(
+    app, "--mesh", clip.mesh, "FILE", "clip mesh (.vtp, .vtk, .stl, .ply, .obj) instead of a shape");
+  shape->excludes(mesh);
+  mesh->excludes(shape);
+  app
+    ->add_option("--pose", clip.poseTexts,
+      Wrap("a pose, \"tx ty tz [rx ry rz [s]]\", rotation in degrees (repeatable)"))
+    ->type_name("POSE")
+    ->expected(1)
+    ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  AddText(app, "--poses", clip.posesFile, "FILE", "one pose per line");
+  AddInteger(app, "--path", clip.path, 1, vtkCAO::MaxPoses,
+    "N poses along the volume diagonal (default 24; at most 100000, as poses from --pose and "
+    "--poses)");
+  AddChoice(app, "--mode", clip.mode, { "subtract", "probe" }, "subtract (default) or probe");
+  AddInteger(app, "--layers", clip.layers, 1, maxLayers,
+    "depth-peel layers, 1 to " + std::to_string(maxLayers) + " (default 2)")
+    ->type_name("L");
+  AddInteger(app, "--aa", clip.aa, 0, 32, "extra anti-aliasing samples, 0 to 32 (default 16)");
+}
+
+bool FinishLAO(const CLI::App* app, LAOCommandLine& lao, std::string& error)
+{
+  lao.qualityGiven = app->count("--quality") > 0;
+  lao.overridden.clear();
+  for (const CLI::Option* option : app->parse_order())
+  {
+    const std::string name = option->get_name();
+    if (name == "--rays" || name == "--samples" || name == "--density" || name == "--offset" ||
+      name == "--variation")
+    {
+      lao.overridden = name;
+      break;
+    }
+  }
+  return CheckLAOCommandLine(lao, error);
+}
+
+namespace
+{
+/// The deepest subcommand parsed (`app` itself when none).
+const CLI::App* Deepest(const CLI::App* app)
+{
+  for (const CLI::App* sub : app->get_subcommands())
+    return Deepest(sub);
+  return app;
+}
+
+std::string Names(const std::vector<const CLI::App*>& commands)
+{
+  std::vector<std::string> names;
+  for (const CLI::App* c : commands)
+    names.push_back(c->get_name());
+  return Or(names);
+}
+
+std::string CommandName(const CLI::App* app)
+{
+  std::string name;
+  for (; app; app = app->get_parent())
+    name = app->get_name() + (name.empty() ? "" : " " + name);
+  return name;
+}
+
+/// A parse error in the tool's words.
+std::string Message(const CLI::App& cao, const CLI::ParseError& e)
+{
+  const CLI::App* command = Deepest(&cao);
+  const std::string name = CommandName(command);
+  const std::string what = e.what();
+  if (dynamic_cast<const CLI::ExtrasError*>(&e))
+  {
+    const auto extras = command->remaining();
+    const std::string first = extras.empty() ? what : extras.front();
+    const auto children = command->get_subcommands([](const CLI::App*) { return true; });
+    if (!children.empty() && !first.empty() && first[0] != '-')
+      return "unknown " + std::string(command->get_parent() ? "benchmark" : "command") + " '" +
+        first + "' (expected " + Names(children) + ")";
+    if (!first.empty() && first[0] == '-')
+      return "unknown option '" + first + "' for " + name + " (see " + name + " --help)";
+    return "unexpected argument '" + first + "' for " + name + " (see " + name + " --help)";
+  }
+  if (dynamic_cast<const CLI::ArgumentMismatch*>(&e))
+  {
+    const std::string option = what.substr(0, what.find(':'));
+    if (what.find("At Most") != std::string::npos)
+      return "option " + option + " is given more than once";
+    return "option " + option + " needs a value";
+  }
+  if (dynamic_cast<const CLI::RequiredError*>(&e) && what.find("subcommand") != std::string::npos)
+  {
+    const auto extras = command->remaining();
+    if (!extras.empty() && !extras.front().empty() && extras.front()[0] == '-')
+      return "unknown option '" + extras.front() + "' for " + name + " (see " + name + " --help)";
+    if (!extras.empty() && !extras.front().empty())
+      return "unknown " + std::string(command->get_parent() ? "benchmark" : "command") + " '" +
+        extras.front() + "' (expected " +
+        Names(command->get_subcommands([](const CLI::App*) { return true; })) + ")";
+    return "missing " + std::string(command->get_parent() ? "benchmark" : "command") +
+      " (expected " + Names(command->get_subcommands([](const CLI::App*) { return true; })) +
+      "; see " + name + " --help)";
+  }
+  // A positional argument ("VOLUME is required", "MESH is required").
+  if (dynamic_cast<const CLI::RequiredError*>(&e) && !what.empty() && std::isupper(what[0]) &&
+    what.find(" is required") != std::string::npos)
+    return "missing " + what.substr(0, what.find(' ')) + " (see " + name + " --help)";
+  if (dynamic_cast<const CLI::ExcludesError*>(&e))
+  {
+    // "--shape excludes --mesh": both name the same thing.
+    return what + ": give one of them";
+  }
+  return what;
+}
+}
+
+int Run(CLI::App& cao, const std::vector<Command>& commands, int argc, char* argv[])
+{
+  try
+  {
+    cao.parse(argc, argv);
+  }
+  catch (const CLI::ParseError& e)
+  {
+    if (e.get_exit_code() == 0)
+      return cao.exit(e);
+    return Fail(2, Message(cao, e));
+  }
+  const CLI::App* parsed = Deepest(&cao);
+  for (const Command& c : commands)
+    if (c.app == parsed)
+      return c.run();
+  std::cout << cao.help();
+  return 0;
+}
+}
