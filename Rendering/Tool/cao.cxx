@@ -127,9 +127,12 @@ caocli::Command AddVolumeCommand(CLI::App& cao, const std::string& name)
   AddUnitDistance(app, o->unitDistance);
   AddArray(app, o->arrayName, o->component);
   AddThreads(app, o->threads);
-  AddBackend(app, o->backends, carve);
+  CLI::Option* backend = AddBackend(app, o->backends, carve);
+  if (tf)
+    backend->description(Wrap("auto (default) or cpu: the opacity edit runs on the CPU"));
   AddJson(app, o->json);
-  AddOutput(app, o->output, carve ? "write the last AO volume as .vti" : "write the AO volume as .vti");
+  AddOutputFile(
+    app, o->output, ".vti", carve ? "write the last AO volume as .vti" : "write the AO volume as .vti");
   AddNoProgress(app, o->quiet);
   if (carve)
   {
@@ -425,7 +428,7 @@ int MakePoses(const Options& o, vtkImageData* volume, CarveSetup& s)
   {
     vtkCAO::Pose p;
     if (!vtkCAO::ParsePose(t, p, error))
-      return Fail(2, error);
+      return Fail(2, "--pose: " + error);
     s.poses.push_back(p);
   }
   if (!o.clipping.posesFile.empty() && !vtkCAO::ReadPoses(o.clipping.posesFile, s.poses, error))
@@ -761,7 +764,10 @@ int RunCarve(const Options& o, vtkImageData* volume)
     return rc;
   std::string scaleError;
   if (!vtkCAO::CheckPoseScales(setup.poses, setup.mesh, volume, scaleError))
-    return Fail(2, "--pose: " + scaleError);
+    return Fail(2, std::string(o.clipping.poseTexts.empty() && o.clipping.posesFile.empty()
+                               ? "the path's poses (--path): "
+                               : "--pose/--poses: ") +
+        scaleError);
   vtkNew<vtkPiecewiseFunction> tf;
   BuildTransferFunction(o, volume, tf);
   std::vector<RunResult> runs;
@@ -916,6 +922,12 @@ int Run(Options& o, const CLI::App* app)
     return Fail(2, o.arrayName.empty()
         ? "'" + o.volume + "' has no point or cell scalars (name an array with --array)"
         : "--array '" + o.arrayName + "': '" + o.volume + "' has no such point array");
+  if (o.component < 0 && scalars->GetNumberOfComponents() > 1)
+    return Fail(2, "the array '" +
+        std::string(scalars->GetName() ? scalars->GetName() : "(scalars)") + "' of '" + o.volume +
+        "' has " + std::to_string(scalars->GetNumberOfComponents()) +
+        " components: choose one with --component (0 to " +
+        std::to_string(scalars->GetNumberOfComponents() - 1) + ")");
   if (o.component >= scalars->GetNumberOfComponents())
     return Fail(2, "--component " + std::to_string(o.component) + ": the array '" +
         std::string(scalars->GetName() ? scalars->GetName() : "(scalars)") + "' has " +
@@ -955,7 +967,6 @@ int main(int argc, char* argv[])
   cao.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::Throw);
   cao.set_version_flag("--version",
     std::string("cao (ContextualAO) ") + CAO_VERSION + ", VTK " + vtkVersion::GetVTKVersion());
-  cao.set_help_all_flag("--help-all", "print the help of every command");
   cao.require_subcommand(1);
   std::vector<caocli::Command> commands{ AddVolumeCommand(cao, "lao"),
     AddVolumeCommand(cao, "carve"), AddVolumeCommand(cao, "tf"), caocli::AddRenderCommand(cao),
@@ -966,5 +977,7 @@ int main(int argc, char* argv[])
   commands.push_back(caocli::AddBenchSurfaceCommand(*bench));
   commands.push_back(caocli::AddBenchSurfaceScaleCommand(*bench));
   commands.push_back(caocli::AddBenchSurfaceFrameCommand(*bench));
+  // After the commands, so that only `cao --help-all` has it.
+  cao.set_help_all_flag("--help-all", "print the help of every command");
   return caocli::Run(cao, commands, argc, argv);
 }

@@ -1271,7 +1271,7 @@ Command AddBenchAccuracyCommand(CLI::App& bench)
   AddInteger(
     app, "--gl-repeat", o->glRepeat, 1, 100, "timed GL runs per configuration, median (default 1)");
   AddThreads(app, o->threads);
-  AddOutput(app, o->output, "output directory (default: accuracy)")->type_name("DIR");
+  AddOutputFolder(app, o->output, "output directory (default: accuracy)");
   app->footer(AccuracyFooter);
   return { app, [o, app] { return Run(*o, app); } };
 }

@@ -737,9 +737,9 @@ Command AddBenchSurfaceCommand(CLI::App& bench)
     "depth\": the G-buffer from the drawn depth as the pass's Depth Buffer and GPU frame read it, "
     "here the ray cast's depth in a 24-bit buffer, normals from neighbouring pixels)");
   AddRepeats(app, o->repeats, "timed runs per configuration, 1 to 100, the median kept (default 3)");
-  AddSurfaceThreads(app, o->threads);
+  AddThreads(app, o->threads);
   AddSurfaceWindow(app, o->window, "the SSAO window");
-  AddOutput(app, o->output, "output folder (default surface-bench)")->type_name("DIR");
+  AddOutputFolder(app, o->output, "output folder (default surface-bench)");
   app->footer(Footer);
   return { app, [o, app] { return Run(*o, app); } };
 }

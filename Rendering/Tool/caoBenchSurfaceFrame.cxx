@@ -306,9 +306,9 @@ Command AddBenchSurfaceFrameCommand(CLI::App& bench)
     "the camera's azimuth step per turning frame, in (0, 90] degrees (default 0.5)");
   AddRadiusFraction(app, o->radiusFraction, 1.0,
     "R = F x the scene's bounding-box diagonal, in (0, 1] (default 0.1)");
-  AddSurfaceThreads(app, o->threads);
+  AddThreads(app, o->threads);
   AddSurfaceWindow(app, o->window, "the window");
-  AddOutput(app, o->output, "output folder (default surface-frame)")->type_name("DIR");
+  AddOutputFolder(app, o->output, "output folder (default surface-frame)");
   app->footer(Footer);
   return { app, [o, app] { return Run(*o, app); } };
 }

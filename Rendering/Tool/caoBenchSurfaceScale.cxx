@@ -192,9 +192,9 @@ Command AddBenchSurfaceScaleCommand(CLI::App& bench)
   AddRadiusFraction(app, o->radiusFraction, 1.0,
     "R = F x the tiled scene's bounding-box diagonal, in (0, 1] (default 0.1)");
   AddRepeats(app, o->repeats, "timed frames per configuration, 1 to 100, the median kept (default 3)");
-  AddSurfaceThreads(app, o->threads);
+  AddThreads(app, o->threads);
   AddSurfaceWindow(app, o->window, "the SSAO window");
-  AddOutput(app, o->output, "output folder (default surface-scale)")->type_name("DIR");
+  AddOutputFolder(app, o->output, "output folder (default surface-scale)");
   app->footer(Footer);
   return { app, [o, app] { return Run(*o, app); } };
 }

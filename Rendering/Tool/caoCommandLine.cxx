@@ -130,9 +130,13 @@ bool ParseSizes(const std::string& list, const std::string& option, std::vector<
 
 bool ToDouble(const std::string& s, double& v)
 {
+  // Decimal only: no leading blank, no hexadecimal ("0x10"), as written.
+  if (s.empty() || std::isspace(static_cast<unsigned char>(s[0])) ||
+    s.find_first_of("xXpP") != std::string::npos)
+    return false;
   char* end = nullptr;
   v = std::strtod(s.c_str(), &end);
-  return !s.empty() && *end == '\0' && std::isfinite(v);
+  return *end == '\0' && std::isfinite(v);
 }
 
 double FieldValue(vtkDataObject* d, const char* name, int component, double missing)

@@ -101,7 +101,8 @@ bool HasEmptyItem(const std::string& list);
 /// The non-empty items of `s` between separators `sep`.
 std::vector<std::string> Split(const std::string& s, char sep);
 
-/// A whole string as a finite double; false otherwise.
+/// A whole string as a finite decimal double (no leading blank, no
+/// hexadecimal); false otherwise.
 bool ToDouble(const std::string& s, double& v);
 /// A comma list of image sizes WxH, each side 16..8192 (the benches'
 /// --sizes); false with the reason, naming `option`, otherwise.

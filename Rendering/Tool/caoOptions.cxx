@@ -7,6 +7,8 @@
 #include "vtkLocalAmbientOcclusion.h"
 
 #include <cctype>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -24,6 +26,17 @@ std::string Shortest(double x)
   char text[64];
   std::snprintf(text, sizeof(text), "%.17g", x);
   return text;
+}
+
+/// The help with its limit added when it does not state it (none of
+/// `marks`, the limit's upper end, is in it).
+std::string WithLimit(const std::string& help, const std::string& limit,
+  const std::vector<std::string>& marks)
+{
+  for (const std::string& m : marks)
+    if (help.find(m) != std::string::npos)
+      return help;
+  return help + " [" + limit + "]";
 }
 
 std::string Or(const std::vector<std::string>& items)
@@ -85,9 +98,9 @@ std::string Wrap(const std::string& text)
 CLI::Option* AddNumber(CLI::App* app, const std::string& name, double& target, double lo,
   double hi, bool openLow, const std::string& limit, const std::string& help)
 {
-  return app->add_option(name, target, Wrap(help))
+  return app->add_option(name, target, Wrap(WithLimit(help, limit, { Shortest(hi), limit })))
     ->type_name("X")
-    ->check(Check([=](std::string& v) -> std::string {
+    ->transform(Check([=](std::string& v) -> std::string {
       double x = 0.0;
       if (!ToDouble(v, x) || x < lo || x > hi || (openLow && x <= lo))
         return "bad value '" + v + "' (" + limit + ")";
@@ -108,9 +121,9 @@ CLI::Option* AddInteger(
   CLI::App* app, const std::string& name, int& target, int lo, int hi, const std::string& help)
 {
   const std::string limit = "an integer, " + std::to_string(lo) + " to " + std::to_string(hi);
-  return app->add_option(name, target, Wrap(help))
+  return app->add_option(name, target, Wrap(WithLimit(help, limit, { std::to_string(hi), limit })))
     ->type_name("N")
-    ->check(Check([=](std::string& v) -> std::string {
+    ->transform(Check([=](std::string& v) -> std::string {
       double x = 0.0;
       if (!ToDouble(v, x) || x != std::floor(x) || x < lo || x > hi)
         return "bad value '" + v + "' (" + limit + ")";
@@ -281,7 +294,7 @@ CLI::Option* AddMeshes(CLI::App* app, std::vector<std::string>& meshes)
     ->required();
 }
 
-void AddLAOOptions(CLI::App* app, LAOCommandLine& lao)
+void AddLAOOptions(CLI::App* app, LAOCommandLine& lao, bool samplesOption)
 {
   app
     ->add_option_function<std::string>(
@@ -299,7 +312,10 @@ void AddLAOOptions(CLI::App* app, LAOCommandLine& lao)
     }));
   AddNumber(app, "--density", lao.settings.sampleDensity, MinDensity, MaxDensity, false,
     "samples per voxel, 0.001 to 1000",
-    "samples per smallest voxel spacing when --samples is not given (default 1; 0.001 to 1000)")
+    samplesOption
+      ? "samples per smallest voxel spacing; --samples instead gives the samples per ray (default "
+        "1; 0.001 to 1000)"
+      : "samples per smallest voxel spacing (default 1; 0.001 to 1000)")
     ->type_name("D");
   AddNumber(app, "--offset", lao.settings.startOffset, 0.0, std::nextafter(1.0, 0.0), false,
     "steps, in [0, 1)",
@@ -397,7 +413,8 @@ void AddArray(CLI::App* app, std::string& array, int& component)
 
 CLI::Option* AddThreads(CLI::App* app, int& threads)
 {
-  return AddInteger(app, "--threads", threads, 1, 4096, "at most N threads (default: all cores)");
+  return AddInteger(
+    app, "--threads", threads, 0, 4096, "at most N threads, 0 to 4096 (0, the default: all cores)");
 }
 
 CLI::Option* AddBackend(CLI::App* app, std::vector<int>& backends, bool list)
@@ -457,6 +474,56 @@ CLI::Option* AddOutput(CLI::App* app, std::string& output, const std::string& he
   return AddText(app, "-o,--output", output, "FILE", help);
 }
 
+namespace
+{
+/// Why `path`'s folder cannot take a new file or folder ("" when it can).
+std::string UnwritableFolder(const std::string& path)
+{
+  const std::size_t slash = path.find_last_of('/');
+  const std::string folder = slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
+  struct stat info;
+  if (::stat(folder.c_str(), &info) != 0 || !S_ISDIR(info.st_mode))
+    return "the folder '" + folder + "' does not exist";
+  if (::access(folder.c_str(), W_OK | X_OK) != 0)
+    return "the folder '" + folder + "' is not writable";
+  return "";
+}
+}
+
+CLI::Option* AddOutputFile(CLI::App* app, std::string& output, const std::string& extension,
+  const std::string& help)
+{
+  return AddOutput(app, output, help)
+    ->check(Check([extension](std::string& v) -> std::string {
+      std::string tail = v.size() >= extension.size() ? v.substr(v.size() - extension.size()) : "";
+      for (char& c : tail)
+        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      if (tail != extension)
+        return "bad value '" + v + "' (a " + extension + " file)";
+      const std::string folder = UnwritableFolder(v);
+      return folder.empty() ? "" : "cannot write '" + v + "': " + folder;
+    }));
+}
+
+CLI::Option* AddOutputFolder(CLI::App* app, std::string& output, const std::string& help)
+{
+  return AddOutput(app, output, help)
+    ->type_name("DIR")
+    ->check(Check([](std::string& v) -> std::string {
+      std::string path = v;
+      while (path.size() > 1 && path.back() == '/')
+        path.pop_back();
+      struct stat info;
+      if (::stat(path.c_str(), &info) == 0)
+        return S_ISDIR(info.st_mode) ? (::access(path.c_str(), W_OK | X_OK) == 0
+                                           ? ""
+                                           : "cannot write into '" + v + "': not writable")
+                                     : "cannot write into '" + v + "': a file, not a folder";
+      const std::string folder = UnwritableFolder(path);
+      return folder.empty() ? "" : "cannot write into '" + v + "': " + folder;
+    }));
+}
+
 CLI::Option* AddNoProgress(CLI::App* app, bool& quiet)
 {
   return app->add_flag(
@@ -482,10 +549,12 @@ void AddClipOptions(CLI::App* app, ClipOptions& clip, int maxLayers)
     ->type_name("POSE")
     ->expected(1)
     ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-  AddText(app, "--poses", clip.posesFile, "FILE", "one pose per line");
+  CLI::Option* poses = AddText(app, "--poses", clip.posesFile, "FILE", "one pose per line");
   AddInteger(app, "--path", clip.path, 1, vtkCAO::MaxPoses,
     "N poses along the volume diagonal (default 24; at most 100000, as poses from --pose and "
-    "--poses)");
+    "--poses)")
+    ->excludes(app->get_option("--pose"))
+    ->excludes(poses);
   AddChoice(app, "--mode", clip.mode, { "subtract", "probe" }, "subtract (default) or probe");
   AddInteger(app, "--layers", clip.layers, 1, maxLayers,
     "depth-peel layers, 1 to " + std::to_string(maxLayers) + " (default 2)")
@@ -495,6 +564,12 @@ void AddClipOptions(CLI::App* app, ClipOptions& clip, int maxLayers)
 
 bool FinishLAO(const CLI::App* app, LAOCommandLine& lao, std::string& error)
 {
+  const CLI::Option* samples = app->get_option_no_throw("--samples");
+  if (samples && samples->count() > 0 && app->count("--density") > 0)
+  {
+    error = "--samples gives the samples per ray and --density the samples per voxel: give one";
+    return false;
+  }
   lao.qualityGiven = app->count("--quality") > 0;
   lao.overridden.clear();
   for (const CLI::Option* option : app->parse_order())

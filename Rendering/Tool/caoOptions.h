@@ -88,8 +88,9 @@ CLI::Option* AddVolume(CLI::App* app, std::string& volume);
 /// The input meshes (positional, one or more, required).
 CLI::Option* AddMeshes(CLI::App* app, std::vector<std::string>& meshes);
 /// --quality, --density, --offset, --variation into `lao` (see
-/// caoLAOCommandLine.h); FinishLAO() after the parse.
-void AddLAOOptions(CLI::App* app, LAOCommandLine& lao);
+/// caoLAOCommandLine.h); FinishLAO() after the parse. `samplesOption`: the
+/// command also takes --samples (AddSamples).
+void AddLAOOptions(CLI::App* app, LAOCommandLine& lao, bool samplesOption = true);
 /// --rays: a comma list of ray patterns (`list`), or a single one.
 CLI::Option* AddRays(CLI::App* app, std::vector<std::string>& rays, bool list);
 /// --reach R (world units).
@@ -103,7 +104,7 @@ CLI::Option* AddOpacity(
 CLI::Option* AddUnitDistance(CLI::App* app, double& unitDistance);
 /// --array NAME and --component C.
 void AddArray(CLI::App* app, std::string& array, int& component);
-/// --threads N (1 to 4096; 0, the default, is all cores).
+/// --threads N (0 to 4096; 0, the default, is all cores).
 CLI::Option* AddThreads(CLI::App* app, int& threads);
 /// --backend auto|cpu|gl (vtkLocalAmbientOcclusion's values), a comma list
 /// when `list`.
@@ -112,6 +113,13 @@ CLI::Option* AddBackend(CLI::App* app, std::vector<int>& backends, bool list);
 CLI::Option* AddJson(CLI::App* app, bool& json, const std::string& help = "");
 /// -o, --output FILE.
 CLI::Option* AddOutput(CLI::App* app, std::string& output, const std::string& help);
+/// -o, --output FILE ending in `extension` (".vti", ".png"; any case) in a
+/// folder that exists and is writable, checked before any work.
+CLI::Option* AddOutputFile(CLI::App* app, std::string& output, const std::string& extension,
+  const std::string& help);
+/// -o, --output DIR: a writable folder, or one that can be made in a
+/// writable folder, checked before any work.
+CLI::Option* AddOutputFolder(CLI::App* app, std::string& output, const std::string& help);
 /// --no-progress.
 CLI::Option* AddNoProgress(CLI::App* app, bool& quiet);
 
@@ -127,8 +135,9 @@ struct ClipOptions
 /// `maxLayers`) and --aa into `clip`; --shape and --mesh exclude each other.
 void AddClipOptions(CLI::App* app, ClipOptions& clip, int maxLayers);
 
-/// After the parse: which LAO options a preset overrides were given
-/// (the first in command-line order), then CheckLAOCommandLine.
+/// After the parse: --samples and --density are not both given; which LAO
+/// options a preset overrides were given (the first in command-line
+/// order), then CheckLAOCommandLine.
 bool FinishLAO(const CLI::App* app, LAOCommandLine& lao, std::string& error);
 
 /// Parse `argv` with `cao` (the root app, holding `commands`) and run the

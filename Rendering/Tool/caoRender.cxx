@@ -102,7 +102,7 @@ Command AddRenderCommand(CLI::App& cao)
   AddNumber(app, "--reach", o->reach, 0.0, HUGE_VAL, false, "a length in world units, 0 or more",
     "LAO reach in world units (default, or 0: 8 voxels)")
     ->type_name("R");
-  AddLAOOptions(app, o->lao);
+  AddLAOOptions(app, o->lao, /*samplesOption*/ false);
   AddNumber(app, "--ao-strength", o->strength, 0, 1, false, "from 0 to 1",
     "AO strength, 0 to 1 (default 1); --no-ao renders without AO")
     ->type_name("S");
@@ -122,7 +122,7 @@ Command AddRenderCommand(CLI::App& cao)
     "auto (default: X when DISPLAY is set, else EGL), egl or x");
   app->add_flag("--full", o->full, Wrap("recompute the full LAO at every pose (the reference)"));
   AddJson(app, o->json, "print each frame's work report as a JSON list on stdout");
-  AddOutput(app, o->output,
+  AddOutputFile(app, o->output, ".png",
     "the frames' file pattern, with one frame-number conversion, %d or %i with an optional 0 flag "
     "and width up to 9, and %% for a literal percent sign (default cao-frame_%03d.png)");
   o->clipping.path = 12;
@@ -140,17 +140,20 @@ namespace
 int Render(RenderOptions& o, const CLI::App* app)
 {
   std::string error;
-  const bool shapeGiven = app->count("--shape") > 0;
-  if (!o.clip &&
-    (shapeGiven || !o.clipping.mesh.empty() || !o.clipping.poseTexts.empty() ||
-      !o.clipping.posesFile.empty()))
-    return Fail(2,
-      std::string("--no-clip renders the unclipped volume, but ") +
-        (shapeGiven                         ? "--shape"
-            : !o.clipping.mesh.empty()      ? "--mesh"
-            : !o.clipping.poseTexts.empty() ? "--pose"
-                                            : "--poses") +
-        " was given: drop one of them");
+  // Options that nothing would read: refused, naming both.
+  if (!o.clip)
+    for (const char* clipOption :
+      { "--shape", "--size", "--mesh", "--pose", "--poses", "--path", "--mode", "--layers", "--aa" })
+      if (app->count(clipOption) > 0)
+        return Fail(2,
+          std::string("--no-clip renders the unclipped volume, but ") + clipOption +
+            " was given: drop one of them");
+  if (!o.ao)
+    for (const char* aoOption : { "--ao-strength", "--ao-calibration", "--rays", "--reach",
+           "--quality", "--density", "--offset", "--variation" })
+      if (app->count(aoOption) > 0)
+        return Fail(2,
+          std::string("--no-ao draws no AO, but ") + aoOption + " was given: drop one of them");
   caocli::FramePattern frames;
   if (!frames.Parse(o.output, error))
     return Fail(2, error);
@@ -309,7 +312,7 @@ int Render(RenderOptions& o, const CLI::App* app)
     {
       Pose p;
       if (!ParsePose(t, p, error))
-        return Fail(2, error);
+        return Fail(2, "--pose: " + error);
       poses.push_back(p);
     }
     if (!o.clipping.posesFile.empty() && !ReadPoses(o.clipping.posesFile, poses, error))

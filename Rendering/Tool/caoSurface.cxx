@@ -125,11 +125,6 @@ CLI::Option* AddSurfaceImage(CLI::App* app, SurfaceView& view, int lo, int hi)
       " pixels (default " + std::to_string(view.width) + "x" + std::to_string(view.height) + ")");
 }
 
-CLI::Option* AddSurfaceThreads(CLI::App* app, int& threads)
-{
-  return AddInteger(app, "--threads", threads, 0, 1024, "CPU threads (0: all; default 0)");
-}
-
 CLI::Option* AddSurfaceWindow(CLI::App* app, std::string& window, const std::string& what)
 {
   return AddChoice(
@@ -699,7 +694,7 @@ bool LoadOccludingVolume(const SurfaceOptions& o, cao::OpacityVolume& opacity, s
       pose.translation = { { c[0], c[1], c[2] } };
     }
     else if (!vtkCAO::ParsePose(o.pose, pose, error))
-      return false;
+      return error = "--pose: " + error, false;
     vtkNew<vtkTransform> t;
     vtkCAO::PoseToTransform(pose, t);
     clipMapper->SetInputData(mesh);
@@ -1134,10 +1129,10 @@ Command AddSurfaceCommand(CLI::App& cao)
   app->add_flag("--ao-only", o->aoOnly,
     Wrap("write the AO term alone: 16-bit grey and alpha (1 = open; background transparent)"));
   AddJson(app, o->json, "print the settings, per-stage times and counts as JSON");
-  AddSurfaceThreads(app, o->threads);
+  AddThreads(app, o->threads);
   AddSurfaceWindow(app, o->window, "ssao's offscreen window");
   AddSurfaceKernel(app, o->kernel, "ssao: vtkSSAOPass's kernel size, 1 to 1024 (default 32, VTK's)");
-  AddOutput(app, o->output, "the picture, .png (required)");
+  AddOutputFile(app, o->output, ".png", "the picture, .png (required)");
   // The occluding volume and the clip that carves it.
   const std::string volume = "Occluding volume (vct)";
   AddText(app, "--volume", o->volume, "FILE",

@@ -69,8 +69,6 @@ struct SurfaceView
 /// --image WxH into `view` (its width and height are the default), each
 /// side `lo` to `hi` pixels (surface 1 to 16384, bench surface 8 to 4096).
 CLI::Option* AddSurfaceImage(CLI::App* app, SurfaceView& view, int lo, int hi);
-/// --threads N: CPU threads, 0 (all cores, the default) to 1024.
-CLI::Option* AddSurfaceThreads(CLI::App* app, int& threads);
 /// --window auto|egl|x: the offscreen window (`what` it is for).
 CLI::Option* AddSurfaceWindow(CLI::App* app, std::string& window, const std::string& what);
 /// --kernel N: vtkSSAOPass's kernel size, 1 to 1024.
