@@ -535,9 +535,10 @@ void AddClipOptions(CLI::App* app, ClipOptions& clip, int maxLayers)
   auto* shape = AddChoice(app, "--shape", clip.shape, { "sphere", "cube", "torus", "plane" },
     "the clip shape (default sphere); plane: the half-space on the +z side of the pose's frame "
     "(the pose's orientation turns it)");
-  AddLength(app, "--size", clip.size,
-    "shape size in world units (default: 1/4 of the volume's smallest extent; for a plane, its "
-    "slab's half width: 1.25 x the farthest volume corner from any pose)")
+  AddNumber(app, "--size", clip.size, 0.0, 1e30, true,
+    "a positive length in world units, at most 1e30: the clip mesh's points are float",
+    "shape size in world units, at most 1e30 (default: 1/4 of the volume's smallest extent; for "
+    "a plane, its slab's half width: 1.25 x the farthest volume corner from any pose)")
     ->type_name("S");
   auto* mesh = AddText(
     app, "--mesh", clip.mesh, "FILE", "clip mesh (.vtp, .vtk, .stl, .ply, .obj) instead of a shape");

@@ -328,7 +328,10 @@ int Render(RenderOptions& o, const CLI::App* app)
     if (!mesh)
       return Fail(2, error);
     if (!vtkCAO::CheckPoseScales(poses, mesh, volume, error))
-      return Fail(2, "--pose: " + error);
+      return Fail(2, std::string(o.clipping.poseTexts.empty() && o.clipping.posesFile.empty()
+                                   ? "the path's poses (--path): "
+                                   : "--pose/--poses: ") +
+          error);
     shapeMapper->SetInputData(mesh);
     shape->SetMapper(shapeMapper);
     mapper->SetClipShape(shape);
