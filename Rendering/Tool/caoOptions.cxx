@@ -39,13 +39,14 @@ std::string WithLimit(const std::string& help, const std::string& limit,
   return help + " [" + limit + "]";
 }
 
+}
+
 std::string Or(const std::vector<std::string>& items)
 {
   std::string s;
   for (std::size_t i = 0; i < items.size(); ++i)
     s += (i == 0 ? "" : i + 1 == items.size() ? " or " : ", ") + items[i];
   return s;
-}
 }
 
 CLI::Validator Check(std::function<std::string(std::string&)> check)

@@ -62,6 +62,8 @@ CLI::Option* AddNumberList(CLI::App* app, const std::string& name, std::vector<d
 /// (LIMIT)", without the option's name, which CLI11 puts first) or "", and
 /// may rewrite the value.
 CLI::Validator Check(std::function<std::string(std::string&)> check);
+/// "a, b or c".
+std::string Or(const std::vector<std::string>& items);
 /// "expected a, b or c".
 std::string Expected(const std::vector<std::string>& choices);
 

@@ -782,6 +782,18 @@ int Run(SurfaceOptions& o, const CLI::App* app)
           (name == "--march" ? "hbao" : name == "--samples" ? "vao" : "hbao or vao") +
           " (got --method " + o.method + ")");
   }
+  // The options that only some methods read: refused for the others.
+  static const std::vector<std::pair<std::string, std::vector<std::string>>> methodOptions{
+    { "--quality", { "vct", "hbao", "vao" } }, { "--backend", { "vct", "hbao", "vao" } },
+    { "--slices", { "vct" } }, { "--grid", { "vct" } }, { "--cone-weights", { "vct" } },
+    { "--fill", { "vct" } }, { "--occupancy", { "vct" } }, { "--ray-step", { "vct" } },
+    { "--cone-angle", { "vct" } }, { "--apex-offset", { "vct" } }, { "--rays", { "reference" } },
+    { "--falloff", { "reference" } }, { "--weighting", { "reference" } },
+    { "--window", { "ssao" } }, { "--kernel", { "ssao" } }
+  };
+  for (const auto& [name, methods] : methodOptions)
+    if (app->count(name) > 0 && std::find(methods.begin(), methods.end(), o.method) == methods.end())
+      return Fail(2, name + " is for --method " + Or(methods) + " (got --method " + o.method + ")");
   if (app->count("--samples") > 0)
     o.vao.quality = cao::VAOQuality::Custom;
   if (!o.quality.empty() && o.vao.quality == cao::VAOQuality::Custom && o.method == "vao")

@@ -467,6 +467,12 @@ for args, words in [(["--method", "magic", bunny, "-o", "x.png"], "--method: bad
                     (["--method", "vao", "--samples", "0", bunny, "-o", "x.png"], "--samples"),
                     (["--march", "up", bunny, "-o", "x.png"], "--march: bad value 'up'"),
                     (["--march", "sweep", bunny, "-o", "x.png"], "--march is for --method hbao"),
+                    # Options another method reads, given with this one (ignored before).
+                    (["--method", "hbao", "--grid", "eye", bunny, "-o", "x.png"], "--grid is for --method vct"),
+                    (["--method", "ssao", "--quality", "high", bunny, "-o", "x.png"], "--quality is for --method vct, hbao or vao"),
+                    (["--kernel", "8", bunny, "-o", "x.png"], "--kernel is for --method ssao"),
+                    (["--method", "reference", "--backend", "cpu", bunny, "-o", "x.png"], "--backend is for"),
+                    (["--falloff", "linear", bunny, "-o", "x.png"], "--falloff is for --method reference"),
                     (["--method", "vao", "--quality", "low", "--samples", "8", bunny, "-o", "x.png"], "not both"),
                     ([volume_vtk, "-o", "x.png"], "not a polygonal mesh"),
                     ([bunny, "-o", os.path.join(tmp, "no", "such", "x.png")], "does not exist"),
