@@ -110,6 +110,24 @@ std::vector<std::string> Split(const std::string& s, char sep)
   return out;
 }
 
+bool ParseImageSize(const std::string& text, int lo, int hi, int& width, int& height)
+{
+  // Digits only on each side of one 'x': no sign, blank or exponent, and no
+  // value that wraps ("4294967312" is not 16).
+  const std::size_t x = text.find('x');
+  if (x == std::string::npos)
+    return false;
+  auto side = [lo, hi](const std::string& digits, int& out) {
+    if (digits.empty() || digits.size() > 9 ||
+      digits.find_first_not_of("0123456789") != std::string::npos)
+      return false;
+    const long value = std::strtol(digits.c_str(), nullptr, 10);
+    out = static_cast<int>(value);
+    return value >= lo && value <= hi;
+  };
+  return side(text.substr(0, x), width) && side(text.substr(x + 1), height);
+}
+
 bool ParseSizes(const std::string& list, const std::string& option, std::vector<std::pair<int, int>>& sizes,
   std::string& error)
 {
@@ -119,9 +137,7 @@ bool ParseSizes(const std::string& list, const std::string& option, std::vector<
   for (const std::string& item : Split(list, ','))
   {
     int w = 0, h = 0;
-    char x = 0;
-    if (std::sscanf(item.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' || w < 16 || h < 16 || w > 8192 ||
-      h > 8192)
+    if (!ParseImageSize(item, 16, 8192, w, h))
       return error = option + " takes WxH, each 16..8192 (got '" + item + "')", false;
     sizes.emplace_back(w, h);
   }

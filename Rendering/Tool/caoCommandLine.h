@@ -104,6 +104,9 @@ std::vector<std::string> Split(const std::string& s, char sep);
 /// A whole string as a finite decimal double (no leading blank, no
 /// hexadecimal); false otherwise.
 bool ToDouble(const std::string& s, double& v);
+/// One image size "WxH", each side an unsigned decimal integer in
+/// [lo, hi]; false otherwise (width and height then undefined).
+bool ParseImageSize(const std::string& text, int lo, int hi, int& width, int& height);
 /// A comma list of image sizes WxH, each side 16..8192 (the benches'
 /// --sizes); false with the reason, naming `option`, otherwise.
 bool ParseSizes(const std::string& list, const std::string& option, std::vector<std::pair<int, int>>& sizes,

@@ -159,6 +159,19 @@ CLI::Option* AddText(CLI::App* app, const std::string& name, std::string& target
     }));
 }
 
+namespace
+{
+/// The first item that appears twice in `items`, as written; empty if none.
+std::string Repeated(const std::vector<std::string>& items)
+{
+  for (std::size_t i = 0; i < items.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (items[i] == items[j])
+        return items[i];
+  return "";
+}
+}
+
 CLI::Option* AddNumberList(CLI::App* app, const std::string& name, std::vector<double>& target,
   const std::string& typeName, const std::string& help)
 {
@@ -201,13 +214,16 @@ CLI::Option* AddList(CLI::App* app, const std::string& name, const std::string& 
       [check](std::string& v) -> std::string {
         if (v.empty() || HasEmptyItem(v))
           return "an empty item in '" + v + "'";
-        for (const std::string& item : Split(v, ','))
+        const auto items = Split(v, ',');
+        for (const std::string& item : items)
         {
           const std::string reason = check(item);
           if (!reason.empty())
             return reason;
         }
-        return "";
+        const std::string twice = Repeated(items);
+        return twice.empty() ? ""
+                             : "'" + twice + "' is given twice in '" + v + "' (each item runs once)";
       },
       ""));
 }
@@ -262,10 +278,7 @@ CLI::Option* AddImageSize(CLI::App* app, const std::string& name, int& width, in
   int hi, const std::string& help)
 {
   auto parse = [lo, hi](const std::string& v, int& w, int& h) {
-    char x = 0;
-    char rest = 0;
-    return std::sscanf(v.c_str(), "%d%c%d%c", &w, &x, &h, &rest) == 3 && x == 'x' && w >= lo &&
-      h >= lo && w <= hi && h <= hi;
+    return ParseImageSize(v, lo, hi, w, h);
   };
   return app
     ->add_option_function<std::string>(
@@ -300,10 +313,12 @@ void AddLAOOptions(CLI::App* app, LAOCommandLine& lao, bool samplesOption)
   app
     ->add_option_function<std::string>(
       "--quality", [&lao](const std::string& v) { cao::ParseQualityPreset(v, lao.settings.preset); },
-      Wrap("LAO quality preset: interactive (the default, equal to the defaults of the options "
-           "below), balanced, reference or custom; a preset sets the rays, samples, density, "
-           "offset and variation (so it is not combined with those options; giving any of them "
-           "without --quality means custom); --reach still applies"))
+      Wrap(std::string("LAO quality preset: interactive (the default, equal to the defaults of "
+                       "the options below), balanced, reference or custom; a preset sets the "
+                       "rays, ") +
+        (samplesOption ? "samples, " : "") +
+        "density, offset and variation (so it is not combined with those options; giving any of "
+        "them without --quality means custom); --reach still applies"))
     ->type_name("NAME")
     ->check(Check([](std::string& v) -> std::string {
       cao::QualityPreset p;
@@ -353,6 +368,9 @@ CLI::Option* AddRays(CLI::App* app, std::vector<std::string>& rays, bool list)
       const auto items = Split(v, ',');
       if (!list && items.size() != 1)
         return "'" + v + "' is a list; this command takes a single ray pattern";
+      const std::string twice = Repeated(items);
+      if (!twice.empty())
+        return "'" + twice + "' is given twice in '" + v + "' (each item runs once)";
       for (const auto& r : items)
       {
         cao::RayPattern p;
@@ -550,6 +568,7 @@ void AddClipOptions(CLI::App* app, ClipOptions& clip, int maxLayers)
       Wrap("a pose, \"tx ty tz [rx ry rz [s]]\", rotation in degrees (repeatable)"))
     ->type_name("POSE")
     ->expected(1)
+    ->allow_extra_args(false)
     ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   CLI::Option* poses = AddText(app, "--poses", clip.posesFile, "FILE", "one pose per line");
   AddInteger(app, "--path", clip.path, 1, vtkCAO::MaxPoses,
@@ -651,10 +670,29 @@ std::string Message(const CLI::App& cao, const CLI::ParseError& e)
       " (expected " + Names(command->get_subcommands([](const CLI::App*) { return true; })) +
       "; see " + name + " --help)";
   }
-  // A positional argument ("VOLUME is required", "MESH is required").
+  // A positional argument ("VOLUME is required", "MESH is required"); an
+  // unknown option before it is the likelier mistake, so it is named first.
   if (dynamic_cast<const CLI::RequiredError*>(&e) && !what.empty() && std::isupper(what[0]) &&
     what.find(" is required") != std::string::npos)
+  {
+    for (const std::string& extra : command->remaining())
+      if (extra.size() > 1 && extra[0] == '-')
+        return "unknown option '" + extra + "' for " + name + " (see " + name + " --help)";
     return "missing " + what.substr(0, what.find(' ')) + " (see " + name + " --help)";
+  }
+  // "Could not convert: --json = maybe": a value a flag does not take.
+  const std::string convert = "Could not convert: ";
+  if (dynamic_cast<const CLI::ConversionError*>(&e) && what.rfind(convert, 0) == 0 &&
+    what.find(" = ") != std::string::npos)
+  {
+    const std::size_t eq = what.find(" = ");
+    const std::string option = what.substr(convert.size(), eq - convert.size());
+    const std::string value = what.substr(eq + 3);
+    const CLI::Option* o = command->get_option_no_throw(option);
+    return o && o->get_expected_max() == 0
+      ? "option " + option + " is a flag: it takes no value (got '" + value + "')"
+      : option + ": bad value '" + value + "'";
+  }
   if (dynamic_cast<const CLI::ExcludesError*>(&e))
   {
     // "--shape excludes --mesh": both name the same thing.
@@ -664,8 +702,58 @@ std::string Message(const CLI::App& cao, const CLI::ParseError& e)
 }
 }
 
+namespace
+{
+const CLI::App* Child(const CLI::App* command, const std::string& name)
+{
+  const auto found = command->get_subcommands(
+    [&name](const CLI::App* sub) { return sub->check_name(name); });
+  return found.empty() ? nullptr : found.front();
+}
+
+/// `cao [COMMAND...] ... -h|--help ...` and `cao help [COMMAND...]`: the
+/// deepest command named before the help word, found without parsing, so
+/// that a bad value elsewhere on the line does not hide the help.
+/// Null when the line asks for no help.
+const CLI::App* HelpFor(const CLI::App& cao, int argc, char* argv[], std::string& prefix)
+{
+  const bool helpCommand = argc > 1 && std::string(argv[1]) == "help";
+  bool asked = helpCommand;
+  const CLI::App* command = &cao;
+  prefix.clear();
+  for (int i = helpCommand ? 2 : 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    if (arg == "--")
+      break;
+    if (arg == "-h" || arg == "--help")
+      asked = true;
+    else if (const CLI::App* sub = Child(command, arg))
+    {
+      prefix += (prefix.empty() ? "" : " ") + command->get_name();
+      command = sub;
+    }
+    else if (helpCommand && !arg.empty() && arg[0] != '-')
+      break; // `cao help nosuch`: the tool's help
+  }
+  return asked ? command : nullptr;
+}
+}
+
 int Run(CLI::App& cao, const std::vector<Command>& commands, int argc, char* argv[])
 {
+  std::string prefix;
+  if (const CLI::App* command = HelpFor(cao, argc, argv, prefix))
+  {
+    std::cout << (command == &cao ? cao.help() : command->help(prefix));
+    return 0;
+  }
+  if (argc == 2 && std::string(argv[1]) == "version")
+  {
+    char flag[] = "--version";
+    char* line[] = { argv[0], flag };
+    return Run(cao, commands, 2, line);
+  }
   try
   {
     cao.parse(argc, argv);

@@ -386,8 +386,8 @@ int Render(RenderOptions& o, const CLI::App* app)
     if (png->GetErrorCode())
       return Fail(1, "cannot write '" + name + "'");
     if (o.json)
-      std::printf("%s\n  {\"file\": \"%s\", \"wall_ms\": %.3f, \"report\": %s}", f ? "," : "",
-        name.c_str(), ms, mapper->GetLastFrameReport().c_str());
+      std::printf("%s\n  {\"pose\": %zu, \"file\": \"%s\", \"wall_ms\": %.3f, \"report\": %s}", f ? "," : "",
+        f, name.c_str(), ms, mapper->GetLastFrameReport().c_str());
     else
       std::printf("frame %3zu  %8.1f ms  recomputed %9lld voxels  [%s]  %s\n", f, ms,
         static_cast<long long>(mapper->GetLastFrameRecomputedVoxels()),

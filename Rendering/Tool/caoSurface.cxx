@@ -148,7 +148,7 @@ CLI::Option* AddSurfaceSlices(CLI::App* app, int& slices, const std::string& hel
 {
   return app->add_option("--slices", slices, Wrap(help))
     ->type_name("N")
-    ->check(CLI::Validator(
+    ->transform(CLI::Validator(
       [](std::string& v) -> std::string {
         const std::string reason = SlicesReason(v);
         double x = 0.0;

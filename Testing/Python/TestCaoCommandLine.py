@@ -225,10 +225,48 @@ for args, words, what in (
         (["render", neghip, "--no-clip", "--aa", "3"], "--no-clip", "render --no-clip with --aa"),
         (["render", neghip, "--no-ao", "--ao-strength", "0.5"], "--no-ao", "render --no-ao with --ao-strength"),
         (["bench", "surface-scale", os.path.join(data, "Bunny.vtp"), "-o", os.path.join(tmp, "none", "x")],
-         "does not exist", "bench surface-scale -o into no folder")):
+         "does not exist", "bench surface-scale -o into no folder"),
+        # --pose takes one value: what follows it is the volume or an extra
+        # argument, never a second pose (it was read as one, and the volume
+        # was then "missing").
+        (["carve", "--pose", "1 0 0", neghip, "--path", "3"], "--pose excludes --path",
+         "--pose before the volume leaves the volume in place"),
+        (["carve", neghip, "--pose", "1 0 0", "stray"], "unexpected argument 'stray'",
+         "a stray argument after --pose is not a pose"),
+        # Sizes are whole decimal numbers in range: 4294967312 wrapped to 16.
+        (["render", neghip, "--image", "4294967312x16"], "--image: bad value '4294967312x16'",
+         "an --image side past 32 bits"),
+        (["render", neghip, "--image", "16x-16"], "--image: bad value '16x-16'", "a negative --image side"),
+        (["render", neghip, "--image", "+64x64"], "--image: bad value '+64x64'", "a signed --image side"),
+        (["bench", "surface-frame", os.path.join(data, "Bunny.vtp"), "--sizes", "64x64,4294967312x16"],
+         "4294967312x16", "a --sizes item past 32 bits"),
+        (["lao", neghip, "--json=maybe"], "--json is a flag: it takes no value", "a value given to a flag"),
+        (["lao", "--bogus"], "unknown option '--bogus'", "an unknown option before the missing volume"),
+        # A list item given twice ran twice.
+        (["carve", neghip, "--rays", "6,14,6"], "'6' is given twice", "a ray pattern given twice"),
+        (["bench", "surface-frame", os.path.join(data, "Bunny.vtp"), "--sizes", "64x64,64x64"],
+         "'64x64' is given twice", "an image size given twice")):
     rc, out, err = run(*args)
     lines = [l for l in err.splitlines() if l.strip()]
     check(rc == 2 and len(lines) == 1 and words in err, f"{what}: rc={rc} {err.strip()[:200]!r}")
+rc, out, err = run("surface", os.path.join(data, "Bunny.vtp"), "--slices", "64.0",
+                   "-o", os.path.join(tmp, "slices.png"))
+check(rc == 0, f"surface --slices 64.0 is 64, as --samples 1e1 is 10: rc={rc} {err.strip()[:200]!r}")
+rc, out, err = run("carve", neghip, "--pose", "30 30 30", "--pose", "20 20 20", "--rays", "6", "--json")
+check(rc == 0 and len(json.loads(out)["runs"][0]["poses"]) == 2,
+      f"--pose twice gives two poses: rc={rc} {err.strip()[:200]!r}")
+# Help wins over any other mistake on the line, and `cao help COMMAND` and
+# `cao version` are the same as --help and --version.
+for args, words, what in (
+        (["carve", "--size", "abc", "--help"], "Usage: cao carve", "--help after a bad value"),
+        (["render", neghip, "--image", "0x0", "-h"], "Usage: cao render", "-h after a bad --image"),
+        (["bench", "surface", "--help"], "Usage: cao bench surface", "a benchmark's --help"),
+        (["help", "bench", "accuracy"], "Usage: cao bench accuracy", "cao help bench accuracy"),
+        (["help"], "Usage: cao [OPTIONS] SUBCOMMAND", "cao help")):
+    rc, out, err = run(*args)
+    check(rc == 0 and words in out and not err, f"{what}: rc={rc} {out[:80]!r} {err.strip()[:200]!r}")
+rc, out, err = run("version")
+check(rc == 0 and out.startswith("cao (ContextualAO) "), f"cao version: rc={rc} {out.strip()[:100]}")
 rc, out, err = run("lao", neghip, "--samples", "1e1", "--rays", "6", "--json")
 check(rc == 0 and json.loads(out)["samples"] == 10, f"--samples 1e1 is 10 (CLI11 refused it): rc={rc} {err.strip()[:200]}")
 expect_error(["lao"], 2, "missing VOLUME", "no volume")
@@ -340,6 +378,8 @@ else:
               "render: frame %d is a PNG" % i)
         names = [s["name"] for s in r["report"]["stages"]]
         check("raycast" in names, "render: frame %d ray cast" % i)
+        check(r.get("pose") == i and r.get("file") == png,
+              "render --json: entry %d names its pose and file (%s, %s)" % (i, r.get("pose"), r.get("file")))
     if len(reports) == 3:
         first = [s["name"] for s in reports[0]["report"]["stages"]]
         check("precompute" in first and "depth_maps" in first, "render: frame 0 precomputes")
@@ -578,6 +618,17 @@ def write_volume(name, dims, spacing=(1.0, 1.0, 1.0), value=None):
     w.Write()
     return os.path.join(tmp, name)
 
+
+# bench accuracy on an 8^3 volume: its clip sphere (radius 1.75 voxels) is
+# narrower than the default depth-map pixels of 4 and 2 voxels; those rows
+# are skipped, saying why, and the rest runs (it failed at the end).
+tiny = write_volume("tiny_8.vti", (8, 8, 8))
+rc, out, err = run("bench", "accuracy", tiny, "--patterns", "6", "--densities", "1", "--variants", "paper",
+                   "--storage", "float32", "--backends", "cpu", "--reference-rays", "64", "--no-step-check",
+                   "-o", os.path.join(tmp, "bench_tiny"))
+check(rc == 0 and "skipped: a pixel of 4 voxels is wider than the sphere's radius" in out and
+      re.search(r"^1 +cpu +[0-9.]+", out, re.M),
+      f"bench accuracy on 8^3 skips the map pixels wider than its sphere: rc={rc} {err.strip()[-300:]!r}")
 
 # A volume one voxel thick is a slab: its in-plane rays see its matter, so
 # its AO is below 1 (the filters' hard-cases test has the exact value of an
