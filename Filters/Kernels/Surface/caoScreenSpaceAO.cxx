@@ -1,6 +1,7 @@
 #include "caoScreenSpaceAO.h"
 
 #include "caoParallelFor.h"
+#include "caoVectorMath.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,41 +14,13 @@ namespace
 {
 constexpr double Pi = 3.14159265358979323846;
 
-struct Vec
-{
-  double x, y, z;
-};
-Vec operator+(Vec a, Vec b)
-{
-  return { a.x + b.x, a.y + b.y, a.z + b.z };
-}
-Vec operator-(Vec a, Vec b)
-{
-  return { a.x - b.x, a.y - b.y, a.z - b.z };
-}
-Vec operator*(double s, Vec a)
-{
-  return { s * a.x, s * a.y, s * a.z };
-}
-double Dot(Vec a, Vec b)
-{
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-Vec Cross(Vec a, Vec b)
-{
-  return { a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x };
-}
-Vec Normalized(Vec a)
-{
-  const double l = std::sqrt(Dot(a, a));
-  return l > 0.0 ? (1.0 / l) * a : a;
-}
+using Vec = Vec3;
 /// Two unit vectors completing n (unit) to an orthonormal frame.
 void Complete(Vec n, Vec& t1, Vec& t2)
 {
   const Vec a = std::fabs(n.x) < 0.6 ? Vec{ 1, 0, 0 } : Vec{ 0, 1, 0 };
-  t1 = Normalized(Cross(a, n));
-  t2 = Cross(n, t1);
+  t1 = Normalized(glm::cross(a, n));
+  t2 = glm::cross(n, t1);
 }
 
 /// A deterministic uniform number in [0, 1) from (seed, index): splitmix64.
@@ -153,7 +126,7 @@ struct Screen
     {
       toCamera = Normalized(Vec{ n[0] - fa[0], n[1] - fa[1], n[2] - fa[2] });
       const Vec d = Vec{ side[0], side[1], side[2] } - this->Position(k);
-      footprint = std::sqrt(Dot(d, d));
+      footprint = std::sqrt(glm::dot(d, d));
     }
   }
 };
@@ -187,8 +160,8 @@ void PixelFrame(const Screen& screen, std::size_t k, Vec& X, Vec& Y, Vec& Z)
 {
   double footprint;
   screen.Ray(k, Z, footprint);
-  X = Normalized(screen.screenRight - Dot(screen.screenRight, Z) * Z);
-  Y = Cross(Z, X);
+  X = Normalized(screen.screenRight - glm::dot(screen.screenRight, Z) * Z);
+  Y = glm::cross(Z, X);
 }
 
 std::string CheckFrameSettings(double radius)
@@ -478,7 +451,7 @@ bool HBAOFrame(const PixelCamera& camera, const HBAOSettings& settings, SurfaceF
         if (!screen.Covered(q) || (settings.deflect && !(z > screen.ndcDepth[q])))
           continue;
         const Vec v = screen.Position(q) - p;
-        const double r = std::sqrt(Dot(v, v)), up = Dot(v, n), along = Dot(v, t);
+        const double r = std::sqrt(glm::dot(v, v)), up = glm::dot(v, n), along = glm::dot(v, t);
         if (!(r < R) || !(along > 0.0))
           continue;
         const double length = std::sqrt(up * up + along * along);
@@ -506,9 +479,9 @@ bool HBAOFrame(const PixelCamera& camera, const HBAOSettings& settings, SurfaceF
           if (!screen.Covered(q) || !(z > screen.ndcDepth[q]))
             continue;
           const Vec v = screen.Position(q) - p;
-          if (!(Dot(v, n) > 0.0) || !(Dot(v, v) < R * R))
+          if (!(glm::dot(v, n) > 0.0) || !(glm::dot(v, v) < R * R))
             continue; // the plane itself, or a surface beyond the reach in front of the ray
-          normalOcclusion += attenuation(std::sqrt(Dot(v, v))) * (1.0 - H * H) / (c.directions * c.normalRays);
+          normalOcclusion += attenuation(std::sqrt(glm::dot(v, v))) * (1.0 - H * H) / (c.directions * c.normalRays);
           break;
         }
       }
@@ -547,7 +520,7 @@ bool VAOFrame(const PixelCamera& camera, const VAOSettings& settings, SurfaceFra
     const Vec p = screen.Position(k), N = screen.Normal(k);
     Vec X, Y, Z;
     PixelFrame(screen, k, X, Y, Z);
-    const double nx = Dot(N, X), ny = Dot(N, Y), nz = std::max(1e-6, Dot(N, Z));
+    const double nx = glm::dot(N, X), ny = glm::dot(N, Y), nz = std::max(1e-6, glm::dot(N, Z));
     double sum = 0.0;
     for (int s = 0; s < n; ++s)
     {
@@ -560,7 +533,7 @@ bool VAOFrame(const PixelCamera& camera, const VAOSettings& settings, SurfaceFra
       if (q >= 0 && screen.Covered(q))
       {
         const Vec s2 = screen.Position(q);
-        surface = Dot(s2 - p, Z);
+        surface = glm::dot(s2 - p, Z);
         if (settings.haloGuard && surface >= chord)
           surface = -std::numeric_limits<double>::infinity(); // in front of the whole sphere: not taken as reaching into it
       }
@@ -615,7 +588,7 @@ bool VAOIndirect(const PixelCamera& camera, const VAOSettings& settings, const S
       if (q < 0 || static_cast<std::size_t>(q) == k || !screen.Covered(q))
         continue;
       const Vec toP = p - screen.Position(q);
-      if (!(Dot(toP, toP) < R * R) || !(Dot(screen.Normal(q), toP) > 1e-3 * R))
+      if (!(glm::dot(toP, toP) < R * R) || !(glm::dot(screen.Normal(q), toP) > 1e-3 * R))
         continue; // beyond the radius (across a depth gap), or facing away from P or coplanar with it
       for (int c = 0; c < 3; ++c)
         light[c] += colour[3 * q + c];

@@ -1,5 +1,7 @@
 #include "caoTriangleBVH.h"
 
+#include "caoVectorMath.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -10,23 +12,6 @@ namespace
 {
 constexpr int LeafSize = 4;
 constexpr int MaximumDepth = 64;
-
-void Sub(const double* a, const double* b, double* out)
-{
-  out[0] = a[0] - b[0];
-  out[1] = a[1] - b[1];
-  out[2] = a[2] - b[2];
-}
-void Cross(const double* a, const double* b, double* out)
-{
-  out[0] = a[1] * b[2] - a[2] * b[1];
-  out[1] = a[2] * b[0] - a[0] * b[2];
-  out[2] = a[0] * b[1] - a[1] * b[0];
-}
-double Dot(const double* a, const double* b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 }
 
 bool TriangleBVH::Build(const std::vector<double>& points,
@@ -77,13 +62,13 @@ bool TriangleBVH::Build(const std::vector<double>& points,
     const double* a = &points[static_cast<std::size_t>(3 * id[0])];
     const double* b = &points[static_cast<std::size_t>(3 * id[1])];
     const double* c = &points[static_cast<std::size_t>(3 * id[2])];
+    const Vec3 v0 = LoadVec3(a), e1 = LoadVec3(b) - v0, e2 = LoadVec3(c) - v0;
     Triangle tri;
-    std::copy(a, a + 3, tri.v0);
-    Sub(b, a, tri.e1);
-    Sub(c, a, tri.e2);
-    double n[3];
-    Cross(tri.e1, tri.e2, n);
-    const double length = std::sqrt(Dot(n, n));
+    StoreVec3(v0, tri.v0);
+    StoreVec3(e1, tri.e1);
+    StoreVec3(e2, tri.e2);
+    const Vec3 n = glm::cross(e1, e2);
+    const double length = std::sqrt(glm::dot(n, n));
     if (!(length > 0.0))
       continue; // zero area: never hit
     this->normals[static_cast<std::size_t>(t)] = { { n[0] / length, n[1] / length, n[2] / length } };
@@ -182,6 +167,7 @@ bool TriangleBVH::Trace(const double origin[3], const double direction[3], doubl
   double inverse[3];
   for (int d = 0; d < 3; ++d)
     inverse[d] = 1.0 / direction[d]; // +-inf for a zero component: its slab is unbounded
+  const Vec3 rayOrigin = LoadVec3(origin), rayDirection = LoadVec3(direction);
   std::int64_t stack[2 * MaximumDepth + 2];
   int top = 0;
   stack[top++] = 0;
@@ -216,21 +202,21 @@ bool TriangleBVH::Trace(const double origin[3], const double direction[3], doubl
     {
       const Triangle& tri = this->triangles[static_cast<std::size_t>(i)];
       // Moller-Trumbore, double precision; edges inclusive.
-      double p[3], q[3], s[3];
-      Cross(direction, tri.e2, p);
-      const double det = Dot(tri.e1, p);
+      const Vec3 e1 = LoadVec3(tri.e1), e2 = LoadVec3(tri.e2);
+      const Vec3 p = glm::cross(rayDirection, e2);
+      const double det = glm::dot(e1, p);
       if (det == 0.0)
         continue;
       const double inv = 1.0 / det;
-      Sub(origin, tri.v0, s);
-      const double u = Dot(s, p) * inv;
+      const Vec3 s = rayOrigin - LoadVec3(tri.v0);
+      const double u = glm::dot(s, p) * inv;
       if (u < 0.0 || u > 1.0)
         continue;
-      Cross(s, tri.e1, q);
-      const double v = Dot(direction, q) * inv;
+      const Vec3 q = glm::cross(s, e1);
+      const double v = glm::dot(rayDirection, q) * inv;
       if (v < 0.0 || u + v > 1.0)
         continue;
-      const double t = Dot(tri.e2, q) * inv;
+      const double t = glm::dot(e2, q) * inv;
       if (t > tMin && t <= best)
       {
         if (AnyHit)

@@ -1,6 +1,6 @@
 #include "caoVoxelConeTracing.h"
 
-#include "caoLAO.h"
+#include "caoOpacity.h"
 #include "caoParallelFor.h"
 
 #include <algorithm>

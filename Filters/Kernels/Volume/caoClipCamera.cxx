@@ -1,5 +1,7 @@
 #include "caoClipCamera.h"
 
+#include "caoVectorMath.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -11,30 +13,6 @@ namespace cao
 {
 namespace
 {
-double Dot(const double* a, const double* b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-void Cross(const double* a, const double* b, double* c)
-{
-  const double x = a[1] * b[2] - a[2] * b[1];
-  const double y = a[2] * b[0] - a[0] * b[2];
-  const double z = a[0] * b[1] - a[1] * b[0];
-  c[0] = x;
-  c[1] = y;
-  c[2] = z;
-}
-
-double Normalize(double* v)
-{
-  const double n = std::sqrt(Dot(v, v));
-  if (n > 0.0)
-    for (int i = 0; i < 3; ++i)
-      v[i] /= n;
-  return n;
-}
-
 bool Finite(const double* v, int n)
 {
   for (int i = 0; i < n; ++i)
@@ -178,25 +156,23 @@ bool PlanClipCamera(
 
   // Camera frame: right x up = direction.
   ClipCamera& cam = plan.camera;
-  double dir[3] = { r.direction[0], r.direction[1], r.direction[2] };
-  if (Normalize(dir) == 0.0)
+  Vec3 dir = LoadVec3(r.direction);
+  if (DivideByLength(dir) == 0.0)
   {
     error = "the clipping camera's Direction is zero";
     return false;
   }
-  double up[3] = { r.viewUp[0], r.viewUp[1], r.viewUp[2] };
-  double right[3];
-  Cross(up, dir, right);
-  if (Normalize(right) < 1e-12)
+  Vec3 right = glm::cross(LoadVec3(r.viewUp), dir);
+  if (DivideByLength(right) < 1e-12)
   {
     error = "the clipping camera's ViewUp is parallel to its Direction";
     return false;
   }
-  Cross(dir, right, up);
-  Normalize(up);
-  std::copy(dir, dir + 3, cam.direction);
-  std::copy(right, right + 3, cam.right);
-  std::copy(up, up + 3, cam.up);
+  Vec3 up = glm::cross(dir, right);
+  DivideByLength(up);
+  StoreVec3(dir, cam.direction);
+  StoreVec3(right, cam.right);
+  StoreVec3(up, cam.up);
   cam.layers = r.layers;
 
   // Projected bounds of the mesh.
@@ -204,8 +180,8 @@ bool PlanClipCamera(
   double umin = big, umax = -big, vmin = big, vmax = -big, zmin = big, zmax = -big;
   for (std::int64_t i = 0; i < mesh.numberOfPoints; ++i)
   {
-    const double* p = mesh.points + 3 * i;
-    const double u = Dot(p, right), v = Dot(p, up), z = Dot(p, dir);
+    const Vec3 p = LoadVec3(mesh.points + 3 * i);
+    const double u = glm::dot(p, right), v = glm::dot(p, up), z = glm::dot(p, dir);
     umin = std::min(umin, u);
     umax = std::max(umax, u);
     vmin = std::min(vmin, v);
@@ -223,7 +199,7 @@ bool PlanClipCamera(
   // anti-aliasing footprint (half a diagonal), over the smallest pose scale,
   // plus slack for float rounding of the camera coordinates (~100 ulps of
   // the camera's coordinate range).
-  const double voxelDiagonal = std::sqrt(Dot(h, h));
+  const double voxelDiagonal = glm::length(LoadVec3(h));
   const double nominal =
     r.dilationScale * (r.reach + 1.5 * voxelDiagonal) / r.minimumPoseScale;
   const double range = std::max({ umax - umin, vmax - vmin, zmax - zmin }) + 2.0 * nominal +
@@ -257,11 +233,11 @@ bool PlanClipCamera(
     double ru0 = big, ru1 = -big, rv0 = big, rv1 = -big;
     for (int c = 0; c < 8; ++c)
     {
-      const double q[3] = { roi[(c & 1)], roi[2 + ((c >> 1) & 1)], roi[4 + ((c >> 2) & 1)] };
-      ru0 = std::min(ru0, Dot(q, right));
-      ru1 = std::max(ru1, Dot(q, right));
-      rv0 = std::min(rv0, Dot(q, up));
-      rv1 = std::max(rv1, Dot(q, up));
+      const Vec3 q = { roi[(c & 1)], roi[2 + ((c >> 1) & 1)], roi[4 + ((c >> 2) & 1)] };
+      ru0 = std::min(ru0, glm::dot(q, right));
+      ru1 = std::max(ru1, glm::dot(q, right));
+      rv0 = std::min(rv0, glm::dot(q, up));
+      rv1 = std::max(rv1, glm::dot(q, up));
     }
     if (ru0 > umin || ru1 < umax || rv0 > vmin || rv1 < vmax)
     {

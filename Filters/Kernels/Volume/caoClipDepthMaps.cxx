@@ -1,5 +1,7 @@
 #include "caoClipDepthMaps.h"
 
+#include "caoVectorMath.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -10,11 +12,6 @@ namespace cao
 namespace
 {
 constexpr float Inf = std::numeric_limits<float>::infinity();
-
-double Dot(const double a[3], const double b[3])
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 
 struct Projected
 {
@@ -70,10 +67,10 @@ void ClipDepthMaps::Allocate(int w, int h, int l)
 
 void LocalToCamera(const ClipCamera& c, const double q[3], double uvz[3])
 {
-  const double d[3] = { q[0] - c.origin[0], q[1] - c.origin[1], q[2] - c.origin[2] };
-  uvz[0] = Dot(d, c.right) / c.pixelSize[0];
-  uvz[1] = Dot(d, c.up) / c.pixelSize[1];
-  uvz[2] = Dot(d, c.direction);
+  const Vec3 d = LoadVec3(q) - LoadVec3(c.origin);
+  uvz[0] = glm::dot(d, LoadVec3(c.right)) / c.pixelSize[0];
+  uvz[1] = glm::dot(d, LoadVec3(c.up)) / c.pixelSize[1];
+  uvz[2] = glm::dot(d, LoadVec3(c.direction));
 }
 
 bool ValidateRasterInput(const ClipCamera& cam, const TriangleMesh& mesh, std::string& error)

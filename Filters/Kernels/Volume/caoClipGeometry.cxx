@@ -1,5 +1,7 @@
 #include "caoClipGeometry.h"
 
+#include "caoVectorMath.h"
+
 #include "caoGPULayout.h"
 
 #include <algorithm>
@@ -13,35 +15,22 @@ namespace cao
 {
 namespace
 {
-using Vec = std::array<double, 3>;
-
-Vec Sub(const Vec& a, const Vec& b)
-{
-  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
-}
-double Dot(const Vec& a, const Vec& b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-Vec Cross(const Vec& a, const Vec& b)
-{
-  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
-}
+using Vec = Vec3;
 
 /// Closest point of triangle abc to p (Ericson, Real-Time Collision
 /// Detection, 5.1.5), returned as the squared distance.
 double TriangleDistance2(const Vec& p, const Vec& a, const Vec& b, const Vec& c)
 {
-  const Vec ab = Sub(b, a), ac = Sub(c, a), ap = Sub(p, a);
-  const double d1 = Dot(ab, ap), d2 = Dot(ac, ap);
+  const Vec ab = (b - a), ac = (c - a), ap = (p - a);
+  const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
   auto dist2 = [&p](const Vec& q) {
-    const Vec d = Sub(p, q);
-    return Dot(d, d);
+    const Vec d = (p - q);
+    return glm::dot(d, d);
   };
   if (d1 <= 0 && d2 <= 0)
     return dist2(a);
-  const Vec bp = Sub(p, b);
-  const double d3 = Dot(ab, bp), d4 = Dot(ac, bp);
+  const Vec bp = (p - b);
+  const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
   if (d3 >= 0 && d4 <= d3)
     return dist2(b);
   const double vc = d1 * d4 - d3 * d2;
@@ -50,8 +39,8 @@ double TriangleDistance2(const Vec& p, const Vec& a, const Vec& b, const Vec& c)
     const double v = d1 / (d1 - d3);
     return dist2({ a[0] + v * ab[0], a[1] + v * ab[1], a[2] + v * ab[2] });
   }
-  const Vec cp = Sub(p, c);
-  const double d5 = Dot(ab, cp), d6 = Dot(ac, cp);
+  const Vec cp = (p - c);
+  const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
   if (d6 >= 0 && d5 <= d6)
     return dist2(c);
   const double vb = d5 * d2 - d1 * d6;
@@ -75,21 +64,21 @@ double TriangleDistance2(const Vec& p, const Vec& a, const Vec& b, const Vec& c)
 /// Whether the ray o + t d (t > 0) crosses triangle abc (Moller-Trumbore).
 bool RayHits(const Vec& o, const Vec& d, const Vec& a, const Vec& b, const Vec& c)
 {
-  const Vec e1 = Sub(b, a), e2 = Sub(c, a);
-  const Vec pv = Cross(d, e2);
-  const double det = Dot(e1, pv);
+  const Vec e1 = (b - a), e2 = (c - a);
+  const Vec pv = glm::cross(d, e2);
+  const double det = glm::dot(e1, pv);
   if (std::fabs(det) < 1e-300)
     return false;
   const double inv = 1.0 / det;
-  const Vec tv = Sub(o, a);
-  const double u = Dot(tv, pv) * inv;
+  const Vec tv = (o - a);
+  const double u = glm::dot(tv, pv) * inv;
   if (u < 0.0 || u > 1.0)
     return false;
-  const Vec qv = Cross(tv, e1);
-  const double v = Dot(d, qv) * inv;
+  const Vec qv = glm::cross(tv, e1);
+  const double v = glm::dot(d, qv) * inv;
   if (v < 0.0 || u + v > 1.0)
     return false;
-  return Dot(e2, qv) * inv > 0.0;
+  return glm::dot(e2, qv) * inv > 0.0;
 }
 
 struct Box

@@ -718,14 +718,4 @@ AOCalibration SurfaceCalibration(const LAOPlan& plan)
   c.openOpaque = HalfSpaceAO(plan, 1.0);
   c.enclosed = plan.samples > 0 ? 1.0 / plan.samples : 0.0;
   return c;
-}
-
-float CorrectOpacity(double alpha, double stepOverUnit)
-{
-  if (!(alpha > 0.0)) // also NaN
-    return 0.0f;
-  if (alpha >= 1.0)
-    return 1.0f;
-  return static_cast<float>(1.0 - std::pow(1.0 - alpha, stepOverUnit));
-}
-}
+}}

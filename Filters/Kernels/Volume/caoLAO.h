@@ -26,6 +26,7 @@
 #include "caoRayPattern.h"
 #include "caoGPULayout.h"
 #include "caoMemory.h" // MaxVoxels
+#include "caoOpacity.h" // CorrectOpacity
 
 #include <algorithm>
 #include <cstdint>
@@ -139,10 +140,6 @@ struct AOCalibration
   double openEmpty = 1.0, openOpaque = 1.0, enclosed = 0.0;
 };
 AOCalibration SurfaceCalibration(const LAOPlan& plan);
-
-/// Step-length correction of an opacity for samples `stepOverUnit` unit
-/// distances apart: 1 - (1 - a)^(step/unit), computed in double, exact at 0 and 1.
-float CorrectOpacity(double alpha, double stepOverUnit);
 }
 
 #endif
