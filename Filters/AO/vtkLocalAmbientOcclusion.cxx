@@ -275,7 +275,17 @@ vtkDataArray* vtkLocalAmbientOcclusion::SelectScalars(
   const char* name = scalars && scalars->GetName() ? scalars->GetName() : "";
   const int nc = scalars ? scalars->GetNumberOfComponents() : 0;
   component = this->Component < 0 ? 0 : this->Component;
-  if (!scalars)
+  const std::string requested = request->Has(vtkDataObject::FIELD_NAME())
+    ? std::string(request->Get(vtkDataObject::FIELD_NAME()))
+    : std::string();
+  if (!scalars && !requested.empty())
+    vtkErrorMacro("The input has no array '" << requested << "' to compute opacity from"
+      << (input->GetPointData()->GetScalars() && input->GetPointData()->GetScalars()->GetName()
+             ? std::string(" (its point scalars are '") +
+               input->GetPointData()->GetScalars()->GetName() + "')"
+             : std::string())
+      << ".");
+  else if (!scalars)
     vtkErrorMacro("The input has no point scalars to compute opacity from "
                   "(set the input array to process"
       << (input->GetCellData()->GetScalars() ? "; its scalars are cell data: the filters take point "

@@ -140,6 +140,18 @@ check(list(display.ClipPosition) == centre and
       "the reference box [-1,1]^3 (%s, %s, %s, %s)"
       % (centre, quarter, list(display.ClipPosition), list(display.ClipScale),
          list(display.ClipReferenceBounds), display.ClipUseReferenceBounds))
+# Choosing the representation colours by a point array when nothing is
+# coloured, as choosing ParaView's Volume does (it stayed "Solid Color": an
+# empty view), by the method and by the property alike.
+check(display.ColorArrayName[0] == "POINTS" and display.ColorArrayName[1] != "",
+      "SetRepresentationType('Contextual AO Volume') colours by a point array: %s"
+      % list(display.ColorArrayName))
+view2 = pvs.CreateView("RenderView")
+display2 = pvs.Show(reader, view2)
+pvs.ColorBy(display2, None)
+display2.Representation = "Contextual AO Volume"
+check(display2.ColorArrayName[1] != "", "Representation = 'Contextual AO Volume' colours by a point array: %s"
+      % list(display2.ColorArrayName))
 pvs.Delete(display)
 pvs.Delete(view)
 

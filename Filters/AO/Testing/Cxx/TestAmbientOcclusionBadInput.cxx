@@ -51,6 +51,20 @@ int TestAmbientOcclusionBadInput(int, char*[])
     if (ExpectError(lao, "no point scalars", "no scalars"))
       return 1;
   }
+  // A named array the input does not have: the message names it and the
+  // scalars there are (it said "no point scalars" of a volume that had them).
+  {
+    vtkNew<vtkImageData> image;
+    image->SetDimensions(4, 4, 4);
+    image->AllocateScalars(VTK_FLOAT, 1);
+    image->GetPointData()->GetScalars()->SetName("density");
+    vtkNew<vtkLocalAmbientOcclusion> lao;
+    lao->SetInputData(image);
+    lao->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "nosuch");
+    if (ExpectError(lao, "no array 'nosuch' to compute opacity from (its point scalars are 'density')",
+          "a missing named array"))
+      return 1;
+  }
   // Multi-component scalars without a chosen component; then with one.
   {
     vtkNew<vtkImageData> image;

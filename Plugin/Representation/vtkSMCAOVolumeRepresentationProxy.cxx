@@ -1,0 +1,84 @@
+#include "vtkSMCAOVolumeRepresentationProxy.h"
+
+#include "vtkCommand.h"
+#include "vtkDataObject.h"
+#include "vtkObjectFactory.h"
+#include "vtkPVArrayInformation.h"
+#include "vtkPVDataInformation.h"
+#include "vtkSMArrayListDomain.h"
+#include "vtkSMPVRepresentationProxy.h"
+#include "vtkSMProperty.h"
+#include "vtkSMPropertyHelper.h"
+
+#include <cstring>
+
+vtkStandardNewMacro(vtkSMCAOVolumeRepresentationProxy);
+
+vtkSMCAOVolumeRepresentationProxy::vtkSMCAOVolumeRepresentationProxy() = default;
+
+vtkSMCAOVolumeRepresentationProxy::~vtkSMCAOVolumeRepresentationProxy()
+{
+  if (this->Watched)
+    this->Watched->RemoveObserver(this->Observer);
+}
+
+//------------------------------------------------------------------------------
+void vtkSMCAOVolumeRepresentationProxy::CreateVTKObjects()
+{
+  if (this->ObjectsCreated)
+    return;
+  this->Superclass::CreateVTKObjects();
+  vtkSMProxy* parent = this->GetParentProxy();
+  vtkSMProperty* representation = parent ? parent->GetProperty("Representation") : nullptr;
+  if (representation && !this->Watched)
+  {
+    this->Watched = representation;
+    this->Observer = representation->AddObserver(
+      vtkCommand::ModifiedEvent, this, &vtkSMCAOVolumeRepresentationProxy::RepresentationChanged);
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkSMCAOVolumeRepresentationProxy::RepresentationChanged()
+{
+  auto* parent = vtkSMPVRepresentationProxy::SafeDownCast(this->GetParentProxy());
+  if (this->Choosing || !parent || !this->Watched)
+    return;
+  const char* type = vtkSMPropertyHelper(this->Watched).GetAsString();
+  if (!type || std::strcmp(type, TypeName()) != 0 || parent->GetUsingScalarColoring())
+    return;
+  vtkSMProperty* colorArray = parent->GetProperty("ColorArrayName");
+  auto* arrays = colorArray ? colorArray->FindDomain<vtkSMArrayListDomain>() : nullptr;
+  if (!arrays || arrays->GetNumberOfStrings() == 0)
+    return; // nothing to colour by: the representation says so when it draws
+  // A point array with one component (the mapper draws one), else any point
+  // array, else the first.
+  vtkPVDataInformation* data = parent->GetRepresentedDataInformation();
+  auto components = [&](unsigned int i) {
+    vtkPVArrayInformation* info =
+      data ? data->GetArrayInformation(arrays->GetString(i), arrays->GetFieldAssociation(i)) : nullptr;
+    return info ? info->GetNumberOfComponents() : 0;
+  };
+  const unsigned int count = arrays->GetNumberOfStrings();
+  unsigned int index = count;
+  for (unsigned int i = 0; i < count && index == count; ++i)
+    if (arrays->GetFieldAssociation(i) == vtkDataObject::FIELD_ASSOCIATION_POINTS && components(i) == 1)
+      index = i;
+  for (unsigned int i = 0; i < count && index == count; ++i)
+    if (arrays->GetFieldAssociation(i) == vtkDataObject::FIELD_ASSOCIATION_POINTS)
+      index = i;
+  if (index == count)
+    index = 0;
+  this->Choosing = true;
+  if (parent->SetScalarColoring(arrays->GetString(index), arrays->GetFieldAssociation(index)))
+    parent->RescaleTransferFunctionToDataRange(false, false);
+  this->Choosing = false;
+}
+
+//------------------------------------------------------------------------------
+void vtkSMCAOVolumeRepresentationProxy::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Watching: " << (this->Watched ? "the parent's Representation" : "nothing")
+     << "\n";
+}
