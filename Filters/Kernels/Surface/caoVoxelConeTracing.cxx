@@ -504,7 +504,7 @@ bool PlanGrid(const std::array<double, 6>& bounds, double padding, int slices, B
     error = "the grid padding must be finite and not negative";
     return false;
   }
-  double size = 0.0;
+  double size = 0.0, diagonal2 = 0.0;
   for (int d = 0; d < 3; ++d)
   {
     if (!std::isfinite(bounds[2 * d]) || !std::isfinite(bounds[2 * d + 1]) ||
@@ -513,8 +513,16 @@ bool PlanGrid(const std::array<double, 6>& bounds, double padding, int slices, B
       error = "the grid's bounds are empty or not finite";
       return false;
     }
-    size = std::max(size, bounds[2 * d + 1] - bounds[2 * d] + 2.0 * padding);
+    diagonal2 += (bounds[2 * d + 1] - bounds[2 * d]) * (bounds[2 * d + 1] - bounds[2 * d]);
   }
+  // Nothing is set beyond the meshes, and a cone's samples outside the grid
+  // read empty: padding wider than half the bounds' diagonal only coarsens
+  // the voxels (a radius 20 x the scene's made them 20 x coarser, and the
+  // AO all but vanished). Radii up to 0.48 x the diagonal keep their grid.
+  if (diagonal2 > 0.0)
+    padding = std::min(padding, 0.5 * std::sqrt(diagonal2));
+  for (int d = 0; d < 3; ++d)
+    size = std::max(size, bounds[2 * d + 1] - bounds[2 * d] + 2.0 * padding);
   if (!(size > 0.0))
   {
     error = "the meshes have no extent";
@@ -1192,7 +1200,8 @@ void Frame(const double n[3], double x[3], double y[3])
 
 /// A cone's occlusion by rays (grid coordinates): one ray per prism point
 /// of the unit disk, apex + tau (dir + tan(beta) (x u + y v)), tau from the
-/// first sphere's near side to the last one's far side (R from the apex),
+/// first sphere's near side (on a world or eye grid at most 3 voxels out)
+/// to the last one's far side (R from the apex),
 /// sampled at the midpoints of steps of at most plan.rayStep; the
 /// cosine-weighted share of the rays that meet a set voxel (a ray's weight:
 /// its cosine with n). The GLSL's RayOcclusion is the same in float.
@@ -1204,7 +1213,16 @@ double RayOcclusion(const BitGrid& grid, const VCTPlan& plan, const double apex[
   const double inv = 1.0 / grid.voxel;
   const bool frustum = grid.IsFrustum();
   const VCTPlan::Sphere& first = plan.spheres.front();
-  const double t0 = first.t - first.r, t1 = plan.spheres.back().t + plan.spheres.back().r;
+  // From the first sphere's near side, which is 1 to 3 voxels out when the
+  // voxel limits the spheres; when their number does (a radius much larger
+  // than the voxels), from 3 voxels out, so that what is near is not skipped.
+  const double nearSide = first.t - first.r;
+  const double t0 = frustum ? nearSide : std::min(nearSide, 3.0 * grid.voxel);
+  const double t1 = plan.spheres.back().t + plan.spheres.back().r;
+  // The grid's box (world or eye grid): samples outside it read empty, so
+  // the march visits only the steps that can be inside (the same samples).
+  const double box[6] = { grid.origin[0], grid.origin[0] + grid.nx * grid.voxel, grid.origin[1],
+    grid.origin[1] + grid.ny * grid.voxel, grid.origin[2], grid.origin[2] + grid.slices * grid.voxel };
   double blocked = 0.0, all = 0.0;
   for (const auto& sample : plan.disk)
   {
@@ -1216,7 +1234,30 @@ double RayOcclusion(const BitGrid& grid, const VCTPlan& plan, const double apex[
     all += weight;
     const int steps = std::max(1, static_cast<int>(std::ceil((t1 - t0) * length / rayStep)));
     const double step = (t1 - t0) / steps;
-    for (int m = 0; m < steps; ++m)
+    int mBegin = 0, mEnd = steps;
+    if (!frustum)
+    {
+      double enter = t0, exit = t1;
+      for (int d = 0; d < 3; ++d)
+      {
+        if (ray[d] == 0.0)
+        {
+          if (apex[d] < box[2 * d] || apex[d] > box[2 * d + 1])
+            exit = -1.0; // parallel to the slab and outside it
+          continue;
+        }
+        const double a = (box[2 * d] - apex[d]) / ray[d], b = (box[2 * d + 1] - apex[d]) / ray[d];
+        enter = std::max(enter, std::min(a, b));
+        exit = std::min(exit, std::max(a, b));
+      }
+      if (exit < enter)
+        continue; // the ray never enters the grid
+      // One step of slack on each side: the samples there are tested as
+      // before, so the result is the full march's.
+      mBegin = std::max(0, static_cast<int>(std::floor((enter - t0) / step)) - 1);
+      mEnd = std::min(steps, static_cast<int>(std::ceil((exit - t0) / step)) + 1);
+    }
+    for (int m = mBegin; m < mEnd; ++m)
     {
       const double tau = t0 + (m + 0.5) * step;
       if (frustum)

@@ -36,7 +36,8 @@
 //    By default (occupancy "rays") a cone's occlusion is instead the share
 //    of its rays that meet a set voxel: one ray per prism point of the unit
 //    disk, apex + tau (axis + tan(beta) (x u + y v)), from the first
-//    sphere's near side to R, sampled every `rayStep` voxels (default 1), each ray
+//    sphere's near side (at most 3 voxels out on a world or eye grid) to
+//    R, sampled every `rayStep` voxels (default 1), each ray
 //    weighted by its cosine with n. A thin wall across a cone stops all its
 //    rays, as it stops the reference's; the paper's volume fraction counts
 //    it as the little of each sphere it fills (under-occlusion, measured:

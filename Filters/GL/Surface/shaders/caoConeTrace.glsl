@@ -161,13 +161,17 @@ bool Bit(int i, int j, int k)
 }
 
 /// cao::RayOcclusion: the cosine-weighted share of the cone's rays (one per
-/// prism point, from the first sphere's near side to R) that meet a set voxel.
+/// prism point, from the first sphere's near side, or 3 voxels out if that
+/// is nearer on a world or eye grid, to R) that meet a set voxel; on a world
+/// or eye grid only the steps that can be inside the grid are visited.
 float RayOcclusion(vec3 apex, vec3 n, vec3 dir, vec3 u, vec3 v, float rayStep)
 {
   bool frustum = vct.frustum[4].x > 0.5;
   float invH = vct.origin.w;
-  float t0 = vct.spheres[0].x - vct.spheres[0].y;
+  float nearSide = vct.spheres[0].x - vct.spheres[0].y;
+  float t0 = frustum ? nearSide : min(nearSide, 3.0 / invH);
   float t1 = vct.spheres[vct.counts.y - 1].x + vct.spheres[vct.counts.y - 1].y;
+  vec3 boxLo = vct.origin.xyz, boxHi = vct.origin.xyz + vec3(vct.grid.xyz) / invH;
   float blocked = 0.0, all = 0.0;
   for (int k = 0; k < vct.counts.z; ++k)
   {
@@ -178,7 +182,28 @@ float RayOcclusion(vec3 apex, vec3 n, vec3 dir, vec3 u, vec3 v, float rayStep)
     all += weight;
     int steps = max(1, int(ceil((t1 - t0) * len / rayStep)));
     float step = (t1 - t0) / float(steps);
-    for (int m = 0; m < steps; ++m)
+    int mBegin = 0, mEnd = steps;
+    if (!frustum)
+    {
+      float enter = t0, exit = t1;
+      for (int d = 0; d < 3; ++d)
+      {
+        if (ray[d] == 0.0)
+        {
+          if (apex[d] < boxLo[d] || apex[d] > boxHi[d])
+            exit = -1.0;
+          continue;
+        }
+        float a = (boxLo[d] - apex[d]) / ray[d], b = (boxHi[d] - apex[d]) / ray[d];
+        enter = max(enter, min(a, b));
+        exit = min(exit, max(a, b));
+      }
+      if (exit < enter)
+        continue;
+      mBegin = max(0, int(floor((enter - t0) / step)) - 1);
+      mEnd = min(steps, int(ceil((exit - t0) / step)) + 1);
+    }
+    for (int m = mBegin; m < mEnd; ++m)
     {
       float tau = t0 + (float(m) + 0.5) * step;
       if (frustum)
