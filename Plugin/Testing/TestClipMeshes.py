@@ -237,11 +237,12 @@ errors = vtkStringOutputWindow()
 previous = vtkOutputWindow.GetInstance()
 vtkOutputWindow.SetInstance(errors)
 display.ClipMeshes = [Plane(Origin=[0, 0, 82], Point1=[200, 0, 82], Point2=[0, 250, 82], XResolution=4, YResolution=4)]
-frame("open")
+opened = frame("open")
 vtkOutputWindow.SetInstance(previous)
 text = errors.GetOutput()
-check("open" in text and "closed" in text, "an open mesh is refused with the reason: %s"
-      % " ".join(text.split())[:300])
+check("open" in text and "closed" in text and "drawn unclipped" in text and changed(plain, opened) == 0,
+      "an open mesh is refused with the reason and the volume drawn unclipped (%d pixels differ from "
+      "the unclipped frame; it drew nothing before): %s" % (changed(plain, opened), " ".join(text.split())[:300]))
 # Beside a closed mesh, an open one is left out with a warning that says
 # why, and the closed one still carves: the frame is the closed one's alone.
 # (Negative control: the open mesh alone, above, carves nothing.)

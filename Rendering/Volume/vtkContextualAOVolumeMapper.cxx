@@ -954,10 +954,11 @@ bool vtkContextualAOVolumeMapper::Internals::GatherClipParts(
       return f.Fail("Clip shape " + std::to_string(i) +
         " has no mesh: give it a vtkPolyDataMapper input" +
         (i == 0 && self->ClipShape ? " or set ClipMesh." : "."));
-    if (shapes > 1)
     {
-      // Several shapes: one that cannot clip (an open surface, a NaN) is
-      // left out and the others carve. Checked once per mesh version.
+      // A shape that cannot clip (an open surface, a NaN) is left out and
+      // the others carve; with none left the volume is drawn unclipped, as
+      // an empty clip box is, and the error says why. Checked once per
+      // mesh version.
       if (this->MeshChecks.size() > 64)
         this->MeshChecks.clear();
       MeshCheck& c = this->MeshChecks[part.mesh];
@@ -968,8 +969,11 @@ bool vtkContextualAOVolumeMapper::Internals::GatherClipParts(
       }
       if (!c.ok)
       {
-        skipped += (skipped.empty() ? "" : " ") + std::string("Clip shape ") +
-          std::to_string(i) + " of " + std::to_string(shapes) + " is left out: " + c.why;
+        skipped += (skipped.empty() ? "" : " ") +
+          (shapes == 1 ? std::string()
+                       : std::string("Clip shape ") + std::to_string(i) + " of " +
+                 std::to_string(shapes) + " is left out: ") +
+          c.why;
         continue;
       }
     }
@@ -980,10 +984,14 @@ bool vtkContextualAOVolumeMapper::Internals::GatherClipParts(
       self->GetClipShapeModeAt(i) == SUBTRACTION ? cao::layout::CAO_MODE_SUBTRACT : cao::layout::CAO_MODE_PROBE;
     parts.push_back(part);
   }
-  if (parts.empty() && !skipped.empty())
-    return f.Fail("No clip shape can clip. " + skipped);
   if (skipped != this->SkippedShapes && !skipped.empty())
-    vtkWarningWithObjectMacro(self, << skipped);
+  {
+    if (parts.empty())
+      vtkErrorWithObjectMacro(self, << skipped << (shapes == 1 ? "" : " No clip shape can clip.")
+                                    << " The volume is drawn unclipped.");
+    else
+      vtkWarningWithObjectMacro(self, << skipped);
+  }
   this->SkippedShapes = skipped;
   return true;
 }

@@ -692,7 +692,18 @@ void BadInput(const Options& o)
   open->SetMapper(cupMapper);
   open->SetPosition(33.0, 33.0, 33.0);
   m->SetClipShape(open);
-  expect("an open clip mesh", "depth maps");
+  {
+    // Drawn unclipped, as an empty clip box is, with the reason (it drew
+    // nothing before).
+    errors.clear();
+    const int frames = m->GetFrameCount();
+    s.window->Render();
+    const std::string last = errors.empty() ? "" : errors.back();
+    std::printf("%-28s -> %s\n", "an open clip mesh", last.empty() ? "(no error)" : last.c_str());
+    CAO_EXPECT(last.find("open") != std::string::npos && last.find("drawn unclipped") != std::string::npos,
+      "an open clip mesh: the error says it is open and the volume is drawn unclipped");
+    CAO_EXPECT(m->GetFrameCount() == frames + 1, "an open clip mesh: the unclipped frame is drawn");
+  }
   // A given AO array (AmbientOcclusionArrayName): missing or out of [0, 1]
   // is an error; a valid one is uploaded instead of a precompute.
   m->SetClipShape(nullptr);
