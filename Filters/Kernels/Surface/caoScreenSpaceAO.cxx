@@ -414,7 +414,12 @@ bool HBAOFrame(const PixelCamera& camera, const HBAOSettings& settings, SurfaceF
   if (!screen.Build(camera, frame, error))
     return false;
   const HBAOConfiguration c = Configuration(settings);
-  const double R = settings.radius, step = R / c.steps;
+  const double R = settings.radius;
+  // The march's reach: R, or the screen's span at the pixel's depth when
+  // that is shorter (beyond it a step leaves the screen: no information),
+  // so that a radius larger than the view keeps its steps on the pixels.
+  const double screenPixels = std::sqrt(static_cast<double>(screen.w) * screen.w +
+    static_cast<double>(screen.h) * screen.h);
   const int tile = HBAOSettings::Tile;
   double rotations[16], jitters[16];
   HBAOPattern(settings, rotations, jitters);
@@ -433,6 +438,7 @@ bool HBAOFrame(const PixelCamera& camera, const HBAOSettings& settings, SurfaceF
     double footprint;
     screen.Ray(k, toCamera, footprint);
     const Vec p = screen.Position(k) + (settings.offsetPixels * footprint) * n;
+    const double step = std::min(R, footprint * screenPixels) / c.steps;
     Vec t1, t2;
     Complete(n, t1, t2);
     double horizonOcclusion = 0.0, normalOcclusion = 0.0;

@@ -73,10 +73,12 @@ float PixelAO(int k)
   float rotation = ss.pattern[cell].x, jitter = ss.pattern[cell].y;
   int directions = ss.hbao.x, steps = ss.hbao.y, normalRays = ss.hbao.z;
   bool deflect = (ss.hbao.w & 1) != 0;
-  float R = ss.scalars.x, stepLength = R / float(steps);
+  float R = ss.scalars.x;
   vec3 toCamera;
   float footprint;
   Ray(k, toCamera, footprint);
+  // cao::HBAOFrame: R, or the screen's span at the pixel's depth if shorter.
+  float stepLength = min(R, footprint * length(vec2(ss.image.xy))) / float(steps);
   vec3 n = normals[k].xyz;
   vec3 p = positions[k].xyz + (ss.scalars.y * footprint) * n;
   vec3 t1, t2;
