@@ -648,8 +648,10 @@ bool PlanSceneGrid(const SurfaceScene& scene, vtkCamera* camera, const SurfaceOp
     cao::PlanEyeGrid(views, axes, 1.05 * radius, o.vct.slices, grid, error);
 }
 
-/// The occluding volume of --volume, carved by its clip, as the cones read it.
-bool LoadOccludingVolume(const SurfaceOptions& o, cao::OpacityVolume& opacity, std::string& error)
+/// The occluding volume of --volume, carved by its clip, as the cones read
+/// it; `bounds`, its world bounds.
+bool LoadOccludingVolume(
+  const SurfaceOptions& o, cao::OpacityVolume& opacity, std::array<double, 6>& bounds, std::string& error)
 {
   vtkSmartPointer<vtkImageData> image = vtkCAO::ReadVolume(o.volume, error);
   if (!image)
@@ -677,6 +679,7 @@ bool LoadOccludingVolume(const SurfaceOptions& o, cao::OpacityVolume& opacity, s
   vtkNew<vtkVolume> volume;
   volume->SetMapper(mapper);
   volume->SetProperty(property);
+  image->GetBounds(bounds.data());
   vtkNew<vtkActor> clip;
   vtkNew<vtkPolyDataMapper> clipMapper;
   if (!o.shape.empty() || !o.clipMesh.empty())
@@ -908,9 +911,21 @@ int Run(SurfaceOptions& o, const CLI::App* app)
     if (!o.volume.empty())
     {
       start = std::chrono::steady_clock::now();
-      if (!LoadOccludingVolume(o, volume, error))
+      std::array<double, 6> vb;
+      if (!LoadOccludingVolume(o, volume, vb, error))
         return Fail(2, error);
       volumeMs = Milliseconds(start);
+      // A volume farther than the radius from every mesh occludes nothing.
+      const std::array<double, 6>& mb = scene.bvh.Bounds();
+      bool near = true;
+      for (int d = 0; d < 3; ++d)
+        near = near && vb[2 * d] <= mb[2 * d + 1] + radius && vb[2 * d + 1] >= mb[2 * d] - radius;
+      if (!near)
+        std::cerr << "cao: warning: the volume '" << o.volume << "' (bounds " << vb[0] << " " << vb[1]
+                  << ", " << vb[2] << " " << vb[3] << ", " << vb[4] << " " << vb[5]
+                  << ") lies farther than the radius (" << radius << ") from the meshes (bounds " << mb[0]
+                  << " " << mb[1] << ", " << mb[2] << " " << mb[3] << ", " << mb[4] << " " << mb[5]
+                  << "): it occludes nothing\n";
     }
     for (std::size_t m = 0; m < grid.openEdges.size(); ++m)
       if (grid.openEdges[m] > 0)

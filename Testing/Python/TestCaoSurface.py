@@ -391,6 +391,19 @@ bw.SetInputData(blk)
 bw.SetFileName(block_vti)
 bw.Write()
 alone = surface("square-alone", [square], "--radius", "0.5")
+# The same block moved 100 away: it occludes nothing, and says so (it was
+# silent); the block in place is not warned about (the control).
+blk.SetOrigin(100.2, -0.5, 0.02)
+far_vti = os.path.join(tmp, "block-far.vti")
+bw.SetInputData(blk)
+bw.SetFileName(far_vti)
+bw.Write()
+for path, far in ((far_vti, True), (block_vti, False)):
+    rc, so, se = run(square, "--radius", "0.5", "--volume", path, "--preset", "grayscale", "--image", "64x48",
+                     "-o", os.path.join(tmp, "square-far.png"))
+    check(rc == 0 and ("occludes nothing" in se) == far,
+          "--volume %s the meshes: %s (rc=%d %s)" % ("far from" if far else "beside", "warned" if far else "no warning",
+                                                     rc, se.strip()[:200]))
 vol = surface("square-volume", [square], "--radius", "0.5", "--volume", block_vti, "--preset", "grayscale")
 carved = surface("square-carved", [square], "--radius", "0.5", "--volume", block_vti, "--preset", "grayscale",
                  "--shape", "cube", "--size", "1.0", "--pose", "0.5 0 0.27")
