@@ -1,8 +1,9 @@
 /**
  * @class   vtkContextualAOPass
  * @brief   Ambient occlusion for the opaque surfaces of a VTK scene, by voxel
- *          cone tracing (seed 000) on a bit grid, horizon-based AO (seed
- *          002) or volumetric AO (seed 001) on the G-buffer, as a render
+ *          cone tracing (Dalla Favera and Celes 2012) on a bit grid,
+ *          horizon-based AO (Bavoil, Sainz and Dimitrov 2008) or volumetric
+ *          AO (Szirmay-Kalos et al. 2010) on the G-buffer, as a render
  *          pass (used as vtkSSAOPass is: renderer->SetPass(pass)), with the
  *          scene's volumes occluding the surfaces (voxel cone tracing).
  *
@@ -111,9 +112,9 @@ public:
   enum Methods
   {
     NONE = 0, ///< draw the scene only
-    VCT = 1,  ///< voxel cone tracing (seed 000)
-    HBAO = 2, ///< horizon-based AO (seed 002)
-    VAO = 3   ///< volumetric AO (seed 001)
+    VCT = 1,  ///< voxel cone tracing (Dalla Favera and Celes 2012)
+    HBAO = 2, ///< horizon-based AO (Bavoil, Sainz and Dimitrov 2008)
+    VAO = 3   ///< volumetric AO (Szirmay-Kalos et al. 2010)
   };
   enum ApplyToModes
   {
@@ -214,7 +215,7 @@ public:
   ///@}
 
   ///@{
-  /// VAO's indirect light (seed 001's colour bleeding): the neighbours'
+  /// VAO's indirect light (the colour bleeding of Szirmay-Kalos et al.): the neighbours'
   /// colour times (1 - AO), times the pixel's own colour, added (default
   /// off).
   vtkSetMacro(IndirectLight, bool);
