@@ -9,6 +9,7 @@
 #include "vtkSMPVRepresentationProxy.h"
 #include "vtkSMProperty.h"
 #include "vtkSMPropertyHelper.h"
+#include "vtkSMSourceProxy.h"
 
 #include <cstring>
 
@@ -52,8 +53,13 @@ void vtkSMCAOVolumeRepresentationProxy::RepresentationChanged()
   if (!arrays || arrays->GetNumberOfStrings() == 0)
     return; // nothing to colour by: the representation says so when it draws
   // A point array with one component (the mapper draws one), else any point
-  // array, else the first.
-  vtkPVDataInformation* data = parent->GetRepresentedDataInformation();
+  // array, else the first. The components are the input's: the represented
+  // data is still the previous representation's (an outline has no arrays)
+  // until the new type is pushed.
+  vtkSMPropertyHelper input(parent, "Input", /*quiet=*/true);
+  auto* source = vtkSMSourceProxy::SafeDownCast(input.GetAsProxy());
+  vtkPVDataInformation* data =
+    source ? source->GetDataInformation(input.GetOutputPort()) : nullptr;
   auto components = [&](unsigned int i) {
     vtkPVArrayInformation* info =
       data ? data->GetArrayInformation(arrays->GetString(i), arrays->GetFieldAssociation(i)) : nullptr;

@@ -186,6 +186,27 @@ single = pvs.TrivialProducer()
 single.GetClientSideObject().SetOutput(_single)
 single.UpdatePipeline()
 
+# Choosing Contextual AO Volume colours by the first one-component point
+# array, not the first array: here a 3-component one comes first (it took
+# that one, which the representation cannot draw, while it read the
+# components of the outline the display showed before).
+_two = _image(numpy.stack([_a, _b, _a], axis=1), "abc")
+_b_array = numpy_to_vtk(numpy.ascontiguousarray(_b), deep=1)
+_b_array.SetName("b")
+_two.GetPointData().AddArray(_b_array)
+two = pvs.TrivialProducer()
+two.GetClientSideObject().SetOutput(_two)
+two.UpdatePipeline()
+view3 = pvs.CreateView("RenderView")
+display3 = pvs.Show(two, view3)
+pvs.ColorBy(display3, None)
+display3.SetRepresentationType("Contextual AO Volume")
+check(list(display3.ColorArrayName) == ["POINTS", "b"],
+      "Contextual AO Volume on a 3-component and a 1-component array colours by the 1-component one: %s"
+      % list(display3.ColorArrayName))
+pvs.Delete(display3)
+pvs.Delete(view3)
+
 
 def _array_names(proxy):
     domain = proxy.GetProperty("SelectInputScalars").FindDomain("vtkSMArrayListDomain")

@@ -438,7 +438,7 @@ bool HBAOFrame(const PixelCamera& camera, const HBAOSettings& settings, SurfaceF
     double footprint;
     screen.Ray(k, toCamera, footprint);
     const Vec p = screen.Position(k) + (settings.offsetPixels * footprint) * n;
-    const double step = std::min(R, footprint * screenPixels) / c.steps;
+    const double step = (footprint > 0.0 ? std::min(R, footprint * screenPixels) : R) / c.steps;
     Vec t1, t2;
     Complete(n, t1, t2);
     double horizonOcclusion = 0.0, normalOcclusion = 0.0;

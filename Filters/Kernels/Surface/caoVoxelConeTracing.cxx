@@ -1198,6 +1198,8 @@ void Frame(const double n[3], double x[3], double y[3])
   y[2] = -n[1];
 }
 
+}
+
 /// A cone's occlusion by rays (grid coordinates): one ray per prism point
 /// of the unit disk, apex + tau (dir + tan(beta) (x u + y v)), tau from the
 /// first sphere's near side (on a world or eye grid at most 3 voxels out)
@@ -1250,8 +1252,8 @@ double RayOcclusion(const BitGrid& grid, const VCTPlan& plan, const double apex[
         enter = std::max(enter, std::min(a, b));
         exit = std::min(exit, std::max(a, b));
       }
-      if (exit < enter)
-        continue; // the ray never enters the grid
+      if (exit < enter - step)
+        continue; // the ray never enters the grid (by more than a step's rounding)
       // One step of slack on each side: the samples there are tested as
       // before, so the result is the full march's.
       mBegin = std::max(0, static_cast<int>(std::floor((enter - t0) / step)) - 1);
@@ -1285,6 +1287,9 @@ double RayOcclusion(const BitGrid& grid, const VCTPlan& plan, const double apex[
   }
   return all > 0.0 ? blocked / all : 0.0;
 }
+
+namespace
+{
 
 /// A sphere's occupancy (seed 000): the set bits over the bits counted in
 /// the prisms (z columns) through its disk points, each limited to the

@@ -338,6 +338,17 @@ struct VCTPlan
 bool BuildVCTPlan(const VCTSettings& settings, const BitGrid& grid, VCTPlan& plan,
   std::string& error);
 
+/// A cone's occlusion by rays (occupancy "rays"), the CPU twin of the
+/// GLSL's RayOcclusion: the cosine-weighted share of its rays (one per
+/// prism point: apex + tau (dir + tan(beta) (x u + y v))) that meet a set
+/// voxel between the first sphere's near side (at most 3 voxels out on a
+/// world or eye grid) and R, sampled at the midpoints of steps of at most
+/// `rayStep` (world units). On a world or eye grid only the steps that can
+/// fall inside the grid's box are visited: the same result as the whole
+/// march (TestVoxelConeTracing).
+double RayOcclusion(const BitGrid& grid, const VCTPlan& plan, const double apex[3], const double n[3],
+  const double dir[3], const double u[3], const double v[3], double rayStep);
+
 /// VoxelizeWorld's grid without its bits (size, origin, voxel; bits
 /// empty): what the GPU voxelizer fills.
 bool PlanGrid(const std::array<double, 6>& bounds, double padding, int slices, BitGrid& grid,

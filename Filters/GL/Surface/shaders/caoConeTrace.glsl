@@ -198,7 +198,7 @@ float RayOcclusion(vec3 apex, vec3 n, vec3 dir, vec3 u, vec3 v, float rayStep)
         enter = max(enter, min(a, b));
         exit = min(exit, max(a, b));
       }
-      if (exit < enter)
+      if (exit < enter - step)
         continue;
       mBegin = max(0, int(floor((enter - t0) / step)) - 1);
       mEnd = min(steps, int(ceil((exit - t0) / step)) + 1);

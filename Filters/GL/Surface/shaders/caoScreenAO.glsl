@@ -78,7 +78,7 @@ float PixelAO(int k)
   float footprint;
   Ray(k, toCamera, footprint);
   // cao::HBAOFrame: R, or the screen's span at the pixel's depth if shorter.
-  float stepLength = min(R, footprint * length(vec2(ss.image.xy))) / float(steps);
+  float stepLength = (footprint > 0.0 ? min(R, footprint * length(vec2(ss.image.xy))) : R) / float(steps);
   vec3 n = normals[k].xyz;
   vec3 p = positions[k].xyz + (ss.scalars.y * footprint) * n;
   vec3 t1, t2;

@@ -29,7 +29,9 @@
 #include "caoSurfaceTestScenes.h"
 #include "caoTestUtilities.h"
 
+#include <algorithm>
 #include <array>
+#include <cstdint>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -526,6 +528,111 @@ int TestVoxelConeTracing(int, char*[])
     medium.unitDistance = 0.0;
     CAO_CHECK(medium.Validate().find("unit distance") != std::string::npos, "%s", medium.Validate().c_str());
   }
+  // The rays' march visits only the steps that can fall inside the grid:
+  // with a radius 40 x the scene (the grid's padding capped at half its
+  // diagonal) the AO of 4 000 cones equals the whole march's bit for bit,
+  // from apexes inside and outside the grid, along the axes (zero
+  // components) and in random directions. Negative control: the whole
+  // march from the first sphere's near side (the start before the cap at
+  // 3 voxels) differs.
+  // Also with no padding at all, the box's faces on the grid's faces, where
+  // a sample dropped at either end of the range would be seen.
+  for (const double padding : { 1.05 * 40.0, 0.0 })
+  {
+    std::vector<double> p;
+    std::vector<std::int64_t> t;
+    Box(-0.5, 0.5, p, t);
+    cao::BitGrid grid;
+    std::string error;
+    CAO_CHECK(cao::VoxelizeWorld({ { &p, &t } }, { { -0.5, 0.5, -0.5, 0.5, -0.5, 0.5 } }, padding, 64,
+                grid, error),
+      "%s", error.c_str());
+    cao::VCTSettings s;
+    s.radius = 40.0;
+    s.slices = 64;
+    cao::VCTPlan plan;
+    CAO_CHECK(cao::BuildVCTPlan(s, grid, plan, error), "%s", error.c_str());
+    CAO_CHECK(grid.voxel < 0.05, "the padding is capped: voxel %g", grid.voxel);
+    auto whole = [&](const double* apex, const double* n, const double* dir, const double* u,
+                   const double* v, double rayStep, bool capped) {
+      const double inv = 1.0 / grid.voxel;
+      const cao::VCTPlan::Sphere& first = plan.spheres.front();
+      const double nearSide = first.t - first.r;
+      const double t0 = capped ? std::min(nearSide, 3.0 * grid.voxel) : nearSide;
+      const double t1 = plan.spheres.back().t + plan.spheres.back().r;
+      double blocked = 0.0, all = 0.0;
+      for (const auto& sample : plan.disk)
+      {
+        double ray[3];
+        for (int d = 0; d < 3; ++d)
+          ray[d] = dir[d] + plan.coneTangent * (sample[0] * u[d] + sample[1] * v[d]);
+        const double length = std::sqrt(ray[0] * ray[0] + ray[1] * ray[1] + ray[2] * ray[2]);
+        const double weight = std::max(0.0, (ray[0] * n[0] + ray[1] * n[1] + ray[2] * n[2]) / length);
+        all += weight;
+        const int steps = std::max(1, static_cast<int>(std::ceil((t1 - t0) * length / rayStep)));
+        const double step = (t1 - t0) / steps;
+        for (int m = 0; m < steps; ++m)
+        {
+          const double tau = t0 + (m + 0.5) * step;
+          int ijk[3];
+          for (int d = 0; d < 3; ++d)
+            ijk[d] = static_cast<int>(std::floor((apex[d] + tau * ray[d] - grid.origin[d]) * inv));
+          if (ijk[0] >= 0 && ijk[1] >= 0 && ijk[2] >= 0 && ijk[0] < grid.nx && ijk[1] < grid.ny &&
+            ijk[2] < grid.slices && grid.Bit(ijk[0], ijk[1], ijk[2]))
+          {
+            blocked += weight;
+            break;
+          }
+        }
+      }
+      return all > 0.0 ? blocked / all : 0.0;
+    };
+    std::uint64_t state = 12345;
+    auto uniform = [&state]() {
+      state = state * 6364136223846793005ull + 1442695040888963407ull;
+      return static_cast<double>(state >> 11) * (1.0 / 9007199254740992.0);
+    };
+    int mismatches = 0, previousDiffers = 0, occluded = 0;
+    const double extent = grid.nx * grid.voxel; // the grid's width
+    for (int k = 0; k < 4000; ++k)
+    {
+      double apex[3], dir[3];
+      for (int d = 0; d < 3; ++d)
+        apex[d] = (uniform() - 0.5) * 1.6 * extent;
+      if (k % 4 == 0) // along an axis: two zero components
+      {
+        dir[0] = dir[1] = dir[2] = 0.0;
+        dir[k / 4 % 3] = (k / 12) % 2 ? 1.0 : -1.0;
+      }
+      else
+      {
+        const double z = 2.0 * uniform() - 1.0, phi = 2.0 * Pi * uniform();
+        const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+        dir[0] = r * std::cos(phi);
+        dir[1] = r * std::sin(phi);
+        dir[2] = z;
+      }
+      const double a[3] = { std::fabs(dir[0]) < 0.6 ? 1.0 : 0.0, std::fabs(dir[0]) < 0.6 ? 0.0 : 1.0, 0.0 };
+      double u[3] = { a[1] * dir[2] - a[2] * dir[1], a[2] * dir[0] - a[0] * dir[2], a[0] * dir[1] - a[1] * dir[0] };
+      const double lu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+      for (double& x : u)
+        x /= lu;
+      const double v[3] = { dir[1] * u[2] - dir[2] * u[1], dir[2] * u[0] - dir[0] * u[2],
+        dir[0] * u[1] - dir[1] * u[0] };
+      const double got = cao::RayOcclusion(grid, plan, apex, dir, dir, u, v, plan.rayStep);
+      const double expected = whole(apex, dir, dir, u, v, plan.rayStep, true);
+      mismatches += got != expected;
+      previousDiffers += whole(apex, dir, dir, u, v, plan.rayStep, false) != expected;
+      occluded += expected > 0.0;
+    }
+    std::printf("march within the grid (padding %g): %d of 4000 cones differ from the whole march "
+                "(%d occluded); the previous start differs at %d\n",
+      padding, mismatches, occluded, previousDiffers);
+    CAO_CHECK(mismatches == 0, "the march within the grid differs from the whole march at %d cones", mismatches);
+    CAO_CHECK(occluded > 200 && previousDiffers > 0,
+      "the cases are not telling: %d occluded, the previous start differs at %d", occluded, previousDiffers);
+  }
+
   // Bad input.
   {
     cao::VCTSettings s;
