@@ -23,6 +23,7 @@
 #include "vtkStringArray.h"
 #include "vtkTransform.h"
 #include "vtkUnsignedCharArray.h"
+#include "vtkUnsignedShortArray.h"
 
 #include "caoClassify.h"
 #include "caoContextualUpdate.h"
@@ -68,7 +69,7 @@ struct PoseResult
   std::int64_t classifiedVoxels = 0, restoredVoxels = 0, brickVoxels = -1, unchangedVoxels = -1,
                centreVoxels = -1;
   std::int64_t recomputedAffected = -1; ///< b voxels marched (-1: every b voxel, the GPU)
-  double classifyMs = 0, copyMs = 0, recomputeMs = 0, totalMs = 0;
+  double classifyMs = 0, copyMs = 0, recomputeMs = 0, totalMs = 0, setupMs = 0;
   double fullMs = -1, maxDifference = -1;
   std::int64_t differing = 0;
 };
@@ -141,7 +142,8 @@ struct vtkContextualAmbientOcclusion::Internals
   cao::ContextualUpdate CPU;
   VolumeKey CPUKey;
   bool CPUKeyValid = false;
-  vtkSmartPointer<vtkFloatArray> AO, Clipped;
+  vtkSmartPointer<vtkFloatArray> AO, Clipped; // AO: with AOFormat FLOAT
+  vtkSmartPointer<vtkUnsignedShortArray> AO16;   // with AOFormat UNORM16
   vtkSmartPointer<vtkUnsignedCharArray> Category;
   // GPU: what the engine holds.
   VolumeKey EngineKey;
@@ -153,12 +155,23 @@ struct vtkContextualAmbientOcclusion::Internals
   /// The output buffers for `n` voxels; false when they do not hold the
   /// previous pose's output for `key` (the CPU update must start over).
   /// `gpu`: the GPU path rewrites them whole (their contents are not needed).
-  bool AcquireBuffers(std::int64_t n, const VolumeKey& key, bool gpu)
+  bool AcquireBuffers(std::int64_t n, const VolumeKey& key, bool gpu, bool unorm16)
   {
-    const bool same = this->AO && this->AO->GetNumberOfTuples() == n && this->CPUKeyValid &&
+    vtkDataArray* ao = unorm16 ? static_cast<vtkDataArray*>(this->AO16) : this->AO;
+    const bool same = ao && ao->GetNumberOfTuples() == n && this->CPUKeyValid &&
       this->CPUKey == key;
     const bool keep = same && !gpu;
-    KeepOrCopy(this->AO, vtkCAO::AmbientOcclusionName, n, keep);
+    // Only the format asked for is held.
+    if (unorm16)
+    {
+      this->AO = nullptr;
+      KeepOrCopy(this->AO16, vtkCAO::AmbientOcclusionName, n, keep);
+    }
+    else
+    {
+      this->AO16 = nullptr;
+      KeepOrCopy(this->AO, vtkCAO::AmbientOcclusionName, n, keep);
+    }
     KeepOrCopy(this->Clipped, vtkCAO::ClippedOpacityName, n, keep);
     KeepOrCopy(this->Category, vtkCAO::CategoryName, n, keep);
     this->CPUKey = key;
@@ -292,6 +305,10 @@ bool vtkContextualAmbientOcclusion::CheckSettings()
   if (this->Mode != SUBTRACTION && this->Mode != PROBING)
     vtkErrorMacro("Mode must be " << SUBTRACTION << " (subtraction) or " << PROBING
                                   << " (probing); got " << this->Mode << ".");
+  else if (this->AOFormat != FLOAT && this->AOFormat != UNORM16)
+    vtkErrorMacro("AOFormat must be " << FLOAT << " (float) or " << UNORM16
+                                      << " (16-bit unsigned normalised); got " << this->AOFormat
+                                      << ".");
   else if (this->AntiAliasingSamples < 0 ||
     this->AntiAliasingSamples > cao::layout::CAO_MAX_AA_EXTRA_SAMPLES)
     vtkErrorMacro("AntiAliasingSamples must be in [0, " << cao::layout::CAO_MAX_AA_EXTRA_SAMPLES
@@ -417,8 +434,13 @@ bool vtkContextualAmbientOcclusion::Internals::RunCPU(
   volume.plan = &in.plan;
   volume.opacity = in.opacity->GetPointer(0);
   volume.precomputed = in.precomputed->GetPointer(0);
-  const cao::ContextualUpdate::Buffers buffers = { this->AO->GetPointer(0),
-    this->Clipped->GetPointer(0), this->Category->GetPointer(0) };
+  cao::ContextualUpdate::Buffers buffers;
+  if (this->AO16)
+    buffers.ao16 = this->AO16->GetPointer(0);
+  else
+    buffers.ao = this->AO->GetPointer(0);
+  buffers.clippedOpacity = this->Clipped->GetPointer(0);
+  buffers.category = this->Category->GetPointer(0);
   bool ok = false;
   vtkCAO::WithThreads(self->NumberOfThreads, [&] {
     const auto start = std::chrono::steady_clock::now();
@@ -430,7 +452,8 @@ bool vtkContextualAmbientOcclusion::Internals::RunCPU(
     const double pixelSize[2] = { in.clipMaps.camera[12], in.clipMaps.camera[13] };
     ok = this->CPU.Update(volume, in.clip, in.view, mapsVersion, buffers, parallel, stats,
       !vtkCAO::BrickClassificationDisabled(), pixelSize);
-    r.totalMs = vtkCAO::MillisecondsSince(start);
+    r.setupMs = stats.setupMs + stats.mapsMs;
+    r.totalMs = vtkCAO::MillisecondsSince(start) - r.setupMs;
     r.counts = stats.counts;
     r.classifiedVoxels = stats.classifiedVoxels;
     r.restoredVoxels = stats.restoredVoxels;
@@ -541,7 +564,8 @@ bool vtkContextualAmbientOcclusion::Internals::RunGPU(
   // the state implies (caoClassify's arithmetic: a * (1 - c) or a * c).
   this->CPUKeyValid = false; // the buffers no longer hold the CPU update's pose
   const float* a = in.opacity->GetPointer(0);
-  float* out = this->AO->GetPointer(0);
+  float* out = this->AO ? this->AO->GetPointer(0) : nullptr;
+  std::uint16_t* out16 = this->AO16 ? this->AO16->GetPointer(0) : nullptr;
   float* ac = this->Clipped->GetPointer(0);
   std::uint8_t* cat = this->Category->GetPointer(0);
   const int total = 9 + in.clip.aa.x;
@@ -552,7 +576,10 @@ bool vtkContextualAmbientOcclusion::Internals::RunGPU(
     ac[v] = cat[v] == cao::layout::CAO_CATEGORY_CLIPPED
       ? 0.0f
       : a[v] * cao::ClipFactor(sv & cao::layout::CAO_STATE_COUNT_MASK, total, in.clip.map.w);
-    out[v] = cao::gl::AOEngine::Dequantize(stored[static_cast<std::size_t>(v)]);
+    if (out16)
+      out16[v] = stored[static_cast<std::size_t>(v)];
+    else
+      out[v] = cao::gl::AOEngine::Dequantize(stored[static_cast<std::size_t>(v)]);
   }
   if (self->Verify)
   {
@@ -606,7 +633,7 @@ int vtkContextualAmbientOcclusion::RequestData(
   // previous pose's output while the volume and its LAO are unchanged).
   output->ShallowCopy(input); // first: the output lets go of the last pose's arrays
   Internals& internal = *this->Internal;
-  if (!internal.AcquireBuffers(in.voxels, KeyOf(in), gpu))
+  if (!internal.AcquireBuffers(in.voxels, KeyOf(in), gpu, this->AOFormat == UNORM16))
     internal.CPU.Reset();
   PoseResult r;
   if (!(gpu ? internal.RunGPU(this, in, r) : internal.RunCPU(this, in, r)))
@@ -614,7 +641,10 @@ int vtkContextualAmbientOcclusion::RequestData(
 
   vtkPointData* pd = output->GetPointData();
   pd->RemoveArray(vtkCAO::AmbientOcclusionName);
-  pd->AddArray(internal.AO);
+  if (internal.AO16)
+    pd->AddArray(internal.AO16);
+  else
+    pd->AddArray(internal.AO);
   if (in.source != input)
   {
     pd->AddArray(in.opacity);
@@ -627,8 +657,8 @@ int vtkContextualAmbientOcclusion::RequestData(
   vtkCAO::AddFieldTuple(fd, "CategoryCounts", { "Clipped", "Affected", "Unaffected" },
     { double(r.counts.clipped), double(r.counts.affected), double(r.counts.unaffected) });
   vtkCAO::AddFieldTuple(fd, "StageMilliseconds",
-    { "Classify", "CopyUnaffected", "RecomputeAffected", "Total" },
-    { r.classifyMs, r.copyMs, r.recomputeMs, r.totalMs });
+    { "Classify", "CopyUnaffected", "RecomputeAffected", "Total", "Setup" },
+    { r.classifyMs, r.copyMs, r.recomputeMs, r.totalMs, r.setupMs });
   vtkCAO::AddFieldTuple(fd, "UpdateRegion",
     { "ClassifiedVoxels", "RestoredVoxels", "DecidedByBrick", "RecomputedAffected",
       "UnchangedByBrick", "DecidedByCentre" },
@@ -663,6 +693,7 @@ void vtkContextualAmbientOcclusion::PrintSelf(ostream& os, vtkIndent indent)
     os << "(identity)\n";
   }
   os << indent << "AntiAliasingSamples: " << this->AntiAliasingSamples << "\n";
+  os << indent << "AOFormat: " << (this->AOFormat == UNORM16 ? "UNorm16" : "Float") << "\n";
   os << indent << "Verify: " << (this->Verify ? "On" : "Off") << "\n";
   os << indent << "PrecomputeCount: " << this->PrecomputeCount << "\n";
   os << indent << "Precompute (LAO settings when the input has none):\n";

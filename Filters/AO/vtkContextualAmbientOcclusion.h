@@ -23,10 +23,15 @@
  * others. The result equals a full LAO recompute on the clipped opacity, bit
  * for bit, for every voxel not in category a (Verify checks it).
  *
- * Output: the volume with "AmbientOcclusion" (contextual), "ClippedOpacity"
- * (float), "ClipCategory" (uint8: 0 clipped, 1 affected, 2 unaffected) and
- * the field arrays "CategoryCounts", "StageMilliseconds" and "UpdateRegion"
- * (plus "Verification" when Verify is on).
+ * Output: the volume with "AmbientOcclusion" (contextual; float, or
+ * unsigned short with AOFormat UNORM16), "ClippedOpacity" (float),
+ * "ClipCategory" (uint8: 0 clipped, 1 affected, 2 unaffected) and the field
+ * arrays "CategoryCounts", "StageMilliseconds" (the pose's stages and
+ * their "Total"; apart from them "Setup", the work done once for many
+ * poses: the unclipped state written to every voxel, at the first pose
+ * after a change of volume, opacity or mode, and the depth maps' tile and
+ * proof summaries, when the maps change) and "UpdateRegion" (plus
+ * "Verification" when Verify is on).
  *
  * Between poses the filter keeps its output arrays and, on the CPU, builds
  * on the previous pose as the GPU engine does (cao::ContextualUpdate): only
@@ -88,6 +93,21 @@ public:
   void SetPoseMatrix(vtkMatrix4x4* matrix);
   ///@}
 
+  enum AOFormats
+  {
+    FLOAT = 0,  ///< "AmbientOcclusion" as float (default)
+    UNORM16 = 1 ///< as unsigned short, AO * 65535 rounded (cao::QuantizeAO): 2 bytes a voxel
+  };
+  ///@{
+  /**
+   * The type of the output's "AmbientOcclusion" array (AOFormats). UNORM16
+   * stores what the GPU stores, halving the AO's memory; its values are the
+   * float result quantized (Verify compares them with the full recompute
+   * quantized the same way). Default FLOAT.
+   */
+  vtkSetMacro(AOFormat, int);
+  vtkGetMacro(AOFormat, int);
+  ///@}
   ///@{
   /// Extra anti-aliasing samples where the 9 base samples disagree. Default 16, at most 32.
   vtkSetMacro(AntiAliasingSamples, int);
@@ -153,7 +173,7 @@ protected:
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  /// Mode and AntiAliasingSamples within their ranges (an error if not).
+  /// Mode, AOFormat and AntiAliasingSamples within their ranges (an error if not).
   bool CheckSettings();
   /// The input when it carries a precomputed LAO; otherwise the internal
   /// precompute's output (cached); null after an error.
@@ -162,6 +182,7 @@ protected:
   int Mode = SUBTRACTION;
   vtkLinearTransform* PoseTransform = nullptr;
   int AntiAliasingSamples = 16;
+  int AOFormat = FLOAT;
   bool Verify = false;
   int PrecomputeCount = 0;
   /// The CPU update's persistent state and the keys of what the GPU holds.

@@ -319,6 +319,21 @@ for name in ("AmbientOcclusion", "ClipCategory", "ClippedOpacity"):
 cats = pv_out.GetPointData().GetArray("ClipCategory").GetRange()
 check(cats == (0.0, 2.0), "the pose clips some voxels, affects some, leaves some (%s)" % (cats,))
 
+# AOFormat UNorm16 on the proxy: the AO as unsigned short, the VTK filter's
+# float AO quantized (AO * 65535 + 0.5 in float, truncated).
+check(cao.GetProperty("AOFormat").Available == ["Float", "UNorm16"] and cao.AOFormat == "Float",
+      "the AO format is an enumeration, Float by default")
+cao.AOFormat = "UNorm16"
+cao.UpdatePipeline()
+a16 = servermanager.Fetch(cao).GetPointData().GetArray("AmbientOcclusion")
+bf = v_out.GetPointData().GetArray("AmbientOcclusion")
+import numpy as _np  # noqa: E402
+from vtkmodules.util.numpy_support import vtk_to_numpy as _v2n  # noqa: E402
+check(a16 is not None and a16.GetDataTypeAsString() == "unsigned short" and
+      _np.array_equal(_v2n(a16), (_v2n(bf) * _np.float32(65535) + _np.float32(0.5)).astype(_np.uint16)),
+      "AOFormat UNorm16: the AO is the float AO quantized, as unsigned short")
+cao.AOFormat = "Float"
+
 
 # A quality preset on the LAO proxy: the same settings in effect
 # (LAOSettings) and the same AO as the VTK filter with that preset.

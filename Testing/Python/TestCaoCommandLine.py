@@ -133,6 +133,23 @@ if rc == 0:
     pd = reader.GetOutput().GetPointData()
     check(all(pd.GetArray(n) is not None for n in ("AmbientOcclusion", "ClipCategory", "ClippedOpacity")),
           "carve -o writes AO, categories and clipped opacity")
+    check(run0["summary"]["ao_format"] == "unorm16" and pd.GetArray("AmbientOcclusion") is not None
+          and pd.GetArray("AmbientOcclusion").GetDataTypeAsString() == "unsigned short",
+          "carve keeps and writes the AO as 16-bit by default (ao_format unorm16)")
+    check(run0["poses"][0]["ms"]["setup"] > 0 and all(p["ms"]["setup"] == 0 for p in run0["poses"][1:])
+          and run0["summary"]["setup_ms"] > 0,
+          "the setup is reported at the first pose only, apart from the pose's own time")
+rc, out, err = run("carve", os.path.join(data, "HeadMRVolume.mhd"), "--shape", "torus", "--rays", "6",
+                   "--path", "3", "--verify", "--json", "--ao-format", "float", "-o", carve_vti)
+if rc == 0:
+    reader.Modified()
+    reader.Update()
+    check(json.loads(out)["runs"][0]["summary"]["ao_format"] == "float" and
+          json.loads(out)["runs"][0]["summary"]["max_abs_difference"] == 0 and
+          reader.GetOutput().GetPointData().GetArray("AmbientOcclusion").GetDataTypeAsString() == "float",
+          "carve --ao-format float keeps a float AO, exact")
+else:
+    check(False, f"carve --ao-format float: rc={rc} {err.strip()[:300]}")
 
 # Poses from a file and from the command line; meshes from .vtp and .stl.
 poses = os.path.join(tmp, "poses.txt")
@@ -196,6 +213,8 @@ check(rc == 2 and err.strip().splitlines()[-1:] and err.strip().splitlines()[-1]
     "cao: error: unknown benchmark"), f"an unknown benchmark, in the tool's words: rc={rc} {err.strip()[:160]!r}")
 expect_error(["carve", neghip, "--pose", "1 2"], 2, "a pose is", "malformed pose")
 expect_error(["carve", neghip, "--mesh", open_mesh], 2, "open", "open clip mesh")
+expect_error(["carve", neghip, "--ao-format", "half"], 2, "--ao-format: bad value 'half' (expected unorm16",
+             "an unknown AO format")
 expect_error(["carve", neghip, "--shape", "teapot"], 2, "--shape: bad value 'teapot' (expected sphere",
              "unknown shape")
 expect_error(["carve", neghip, "--poses", os.path.join(tmp, "nope.txt")], 2, "cannot open", "missing pose file")

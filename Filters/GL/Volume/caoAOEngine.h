@@ -177,13 +177,10 @@ public:
   Context& GetContext();
 
   /// AO as stored on the GPU (q / 65535) back to float.
-  static float Dequantize(std::uint16_t q) { return static_cast<float>(q) / 65535.0f; }
+  static float Dequantize(std::uint16_t q) { return DequantizeAO(q); }
   /// AO in [0, 1] as the GPU stores it, q = ao * 65535 + 0.5 in float (the
   /// shaders' Quantize).
-  static std::uint16_t Quantize(float ao)
-  {
-    return static_cast<std::uint16_t>(ao * static_cast<float>(layout::CAO_AO_SCALE) + 0.5f);
-  }
+  static std::uint16_t Quantize(float ao) { return QuantizeAO(ao); }
 
 private:
   struct Impl;

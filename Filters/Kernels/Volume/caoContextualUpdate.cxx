@@ -80,6 +80,15 @@ bool ContextualUpdate::Update(const Volume& volume, const layout::ClipParams& cl
   auto t0 = std::chrono::steady_clock::now();
   const float* pre = volume.precomputed;
   float* ao = out.ao;
+  std::uint16_t* ao16 = out.ao16;
+  if (!ao == !ao16)
+    return fail(); // exactly one AO buffer
+  const auto restore = [ao, ao16, pre](std::int64_t v) {
+    if (ao16)
+      ao16[v] = QuantizeAO(pre[v]);
+    else
+      ao[v] = pre[v];
+  };
   if (static_cast<int>(this->SliceLists.size()) != dims[2])
     this->SliceLists.assign(static_cast<std::size_t>(std::max(0, dims[2])), {});
   std::vector<std::int64_t>* lists = this->SliceLists.data();
@@ -96,7 +105,7 @@ bool ContextualUpdate::Update(const Volume& volume, const layout::ClipParams& cl
           {
             std::vector<std::int64_t>& list = lists[z0 + s];
             for (std::int64_t v : list)
-              ao[v] = pre[v];
+              restore(v);
             local += static_cast<std::int64_t>(list.size());
             list.clear();
           }
@@ -107,7 +116,10 @@ bool ContextualUpdate::Update(const Volume& volume, const layout::ClipParams& cl
     stats.restoredVoxels = restored;
   }
   else if (!parallel(voxels, 1 << 16, 0.0, 0.05, [&](std::int64_t b, std::int64_t e) {
-             std::copy(pre + b, pre + e, ao + b);
+             if (ao16)
+               std::transform(pre + b, pre + e, ao16 + b, QuantizeAO);
+             else
+               std::copy(pre + b, pre + e, ao + b);
            }))
     return fail();
   else
@@ -116,7 +128,10 @@ bool ContextualUpdate::Update(const Volume& volume, const layout::ClipParams& cl
     for (auto& l : this->SliceLists)
       l.clear();
   }
-  stats.copyMs = MillisecondsSince(t0);
+  if (incremental)
+    stats.copyMs = MillisecondsSince(t0);
+  else
+    stats.setupMs = MillisecondsSince(t0);
 
   // 2. Every voxel outside this pose's box holds the unclipped state: the
   // first pose writes it everywhere; later poses rewrite only the bricks of
@@ -143,6 +158,8 @@ bool ContextualUpdate::Update(const Volume& volume, const layout::ClipParams& cl
         }))
       return fail();
     stats.classifiedVoxels = voxels;
+    stats.setupMs += MillisecondsSince(t0);
+    t0 = std::chrono::steady_clock::now();
   }
   else if (!Empty(this->Box))
   {
@@ -177,22 +194,28 @@ bool ContextualUpdate::Update(const Volume& volume, const layout::ClipParams& cl
   // 3. Classify this pose's box, brick layer by brick layer; the b lists
   // are concatenated in slice order, so the list is sorted whatever the
   // threads.
+  const auto tMaps = std::chrono::steady_clock::now();
   const float* of[4] = { maps.front, maps.back, maps.candFront, maps.candBack };
+  const int proofBuilds = this->Proof.builds;
+  bool mapsMade = false;
   if (useTiles &&
     (mapsVersion == 0 || mapsVersion != this->TilesVersion ||
       !std::equal(of, of + 4, this->TilesOf) ||
       !this->Tiles.Built(clip.map.x, clip.map.y, clip.map.z)))
   {
+    mapsMade = true;
     this->Tiles.Build(maps, clip.map.x, clip.map.y, clip.map.z);
     this->TilesVersion = mapsVersion;
     std::copy(of, of + 4, this->TilesOf);
   }
   const ClipMapsTiles* tiles = useTiles ? &this->Tiles : nullptr;
-  ProofMaps::View proofView; // built in the classification's time (classifyMs)
+  ProofMaps::View proofView; // built once per maps (mapsMs)
   const ProofMaps::View* proof = useTiles && pixelSize &&
       this->Proof.Prepare(clip, maps, mapsVersion, pixelSize, dims, proofView)
     ? &proofView
     : nullptr;
+  if (mapsMade || this->Proof.builds != proofBuilds)
+    stats.mapsMs = MillisecondsSince(tMaps);
   const int slabs = Empty(box) ? 0 : box[5] - box[4] + 1;
   const int groups = (slabs + BrickSize - 1) / BrickSize;
   std::mutex mutex;
@@ -216,7 +239,7 @@ bool ContextualUpdate::Update(const Volume& volume, const layout::ClipParams& cl
   else
     counts.clipped += outside;
   stats.counts = counts;
-  stats.classifyMs = MillisecondsSince(t0);
+  stats.classifyMs = MillisecondsSince(t0) - stats.mapsMs;
 
   // 4. Narrow b by opacity: march only the b voxels whose footprint may
   // hold a voxel whose clipped opacity differs from its opacity, decided
@@ -234,8 +257,12 @@ bool ContextualUpdate::Update(const Volume& volume, const layout::ClipParams& cl
         for (std::int64_t z = b; z < e; ++z)
         {
           const std::vector<std::int64_t>& list = lists[box[4] + z];
-          LAOList(*volume.plan, out.clippedOpacity, ao, list.data(), 0,
-            static_cast<std::int64_t>(list.size()));
+          if (ao16)
+            LAOList(*volume.plan, out.clippedOpacity, ao16, list.data(), 0,
+              static_cast<std::int64_t>(list.size()));
+          else
+            LAOList(*volume.plan, out.clippedOpacity, ao, list.data(), 0,
+              static_cast<std::int64_t>(list.size()));
         }
       }))
     return fail();
@@ -343,11 +370,24 @@ bool ContextualUpdate::Verify(const Volume& volume, const Buffers& buffers,
   {
     if (buffers.category[v] == layout::CAO_CATEGORY_CLIPPED)
       continue;
+    const float f = full[static_cast<std::size_t>(v)];
+    if (buffers.ao16)
+    {
+      // The stored values: the full recompute's, quantized as stored.
+      const std::uint16_t q = buffers.ao16[v];
+      if (std::isnan(f) || QuantizeAO(f) != q)
+      {
+        ++differing;
+        const double d = std::fabs(static_cast<double>(DequantizeAO(QuantizeAO(f))) - DequantizeAO(q));
+        maxDifference = std::max(maxDifference, std::isnan(f) ? 1.0 : d);
+      }
+      continue;
+    }
     // Bitwise comparison: equal floats (and no NaN) or a difference.
-    if (!(full[static_cast<std::size_t>(v)] == buffers.ao[v]))
+    if (!(f == buffers.ao[v]))
     {
       ++differing;
-      const double d = std::fabs(static_cast<double>(full[static_cast<std::size_t>(v)]) - buffers.ao[v]);
+      const double d = std::fabs(static_cast<double>(f) - buffers.ao[v]);
       maxDifference = std::max(maxDifference, std::isnan(d) ? 1.0 : d);
     }
   }

@@ -64,9 +64,13 @@ public:
     const float* precomputed = nullptr; ///< the LAO of `opacity` with `plan`
   };
   /// The outputs, kept by the caller between poses (contents included).
+  /// The AO is written to exactly one of `ao` (float) and `ao16` (16-bit
+  /// unsigned normalised, QuantizeAO of the float value: 2 bytes a voxel
+  /// instead of 4, as the GPU stores it).
   struct Buffers
   {
     float* ao = nullptr;
+    std::uint16_t* ao16 = nullptr;
     float* clippedOpacity = nullptr;
     std::uint8_t* category = nullptr;
   };
@@ -84,6 +88,15 @@ public:
     std::int64_t recomputedVoxels = 0;
     double narrowMs = 0; ///< the footprint test of the b voxels (per brick)
     double classifyMs = 0, copyMs = 0, recomputeMs = 0;
+    /// The unclipped state written to every voxel (the precomputed AO, the
+    /// opacity, the unclipped category, the bricks' memory): the first pose
+    /// after Reset() or a change of mode only, before that pose's own
+    /// classification; not in classifyMs or copyMs.
+    double setupMs = 0;
+    /// The maps' tile summaries and proof maps (ClipMapsTiles, ProofMaps),
+    /// made only when the maps or the clip's sample reach change; not in
+    /// classifyMs.
+    double mapsMs = 0;
   };
 
   /// Forget the previous pose: the next Update writes every voxel.
@@ -103,7 +116,8 @@ public:
 
 
   /// The full recompute of the clipped volume (LAORange over every voxel)
-  /// against the buffers' AO, over the voxels not clipped, bit for bit:
+  /// against the buffers' AO, over the voxels not clipped, bit for bit
+  /// (with `ao16`, the full recompute's values quantized by QuantizeAO):
   /// the number that differ and the largest difference.
   static bool Verify(const Volume& volume, const Buffers& buffers, const ParallelFor& parallel,
     std::int64_t& differing, double& maxDifference, double& ms);

@@ -125,6 +125,9 @@ struct RunScratch
   /// list marched as one padded span).
   const std::uint8_t* writeMask = nullptr;
   std::vector<std::uint8_t> mask;
+  /// When set, the values are stored here, quantized (QuantizeAO), and
+  /// the float output is not touched.
+  std::uint16_t* ao16 = nullptr;
 };
 
 /// floor(a / b) and ceil(a / b) for b > 0 and any sign of a.
@@ -233,7 +236,13 @@ void MarchRunOf(const LAOPlan& plan, const layout::LAOTap* rayTapsBase, const fl
   {
     const int x = x0 + q * Stride;
     if (x >= s.writeBegin && x < s.writeEnd && (!s.writeMask || s.writeMask[x]))
-      ao[base + std::int64_t(q) * Stride] = total[q] / p.norm.x;
+    {
+      const float value = total[q] / p.norm.x;
+      if (s.ao16)
+        s.ao16[base + std::int64_t(q) * Stride] = QuantizeAO(value);
+      else
+        ao[base + std::int64_t(q) * Stride] = value;
+    }
   }
 }
 
@@ -534,12 +543,15 @@ void LAORange(
   }
 }
 
-void LAOList(const LAOPlan& plan, const float* opacity, float* ao, const std::int64_t* list,
-  std::int64_t begin, std::int64_t end)
+namespace
+{
+void MarchList(const LAOPlan& plan, const float* opacity, float* ao, std::uint16_t* ao16,
+  const std::int64_t* list, std::int64_t begin, std::int64_t end)
 {
   const layout::LAOMarchBlock& p = plan.params;
   const std::int64_t nx = p.dims.x, nxy = std::int64_t(p.dims.x) * p.dims.y;
   RunScratch scratch;
+  scratch.ao16 = ao16;
   const MarchRunFunction march = ActiveMarchRun();
   std::int64_t n = begin;
   const int unit = p.rays.w == 1 ? 16 : 32;
@@ -604,6 +616,19 @@ void LAOList(const LAOPlan& plan, const float* opacity, float* ao, const std::in
       std::fill(scratch.mask.begin() + i, scratch.mask.begin() + i1, std::uint8_t(0));
     n = spanLast + 1;
   }
+}
+}
+
+void LAOList(const LAOPlan& plan, const float* opacity, float* ao, const std::int64_t* list,
+  std::int64_t begin, std::int64_t end)
+{
+  MarchList(plan, opacity, ao, nullptr, list, begin, end);
+}
+
+void LAOList(const LAOPlan& plan, const float* opacity, std::uint16_t* ao,
+  const std::int64_t* list, std::int64_t begin, std::int64_t end)
+{
+  MarchList(plan, opacity, nullptr, ao, list, begin, end);
 }
 
 double LAOVoxelDouble(const LAOPlan& plan, const float* a, int i, int j, int k)

@@ -105,6 +105,24 @@ const char* LAOMarchInstructionSet();
 void LAOList(const LAOPlan& plan, const float* opacity, float* ao, const std::int64_t* list,
   std::int64_t begin, std::int64_t end);
 
+/// The same, stored as 16-bit unsigned normalised AO (QuantizeAO of the
+/// float LAOList would write: the same march, the same bits before storage).
+void LAOList(const LAOPlan& plan, const float* opacity, std::uint16_t* ao,
+  const std::int64_t* list, std::int64_t begin, std::int64_t end);
+
+/// AO in [0, 1] as 16-bit unsigned normalised: q = ao * 65535 + 0.5 in float,
+/// truncated (the GPU's storage, caoLAOMarch.glsl's Quantize; one definition
+/// for every C++ reader and writer of it).
+inline std::uint16_t QuantizeAO(float ao)
+{
+  return static_cast<std::uint16_t>(ao * static_cast<float>(layout::CAO_AO_SCALE) + 0.5f);
+}
+/// The stored value back to float (q / 65535).
+inline float DequantizeAO(std::uint16_t q)
+{
+  return static_cast<float>(q) / static_cast<float>(layout::CAO_AO_SCALE);
+}
+
 /// The AO the plan gives a point on the open flat face of an opaque
 /// half-space, `depth` voxels past the last empty voxel layer (0: that
 /// layer, 1: the first opaque one, between: trilinear): the mean over the

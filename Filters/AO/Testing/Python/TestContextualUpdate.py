@@ -18,6 +18,9 @@ k+1 (so the comparison sees a pose), the small moves classify fewer
 voxels than the volume has (so the region logic is exercised), and bricks
 decide voxels at every pose inside the volume (so the brick path is).
 
+AOFormat UNORM16 along the same path: the float AO quantized, exact against
+the quantized full recompute (negative control: truncation differs).
+
 At every pose, the classification that decides provably uniform bricks at
 once (cao::ClipMapsTiles, and the brick proof maps of cao::ProofMaps) and
 voxels from their centre (the per-voxel proof maps) equals testing every
@@ -230,6 +233,61 @@ kept.VerifyOn()
 kept.Update()
 v = kept.GetOutput().GetFieldData().GetArray("Verification")
 check(v is not None and v.GetComponent(0, 1) == 0, "Verify after the path: no voxel differs")
+
+# AOFormat UNORM16: the AO kept and output as 16-bit unsigned normalised, as
+# the GPU stores it. Along the path, a kept UNORM16 filter gives at every
+# pose the float filter's AO quantized (q = f * 65535 + 0.5 in float,
+# truncated) and the same clipped opacity and categories; its Verify
+# compares with the full recompute quantized the same way.
+def quantize(f):
+    return (f * np.float32(65535) + np.float32(0.5)).astype(np.uint16)
+
+
+kept16 = vtkContextualAmbientOcclusion()
+kept16.SetAOFormat(vtkContextualAmbientOcclusion.UNORM16)
+kept16.VerifyOn()
+rounding_seen = False
+for i, (what, mesh, mode, aa, matrix) in enumerate(path[:7]):
+    configure(kept16, mesh, mode, aa, matrix)
+    kept16.Update()
+    got = kept16.GetOutput()
+    ao16 = got.GetPointData().GetArray("AmbientOcclusion")
+    want = fresh(mesh, mode, aa, matrix)
+    f = vtk_to_numpy(want.GetPointData().GetArray("AmbientOcclusion"))
+    q = vtk_to_numpy(ao16)
+    others = all(np.array_equal(arrays(got)[n], arrays(want)[n]) for n in ARRAYS[1:])
+    check(ao16.GetDataTypeAsString() == "unsigned short" and np.array_equal(q, quantize(f)) and others,
+          "UNORM16 pose %d (%s): the float AO quantized, the same clipped opacity and categories"
+          % (i, what))
+    check(got.GetFieldData().GetArray("Verification").GetComponent(0, 1) == 0,
+          "UNORM16 pose %d: Verify finds no voxel that differs from the quantized full LAO" % i)
+    setup = field(got, "StageMilliseconds", 4)
+    check((setup > 0) if i == 0 else (what != "small move" or setup == 0),
+          "UNORM16 pose %d (%s): the setup (%.2f ms) is paid at the first pose, not at small moves"
+          % (i, what, setup))
+    # Negative control: truncating instead of rounding differs somewhere, so
+    # the comparison sees the quantization's rounding.
+    rounding_seen = rounding_seen or not np.array_equal(q, (f * np.float32(65535)).astype(np.uint16))
+check(rounding_seen, "truncating the float AO instead of rounding it gives other values")
+# A format change drops the kept state: the next pose starts over.
+kept16.SetAOFormat(vtkContextualAmbientOcclusion.FLOAT)
+kept16.Update()
+out = kept16.GetOutput()
+check(out.GetPointData().GetArray("AmbientOcclusion").GetDataTypeAsString() == "float" and
+      field(out, "UpdateRegion", 0) == voxels and
+      np.array_equal(arrays(out)["AmbientOcclusion"], arrays(fresh(*path[6][1:]))["AmbientOcclusion"]),
+      "back to FLOAT: the whole volume is written again and equals a new filter")
+# An AOFormat out of range is an error that names the values.
+from vtkmodules.vtkCommonCore import vtkCommand
+errors = []
+bad = vtkContextualAmbientOcclusion()
+configure(bad, *path[0][1:])
+bad.SetAOFormat(7)
+bad.AddObserver(vtkCommand.ErrorEvent, lambda o, e: errors.append(e))
+bad.GetExecutive().AddObserver(vtkCommand.ErrorEvent, lambda o, e: errors.append(e))
+bad.Update()
+check(len(errors) > 0 and bad.GetOutput().GetPointData().GetArray("AmbientOcclusion") is None,
+      "AOFormat 7 is refused with an error, and nothing is output")
 
 if failures:
     print("%d check(s) failed" % len(failures))
