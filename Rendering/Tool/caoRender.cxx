@@ -137,6 +137,17 @@ Command AddRenderCommand(CLI::App& cao)
 
 namespace
 {
+/// Whether every pixel of the grabbed RGB frame is the white background.
+bool BackgroundOnly(vtkImageData* frame)
+{
+  vtkDataArray* rgb = frame ? frame->GetPointData()->GetScalars() : nullptr;
+  if (!rgb || rgb->GetDataType() != VTK_UNSIGNED_CHAR || rgb->GetNumberOfTuples() == 0)
+    return false;
+  const auto* p = static_cast<const unsigned char*>(rgb->GetVoidPointer(0));
+  const vtkIdType n = rgb->GetNumberOfTuples() * rgb->GetNumberOfComponents();
+  return std::all_of(p, p + n, [](unsigned char c) { return c == 255; });
+}
+
 int Render(RenderOptions& o, const CLI::App* app)
 {
   std::string error;
@@ -385,13 +396,25 @@ int Render(RenderOptions& o, const CLI::App* app)
     png->Write();
     if (png->GetErrorCode())
       return Fail(1, "cannot write '" + name + "'");
+    // A frame of background alone (a clip that removes all the view shows,
+    // or only transparent matter left) says so: an empty picture with no
+    // word looked like a failure.
+    const bool backgroundOnly = BackgroundOnly(grab->GetOutput());
     if (o.json)
-      std::printf("%s\n  {\"pose\": %zu, \"file\": \"%s\", \"wall_ms\": %.3f, \"report\": %s}", f ? "," : "",
-        f, name.c_str(), ms, mapper->GetLastFrameReport().c_str());
+      std::printf("%s\n  {\"pose\": %zu, \"file\": \"%s\", \"wall_ms\": %.3f, "
+                  "\"background_only\": %s, \"report\": %s}",
+        f ? "," : "", f, name.c_str(), ms, backgroundOnly ? "true" : "false",
+        mapper->GetLastFrameReport().c_str());
     else
+    {
       std::printf("frame %3zu  %8.1f ms  recomputed %9lld voxels  [%s]  %s\n", f, ms,
         static_cast<long long>(mapper->GetLastFrameRecomputedVoxels()),
         mapper->GetLastFrameStages().c_str(), name.c_str());
+      if (backgroundOnly)
+        std::printf("          note: this frame shows only the background: the clip leaves "
+                    "nothing visible at this pose, or the opacity map makes what is left "
+                    "transparent (--json gives the voxels clipped, affected and unaffected)\n");
+    }
   }
   if (o.json)
     std::printf("\n]\n");

@@ -716,7 +716,12 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
   // ones, a reach of 0 is 8 voxels (checked with the plan).
   cao::gl::AOEngine& engine = *f.engine;
   std::string error;
-  if (!cao::BuildLAOPlan(vtkCAO::GeometryOf(f.input), this->PlanSettings(f, givenAO), this->Plan, error))
+  // With the AO off no LAO is made, and the plan gives only the opacity's
+  // step and the maps' reach: the AO settings (a bad one included) do not
+  // matter, and the defaults plan it.
+  const cao::LAOSettings settings =
+    self->AmbientOcclusion ? this->PlanSettings(f, givenAO) : cao::LAOSettings();
+  if (!cao::BuildLAOPlan(vtkCAO::GeometryOf(f.input), settings, this->Plan, error))
     return f.Fail("Cannot plan the LAO: " + error + ".");
   this->Calibration = cao::SurfaceCalibration(this->Plan);
   this->HalfSpace = cao::HalfSpaceTable(this->Plan);

@@ -426,6 +426,18 @@ else:
                        os.path.join(tmp, "q_%d.png"))
     check(rc == 0 and "precompute" in [s["name"] for s in json.loads(out)[0]["report"]["stages"]],
           "render --quality interactive: " + err)
+    # A frame of background alone says so (a plane whose first pose of the
+    # path leaves only a transparent slab); frames with matter do not.
+    rc, out, err = run("render", neghip, "--image", "48x48", "--shape", "plane", "--path", "4",
+                       "--window", "egl", "--rays", "6", "-o", os.path.join(tmp, "plane_%d.png"))
+    notes = [i for i, line in enumerate(out.splitlines()) if "only the background" in line]
+    check(rc == 0 and out.splitlines()[notes[0] - 1].lstrip().startswith("frame   0") if notes else False,
+          "render: a background-only frame (plane, pose 0) is noted: %s" % out.strip()[:400])
+    check(len(notes) == 1, "render: only that frame is noted (%d notes)" % len(notes))
+    rc, out, err = run("render", neghip, "--image", "48x48", "--shape", "plane", "--path", "4",
+                       "--window", "egl", "--rays", "6", "--json", "-o", os.path.join(tmp, "plane_%d.png"))
+    flags = [r.get("background_only") for r in json.loads(out)] if rc == 0 else []
+    check(flags == [True, False, False, False], "render --json: background_only per frame: %s" % flags)
 expect_error(["render", neghip, "--preset", "nope", "-o", os.path.join(tmp, "x_%d.png")], 2,
              "no preset named", "unknown preset")
 expect_error(["render", neghip, "--preset-file", os.path.join(tmp, "none.json"), "-o",

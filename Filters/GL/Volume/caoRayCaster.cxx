@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace cao
 {
@@ -211,7 +212,9 @@ struct RayCaster::Impl
     return true;
   }
   /// The half-space table (CAO_RENDER_AO_CALIBRATED) on its unit,
-  /// uploaded when it changed.
+  /// uploaded when it changed: red the table, green its deepest layer (the
+  /// matter enclosed) repeated at every depth, so that one filtered fetch
+  /// gives the calibration both values (caoRayCastFS.glsl's HalfSpace).
   void SyncHalfSpace(const layout::RenderParams& params)
   {
     constexpr int n = CAO_HALF_SPACE_LAYERS * CAO_HALF_SPACE_OPACITIES;
@@ -227,13 +230,21 @@ struct RayCaster::Impl
       gl.GenTextures(1, &halfSpace);
       gl.BindTexture(GL_TEXTURE_2D, halfSpace);
       gl.TexStorage2D(
-        GL_TEXTURE_2D, 1, GL_R32F, CAO_HALF_SPACE_OPACITIES, CAO_HALF_SPACE_LAYERS);
+        GL_TEXTURE_2D, 1, GL_RG32F, CAO_HALF_SPACE_OPACITIES, CAO_HALF_SPACE_LAYERS);
       Linear(gl, GL_TEXTURE_2D);
+    }
+    // Element depth * CAO_HALF_SPACE_OPACITIES + o (RenderParams::halfSpace).
+    const float* deepest = values + (CAO_HALF_SPACE_LAYERS - 1) * CAO_HALF_SPACE_OPACITIES;
+    std::vector<float> pairs(static_cast<std::size_t>(2 * n));
+    for (int e = 0; e < n; ++e)
+    {
+      pairs[2 * static_cast<std::size_t>(e)] = values[e];
+      pairs[2 * static_cast<std::size_t>(e) + 1] = deepest[e % CAO_HALF_SPACE_OPACITIES];
     }
     gl.BindTexture(GL_TEXTURE_2D, halfSpace);
     gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
     gl.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, CAO_HALF_SPACE_OPACITIES, CAO_HALF_SPACE_LAYERS,
-      GL_RED, GL_FLOAT, values);
+      GL_RG, GL_FLOAT, pairs.data());
     std::copy(values, values + n, halfSpaceTable);
   }
   void FreeLowTarget()

@@ -30,7 +30,19 @@ parser.add_argument("--frames", type=int, default=10)
 args = parser.parse_args()
 width, height = (int(v) for v in args.size.split("x"))
 LoadPlugin(args.plugin, remote=False, ns=globals())
-import contextualao  # noqa: E402,F401  (the mapper's report)
+try:
+    import contextualao  # noqa: E402,F401  (the mapper's report)
+except ImportError:
+    # The wrapped package of the same build: python/ next to lib/ (a build
+    # tree, lib/paraview-5.11/plugins/ContextualAO/, or an install).
+    import os
+    root = os.path.abspath(os.path.join(os.path.dirname(args.plugin), *[os.pardir] * 4))
+    sys.path.insert(0, os.path.join(root, "python"))
+    try:
+        import contextualao  # noqa: E402,F401
+    except ImportError:
+        sys.exit("frame_cost.py: the contextualao package is neither on PYTHONPATH nor in %s"
+                 % os.path.join(root, "python"))
 
 reader = OpenDataFile(args.volume)
 reader.UpdatePipeline()

@@ -120,16 +120,18 @@ vec3 Unproject(vec2 ndc, float z)
 
 /// The LAO at `depth` voxels below an open flat face (0: the last empty
 /// layer) of matter of LAO-step opacity `a` (cao::HalfSpaceTable, linear in
-/// both; depths past the table's read its deepest layer).
-float HalfSpace(float depth, float a)
+/// both; depths past the table's read its deepest layer); and, in y, the
+/// LAO of that matter enclosed (the deepest layer).
+vec2 HalfSpace(float depth, float a)
 {
   // (the table as a texture, texel centres at the table's points: one
-  // filtered fetch is the bilinear lookup, clamped at its edges)
+  // filtered fetch is the bilinear lookup, clamped at its edges; green holds
+  // the deepest layer at every depth: the matter enclosed, for `a`)
   return texture(halfSpaceTexture,
     vec2((clamp(a, 0.0, 1.0) * float(CAO_HALF_SPACE_OPACITIES - 1) + 0.5) /
         float(CAO_HALF_SPACE_OPACITIES),
       (clamp(depth, 0.0, float(CAO_HALF_SPACE_LAYERS - 1)) + 0.5) / float(CAO_HALF_SPACE_LAYERS)))
-    .r;
+    .rg;
 }
 
 /// The least share of the way from an open half-space's LAO down to opaque
@@ -172,14 +174,15 @@ float VoxelAO(vec3 p, bool calibrated, float inMatter, out float depth)
   if (!calibrated)
     return ao;
   a = matter > 0.0 ? a / matter : 0.0;
-  float open = HalfSpace(depth, a);
+  vec2 table = HalfSpace(depth, a);
+  float open = table.x; // an open half-space at this depth; y: enclosed
   // The range: down to this matter enclosed on all sides, but at least
   // CAO_CALIBRATION_FLOOR of the way down to opaque matter enclosing it
   // (aoCalibration.x: the LAO enclosed by opaque matter). Clear matter's
   // own range is small, and dividing by it made the rays' noise in fog a
   // grain of dark specks (carotid.vtk: local luminance deviation 1.25x AO
   // off's; with the floor at 0.4 or 0.5, 1.00x).
-  float range = max(open - HalfSpace(float(CAO_HALF_SPACE_LAYERS - 1), a),
+  float range = max(open - table.y,
     CAO_CALIBRATION_FLOOR * (open - rp.aoCalibration.x));
   // With one sample per ray every LAO is 1: the range is empty and nothing
   // is occluded.

@@ -742,6 +742,22 @@ void BadInput(const Options& o)
   m->SetQualityPreset(7);
   expect("quality preset 7 after a good frame", "QualityPreset");
   m->SetQualityPreset(vtkContextualAOVolumeMapper::CUSTOM);
+  // A bad reach is refused with its limit while the AO is on; with the AO
+  // off no LAO is planned, so it does not matter and the volume draws (it
+  // vanished with an error before: the plan was built either way).
+  m->SetReach(-5.0);
+  expect("a negative reach, AO on", "reach must be a positive");
+  m->AmbientOcclusionOff();
+  {
+    errors.clear();
+    const int before = m->GetFrameCount();
+    s.window->Render();
+    std::printf("%-28s -> %s\n", "a negative reach, AO off", errors.empty() ? "(no error)" : errors.back().c_str());
+    CAO_EXPECT(errors.empty() && m->GetFrameCount() == before + 1,
+      "a negative reach with the AO off: the volume is not drawn, or an error is reported");
+  }
+  m->AmbientOcclusionOn();
+  m->SetReach(0.0);
 
   // Lifecycle: the window (and its context) is destroyed while the mapper
   // still holds objects in it; the mapper then draws in a new window.
