@@ -32,6 +32,7 @@
 #define vtkAOAlgorithm_h
 
 #include "caoFiltersAOModule.h" // For export macro
+#include "vtkCAOBackend.h" // For the Backend values
 #include "vtkImageAlgorithm.h"
 
 #include <memory> // For the GPU session
@@ -51,9 +52,9 @@ public:
   /// Where the work runs (see the class documentation).
   enum Backends
   {
-    AUTO = 0,
-    CPU = 1,
-    OPENGL = 2
+    AUTO = vtkCAO::BACKEND_AUTO,
+    CPU = vtkCAO::BACKEND_CPU,
+    OPENGL = vtkCAO::BACKEND_OPENGL
   };
 
   ///@{

@@ -23,6 +23,7 @@
 #ifndef vtkCAOGPUSession_h
 #define vtkCAOGPUSession_h
 
+#include "vtkCAOBackend.h" // For BackendChoice
 #include "caoFiltersCoreModule.h" // For export macro
 #include "caoAOEngine.h"
 #include "caoClipDepthMapsGL.h"
@@ -40,13 +41,7 @@ class vtkRenderWindow;
 
 namespace vtkCAO
 {
-/// The filters' Backend property values.
-enum BackendChoice
-{
-  BACKEND_AUTO = 0,
-  BACKEND_CPU = 1,
-  BACKEND_OPENGL = 2
-};
+// BackendChoice: vtkCAOBackend.h.
 CAOFILTERSCORE_EXPORT const char* BackendName(int backend);
 /// Whether Auto should avoid the renderer `description` names: a software
 /// rasteriser (llvmpipe, softpipe, SwiftShader), unless CAO_GL_ALLOW_SOFTWARE

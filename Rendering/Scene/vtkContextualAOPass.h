@@ -84,6 +84,7 @@
 #define vtkContextualAOPass_h
 
 #include "caoRenderingSceneModule.h" // For export macro
+#include "vtkCAOBackend.h" // For the Backend values
 #include "vtkRenderPass.h"
 
 #include <memory> // For the implementation
@@ -238,9 +239,9 @@ public:
 
   enum Backends
   {
-    BACKEND_AUTO = 0,  ///< the window's OpenGL 4.3 on a hardware GPU, else the CPU
-    BACKEND_CPU = 1,   ///< the CPU kernels
-    BACKEND_OPENGL = 2 ///< the window's OpenGL 4.3 (even a software rasteriser); none: an error
+    BACKEND_AUTO = vtkCAO::BACKEND_AUTO,  ///< the window's OpenGL 4.3 on a hardware GPU, else the CPU
+    BACKEND_CPU = vtkCAO::BACKEND_CPU,    ///< the CPU kernels
+    BACKEND_OPENGL = vtkCAO::BACKEND_OPENGL ///< the window's OpenGL 4.3 (even a software rasteriser); none: an error
   };
   ///@{
   /// Where the AO runs (VCT's grid and cones, HBAO's and VAO's estimator):
