@@ -48,12 +48,35 @@ struct vtkLocalAmbientOcclusion::Internals
   // and what they were computed from. The scalars are compared by identity
   // and modification time, never dereferenced.
   vtkSmartPointer<vtkFloatArray> LastOpacity, LastAO;
+  /// The opacity of the run before the last, kept to be written again
+  /// while nothing else holds it (see Reusable).
+  vtkSmartPointer<vtkFloatArray> SpareOpacity;
+  /// The edit's scratch, kept between edits (its pages stay mapped).
+  cao::OpacityEditScratch EditScratch;
   const vtkDataArray* LastScalars = nullptr;
   vtkMTimeType LastScalarsTime = 0;
   int LastComponent = -1;
   cao::VolumeGeometry LastGeometry;
   cao::LAOSettings LastSettings;
   double LastUnitDistance = 0.0;
+
+  /// `kept` when only this filter holds it and it has `n` values: it is
+  /// then written again in place (no new pages: on a virtual machine a
+  /// new page's first touch costs several microseconds), else a new array.
+  /// An array an earlier output handed out and someone still holds is
+  /// never changed.
+  static vtkSmartPointer<vtkFloatArray> Reusable(
+    vtkFloatArray* kept, std::int64_t n, const char* name)
+  {
+    if (kept && kept->GetReferenceCount() == 1 && kept->GetNumberOfTuples() == n &&
+      kept->GetNumberOfComponents() == 1)
+      return kept;
+    auto fresh = vtkSmartPointer<vtkFloatArray>::New();
+    fresh->SetName(name);
+    fresh->SetNumberOfTuples(n);
+    cao::AdviseHugePages(fresh->GetPointer(0), sizeof(float) * n);
+    return fresh;
+  }
 
   /// Why the last run's AO cannot be edited into this one's ("" when it can).
   std::string FullReason(vtkDataArray* scalars, int component,
@@ -86,14 +109,15 @@ struct vtkLocalAmbientOcclusion::Internals
     bool ok = false;
     if (reason.empty())
     {
-      std::copy_n(this->LastAO->GetPointer(0), voxels, ao->GetPointer(0));
+      if (ao != this->LastAO) // (in place when it is the last run's own array)
+        std::copy_n(this->LastAO->GetPointer(0), voxels, ao->GetPointer(0));
       const cao::ContextualUpdate::ParallelFor parallel =
         [self](std::int64_t n, std::int64_t grain, double p0, double p1,
           const std::function<void(std::int64_t, std::int64_t)>& body) {
           return vtkCAO::ParallelFor(self, n, grain, 0.1 + 0.9 * p0, 0.1 + 0.9 * p1, body);
         };
       ok = cao::UpdateLAOAfterOpacityEdit(plan, this->LastOpacity->GetPointer(0),
-        opacity->GetPointer(0), ao->GetPointer(0), parallel, edit);
+        opacity->GetPointer(0), ao->GetPointer(0), parallel, edit, &this->EditScratch);
       reason = "opacity edit";
     }
     else
@@ -107,6 +131,8 @@ struct vtkLocalAmbientOcclusion::Internals
     this->LastAO = nullptr; // kept again only when complete
     if (!ok)
       return false;
+    if (this->LastOpacity != opacity)
+      this->SpareOpacity = this->LastOpacity;
     this->LastOpacity = opacity;
     this->LastAO = ao;
     this->LastScalars = scalars;
@@ -386,13 +412,15 @@ int vtkLocalAmbientOcclusion::RequestData(
   // 2. The step-corrected opacity, then the march (CPU or GPU).
   const auto start = std::chrono::steady_clock::now();
   const std::int64_t voxels = geometry.NumberOfVoxels();
-  vtkNew<vtkFloatArray> opacity, ao;
-  opacity->SetName(vtkCAO::OpacityName);
-  opacity->SetNumberOfTuples(voxels);
-  ao->SetName(vtkCAO::AmbientOcclusionName);
-  ao->SetNumberOfTuples(voxels);
-  cao::AdviseHugePages(opacity->GetPointer(0), sizeof(float) * voxels);
-  cao::AdviseHugePages(ao->GetPointer(0), sizeof(float) * voxels);
+  // The arrays: the last CPU run's AO and the run before's opacity are
+  // written again when nothing else holds them (the output let go of them
+  // above); an opacity edit needs the last opacity as it is.
+  Internals& in = *this->Internal;
+  const vtkSmartPointer<vtkFloatArray> opacity =
+    Internals::Reusable(gpu ? nullptr : in.SpareOpacity.Get(), voxels, vtkCAO::OpacityName);
+  in.SpareOpacity = nullptr;
+  const vtkSmartPointer<vtkFloatArray> ao =
+    Internals::Reusable(gpu ? nullptr : in.LastAO.Get(), voxels, vtkCAO::AmbientOcclusionName);
   bool ok = true, aborted = false;
   std::int64_t nonFinite = 0;
   std::string reason = "full recompute on the GPU";

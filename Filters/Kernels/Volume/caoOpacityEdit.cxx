@@ -90,7 +90,8 @@ namespace
 /// `changed` how many voxels differ. Both buffers are written in full.
 bool Reach(const LAOPlan& plan, const int boxIn[6], const float* a, const float* b,
   std::vector<std::uint8_t>& reach, std::vector<std::uint8_t>& rowAny, int dims[3],
-  std::int64_t& changed, const ContextualUpdate::ParallelFor& parallel)
+  std::int64_t& changed, const ContextualUpdate::ParallelFor& parallel,
+  OpacityEditScratch* scratch = nullptr)
 {
   const layout::LAOMarchBlock& p = plan.params;
   const int full[3] = { p.dims.x, p.dims.y, p.dims.z };
@@ -108,10 +109,15 @@ bool Reach(const LAOPlan& plan, const int boxIn[6], const float* a, const float*
   if (n == 0)
     return true;
   // Two masks of a byte per voxel (every byte written before it is read)
-  // and a flag per row.
-  std::unique_ptr<std::uint8_t[]> mask(new std::uint8_t[static_cast<std::size_t>(n)]);
-  std::vector<std::uint8_t> any(static_cast<std::size_t>(rows));
-  std::vector<std::int64_t> perRow(static_cast<std::size_t>(rows));
+  // and a flag per row: the scratch's when given (resize keeps its pages).
+  OpacityEditScratch local;
+  OpacityEditScratch& sc = scratch ? *scratch : local;
+  sc.mask.resize(static_cast<std::size_t>(n));
+  sc.any.resize(static_cast<std::size_t>(rows));
+  sc.perRow.resize(static_cast<std::size_t>(rows));
+  std::uint8_t* mask = sc.mask.data();
+  std::vector<std::uint8_t>& any = sc.any;
+  std::vector<std::int64_t>& perRow = sc.perRow;
   const std::int64_t sy = full[0], sz = std::int64_t(full[0]) * full[1];
   if (!parallel(rows, 64, 0.0, 0.25, [&](std::int64_t r0, std::int64_t r1) {
         for (std::int64_t r = r0; r < r1; ++r)
@@ -145,22 +151,24 @@ bool Reach(const LAOPlan& plan, const int boxIn[6], const float* a, const float*
   // voxel lies in that box, so the differing set is dilated by [lo, hi].
   int lo[3], hi[3];
   OpacityFootprint(plan, lo, hi);
-  return DilateAxis(dims, 0, lo[0], hi[0], mask.get(), any.data(), reach.data(), rowAny.data(),
+  return DilateAxis(dims, 0, lo[0], hi[0], mask, any.data(), reach.data(), rowAny.data(),
            parallel, 0.25, 0.5) &&
-    DilateAxis(dims, 1, lo[1], hi[1], reach.data(), rowAny.data(), mask.get(), any.data(),
+    DilateAxis(dims, 1, lo[1], hi[1], reach.data(), rowAny.data(), mask, any.data(),
       parallel, 0.5, 0.75) &&
-    DilateAxis(dims, 2, lo[2], hi[2], mask.get(), any.data(), reach.data(), rowAny.data(),
+    DilateAxis(dims, 2, lo[2], hi[2], mask, any.data(), reach.data(), rowAny.data(),
       parallel, 0.75, 1.0);
 }
 }
 
 bool OpacityEditReach(const LAOPlan& plan, const float* before, const float* after,
   std::vector<std::int64_t>& reached, std::int64_t& changed,
-  const ContextualUpdate::ParallelFor& parallel)
+  const ContextualUpdate::ParallelFor& parallel, OpacityEditScratch* scratch)
 {
   const layout::LAOMarchBlock& p = plan.params;
   const int whole[6] = { 0, p.dims.x - 1, 0, p.dims.y - 1, 0, p.dims.z - 1 };
-  std::vector<std::uint8_t> reach, rowAny;
+  std::vector<std::uint8_t> localReach, localRowAny;
+  std::vector<std::uint8_t>& reach = scratch ? scratch->reach : localReach;
+  std::vector<std::uint8_t>& rowAny = scratch ? scratch->rowAny : localRowAny;
   int dims[3];
   reached.clear();
   const auto part = [&](double p0, double p1) {
@@ -169,13 +177,15 @@ bool OpacityEditReach(const LAOPlan& plan, const float* before, const float* aft
       return parallel(n, grain, p0 + (p1 - p0) * q0, p0 + (p1 - p0) * q1, body);
     };
   };
-  if (!Reach(plan, whole, before, after, reach, rowAny, dims, changed, part(0.0, 0.8)))
+  if (!Reach(plan, whole, before, after, reach, rowAny, dims, changed, part(0.0, 0.8), scratch))
     return false;
   if (changed == 0)
     return true;
   // Gather in increasing order: count per row, then write at the rows' offsets.
   const std::int64_t nx = dims[0], rows = std::int64_t(dims[1]) * dims[2];
-  std::vector<std::int64_t> perRow(static_cast<std::size_t>(rows));
+  std::vector<std::int64_t> localPerRow;
+  std::vector<std::int64_t>& perRow = scratch ? scratch->perRow : localPerRow;
+  perRow.resize(static_cast<std::size_t>(rows));
   if (!parallel(rows, 64, 0.8, 0.9, [&](std::int64_t r0, std::int64_t r1) {
         for (std::int64_t r = r0; r < r1; ++r)
         {
@@ -218,18 +228,20 @@ bool FootprintDiffers(const LAOPlan& plan, const int box[6], const float* a, con
 }
 
 bool UpdateLAOAfterOpacityEdit(const LAOPlan& plan, const float* before, const float* after,
-  float* ao, const ContextualUpdate::ParallelFor& parallel, OpacityEditStats& stats)
+  float* ao, const ContextualUpdate::ParallelFor& parallel, OpacityEditStats& stats,
+  OpacityEditScratch* scratch)
 {
   stats = OpacityEditStats();
   auto start = std::chrono::steady_clock::now();
-  std::vector<std::int64_t> reached;
+  std::vector<std::int64_t> localReached;
+  std::vector<std::int64_t>& reached = scratch ? scratch->reached : localReached;
   // The reach's own progress is the first tenth of the edit's.
   const ContextualUpdate::ParallelFor scaled =
     [&](std::int64_t n, std::int64_t grain, double p0, double p1,
       const std::function<void(std::int64_t, std::int64_t)>& body) {
       return parallel(n, grain, 0.1 * p0, 0.1 * p1, body);
     };
-  if (!OpacityEditReach(plan, before, after, reached, stats.changed, scaled))
+  if (!OpacityEditReach(plan, before, after, reached, stats.changed, scaled, scratch))
     return false;
   stats.findMs = Since(start);
   stats.recomputed = static_cast<std::int64_t>(reached.size());

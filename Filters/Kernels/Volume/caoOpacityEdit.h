@@ -35,6 +35,15 @@ namespace cao
 /// march reads from voxel v: v + o for o in [lo[d], hi[d]].
 void OpacityFootprint(const LAOPlan& plan, int lo[3], int hi[3]);
 
+/// Buffers an edit needs (a byte per voxel twice, a flag per row, the list
+/// of reached voxels), kept by a caller that edits again: their pages stay
+/// mapped between edits.
+struct OpacityEditScratch
+{
+  std::vector<std::uint8_t> mask, reach, any, rowAny;
+  std::vector<std::int64_t> perRow, reached;
+};
+
 struct OpacityEditStats
 {
   std::int64_t changed = 0;    ///< voxels whose opacity changed
@@ -47,7 +56,7 @@ struct OpacityEditStats
 /// voxels. False when aborted.
 bool OpacityEditReach(const LAOPlan& plan, const float* before, const float* after,
   std::vector<std::int64_t>& reached, std::int64_t& changed,
-  const ContextualUpdate::ParallelFor& parallel);
+  const ContextualUpdate::ParallelFor& parallel, OpacityEditScratch* scratch = nullptr);
 
 /// Within `box` (inclusive voxel bounds, clamped to the volume) of a volume
 /// of the plan's dimensions: for every voxel of the box, whether its
@@ -65,7 +74,8 @@ bool FootprintDiffers(const LAOPlan& plan, const int box[6], const float* a, con
 /// three quarters are reached: cheaper than the list's runs then). False when aborted (`ao` is then
 /// partly updated: recompute it in full).
 bool UpdateLAOAfterOpacityEdit(const LAOPlan& plan, const float* before, const float* after,
-  float* ao, const ContextualUpdate::ParallelFor& parallel, OpacityEditStats& stats);
+  float* ao, const ContextualUpdate::ParallelFor& parallel, OpacityEditStats& stats,
+  OpacityEditScratch* scratch = nullptr);
 }
 
 #endif
