@@ -244,6 +244,10 @@ struct vtkContextualAOVolumeMapper::Internals
   // first edit), and what an edit and a GPU precompute cost per voxel here.
   std::vector<float> EditOpacity;
   std::vector<std::uint16_t> EditAO;
+  /// Kept between edits so that their pages stay mapped: the opacity before
+  /// the last (written again by the next upload) and the edit's scratch.
+  std::vector<float> SpareOpacity;
+  cao::OpacityEditScratch EditScratch;
   double EditNsPerVoxel = 0.0, PrecomputeNsPerVoxel = 0.0;
   bool OpacityEdit = false; ///< this upload follows a change of the opacity alone
   bool PeelDrawn = false;   ///< the last draw was a peeling stage that drew
@@ -281,6 +285,8 @@ struct vtkContextualAOVolumeMapper::Internals
     // that context.)
     std::vector<float>().swap(this->EditOpacity);
     std::vector<std::uint16_t>().swap(this->EditAO);
+    std::vector<float>().swap(this->SpareOpacity);
+    this->EditScratch = cao::OpacityEditScratch();
     this->EditNsPerVoxel = this->PrecomputeNsPerVoxel = 0.0;
     this->MapsUploadKey.clear();
     this->PoseKey.clear();
@@ -726,7 +732,9 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
   this->Calibration = cao::SurfaceCalibration(this->Plan);
   this->HalfSpace = cao::HalfSpaceTable(this->Plan);
   const auto start = std::chrono::steady_clock::now();
-  std::vector<float> opacity(static_cast<std::size_t>(f.voxels));
+  std::vector<float> opacity;
+  opacity.swap(this->SpareOpacity); // (every value is written below)
+  opacity.resize(static_cast<std::size_t>(f.voxels));
   std::int64_t nonFinite = 0;
   bool computed = false;
   // A given AO made by vtkLocalAmbientOcclusion (its settings recorded)
@@ -850,6 +858,7 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
   f.report.recomputed += f.voxels;
   this->PrecomputeNsPerVoxel = 1e6 * engine.Times().precompute / static_cast<double>(f.voxels);
   this->EditOpacity.swap(opacity); // the next edit starts from this opacity
+  this->SpareOpacity.swap(opacity); // (the one before, written again next time)
   this->EditAO.clear();           // and reads this precompute back when it comes
   ++self->PrecomputeCount;
   return true;
@@ -873,7 +882,7 @@ bool vtkContextualAOVolumeMapper::Internals::EditLAO(
     this->EditAO.size() != opacity.size())
     return true;
   const auto start = std::chrono::steady_clock::now();
-  std::vector<std::int64_t> reached;
+  std::vector<std::int64_t>& reached = this->EditScratch.reached;
   std::int64_t changed = 0;
   const cao::ContextualUpdate::ParallelFor parallel =
     [self](std::int64_t n, std::int64_t grain, double p0, double p1,
@@ -887,7 +896,7 @@ bool vtkContextualAOVolumeMapper::Internals::EditLAO(
         changed, [&](std::int64_t n, std::int64_t grain, double p0, double p1,
                    const std::function<void(std::int64_t, std::int64_t)>& body) {
           return parallel(n, grain, 0.1 * p0, 0.1 * p1, body);
-        });
+        }, &this->EditScratch);
     });
   });
   auto aborted = [&](bool lost) {
@@ -910,14 +919,13 @@ bool vtkContextualAOVolumeMapper::Internals::EditLAO(
   if (gpuFaster)
     return true;
   const auto marchStart = std::chrono::steady_clock::now();
-  std::vector<float> ao(opacity.size());
+  // Marched straight into the stored 16-bit AO (the march's store
+  // quantizes as the engine does: cao::QuantizeAO).
   const bool keptMarch = vtkCAO::AroundForeignEvents(f.window, [&] {
     vtkCAO::WithThreads(0, [&] {
       ok = parallel(static_cast<std::int64_t>(reached.size()), 4096, 0.1, 1.0,
         [&](std::int64_t b, std::int64_t e) {
-          cao::LAOList(this->Plan, opacity.data(), ao.data(), reached.data(), b, e);
-          for (std::int64_t n = b; n < e; ++n)
-            this->EditAO[reached[n]] = cao::gl::AOEngine::Quantize(ao[reached[n]]);
+          cao::LAOList(this->Plan, opacity.data(), this->EditAO.data(), reached.data(), b, e);
         });
     });
   });
@@ -931,6 +939,7 @@ bool vtkContextualAOVolumeMapper::Internals::EditLAO(
   if (!engine.SetPlan(this->Plan, error) || !engine.SetPrecomputed(this->EditAO.data(), error))
     return f.Fail("The AO upload after an opacity edit failed: " + error + ".");
   this->EditOpacity.swap(opacity);
+  this->SpareOpacity.swap(opacity);
   f.report.stages.push_back({ "opacity_edit", vtkCAO::MillisecondsSince(start), "host" });
   f.report.reasons.emplace_back("scalar opacity changed: " + std::to_string(changed) +
     " voxels' opacity changed, " + std::to_string(reached.size()) +
