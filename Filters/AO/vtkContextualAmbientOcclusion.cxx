@@ -452,7 +452,7 @@ bool vtkContextualAmbientOcclusion::Internals::RunCPU(
     const double pixelSize[2] = { in.clipMaps.camera[12], in.clipMaps.camera[13] };
     ok = this->CPU.Update(volume, in.clip, in.view, mapsVersion, buffers, parallel, stats,
       !vtkCAO::BrickClassificationDisabled(), pixelSize);
-    r.setupMs = stats.setupMs + stats.mapsMs;
+    r.setupMs = stats.setupMs;
     r.totalMs = vtkCAO::MillisecondsSince(start) - r.setupMs;
     r.counts = stats.counts;
     r.classifiedVoxels = stats.classifiedVoxels;
@@ -460,7 +460,7 @@ bool vtkContextualAmbientOcclusion::Internals::RunCPU(
     r.brickVoxels = stats.counts.byBrick;
     r.centreVoxels = stats.counts.byCentre;
     r.unchangedVoxels = stats.counts.unchanged;
-    r.classifyMs = stats.classifyMs + stats.narrowMs;
+    r.classifyMs = stats.classifyMs + stats.narrowMs + stats.mapsMs;
     r.recomputedAffected = stats.recomputedVoxels;
     r.copyMs = stats.copyMs;
     r.recomputeMs = stats.recomputeMs;
@@ -639,6 +639,14 @@ int vtkContextualAmbientOcclusion::RequestData(
   if (!(gpu ? internal.RunGPU(this, in, r) : internal.RunCPU(this, in, r)))
     return this->CheckAbort() ? 1 : 0; // aborted: the executive flags the output
 
+  // Written through their pointers, in place when kept: their ranges and
+  // lookups must not be the previous pose's.
+  for (vtkDataArray* a : { static_cast<vtkDataArray*>(internal.AO16 ? static_cast<vtkDataArray*>(internal.AO16) : internal.AO),
+         static_cast<vtkDataArray*>(internal.Clipped), static_cast<vtkDataArray*>(internal.Category) })
+  {
+    a->DataChanged();
+    a->Modified();
+  }
   vtkPointData* pd = output->GetPointData();
   pd->RemoveArray(vtkCAO::AmbientOcclusionName);
   if (internal.AO16)

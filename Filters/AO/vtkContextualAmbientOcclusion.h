@@ -28,9 +28,9 @@
  * "ClipCategory" (uint8: 0 clipped, 1 affected, 2 unaffected) and the field
  * arrays "CategoryCounts", "StageMilliseconds" (the pose's stages and
  * their "Total"; apart from them "Setup", the work done once for many
- * poses: the unclipped state written to every voxel, at the first pose
- * after a change of volume, opacity or mode, and the depth maps' tile and
- * proof summaries, when the maps change) and "UpdateRegion" (plus
+ * poses and independent of the pose: the unclipped state written to every
+ * voxel, at the first pose after a change of volume, opacity or mode) and
+ * "UpdateRegion" (plus
  * "Verification" when Verify is on).
  *
  * Between poses the filter keeps its output arrays and, on the CPU, builds

@@ -368,6 +368,13 @@ bool vtkLocalAmbientOcclusion::RunOnGPU(vtkDataArray* scalars, int component, co
 }
 
 //------------------------------------------------------------------------------
+void vtkLocalAmbientOcclusion::ReleaseEditBuffers()
+{
+  this->Internal->SpareOpacity = nullptr;
+  this->Internal->EditScratch = cao::OpacityEditScratch();
+}
+
+//------------------------------------------------------------------------------
 int vtkLocalAmbientOcclusion::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -447,6 +454,13 @@ int vtkLocalAmbientOcclusion::RequestData(
   if (gpu && !this->RunOnGPU(scalars, component, geometry.dims, plan, opacity, ao, aborted))
     return aborted ? 1 : 0;
 
+  // Written through their pointers (in place when reused): their ranges
+  // and lookups must not be the previous run's.
+  for (vtkFloatArray* a : { ao.Get(), opacity.Get() })
+  {
+    a->DataChanged();
+    a->Modified();
+  }
   // 3. The output: AO, opacity, the settings in effect, what ran.
   output->GetPointData()->AddArray(ao);
   if (this->OutputOpacity)

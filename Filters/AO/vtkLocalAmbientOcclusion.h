@@ -22,6 +22,17 @@
  * ScalarOpacityUnitDistance and Milliseconds: vtkContextualAmbientOcclusion
  * reads them by name and rebuilds the identical plan.
  *
+ * An edit of the opacity alone (a new OpacityFunction) recomputes only the
+ * voxels within the rays' reach of a changed voxel ("LAOUpdate" says which
+ * ran), bit for bit as a full run. For it the filter keeps, on the CPU, the
+ * last opacity and AO (8 bytes a voxel) and, to write the next run into
+ * memory already mapped, the opacity before the last when nothing else
+ * holds it (4 bytes a voxel) and the edit's masks and list (2 bytes a voxel
+ * and 8 per reached voxel). The last AO is edited in place when nothing
+ * else holds it; an array an earlier output handed out and someone still
+ * holds is never changed. ReleaseEditBuffers() frees the spare opacity and
+ * the masks and list.
+ *
  * The settings are one cao::LAOSettings (caoLAOSettings.h: defaults, limits
  * and presets in one place, shared with the mapper, the plugin and `cao`).
  *
@@ -252,6 +263,11 @@ public:
 
   /// Includes the opacity function's modification time.
   vtkMTimeType GetMTime() override;
+
+  /// Free what is kept only to make the next opacity edit faster (the
+  /// spare opacity, the edit's masks and list); the next edit still works,
+  /// allocating them again.
+  void ReleaseEditBuffers();
 
 protected:
   vtkLocalAmbientOcclusion();

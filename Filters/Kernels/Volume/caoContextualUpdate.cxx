@@ -375,11 +375,16 @@ bool ContextualUpdate::Verify(const Volume& volume, const Buffers& buffers,
     {
       // The stored values: the full recompute's, quantized as stored.
       const std::uint16_t q = buffers.ao16[v];
-      if (std::isnan(f) || QuantizeAO(f) != q)
+      if (std::isnan(f))
+      {
+        ++differing;
+        maxDifference = 1.0;
+      }
+      else if (QuantizeAO(f) != q)
       {
         ++differing;
         const double d = std::fabs(static_cast<double>(DequantizeAO(QuantizeAO(f))) - DequantizeAO(q));
-        maxDifference = std::max(maxDifference, std::isnan(f) ? 1.0 : d);
+        maxDifference = std::max(maxDifference, d);
       }
       continue;
     }

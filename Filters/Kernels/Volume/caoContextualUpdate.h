@@ -91,11 +91,14 @@ public:
     /// The unclipped state written to every voxel (the precomputed AO, the
     /// opacity, the unclipped category, the bricks' memory): the first pose
     /// after Reset() or a change of mode only, before that pose's own
-    /// classification; not in classifyMs or copyMs.
+    /// classification; it does not depend on the pose; not in classifyMs or
+    /// copyMs.
     double setupMs = 0;
     /// The maps' tile summaries and proof maps (ClipMapsTiles, ProofMaps),
-    /// made only when the maps or the clip's sample reach change; not in
-    /// classifyMs.
+    /// made only when the maps or the reach the pose needs change (a scale,
+    /// or a move that changes the rounding term): a pose's work, apart from
+    /// classifyMs so that the caller can say so (the filter counts it in
+    /// its Classify stage).
     double mapsMs = 0;
   };
 

@@ -111,8 +111,10 @@ void LAOList(const LAOPlan& plan, const float* opacity, std::uint16_t* ao,
   const std::int64_t* list, std::int64_t begin, std::int64_t end);
 
 /// AO in [0, 1] as 16-bit unsigned normalised: q = ao * 65535 + 0.5 in float,
-/// truncated (the GPU's storage, caoLAOMarch.glsl's Quantize; one definition
-/// for every C++ reader and writer of it).
+/// truncated (the GPU's storage, mirrored by caoLAOMarch.glsl's Quantize;
+/// the one C++ definition, for every reader and writer; a caller compiles
+/// it with -ffp-contract=off, as the kernels and the VTK modules that use
+/// it are, so that no FMA contracts it).
 inline std::uint16_t QuantizeAO(float ao)
 {
   return static_cast<std::uint16_t>(ao * static_cast<float>(layout::CAO_AO_SCALE) + 0.5f);

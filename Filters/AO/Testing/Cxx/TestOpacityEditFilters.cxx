@@ -190,6 +190,23 @@ int TestOpacityEditFilters(int argc, char* argv[])
     CAO_CHECK(Reason(lao->GetOutput()) == "opacity edit" && now->GetVoidPointer(0) == address &&
         caotest::SameBits(now, fresh(again)),
       "an AO array nobody holds was not edited in place, or the edit is not exact");
+    // Without the kept buffers the next edit allocates them again, exact.
+    lao->ReleaseEditBuffers();
+    double cached[2]; // (a range asked for caches it in the array)
+    lao->GetOutput()->GetPointData()->GetArray("AmbientOcclusion")->GetRange(cached);
+    Set(tf, to);
+    lao->Update();
+    CAO_CHECK(Reason(lao->GetOutput()) == "opacity edit" &&
+        caotest::SameBits(lao->GetOutput()->GetPointData()->GetArray("AmbientOcclusion"), fresh(to)),
+      "the edit after ReleaseEditBuffers is not exact");
+    // The range of the array written in place is the new one, not the one
+    // cached before the edit.
+    double range[2];
+    lao->GetOutput()->GetPointData()->GetArray("AmbientOcclusion")->GetRange(range);
+    double want[2];
+    fresh(to)->GetRange(want);
+    CAO_CHECK(range[0] == want[0] && range[1] == want[1],
+      "the edited AO's range is stale: [%g, %g], a full run's [%g, %g]", range[0], range[1], want[0], want[1]);
     std::printf("a held AO array keeps its values; one nobody holds is edited in place, exact\n");
   }
   // What forces a full run says why (and the result is still exact).

@@ -227,6 +227,21 @@ configure(kept, "cube", SUB, 4, pose(37, 36, 31, 14))
 kept.Update()
 check(kept.GetOutput().GetPointData().GetArray("AmbientOcclusion").GetAddressAsString(
     "vtkFloatArray") == address, "an AO array nobody holds is reused in place")
+# The arrays written in place do not keep a range cached before: the
+# categories' range at this pose (some clipped), then at a pose outside the
+# volume (all unaffected) in the same array.
+categories = kept.GetOutput().GetPointData().GetArray("ClipCategory")
+before_range = categories.GetRange()  # (a range asked for is cached in the array)
+category_address = categories.GetAddressAsString("vtkUnsignedCharArray")
+del categories
+configure(kept, "cube", SUB, 4, pose(400, 0, 0))
+kept.Update()
+categories = kept.GetOutput().GetPointData().GetArray("ClipCategory")
+check(before_range[0] == 0 and categories.GetAddressAsString("vtkUnsignedCharArray") == category_address
+      and categories.GetRange() == (2.0, 2.0),
+      "the categories written in place report this pose's range (2, 2), not the cached %s: %s"
+      % (before_range, categories.GetRange()))
+del categories
 
 # Verify (a full recompute) after the kept path: exact.
 kept.VerifyOn()
