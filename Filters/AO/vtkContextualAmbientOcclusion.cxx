@@ -145,6 +145,11 @@ struct vtkContextualAmbientOcclusion::Internals
   vtkSmartPointer<vtkFloatArray> AO, Clipped; // AO: with AOFormat FLOAT
   vtkSmartPointer<vtkUnsignedShortArray> AO16;   // with AOFormat UNORM16
   vtkSmartPointer<vtkUnsignedCharArray> Category;
+  /// The AO array held, of either format.
+  vtkDataArray* AOArray() const
+  {
+    return this->AO16 ? static_cast<vtkDataArray*>(this->AO16) : this->AO;
+  }
   // GPU: what the engine holds.
   VolumeKey EngineKey;
   bool EngineKeyValid = false;
@@ -460,7 +465,7 @@ bool vtkContextualAmbientOcclusion::Internals::RunCPU(
     r.brickVoxels = stats.counts.byBrick;
     r.centreVoxels = stats.counts.byCentre;
     r.unchangedVoxels = stats.counts.unchanged;
-    r.classifyMs = stats.classifyMs + stats.narrowMs + stats.mapsMs;
+    r.classifyMs = stats.classifyMs + stats.narrowMs;
     r.recomputedAffected = stats.recomputedVoxels;
     r.copyMs = stats.copyMs;
     r.recomputeMs = stats.recomputeMs;
@@ -641,18 +646,16 @@ int vtkContextualAmbientOcclusion::RequestData(
 
   // Written through their pointers, in place when kept: their ranges and
   // lookups must not be the previous pose's.
-  for (vtkDataArray* a : { static_cast<vtkDataArray*>(internal.AO16 ? static_cast<vtkDataArray*>(internal.AO16) : internal.AO),
-         static_cast<vtkDataArray*>(internal.Clipped), static_cast<vtkDataArray*>(internal.Category) })
+  vtkDataArray* ao = internal.AOArray();
+  for (vtkDataArray* a : { ao, static_cast<vtkDataArray*>(internal.Clipped),
+         static_cast<vtkDataArray*>(internal.Category) })
   {
     a->DataChanged();
     a->Modified();
   }
   vtkPointData* pd = output->GetPointData();
   pd->RemoveArray(vtkCAO::AmbientOcclusionName);
-  if (internal.AO16)
-    pd->AddArray(internal.AO16);
-  else
-    pd->AddArray(internal.AO);
+  pd->AddArray(ao);
   if (in.source != input)
   {
     pd->AddArray(in.opacity);

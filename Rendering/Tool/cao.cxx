@@ -682,6 +682,8 @@ void PrintCarveJson(const Options& o, vtkImageData* volume, const std::vector<Ru
     }
     const double n = static_cast<double>(run.poses.size());
     const LaterPoses later = AfterTheFirst(run, voxels);
+    const double setupMs = SetupMs(run);
+    const double withSetup = sumFull / std::max(sumCao + setupMs, 1e-9); // the speed-up
     std::printf("],\n  \"summary\": {\"full_lao_ms\": %.3f, \"cao_ms\": %.3f, \"speedup\": %.4f, "
                 "\"affected_percent\": %.4f, \"physical_limit\": %.4f, "
                 "\"affected_recomputed_percent\": %.4f, \"share_of_limit\": %.4f, "
@@ -694,9 +696,8 @@ void PrintCarveJson(const Options& o, vtkImageData* volume, const std::vector<Ru
       sumB > 0 ? n * voxels / sumB : 0.0, 100.0 * sumMarched / (n * voxels),
       sumB > 0 ? (sumFull / std::max(sumCao, 1e-9)) / (n * voxels / sumB) : 0.0, maxDiff,
       run.poses.empty() ? 0.0 : run.poses[0].ms[3], later.caoMs, later.speedup, later.limit,
-      later.Share(), SetupMs(run), o.aoFormat.c_str(), (sumCao + SetupMs(run)) / n,
-      sumFull / std::max(sumCao + SetupMs(run), 1e-9),
-      sumB > 0 ? (sumFull / std::max(sumCao + SetupMs(run), 1e-9)) / (n * voxels / sumB) : 0.0);
+      later.Share(), setupMs, o.aoFormat.c_str(), (sumCao + setupMs) / n, withSetup,
+      sumB > 0 ? withSetup / (n * voxels / sumB) : 0.0);
   }
   std::printf("]}\n");
 }
@@ -772,11 +773,12 @@ void PrintCarveTables(const Options& o, vtkImageData* volume, const std::vector<
     const LaterPoses later = AfterTheFirst(run, voxels);
     if (later.Share() > 0)
       std::snprintf(laterText, sizeof laterText, "%.0f%%", 100.0 * later.Share());
+    const double setupMs = SetupMs(run);
     char setupText[32] = "n/a";
     if (limit > 0)
       std::snprintf(setupText, sizeof setupText, "%.0f%%",
-        100.0 * (sumFull / std::max(sumCao + SetupMs(run), 1e-9)) / limit);
-    std::printf(" %.1f | %s | %.1f | %s |", SetupMs(run), setupText, later.caoMs, laterText);
+        100.0 * (sumFull / std::max(sumCao + setupMs, 1e-9)) / limit);
+    std::printf(" %.1f | %s | %.1f | %s |", setupMs, setupText, later.caoMs, laterText);
     if (o.verify)
       std::printf(" %g |", maxDiff);
     std::printf("\n");

@@ -194,28 +194,24 @@ bool ContextualUpdate::Update(const Volume& volume, const layout::ClipParams& cl
   // 3. Classify this pose's box, brick layer by brick layer; the b lists
   // are concatenated in slice order, so the list is sorted whatever the
   // threads.
-  const auto tMaps = std::chrono::steady_clock::now();
   const float* of[4] = { maps.front, maps.back, maps.candFront, maps.candBack };
-  const int proofBuilds = this->Proof.builds;
-  bool mapsMade = false;
   if (useTiles &&
     (mapsVersion == 0 || mapsVersion != this->TilesVersion ||
       !std::equal(of, of + 4, this->TilesOf) ||
       !this->Tiles.Built(clip.map.x, clip.map.y, clip.map.z)))
   {
-    mapsMade = true;
     this->Tiles.Build(maps, clip.map.x, clip.map.y, clip.map.z);
     this->TilesVersion = mapsVersion;
     std::copy(of, of + 4, this->TilesOf);
   }
   const ClipMapsTiles* tiles = useTiles ? &this->Tiles : nullptr;
-  ProofMaps::View proofView; // built once per maps (mapsMs)
+  // (The tiles and proof maps, remade when the maps or the reach a pose
+  // needs change, are the pose's work: in classifyMs.)
+  ProofMaps::View proofView;
   const ProofMaps::View* proof = useTiles && pixelSize &&
       this->Proof.Prepare(clip, maps, mapsVersion, pixelSize, dims, proofView)
     ? &proofView
     : nullptr;
-  if (mapsMade || this->Proof.builds != proofBuilds)
-    stats.mapsMs = MillisecondsSince(tMaps);
   const int slabs = Empty(box) ? 0 : box[5] - box[4] + 1;
   const int groups = (slabs + BrickSize - 1) / BrickSize;
   std::mutex mutex;
@@ -239,7 +235,7 @@ bool ContextualUpdate::Update(const Volume& volume, const layout::ClipParams& cl
   else
     counts.clipped += outside;
   stats.counts = counts;
-  stats.classifyMs = MillisecondsSince(t0) - stats.mapsMs;
+  stats.classifyMs = MillisecondsSince(t0);
 
   // 4. Narrow b by opacity: march only the b voxels whose footprint may
   // hold a voxel whose clipped opacity differs from its opacity, decided

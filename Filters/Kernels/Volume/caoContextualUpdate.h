@@ -94,12 +94,6 @@ public:
     /// classification; it does not depend on the pose; not in classifyMs or
     /// copyMs.
     double setupMs = 0;
-    /// The maps' tile summaries and proof maps (ClipMapsTiles, ProofMaps),
-    /// made only when the maps or the reach the pose needs change (a scale,
-    /// or a move that changes the rounding term): a pose's work, apart from
-    /// classifyMs so that the caller can say so (the filter counts it in
-    /// its Classify stage).
-    double mapsMs = 0;
   };
 
   /// Forget the previous pose: the next Update writes every voxel.
