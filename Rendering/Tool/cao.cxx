@@ -713,6 +713,8 @@ void PrintCarveTables(const Options& o, vtkImageData* volume, const std::vector<
       o.volume.c_str(), dims[0], dims[1], dims[2], voxels, o.clipping.mode.c_str(), run.numRays,
       run.samples, run.reach);
     std::printf("backend: %s\n", run.backend.c_str());
+    std::printf("AO kept as %s (--ao-format)\n",
+      o.aoFormat == "float" ? "float, 4 bytes a voxel" : "unorm16, 2 bytes a voxel");
     std::printf("LAO precompute %.1f ms; depth maps %.1f ms (%d made: one per pose scale; %s)\n",
       run.precomputeMs, run.depthMs, run.mapsBuilt, run.mapsBackend.c_str());
     std::printf("%4s %10s %10s %10s %6s %8s %9s %8s %10s %9s %9s %8s%s%s\n", "pose", "clipped(a)",
