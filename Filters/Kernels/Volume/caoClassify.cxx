@@ -50,6 +50,31 @@ inline bool InLayers(
   return false;
 }
 
+/// One set of layer maps as the per-voxel tests read it: pixel `pixel`'s
+/// layer l at front[pixel * pixelStride + l * layerStride] (and back[...]).
+/// The raw maps are (layers, 1); ProofMaps' packed record interleaves the
+/// four sets a voxel's centre reads, so that they share one cache line.
+struct LayerSet
+{
+  const float* front = nullptr;
+  const float* back = nullptr;
+  std::size_t pixelStride = 0, layerStride = 1;
+};
+
+inline bool InSet(const LayerSet& s, int layers, const Projection& q)
+{
+  if (!q.inMap)
+    return false;
+  const std::size_t base = q.pixel * s.pixelStride;
+  for (int l = 0; l < layers; ++l)
+  {
+    const std::size_t i = base + l * s.layerStride;
+    if (s.front[i] <= q.depth && q.depth <= s.back[i])
+      return true;
+  }
+  return false;
+}
+
 inline void FillOutside(const layout::ClipParams& p, const float* opacity, float* clipped,
   std::uint8_t* category, std::int64_t begin, std::int64_t end, CategoryCounts& counts)
 {
@@ -327,16 +352,9 @@ bool ProofMaps::Prepare(const layout::ClipParams& clip, const ClipMapsView& maps
     this->clip.height == clip.map.y && this->clip.layers == clip.map.z;
   if (!same || needed > this->radius || needed < 0.67 * this->radius)
   {
-    // 10% of headroom: a pose whose scale moves a little reuses them. The
-    // brick radii scale with the voxel's (a brick spans 4 voxels, its
-    // centres 3), with the rounding bound added once.
+    // 10% of headroom: a pose whose scale moves a little reuses them.
     const double grow = 1.1;
     this->radius = grow * needed;
-    // A later pose reuses these while its own per-voxel need is at most
-    // `radius`; its brick needs (4 or 3 x its reach, plus its rounding)
-    // are then at most 4 and 3 x `radius`.
-    const double brickClipRadius = 4.0 * this->radius;
-    const double brickCandRadius = 3.0 * this->radius;
     const std::size_t n = static_cast<std::size_t>(clip.map.x) * clip.map.y * clip.map.z;
     ClipDepthMaps* copies[2] = { &this->clip, &this->cand };
     for (int c = 0; c < 2; ++c)
@@ -351,28 +369,25 @@ bool ProofMaps::Prepare(const layout::ClipParams& clip, const ClipMapsView& maps
     camera.width = clip.map.x;
     camera.height = clip.map.y;
     camera.layers = clip.map.z;
-    struct Job
-    {
-      const ClipDepthMaps* in;
-      double radius;
-      ClipDepthMaps* out;
-    };
-    const Job jobs[3] = { { &this->clip, this->radius, this->sample },
-      { &this->clip, brickClipRadius, this->brickClip }, { &this->cand, brickCandRadius, this->brickCand } };
-    for (const Job& job : jobs)
-    {
-      // Bricks whose reach spans too many pixels get no maps (the tiles
-      // decide them): ClassifyBrickByProof then says Mixed.
-      if (job.out != this->sample && job.radius > 1.5 * MaxProofPixels * pixel)
+    this->sample[0].Allocate(clip.map.x, clip.map.y, clip.map.z);
+    this->sample[1].Allocate(clip.map.x, clip.map.y, clip.map.z);
+    DilateErodeRows(this->clip, camera, this->radius, this->sample[0], this->sample[1], 0, clip.map.y);
+    // The packed record: per pixel and layer, the clip, candidate, dilated
+    // and eroded intervals side by side (8 floats; 64 bytes a pixel for two
+    // layers), starting on a cache line.
+    const std::size_t floats = 8 * n;
+    this->packedStore.assign(floats + 16, 0.0f);
+    float* packed = this->packedStore.data();
+    while (reinterpret_cast<std::uintptr_t>(packed) % 64 != 0)
+      ++packed;
+    const ClipDepthMaps* sets[4] = { &this->clip, &this->cand, &this->sample[0], &this->sample[1] };
+    for (std::size_t e = 0; e < n; ++e)
+      for (int set = 0; set < 4; ++set)
       {
-        job.out[0] = ClipDepthMaps();
-        job.out[1] = ClipDepthMaps();
-        continue;
+        packed[8 * e + 2 * set] = sets[set]->front[e];
+        packed[8 * e + 2 * set + 1] = sets[set]->back[e];
       }
-      job.out[0].Allocate(clip.map.x, clip.map.y, clip.map.z);
-      job.out[1].Allocate(clip.map.x, clip.map.y, clip.map.z);
-      DilateErodeRows(*job.in, camera, job.radius, job.out[0], job.out[1], 0, clip.map.y);
-    }
+    this->packed = packed;
     this->version = mapsVersion;
     std::copy(layers, layers + 4, this->of);
     ++this->builds;
@@ -382,7 +397,7 @@ bool ProofMaps::Prepare(const layout::ClipParams& clip, const ClipMapsView& maps
                               : ClipMapsView{ m[0].front.data(), m[0].back.data(),
                                   m[1].front.data(), m[1].back.data() };
   };
-  view = { viewOf(this->sample), viewOf(this->brickClip), viewOf(this->brickCand) };
+  view = { viewOf(this->sample), this->packed };
   return true;
 }
 
@@ -621,30 +636,6 @@ std::uint8_t ClassifyBrick(const layout::ClipParams& p, const ClipMapsTiles& til
   return BrickOf(p, clip, [&] { return BoxCoverage(p, tiles, 1, clo, chi); });
 }
 
-/// ClassifyBrick from the brick's centre and the proof maps (ProofMaps):
-/// the same categories where they decide, BrickMixed where they do not.
-std::uint8_t ClassifyBrickByProof(
-  const layout::ClipParams& p, const ProofMaps::View& proof, int i0, int j0, int k0)
-{
-  const float h = 0.5f * (BrickSize - 1);
-  if (!proof.brickClip.front || !proof.brickCand.front)
-    return BrickMixed;
-  const Projection c = Project(p, static_cast<float>(i0) + h, static_cast<float>(j0) + h,
-    static_cast<float>(k0) + h);
-  if (!c.inMap)
-    return BrickMixed;
-  // Outside the layers dilated by the reach: none; inside them eroded: all.
-  const auto coverage = [&](const ClipMapsView& m) {
-    if (!InLayers(p, m.front, m.back, c))
-      return ClipMapsTiles::None;
-    return InLayers(p, m.candFront, m.candBack, c) ? ClipMapsTiles::All : ClipMapsTiles::Mixed;
-  };
-  const ClipMapsTiles::Coverage clip = coverage(proof.brickClip);
-  if (clip == ClipMapsTiles::Mixed)
-    return BrickMixed;
-  return BrickOf(p, clip, [&] { return coverage(proof.brickCand); });
-}
-
 /// Set on a brick of the layer (with its category) when `memory` says its
 /// voxels already hold that category: nothing to write.
 constexpr std::uint8_t BrickUnchanged = 0x80;
@@ -667,6 +658,25 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
   const int cw = bx1 - bx0 + 2, ch = by1 - by0 + 2; // corner lattice of the box
   if (tiles && !tiles->Built(p.map.x, p.map.y, p.map.z))
     tiles = nullptr;
+  // The layer sets the voxels' tests read: the proof maps' packed record
+  // when there is one (one cache line a pixel), the maps themselves if not.
+  const int layers = p.map.z;
+  const std::size_t pz = static_cast<std::size_t>(layers);
+  LayerSet clipSet{ maps.front, maps.back, pz, 1 }, candSet{ maps.candFront, maps.candBack, pz, 1 };
+  LayerSet dilatedSet, erodedSet;
+  if (proof)
+  {
+    dilatedSet = { proof->sample.front, proof->sample.back, pz, 1 };
+    erodedSet = { proof->sample.candFront, proof->sample.candBack, pz, 1 };
+    if (proof->packed)
+    {
+      const float* r = proof->packed;
+      clipSet = { r, r + 1, 8 * pz, 8 };
+      candSet = { r + 2, r + 3, 8 * pz, 8 };
+      dilatedSet = { r + 4, r + 5, 8 * pz, 8 };
+      erodedSet = { r + 6, r + 7, 8 * pz, 8 };
+    }
+  }
   // Corner planes below and above the slice, filled as needed (2: not yet
   // evaluated), so that bricks decided at once cost no corner tests.
   constexpr std::uint8_t Unknown = 2;
@@ -685,7 +695,7 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
   auto corner = [&](std::vector<std::uint8_t>& plane, std::size_t c, int cx, int cy, float zc) {
     std::uint8_t& v = plane[c];
     if (v == Unknown)
-      v = InLayers(p, maps.front, maps.back,
+      v = InSet(clipSet, layers,
         Project(p, static_cast<float>(bx0 + cx) - 0.5f, static_cast<float>(by0 + cy) - 0.5f, zc));
     return static_cast<int>(v);
   };
@@ -751,14 +761,8 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
         for (int bx = 0; bx < nbx; ++bx)
         {
           const int i0 = bx0 + bx * BrickSize, j0 = by0 + by * BrickSize;
-          std::uint8_t state = proof ? ClassifyBrickByProof(p, *proof, i0, j0, k0) : BrickMixed;
-          if ((state & ~BrickClipUniform) == BrickMixed)
-          {
-            const std::uint8_t byTiles = ClassifyBrick(p, *tiles, i0,
-              std::min(bx1, i0 + BrickSize - 1), j0, std::min(by1, j0 + BrickSize - 1), k0, k1);
-            if (byTiles != BrickMixed)
-              state = byTiles;
-          }
+          std::uint8_t state = ClassifyBrick(p, *tiles, i0, std::min(bx1, i0 + BrickSize - 1),
+            j0, std::min(by1, j0 + BrickSize - 1), k0, k1);
           if (memory)
           {
             std::uint8_t& held = memory->category[memory->Index(
@@ -843,7 +847,7 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
           const std::size_t ci = static_cast<std::size_t>(cx);
           const Projection centre =
             Project(p, static_cast<float>(i), static_cast<float>(j), static_cast<float>(k));
-          const bool candidate = InLayers(p, maps.candFront, maps.candBack, centre);
+          const bool candidate = InSet(candSet, layers, centre);
           if (clipUniform)
           {
             // Every sample proven out of the clip (subtraction) or in it
@@ -865,14 +869,14 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
             continue;
           }
           float coverage;
-          if (proof && centre.inMap && !InLayers(p, proof->sample.front, proof->sample.back, centre))
+          if (proof && centre.inMap && !InSet(dilatedSet, layers, centre))
           {
             // Outside the clip grown by the samples' reach: none is in it.
             coverage = 0.0f;
             ++counts.byCentre;
           }
           else if (proof && centre.inMap &&
-            InLayers(p, proof->sample.candFront, proof->sample.candBack, centre))
+            InSet(erodedSet, layers, centre))
           {
             // Inside it shrunk by that reach: every sample is in it.
             coverage = 1.0f;
@@ -880,7 +884,7 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
           }
           else
           {
-            int inside = InLayers(p, maps.front, maps.back, centre) +
+            int inside = InSet(clipSet, layers, centre) +
               corner(lower, c0 + ci, cx, cy0, zLower) + corner(lower, c0 + ci + 1, cx + 1, cy0, zLower) +
               corner(lower, c1 + ci, cx, cy1, zLower) + corner(lower, c1 + ci + 1, cx + 1, cy1, zLower) +
               corner(upper, c0 + ci, cx, cy0, zUpper) + corner(upper, c0 + ci + 1, cx + 1, cy0, zUpper) +
@@ -903,7 +907,7 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
               for (int n = 0; n < p.aa.x; ++n)
               {
                 const layout::vec4& o = p.aaOffsets[n];
-                inside += InLayers(p, maps.front, maps.back,
+                inside += InSet(clipSet, layers,
                   Project(p, static_cast<float>(i) + o.x, static_cast<float>(j) + o.y,
                     static_cast<float>(k) + o.z));
               }

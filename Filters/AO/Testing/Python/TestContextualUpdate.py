@@ -22,8 +22,8 @@ AOFormat UNORM16 along the same path: the float AO quantized, exact against
 the quantized full recompute (negative control: truncation differs).
 
 At every pose, the classification that decides provably uniform bricks at
-once (cao::ClipMapsTiles, and the brick proof maps of cao::ProofMaps) and
-voxels from their centre (the per-voxel proof maps) equals testing every
+once (cao::ClipMapsTiles) and voxels from their centre (the proof maps of
+cao::ProofMaps) equals testing every
 voxel sample by sample (CAO_CLASSIFY_PER_SAMPLE=1, which decides nothing by
 brick or centre: checked), bit for bit."""
 import os

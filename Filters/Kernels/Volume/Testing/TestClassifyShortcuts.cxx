@@ -9,12 +9,12 @@
 //     side it does not share with the volume changes the classification
 //     (the comparison sees a box that is too small, and the narrowed box is
 //     within those few voxels of the least box that is right);
-//  2. bricks decided by the tiles and the brick proof maps, voxels decided
-//     from their centre by the per-voxel proof maps (ClassifyRegion with
-//     ClipMapsTiles and ProofMaps). Negative controls: the bricks proven
-//     with the per-voxel maps (a quarter of the radius a brick's samples
-//     need), and the voxels with the clip layers themselves (radius 0),
-//     change the classification;
+//  2. bricks decided by the tiles, voxels decided from their centre by the
+//     proof maps (ClassifyRegion with ClipMapsTiles and ProofMaps, read
+//     through the packed record and apart). Negative controls: the voxels
+//     proven with the clip layers themselves (radius 0), and the packed
+//     record with its dilated and eroded intervals swapped, change the
+//     classification;
 //  3. transparent voxels whose 9 samples disagree skip the anti-aliasing
 //     samples, against an independent test of every sample (InsideClip).
 //     Negative control: skipping them for opaque voxels too differs.
@@ -136,7 +136,7 @@ int TestClassifyShortcuts(int, char*[])
     }
   }
   // 2. Tiles and proof maps against every sample.
-  std::int64_t byCentre = 0, byBrick = 0, wrongBricks = 0, wrongVoxels = 0;
+  std::int64_t byCentre = 0, byBrick = 0, wrongSwapped = 0, wrongVoxels = 0;
   for (int mode : { cao::layout::CAO_MODE_SUBTRACT, cao::layout::CAO_MODE_PROBE })
   {
     const cao::ClipMapsView view = ViewFor(scene, mode);
@@ -150,9 +150,19 @@ int TestClassifyShortcuts(int, char*[])
       cao::ProofMaps::View pv;
       CAO_CHECK(proof.Prepare(clip, view, 1 + mode, scene.camera.pixelSize, dims, pv),
         "no proof maps");
-      cao::ProofMaps::View smallBricks = pv, noRadius = pv;
-      smallBricks.brickClip = pv.sample;
+      CAO_CHECK(pv.packed != nullptr, "no packed record");
+      cao::ProofMaps::View apart = pv, noRadius = pv, swapped = pv;
+      apart.packed = nullptr;
+      noRadius.packed = nullptr;
       noRadius.sample = { view.front, view.back, view.front, view.back };
+      // The packed record with its dilated and eroded intervals swapped.
+      const std::size_t records = static_cast<std::size_t>(scene.camera.width) *
+        scene.camera.height * scene.camera.layers;
+      std::vector<float> swappedRecord(pv.packed, pv.packed + 8 * records);
+      for (std::size_t e = 0; e < records; ++e)
+        for (int f = 0; f < 2; ++f)
+          std::swap(swappedRecord[8 * e + 4 + f], swappedRecord[8 * e + 6 + f]);
+      swapped.packed = swappedRecord.data();
       const int whole[6] = { 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1 };
       const auto shortcut = [&](const cao::ProofMaps::View* maps) {
         Result r;
@@ -165,18 +175,20 @@ int TestClassifyShortcuts(int, char*[])
       };
       const Result fast = shortcut(&pv);
       const std::int64_t diff = Differences(every, fast);
-      const std::int64_t bricksWrong = Differences(every, shortcut(&smallBricks));
+      const std::int64_t diffApart = Differences(every, shortcut(&apart));
+      const std::int64_t swappedWrong = Differences(every, shortcut(&swapped));
       const std::int64_t voxelsWrong = Differences(every, shortcut(&noRadius));
-      std::printf("mode %d pose (%g %g %g): by brick %lld, by centre %lld, %lld differ; "
-                  "controls: bricks with the voxels' radius %lld differ, voxels with radius 0 "
-                  "%lld\n",
+      std::printf("mode %d pose (%g %g %g): by brick %lld, by centre %lld, %lld differ (%lld "
+                  "read apart); controls: the record's intervals swapped %lld differ, voxels "
+                  "with radius 0 %lld\n",
         mode, pose[0], pose[1], pose[2], (long long)fast.counts.byBrick,
-        (long long)fast.counts.byCentre, (long long)diff, (long long)bricksWrong,
-        (long long)voxelsWrong);
-      CAO_CHECK(diff == 0, "the shortcuts change %lld voxels", (long long)diff);
+        (long long)fast.counts.byCentre, (long long)diff, (long long)diffApart,
+        (long long)swappedWrong, (long long)voxelsWrong);
+      CAO_CHECK(diff == 0 && diffApart == 0, "the shortcuts change %lld voxels (%lld read apart)",
+        (long long)diff, (long long)diffApart);
       byCentre += fast.counts.byCentre;
       byBrick += fast.counts.byBrick;
-      wrongBricks += bricksWrong;
+      wrongSwapped += swappedWrong;
       wrongVoxels += voxelsWrong;
     }
     CAO_CHECK(proof.builds == 1, "the proof maps were built %d times for one set of maps",
@@ -184,9 +196,9 @@ int TestClassifyShortcuts(int, char*[])
   }
   CAO_CHECK(byCentre > 0 && byBrick > 0, "shortcuts unused: by brick %lld, by centre %lld",
     (long long)byBrick, (long long)byCentre);
-  CAO_CHECK(wrongBricks > 0 && wrongVoxels > 0,
-    "radii too small gave the same bits (the comparison is blind): %lld and %lld differ",
-    (long long)wrongBricks, (long long)wrongVoxels);
+  CAO_CHECK(wrongSwapped > 0 && wrongVoxels > 0,
+    "a swapped record and radius 0 gave the same bits (the comparison is blind): %lld and %lld differ",
+    (long long)wrongSwapped, (long long)wrongVoxels);
 
   // 3. Transparent voxels skip their anti-aliasing samples: against an
   // independent classification that tests every sample with InsideClip
