@@ -129,6 +129,33 @@ view.CameraPosition = [0.0, -6.0, 4.0]
 view.CameraFocalPoint = [0.0, 0.0, 0.2]
 view.CameraViewUp = [0.0, 0.0, 1.0]
 grey("replicated")
+# The default radius (SurfaceAORadius 0) from the feature size of six
+# nested isosurfaces split over the ranks: 2V/A over every process's pieces
+# together (their areas summed by the exchange), the same as on one process,
+# and below a tenth of the diagonal (the formula's own regime).
+Hide(replicated, view)
+Hide(slab, view)
+nested = Contour(Input=Wavelet(WholeExtent=[-20, 20, -20, 20, -20, 20]), ContourBy=["POINTS", "RTData"],
+                 Isosurfaces=[100.0, 130.0, 160.0, 190.0, 220.0, 250.0])
+ColorBy(Show(nested, view), None)
+view.SurfaceAORadius = 0.0
+view.ResetCamera()
+grey("nested")
+nestedReport = json.loads(pas.GetLastFrameReport())
+nb = nested.GetDataInformation().GetBounds()
+tenth = 0.1 * ((nb[1] - nb[0]) ** 2 + (nb[3] - nb[2]) ** 2 + (nb[5] - nb[4]) ** 2) ** 0.5
+radius = nestedReport.get("radius", -1.0)
+check(0 < radius < 0.9 * tenth, "nested isosurfaces: the default radius %.4f is below a tenth of the diagonal "
+      "(%.4f): from their area" % (radius, tenth))
+radiusFile = os.path.join(outdir, "np%d-radius.json" % ranks)
+with open(radiusFile, "w") as f:
+    json.dump({"nested": radius}, f)
+if ranks > 1:
+    with open(os.path.join(outdir, "np1-radius.json")) as f:
+        serialRadius = json.load(f)["nested"]
+    check(abs(radius - serialRadius) <= 1e-6 * serialRadius,
+          "nested isosurfaces split over %d processes: the default radius %.6f is the serial one %.6f (every "
+          "process's area summed; this process's alone gives a larger one)" % (ranks, radius, serialRadius))
 print("rank 0's report (world grid): %s" % json.dumps(reports["World"]))
 if ranks == 1:
     check("processes" not in reports["World"], "one process: no exchange (the report names no processes)")

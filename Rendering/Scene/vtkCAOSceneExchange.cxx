@@ -1,5 +1,7 @@
 #include "vtkCAOSceneExchange.h"
 
+#include "caoAORadius.h"
+
 #include "vtkCommunicator.h"
 #include "vtkMultiProcessController.h"
 
@@ -74,6 +76,53 @@ bool SceneExchange::CommonBounds(vtkMultiProcessController* controller, std::arr
   const bool ok = Min(controller, values, 6);
   bounds = Unpack(values);
   return ok;
+}
+
+bool SceneExchange::CommonArea(vtkMultiProcessController* controller, const std::vector<cao::MeshView>& pieces,
+  const std::vector<int>& pieceActor, int actors, double signature, double& area)
+{
+  // Every call below is made by every process, in the same order.
+  const double n = static_cast<double>(actors);
+  double agreed[4] = { n, -n, signature, -signature };
+  const bool same = Min(controller, agreed, 4) && agreed[0] == -agreed[1] && agreed[2] == -agreed[3];
+  const int groups = same ? actors : 1;
+  std::vector<double> mine(static_cast<std::size_t>(groups), 0.0);
+  area = 0.0;
+  if (groups == 0)
+    return true; // (no actor on any process: agreed, nothing to gather)
+  for (int a = 0; a < groups; ++a)
+  {
+    double count = 0.0, sum = 0.0;
+    for (std::size_t k = 0; k < pieces.size(); ++k)
+      if (!same || pieceActor[k] == a)
+      {
+        count += static_cast<double>(pieces[k].triangles->size());
+        for (double c : *pieces[k].points)
+          sum += c;
+        mine[static_cast<std::size_t>(a)] += cao::MeshArea(pieces[k]);
+      }
+    area += mine[static_cast<std::size_t>(a)];
+    double share[4] = { count, -count, sum, -sum };
+    const bool replicated = same && Min(controller, share, 4) && count > 0.0 && share[0] == -share[1] &&
+      share[2] == -share[3];
+    if (replicated)
+      mine[static_cast<std::size_t>(a)] = -1.0 - mine[static_cast<std::size_t>(a)]; // (marked: counted once)
+  }
+  std::vector<double> all;
+  if (!Gather(controller, mine, all) || all.size() % mine.size() != 0)
+    return false;
+  double total = 0.0;
+  for (int a = 0; a < groups; ++a)
+  {
+    const double own = mine[static_cast<std::size_t>(a)];
+    if (own < 0.0)
+      total += -1.0 - own; // replicated: this process's, once
+    else
+      for (std::size_t p = 0; p < all.size() / mine.size(); ++p)
+        total += all[p * mine.size() + static_cast<std::size_t>(a)];
+  }
+  area = total;
+  return true;
 }
 
 bool SceneExchange::CombineGrid(vtkMultiProcessController* controller, const std::vector<cao::MeshView>& pieces,

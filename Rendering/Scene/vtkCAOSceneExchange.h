@@ -54,6 +54,14 @@ public:
   static bool CombineGrid(vtkMultiProcessController* controller, const std::vector<cao::MeshView>& pieces,
     const std::vector<int>& pieceActor, int actors, double signature, double tolerance, cao::BitGrid& grid,
     std::string& error);
+  /// The area of every process's pieces together (`pieces` as CombineGrid
+  /// takes them): per actor the processes' areas summed, or one process's
+  /// where the same whole actor is on every process (replicated, found as
+  /// CombineGrid finds it); if the actors differ between processes, every
+  /// piece's area summed. False when the exchange failed (`area` is then
+  /// this process's).
+  static bool CommonArea(vtkMultiProcessController* controller, const std::vector<cao::MeshView>& pieces,
+    const std::vector<int>& pieceActor, int actors, double signature, double& area);
   /// The bounds of every process's `local` bounds together (min > max: none).
   static bool CommonBounds(vtkMultiProcessController* controller, std::array<double, 6>& bounds);
   /// Exchanges that found a change (the grids rebuilt).

@@ -1,5 +1,7 @@
 #include "vtkContextualAOPass.h"
 
+#include "caoAORadius.h"
+
 #include "vtkActor.h"
 #include "vtkActorCollection.h"
 #include "vtkCamera.h"
@@ -267,6 +269,9 @@ struct vtkContextualAOPass::Internals
   std::vector<std::vector<std::int64_t>> meshTriangles;
   std::vector<std::int64_t> meshOpenEdges;
   double radius = 0.0;
+  /// Every process's pieces' area together (SceneExchange::CommonArea),
+  /// exchanged when a scene changes; the default radius's A when distributed.
+  double commonArea = 0.0;
   int open = 0;
   int serial = 0; ///< grids built
   // The volumes' opacity.
@@ -825,6 +830,14 @@ void vtkContextualAOPass::Internals::Exchange(vtkContextualAOPass* self)
   this->rebuild = true;
   this->sharedGrid = cao::BitGrid();
   this->sharedError.clear();
+  gather();
+  std::vector<cao::MeshView> views;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    views.push_back({ &points[i], &triangles[i] });
+  // (collective: every process, whatever the method)
+  if (!vtkCAO::SceneExchange::CommonArea(this->controller, views, this->pieceActor, this->surfaceActors,
+        this->actorSignature, this->commonArea))
+    this->commonArea = 0.0; // (the radius then falls back to the tenth of the diagonal)
   if (self->Method != VCT || self->Grid == FRUSTUM_GRID)
     return;
   // The world (or eye) grid of the common bounds, planned alike on every
@@ -832,15 +845,11 @@ void vtkContextualAOPass::Internals::Exchange(vtkContextualAOPass* self)
   const std::array<double, 6>& b = this->exchange.Bounds();
   const double diagonal = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
     (b[5] - b[4]) * (b[5] - b[4]));
-  const double radius = self->Radius > 0 ? self->Radius : 0.1 * diagonal;
+  const double radius = self->Radius > 0 ? self->Radius : cao::DefaultAORadius(b, this->commonArea);
   cao::BitGrid g;
   std::string error;
   bool planned = this->exchange.HasBounds() && std::isfinite(diagonal) && radius > 0 && std::isfinite(radius) &&
     self->Slices >= 32 && self->Slices <= 1024 && self->Slices % 32 == 0;
-  gather();
-  std::vector<cao::MeshView> views;
-  for (std::size_t i = 0; i < points.size(); ++i)
-    views.push_back({ &points[i], &triangles[i] });
   if (planned && self->Grid == EYE_GRID)
   {
     // The eye grid: every process's pieces' bounds in the camera's axes.
@@ -930,7 +939,13 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
     this->failedSceneKey = this->frameSceneKey;
     return this->Fail(self, "Cannot build the scene: its bounds are empty or not finite");
   }
-  this->radius = self->Radius > 0 ? self->Radius : 0.1 * diagonal;
+  double area = 0.0;
+  if (distributed)
+    area = this->commonArea;
+  else
+    for (std::size_t i = 0; i < points.size(); ++i)
+      area += cao::MeshArea({ &points[i], &triangles[i] });
+  this->radius = self->Radius > 0 ? self->Radius : cao::DefaultAORadius(b, area);
   // The drawn-is-traced test's tolerance: half a voxel (the screen-space
   // methods, which have no grid: of a 128-slice grid, a fixed fraction).
   this->tolerance = std::max(0.5 * diagonal / 128.0, 1e-9);

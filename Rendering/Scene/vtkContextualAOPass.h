@@ -174,7 +174,7 @@ public:
   /// ParaView's view on several MPI processes does; the view sets it). With
   /// a controller of several processes every process must render every
   /// frame: the pass exchanges a few numbers each frame, and the default
-  /// Radius is 0.1 x the diagonal of every process's pieces together. VCT
+  /// Radius is that of every process's pieces together. VCT
   /// on the world and eye grids then sees every process's pieces: each
   /// voxelizes its own into the grid of the common bounds (in the camera's
   /// axes for the eye grid) and the bits are combined across the processes
@@ -195,8 +195,11 @@ public:
   ///@}
 
   ///@{
-  /// The AO radius in world units; 0 (default): a tenth of the opaque
-  /// actors' bounding-box diagonal, as `cao surface`.
+  /// The AO radius in world units; 0 (default): from the opaque actors'
+  /// feature size, as `cao surface` (cao::DefaultAORadius: half the mean
+  /// free path between their surfaces, 2V/A over their bounding box V and
+  /// triangles' area A, between a fortieth and a tenth of the box's
+  /// diagonal). The frame report's "radius" gives the one used.
   vtkSetClampMacro(Radius, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(Radius, double);
   ///@}

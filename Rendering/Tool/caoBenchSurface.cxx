@@ -1,4 +1,5 @@
 #include "caoBenchSurface.h"
+#include "caoAORadius.h"
 
 #include "caoBenchPlot.h"
 #include "caoCommandLine.h"
@@ -30,6 +31,7 @@ struct Options
   std::vector<std::string> meshes;
   SurfaceView view{ 256, 256 };
   double radiusFraction = 0.1, orbit = 0.5;
+  bool defaultRadius = false; ///< --default-radius: cao::DefaultAORadius per scene
   int referenceRays = 1024, band = 2, repeats = 3, threads = 0;
   std::vector<cao::VCTQuality> qualities{ cao::VCTQuality::Low, cao::VCTQuality::Medium,
     cao::VCTQuality::High };
@@ -193,7 +195,14 @@ int Run(Options& o, const CLI::App*)
     if (!scene.Load({ path }, error))
       return Fail(2, error);
     const std::string name = path.substr(path.find_last_of('/') + 1);
-    const double radius = o.radiusFraction * scene.diagonal;
+    double area = 0.0;
+    for (const cao::MeshView& m : scene.Views())
+      area += cao::MeshArea(m);
+    const double radius = o.defaultRadius ? cao::DefaultAORadius(scene.bvh.Bounds(), area)
+                                          : o.radiusFraction * scene.diagonal;
+    if (o.defaultRadius)
+      notes.push_back(name + ": the default radius " + std::to_string(radius) + " = " +
+        std::to_string(radius / scene.diagonal) + " x its diagonal");
     vtkNew<vtkCamera> camera, camera2;
     FitCamera(camera, scene.bvh.Bounds().data(), o.view);
     SurfaceView turned = o.view;
@@ -545,8 +554,10 @@ int Run(Options& o, const CLI::App*)
     front[pointOf[k]] = 1;
   // The table.
   std::cout << "Surface AO against the reference (" << o.referenceRays
-            << " cosine-weighted rays, binary within R = " << o.radiusFraction
-            << " x diagonal), " << o.view.width << "x" << o.view.height << ", mean over "
+            << " cosine-weighted rays, binary within R = "
+            << (o.defaultRadius ? std::string("the default radius, each scene's (notes below)")
+                                : std::to_string(o.radiusFraction) + " x diagonal")
+            << "), " << o.view.width << "x" << o.view.height << ", mean over "
             << o.meshes.size() << " mesh(es):\n\n";
   std::cout << "| configuration | ms/frame | grid ms | RMSE | bias | p99 | band RMSE | flicker (ref) | own-definition RMSE | Pareto |\n";
   std::cout << "|---|---:|---:|---:|---:|---:|---:|---:|---:|:-:|\n";
@@ -586,7 +597,7 @@ int Run(Options& o, const CLI::App*)
         << r.referenceFlicker << "," << r.pixels << "," << r.ownFalloff << "," << r.ownRmse << "\n";
   std::ofstream json(o.output + "/surface.json");
   json << std::setprecision(8) << "{\"image\": [" << o.view.width << ", " << o.view.height
-       << "], \"reference_rays\": " << o.referenceRays << ", \"radius_fraction\": " << o.radiusFraction
+       << "], \"reference_rays\": " << o.referenceRays << ", \"radius_fraction\": " << (o.defaultRadius ? -1.0 : o.radiusFraction)
        << ", \"rows\": [";
   for (std::size_t i = 0; i < rows.size(); ++i)
   {
@@ -634,8 +645,12 @@ Command AddBenchSurfaceCommand(CLI::App& bench)
     "what surface AO accuracy costs in time, against the ray-traced reference");
   AddMeshes(app, o->meshes);
   AddSurfaceImage(app, o->view, 8, 4096);
-  AddRadiusFraction(app, o->radiusFraction, 10.0,
+  CLI::Option* fraction = AddRadiusFraction(app, o->radiusFraction, 10.0,
     "R = F x each scene's bounding-box diagonal, in (0, 10] (default 0.1)");
+  app->add_flag("--default-radius", o->defaultRadius,
+       "R = each scene's default radius, as `cao surface` and the view take it (cao::DefaultAORadius: "
+       "half the mean free path between the surfaces, between a fortieth and a tenth of the diagonal)")
+    ->excludes(fraction);
   AddInteger(app, "--reference-rays", o->referenceRays, 16, 65536,
     "directions per pixel of the reference, 16 to 65536 (default 1024); its own error is "
     "measured against 4N");

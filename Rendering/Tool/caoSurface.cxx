@@ -1,4 +1,5 @@
 #include "caoSurface.h"
+#include "caoAORadius.h"
 
 #include "caoCommandLine.h"
 #include "caoSurfaceReference.h"
@@ -857,7 +858,10 @@ int Run(SurfaceOptions& o, const CLI::App* app)
     return Fail(2, error);
   const double loadMs = Milliseconds(start); // reading and the BVH
   const std::array<double, 6>& b = scene.bvh.Bounds();
-  const double radius = o.radius > 0 ? o.radius : 0.1 * scene.diagonal;
+  double area = 0.0;
+  for (const cao::MeshView& m : scene.Views())
+    area += cao::MeshArea(m);
+  const double radius = o.radius > 0 ? o.radius : cao::DefaultAORadius(b, area);
   o.reference.radius = radius;
   vtkNew<vtkCamera> camera;
   FitCamera(camera, b.data(), o.view);
@@ -1095,7 +1099,8 @@ Command AddSurfaceCommand(CLI::App& cao)
     "radius, read back from an unlit white material;\n"
     "none: AO = 1");
   AddLength(app, "--radius", o->radius,
-    "world units (default: a tenth of the meshes' bounding-box diagonal)")
+    "world units (default: half the mean free path between the meshes' surfaces, 2V/A over "
+    "their bounding box V and area A, between a fortieth and a tenth of the box's diagonal)")
     ->type_name("R");
   AddSurfaceQuality(app, o->quality, true,
     "vct: low|medium|high, the paper's presets (spheres 3/5/7, prisms 3/6/12; default medium);\n"

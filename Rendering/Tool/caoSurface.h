@@ -4,8 +4,9 @@
  * volumetric AO, the ray-traced reference, VTK's vtkSSAOPass, or none), as a shaded picture or as the AO term alone
  * (a 16-bit grey PNG, 1 = open, background transparent) so that two
  * methods' outputs compare pixel by pixel. Every method uses the same
- * camera and the same default radius (a tenth of the scene's bounding-box
- * diagonal). The pieces are shared with `cao bench surface`.
+ * camera and the same default radius (cao::DefaultAORadius: half the mean
+ * free path between the surfaces, at most a tenth of the scene's
+ * bounding-box diagonal). The pieces are shared with `cao bench surface`.
  */
 #ifndef caoSurface_h
 #define caoSurface_h

@@ -62,6 +62,7 @@
 #include "vtkCommand.h"
 #include "vtkCamera.h"
 #include "vtkContextualAOEGLWindow.h"
+#include "vtkCellArray.h"
 #include "vtkCubeSource.h"
 #include "vtkNew.h"
 #include "vtkPlaneSource.h"
@@ -902,7 +903,6 @@ int TestContextualAOPass(int, char*[])
     renderer->AddVolume(volume);
     camera->SetPosition(0, -6, 4);
     camera->SetFocalPoint(0, 0, 0.2);
-    camera->SetViewUp(0, 0, 1);
     renderer->ResetCameraClippingRange();
     int bx, by, ex, ey;
     project(0.0, -0.5, 0.0, bx, by); // on the slab, under the block
@@ -1087,7 +1087,6 @@ int TestContextualAOPass(int, char*[])
     renderer->AddActor(sphereActor);
     camera->SetPosition(0, -6, 4);
     camera->SetFocalPoint(0, 0, 0.2);
-    camera->SetViewUp(0, 0, 1);
     renderer->ResetCameraClippingRange();
     project(0.0, -0.55, 0.0, cx, cy);
     auto greyWith = [&](int method) {
@@ -1500,7 +1499,7 @@ int TestContextualAOPass(int, char*[])
         all = all && std::fabs(radius - expected) <= 1e-5 * expected;
         seen += (seen.empty() ? "" : ", ") + std::to_string(radius);
       }
-    Check(all, "the default radius is 0.1 x the scene's diagonal far from the origin, VCT and HBAO on the ray cast "
+    Check(all, "the default radius of the slab and sphere (2V/A larger) is 0.1 x the scene's diagonal far from the origin, VCT and HBAO on the ray cast "
                "and the drawn depth: " + seen + " (expected " + std::to_string(expected) + ")");
     slabActor->SetPosition(0, 0, 0);
     sphereActor->SetPosition(0, 0, 0);
@@ -1510,6 +1509,63 @@ int TestContextualAOPass(int, char*[])
     pass->SetRadius(0.8);
     pass->SetMethod(vtkContextualAOPass::VCT);
     pass->SetGBuffer(vtkContextualAOPass::RAY_CAST);
+  }
+  // The default radius from the feature size: 12 x 12 closed rods (0.1
+  // wide, 0.25 apart, 2 long) alone: 2V/A of their bounds and analytic
+  // area, below the tenth of the diagonal (the slab and sphere alone keep
+  // the tenth, above; the tenth here is the negative control).
+  {
+    vtkNew<vtkPolyData> rods;
+    vtkNew<vtkPoints> rodPoints;
+    vtkNew<vtkCellArray> rodTriangles;
+    const int n = 12;
+    const double w = 0.1, pitch = 0.25, length = 2.0;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j)
+      {
+        const vtkIdType base = rodPoints->GetNumberOfPoints();
+        for (int c = 0; c < 8; ++c)
+          rodPoints->InsertNextPoint(i * pitch + ((c & 1) ? w : 0.0), j * pitch + ((c & 2) ? w : 0.0),
+            (c & 4) ? length : 0.0);
+        const int faces[6][4] = { { 0, 2, 3, 1 }, { 4, 5, 7, 6 }, { 0, 1, 5, 4 }, { 2, 6, 7, 3 }, { 0, 4, 6, 2 },
+          { 1, 3, 7, 5 } };
+        for (const auto& f : faces)
+        {
+          const vtkIdType a[3] = { base + f[0], base + f[1], base + f[2] };
+          const vtkIdType b[3] = { base + f[0], base + f[2], base + f[3] };
+          rodTriangles->InsertNextCell(3, a);
+          rodTriangles->InsertNextCell(3, b);
+        }
+      }
+    rods->SetPoints(rodPoints);
+    rods->SetPolys(rodTriangles);
+    vtkNew<vtkPolyDataMapper> rodMapper;
+    rodMapper->SetInputData(rods);
+    vtkNew<vtkActor> rodActor;
+    rodActor->SetMapper(rodMapper);
+    slabActor->SetVisibility(false);
+    sphereActor->SetVisibility(false);
+    renderer->AddActor(rodActor);
+    renderer->ResetCamera();
+    const double side = (n - 1) * pitch + w;
+    const double volume = side * side * length, area = n * n * (4.0 * w * length + 2.0 * w * w);
+    const double expected = 2.0 * volume / area;
+    const double tenth = 0.1 * std::sqrt(2.0 * side * side + length * length);
+    pass->SetRadius(0.0);
+    window->Render();
+    const std::string report = pass->GetLastFrameReport();
+    const std::size_t at = report.find("\"radius\": ");
+    const double radius = at == std::string::npos ? -1.0 : std::atof(report.c_str() + at + 10);
+    Check(std::fabs(radius - expected) <= 1e-5 * expected && std::fabs(tenth - expected) > 0.1 * expected,
+      "the default radius of a dense array of rods is 2V/A = " + std::to_string(expected) + " (their feature size): " +
+        std::to_string(radius) + " (the tenth of the diagonal, the control: " + std::to_string(tenth) + ")");
+    renderer->RemoveActor(rodActor);
+    slabActor->SetVisibility(true);
+    sphereActor->SetVisibility(true);
+    camera->SetPosition(0, -6, 4);
+    camera->SetFocalPoint(0, 0, 0.2);
+    renderer->ResetCameraClippingRange();
+    pass->SetRadius(0.8);
   }
   std::printf("%d failure(s)\n", failures);
   return failures ? 1 : 0;
