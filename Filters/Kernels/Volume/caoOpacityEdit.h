@@ -9,8 +9,9 @@
  * a voxel whose box holds no voxel whose opacity changed keeps its LAO
  * exactly. The edit finds the changed voxels (bitwise: -0 and 0, or two
  * NaNs, compare as the march reads them), dilates them by the footprint
- * (three separable passes of per-line prefix counts: linear in the
- * voxels), and recomputes the voxels so reached with the march's own list
+ * (three separable passes: shifted ORs along x, running counts along y
+ * and z; linear in the voxels; its byte masks and list advised to huge
+ * pages when first allocated), and recomputes the voxels so reached with the march's own list
  * path (LAOList); the result equals a full recompute on the new opacity
  * bit for bit. The footprint box contains the plan's ball of rays, so a
  * reached voxel may keep its value (about 6/pi as many voxels as the ball
