@@ -116,8 +116,11 @@ struct vtkLocalAmbientOcclusion::Internals
           const std::function<void(std::int64_t, std::int64_t)>& body) {
           return vtkCAO::ParallelFor(self, n, grain, 0.1 + 0.9 * p0, 0.1 + 0.9 * p1, body);
         };
-      ok = cao::UpdateLAOAfterOpacityEdit(plan, this->LastOpacity->GetPointer(0),
-        opacity->GetPointer(0), ao->GetPointer(0), parallel, edit, &this->EditScratch);
+      // (The opacity written over the last one in place came with the
+      // changed voxels' mask: see RequestData.)
+      const float* before = this->LastOpacity == opacity ? nullptr : this->LastOpacity->GetPointer(0);
+      ok = cao::UpdateLAOAfterOpacityEdit(plan, before, opacity->GetPointer(0), ao->GetPointer(0),
+        parallel, edit, &this->EditScratch);
       reason = "opacity edit";
     }
     else
@@ -423,9 +426,17 @@ int vtkLocalAmbientOcclusion::RequestData(
   // written again when nothing else holds them (the output let go of them
   // above); an opacity edit needs the last opacity as it is.
   Internals& in = *this->Internal;
-  const vtkSmartPointer<vtkFloatArray> opacity =
-    Internals::Reusable(gpu ? nullptr : in.SpareOpacity.Get(), voxels, vtkCAO::OpacityName);
+  // An opacity edit writes the new opacity over the last one when nothing
+  // else holds it, the changed voxels' mask alongside: no second opacity
+  // array (a first edit's new array cost up to 130 ms of first touches on
+  // a 256^3 volume), and no pass comparing two.
+  const bool inPlace = !gpu && in.LastOpacity && in.LastAO &&
+    in.LastOpacity->GetReferenceCount() == 1 && in.LastOpacity->GetNumberOfTuples() == voxels &&
+    in.FullReason(scalars, component, geometry, settings, this->ScalarOpacityUnitDistance).empty();
+  const vtkSmartPointer<vtkFloatArray> opacity = inPlace ? in.LastOpacity
+    : Internals::Reusable(gpu ? nullptr : in.SpareOpacity.Get(), voxels, vtkCAO::OpacityName);
   in.SpareOpacity = nullptr;
+  std::uint8_t* changed = inPlace ? cao::PrepareEditMask(in.EditScratch, voxels) : nullptr;
   const vtkSmartPointer<vtkFloatArray> ao =
     Internals::Reusable(gpu ? nullptr : in.LastAO.Get(), voxels, vtkCAO::AmbientOcclusionName);
   bool ok = true, aborted = false;
@@ -436,7 +447,14 @@ int vtkLocalAmbientOcclusion::RequestData(
   edit.recomputed = voxels;
   vtkCAO::WithThreads(this->NumberOfThreads, [&] {
     ok = vtkCAO::ComputeOpacity(this, scalars, component, this->OpacityFunction,
-      plan.step / this->ScalarOpacityUnitDistance, opacity->GetPointer(0), nonFinite);
+      plan.step / this->ScalarOpacityUnitDistance, opacity->GetPointer(0), nonFinite, changed);
+    if (!ok && inPlace)
+    {
+      // Aborted half-way over the last opacity: the last AO no longer
+      // matches it, so the next run is a full one.
+      in.LastAO = nullptr;
+      in.LastOpacity = nullptr;
+    }
     if (ok && !gpu)
       ok = this->Internal->March(
         this, plan, scalars, component, geometry, settings, opacity, ao, reason, edit);

@@ -25,13 +25,14 @@
  * An edit of the opacity alone (a new OpacityFunction) recomputes only the
  * voxels within the rays' reach of a changed voxel ("LAOUpdate" says which
  * ran), bit for bit as a full run. For it the filter keeps, on the CPU, the
- * last opacity and AO (8 bytes a voxel) and, to write the next run into
- * memory already mapped, the opacity before the last when nothing else
- * holds it (4 bytes a voxel) and the edit's masks and list (2 bytes a voxel
- * and 8 per reached voxel). The last AO is edited in place when nothing
- * else holds it; an array an earlier output handed out and someone still
- * holds is never changed. ReleaseEditBuffers() frees the spare opacity and
- * the masks and list.
+ * last opacity and AO (8 bytes a voxel) and the edit's masks and list (2
+ * bytes a voxel and 8 per reached voxel). The last AO is edited in place,
+ * and the new opacity written over the last one (the changed voxels found
+ * as it is written), when nothing else holds them; when something holds
+ * the last opacity, the new one goes to the opacity before the last if
+ * that is free (a spare, 4 bytes a voxel), else to a new array. An array
+ * an earlier output handed out and someone still holds is never changed.
+ * ReleaseEditBuffers() frees the spare opacity and the masks and list.
  *
  * The settings are one cao::LAOSettings (caoLAOSettings.h: defaults, limits
  * and presets in one place, shared with the mapper, the plugin and `cao`).

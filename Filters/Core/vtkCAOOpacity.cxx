@@ -9,6 +9,7 @@
 
 #include "caoLAO.h"
 
+#include <cstring>
 #include <atomic>
 #include <cmath>
 #include <vector>
@@ -18,8 +19,20 @@ namespace vtkCAO
 /// Evaluate the transfer function for every voxel, corrected for the step.
 /// Integer arrays with at most 65536 distinct values use an exact table.
 bool ComputeOpacity(vtkAlgorithm* self, vtkDataArray* scalars, int component,
-  vtkPiecewiseFunction* tf, double stepOverUnit, float* opacity, std::int64_t& nonFinite)
+  vtkPiecewiseFunction* tf, double stepOverUnit, float* opacity, std::int64_t& nonFinite,
+  std::uint8_t* changed)
 {
+  // Voxel i's new value: with `changed`, compared with the value it replaces.
+  const auto store = [opacity, changed](std::int64_t i, float a) {
+    if (changed)
+    {
+      std::uint32_t was, now;
+      std::memcpy(&was, opacity + i, sizeof was);
+      std::memcpy(&now, &a, sizeof now);
+      changed[i] = was != now;
+    }
+    opacity[i] = a;
+  };
   vtkNew<vtkPiecewiseFunction> ramp;
   if (!tf)
   {
@@ -58,7 +71,7 @@ bool ComputeOpacity(vtkAlgorithm* self, vtkDataArray* scalars, int component,
         for (std::int64_t i = b; i < e; ++i)
         {
           const long long s = static_cast<long long>(values[i * components + component]);
-          opacity[i] = table[static_cast<std::size_t>(s - lo)];
+          store(i, table[static_cast<std::size_t>(s - lo)]);
         }
       });
     };
@@ -89,7 +102,7 @@ bool ComputeOpacity(vtkAlgorithm* self, vtkDataArray* scalars, int component,
       for (std::int64_t i = b; i < e; ++i)
       {
         const long long s = static_cast<long long>(scalars->GetComponent(i, component));
-        opacity[i] = table[static_cast<std::size_t>(s - lo)];
+        store(i, table[static_cast<std::size_t>(s - lo)]);
       }
     });
   }
@@ -106,10 +119,10 @@ bool ComputeOpacity(vtkAlgorithm* self, vtkDataArray* scalars, int component,
       if (!std::isfinite(s))
       {
         ++bad;
-        opacity[i] = 0.0f;
+        store(i, 0.0f);
         continue;
       }
-      opacity[i] = cao::CorrectOpacity(tf->GetValue(s), stepOverUnit);
+      store(i, cao::CorrectOpacity(tf->GetValue(s), stepOverUnit));
     }
     if (!self)
       continue;

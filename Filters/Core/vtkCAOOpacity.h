@@ -24,9 +24,15 @@ namespace vtkCAO
  * scalars become transparent and are counted in `nonFinite`. A null `tf`
  * is a ramp from 0 at the scalars' smallest value to 1 at the largest. Progress goes
  * from 0 to 0.1 on `self` (may be null); false when aborted.
+ *
+ * With `changed` (a byte per voxel), `opacity` holds the previous opacity
+ * and is written over in place: changed[i] says whether voxel i's new value
+ * differs from it by bit pattern (as the LAO march reads them: -0 and 0, or
+ * two NaNs, differ), the opacity edit's mask without a second array.
  */
 CAOFILTERSCORE_EXPORT bool ComputeOpacity(vtkAlgorithm* self, vtkDataArray* scalars, int component,
-  vtkPiecewiseFunction* tf, double stepOverUnit, float* opacity, std::int64_t& nonFinite);
+  vtkPiecewiseFunction* tf, double stepOverUnit, float* opacity, std::int64_t& nonFinite,
+  std::uint8_t* changed = nullptr);
 }
 
 #endif

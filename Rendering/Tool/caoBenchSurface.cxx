@@ -188,6 +188,7 @@ int Run(Options& o, const CLI::App*)
   }
   std::vector<Row> rows;
   std::vector<std::string> notes;
+  std::map<std::string, double> radiusOf; ///< each mesh's radius (the JSON's rows)
   VCTGPU gpu;
   for (const std::string& path : o.meshes)
   {
@@ -200,6 +201,7 @@ int Run(Options& o, const CLI::App*)
       area += cao::MeshArea(m);
     const double radius = o.defaultRadius ? cao::DefaultAORadius(scene.bvh.Bounds(), area)
                                           : o.radiusFraction * scene.diagonal;
+    radiusOf[name] = radius;
     if (o.defaultRadius)
       notes.push_back(name + ": the default radius " + std::to_string(radius) + " = " +
         std::to_string(radius / scene.diagonal) + " x its diagonal");
@@ -602,7 +604,8 @@ int Run(Options& o, const CLI::App*)
   for (std::size_t i = 0; i < rows.size(); ++i)
   {
     const Row& r = rows[i];
-    json << (i ? ", " : "") << "{\"mesh\": \"" << r.mesh << "\", \"configuration\": \"" << r.label
+    json << (i ? ", " : "") << "{\"mesh\": \"" << r.mesh << "\", \"radius\": " << radiusOf[r.mesh]
+         << ", \"configuration\": \"" << r.label
          << "\", \"method\": \"" << r.method << "\", \"ms\": " << r.ms << ", \"grid_ms\": " << r.gridMs
          << ", \"rmse\": " << r.rmse << ", \"bias\": " << r.bias << ", \"p99\": " << r.p99
          << ", \"band_rmse\": " << r.bandRmse << ", \"flicker\": " << r.flicker

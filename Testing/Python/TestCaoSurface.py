@@ -53,7 +53,7 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkFiltersCore import vtkAppendPolyData, vtkTriangleFilter
 from vtkmodules.vtkFiltersSources import vtkPlaneSource, vtkSphereSource
 from vtkmodules.vtkIOImage import vtkPNGReader
-from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
+from vtkmodules.vtkIOXML import vtkXMLPolyDataReader, vtkXMLPolyDataWriter
 
 tool = os.environ["CAO_TOOL"]
 data = os.environ["CAO_DATA_DIR"]
@@ -91,6 +91,11 @@ def surface(name, meshes, *options):
 
 
 bunny = os.path.join(data, "Bunny.vtp")
+_bunnyReader = vtkXMLPolyDataReader()
+_bunnyReader.SetFileName(bunny)
+_bunnyReader.Update()
+_b = _bunnyReader.GetOutput().GetBounds()
+bunny_diagonal = ((_b[1] - _b[0]) ** 2 + (_b[3] - _b[2]) ** 2 + (_b[5] - _b[4]) ** 2) ** 0.5
 (ref, ref_json) = surface("bunny-reference", [bunny], "--method", "reference", "--rays", "256")
 kind, components, ao, covered = ref
 check(kind == 5 and components == 2, "--ao-only is 16-bit grey and alpha (type %d, %d components)"
@@ -221,6 +226,12 @@ check(vb[3].sum() == covered.sum(), "vct sees the reference's pixels (%d, %d)" %
 # step, off the screen at the first. The AO all but vanished (mean 0.974
 # and 0.977 against the reference's 0.921: the negative control, the
 # previous build). Now near the reference, on the CPU and the GPU alike.
+# (The Bunny alone keeps the default radius at a tenth of its diagonal:
+# 2V/A over its box is 4 times that; checked here, so `big` is 20 x the
+# diagonal.)
+check(abs(ref_json["radius"] - 0.1 * bunny_diagonal) <= 1e-6 * bunny_diagonal,
+      "the Bunny's default radius is a tenth of its diagonal: %.6f against %.6f"
+      % (ref_json["radius"], 0.1 * bunny_diagonal))
 big = 20.0 * ref_json["radius"] / 0.1
 (rb, rb_json) = surface("bunny-reference-big", [bunny], "--method", "reference", "--rays", "64", "--radius", str(big))
 for method, bound in (("vct", 0.025), ("hbao", 0.03)):

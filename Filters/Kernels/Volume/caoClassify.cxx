@@ -380,6 +380,7 @@ bool ProofMaps::Prepare(const layout::ClipParams& clip, const ClipMapsView& maps
     float* packed = this->packedStore.data();
     while (reinterpret_cast<std::uintptr_t>(packed) % 64 != 0)
       ++packed;
+    this->packedOffset = static_cast<std::size_t>(packed - this->packedStore.data());
     const ClipDepthMaps* sets[4] = { &this->clip, &this->cand, &this->sample[0], &this->sample[1] };
     for (std::size_t e = 0; e < n; ++e)
       for (int set = 0; set < 4; ++set)
@@ -387,7 +388,6 @@ bool ProofMaps::Prepare(const layout::ClipParams& clip, const ClipMapsView& maps
         packed[8 * e + 2 * set] = sets[set]->front[e];
         packed[8 * e + 2 * set + 1] = sets[set]->back[e];
       }
-    this->packed = packed;
     this->version = mapsVersion;
     std::copy(layers, layers + 4, this->of);
     ++this->builds;
@@ -397,7 +397,7 @@ bool ProofMaps::Prepare(const layout::ClipParams& clip, const ClipMapsView& maps
                               : ClipMapsView{ m[0].front.data(), m[0].back.data(),
                                   m[1].front.data(), m[1].back.data() };
   };
-  view = { viewOf(this->sample), this->packed };
+  view = { viewOf(this->sample), this->packedStore.data() + this->packedOffset };
   return true;
 }
 

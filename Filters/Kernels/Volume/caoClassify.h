@@ -225,7 +225,7 @@ void ClassifySlices(const layout::ClipParams& p, const int dims[3], const ClipMa
  * (DilateErodeRows) so that one point's test decides many samples. A point
  * outside the layers dilated by r has no point within r inside them; a point
  * inside a layer eroded by r has every point within r inside it.
- The clip layers are dilated and eroded by the reach of a voxel's samples
+ * The clip layers are dilated and eroded by the reach of a voxel's samples
  * (centre, corners, anti-aliasing samples: its cube, at most SampleReach
  * from the centre), grown by twice RoundingReach (the float point test
  * moves the deciding point and the samples), so the centre decides the
@@ -256,10 +256,13 @@ struct ProofMaps
     ClipMapsView sample;
     /// Per pixel and layer (pixel * layers + l), 8 floats: the clip
     /// layers' front and back, the candidate layers', `sample`'s dilated
-    /// and eroded ones, so that a voxel's centre tests read one cache line
-    /// (the maps themselves, read apart, cost a cache miss each: 8% of the
-    /// classification on embryo's sphere path). Null: `sample` and the
-    /// maps are read.
+    /// and eroded ones, so that a voxel's centre tests read one record (one
+    /// cache line for up to two layers; a profile put 38% of the
+    /// classification on the layer test's loads when the maps were read
+    /// apart, and the record took 8% off its time on embryo's sphere path).
+    /// Copies of the maps Prepare was given: valid while they are the
+    /// maps ClassifyRegion reads (ContextualUpdate prepares them in the
+    /// same pose). Null: `sample` and the maps are read.
     const float* packed = nullptr;
   };
 
@@ -271,8 +274,8 @@ struct ProofMaps
 
   ClipDepthMaps clip, cand;                                  ///< copies of the layers
   ClipDepthMaps sample[2];                                   ///< dilated, eroded
-  std::vector<float> packedStore; ///< View::packed, aligned inside
-  const float* packed = nullptr;
+  std::vector<float> packedStore; ///< View::packed, at packedOffset (aligned)
+  std::size_t packedOffset = 0;
   double radius = -1.0; ///< the per-voxel radius they were built for (local units)
   std::uint64_t version = 0;
   const float* of[4] = { nullptr, nullptr, nullptr, nullptr };

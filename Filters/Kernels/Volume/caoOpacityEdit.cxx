@@ -120,6 +120,12 @@ bool DilateAxis(const int dims[3], int axis, int lo, int hi, const std::uint8_t*
 }
 }
 
+std::uint8_t* PrepareEditMask(OpacityEditScratch& scratch, std::int64_t voxels)
+{
+  Resize(scratch.mask, static_cast<std::size_t>(std::max<std::int64_t>(0, voxels)));
+  return scratch.mask.data();
+}
+
 void OpacityFootprint(const LAOPlan& plan, int lo[3], int hi[3])
 {
   for (int d = 0; d < 3; ++d)
@@ -169,6 +175,10 @@ bool Reach(const LAOPlan& plan, const int boxIn[6], const float* a, const float*
   // and a flag per row: the scratch's when given (resize keeps its pages).
   OpacityEditScratch local;
   OpacityEditScratch& sc = scratch ? *scratch : local;
+  // Without `a`, the scratch's mask already says which voxels changed.
+  const bool given = !a;
+  if (given && (!scratch || sc.mask.size() != static_cast<std::size_t>(n)))
+    return false;
   Resize(sc.mask, static_cast<std::size_t>(n));
   sc.any.resize(static_cast<std::size_t>(rows));
   sc.perRow.resize(static_cast<std::size_t>(rows));
@@ -182,14 +192,20 @@ bool Reach(const LAOPlan& plan, const int boxIn[6], const float* a, const float*
           const std::int64_t j = r % dims[1], k = r / dims[1];
           const std::int64_t base = box[0] + (box[2] + j) * sy + (box[4] + k) * sz;
           std::int64_t count = 0;
-          for (std::int64_t x = 0; x < nx; ++x)
+          if (given)
+            for (std::int64_t x = 0; x < nx; ++x)
+              count += mask[r * nx + x];
+          else
           {
-            std::uint32_t u, v;
-            std::memcpy(&u, a + base + x, sizeof u);
-            std::memcpy(&v, b + base + x, sizeof v);
-            const std::uint8_t differs = u != v;
-            mask[r * nx + x] = differs;
-            count += differs;
+            for (std::int64_t x = 0; x < nx; ++x)
+            {
+              std::uint32_t u, v;
+              std::memcpy(&u, a + base + x, sizeof u);
+              std::memcpy(&v, b + base + x, sizeof v);
+              const std::uint8_t differs = u != v;
+              mask[r * nx + x] = differs;
+              count += differs;
+            }
           }
           perRow[r] = count;
           any[r] = count > 0;

@@ -9,9 +9,10 @@
  * a voxel whose box holds no voxel whose opacity changed keeps its LAO
  * exactly. The edit finds the changed voxels (bitwise: -0 and 0, or two
  * NaNs, compare as the march reads them), dilates them by the footprint
- * (three separable passes: shifted ORs along x, running counts along y
- * and z; linear in the voxels; its byte masks and list advised to huge
- * pages when first allocated), and recomputes the voxels so reached with the march's own list
+ * (three separable passes: shifted ORs along x, vectorised, the
+ * footprint's width per voxel; running counts along y and z, linear in
+ * the voxels; its byte masks and list advised to huge pages when first
+ * allocated), and recomputes the voxels so reached with the march's own list
  * path (LAOList); the result equals a full recompute on the new opacity
  * bit for bit. The footprint box contains the plan's ball of rays, so a
  * reached voxel may keep its value (about 6/pi as many voxels as the ball
@@ -45,6 +46,11 @@ struct OpacityEditScratch
   std::vector<std::int64_t> perRow, reached;
 };
 
+/// `scratch.mask` sized for `voxels` (a new allocation advised to huge
+/// pages before its first touch), for a caller that writes the changed
+/// voxels' mask itself (UpdateLAOAfterOpacityEdit with `before` null).
+std::uint8_t* PrepareEditMask(OpacityEditScratch& scratch, std::int64_t voxels);
+
 struct OpacityEditStats
 {
   std::int64_t changed = 0;    ///< voxels whose opacity changed
@@ -73,7 +79,11 @@ bool FootprintDiffers(const LAOPlan& plan, const int box[6], const float* a, con
 /// `after`, bit for bit as LAORange over every voxel would give, having
 /// recomputed only the reached voxels (every voxel, by rows, when over
 /// three quarters are reached: cheaper than the list's runs then). False when aborted (`ao` is then
-/// partly updated: recompute it in full).
+/// partly updated: recompute it in full). `before` null: `scratch` (then
+/// required) holds in `mask` a byte per voxel, 1 where the opacity changed
+/// by bit pattern, as vtkCAO::ComputeOpacity writes it when it writes the
+/// new opacity over the old in place (no second opacity array); false
+/// without it.
 bool UpdateLAOAfterOpacityEdit(const LAOPlan& plan, const float* before, const float* after,
   float* ao, const ContextualUpdate::ParallelFor& parallel, OpacityEditStats& stats,
   OpacityEditScratch* scratch = nullptr);

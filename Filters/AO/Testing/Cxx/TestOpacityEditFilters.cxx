@@ -19,6 +19,7 @@
 #include "vtkContextualAmbientOcclusion.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkImageData.h"
 #include "vtkLocalAmbientOcclusion.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMetaImageReader.h"
@@ -208,6 +209,61 @@ int TestOpacityEditFilters(int argc, char* argv[])
     CAO_CHECK(range[0] == want[0] && range[1] == want[1],
       "the edited AO's range is stale: [%g, %g], a full run's [%g, %g]", range[0], range[1], want[0], want[1]);
     std::printf("a held AO array keeps its values; one nobody holds is edited in place, exact\n");
+  }
+  // The opacity likewise, on a filter nothing downstream holds: an edit
+  // writes the new opacity over the last one (the changed voxels' mask
+  // alongside, no second array) when nothing else holds it; a held one
+  // keeps its values; either way the AO and the opacity are a full run's.
+  {
+    vtkNew<vtkPiecewiseFunction> f;
+    vtkNew<vtkLocalAmbientOcclusion> solo;
+    solo->SetInputData(volume);
+    solo->SetOpacityFunction(f);
+    solo->SetQualityPresetToCustom();
+    solo->SetRayPattern(vtkLocalAmbientOcclusion::RAYS_14);
+    solo->SetReach(12.0);
+    solo->SetBackend(vtkAOAlgorithm::CPU);
+    const auto full = [&](const std::vector<double>& points) {
+      vtkNew<vtkPiecewiseFunction> g;
+      Set(g, points);
+      vtkNew<vtkLocalAmbientOcclusion> run;
+      run->SetInputData(volume);
+      run->SetOpacityFunction(g);
+      run->SetQualityPresetToCustom();
+      run->SetRayPattern(vtkLocalAmbientOcclusion::RAYS_14);
+      run->SetReach(12.0);
+      run->SetBackend(vtkAOAlgorithm::CPU);
+      run->Update();
+      vtkSmartPointer<vtkImageData> out = vtkSmartPointer<vtkImageData>::New();
+      out->ShallowCopy(run->GetOutput());
+      return out;
+    };
+    const auto opacityOf = [](vtkImageData* d) { return d->GetPointData()->GetArray("AmbientOcclusionOpacity"); };
+    const auto aoOf = [](vtkImageData* d) { return d->GetPointData()->GetArray("AmbientOcclusion"); };
+    Set(f, base);
+    solo->Update();
+    vtkSmartPointer<vtkDataArray> held = opacityOf(solo->GetOutput());
+    vtkNew<vtkFloatArray> before;
+    before->DeepCopy(held);
+    const std::vector<double> to = { 0, 0, 40, 0, 191, 0.6, 255, 0.9 };
+    Set(f, to);
+    solo->Update();
+    auto want = full(to);
+    vtkDataArray* now = opacityOf(solo->GetOutput());
+    CAO_CHECK(Reason(solo->GetOutput()) == "opacity edit" && now != held.Get() && caotest::SameBits(held, before) &&
+        caotest::SameBits(now, opacityOf(want)) && caotest::SameBits(aoOf(solo->GetOutput()), aoOf(want)),
+      "a held opacity array changed, or the edit beside it is not a full run's");
+    void* address = now->GetVoidPointer(0);
+    held = nullptr;
+    const std::vector<double> again = { 0, 0, 40, 0, 120, 0.4, 255, 0.9 };
+    Set(f, again);
+    solo->Update();
+    want = full(again);
+    now = opacityOf(solo->GetOutput());
+    CAO_CHECK(Reason(solo->GetOutput()) == "opacity edit" && now->GetVoidPointer(0) == address &&
+        caotest::SameBits(now, opacityOf(want)) && caotest::SameBits(aoOf(solo->GetOutput()), aoOf(want)),
+      "an opacity array nobody holds was not written over in place, or the edit is not a full run's");
+    std::printf("a held opacity array keeps its values; one nobody holds is written over in place, exact\n");
   }
   // What forces a full run says why (and the result is still exact).
   lao->SetReach(10.0);

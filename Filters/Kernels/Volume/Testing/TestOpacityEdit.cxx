@@ -169,6 +169,87 @@ int TestOpacityEdit(int, char*[])
       }
     }
   }
+  // The reach itself against a brute-force dilation by the footprint box,
+  // on volumes thinner than the footprint along y or z (windows clipped at
+  // both ends), with the changed voxels found by comparison and given as a
+  // mask (`before` null, as vtkCAO::ComputeOpacity writes it in place).
+  // Negative control: the brute force with the window one voxel narrower
+  // along y or z differs.
+  {
+    cao::LAOSettings s = caotest::ExplicitSettings();
+    s.reach = 4.5;
+    int controlsDiffer = 0;
+    for (const auto& d : std::vector<std::vector<int>>{ { 23, 5, 3 }, { 9, 17, 2 }, { 6, 4, 19 } })
+    {
+      cao::VolumeGeometry vg;
+      std::copy(d.begin(), d.end(), vg.dims);
+      vg.spacing[0] = vg.spacing[1] = vg.spacing[2] = 1.0;
+      const std::int64_t vn = vg.NumberOfVoxels();
+      cao::LAOPlan plan;
+      std::string error;
+      CAO_CHECK(cao::BuildLAOPlan(vg, s, plan, error), "%s", error.c_str());
+      int lo[3], hi[3];
+      cao::OpacityFootprint(plan, lo, hi);
+      std::vector<float> a(static_cast<std::size_t>(vn), 0.25f), b = a;
+      b[static_cast<std::size_t>(2 + vg.dims[0])] = 0.5f; // (2, 1, 0)
+      b[static_cast<std::size_t>(vn - 1)] = -0.0f; // the last voxel
+      const auto brute = [&](int narrowAxis) {
+        std::vector<std::int64_t> out;
+        const int nx = vg.dims[0], ny = vg.dims[1], nz = vg.dims[2];
+        for (int k = 0; k < nz; ++k)
+          for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i)
+            {
+              bool hit = false;
+              for (int dz = lo[2]; dz <= hi[2] - (narrowAxis == 2) && !hit; ++dz)
+                for (int dy = lo[1]; dy <= hi[1] - (narrowAxis == 1) && !hit; ++dy)
+                  for (int dx = lo[0]; dx <= hi[0] && !hit; ++dx)
+                  {
+                    const int x = i + dx, y = j + dy, z = k + dz;
+                    if (x < 0 || y < 0 || z < 0 || x >= nx || y >= ny || z >= nz)
+                      continue;
+                    const std::size_t w = x + std::size_t(nx) * (y + std::size_t(ny) * z);
+                    hit = std::memcmp(&a[w], &b[w], sizeof(float)) != 0;
+                  }
+              if (hit)
+                out.push_back(i + std::int64_t(nx) * (j + std::int64_t(ny) * k));
+            }
+        return out;
+      };
+      const std::vector<std::int64_t> want = brute(0);
+      std::vector<std::int64_t> found, fromMask;
+      std::int64_t changed = 0, changedMask = 0;
+      cao::OpacityEditScratch scratch;
+      CAO_CHECK(cao::OpacityEditReach(plan, a.data(), b.data(), found, changed, chunked, &scratch), "reach failed");
+      std::uint8_t* mask = cao::PrepareEditMask(scratch, vn);
+      for (std::int64_t v = 0; v < vn; ++v)
+        mask[v] = std::memcmp(&a[v], &b[v], sizeof(float)) != 0;
+      CAO_CHECK(cao::OpacityEditReach(plan, nullptr, b.data(), fromMask, changedMask, serial, &scratch),
+        "reach from a mask failed");
+      const std::int64_t narrowY = static_cast<std::int64_t>(brute(1).size()),
+                         narrowZ = static_cast<std::int64_t>(brute(2).size());
+      std::printf("reach on %d x %d x %d (footprint [%d, %d] x [%d, %d] x [%d, %d]): %lld voxels, brute force "
+                  "%lld, from the mask %lld; controls, a voxel narrower along y: %lld, along z: %lld\n",
+        d[0], d[1], d[2], lo[0], hi[0], lo[1], hi[1], lo[2], hi[2], (long long)found.size(),
+        (long long)want.size(), (long long)fromMask.size(), (long long)narrowY, (long long)narrowZ);
+      CAO_CHECK(found == want && fromMask == want && changed == changedMask,
+        "the reach differs from a brute-force dilation");
+      controlsDiffer += (narrowY != static_cast<std::int64_t>(want.size())) +
+        (narrowZ != static_cast<std::int64_t>(want.size()));
+    }
+    CAO_CHECK(controlsDiffer >= 2, "negative control: a narrower window gave the same reach (%d differ)",
+      controlsDiffer);
+    // Without a mask in the scratch, `before` null is refused.
+    cao::OpacityEditScratch empty;
+    std::vector<std::int64_t> none;
+    std::int64_t changed = 0;
+    cao::LAOPlan plan;
+    std::string error;
+    CAO_CHECK(cao::BuildLAOPlan(g, s, plan, error), "%s", error.c_str());
+    std::vector<float> b(static_cast<std::size_t>(n), 0.5f);
+    CAO_CHECK(!cao::OpacityEditReach(plan, nullptr, b.data(), none, changed, serial, &empty),
+      "a reach without `before` or a mask was not refused");
+  }
   std::printf("PASSED\n");
   return 0;
 }
