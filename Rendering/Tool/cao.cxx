@@ -910,17 +910,24 @@ int RunTF(const Options& o, vtkImageData* volume)
       maxDiff);
   else
   {
+    // (Nothing recomputed: no limit to compare with, not a share of 0.)
+    char limitBuffer[128];
+    std::snprintf(limitBuffer, sizeof limitBuffer, "(all / recomputed: %.2f x; %.0f%% of it)", limit,
+      limit > 0 ? 100.0 * speedup / limit : 0.0);
+    const std::string limitText = counts[1] > 0 ? limitBuffer
+      : counts[1] == 0                        ? "(nothing recomputed: no limit)"
+                                              : "(a full recompute)";
     std::printf("transfer-function edit of %s (%.0f voxels): %d rays x %d samples (%s), %d thread(s)\n"
                 "update: %s\n"
                 "  voxels whose opacity changed   %12.0f\n"
                 "  voxels recomputed              %12.0f\n"
                 "  update                         %12.1f ms\n"
                 "  full LAO (--to)                %12.1f ms  (the first, with --from: %.1f ms)\n"
-                "  speed-up                       %12.2f x  (all / recomputed: %.2f x; %.0f%% of it)\n"
+                "  speed-up                       %12.2f x  %s\n"
                 "  max|diff| against the full LAO %12.3g  (%lld voxels differ)\n",
       o.volume.c_str(), voxels, used.run.rays, used.run.samples, used.Text().c_str(),
       vtkSMPTools::GetEstimatedNumberOfThreads(), reason.c_str(), counts[0], counts[1], updateMs,
-      verifyMs, fullMs, speedup, limit, limit > 0 ? 100.0 * speedup / limit : 0.0, maxDiff, differing);
+      verifyMs, fullMs, speedup, limitText.c_str(), maxDiff, differing);
   }
   std::string error;
   if (!o.output.empty() && !Write(out, o.output, error))
