@@ -60,10 +60,13 @@ struct OpacityEditStats
 
 /// The voxels whose LAO can change, in increasing linear order: those with
 /// a changed opacity within the footprint. `changed` counts the changed
-/// voxels. False when aborted.
+/// voxels. With `stopAbove` >= 0, when more than that many changed the
+/// reach is not made (`reached` is left empty: the caller marches
+/// every voxel). False when aborted.
 bool OpacityEditReach(const LAOPlan& plan, const float* before, const float* after,
   std::vector<std::int64_t>& reached, std::int64_t& changed,
-  const ContextualUpdate::ParallelFor& parallel, OpacityEditScratch* scratch = nullptr);
+  const ContextualUpdate::ParallelFor& parallel, OpacityEditScratch* scratch = nullptr,
+  std::int64_t stopAbove = -1);
 
 /// Within `box` (inclusive voxel bounds, clamped to the volume) of a volume
 /// of the plan's dimensions: for every voxel of the box, whether its
