@@ -422,14 +422,13 @@ int vtkLocalAmbientOcclusion::RequestData(
   // 2. The step-corrected opacity, then the march (CPU or GPU).
   const auto start = std::chrono::steady_clock::now();
   const std::int64_t voxels = geometry.NumberOfVoxels();
-  // The arrays: the last CPU run's AO and the run before's opacity are
-  // written again when nothing else holds them (the output let go of them
-  // above); an opacity edit needs the last opacity as it is.
+  // The arrays, written again when nothing else holds them (the output let
+  // go of them above): the last CPU run's AO; for an opacity edit the last
+  // opacity itself, the changed voxels' mask written alongside (no second
+  // opacity array: a first edit's new one cost up to 130 ms of first
+  // touches on a 256^3 volume, and no pass comparing two); otherwise the
+  // opacity of the run before the last.
   Internals& in = *this->Internal;
-  // An opacity edit writes the new opacity over the last one when nothing
-  // else holds it, the changed voxels' mask alongside: no second opacity
-  // array (a first edit's new array cost up to 130 ms of first touches on
-  // a 256^3 volume), and no pass comparing two.
   const bool inPlace = !gpu && in.LastOpacity && in.LastAO &&
     in.LastOpacity->GetReferenceCount() == 1 && in.LastOpacity->GetNumberOfTuples() == voxels &&
     in.FullReason(scalars, component, geometry, settings, this->ScalarOpacityUnitDistance).empty();

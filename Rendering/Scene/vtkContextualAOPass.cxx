@@ -939,13 +939,15 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
     this->failedSceneKey = this->frameSceneKey;
     return this->Fail(self, "Cannot build the scene: its bounds are empty or not finite");
   }
-  double area = 0.0;
-  if (distributed)
-    area = this->commonArea;
-  else
+  // The default radius's area: every process's when distributed.
+  const auto area = [&]() {
+    double sum = 0.0;
     for (std::size_t i = 0; i < points.size(); ++i)
-      area += cao::MeshArea({ &points[i], &triangles[i] });
-  this->radius = self->Radius > 0 ? self->Radius : cao::DefaultAORadius(b, area);
+      sum += cao::MeshArea({ &points[i], &triangles[i] });
+    return sum;
+  };
+  this->radius = self->Radius > 0 ? self->Radius
+                                  : cao::DefaultAORadius(b, distributed ? this->commonArea : area());
   // The drawn-is-traced test's tolerance: half a voxel (the screen-space
   // methods, which have no grid: of a 128-slice grid, a fixed fraction).
   this->tolerance = std::max(0.5 * diagonal / 128.0, 1e-9);

@@ -327,14 +327,10 @@ bool UpdateLAOAfterOpacityEdit(const LAOPlan& plan, const float* before, const f
   const std::int64_t most = n - n / 4;
   if (!OpacityEditReach(plan, before, after, reached, stats.changed, scaled, scratch, most))
     return false;
-  if (stats.changed > most)
-    reached.clear();
   stats.findMs = Since(start);
-  stats.recomputed = stats.changed > most ? n : static_cast<std::int64_t>(reached.size());
+  const bool rows = stats.changed > most || static_cast<std::int64_t>(reached.size()) > most;
+  stats.recomputed = rows ? n : static_cast<std::int64_t>(reached.size());
   start = std::chrono::steady_clock::now();
-  const bool rows = stats.recomputed > most;
-  if (rows)
-    stats.recomputed = n;
   const bool ok = stats.recomputed == 0 ||
     (rows ? parallel(n, 1024, 0.1, 1.0, [&](std::int64_t begin, std::int64_t end) {
       LAORange(plan, after, ao, begin, end);
