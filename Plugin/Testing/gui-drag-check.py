@@ -26,7 +26,7 @@ check(not errors, "no mapper error in any frame (%d)" % len(errors))
 frames = [e for e in events if e["kind"] == "frame"]
 before = [f for f in frames if f["t"] < at("centre-press")]
 check(before and before[-1]["follows"], "the first frames are drawn (%d)" % len(before))
-for name in ("centre", "face"):
+for name in ("centre", "face", "middle"):
     press, release, idle = at(name + "-press"), at(name + "-release"), at(name + "-idle")
     during = [f for f in frames if press <= f["t"] <= release]
     after = [f for f in frames if release < f["t"] <= idle]
@@ -55,8 +55,13 @@ for name in ("centre", "face"):
         moved = [b - a for a, b in zip(first["position"], last["position"])]
         check(abs(moved[0]) > 1.0 and max(abs(v) for v in last["rotation"]) < 1e-9,
               "centre drag: Clip Position moves along x by %.2f, no turn" % moved[0])
-    else:
+    elif name == "face":
         turned = max(abs(v) for v in last["rotation"])
         check(turned > 5.0, "face drag: the box turns (Clip Rotation %s)" % last["rotation"])
+    else:
+        moved = max(abs(b - a) for a, b in zip(first["position"], last["position"]))
+        turned = max(abs(b - a) for a, b in zip(first["rotation"], last["rotation"]))
+        check(moved > 1.0 and turned < 1e-9,
+              "middle-button drag: Clip Position moves by %.2f, no turn (%.2g)" % (moved, turned))
 print("PASSED" if not failures else "FAILED")
 sys.exit(1 if failures else 0)

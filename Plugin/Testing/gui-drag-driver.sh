@@ -18,16 +18,16 @@ for _ in $(seq 240); do
   sleep 1
 done
 [ -s "$CAO_RESULT.targets" ] || { echo "driver: no targets after 240 s"; exit 1; }
-# Wait for the GUI to draw no more (no frame logged for 3 s, at most 150 s;
-# four waits and the start fit test-gui-drag.sh's 900 s).
+# Wait for the GUI to draw no more (no frame logged for 3 s, at most 120 s;
+# five waits and the start fit test-gui-drag.sh's 900 s).
 idle() {
   local size
-  for _ in $(seq 50); do
+  for _ in $(seq 40); do
     size=$(stat -c %s "$events")
     sleep 3
     [ "$(stat -c %s "$events")" = "$size" ] && return 0
   done
-  echo "driver: the GUI was still drawing after 150 s"
+  echo "driver: the GUI was still drawing after 120 s"
 }
 idle
 # Where is the view? Move over a grid of screen points until the view's
@@ -52,17 +52,17 @@ screen() { # display (x, y) of target $1 -> screen x y
   /usr/bin/python3 -c "import json,sys; t=json.load(open(sys.argv[1]))[sys.argv[2]]; print(int(round(t[0])) + $ox, $oy + $height - 1 - int(round(t[1])))" "$CAO_RESULT.targets" "$1"
 }
 # A user's drag: press, 25 moves 0.1 s apart (2.5 s), release.
-drag() { # name x y dx dy
-  local name=$1 x=$2 y=$3 dx=$4 dy=$5 k
+drag() { # name x y dx dy [button: 1 left (default), 2 middle]
+  local name=$1 x=$2 y=$3 dx=$4 dy=$5 button=${6:-1} k
   xdotool mousemove "$x" "$y"
   sleep 0.5
   mark "$name-press"
-  xdotool mousedown 1
+  xdotool mousedown "$button"
   for k in $(seq 25); do
     xdotool mousemove $((x + dx * k / 25)) $((y + dy * k / 25))
     sleep 0.1
   done
-  xdotool mouseup 1
+  xdotool mouseup "$button"
   mark "$name-release"
   idle
   mark "$name-idle"
@@ -78,5 +78,9 @@ drag centre "$cx" "$cy" 80 0
 read -r fx fy < <(screen face)
 
 drag face "$fx" "$fy" 0 -70
+# The middle button moves the box from anywhere on it, whatever the view
+# (head on, the front face's handle covers the centre handle): over the
+# box's centre, 60 pixels down.
+drag middle "$cx" "$cy" 0 60 2
 import -window root "$CAO_RESULT.png" 2>/dev/null || true
 exit 0

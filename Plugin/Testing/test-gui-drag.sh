@@ -6,11 +6,12 @@
 # the volume inside its dual depth peeling. TestClipDragGUI.py sets the
 # scene up and logs every frame, mouse move and mapper error; this script
 # finds the render view on the screen from the moves the view received,
-# drags the widget's centre handle and then its face, each for about 2.5 s,
-# waits until the GUI draws no more, and checks the log:
+# drags the widget's centre handle, then its face, then the box with the
+# middle button (which moves it from anywhere on it, in any view), each for
+# about 2.5 s, waits until the GUI draws no more, and checks the log:
 # - no mapper error, and no ray-cast or GL-state error in the GUI's log;
 # - frames drawn for each drag, some inside the depth peeling;
-# - the drag moved (centre) and turned (face) the clip, and the last frame
+# - the drag moved (centre, middle button) and turned (face) the clip, and the last frame
 #   draws the clip at the pose the widget shows.
 # It prints what the user saw: frames during the drag and the time from the
 # release to the last frame (measured, never asserted).
