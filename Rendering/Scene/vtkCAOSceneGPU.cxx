@@ -167,7 +167,8 @@ bool SceneGPU::FrameTrace(const cao::VCTPlan& plan, std::string& error)
   double ms = 0.0;
   cao::gl::FrameEngine* f = this->P->frame.get();
   if (!this->P->Ready(error) ||
-    !this->P->engine->TracePixels(plan, f->PointBuffer(), f->NormalBuffer(), f->AOBuffer(), f->Pixels(), ms, error))
+    !this->P->engine->TracePixels(plan, f->PointBuffer(), f->NormalBuffer(), f->AOBuffer(), f->Pixels(), ms, error,
+      f->Width()))
     return false;
   f->AOWritten();
   return true;

@@ -37,6 +37,7 @@ struct Options
     cao::VCTQuality::High };
   std::vector<cao::VCTOccupancy> occupancies{ cao::VCTOccupancy::Rays };
   std::vector<double> raySteps{ cao::VCTSettings().rayStep };
+  std::vector<int> patterns{ 1 }; ///< --vct-pattern: 1 on (the default), 0 off (rows "... no pattern")
   std::vector<int> slices{ 128, 256, 512 }, kernels{ 16, 32, 64, 128 };
   std::string window = "auto", output = "surface-bench";
   bool vctCPU = true, vctGL = false;
@@ -71,6 +72,9 @@ struct Row
   double ownRmse = -1; ///< against the reference in the method's own falloff (-1: none)
   std::string ownFalloff;
   double rmse = 0, bias = 0, p99 = 0, bandRmse = 0, flicker = 0, referenceFlicker = 0;
+  /// Bands and rings: the RMS second difference of the AO across flat
+  /// faces (FlatTriples); the reference row's is its own, noise removed.
+  double ripple = 0;
   std::int64_t pixels = 0;
 };
 
@@ -107,6 +111,64 @@ std::vector<char> DiscontinuityBand(const cao::SurfaceFrame& f, int band)
   return out;
 }
 
+/// Three pixels in a row or column (p - s, p, p + s) on one flat face,
+/// away from depth discontinuities: each covered, outside `band`, normals
+/// within 1 degree of the middle one's and the outer points on its plane
+/// (to 1e-3 of their distance). Across such a face the reference's AO is
+/// smooth; a method's bands and rings show as second differences there.
+std::vector<std::array<std::int64_t, 2>> FlatTriples(const cao::SurfaceFrame& f, const std::vector<char>& band)
+{
+  std::vector<std::array<std::int64_t, 2>> out; // {p, stride}
+  const std::int64_t w = f.width, h = f.height;
+  auto usable = [&](std::int64_t q) { return f.triangle[q] >= 0 && !band[q]; };
+  auto same = [&](std::int64_t p, std::int64_t q) {
+    const double* n = &f.normal[3 * p];
+    const double* m = &f.normal[3 * q];
+    double d[3], len = 0, off = 0;
+    for (int k = 0; k < 3; ++k)
+    {
+      d[k] = f.position[3 * q + k] - f.position[3 * p + k];
+      len += d[k] * d[k];
+      off += n[k] * d[k];
+    }
+    return n[0] * m[0] + n[1] * m[1] + n[2] * m[2] > 0.99985 && std::fabs(off) <= 1e-3 * std::sqrt(len);
+  };
+  for (std::int64_t j = 1; j + 1 < h; ++j)
+    for (std::int64_t i = 1; i + 1 < w; ++i)
+    {
+      const std::int64_t p = j * w + i;
+      if (!usable(p))
+        continue;
+      for (std::int64_t s : { std::int64_t(1), w })
+        if (usable(p - s) && usable(p + s) && same(p, p - s) && same(p, p + s))
+          out.push_back({ p, s });
+    }
+  return out;
+}
+
+/// The RMS over `flat` of a[p-s] - 2 a[p] + a[p+s]; with `b`, the root of
+/// the mean product of a's and b's second differences (two independent
+/// estimates of one image: their noise averages out of the product, so
+/// this is the reference's own ripple without its noise).
+double Ripple(const std::vector<std::array<std::int64_t, 2>>& flat, const std::vector<double>& a,
+  const std::vector<double>* b = nullptr)
+{
+  double sum = 0;
+  std::int64_t n = 0;
+  for (const auto& t : flat)
+  {
+    const std::int64_t p = t[0], s = t[1];
+    const double da = a[p - s] - 2 * a[p] + a[p + s];
+    const double db = b ? (*b)[p - s] - 2 * (*b)[p] + (*b)[p + s] : da;
+    if (std::isfinite(da) && std::isfinite(db))
+    {
+      sum += da * db;
+      ++n;
+    }
+  }
+  return n ? std::sqrt(std::max(0.0, sum / n)) : 0;
+}
+
 /// The pass's depth G-buffer from an exact frame: each covered pixel's
 /// window depth, rounded to a 24-bit depth buffer's step, made into points
 /// and normals by cao::FrameFromDepth.
@@ -130,8 +192,10 @@ bool DepthFrame(const cao::SurfaceFrame& exact, const cao::PixelCamera& camera, 
 }
 
 void Measure(Row& row, const std::vector<double>& ao, const std::vector<double>& ao2,
-  const std::vector<double>& ref, const std::vector<double>& ref2, const std::vector<char>& band)
+  const std::vector<double>& ref, const std::vector<double>& ref2, const std::vector<char>& band,
+  const std::vector<std::array<std::int64_t, 2>>& flat)
 {
+  row.ripple = Ripple(flat, ao);
   std::vector<double> absErr;
   double sum2 = 0, sum = 0, band2 = 0, flick = 0, refFlick = 0;
   std::int64_t n = 0, nb = 0, nf = 0;
@@ -214,6 +278,7 @@ int Run(Options& o, const CLI::App*)
     if (!CastFrame(scene, camera, o.view, frame, error) || !CastFrame(scene, camera2, o.view, frame2, error))
       return Fail(1, error);
     const std::vector<char> band = DiscontinuityBand(frame, o.band);
+    const std::vector<std::array<std::int64_t, 2>> flat = FlatTriples(frame, band);
     // The depth G-buffer's frames: the ray cast's depth, as a 24-bit depth
     // buffer holds it, made into points and normals as the pass does.
     cao::SurfaceFrame dframe, dframe2;
@@ -244,9 +309,19 @@ int Run(Options& o, const CLI::App*)
     self.series = 3;
     self.ms = referenceMs;
     // Its errors against 4x the rays; its flicker is its own frame-to-frame change.
-    Measure(self, ref.ao, ref2.ao, fine.ao, ref2.ao, band);
+    Measure(self, ref.ao, ref2.ao, fine.ao, ref2.ao, band, flat);
     self.referenceFlicker = self.flicker;
+    // Its ripple: its own at 1x and 4x the rays, noise removed (Ripple).
+    const double rawRipple = self.ripple;
+    self.ripple = Ripple(flat, ref.ao, &fine.ao);
     rows.push_back(self);
+    {
+      std::ostringstream note;
+      note << std::fixed << std::setprecision(5) << name << ": " << flat.size()
+           << " flat-face pixel triples; the reference's ripple " << self.ripple << " (noise removed; with its "
+           << rs.rays << " rays' noise " << rawRipple << ")";
+      notes.push_back(note.str());
+    }
     std::cerr << name << ": reference " << rs.rays << " rays " << std::fixed << std::setprecision(0)
               << referenceMs << " ms; its RMSE against " << rf.rays << " rays: " << std::setprecision(4)
               << self.rmse << "\n";
@@ -263,7 +338,7 @@ int Run(Options& o, const CLI::App*)
         one[i] = frame.triangle[i] >= 0 ? 1.0 : std::numeric_limits<double>::quiet_NaN();
         one2[i] = frame2.triangle[i] >= 0 ? 1.0 : std::numeric_limits<double>::quiet_NaN();
       }
-      Measure(r, one, one2, ref.ao, ref2.ao, band);
+      Measure(r, one, one2, ref.ao, ref2.ao, band, flat);
       rows.push_back(r);
     }
     // Voxel cone tracing on each backend: the grid once per size (world
@@ -314,6 +389,7 @@ int Run(Options& o, const CLI::App*)
         for (cao::VCTOccupancy occupancy : o.occupancies)
         for (double step : occupancy == cao::VCTOccupancy::Rays ? o.raySteps
                                                                 : std::vector<double>{ cao::VCTSettings().rayStep })
+        for (int pattern : o.patterns)
         for (cao::VCTQuality q : o.qualities)
         {
           if (kind == "frustum" && gb)
@@ -326,6 +402,7 @@ int Run(Options& o, const CLI::App*)
           stepLabel << " step " << step;
           vs.slices = slices;
           vs.radius = radius;
+          vs.interleave = pattern == 1;
           cao::VCTPlan plan, plan2;
           if (!cao::BuildVCTPlan(vs, grid, plan, error) || !cao::BuildVCTPlan(vs, second, plan2, error))
             return Fail(1, error);
@@ -359,12 +436,12 @@ int Run(Options& o, const CLI::App*)
           row.label = row.method + " " + cao::VCTQualityName(q) + " " + std::to_string(slices) +
             (kind == "world" ? "" : " " + kind) + (occupancy == cao::VCTOccupancy::Volume ? " volume" : "") +
             (occupancy == cao::VCTOccupancy::Rays && step != cao::VCTSettings().rayStep ? stepLabel.str() : "") +
-            (gb ? " depth" : "");
+            (gb ? " depth" : "") + (pattern ? "" : " no pattern");
           row.series = onGPU ? 4 : 0;
           // An eye grid is built again at every camera turn: in the frame.
           row.ms = Median(times) + (perCamera ? gridMs : 0.0);
           row.gridMs = gridMs;
-          Measure(row, a.ao, b.ao, ref.ao, ref2.ao, band);
+          Measure(row, a.ao, b.ao, ref.ao, ref2.ao, band, flat);
           rows.push_back(row);
         }
       }
@@ -413,7 +490,7 @@ int Run(Options& o, const CLI::App*)
       row.label = label + (screenG ? " depth" : "");
       row.series = series;
       row.ms = Median(times);
-      Measure(row, a.ao, b.ao, ref.ao, ref2.ao, band);
+      Measure(row, a.ao, b.ao, ref.ao, ref2.ao, band, flat);
       row.ownFalloff = cao::FalloffName(falloff);
       if (falloff == cao::AOFalloff::Step)
         row.ownRmse = row.rmse;
@@ -423,7 +500,7 @@ int Run(Options& o, const CLI::App*)
         if (!pair)
           return false;
         Row mine;
-        Measure(mine, a.ao, b.ao, pair->first.ao, pair->second.ao, band);
+        Measure(mine, a.ao, b.ao, pair->first.ao, pair->second.ao, band, flat);
         row.ownRmse = mine.rmse;
       }
       rows.push_back(row);
@@ -483,7 +560,7 @@ int Run(Options& o, const CLI::App*)
         row.label = "ssao k" + std::to_string(k);
         row.series = 1;
         row.ms = Median(times);
-        Measure(row, a, b, ref.ao, ref2.ao, band);
+        Measure(row, a, b, ref.ao, ref2.ao, band, flat);
         rows.push_back(row);
         if (!o.vctGL)
           continue;
@@ -521,13 +598,13 @@ int Run(Options& o, const CLI::App*)
   {
     std::string label;
     int series;
-    double ms, gridMs, rmse, bias, p99, bandRmse, flicker, referenceFlicker, ownRmse;
+    double ms, gridMs, rmse, bias, p99, bandRmse, flicker, referenceFlicker, ownRmse, ripple;
   };
   std::vector<Mean> means;
   for (const std::string& l : labels)
   {
     const auto& v = byLabel[l];
-    Mean m{ l, v[0]->series, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
+    Mean m{ l, v[0]->series, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
     for (const Row* r : v)
     {
       m.ms += r->ms / v.size();
@@ -539,6 +616,7 @@ int Run(Options& o, const CLI::App*)
       m.flicker += r->flicker / v.size();
       m.referenceFlicker += r->referenceFlicker / v.size();
       m.ownRmse += r->ownRmse / v.size();
+      m.ripple += r->ripple / v.size();
     }
     means.push_back(m);
   }
@@ -561,8 +639,8 @@ int Run(Options& o, const CLI::App*)
                                 : std::to_string(o.radiusFraction) + " x diagonal")
             << "), " << o.view.width << "x" << o.view.height << ", mean over "
             << o.meshes.size() << " mesh(es):\n\n";
-  std::cout << "| configuration | ms/frame | grid ms | RMSE | bias | p99 | band RMSE | flicker (ref) | own-definition RMSE | Pareto |\n";
-  std::cout << "|---|---:|---:|---:|---:|---:|---:|---:|---:|:-:|\n";
+  std::cout << "| configuration | ms/frame | grid ms | RMSE | bias | p99 | band RMSE | flicker (ref) | ripple | own-definition RMSE | Pareto |\n";
+  std::cout << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|:-:|\n";
   std::cout << std::fixed;
   for (std::size_t i = 0; i < means.size(); ++i)
   {
@@ -571,7 +649,7 @@ int Run(Options& o, const CLI::App*)
               << (m.gridMs > 0 ? std::to_string(static_cast<long long>(std::lround(m.gridMs))) : std::string("-"))
               << " | " << std::setprecision(4) << m.rmse << " | " << std::showpos << m.bias
               << std::noshowpos << " | " << m.p99 << " | " << m.bandRmse << " | " << m.flicker << " ("
-              << m.referenceFlicker << ") | "
+              << m.referenceFlicker << ") | " << std::setprecision(5) << m.ripple << std::setprecision(4) << " | "
               << (m.ownRmse > 0 && m.series >= 5 ? std::to_string(m.ownRmse).substr(0, 6) : std::string("-")) << " | "
               << (front[i] ? "yes" : "") << " |\n";
   }
@@ -586,17 +664,19 @@ int Run(Options& o, const CLI::App*)
             << "the GPU time vtkSSAOPass adds to a frame (timer queries around its frame less around the plain "
             << "frame: its G-buffer draw, AO, blur and combine), the reference on the CPU. "
             << "Own-definition RMSE: against the reference in the method's own falloff (hbao: step, fig11a "
-            << "linear; vao: quartic, (r/R)^4).\n";
+            << "linear; vao: quartic, (r/R)^4). Ripple: the RMS second difference of the AO along rows and "
+            << "columns of pixels on flat faces (bands, rings and grain show there; the reference's row is its "
+            << "own without its noise: the mean product of its 1x and 4x rays' second differences).\n";
   for (const std::string& n : notes)
     std::cout << "note: " << n << "\n";
   // CSV and JSON, per mesh.
   std::ofstream csv(o.output + "/surface.csv");
   csv << "mesh,configuration,method,ms,grid_ms,rmse,bias,p99,band_rmse,flicker,reference_flicker,pixels,"
-         "own_falloff,own_rmse\n";
+         "own_falloff,own_rmse,ripple\n";
   for (const Row& r : rows)
     csv << r.mesh << "," << r.label << "," << r.method << "," << r.ms << "," << r.gridMs << "," << r.rmse
         << "," << r.bias << "," << r.p99 << "," << r.bandRmse << "," << r.flicker << ","
-        << r.referenceFlicker << "," << r.pixels << "," << r.ownFalloff << "," << r.ownRmse << "\n";
+        << r.referenceFlicker << "," << r.pixels << "," << r.ownFalloff << "," << r.ownRmse << "," << r.ripple << "\n";
   std::ofstream json(o.output + "/surface.json");
   json << std::setprecision(8) << "{\"image\": [" << o.view.width << ", " << o.view.height
        << "], \"reference_rays\": " << o.referenceRays << ", \"radius_fraction\": " << (o.defaultRadius ? -1.0 : o.radiusFraction)
@@ -610,7 +690,8 @@ int Run(Options& o, const CLI::App*)
          << ", \"rmse\": " << r.rmse << ", \"bias\": " << r.bias << ", \"p99\": " << r.p99
          << ", \"band_rmse\": " << r.bandRmse << ", \"flicker\": " << r.flicker
          << ", \"reference_flicker\": " << r.referenceFlicker << ", \"pixels\": " << r.pixels
-         << ", \"own_falloff\": \"" << r.ownFalloff << "\", \"own_rmse\": " << r.ownRmse << "}";
+         << ", \"own_falloff\": \"" << r.ownFalloff << "\", \"own_rmse\": " << r.ownRmse
+         << ", \"ripple\": " << r.ripple << "}";
   }
   json << "], \"vct_gl_context\": \"" << (o.vctGL ? gpu.Description() : std::string()) << "\", \"pareto\": [";
   bool first = true;
@@ -691,6 +772,15 @@ Command AddBenchSurfaceCommand(CLI::App& bench)
         ToDouble(item, step);
         o->raySteps.push_back(step);
       }
+    });
+  AddList(app, "--vct-pattern", "LIST",
+    "vct: its cones turned over a 4 x 4 pattern of pixels and filtered (on, the default) or not (off: rows "
+    "\"... no pattern\"), or both (on,off)",
+    [](const std::string& item) { return Refused(item == "on" || item == "off", item, "on or off"); },
+    [o](const std::vector<std::string>& items) {
+      o->patterns.clear();
+      for (const std::string& item : items)
+        o->patterns.push_back(item == "on" ? 1 : 0);
     });
   AddSurfaceSlices(app, o->slices, "vct grid depth slices, each 32 to 1024, a multiple of 32 (default 128,256,512)");
   AddIntegerList(app, "--kernels", o->kernels, 1, 1024,

@@ -773,17 +773,18 @@ int Run(SurfaceOptions& o, const CLI::App* app)
 {
   if (o.output.empty())
     return Fail(2, "give the output picture with -o out.png");
-  // --march, --samples and --filter are for hbao or vao (the first that is
-  // not for --method, in the command line's order).
+  // --march and --samples are for hbao or vao, --filter for vct, hbao or
+  // vao (the first that is not for --method, in the command line's order).
   for (const CLI::Option* option : app->parse_order())
   {
     const std::string name = option->get_name();
     if (name != "--march" && name != "--samples" && name != "--filter")
       continue;
-    if (!(o.method == "vao" && name != "--march") && !(o.method == "hbao" && name != "--samples"))
+    if (!(o.method == "vao" && name != "--march") && !(o.method == "hbao" && name != "--samples") &&
+      !(o.method == "vct" && name == "--filter"))
       return Fail(2,
         name + " is for --method " +
-          (name == "--march" ? "hbao" : name == "--samples" ? "vao" : "hbao or vao") +
+          (name == "--march" ? "hbao" : name == "--samples" ? "vao" : "vct, hbao or vao") +
           " (got --method " + o.method + ")");
   }
   // The options that only some methods read: refused for the others.
@@ -817,6 +818,7 @@ int Run(SurfaceOptions& o, const CLI::App* app)
   if (!o.filter.empty())
   {
     o.vao.interleave = o.filter == "on";
+    o.vct.interleave = o.filter == "on";
     o.hbao.blurRadius = o.filter == "on" ? 2 : 0;
   }
   if (!o.march.empty())
@@ -1043,7 +1045,7 @@ int Run(SurfaceOptions& o, const CLI::App* app)
                 << (o.vct.weights == cao::ConeWeights::Cosine ? "cosine" : "equal")
                 << "\", \"fill\": \"" << (o.vct.surfaceVoxels ? "surface" : "parity")
                 << "\", \"occupancy\": \"" << cao::VCTOccupancyName(o.vct.occupancy)
-                << "\", \"ray_step\": " << o.vct.rayStep
+                << "\", \"ray_step\": " << o.vct.rayStep << ", \"interleave\": " << (o.vct.interleave ? 4 : 1)
                 << ", \"backend\": \"" << vctBackend << "\"" << NoteField(backendNote) << ", \"grid\": \"" << o.grid << "\", \"slices\": " << grid.slices << ", \"columns\": ["
                 << grid.nx << ", " << grid.ny << "], \"voxel\": " << grid.voxel
                 << ", \"solid_voxels\": " << (grid.bits.empty() ? -1 : grid.CountAll())
@@ -1113,7 +1115,8 @@ Command AddSurfaceCommand(CLI::App& cao)
   AddInteger(app, "--samples", o->vao.samples, 1, 256,
     "vao: samples per pixel, 1 to 256 (instead of --quality)");
   AddChoice(app, "--filter", o->filter, { "on", "off" },
-    "hbao: its blur; vao: its 4 x 4 sample sets and filter (default on)");
+    "vct: its cones turned over a 4 x 4 pattern of pixels and the filter of that size; hbao: its blur; "
+    "vao: its 4 x 4 sample sets and filter (default on)");
   AddSurfaceSlices(app, o->vct.slices,
     "vct: depth slices of the grid, 32 to 1024, a multiple of 32 (default 256; the paper's 128)");
   AddChoice(app, "--grid", o->grid, SurfaceGridNames(),

@@ -461,6 +461,11 @@ std::int64_t FrameEngine::Pixels() const
   return this->P->PixelCount();
 }
 
+int FrameEngine::Width() const
+{
+  return this->P->width;
+}
+
 bool FrameEngine::Combine(double strength, bool wholeColor, std::string& error)
 {
   Impl& p = *this->P;

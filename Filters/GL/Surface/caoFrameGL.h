@@ -66,6 +66,8 @@ public:
   unsigned AOBuffer() const;
   void AOWritten();
   std::int64_t Pixels() const;
+  /// The width of the depth read last (its pixels' rows).
+  int Width() const;
   /// The AO into the colour read last (`wholeColor`: colour (1 - s (1 -
   /// AO)); else colour - s (1 - AO) ambient, the ambient read last).
   bool Combine(double strength, bool wholeColor, std::string& error);

@@ -360,5 +360,15 @@ bool ScreenAOEngine::VAO(const PixelCamera& camera, const VAOSettings& settings,
   FinishVAO(settings, frame, 0);
   return true;
 }
+
+layout::ScreenAOParams ScreenFilterParams(int width, int height, const std::vector<double>& weights,
+  double tolerance, bool clampUnit, double reach)
+{
+  layout::ScreenAOParams b{};
+  b.image = { width, height, 0, 1 };
+  FilterBlock(weights, tolerance, clampUnit, b);
+  b.finish.w = static_cast<float>(reach);
+  return b;
+}
 }
 }

@@ -16,7 +16,10 @@
 #include "caoGLContext.h"
 #include "caoScreenSpaceAO.h"
 
+#include "caoGPULayout.h"
+
 #include <cstdint>
+#include <vector>
 #include <memory>
 #include <string>
 
@@ -66,6 +69,14 @@ private:
   struct Impl;
   std::unique_ptr<Impl> P;
 };
+
+/// The parameter block caoScreenFilter.glsl (cao::DepthAwareFilter's GPU
+/// twin) reads: a width x height image, the taps' weights per axis
+/// (-r..r), the tangent-plane tolerance (world units), the clamp to [0, 1]
+/// after, and the taps' reach from the pixel's point (0: unlimited); what the estimators above end with, and the cone
+/// tracer's filter (VCTEngine).
+layout::ScreenAOParams ScreenFilterParams(int width, int height, const std::vector<double>& weights,
+  double tolerance, bool clampUnit, double reach = 0.0);
 }
 }
 

@@ -6,6 +6,9 @@
 #include "caoGPULayout.h"
 
 #include "caoConeTrace_glsl.h"
+#include "caoScreenAOGL.h"
+#include "caoScreenCommon_glsl.h"
+#include "caoScreenFilter_glsl.h"
 #include "caoVoxelize_glsl.h"
 
 #include <algorithm>
@@ -31,8 +34,8 @@ struct VCTEngine::Impl
   Context& Ctx;
   const Functions& gl;
   GLuint points = 0, ids = 0, bits = 0, grid = 0, params = 0, tracePoints = 0, traceNormals = 0,
-         ao = 0, surface = 0, opacity = 0, columns = 0, parity = 0, traceColumns = 0;
-  Program rasterize, combine, trace, rasterizeFrustum, combineFrustum;
+         ao = 0, surface = 0, opacity = 0, columns = 0, parity = 0, traceColumns = 0, raw = 0, filterParams = 0;
+  Program rasterize, combine, trace, rasterizeFrustum, combineFrustum, filter;
   StageTimer timer{ SCount };
   BitGrid shape; ///< size and place of the grid on the GPU (no bits)
   std::int64_t bytes = 0, volumeBytes = 0;
@@ -136,8 +139,8 @@ struct VCTEngine::Impl
     , gl(c.GL())
   {
   }
-  GLuint* Buffers[13] = { &points, &ids, &bits, &grid, &params, &tracePoints, &traceNormals, &ao, &surface,
-    &opacity, &columns, &parity, &traceColumns };
+  GLuint* Buffers[15] = { &points, &ids, &bits, &grid, &params, &tracePoints, &traceNormals, &ao, &surface,
+    &opacity, &columns, &parity, &traceColumns, &raw, &filterParams };
   /// The frustum grid's columns (near depth, slices per depth) as the
   /// tracer reads them (float); a 16-byte stub for any other grid. The
   /// bytes held.
@@ -176,6 +179,11 @@ struct VCTEngine::Impl
       this->combine.BuildCompute(gl, { caoVoxelize_glsl }, { { "CAO_VX_STAGE", "1" }, { "CAO_VX_FRUSTUM", "0" } }, error) &&
       this->trace.BuildCompute(gl, { caoConeTrace_glsl }, {}, error);
   }
+  bool BuildFilter(std::string& error)
+  {
+    return this->filter.Valid() ||
+      this->filter.BuildCompute(gl, { caoScreenCommon_glsl, caoScreenFilter_glsl }, {}, error);
+  }
   bool BuildFrustumPrograms(std::string& error)
   {
     if (this->rasterizeFrustum.Valid())
@@ -192,7 +200,7 @@ struct VCTEngine::Impl
         gl.DeleteBuffers(1, b);
         *b = 0;
       }
-    for (Program* p : { &rasterize, &combine, &trace, &rasterizeFrustum, &combineFrustum })
+    for (Program* p : { &rasterize, &combine, &trace, &rasterizeFrustum, &combineFrustum, &filter })
       p->Release(gl);
     timer.Release(gl);
     bytes = 0;
@@ -227,7 +235,7 @@ void VCTEngine::AbandonGraphicsResources()
   Impl& p = *this->P;
   for (GLuint* b : p.Buffers)
     *b = 0;
-  for (Program* prog : { &p.rasterize, &p.combine, &p.trace, &p.rasterizeFrustum, &p.combineFrustum })
+  for (Program* prog : { &p.rasterize, &p.combine, &p.trace, &p.rasterizeFrustum, &p.combineFrustum, &p.filter })
     prog->Abandon();
   p.timer.Abandon();
   p.bytes = 0;
@@ -239,29 +247,40 @@ void VCTEngine::AbandonGraphicsResources()
 bool VCTEngine::TraceFrame(const BitGrid& grid, const VCTPlan& plan, SurfaceFrame& frame, double& ms,
   std::string& error)
 {
-  std::vector<float> points, normals;
-  std::vector<std::size_t> where;
-  for (std::size_t i = 0; i < frame.triangle.size(); ++i)
-    if (frame.triangle[i] >= 0)
-    {
-      where.push_back(i);
-      double p[3], n[3]; // in the grid's frame (an eye grid turns them)
-      grid.ToGrid(&frame.position[3 * i], p);
-      grid.ToGrid(&frame.normal[3 * i], n);
-      for (int d = 0; d < 3; ++d)
-      {
-        points.push_back(static_cast<float>(p[d]));
-        normals.push_back(static_cast<float>(n[d]));
-      }
-    }
+  // Every pixel, so that a point's index is its pixel (the pattern's cell,
+  // the filter's neighbours); w: 0 a point, 3e38 none (the filter's), the
+  // normal's w 1 a point, 0 none (the trace's).
+  const std::size_t count = frame.triangle.size();
   ms = 0.0;
-  if (where.empty())
+  if (count > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
+    return error = "too many pixels for one trace", false;
+  std::vector<float> p4(4 * count, 0.0f), n4(4 * count, 0.0f);
+  std::size_t covered = 0;
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    p4[4 * i + 3] = 3.0e38f;
+    if (frame.triangle[i] < 0)
+      continue;
+    ++covered;
+    double q[3], n[3]; // in the grid's frame (an eye grid turns them)
+    grid.ToGrid(&frame.position[3 * i], q);
+    grid.ToGrid(&frame.normal[3 * i], n);
+    for (int d = 0; d < 3; ++d)
+    {
+      p4[4 * i + d] = static_cast<float>(q[d]);
+      n4[4 * i + d] = static_cast<float>(n[d]);
+    }
+    p4[4 * i + 3] = 0.0f;
+    n4[4 * i + 3] = 1.0f;
+  }
+  if (covered == 0)
     return true;
   std::vector<float> ao;
-  if (!this->Trace(plan, points.data(), normals.data(), where.size(), ao, ms, error))
+  if (!this->TraceArrays(plan, p4, n4, frame.width, ao, ms, error))
     return false;
-  for (std::size_t k = 0; k < where.size(); ++k)
-    frame.ao[where[k]] = ao[k];
+  for (std::size_t i = 0; i < count; ++i)
+    if (frame.triangle[i] >= 0)
+      frame.ao[i] = ao[i];
   return true;
 }
 
@@ -480,7 +499,6 @@ bool VCTEngine::Read(std::vector<std::uint32_t>& out, std::string& error)
 bool VCTEngine::Trace(const VCTPlan& plan, const float* points, const float* normals,
   std::size_t count, std::vector<float>& ao, double& ms, std::string& error)
 {
-  Impl& p = *this->P;
   if (count > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
   {
     error = "too many points for one trace";
@@ -496,6 +514,14 @@ bool VCTEngine::Trace(const VCTPlan& plan, const float* points, const float* nor
     }
     n4[4 * i + 3] = 1.0f; // a point
   }
+  return this->TraceArrays(plan, p4, n4, 0, ao, ms, error);
+}
+
+bool VCTEngine::TraceArrays(const VCTPlan& plan, const std::vector<float>& p4, const std::vector<float>& n4,
+  int rowLength, std::vector<float>& ao, double& ms, std::string& error)
+{
+  Impl& p = *this->P;
+  const std::size_t count = p4.size() / 4;
   CurrentScope scope(p.Ctx);
   if (!scope.Ok(error))
     return false;
@@ -504,19 +530,20 @@ bool VCTEngine::Trace(const VCTPlan& plan, const float* points, const float* nor
   p.Upload(p.tracePoints, GL_SHADER_STORAGE_BUFFER, p4.size() * sizeof(float), p4.data());
   p.Upload(p.traceNormals, GL_SHADER_STORAGE_BUFFER, n4.size() * sizeof(float), n4.data());
   p.Upload(p.ao, GL_SHADER_STORAGE_BUFFER, count * sizeof(float), nullptr);
-  if (!this->TracePixels(plan, p.tracePoints, p.traceNormals, p.ao, static_cast<std::int64_t>(count), ms, error))
+  if (!this->TracePixels(plan, p.tracePoints, p.traceNormals, p.ao, static_cast<std::int64_t>(count), ms, error,
+        rowLength))
     return false;
   ao.resize(count);
   if (count == 0)
     return true;
   gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, p.ao);
-  gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(std::max<std::size_t>(count, 1) * sizeof(float)), ao.data());
+  gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(count * sizeof(float)), ao.data());
   gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
   return CheckError(gl, "reading the cone tracing's AO", error);
 }
 
 bool VCTEngine::TracePixels(const VCTPlan& plan, unsigned points, unsigned normals, unsigned ao,
-  std::int64_t count, double& ms, std::string& error)
+  std::int64_t count, double& ms, std::string& error, int rowLength)
 {
   Impl& p = *this->P;
   ms = 0.0;
@@ -543,16 +570,29 @@ bool VCTEngine::TracePixels(const VCTPlan& plan, unsigned points, unsigned norma
     return false;
   if (count == 0)
     return true;
-  const layout::VCTParams params = MakeVCTParams(p.shape, plan, static_cast<int>(count));
+  if (rowLength < 0 || (rowLength > 0 && count % rowLength != 0))
+    return error = "the pixels are not whole rows of " + std::to_string(rowLength), false;
+  const layout::VCTParams params = MakeVCTParams(p.shape, plan, static_cast<int>(count), rowLength);
+  // The filter after the trace (VCTFrame's FinishVCT): the trace writes
+  // into `raw`, the filter from there into `ao`.
+  const std::vector<double> weights = rowLength > 0 ? VCTFilterWeights(plan) : std::vector<double>();
+  const bool filtered = !weights.empty();
   CurrentScope scope(p.Ctx);
   if (!scope.Ok(error))
     return false;
   const Functions& gl = p.gl;
   StateGuard guard(gl, p.Ctx.Kind() == ContextKind::External);
-  if (!p.BuildPrograms(error))
+  if (!p.BuildPrograms(error) || (filtered && !p.BuildFilter(error)))
     return false;
   if (!(Impl::KeysOf(plan.volumes) == p.volumes) && !p.PutVolumes(plan.volumes, error))
     return false;
+  if (filtered)
+  {
+    const layout::ScreenAOParams block = ScreenFilterParams(rowLength, static_cast<int>(count / rowLength), weights,
+      plan.filterTolerance, false, plan.filterReach);
+    p.Upload(p.filterParams, GL_UNIFORM_BUFFER, sizeof(block), &block);
+    p.Upload(p.raw, GL_SHADER_STORAGE_BUFFER, static_cast<std::size_t>(count) * sizeof(float), nullptr);
+  }
   p.timer.Allocate(gl, p.Ctx.UsesHostClock());
   p.Upload(p.params, GL_UNIFORM_BUFFER, sizeof(params), &params);
   if (!p.opacity) // the shader declares the block: something bound, never read
@@ -562,7 +602,7 @@ bool VCTEngine::TracePixels(const VCTPlan& plan, unsigned points, unsigned norma
   gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VX_BITS, p.grid);
   gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VCT_POINTS, points);
   gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VCT_NORMALS, normals);
-  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VCT_AO, ao);
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VCT_AO, filtered ? p.raw : ao);
   gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_VCT_OPACITY, p.opacity);
   if (!p.traceColumns) // the shader declares the block: something bound (read by a frustum grid only)
     p.PutTraceColumns(p.shape);
@@ -570,6 +610,17 @@ bool VCTEngine::TracePixels(const VCTPlan& plan, unsigned points, unsigned norma
   gl.UseProgram(p.trace.Id());
   p.timer.Begin(gl, STrace);
   DispatchLinear(gl, (count + 63) / 64);
+  if (filtered)
+  {
+    gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    gl.BindBufferBase(GL_UNIFORM_BUFFER, CAO_BINDING_SS_PARAMS, p.filterParams);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_SS_POSITIONS, points);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_SS_NORMALS, normals);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_SS_AO, p.raw);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_SS_FILTERED, ao);
+    gl.UseProgram(p.filter.Id());
+    DispatchLinear(gl, (count + 63) / 64);
+  }
   p.timer.End(gl, STrace);
   gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
   gl.UseProgram(0);

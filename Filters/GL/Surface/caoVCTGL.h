@@ -67,13 +67,18 @@ public:
   /// vec4 points in the grid's frame, vec4 normals whose w is not 0 where
   /// there is a point, 0 where not; float AO out, NaN where no point), with
   /// `plan` on the grid voxelized or uploaded last; nothing is read back.
-  /// `ms`: GPU time (waits for it).
+  /// `rowLength` > 0: the points are an image's pixels, rows this long
+  /// (points' w > 1e30 where not covered, as the frame's G-buffer): with
+  /// the plan's interleave, each pixel's cones turned by its cell of the
+  /// 4 x 4 pattern, then the depth-aware filter on the GPU
+  /// (caoScreenFilter.glsl), as cao::VCTFrame. `ms`: GPU time (waits for it).
   bool TracePixels(const VCTPlan& plan, unsigned points, unsigned normals, unsigned ao, std::int64_t count,
-    double& ms, std::string& error);
+    double& ms, std::string& error, int rowLength = 0);
 
-  /// The AO of every covered pixel of `frame` (cao::VCTFrame's twin):
-  /// its points and normals, turned into `grid`'s frame (an eye grid's
-  /// axes), traced on the grid voxelized or uploaded last.
+  /// The AO of every covered pixel of `frame` (cao::VCTFrame's twin, its
+  /// pattern and filter too): its points and normals, turned into `grid`'s
+  /// frame (an eye grid's axes), traced on the grid voxelized or uploaded
+  /// last.
   bool TraceFrame(const BitGrid& grid, const VCTPlan& plan, SurfaceFrame& frame, double& ms,
     std::string& error);
 
@@ -86,6 +91,10 @@ public:
   void AbandonGraphicsResources();
 
 private:
+  /// Uploads the points and normals (vec4 each), traces them
+  /// (TracePixels, `rowLength`) and reads the AO back.
+  bool TraceArrays(const VCTPlan& plan, const std::vector<float>& p4, const std::vector<float>& n4, int rowLength,
+    std::vector<float>& ao, double& ms, std::string& error);
   struct Impl;
   std::unique_ptr<Impl> P;
 };

@@ -272,7 +272,11 @@ struct VCTParams
                                         clip; [4] x: 1 a frustum grid (else 0), y: 1 perspective, z: world
                                         length per unit of depth, w: 0; its columns' near depth and slices
                                         per depth in CAO_BINDING_VCT_COLUMNS */
-  ivec4 volumeCount;                 /* x: occluding volumes (0..CAO_VCT_MAX_VOLUMES); yzw: 0 */
+  ivec4 volumeCount;                 /* x: occluding volumes (0..CAO_VCT_MAX_VOLUMES); y: the points are
+                                        pixels of rows this long, turned by `rotations` (0: not turned);
+                                        zw: 0 */
+  vec4 rotations[4];                 /* the 4 x 4 pattern's turns about the normal (radians), pixel cell
+                                        i % 4 + 4 (j % 4) at [cell / 4][cell % 4] (VCTPatternRotations) */
   VCTVolume volumes[CAO_VCT_MAX_VOLUMES];
 };
 #define CAO_BINDING_VCT_PARAMS 3   /* uniform block: VCTParams */
@@ -332,7 +336,8 @@ struct ScreenAOParams
   vec4 scalars;       /* x: radius R (world), y: offset (pixels), zw: 0 */
   vec4 pattern[CAO_SS_TILE * CAO_SS_TILE]; /* hbao per tile cell: x rotation (radians), y jitter (0, 1] */
   vec4 finish;        /* the blur or filter (caoScreenFilter.glsl, cao::DepthAwareFilter): x taps each side
-                         (0: none), y tolerance (world), z 1: clamp to [0, 1] after (VAO); w: 0 */
+                         (0: none), y tolerance (world), z 1: clamp to [0, 1] after (VAO); w: the taps'
+                         reach from the pixel's point (world; 0: unlimited) */
   vec4 finishWeights[CAO_SS_MAX_FILTER_WEIGHTS / 4]; /* the taps' weights per axis, -r..r, 4 a row */
 };
 /* Within the bindings OpenGL 4.3 guarantees (8 storage, uniform 0-3) and
@@ -357,7 +362,7 @@ static_assert(sizeof(RenderParams) == (19 + 2 * CAO_MAX_LIGHTS + CAO_HALF_SPACE_
 static_assert(sizeof(LAOTap) == 32, "LAOTap must match std430");
 static_assert(sizeof(VCTVolume) == 5 * 16, "VCTVolume must match std140");
 static_assert(sizeof(VCTParams) ==
-    5 * 16 + (CAO_VCT_MAX_CONES + CAO_VCT_MAX_SPHERES + CAO_VCT_MAX_PRISMS + 5) * 16 +
+    9 * 16 + (CAO_VCT_MAX_CONES + CAO_VCT_MAX_SPHERES + CAO_VCT_MAX_PRISMS + 5) * 16 +
       CAO_VCT_MAX_VOLUMES * sizeof(VCTVolume),
   "VCTParams must match std140");
 static_assert(sizeof(LAOMarchBlock) == 96, "LAOMarchBlock must match std140/std430");

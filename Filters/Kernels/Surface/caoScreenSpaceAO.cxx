@@ -330,7 +330,7 @@ bool ParseVAOQuality(const std::string& text, VAOQuality& quality)
 }
 
 void DepthAwareFilter(const SurfaceFrame& frame, const std::vector<double>& weights, double tolerance,
-  std::vector<double>& values, int threads)
+  std::vector<double>& values, int threads, double reach)
 {
   const int r = static_cast<int>(weights.size() / 2), w = frame.width, h = frame.height;
   const std::vector<double> in = values;
@@ -351,8 +351,9 @@ void DepthAwareFilter(const SurfaceFrame& frame, const std::vector<double>& weig
         if (frame.triangle[q] < 0 || !std::isfinite(in[q]))
           continue;
         const double* o = &frame.position[3 * q];
-        const double off = (o[0] - p[0]) * n[0] + (o[1] - p[1]) * n[1] + (o[2] - p[2]) * n[2];
-        if (!(std::fabs(off) <= tolerance))
+        const double d[3] = { o[0] - p[0], o[1] - p[1], o[2] - p[2] };
+        const double off = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+        if (!(std::fabs(off) <= tolerance) || !(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= reach * reach))
           continue;
         const double wt = weights[di + r] * weights[dj + r];
         sum += wt * in[q];

@@ -50,6 +50,7 @@
 #include "caoSurfaceReference.h"
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -180,9 +181,11 @@ std::string CheckScreenFrame(const PixelCamera& camera, const SurfaceFrame& fram
 /// The depth-aware filter both methods end with: per covered pixel the
 /// weighted mean of the covered taps (i + di, j + dj), weight w[di] w[dj]
 /// (`weights` has 2r + 1 entries for offsets -r..r), leaving out a tap
-/// farther than `tolerance` (world units) from the centre's tangent plane.
+/// farther than `tolerance` (world units) from the centre's tangent plane,
+/// or farther than `reach` from the centre's point (at a silhouette the
+/// tangent plane holds the view ray, and what lies behind along it).
 void DepthAwareFilter(const SurfaceFrame& frame, const std::vector<double>& weights, double tolerance,
-  std::vector<double>& values, int threads);
+  std::vector<double>& values, int threads, double reach = std::numeric_limits<double>::infinity());
 
 }
 

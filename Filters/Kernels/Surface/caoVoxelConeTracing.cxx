@@ -2,6 +2,7 @@
 
 #include "caoOpacity.h"
 #include "caoParallelFor.h"
+#include "caoScreenSpaceAO.h"
 
 #include <algorithm>
 #include <atomic>
@@ -320,6 +321,8 @@ std::string VCTSettings::Validate() const
     return "unknown occupancy (rays or volume)";
   if (!(this->rayStep >= 0.1 && this->rayStep <= 1.0))
     return "the ray step must be 0.1..1 voxel";
+  if (!(this->filterTolerance > 0.0 && this->filterTolerance <= 10.0))
+    return "the filter tolerance must be in (0, 10] radii";
   return std::string();
 }
 
@@ -1027,10 +1030,13 @@ bool BuildVCTPlan(const VCTSettings& settings, const BitGrid& grid, VCTPlan& pla
   plan.occupancy = settings.occupancy;
   plan.rayStep = settings.rayStep * h;
   plan.coneTangent = std::tan(settings.coneHalfAngle * Pi / 180.0);
+  plan.interleave = settings.interleave;
+  plan.filterTolerance = settings.filterTolerance * settings.radius;
+  plan.filterReach = settings.radius;
   return true;
 }
 
-layout::VCTParams MakeVCTParams(const BitGrid& grid, const VCTPlan& plan, int points)
+layout::VCTParams MakeVCTParams(const BitGrid& grid, const VCTPlan& plan, int points, int rowLength)
 {
   layout::VCTParams v{};
   v.grid = { grid.nx, grid.ny, grid.slices, grid.words };
@@ -1064,7 +1070,12 @@ layout::VCTParams MakeVCTParams(const BitGrid& grid, const VCTPlan& plan, int po
   // The occluding volumes, their opacity one after another in plan order;
   // each maps the grid's frame to its voxel index: worldToIndex * axes^T.
   const int volumes = std::min<int>(static_cast<int>(plan.volumes.size()), CAO_VCT_MAX_VOLUMES);
-  v.volumeCount = { volumes, 0, 0, 0 };
+  v.volumeCount = { volumes, plan.interleave ? std::max(0, rowLength) : 0, 0, 0 };
+  double rotation[16];
+  VCTPatternRotations(rotation);
+  for (int r = 0; r < 4; ++r)
+    v.rotations[r] = { static_cast<float>(rotation[4 * r]), static_cast<float>(rotation[4 * r + 1]),
+      static_cast<float>(rotation[4 * r + 2]), static_cast<float>(rotation[4 * r + 3]) };
   std::int64_t offset = 0;
   for (int k = 0; k < volumes; ++k)
   {
@@ -1183,6 +1194,17 @@ double OpacityVolume::Sample(const double w[3]) const
 
 namespace
 {
+/// (x, y) turned in their plane: x c + y s, y c - x s (the GLSL's Turn).
+void Turn(double c, double s, double x[3], double y[3])
+{
+  for (int d = 0; d < 3; ++d)
+  {
+    const double a = x[d], b = y[d];
+    x[d] = a * c + b * s;
+    y[d] = b * c - a * s;
+  }
+}
+
 /// An orthonormal frame (x, y) around the unit vector n (Duff et al. 2017),
 /// as the GLSL's Frame.
 void Frame(const double n[3], double x[3], double y[3])
@@ -1364,13 +1386,16 @@ double SphereOpacity(const BitGrid& grid, const VCTPlan& plan, const OpacityVolu
 }
 }
 
-double ConeTraceAO(const BitGrid& grid, const VCTPlan& plan, const double pWorld[3], const double nWorld[3])
+double ConeTraceAO(const BitGrid& grid, const VCTPlan& plan, const double pWorld[3], const double nWorld[3],
+  double rotation)
 {
   double p[3], n[3];
   grid.ToGrid(pWorld, p);
   grid.ToGrid(nWorld, n);
   double tx[3], ty[3];
   Frame(n, tx, ty);
+  const double cosTurn = std::cos(rotation), sinTurn = std::sin(rotation);
+  Turn(cosTurn, sinTurn, tx, ty);
   // The frustum grid's voxels grow with depth: the apex offset and the
   // rays' step follow the local voxel.
   // A frustum grid's voxels are a pixel wide and a slice deep, both
@@ -1392,6 +1417,7 @@ double ConeTraceAO(const BitGrid& grid, const VCTPlan& plan, const double pWorld
       dir[d] = l[0] * tx[d] + l[1] * ty[d] + l[2] * n[d];
     double u[3], v[3]; // the rays' frame across the cone's axis
     Frame(dir, u, v);
+    Turn(cosTurn, sinTurn, u, v);
     // Rays: the cone's rays at once; volume: each sphere's prisms. Then the
     // volumes' opacity over each sphere.
     const bool rays = plan.occupancy == VCTOccupancy::Rays;
@@ -1411,6 +1437,37 @@ double ConeTraceAO(const BitGrid& grid, const VCTPlan& plan, const double pWorld
   return 1.0 - occlusion;
 }
 
+void VCTPatternRotations(double rotation[16])
+{
+  // The 4 x 4 ordered-dither (Bayer) order: cells next to each other get
+  // steps far apart.
+  static const int order[16] = { 0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5 };
+  for (int c = 0; c < 16; ++c)
+    rotation[c] = 2.0 * Pi / 5.0 * (order[c] + 0.5) / 16.0;
+}
+
+double VCTPixelRotation(const VCTPlan& plan, std::int64_t k, int width)
+{
+  if (!plan.interleave || width < 1)
+    return 0.0;
+  double rotation[16];
+  VCTPatternRotations(rotation);
+  const std::int64_t i = k % width, j = k / width;
+  return rotation[(i & 3) + 4 * (j & 3)];
+}
+
+std::vector<double> VCTFilterWeights(const VCTPlan& plan)
+{
+  return plan.interleave ? std::vector<double>{ 0.5, 1.0, 1.0, 1.0, 0.5 } : std::vector<double>();
+}
+
+void FinishVCT(const VCTPlan& plan, SurfaceFrame& frame, int threads)
+{
+  const std::vector<double> weights = VCTFilterWeights(plan);
+  if (!weights.empty())
+    DepthAwareFilter(frame, weights, plan.filterTolerance, frame.ao, threads, plan.filterReach);
+}
+
 bool VCTFrame(const BitGrid& grid, const VCTPlan& plan, SurfaceFrame& frame, int threads,
   std::string& error)
 {
@@ -1421,8 +1478,10 @@ bool VCTFrame(const BitGrid& grid, const VCTPlan& plan, SurfaceFrame& frame, int
   }
   ParallelFor(frame.triangle.size(), threads, [&](std::size_t i) {
     if (frame.triangle[i] >= 0)
-      frame.ao[i] = ConeTraceAO(grid, plan, &frame.position[3 * i], &frame.normal[3 * i]);
+      frame.ao[i] = ConeTraceAO(grid, plan, &frame.position[3 * i], &frame.normal[3 * i],
+        VCTPixelRotation(plan, static_cast<std::int64_t>(i), frame.width));
   });
+  FinishVCT(plan, frame, threads);
   return true;
 }
 

@@ -45,6 +45,11 @@
 //    rays start (and where a volume's opacity is read).
 // The paper's Low / Medium / High: spheres 3 / 5 / 7, prisms 3 / 6 / 12,
 // 6 cones; 128 depth slices (here 32 to 1024, a multiple of 32; default 256).
+// 3. Over a frame (VCTFrame, the GPU's TraceFrame and TracePixels), each
+//    pixel's cones are turned about its normal by one of 16 angles over a
+//    4 x 4 tile, and a depth-aware filter of the tile's size averages the
+//    16 ray sets (VCTSettings::interleave): one set for every pixel drew
+//    contour bands on flat faces near occluders.
 #ifndef caoVoxelConeTracing_h
 #define caoVoxelConeTracing_h
 
@@ -109,6 +114,22 @@ struct VCTSettings
   /// shared meshes, at 0.55 times the time: the denser samples meet more of
   /// the surface's own voxels near the apex).
   double rayStep = 1.0;
+  /// The cones turned about the normal per pixel, by one of 16 angles over
+  /// a 4 x 4 tile of pixels (VCTPatternRotations), then the depth-aware
+  /// filter of the tile's size (VAO's: DepthAwareFilter, 5 taps 1/2, 1, 1,
+  /// 1, 1/2, its taps within R of the pixel's point), so each pixel's AO
+/// averages 16 ray sets. Default true: with
+  /// one set for every pixel, each ray's hit or miss is a step in the AO,
+  /// and the steps drew contour bands on flat faces near occluders
+  /// (measured by `cao bench surface`'s ripple). Frames only: one point's
+  /// AO (ConeTraceAO) has no pixel.
+  bool interleave = true;
+  /// The filter's tangent-plane tolerance, in R (0..10]. Default 0.02:
+  /// VAO's 0.1 blurred the AO across nearby surfaces of fine geometry
+  /// (measured, `cao bench surface --default-radius`, Medium, 256 slices,
+  /// 4 shared meshes, 256-ray reference: mean RMSE 0.0569 at 0.1, 0.0475
+  /// at 0.03, 0.0465 at 0.02, 0.0466 at 0.01; without the pattern 0.0486).
+  double filterTolerance = 0.02;
   static constexpr int MaximumPrisms = 32;
 
   /// The spheres and prisms the quality preset gives (Custom: the fields).
@@ -331,6 +352,9 @@ struct VCTPlan
   double apexOffset = 0.0;                  ///< world units
   VCTOccupancy occupancy = VCTOccupancy::Rays;
   double rayStep = 0.0;                     ///< world units (rays)
+  bool interleave = false;                  ///< VCTSettings::interleave (frames)
+  double filterTolerance = 0.0;             ///< world units (the filter's)
+  double filterReach = 0.0;                 ///< world units: R (the filter's taps within it)
   double coneTangent = 0.0;                 ///< tan(beta): the rays' spread
   std::vector<const OpacityVolume*> volumes; ///< occluding volumes (not owned), may be empty
 };
@@ -363,12 +387,29 @@ bool GridPoints(const BitGrid& grid, const std::vector<double>& points, std::vec
 /// `points` points (caoGPULayout.h VCTParams); the plan's occluding
 /// volumes (at most CAO_VCT_MAX_VOLUMES) with their opacity one after
 /// another in plan order, as the GPU engine uploads them.
-layout::VCTParams MakeVCTParams(const BitGrid& grid, const VCTPlan& plan, int points);
+/// `rowLength` > 0: the points are the pixels of an image of rows this
+/// long (the uncovered ones too), each turned by VCTPixelRotation.
+layout::VCTParams MakeVCTParams(const BitGrid& grid, const VCTPlan& plan, int points, int rowLength = 0);
 
-/// The AO (1 = open) at P with unit normal n (world coordinates).
-double ConeTraceAO(const BitGrid& grid, const VCTPlan& plan, const double p[3], const double n[3]);
+/// The AO (1 = open) at P with unit normal n (world coordinates), the
+/// cones (and each cone's rays) turned by `rotation` radians about n.
+double ConeTraceAO(const BitGrid& grid, const VCTPlan& plan, const double p[3], const double n[3],
+  double rotation = 0.0);
 
-/// The AO of every covered pixel of `frame` (CastPrimary's).
+/// The interleaved pattern's 16 rotations (radians), for the pixel cells
+/// i % 4 + 4 (j % 4): a 4 x 4 ordered-dither order of 16 steps over the
+/// side cones' period (2 pi / 5), so that neighbouring pixels differ most.
+void VCTPatternRotations(double rotation[16]);
+/// The rotation of pixel k of a `width`-pixel row (0 without interleave).
+double VCTPixelRotation(const VCTPlan& plan, std::int64_t k, int width);
+/// The filter after the per-pixel AO (none without interleave), on CPU
+/// frames and after the GPU's trace of a frame read back.
+void FinishVCT(const VCTPlan& plan, SurfaceFrame& frame, int threads);
+/// Its weights per axis (empty: none), as VAOFilterWeights.
+std::vector<double> VCTFilterWeights(const VCTPlan& plan);
+
+/// The AO of every covered pixel of `frame` (CastPrimary's): the per-pixel
+/// cone tracing, then FinishVCT.
 bool VCTFrame(const BitGrid& grid, const VCTPlan& plan, SurfaceFrame& frame, int threads,
   std::string& error);
 

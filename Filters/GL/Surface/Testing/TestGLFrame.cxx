@@ -194,7 +194,7 @@ int TestGLFrame(int argc, char* argv[])
     double ms = 0;
     return frame.Read(cao::gl::FrameEngine::Depth, fbo, 0, 0, w, h, error) && frame.ChangedPixels(changed, error) &&
       frame.GBuffer(camera.ndcToWorld, grid.axes, covered, error) &&
-      cones.TracePixels(p, frame.PointBuffer(), frame.NormalBuffer(), frame.AOBuffer(), frame.Pixels(), ms, error) &&
+      cones.TracePixels(p, frame.PointBuffer(), frame.NormalBuffer(), frame.AOBuffer(), frame.Pixels(), ms, error, w) &&
       (frame.AOWritten(), frame.ReadAO(ao, error)) && changed == (fresh ? frame.Pixels() : 0) &&
       covered == cpu.covered;
   };
@@ -332,7 +332,7 @@ int TestGLFrame(int argc, char* argv[])
     ok = ok && blitted.ChangedPixels(changed, error) &&
       blitted.GBuffer(camera.ndcToWorld, grid.axes, covered, error) &&
       cones.TracePixels(plan, blitted.PointBuffer(), blitted.NormalBuffer(), blitted.AOBuffer(), blitted.Pixels(), ms,
-        error) &&
+        error, w) &&
       (blitted.AOWritten(), true) && blitted.Read(cao::gl::FrameEngine::Color, fbo, 0, 0, w, h, error) &&
       blitted.Combine(0.8, whole == 1, error) && blitted.Write(fbo, 0, 0, error) && blitted.ReadAO(aoBlit, error);
     std::vector<unsigned char> px(4 * static_cast<std::size_t>(w) * h);

@@ -152,6 +152,14 @@ void Frame(vec3 n, out vec3 x, out vec3 y)
   y = vec3(b, sgn + n.y * n.y * a, -n.y);
 }
 
+/// (x, y) turned in their plane: x c + y s, y c - x s (cao's Turn).
+void Turn(float c, float s, inout vec3 x, inout vec3 y)
+{
+  vec3 a = x;
+  x = a * c + y * s;
+  y = y * c - a * s;
+}
+
 bool Bit(int i, int j, int k)
 {
   if (i < 0 || j < 0 || k < 0 || i >= vct.grid.x || j >= vct.grid.y || k >= vct.grid.z)
@@ -243,6 +251,17 @@ void main()
   float invH = vct.origin.w;
   vec3 tx, ty;
   Frame(n, tx, ty);
+  // Pixels (vct.volumeCount.y: their rows' length): the cones turned by
+  // the 4 x 4 pattern's angle of the pixel's cell (cao::VCTPixelRotation).
+  float turn = 0.0;
+  int row = vct.volumeCount.y;
+  if (row > 0)
+  {
+    int cell = ((index % row) & 3) + 4 * ((index / row) & 3);
+    turn = vct.rotations[cell >> 2][cell & 3];
+  }
+  float cosTurn = cos(turn), sinTurn = sin(turn);
+  Turn(cosTurn, sinTurn, tx, ty);
   // The frustum grid's voxels grow with depth: the apex offset and the
   // rays' step follow the local voxel's larger side (ConeTraceAO's).
   bool frustum = vct.frustum[4].x > 0.5;
@@ -255,6 +274,7 @@ void main()
     vec3 dir = l.x * tx + l.y * ty + l.z * n;
     vec3 u, v; // the rays' frame across the cone's axis
     Frame(dir, u, v);
+    Turn(cosTurn, sinTurn, u, v);
     // Rays: the cone's rays at once; volume: each sphere's prisms. Then the
     // volumes' opacity over each sphere.
     bool rays = vct.apex.y > 0.5;

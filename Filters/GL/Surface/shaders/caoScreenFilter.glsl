@@ -2,7 +2,8 @@
 // (caoScreenSpaceAO.cxx: FinishHBAO's blur, FinishVAO's filter), in float,
 // one invocation per pixel: the weighted mean of the covered taps of a
 // (2r + 1)^2 window whose points lie within the tolerance of the pixel's
-// tangent plane (weights per axis, multiplied), then (VAO) clamped to
+// tangent plane (and, ss.finish.w > 0, within that reach of its point;
+// weights per axis, multiplied), then (VAO) clamped to
 // [0, 1]. Reads the estimator's AO (NaN: not covered), writes the filtered
 // AO (NaN: not covered) where the frame's combine reads it. After
 // caoScreenCommon.glsl.
@@ -49,7 +50,8 @@ void main()
         float a = raw[q];
         if (!Covered(q) || isnan(a))
           continue;
-        if (!(abs(dot(positions[q].xyz - p, n)) <= ss.finish.y))
+        vec3 d = positions[q].xyz - p;
+        if (!(abs(dot(d, n)) <= ss.finish.y) || (ss.finish.w > 0.0 && !(dot(d, d) <= ss.finish.w * ss.finish.w)))
           continue;
         float wt = Weight(di + r) * Weight(dj + r);
         sum += wt * a;

@@ -1302,11 +1302,16 @@ int TestContextualAOPass(int, char*[])
         "(largest %d)",
         mode.c_str(), first.c_str(), gpu.both, gpu.both ? gpu.sum / gpu.both : 1.0, gpu.worst, gpu.differing,
         gpu.coverage, off, worstLevel);
-      // (The depth blitted: the EGL window's framebuffer has a depth format the GL reports.)
+      // (The depth blitted: the EGL window's framebuffer has a depth format the GL reports.
+      // Pixels apart by more than 1e-3: at most 1%. A ray that float and
+      // double decide differently changes its pixel's AO by about 0.03,
+      // and VCT's 5 x 5 filter spreads that over up to 25 pixels at up to
+      // 1/12 of it each: 92 pixels of 19 486 (0.47%) where the unfiltered
+      // trace kept under 0.2%; the mean stays under 1e-4.)
       Check(report.find("\"frame_on_gpu\": true") != std::string::npos &&
           report.find("\"frame_depth\": \"blit\"") != std::string::npos &&
           first == "voxelize,gbuffer,trace," + combine && gpu.both > 15000 && gpu.coverage == 0 &&
-          gpu.sum / gpu.both < 1e-4 && gpu.differing < 0.002 * gpu.both &&
+          gpu.sum / gpu.both < 1e-4 && gpu.differing < 0.01 * gpu.both &&
           off < 0.002 * static_cast<double>(cpuPicture.size()),
         text);
       // Negative control: Low on the GPU frame is not the CPU's Medium, by
@@ -1316,7 +1321,7 @@ int TestContextualAOPass(int, char*[])
       const Apart low = apart();
       pass->SetQuality(2);
       window->Render();
-      Check(low.sum / low.both > 1e-3 && low.differing > 0.02 * low.both,
+      Check(low.sum / low.both > 1e-3 && low.differing > 0.1 * low.both,
         "negative control: the GPU frame at Low is apart from the CPU's Medium (mean " +
           std::to_string(low.sum / low.both) + ", " + std::to_string(low.differing) + " pixels)");
       std::printf("GPU frame: %s\n", report.c_str());
