@@ -689,6 +689,23 @@ std::vector<Pose> DefaultPath(const double b[6], int count)
 
 void TrianglesOf(vtkPolyData* mesh, std::vector<double>& points, std::vector<std::int64_t>& tris)
 {
+  // A mesh of triangles only (no strips, every polygon three points) is
+  // read as it is: the triangle filter would copy it whole.
+  vtkCellArray* given = mesh->GetPolys();
+  if (mesh->GetNumberOfStrips() == 0 && given && given->IsHomogeneous() == 3)
+  {
+    const vtkIdType count = mesh->GetNumberOfPoints();
+    points.resize(3 * static_cast<std::size_t>(count));
+    for (vtkIdType i = 0; i < count; ++i)
+      mesh->GetPoint(i, &points[3 * i]);
+    tris.clear();
+    tris.reserve(3 * static_cast<std::size_t>(given->GetNumberOfCells()));
+    vtkIdType n;
+    const vtkIdType* ids;
+    for (given->InitTraversal(); given->GetNextCell(n, ids);)
+      tris.insert(tris.end(), { ids[0], ids[1], ids[2] });
+    return;
+  }
   vtkNew<vtkTriangleFilter> triangles;
   triangles->SetInputData(mesh);
   triangles->PassVertsOff();
@@ -700,6 +717,7 @@ void TrianglesOf(vtkPolyData* mesh, std::vector<double>& points, std::vector<std
     t->GetPoint(i, &points[3 * i]);
   tris.clear();
   vtkCellArray* polys = t->GetPolys();
+  tris.reserve(3 * static_cast<std::size_t>(polys->GetNumberOfCells()));
   vtkIdType n;
   const vtkIdType* ids;
   for (polys->InitTraversal(); polys->GetNextCell(n, ids);)

@@ -1,5 +1,6 @@
 #include "caoTriangleBVH.h"
 
+#include "caoMemory.h"
 #include "caoVectorMath.h"
 
 #include <algorithm>
@@ -12,6 +13,25 @@ namespace
 {
 constexpr int LeafSize = 4;
 constexpr int MaximumDepth = 64;
+
+/// Room for `n` elements, its pages advised to huge pages before the
+/// first write (caoMemory.h).
+template <class T>
+void ReserveHuge(std::vector<T>& v, std::size_t n)
+{
+  v.reserve(n);
+  AdviseHugePages(v.data(), n * sizeof(T));
+}
+}
+
+/// The record of the triangle whose point ids are `id`: its first corner
+/// and its two edges from it (what the ray test and the boxes read).
+void TriangleBVH::MakeTriangle(const std::vector<double>& points, const std::int64_t* id, Triangle& tri)
+{
+  const Vec3 v0 = LoadVec3(&points[static_cast<std::size_t>(3 * id[0])]);
+  StoreVec3(v0, tri.v0);
+  StoreVec3(LoadVec3(&points[static_cast<std::size_t>(3 * id[1])]) - v0, tri.e1);
+  StoreVec3(LoadVec3(&points[static_cast<std::size_t>(3 * id[2])]) - v0, tri.e2);
 }
 
 bool TriangleBVH::Build(const std::vector<double>& points,
@@ -44,9 +64,12 @@ bool TriangleBVH::Build(const std::vector<double>& points,
     }
   }
   this->normals.assign(static_cast<std::size_t>(numTris), { { 0.0, 0.0, 0.0 } });
-  std::vector<std::int64_t> order;
-  std::vector<double> centroids; // x, y, z per kept triangle, then its box
-  std::vector<Triangle> all;
+  // Centroid and input triangle per kept triangle; the triangles' records
+  // are made once, in leaf order, after the tree. The large buffers are
+  // advised to huge pages before their first write (on this VM each 4 KiB
+  // page's first touch is a fault of about 12 us).
+  std::vector<BuildItem> items;
+  ReserveHuge(items, static_cast<std::size_t>(numTris));
   for (std::int64_t t = 0; t < numTris; ++t)
   {
     const std::int64_t* id = &tris[static_cast<std::size_t>(3 * t)];
@@ -59,34 +82,27 @@ bool TriangleBVH::Build(const std::vector<double>& points,
         return false;
       }
     }
-    const double* a = &points[static_cast<std::size_t>(3 * id[0])];
-    const double* b = &points[static_cast<std::size_t>(3 * id[1])];
-    const double* c = &points[static_cast<std::size_t>(3 * id[2])];
-    const Vec3 v0 = LoadVec3(a), e1 = LoadVec3(b) - v0, e2 = LoadVec3(c) - v0;
     Triangle tri;
-    StoreVec3(v0, tri.v0);
-    StoreVec3(e1, tri.e1);
-    StoreVec3(e2, tri.e2);
-    const Vec3 n = glm::cross(e1, e2);
+    MakeTriangle(points, id, tri);
+    const Vec3 n = glm::cross(LoadVec3(tri.e1), LoadVec3(tri.e2));
     const double length = std::sqrt(glm::dot(n, n));
     if (!(length > 0.0))
       continue; // zero area: never hit
     this->normals[static_cast<std::size_t>(t)] = { { n[0] / length, n[1] / length, n[2] / length } };
-    all.push_back(tri);
-    this->ids.push_back(t);
+    const double* a = &points[static_cast<std::size_t>(3 * id[0])];
+    const double* b = &points[static_cast<std::size_t>(3 * id[1])];
+    const double* c = &points[static_cast<std::size_t>(3 * id[2])];
+    BuildItem item;
     for (int d = 0; d < 3; ++d)
-      centroids.push_back((a[d] + b[d] + c[d]) / 3.0);
+      item.c[d] = (a[d] + b[d] + c[d]) / 3.0;
+    item.t = t;
+    items.push_back(item);
   }
-  const std::int64_t kept = static_cast<std::int64_t>(all.size());
-  order.resize(static_cast<std::size_t>(kept));
-  for (std::int64_t i = 0; i < kept; ++i)
-    order[static_cast<std::size_t>(i)] = i;
-  // Per-triangle boxes, kept beside the triangles for the node bounds.
-  this->triangles = std::move(all);
+  const std::int64_t kept = static_cast<std::int64_t>(items.size());
   if (kept > 0)
   {
-    this->nodes.reserve(static_cast<std::size_t>(2 * kept / LeafSize + 2));
-    this->BuildNode(order, centroids, 0, kept, 0);
+    ReserveHuge(this->nodes, static_cast<std::size_t>(2 * kept / LeafSize + 2));
+    this->BuildNode(points, tris, items, 0, kept, 0);
     const Node& root = this->nodes[0];
     for (int d = 0; d < 3; ++d)
     {
@@ -94,21 +110,21 @@ bool TriangleBVH::Build(const std::vector<double>& points,
       this->bounds[2 * d + 1] = root.hi[d];
     }
   }
-  // Put the triangles (and their input ids) in leaf order.
-  std::vector<Triangle> sorted(static_cast<std::size_t>(kept));
-  std::vector<std::int64_t> sortedIds(static_cast<std::size_t>(kept));
-  for (std::int64_t i = 0; i < kept; ++i)
+  // The triangles (and their input ids) in leaf order.
+  ReserveHuge(this->triangles, static_cast<std::size_t>(kept));
+  this->ids.reserve(static_cast<std::size_t>(kept));
+  for (const BuildItem& item : items)
   {
-    sorted[static_cast<std::size_t>(i)] = this->triangles[static_cast<std::size_t>(order[static_cast<std::size_t>(i)])];
-    sortedIds[static_cast<std::size_t>(i)] = this->ids[static_cast<std::size_t>(order[static_cast<std::size_t>(i)])];
+    Triangle tri;
+    MakeTriangle(points, &tris[static_cast<std::size_t>(3 * item.t)], tri);
+    this->triangles.push_back(tri);
+    this->ids.push_back(item.t);
   }
-  this->triangles = std::move(sorted);
-  this->ids = std::move(sortedIds);
   return true;
 }
 
-std::int64_t TriangleBVH::BuildNode(std::vector<std::int64_t>& order,
-  std::vector<double>& centroids, std::int64_t begin, std::int64_t end, int depth)
+std::int64_t TriangleBVH::BuildNode(const std::vector<double>& points, const std::vector<std::int64_t>& tris,
+  std::vector<BuildItem>& items, std::int64_t begin, std::int64_t end, int depth)
 {
   const std::int64_t index = static_cast<std::int64_t>(this->nodes.size());
   this->nodes.push_back(Node{});
@@ -121,16 +137,11 @@ std::int64_t TriangleBVH::BuildNode(std::vector<std::int64_t>& order,
   }
   for (std::int64_t i = begin; i < end; ++i)
   {
-    const std::int64_t t = order[static_cast<std::size_t>(i)];
-    const Triangle& tri = this->triangles[static_cast<std::size_t>(t)];
+    const BuildItem& item = items[static_cast<std::size_t>(i)];
     for (int d = 0; d < 3; ++d)
     {
-      const double a = tri.v0[d], b = a + tri.e1[d], c = a + tri.e2[d];
-      node.lo[d] = std::min({ node.lo[d], a, b, c });
-      node.hi[d] = std::max({ node.hi[d], a, b, c });
-      const double m = centroids[static_cast<std::size_t>(3 * t + d)];
-      clo[d] = std::min(clo[d], m);
-      chi[d] = std::max(chi[d], m);
+      clo[d] = std::min(clo[d], item.c[d]);
+      chi[d] = std::max(chi[d], item.c[d]);
     }
   }
   int axis = 0;
@@ -140,23 +151,43 @@ std::int64_t TriangleBVH::BuildNode(std::vector<std::int64_t>& order,
   const std::int64_t count = end - begin;
   if (count <= LeafSize || depth >= MaximumDepth || !(chi[axis] > clo[axis]))
   {
+    // A leaf's box: its triangles' corners.
+    for (std::int64_t i = begin; i < end; ++i)
+    {
+      Triangle tri;
+      MakeTriangle(points, &tris[static_cast<std::size_t>(3 * items[static_cast<std::size_t>(i)].t)], tri);
+      for (int d = 0; d < 3; ++d)
+      {
+        const double a = tri.v0[d], b = a + tri.e1[d], c = a + tri.e2[d];
+        node.lo[d] = std::min({ node.lo[d], a, b, c });
+        node.hi[d] = std::max({ node.hi[d], a, b, c });
+      }
+    }
     node.first = begin;
     node.count = static_cast<std::int32_t>(count);
     this->nodes[static_cast<std::size_t>(index)] = node;
     return index;
   }
   const std::int64_t middle = begin + count / 2;
-  std::nth_element(order.begin() + begin, order.begin() + middle, order.begin() + end,
-    [&centroids, axis](std::int64_t a, std::int64_t b) {
-      return centroids[static_cast<std::size_t>(3 * a + axis)] <
-        centroids[static_cast<std::size_t>(3 * b + axis)];
-    });
-  this->BuildNode(order, centroids, begin, middle, depth + 1);
-  node.first = this->BuildNode(order, centroids, middle, end, depth + 1);
+  std::nth_element(items.begin() + begin, items.begin() + middle, items.begin() + end,
+    [axis](const BuildItem& a, const BuildItem& b) { return a.c[axis] < b.c[axis]; });
+  const std::int64_t left = this->BuildNode(points, tris, items, begin, middle, depth + 1);
+  const std::int64_t right = this->BuildNode(points, tris, items, middle, end, depth + 1);
+  // An inner node's box: its children's (the same corners, so the same
+  // minimum and maximum as reading its triangles).
+  for (int d = 0; d < 3; ++d)
+  {
+    const Node& l = this->nodes[static_cast<std::size_t>(left)];
+    const Node& r = this->nodes[static_cast<std::size_t>(right)];
+    node.lo[d] = std::min(l.lo[d], r.lo[d]);
+    node.hi[d] = std::max(l.hi[d], r.hi[d]);
+  }
+  node.first = right;
   node.count = 0;
   this->nodes[static_cast<std::size_t>(index)] = node;
   return index;
 }
+
 
 template <bool AnyHit>
 bool TriangleBVH::Trace(const double origin[3], const double direction[3], double tMin,

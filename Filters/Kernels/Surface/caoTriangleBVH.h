@@ -69,8 +69,17 @@ private:
   template <bool AnyHit>
   bool Trace(const double origin[3], const double direction[3], double tMin, double tMax,
     RayHit* hit) const;
-  std::int64_t BuildNode(std::vector<std::int64_t>& order, std::vector<double>& centroids,
-    std::int64_t begin, std::int64_t end, int depth);
+  /// A triangle while the tree is built: its centroid and its input index. The
+  /// split sorts these in place (contiguous), and an inner node's box is
+  /// its children's: no level reads the triangles again.
+  struct BuildItem
+  {
+    double c[3];
+    std::int64_t t;
+  };
+  std::int64_t BuildNode(const std::vector<double>& points, const std::vector<std::int64_t>& tris,
+    std::vector<BuildItem>& items, std::int64_t begin, std::int64_t end, int depth);
+  static void MakeTriangle(const std::vector<double>& points, const std::int64_t* id, Triangle& tri);
 
   std::vector<Node> nodes;
   std::vector<Triangle> triangles; ///< in leaf order
