@@ -368,6 +368,71 @@ bool ParseVCTOccupancy(const std::string& text, VCTOccupancy& occupancy)
   return false;
 }
 
+namespace
+{
+std::uint64_t EdgeKey(std::uint64_t a, std::uint64_t b, std::uint64_t*)
+{
+  return (a << 32) | b;
+}
+std::pair<std::uint64_t, std::uint64_t> EdgeKey(
+  std::uint64_t a, std::uint64_t b, std::pair<std::uint64_t, std::uint64_t>*)
+{
+  return { a, b };
+}
+std::uint64_t EdgeFirst(std::uint64_t key)
+{
+  return key >> 32;
+}
+std::uint64_t EdgeSecond(std::uint64_t key)
+{
+  return key & 0xffffffffu;
+}
+std::uint64_t EdgeFirst(const std::pair<std::uint64_t, std::uint64_t>& key)
+{
+  return key.first;
+}
+std::uint64_t EdgeSecond(const std::pair<std::uint64_t, std::uint64_t>& key)
+{
+  return key.second;
+}
+
+/// OpenEdges after the points are merged: every edge of `t` (canonical ids,
+/// smaller first) as a Key, sorted; an edge used by other than two
+/// triangles is open (its record appended to `list`).
+template <class Key>
+std::int64_t OpenRuns(const std::vector<std::int64_t>& t, const std::vector<std::uint64_t>& canonical,
+  const std::vector<std::size_t>& first, const std::vector<double>& p, std::vector<double>& list)
+{
+  std::vector<Key> edges;
+  edges.reserve(t.size());
+  for (std::size_t f = 0; f + 2 < t.size(); f += 3)
+    for (int e = 0; e < 3; ++e)
+    {
+      const std::uint64_t a = canonical[static_cast<std::size_t>(t[f + e])];
+      const std::uint64_t b = canonical[static_cast<std::size_t>(t[f + (e + 1) % 3])];
+      if (a != b)
+        edges.push_back(EdgeKey(std::min(a, b), std::max(a, b), static_cast<Key*>(nullptr)));
+    }
+  std::sort(edges.begin(), edges.end());
+  std::int64_t open = 0;
+  for (std::size_t k = 0; k < edges.size();)
+  {
+    std::size_t run = k + 1;
+    while (run < edges.size() && edges[run] == edges[k])
+      ++run;
+    if (run - k != 2)
+    {
+      ++open;
+      const std::size_t a = first[EdgeFirst(edges[k])], b = first[EdgeSecond(edges[k])];
+      list.insert(list.end(), { p[3 * a], p[3 * a + 1], p[3 * a + 2], p[3 * b], p[3 * b + 1], p[3 * b + 2],
+                                static_cast<double>(run - k) });
+    }
+    k = run;
+  }
+  return open;
+}
+}
+
 std::int64_t OpenEdges(const MeshView& mesh)
 {
   std::vector<double> edges;
@@ -433,37 +498,13 @@ std::int64_t OpenEdges(const MeshView& mesh, std::vector<double>& list)
   for (std::size_t k = 0; k < n; ++k)
     canonical[order[k]] = finite && k > 0 && !less(order[k - 1], order[k]) ? canonical[order[k - 1]] : k;
   const std::vector<std::int64_t>& t = *mesh.triangles;
-  std::vector<std::pair<std::uint64_t, std::uint64_t>> edges;
-  edges.reserve(t.size());
-  for (std::size_t f = 0; f + 2 < t.size(); f += 3)
-    for (int e = 0; e < 3; ++e)
-    {
-      std::uint64_t a = canonical[static_cast<std::size_t>(t[f + e])];
-      std::uint64_t b = canonical[static_cast<std::size_t>(t[f + (e + 1) % 3])];
-      if (a == b)
-        continue;
-      edges.emplace_back(std::min(a, b), std::max(a, b));
-    }
-  std::sort(edges.begin(), edges.end());
-  std::int64_t open = 0;
   std::vector<std::size_t> first(n); // a canonical id's first point
   for (std::size_t k = 0; k < n; ++k)
     first[canonical[order[k]]] = order[k];
-  for (std::size_t k = 0; k < edges.size();)
-  {
-    std::size_t run = k + 1;
-    while (run < edges.size() && edges[run] == edges[k])
-      ++run;
-    if (run - k != 2)
-    {
-      ++open;
-      const std::size_t a = first[edges[k].first], b = first[edges[k].second];
-      list.insert(list.end(), { p[3 * a], p[3 * a + 1], p[3 * a + 2], p[3 * b], p[3 * b + 1], p[3 * b + 2],
-                                static_cast<double>(run - k) });
-    }
-    k = run;
-  }
-  return open;
+  // Each edge as one key (two 32-bit ids: half the bytes to sort of a
+  // pair), or as a pair of ids past 2^32 points.
+  return n <= (std::size_t(1) << 32) ? OpenRuns<std::uint64_t>(t, canonical, first, p, list)
+                                     : OpenRuns<std::pair<std::uint64_t, std::uint64_t>>(t, canonical, first, p, list);
 }
 
 int BitGrid::CountBits(int i, int j, int k0, int k1) const
