@@ -698,12 +698,16 @@ void TrianglesOf(vtkPolyData* mesh, std::vector<double>& points, std::vector<std
     points.resize(3 * static_cast<std::size_t>(count));
     for (vtkIdType i = 0; i < count; ++i)
       mesh->GetPoint(i, &points[3 * i]);
-    tris.clear();
-    tris.reserve(3 * static_cast<std::size_t>(given->GetNumberOfCells()));
+    const vtkIdType cells = given->GetNumberOfCells();
+    tris.resize(3 * static_cast<std::size_t>(cells));
     vtkIdType n;
     const vtkIdType* ids;
-    for (given->InitTraversal(); given->GetNextCell(n, ids);)
-      tris.insert(tris.end(), { ids[0], ids[1], ids[2] });
+    for (vtkIdType c = 0; c < cells; ++c) // (by id: the caller's traversal state stays as it was)
+    {
+      given->GetCellAtId(c, n, ids);
+      for (int k = 0; k < 3; ++k)
+        tris[3 * static_cast<std::size_t>(c) + k] = ids[k];
+    }
     return;
   }
   vtkNew<vtkTriangleFilter> triangles;

@@ -80,7 +80,8 @@ read -r fx fy < <(screen face)
 drag face "$fx" "$fy" 0 -70
 # The middle button moves the box from anywhere on it, whatever the view
 # (head on, the front face's handle covers the centre handle): over the
-# box's centre, 60 pixels down.
-drag middle "$cx" "$cy" 0 60 2
+# box's centre where the first drag left it (80 pixels right of the
+# target; the face drag turned the box about its centre), 60 pixels down.
+drag middle "$((cx + 80))" "$cy" 0 60 2
 import -window root "$CAO_RESULT.png" 2>/dev/null || true
 exit 0

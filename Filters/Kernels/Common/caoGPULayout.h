@@ -288,7 +288,8 @@ struct VCTParams
 #define CAO_BINDING_VX_COLUMNS 4   /* storage: double per column, near depth and slices per depth (frustum) */
 #define CAO_BINDING_VX_PARITY 5    /* storage: uint per column, its crossings' parity (frustum, solid) */
 #define CAO_BINDING_VCT_COLUMNS 0  /* storage: vec2 per column, near depth and slices per depth (frustum) */
-#define CAO_BINDING_VCT_POINTS 4   /* storage: vec4 per point (xyz world, w unused) */
+#define CAO_BINDING_VCT_POINTS 4   /* storage: vec4 per point (xyz world; w: with a row length (VCTParams
+                                      volumeCount.y), w > 1e30 where no pixel is covered, as the filter reads) */
 #define CAO_BINDING_VCT_NORMALS 5  /* storage: vec4 per point (xyz unit normal; w 0: no point, AO NaN) */
 #define CAO_BINDING_VCT_AO 6       /* storage: float AO per point */
 #define CAO_BINDING_VCT_OPACITY 7  /* storage: float, the occluding volumes' opacity (VCTVolume; the

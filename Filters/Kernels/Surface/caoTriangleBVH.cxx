@@ -65,7 +65,7 @@ bool TriangleBVH::Build(const std::vector<double>& points,
   }
   this->normals.assign(static_cast<std::size_t>(numTris), { { 0.0, 0.0, 0.0 } });
   // Centroid and input triangle per kept triangle; the triangles' records
-  // are made once, in leaf order, after the tree. The large buffers are
+  // are stored once, in leaf order, after the tree. The large buffers are
   // advised to huge pages before their first write (on this VM each 4 KiB
   // page's first touch is a fault of about 12 us).
   std::vector<BuildItem> items;
@@ -101,7 +101,10 @@ bool TriangleBVH::Build(const std::vector<double>& points,
   const std::int64_t kept = static_cast<std::int64_t>(items.size());
   if (kept > 0)
   {
-    ReserveHuge(this->nodes, static_cast<std::size_t>(2 * kept / LeafSize + 2));
+    // A node of 5 or more triangles splits in two halves of at least 2, so
+    // a leaf holds at least 2 (one only when the mesh has one): fewer than
+    // `kept` nodes in all.
+    ReserveHuge(this->nodes, static_cast<std::size_t>(kept + 1));
     this->BuildNode(points, tris, items, 0, kept, 0);
     const Node& root = this->nodes[0];
     for (int d = 0; d < 3; ++d)

@@ -1,6 +1,7 @@
 """Writes a dense scene of streamline tubes: carotid.vtk's vectors traced
 from 300 random points within 8 of (137, 104, 23), Runge-Kutta 4 with steps
-of 0.8 (world units) in both directions (at most 500), tubes of radius 0.25 with 6
+of 0.8 (world units) in both directions (each line at most 500 long), tubes of
+radius 0.25 with 6
 sides, triangulated: 1 360 674 points, 2 714 148 triangles
 (docs/surface-benchmarks.md, "Dense meshes"). Run with /usr/bin/python3:
 
