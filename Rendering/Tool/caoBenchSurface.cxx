@@ -146,29 +146,6 @@ std::vector<std::array<std::int64_t, 2>> FlatTriples(const cao::SurfaceFrame& f,
   return out;
 }
 
-/// The RMS over `flat` of a[p-s] - 2 a[p] + a[p+s]; with `b`, the root of
-/// the mean product of a's and b's second differences (two independent
-/// estimates of one image: their noise averages out of the product, so
-/// this is the reference's own ripple without its noise).
-double Ripple(const std::vector<std::array<std::int64_t, 2>>& flat, const std::vector<double>& a,
-  const std::vector<double>* b = nullptr)
-{
-  double sum = 0;
-  std::int64_t n = 0;
-  for (const auto& t : flat)
-  {
-    const std::int64_t p = t[0], s = t[1];
-    const double da = a[p - s] - 2 * a[p] + a[p + s];
-    const double db = b ? (*b)[p - s] - 2 * (*b)[p] + (*b)[p + s] : da;
-    if (std::isfinite(da) && std::isfinite(db))
-    {
-      sum += da * db;
-      ++n;
-    }
-  }
-  return n ? std::sqrt(std::max(0.0, sum / n)) : 0;
-}
-
 /// The pass's depth G-buffer from an exact frame: each covered pixel's
 /// window depth, rounded to a 24-bit depth buffer's step, made into points
 /// and normals by cao::FrameFromDepth.
@@ -195,7 +172,7 @@ void Measure(Row& row, const std::vector<double>& ao, const std::vector<double>&
   const std::vector<double>& ref, const std::vector<double>& ref2, const std::vector<char>& band,
   const std::vector<std::array<std::int64_t, 2>>& flat)
 {
-  row.ripple = Ripple(flat, ao);
+  row.ripple = cao::Ripple(flat, ao);
   std::vector<double> absErr;
   double sum2 = 0, sum = 0, band2 = 0, flick = 0, refFlick = 0;
   std::int64_t n = 0, nb = 0, nf = 0;
@@ -311,9 +288,9 @@ int Run(Options& o, const CLI::App*)
     // Its errors against 4x the rays; its flicker is its own frame-to-frame change.
     Measure(self, ref.ao, ref2.ao, fine.ao, ref2.ao, band, flat);
     self.referenceFlicker = self.flicker;
-    // Its ripple: its own at 1x and 4x the rays, noise removed (Ripple).
+    // Its ripple: its own at 1x and 4x the rays, noise removed (cao::Ripple).
     const double rawRipple = self.ripple;
-    self.ripple = Ripple(flat, ref.ao, &fine.ao);
+    self.ripple = cao::Ripple(flat, ref.ao, &fine.ao);
     rows.push_back(self);
     {
       std::ostringstream note;

@@ -479,4 +479,23 @@ bool FrameFromDepth(const PixelCamera& camera, const std::vector<float>& depth, 
     }
   return true;
 }
+
+double Ripple(const std::vector<std::array<std::int64_t, 2>>& triples, const std::vector<double>& a,
+  const std::vector<double>* b)
+{
+  double sum = 0;
+  std::int64_t n = 0;
+  for (const auto& t : triples)
+  {
+    const std::size_t p = static_cast<std::size_t>(t[0]), s = static_cast<std::size_t>(t[1]);
+    const double da = a[p - s] - 2 * a[p] + a[p + s];
+    const double db = b ? (*b)[p - s] - 2 * (*b)[p] + (*b)[p + s] : da;
+    if (std::isfinite(da) && std::isfinite(db))
+    {
+      sum += da * db;
+      ++n;
+    }
+  }
+  return n ? std::sqrt(std::max(0.0, sum / n)) : 0;
+}
 }

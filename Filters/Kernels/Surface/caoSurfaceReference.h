@@ -22,6 +22,7 @@
 
 #include "caoTriangleBVH.h"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -134,6 +135,15 @@ bool FrameFromDepth(const PixelCamera& camera, const std::vector<float>& depth, 
 /// The reference AO of every covered pixel of `frame`.
 bool ReferenceFrame(const TriangleBVH& scene, const SurfaceReferenceSettings& settings,
   SurfaceFrame& frame, std::string& error);
+
+/// Bands and rings in an AO image: over pixel triples (p - s, p, p + s),
+/// each {p, s}, the root of the mean of a's second difference a[p-s] -
+/// 2 a[p] + a[p+s]; with `b`, of the mean product of a's and b's (two
+/// independent estimates of one image: their noise averages out of the
+/// product, so this is a noisy image's own ripple without its noise).
+/// Triples with a non-finite value are skipped.
+double Ripple(const std::vector<std::array<std::int64_t, 2>>& triples, const std::vector<double>& a,
+  const std::vector<double>* b = nullptr);
 
 }
 

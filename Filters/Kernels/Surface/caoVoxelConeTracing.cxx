@@ -1478,23 +1478,29 @@ double ConeTraceAO(const BitGrid& grid, const VCTPlan& plan, const double pWorld
   return 1.0 - occlusion;
 }
 
+namespace
+{
+/// Cell c's turn: the 4 x 4 ordered-dither (Bayer) order, so that cells
+/// next to each other get steps far apart, over the side cones' period.
+double PatternRotation(int c)
+{
+  static const int order[16] = { 0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5 };
+  return 2.0 * Pi / 5.0 * (order[c] + 0.5) / 16.0;
+}
+}
+
 void VCTPatternRotations(double rotation[16])
 {
-  // The 4 x 4 ordered-dither (Bayer) order: cells next to each other get
-  // steps far apart.
-  static const int order[16] = { 0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5 };
   for (int c = 0; c < 16; ++c)
-    rotation[c] = 2.0 * Pi / 5.0 * (order[c] + 0.5) / 16.0;
+    rotation[c] = PatternRotation(c);
 }
 
 double VCTPixelRotation(const VCTPlan& plan, std::int64_t k, int width)
 {
   if (!plan.interleave || width < 1)
     return 0.0;
-  double rotation[16];
-  VCTPatternRotations(rotation);
   const std::int64_t i = k % width, j = k / width;
-  return rotation[(i & 3) + 4 * (j & 3)];
+  return PatternRotation(static_cast<int>((i & 3) + 4 * (j & 3)));
 }
 
 std::vector<double> VCTFilterWeights(const VCTPlan& plan)

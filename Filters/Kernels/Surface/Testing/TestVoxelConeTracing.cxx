@@ -661,7 +661,7 @@ int TestVoxelConeTracing(int, char*[])
       grid, error), "%s", error.c_str());
     // Floor pixels whose row or column neighbours are floor too (z = 0,
     // normal +z), away from the wall's foot.
-    std::vector<std::array<std::size_t, 2>> flat;
+    std::vector<std::array<std::int64_t, 2>> flat;
     const std::size_t w = static_cast<std::size_t>(frame.width);
     auto floorPixel = [&](std::size_t k) {
       return frame.triangle[k] >= 0 && std::fabs(frame.position[3 * k + 2]) < 1e-9 &&
@@ -673,14 +673,8 @@ int TestVoxelConeTracing(int, char*[])
         {
           const std::size_t k = j * w + i;
           if (floorPixel(k) && floorPixel(k - step) && floorPixel(k + step))
-            flat.push_back({ k, step });
+            flat.push_back({ static_cast<std::int64_t>(k), static_cast<std::int64_t>(step) });
         }
-    auto ripple = [&](const std::vector<double>& a, const std::vector<double>& b) {
-      double sum = 0;
-      for (const auto& f : flat)
-        sum += (a[f[0] - f[1]] - 2 * a[f[0]] + a[f[0] + f[1]]) * (b[f[0] - f[1]] - 2 * b[f[0]] + b[f[0] + f[1]]);
-      return std::sqrt(std::max(0.0, sum / std::max<std::size_t>(flat.size(), 1)));
-    };
     cao::SurfaceFrame reference = frame, second = frame;
     cao::SurfaceReferenceSettings rs;
     rs.radius = radius;
@@ -699,7 +693,7 @@ int TestVoxelConeTracing(int, char*[])
       cao::SurfaceFrame f = frame;
       CAO_CHECK(cao::BuildVCTPlan(vs, grid, plan, error) && cao::VCTFrame(grid, plan, f, 0, error), "%s",
         error.c_str());
-      rms[on] = ripple(f.ao, f.ao);
+      rms[on] = cao::Ripple(flat, f.ao);
       double sum = 0;
       std::size_t n = 0;
       for (std::size_t k = 0; k < f.ao.size(); ++k)
@@ -710,7 +704,7 @@ int TestVoxelConeTracing(int, char*[])
         }
       rmse[on] = std::sqrt(sum / std::max<std::size_t>(n, 1));
     }
-    const double own = ripple(reference.ao, second.ao);
+    const double own = cao::Ripple(flat, reference.ao, &second.ao);
     std::printf("bands on a floor beside a wall (%zu pixel triples): ripple %.5f with the 4 x 4 pattern, %.5f "
                 "without (negative control), the reference's own %.5f; RMSE %.4f and %.4f\n",
       flat.size(), rms[1], rms[0], own, rmse[1], rmse[0]);
