@@ -282,6 +282,10 @@ struct vtkContextualAOPass::Internals
   std::vector<double> failedSceneKey; ///< a scene the grid failed on (not retried)
   // What the AO image was made for: camera, viewport, settings, grid, volumes.
   std::vector<double> viewKey;
+  // What the CPU path's G-buffer (`frame` but its AO) was made for: the
+  // scene, the viewport, the camera and the G-buffer's source. A change of
+  // volumes, method or AO settings alone traces again on the same G-buffer.
+  std::vector<double> primaryKey;
   cao::SurfaceFrame frame;
   // The last frame.
   std::vector<std::string> stages, reasons;
@@ -1184,10 +1188,22 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
   std::copy(pixels.ndcToWorld, pixels.ndcToWorld + 16, this->ndcToWorld);
   pixels.width = width;
   pixels.height = height;
-  if (this->gbuffer == DEPTH_BUFFER ? !cao::FrameFromDepth(pixels, this->depth, this->frame, error)
-                                    : !cao::CastPrimary(this->bvh, pixels, this->frame, error))
-    return this->Fail(self, error);
-  this->Stage(this->gbuffer == DEPTH_BUFFER ? "gbuffer" : "primary", start);
+  // The G-buffer: of the scene (serial), viewport, camera and source.
+  std::vector<double> primary{ key[0], key[2], key[3] };
+  primary.insert(primary.end(), key.begin() + 8, key.end());
+  const std::size_t count = static_cast<std::size_t>(width) * height;
+  const bool keep = primary == this->primaryKey && this->frame.width == width &&
+    this->frame.height == height && this->frame.position.size() == 3 * count &&
+    this->frame.normal.size() == 3 * count && this->frame.ao.size() == count;
+  this->primaryKey.clear();
+  if (!keep)
+  {
+    if (this->gbuffer == DEPTH_BUFFER ? !cao::FrameFromDepth(pixels, this->depth, this->frame, error)
+                                      : !cao::CastPrimary(this->bvh, pixels, this->frame, error))
+      return this->Fail(self, error);
+    this->Stage(this->gbuffer == DEPTH_BUFFER ? "gbuffer" : "primary", start);
+  }
+  this->primaryKey = primary;
   start = Clock::now();
   if (self->Method == HBAO)
   {
