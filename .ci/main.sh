@@ -5,6 +5,8 @@
 # Every pose of the path (Data/neghip-main.poses) cuts the volume. The 12
 # frames are rendered with AO (each frame's work report in JSON) and
 # without, and put side by side (AO off | AO on) to show what the AO adds.
+# Then the mixed scene (Rendering/Scene/Demo/mixed_scene.py): carotid.vtk's
+# volume, isosurface and streamline tubes, each with its AO, in one frame.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash .ci/setup.sh
@@ -37,3 +39,8 @@ for i in range(12):
 PY
 echo "wrote $out/neghip_000.png .. neghip_011.png (AO on), neghip_noao_*.png (AO off),"
 echo "      side_000.png .. side_011.png (AO off | AO on) and $out/report.json"
+# The mixed scene: carotid.vtk as a contextual-AO volume under a moving clip
+# sphere, with an isosurface and streamline tubes, every kind with its AO in
+# the same frame (the volume occluding the surfaces), AO off | AO on.
+PYTHONPATH="$build/python" /usr/bin/python3 Rendering/Scene/Demo/mixed_scene.py \
+  Data/carotid.vtk "$out" --frames 12 --image 640x480
