@@ -20,6 +20,9 @@
 #include "vtkObjectFactory.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkIdTypeArray.h"
+#include "vtkAlgorithmOutput.h"
 #include "vtkSMPThreadLocal.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
@@ -59,6 +62,8 @@ struct vtkLocalAmbientOcclusion::Internals
   cao::VolumeGeometry LastGeometry;
   cao::LAOSettings LastSettings;
   double LastUnitDistance = 0.0;
+  /// Whether the last run had occluders (its opacity then holds them).
+  bool LastOccluded = false;
 
   /// `kept` when only this filter holds it and it has `n` values: it is
   /// then written again in place (no new pages: on a virtual machine a
@@ -161,8 +166,43 @@ vtkCAOLAOSettingMacro(vtkLocalAmbientOcclusion, QualityPreset, int, this->Intern
 vtkLocalAmbientOcclusion::vtkLocalAmbientOcclusion()
   : Internal(new Internals)
 {
+  this->SetNumberOfInputPorts(2); // 1: the occluder meshes (optional)
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
+}
+
+//------------------------------------------------------------------------------
+int vtkLocalAmbientOcclusion::FillInputPortInformation(int port, vtkInformation* info)
+{
+  if (port == 1)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+    info->Set(vtkAlgorithm::INPUT_IS_REPEATABLE(), 1);
+    return 1;
+  }
+  return this->Superclass::FillInputPortInformation(port, info);
+}
+
+//------------------------------------------------------------------------------
+void vtkLocalAmbientOcclusion::AddOccluderConnection(vtkAlgorithmOutput* mesh)
+{
+  this->AddInputConnection(1, mesh);
+}
+
+void vtkLocalAmbientOcclusion::AddOccluderData(vtkPolyData* mesh)
+{
+  this->AddInputDataInternal(1, mesh);
+}
+
+void vtkLocalAmbientOcclusion::RemoveAllOccluders()
+{
+  this->SetInputConnection(1, nullptr);
+}
+
+int vtkLocalAmbientOcclusion::GetNumberOfOccluders()
+{
+  return this->GetNumberOfInputConnections(1);
 }
 
 //------------------------------------------------------------------------------
@@ -285,6 +325,15 @@ int vtkLocalAmbientOcclusion::RequestUpdateExtent(
   if (inInfo->Has(vtkDataObject::SPACING()))
     inInfo->Get(vtkDataObject::SPACING(), spacing);
   vtkCAO::RequestGhostedExtent(inInfo, outInfo, spacing, this->GetEffectiveReach(spacing), 2);
+  // Every occluder whole (a piece of a closed mesh is open): each piece of
+  // the volume tests its voxels against the whole surfaces.
+  for (int i = 0; i < inputVector[1]->GetNumberOfInformationObjects(); ++i)
+  {
+    vtkInformation* mesh = inputVector[1]->GetInformationObject(i);
+    mesh->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+    mesh->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+    mesh->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  }
   return 1;
 }
 
@@ -429,7 +478,14 @@ int vtkLocalAmbientOcclusion::RequestData(
   // touches on a 256^3 volume, and no pass comparing two); otherwise the
   // opacity of the run before the last.
   Internals& in = *this->Internal;
-  const bool inPlace = !gpu && in.LastOpacity && in.LastAO &&
+  // The occluders (port 1): their voxels are written after the transfer
+  // function's, so an edit then compares the whole new opacity with the
+  // last one (not in place).
+  std::vector<vtkPolyData*> occluders;
+  for (int i = 0; i < inputVector[1]->GetNumberOfInformationObjects(); ++i)
+    occluders.push_back(vtkPolyData::GetData(inputVector[1], i));
+  const bool occluded = !occluders.empty() || in.LastOccluded;
+  const bool inPlace = !occluded && !gpu && in.LastOpacity && in.LastAO &&
     in.LastOpacity->GetReferenceCount() == 1 && in.LastOpacity->GetNumberOfTuples() == voxels &&
     in.FullReason(scalars, component, geometry, settings, this->ScalarOpacityUnitDistance).empty();
   const vtkSmartPointer<vtkFloatArray> opacity = inPlace ? in.LastOpacity
@@ -438,8 +494,8 @@ int vtkLocalAmbientOcclusion::RequestData(
   std::uint8_t* changed = inPlace ? cao::PrepareEditMask(in.EditScratch, voxels) : nullptr;
   const vtkSmartPointer<vtkFloatArray> ao =
     Internals::Reusable(gpu ? nullptr : in.LastAO.Get(), voxels, vtkCAO::AmbientOcclusionName);
-  bool ok = true, aborted = false;
-  std::int64_t nonFinite = 0;
+  bool ok = true, aborted = false, occluderFailed = false;
+  std::int64_t nonFinite = 0, occupied = 0;
   std::string reason = "full recompute on the GPU";
   cao::OpacityEditStats edit;
   edit.changed = -1;
@@ -447,6 +503,11 @@ int vtkLocalAmbientOcclusion::RequestData(
   vtkCAO::WithThreads(this->NumberOfThreads, [&] {
     ok = vtkCAO::ComputeOpacity(this, scalars, component, this->OpacityFunction,
       plan.step / this->ScalarOpacityUnitDistance, opacity->GetPointer(0), nonFinite, changed);
+    if (ok && !vtkCAO::OccludeOpacity(input, occluders, opacity->GetPointer(0), occupied, error))
+    {
+      ok = false;
+      occluderFailed = true;
+    }
     if (!ok && inPlace)
     {
       // Aborted half-way over the last opacity: the last AO no longer
@@ -460,6 +521,12 @@ int vtkLocalAmbientOcclusion::RequestData(
   });
   if (nonFinite > 0)
     vtkWarningMacro(<< nonFinite << " NaN or Inf scalar value(s) treated as transparent.");
+  if (occluderFailed)
+  {
+    vtkErrorMacro("Cannot compute LAO: " << error << ".");
+    return 0;
+  }
+  in.LastOccluded = !occluders.empty();
   if (!ok)
     return 1; // aborted: the executive flags the output
   if (gpu)
@@ -491,6 +558,12 @@ int vtkLocalAmbientOcclusion::RequestData(
   run.preset = this->Internal->Settings.preset;
   vtkCAO::WriteLAOSettings(output->GetFieldData(), settings, run);
   vtkCAO::WriteLAOUpdate(output->GetFieldData(), reason, edit.changed, edit.recomputed);
+  {
+    vtkNew<vtkIdTypeArray> inside; // the voxels the occluders made opaque
+    inside->SetName("LAOOccludedVoxels");
+    inside->InsertNextValue(static_cast<vtkIdType>(occupied));
+    output->GetFieldData()->AddArray(inside);
+  }
   this->GPU->AddBackendLabel(output->GetFieldData(), gpu);
   if (gpu)
     vtkCAO::AddGPUStatistics(output->GetFieldData(), this->GPU->Engine(), voxels);
@@ -517,4 +590,5 @@ void vtkLocalAmbientOcclusion::PrintSelf(ostream& os, vtkIndent indent)
   vtkCAO::PrintLAOSettings(os, indent, this->Internal->Settings);
   os << indent << "Component: " << this->Component << "\n";
   os << indent << "OutputOpacity: " << (this->OutputOpacity ? "On" : "Off") << "\n";
+  os << indent << "Occluders: " << this->GetNumberOfInputConnections(1) << "\n";
 }

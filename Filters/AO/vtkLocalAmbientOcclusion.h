@@ -54,6 +54,8 @@ class vtkFloatArray;
 class vtkImageData;
 class vtkInformationDoubleKey;
 class vtkPiecewiseFunction;
+class vtkPolyData;
+class vtkAlgorithmOutput;
 namespace cao
 {
 struct LAOPlan;
@@ -262,6 +264,30 @@ public:
   static bool GetSettingIsInteger(int i);
   ///@}
 
+  ///@{
+  /**
+   * Opaque meshes that occlude the volume (input port 1, optional, any
+   * number): closed vtkPolyData surfaces in the volume's physical
+   * coordinates. Every voxel whose centre lies inside one is opaque
+   * (opacity 1) for the LAO, as an isosurface or a solid part placed in
+   * the volume blocks its light. When an occluder moves or changes (its
+   * data change), a CPU run is an opacity edit: only the voxels within
+   * the rays' reach of a voxel whose opacity changed are recomputed, bit
+   * for bit as a full run (field "LAOUpdate"; "LAOOccludedVoxels" counts
+   * the voxels inside the occluders, of the input read: a piece's with its
+   * ghost margin). On the OpenGL backend every voxel is recomputed. An
+   * open mesh is an error that names it; an empty one occludes nothing.
+   * The output's opacity ("AmbientOcclusionOpacity") includes the
+   * occluders, so vtkContextualAmbientOcclusion downstream continues
+   * this LAO; a clip there removes the occluders' voxels with the volume's
+   * inside the clip.
+   */
+  void AddOccluderConnection(vtkAlgorithmOutput* mesh);
+  void AddOccluderData(vtkPolyData* mesh);
+  void RemoveAllOccluders();
+  int GetNumberOfOccluders();
+  ///@}
+
   /// Includes the opacity function's modification time.
   vtkMTimeType GetMTime() override;
 
@@ -274,6 +300,7 @@ protected:
   vtkLocalAmbientOcclusion();
   ~vtkLocalAmbientOcclusion() override;
 
+  int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;

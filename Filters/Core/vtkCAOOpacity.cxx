@@ -7,7 +7,15 @@
 #include "vtkType.h"
 #include "vtkPiecewiseFunction.h"
 
+#include "vtkCAOInput.h"
+#include "vtkImageData.h"
+#include "vtkMatrix4x4.h"
+#include "vtkPolyData.h"
+
 #include "caoLAO.h"
+#include "caoVoxelConeTracing.h"
+
+#include <array>
 
 #include <cstring>
 #include <atomic>
@@ -133,6 +141,73 @@ bool ComputeOpacity(vtkAlgorithm* self, vtkDataArray* scalars, int component,
     }
   }
   nonFinite = bad.load();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool OccludeOpacity(vtkImageData* grid, const std::vector<vtkPolyData*>& meshes, float* opacity,
+  std::int64_t& occupied, std::string& error)
+{
+  occupied = 0;
+  if (meshes.empty())
+    return true;
+  int dims[3], extent[6];
+  grid->GetDimensions(dims);
+  grid->GetExtent(extent);
+  // Physical to continuous index (voxel centres at integers from 0):
+  // (index-to-physical, shifted by the extent's start)^-1.
+  vtkNew<vtkMatrix4x4> shift, indexToPhysical, physicalToIndex;
+  shift->SetElement(0, 3, extent[0]);
+  shift->SetElement(1, 3, extent[2]);
+  shift->SetElement(2, 3, extent[4]);
+  vtkMatrix4x4::Multiply4x4(grid->GetIndexToPhysicalMatrix(), shift, indexToPhysical);
+  if (!(std::fabs(indexToPhysical->Determinant()) > 0.0))
+  {
+    error = "the volume's index-to-physical matrix (spacing, direction) is singular";
+    return false;
+  }
+  vtkMatrix4x4::Invert(indexToPhysical, physicalToIndex);
+  std::array<double, 12> toIndex{};
+  for (int i = 0; i < 12; ++i)
+    toIndex[static_cast<std::size_t>(i)] = physicalToIndex->GetElement(i / 4, i % 4);
+  std::vector<std::uint8_t> all, inside;
+  for (std::size_t m = 0; m < meshes.size(); ++m)
+  {
+    if (!meshes[m] || meshes[m]->GetNumberOfPoints() == 0)
+      continue; // empty: occludes nothing
+    std::vector<double> points;
+    std::vector<std::int64_t> triangles;
+    TrianglesOf(meshes[m], points, triangles);
+    std::string why;
+    if (triangles.empty())
+      why = "it has no polygons";
+    else
+      for (double x : points)
+        if (!std::isfinite(x))
+        {
+          why = "it has a NaN or infinite point coordinate";
+          break;
+        }
+    if (why.empty() && !cao::InsideMask({ &points, &triangles }, dims, toIndex, inside, why))
+      why = why.empty() ? "its inside could not be found" : why;
+    if (!why.empty())
+    {
+      error = "occluder mesh " + std::to_string(m) + " of " + std::to_string(meshes.size()) +
+        ": " + why + " (an occluder must be a closed surface)";
+      return false;
+    }
+    if (all.empty())
+      all.swap(inside);
+    else
+      for (std::size_t v = 0; v < all.size(); ++v)
+        all[v] |= inside[v];
+  }
+  for (std::size_t v = 0; v < all.size(); ++v)
+    if (all[v])
+    {
+      opacity[v] = 1.0f;
+      ++occupied;
+    }
   return true;
 }
 }

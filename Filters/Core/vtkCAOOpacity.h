@@ -10,9 +10,13 @@
 #include "caoFiltersCoreModule.h" // For export macro
 
 #include <cstdint>
+#include <string>
+#include <vector>
 
 class vtkAlgorithm;
 class vtkDataArray;
+class vtkImageData;
+class vtkPolyData;
 class vtkPiecewiseFunction;
 
 namespace vtkCAO
@@ -33,6 +37,20 @@ namespace vtkCAO
 CAOFILTERSCORE_EXPORT bool ComputeOpacity(vtkAlgorithm* self, vtkDataArray* scalars, int component,
   vtkPiecewiseFunction* tf, double stepOverUnit, float* opacity, std::int64_t& nonFinite,
   std::uint8_t* changed = nullptr);
+
+/**
+ * Opaque meshes in a volume's opacity: every voxel of `grid` whose centre
+ * lies inside one of `meshes` (closed triangle meshes, polygons
+ * triangulated, in the grid's physical coordinates) gets opacity 1, an
+ * opaque solid at any sample step (the voxelizer's parity along the grid's
+ * k axis: cao::InsideMask). `occupied` counts those voxels (each once).
+ * A mesh with no points (an isosurface whose value leaves the data's
+ * range) occludes nothing. False with the reason, naming the mesh, when a
+ * mesh is open, has points but no polygons, or has non-finite points, or the grid's index-to-physical
+ * matrix is singular; `opacity` is then unchanged.
+ */
+CAOFILTERSCORE_EXPORT bool OccludeOpacity(vtkImageData* grid, const std::vector<vtkPolyData*>& meshes,
+  float* opacity, std::int64_t& occupied, std::string& error);
 }
 
 #endif

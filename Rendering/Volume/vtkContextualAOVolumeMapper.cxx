@@ -20,6 +20,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkProp3D.h"
 #include "vtkRenderWindow.h"
@@ -145,13 +146,16 @@ struct VolumeKey
   cao::LAOSettings settings;
   const void* givenAO = nullptr;
   vtkMTimeType givenAOTime = 0;
+  /// The occluders (AddOccluder): per prop its mesh, the mesh's time and
+  /// the prop's pose in the volume's frame; a change is an opacity edit.
+  std::vector<double> occluders;
   bool operator==(const VolumeKey& o) const
   {
     return input == o.input && inputTime == o.inputTime && scalars == o.scalars &&
       scalarsTime == o.scalarsTime && scalarMode == o.scalarMode && arrayId == o.arrayId &&
       ao == o.ao && opacityFunction == o.opacityFunction && opacityTime == o.opacityTime &&
       unitDistance == o.unitDistance && settings == o.settings && givenAO == o.givenAO &&
-      givenAOTime == o.givenAOTime;
+      givenAOTime == o.givenAOTime && occluders == o.occluders;
   }
   bool operator!=(const VolumeKey& o) const { return !(*this == o); }
   /// Whether `o` differs from this key in the opacity alone (its function
@@ -329,6 +333,12 @@ struct vtkContextualAOVolumeMapper::Internals
   bool UpdateMaps(vtkContextualAOVolumeMapper* self, Frame& f, const std::vector<ClipPart>& parts,
     vtkMatrix4x4* pose);
   std::vector<std::pair<vtkSmartPointer<vtkProp3D>, int>> AddedShapes;
+  /// AddOccluder's props, and the reasons already warned (once per mesh version).
+  std::vector<vtkSmartPointer<vtkProp3D>> Occluders;
+  std::map<std::size_t, std::string> OccluderWarnings; ///< per occluder, the last reason warned
+  /// The occluders' meshes in the volume's physical coordinates.
+  bool OccluderMeshes(vtkContextualAOVolumeMapper* self, Frame& f,
+    std::vector<vtkSmartPointer<vtkPolyData>>& meshes, std::vector<double>* key);
   bool UpdateTable(vtkContextualAOVolumeMapper* self, Frame& f, double& step);
   int ChooseImageSampleDistance(vtkContextualAOVolumeMapper* self, const Frame& f);
   void MakeRenderParams(vtkContextualAOVolumeMapper* self, const Frame& f, double step,
@@ -389,6 +399,30 @@ void vtkContextualAOVolumeMapper::AddClipShape(vtkProp3D* shape, int mode)
   }
   this->Internal->AddedShapes.emplace_back(shape, mode);
   this->Modified();
+}
+
+void vtkContextualAOVolumeMapper::AddOccluder(vtkProp3D* prop)
+{
+  if (!prop)
+  {
+    vtkErrorMacro("AddOccluder needs a prop (a vtkActor whose mapper's input is a closed surface).");
+    return;
+  }
+  this->Internal->Occluders.emplace_back(prop);
+  this->Modified();
+}
+
+void vtkContextualAOVolumeMapper::RemoveAllOccluders()
+{
+  if (this->Internal->Occluders.empty())
+    return;
+  this->Internal->Occluders.clear();
+  this->Modified();
+}
+
+int vtkContextualAOVolumeMapper::GetNumberOfOccluders()
+{
+  return static_cast<int>(this->Internal->Occluders.size());
 }
 
 void vtkContextualAOVolumeMapper::RemoveAllClipShapes()
@@ -694,6 +728,9 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateVolume(
     key.settings.preset = cao::QualityPreset::Custom;
     key.givenAO = givenAO;
     key.givenAOTime = givenAO ? givenAO->GetMTime() : 0;
+    std::vector<vtkSmartPointer<vtkPolyData>> unused;
+    if (!givenAO && !this->OccluderMeshes(self, f, unused, &key.occluders))
+      return false;
   }
   if (this->HaveVolume && key == this->Volume && (!ao || f.engine->HasPrecomputed()))
     return true;
@@ -773,6 +810,36 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
   if (nonFinite > 0) // (GetRange skips NaN, so they are counted here)
     return f.Fail("The scalars contain " + std::to_string(nonFinite) +
       " NaN or infinite value(s); nothing is drawn.");
+  // The occluders' voxels are opaque for the LAO (with the AO on and no
+  // given AO: the opacity then feeds the precompute or the edit).
+  if (self->AmbientOcclusion && !givenAO && !this->Occluders.empty())
+  {
+    std::vector<vtkSmartPointer<vtkPolyData>> meshes;
+    if (!this->OccluderMeshes(self, f, meshes, nullptr))
+      return false;
+    std::int64_t inside = 0;
+    for (std::size_t m = 0; m < meshes.size(); ++m)
+    {
+      std::int64_t occupied = 0;
+      std::string why;
+      if (!meshes[m])
+        continue; // (left out, said by OccluderMeshes)
+      if (!vtkCAO::OccludeOpacity(f.input, { meshes[m].Get() }, opacity.data(), occupied, why))
+      {
+        const std::string prefix = "occluder mesh 0 of 1: "; // (one mesh at a time here)
+        if (why.compare(0, prefix.size(), prefix) == 0)
+          why.erase(0, prefix.size());
+        std::string& said = this->OccluderWarnings[m];
+        if (said != why)
+          vtkWarningWithObjectMacro(self, "Occluder " << m << " is left out: " << why << ".");
+        said = why;
+        continue;
+      }
+      inside += occupied;
+    }
+    f.report.reasons.emplace_back(std::to_string(inside) + " voxels inside " +
+      std::to_string(meshes.size()) + " occluder(s)");
+  }
   // An edit of the opacity alone keeps the engine's AO: read it back before
   // the new volume replaces it (once; the edits keep the copy after).
   if (this->OpacityEdit && givenAO == nullptr && self->AmbientOcclusion &&
@@ -861,6 +928,64 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
   this->SpareOpacity.swap(opacity); // (the one before, written again next time)
   this->EditAO.clear();           // and reads this precompute back when it comes
   ++self->PrecomputeCount;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkContextualAOVolumeMapper::Internals::OccluderMeshes(vtkContextualAOVolumeMapper* self,
+  Frame& f, std::vector<vtkSmartPointer<vtkPolyData>>& meshes, std::vector<double>* key)
+{
+  // Each occluder's mesh, from its pose in the world to the volume's
+  // physical coordinates: (the volume's matrix)^-1 * the prop's matrix.
+  meshes.clear();
+  if (this->Occluders.empty())
+    return true;
+  vtkNew<vtkMatrix4x4> worldToVolume, toVolume;
+  vtkMatrix4x4::Invert(f.volume->GetMatrix(), worldToVolume);
+  for (std::size_t i = 0; i < this->Occluders.size(); ++i)
+  {
+    vtkProp3D* prop = this->Occluders[i];
+    vtkPolyData* mesh = nullptr;
+    if (vtkActor* actor = vtkActor::SafeDownCast(prop))
+      if (vtkMapper* m = actor->GetMapper())
+      {
+        if (vtkAlgorithm* a = m->GetInputAlgorithm())
+          a->Update();
+        mesh = vtkPolyData::SafeDownCast(m->GetInputDataObject(0, 0));
+      }
+    vtkMatrix4x4::Multiply4x4(worldToVolume, prop->GetMatrix(), toVolume);
+    if (key)
+    {
+      key->push_back(static_cast<double>(reinterpret_cast<std::uintptr_t>(mesh)));
+      key->push_back(mesh ? static_cast<double>(mesh->GetMTime()) : 0.0);
+      key->insert(key->end(), toVolume->GetData(), toVolume->GetData() + 16);
+      continue;
+    }
+    if (!mesh)
+    {
+      vtkWarningWithObjectMacro(self, "Occluder " << i << " is left out: it is not a vtkActor "
+                                                  "with a vtkPolyData mapper input.");
+      meshes.emplace_back(nullptr);
+      continue;
+    }
+    // A copy of its points moved into the volume's frame (the prop's mesh
+    // itself is not touched).
+    auto moved = vtkSmartPointer<vtkPolyData>::New();
+    moved->ShallowCopy(mesh);
+    vtkNew<vtkPoints> points;
+    points->SetDataTypeToDouble();
+    const vtkIdType n = mesh->GetNumberOfPoints();
+    points->SetNumberOfPoints(n);
+    for (vtkIdType p = 0; p < n; ++p)
+    {
+      double in[4] = { 0, 0, 0, 1 }, out[4];
+      mesh->GetPoint(p, in);
+      toVolume->MultiplyPoint(in, out);
+      points->SetPoint(p, out[0] / out[3], out[1] / out[3], out[2] / out[3]);
+    }
+    moved->SetPoints(points);
+    meshes.push_back(moved);
+  }
   return true;
 }
 

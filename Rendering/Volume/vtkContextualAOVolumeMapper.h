@@ -254,6 +254,24 @@ public:
   void RemoveAllClipShapes();
   /// ClipShape (when set) and the added shapes.
   int GetNumberOfClipShapes();
+
+  ///@{
+  /**
+   * Opaque surfaces that occlude the volume's AO: each prop's mesh (its
+   * vtkPolyDataMapper's input: a closed surface such as an isosurface),
+   * posed by the prop's matrix, makes the voxels whose centre lies inside
+   * it opaque for the LAO (as vtkLocalAmbientOcclusion's occluders), so the
+   * volume around it darkens. When an occluder moves or its mesh changes,
+   * only the voxels within the rays' reach of a voxel whose opacity changed
+   * are recomputed (the opacity edit), exactly as a full precompute. An
+   * occluder that is open or has no mesh is left out with a warning that
+   * says why. The mapper does not draw the occluders: add them to the
+   * renderer. A clip removes their voxels inside it with the volume's.
+   */
+  void AddOccluder(vtkProp3D* prop);
+  void RemoveAllOccluders();
+  int GetNumberOfOccluders();
+  ///@}
   /// Clip shape i of GetNumberOfClipShapes() (ClipShape first when set),
   /// its mode, and its mesh in its local frame (ClipMesh for ClipShape when
   /// set, else the actor's mapper input, brought up to date; null if none).

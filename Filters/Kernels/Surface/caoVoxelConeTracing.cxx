@@ -1157,7 +1157,7 @@ bool InsideMask(const MeshView& mesh, const int dims[3], const std::array<double
   const std::int64_t open = OpenEdges(mesh);
   if (open > 0)
   {
-    error = "the clip mesh is open (" + std::to_string(open) +
+    error = "the mesh is open (" + std::to_string(open) +
       " boundary edges): its inside is not defined";
     return false;
   }

@@ -56,6 +56,8 @@ parser.add_argument("--method", choices=sorted(METHODS), default="vct",
                     help="the surfaces' AO method in the AO-on frames (default vct)")
 parser.add_argument("--occluding-volumes", choices=("on", "off"), default="on",
                     help="whether the volume occludes the surfaces (default on)")
+parser.add_argument("--surfaces-occlude-volume", choices=("on", "off"), default="on",
+                    help="whether the isosurface occludes the volume's AO (default on)")
 parser.add_argument("--masks", action="store_true", help="also write each kind drawn alone")
 args = parser.parse_args()
 if args.frames < 1 or args.frames > 1000:
@@ -151,6 +153,10 @@ for name, source, rgb in (("isosurface", normals, (0.85, 0.35, 0.3)),
     actor.GetProperty().SetDiffuse(0.6)
     renderer.AddActor(actor)
     surfaces[name] = actor
+if args.surfaces_occlude_volume == "on":
+    # The isosurface (closed) is opaque for the volume's LAO: the vessel
+    # around it darkens. (The tubes are open meshes: they do not.)
+    volumeMapper.AddOccluder(surfaces["isosurface"])
 
 aoPass = vtkContextualAOPass()
 aoPass.SetOccludingVolumes(args.occluding_volumes == "on")
