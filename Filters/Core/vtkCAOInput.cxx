@@ -687,6 +687,17 @@ std::vector<Pose> DefaultPath(const double b[6], int count)
   return poses;
 }
 
+void IndexFromZeroToPhysical(vtkImageData* image, vtkMatrix4x4* out)
+{
+  int extent[6];
+  image->GetExtent(extent);
+  vtkNew<vtkMatrix4x4> shift;
+  shift->SetElement(0, 3, extent[0]);
+  shift->SetElement(1, 3, extent[2]);
+  shift->SetElement(2, 3, extent[4]);
+  vtkMatrix4x4::Multiply4x4(image->GetIndexToPhysicalMatrix(), shift, out);
+}
+
 void TrianglesOf(vtkPolyData* mesh, std::vector<double>& points, std::vector<std::int64_t>& tris)
 {
   // A mesh of triangles only (no strips, every polygon three points) is

@@ -17,6 +17,7 @@
 #include <vector>
 
 class vtkImageData;
+class vtkMatrix4x4;
 class vtkPolyData;
 class vtkTransform;
 
@@ -38,6 +39,11 @@ CAOFILTERSCORE_EXPORT vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& p
 
 /// The triangles of a mesh (polygons and strips, triangulated) as flat
 /// point (xyz) and id (3 per triangle) vectors.
+/// The image's continuous index (its extent's first voxel at 0, voxel
+/// centres at integers) to its physical coordinates: the image's
+/// index-to-physical matrix (spacing, direction, origin) after a shift by
+/// the extent's start.
+CAOFILTERSCORE_EXPORT void IndexFromZeroToPhysical(vtkImageData* image, vtkMatrix4x4* out);
 CAOFILTERSCORE_EXPORT void TrianglesOf(vtkPolyData* mesh, std::vector<double>& points, std::vector<std::int64_t>& tris);
 
 /// Built-in closed shapes centred on the origin: "sphere" (radius = size),

@@ -146,35 +146,35 @@ bool ComputeOpacity(vtkAlgorithm* self, vtkDataArray* scalars, int component,
 
 //------------------------------------------------------------------------------
 bool OccludeOpacity(vtkImageData* grid, const std::vector<vtkPolyData*>& meshes, float* opacity,
-  std::int64_t& occupied, std::string& error)
+  std::int64_t& occupied, std::string& error, const std::vector<vtkMatrix4x4*>& poses)
 {
   occupied = 0;
   if (meshes.empty())
     return true;
-  int dims[3], extent[6];
+  int dims[3];
   grid->GetDimensions(dims);
-  grid->GetExtent(extent);
-  // Physical to continuous index (voxel centres at integers from 0):
-  // (index-to-physical, shifted by the extent's start)^-1.
-  vtkNew<vtkMatrix4x4> shift, indexToPhysical, physicalToIndex;
-  shift->SetElement(0, 3, extent[0]);
-  shift->SetElement(1, 3, extent[2]);
-  shift->SetElement(2, 3, extent[4]);
-  vtkMatrix4x4::Multiply4x4(grid->GetIndexToPhysicalMatrix(), shift, indexToPhysical);
+  // Physical to continuous index (voxel centres at integers from 0).
+  vtkNew<vtkMatrix4x4> indexToPhysical, physicalToIndex, meshToIndex;
+  IndexFromZeroToPhysical(grid, indexToPhysical);
   if (!(std::fabs(indexToPhysical->Determinant()) > 0.0))
   {
     error = "the volume's index-to-physical matrix (spacing, direction) is singular";
     return false;
   }
   vtkMatrix4x4::Invert(indexToPhysical, physicalToIndex);
-  std::array<double, 12> toIndex{};
-  for (int i = 0; i < 12; ++i)
-    toIndex[static_cast<std::size_t>(i)] = physicalToIndex->GetElement(i / 4, i % 4);
   std::vector<std::uint8_t> all, inside;
   for (std::size_t m = 0; m < meshes.size(); ++m)
   {
     if (!meshes[m] || meshes[m]->GetNumberOfPoints() == 0)
       continue; // empty: occludes nothing
+    // The mesh's own frame to continuous index (its pose, when given).
+    if (m < poses.size() && poses[m])
+      vtkMatrix4x4::Multiply4x4(physicalToIndex, poses[m], meshToIndex);
+    else
+      meshToIndex->DeepCopy(physicalToIndex);
+    std::array<double, 12> toIndex{};
+    for (int i = 0; i < 12; ++i)
+      toIndex[static_cast<std::size_t>(i)] = meshToIndex->GetElement(i / 4, i % 4);
     std::vector<double> points;
     std::vector<std::int64_t> triangles;
     TrianglesOf(meshes[m], points, triangles);

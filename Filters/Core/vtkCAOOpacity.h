@@ -16,6 +16,7 @@
 class vtkAlgorithm;
 class vtkDataArray;
 class vtkImageData;
+class vtkMatrix4x4;
 class vtkPolyData;
 class vtkPiecewiseFunction;
 
@@ -47,10 +48,13 @@ CAOFILTERSCORE_EXPORT bool ComputeOpacity(vtkAlgorithm* self, vtkDataArray* scal
  * A mesh with no points (an isosurface whose value leaves the data's
  * range) occludes nothing. False with the reason, naming the mesh, when a
  * mesh is open, has points but no polygons, or has non-finite points, or the grid's index-to-physical
- * matrix is singular; `opacity` is then unchanged.
+ * matrix is singular; `opacity` is then unchanged. `poses[m]`, when given
+ * and not null, maps mesh m's points to the grid's physical coordinates
+ * (no copy of the mesh is made).
  */
 CAOFILTERSCORE_EXPORT bool OccludeOpacity(vtkImageData* grid, const std::vector<vtkPolyData*>& meshes,
-  float* opacity, std::int64_t& occupied, std::string& error);
+  float* opacity, std::int64_t& occupied, std::string& error,
+  const std::vector<vtkMatrix4x4*>& poses = {});
 }
 
 #endif

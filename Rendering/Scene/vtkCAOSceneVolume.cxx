@@ -90,13 +90,8 @@ bool VolumeOpacity(vtkVolume* volume, cao::OpacityVolume& out, std::string& erro
     return false;
   }
   // World to continuous index: (volume matrix * index-to-physical)^-1.
-  int extent[6];
-  input->GetExtent(extent);
-  vtkNew<vtkMatrix4x4> shift, indexToPhysical, indexToWorld, worldToIndex;
-  shift->SetElement(0, 3, extent[0]);
-  shift->SetElement(1, 3, extent[2]);
-  shift->SetElement(2, 3, extent[4]);
-  vtkMatrix4x4::Multiply4x4(input->GetIndexToPhysicalMatrix(), shift, indexToPhysical);
+  vtkNew<vtkMatrix4x4> indexToPhysical, indexToWorld, worldToIndex;
+  vtkCAO::IndexFromZeroToPhysical(input, indexToPhysical);
   vtkMatrix4x4::Multiply4x4(volume->GetMatrix(), indexToPhysical, indexToWorld);
   if (indexToWorld->Determinant() == 0.0)
   {

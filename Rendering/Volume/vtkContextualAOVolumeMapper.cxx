@@ -20,7 +20,6 @@
 #include "vtkObjectFactory.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
-#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkProp3D.h"
 #include "vtkRenderWindow.h"
@@ -333,12 +332,15 @@ struct vtkContextualAOVolumeMapper::Internals
   bool UpdateMaps(vtkContextualAOVolumeMapper* self, Frame& f, const std::vector<ClipPart>& parts,
     vtkMatrix4x4* pose);
   std::vector<std::pair<vtkSmartPointer<vtkProp3D>, int>> AddedShapes;
-  /// AddOccluder's props, and the reasons already warned (once per mesh version).
+  /// AddOccluder's props, and per occluder the last reason warned.
   std::vector<vtkSmartPointer<vtkProp3D>> Occluders;
-  std::map<std::size_t, std::string> OccluderWarnings; ///< per occluder, the last reason warned
-  /// The occluders' meshes in the volume's physical coordinates.
-  bool OccluderMeshes(vtkContextualAOVolumeMapper* self, Frame& f,
-    std::vector<vtkSmartPointer<vtkPolyData>>& meshes, std::vector<double>* key);
+  std::map<std::size_t, std::string> OccluderWarnings;
+  /// This frame's occluders (GatherOccluders): each mesh (null: none) and
+  /// its pose in the volume's physical coordinates, read by UploadVolume.
+  std::vector<vtkPolyData*> OccluderMeshes;
+  std::vector<vtkSmartPointer<vtkMatrix4x4>> OccluderPoses;
+  /// Gathers them, and the volume key's part for them.
+  void GatherOccluders(Frame& f, std::vector<double>& key);
   bool UpdateTable(vtkContextualAOVolumeMapper* self, Frame& f, double& step);
   int ChooseImageSampleDistance(vtkContextualAOVolumeMapper* self, const Frame& f);
   void MakeRenderParams(vtkContextualAOVolumeMapper* self, const Frame& f, double step,
@@ -728,9 +730,8 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateVolume(
     key.settings.preset = cao::QualityPreset::Custom;
     key.givenAO = givenAO;
     key.givenAOTime = givenAO ? givenAO->GetMTime() : 0;
-    std::vector<vtkSmartPointer<vtkPolyData>> unused;
-    if (!givenAO && !this->OccluderMeshes(self, f, unused, &key.occluders))
-      return false;
+    if (!givenAO)
+      this->GatherOccluders(f, key.occluders);
   }
   if (this->HaveVolume && key == this->Volume && (!ao || f.engine->HasPrecomputed()))
     return true;
@@ -812,23 +813,25 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
       " NaN or infinite value(s); nothing is drawn.");
   // The occluders' voxels are opaque for the LAO (with the AO on and no
   // given AO: the opacity then feeds the precompute or the edit).
-  if (self->AmbientOcclusion && !givenAO && !this->Occluders.empty())
+  if (self->AmbientOcclusion && !givenAO && !this->OccluderMeshes.empty())
   {
-    std::vector<vtkSmartPointer<vtkPolyData>> meshes;
-    if (!this->OccluderMeshes(self, f, meshes, nullptr))
-      return false;
     std::int64_t inside = 0;
-    for (std::size_t m = 0; m < meshes.size(); ++m)
+    for (std::size_t m = 0; m < this->OccluderMeshes.size(); ++m)
     {
+      // One at a time: a mesh that cannot occlude is left out, the others occlude.
       std::int64_t occupied = 0;
-      std::string why;
-      if (!meshes[m])
-        continue; // (left out, said by OccluderMeshes)
-      if (!vtkCAO::OccludeOpacity(f.input, { meshes[m].Get() }, opacity.data(), occupied, why))
+      std::string why = this->OccluderMeshes[m] ? ""
+                                                : "it is not a vtkActor with a vtkPolyData mapper input";
+      if (why.empty() &&
+        !vtkCAO::OccludeOpacity(f.input, { this->OccluderMeshes[m] }, opacity.data(), occupied, why,
+          { this->OccluderPoses[m].Get() }))
       {
         const std::string prefix = "occluder mesh 0 of 1: "; // (one mesh at a time here)
         if (why.compare(0, prefix.size(), prefix) == 0)
           why.erase(0, prefix.size());
+      }
+      if (!why.empty())
+      {
         std::string& said = this->OccluderWarnings[m];
         if (said != why)
           vtkWarningWithObjectMacro(self, "Occluder " << m << " is left out: " << why << ".");
@@ -838,7 +841,7 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
       inside += occupied;
     }
     f.report.reasons.emplace_back(std::to_string(inside) + " voxels inside " +
-      std::to_string(meshes.size()) + " occluder(s)");
+      std::to_string(this->OccluderMeshes.size()) + " occluder(s)");
   }
   // An edit of the opacity alone keeps the engine's AO: read it back before
   // the new volume replaces it (once; the edits keep the copy after).
@@ -932,19 +935,18 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
 }
 
 //------------------------------------------------------------------------------
-bool vtkContextualAOVolumeMapper::Internals::OccluderMeshes(vtkContextualAOVolumeMapper* self,
-  Frame& f, std::vector<vtkSmartPointer<vtkPolyData>>& meshes, std::vector<double>* key)
+void vtkContextualAOVolumeMapper::Internals::GatherOccluders(Frame& f, std::vector<double>& key)
 {
-  // Each occluder's mesh, from its pose in the world to the volume's
+  // Each occluder's mesh, and its pose from its own frame to the volume's
   // physical coordinates: (the volume's matrix)^-1 * the prop's matrix.
-  meshes.clear();
+  this->OccluderMeshes.clear();
+  this->OccluderPoses.clear();
   if (this->Occluders.empty())
-    return true;
-  vtkNew<vtkMatrix4x4> worldToVolume, toVolume;
+    return;
+  vtkNew<vtkMatrix4x4> worldToVolume;
   vtkMatrix4x4::Invert(f.volume->GetMatrix(), worldToVolume);
-  for (std::size_t i = 0; i < this->Occluders.size(); ++i)
+  for (vtkProp3D* prop : this->Occluders)
   {
-    vtkProp3D* prop = this->Occluders[i];
     vtkPolyData* mesh = nullptr;
     if (vtkActor* actor = vtkActor::SafeDownCast(prop))
       if (vtkMapper* m = actor->GetMapper())
@@ -953,40 +955,14 @@ bool vtkContextualAOVolumeMapper::Internals::OccluderMeshes(vtkContextualAOVolum
           a->Update();
         mesh = vtkPolyData::SafeDownCast(m->GetInputDataObject(0, 0));
       }
+    auto toVolume = vtkSmartPointer<vtkMatrix4x4>::New();
     vtkMatrix4x4::Multiply4x4(worldToVolume, prop->GetMatrix(), toVolume);
-    if (key)
-    {
-      key->push_back(static_cast<double>(reinterpret_cast<std::uintptr_t>(mesh)));
-      key->push_back(mesh ? static_cast<double>(mesh->GetMTime()) : 0.0);
-      key->insert(key->end(), toVolume->GetData(), toVolume->GetData() + 16);
-      continue;
-    }
-    if (!mesh)
-    {
-      vtkWarningWithObjectMacro(self, "Occluder " << i << " is left out: it is not a vtkActor "
-                                                  "with a vtkPolyData mapper input.");
-      meshes.emplace_back(nullptr);
-      continue;
-    }
-    // A copy of its points moved into the volume's frame (the prop's mesh
-    // itself is not touched).
-    auto moved = vtkSmartPointer<vtkPolyData>::New();
-    moved->ShallowCopy(mesh);
-    vtkNew<vtkPoints> points;
-    points->SetDataTypeToDouble();
-    const vtkIdType n = mesh->GetNumberOfPoints();
-    points->SetNumberOfPoints(n);
-    for (vtkIdType p = 0; p < n; ++p)
-    {
-      double in[4] = { 0, 0, 0, 1 }, out[4];
-      mesh->GetPoint(p, in);
-      toVolume->MultiplyPoint(in, out);
-      points->SetPoint(p, out[0] / out[3], out[1] / out[3], out[2] / out[3]);
-    }
-    moved->SetPoints(points);
-    meshes.push_back(moved);
+    key.push_back(static_cast<double>(reinterpret_cast<std::uintptr_t>(mesh)));
+    key.push_back(mesh ? static_cast<double>(mesh->GetMTime()) : 0.0);
+    key.insert(key.end(), toVolume->GetData(), toVolume->GetData() + 16);
+    this->OccluderMeshes.push_back(mesh);
+    this->OccluderPoses.push_back(toVolume);
   }
-  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -1373,14 +1349,8 @@ void vtkContextualAOVolumeMapper::Internals::MakeRenderParams(vtkContextualAOVol
   worldToNDC->DeepCopy(
     camera->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1.0, 1.0));
   vtkMatrix4x4::Invert(worldToNDC, ndcToWorld);
-  int extent[6];
-  f.input->GetExtent(extent);
-  vtkNew<vtkMatrix4x4> shift, indexToPhysical, indexToWorld, worldToIndex;
-  shift->Identity();
-  shift->SetElement(0, 3, extent[0]);
-  shift->SetElement(1, 3, extent[2]);
-  shift->SetElement(2, 3, extent[4]);
-  vtkMatrix4x4::Multiply4x4(f.input->GetIndexToPhysicalMatrix(), shift, indexToPhysical);
+  vtkNew<vtkMatrix4x4> indexToPhysical, indexToWorld, worldToIndex;
+  vtkCAO::IndexFromZeroToPhysical(f.input, indexToPhysical);
   vtkMatrix4x4::Multiply4x4(f.volume->GetMatrix(), indexToPhysical, indexToWorld);
   vtkMatrix4x4::Invert(indexToWorld, worldToIndex);
   // The shader's world is the scene's world moved so that the volume's
