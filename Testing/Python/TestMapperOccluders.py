@@ -9,6 +9,8 @@ drawn in the project's EGL window.
   voxels recomputed are fewer than the volume has), and the frame after the
   move equals, pixel for pixel, a new mapper's frame with the ball already
   there (a full precompute): the edit is exact in the picture.
+- Removing the occluder gives the frame of a mapper that never had it
+  (the volume back on its 8-bit scalars, the ray caster too).
 - An open occluder (a plane) is left out with a warning that says why, and
   the volume is drawn as without it.
 - vtkLocalAmbientOcclusion's OpenGL backend with an occluder gives the
@@ -148,6 +150,16 @@ brighter = int(np.count_nonzero(lum(fresh) > lum(plain) + 2))
 check(differ.sum() > 100 and darker > 2 and brighter == 0,
       "the ball darkens the volume around it (%d pixels differ, by %.1f levels on average; %d brighter)"
       % (differ.sum(), darker, brighter))
+
+# Removing the occluder: the volume goes back to its 8-bit scalars on the
+# GPU (with the occluder its opacity went up as floats, and the ray caster
+# drew its own float copy of the scalars); the frame is a new mapper's
+# without an occluder (the ball still drawn), pixel for pixel.
+mapper.RemoveAllOccluders()
+removed = frame(window)
+check(np.array_equal(removed, plain),
+      "removing the occluder gives the frame of a mapper that never had it (largest difference %d)"
+      % np.abs(removed - plain).max())
 
 # An open occluder: left out with a warning, the volume drawn as without it.
 warnings = []

@@ -386,10 +386,6 @@ bool RayCaster::SetScalars(const float* values, const int dims[3], std::string& 
   return CheckError(gl, "the scalar upload", error);
 }
 
-bool RayCaster::OwnScalars() const
-{
-  return this->P->scalars != 0;
-}
 
 bool RayCaster::CaptureDepth(const int viewport[4], std::string& error)
 {
@@ -565,7 +561,10 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
   gl.BindBufferBase(GL_UNIFORM_BUFFER, CAO_BINDING_CLIP_PARAMS, r.clipParams);
   gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, CAO_BINDING_MAPS, r.maps);
   const GLuint units[5][2] = {
-    { GL_TEXTURE_3D, p.scalars ? p.scalars : p.scalarView },
+    // (Its own float scalars only while the engine holds opacity: a
+    // volume that went back to 8- or 16-bit scalars, after a colour array
+    // or an occluder changed, draws those, not a stale float copy.)
+    { GL_TEXTURE_3D, r.source == OpacitySource::Float32 ? p.scalars : p.scalarView },
     { GL_TEXTURE_3D, precomputedAO ? p.precomputedView : p.currentView },
     { GL_TEXTURE_2D, p.table },
     { GL_TEXTURE_2D, p.depth },

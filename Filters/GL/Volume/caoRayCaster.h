@@ -64,8 +64,6 @@ public:
   /// engine's volume is sampled through a normalised view: the texel is
   /// scalar / 255 (8-bit) or scalar / 65535 (16-bit).
   bool SetScalars(const float* values, const int dims[3], std::string& error);
-  /// Whether the renderer samples its own float scalars (SetScalars).
-  bool OwnScalars() const;
 
   /// Copy the depth of the framebuffer bound for drawing, over `viewport`
   /// (x, y, width, height): what the opaque geometry left.
