@@ -5,6 +5,8 @@
  *   cao carve VOLUME [options]            contextual AO along a clip path
  *   cao render VOLUME [options]           PNG frames of the clipped volume (the mapper)
  *   cao bench accuracy VOLUME [options]   accuracy against time (caoBench.h)
+ *   cao surface MESH|LINES [options]      surface or line AO seen by one camera (caoSurface.h, caoSurfaceLines.h)
+ *   cao bench surface|surface-frame|surface-scale|lines   surface and line AO's accuracy and time
  *
  * Run `cao --help` for the options. Exit codes: 0 success, 1 runtime error,
  * 2 bad arguments or unreadable input, 3 `--verify` found a difference.
@@ -21,6 +23,7 @@
 #include "caoBenchSurface.h"
 #include "caoBenchSurfaceFrame.h"
 #include "caoBenchSurfaceScale.h"
+#include "caoBenchLines.h"
 
 #include "vtkCAOClipMaps.h"
 #include "vtkClipDepthMaps.h"
@@ -1015,6 +1018,7 @@ int main(int argc, char* argv[])
   commands.push_back(caocli::AddBenchAccuracyCommand(*bench));
   commands.push_back(caocli::AddBenchSurfaceCommand(*bench));
   commands.push_back(caocli::AddBenchSurfaceScaleCommand(*bench));
+  commands.push_back(caocli::AddBenchLinesCommand(*bench));
   commands.push_back(caocli::AddBenchSurfaceFrameCommand(*bench));
   // After the commands, so that only `cao --help-all` has it.
   cao.set_help_all_flag("--help-all", "print the help of every command");

@@ -264,7 +264,7 @@ int Run(Options& o, const CLI::App*)
         !DepthFrame(frame2, MakePixelCamera(camera2, o.view), dframe2, error)))
       return Fail(1, error);
     // The reference at both cameras, and its own error against 4x the rays.
-    cao::SurfaceReferenceSettings rs;
+    cao::AOReferenceSettings rs;
     rs.radius = radius;
     rs.rays = o.referenceRays;
     rs.threads = o.threads;
@@ -274,7 +274,7 @@ int Run(Options& o, const CLI::App*)
       return Fail(1, error);
     const double referenceMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / 2;
-    cao::SurfaceReferenceSettings rf = rs;
+    cao::AOReferenceSettings rf = rs;
     rf.rays = 4 * rs.rays;
     rf.seed = 2;
     if (!cao::ReferenceFrame(scene.bvh, rf, fine, error))
@@ -430,7 +430,7 @@ int Run(Options& o, const CLI::App*)
       const int key = static_cast<int>(falloff);
       if (!own.count(key))
       {
-        cao::SurfaceReferenceSettings fs = rs;
+        cao::AOReferenceSettings fs = rs;
         fs.falloff = falloff;
         std::pair<cao::SurfaceFrame, cao::SurfaceFrame> pair{ frame, frame2 };
         if (!cao::ReferenceFrame(scene.bvh, fs, pair.first, error) ||

@@ -41,6 +41,7 @@
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 #include "caoPresets.h"
+#include "caoSurfaceLines.h"
 
 #include <algorithm>
 #include <chrono>
@@ -64,7 +65,7 @@ struct SurfaceOptions
   int threads = 0, kernel = 32;
   double radius = 0;
   bool aoOnly = false, json = false;
-  cao::SurfaceReferenceSettings reference;
+  cao::AOReferenceSettings reference;
   cao::VCTSettings vct;
   cao::HBAOSettings hbao;
   cao::VAOSettings vao;
@@ -76,6 +77,10 @@ struct SurfaceOptions
   std::string volume, preset, presetFile, shape, clipMesh, pose, mode = "subtract";
   bool absolute = false;
   double unitDistance = 1.0, size = 0.0;
+  // Lines (caoSurfaceLines).
+  double tubeRadius = 0.0;
+  cao::LineAOSettings lineAO;
+  std::string lineWeights, lineHemisphere;
 };
 
 /// "a number in [lo, hi]" ("(lo, hi]" when `openLow`), as the limit of a
@@ -517,14 +522,29 @@ bool SurfaceScene::Replicate(int copies, std::string& error)
 
 bool SurfaceScene::Load(const std::vector<std::string>& files, std::string& error)
 {
-  this->paths = files;
-  std::vector<double> all;
-  std::vector<std::int64_t> tris;
+  std::vector<vtkSmartPointer<vtkPolyData>> read;
   for (const std::string& path : files)
   {
-    vtkSmartPointer<vtkPolyData> mesh = vtkCAO::ReadMesh(path, error);
-    if (!mesh)
+    read.push_back(vtkCAO::ReadMesh(path, error));
+    if (!read.back())
       return false;
+  }
+  return this->Set(files, read, error);
+}
+
+bool SurfaceScene::Set(const std::vector<std::string>& files,
+  const std::vector<vtkSmartPointer<vtkPolyData>>& read, std::string& error)
+{
+  this->paths = files;
+  this->meshes.clear();
+  this->points.clear();
+  this->triangles.clear();
+  std::vector<double> all;
+  std::vector<std::int64_t> tris;
+  for (std::size_t m = 0; m < read.size(); ++m)
+  {
+    const std::string& path = files[m];
+    vtkPolyData* mesh = read[m];
     std::vector<double> p;
     std::vector<std::int64_t> t;
     vtkCAO::TrianglesOf(mesh, p, t);
@@ -551,6 +571,57 @@ bool SurfaceScene::Load(const std::vector<std::string>& files, std::string& erro
   const std::array<double, 6>& b = this->bvh.Bounds();
   this->diagonal = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
     (b[5] - b[4]) * (b[5] - b[4]));
+  return true;
+}
+
+bool WriteFramePicture(const std::string& path, int width, int height, bool aoOnly,
+  const std::vector<double>& ao, const std::function<double(std::size_t, double)>& shade,
+  std::string& error)
+{
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(width, height, 1);
+  const std::size_t pixels = static_cast<std::size_t>(width) * height;
+  vtkNew<vtkPNGWriter> png;
+  if (aoOnly)
+  {
+    vtkNew<vtkUnsignedShortArray> v;
+    v->SetNumberOfComponents(2);
+    v->SetNumberOfTuples(static_cast<vtkIdType>(pixels));
+    for (std::size_t i = 0; i < pixels; ++i)
+    {
+      const bool covered = std::isfinite(ao[i]);
+      const double a = covered ? std::min(1.0, std::max(0.0, ao[i])) : 0.0;
+      v->SetTypedComponent(static_cast<vtkIdType>(i), 0, static_cast<unsigned short>(std::lround(a * 65535.0)));
+      v->SetTypedComponent(static_cast<vtkIdType>(i), 1, covered ? 65535 : 0);
+    }
+    image->GetPointData()->SetScalars(v);
+  }
+  else
+  {
+    vtkNew<vtkUnsignedCharArray> v;
+    v->SetNumberOfComponents(4);
+    v->SetNumberOfTuples(static_cast<vtkIdType>(pixels));
+    for (std::size_t i = 0; i < pixels; ++i)
+    {
+      const double a = std::isfinite(ao[i]) ? std::min(1.0, std::max(0.0, ao[i])) : 1.0;
+      const double c = shade(i, a);
+      const bool covered = c >= 0.0;
+      const unsigned char g =
+        static_cast<unsigned char>(std::lround(255.0 * std::min(1.0, std::max(0.0, c))));
+      for (int k = 0; k < 3; ++k)
+        v->SetTypedComponent(static_cast<vtkIdType>(i), k, g);
+      v->SetTypedComponent(static_cast<vtkIdType>(i), 3, covered ? 255 : 0);
+    }
+    image->GetPointData()->SetScalars(v);
+  }
+  png->SetInputData(image);
+  png->SetFileName(path.c_str());
+  png->Write();
+  if (png->GetErrorCode() != 0)
+  {
+    error = "cannot write '" + path + "'";
+    return false;
+  }
   return true;
 }
 
@@ -584,51 +655,12 @@ namespace
 bool WritePicture(const SurfaceOptions& o, const cao::SurfaceFrame& frame,
   const std::vector<double>& ao, std::string& error)
 {
-  vtkNew<vtkImageData> image;
-  image->SetDimensions(o.view.width, o.view.height, 1);
-  const std::size_t pixels = static_cast<std::size_t>(o.view.width) * o.view.height;
-  vtkNew<vtkPNGWriter> png;
-  if (o.aoOnly)
-  {
-    vtkNew<vtkUnsignedShortArray> v;
-    v->SetNumberOfComponents(2);
-    v->SetNumberOfTuples(static_cast<vtkIdType>(pixels));
-    for (std::size_t i = 0; i < pixels; ++i)
-    {
-      const bool covered = std::isfinite(ao[i]);
-      const double a = covered ? std::min(1.0, std::max(0.0, ao[i])) : 0.0;
-      v->SetTypedComponent(static_cast<vtkIdType>(i), 0, static_cast<unsigned short>(std::lround(a * 65535.0)));
-      v->SetTypedComponent(static_cast<vtkIdType>(i), 1, covered ? 65535 : 0);
-    }
-    image->GetPointData()->SetScalars(v);
-  }
-  else
-  {
-    // Grey, lit by a headlight: ambient (scaled by the AO) plus diffuse.
-    vtkNew<vtkUnsignedCharArray> v;
-    v->SetNumberOfComponents(4);
-    v->SetNumberOfTuples(static_cast<vtkIdType>(pixels));
-    for (std::size_t i = 0; i < pixels; ++i)
-    {
-      const bool covered = frame.triangle[i] >= 0;
-      const double a = std::isfinite(ao[i]) ? std::min(1.0, std::max(0.0, ao[i])) : 1.0;
-      const double c = covered ? 0.9 * (0.55 * a + 0.45 * frame.facing[i]) : 0.0;
-      const unsigned char g = static_cast<unsigned char>(std::lround(255.0 * std::min(1.0, c)));
-      for (int k = 0; k < 3; ++k)
-        v->SetTypedComponent(static_cast<vtkIdType>(i), k, g);
-      v->SetTypedComponent(static_cast<vtkIdType>(i), 3, covered ? 255 : 0);
-    }
-    image->GetPointData()->SetScalars(v);
-  }
-  png->SetInputData(image);
-  png->SetFileName(o.output.c_str());
-  png->Write();
-  if (png->GetErrorCode() != 0)
-  {
-    error = "cannot write '" + o.output + "'";
-    return false;
-  }
-  return true;
+  // Grey, lit by a headlight: ambient (scaled by the AO) plus diffuse.
+  return WriteFramePicture(o.output, o.view.width, o.view.height, o.aoOnly, ao,
+    [&frame](std::size_t i, double a) {
+      return frame.triangle[i] >= 0 ? 0.9 * (0.55 * a + 0.45 * frame.facing[i]) : -1.0;
+    },
+    error);
 }
 
 /// The grid's plan for the meshes: world axes, the camera's (eye), or the
@@ -749,10 +781,9 @@ double Milliseconds(std::chrono::steady_clock::time_point since)
 /// is above 80% of the machine's: about 100 bytes a pixel (the G-buffer, the
 /// AO, the picture; peak resident size measured at 92-96 bytes a pixel for
 /// every method at 1024^2 and 2048^2 on Bunny.vtp). Empty when it fits.
-std::string CheckFrameMemory(int width, int height)
+std::string CheckFrameMemory(int width, int height, double bytesPerPixel)
 {
-  constexpr double BytesPerPixel = 100.0;
-  const double needed = BytesPerPixel * width * height;
+  const double needed = bytesPerPixel * width * height;
   const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
   if (pages <= 0 || pageSize <= 0)
     return std::string();
@@ -761,7 +792,8 @@ std::string CheckFrameMemory(int width, int height)
     return std::string();
   std::ostringstream msg;
   msg << std::fixed << std::setprecision(1) << "--image " << width << "x" << height << " needs about "
-      << needed / 1e9 << " GB (100 bytes a pixel: the G-buffer, the AO and the picture), above 80% of "
+      << needed / 1e9 << " GB (" << bytesPerPixel
+      << " bytes a pixel: the G-buffer, the AO and the picture), above 80% of "
       << "this machine's " << memory / 1e9 << " GB of memory: use a smaller image";
   return msg.str();
 }
@@ -790,11 +822,12 @@ int Run(SurfaceOptions& o, const CLI::App* app)
   // The options that only some methods read: refused for the others.
   static const std::vector<std::pair<std::string, std::vector<std::string>>> methodOptions{
     { "--quality", { "vct", "hbao", "vao" } }, { "--backend", { "vct", "hbao", "vao" } },
-    { "--slices", { "vct" } }, { "--grid", { "vct" } }, { "--cone-weights", { "vct" } },
+    { "--slices", { "vct", "lineao" } }, { "--grid", { "vct" } }, { "--cone-weights", { "vct" } },
     { "--fill", { "vct" } }, { "--occupancy", { "vct" } }, { "--ray-step", { "vct" } },
     { "--cone-angle", { "vct" } }, { "--apex-offset", { "vct" } }, { "--rays", { "reference" } },
     { "--falloff", { "reference" } }, { "--weighting", { "reference" } },
-    { "--window", { "ssao" } }, { "--kernel", { "ssao" } }
+    { "--window", { "ssao" } }, { "--kernel", { "ssao" } }, { "--line-samples", { "lineao" } },
+    { "--line-weights", { "lineao" } }, { "--line-hemisphere", { "lineao" } }, { "--strength", { "lineao" } }
   };
   for (const auto& [name, methods] : methodOptions)
     if (app->count(name) > 0 && std::find(methods.begin(), methods.end(), o.method) == methods.end())
@@ -855,8 +888,42 @@ int Run(SurfaceOptions& o, const CLI::App* app)
     return Fail(2, error);
   SelectThreads(o.threads);
   auto start = std::chrono::steady_clock::now();
+  std::vector<vtkSmartPointer<vtkPolyData>> read;
+  for (const std::string& path : o.meshes)
+  {
+    read.push_back(vtkCAO::ReadMesh(path, error));
+    if (!read.back())
+      return Fail(2, error);
+  }
+  if (HasLines(read))
+  {
+    LineJob job;
+    job.method = o.method;
+    job.output = o.output;
+    job.window = o.window;
+    job.view = o.view;
+    job.radius = o.radius;
+    job.tubeRadius = o.tubeRadius;
+    job.lineAO = o.lineAO;
+    job.lineAO.slices = o.vct.slices;
+    if (!o.lineWeights.empty())
+      cao::ParseLineAOWeights(o.lineWeights, job.lineAO.weights);
+    if (!o.lineHemisphere.empty())
+      cao::ParseLineAOHemisphere(o.lineHemisphere, job.lineAO.hemisphere);
+    job.reference = o.reference;
+    job.kernel = o.kernel;
+    job.threads = o.threads;
+    job.aoOnly = o.aoOnly;
+    job.json = o.json;
+    return RunSurfaceLines(job, o.meshes, read);
+  }
+  for (const char* name : { "--tube-radius", "--line-samples", "--line-weights", "--line-hemisphere", "--strength" })
+    if (app->count(name) > 0)
+      return Fail(2, std::string(name) + " is for line inputs; the inputs hold no lines");
+  if (o.method == "lineao")
+    return Fail(2, "--method lineao is for lines (polylines, streamlines); the inputs hold no lines");
   SurfaceScene scene;
-  if (!scene.Load(o.meshes, error))
+  if (!scene.Set(o.meshes, read, error))
     return Fail(2, error);
   const double loadMs = Milliseconds(start); // reading and the BVH
   const std::array<double, 6>& b = scene.bvh.Bounds();
@@ -1091,15 +1158,19 @@ Command AddSurfaceCommand(CLI::App& cao)
     "ambient occlusion of triangle meshes seen by one camera (voxel cone tracing, HBAO, VAO, "
     "the ray-traced reference, vtkSSAOPass or none), as a picture or the AO term alone");
   AddMeshes(app, o->meshes);
-  AddChoice(app, "--method", o->method, { "vct", "hbao", "vao", "reference", "ssao", "none" },
-    "the method (default vct):\n"
+  AddChoice(app, "--method", o->method, { "vct", "hbao", "vao", "lineao", "reference", "ssao", "none" },
+    "the method (default vct; for lines, lineao):\n"
     "vct: voxel cone tracing (seed 000) on a bit grid of the meshes (CPU or OpenGL: --backend);\n"
     "hbao: horizon-based AO (seed 002) on the G-buffer (CPU or OpenGL: --backend);\n"
     "vao: volumetric AO (seed 001, base disk, mu = (r/R)^4) on the G-buffer (CPU or OpenGL);\n"
-    "reference: CPU ray tracing in double precision (Kernels/Surface);\n"
+    "lineao: line AO (seed 004) for line inputs: the lines voxelized into an eye grid, prisms "
+    "sampled in the camera-facing half ball (CPU);\n"
+    "reference: CPU ray tracing in double precision (Kernels/Surface; lines: exact capsules);\n"
     "ssao: VTK's vtkSSAOPass, its default kernel (32, --kernel) and bias, blurred, at the same "
-    "radius, read back from an unlit white material;\n"
-    "none: AO = 1");
+    "radius, read back from an unlit white material (lines: the tubes of vtkTubeFilter);\n"
+    "none: AO = 1\n"
+    "Line inputs (files with lines: polylines, streamlines) take lineao, reference, ssao or none; "
+    "each line is a tube of --tube-radius");
   AddLength(app, "--radius", o->radius,
     "world units (default: half the mean free path between the meshes' surfaces, 2V/A over "
     "their bounding box V and area A, between a fortieth and a tenth of the box's diagonal)")
@@ -1118,7 +1189,8 @@ Command AddSurfaceCommand(CLI::App& cao)
     "vct: its cones turned over a 4 x 4 pattern of pixels and the filter of that size; hbao: its blur; "
     "vao: its 4 x 4 sample sets and filter (default on)");
   AddSurfaceSlices(app, o->vct.slices,
-    "vct: depth slices of the grid, 32 to 1024, a multiple of 32 (default 256; the paper's 128)");
+    "vct, lineao: depth slices of the grid, 32 to 1024, a multiple of 32 (default 256; the papers' "
+    "128)");
   AddChoice(app, "--grid", o->grid, SurfaceGridNames(),
     "vct: the grid (world: default, built once per geometry; eye: the camera's axes, parallel "
     "columns, its slices in depth, built again whenever the camera turns; frustum: the paper's "
@@ -1145,7 +1217,23 @@ Command AddSurfaceCommand(CLI::App& cao)
   AddNumber(app, "--apex-offset", o->vct.apexOffset, 0.0, 4.0, false, Interval(0.0, 4.0),
     "vct: the cones' apex above the surface, in voxels, 0 to 4 (default 1)")
     ->type_name("V");
-  AddInteger(app, "--rays", o->reference.rays, 1, cao::SurfaceReferenceSettings::MaximumRays,
+  AddLength(app, "--tube-radius", o->tubeRadius,
+    "lines: the tubes' radius, world units (default: 1/200 of the lines' bounding-box diagonal)")
+    ->type_name("R");
+  AddInteger(app, "--line-samples", o->lineAO.samples, 1, cao::LineAOSettings::MaximumSamples,
+    "lineao: prisms per pixel, 1 to " + std::to_string(cao::LineAOSettings::MaximumSamples) +
+      " (default 64; the paper's 150)");
+  AddChoice(app, "--line-weights", o->lineWeights, { "normalized", "paper" },
+    "lineao: the prisms' weights (default normalized: sin(alpha)/(dm/R)^2, independent of the "
+    "scene's scale; paper: the thesis' 1/dm^2 in world units times its AO factor 4)");
+  AddChoice(app, "--line-hemisphere", o->lineHemisphere, { "normal", "camera" },
+    "lineao: the half ball sampled (default normal: at the tube's surface, facing its normal, the "
+    "reference's definition; camera: the thesis', at the axis, facing the camera)");
+  AddNumber(app, "--strength", o->lineAO.strength, 0.0, 100.0, false, Interval(0.0, 100.0),
+    "lineao: scales the calibrated occlusion, 0 to 100 (default 1; AO = exp(-strength x s x "
+    "occupancy), s from the radius, the tube radius and the voxel)")
+    ->type_name("S");
+  AddInteger(app, "--rays", o->reference.rays, 1, cao::AOReferenceSettings::MaximumRays,
     "reference: directions per pixel (default 1024, at most 1048576)");
   AddChoice(app, "--falloff", o->falloff, { "step", "linear", "quartic" },
     "reference (default step)");

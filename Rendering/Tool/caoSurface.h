@@ -48,6 +48,9 @@ struct SurfaceScene
   cao::TriangleBVH bvh;
   double diagonal = 0.0;
   bool Load(const std::vector<std::string>& files, std::string& error);
+  /// The scene of meshes already read (`files` names them in errors).
+  bool Set(const std::vector<std::string>& files, const std::vector<vtkSmartPointer<vtkPolyData>>& read,
+    std::string& error);
   /// The meshes as the voxelizer takes them (views of points and triangles).
   std::vector<cao::MeshView> Views() const;
   /// `copies` instances of the loaded meshes (1 to 4096), tiled k x k in x
@@ -112,6 +115,17 @@ void FitCamera(vtkCamera* camera, const double bounds[6], const SurfaceView& vie
 /// The camera as the pixels see it (the inverse of its composite matrix
 /// at the view's aspect).
 cao::PixelCamera MakePixelCamera(vtkCamera* camera, const SurfaceView& view);
+/// Empty when a frame of `width` x `height` at `bytesPerPixel` (the
+/// G-buffer, the AO and the picture; 100 for meshes, measured) fits in 80%
+/// of the machine's memory, else why not.
+std::string CheckFrameMemory(int width, int height, double bytesPerPixel = 100.0);
+/// A frame's picture as `path` (.png): with `aoOnly` the AO term alone
+/// (16-bit grey and alpha, 1 = open, background transparent), else grey
+/// shade(pixel, its AO clamped to [0, 1]) in [0, 1], negative on the
+/// background (transparent).
+bool WriteFramePicture(const std::string& path, int width, int height, bool aoOnly,
+  const std::vector<double>& ao, const std::function<double(std::size_t, double)>& shade,
+  std::string& error);
 /// The G-buffer of the camera, by ray casting the scene's BVH.
 bool CastFrame(const SurfaceScene& scene, vtkCamera* camera, const SurfaceView& view,
   cao::SurfaceFrame& frame, std::string& error);

@@ -11,6 +11,9 @@
 #ifndef caoTriangleBVH_h
 #define caoTriangleBVH_h
 
+#include "caoAOReference.h"
+#include "caoBoxTree.h"
+
 #include <array>
 #include <cstdint>
 #include <string>
@@ -27,7 +30,7 @@ struct RayHit
   std::int64_t triangle = -1;
 };
 
-class TriangleBVH
+class TriangleBVH : public RayOccluders
 {
 public:
   /// The largest number of triangles (each costs about 100 bytes).
@@ -45,7 +48,12 @@ public:
   bool Intersect(const double origin[3], const double direction[3], double tMin, double tMax,
     RayHit& hit) const;
   /// Whether anything is hit with t in (tMin, tMax].
-  bool Occluded(const double origin[3], const double direction[3], double tMin, double tMax) const;
+  bool Occluded(const double origin[3], const double direction[3], double tMin,
+    double tMax) const override;
+  /// RayOccluders: the closest hit's distance, and the bounds.
+  bool FirstHit(const double origin[3], const double direction[3], double tMin, double tMax,
+    double& t) const override;
+  std::array<double, 6> OccluderBounds() const override { return this->bounds; }
 
   /// The unit geometric normal of input triangle i (counter-clockwise).
   std::array<double, 3> Normal(std::int64_t triangle) const;
@@ -53,15 +61,9 @@ public:
   /// inverted when there are none.
   const std::array<double, 6>& Bounds() const { return this->bounds; }
   std::int64_t NumberOfTriangles() const { return static_cast<std::int64_t>(this->ids.size()); }
-  std::int64_t NumberOfNodes() const { return static_cast<std::int64_t>(this->nodes.size()); }
+  std::int64_t NumberOfNodes() const { return this->tree.NumberOfNodes(); }
 
 private:
-  struct Node
-  {
-    double lo[3], hi[3];
-    std::int64_t first; ///< leaf: first triangle slot; inner: right child (left is next)
-    std::int32_t count; ///< leaf: triangles; inner: 0
-  };
   struct Triangle
   {
     double v0[3], e1[3], e2[3];
@@ -69,19 +71,9 @@ private:
   template <bool AnyHit>
   bool Trace(const double origin[3], const double direction[3], double tMin, double tMax,
     RayHit* hit) const;
-  /// A triangle while the tree is built: its centroid and its input index. The
-  /// split sorts these in place (contiguous), and an inner node's box is
-  /// its children's: no level reads the triangles again.
-  struct BuildItem
-  {
-    double c[3];
-    std::int64_t t;
-  };
-  std::int64_t BuildNode(const std::vector<double>& points, const std::vector<std::int64_t>& tris,
-    std::vector<BuildItem>& items, std::int64_t begin, std::int64_t end, int depth);
   static void MakeTriangle(const std::vector<double>& points, const std::int64_t* id, Triangle& tri);
 
-  std::vector<Node> nodes;
+  BoxTree tree;                    ///< over the triangles' centroids (Common/caoBoxTree.h)
   std::vector<Triangle> triangles; ///< in leaf order
   std::vector<std::int64_t> ids;    ///< input index of each slot
   std::vector<std::array<double, 3>> normals; ///< per input triangle (zero for dropped ones)

@@ -289,7 +289,7 @@ int TestFrustumGrid(int, char*[])
 
   // 4. The scene against the reference, beside the world grid.
   {
-    cao::SurfaceReferenceSettings rs;
+    cao::AOReferenceSettings rs;
     rs.radius = 0.8;
     rs.rays = 512;
     cao::SurfaceFrame reference = frame;

@@ -19,6 +19,7 @@
 // a brute-force loop over all triangles, the reference's own convergence
 // (RMS error over seeds falls with the ray count), and bad input.
 #include "caoSurfaceReference.h"
+#include "caoReferenceEstimate.h"
 #include "caoTestUtilities.h"
 
 #include <algorithm>
@@ -55,49 +56,9 @@ struct Mesh
   }
 };
 
-struct Estimate
-{
-  double mean = 0.0, standardError = 0.0;
-};
-
-/// The mean and standard error over `seeds` rotations of the AO at P.
-Estimate AO(const cao::TriangleBVH& bvh, const double p[3], const double n[3],
-  cao::SurfaceReferenceSettings s, int seeds = 8)
-{
-  std::vector<double> values;
-  for (int k = 0; k < seeds; ++k)
-  {
-    s.seed = 1000 + k;
-    double ao = 0.0;
-    std::string error;
-    cao::SurfaceReferenceAO(bvh, p, n, 1, s, cao::SelfDistance(bvh), &ao, error);
-    values.push_back(ao);
-  }
-  Estimate e;
-  for (double v : values)
-    e.mean += v / seeds;
-  double var = 0.0;
-  for (double v : values)
-    var += (v - e.mean) * (v - e.mean) / (seeds - 1);
-  e.standardError = std::sqrt(var / seeds);
-  return e;
-}
 
 int failures = 0;
 
-/// exact(g) is the analytic AO for geometry parameter g; the estimate must
-/// match exact(1) and miss exact(1.02) (negative control).
-void Case(const char* name, const Estimate& e, double exact, double perturbed)
-{
-  const double tolerance = std::max(4.0 * e.standardError, 2e-4);
-  const bool ok = std::fabs(e.mean - exact) < tolerance;
-  const bool control = std::fabs(e.mean - perturbed) > tolerance;
-  std::printf("%-44s AO %.5f exact %.5f |diff| %.1e tol %.1e (2%% changed: %.5f) %s\n", name,
-    e.mean, exact, std::fabs(e.mean - exact), tolerance, perturbed,
-    ok && control ? "ok" : "FAIL");
-  if (!ok || !control)
-    ++failures;
-}
 
 cao::TriangleBVH Build(const Mesh& m)
 {
@@ -142,7 +103,7 @@ double CornerOcclusion(double a)
 
 int TestSurfaceReference(int, char*[])
 {
-  cao::SurfaceReferenceSettings s;
+  cao::AOReferenceSettings s;
   s.rays = 4096;
   s.radius = std::numeric_limits<double>::infinity();
 
@@ -206,8 +167,8 @@ int TestSurfaceReference(int, char*[])
     const double c[3] = { 0, 0, 2 };
     m.Add(sp, st, c);
     cao::TriangleBVH bvh = Build(m);
-    Case("A1 sphere r=0.5 above the plane at h=2", AO(bvh, Origin, Up, s), 1 - 0.0625,
-      1 - std::pow(0.5 * 1.02 / 2.0, 2));
+    caotest::ReferenceCase("A1 sphere r=0.5 above the plane at h=2", caotest::ReferenceEstimate(bvh, Origin, Up, s), 1 - 0.0625,
+      1 - std::pow(0.5 * 1.02 / 2.0, 2), failures);
   }
   // A2: the sphere resting on the plane, P at x from the contact point.
   {
@@ -221,7 +182,7 @@ int TestSurfaceReference(int, char*[])
       auto occ = [x](double r) { return r * r * r / std::pow(x * x + r * r, 1.5); };
       char name[64];
       std::snprintf(name, sizeof(name), "A2 sphere resting on the plane, x=%.2f", x);
-      Case(name, AO(bvh, p, Up, s), 1 - occ(0.5), 1 - occ(0.5 * 1.02));
+      caotest::ReferenceCase(name, caotest::ReferenceEstimate(bvh, p, Up, s), 1 - occ(0.5), 1 - occ(0.5 * 1.02), failures);
     }
   }
   // A3 and V1: a wall x = a (R = 1), step and quartic falloff.
@@ -232,15 +193,15 @@ int TestSurfaceReference(int, char*[])
                  w3[3] = { a, -50, 50 };
     m.Quad(w0, w1, w2, w3);
     cao::TriangleBVH bvh = Build(m);
-    cao::SurfaceReferenceSettings r = s;
+    cao::AOReferenceSettings r = s;
     r.radius = 1.0;
     char name[64];
     std::snprintf(name, sizeof(name), "A3 wall at a=%.1f, step, R=1", a);
-    Case(name, AO(bvh, Origin, Up, r), 1 - WallOcclusion(a), 1 - WallOcclusion(a * 1.02));
+    caotest::ReferenceCase(name, caotest::ReferenceEstimate(bvh, Origin, Up, r), 1 - WallOcclusion(a), 1 - WallOcclusion(a * 1.02), failures);
     // V1: the design notes' values for seed 001's quartic measure.
     r.falloff = cao::AOFalloff::Quartic;
     const double v1 = a == 0.1 ? 0.5845 : a == 0.3 ? 0.7434 : 0.9228;
-    const Estimate q = AO(bvh, Origin, Up, r);
+    const caotest::Estimate q = caotest::ReferenceEstimate(bvh, Origin, Up, r);
     const bool ok = std::fabs(q.mean - v1) < 1e-4 + 4 * q.standardError; // values given to 4 places
     std::printf("V1 wall at a=%.1f, quartic, R=1                AO %.5f seed 001 value %.4f %s\n",
       a, q.mean, v1, ok ? "ok" : "FAIL");
@@ -263,7 +224,7 @@ int TestSurfaceReference(int, char*[])
         open += mu * (4.0 / (double(n) * n)) / Pi;
       }
     std::snprintf(name, sizeof(name), "   wall at a=%.1f, linear, R=1", a);
-    const Estimate l = AO(bvh, Origin, Up, r);
+    const caotest::Estimate l = caotest::ReferenceEstimate(bvh, Origin, Up, r);
     const bool lok = std::fabs(l.mean - open) < std::max(4 * l.standardError, 1e-3);
     std::printf("%-44s AO %.5f quadrature %.5f %s\n", name, l.mean, open, lok ? "ok" : "FAIL");
     if (!lok)
@@ -277,7 +238,7 @@ int TestSurfaceReference(int, char*[])
     // the wall blocks (1 - a) / 2.
     auto blockedUniform = [](double wall) { return 0.5 * (1.0 - wall); };
     std::snprintf(name, sizeof(name), "U1 wall at a=%.1f, step, uniform, R=1", a);
-    Case(name, AO(bvh, Origin, Up, r), 1 - blockedUniform(a), 1 - blockedUniform(a * 1.02));
+    caotest::ReferenceCase(name, caotest::ReferenceEstimate(bvh, Origin, Up, r), 1 - blockedUniform(a), 1 - blockedUniform(a * 1.02), failures);
   }
   // A4: the corner of two walls x = a, y = a (R = 1).
   for (double a : { 0.2, 0.5 })
@@ -290,11 +251,11 @@ int TestSurfaceReference(int, char*[])
                  v3[3] = { 50, a, -1 };
     m.Quad(v0, v1, v2, v3);
     cao::TriangleBVH bvh = Build(m);
-    cao::SurfaceReferenceSettings r = s;
+    cao::AOReferenceSettings r = s;
     r.radius = 1.0;
     char name[64];
     std::snprintf(name, sizeof(name), "A4 corner of walls at a=%.1f, R=1", a);
-    Case(name, AO(bvh, Origin, Up, r), 1 - CornerOcclusion(a), 1 - CornerOcclusion(a * 1.02));
+    caotest::ReferenceCase(name, caotest::ReferenceEstimate(bvh, Origin, Up, r), 1 - CornerOcclusion(a), 1 - CornerOcclusion(a * 1.02), failures);
   }
   // A5: a step (wall of height H at distance d = 1, very wide), unlimited R.
   for (double k : { 1.0, 4.0 })
@@ -307,7 +268,7 @@ int TestSurfaceReference(int, char*[])
     auto occ = [](double kk) { return 0.5 * (1 - 1 / std::sqrt(1 + kk * kk)); };
     char name[64];
     std::snprintf(name, sizeof(name), "A5 step k=H/d=%.0f", k);
-    Case(name, AO(bvh, Origin, Up, s), 1 - occ(k), 1 - occ(k * 1.02));
+    caotest::ReferenceCase(name, caotest::ReferenceEstimate(bvh, Origin, Up, s), 1 - occ(k), 1 - occ(k * 1.02), failures);
   }
   // A6: inside a closed box, every direction is blocked.
   {
@@ -322,7 +283,7 @@ int TestSurfaceReference(int, char*[])
     m.Quad(b[3], b[0], b[4], b[7]);
     cao::TriangleBVH bvh = Build(m);
     const double p[3] = { 0.2, -0.3, 0.1 }, n[3] = { 0.6, 0.0, 0.8 };
-    const Estimate e = AO(bvh, p, n, s, 2);
+    const caotest::Estimate e = caotest::ReferenceEstimate(bvh, p, n, s, 2);
     std::printf("A6 inside a closed box                       AO %.5f exact 0 %s\n", e.mean,
       e.mean == 0.0 ? "ok" : "FAIL");
     if (e.mean != 0.0)
@@ -341,7 +302,7 @@ int TestSurfaceReference(int, char*[])
     double first = 0.0, last = 0.0;
     for (int rays : { 64, 256, 1024, 4096 })
     {
-      cao::SurfaceReferenceSettings r = s;
+      cao::AOReferenceSettings r = s;
       r.rays = rays;
       double sum = 0.0;
       for (int k = 0; k < 16; ++k)
@@ -349,7 +310,7 @@ int TestSurfaceReference(int, char*[])
         r.seed = 77 + k;
         double ao = 0;
         std::string error;
-        cao::SurfaceReferenceAO(bvh, p, Up, 1, r, cao::SelfDistance(bvh), &ao, error);
+        cao::ReferenceAO(bvh, p, Up, 1, r, cao::SelfDistance(bvh), &ao, error);
         sum += (ao - exact) * (ao - exact);
       }
       const double rms = std::sqrt(sum / 16);
@@ -370,7 +331,7 @@ int TestSurfaceReference(int, char*[])
         error.find("point 3 of 3") != std::string::npos, "id out of range: %s", error.c_str());
     CAO_CHECK(bvh.Build({ 0, 0, 0, 1, 0, 0, 2, 0, 0 }, { 0, 1, 2 }, error) &&
         bvh.NumberOfTriangles() == 0, "a zero-area triangle is left out");
-    cao::SurfaceReferenceSettings bad;
+    cao::AOReferenceSettings bad;
     bad.rays = 0;
     CAO_CHECK(bad.Validate().find("rays must be 1..") != std::string::npos, "%s", bad.Validate().c_str());
     bad.rays = 16;
@@ -378,7 +339,7 @@ int TestSurfaceReference(int, char*[])
     CAO_CHECK(bad.Validate().find("radius") != std::string::npos, "%s", bad.Validate().c_str());
     const double n[3] = { 0, 0, 2 };
     double ao = -1;
-    CAO_CHECK(!cao::SurfaceReferenceAO(bvh, Origin, n, 1, s, 0.0, &ao, error) &&
+    CAO_CHECK(!cao::ReferenceAO(bvh, Origin, n, 1, s, 0.0, &ao, error) &&
         error.find("unit length") != std::string::npos && ao == -1, "bad normal: %s", error.c_str());
     cao::PixelCamera cam;
     cam.width = 0;

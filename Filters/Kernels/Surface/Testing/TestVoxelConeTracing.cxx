@@ -676,7 +676,7 @@ int TestVoxelConeTracing(int, char*[])
             flat.push_back({ static_cast<std::int64_t>(k), static_cast<std::int64_t>(step) });
         }
     cao::SurfaceFrame reference = frame, second = frame;
-    cao::SurfaceReferenceSettings rs;
+    cao::AOReferenceSettings rs;
     rs.radius = radius;
     rs.rays = 1024;
     CAO_CHECK(cao::ReferenceFrame(bvh, rs, reference, error), "%s", error.c_str());

@@ -1,4 +1,4 @@
-// caoParallelFor.h - the surface kernels' loop over independent items on a
+// caoParallelFor.h - the kernels' loop over independent items on a
 // few std::threads (chunks of 64 handed out by an atomic counter), so that
 // each item's result does not depend on the number of threads.
 #ifndef caoParallelFor_h

@@ -1,0 +1,373 @@
+// caoCapsules.cxx - the capsules' bounding-volume hierarchy, the exact
+// ray-capsule test and the line G-buffer (caoCapsules.h).
+//
+// The hierarchy is Surface/caoTriangleBVH.cxx's (median split on the
+// centroids along their largest extent, leaves of a few items, iterative
+// traversal, double-precision ray-box slabs) over the capsules' boxes. The
+// ray-capsule test is the union of the ray's intervals in the two end
+// spheres and in the infinite cylinder clipped to the segment's slab: a
+// capsule is convex, so the union is one interval [entry, exit] (its
+// smallest entry and largest exit), and a ray (nearly) parallel to the
+// axis, whose cylinder part is ill-conditioned, enters and leaves through
+// the spheres anyway. Each quadratic is solved in the stable form, its
+// discriminant from the line's nearest point to the axis (no cancellation
+// of large terms when the origin is far away).
+#include "caoCapsules.h"
+
+#include "caoParallelFor.h"
+#include "caoVectorMath.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace cao
+{
+namespace
+{
+constexpr double Infinity = std::numeric_limits<double>::infinity();
+
+/// The roots t0 <= t1 of |p + t v|^2 = r2 (v not 0); false when there are
+/// none (the line misses the sphere or circle of radius sqrt(r2)).
+bool SolveQuadratic(const Vec3& p, const Vec3& v, double r2, double& t0, double& t1)
+{
+  const double a = glm::dot(v, v);
+  const double b = glm::dot(p, v);
+  // b^2 - a (|p|^2 - r2) = a (r2 - |w|^2), w the line's point nearest the
+  // centre (Lagrange's identity; Haines et al., Ray Tracing Gems ch. 7).
+  const Vec3 w = p - (b / a) * v;
+  const double h = r2 - glm::dot(w, w);
+  if (!(h >= 0.0))
+    return false; // also NaN: a too small to divide by (a parallel line)
+  const double q = -(b + std::copysign(std::sqrt(a * h), b));
+  if (q == 0.0)
+  {
+    t0 = t1 = 0.0; // b = 0 and h = 0: touching at t = 0
+    return true;
+  }
+  const double x0 = q / a, x1 = (glm::dot(p, p) - r2) / q;
+  t0 = std::min(x0, x1);
+  t1 = std::max(x0, x1);
+  return true;
+}
+
+/// The interval [entry, exit] of the line o + t d (d not 0) inside the
+/// capsule of segment [a, b] and squared radius r2; false when it misses.
+bool CapsuleInterval(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b, double r2,
+  double& entry, double& exit)
+{
+  bool any = false;
+  entry = Infinity;
+  exit = -Infinity;
+  auto merge = [&](double t0, double t1) {
+    entry = std::min(entry, t0);
+    exit = std::max(exit, t1);
+    any = true;
+  };
+  double t0, t1;
+  if (SolveQuadratic(o - a, d, r2, t0, t1))
+    merge(t0, t1);
+  const Vec3 ba = b - a;
+  const double l2 = glm::dot(ba, ba);
+  if (l2 == 0.0)
+    return any; // a sphere
+  if (SolveQuadratic(o - b, d, r2, t0, t1))
+    merge(t0, t1);
+  // Shorter than 1e-12 r: the two spheres' union misses less than 1e-25 r
+  // of the capsule (and the cylinder's projections would divide by ~0).
+  if (!(l2 > 1e-24 * r2))
+    return any;
+  // The slab 0 <= (o + t d - a).ba <= |ba|^2.
+  const Vec3 oa = o - a;
+  const double along = glm::dot(oa, ba), speed = glm::dot(d, ba);
+  double s0 = -Infinity, s1 = Infinity;
+  if (speed != 0.0)
+  {
+    const double u0 = -along / speed, u1 = (l2 - along) / speed;
+    s0 = std::min(u0, u1);
+    s1 = std::max(u0, u1);
+  }
+  else if (along < 0.0 || along > l2)
+    return any;
+  // The infinite cylinder: the components across the axis.
+  const Vec3 p = oa - (along / l2) * ba, v = d - (speed / l2) * ba;
+  double c0 = -Infinity, c1 = Infinity;
+  if (glm::dot(v, v) > 0.0)
+  {
+    if (!SolveQuadratic(p, v, r2, c0, c1))
+      return any;
+  }
+  else if (glm::dot(p, p) > r2)
+    return any; // parallel, outside
+  c0 = std::max(c0, s0);
+  c1 = std::min(c1, s1);
+  if (c0 <= c1)
+    merge(c0, c1);
+  return any;
+}
+
+/// The parameter in [0, 1] of the point of segment [a, b] nearest `x`.
+double AxisParameter(const Vec3& x, const Vec3& a, const Vec3& b)
+{
+  const Vec3 ba = b - a;
+  const double l2 = glm::dot(ba, ba);
+  if (!(l2 > 0.0))
+    return 0.0;
+  return std::min(1.0, std::max(0.0, glm::dot(x - a, ba) / l2));
+}
+}
+
+/// The record of the segment whose point ids are `id` (its end points;
+/// the input index is the caller's).
+void CapsuleBVH::MakeCapsule(const std::vector<double>& points, const std::int64_t* id, Capsule& capsule)
+{
+  for (int d = 0; d < 3; ++d)
+  {
+    capsule.a[d] = points[static_cast<std::size_t>(3 * id[0] + d)];
+    capsule.b[d] = points[static_cast<std::size_t>(3 * id[1] + d)];
+  }
+  capsule.segment = -1;
+}
+
+bool CapsuleBVH::Build(const std::vector<double>& points, const std::vector<std::int64_t>& segments,
+  double r, std::string& error)
+{
+  this->tree.Clear();
+  this->capsules.clear();
+  this->slotOfSegment.clear();
+  this->bounds = { { 1, -1, 1, -1, 1, -1 } };
+  this->radius = 0.0;
+  if (points.size() % 3 != 0 || segments.size() % 2 != 0)
+  {
+    error = "points must hold 3 coordinates and segments 2 ids each (got " +
+      std::to_string(points.size()) + " coordinates and " + std::to_string(segments.size()) +
+      " ids)";
+    return false;
+  }
+  if (!std::isfinite(r) || !(r > 0.0))
+  {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%g", r);
+    error = std::string("the tube radius must be finite and positive (got ") + text + ")";
+    return false;
+  }
+  const std::int64_t numPoints = static_cast<std::int64_t>(points.size() / 3);
+  const std::int64_t numSegments = static_cast<std::int64_t>(segments.size() / 2);
+  if (numSegments > MaximumSegments)
+  {
+    error = "the lines have " + std::to_string(numSegments) + " segments; at most " +
+      std::to_string(MaximumSegments) + " are supported";
+    return false;
+  }
+  for (double c : points)
+  {
+    if (!std::isfinite(c))
+    {
+      error = "the lines have a NaN or infinite coordinate";
+      return false;
+    }
+  }
+  for (std::int64_t s = 0; s < numSegments; ++s)
+  {
+    for (int k = 0; k < 2; ++k)
+    {
+      const std::int64_t id = segments[static_cast<std::size_t>(2 * s + k)];
+      if (id < 0 || id >= numPoints)
+      {
+        error = "segment " + std::to_string(s) + " refers to point " + std::to_string(id) +
+          " of " + std::to_string(numPoints);
+        return false;
+      }
+    }
+  }
+  this->radius = r;
+  // Centroid and input segment per capsule; the capsules' records are
+  // stored once, in leaf order, after the tree.
+  std::vector<BoxTree::Item> items;
+  ReserveHuge(items, static_cast<std::size_t>(numSegments));
+  for (std::int64_t s = 0; s < numSegments; ++s)
+  {
+    const double* a = &points[static_cast<std::size_t>(3 * segments[static_cast<std::size_t>(2 * s)])];
+    const double* b = &points[static_cast<std::size_t>(3 * segments[static_cast<std::size_t>(2 * s + 1)])];
+    BoxTree::Item item;
+    for (int d = 0; d < 3; ++d)
+      item.c[d] = 0.5 * (a[d] + b[d]);
+    item.id = s;
+    items.push_back(item);
+  }
+  // A leaf's box: its segments' boxes grown by the radius, and by a few
+  // units in the last place of the coordinates (so that rounding in
+  // "- radius" never cuts off a capsule's extreme point).
+  this->tree.Build(items, [&points, &segments, r](std::int64_t segment, double lo[3], double hi[3]) {
+    Capsule c;
+    MakeCapsule(points, &segments[static_cast<std::size_t>(2 * segment)], c);
+    for (int d = 0; d < 3; ++d)
+    {
+      const double l = std::min(c.a[d], c.b[d]), h = std::max(c.a[d], c.b[d]);
+      const double pad = 4.0 * std::numeric_limits<double>::epsilon() * (std::max(std::fabs(l), std::fabs(h)) + r);
+      lo[d] = std::min(lo[d], l - r - pad);
+      hi[d] = std::max(hi[d], h + r + pad);
+    }
+  });
+  this->bounds = this->tree.Bounds();
+  // The capsules in leaf order (BuildNode sorted the items), and each input
+  // segment's slot.
+  ReserveHuge(this->capsules, static_cast<std::size_t>(numSegments));
+  this->slotOfSegment.assign(static_cast<std::size_t>(numSegments), -1);
+  for (const BoxTree::Item& item : items)
+  {
+    Capsule capsule;
+    MakeCapsule(points, &segments[static_cast<std::size_t>(2 * item.id)], capsule);
+    capsule.segment = item.id;
+    this->slotOfSegment[static_cast<std::size_t>(item.id)] =
+      static_cast<std::int64_t>(this->capsules.size());
+    this->capsules.push_back(capsule);
+  }
+  return true;
+}
+
+template <bool AnyHit>
+bool CapsuleBVH::Trace(const double origin[3], const double direction[3], double tMin,
+  double tMax, CapsuleHit* hit) const
+{
+  const Vec3 rayOrigin = LoadVec3(origin), rayDirection = LoadVec3(direction);
+  if (this->tree.Empty() || !(tMax > tMin) || !(glm::dot(rayDirection, rayDirection) > 0.0))
+    return false;
+  const double r2 = this->radius * this->radius;
+  bool found = false;
+  double best = tMax;
+  std::int64_t bestSlot = -1;
+  const bool stopped = this->tree.Traverse(origin, direction, tMin, best,
+    [&](std::int64_t first, std::int64_t count, double& closest) {
+      for (std::int64_t i = first; i < first + count; ++i)
+      {
+        const Capsule& c = this->capsules[static_cast<std::size_t>(i)];
+        double entry, leave;
+        if (!CapsuleInterval(rayOrigin, rayDirection, LoadVec3(c.a), LoadVec3(c.b), r2, entry, leave))
+          continue;
+        if (!(leave > tMin))
+          continue; // behind the ray, or left through the surface at tMin
+        const double t = entry > tMin ? entry : tMin;
+        if (!(t <= closest))
+          continue;
+        if (AnyHit)
+          return true;
+        // Equal distances (rays starting inside several capsules, joints):
+        // the lowest input segment, whatever the tree's order.
+        if (found && t == closest && c.segment > this->capsules[static_cast<std::size_t>(bestSlot)].segment)
+          continue;
+        closest = t;
+        bestSlot = i;
+        found = true;
+      }
+      return false;
+    });
+  if (AnyHit)
+    return stopped;
+  if (found)
+  {
+    const Capsule& c = this->capsules[static_cast<std::size_t>(bestSlot)];
+    hit->t = best;
+    hit->segment = c.segment;
+    hit->axis = AxisParameter(rayOrigin + best * rayDirection, LoadVec3(c.a), LoadVec3(c.b));
+  }
+  return found;
+}
+
+bool CapsuleBVH::Intersect(const double origin[3], const double direction[3], double tMin,
+  double tMax, CapsuleHit& hit) const
+{
+  return this->Trace<false>(origin, direction, tMin, tMax, &hit);
+}
+
+bool CapsuleBVH::FirstHit(const double origin[3], const double direction[3], double tMin,
+  double tMax, double& t) const
+{
+  CapsuleHit hit;
+  if (!this->Trace<false>(origin, direction, tMin, tMax, &hit))
+    return false;
+  t = hit.t;
+  return true;
+}
+
+bool CapsuleBVH::Occluded(const double origin[3], const double direction[3], double tMin,
+  double tMax) const
+{
+  return this->Trace<true>(origin, direction, tMin, tMax, nullptr);
+}
+
+std::int64_t CapsuleBVH::NumberOfSegments() const
+{
+  return static_cast<std::int64_t>(this->capsules.size());
+}
+
+bool CapsuleBVH::Segment(std::int64_t s, double a[3], double b[3]) const
+{
+  if (s < 0 || s >= static_cast<std::int64_t>(this->slotOfSegment.size()))
+    return false;
+  const Capsule& c = this->capsules[static_cast<std::size_t>(this->slotOfSegment[static_cast<std::size_t>(s)])];
+  std::copy(c.a, c.a + 3, a);
+  std::copy(c.b, c.b + 3, b);
+  return true;
+}
+
+bool CastLinePrimary(const CapsuleBVH& tubes, const PixelCamera& camera, LineFrame& frame,
+  std::string& error)
+{
+  error = CheckPixelCamera(camera);
+  if (!error.empty())
+    return false;
+  // Assigned in place: a frame cast again keeps its memory
+  // (caoSurfaceReference.cxx's ResetFrame says why).
+  const std::size_t pixels = static_cast<std::size_t>(camera.width) * camera.height;
+  frame.covered = 0;
+  frame.width = camera.width;
+  frame.height = camera.height;
+  frame.segment.assign(pixels, -1);
+  frame.position.assign(3 * pixels, 0.0);
+  frame.normal.assign(3 * pixels, 0.0);
+  frame.tangent.assign(3 * pixels, 0.0);
+  frame.axis.assign(3 * pixels, 0.0);
+  frame.view.assign(3 * pixels, 0.0);
+  frame.depth.assign(pixels, Infinity);
+  frame.ao.assign(pixels, std::numeric_limits<double>::quiet_NaN());
+  ParallelFor(pixels, 0, [&](std::size_t index) {
+    const int i = static_cast<int>(index % camera.width), j = static_cast<int>(index / camera.width);
+    double nearPoint[3], rayDirection[3], length = 0.0;
+    if (!PixelRay(camera, i, j, nearPoint, rayDirection, length))
+      return;
+    const Vec3 d = LoadVec3(rayDirection);
+    StoreVec3(d, &frame.view[3 * index]);
+    CapsuleHit hit;
+    if (!tubes.Intersect(nearPoint, rayDirection, 0.0, length, hit))
+      return;
+    double a[3], b[3];
+    tubes.Segment(hit.segment, a, b);
+    const Vec3 va = LoadVec3(a), vb = LoadVec3(b);
+    const Vec3 position = LoadVec3(nearPoint) + hit.t * d;
+    const Vec3 axisPoint = va + hit.axis * (vb - va);
+    Vec3 normal = position - axisPoint;
+    if (!(DivideByLength(normal) > 0.0))
+      normal = -d; // on the axis (the ray starts inside): facing the camera
+    Vec3 tangent = vb - va;
+    DivideByLength(tangent); // stays 0 for a sphere
+    frame.segment[index] = hit.segment;
+    frame.depth[index] = hit.t;
+    StoreVec3(position, &frame.position[3 * index]);
+    StoreVec3(normal, &frame.normal[3 * index]);
+    StoreVec3(tangent, &frame.tangent[3 * index]);
+    StoreVec3(axisPoint, &frame.axis[3 * index]);
+  });
+  frame.covered = std::count_if(frame.segment.begin(), frame.segment.end(),
+    [](std::int64_t s) { return s >= 0; });
+  return true;
+}
+
+bool LineReferenceFrame(const RayOccluders& scene, const AOReferenceSettings& settings,
+  LineFrame& frame, std::string& error)
+{
+  return ReferenceAOOfPixels(scene, settings, frame.segment, frame.position, frame.normal, frame.ao, error);
+}
+
+}

@@ -1,0 +1,118 @@
+// caoCapsules.h - tubes as the ray-traced reference sees them: each line
+// segment with a radius is a capsule (the points within `radius` of the
+// segment: a cylinder with hemispherical caps, so that consecutive
+// segments of a polyline join without gaps), intersected exactly in double
+// precision through a bounding-volume hierarchy. Used for the reference AO
+// of lines (Common/caoAOReference.h's ReferenceAO over a CapsuleBVH, alone
+// or with a mesh in a RayOccluderSet) and for the tubes' G-buffer
+// (CastLinePrimary), the pixels every line-AO estimate starts from.
+#ifndef caoCapsules_h
+#define caoCapsules_h
+
+#include "caoAOReference.h"
+#include "caoBoxTree.h"
+#include "caoPixelCamera.h"
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace cao
+{
+
+/// The closest hit along a ray: distance (in units of the direction's
+/// length), the segment's index in the input, and the parameter of the
+/// segment's axis point nearest the hit (0 at its first point, 1 at its
+/// second).
+struct CapsuleHit
+{
+  double t = 0.0;
+  std::int64_t segment = -1;
+  double axis = 0.0;
+};
+
+class CapsuleBVH : public RayOccluders
+{
+public:
+  /// The largest number of segments (each costs about 100 bytes).
+  static constexpr std::int64_t MaximumSegments = std::int64_t(1) << 27;
+
+  /// Builds over `points` (x, y, z each) and `segments` (2 point ids each)
+  /// with one `radius` for all (finite, > 0). A segment whose two points
+  /// coincide is a sphere. A NaN or infinite coordinate, an id out of
+  /// range, a radius not finite or not positive, or more than
+  /// MaximumSegments is refused with the reason. No segments is valid:
+  /// nothing is ever hit.
+  bool Build(const std::vector<double>& points, const std::vector<std::int64_t>& segments,
+    double radius, std::string& error);
+
+  /// The capsules are solids: a ray is hit where its part in (tMin, tMax]
+  /// first enters one, at max(entry, tMin) when it starts inside one (a
+  /// ray leaving a capsule's surface outward is not hit by that capsule;
+  /// one leaving it into a neighbouring capsule, at a polyline's bend, is,
+  /// at once). Equal distances (a ray starting inside several capsules)
+  /// give the lowest segment index. False when there is no hit.
+  bool Intersect(const double origin[3], const double direction[3], double tMin, double tMax,
+    CapsuleHit& hit) const;
+  bool FirstHit(const double origin[3], const double direction[3], double tMin, double tMax,
+    double& t) const override;
+  bool Occluded(const double origin[3], const double direction[3], double tMin,
+    double tMax) const override;
+  std::array<double, 6> OccluderBounds() const override { return this->bounds; }
+
+  double Radius() const { return this->radius; }
+  std::int64_t NumberOfSegments() const;
+  /// Input segment s's end points (a, b); false when s is out of range.
+  bool Segment(std::int64_t s, double a[3], double b[3]) const;
+
+private:
+  struct Capsule
+  {
+    double a[3], b[3];
+    std::int64_t segment;
+  };
+  static void MakeCapsule(const std::vector<double>& points, const std::int64_t* id, Capsule& capsule);
+  /// The closest hit (AnyHit: whether there is one) in (tMin, tMax].
+  template <bool AnyHit>
+  bool Trace(const double origin[3], const double direction[3], double tMin, double tMax,
+    CapsuleHit* hit) const;
+
+  BoxTree tree;                  ///< over the segments' midpoints (Common/caoBoxTree.h)
+  std::vector<Capsule> capsules; ///< in leaf order
+  std::vector<std::int64_t> slotOfSegment;
+  std::array<double, 6> bounds{ { 1, -1, 1, -1, 1, -1 } };
+  double radius = 0.0;
+};
+
+/// What the camera sees of tubes: per pixel the first capsule hit (the
+/// line G-buffer), and the AO there.
+struct LineFrame
+{
+  int width = 0, height = 0;
+  std::vector<std::int64_t> segment; ///< -1: background
+  std::vector<double> position;      ///< x, y, z per pixel: the hit on the tube's surface
+  std::vector<double> normal;        ///< the tube's outward unit normal there
+  std::vector<double> tangent;       ///< the segment's unit direction (0 for a sphere)
+  std::vector<double> axis;          ///< the axis point nearest the hit
+  std::vector<double> view;          ///< the pixel's unit ray direction (eye to scene)
+  std::vector<double> depth;         ///< distance along the pixel's ray from the near plane
+  std::vector<double> ao;            ///< NaN on background
+  std::int64_t covered = 0;
+};
+
+/// The camera's line G-buffer by ray casting the capsules (pixel (i, j)'s
+/// ray as caoPixelCamera.h defines it, from the near plane to the far
+/// plane). `ao` is NaN. False with the reason on a bad camera.
+bool CastLinePrimary(const CapsuleBVH& tubes, const PixelCamera& camera, LineFrame& frame,
+  std::string& error);
+
+/// The reference AO (caoAOReference.h) of every covered pixel of `frame`
+/// at its surface point and normal, against `scene` (the tubes, or the
+/// tubes with other occluders in a RayOccluderSet).
+bool LineReferenceFrame(const RayOccluders& scene, const AOReferenceSettings& settings,
+  LineFrame& frame, std::string& error);
+
+}
+
+#endif

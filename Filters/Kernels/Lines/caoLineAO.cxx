@@ -1,0 +1,456 @@
+#include "caoLineAO.h"
+
+#include "caoParallelFor.h"
+#include "caoVectorMath.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+
+namespace cao
+{
+namespace
+{
+constexpr double Pi = 3.14159265358979323846;
+constexpr int SampleSets = 16;
+constexpr double HalfVoxelDiagonal = 0.8660254037844386;
+/// The mean area a unit cube projects along a random direction (Cauchy:
+/// a quarter of its surface): a thin line's supercover per unit length.
+constexpr double SupercoverArea = 1.5;
+
+double Unit(std::mt19937_64& rng)
+{
+  return static_cast<double>(rng() >> 11) * (1.0 / 9007199254740992.0); // [0, 1)
+}
+
+/// A point of `grid` in voxel units: voxel (i, j, k) spans [i, i + 1) x
+/// [j, j + 1) x [k, k + 1).
+Vec3 ToVoxels(const BitGrid& grid, const double world[3])
+{
+  double g[3];
+  grid.ToGrid(world, g);
+  return { (g[0] - grid.origin[0]) / grid.voxel, (g[1] - grid.origin[1]) / grid.voxel,
+    (g[2] - grid.origin[2]) / grid.voxel };
+}
+
+/// A direction in the grid's frame.
+Vec3 ToGridDirection(const BitGrid& grid, const double world[3])
+{
+  double g[3];
+  grid.ToGrid(world, g);
+  return LoadVec3(g);
+}
+
+/// The parameter range of segment p0 + s (p1 - p0), s in [s0, s1], inside
+/// the closed box [lo, hi]; false when it misses.
+bool ClipToBox(const Vec3& p0, const Vec3& d, const Vec3& lo, const Vec3& hi, double& s0, double& s1)
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    if (d[a] == 0.0)
+    {
+      if (p0[a] < lo[a] || p0[a] > hi[a])
+        return false;
+      continue;
+    }
+    double t0 = (lo[a] - p0[a]) / d[a], t1 = (hi[a] - p0[a]) / d[a];
+    if (t0 > t1)
+      std::swap(t0, t1);
+    s0 = std::max(s0, t0);
+    s1 = std::min(s1, t1);
+    if (s0 > s1)
+      return false;
+  }
+  return true;
+}
+
+/// The squared distance from q to segment [p0, p0 + d].
+double SegmentDistance2(const Vec3& q, const Vec3& p0, const Vec3& d)
+{
+  const double dd = glm::dot(d, d);
+  double s = dd > 0.0 ? glm::dot(q - p0, d) / dd : 0.0;
+  s = std::min(1.0, std::max(0.0, s));
+  const Vec3 e = q - (p0 + s * d);
+  return glm::dot(e, e);
+}
+
+void SetBit(BitGrid& grid, int i, int j, int k)
+{
+  grid.bits[(static_cast<std::size_t>(j) * grid.nx + i) * grid.words + (k >> 5)] |= 1u << (k & 31);
+}
+}
+
+std::string LineAOSettings::Validate() const
+{
+  if (!(this->radius > 0.0) || !std::isfinite(this->radius))
+    return "the line AO radius must be finite and positive (got " + std::to_string(this->radius) + ")";
+  if (!(this->tubeRadius >= 0.0) || !std::isfinite(this->tubeRadius))
+    return "the tube radius must be finite and not negative (0: lines drawn as lines; got " +
+      std::to_string(this->tubeRadius) + ")";
+  if (this->samples < 1 || this->samples > MaximumSamples)
+    return "line AO samples must be 1.." + std::to_string(MaximumSamples) + " (got " +
+      std::to_string(this->samples) + ")";
+  if (this->slices < 32 || this->slices > 1024 || this->slices % 32 != 0)
+    return "depth slices must be 32..1024 and a multiple of 32 (got " + std::to_string(this->slices) + ")";
+  if (!(this->strength >= 0.0 && this->strength <= 100.0))
+    return "the line AO strength must be 0..100 (1: calibrated; got " + std::to_string(this->strength) + ")";
+  if (!(this->aoFactor >= 0.0) || !std::isfinite(this->aoFactor))
+    return "the AO factor must be finite and not negative";
+  if (static_cast<int>(this->weights) < 0 || static_cast<int>(this->weights) > 1)
+    return "unknown line AO weights";
+  if (static_cast<int>(this->hemisphere) < 0 || static_cast<int>(this->hemisphere) > 1)
+    return "unknown line AO hemisphere";
+  if (this->threads < 0 || this->threads > 1024)
+    return "threads must be 0 (the hardware's) .. 1024";
+  return std::string();
+}
+
+const char* LineAOWeightsName(LineAOWeights weights)
+{
+  return weights == LineAOWeights::Paper ? "paper" : "normalized";
+}
+
+bool ParseLineAOWeights(const std::string& text, LineAOWeights& weights)
+{
+  for (LineAOWeights w : { LineAOWeights::Normalized, LineAOWeights::Paper })
+    if (text == LineAOWeightsName(w))
+    {
+      weights = w;
+      return true;
+    }
+  return false;
+}
+
+const char* LineAOHemisphereName(LineAOHemisphere hemisphere)
+{
+  return hemisphere == LineAOHemisphere::CameraFacing ? "camera" : "normal";
+}
+
+bool ParseLineAOHemisphere(const std::string& text, LineAOHemisphere& hemisphere)
+{
+  for (LineAOHemisphere h : { LineAOHemisphere::Normal, LineAOHemisphere::CameraFacing })
+    if (text == LineAOHemisphereName(h))
+    {
+      hemisphere = h;
+      return true;
+    }
+  return false;
+}
+
+std::string LineSegments::Validate() const
+{
+  if (this->points.size() % 3 != 0)
+    return "the line points are not x, y, z triples";
+  if (this->segments.size() % 2 != 0)
+    return "the segments are not pairs of point ids";
+  for (double c : this->points)
+    if (!std::isfinite(c))
+      return "a line point has a NaN or infinite coordinate";
+  const std::int64_t n = static_cast<std::int64_t>(this->points.size() / 3);
+  for (std::int64_t id : this->segments)
+    if (id < 0 || id >= n)
+      return "a segment's point id " + std::to_string(id) + " is outside 0.." + std::to_string(n - 1);
+  return std::string();
+}
+
+bool PlanLineGrid(const LineSegments& lines, const double right[3], const double up[3],
+  const LineAOSettings& settings, BitGrid& grid, std::string& error)
+{
+  error = settings.Validate();
+  if (error.empty())
+    error = lines.Validate();
+  if (!error.empty())
+    return false;
+  std::array<double, 9> axes;
+  if (!EyeAxes(right, up, axes, error))
+    return false;
+  BitGrid frame;
+  frame.axes = axes;
+  std::array<double, 6> b{ { 0, 0, 0, 0, 0, 0 } };
+  bool any = false;
+  for (std::int64_t id : lines.segments)
+  {
+    double g[3];
+    frame.ToGrid(&lines.points[3 * static_cast<std::size_t>(id)], g);
+    for (int d = 0; d < 3; ++d)
+    {
+      b[2 * d] = any ? std::min(b[2 * d], g[d]) : g[d];
+      b[2 * d + 1] = any ? std::max(b[2 * d + 1], g[d]) : g[d];
+    }
+    any = true;
+  }
+  if (!any)
+  {
+    error = "there are no line segments";
+    return false;
+  }
+  if (!PlanGrid(b, settings.radius + settings.tubeRadius, settings.slices, grid, error))
+    return false;
+  grid.axes = axes;
+  return true;
+}
+
+bool VoxelizeLines(const LineSegments& lines, double tubeRadius, BitGrid& grid, std::string& error)
+{
+  error = lines.Validate();
+  if (!error.empty())
+    return false;
+  if (grid.IsFrustum() || grid.nx < 1 || grid.ny < 1 || grid.words < 1 || !(grid.voxel > 0.0))
+  {
+    error = "line voxelization needs a planned world or eye grid";
+    return false;
+  }
+  if (!(tubeRadius >= 0.0) || !std::isfinite(tubeRadius))
+  {
+    error = "the tube radius must be finite and not negative";
+    return false;
+  }
+  const double rho = tubeRadius / grid.voxel, rho2 = rho * rho;
+  const int dims[3] = { grid.nx, grid.ny, grid.slices };
+  constexpr double PieceLength = 4.0; // voxels
+  // The voxels the pieces' boxes visit, bounded before any is: a tube far
+  // wider than the grid's voxels would otherwise visit the grid per piece.
+  double visits = 0.0;
+  const double side = PieceLength + 2.0 * rho + 3.0;
+  const double perPiece = std::min(side * side * side, static_cast<double>(dims[0]) * dims[1] * dims[2]);
+  for (std::size_t s = 0; s + 1 < lines.segments.size(); s += 2)
+  {
+    const double* a = &lines.points[3 * static_cast<std::size_t>(lines.segments[s])];
+    const double* b = &lines.points[3 * static_cast<std::size_t>(lines.segments[s + 1])];
+    const double length = std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+      (a[2] - b[2]) * (a[2] - b[2])) / grid.voxel;
+    visits += std::max(1.0, std::ceil(length / PieceLength)) * perPiece;
+  }
+  if (visits > MaximumVoxelVisits)
+  {
+    error = "voxelizing these lines would visit about " + std::to_string(static_cast<long long>(visits)) +
+      " voxels (tube radius " + std::to_string(tubeRadius) + ", " + std::to_string(rho) +
+      " voxels); at most " + std::to_string(static_cast<long long>(MaximumVoxelVisits)) +
+      ": use a smaller tube radius or fewer slices";
+    return false;
+  }
+  grid.bits.assign(static_cast<std::size_t>(grid.nx) * grid.ny * grid.words, 0u);
+  for (std::size_t s = 0; s + 1 < lines.segments.size(); s += 2)
+  {
+    const Vec3 a = ToVoxels(grid, &lines.points[3 * static_cast<std::size_t>(lines.segments[s])]);
+    const Vec3 b = ToVoxels(grid, &lines.points[3 * static_cast<std::size_t>(lines.segments[s + 1])]);
+    const Vec3 d = b - a;
+    const int pieces = std::max(1, static_cast<int>(std::ceil(glm::length(d) / PieceLength)));
+    for (int p = 0; p < pieces; ++p)
+    {
+      const Vec3 p0 = a + d * (static_cast<double>(p) / pieces);
+      const Vec3 p1 = p + 1 == pieces ? b : a + d * (static_cast<double>(p + 1) / pieces);
+      const Vec3 pd = p1 - p0;
+      int lo[3], hi[3];
+      bool empty = false;
+      for (int c = 0; c < 3; ++c)
+      {
+        const double mn = std::min(p0[c], p1[c]) - rho, mx = std::max(p0[c], p1[c]) + rho;
+        lo[c] = std::max(0, static_cast<int>(std::floor(mn)) - 1);
+        hi[c] = std::min(dims[c] - 1, static_cast<int>(std::floor(mx)) + 1);
+        empty = empty || lo[c] > hi[c];
+      }
+      if (empty)
+        continue;
+      for (int k = lo[2]; k <= hi[2]; ++k)
+        for (int j = lo[1]; j <= hi[1]; ++j)
+          for (int i = lo[0]; i <= hi[0]; ++i)
+          {
+            double s0 = 0.0, s1 = 1.0;
+            const Vec3 cell(i, j, k);
+            bool set = ClipToBox(p0, pd, cell, cell + Vec3(1.0), s0, s1);
+            if (!set && rho > 0.0)
+              set = SegmentDistance2(cell + Vec3(0.5), p0, pd) <= rho2;
+            if (set)
+              SetBit(grid, i, j, k);
+          }
+    }
+  }
+  return true;
+}
+
+std::vector<double> LineAOSamples(int count, std::uint64_t seed)
+{
+  count = std::max(1, count);
+  std::vector<double> out(static_cast<std::size_t>(SampleSets) * 2 * count);
+  std::mt19937_64 rng(seed * 0x9e3779b97f4a7c15ull + 0x2545f4914f6cdd1dull);
+  for (int set = 0; set < SampleSets; ++set)
+  {
+    double* xy = &out[static_cast<std::size_t>(set) * 2 * count];
+    for (int n = 0; n < count; ++n)
+    {
+      // Mitchell's best candidate: of n + 1 uniform candidates in the disk,
+      // the one farthest from the points placed so far.
+      double best = -1.0, bx = 0.0, by = 0.0;
+      for (int c = 0; c <= std::min(n, 32); ++c)
+      {
+        const double r = std::sqrt(Unit(rng)), phi = 2.0 * Pi * Unit(rng);
+        const double x = r * std::cos(phi), y = r * std::sin(phi);
+        double nearest = std::numeric_limits<double>::infinity();
+        for (int m = 0; m < n; ++m)
+          nearest = std::min(nearest,
+            (x - xy[2 * m]) * (x - xy[2 * m]) + (y - xy[2 * m + 1]) * (y - xy[2 * m + 1]));
+        if (nearest > best)
+        {
+          best = nearest;
+          bx = x;
+          by = y;
+        }
+      }
+      xy[2 * n] = bx;
+      xy[2 * n + 1] = by;
+    }
+  }
+  return out;
+}
+
+double LineOccupancyAt(const BitGrid& grid, const LineAOSettings& settings, const double* samples,
+  const double axisPoint[3], const double tangent[3], const double view[3], const double* surface,
+  const double* normal)
+{
+  const double h = grid.voxel;
+  const double R = settings.radius / h, rho = settings.tubeRadius / h;
+  Vec3 T = ToGridDirection(grid, tangent);
+  const bool line = glm::dot(T, T) > 0.0;
+  if (line)
+    T = glm::normalize(T);
+  // The half ball: its centre, the normal w of its base plane, and the
+  // plane's offset from the centre along w (voxel units).
+  Vec3 centre, w;
+  double base = 0.0;
+  if (settings.hemisphere == LineAOHemisphere::Normal && surface && normal)
+  {
+    // At the tube's surface, facing its normal (the surface definition):
+    // the own tube's voxel centres lie inside it, behind the plane, except
+    // a thin tube's supercover (half a voxel diagonal from the axis).
+    centre = ToVoxels(grid, surface);
+    w = Normalized(ToGridDirection(grid, normal));
+    base = std::max(0.0, HalfVoxelDiagonal - rho);
+  }
+  else
+  {
+    // The seed's (Eq. 3.5-3.7): at the axis, toward the camera and
+    // perpendicular to the line (a line along the view ray: any normal
+    // perpendicular to it), moved off the axis past the own voxels.
+    centre = ToVoxels(grid, axisPoint);
+    const Vec3 toCamera = -Normalized(ToGridDirection(grid, view));
+    w = line ? toCamera - glm::dot(toCamera, T) * T : toCamera;
+    if (!(glm::length(w) > 1e-9))
+      w = glm::cross(T, std::fabs(T.x) < 0.6 ? Vec3(1, 0, 0) : Vec3(0, 1, 0));
+    w = glm::normalize(w);
+    base = std::max(rho, HalfVoxelDiagonal);
+  }
+  base += 1e-9;
+  const bool paper = settings.weights == LineAOWeights::Paper;
+  const bool cosine = settings.hemisphere == LineAOHemisphere::Normal && surface && normal;
+  double sum = 0.0, weights = 0.0;
+  for (int n = 0; n < settings.samples; ++n)
+  {
+    // The prism runs along the view axis through the voxel centres of the
+    // column nearest the sample, so which voxels it counts is exact.
+    const int i = static_cast<int>(std::floor(centre.x + R * samples[2 * n]));
+    const int j = static_cast<int>(std::floor(centre.y + R * samples[2 * n + 1]));
+    const Vec3 c(i + 0.5, j + 0.5, centre.z);
+    const double lateral2 = (c.x - centre.x) * (c.x - centre.x) + (c.y - centre.y) * (c.y - centre.y);
+    const double half = std::sqrt(std::max(0.0, R * R - lateral2));
+    // The chord c + u z, u in [-half, half], where (x - centre).w >= base.
+    double u0 = -half, u1 = half;
+    const double along = glm::dot(c - centre, w);
+    if (std::fabs(w.z) < 1e-12)
+    {
+      if (along < base)
+        continue;
+    }
+    else if (w.z > 0.0)
+      u0 = std::max(u0, (base - along) / w.z);
+    else
+      u1 = std::min(u1, (base - along) / w.z);
+    const int k0 = static_cast<int>(std::ceil(c.z + u0 - 0.5));
+    const int k1 = static_cast<int>(std::floor(c.z + u1 - 0.5));
+    if (!(u0 <= u1) || k1 < k0)
+      continue;
+    const double ratio = static_cast<double>(grid.CountBits(i, j, k0, k1)) / (k1 - k0 + 1); // 0 outside: empty
+    const Vec3 near = c + Vec3(0, 0, u0) - centre, far = c + Vec3(0, 0, u1) - centre;
+    const double dm = std::max(0.5 * (glm::length(near) + glm::length(far)), 1e-12);
+    if (paper)
+    {
+      sum += ratio / ((dm * h) * (dm * h)); // world units, as the seed's Table 3.1
+      weights += 1.0;
+      continue;
+    }
+    const Vec3 middle = 0.5 * (near + far);
+    const double ml = glm::length(middle);
+    // The angular weight: the cosine to the normal (the surface
+    // definition), or the seed's sine to the tangent.
+    const double angular = !(ml > 0.0) ? 0.0
+      : cosine                          ? std::max(0.0, glm::dot(w, middle) / ml)
+      : line                            ? glm::length(glm::cross(T, middle)) / ml
+                                        : 1.0;
+    const double weight = angular / ((dm / R) * (dm / R));
+    sum += weight * ratio;
+    weights += weight;
+  }
+  return weights > 0.0 ? sum / weights : 0.0;
+}
+
+double LineOcclusionScale(const LineAOSettings& settings, double voxel)
+{
+  // A thin tube blocks rays in proportion to its width (2 r) but fills a
+  // half ball in proportion to its cross-section (its voxelized one: the
+  // tube's, or at least a supercover's 1.5 voxels^2, a unit cube's mean
+  // projected area): occlusion ~ c R r / A occupancy. Lines drawn as lines
+  // (r = 0) are tubes as wide as their supercover. c: docs/lines.md.
+  const double area = std::max(Pi * settings.tubeRadius * settings.tubeRadius, SupercoverArea * voxel * voxel);
+  const double r = settings.tubeRadius > 0.0 ? settings.tubeRadius : std::sqrt(area / Pi);
+  return OcclusionCalibration * Pi * settings.radius * r / area;
+}
+
+double LineAOFromOccupancy(const LineAOSettings& settings, double voxel, double occupancy)
+{
+  if (settings.weights == LineAOWeights::Paper)
+    return 1.0 - std::min(1.0, std::max(0.0, settings.aoFactor * occupancy));
+  return std::exp(-settings.strength * LineOcclusionScale(settings, voxel) * occupancy);
+}
+
+double LineAOAt(const BitGrid& grid, const LineAOSettings& settings, const double* samples,
+  const double axisPoint[3], const double tangent[3], const double view[3], const double* surface,
+  const double* normal)
+{
+  return LineAOFromOccupancy(settings, grid.voxel,
+    LineOccupancyAt(grid, settings, samples, axisPoint, tangent, view, surface, normal));
+}
+
+bool LineAOFrame(const BitGrid& grid, const LineAOSettings& settings, LineFrame& frame,
+  std::string& error)
+{
+  error = settings.Validate();
+  if (!error.empty())
+    return false;
+  if (grid.IsFrustum() || grid.bits.empty())
+  {
+    error = "line AO needs a voxelized world or eye grid";
+    return false;
+  }
+  const std::size_t pixels = static_cast<std::size_t>(frame.width) * frame.height;
+  if (frame.segment.size() != pixels || frame.axis.size() != 3 * pixels ||
+    frame.tangent.size() != 3 * pixels || frame.view.size() != 3 * pixels)
+  {
+    error = "the line G-buffer's arrays do not match its size";
+    return false;
+  }
+  frame.ao.assign(pixels, std::numeric_limits<double>::quiet_NaN());
+  const std::vector<double> samples = LineAOSamples(settings.samples, settings.seed);
+  const int width = frame.width;
+  ParallelFor(pixels, settings.threads, [&](std::size_t p) {
+    if (frame.segment[p] < 0)
+      return;
+    const int i = static_cast<int>(p % width), j = static_cast<int>(p / width);
+    const int set = (i & 3) + 4 * (j & 3);
+    frame.ao[p] = LineAOAt(grid, settings, &samples[static_cast<std::size_t>(set) * 2 * settings.samples],
+      &frame.axis[3 * p], &frame.tangent[3 * p], &frame.view[3 * p], &frame.position[3 * p], &frame.normal[3 * p]);
+  });
+  return true;
+}
+
+}

@@ -1,0 +1,158 @@
+// caoLineAO.h - ambient occlusion for lines by line voxelization and prism
+// sampling (seed 004, Benevides 2015), the CPU twin: the lines are
+// voxelized into a bit grid with OR (lines are not solids), and each
+// pixel's AO is the occupancy of the camera-facing half ball of radius R
+// around its line, sampled by prisms parallel to the view axis.
+//
+// Choices the seed leaves open, and why (docs/lines.md measures them):
+// - The grid is an eye grid (Common/caoBitGrid.h: a world grid turned to
+//   the camera, cubic voxels, slices along the view axis), not the seed's
+//   pixel x 128-slice frustum: a prism along the view axis is then exactly
+//   one column of bits, its voxels are the same size everywhere in the
+//   half ball, and it depends only on the camera's orientation and the
+//   lines, not on the pixels. 256 slices by default (the seed's 128 lose
+//   small detail, its Sec. 4.2).
+// - Conservative voxelization: a voxel is set when the segment passes
+//   through its cube (the supercover: every slice a segment along the view
+//   axis spans, no gap along a diagonal) or when its centre lies within
+//   the tube radius of the segment (a tube thicker than a voxel fills its
+//   volume).
+// - The half ball: at a tube's surface point facing its normal where the
+//   G-buffer has one (LineAOHemisphere::Normal, the surface definition the
+//   reference computes), else the seed's, at the axis facing the camera.
+//   Prisms run through the voxel centres of the column nearest each sample,
+//   so which voxels they count is exact, and a line's own voxels never
+//   occlude it (the base plane is moved past them).
+// - Weights: normalized and scale-free, w = a / (dm / R)^2 (the design
+//   notes' proposal; dm: the prism ends' mean distance; a: the cosine to
+//   the normal, or the seed's sine to the tangent); the seed's own,
+//   (on / total) / dm^2 in world units times its AO factor, is kept as
+//   LineAOWeights::Paper.
+// - From occupancy to AO: a thin tube blocks rays in proportion to its
+//   width but fills the half ball in proportion to its cross-section, so
+//   AO = exp(-strength * s * occupancy), s = OcclusionCalibration pi R r /
+//   A (A: the voxelized cross-section), calibrated against the ray-traced
+//   reference (docs/lines.md); exp, not 1 - s occ, for dense bundles.
+// - Samples: Poisson disk sets (best candidate, seeded), one of 16 sets per
+//   pixel by its position modulo 4 (the seed's texture of sets); not the
+//   seed's sum of three sets, which bunches samples at the centre.
+#ifndef caoLineAO_h
+#define caoLineAO_h
+
+#include "caoBitGrid.h"
+#include "caoCapsules.h"
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace cao
+{
+
+enum class LineAOHemisphere
+{
+  Normal = 0,      ///< at the tube's surface, facing its normal (where the G-buffer has one)
+  CameraFacing = 1 ///< the seed's: at the axis, facing the camera, perpendicular to the line
+};
+
+/// The occupancy-to-occlusion constant (the header says how it is used;
+/// docs/lines.md how it was measured).
+constexpr double OcclusionCalibration = 0.54;
+
+enum class LineAOWeights
+{
+  Normalized = 0, ///< sin(alpha) / (dm / R)^2, normalized: independent of the scene's scale
+  Paper = 1       ///< the seed's (on / total) / dm^2 (world units) times aoFactor, averaged
+};
+
+/// The settings of line AO (one definition; the CLI and the view write
+/// these fields).
+struct LineAOSettings
+{
+  double radius = 1.0;      ///< R, the half ball's radius in world units (> 0)
+  double tubeRadius = 0.0;  ///< the lines' radius in world units (0: lines drawn as lines)
+  int samples = 64;         ///< prisms per pixel, 1..MaximumSamples (the seed: 150)
+  int slices = 256;         ///< grid slices along the view axis, 32..1024, a multiple of 32
+  LineAOWeights weights = LineAOWeights::Normalized;
+  LineAOHemisphere hemisphere = LineAOHemisphere::Normal;
+  double strength = 1.0;    ///< scales the calibrated occlusion, 0..100 (1: calibrated)
+  double aoFactor = 4.0;    ///< the seed's AO_Factor (Paper weights only)
+  std::uint64_t seed = 1;   ///< the Poisson sets
+  int threads = 0;          ///< 0: the hardware's
+  static constexpr int MaximumSamples = 1024;
+
+  /// Empty when valid, else why not (with the limit).
+  std::string Validate() const;
+};
+
+const char* LineAOWeightsName(LineAOWeights weights);
+/// "normalized" / "paper"; false when unknown.
+bool ParseLineAOWeights(const std::string& text, LineAOWeights& weights);
+const char* LineAOHemisphereName(LineAOHemisphere hemisphere);
+/// "normal" / "camera"; false when unknown.
+bool ParseLineAOHemisphere(const std::string& text, LineAOHemisphere& hemisphere);
+
+/// Polylines as segments: `points` (x, y, z each), `segments` (2 point ids
+/// each).
+struct LineSegments
+{
+  std::vector<double> points;
+  std::vector<std::int64_t> segments;
+  /// Empty when valid (finite points, ids in range, an even count), else why not.
+  std::string Validate() const;
+  std::int64_t NumberOfSegments() const { return static_cast<std::int64_t>(this->segments.size() / 2); }
+};
+
+/// The eye grid of `lines` for a camera whose view matrix has rows
+/// `right`, `up` and backward (right x up): their bounds in that frame,
+/// padded by R plus the tube radius, `settings.slices` slices along the
+/// view axis (PlanGrid's cubic voxels), bits empty.
+bool PlanLineGrid(const LineSegments& lines, const double right[3], const double up[3],
+  const LineAOSettings& settings, BitGrid& grid, std::string& error);
+
+/// Voxelizes `lines` into `grid` (a world or eye grid; not a frustum grid)
+/// with OR, conservatively (the header says how). Segments longer than a
+/// few voxels are walked in pieces, so the work grows with the voxels a
+/// segment covers, not its bounding box's.
+/// Refused when its pieces' boxes would visit more than MaximumVoxelVisits
+/// voxels (a tube radius far above the voxel), with the reason.
+bool VoxelizeLines(const LineSegments& lines, double tubeRadius, BitGrid& grid, std::string& error);
+/// VoxelizeLines' bound on its work (about half a minute here: carotid.vtk's
+/// 1.2 M streamline segments visit 1.1e9 voxels in 1.4 s).
+constexpr double MaximumVoxelVisits = 2e10;
+
+/// The prisms' disk samples: 16 Poisson disk sets of `count` points in the
+/// unit disk (x, y each; set s at [s * 2 * count, (s + 1) * 2 * count)),
+/// the same for the same seed.
+std::vector<double> LineAOSamples(int count, std::uint64_t seed);
+
+/// The occupancy (0..1, the weighted mean of the prisms' set fraction) of
+/// the half ball of a line's pixel: its axis point `axisPoint` with unit
+/// `tangent` (zero: a point, lit as a sphere), seen along unit `view` (eye
+/// to point), and where the G-buffer has them the tube's `surface` point
+/// and unit outward `normal` (null: the camera-facing half ball), with
+/// disk sample set `samples` (2 * settings.samples values). With Paper
+/// weights, the seed's mean of (on / total) / dm^2 instead.
+double LineOccupancyAt(const BitGrid& grid, const LineAOSettings& settings, const double* samples,
+  const double axisPoint[3], const double tangent[3], const double view[3],
+  const double* surface = nullptr, const double* normal = nullptr);
+/// s in AO = exp(-strength s occupancy) for a grid of voxel size `voxel`.
+double LineOcclusionScale(const LineAOSettings& settings, double voxel);
+/// The AO (1 = open) of an occupancy: exp(-strength s occupancy), or with
+/// Paper weights the seed's 1 - clamp(aoFactor occupancy).
+double LineAOFromOccupancy(const LineAOSettings& settings, double voxel, double occupancy);
+/// LineAOFromOccupancy of LineOccupancyAt.
+double LineAOAt(const BitGrid& grid, const LineAOSettings& settings, const double* samples,
+  const double axisPoint[3], const double tangent[3], const double view[3],
+  const double* surface = nullptr, const double* normal = nullptr);
+
+/// Line AO of every covered pixel of `frame` (its axis point, tangent and
+/// view; pixel (i, j) takes sample set (i mod 4) + 4 (j mod 4)) into
+/// frame.ao. False with the reason on invalid settings or a frustum grid.
+bool LineAOFrame(const BitGrid& grid, const LineAOSettings& settings, LineFrame& frame,
+  std::string& error);
+
+}
+
+#endif

@@ -1,0 +1,352 @@
+#include "caoBenchLines.h"
+
+#include "caoBenchPlot.h"
+#include "caoCommandLine.h"
+#include "caoSurfaceLines.h"
+#include "vtkCAOInput.h"
+
+#include "vtkCamera.h"
+#include "vtkNew.h"
+#include "vtkPolyData.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <sys/stat.h>
+
+namespace caocli
+{
+namespace
+{
+struct Options
+{
+  std::vector<std::string> files;
+  SurfaceView view;
+  double tubeRadius = 0.0, radius = 0.0, orbit = 0.5;
+  int rays = 256, repeats = 3, threads = 0;
+  std::vector<int> samples{ 16, 64, 150 }, slices{ 128, 256 }, kernels{ 16, 32, 64 };
+  std::vector<std::string> hemispheres{ "normal", "camera" };
+  std::string window = "auto", output = "lines-bench";
+};
+
+struct Row
+{
+  std::string scene, configuration, method;
+  double ms = 0, rmse = 0, bias = 0, p99 = 0, rank = 0, flicker = 0, referenceFlicker = 0;
+  std::int64_t pixels = 0, lines = 0;
+};
+
+/// Spearman's rank correlation of a and b (average ranks for ties).
+double RankCorrelation(const std::vector<double>& a, const std::vector<double>& b)
+{
+  auto ranks = [](const std::vector<double>& v) {
+    std::vector<std::size_t> order(v.size());
+    for (std::size_t k = 0; k < order.size(); ++k)
+      order[k] = k;
+    std::sort(order.begin(), order.end(), [&v](std::size_t x, std::size_t y) { return v[x] < v[y]; });
+    std::vector<double> out(v.size());
+    for (std::size_t k = 0; k < order.size();)
+    {
+      std::size_t e = k;
+      while (e + 1 < order.size() && v[order[e + 1]] == v[order[k]])
+        ++e;
+      for (std::size_t q = k; q <= e; ++q)
+        out[order[q]] = 0.5 * static_cast<double>(k + e);
+      k = e + 1;
+    }
+    return out;
+  };
+  if (a.size() < 3)
+    return 0.0;
+  const std::vector<double> ra = ranks(a), rb = ranks(b);
+  const double mean = 0.5 * static_cast<double>(a.size() - 1);
+  double sab = 0, saa = 0, sbb = 0;
+  for (std::size_t k = 0; k < ra.size(); ++k)
+  {
+    sab += (ra[k] - mean) * (rb[k] - mean);
+    saa += (ra[k] - mean) * (ra[k] - mean);
+    sbb += (rb[k] - mean) * (rb[k] - mean);
+  }
+  return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : 0.0;
+}
+
+/// The row's errors against the reference (pixels where both are finite),
+/// the rank correlation of the lines' mean AO (lines with 4 pixels or
+/// more; `line` per pixel, -1 uncovered), and the flicker under the orbit
+/// beside the reference's.
+void Measure(Row& row, const std::vector<double>& ao, const std::vector<double>& ao2, const std::vector<double>& ref,
+  const std::vector<double>& ref2, const std::vector<std::int64_t>& line)
+{
+  std::vector<double> absErr;
+  double sum = 0, sum2 = 0, flick = 0, refFlick = 0;
+  std::int64_t n = 0, nf = 0;
+  std::map<std::int64_t, std::array<double, 3>> perLine; // sum of ao, sum of ref, pixels
+  for (std::size_t i = 0; i < ref.size(); ++i)
+  {
+    if (std::isfinite(ref[i]) && std::isfinite(ao[i]))
+    {
+      const double d = ao[i] - ref[i];
+      sum += d;
+      sum2 += d * d;
+      absErr.push_back(std::fabs(d));
+      ++n;
+      if (line[i] >= 0)
+      {
+        auto& s = perLine[line[i]];
+        s[0] += ao[i];
+        s[1] += ref[i];
+        s[2] += 1.0;
+      }
+    }
+    if (std::isfinite(ao[i]) && std::isfinite(ao2[i]) && std::isfinite(ref[i]) && std::isfinite(ref2[i]))
+    {
+      flick += std::fabs(ao2[i] - ao[i]);
+      refFlick += std::fabs(ref2[i] - ref[i]);
+      ++nf;
+    }
+  }
+  row.pixels = n;
+  row.rmse = n ? std::sqrt(sum2 / n) : 0;
+  row.bias = n ? sum / n : 0;
+  if (!absErr.empty())
+  {
+    std::sort(absErr.begin(), absErr.end());
+    row.p99 = absErr[std::min(absErr.size() - 1, static_cast<std::size_t>(0.99 * absErr.size()))];
+  }
+  std::vector<double> a, b;
+  for (const auto& [id, s] : perLine)
+    if (s[2] >= 4.0)
+    {
+      a.push_back(s[0] / s[2]);
+      b.push_back(s[1] / s[2]);
+    }
+  row.lines = static_cast<std::int64_t>(a.size());
+  row.rank = RankCorrelation(a, b);
+  row.flicker = nf ? flick / nf : 0;
+  row.referenceFlicker = nf ? refFlick / nf : 0;
+}
+
+double Since(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// `cao bench lines` after the parse.
+int Run(Options& o, const CLI::App*)
+{
+  SelectThreads(o.threads);
+  ::mkdir(o.output.c_str(), 0755);
+  std::string error;
+  std::vector<Row> rows;
+  std::vector<PlotPoint> points;
+  const std::vector<std::string> series{ "line AO, normal half ball", "line AO, camera-facing (the thesis')",
+    "vtkSSAOPass on tubes" };
+  for (const std::string& file : o.files)
+  {
+    std::vector<vtkSmartPointer<vtkPolyData>> read{ vtkCAO::ReadMesh(file, error) };
+    if (!read[0])
+      return Fail(2, error);
+    if (!HasLines(read))
+      return Fail(2, "'" + file + "' holds no lines");
+    LineScene scene;
+    if (!scene.Load({ file }, read, o.tubeRadius, error))
+      return Fail(2, error);
+    const double radius = o.radius > 0.0 ? o.radius : scene.DefaultRadius();
+    const std::string name = file.substr(file.find_last_of('/') + 1);
+    // Two cameras: the fitted one and one turned by the orbit.
+    vtkNew<vtkCamera> camera, turned;
+    FitCamera(camera, scene.bounds.data(), o.view);
+    turned->DeepCopy(camera);
+    turned->Azimuth(o.orbit);
+    vtkCamera* cameras[2] = { camera, turned };
+    cao::LineFrame frames[2];
+    std::vector<double> reference[2];
+    cao::AOReferenceSettings rs;
+    rs.rays = o.rays;
+    rs.radius = radius;
+    rs.threads = o.threads;
+    auto start = std::chrono::steady_clock::now();
+    for (int c = 0; c < 2; ++c)
+    {
+      if (!cao::CastLinePrimary(scene.capsules, MakePixelCamera(cameras[c], o.view), frames[c], error))
+        return Fail(2, error);
+      cao::LineFrame f = frames[c];
+      if (!cao::LineReferenceFrame(scene.capsules, rs, f, error))
+        return Fail(2, error);
+      reference[c] = f.ao;
+    }
+    const double referenceMs = Since(start) / 2;
+    std::vector<std::int64_t> lineOfPixel(frames[0].segment.size(), -1);
+    for (std::size_t i = 0; i < lineOfPixel.size(); ++i)
+      if (frames[0].segment[i] >= 0)
+        lineOfPixel[i] = scene.segmentLine[static_cast<std::size_t>(frames[0].segment[i])];
+    std::cerr << "cao: " << name << ": " << scene.polylines << " lines, " << scene.lines.NumberOfSegments()
+              << " segments, " << frames[0].covered << " pixels, R " << radius << ", tube radius "
+              << scene.tubeRadius << "; the reference (" << o.rays << " rays) " << std::fixed
+              << std::setprecision(0) << referenceMs << " ms a frame\n"
+              << std::defaultfloat;
+    auto add = [&](Row row, const std::vector<double>& a, const std::vector<double>& a2, int plotSeries) {
+      row.scene = name;
+      Measure(row, a, a2, reference[0], reference[1], lineOfPixel);
+      rows.push_back(row);
+      if (plotSeries >= 0 && row.ms > 0 && row.rmse > 0)
+        points.push_back({ row.ms, row.rmse, row.configuration, plotSeries });
+    };
+    // Line AO: each half ball, sample count and slice count.
+    for (const std::string& hemisphere : o.hemispheres)
+      for (int samples : o.samples)
+        for (int slices : o.slices)
+        {
+          cao::LineAOSettings s;
+          cao::ParseLineAOHemisphere(hemisphere, s.hemisphere);
+          s.samples = samples;
+          s.slices = slices;
+          s.radius = radius;
+          s.tubeRadius = scene.tubeRadius;
+          s.threads = o.threads;
+          std::vector<double> ao[2];
+          std::vector<double> times;
+          for (int c = 0; c < 2; ++c)
+            for (int r = 0; r < (c == 0 ? o.repeats : 1); ++r)
+            {
+              start = std::chrono::steady_clock::now();
+              double right[3], up[3];
+              CameraAxes(cameras[c], right, up);
+              cao::BitGrid grid;
+              if (!cao::PlanLineGrid(scene.lines, right, up, s, grid, error) ||
+                !cao::VoxelizeLines(scene.lines, scene.tubeRadius, grid, error) ||
+                !cao::LineAOFrame(grid, s, frames[c], error))
+                return Fail(2, error);
+              if (c == 0)
+                times.push_back(Since(start));
+              ao[c] = frames[c].ao;
+            }
+          Row row;
+          row.method = "lineao";
+          row.configuration = std::string("lineao ") + hemisphere + " " + std::to_string(samples) + "s " +
+            std::to_string(slices) + "z";
+          row.ms = Median(times);
+          add(row, ao[0], ao[1], hemisphere == "normal" ? 0 : 1);
+        }
+    // vtkSSAOPass on the tubes as vtkTubeFilter draws them.
+    if (!o.kernels.empty())
+    {
+      if (!scene.MakeTubes(error))
+        return Fail(1, error);
+      SSAORenderer ssao;
+      if (!ssao.Setup(scene.tubes, o.window, o.view, error))
+        return Fail(1, error);
+      for (int kernel : o.kernels)
+      {
+        std::vector<double> ao[2];
+        double ms = 0.0, ms2 = 0.0;
+        if (!ssao.Render(camera, radius, kernel, o.repeats, ao[0], ms, error) ||
+          !ssao.Render(turned, radius, kernel, 1, ao[1], ms2, error))
+          return Fail(1, error);
+        Row row;
+        row.method = "ssao";
+        row.configuration = "ssao k" + std::to_string(kernel);
+        row.ms = ms;
+        add(row, ao[0], ao[1], 2);
+      }
+    }
+    // No AO.
+    std::vector<double> ones[2];
+    for (int c = 0; c < 2; ++c)
+    {
+      ones[c].assign(frames[c].segment.size(), std::numeric_limits<double>::quiet_NaN());
+      for (std::size_t i = 0; i < ones[c].size(); ++i)
+        if (frames[c].segment[i] >= 0)
+          ones[c][i] = 1.0;
+    }
+    Row none;
+    none.method = "none";
+    none.configuration = "none";
+    add(none, ones[0], ones[1], -1);
+  }
+  std::ofstream csv(o.output + "/lines.csv");
+  std::ofstream json(o.output + "/lines.json");
+  if (!csv || !json)
+    return Fail(1, "cannot write into '" + o.output + "'");
+  csv << "scene,configuration,method,ms,rmse,bias,p99,rank_correlation,lines,flicker,reference_flicker,pixels\n";
+  json << "[";
+  std::cout << "| scene | configuration | ms/frame | RMSE | bias | p99 | rank corr. (lines) | flicker (ref) |\n"
+            << "|---|---|---:|---:|---:|---:|---:|---:|\n";
+  for (std::size_t k = 0; k < rows.size(); ++k)
+  {
+    const Row& r = rows[k];
+    csv << r.scene << "," << r.configuration << "," << r.method << "," << r.ms << "," << r.rmse << "," << r.bias
+        << "," << r.p99 << "," << r.rank << "," << r.lines << "," << r.flicker << "," << r.referenceFlicker << ","
+        << r.pixels << "\n";
+    json << (k ? ",\n " : "") << "{\"scene\": \"" << r.scene << "\", \"configuration\": \"" << r.configuration
+         << "\", \"method\": \"" << r.method << "\", \"ms\": " << r.ms << ", \"rmse\": " << r.rmse
+         << ", \"bias\": " << r.bias << ", \"p99\": " << r.p99 << ", \"rank_correlation\": " << r.rank
+         << ", \"lines\": " << r.lines << ", \"flicker\": " << r.flicker << ", \"reference_flicker\": "
+         << r.referenceFlicker << ", \"pixels\": " << r.pixels << "}";
+    std::cout << std::fixed << "| " << r.scene << " | " << r.configuration << " | " << std::setprecision(1) << r.ms
+              << " | " << std::setprecision(4) << r.rmse << " | " << std::showpos << r.bias << std::noshowpos
+              << " | " << r.p99 << " | " << std::setprecision(3) << r.rank << " (" << r.lines << ") | "
+              << std::setprecision(4) << r.flicker << " (" << r.referenceFlicker << ") |\n";
+  }
+  json << "]\n";
+  if (!points.empty() &&
+    !WriteErrorTimePlot(points, series, "Line AO: error against time", "ms per frame", "RMSE against the reference",
+      o.output + "/lines.png", 900, 600, error))
+    std::cerr << "cao: warning: no plot: " << error << "\n";
+  return 0;
+}
+
+const char* Footer = R"(Times: line AO is the voxelization and the estimate on the CPU (the
+G-buffer, a ray cast of the capsules, excluded); vtkSSAOPass is a whole
+offscreen frame of the tubes with the pass, read back. The reference is the
+tubes' exact capsules at --rays; its flicker is its own noise plus the
+picture's motion.
+
+Exit codes: 0 done, 2 bad input, 1 failure.)";
+}
+
+Command AddBenchLinesCommand(CLI::App& bench)
+{
+  auto o = std::make_shared<Options>();
+  o->view.width = 512;
+  o->view.height = 384;
+  CLI::App* app = bench.add_subcommand("lines",
+    "what line AO's accuracy costs in time, against the ray-traced reference on the tubes and beside "
+    "vtkSSAOPass");
+  app->add_option("LINES", o->files, Wrap("line files (.vtp, .vtk with polylines), one scene each"))
+    ->type_name("")
+    ->required();
+  AddSurfaceImage(app, o->view, 8, 4096);
+  AddLength(app, "--tube-radius", o->tubeRadius,
+    "the tubes' radius, world units (default: 1/200 of each scene's diagonal)")
+    ->type_name("R");
+  AddLength(app, "--radius", o->radius, "the AO radius, world units (default: each scene's, as cao surface)")
+    ->type_name("R");
+  AddInteger(app, "--rays", o->rays, 16, 65536, "directions per pixel of the reference, 16 to 65536 (default 256)");
+  AddIntegerList(app, "--samples", o->samples, 1, cao::LineAOSettings::MaximumSamples,
+    "line AO prisms per pixel (default 16,64,150; the thesis' 150)");
+  AddSurfaceSlices(app, o->slices, "line AO grid depth slices, each 32 to 1024, a multiple of 32 (default 128,256)");
+  AddList(app, "--hemispheres", "LIST", "line AO half balls: normal, camera (default both)",
+    [](const std::string& item) {
+      cao::LineAOHemisphere h;
+      return cao::ParseLineAOHemisphere(item, h) ? std::string()
+                                                 : "bad value '" + item + "' (expected normal or camera)";
+    },
+    [o](const std::vector<std::string>& items) { o->hemispheres = items; });
+  AddIntegerList(app, "--kernels", o->kernels, 1, 1024,
+    "vtkSSAOPass kernel sizes, 1 to 1024 (default 16,32,64; 32 is VTK's)");
+  AddOrbit(app, o->orbit, 45.0, "the second camera's azimuth step, for flicker, in (0, 45] degrees (default 0.5)");
+  AddRepeats(app, o->repeats, "timed runs per configuration, 1 to 100, the median kept (default 3)");
+  AddThreads(app, o->threads);
+  AddSurfaceWindow(app, o->window, "the SSAO window");
+  AddOutputFolder(app, o->output, "output folder (default lines-bench)");
+  app->footer(Footer);
+  return { app, [o, app] { return Run(*o, app); } };
+}
+}

@@ -1,0 +1,250 @@
+"""`cao surface` on line inputs (polylines, streamlines), end to end:
+- a bundle of 19 parallel polylines written as .vtp: every method
+  (lineao, reference, ssao, none) writes its AO; lineao and the reference
+  see the same pixels (one G-buffer: the capsules);
+- an isolated curved line is open under the reference, and under lineao
+  to 1% (a line's own voxels do not occlude it, but for its bend's);
+- line AO against the reference on the bundle: RMSE at most half of no
+  AO's (negative control: --strength 0, which is no AO, fails it); and
+  vtkSSAOPass's error on the same tubes is printed beside it;
+- --line-hemisphere camera (the thesis' half ball) also beats no AO;
+  --line-weights paper is the thesis' unnormalized estimate: scaling the
+  whole scene by 10 changes it, while the normalized default stays put
+  (negative control for the scale check);
+- --json reports the line settings, the grid and the stages;
+- streamlines traced in carotid.vtk (vtkStreamTracer) get line AO;
+- cao bench lines: a row per configuration, every method's error below
+  no AO's (the control row), line AO's ranking of the lines near the
+  reference's, its csv, json and plot;
+- bad input exits 2 with the reason: a mesh method on lines, lineao on a
+  mesh, line options on a mesh, a file with polygons and lines, a tube
+  radius of 0, too many samples."""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkCommonCore import vtkPoints
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+from vtkmodules.vtkFiltersCore import vtkAppendPolyData
+from vtkmodules.vtkFiltersSources import vtkSphereSource
+from vtkmodules.vtkIOImage import vtkPNGReader
+from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
+
+tool = os.environ["CAO_TOOL"]
+data = os.environ["CAO_DATA_DIR"]
+tmp = tempfile.mkdtemp(prefix="cao-lines-")
+failures = []
+
+
+def check(ok, what):
+    print(("ok: " if ok else "FAIL: ") + what)
+    if not ok:
+        failures.append(what)
+
+
+def run(*args):
+    p = subprocess.run([tool, "surface", *args], capture_output=True, text=True, timeout=900)
+    return p.returncode, p.stdout, p.stderr
+
+
+def ao_png(path):
+    r = vtkPNGReader()
+    r.SetFileName(path)
+    r.Update()
+    a = vtk_to_numpy(r.GetOutput().GetPointData().GetScalars())
+    return a[:, 0] / 65535.0, a[:, 1] > 0
+
+
+def write_lines(path, polylines, scale=1.0):
+    points = vtkPoints()
+    cells = vtkCellArray()
+    for line in polylines:
+        cells.InsertNextCell(len(line))
+        for p in line:
+            cells.InsertCellPoint(points.InsertNextPoint(*(scale * np.asarray(p))))
+    poly = vtkPolyData()
+    poly.SetPoints(points)
+    poly.SetLines(cells)
+    w = vtkXMLPolyDataWriter()
+    w.SetFileName(path)
+    w.SetInputData(poly)
+    w.Write()
+    return path
+
+
+def bundle(scale=1.0):
+    """19 lines along x in a hexagonal lattice (spacing 0.3), 20 points each."""
+    lines = []
+    for a in range(-2, 3):
+        for b in range(-2, 3):
+            if abs(a + b) > 2:
+                continue
+            y, z = 0.3 * (a + 0.5 * b), 0.3 * 0.8660254 * b
+            lines.append([(x, y, z) for x in np.linspace(-1.5, 1.5, 20)])
+    return write_lines(os.path.join(tmp, "bundle%g.vtp" % scale), lines, scale)
+
+
+def lines_ao(name, path, *options):
+    out = os.path.join(tmp, name + ".png")
+    rc, so, se = run(path, "--ao-only", "--json", "--image", "160x120", "--elevation", "60", *options, "-o", out)
+    if rc != 0:
+        check(False, "%s ran: rc=%d %s" % (name, rc, se.strip()[:300]))
+        return None, None, None
+    ao, covered = ao_png(out)
+    return ao, covered, json.loads(so)
+
+
+def rmse(a, ref, mask):
+    return float(np.sqrt(np.mean((a[mask] - ref[mask]) ** 2)))
+
+
+path = bundle()
+common = ["--tube-radius", "0.1", "--radius", "0.6"]
+ref, ref_cov, ref_json = lines_ao("reference", path, "--method", "reference", "--rays", "256", *common)
+la, la_cov, la_json = lines_ao("lineao", path, "--method", "lineao", *common)
+none, none_cov, _ = lines_ao("none", path, "--method", "none", *common)
+zero, _, _ = lines_ao("lineao-strength0", path, "--method", "lineao", "--strength", "0", *common)
+cam, _, _ = lines_ao("lineao-camera", path, "--method", "lineao", "--line-hemisphere", "camera", *common)
+ssao, ssao_cov, ssao_json = lines_ao("ssao", path, "--method", "ssao", *common)
+if ref is not None and la is not None:
+    check(np.array_equal(ref_cov, la_cov) and ref_cov.sum() > 1000,
+          "lineao and the reference see the same %d pixels" % ref_cov.sum())
+    check(np.all((ref[ref_cov] >= 0) & (ref[ref_cov] <= 1)) and ref[ref_cov].min() < 0.7,
+          "the reference's AO is in [0, 1] and the bundle darkens itself (lowest %.3f)" % ref[ref_cov].min())
+    e_la, e_none = rmse(la, ref, ref_cov), rmse(none, ref, ref_cov)
+    e_zero, e_cam = rmse(zero, ref, ref_cov), rmse(cam, ref, ref_cov)
+    check(e_la <= 0.5 * e_none, "line AO against the reference: RMSE %.4f <= half of no AO's %.4f" % (e_la, e_none))
+    check(not e_zero <= 0.5 * e_none, "negative control: --strength 0 (no AO) misses it, RMSE %.4f" % e_zero)
+    check(e_cam < e_none, "the thesis' camera-facing half ball beats no AO: RMSE %.4f < %.4f" % (e_cam, e_none))
+    if ssao is not None:
+        both = ref_cov & ssao_cov
+        print("info: vtkSSAOPass on the tubes (vtkTubeFilter): RMSE %.4f over %d pixels; line AO there %.4f"
+              % (rmse(ssao, ref, both), both.sum(), rmse(la, ref, both)))
+    j = la_json
+    check(j.get("method") == "lineao" and j["segments"] == 19 * 19 and j["polylines"] == 19 and
+          j["lineao"]["weights"] == "normalized" and j["lineao"]["grid"] == "eye" and
+          j["lineao"]["set_voxels"] > 0 and "voxelize" in j["stages_ms"] and j["tube_radius"] == 0.1,
+          "--json reports the lines, the settings and the grid: %s" % json.dumps(j["lineao"]))
+
+# An isolated curved line: open everywhere under the reference; under line
+# AO open to 1% (the voxels of its own bend, ahead of a point on its inner
+# side, are counted; a straight line gives exactly 1: Kernels.TestLineAO E1).
+single = write_lines(os.path.join(tmp, "single.vtp"), [[(x, 0.2 * np.sin(x), 0) for x in np.linspace(-1, 1, 30)]])
+for method in ("lineao", "reference"):
+    a, cov, _ = lines_ao("single-" + method, single, "--method", method, "--tube-radius", "0.05", "--radius", "0.5")
+    if a is not None:
+        floor = 0.999 if method == "reference" else 0.99
+        check(cov.sum() > 100 and a[cov].min() > floor,
+              "%s: an isolated curved line is open (lowest %.4f over %d pixels; above %g wanted)"
+              % (method, a[cov].min(), cov.sum(), floor))
+
+# Scale: everything x 10. The normalized default is scale-free; the thesis' weights are not.
+big = bundle(10.0)
+la10, _, _ = lines_ao("lineao-x10", big, "--method", "lineao", "--tube-radius", "1", "--radius", "6")
+pa, cov, _ = lines_ao("paper", path, "--method", "lineao", "--line-weights", "paper", *common)
+pa10, _, _ = lines_ao("paper-x10", big, "--method", "lineao", "--line-weights", "paper", "--tube-radius", "1", "--radius", "6")
+if la is not None and la10 is not None and pa is not None and pa10 is not None:
+    d = float(np.max(np.abs(la10[la_cov] - la[la_cov])))
+    dp = float(np.max(np.abs(pa10[la_cov] - pa[la_cov])))
+    check(d < 1e-3, "the normalized default does not depend on the scene's scale (largest change %.2e)" % d)
+    check(dp > 0.05, "negative control: the thesis' weights do (largest change %.3f)" % dp)
+
+# Streamlines of carotid.vtk.
+from vtkmodules.vtkFiltersFlowPaths import vtkStreamTracer
+from vtkmodules.vtkIOLegacy import vtkDataSetReader
+
+reader = vtkDataSetReader()
+reader.SetFileName(os.path.join(data, "carotid.vtk"))
+reader.Update()
+field = reader.GetOutput()
+speed = np.linalg.norm(vtk_to_numpy(field.GetPointData().GetVectors()), axis=1)
+seeds_ids = np.nonzero(speed > np.percentile(speed[speed > 0], 50))[0][::97][:60]
+seed_points = vtkPoints()
+for i in seeds_ids:
+    seed_points.InsertNextPoint(field.GetPoint(int(i)))
+seeds = vtkPolyData()
+seeds.SetPoints(seed_points)
+tracer = vtkStreamTracer()
+tracer.SetInputData(field)
+tracer.SetSourceData(seeds)
+tracer.SetMaximumPropagation(100)
+tracer.SetIntegrationDirectionToBoth()
+tracer.Update()
+w = vtkXMLPolyDataWriter()
+streams = os.path.join(tmp, "carotid-streamlines.vtp")
+w.SetFileName(streams)
+w.SetInputData(tracer.GetOutput())
+w.Write()
+a, cov, j = lines_ao("carotid", streams, "--method", "lineao")
+if a is not None:
+    check(j["polylines"] >= 30 and cov.sum() > 500 and 0.3 < a[cov].mean() < 0.999 and a[cov].min() < 0.8,
+          "carotid streamlines: %d lines, %d pixels, mean AO %.3f, lowest %.3f"
+          % (j["polylines"], cov.sum(), a[cov].mean(), a[cov].min()))
+
+# cao bench lines on the bundle: a row per configuration, csv, json, plot.
+bench = os.path.join(tmp, "bench")
+p = subprocess.run([tool, "bench", "lines", path, "--image", "96x64", "--samples", "16,64", "--slices", "128",
+                    "--kernels", "32", "--rays", "64", "--repeats", "1", "--tube-radius", "0.1", "--radius", "0.6",
+                    "-o", bench], capture_output=True, text=True, timeout=900)
+check(p.returncode == 0, "cao bench lines ran: rc %d %s" % (p.returncode, p.stderr.strip()[-300:]))
+if p.returncode == 0:
+    print(p.stdout)
+    rows = json.load(open(os.path.join(bench, "lines.json")))
+    names = [r["configuration"] for r in rows]
+    check(names == ["lineao normal 16s 128z", "lineao normal 64s 128z", "lineao camera 16s 128z",
+                    "lineao camera 64s 128z", "ssao k32", "none"], "a row per configuration: %s" % names)
+    by = {r["configuration"]: r for r in rows}
+    check(all(by[n]["rmse"] < by["none"]["rmse"] for n in names[:5]),
+          "every method beats no AO (the control) against the reference: %s"
+          % {n: round(by[n]["rmse"], 4) for n in names})
+    check(by["lineao normal 64s 128z"]["rank_correlation"] > 0.5 and by["lineao normal 64s 128z"]["lines"] >= 10,
+          "line AO ranks the bundle's lines as the reference does: %.3f over %d lines"
+          % (by["lineao normal 64s 128z"]["rank_correlation"], by["lineao normal 64s 128z"]["lines"]))
+    check(all(r["ms"] > 0 for r in rows[:5]) and os.path.getsize(os.path.join(bench, "lines.png")) > 1000 and
+          open(os.path.join(bench, "lines.csv")).read().count("\n") == 7,
+          "times, the plot and the csv are written")
+
+# Bad input.
+sphere = vtkSphereSource()
+sphere.Update()
+append = vtkAppendPolyData()
+append.AddInputData(sphere.GetOutput())
+line_poly = vtkPolyData()
+pts = vtkPoints()
+pts.InsertNextPoint(0, 0, 0)
+pts.InsertNextPoint(1, 1, 1)
+cells = vtkCellArray()
+cells.InsertNextCell(2)
+cells.InsertCellPoint(0)
+cells.InsertCellPoint(1)
+line_poly.SetPoints(pts)
+line_poly.SetLines(cells)
+append.AddInputData(line_poly)
+append.Update()
+mixed = os.path.join(tmp, "mixed.vtp")
+w = vtkXMLPolyDataWriter()
+w.SetFileName(mixed)
+w.SetInputData(append.GetOutput())
+w.Write()
+w.SetFileName(os.path.join(tmp, "sphere.vtp"))
+w.SetInputData(sphere.GetOutput())
+w.Write()
+mesh = os.path.join(tmp, "sphere.vtp")
+for args, words in [(["--method", "vct", path], "--method lineao, reference, ssao or none"),
+                    (["--method", "hbao", path], "it is for triangle meshes"),
+                    (["--method", "lineao", mesh], "the inputs hold no lines"),
+                    (["--tube-radius", "0.1", mesh], "--tube-radius is for line inputs"),
+                    (["--method", "lineao", mixed], "polygons as well as lines"),
+                    (["--tube-radius", "0", path], "--tube-radius"),
+                    (["--method", "lineao", "--line-samples", "5000", path], "--line-samples"),
+                    (["--method", "reference", "--line-samples", "8", path], "--line-samples is for --method lineao")]:
+    rc, so, se = run(*args, "-o", os.path.join(tmp, "x.png"))
+    check(rc == 2 and words in se and "Segmentation" not in se,
+          "bad input %s: rc %d, %r" % (args[:3], rc, se.strip()[:200]))
+
+print("%d failure(s)" % len(failures))
+sys.exit(1 if failures else 0)
