@@ -898,19 +898,21 @@ int Run(SurfaceOptions& o, const CLI::App* app)
   if (HasLines(read))
   {
     LineJob job;
-    job.method = o.method;
+    job.method = app->count("--method") > 0 ? o.method : "lineao"; // lines' default
     job.output = o.output;
     job.window = o.window;
     job.view = o.view;
     job.radius = o.radius;
     job.tubeRadius = o.tubeRadius;
     job.lineAO = o.lineAO;
-    job.lineAO.slices = o.vct.slices;
+    if (app->count("--slices") > 0)
+      job.lineAO.slices = o.vct.slices; // else line AO's default
     if (!o.lineWeights.empty())
       cao::ParseLineAOWeights(o.lineWeights, job.lineAO.weights);
     if (!o.lineHemisphere.empty())
       cao::ParseLineAOHemisphere(o.lineHemisphere, job.lineAO.hemisphere);
     job.reference = o.reference;
+    job.vct = o.vct;
     job.kernel = o.kernel;
     job.threads = o.threads;
     job.aoOnly = o.aoOnly;
@@ -1189,8 +1191,8 @@ Command AddSurfaceCommand(CLI::App& cao)
     "vct: its cones turned over a 4 x 4 pattern of pixels and the filter of that size; hbao: its blur; "
     "vao: its 4 x 4 sample sets and filter (default on)");
   AddSurfaceSlices(app, o->vct.slices,
-    "vct, lineao: depth slices of the grid, 32 to 1024, a multiple of 32 (default 256; the papers' "
-    "128)");
+    "vct, lineao: depth slices of the grid, 32 to 1024, a multiple of 32 (default: vct 256, lineao "
+    "128; the papers' 128)");
   AddChoice(app, "--grid", o->grid, SurfaceGridNames(),
     "vct: the grid (world: default, built once per geometry; eye: the camera's axes, parallel "
     "columns, its slices in depth, built again whenever the camera turns; frustum: the paper's "

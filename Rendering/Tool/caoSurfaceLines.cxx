@@ -68,7 +68,7 @@ bool LineScene::Load(const std::vector<std::string>& files,
     if (mesh->GetNumberOfPolys() > 0 || mesh->GetNumberOfStrips() > 0)
     {
       error = "'" + files[m] +
-        "' has polygons as well as lines: give the lines alone (a mixed input is not supported yet)";
+        "' has polygons as well as lines: give the lines and the meshes as separate files";
       return false;
     }
     const std::int64_t base = static_cast<std::int64_t>(this->lines.points.size() / 3);
@@ -154,6 +154,11 @@ bool LineScene::MakeTubes(std::string& error)
 
 double LineScene::DefaultRadius() const
 {
+  return cao::DefaultAORadius(this->bounds, this->TubeArea());
+}
+
+double LineScene::TubeArea() const
+{
   double length = 0.0;
   for (std::size_t s = 0; s + 1 < this->lines.segments.size(); s += 2)
   {
@@ -161,57 +166,150 @@ double LineScene::DefaultRadius() const
     const double* c = &this->lines.points[3 * static_cast<std::size_t>(this->lines.segments[s + 1])];
     length += std::sqrt((a[0] - c[0]) * (a[0] - c[0]) + (a[1] - c[1]) * (a[1] - c[1]) + (a[2] - c[2]) * (a[2] - c[2]));
   }
-  return cao::DefaultAORadius(this->bounds, 2.0 * Pi * this->tubeRadius * length);
+  return 2.0 * Pi * this->tubeRadius * length;
+}
+
+namespace
+{
+/// The scene's meshes and lines seen together: per pixel, the nearer of
+/// the two G-buffers' hits stays covered, the other is dropped (both
+/// depths run along the same pixel ray from the near plane).
+void ResolveVisibility(cao::LineFrame& lines, cao::SurfaceFrame& surfaces)
+{
+  for (std::size_t i = 0; i < lines.segment.size(); ++i)
+    if (lines.segment[i] >= 0 && surfaces.triangle[i] >= 0)
+    {
+      if (surfaces.depth[i] < lines.depth[i])
+        lines.segment[i] = -1;
+      else
+        surfaces.triangle[i] = -1;
+    }
+}
+
+/// The bounds (xmin, xmax, ...) of a and b together.
+std::array<double, 6> Union(const std::array<double, 6>& a, const std::array<double, 6>& b)
+{
+  if (!(a[0] <= a[1]))
+    return b;
+  if (!(b[0] <= b[1]))
+    return a;
+  std::array<double, 6> u;
+  for (int d = 0; d < 3; ++d)
+  {
+    u[2 * d] = std::min(a[2 * d], b[2 * d]);
+    u[2 * d + 1] = std::max(a[2 * d + 1], b[2 * d + 1]);
+  }
+  return u;
+}
 }
 
 int RunSurfaceLines(LineJob& job, const std::vector<std::string>& files,
   const std::vector<vtkSmartPointer<vtkPolyData>>& read)
 {
-  if (job.method != "lineao" && job.method != "reference" && job.method != "ssao" && job.method != "none")
-    return Fail(2, "the inputs hold lines: --method lineao, reference, ssao or none (got --method " +
-        job.method + ": it is for triangle meshes)");
-  std::string error = CheckFrameMemory(job.view.width, job.view.height, LineBytesPerPixel);
+  // Files of lines, and files of meshes (occluding the lines and occluded
+  // by them, in the same frame).
+  std::vector<std::string> lineFiles, meshFiles;
+  std::vector<vtkSmartPointer<vtkPolyData>> lineRead, meshRead;
+  for (std::size_t m = 0; m < read.size(); ++m)
+  {
+    const bool lines = read[m]->GetNumberOfLines() > 0;
+    (lines ? lineFiles : meshFiles).push_back(files[m]);
+    (lines ? lineRead : meshRead).push_back(read[m]);
+  }
+  const bool mixed = !meshRead.empty();
+  if (mixed ? job.method == "hbao" || job.method == "vao"
+            : job.method != "lineao" && job.method != "reference" && job.method != "ssao" && job.method != "none")
+    return Fail(2, mixed ? "the inputs hold lines and meshes: --method lineao or vct (each kind by its own "
+                           "technique on one grid: line AO for the lines, voxel cones for the meshes), reference, "
+                           "ssao or none (got --method " + job.method + ")"
+                         : "the inputs hold lines: --method lineao, reference, ssao or none (got --method " +
+          job.method + ": it is for triangle meshes)");
+  std::string error = CheckFrameMemory(job.view.width, job.view.height, LineBytesPerPixel + (mixed ? 100.0 : 0.0));
   if (!error.empty())
     return Fail(2, error);
   SelectThreads(job.threads);
   auto start = std::chrono::steady_clock::now();
   LineScene scene;
-  if (!scene.Load(files, read, job.tubeRadius, error))
+  if (!scene.Load(lineFiles, lineRead, job.tubeRadius, error))
     return Fail(2, error);
+  SurfaceScene meshes;
+  if (mixed && !meshes.Set(meshFiles, meshRead, error))
+    return Fail(2, error);
+  const std::vector<cao::MeshView> views = meshes.Views();
   const double loadMs = Since(start);
-  const double radius = job.radius > 0.0 ? job.radius : scene.DefaultRadius();
+  const std::array<double, 6> bounds = mixed ? Union(scene.bounds, meshes.bvh.Bounds()) : scene.bounds;
+  double area = scene.TubeArea();
+  for (const cao::MeshView& m : views)
+    area += cao::MeshArea(m);
+  const double radius = job.radius > 0.0 ? job.radius : cao::DefaultAORadius(bounds, area);
   vtkNew<vtkCamera> camera;
-  FitCamera(camera, scene.bounds.data(), job.view);
+  FitCamera(camera, bounds.data(), job.view);
   const cao::PixelCamera pixels = MakePixelCamera(camera, job.view);
   start = std::chrono::steady_clock::now();
   cao::LineFrame frame;
-  if (!cao::CastLinePrimary(scene.capsules, pixels, frame, error))
+  cao::SurfaceFrame surface;
+  if (!cao::CastLinePrimary(scene.capsules, pixels, frame, error) ||
+    (mixed && !cao::CastPrimary(meshes.bvh, pixels, surface, error)))
     return Fail(2, error);
+  if (mixed)
+    ResolveVisibility(frame, surface);
   const double primaryMs = Since(start);
 
   start = std::chrono::steady_clock::now();
   double voxelizeMs = -1.0;
-  cao::BitGrid grid;
+  cao::BitGrid grid, solids;
   std::string window;
   job.lineAO.radius = radius;
   job.lineAO.tubeRadius = scene.tubeRadius;
   job.lineAO.threads = job.threads;
   job.reference.radius = radius;
   job.reference.threads = job.threads;
-  if (job.method == "lineao")
+  std::vector<double> surfaceAO(surface.triangle.size(), std::numeric_limits<double>::quiet_NaN());
+  if (job.method == "lineao" || job.method == "vct")
   {
+    // One eye grid for both kinds: the lines' voxels and the meshes'.
     double right[3], up[3];
     CameraAxes(camera, right, up);
-    if (!cao::PlanLineGrid(scene.lines, right, up, job.lineAO, grid, error) ||
+    std::array<double, 9> axes;
+    std::array<double, 6> meshBounds{ { 1, -1, 1, -1, 1, -1 } };
+    if (mixed && (!cao::EyeAxes(right, up, axes, error) || !cao::EyeBounds(views, axes, meshBounds, error)))
+      return Fail(2, error);
+    if (!cao::PlanLineGrid(scene.lines, right, up, job.lineAO, grid, error, mixed ? &meshBounds : nullptr) ||
       !cao::VoxelizeLines(scene.lines, scene.tubeRadius, grid, error))
       return Fail(2, error);
+    if (mixed)
+    {
+      solids = grid;
+      if (!cao::FillGrid(views, solids, error, job.vct.surfaceVoxels))
+        return Fail(2, error);
+    }
     voxelizeMs = Since(start);
-    if (!cao::LineAOFrame(grid, job.lineAO, frame, error))
+    if (!cao::LineAOFrame(grid, job.lineAO, frame, error, mixed ? &solids : nullptr))
       return Fail(2, error);
+    if (mixed)
+    {
+      // The meshes' voxel cones read the lines' voxels too.
+      cao::BitGrid both = solids;
+      for (std::size_t w = 0; w < both.bits.size(); ++w)
+        both.bits[w] |= grid.bits[w];
+      job.vct.radius = radius;
+      job.vct.slices = both.slices;
+      cao::VCTPlan plan;
+      if (!cao::BuildVCTPlan(job.vct, both, plan, error) || !cao::VCTFrame(both, plan, surface, job.threads, error))
+        return Fail(2, error);
+      surfaceAO = surface.ao;
+    }
   }
   else if (job.method == "reference")
   {
-    if (!cao::LineReferenceFrame(scene.capsules, job.reference, frame, error))
+    cao::RayOccluderSet occluders;
+    occluders.Add(&scene.capsules);
+    if (mixed)
+      occluders.Add(&meshes.bvh);
+    if (!cao::LineReferenceFrame(occluders, job.reference, frame, error) ||
+      (mixed &&
+        !cao::ReferenceAOOfPixels(occluders, job.reference, surface.triangle, surface.position, surface.normal,
+          surfaceAO, error)))
       return Fail(2, error);
   }
   else if (job.method == "ssao")
@@ -219,22 +317,54 @@ int RunSurfaceLines(LineJob& job, const std::vector<std::string>& files,
     SSAORenderer ssao;
     double ms = 0.0;
     std::vector<double> ao;
-    if (!scene.MakeTubes(error) || !ssao.Setup(scene.tubes, job.window, job.view, error) ||
-      !ssao.Render(camera, radius, job.kernel, 1, ao, ms, error))
+    if (!scene.MakeTubes(error))
+      return Fail(1, error);
+    SurfaceScene drawn = scene.tubes;
+    if (mixed)
+    {
+      std::vector<vtkSmartPointer<vtkPolyData>> all = scene.tubes.meshes;
+      all.insert(all.end(), meshRead.begin(), meshRead.end());
+      std::vector<std::string> names = lineFiles;
+      names.insert(names.end(), meshFiles.begin(), meshFiles.end());
+      if (!drawn.Set(names, all, error))
+        return Fail(1, error);
+    }
+    if (!ssao.Setup(drawn, job.window, job.view, error) || !ssao.Render(camera, radius, job.kernel, 1, ao, ms, error))
       return Fail(1, error);
     window = ssao.Description;
-    frame.ao = ao; // its own coverage: the tubes as drawn
+    frame.ao = ao; // its own coverage: the tubes (and meshes) as drawn
+    surfaceAO = ao;
   }
   else
   {
     for (std::size_t i = 0; i < frame.segment.size(); ++i)
       frame.ao[i] = frame.segment[i] >= 0 ? 1.0 : std::numeric_limits<double>::quiet_NaN();
+    for (std::size_t i = 0; i < surface.triangle.size(); ++i)
+      surfaceAO[i] = surface.triangle[i] >= 0 ? 1.0 : std::numeric_limits<double>::quiet_NaN();
   }
   const double aoMs = Since(start);
+  // One picture: each pixel's AO from the kind that covers it.
+  std::vector<double> ao(frame.segment.size(), std::numeric_limits<double>::quiet_NaN());
+  std::int64_t covered[2] = { 0, 0 };
+  double sum[2] = { 0.0, 0.0 };
+  for (std::size_t i = 0; i < ao.size(); ++i)
+  {
+    const bool line = frame.segment[i] >= 0 || (!mixed && std::isfinite(frame.ao[i]));
+    const bool mesh = mixed && (surface.triangle[i] >= 0 || (job.method == "ssao" && !line));
+    ao[i] = line ? frame.ao[i] : mesh ? surfaceAO[i] : std::numeric_limits<double>::quiet_NaN();
+    if (std::isfinite(ao[i]))
+    {
+      ++covered[line ? 0 : 1];
+      sum[line ? 0 : 1] += ao[i];
+    }
+  }
   // Lit by a headlight (light and viewer together): the AO scales the
-  // ambient and the cylinder-averaged diffuse; Banks' specular on top.
-  const bool ok = WriteFramePicture(job.output, job.view.width, job.view.height, job.aoOnly, frame.ao,
-    [&frame](std::size_t i, double a) {
+  // ambient and the lines' cylinder-averaged diffuse (Banks' specular on
+  // top), or the meshes' Lambert term.
+  const bool ok = WriteFramePicture(job.output, job.view.width, job.view.height, job.aoOnly, ao,
+    [&frame, &surface, mixed](std::size_t i, double a) {
+      if (mixed && surface.triangle[i] >= 0)
+        return 0.9 * (0.55 * a + 0.45 * surface.facing[i]);
       if (frame.segment[i] < 0)
         return -1.0;
       const double* v = &frame.view[3 * i];
@@ -246,35 +376,36 @@ int RunSurfaceLines(LineJob& job, const std::vector<std::string>& files,
     error);
   if (!ok)
     return Fail(1, error);
-  std::int64_t covered = 0;
-  double sum = 0.0;
-  for (double a : frame.ao)
-    if (std::isfinite(a))
-    {
-      ++covered;
-      sum += a;
-    }
-  if (covered == 0)
+  const std::int64_t all = covered[0] + covered[1];
+  if (all == 0)
     std::cerr << "cao: warning: no pixel sees a line (the picture is empty: check --zoom, --azimuth, "
                  "--elevation)\n";
+  const double mean = all ? (sum[0] + sum[1]) / all : 0.0;
   if (job.json)
   {
     std::cout << std::setprecision(10) << "{\"method\": \"" << job.method << "\", \"image\": ["
               << job.view.width << ", " << job.view.height << "], \"radius\": " << radius
               << ", \"tube_radius\": " << scene.tubeRadius << ", \"polylines\": " << scene.polylines
-              << ", \"segments\": " << scene.lines.NumberOfSegments() << ", \"covered_pixels\": " << covered
-              << ", \"mean_ao\": " << (covered ? sum / covered : 0.0);
-    if (job.method == "lineao")
+              << ", \"segments\": " << scene.lines.NumberOfSegments() << ", \"covered_pixels\": " << all
+              << ", \"mean_ao\": " << mean;
+    if (mixed)
+      std::cout << ", \"triangles\": " << meshes.bvh.NumberOfTriangles() << ", \"line_pixels\": " << covered[0]
+                << ", \"mean_ao_lines\": " << (covered[0] ? sum[0] / covered[0] : 0.0)
+                << ", \"mesh_pixels\": " << covered[1]
+                << ", \"mean_ao_meshes\": " << (covered[1] ? sum[1] / covered[1] : 0.0);
+    if (job.method == "lineao" || job.method == "vct")
       std::cout << ", \"lineao\": {\"samples\": " << job.lineAO.samples << ", \"slices\": " << grid.slices
-                << ", \"weights\": \"" << cao::LineAOWeightsName(job.lineAO.weights)
-                << "\", \"strength\": " << job.lineAO.strength << ", \"grid\": \"eye\", \"columns\": ["
-                << grid.nx << ", " << grid.ny << "], \"voxel\": " << grid.voxel
-                << ", \"set_voxels\": " << grid.CountAll() << ", \"backend\": \"CPU\"}";
+                << ", \"weights\": \"" << cao::LineAOWeightsName(job.lineAO.weights) << "\", \"hemisphere\": \""
+                << cao::LineAOHemisphereName(job.lineAO.hemisphere) << "\", \"strength\": " << job.lineAO.strength
+                << ", \"grid\": \"eye\", \"columns\": [" << grid.nx << ", " << grid.ny << "], \"voxel\": "
+                << grid.voxel << ", \"set_voxels\": " << grid.CountAll()
+                << (mixed ? ", \"mesh_voxels\": " + std::to_string(solids.CountAll()) : std::string())
+                << ", \"backend\": \"CPU\"}";
     if (job.method == "reference")
       std::cout << ", \"reference\": {\"rays\": " << job.reference.rays << ", \"falloff\": \""
                 << cao::FalloffName(job.reference.falloff) << "\", \"weighting\": \""
                 << cao::WeightingName(job.reference.weighting) << "\", \"seed\": " << job.reference.seed
-                << ", \"geometry\": \"capsules\"}";
+                << ", \"geometry\": \"capsules" << (mixed ? " and triangles" : "") << "\"}";
     if (job.method == "ssao")
       std::cout << ", \"window\": \"" << window << "\", \"geometry\": \"vtkTubeFilter, 16 sides\"";
     std::cout << ", \"stages_ms\": {\"load\": " << loadMs << ", \"primary\": " << primaryMs;
@@ -283,10 +414,9 @@ int RunSurfaceLines(LineJob& job, const std::vector<std::string>& files,
     std::cout << ", \"ao\": " << aoMs << "}}\n";
   }
   else
-    std::cout << "wrote " << job.output << " (" << job.method << ", lines, " << covered
-              << " pixels, radius " << radius << ", tube radius " << scene.tubeRadius << ", mean AO "
-              << (covered ? sum / covered : 0.0) << ", AO " << std::fixed << std::setprecision(1)
-              << aoMs << " ms)\n";
+    std::cout << "wrote " << job.output << " (" << job.method << ", lines" << (mixed ? " and meshes" : "") << ", "
+              << all << " pixels, radius " << radius << ", tube radius " << scene.tubeRadius << ", mean AO "
+              << mean << ", AO " << std::fixed << std::setprecision(1) << aoMs << " ms)\n";
   return 0;
 }
 }

@@ -42,6 +42,8 @@ struct LineScene
   bool MakeTubes(std::string& error);
   /// The default AO radius of the tubes (cao::DefaultAORadius over their area).
   double DefaultRadius() const;
+  /// The tubes' side area (2 pi r x the lines' length).
+  double TubeArea() const;
 };
 
 /// The default tube radius: 1/200 of the lines' bounding-box diagonal.
@@ -62,11 +64,15 @@ struct LineJob
   double tubeRadius = 0.0;
   cao::LineAOSettings lineAO;
   cao::AOReferenceSettings reference;
+  cao::VCTSettings vct; ///< the meshes' voxel cones, when meshes come with the lines
   int kernel = 32, threads = 0;
   bool aoOnly = false, json = false;
 };
 
-/// `cao surface` on the lines of `read` (HasLines): the exit code.
+/// `cao surface` on the lines of `read` (HasLines), with the meshes among
+/// them occluding the lines and occluded by them in the same frame (one
+/// grid: line AO for the lines, voxel cones for the meshes; or the
+/// reference over both, or vtkSSAOPass over both): the exit code.
 int RunSurfaceLines(LineJob& job, const std::vector<std::string>& files,
   const std::vector<vtkSmartPointer<vtkPolyData>>& read);
 }

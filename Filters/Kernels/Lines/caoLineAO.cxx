@@ -155,7 +155,7 @@ std::string LineSegments::Validate() const
 }
 
 bool PlanLineGrid(const LineSegments& lines, const double right[3], const double up[3],
-  const LineAOSettings& settings, BitGrid& grid, std::string& error)
+  const LineAOSettings& settings, BitGrid& grid, std::string& error, const std::array<double, 6>* also)
 {
   error = settings.Validate();
   if (error.empty())
@@ -185,6 +185,12 @@ bool PlanLineGrid(const LineSegments& lines, const double right[3], const double
     error = "there are no line segments";
     return false;
   }
+  if (also && (*also)[0] <= (*also)[1])
+    for (int d = 0; d < 3; ++d)
+    {
+      b[2 * d] = std::min(b[2 * d], (*also)[2 * d]);
+      b[2 * d + 1] = std::max(b[2 * d + 1], (*also)[2 * d + 1]);
+    }
   if (!PlanGrid(b, settings.radius + settings.tubeRadius, settings.slices, grid, error))
     return false;
   grid.axes = axes;
@@ -422,7 +428,7 @@ double LineAOAt(const BitGrid& grid, const LineAOSettings& settings, const doubl
 }
 
 bool LineAOFrame(const BitGrid& grid, const LineAOSettings& settings, LineFrame& frame,
-  std::string& error)
+  std::string& error, const BitGrid* solids)
 {
   error = settings.Validate();
   if (!error.empty())
@@ -430,6 +436,14 @@ bool LineAOFrame(const BitGrid& grid, const LineAOSettings& settings, LineFrame&
   if (grid.IsFrustum() || grid.bits.empty())
   {
     error = "line AO needs a voxelized world or eye grid";
+    return false;
+  }
+  if (solids &&
+    (solids->nx != grid.nx || solids->ny != grid.ny || solids->slices != grid.slices ||
+      solids->voxel != grid.voxel || solids->origin != grid.origin || solids->axes != grid.axes ||
+      solids->bits.size() != grid.bits.size()))
+  {
+    error = "the solids' grid is not planned as the lines' grid";
     return false;
   }
   const std::size_t pixels = static_cast<std::size_t>(frame.width) * frame.height;
@@ -447,8 +461,13 @@ bool LineAOFrame(const BitGrid& grid, const LineAOSettings& settings, LineFrame&
       return;
     const int i = static_cast<int>(p % width), j = static_cast<int>(p / width);
     const int set = (i & 3) + 4 * (j & 3);
-    frame.ao[p] = LineAOAt(grid, settings, &samples[static_cast<std::size_t>(set) * 2 * settings.samples],
-      &frame.axis[3 * p], &frame.tangent[3 * p], &frame.view[3 * p], &frame.position[3 * p], &frame.normal[3 * p]);
+    const double* sample = &samples[static_cast<std::size_t>(set) * 2 * settings.samples];
+    frame.ao[p] = LineAOAt(grid, settings, sample, &frame.axis[3 * p], &frame.tangent[3 * p], &frame.view[3 * p],
+      &frame.position[3 * p], &frame.normal[3 * p]);
+    if (solids) // solid occluders fill what they occlude: their occupancy as it is
+      frame.ao[p] *= 1.0 - std::min(1.0, LineOccupancyAt(*solids, settings, sample, &frame.axis[3 * p],
+                                            &frame.tangent[3 * p], &frame.view[3 * p], &frame.position[3 * p],
+                                            &frame.normal[3 * p]));
   });
   return true;
 }

@@ -24,6 +24,10 @@
 //      for random tangents, lights and viewers (control: Banks' maximum
 //      reflection, sqrt(1 - L_T^2), misses it); Banks' specular peaks at 1
 //      where the mirror direction lies on the cone around the tangent;
+//   E5 solid occluders (a mesh's voxels, planned as the lines' grid): a
+//      slab under a line darkens the half ball facing it, not the one
+//      facing away (control: without the slab both are open), and a grid
+//      planned otherwise is refused;
 //   R1 on a bundle of 19 tubes seen from above, the frame's line AO
 //      against the ray-traced reference on the exact tubes: RMSE at most
 //      half that of no AO, rank correlation at least 0.7 (control: strength
@@ -379,6 +383,40 @@ int TestLineAO(int, char*[])
       normalized[0], normalized[1], paper[0], paper[1], paper[0] / paper[1]);
     CAO_CHECK(std::fabs(normalized[0] - normalized[1]) < 1e-9 && normalized[0] < 0.99, "E4 normalized");
     CAO_CHECK(std::fabs(paper[0] / paper[1] - 100.0) < 1.0, "E4 paper (control)");
+  }
+  // E5: a line along x at z = 32.5, a solid slab in slices 20..29 below it.
+  // (The reference for a point facing a parallel slab 1.5 below it, R 8:
+  // AO (1.5 / 8)^2 = 0.035; occupancy gives a lighter 0.18.)
+  {
+    cao::BitGrid lines = Grid(64, 64, 1.0), solids = Grid(64, 64, 1.0), empty = Grid(64, 64, 1.0);
+    const cao::LineSegments one = ParallelLines({ { { 32.5, 32.5 } } }, 64.0);
+    CAO_CHECK(cao::VoxelizeLines(one, 1.0, lines, error), "%s", error.c_str());
+    for (int j = 0; j < 64; ++j)
+      for (int i = 0; i < 64; ++i)
+        for (int k = 20; k < 30; ++k)
+          solids.bits[(static_cast<std::size_t>(j) * 64 + i) * 2 + (k >> 5)] |= 1u << (k & 31);
+    cao::LineAOSettings t = s;
+    t.tubeRadius = 1.0;
+    // Two pixels: the tube's bottom (normal -z, facing the slab) and its top (+z).
+    cao::LineFrame frame;
+    frame.width = 2;
+    frame.height = 1;
+    frame.segment = { 0, 0 };
+    frame.position = { 32, 32.5, 31.5, 32, 32.5, 33.5 };
+    frame.normal = { 0, 0, -1, 0, 0, 1 };
+    frame.tangent = { 1, 0, 0, 1, 0, 0 };
+    frame.axis = { 32, 32.5, 32.5, 32, 32.5, 32.5 };
+    frame.view = { 0, 0, -1, 0, 0, -1 };
+    CAO_CHECK(cao::LineAOFrame(lines, t, frame, error, &solids), "%s", error.c_str());
+    const double facing = frame.ao[0], away = frame.ao[1];
+    CAO_CHECK(cao::LineAOFrame(lines, t, frame, error, &empty), "%s", error.c_str());
+    const double facingOpen = frame.ao[0], awayOpen = frame.ao[1];
+    cao::BitGrid other = Grid(32, 64, 1.0);
+    const bool refused = !cao::LineAOFrame(lines, t, frame, error, &other) && !error.empty();
+    std::printf("E5 a slab 3 voxels under a tube: the side facing it %.4f, facing away %.4f; without the slab %.4f "
+                "and %.4f; a grid planned otherwise refused %s\n",
+      facing, away, facingOpen, awayOpen, refused ? "yes" : "NO");
+    CAO_CHECK(facing < 0.8 && away == 1.0 && facingOpen == 1.0 && awayOpen == 1.0 && refused, "E5");
   }
   // R1: a bundle of 19 parallel tubes (a hexagonal lattice, 3 rings deep in
   // y-z, spacing 3 r) along x, seen from above by an orthographic camera.
