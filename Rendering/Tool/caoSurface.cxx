@@ -533,12 +533,17 @@ bool SurfaceScene::Load(const std::vector<std::string>& files, std::string& erro
 }
 
 bool SurfaceScene::Set(const std::vector<std::string>& files,
-  const std::vector<vtkSmartPointer<vtkPolyData>>& read, std::string& error)
+  const std::vector<vtkSmartPointer<vtkPolyData>>& read, std::string& error, bool buildBVH)
 {
   this->paths = files;
   this->meshes.clear();
   this->points.clear();
   this->triangles.clear();
+  if (!buildBVH)
+  {
+    this->meshes = read;
+    return true;
+  }
   std::vector<double> all;
   std::vector<std::int64_t> tris;
   for (std::size_t m = 0; m < read.size(); ++m)
@@ -548,6 +553,10 @@ bool SurfaceScene::Set(const std::vector<std::string>& files,
     std::vector<double> p;
     std::vector<std::int64_t> t;
     vtkCAO::TrianglesOf(mesh, p, t);
+    if (mesh->GetNumberOfLines() > 0)
+      std::cerr << "cao: warning: '" << path << "' has " << mesh->GetNumberOfLines()
+                << " line cells among its polygons: they are ignored (give lines in a file of their own "
+                   "to give them line AO)\n";
     if (t.empty())
     {
       error = "'" + path + "' has no triangles (polygons or strips)";
@@ -1166,7 +1175,7 @@ Command AddSurfaceCommand(CLI::App& cao)
     "hbao: horizon-based AO (seed 002) on the G-buffer (CPU or OpenGL: --backend);\n"
     "vao: volumetric AO (seed 001, base disk, mu = (r/R)^4) on the G-buffer (CPU or OpenGL);\n"
     "lineao: line AO (seed 004) for line inputs: the lines voxelized into an eye grid, prisms "
-    "sampled in the camera-facing half ball (CPU);\n"
+    "sampled in a half ball facing each tube pixel's normal (CPU);\n"
     "reference: CPU ray tracing in double precision (Kernels/Surface; lines: exact capsules);\n"
     "ssao: VTK's vtkSSAOPass, its default kernel (32, --kernel) and bias, blurred, at the same "
     "radius, read back from an unlit white material (lines: the tubes of vtkTubeFilter);\n"
@@ -1226,7 +1235,7 @@ Command AddSurfaceCommand(CLI::App& cao)
     "lineao: prisms per pixel, 1 to " + std::to_string(cao::LineAOSettings::MaximumSamples) +
       " (default 64; the paper's 150)");
   AddChoice(app, "--line-weights", o->lineWeights, { "normalized", "paper" },
-    "lineao: the prisms' weights (default normalized: sin(alpha)/(dm/R)^2, independent of the "
+    "lineao: the prisms' weights (default normalized: a/(dm/R)^2, a the cosine to the normal, independent of the "
     "scene's scale; paper: the thesis' 1/dm^2 in world units times its AO factor 4)");
   AddChoice(app, "--line-hemisphere", o->lineHemisphere, { "normal", "camera" },
     "lineao: the half ball sampled (default normal: at the tube's surface, facing its normal, the "

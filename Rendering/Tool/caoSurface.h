@@ -48,9 +48,10 @@ struct SurfaceScene
   cao::TriangleBVH bvh;
   double diagonal = 0.0;
   bool Load(const std::vector<std::string>& files, std::string& error);
-  /// The scene of meshes already read (`files` names them in errors).
+  /// The scene of meshes already read (`files` names them in errors);
+  /// without `buildBVH` (meshes only drawn by VTK) no BVH and no triangles.
   bool Set(const std::vector<std::string>& files, const std::vector<vtkSmartPointer<vtkPolyData>>& read,
-    std::string& error);
+    std::string& error, bool buildBVH = true);
   /// The meshes as the voxelizer takes them (views of points and triangles).
   std::vector<cao::MeshView> Views() const;
   /// `copies` instances of the loaded meshes (1 to 4096), tiled k x k in x

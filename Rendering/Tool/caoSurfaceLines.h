@@ -49,7 +49,11 @@ struct LineScene
 /// The default tube radius: 1/200 of the lines' bounding-box diagonal.
 constexpr double DefaultTubeFraction = 0.005;
 
-/// Whether any of `read` holds lines (a line input for `cao surface`).
+/// Whether `mesh` is a line input: lines and no polygons or strips (a mesh
+/// with feature edges or outlines among its cells is a mesh: its lines are
+/// ignored, as before lines were supported).
+bool IsLineInput(vtkPolyData* mesh);
+/// Whether any of `read` is a line input (then `cao surface` draws lines).
 bool HasLines(const std::vector<vtkSmartPointer<vtkPolyData>>& read);
 
 /// The camera's right and up directions (its view matrix's first rows).

@@ -252,10 +252,17 @@ bool VoxelizeLines(const LineSegments& lines, double tubeRadius, BitGrid& grid, 
       bool empty = false;
       for (int c = 0; c < 3; ++c)
       {
+        // In double, clamped to the grid before the cast (a tube far wider
+        // than the grid would overflow an int).
         const double mn = std::min(p0[c], p1[c]) - rho, mx = std::max(p0[c], p1[c]) + rho;
-        lo[c] = std::max(0, static_cast<int>(std::floor(mn)) - 1);
-        hi[c] = std::min(dims[c] - 1, static_cast<int>(std::floor(mx)) + 1);
-        empty = empty || lo[c] > hi[c];
+        const double first = std::max(0.0, std::floor(mn) - 1.0), last = std::min(dims[c] - 1.0, std::floor(mx) + 1.0);
+        if (!(first <= last))
+        {
+          empty = true;
+          break;
+        }
+        lo[c] = static_cast<int>(first);
+        hi[c] = static_cast<int>(last);
       }
       if (empty)
         continue;
@@ -355,9 +362,8 @@ double LineOccupancyAt(const BitGrid& grid, const LineAOSettings& settings, cons
   {
     // The prism runs along the view axis through the voxel centres of the
     // column nearest the sample, so which voxels it counts is exact.
-    const int i = static_cast<int>(std::floor(centre.x + R * samples[2 * n]));
-    const int j = static_cast<int>(std::floor(centre.y + R * samples[2 * n + 1]));
-    const Vec3 c(i + 0.5, j + 0.5, centre.z);
+    const double ci = std::floor(centre.x + R * samples[2 * n]), cj = std::floor(centre.y + R * samples[2 * n + 1]);
+    const Vec3 c(ci + 0.5, cj + 0.5, centre.z);
     const double lateral2 = (c.x - centre.x) * (c.x - centre.x) + (c.y - centre.y) * (c.y - centre.y);
     const double half = std::sqrt(std::max(0.0, R * R - lateral2));
     // The chord c + u z, u in [-half, half], where (x - centre).w >= base.
@@ -372,11 +378,16 @@ double LineOccupancyAt(const BitGrid& grid, const LineAOSettings& settings, cons
       u0 = std::max(u0, (base - along) / w.z);
     else
       u1 = std::min(u1, (base - along) / w.z);
-    const int k0 = static_cast<int>(std::ceil(c.z + u0 - 0.5));
-    const int k1 = static_cast<int>(std::floor(c.z + u1 - 0.5));
-    if (!(u0 <= u1) || k1 < k0)
+    if (!(u0 <= u1))
       continue;
-    const double ratio = static_cast<double>(grid.CountBits(i, j, k0, k1)) / (k1 - k0 + 1); // 0 outside: empty
+    const double k0 = std::ceil(c.z + u0 - 0.5), k1 = std::floor(c.z + u1 - 0.5);
+    if (!(k0 <= k1))
+      continue;
+    // Outside the grid is empty: the indices are clamped to just outside
+    // it before the casts (CountBits counts nothing there).
+    auto index = [](double v, int n) { return static_cast<int>(std::min(static_cast<double>(n), std::max(-1.0, v))); };
+    const int on = grid.CountBits(index(ci, grid.nx), index(cj, grid.ny), index(k0, grid.slices), index(k1, grid.slices));
+    const double ratio = on / (k1 - k0 + 1.0);
     const Vec3 near = c + Vec3(0, 0, u0) - centre, far = c + Vec3(0, 0, u1) - centre;
     const double dm = std::max(0.5 * (glm::length(near) + glm::length(far)), 1e-12);
     if (paper)
@@ -453,6 +464,9 @@ bool LineAOFrame(const BitGrid& grid, const LineAOSettings& settings, LineFrame&
     error = "the line G-buffer's arrays do not match its size";
     return false;
   }
+  // A G-buffer of lines drawn as lines has no surface: its half balls face
+  // the camera.
+  const bool surfaces = frame.position.size() == 3 * pixels && frame.normal.size() == 3 * pixels;
   frame.ao.assign(pixels, std::numeric_limits<double>::quiet_NaN());
   const std::vector<double> samples = LineAOSamples(settings.samples, settings.seed);
   const int width = frame.width;
@@ -462,12 +476,13 @@ bool LineAOFrame(const BitGrid& grid, const LineAOSettings& settings, LineFrame&
     const int i = static_cast<int>(p % width), j = static_cast<int>(p / width);
     const int set = (i & 3) + 4 * (j & 3);
     const double* sample = &samples[static_cast<std::size_t>(set) * 2 * settings.samples];
+    const double* position = surfaces ? &frame.position[3 * p] : nullptr;
+    const double* normal = surfaces ? &frame.normal[3 * p] : nullptr;
     frame.ao[p] = LineAOAt(grid, settings, sample, &frame.axis[3 * p], &frame.tangent[3 * p], &frame.view[3 * p],
-      &frame.position[3 * p], &frame.normal[3 * p]);
+      position, normal);
     if (solids) // solid occluders fill what they occlude: their occupancy as it is
       frame.ao[p] *= 1.0 - std::min(1.0, LineOccupancyAt(*solids, settings, sample, &frame.axis[3 * p],
-                                            &frame.tangent[3 * p], &frame.view[3 * p], &frame.position[3 * p],
-                                            &frame.normal[3 * p]));
+                                            &frame.tangent[3 * p], &frame.view[3 * p], position, normal));
   });
   return true;
 }

@@ -1,8 +1,9 @@
 // caoLineAO.h - ambient occlusion for lines by line voxelization and prism
 // sampling (seed 004, Benevides 2015), the CPU twin: the lines are
 // voxelized into a bit grid with OR (lines are not solids), and each
-// pixel's AO is the occupancy of the camera-facing half ball of radius R
-// around its line, sampled by prisms parallel to the view axis.
+// pixel's AO comes from the occupancy of a half ball of radius R at its
+// line (facing the tube's normal, or the camera as the seed's), sampled by
+// prisms parallel to the view axis.
 //
 // Choices the seed leaves open, and why (docs/lines.md measures them):
 // - The grid is an eye grid (Common/caoBitGrid.h: a world grid turned to
@@ -63,7 +64,7 @@ constexpr double OcclusionCalibration = 0.54;
 
 enum class LineAOWeights
 {
-  Normalized = 0, ///< sin(alpha) / (dm / R)^2, normalized: independent of the scene's scale
+  Normalized = 0, ///< a / (dm / R)^2 (a: the cosine to the normal, or the seed's sine to the tangent), normalized: scale-free
   Paper = 1       ///< the seed's (on / total) / dm^2 (world units) times aoFactor, averaged
 };
 
@@ -142,6 +143,8 @@ double LineOccupancyAt(const BitGrid& grid, const LineAOSettings& settings, cons
   const double axisPoint[3], const double tangent[3], const double view[3],
   const double* surface = nullptr, const double* normal = nullptr);
 /// s in AO = exp(-strength s occupancy) for a grid of voxel size `voxel`.
+/// Lines drawn as lines (tubeRadius 0) count as tubes as wide as their
+/// supercover (0.69 voxel), so their AO depends on the slices.
 double LineOcclusionScale(const LineAOSettings& settings, double voxel);
 /// The AO (1 = open) of an occupancy: exp(-strength s occupancy), or with
 /// Paper weights the seed's 1 - clamp(aoFactor occupancy).

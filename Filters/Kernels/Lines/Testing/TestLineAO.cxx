@@ -8,7 +8,8 @@
 //   V3 any segment sets every voxel it passes through (dense points along
 //      it) and nothing farther than half a voxel diagonal (control: the
 //      one-voxel-per-column rasterizer leaves gaps on steep segments);
-//   V4 a tube sets its capsule's volume in voxels within 8%;
+//   V4 a tube sets its capsule's volume in voxels within 8% (control: the
+//      segment without its tube, the supercover alone, misses it);
 //   E1 an isolated line is open (its own voxels excluded; control: a
 //      second line 2 voxels in front darkens it);
 //   E2 the uniform-density limit: in a random field of occupancy p the
@@ -30,8 +31,8 @@
 //      planned otherwise is refused;
 //   R1 on a bundle of 19 tubes seen from above, the frame's line AO
 //      against the ray-traced reference on the exact tubes: RMSE at most
-//      half that of no AO, rank correlation at least 0.7 (control: strength
-//      0, no AO, fails both);
+//      half that of no AO, rank correlation at least 0.7 (control: the
+//      same AO values shuffled over the pixels fails);
 //   and bad input.
 #include "caoLineAO.h"
 #include "caoLineShading.h"
@@ -250,7 +251,11 @@ int TestLineAO(int, char*[])
     std::printf("V4 tube volume: %.0f voxels set, capsule volume %.0f voxels (ratio %.3f; within 8%%: the boundary voxels of a 3-voxel radius)\n", got,
       expected, got / expected);
     CAO_CHECK(std::fabs(got / expected - 1.0) < 0.08, "V4");
-    CAO_CHECK(std::fabs(got / (expected * 0.8) - 1.0) > 0.08, "V4 control");
+    // Control: the supercover alone (no tube fill) misses the volume.
+    CAO_CHECK(cao::VoxelizeLines(Segment(a, b), 0.0, g, error), "%s", error.c_str());
+    const double thin = static_cast<double>(g.CountAll());
+    std::printf("V4 control: the segment without its tube sets %.0f voxels (ratio %.3f)\n", thin, thin / expected);
+    CAO_CHECK(std::fabs(thin / expected - 1.0) > 0.08, "V4 control");
   }
 
   cao::LineAOSettings s;
@@ -281,9 +286,29 @@ int TestLineAO(int, char*[])
     tube.tubeRadius = 2.5;
     CAO_CHECK(cao::VoxelizeLines(one, tube.tubeRadius, g, error), "%s", error.c_str());
     const double tubeAO = AOAt(g, tube, p, t);
-    std::printf("E1 isolated line AO %.4f, diagonal %.4f, tube %.4f (1 wanted); with a line 2 voxels in front %.4f (< 0.99 wanted)\n",
-      alone, diagonalAO, tubeAO, shaded);
-    CAO_CHECK(alone == 1.0 && diagonalAO == 1.0 && tubeAO == 1.0 && shaded < 0.99, "E1");
+    // The default half ball, at the tube's surface facing its normal, all
+    // around the tube (and a thin tube's).
+    double normalAO = 1.0;
+    for (double r : { 2.5, 0.2 })
+    {
+      tube.tubeRadius = r;
+      CAO_CHECK(cao::VoxelizeLines(one, r, g, error), "%s", error.c_str());
+      for (int k = 0; k < 12; ++k)
+      {
+        const double phi = k * 3.14159265358979 / 6;
+        const double n[3] = { 0.0, std::cos(phi), std::sin(phi) };
+        const double q[3] = { 32.3, 32.5 + r * n[1], 32.5 + r * n[2] };
+        const std::vector<double> samples = cao::LineAOSamples(tube.samples, tube.seed);
+        const double view[3] = { 0, 0, -1 };
+        for (int set = 0; set < 16; ++set)
+          normalAO = std::min(normalAO, cao::LineAOAt(g, tube, &samples[static_cast<std::size_t>(set) * 2 * tube.samples],
+                                          p, t, view, q, n));
+      }
+    }
+    std::printf("E1 isolated line AO %.4f, diagonal %.4f, tube %.4f, the tube's surface facing its normal all "
+                "around (lowest) %.4f (1 wanted); with a line 2 voxels in front %.4f (< 0.99 wanted)\n",
+      alone, diagonalAO, tubeAO, normalAO, shaded);
+    CAO_CHECK(alone == 1.0 && diagonalAO == 1.0 && tubeAO == 1.0 && normalAO == 1.0 && shaded < 0.99, "E1");
   }
   // E2: uniform density p in the whole grid, a line's point in the middle,
   // in both half balls (the camera-facing one and one facing a random normal).
@@ -455,11 +480,22 @@ int TestLineAO(int, char*[])
     double rmse[2], rank[2], none = 0.0;
     for (int control = 0; control < 2; ++control)
     {
-      la.strength = control ? 0.0 : 1.0;
       cao::BitGrid g;
       CAO_CHECK(cao::PlanLineGrid(bundle, right, up, la, g, error) && cao::VoxelizeLines(bundle, r, g, error) &&
           cao::LineAOFrame(g, la, frame, error),
         "%s", error.c_str());
+      if (control) // the same values on the wrong pixels
+      {
+        std::vector<double> values;
+        for (std::size_t p = 0; p < frame.ao.size(); ++p)
+          if (frame.segment[p] >= 0)
+            values.push_back(frame.ao[p]);
+        std::shuffle(values.begin(), values.end(), std::mt19937_64(3));
+        std::size_t next = 0;
+        for (std::size_t p = 0; p < frame.ao.size(); ++p)
+          if (frame.segment[p] >= 0)
+            frame.ao[p] = values[next++];
+      }
       std::vector<double> a, b;
       double e2 = 0.0, n2 = 0.0;
       for (std::size_t p = 0; p < frame.ao.size(); ++p)
@@ -506,7 +542,7 @@ int TestLineAO(int, char*[])
       rank[control] = saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : 0.0;
     }
     std::printf("R1 19-tube bundle vs the reference (512 rays): line AO RMSE %.4f, rank correlation %.3f; no AO "
-                "RMSE %.4f; control (strength 0) RMSE %.4f, rank %.3f\n",
+                "RMSE %.4f; control (its values shuffled over the pixels) RMSE %.4f, rank %.3f\n",
       rmse[0], rank[0], none, rmse[1], rank[1]);
     CAO_CHECK(rmse[0] <= 0.5 * none && rank[0] >= 0.7, "R1");
     CAO_CHECK(!(rmse[1] <= 0.5 * none && rank[1] >= 0.7), "R1 control");
