@@ -63,7 +63,7 @@ double RankCorrelation(const std::vector<double>& a, const std::vector<double>& 
     return out;
   };
   if (a.size() < 3)
-    return 0.0;
+    return std::numeric_limits<double>::quiet_NaN();
   const std::vector<double> ra = ranks(a), rb = ranks(b);
   const double mean = 0.5 * static_cast<double>(a.size() - 1);
   double sab = 0, saa = 0, sbb = 0;
@@ -73,7 +73,7 @@ double RankCorrelation(const std::vector<double>& a, const std::vector<double>& 
     saa += (ra[k] - mean) * (ra[k] - mean);
     sbb += (rb[k] - mean) * (rb[k] - mean);
   }
-  return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : 0.0;
+  return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : std::numeric_limits<double>::quiet_NaN();
 }
 
 /// The row's errors against the reference (pixels where both are finite),
@@ -153,7 +153,7 @@ int Run(Options& o, const CLI::App*)
     if (!read[0])
       return Fail(2, error);
     if (!HasLines(read))
-      return Fail(2, "'" + file + "' holds no lines");
+      return Fail(2, "'" + file + "' is not a line input (lines without polygons)");
     LineScene scene;
     if (!scene.Load({ file }, read, o.tubeRadius, error))
       return Fail(2, error);
@@ -182,6 +182,9 @@ int Run(Options& o, const CLI::App*)
       reference[c] = f.ao;
     }
     const double referenceMs = Since(start) / 2;
+    if (frames[0].covered == 0)
+      return Fail(2, "no pixel of '" + file + "' sees a line (tubes of radius " + Compact(scene.tubeRadius) +
+          " thinner than a pixel?): nothing to measure");
     std::vector<std::int64_t> lineOfPixel(frames[0].segment.size(), -1);
     for (std::size_t i = 0; i < lineOfPixel.size(); ++i)
       if (frames[0].segment[i] >= 0)
@@ -286,12 +289,15 @@ int Run(Options& o, const CLI::App*)
         << r.pixels << "\n";
     json << (k ? ",\n " : "") << "{\"scene\": \"" << r.scene << "\", \"configuration\": \"" << r.configuration
          << "\", \"method\": \"" << r.method << "\", \"ms\": " << r.ms << ", \"rmse\": " << r.rmse
-         << ", \"bias\": " << r.bias << ", \"p99\": " << r.p99 << ", \"rank_correlation\": " << r.rank
+         << ", \"bias\": " << r.bias << ", \"p99\": " << r.p99 << ", \"rank_correlation\": "
+         << (std::isfinite(r.rank) ? std::to_string(r.rank) : std::string("null"))
          << ", \"lines\": " << r.lines << ", \"flicker\": " << r.flicker << ", \"reference_flicker\": "
          << r.referenceFlicker << ", \"pixels\": " << r.pixels << "}";
     std::cout << std::fixed << "| " << r.scene << " | " << r.configuration << " | " << std::setprecision(1) << r.ms
               << " | " << std::setprecision(4) << r.rmse << " | " << std::showpos << r.bias << std::noshowpos
-              << " | " << r.p99 << " | " << std::setprecision(3) << r.rank << " (" << r.lines << ") | "
+              << " | " << r.p99 << " | " << std::setprecision(3)
+              << (std::isfinite(r.rank) ? std::to_string(r.rank).substr(0, 5) : std::string("n/a")) << " (" << r.lines
+              << ") | "
               << std::setprecision(4) << r.flicker << " (" << r.referenceFlicker << ") |\n";
   }
   json << "]\n";

@@ -559,7 +559,8 @@ bool SurfaceScene::Set(const std::vector<std::string>& files,
                    "to give them line AO)\n";
     if (t.empty())
     {
-      error = "'" + path + "' has no triangles (polygons or strips)";
+      error = "'" + path + "' has no triangles (polygons or strips)" +
+        (mesh->GetNumberOfLines() > 0 ? std::string() : std::string(" and no lines (vertices are not drawn)"));
       return false;
     }
     const std::int64_t base = static_cast<std::int64_t>(all.size() / 3);
@@ -814,6 +815,12 @@ int Run(SurfaceOptions& o, const CLI::App* app)
 {
   if (o.output.empty())
     return Fail(2, "give the output picture with -o out.png");
+  // Line options without --method: the lines' default, lineao.
+  const bool methodGiven = app->count("--method") > 0;
+  if (!methodGiven)
+    for (const char* name : { "--line-samples", "--line-weights", "--line-hemisphere", "--strength" })
+      if (app->count(name) > 0)
+        o.method = "lineao";
   // --march and --samples are for hbao or vao, --filter for vct, hbao or
   // vao (the first that is not for --method, in the command line's order).
   for (const CLI::Option* option : app->parse_order())
@@ -835,11 +842,18 @@ int Run(SurfaceOptions& o, const CLI::App* app)
     { "--fill", { "vct" } }, { "--occupancy", { "vct" } }, { "--ray-step", { "vct" } },
     { "--cone-angle", { "vct" } }, { "--apex-offset", { "vct" } }, { "--rays", { "reference" } },
     { "--falloff", { "reference" } }, { "--weighting", { "reference" } },
-    { "--window", { "ssao" } }, { "--kernel", { "ssao" } }, { "--line-samples", { "lineao" } },
-    { "--line-weights", { "lineao" } }, { "--line-hemisphere", { "lineao" } }, { "--strength", { "lineao" } }
+    { "--window", { "ssao" } }, { "--kernel", { "ssao" } }, { "--line-samples", { "lineao", "vct" } },
+    { "--line-weights", { "lineao", "vct" } }, { "--line-hemisphere", { "lineao", "vct" } },
+    { "--strength", { "lineao", "vct" } }
+  };
+  // (lineao: with meshes in the frame, their voxel cones take vct's
+  // options; the lines' path refuses those it does not read)
+  const auto reads = [&o](const std::vector<std::string>& methods) {
+    return std::find(methods.begin(), methods.end(), o.method) != methods.end() ||
+      (o.method == "lineao" && std::find(methods.begin(), methods.end(), "vct") != methods.end());
   };
   for (const auto& [name, methods] : methodOptions)
-    if (app->count(name) > 0 && std::find(methods.begin(), methods.end(), o.method) == methods.end())
+    if (app->count(name) > 0 && !reads(methods))
       return Fail(2, name + " is for --method " + Or(methods) + " (got --method " + o.method + ")");
   if (app->count("--samples") > 0)
     o.vao.quality = cao::VAOQuality::Custom;
@@ -906,8 +920,19 @@ int Run(SurfaceOptions& o, const CLI::App* app)
   }
   if (HasLines(read))
   {
+    // What the lines' path does not read: refused, not ignored.
+    const bool meshes = std::any_of(read.begin(), read.end(), [](vtkPolyData* m) { return !IsLineInput(m); });
+    for (const char* name : { "--volume", "--backend", "--grid", "--filter", "--march", "--samples" })
+      if (app->count(name) > 0)
+        return Fail(2, std::string(name) + " is not read with line inputs (line AO and the meshes' voxel cones "
+                                           "beside it run on the CPU, on one eye grid, without an occluding volume)");
+    if (!meshes)
+      for (const char* name : { "--quality", "--cone-weights", "--fill", "--occupancy", "--ray-step", "--cone-angle",
+             "--apex-offset" })
+        if (app->count(name) > 0)
+          return Fail(2, std::string(name) + " is for meshes' voxel cones; the inputs hold only lines");
     LineJob job;
-    job.method = app->count("--method") > 0 ? o.method : "lineao"; // lines' default
+    job.method = methodGiven ? o.method : "lineao"; // lines' default
     job.output = o.output;
     job.window = o.window;
     job.view = o.view;
@@ -1166,7 +1191,8 @@ Command AddSurfaceCommand(CLI::App& cao)
 {
   auto o = std::make_shared<SurfaceOptions>();
   CLI::App* app = cao.add_subcommand("surface",
-    "ambient occlusion of triangle meshes seen by one camera (voxel cone tracing, HBAO, VAO, "
+    "ambient occlusion of triangle meshes and lines seen by one camera (voxel cone tracing, HBAO, VAO, "
+    "line AO, "
     "the ray-traced reference, vtkSSAOPass or none), as a picture or the AO term alone");
   AddMeshes(app, o->meshes);
   AddChoice(app, "--method", o->method, { "vct", "hbao", "vao", "lineao", "reference", "ssao", "none" },

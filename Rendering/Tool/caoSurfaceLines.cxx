@@ -19,6 +19,7 @@
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <sstream>
 
 namespace caocli
 {
@@ -35,6 +36,13 @@ double Since(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
+}
+
+std::string Compact(double x)
+{
+  std::ostringstream text;
+  text << x;
+  return text.str();
 }
 
 bool IsLineInput(vtkPolyData* mesh)
@@ -129,6 +137,12 @@ bool LineScene::Load(const std::vector<std::string>& files,
     return false;
   }
   this->tubeRadius = radius > 0.0 ? radius : DefaultTubeFraction * this->diagonal;
+  if (!(this->tubeRadius <= this->diagonal))
+  {
+    error = "the tube radius " + Compact(this->tubeRadius) + " exceeds the lines' bounding-box diagonal " +
+      Compact(this->diagonal) + ": at most the diagonal";
+    return false;
+  }
   if (!this->capsules.Build(this->lines.points, this->lines.segments, this->tubeRadius, error))
     return false;
   this->bounds = this->capsules.OccluderBounds();
@@ -248,7 +262,13 @@ int RunSurfaceLines(LineJob& job, const std::vector<std::string>& files,
   double area = scene.TubeArea();
   for (const cao::MeshView& m : views)
     area += cao::MeshArea(m);
-  const double radius = job.radius > 0.0 ? job.radius : cao::DefaultAORadius(bounds, area);
+  const double defaultRadius = cao::DefaultAORadius(bounds, area);
+  const double radius = job.radius > 0.0 ? job.radius : defaultRadius;
+  if (job.method == "lineao" && radius > 3.0 * defaultRadius)
+    std::cerr << "cao: warning: --radius " << radius << " is " << radius / defaultRadius
+              << " times the default (" << defaultRadius
+              << "): line AO's occupancy is calibrated near the default and grows lighter than the reference "
+                 "far above it (docs/lines.md)\n";
   vtkNew<vtkCamera> camera;
   FitCamera(camera, bounds.data(), job.view);
   const cao::PixelCamera pixels = MakePixelCamera(camera, job.view);
@@ -291,6 +311,10 @@ int RunSurfaceLines(LineJob& job, const std::vector<std::string>& files,
         return Fail(2, error);
     }
     voxelizeMs = Since(start);
+    if (radius < 3.0 * grid.voxel)
+      std::cerr << "cao: warning: the AO radius " << radius << " spans " << radius / grid.voxel
+                << " voxels of the grid (" << grid.slices
+                << " slices): the half balls hold too few to see the neighbours; use more --slices\n";
     if (!cao::LineAOFrame(grid, job.lineAO, frame, error, mixed ? &solids : nullptr))
       return Fail(2, error);
     if (mixed)
@@ -385,8 +409,20 @@ int RunSurfaceLines(LineJob& job, const std::vector<std::string>& files,
     return Fail(1, error);
   const std::int64_t all = covered[0] + covered[1];
   if (all == 0)
-    std::cerr << "cao: warning: no pixel sees a line (the picture is empty: check --zoom, --azimuth, "
-                 "--elevation)\n";
+  {
+    // A pixel's width at the scene's centre, roughly: the fitted view spans
+    // about the bounds' diagonal.
+    double d2 = 0.0;
+    for (int d = 0; d < 3; ++d)
+      d2 += (bounds[2 * d + 1] - bounds[2 * d]) * (bounds[2 * d + 1] - bounds[2 * d]);
+    const double pixel = std::sqrt(d2) / (job.view.zoom * std::min(job.view.width, job.view.height));
+    std::cerr << "cao: warning: no pixel sees a line (the picture is empty)"
+              << (2.0 * scene.tubeRadius < pixel
+                     ? ": the tubes (radius " + Compact(scene.tubeRadius) + ") are thinner than a pixel (about " +
+                       Compact(pixel) + "): raise --tube-radius"
+                     : std::string(": check --zoom, --azimuth, --elevation"))
+              << "\n";
+  }
   const double mean = all ? (sum[0] + sum[1]) / all : 0.0;
   if (job.json)
   {

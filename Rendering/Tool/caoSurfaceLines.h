@@ -49,6 +49,9 @@ struct LineScene
 /// The default tube radius: 1/200 of the lines' bounding-box diagonal.
 constexpr double DefaultTubeFraction = 0.005;
 
+/// `x` as a message shows a number (6 significant digits).
+std::string Compact(double x);
+
 /// Whether `mesh` is a line input: lines and no polygons or strips (a mesh
 /// with feature edges or outlines among its cells is a mesh: its lines are
 /// ignored, as before lines were supported).

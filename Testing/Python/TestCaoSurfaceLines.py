@@ -24,7 +24,10 @@
 - bad input exits 2 with the reason: a mesh method on lines, a
   screen-space method on lines and meshes, lineao on a
   mesh, line options on a mesh, a tube
-  radius of 0, too many samples; a mesh file with line cells among its
+  radius of 0 or above the scene's diagonal, too many samples, options
+  the lines' path would not read (--quality on lines alone, --volume), a
+  benchmark with no pixel to measure; line options without --method run
+  line AO; a mesh file with line cells among its
   polygons renders as a mesh (its lines ignored, with a warning)."""
 import json
 import os
@@ -312,12 +315,26 @@ for args, words in [(["--method", "vct", path], "--method lineao, reference, ssa
                     (["--method", "lineao", mesh], "the inputs hold no lines"),
                     (["--tube-radius", "0.1", mesh], "--tube-radius is for line inputs"),
                     (["--method", "hbao", path, plane], "the inputs hold lines and meshes"),
+                    (["--quality", "high", path], "is for meshes' voxel cones; the inputs hold only lines"),
+                    (["--volume", os.path.join(data, "neghip.slc"), path], "--volume is not read with line inputs"),
+                    (["--tube-radius", "100", path], "exceeds the lines' bounding-box diagonal"),
                     (["--tube-radius", "0", path], "--tube-radius"),
                     (["--method", "lineao", "--line-samples", "5000", path], "--line-samples"),
                     (["--method", "reference", "--line-samples", "8", path], "--line-samples is for --method lineao")]:
     rc, so, se = run(*args, "-o", os.path.join(tmp, "x.png"))
     check(rc == 2 and words in se and "Segmentation" not in se,
           "bad input %s: rc %d, %r" % (args[:3], rc, se.strip()[:200]))
+
+# Line options without --method take the lines' default, lineao.
+rc, so, se = run(path, "--line-samples", "16", "--image", "64x48", "--json", "-o", os.path.join(tmp, "default.png"))
+check(rc == 0 and json.loads(so)["method"] == "lineao" and json.loads(so)["lineao"]["samples"] == 16,
+      "--line-samples without --method runs line AO: rc %d %s" % (rc, se.strip()[:160]))
+# cao bench lines refuses a picture with nothing to measure.
+p = subprocess.run([tool, "bench", "lines", path, "--image", "32x24", "--tube-radius", "1e-9", "--rays", "16",
+                    "--samples", "16", "--slices", "128", "--kernels", "16", "--repeats", "1", "-o",
+                    os.path.join(tmp, "bench-empty")], capture_output=True, text=True, timeout=300)
+check(p.returncode == 2 and "no pixel" in p.stderr,
+      "cao bench lines with tubes thinner than a pixel: rc %d, %r" % (p.returncode, p.stderr.strip()[:160]))
 
 print("%d failure(s)" % len(failures))
 sys.exit(1 if failures else 0)

@@ -231,8 +231,8 @@ bool VoxelizeLines(const LineSegments& lines, double tubeRadius, BitGrid& grid, 
   if (visits > MaximumVoxelVisits)
   {
     error = "voxelizing these lines would visit about " + std::to_string(static_cast<long long>(visits)) +
-      " voxels (tube radius " + std::to_string(tubeRadius) + ", " + std::to_string(rho) +
-      " voxels); at most " + std::to_string(static_cast<long long>(MaximumVoxelVisits)) +
+      " voxels (the tube radius " + std::to_string(tubeRadius) + " is " + std::to_string(rho) +
+      " voxels of the grid); at most " + std::to_string(static_cast<long long>(MaximumVoxelVisits)) +
       ": use a smaller tube radius or fewer slices";
     return false;
   }
