@@ -1,5 +1,6 @@
 #include "caoBenchLines.h"
 
+#include "caoAOStatistics.h"
 #include "caoBenchPlot.h"
 #include "caoCommandLine.h"
 #include "caoSurfaceLines.h"
@@ -42,40 +43,6 @@ struct Row
   std::int64_t pixels = 0, lines = 0;
 };
 
-/// Spearman's rank correlation of a and b (average ranks for ties).
-double RankCorrelation(const std::vector<double>& a, const std::vector<double>& b)
-{
-  auto ranks = [](const std::vector<double>& v) {
-    std::vector<std::size_t> order(v.size());
-    for (std::size_t k = 0; k < order.size(); ++k)
-      order[k] = k;
-    std::sort(order.begin(), order.end(), [&v](std::size_t x, std::size_t y) { return v[x] < v[y]; });
-    std::vector<double> out(v.size());
-    for (std::size_t k = 0; k < order.size();)
-    {
-      std::size_t e = k;
-      while (e + 1 < order.size() && v[order[e + 1]] == v[order[k]])
-        ++e;
-      for (std::size_t q = k; q <= e; ++q)
-        out[order[q]] = 0.5 * static_cast<double>(k + e);
-      k = e + 1;
-    }
-    return out;
-  };
-  if (a.size() < 3)
-    return std::numeric_limits<double>::quiet_NaN();
-  const std::vector<double> ra = ranks(a), rb = ranks(b);
-  const double mean = 0.5 * static_cast<double>(a.size() - 1);
-  double sab = 0, saa = 0, sbb = 0;
-  for (std::size_t k = 0; k < ra.size(); ++k)
-  {
-    sab += (ra[k] - mean) * (rb[k] - mean);
-    saa += (ra[k] - mean) * (ra[k] - mean);
-    sbb += (rb[k] - mean) * (rb[k] - mean);
-  }
-  return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : std::numeric_limits<double>::quiet_NaN();
-}
-
 /// The row's errors against the reference (pixels where both are finite),
 /// the rank correlation of the lines' mean AO (lines with 4 pixels or
 /// more; `line` per pixel, -1 uncovered), and the flicker under the orbit
@@ -83,42 +50,22 @@ double RankCorrelation(const std::vector<double>& a, const std::vector<double>& 
 void Measure(Row& row, const std::vector<double>& ao, const std::vector<double>& ao2, const std::vector<double>& ref,
   const std::vector<double>& ref2, const std::vector<std::int64_t>& line)
 {
-  std::vector<double> absErr;
-  double sum = 0, sum2 = 0, flick = 0, refFlick = 0;
-  std::int64_t n = 0, nf = 0;
+  const cao::AOErrors e = cao::CompareAO(ao, ao2, ref, ref2);
+  row.pixels = e.pixels;
+  row.rmse = e.rmse;
+  row.bias = e.bias;
+  row.p99 = e.p99;
+  row.flicker = e.flicker;
+  row.referenceFlicker = e.referenceFlicker;
   std::map<std::int64_t, std::array<double, 3>> perLine; // sum of ao, sum of ref, pixels
   for (std::size_t i = 0; i < ref.size(); ++i)
-  {
-    if (std::isfinite(ref[i]) && std::isfinite(ao[i]))
+    if (std::isfinite(ref[i]) && std::isfinite(ao[i]) && line[i] >= 0)
     {
-      const double d = ao[i] - ref[i];
-      sum += d;
-      sum2 += d * d;
-      absErr.push_back(std::fabs(d));
-      ++n;
-      if (line[i] >= 0)
-      {
-        auto& s = perLine[line[i]];
-        s[0] += ao[i];
-        s[1] += ref[i];
-        s[2] += 1.0;
-      }
+      auto& s = perLine[line[i]];
+      s[0] += ao[i];
+      s[1] += ref[i];
+      s[2] += 1.0;
     }
-    if (std::isfinite(ao[i]) && std::isfinite(ao2[i]) && std::isfinite(ref[i]) && std::isfinite(ref2[i]))
-    {
-      flick += std::fabs(ao2[i] - ao[i]);
-      refFlick += std::fabs(ref2[i] - ref[i]);
-      ++nf;
-    }
-  }
-  row.pixels = n;
-  row.rmse = n ? std::sqrt(sum2 / n) : 0;
-  row.bias = n ? sum / n : 0;
-  if (!absErr.empty())
-  {
-    std::sort(absErr.begin(), absErr.end());
-    row.p99 = absErr[std::min(absErr.size() - 1, static_cast<std::size_t>(0.99 * absErr.size()))];
-  }
   std::vector<double> a, b;
   for (const auto& [id, s] : perLine)
     if (s[2] >= 4.0)
@@ -127,9 +74,7 @@ void Measure(Row& row, const std::vector<double>& ao, const std::vector<double>&
       b.push_back(s[1] / s[2]);
     }
   row.lines = static_cast<std::int64_t>(a.size());
-  row.rank = RankCorrelation(a, b);
-  row.flicker = nf ? flick / nf : 0;
-  row.referenceFlicker = nf ? refFlick / nf : 0;
+  row.rank = cao::RankCorrelation(a, b);
 }
 
 double Since(std::chrono::steady_clock::time_point start)

@@ -1,6 +1,7 @@
 #include "caoBenchSurface.h"
 #include "caoAORadius.h"
 
+#include "caoAOStatistics.h"
 #include "caoBenchPlot.h"
 #include "caoCommandLine.h"
 #include "caoSurface.h"
@@ -173,42 +174,22 @@ void Measure(Row& row, const std::vector<double>& ao, const std::vector<double>&
   const std::vector<std::array<std::int64_t, 2>>& flat)
 {
   row.ripple = cao::Ripple(flat, ao);
-  std::vector<double> absErr;
-  double sum2 = 0, sum = 0, band2 = 0, flick = 0, refFlick = 0;
-  std::int64_t n = 0, nb = 0, nf = 0;
+  const cao::AOErrors e = cao::CompareAO(ao, ao2, ref, ref2);
+  row.pixels = e.pixels;
+  row.rmse = e.rmse;
+  row.bias = e.bias;
+  row.p99 = e.p99;
+  row.flicker = e.flicker;
+  row.referenceFlicker = e.referenceFlicker;
+  double band2 = 0;
+  std::int64_t nb = 0;
   for (std::size_t i = 0; i < ref.size(); ++i)
-  {
-    if (std::isfinite(ref[i]) && std::isfinite(ao[i]))
+    if (band[i] && std::isfinite(ref[i]) && std::isfinite(ao[i]))
     {
-      const double d = ao[i] - ref[i];
-      sum += d;
-      sum2 += d * d;
-      absErr.push_back(std::fabs(d));
-      ++n;
-      if (band[i])
-      {
-        band2 += d * d;
-        ++nb;
-      }
+      band2 += (ao[i] - ref[i]) * (ao[i] - ref[i]);
+      ++nb;
     }
-    if (std::isfinite(ao[i]) && std::isfinite(ao2[i]) && std::isfinite(ref[i]) && std::isfinite(ref2[i]))
-    {
-      flick += std::fabs(ao2[i] - ao[i]);
-      refFlick += std::fabs(ref2[i] - ref[i]);
-      ++nf;
-    }
-  }
-  row.pixels = n;
-  row.rmse = n ? std::sqrt(sum2 / n) : 0;
-  row.bias = n ? sum / n : 0;
-  if (!absErr.empty())
-  {
-    std::sort(absErr.begin(), absErr.end());
-    row.p99 = absErr[std::min(absErr.size() - 1, static_cast<std::size_t>(0.99 * absErr.size()))];
-  }
   row.bandRmse = nb ? std::sqrt(band2 / nb) : 0;
-  row.flicker = nf ? flick / nf : 0;
-  row.referenceFlicker = nf ? refFlick / nf : 0;
 }
 }
 

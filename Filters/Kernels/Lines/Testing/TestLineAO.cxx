@@ -34,6 +34,7 @@
 //      half that of no AO, rank correlation at least 0.7 (control: the
 //      same AO values shuffled over the pixels fails);
 //   and bad input.
+#include "caoAOStatistics.h"
 #include "caoLineAO.h"
 #include "caoLineShading.h"
 #include "caoTestUtilities.h"
@@ -508,38 +509,7 @@ int TestLineAO(int, char*[])
         }
       rmse[control] = std::sqrt(e2 / a.size());
       none = std::sqrt(n2 / a.size());
-      // Spearman's rank correlation (average ranks for ties).
-      auto ranks = [](const std::vector<double>& v) {
-        std::vector<std::size_t> order(v.size());
-        for (std::size_t k = 0; k < order.size(); ++k)
-          order[k] = k;
-        std::sort(order.begin(), order.end(), [&v](std::size_t x, std::size_t y) { return v[x] < v[y]; });
-        std::vector<double> out(v.size());
-        for (std::size_t k = 0; k < order.size();)
-        {
-          std::size_t e = k;
-          while (e + 1 < order.size() && v[order[e + 1]] == v[order[k]])
-            ++e;
-          for (std::size_t q = k; q <= e; ++q)
-            out[order[q]] = 0.5 * (k + e);
-          k = e + 1;
-        }
-        return out;
-      };
-      const std::vector<double> ra = ranks(a), rb = ranks(b);
-      double ma = 0, mb = 0, sab = 0, saa = 0, sbb = 0;
-      for (std::size_t k = 0; k < ra.size(); ++k)
-      {
-        ma += ra[k] / ra.size();
-        mb += rb[k] / rb.size();
-      }
-      for (std::size_t k = 0; k < ra.size(); ++k)
-      {
-        sab += (ra[k] - ma) * (rb[k] - mb);
-        saa += (ra[k] - ma) * (ra[k] - ma);
-        sbb += (rb[k] - mb) * (rb[k] - mb);
-      }
-      rank[control] = saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : 0.0;
+      rank[control] = cao::RankCorrelation(a, b);
     }
     std::printf("R1 19-tube bundle vs the reference (512 rays): line AO RMSE %.4f, rank correlation %.3f; no AO "
                 "RMSE %.4f; control (its values shuffled over the pixels) RMSE %.4f, rank %.3f\n",
