@@ -320,7 +320,7 @@ std::vector<double> LineAOSamples(int count, std::uint64_t seed)
 
 double LineOccupancyAt(const BitGrid& grid, const LineAOSettings& settings, const double* samples,
   const double axisPoint[3], const double tangent[3], const double view[3], const double* surface,
-  const double* normal)
+  const double* normal, const BitGrid* solids, double* solidOccupancy)
 {
   const double h = grid.voxel;
   const double R = settings.radius / h, rho = settings.tubeRadius / h;
@@ -357,7 +357,7 @@ double LineOccupancyAt(const BitGrid& grid, const LineAOSettings& settings, cons
   base += 1e-9;
   const bool paper = settings.weights == LineAOWeights::Paper;
   const bool cosine = settings.hemisphere == LineAOHemisphere::Normal && surface && normal;
-  double sum = 0.0, weights = 0.0;
+  double sum = 0.0, solidSum = 0.0, weights = 0.0;
   for (int n = 0; n < settings.samples; ++n)
   {
     // The prism runs along the view axis through the voxel centres of the
@@ -386,13 +386,16 @@ double LineOccupancyAt(const BitGrid& grid, const LineAOSettings& settings, cons
     // Outside the grid is empty: the indices are clamped to just outside
     // it before the casts (CountBits counts nothing there).
     auto index = [](double v, int n) { return static_cast<int>(std::min(static_cast<double>(n), std::max(-1.0, v))); };
-    const int on = grid.CountBits(index(ci, grid.nx), index(cj, grid.ny), index(k0, grid.slices), index(k1, grid.slices));
-    const double ratio = on / (k1 - k0 + 1.0);
+    const int i = index(ci, grid.nx), j = index(cj, grid.ny), first = index(k0, grid.slices),
+              last = index(k1, grid.slices);
+    const double ratio = grid.CountBits(i, j, first, last) / (k1 - k0 + 1.0);
+    const double solidRatio = solids ? solids->CountBits(i, j, first, last) / (k1 - k0 + 1.0) : 0.0;
     const Vec3 near = c + Vec3(0, 0, u0) - centre, far = c + Vec3(0, 0, u1) - centre;
     const double dm = std::max(0.5 * (glm::length(near) + glm::length(far)), 1e-12);
     if (paper)
     {
       sum += ratio / ((dm * h) * (dm * h)); // world units, as the seed's Table 3.1
+      solidSum += solidRatio / ((dm * h) * (dm * h));
       weights += 1.0;
       continue;
     }
@@ -406,8 +409,11 @@ double LineOccupancyAt(const BitGrid& grid, const LineAOSettings& settings, cons
                                         : 1.0;
     const double weight = angular / ((dm / R) * (dm / R));
     sum += weight * ratio;
+    solidSum += weight * solidRatio;
     weights += weight;
   }
+  if (solidOccupancy)
+    *solidOccupancy = weights > 0.0 ? solidSum / weights : 0.0;
   return weights > 0.0 ? sum / weights : 0.0;
 }
 
@@ -478,11 +484,12 @@ bool LineAOFrame(const BitGrid& grid, const LineAOSettings& settings, LineFrame&
     const double* sample = &samples[static_cast<std::size_t>(set) * 2 * settings.samples];
     const double* position = surfaces ? &frame.position[3 * p] : nullptr;
     const double* normal = surfaces ? &frame.normal[3 * p] : nullptr;
-    frame.ao[p] = LineAOAt(grid, settings, sample, &frame.axis[3 * p], &frame.tangent[3 * p], &frame.view[3 * p],
-      position, normal);
-    if (solids) // solid occluders fill what they occlude: their occupancy as it is
-      frame.ao[p] *= 1.0 - std::min(1.0, LineOccupancyAt(*solids, settings, sample, &frame.axis[3 * p],
-                                            &frame.tangent[3 * p], &frame.view[3 * p], position, normal));
+    // One walk of the prisms counts both grids; solid occluders fill what
+    // they occlude: their occupancy as it is.
+    double solidOccupancy = 0.0;
+    const double occupancy = LineOccupancyAt(grid, settings, sample, &frame.axis[3 * p], &frame.tangent[3 * p],
+      &frame.view[3 * p], position, normal, solids, &solidOccupancy);
+    frame.ao[p] = LineAOFromOccupancy(settings, grid.voxel, occupancy) * (1.0 - std::min(1.0, solidOccupancy));
   });
   return true;
 }

@@ -138,10 +138,13 @@ std::vector<double> LineAOSamples(int count, std::uint64_t seed);
 /// to point), and where the G-buffer has them the tube's `surface` point
 /// and unit outward `normal` (null: the camera-facing half ball), with
 /// disk sample set `samples` (2 * settings.samples values). With Paper
-/// weights, the seed's mean of (on / total) / dm^2 instead.
+/// weights, the seed's mean of (on / total) / dm^2 instead. With `solids`
+/// (planned as `grid`), the same prisms' occupancy of its voxels into
+/// `solidOccupancy`.
 double LineOccupancyAt(const BitGrid& grid, const LineAOSettings& settings, const double* samples,
   const double axisPoint[3], const double tangent[3], const double view[3],
-  const double* surface = nullptr, const double* normal = nullptr);
+  const double* surface = nullptr, const double* normal = nullptr, const BitGrid* solids = nullptr,
+  double* solidOccupancy = nullptr);
 /// s in AO = exp(-strength s occupancy) for a grid of voxel size `voxel`.
 /// Lines drawn as lines (tubeRadius 0) count as tubes as wide as their
 /// supercover (0.69 voxel), so their AO depends on the slices.

@@ -342,6 +342,11 @@ int TestLineAO(int, char*[])
         }
         const double mean = sum / points;
         const double se = std::sqrt(std::max(0.0, sum2 / points - mean * mean) / (points - 1));
+        // 4 standard errors of the 24 points' mean, at least 0.01: the
+        // points read one shared random field through overlapping half
+        // balls, so they are not independent and the standard error is
+        // optimistic; 0.01 is a tenth of the smallest p, and the control
+        // (15% off p) must still fall outside it.
         const double tolerance = std::max(4.0 * se, 0.01);
         std::printf("E2 uniform density %.2f, half ball %s: occupancy %.4f (se %.4f, tol %.4f); control %.3f "
                     "rejected %s\n",
