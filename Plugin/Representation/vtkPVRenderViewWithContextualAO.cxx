@@ -134,6 +134,24 @@ void vtkPVRenderViewWithContextualAO::SetSurfaceAOBackend(int backend)
   this->Modified();
 }
 
+void vtkPVRenderViewWithContextualAO::SetLineAO(int on)
+{
+  this->Pass->SetLineAO(on != 0);
+  this->Modified();
+}
+
+void vtkPVRenderViewWithContextualAO::SetLineAOSamples(int samples)
+{
+  this->Pass->SetLineSamples(samples);
+  this->Modified();
+}
+
+void vtkPVRenderViewWithContextualAO::SetLineAOSlices(int slices)
+{
+  this->Pass->SetLineSlices(slices);
+  this->Modified();
+}
+
 void vtkPVRenderViewWithContextualAO::SetSurfaceAOOccupancy(int occupancy)
 {
   this->Pass->SetOccupancy(occupancy);

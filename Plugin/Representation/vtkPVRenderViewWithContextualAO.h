@@ -35,7 +35,7 @@ public:
   ///@{
   /// Forwarded to the pass (vtkContextualAOPass's Method, ApplyTo, Radius,
   /// Strength, Quality, Slices, Grid, GBuffer, OccludingVolumes,
-  /// IndirectLight, Backend, Occupancy).
+  /// IndirectLight, Backend, Occupancy, LineAO, LineSamples, LineSlices).
   void SetSurfaceAOMethod(int method);
   void SetApplyAOTo(int mode);
   void SetSurfaceAOGrid(int grid);
@@ -48,6 +48,9 @@ public:
   void SetSurfaceAOIndirectLight(int on);
   void SetSurfaceAOBackend(int backend);
   void SetSurfaceAOOccupancy(int occupancy);
+  void SetLineAO(int on);
+  void SetLineAOSamples(int samples);
+  void SetLineAOSlices(int slices);
   ///@}
 
   /// The pass, for its frame report.

@@ -36,6 +36,7 @@
 #include "vtkCAOFrameIO.h"
 #include "vtkCAOSceneExchange.h"
 #include "vtkCAOSceneGPU.h"
+#include "vtkCAOSceneLines.h"
 #include "vtkCAOInput.h"
 #include "vtkCAOSceneVolume.h"
 #include "vtkCompositeDataDisplayAttributes.h"
@@ -60,8 +61,9 @@ namespace
 {
 /// The polygonal pieces a mapper draws: its polydata input, or the polydata
 /// leaves of a composite input (ParaView's geometry representations hand
-/// their mapper a multiblock dataset).
-std::vector<vtkPolyData*> Pieces(vtkMapper* mapper)
+/// their mapper a multiblock dataset); the surfaces among them, or (`lines`)
+/// the lines: pieces with lines and no polygons or strips.
+std::vector<vtkPolyData*> Pieces(vtkMapper* mapper, bool lines = false)
 {
   std::vector<vtkPolyData*> pieces;
   vtkDataObject* input = mapper ? mapper->GetInputDataObject(0, 0) : nullptr;
@@ -79,9 +81,13 @@ std::vector<vtkPolyData*> Pieces(vtkMapper* mapper)
         if (!attributes || !attributes->HasBlockVisibility(leaf) || attributes->GetBlockVisibility(leaf))
           pieces.push_back(leaf);
   }
-  // Only polygons and strips are surfaces (lines and vertices are not).
+  // Only polygons and strips are surfaces (lines and vertices are not); a
+  // piece of lines among polygons (feature edges) is a surface's.
   pieces.erase(std::remove_if(pieces.begin(), pieces.end(),
-                 [](vtkPolyData* p) { return p->GetNumberOfPolys() + p->GetNumberOfStrips() == 0; }),
+                 [lines](vtkPolyData* p) {
+                   const bool surface = p->GetNumberOfPolys() + p->GetNumberOfStrips() > 0;
+                   return lines ? surface || p->GetNumberOfLines() == 0 : !surface;
+                 }),
     pieces.end());
   return pieces;
 }
@@ -314,6 +320,11 @@ struct vtkContextualAOPass::Internals
   // every process agrees on.
   vtkSmartPointer<vtkMultiProcessController> controller;
   vtkCAO::SceneExchange exchange;
+  // The lines (LineAO): their pieces this frame, their AO, the pixels it darkened.
+  vtkCAO::SceneLines lines;
+  bool linesOn = false;   ///< this frame has lines that get line AO
+  std::string linesNote;  ///< why lines in view get none
+  std::int64_t lineCombined = 0;
   bool rebuild = false;   ///< a process's scene changed: bounds, radius and grid again
   int frameProcesses = 1; ///< the last frame's (the report's)
   cao::BitGrid sharedGrid; ///< the world or eye grid of every process's pieces (CombineGrid)
@@ -392,6 +403,10 @@ struct vtkContextualAOPass::Internals
     return settings;
   }
   bool UpdateAO(vtkContextualAOPass* self, vtkRenderer* ren);
+  bool UpdateLines(vtkContextualAOPass* self, vtkRenderer* ren);
+  /// Whether pixel i's drawn point is the surface G-buffer's (within the
+  /// tolerance): the surfaces' AO goes there.
+  bool DrawnIsTraced(std::size_t i) const;
   bool Combine(vtkContextualAOPass* self, const vtkRenderState* s);
   bool RunGPUFrame(vtkContextualAOPass* self, const vtkRenderState* s);
   bool DrawAmbient(const vtkRenderState* s, std::vector<float>* ambient, std::string& error);
@@ -473,6 +488,14 @@ double vtkContextualAOPass::GetPixelAO(int x, int y) const
     p.frame.ao.assign(ao.begin(), ao.end());
     p.hostAOStale = false;
   }
+  const cao::LineFrame& lines = p.lines.Frame();
+  if (p.linesOn && x >= 0 && y >= 0 && x < lines.width && y < lines.height &&
+    lines.ao.size() == static_cast<std::size_t>(lines.width) * static_cast<std::size_t>(lines.height))
+  {
+    const double a = lines.ao[static_cast<std::size_t>(y) * lines.width + x];
+    if (std::isfinite(a))
+      return a; // a line's pixel
+  }
   const cao::SurfaceFrame& f = p.frame;
   if (x < 0 || y < 0 || x >= f.width || y >= f.height ||
     f.ao.size() != static_cast<std::size_t>(f.width) * static_cast<std::size_t>(f.height))
@@ -536,6 +559,13 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
       o << (i ? ", " : "") << "\"" << p.skippedVolumes[i] << "\"";
     o << "]";
   }
+  if (p.linesOn)
+    o << ", \"lines\": {\"actors\": " << p.lines.NumberOfActors() << ", \"segments\": "
+      << p.lines.NumberOfSegments() << ", \"radius\": " << p.lines.Radius() << ", \"pixels\": "
+      << p.lines.Frame().covered << ", \"combined_pixels\": " << p.lineCombined
+      << ", \"voxelizations\": " << p.lines.Voxelizations() << "}";
+  if (!p.linesNote.empty())
+    o << ", \"lines_note\": \"" << p.linesNote << "\"";
   if (!p.error.empty())
     o << ", \"error\": \"" << p.error << "\"";
   o << "}";
@@ -550,7 +580,7 @@ void vtkContextualAOPass::Render(const vtkRenderState* s)
   p.reasons.clear();
   p.ms.clear();
   p.error.clear();
-  p.combined = p.hidden = 0;
+  p.combined = p.hidden = p.lineCombined = 0;
   // A selection render draws ids through the renderer's own path; every
   // other frame, VTK's steps with the AO after the opaque one.
   const bool selecting = s->GetRenderer() && s->GetRenderer()->GetSelector();
@@ -567,8 +597,8 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
   vtkRenderer* ren = s->GetRenderer();
   if (self->Method == NONE || !ren || ren->GetSelector())
   {
-    if (self->Method == NONE) // the report describes this frame: nothing on the GPU
-      this->gpuFrame = false;
+    if (self->Method == NONE) // the report describes this frame: nothing on the GPU, no lines
+      this->gpuFrame = this->linesOn = false;
     return; // a selection pass draws ids, not colours: no AO there
   }
   int width = 0, height = 0, x0 = 0, y0 = 0;
@@ -597,7 +627,13 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
     this->frame = cao::SurfaceFrame();
     this->viewKey.clear();
     this->gpuFrame = false;
-    return; // no surfaces: no surface work
+    if (!this->linesOn)
+      return; // no surfaces and no lines: no work
+    // Lines alone: their AO on the drawn depth, and the combine.
+    this->depthOk = vtkCAO::ReadViewportDepth(ren, this->depth, this->depthError);
+    if (this->UpdateLines(self, ren) && this->Combine(self, s))
+      this->said.clear();
+    return;
   }
   if (!this->ResolveBackend(self, ren))
     return;
@@ -619,7 +655,10 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
   const bool wasOnGPU = this->gpuFrame;
   const bool frustum = self->Method == VCT && self->Grid == FRUSTUM_GRID;
   this->gpuFrame = this->onGPU && this->gbuffer == DEPTH_BUFFER && !(self->Method == VAO && self->IndirectLight) &&
-    !frustum;
+    !frustum && !this->linesOn;
+  if (this->onGPU && this->gbuffer == DEPTH_BUFFER && this->linesOn)
+    this->backendNote = "the lines' AO runs on the CPU: the frame's pixels are read back (the surfaces' AO still "
+                        "on the GPU)";
   if (this->onGPU && this->gbuffer == DEPTH_BUFFER && self->Method == VAO && self->IndirectLight)
     this->backendNote = "VAO's indirect light runs on the CPU: the frame's pixels are read back (the AO still on the GPU)";
   if (this->onGPU && this->gbuffer == DEPTH_BUFFER && frustum)
@@ -644,7 +683,8 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
   }
   this->hostAOStale = false; // frame.ao is the CPU's (or the read-back path's) from here
   this->depthOk = vtkCAO::ReadViewportDepth(ren, this->depth, this->depthError);
-  if (this->UpdateGrid(self) && this->UpdateVolumes(self) && this->UpdateAO(self, ren) && this->Combine(self, s))
+  if (this->UpdateGrid(self) && this->UpdateVolumes(self) && this->UpdateAO(self, ren) &&
+    this->UpdateLines(self, ren) && this->Combine(self, s))
     this->said.clear();
 }
 
@@ -671,11 +711,17 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
   vtkCollectionSimpleIterator it;
   actors->InitTraversal(it);
   double position = 0.0; // an actor's place among the renderer's actors
+  std::vector<std::pair<vtkActor*, vtkPolyData*>> linePieces;
   while (vtkActor* actor = actors->GetNextActor(it))
   {
     position += 1.0;
-    if (!actor->GetVisibility() || !actor->HasOpaqueGeometry() ||
-      actor->GetProperty()->GetRepresentation() != VTK_SURFACE)
+    if (!actor->GetVisibility() || !actor->HasOpaqueGeometry())
+      continue;
+    // Lines (as surface or wireframe: drawn as lines either way) get line AO.
+    if (self->LineAO && actor->GetProperty()->GetRepresentation() != VTK_POINTS)
+      for (vtkPolyData* data : Pieces(actor->GetMapper(), true))
+        linePieces.emplace_back(actor, data);
+    if (actor->GetProperty()->GetRepresentation() != VTK_SURFACE)
       continue; // wireframe and points are drawn, not surfaces: no AO on them, none from them
     const int index = this->surfaceActors++;
     this->actorSignature = std::fmod(this->actorSignature * 31.0 + position, 1000000007.0); // which actors, by place
@@ -691,6 +737,11 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
         key.push_back(m->GetElement(i / 4, i % 4));
     }
   }
+  this->lines.Collect(linePieces);
+  this->linesOn = !linePieces.empty() && !this->Distributed();
+  this->linesNote = !linePieces.empty() && this->Distributed()
+    ? "lines get no AO in parallel rendering yet (several processes)"
+    : std::string();
   if (vct && self->Grid == EYE_GRID) // the camera's orientation (a dolly or pan moves its last bits only)
   {
     vtkMatrix4x4* view = ren->GetActiveCamera()->GetViewTransformMatrix();
@@ -1236,6 +1287,72 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
   return true;
 }
 
+bool vtkContextualAOPass::Internals::UpdateLines(vtkContextualAOPass* self, vtkRenderer* ren)
+{
+  // The lines' AO on the drawn depth, the pixels the surfaces' AO takes
+  // left out (only when the lines, meshes, camera, depth or settings changed).
+  if (!this->linesOn)
+    return true;
+  if (!this->depthOk)
+    return this->Fail(self, "Line AO reads the drawn depth: " + this->depthError);
+  int width = 0, height = 0, x0 = 0, y0 = 0;
+  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+  vtkMatrix4x4* toNDC = nullptr;
+  const std::vector<double> view = this->ViewKey(self, ren, toNDC);
+  cao::PixelCamera camera;
+  vtkMatrix4x4::Invert(&toNDC->Element[0][0], camera.ndcToWorld);
+  camera.width = width;
+  camera.height = height;
+  const std::size_t count = static_cast<std::size_t>(width) * height;
+  std::vector<unsigned char> skip;
+  const bool surfaces = !this->pieces.empty() && this->frame.ao.size() == count;
+  if (surfaces && this->gbuffer == RAY_CAST)
+  {
+    skip.assign(count, 0);
+    for (std::size_t i = 0; i < count; ++i)
+      skip[i] = std::isfinite(this->frame.ao[i]) && this->DrawnIsTraced(i);
+  }
+  // The meshes beside the lines occlude them: gathered again when their grid was.
+  const double meshKey = surfaces ? static_cast<double>(this->serial) : -1.0;
+  if (!(this->lines.MeshKey() == meshKey))
+  {
+    std::vector<std::vector<double>> points;
+    std::vector<std::vector<std::int64_t>> triangles;
+    std::vector<double> all;
+    std::vector<std::int64_t> allTris;
+    if (surfaces)
+      this->Gather(points, triangles, all, allTris);
+    this->lines.SetMeshes(points, triangles, meshKey);
+  }
+  double right[3], up[3];
+  vtkMatrix4x4* eye = ren->GetActiveCamera()->GetViewTransformMatrix();
+  for (int c = 0; c < 3; ++c)
+  {
+    right[c] = eye->GetElement(0, c);
+    up[c] = eye->GetElement(1, c);
+  }
+  std::string error;
+  if (!this->lines.Update(camera, right, up, this->depth, skip.empty() ? nullptr : &skip, self->Radius,
+        self->LineSamples, self->LineSlices, this->stages, this->ms, error))
+    return this->Fail(self, "Line AO: " + error);
+  return true;
+}
+
+bool vtkContextualAOPass::Internals::DrawnIsTraced(std::size_t i) const
+{
+  // The drawn point of this pixel, back to world space, against the traced one.
+  const double* m = this->ndcToWorld;
+  const int px = static_cast<int>(i % this->frame.width), py = static_cast<int>(i / this->frame.width);
+  const double ndc[4] = { (px + 0.5) / this->frame.width * 2.0 - 1.0,
+    (py + 0.5) / this->frame.height * 2.0 - 1.0, 2.0 * this->depth[i] - 1.0, 1.0 };
+  double q[4];
+  for (int r = 0; r < 4; ++r)
+    q[r] = m[4 * r] * ndc[0] + m[4 * r + 1] * ndc[1] + m[4 * r + 2] * ndc[2] + m[4 * r + 3] * ndc[3];
+  const double* p = &this->frame.position[3 * i];
+  const double dx = q[0] / q[3] - p[0], dy = q[1] / q[3] - p[1], dz = q[2] / q[3] - p[2];
+  return dx * dx + dy * dy + dz * dz <= this->tolerance * this->tolerance;
+}
+
 bool vtkContextualAOPass::Internals::VoxelizeFrustum(vtkContextualAOPass* self, Clock::time_point& start)
 {
   // The frustum grid of this camera and G-buffer (on the CPU or the GPU).
@@ -1263,19 +1380,24 @@ bool vtkContextualAOPass::Internals::Combine(vtkContextualAOPass* self, const vt
 {
   // Every frame: the colours are the scene's own drawing of the opaque props.
   vtkRenderer* ren = s->GetRenderer();
-  const std::size_t count = static_cast<std::size_t>(this->frame.width) * this->frame.height;
+  int width = 0, height = 0, x0 = 0, y0 = 0;
+  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+  const std::size_t count = static_cast<std::size_t>(width) * height;
+  const bool surfaces = !this->pieces.empty();
+  const cao::LineFrame& lineFrame = this->lines.Frame();
+  const bool lineAO = this->linesOn && lineFrame.ao.size() == count;
   std::vector<float> rgba, ambient;
   std::string error;
-  if (!vtkCAO::ReadViewportColor(ren, rgba, error) || rgba.size() != 4 * count)
+  if (!vtkCAO::ReadViewportColor(ren, rgba, error) || rgba.size() != 4 * count ||
+    (surfaces && this->frame.ao.size() != count))
     return this->Fail(self, error.empty() ? "the frame does not fit the traced image" : error);
   // The AO goes only where the drawn surface is the traced one: not on a
   // prop the grid does not hold (glyphs, wireframe, points) drawn in front.
   // A G-buffer made from this very depth passes by construction: no test.
   const bool depthOk = this->depthOk && this->gbuffer == RAY_CAST &&
     this->depth.size() == count;
-  const std::vector<float>& depth = this->depth;
   const bool whole = self->ApplyTo == WHOLE_COLOR;
-  if (!whole)
+  if (surfaces && !whole)
   {
     const auto start = Clock::now();
     if (!this->DrawAmbient(s, &ambient, error))
@@ -1283,7 +1405,7 @@ bool vtkContextualAOPass::Internals::Combine(vtkContextualAOPass* self, const vt
     this->Stage("ambient", start);
   }
   std::vector<float> indirect;
-  const bool bleeding = self->Method == VAO && self->IndirectLight;
+  const bool bleeding = surfaces && self->Method == VAO && self->IndirectLight;
   if (bleeding)
   {
     const auto start = Clock::now();
@@ -1296,29 +1418,28 @@ bool vtkContextualAOPass::Internals::Combine(vtkContextualAOPass* self, const vt
     this->Stage("indirect", start);
   }
   const auto start = Clock::now();
-  const double* m = this->ndcToWorld;
-  const double tolerance = this->tolerance;
   for (std::size_t i = 0; i < count; ++i)
   {
-    const double ao = this->frame.ao[i];
+    // A line's pixel: its line AO, on its whole colour (a line drawn flat
+    // has no separate ambient term).
+    if (lineAO && lineFrame.segment[i] >= 0)
+    {
+      const double ao = lineFrame.ao[i];
+      if (!std::isfinite(ao))
+        continue;
+      const float dark = static_cast<float>(self->Strength * (1.0 - std::min(1.0, std::max(0.0, ao))));
+      for (int k = 0; k < 3; ++k)
+        rgba[4 * i + k] *= 1.0f - dark;
+      ++this->lineCombined;
+      continue;
+    }
+    const double ao = surfaces ? this->frame.ao[i] : std::numeric_limits<double>::quiet_NaN();
     if (!std::isfinite(ao))
       continue;
-    if (depthOk)
+    if (depthOk && !this->DrawnIsTraced(i))
     {
-      // The drawn point of this pixel, back to world space, against the traced one.
-      const int px = static_cast<int>(i % this->frame.width), py = static_cast<int>(i / this->frame.width);
-      const double ndc[4] = { (px + 0.5) / this->frame.width * 2.0 - 1.0,
-        (py + 0.5) / this->frame.height * 2.0 - 1.0, 2.0 * depth[i] - 1.0, 1.0 };
-      double q[4];
-      for (int r = 0; r < 4; ++r)
-        q[r] = m[4 * r] * ndc[0] + m[4 * r + 1] * ndc[1] + m[4 * r + 2] * ndc[2] + m[4 * r + 3] * ndc[3];
-      const double* p = &this->frame.position[3 * i];
-      const double dx = q[0] / q[3] - p[0], dy = q[1] / q[3] - p[1], dz = q[2] / q[3] - p[2];
-      if (!(dx * dx + dy * dy + dz * dz <= tolerance * tolerance))
-      {
-        ++this->hidden;
-        continue;
-      }
+      ++this->hidden;
+      continue;
     }
     const float dark = static_cast<float>(self->Strength * (1.0 - std::min(1.0, std::max(0.0, ao))));
     for (int k = 0; k < 3; ++k)
@@ -1397,6 +1518,9 @@ void vtkContextualAOPass::PrintSelf(ostream& os, vtkIndent indent)
      << indent << "Slices: " << this->Slices << "\n"
      << indent << "Backend: " << this->Backend << "\n"
      << indent << "Occupancy: " << this->Occupancy << "\n"
-     << indent << "IndirectLight: " << this->IndirectLight << "\n";
+     << indent << "IndirectLight: " << this->IndirectLight << "\n"
+     << indent << "LineAO: " << this->LineAO << "\n"
+     << indent << "LineSamples: " << this->LineSamples << "\n"
+     << indent << "LineSlices: " << this->LineSlices << "\n";
 }
 

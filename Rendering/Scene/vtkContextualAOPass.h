@@ -269,6 +269,31 @@ public:
   vtkGetMacro(Slices, int);
   ///@}
 
+  ///@{
+  /// Line AO (seed 004: line voxelization and prism sampling, on the CPU)
+  /// for the lines among the opaque actors: polydata pieces with lines and
+  /// no polygons (streamlines, polylines), drawn as lines or as tubes
+  /// (vtkProperty's RenderLinesAsTubes), in the same frame as the surfaces
+  /// and occluded by them (default on; off: lines keep their colour). The
+  /// lines' pixels are the drawn ones within the drawn half width of a
+  /// segment (cao::LineFrameFromDepth); their AO scales their whole colour
+  /// (1 - Strength (1 - AO)), the Radius as the surfaces' (0: the default
+  /// of the lines' extent). The report's "lines" says what ran.
+  vtkSetMacro(LineAO, bool);
+  vtkGetMacro(LineAO, bool);
+  vtkBooleanMacro(LineAO, bool);
+  ///@}
+
+  ///@{
+  /// Line AO's prisms per pixel (cao::LineAOSettings::samples: 1..1024,
+  /// default 64) and its eye grid's slices (32..1024, a multiple of 32,
+  /// default 128, the seed's); other values are refused at render time.
+  vtkSetMacro(LineSamples, int);
+  vtkGetMacro(LineSamples, int);
+  vtkSetMacro(LineSlices, int);
+  vtkGetMacro(LineSlices, int);
+  ///@}
+
   /// What the last frame ran, as JSON: frame, stages, reasons, pixels,
   /// triangles, open meshes, volumes, milliseconds per stage.
   std::string GetLastFrameReport() const;
@@ -304,6 +329,9 @@ protected:
   int Backend = BACKEND_AUTO;
   int Occupancy = RAYS;
   bool IndirectLight = false;
+  bool LineAO = true;
+  int LineSamples = 64;
+  int LineSlices = 128;
   int FrameCount = 0;
   int VoxelizeCount = 0;
   int VolumeCount = 0;

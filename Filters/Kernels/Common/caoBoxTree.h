@@ -105,6 +105,40 @@ public:
     return false;
   }
 
+  /// Calls leaf(first, count, best2) for every leaf whose box lies within
+  /// sqrt(best2) of `point`; the visitor may lower `best2` (its nearest
+  /// item's squared distance so far).
+  template <class Leaf>
+  void TraverseNear(const double point[3], double& best2, Leaf leaf) const
+  {
+    if (this->nodes.empty())
+      return;
+    std::int64_t stack[2 * MaximumDepth + 2];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0)
+    {
+      const Node& node = this->nodes[static_cast<std::size_t>(stack[--top])];
+      double d2 = 0.0;
+      for (int d = 0; d < 3; ++d)
+      {
+        const double below = node.lo[d] - point[d], above = point[d] - node.hi[d];
+        const double gap = below > 0.0 ? below : above > 0.0 ? above : 0.0;
+        d2 += gap * gap;
+      }
+      if (!(d2 <= best2))
+        continue;
+      if (node.count == 0)
+      {
+        const std::int64_t self = &node - this->nodes.data();
+        stack[top++] = node.first;
+        stack[top++] = self + 1;
+        continue;
+      }
+      leaf(node.first, static_cast<std::int64_t>(node.count), best2);
+    }
+  }
+
   void Clear() { this->nodes.clear(); }
   bool Empty() const { return this->nodes.empty(); }
   std::int64_t NumberOfNodes() const { return static_cast<std::int64_t>(this->nodes.size()); }

@@ -297,6 +297,42 @@ bool CapsuleBVH::Occluded(const double origin[3], const double direction[3], dou
   return this->Trace<true>(origin, direction, tMin, tMax, nullptr);
 }
 
+bool CapsuleBVH::Nearest(const double point[3], double maxDistance, CapsuleHit& hit) const
+{
+  const Vec3 x = LoadVec3(point);
+  if (!(maxDistance >= 0.0) || !std::isfinite(glm::dot(x, x)))
+    return false;
+  // The tree's boxes hold the capsules (axis plus radius): a box farther
+  // than maxDistance + radius holds no axis within maxDistance.
+  const double reach = maxDistance + this->radius;
+  double best2 = reach * reach;
+  double bestAxis2 = maxDistance * maxDistance;
+  std::int64_t bestSlot = -1;
+  double bestParameter = 0.0;
+  this->tree.TraverseNear(point, best2, [&](std::int64_t first, std::int64_t count, double&) {
+    for (std::int64_t i = first; i < first + count; ++i)
+    {
+      const Capsule& c = this->capsules[static_cast<std::size_t>(i)];
+      const Vec3 a = LoadVec3(c.a), b = LoadVec3(c.b);
+      const double u = AxisParameter(x, a, b);
+      const Vec3 q = a + u * (b - a);
+      const double d2 = glm::dot(x - q, x - q);
+      if (d2 > bestAxis2 || (bestSlot >= 0 && d2 == bestAxis2 &&
+                              c.segment > this->capsules[static_cast<std::size_t>(bestSlot)].segment))
+        continue;
+      bestAxis2 = d2;
+      bestSlot = i;
+      bestParameter = u;
+    }
+  });
+  if (bestSlot < 0)
+    return false;
+  hit.t = std::sqrt(bestAxis2);
+  hit.segment = this->capsules[static_cast<std::size_t>(bestSlot)].segment;
+  hit.axis = bestParameter;
+  return true;
+}
+
 std::int64_t CapsuleBVH::NumberOfSegments() const
 {
   return static_cast<std::int64_t>(this->capsules.size());
@@ -312,14 +348,13 @@ bool CapsuleBVH::Segment(std::int64_t s, double a[3], double b[3]) const
   return true;
 }
 
-bool CastLinePrimary(const CapsuleBVH& tubes, const PixelCamera& camera, LineFrame& frame,
-  std::string& error)
+namespace
 {
-  error = CheckPixelCamera(camera);
-  if (!error.empty())
-    return false;
-  // Assigned in place: a frame cast again keeps its memory
-  // (caoSurfaceReference.cxx's ResetFrame says why).
+/// `frame` sized to the camera's pixels, all background, assigned in place
+/// (a frame made again keeps its memory: caoSurfaceReference.cxx's
+/// ResetFrame says why).
+void ResetLineFrame(const PixelCamera& camera, LineFrame& frame)
+{
   const std::size_t pixels = static_cast<std::size_t>(camera.width) * camera.height;
   frame.covered = 0;
   frame.width = camera.width;
@@ -332,6 +367,17 @@ bool CastLinePrimary(const CapsuleBVH& tubes, const PixelCamera& camera, LineFra
   frame.view.assign(3 * pixels, 0.0);
   frame.depth.assign(pixels, Infinity);
   frame.ao.assign(pixels, std::numeric_limits<double>::quiet_NaN());
+}
+}
+
+bool CastLinePrimary(const CapsuleBVH& tubes, const PixelCamera& camera, LineFrame& frame,
+  std::string& error)
+{
+  error = CheckPixelCamera(camera);
+  if (!error.empty())
+    return false;
+  const std::size_t pixels = static_cast<std::size_t>(camera.width) * camera.height;
+  ResetLineFrame(camera, frame);
   ParallelFor(pixels, 0, [&](std::size_t index) {
     const int i = static_cast<int>(index % camera.width), j = static_cast<int>(index / camera.width);
     double nearPoint[3], rayDirection[3], length = 0.0;
@@ -358,6 +404,74 @@ bool CastLinePrimary(const CapsuleBVH& tubes, const PixelCamera& camera, LineFra
     StoreVec3(normal, &frame.normal[3 * index]);
     StoreVec3(tangent, &frame.tangent[3 * index]);
     StoreVec3(axisPoint, &frame.axis[3 * index]);
+  });
+  frame.covered = std::count_if(frame.segment.begin(), frame.segment.end(),
+    [](std::int64_t s) { return s >= 0; });
+  return true;
+}
+
+bool LineFrameFromDepth(const CapsuleBVH& lines, const PixelCamera& camera,
+  const std::vector<float>& depth, double reachPixels, bool tubes,
+  const std::vector<unsigned char>* skip, LineFrame& frame, std::string& error)
+{
+  error = CheckPixelCamera(camera);
+  if (!error.empty())
+    return false;
+  const int w = camera.width, h = camera.height;
+  const std::size_t pixels = static_cast<std::size_t>(w) * h;
+  if (depth.size() != pixels || (skip && skip->size() != pixels))
+  {
+    error = "the depth buffer (or the pixels to skip) does not match the image size";
+    return false;
+  }
+  if (!(reachPixels > 0.0 && reachPixels <= MaximumReach))
+  {
+    char text[160];
+    std::snprintf(text, sizeof(text), "the lines' reach must be in (0, %g] pixels (got %g)", MaximumReach,
+      reachPixels);
+    error = text;
+    return false;
+  }
+  ResetLineFrame(camera, frame);
+  ParallelFor(pixels, 0, [&](std::size_t index) {
+    const double d = depth[index];
+    if (!(d >= 0.0 && d < 1.0) || (skip && (*skip)[index]))
+      return;
+    const int i = static_cast<int>(index % w), j = static_cast<int>(index / w);
+    double nearPoint[3], rayDirection[3], length = 0.0;
+    if (!PixelRay(camera, i, j, nearPoint, rayDirection, length))
+      return;
+    // The drawn point, and the pixel's footprint there (its neighbours'
+    // points at the same depth).
+    const double x = (i + 0.5) / w * 2.0 - 1.0, y = (j + 0.5) / h * 2.0 - 1.0, z = 2.0 * d - 1.0;
+    double p[3], px[3], py[3];
+    if (!NDCToWorld(camera, x, y, z, p) || !NDCToWorld(camera, x + 2.0 / w, y, z, px) ||
+      !NDCToWorld(camera, x, y + 2.0 / h, z, py))
+      return;
+    const Vec3 position = LoadVec3(p);
+    const double footprint =
+      std::max(glm::length(LoadVec3(px) - position), glm::length(LoadVec3(py) - position));
+    CapsuleHit hit;
+    if (!lines.Nearest(p, reachPixels * footprint, hit))
+      return;
+    double a[3], b[3];
+    lines.Segment(hit.segment, a, b);
+    const Vec3 va = LoadVec3(a), vb = LoadVec3(b);
+    const Vec3 axisPoint = va + hit.axis * (vb - va);
+    Vec3 tangent = vb - va;
+    DivideByLength(tangent);
+    // A tube's point off its axis (by more than half a pixel) has its
+    // surface's normal; a flat line's, or one on the axis, none (0).
+    Vec3 normal = position - axisPoint;
+    if (!tubes || !(glm::length(normal) > 0.5 * footprint) || !(DivideByLength(normal) > 0.0))
+      normal = Vec3(0.0);
+    frame.segment[index] = hit.segment;
+    frame.depth[index] = glm::length(position - LoadVec3(nearPoint));
+    StoreVec3(position, &frame.position[3 * index]);
+    StoreVec3(normal, &frame.normal[3 * index]);
+    StoreVec3(tangent, &frame.tangent[3 * index]);
+    StoreVec3(axisPoint, &frame.axis[3 * index]);
+    StoreVec3(LoadVec3(rayDirection), &frame.view[3 * index]);
   });
   frame.covered = std::count_if(frame.segment.begin(), frame.segment.end(),
     [](std::int64_t s) { return s >= 0; });

@@ -61,6 +61,11 @@ public:
     double tMax) const override;
   std::array<double, 6> OccluderBounds() const override { return this->bounds; }
 
+  /// The segment whose axis passes nearest `point` within `maxDistance`
+  /// (hit.t: that distance; hit.axis: the nearest axis point's parameter);
+  /// equal distances give the lowest segment index. False when none is
+  /// that near.
+  bool Nearest(const double point[3], double maxDistance, CapsuleHit& hit) const;
   double Radius() const { return this->radius; }
   std::int64_t NumberOfSegments() const;
   /// Input segment s's end points (a, b); false when s is out of range.
@@ -106,6 +111,24 @@ struct LineFrame
 /// plane). `ao` is NaN. False with the reason on a bad camera.
 bool CastLinePrimary(const CapsuleBVH& tubes, const PixelCamera& camera, LineFrame& frame,
   std::string& error);
+
+/// The line G-buffer of lines a renderer drew, from its depth buffer
+/// (window depth 0..1 per pixel, row 0 at the bottom; 1: background): a
+/// drawn pixel is a line's when the segment nearest its point in the
+/// world lies within `reachPixels` of the pixel's footprint there (the
+/// drawn half width plus the raster's slack), so that each line's own
+/// pixels get its segment, axis point and tangent. Pixels where `skip` is
+/// non-zero (another kind's, such as surfaces) are left out. With `tubes`
+/// (lines drawn as tubes), a pixel off the axis has the tube's outward
+/// normal there; otherwise (lines drawn flat, or a point on the axis) the
+/// normal is 0, and LineAOFrame uses the camera-facing half ball there.
+/// False with the reason on a bad camera, a depth or skip of another
+/// size, or a reach not in (0, MaximumReach].
+bool LineFrameFromDepth(const CapsuleBVH& lines, const PixelCamera& camera,
+  const std::vector<float>& depth, double reachPixels, bool tubes,
+  const std::vector<unsigned char>* skip, LineFrame& frame, std::string& error);
+/// LineFrameFromDepth's largest reach, in pixels.
+constexpr double MaximumReach = 256.0;
 
 /// The reference AO (caoAOReference.h) of every covered pixel of `frame`
 /// at its surface point and normal, against `scene` (the tubes, or the

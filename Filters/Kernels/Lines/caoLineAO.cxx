@@ -482,8 +482,12 @@ bool LineAOFrame(const BitGrid& grid, const LineAOSettings& settings, LineFrame&
     const int i = static_cast<int>(p % width), j = static_cast<int>(p / width);
     const int set = (i & 3) + 4 * (j & 3);
     const double* sample = &samples[static_cast<std::size_t>(set) * 2 * settings.samples];
-    const double* position = surfaces ? &frame.position[3 * p] : nullptr;
-    const double* normal = surfaces ? &frame.normal[3 * p] : nullptr;
+    // (A pixel whose normal is 0, a flat line's in LineFrameFromDepth,
+    // faces the camera too.)
+    const double* n = surfaces ? &frame.normal[3 * p] : nullptr;
+    const bool faced = n && (n[0] != 0.0 || n[1] != 0.0 || n[2] != 0.0);
+    const double* position = faced ? &frame.position[3 * p] : nullptr;
+    const double* normal = faced ? n : nullptr;
     // One walk of the prisms counts both grids; solid occluders fill what
     // they occlude: their occupancy as it is.
     double solidOccupancy = 0.0;

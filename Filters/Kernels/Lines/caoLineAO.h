@@ -158,7 +158,8 @@ double LineAOAt(const BitGrid& grid, const LineAOSettings& settings, const doubl
   const double* surface = nullptr, const double* normal = nullptr);
 
 /// Line AO of every covered pixel of `frame` (its axis point, tangent and
-/// view; pixel (i, j) takes sample set (i mod 4) + 4 (j mod 4)) into
+/// view, and where it has a non-zero normal its surface point and normal;
+/// pixel (i, j) takes sample set (i mod 4) + 4 (j mod 4)) into
 /// frame.ao. With `solids` (the voxels of solid occluders, meshes,
 /// planned as `grid`), their occupancy of the same half ball multiplies
 /// the AO by 1 - occupancy: a solid fills what it occludes, unlike a thin

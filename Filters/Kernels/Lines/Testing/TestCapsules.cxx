@@ -16,6 +16,11 @@
 //     against the analytic values; a lone convex tube does not occlude
 //     itself (LineReferenceFrame gives 1)
 //   4 bad input refused with the reason; no capsules: nothing hit, AO 1
+//   5 the G-buffer from a drawn depth (LineFrameFromDepth, as the render
+//     pass reads it): Nearest equals a brute force; the depth of a cast
+//     frame gives back its pixels, segments, surface points and normals;
+//     flat lines have no normal; skipped pixels stay out; controls: a reach
+//     below the tubes' drawn half width loses pixels, bad input is refused
 // Each AO estimate is the mean over 8 independently rotated direction sets
 // of 4096 rays; it must lie within max(4 standard errors of that mean,
 // 2e-4) of the exact value. Negative control per check: the same estimate
@@ -552,6 +557,159 @@ int TestCapsules(int, char*[])
       "one sphere is hit: %.17g", hit.t);
     std::printf("no capsules: AO %.5f (one sphere below the ray: hit at %.15f)\n", e.mean, hit.t);
     CAO_CHECK(e.mean == 1.0, "no capsules: AO %.5f", e.mean);
+  }
+  // 5: the G-buffer from a drawn depth.
+  {
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    std::vector<double> points;
+    std::vector<std::int64_t> segments;
+    for (int line = 0; line < 12; ++line) // polylines of 6 segments wandering in the view
+    {
+      double x[3] = { u(rng), u(rng), 0.5 * u(rng) };
+      for (int k = 0; k <= 6; ++k)
+      {
+        points.insert(points.end(), { x[0], x[1], x[2] });
+        if (k > 0)
+          segments.insert(segments.end(), { static_cast<std::int64_t>(points.size() / 3 - 2),
+                                            static_cast<std::int64_t>(points.size() / 3 - 1) });
+        for (double& c : x)
+          c += 0.25 * u(rng);
+      }
+    }
+    const double r = 0.05;
+    cao::CapsuleBVH tubes = Build(points, segments, r);
+    // Nearest against every segment.
+    int wrong = 0;
+    for (int k = 0; k < 2000; ++k)
+    {
+      const double x[3] = { 1.5 * u(rng), 1.5 * u(rng), u(rng) };
+      double best = std::numeric_limits<double>::infinity();
+      std::int64_t bestSegment = -1;
+      for (std::size_t s = 0; s < segments.size() / 2; ++s)
+      {
+        const double dist = SegmentDistance(x, &points[3 * segments[2 * s]], &points[3 * segments[2 * s + 1]]);
+        if (dist < best)
+          best = dist, bestSegment = static_cast<std::int64_t>(s);
+      }
+      cao::CapsuleHit near;
+      const bool found = tubes.Nearest(x, 0.3, near);
+      if (found != (best <= 0.3) || (found && (std::fabs(near.t - best) > 1e-12 ||
+                                       (near.segment != bestSegment && std::fabs(near.t - best) > 0.0))))
+        ++wrong;
+    }
+    std::printf("Nearest: %d of 2000 points differ from the brute force\n", wrong);
+    CAO_CHECK(wrong == 0, "Nearest: %d wrong", wrong);
+
+    // A perspective camera 160 x 160 at (0, 0, 5): the cast frame's depth,
+    // as a renderer would draw it, gives the frame back.
+    const int side = 160;
+    const double focal = 1.0 / std::tan(20.0 * Pi / 180.0), zn = 1.0, zf = 20.0;
+    const double C = (zf + zn) / (zn - zf), D = 2.0 * zf * zn / (zn - zf);
+    const double inverseProjection[16] = { 1 / focal, 0, 0, 0, 0, 1 / focal, 0, 0, 0, 0, 0, -1, 0, 0,
+      1 / D, C / D };
+    const double eye[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 5, 0, 0, 0, 1 };
+    cao::PixelCamera cam;
+    cam.width = cam.height = side;
+    Multiply(eye, inverseProjection, cam.ndcToWorld);
+    std::string error;
+    cao::LineFrame cast;
+    CAO_CHECK(cao::CastLinePrimary(tubes, cam, cast, error), "%s", error.c_str());
+    double toNDC[16];
+    CAO_CHECK(cao::WorldToNDC(cam, toNDC), "the camera inverts");
+    const std::size_t count = static_cast<std::size_t>(side) * side;
+    std::vector<float> depth(count, 1.0f);
+    for (std::size_t k = 0; k < count; ++k)
+      if (cast.segment[k] >= 0)
+      {
+        const double* x = &cast.position[3 * k];
+        double c[4];
+        for (int row = 0; row < 4; ++row)
+          c[row] = toNDC[4 * row] * x[0] + toNDC[4 * row + 1] * x[1] + toNDC[4 * row + 2] * x[2] + toNDC[4 * row + 3];
+        depth[k] = static_cast<float>(0.5 * (c[2] / c[3]) + 0.5);
+      }
+    // The tubes' radius is 2.7 to 3.7 pixels at depths 3.5 to 4.5: a reach
+    // of 5 pixels finds every drawn pixel.
+    cao::LineFrame drawn;
+    CAO_CHECK(cao::LineFrameFromDepth(tubes, cam, depth, 5.0, true, nullptr, drawn, error), "%s", error.c_str());
+    std::int64_t same = 0, other = 0, notNearer = 0, withNormal = 0;
+    double worstPosition = 0.0, worstNormal = 0.0;
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      if ((drawn.segment[k] >= 0) != (cast.segment[k] >= 0))
+        continue;
+      if (drawn.segment[k] < 0)
+        continue;
+      for (int d = 0; d < 3; ++d)
+        worstPosition = std::max(worstPosition, std::fabs(drawn.position[3 * k + d] - cast.position[3 * k + d]));
+      const double* n = &drawn.normal[3 * k];
+      if (n[0] != 0.0 || n[1] != 0.0 || n[2] != 0.0)
+      {
+        ++withNormal;
+        if (drawn.segment[k] == cast.segment[k])
+        {
+          const double* m = &cast.normal[3 * k];
+          worstNormal = std::max(worstNormal, 1.0 - (n[0] * m[0] + n[1] * m[1] + n[2] * m[2]));
+        }
+      }
+      if (drawn.segment[k] == cast.segment[k])
+      {
+        ++same;
+        continue;
+      }
+      // Another segment (a joint, a crossing): then one at least as near.
+      ++other;
+      const std::int64_t a = drawn.segment[k], b = cast.segment[k];
+      const double* x = &drawn.position[3 * k];
+      notNearer += SegmentDistance(x, &points[3 * segments[2 * a]], &points[3 * segments[2 * a + 1]]) >
+        SegmentDistance(x, &points[3 * segments[2 * b]], &points[3 * segments[2 * b + 1]]) + 1e-9;
+    }
+    std::printf("G-buffer from depth %dx%d: cast %lld pixels, found %lld (same segment %lld, another as near %lld, "
+                "not nearer %lld); position error %.1e, 1 - cos(normal) %.1e, %lld with a normal\n",
+      side, side, static_cast<long long>(cast.covered), static_cast<long long>(drawn.covered),
+      static_cast<long long>(same), static_cast<long long>(other), static_cast<long long>(notNearer), worstPosition,
+      worstNormal, static_cast<long long>(withNormal));
+    CAO_CHECK(cast.covered > 2000 && drawn.covered == cast.covered && same + other == cast.covered &&
+        notNearer == 0 && other < cast.covered / 20 && worstPosition < 1e-4 && worstNormal < 1e-3 &&
+        withNormal > cast.covered * 8 / 10,
+      "G-buffer from depth");
+    // Flat lines: no normals (the camera-facing half ball).
+    cao::LineFrame flat;
+    CAO_CHECK(cao::LineFrameFromDepth(tubes, cam, depth, 5.0, false, nullptr, flat, error), "%s", error.c_str());
+    CAO_CHECK(flat.covered == cast.covered &&
+        std::all_of(flat.normal.begin(), flat.normal.end(), [](double v) { return v == 0.0; }),
+      "flat lines have no normal");
+    // Skipped pixels (another kind's) stay out.
+    std::vector<unsigned char> skip(count, 0);
+    for (std::size_t k = 0; k < count; k += 2)
+      skip[k] = 1;
+    cao::LineFrame half;
+    CAO_CHECK(cao::LineFrameFromDepth(tubes, cam, depth, 5.0, true, &skip, half, error), "%s", error.c_str());
+    std::int64_t skippedIn = 0;
+    for (std::size_t k = 0; k < count; k += 2)
+      skippedIn += half.segment[k] >= 0;
+    std::printf("skipping every other pixel: %lld found (%lld of them skipped)\n",
+      static_cast<long long>(half.covered), static_cast<long long>(skippedIn));
+    CAO_CHECK(skippedIn == 0 && half.covered > cast.covered / 3 && half.covered < cast.covered * 2 / 3,
+      "skipped pixels");
+    // Control: a reach of one pixel (below the tubes' drawn half width) loses most pixels.
+    cao::LineFrame narrow;
+    CAO_CHECK(cao::LineFrameFromDepth(tubes, cam, depth, 1.0, true, nullptr, narrow, error), "%s", error.c_str());
+    std::printf("control: a reach of 1 pixel finds %lld of %lld\n", static_cast<long long>(narrow.covered),
+      static_cast<long long>(cast.covered));
+    CAO_CHECK(narrow.covered < cast.covered / 2, "control: narrow reach");
+    // Bad input.
+    for (double reach : { 0.0, -1.0, double(NAN), 257.0 })
+    {
+      CAO_CHECK(!cao::LineFrameFromDepth(tubes, cam, depth, reach, true, nullptr, narrow, error) &&
+          error.find("256") != std::string::npos,
+        "reach %g: %s", reach, error.c_str());
+      std::printf("bad input: reach %g: %s\n", reach, error.c_str());
+    }
+    std::vector<float> shortDepth(count - 1, 1.0f);
+    CAO_CHECK(!cao::LineFrameFromDepth(tubes, cam, shortDepth, 5.0, true, nullptr, narrow, error) &&
+        error.find("size") != std::string::npos,
+      "short depth: %s", error.c_str());
   }
   std::printf("%d failure(s)\n", failures);
   return failures ? 1 : 0;

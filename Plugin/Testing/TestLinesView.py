@@ -1,0 +1,135 @@
+"""Lines in the "Render View (Contextual AO)" view, in pvpython or pvbatch:
+streamlines of carotid.vtk (ParaView's Stream Tracer, drawn as lines) beside
+an opaque slice of the same field, as a user builds the scene:
+- the lines get line AO in the same frame as the slice gets its surface AO
+  (the report's "lines" and the surfaces' combined pixels);
+- against Line AO off (the control) the picture only darkens, on the
+  lines' pixels, and the slice's pixels away from the lines stay as they
+  were;
+- a colour change runs only the combine; Line AO Samples reaches the pass;
+- Render Lines As Tubes: the lines' pixels are still found and darkened
+  (more of them: the tubes are wider);
+- Surface AO Method None draws the Render View's picture (no stage runs).
+Writes OUT_DIR/lines-off.png and lines-on.png (and without FXAA).
+
+  pvpython TestLinesView.py PLUGIN.so DATA_DIR OUT_DIR   (under run-with-xvfb.sh)"""
+import os
+import sys
+
+from paraview.simple import *  # noqa: F401,F403
+from vtkmodules.vtkIOImage import vtkPNGReader
+from vtkmodules.util.numpy_support import vtk_to_numpy
+
+LoadPlugin(sys.argv[1], remote=False, ns=globals())
+import contextualao  # noqa: E402,F401  (wraps vtkContextualAOPass)
+data, out = sys.argv[2], sys.argv[3]
+os.makedirs(out, exist_ok=True)
+failures = []
+W, H = 400, 300
+
+
+def check(ok, what):
+    print(("ok: " if ok else "FAIL: ") + what)
+    if not ok:
+        failures.append(what)
+
+
+def shot(name):
+    path = os.path.join(out, name + ".png")
+    SaveScreenshot(path, view, ImageResolution=[W, H])
+    r = vtkPNGReader()
+    r.SetFileName(path)
+    r.Update()
+    return vtk_to_numpy(r.GetOutput().GetPointData().GetScalars()).astype(float)[:, :3].reshape(H, W, 3)
+
+
+def field(report, key):
+    """The number after "key": in the report's lines section (-1: none)."""
+    at = report.find('"lines": {')
+    if at < 0:
+        return -1.0
+    section = report[at:report.find("}", at)]
+    k = section.find('"%s": ' % key)
+    return float(section[k + len(key) + 4:].split(",")[0].split("}")[0]) if k >= 0 else -1.0
+
+
+view = CreateView("ContextualAORenderView")
+view.OrientationAxesVisibility = 0
+view.ViewSize = [W, H]
+carotid = LegacyVTKReader(FileNames=[os.path.join(data, "carotid.vtk")])
+tracer = StreamTracer(Input=carotid, SeedType="Point Cloud")
+tracer.Vectors = ["POINTS", "vectors"]
+tracer.SeedType.Center = [137.0, 104.0, 23.0]
+tracer.SeedType.Radius = 12.0
+tracer.SeedType.NumberOfPoints = 300
+tracer.MaximumStreamlineLength = 200.0
+lines = Show(tracer, view)
+ColorBy(lines, None)
+lines.AmbientColor = lines.DiffuseColor = [0.95, 0.85, 0.6]
+lines.LineWidth = 2.0
+cut = Slice(Input=carotid)
+cut.SliceType.Origin = [137.5, 104.0, 12.0]
+cut.SliceType.Normal = [0.0, 0.0, 1.0]
+plane = Show(cut, view)
+ColorBy(plane, None)
+view.CameraPosition = [137.5, 40.0, 70.0]
+view.CameraFocalPoint = [137.5, 104.0, 20.0]
+view.CameraViewUp = [0.0, 0.0, 1.0]
+ResetCamera(view)
+chain = view.GetRenderer().GetPass()
+while chain is not None and chain.GetClassName() != "vtkContextualAOPass":
+    chain = chain.GetDelegatePass() if hasattr(chain, "GetDelegatePass") else None
+check(chain is not None, "the pass is in the view's render pass chain")
+pas = chain
+Render(view)
+print("first frame: " + pas.GetLastFrameReport())
+on = shot("lines-on")
+report = pas.GetLastFrameReport()
+print("report: " + report)
+segments, combined = field(report, "segments"), field(report, "combined_pixels")
+surfaceCombined = float(report.split('"combined_pixels": ')[1].split(",")[0])
+check(segments > 1000 and combined > 300 and field(report, "voxelizations") >= 1,
+      "the streamlines get line AO: %d segments, %d line pixels darkened" % (segments, combined))
+check(surfaceCombined > 1000, "the slice gets its surface AO in the same frame (%d pixels)" % surfaceCombined)
+# Without FXAA (the Render View's default): it re-blends the pixels beside
+# the darkened lines, a background pixel by up to 10 grey levels brighter;
+# the comparison asks the AO itself never to brighten.
+view.UseFXAA = 0
+on = shot("lines-on-no-fxaa")
+view.LineAO = 0
+off = shot("lines-off-no-fxaa")
+view.UseFXAA = 1
+shot("lines-off")
+check(field(pas.GetLastFrameReport(), "segments") == -1.0, "Line AO off: no line work")
+darker = (off - on).mean(axis=2)
+changed = int((darker > 10).sum())
+# FXAA (the Render View's default) re-blends edge pixels next to darkened
+# ones: a few grey levels brighter at most; the AO itself never brightens.
+worst = divmod(int(darker.argmin()), W)
+print("largest brightening %.1f at row %d, column %d: on %s, off %s" % (-darker.min(), worst[0], worst[1],
+      on[worst].tolist(), off[worst].tolist()))
+check(darker.min() >= 0 and changed > 200,
+      "line AO only darkens (largest brightening %.1f): %d pixels darker by more than 10 grey levels"
+      % (-darker.min(), changed))
+view.LineAO = 1
+view.LineAOSamples = 16
+Render(view)
+check(pas.GetLineSamples() == 16 and "line_ao" in pas.GetLastFrameStages(),
+      "Line AO Samples reaches the pass and re-estimates (%s)" % pas.GetLastFrameStages())
+lines.AmbientColor = lines.DiffuseColor = [0.6, 0.9, 0.95]
+Render(view)
+check(pas.GetLastFrameStages() == "combine", "a colour change runs only the combine (%s)" % pas.GetLastFrameStages())
+lines.RenderLinesAsTubes = 1
+lines.LineWidth = 5.0
+Render(view)
+tubes = pas.GetLastFrameReport()
+check(field(tubes, "pixels") > 1.1 * field(report, "pixels") and field(tubes, "combined_pixels") > 300,
+      "Render Lines As Tubes: %d line pixels (as lines: %d), %d darkened"
+      % (field(tubes, "pixels"), field(report, "pixels"), field(tubes, "combined_pixels")))
+view.SurfaceAOMethod = "None"
+Render(view)
+check(pas.GetLastFrameStages() == "", "Surface AO Method None runs nothing")
+if failures:
+    print("%d failure(s)" % len(failures))
+    sys.exit(1)
+print("all checks passed")

@@ -1,0 +1,234 @@
+// Lines in vtkContextualAOPass (LineAO): streamline-like polylines drawn by
+// VTK as lines, then as tubes (RenderLinesAsTubes), get line AO in the
+// frame (the project's EGL window, CPU line AO).
+//   1 a 7-line hexagonal bundle seen across its lines: the centre line's
+//     drawn pixels are darker than the top lines' and an isolated line's
+//     (about 1: nothing in its half ball), and each line pixel's grey is
+//     its undarkened grey times AO (the whole colour, Strength 1);
+//     control: LineAO off, or Method NONE, leaves the lines' grey as drawn
+//   2 what runs: the first frame builds the lines, voxelizes, reads the
+//     G-buffer, estimates and combines; a colour change only combines; a
+//     camera turn voxelizes the eye grid again
+//   3 a box beside a line occludes it (meshes as solids), while the box
+//     gets its surface AO in the same frame; control: the same line with
+//     the box hidden is open
+//   4 lines drawn as tubes: the same ordering; the background has no AO
+// Pixels are found by projecting the lines' points; each check reads the
+// drawn line pixel nearest the projection (GetPixelAO > -1).
+#include "vtkContextualAOPass.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkCellArray.h"
+#include "vtkContextualAOEGLWindow.h"
+#include "vtkCubeSource.h"
+#include "vtkNew.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkRenderer.h"
+#include "vtkUnsignedCharArray.h"
+
+#include "caoTestSkip.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+namespace
+{
+int failures = 0;
+void Check(bool ok, const std::string& what)
+{
+  std::printf("%s: %s\n", ok ? "ok" : "FAIL", what.c_str());
+  failures += ok ? 0 : 1;
+}
+
+/// Straight polylines along x from -2 to 2 (20 segments each) at (y, z).
+vtkSmartPointer<vtkPolyData> Lines(const std::vector<std::pair<double, double>>& at)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> cells;
+  for (const auto& yz : at)
+  {
+    cells->InsertNextCell(21);
+    for (int k = 0; k <= 20; ++k)
+      cells->InsertCellPoint(points->InsertNextPoint(-2.0 + 0.2 * k, yz.first, yz.second));
+  }
+  auto data = vtkSmartPointer<vtkPolyData>::New();
+  data->SetPoints(points);
+  data->SetLines(cells);
+  return data;
+}
+
+double Grey(vtkRenderWindow* w, int x, int y)
+{
+  vtkNew<vtkUnsignedCharArray> c;
+  w->GetPixelData(x, y, x, y, 0, c);
+  return (c->GetValue(0) + c->GetValue(1) + c->GetValue(2)) / 3.0;
+}
+
+struct Pixel
+{
+  int x = -1, y = -1;
+  double ao = -1.0;
+};
+
+/// The line pixel (GetPixelAO > -1) nearest where (x, y, z) projects, in
+/// the column through it (the lines run along x: across them is y).
+Pixel LinePixel(vtkRenderer* renderer, vtkContextualAOPass* pass, double x, double y, double z)
+{
+  renderer->SetWorldPoint(x, y, z, 1.0);
+  renderer->WorldToDisplay();
+  double d[3];
+  renderer->GetDisplayPoint(d);
+  const int px = static_cast<int>(d[0]), py = static_cast<int>(d[1]);
+  Pixel best;
+  for (int dy : { 0, 1, -1, 2, -2 })
+  {
+    const double ao = pass->GetPixelAO(px, py + dy);
+    if (ao > -1.0)
+    {
+      best = { px, py + dy, ao };
+      break;
+    }
+  }
+  return best;
+}
+
+/// A number of the report's "lines" section.
+double Field(const std::string& report, const std::string& key)
+{
+  const std::size_t section = report.find("\"lines\": {");
+  if (section == std::string::npos)
+    return -1.0;
+  const std::size_t at = report.find("\"" + key + "\": ", section);
+  return at == std::string::npos ? -1.0 : std::atof(report.c_str() + at + key.size() + 4);
+}
+}
+
+int TestLinesInPass(int, char*[])
+{
+  vtkNew<vtkContextualAOEGLWindow> window;
+  if (caotest::PretendNoGL() || !window->IsUsable())
+    return caotest::NoGL(std::string("no EGL OpenGL context: ") + window->GetContextError());
+  window->SetSize(240, 200);
+  window->SetMultiSamples(0);
+  vtkNew<vtkRenderer> renderer;
+  renderer->SetBackground(0.1, 0.1, 0.1);
+  window->AddRenderer(renderer);
+  // The bundle: a centre line and six around it at 0.15 (hexagonal), in y-z.
+  const double d = 0.15, pi = 3.14159265358979323846;
+  std::vector<std::pair<double, double>> bundle{ { 0.0, 0.0 } };
+  for (int k = 0; k < 6; ++k)
+    bundle.push_back({ d * std::cos(k * pi / 3.0), d * std::sin(k * pi / 3.0) });
+  bundle.push_back({ 1.0, 0.0 }); // the isolated line
+  vtkNew<vtkPolyDataMapper> lineMapper;
+  lineMapper->SetInputData(Lines(bundle));
+  vtkNew<vtkActor> lines;
+  lines->SetMapper(lineMapper);
+  lines->GetProperty()->SetColor(0.9, 0.9, 0.9);
+  lines->GetProperty()->SetLineWidth(4.0);
+  renderer->AddActor(lines);
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetPosition(0, 0.3, 6);
+  camera->SetFocalPoint(0, 0.3, 0);
+  camera->SetViewUp(0, 1, 0);
+  camera->SetViewAngle(30);
+  renderer->ResetCameraClippingRange();
+  vtkNew<vtkContextualAOPass> pass;
+  pass->SetRadius(0.5);
+  pass->SetBackend(vtkContextualAOPass::BACKEND_CPU);
+  renderer->SetPass(pass);
+
+  // 1 and 2: the bundle.
+  window->Render();
+  std::string report = pass->GetLastFrameReport();
+  std::printf("report 1: %s\n", report.c_str());
+  Check(pass->GetLastFrameStages() == "lines,voxelize_lines,line_gbuffer,line_ao,combine",
+    "the first frame builds the lines, voxelizes, reads the G-buffer, estimates, combines (" +
+      pass->GetLastFrameStages() + ")");
+  Check(Field(report, "segments") == 8 * 20 && Field(report, "actors") == 1,
+    "the report counts 1 actor, 160 segments");
+  // The centre is seen between the two top lines (at y = +-d/2, z = 0.13).
+  const Pixel centre = LinePixel(renderer, pass, 0.5, 0.0, 0.0);
+  const Pixel top = LinePixel(renderer, pass, 0.5, 0.5 * d, d * std::sin(pi / 3.0));
+  const Pixel alone = LinePixel(renderer, pass, 0.5, 1.0, 0.0);
+  std::printf("AO: centre %.3f at (%d, %d), top %.3f, isolated %.3f; %g line pixels\n", centre.ao, centre.x,
+    centre.y, top.ao, alone.ao, Field(report, "pixels"));
+  Check(centre.ao >= 0.0 && alone.ao > 0.98 && centre.ao < alone.ao - 0.08 && centre.ao < top.ao - 0.05,
+    "the bundle's centre line is darker than its top lines and the isolated line (about 1)");
+  Check(Field(report, "combined_pixels") > 100 && pass->GetPixelAO(2, 2) == -1.0,
+    "the lines' pixels are darkened, the background has no AO");
+  const double greyCentre = Grey(window, centre.x, centre.y), greyAlone = Grey(window, alone.x, alone.y);
+  pass->SetLineAO(false);
+  window->Render();
+  const double plainCentre = Grey(window, centre.x, centre.y), plainAlone = Grey(window, alone.x, alone.y);
+  std::printf("grey: centre %.1f (LineAO off %.1f, x AO %.1f), isolated %.1f (%.1f); stages off: '%s'\n",
+    greyCentre, plainCentre, plainCentre * centre.ao, greyAlone, plainAlone, pass->GetLastFrameStages().c_str());
+  Check(std::fabs(greyCentre - plainCentre * centre.ao) <= 1.5 && plainCentre - greyCentre > 20.0,
+    "a line pixel's grey is its drawn grey times its AO");
+  Check(pass->GetLastFrameStages().empty() && Field(pass->GetLastFrameReport(), "segments") == -1.0,
+    "control: LineAO off runs nothing for the lines");
+  pass->SetLineAO(true);
+  pass->SetMethod(vtkContextualAOPass::NONE);
+  window->Render();
+  Check(pass->GetLastFrameStages().empty() && Grey(window, centre.x, centre.y) == plainCentre,
+    "control: Method NONE draws the lines as the renderer does");
+  pass->SetMethod(vtkContextualAOPass::VCT);
+  window->Render();
+  lines->GetProperty()->SetColor(0.9, 0.6, 0.3);
+  window->Render();
+  Check(pass->GetLastFrameStages() == "combine", "a colour change only combines (" +
+      pass->GetLastFrameStages() + ")");
+  camera->Azimuth(10.0);
+  window->Render();
+  Check(pass->GetLastFrameStages() == "voxelize_lines,line_gbuffer,line_ao,combine",
+    "a camera turn voxelizes the lines' eye grid again (" + pass->GetLastFrameStages() + ")");
+  camera->Azimuth(-10.0);
+  lines->GetProperty()->SetColor(0.9, 0.9, 0.9);
+
+  // 3: a box beside the isolated line, from 0.03 to 0.5 beyond it and half
+  // a unit high: a quarter of its half ball is solid.
+  vtkNew<vtkCubeSource> box;
+  box->SetBounds(-2, 2, 1.03, 1.5, -0.5, 0.5);
+  vtkNew<vtkPolyDataMapper> boxMapper;
+  boxMapper->SetInputConnection(box->GetOutputPort());
+  vtkNew<vtkActor> boxActor;
+  boxActor->SetMapper(boxMapper);
+  renderer->AddActor(boxActor);
+  pass->SetApplyTo(vtkContextualAOPass::WHOLE_COLOR);
+  window->Render();
+  report = pass->GetLastFrameReport();
+  std::printf("report 3: %s\n", report.c_str());
+  const Pixel walled = LinePixel(renderer, pass, 0.5, 1.0, 0.0);
+  std::printf("the line beside the box: AO %.3f (alone %.3f)\n", walled.ao, alone.ao);
+  Check(walled.ao >= 0.0 && walled.ao < alone.ao - 0.1, "a box beside a line occludes it");
+  const std::size_t surfaceAt = report.find("\"combined_pixels\": ");
+  const double surfacePixels = surfaceAt == std::string::npos ? -1.0 : std::atof(report.c_str() + surfaceAt + 19);
+  Check(surfacePixels > 1000, "the box gets its surface AO in the same frame (" + std::to_string(surfacePixels) +
+      " pixels)");
+  boxActor->SetVisibility(false);
+  window->Render();
+  const Pixel open = LinePixel(renderer, pass, 0.5, 1.0, 0.0);
+  Check(std::fabs(open.ao - alone.ao) < 1e-9, "control: the box hidden, the line is open again (" +
+      std::to_string(open.ao) + ")");
+
+  // 4: the same lines drawn as tubes, 6 pixels wide.
+  lines->GetProperty()->SetRenderLinesAsTubes(true);
+  lines->GetProperty()->SetLineWidth(6.0);
+  window->Render();
+  report = pass->GetLastFrameReport();
+  std::printf("report 4: %s\n", report.c_str());
+  const Pixel tubeCentre = LinePixel(renderer, pass, 0.5, 0.0, 0.0);
+  const Pixel tubeAlone = LinePixel(renderer, pass, 0.5, 1.0, 0.0);
+  std::printf("tubes: centre %.3f, isolated %.3f, %g pixels\n", tubeCentre.ao, tubeAlone.ao,
+    Field(report, "pixels"));
+  Check(tubeCentre.ao >= 0.0 && tubeAlone.ao > 0.95 && tubeCentre.ao < tubeAlone.ao - 0.15,
+    "tubes: the bundle's centre is darker than the isolated tube");
+  std::printf("%d failure(s)\n", failures);
+  return failures ? 1 : 0;
+}

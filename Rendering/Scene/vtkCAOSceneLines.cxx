@@ -1,0 +1,260 @@
+// vtkCAOSceneLines.cxx - the lines' AO in the render pass (vtkCAOSceneLines.h).
+#include "vtkCAOSceneLines.h"
+
+#include "caoAORadius.h"
+#include "caoVoxelConeTracing.h"
+
+#include "vtkActor.h"
+#include "vtkCellArray.h"
+#include "vtkMatrix4x4.h"
+#include "vtkPolyData.h"
+#include "vtkProperty.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+namespace vtkCAO
+{
+namespace
+{
+using Clock = std::chrono::steady_clock;
+double Since(Clock::time_point t)
+{
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+double Address(const void* p)
+{
+  return static_cast<double>(reinterpret_cast<std::uintptr_t>(p));
+}
+/// The lines' width in pixels as VTK draws them (at least one pixel).
+double DrawnWidth(vtkActor* actor)
+{
+  return std::max(1.0, static_cast<double>(actor->GetProperty()->GetLineWidth()));
+}
+}
+
+void SceneLines::Clear()
+{
+  *this = SceneLines();
+}
+
+void SceneLines::Collect(const std::vector<std::pair<vtkActor*, vtkPolyData*>>& linePieces)
+{
+  this->pieces = linePieces;
+  this->frameKey.clear();
+  this->tubes = false;
+  this->widest = 1.0;
+  vtkActor* last = nullptr;
+  this->actors = 0;
+  for (const auto& piece : this->pieces)
+  {
+    vtkActor* actor = piece.first;
+    this->actors += actor != last;
+    last = actor;
+    const bool asTubes = actor->GetProperty()->GetRenderLinesAsTubes();
+    this->tubes = this->tubes || asTubes;
+    this->widest = std::max(this->widest, DrawnWidth(actor));
+    this->frameKey.insert(this->frameKey.end(), { Address(actor), Address(piece.second),
+      static_cast<double>(piece.second->GetMTime()), asTubes ? 1.0 : 0.0, DrawnWidth(actor) });
+    vtkMatrix4x4* m = actor->GetMatrix();
+    for (int i = 0; i < 16; ++i)
+      this->frameKey.push_back(m->GetElement(i / 4, i % 4));
+  }
+}
+
+void SceneLines::SetMeshes(const std::vector<std::vector<double>>& points,
+  const std::vector<std::vector<std::int64_t>>& triangles, double key)
+{
+  this->meshPoints = points;
+  this->meshTriangles = triangles;
+  this->meshKey = key;
+}
+
+bool SceneLines::UpdateScene(std::string& error)
+{
+  // The segments in world coordinates (each actor's matrix applied).
+  this->sceneKey.clear();
+  this->lines = cao::LineSegments();
+  this->length = 0.0;
+  for (const auto& piece : this->pieces)
+  {
+    vtkPolyData* data = piece.second;
+    vtkMatrix4x4* m = piece.first->GetMatrix();
+    const std::int64_t base = static_cast<std::int64_t>(this->lines.points.size() / 3);
+    for (vtkIdType p = 0; p < data->GetNumberOfPoints(); ++p)
+    {
+      double in[4] = { 0, 0, 0, 1 }, out[4];
+      data->GetPoint(p, in);
+      m->MultiplyPoint(in, out);
+      for (int d = 0; d < 3; ++d)
+        this->lines.points.push_back(out[d] / out[3]);
+    }
+    vtkCellArray* cells = data->GetLines();
+    vtkIdType n = 0;
+    const vtkIdType* ids = nullptr;
+    for (cells->InitTraversal(); cells->GetNextCell(n, ids);)
+      for (vtkIdType k = 0; k + 1 < n; ++k)
+      {
+        this->lines.segments.push_back(base + ids[k]);
+        this->lines.segments.push_back(base + ids[k + 1]);
+      }
+  }
+  error = this->lines.Validate();
+  if (!error.empty())
+    return false;
+  if (this->lines.segments.empty())
+  {
+    error = "the lines have no segment (no line with two points or more)";
+    return false;
+  }
+  std::array<double, 6> b{ { 1, -1, 1, -1, 1, -1 } };
+  bool any = false;
+  for (std::size_t s = 0; s < this->lines.segments.size(); s += 2)
+  {
+    const double* a = &this->lines.points[3 * static_cast<std::size_t>(this->lines.segments[s])];
+    const double* c = &this->lines.points[3 * static_cast<std::size_t>(this->lines.segments[s + 1])];
+    this->length += std::sqrt((a[0] - c[0]) * (a[0] - c[0]) + (a[1] - c[1]) * (a[1] - c[1]) +
+      (a[2] - c[2]) * (a[2] - c[2]));
+    for (const double* x : { a, c })
+      for (int d = 0; d < 3; ++d)
+      {
+        b[2 * d] = any ? std::min(b[2 * d], x[d]) : x[d];
+        b[2 * d + 1] = any ? std::max(b[2 * d + 1], x[d]) : x[d];
+      }
+    any = true;
+  }
+  this->bounds = b;
+  this->diagonal = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
+    (b[5] - b[4]) * (b[5] - b[4]));
+  if (!(this->diagonal > 0.0) || !std::isfinite(this->diagonal))
+  {
+    error = "the lines have no extent (every point is the same) or a coordinate is not finite";
+    return false;
+  }
+  // The capsules only find each pixel's nearest axis: a radius far below
+  // any pixel keeps the tree's boxes tight.
+  if (!this->nearest.Build(this->lines.points, this->lines.segments, 1e-9 * this->diagonal, error))
+    return false;
+  this->sceneKey = this->frameKey;
+  return true;
+}
+
+bool SceneLines::Update(const cao::PixelCamera& camera, const double right[3], const double up[3],
+  const std::vector<float>& depth, const std::vector<unsigned char>* skip, double aoRadius, int samples,
+  int slices, std::vector<std::string>& stages, std::vector<double>& ms, std::string& error)
+{
+  auto start = Clock::now();
+  if (this->frameKey != this->sceneKey)
+  {
+    this->gridKey.clear();
+    this->aoKey.clear();
+    if (!this->UpdateScene(error))
+      return false;
+    stages.push_back("lines");
+    ms.push_back(Since(start));
+    start = Clock::now();
+  }
+  // The AO radius: the pass's, or the default of the lines drawn as tubes
+  // of 1/200 of their extent (as `cao surface` takes lines).
+  this->radius = aoRadius > 0.0 ? aoRadius
+                                : cao::DefaultAORadius(this->bounds,
+                                    2.0 * 3.14159265358979323846 * 0.005 * this->diagonal * this->length);
+  // The lines occlude as tubes as wide in the world as their drawn width
+  // at the lines' centre (flat lines too: a line drawn w pixels wide hides
+  // what a tube of that width would).
+  double tubeRadius = 0.0;
+  {
+    double toNDC[16], c[4], centre[3] = { 0.5 * (this->bounds[0] + this->bounds[1]),
+      0.5 * (this->bounds[2] + this->bounds[3]), 0.5 * (this->bounds[4] + this->bounds[5]) };
+    if (cao::WorldToNDC(camera, toNDC))
+    {
+      for (int r = 0; r < 4; ++r)
+        c[r] = toNDC[4 * r] * centre[0] + toNDC[4 * r + 1] * centre[1] + toNDC[4 * r + 2] * centre[2] +
+          toNDC[4 * r + 3];
+      double p[3], q[3];
+      if (c[3] != 0.0 && cao::NDCToWorld(camera, c[0] / c[3], c[1] / c[3], c[2] / c[3], p) &&
+        cao::NDCToWorld(camera, c[0] / c[3] + 2.0 / camera.width, c[1] / c[3], c[2] / c[3], q))
+        tubeRadius = 0.5 * this->widest *
+          std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
+    }
+    tubeRadius = std::min(tubeRadius, this->diagonal);
+  }
+  cao::LineAOSettings settings;
+  settings.radius = this->radius;
+  settings.tubeRadius = tubeRadius;
+  settings.samples = samples;
+  settings.slices = slices;
+  error = settings.Validate();
+  if (!error.empty())
+    return false;
+  // The grid: of the lines and meshes, the camera's orientation, the settings.
+  std::vector<double> key = this->sceneKey;
+  key.insert(key.end(), { this->meshKey, this->radius, tubeRadius, static_cast<double>(slices) });
+  for (int d = 0; d < 3; ++d)
+    key.insert(key.end(), { std::round(right[d] * 1e9) * 1e-9, std::round(up[d] * 1e9) * 1e-9 });
+  const bool meshes = !this->meshPoints.empty();
+  std::vector<cao::MeshView> views;
+  for (std::size_t i = 0; i < this->meshPoints.size(); ++i)
+    views.push_back({ &this->meshPoints[i], &this->meshTriangles[i] });
+  if (key != this->gridKey)
+  {
+    this->gridKey.clear();
+    this->aoKey.clear();
+    std::array<double, 9> axes;
+    std::array<double, 6> meshBounds{ { 1, -1, 1, -1, 1, -1 } };
+    if (meshes && (!cao::EyeAxes(right, up, axes, error) || !cao::EyeBounds(views, axes, meshBounds, error)))
+      return false;
+    this->grid = cao::BitGrid();
+    this->solids = cao::BitGrid();
+    if (!cao::PlanLineGrid(this->lines, right, up, settings, this->grid, error, meshes ? &meshBounds : nullptr) ||
+      !cao::VoxelizeLines(this->lines, tubeRadius, this->grid, error))
+      return false;
+    if (meshes)
+    {
+      this->solids = this->grid;
+      if (!cao::FillGrid(views, this->solids, error))
+        return false;
+    }
+    this->gridKey = key;
+    ++this->voxelizations;
+    stages.push_back("voxelize_lines");
+    ms.push_back(Since(start));
+    start = Clock::now();
+  }
+  // The AO: of the grid, the camera, the viewport, the drawn depth and the
+  // pixels left to the lines.
+  std::vector<double> view = key;
+  view.insert(view.end(), camera.ndcToWorld, camera.ndcToWorld + 16);
+  view.insert(view.end(), { static_cast<double>(camera.width), static_cast<double>(camera.height),
+                            static_cast<double>(samples) });
+  std::uint64_t hash = 1469598103934665603ull;
+  for (std::size_t i = 0; i < depth.size(); ++i)
+  {
+    std::uint32_t bits;
+    static_assert(sizeof(float) == sizeof(bits), "float is 32 bits");
+    std::memcpy(&bits, &depth[i], sizeof(bits));
+    if (skip && (*skip)[i])
+      bits = 0xFFFFFFFFu;
+    hash = (hash ^ bits) * 1099511628211ull;
+  }
+  view.push_back(static_cast<double>(hash >> 11));
+  if (view == this->aoKey)
+    return true;
+  this->aoKey.clear();
+  // The drawn half width plus a pixel and a half of raster slack.
+  if (!cao::LineFrameFromDepth(this->nearest, camera, depth, 0.5 * this->widest + 1.5, this->tubes, skip,
+        this->frame, error))
+    return false;
+  stages.push_back("line_gbuffer");
+  ms.push_back(Since(start));
+  start = Clock::now();
+  if (!cao::LineAOFrame(this->grid, settings, this->frame, error, meshes ? &this->solids : nullptr))
+    return false;
+  this->aoKey = view;
+  stages.push_back("line_ao");
+  ms.push_back(Since(start));
+  return true;
+}
+}

@@ -1,0 +1,86 @@
+/**
+ * vtkCAOSceneLines — the lines of a scene as the render pass gives them
+ * ambient occlusion: line voxelization and prism sampling (seed 004,
+ * Filters/Kernels/Lines) on the CPU. Private to vtkContextualAOPass.
+ *
+ * The lines are the visible opaque actors' polydata pieces that have lines
+ * and no polygons or strips (streamlines, polylines), drawn as lines or as
+ * tubes (vtkProperty's RenderLinesAsTubes), in world coordinates. Their
+ * G-buffer comes from the drawn depth (cao::LineFrameFromDepth: a drawn
+ * pixel within the drawn half width of a segment is that line's), so what
+ * gets AO is exactly what the renderer drew. The lines occlude as tubes of
+ * their drawn width (the widest actor's, at the lines' centre). The eye grid of the lines
+ * (and of the meshes beside them, whose voxels occlude the lines as
+ * solids) is voxelized when the lines, the meshes, the settings or the
+ * camera's orientation or zoom change; the AO when the camera, the
+ * viewport, the drawn depth or the settings change.
+ */
+#ifndef vtkCAOSceneLines_h
+#define vtkCAOSceneLines_h
+
+#include "caoCapsules.h"
+#include "caoLineAO.h"
+
+#include <array>
+#include <chrono>
+#include <limits>
+#include <string>
+#include <vector>
+
+class vtkActor;
+class vtkPolyData;
+class vtkRenderer;
+
+namespace vtkCAO
+{
+class SceneLines
+{
+public:
+  /// This frame's line pieces among `pieces` (each actor's polydata
+  /// pieces: the pass's mapper inputs), and what they depend on.
+  void Collect(const std::vector<std::pair<vtkActor*, vtkPolyData*>>& pieces);
+  bool Empty() const { return this->pieces.empty(); }
+  /// The meshes beside the lines (world coordinates), occluding them.
+  void SetMeshes(const std::vector<std::vector<double>>& points,
+    const std::vector<std::vector<std::int64_t>>& triangles, double key);
+
+  /// The line AO of `camera`'s drawn pixels (`depth`: window depth, row 0
+  /// at the bottom) except those in `skip`; `right` and `up` the camera's
+  /// axes. `radius` is the AO radius (0: the default of the lines'
+  /// extent), `strength` scales the calibrated occlusion. Appends what ran
+  /// to `stages` / `ms`. False with the reason.
+  bool Update(const cao::PixelCamera& camera, const double right[3], const double up[3],
+    const std::vector<float>& depth, const std::vector<unsigned char>* skip, double radius, int samples,
+    int slices, std::vector<std::string>& stages, std::vector<double>& ms, std::string& error);
+
+  /// Per pixel the line AO (NaN: not a line's pixel).
+  const cao::LineFrame& Frame() const { return this->frame; }
+  std::int64_t NumberOfSegments() const { return this->lines.NumberOfSegments(); }
+  int NumberOfActors() const { return this->actors; }
+  double Radius() const { return this->radius; }
+  int Voxelizations() const { return this->voxelizations; }
+  /// The key SetMeshes was given (NaN before).
+  double MeshKey() const { return this->meshKey; }
+  void Clear();
+
+private:
+  bool UpdateScene(std::string& error);
+  std::vector<std::pair<vtkActor*, vtkPolyData*>> pieces;
+  std::vector<double> frameKey, sceneKey, gridKey, aoKey;
+  int actors = 0;
+  bool tubes = false;     ///< some actor renders its lines as tubes
+  double widest = 1.0;    ///< the widest drawn line, in pixels
+  cao::LineSegments lines;
+  cao::CapsuleBVH nearest; ///< the segments, for the pixels' nearest axis
+  std::array<double, 6> bounds{ { 1, -1, 1, -1, 1, -1 } };
+  double length = 0.0, diagonal = 0.0, radius = 0.0;
+  std::vector<std::vector<double>> meshPoints;
+  std::vector<std::vector<std::int64_t>> meshTriangles;
+  double meshKey = std::numeric_limits<double>::quiet_NaN();
+  cao::BitGrid grid, solids;
+  cao::LineFrame frame;
+  int voxelizations = 0;
+};
+}
+
+#endif
