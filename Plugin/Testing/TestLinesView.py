@@ -3,10 +3,11 @@ streamlines of carotid.vtk (ParaView's Stream Tracer, drawn as lines) beside
 an opaque slice of the same field, as a user builds the scene:
 - the lines get line AO in the same frame as the slice gets its surface AO
   (the report's "lines" and the surfaces' combined pixels);
-- against Line AO off (the control) the picture only darkens, on the
-  lines' pixels, and the slice's pixels away from the lines stay as they
-  were;
+- against Line AO off (the control) the picture only darkens (the lines,
+  and the slice where the lines occlude it), FXAA off for the comparison;
 - a colour change runs only the combine; Line AO Samples reaches the pass;
+- after a dolly into the lines (a near plane close to the camera) their
+  pixels are still found;
 - Render Lines As Tubes: the lines' pixels are still found and darkened
   (more of them: the tubes are wider);
 - Surface AO Method None draws the Render View's picture (no stage runs).
@@ -119,6 +120,19 @@ check(pas.GetLineSamples() == 16 and "line_ao" in pas.GetLastFrameStages(),
 lines.AmbientColor = lines.DiffuseColor = [0.6, 0.9, 0.95]
 Render(view)
 check(pas.GetLastFrameStages() == "combine", "a colour change runs only the combine (%s)" % pas.GetLastFrameStages())
+# A dolly into the streamlines: ParaView's near plane comes close (the
+# camera inside the data), where its offset of the lines' depth toward the
+# camera is many pixels in the world; the lines' pixels are still found.
+before = field(pas.GetLastFrameReport(), "pixels")
+camera = view.GetActiveCamera()
+camera.Dolly(8.0)
+Render(view)
+near = camera.GetClippingRange()[0]
+closeUp = field(pas.GetLastFrameReport(), "pixels")
+check(closeUp > before and field(pas.GetLastFrameReport(), "combined_pixels") == closeUp,
+      "after a dolly into the lines (near plane %.3f) %d line pixels are found (%d before)" % (near, closeUp, before))
+camera.Dolly(1.0 / 8.0)
+Render(view)
 lines.RenderLinesAsTubes = 1
 lines.LineWidth = 5.0
 Render(view)

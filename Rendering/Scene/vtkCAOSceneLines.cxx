@@ -42,8 +42,13 @@ void SceneLines::Clear()
 
 void SceneLines::Collect(const std::vector<std::pair<vtkActor*, vtkPolyData*>>& linePieces)
 {
+  // The geometry (what the segments depend on) and, apart, how each actor
+  // draws its lines (what the pixels and the grid depend on).
   this->pieces = linePieces;
   this->frameKey.clear();
+  this->drawKey.clear();
+  this->drawings.clear();
+  this->pieceDrawing.clear();
   this->tubes = false;
   this->widest = 1.0;
   vtkActor* last = nullptr;
@@ -51,13 +56,25 @@ void SceneLines::Collect(const std::vector<std::pair<vtkActor*, vtkPolyData*>>& 
   for (const auto& piece : this->pieces)
   {
     vtkActor* actor = piece.first;
-    this->actors += actor != last;
+    if (actor != last)
+    {
+      ++this->actors;
+      cao::LineDrawing drawing;
+      drawing.tubes = actor->GetProperty()->GetRenderLinesAsTubes();
+      // The drawn half width, and a pixel of raster slack (a pixel centre
+      // of a w-pixel line lies within w/2 + 1/sqrt(2) of its axis, in the
+      // image plane; LineFrameFromDepth measures across the pixel's ray).
+      drawing.halfWidthPixels = 0.5 * DrawnWidth(actor);
+      drawing.reachPixels = std::min(cao::MaximumReach, drawing.halfWidthPixels + 1.0);
+      this->drawings.push_back(drawing);
+      this->tubes = this->tubes || drawing.tubes;
+      this->widest = std::max(this->widest, DrawnWidth(actor));
+      this->drawKey.insert(this->drawKey.end(), { drawing.tubes ? 1.0 : 0.0, drawing.reachPixels });
+    }
     last = actor;
-    const bool asTubes = actor->GetProperty()->GetRenderLinesAsTubes();
-    this->tubes = this->tubes || asTubes;
-    this->widest = std::max(this->widest, DrawnWidth(actor));
+    this->pieceDrawing.push_back(static_cast<std::int32_t>(this->drawings.size() - 1));
     this->frameKey.insert(this->frameKey.end(), { Address(actor), Address(piece.second),
-      static_cast<double>(piece.second->GetMTime()), asTubes ? 1.0 : 0.0, DrawnWidth(actor) });
+      static_cast<double>(piece.second->GetMTime()) });
     vtkMatrix4x4* m = actor->GetMatrix();
     for (int i = 0; i < 16; ++i)
       this->frameKey.push_back(m->GetElement(i / 4, i % 4));
@@ -65,7 +82,7 @@ void SceneLines::Collect(const std::vector<std::pair<vtkActor*, vtkPolyData*>>& 
 }
 
 void SceneLines::SetMeshes(const std::vector<std::vector<double>>& points,
-  const std::vector<std::vector<std::int64_t>>& triangles, double key)
+  const std::vector<std::vector<std::int64_t>>& triangles, const std::vector<double>& key)
 {
   this->meshPoints = points;
   this->meshTriangles = triangles;
@@ -77,9 +94,11 @@ bool SceneLines::UpdateScene(std::string& error)
   // The segments in world coordinates (each actor's matrix applied).
   this->sceneKey.clear();
   this->lines = cao::LineSegments();
+  this->segmentDrawing.clear();
   this->length = 0.0;
-  for (const auto& piece : this->pieces)
+  for (std::size_t k = 0; k < this->pieces.size(); ++k)
   {
+    const auto& piece = this->pieces[k];
     vtkPolyData* data = piece.second;
     vtkMatrix4x4* m = piece.first->GetMatrix();
     const std::int64_t base = static_cast<std::int64_t>(this->lines.points.size() / 3);
@@ -91,6 +110,7 @@ bool SceneLines::UpdateScene(std::string& error)
       for (int d = 0; d < 3; ++d)
         this->lines.points.push_back(out[d] / out[3]);
     }
+    const std::int32_t drawing = this->pieceDrawing[k];
     vtkCellArray* cells = data->GetLines();
     vtkIdType n = 0;
     const vtkIdType* ids = nullptr;
@@ -99,6 +119,7 @@ bool SceneLines::UpdateScene(std::string& error)
       {
         this->lines.segments.push_back(base + ids[k]);
         this->lines.segments.push_back(base + ids[k + 1]);
+        this->segmentDrawing.push_back(drawing);
       }
   }
   error = this->lines.Validate();
@@ -141,17 +162,51 @@ bool SceneLines::UpdateScene(std::string& error)
   return true;
 }
 
+bool SceneLines::EnsureScene(bool& built, std::string& error)
+{
+  built = false;
+  if (this->frameKey == this->sceneKey && !this->sceneKey.empty())
+    return true;
+  if (this->frameKey == this->failedKey && !this->failedKey.empty())
+  {
+    error = this->failedError + " (said once; change the lines to try again)";
+    return false;
+  }
+  this->gridKey.clear();
+  this->aoKey.clear();
+  this->frame = cao::LineFrame();
+  if (!this->UpdateScene(error))
+  {
+    this->failedKey = this->frameKey;
+    this->failedError = error;
+    return false;
+  }
+  this->failedKey.clear();
+  built = true;
+  return true;
+}
+
+bool SceneLines::VoxelizeInto(cao::BitGrid& grid, std::string& error)
+{
+  bool built = false;
+  cao::BitGrid mine = grid; // the same plan; VoxelizeLines replaces its bits
+  if (!this->EnsureScene(built, error) || !cao::VoxelizeLines(this->lines, 0.0, mine, error))
+    return false;
+  for (std::size_t w = 0; w < grid.bits.size(); ++w)
+    grid.bits[w] |= mine.bits[w];
+  return true;
+}
+
 bool SceneLines::Update(const cao::PixelCamera& camera, const double right[3], const double up[3],
   const std::vector<float>& depth, const std::vector<unsigned char>* skip, double aoRadius, int samples,
   int slices, std::vector<std::string>& stages, std::vector<double>& ms, std::string& error)
 {
   auto start = Clock::now();
-  if (this->frameKey != this->sceneKey)
+  bool built = false;
+  if (!this->EnsureScene(built, error))
+    return false;
+  if (built)
   {
-    this->gridKey.clear();
-    this->aoKey.clear();
-    if (!this->UpdateScene(error))
-      return false;
     stages.push_back("lines");
     ms.push_back(Since(start));
     start = Clock::now();
@@ -191,7 +246,10 @@ bool SceneLines::Update(const cao::PixelCamera& camera, const double right[3], c
     return false;
   // The grid: of the lines and meshes, the camera's orientation, the settings.
   std::vector<double> key = this->sceneKey;
-  key.insert(key.end(), { this->meshKey, this->radius, tubeRadius, static_cast<double>(slices) });
+  key.push_back(static_cast<double>(this->meshKey.size()));
+  key.insert(key.end(), this->meshKey.begin(), this->meshKey.end());
+  key.insert(key.end(), { this->radius, tubeRadius, static_cast<double>(slices) });
+  key.insert(key.end(), this->drawKey.begin(), this->drawKey.end());
   for (int d = 0; d < 3; ++d)
     key.insert(key.end(), { std::round(right[d] * 1e9) * 1e-9, std::round(up[d] * 1e9) * 1e-9 });
   const bool meshes = !this->meshPoints.empty();
@@ -243,9 +301,9 @@ bool SceneLines::Update(const cao::PixelCamera& camera, const double right[3], c
   if (view == this->aoKey)
     return true;
   this->aoKey.clear();
-  // The drawn half width plus a pixel and a half of raster slack.
-  if (!cao::LineFrameFromDepth(this->nearest, camera, depth, 0.5 * this->widest + 1.5, this->tubes, skip,
-        this->frame, error))
+  // Each actor's drawn half width and raster slack, and tube mode.
+  if (!cao::LineFrameFromDepth(this->nearest, camera, depth, 1.0, false, skip, this->frame, error,
+        &this->drawings, &this->segmentDrawing))
     return false;
   stages.push_back("line_gbuffer");
   ms.push_back(Since(start));

@@ -7,13 +7,15 @@
  * and no polygons or strips (streamlines, polylines), drawn as lines or as
  * tubes (vtkProperty's RenderLinesAsTubes), in world coordinates. Their
  * G-buffer comes from the drawn depth (cao::LineFrameFromDepth: a drawn
- * pixel within the drawn half width of a segment is that line's), so what
- * gets AO is exactly what the renderer drew. The lines occlude as tubes of
- * their drawn width (the widest actor's, at the lines' centre). The eye grid of the lines
+ * pixel within its actor's drawn half width plus a pixel of a segment is
+ * that line's), so what
+ * gets AO is exactly what the renderer drew (each actor's lines with its
+ * own width and tube mode). The lines occlude as tubes of their drawn
+ * width (the widest actor's, at the lines' centre). The eye grid of the lines
  * (and of the meshes beside them, whose voxels occlude the lines as
  * solids) is voxelized when the lines, the meshes, the settings or the
- * camera's orientation or zoom change; the AO when the camera, the
- * viewport, the drawn depth or the settings change.
+ * camera's orientation or zoom or the viewport's size change; the AO when
+ * the camera, the viewport, the drawn depth or the settings change.
  */
 #ifndef vtkCAOSceneLines_h
 #define vtkCAOSceneLines_h
@@ -42,31 +44,46 @@ public:
   bool Empty() const { return this->pieces.empty(); }
   /// The meshes beside the lines (world coordinates), occluding them.
   void SetMeshes(const std::vector<std::vector<double>>& points,
-    const std::vector<std::vector<std::int64_t>>& triangles, double key);
+    const std::vector<std::vector<std::int64_t>>& triangles, const std::vector<double>& key);
 
   /// The line AO of `camera`'s drawn pixels (`depth`: window depth, row 0
   /// at the bottom) except those in `skip`; `right` and `up` the camera's
   /// axes. `radius` is the AO radius (0: the default of the lines'
-  /// extent), `strength` scales the calibrated occlusion. Appends what ran
-  /// to `stages` / `ms`. False with the reason.
+  /// extent). Appends what ran
+  /// to `stages` / `ms`. False with the reason (a scene that failed is not
+  /// built again until its lines change).
   bool Update(const cao::PixelCamera& camera, const double right[3], const double up[3],
     const std::vector<float>& depth, const std::vector<unsigned char>* skip, double radius, int samples,
     int slices, std::vector<std::string>& stages, std::vector<double>& ms, std::string& error);
+
+  /// What the lines' segments depend on (this frame's pieces).
+  const std::vector<double>& Key() const { return this->frameKey; }
+  /// ORs the lines into `grid` (the surfaces' world or eye grid, planned),
+  /// as thin as their supercover: so that they occlude the surfaces.
+  bool VoxelizeInto(cao::BitGrid& grid, std::string& error);
 
   /// Per pixel the line AO (NaN: not a line's pixel).
   const cao::LineFrame& Frame() const { return this->frame; }
   std::int64_t NumberOfSegments() const { return this->lines.NumberOfSegments(); }
   int NumberOfActors() const { return this->actors; }
   double Radius() const { return this->radius; }
+  /// The AO radius in voxels of the lines' grid (0 before a grid).
+  double RadiusVoxels() const { return this->grid.voxel > 0.0 ? this->radius / this->grid.voxel : 0.0; }
   int Voxelizations() const { return this->voxelizations; }
-  /// The key SetMeshes was given (NaN before).
-  double MeshKey() const { return this->meshKey; }
+  /// The key SetMeshes was given (empty before).
+  const std::vector<double>& MeshKey() const { return this->meshKey; }
   void Clear();
 
 private:
   bool UpdateScene(std::string& error);
+  /// UpdateScene when the pieces changed; `built`: whether it ran.
+  bool EnsureScene(bool& built, std::string& error);
   std::vector<std::pair<vtkActor*, vtkPolyData*>> pieces;
-  std::vector<double> frameKey, sceneKey, gridKey, aoKey;
+  std::vector<double> frameKey, sceneKey, gridKey, aoKey, drawKey, failedKey;
+  std::string failedError;
+  std::vector<cao::LineDrawing> drawings;     ///< per actor: reach and tube mode
+  std::vector<std::int32_t> pieceDrawing;     ///< each piece's actor
+  std::vector<std::int32_t> segmentDrawing;   ///< each segment's actor
   int actors = 0;
   bool tubes = false;     ///< some actor renders its lines as tubes
   double widest = 1.0;    ///< the widest drawn line, in pixels
@@ -76,7 +93,7 @@ private:
   double length = 0.0, diagonal = 0.0, radius = 0.0;
   std::vector<std::vector<double>> meshPoints;
   std::vector<std::vector<std::int64_t>> meshTriangles;
-  double meshKey = std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> meshKey;
   cao::BitGrid grid, solids;
   cao::LineFrame frame;
   int voxelizations = 0;

@@ -323,7 +323,10 @@ struct vtkContextualAOPass::Internals
   // The lines (LineAO): their pieces this frame, their AO, the pixels it darkened.
   vtkCAO::SceneLines lines;
   bool linesOn = false;   ///< this frame has lines that get line AO
+  bool linesOccludeSurfaces = false; ///< the surfaces' grid holds the lines' voxels
   std::string linesNote;  ///< why lines in view get none
+  std::string saidLines;  ///< the line failure last logged
+  std::vector<double> meshGeometry; ///< the surfaces' pieces and poses (what the lines' solids depend on)
   std::int64_t lineCombined = 0;
   bool rebuild = false;   ///< a process's scene changed: bounds, radius and grid again
   int frameProcesses = 1; ///< the last frame's (the report's)
@@ -563,7 +566,15 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
     o << ", \"lines\": {\"actors\": " << p.lines.NumberOfActors() << ", \"segments\": "
       << p.lines.NumberOfSegments() << ", \"radius\": " << p.lines.Radius() << ", \"pixels\": "
       << p.lines.Frame().covered << ", \"combined_pixels\": " << p.lineCombined
-      << ", \"voxelizations\": " << p.lines.Voxelizations() << "}";
+      << ", \"voxelizations\": " << p.lines.Voxelizations() << ", \"radius_voxels\": " << p.lines.RadiusVoxels()
+      << (p.lines.RadiusVoxels() < 2.0
+             ? ", \"radius_note\": \"the AO radius spans under 2 voxels of the lines' grid: the half balls hold "
+               "too few to see the neighbours (raise the Radius or LineSlices)\""
+             : "")
+      << ", \"occlude_surfaces\": "
+      << (this->Method == VCT && this->Grid != FRUSTUM_GRID && p.linesOccludeSurfaces && !p.pieces.empty() ? "true"
+                                                                                                            : "false")
+      << "}";
   if (!p.linesNote.empty())
     o << ", \"lines_note\": \"" << p.linesNote << "\"";
   if (!p.error.empty())
@@ -595,10 +606,12 @@ void vtkContextualAOPass::Render(const vtkRenderState* s)
 void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkRenderState* s)
 {
   vtkRenderer* ren = s->GetRenderer();
+  this->linesOn = false; // (Collect says whether this frame has lines)
+  this->linesNote.clear();
   if (self->Method == NONE || !ren || ren->GetSelector())
   {
-    if (self->Method == NONE) // the report describes this frame: nothing on the GPU, no lines
-      this->gpuFrame = this->linesOn = false;
+    if (self->Method == NONE) // the report describes this frame: nothing on the GPU
+      this->gpuFrame = false;
     return; // a selection pass draws ids, not colours: no AO there
   }
   int width = 0, height = 0, x0 = 0, y0 = 0;
@@ -622,6 +635,12 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
   this->frameProcesses = this->Distributed() ? this->controller->GetNumberOfProcesses() : 1;
   if (this->frameProcesses > 1)
     this->Exchange(self); // every process, every frame, before anything that may differ between them
+  if (!std::isfinite(self->Radius) || !std::isfinite(self->Strength))
+  {
+    this->linesOn = false;
+    this->Fail(self, "Radius (0 or more, world units) and Strength (0..1) must be numbers");
+    return;
+  }
   if (this->pieces.empty())
   {
     this->frame = cao::SurfaceFrame();
@@ -641,11 +660,6 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
   {
     this->Fail(self, "Slices must be 32..1024 and a multiple of 32 (got " +
         std::to_string(self->Slices) + ")");
-    return;
-  }
-  if (!std::isfinite(self->Radius) || !std::isfinite(self->Strength))
-  {
-    this->Fail(self, "Radius (0 or more, world units) and Strength (0..1) must be numbers");
     return;
   }
   // The AO on the GPU with the depth G-buffer keeps the frame there (no
@@ -712,6 +726,7 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
   actors->InitTraversal(it);
   double position = 0.0; // an actor's place among the renderer's actors
   std::vector<std::pair<vtkActor*, vtkPolyData*>> linePieces;
+  std::vector<double> geometry; // the surfaces' pieces and poses
   while (vtkActor* actor = actors->GetNextActor(it))
   {
     position += 1.0;
@@ -727,6 +742,7 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
     this->actorSignature = std::fmod(this->actorSignature * 31.0 + position, 1000000007.0); // which actors, by place
     for (vtkPolyData* data : Pieces(actor->GetMapper()))
     {
+      const std::size_t from = key.size();
       this->pieces.emplace_back(actor, data);
       this->pieceActor.push_back(index);
       key.push_back(Address(actor));
@@ -735,13 +751,22 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
       vtkMatrix4x4* m = actor->GetMatrix();
       for (int i = 0; i < 16; ++i)
         key.push_back(m->GetElement(i / 4, i % 4));
+      geometry.insert(geometry.end(), key.begin() + static_cast<std::ptrdiff_t>(from), key.end());
     }
   }
+  this->meshGeometry = geometry;
   this->lines.Collect(linePieces);
   this->linesOn = !linePieces.empty() && !this->Distributed();
   this->linesNote = !linePieces.empty() && this->Distributed()
     ? "lines get no AO in parallel rendering yet (several processes)"
     : std::string();
+  // The lines occlude the surfaces through the world or eye grid: the grid
+  // depends on them (UpdateGrid; not on the GPU, not across processes).
+  if (vct && this->linesOn && self->Grid != FRUSTUM_GRID)
+  {
+    key.push_back(static_cast<double>(this->lines.Key().size()));
+    key.insert(key.end(), this->lines.Key().begin(), this->lines.Key().end());
+  }
   if (vct && self->Grid == EYE_GRID) // the camera's orientation (a dolly or pan moves its last bits only)
   {
     vtkMatrix4x4* view = ren->GetActiveCamera()->GetViewTransformMatrix();
@@ -1051,6 +1076,16 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
     ok = cao::PlanGrid(b, 1.05 * this->radius, self->Slices, this->grid, error);
   ok = ok && (distributed || (this->onGPU ? this->gpu.Voxelize(this->grid, views, error)
                                            : cao::FillGrid(views, this->grid, error)));
+  // The lines' voxels occlude the surfaces (the CPU's grid; the GPU's is
+  // voxelized there, and a distributed one combined across processes).
+  this->linesOccludeSurfaces = ok && this->linesOn && !distributed && !this->onGPU;
+  if (this->linesOccludeSurfaces)
+  {
+    // Lines that cannot be voxelized leave the surfaces' grid as it is
+    // (UpdateLines says why in the report).
+    std::string why;
+    this->linesOccludeSurfaces = this->lines.VoxelizeInto(this->grid, why);
+  }
   if (!ok)
   {
     this->failedSceneKey = this->frameSceneKey;
@@ -1293,8 +1328,18 @@ bool vtkContextualAOPass::Internals::UpdateLines(vtkContextualAOPass* self, vtkR
   // left out (only when the lines, meshes, camera, depth or settings changed).
   if (!this->linesOn)
     return true;
+  // A failure leaves the lines as drawn (the surfaces keep their AO): said
+  // in the report's "lines_note" every frame, and once in the log.
+  auto skipLines = [&](const std::string& why) {
+    this->linesOn = false;
+    this->linesNote = "Line AO: " + why;
+    if (this->linesNote != this->saidLines)
+      vtkWarningWithObjectMacro(self, << this->linesNote);
+    this->saidLines = this->linesNote;
+    return true;
+  };
   if (!this->depthOk)
-    return this->Fail(self, "Line AO reads the drawn depth: " + this->depthError);
+    return skipLines("it reads the drawn depth: " + this->depthError);
   int width = 0, height = 0, x0 = 0, y0 = 0;
   ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
   vtkMatrix4x4* toNDC = nullptr;
@@ -1313,8 +1358,8 @@ bool vtkContextualAOPass::Internals::UpdateLines(vtkContextualAOPass* self, vtkR
       skip[i] = std::isfinite(this->frame.ao[i]) && this->DrawnIsTraced(i);
   }
   // The meshes beside the lines occlude them: gathered again when their grid was.
-  const double meshKey = surfaces ? static_cast<double>(this->serial) : -1.0;
-  if (!(this->lines.MeshKey() == meshKey))
+  const std::vector<double> meshKey = surfaces ? this->meshGeometry : std::vector<double>{ -1.0 };
+  if (this->lines.MeshKey() != meshKey)
   {
     std::vector<std::vector<double>> points;
     std::vector<std::vector<std::int64_t>> triangles;
@@ -1334,7 +1379,8 @@ bool vtkContextualAOPass::Internals::UpdateLines(vtkContextualAOPass* self, vtkR
   std::string error;
   if (!this->lines.Update(camera, right, up, this->depth, skip.empty() ? nullptr : &skip, self->Radius,
         self->LineSamples, self->LineSlices, this->stages, this->ms, error))
-    return this->Fail(self, "Line AO: " + error);
+    return skipLines(error);
+  this->saidLines.clear();
   return true;
 }
 

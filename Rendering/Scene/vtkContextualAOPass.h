@@ -274,9 +274,11 @@ public:
   /// for the lines among the opaque actors: polydata pieces with lines and
   /// no polygons (streamlines, polylines), drawn as lines or as tubes
   /// (vtkProperty's RenderLinesAsTubes), in the same frame as the surfaces
-  /// and occluded by them (default on; off: lines keep their colour). The
-  /// lines' pixels are the drawn ones within the drawn half width of a
-  /// segment (cao::LineFrameFromDepth); their AO scales their whole colour
+  /// and occluded by them (default on; off: lines keep their colour); with
+  /// VCT on the CPU's world or eye grid the lines' voxels (their
+  /// supercover) occlude the surfaces too. The
+  /// lines' pixels are the drawn ones within their actor's drawn half width
+  /// (plus a pixel) of a segment (cao::LineFrameFromDepth); their AO scales their whole colour
   /// (1 - Strength (1 - AO)), the Radius as the surfaces' (0: the default
   /// of the lines' extent). The report's "lines" says what ran.
   vtkSetMacro(LineAO, bool);

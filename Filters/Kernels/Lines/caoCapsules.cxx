@@ -412,7 +412,8 @@ bool CastLinePrimary(const CapsuleBVH& tubes, const PixelCamera& camera, LineFra
 
 bool LineFrameFromDepth(const CapsuleBVH& lines, const PixelCamera& camera,
   const std::vector<float>& depth, double reachPixels, bool tubes,
-  const std::vector<unsigned char>* skip, LineFrame& frame, std::string& error)
+  const std::vector<unsigned char>* skip, LineFrame& frame, std::string& error,
+  const std::vector<LineDrawing>* drawings, const std::vector<std::int32_t>* segmentDrawing)
 {
   error = CheckPixelCamera(camera);
   if (!error.empty())
@@ -424,6 +425,21 @@ bool LineFrameFromDepth(const CapsuleBVH& lines, const PixelCamera& camera,
     error = "the depth buffer (or the pixels to skip) does not match the image size";
     return false;
   }
+  if (drawings && (!segmentDrawing || segmentDrawing->size() != static_cast<std::size_t>(lines.NumberOfSegments())))
+  {
+    error = "the segments' drawings do not match the segments";
+    return false;
+  }
+  if (drawings)
+    for (std::int32_t d : *segmentDrawing)
+      if (d < 0 || static_cast<std::size_t>(d) >= drawings->size())
+      {
+        error = "a segment's drawing is out of range";
+        return false;
+      }
+  if (drawings)
+    for (const LineDrawing& d : *drawings)
+      reachPixels = std::max(reachPixels, d.reachPixels);
   if (!(reachPixels > 0.0 && reachPixels <= MaximumReach))
   {
     char text[160];
@@ -441,37 +457,91 @@ bool LineFrameFromDepth(const CapsuleBVH& lines, const PixelCamera& camera,
     double nearPoint[3], rayDirection[3], length = 0.0;
     if (!PixelRay(camera, i, j, nearPoint, rayDirection, length))
       return;
-    // The drawn point, and the pixel's footprint there (its neighbours'
-    // points at the same depth).
+    // The drawn point, the pixel's footprint there (its neighbours' points
+    // at the same depth), and the stretch of the ray within the depth slack.
     const double x = (i + 0.5) / w * 2.0 - 1.0, y = (j + 0.5) / h * 2.0 - 1.0, z = 2.0 * d - 1.0;
-    double p[3], px[3], py[3];
+    double p[3], px[3], py[3], pLo[3], pHi[3];
     if (!NDCToWorld(camera, x, y, z, p) || !NDCToWorld(camera, x + 2.0 / w, y, z, px) ||
-      !NDCToWorld(camera, x, y + 2.0 / h, z, py))
+      !NDCToWorld(camera, x, y + 2.0 / h, z, py) ||
+      !NDCToWorld(camera, x, y, 2.0 * std::max(0.0, d - LineDepthSlack) - 1.0, pLo) ||
+      !NDCToWorld(camera, x, y, 2.0 * std::min(1.0, d + LineDepthSlack) - 1.0, pHi))
       return;
-    const Vec3 position = LoadVec3(p);
+    const Vec3 drawn = LoadVec3(p), o = LoadVec3(nearPoint), v = LoadVec3(rayDirection);
     const double footprint =
-      std::max(glm::length(LoadVec3(px) - position), glm::length(LoadVec3(py) - position));
-    CapsuleHit hit;
-    if (!lines.Nearest(p, reachPixels * footprint, hit))
+      std::max(glm::length(LoadVec3(px) - drawn), glm::length(LoadVec3(py) - drawn));
+    const double tLo = glm::dot(LoadVec3(pLo) - o, v), tHi = glm::dot(LoadVec3(pHi) - o, v);
+    const double slackReach = reachPixels * footprint * 2.0; // the footprint grows along the stretch
+    const Vec3 centre = o + (0.5 * (tLo + tHi)) * v;
+    double centreArray[3];
+    StoreVec3(centre, centreArray);
+    // The segment nearest the ray within reach, at the drawn depth.
+    std::int64_t best = -1;
+    double bestDistance = 0.0, bestT = 0.0, bestS = 0.0;
+    lines.Near(centreArray, 0.5 * (tHi - tLo) + slackReach, [&](std::int64_t segment, const double* a, const double* b) {
+      const Vec3 va = LoadVec3(a), u = LoadVec3(b) - va;
+      const double C = glm::dot(u, u), B = glm::dot(v, u);
+      const Vec3 w0 = o - va;
+      double s = 0.0;
+      const double denominator = C - B * B; // |v| = 1
+      if (denominator > 1e-12 * C)
+        s = (C > 0.0) ? (glm::dot(u, w0) - B * glm::dot(v, w0)) / denominator : 0.0;
+      else if (C > 0.0) // (nearly) along the ray: the segment's point at the drawn depth
+        s = glm::dot(drawn - va, u) / C;
+      s = std::min(1.0, std::max(0.0, s));
+      const Vec3 q = va + s * u;
+      const double t = glm::dot(q - o, v);
+      const double distance = glm::length(o + t * v - q);
+      const double reach = drawings
+        ? (*drawings)[static_cast<std::size_t>((*segmentDrawing)[static_cast<std::size_t>(segment)])].reachPixels
+        : reachPixels;
+      if (!(t >= tLo - slackReach && t <= tHi + slackReach) || !(distance <= reach * footprint))
+        return;
+      if (best >= 0 && (distance > bestDistance || (distance == bestDistance && segment > best)))
+        return;
+      best = segment;
+      bestDistance = distance;
+      bestT = t;
+      bestS = s;
+    });
+    if (best < 0)
       return;
     double a[3], b[3];
-    lines.Segment(hit.segment, a, b);
+    lines.Segment(best, a, b);
     const Vec3 va = LoadVec3(a), vb = LoadVec3(b);
-    const Vec3 axisPoint = va + hit.axis * (vb - va);
+    const Vec3 axisPoint = va + bestS * (vb - va);
     Vec3 tangent = vb - va;
     DivideByLength(tangent);
+    const LineDrawing* own =
+      drawings ? &(*drawings)[static_cast<std::size_t>((*segmentDrawing)[static_cast<std::size_t>(best)])] : nullptr;
+    const bool asTube = own ? own->tubes : tubes;
+    Vec3 position = drawn, normal(0.0);
+    if (own)
+    {
+      // Where the ray enters the tube of the drawn half width (a flat
+      // line, or a ray outside it: its point nearest the axis).
+      position = o + bestT * v;
+      const double radius = own->halfWidthPixels * footprint;
+      const double sine = glm::length(glm::cross(v, tangent));
+      if (asTube && radius > bestDistance)
+        position = o + (bestT - std::sqrt(radius * radius - bestDistance * bestDistance) / std::max(sine, 0.05)) * v;
+    }
     // A tube's point off its axis (by more than half a pixel) has its
     // surface's normal; a flat line's, or one on the axis, none (0).
-    Vec3 normal = position - axisPoint;
-    if (!tubes || !(glm::length(normal) > 0.5 * footprint) || !(DivideByLength(normal) > 0.0))
-      normal = Vec3(0.0);
-    frame.segment[index] = hit.segment;
-    frame.depth[index] = glm::length(position - LoadVec3(nearPoint));
+    if (asTube)
+    {
+      normal = position - (va + std::min(1.0, std::max(0.0, glm::dot(position - va, vb - va) /
+                                                              std::max(glm::dot(vb - va, vb - va), 1e-300))) *
+                                  (vb - va));
+      if (!(glm::length(normal) > 0.5 * footprint) || !(DivideByLength(normal) > 0.0))
+        normal = Vec3(0.0);
+    }
+    frame.segment[index] = best;
+    frame.depth[index] = glm::length(position - o);
     StoreVec3(position, &frame.position[3 * index]);
     StoreVec3(normal, &frame.normal[3 * index]);
     StoreVec3(tangent, &frame.tangent[3 * index]);
     StoreVec3(axisPoint, &frame.axis[3 * index]);
-    StoreVec3(LoadVec3(rayDirection), &frame.view[3 * index]);
+    StoreVec3(v, &frame.view[3 * index]);
   });
   frame.covered = std::count_if(frame.segment.begin(), frame.segment.end(),
     [](std::int64_t s) { return s >= 0; });

@@ -66,6 +66,21 @@ public:
   /// equal distances give the lowest segment index. False when none is
   /// that near.
   bool Nearest(const double point[3], double maxDistance, CapsuleHit& hit) const;
+  /// Calls visit(segment, a, b) (input index, end points) for every
+  /// segment whose axis may pass within `radius` of `point` (its box does;
+  /// the caller measures).
+  template <class Visit>
+  void Near(const double point[3], double radius, Visit visit) const
+  {
+    double reach2 = (radius + this->radius) * (radius + this->radius);
+    this->tree.TraverseNear(point, reach2, [&](std::int64_t first, std::int64_t count, double&) {
+      for (std::int64_t i = first; i < first + count; ++i)
+      {
+        const Capsule& c = this->capsules[static_cast<std::size_t>(i)];
+        visit(c.segment, c.a, c.b);
+      }
+    });
+  }
   double Radius() const { return this->radius; }
   std::int64_t NumberOfSegments() const;
   /// Input segment s's end points (a, b); false when s is out of range.
@@ -114,19 +129,39 @@ bool CastLinePrimary(const CapsuleBVH& tubes, const PixelCamera& camera, LineFra
 
 /// The line G-buffer of lines a renderer drew, from its depth buffer
 /// (window depth 0..1 per pixel, row 0 at the bottom; 1: background): a
-/// drawn pixel is a line's when the segment nearest its point in the
-/// world lies within `reachPixels` of the pixel's footprint there (the
-/// drawn half width plus the raster's slack), so that each line's own
-/// pixels get its segment, axis point and tangent. Pixels where `skip` is
+/// drawn pixel is a line's when a segment passes within `reachPixels`
+/// pixel footprints of the pixel's ray (the drawn half width plus the
+/// raster's slack), at a depth within LineDepthSlack of the drawn one (the
+/// nearest such segment to the ray), so that each line's own pixels get
+/// its segment, axis point and tangent, whatever offset the renderer gave
+/// the lines' depth. The surface point: with `drawings`, where the ray
+/// enters the tube of the drawn half width (a flat line: the ray's point
+/// nearest the axis); without, the drawn point. Pixels where `skip` is
 /// non-zero (another kind's, such as surfaces) are left out. With `tubes`
 /// (lines drawn as tubes), a pixel off the axis has the tube's outward
 /// normal there; otherwise (lines drawn flat, or a point on the axis) the
 /// normal is 0, and LineAOFrame uses the camera-facing half ball there.
-/// False with the reason on a bad camera, a depth or skip of another
-/// size, or a reach not in (0, MaximumReach].
+/// With `drawings` (one per way the lines are drawn, such as per actor)
+/// and `segmentDrawing` (each segment's index into them), each segment
+/// has its own reach and tube mode (`reachPixels` and `tubes` then only
+/// bound the search). False with the reason on a bad camera, a depth or
+/// skip of another size, drawings that do not match, or a reach not in
+/// (0, MaximumReach].
+struct LineDrawing
+{
+  double reachPixels = 1.5;     ///< how far from its axis a drawn pixel may lie
+  double halfWidthPixels = 0.5; ///< the drawn half width (a tube's radius)
+  bool tubes = false;
+};
+/// How far (window depth, 0..1) the drawn depth of a line may lie from the
+/// line's own: renderers push lines toward the camera to draw them over
+/// coincident surfaces (VTK's coincident topology resolution; ParaView's
+/// is 2.6e-5 on llvmpipe).
+constexpr double LineDepthSlack = 2e-4;
 bool LineFrameFromDepth(const CapsuleBVH& lines, const PixelCamera& camera,
   const std::vector<float>& depth, double reachPixels, bool tubes,
-  const std::vector<unsigned char>* skip, LineFrame& frame, std::string& error);
+  const std::vector<unsigned char>* skip, LineFrame& frame, std::string& error,
+  const std::vector<LineDrawing>* drawings = nullptr, const std::vector<std::int32_t>* segmentDrawing = nullptr);
 /// LineFrameFromDepth's largest reach, in pixels.
 constexpr double MaximumReach = 256.0;
 

@@ -116,8 +116,9 @@ bool PlanLineGrid(const LineSegments& lines, const double right[3], const double
   const LineAOSettings& settings, BitGrid& grid, std::string& error,
   const std::array<double, 6>* also = nullptr);
 
-/// Voxelizes `lines` into `grid` (a world or eye grid; not a frustum grid)
-/// with OR, conservatively (the header says how). Segments longer than a
+/// Voxelizes `lines` into `grid` (a world or eye grid; not a frustum grid;
+/// its bits are replaced: OR a copy's into a grid that holds others),
+/// conservatively (the header says how). Segments longer than a
 /// few voxels are walked in pieces, so the work grows with the voxels a
 /// segment covers, not its bounding box's.
 /// Refused when its pieces' boxes would visit more than MaximumVoxelVisits

@@ -1158,7 +1158,8 @@ int TestContextualAOPass(int, char*[])
     const std::string withBoth = pass->GetLastFrameReport();
     Check(withBoth.find("\"error\"") == std::string::npos &&
         withBoth.find("skipped_volumes") != std::string::npos && pass->GetPixelAO(cx, cy) < 0.9,
-      "an outline and an unstructured volume are left out, said in the report, the slab keeps its AO: " +
+      "an outline and an unstructured volume are left out, said in the report, the slab keeps its AO (" +
+        std::to_string(pass->GetPixelAO(cx, cy)) + "): " +
         withBoth.substr(withBoth.find("\"combined_pixels\"")));
     renderer->RemoveAllViewProps();
     renderer->AddActor(slabActor);

@@ -13,6 +13,11 @@
 //     gets its surface AO in the same frame; control: the same line with
 //     the box hidden is open
 //   4 lines drawn as tubes: the same ordering; the background has no AO
+//   5 the lines occlude a floor under them (its surface AO); control:
+//     LineAO off leaves the floor open
+//   6 the depth G-buffer finds the same line pixels (within 10%)
+//   7 lines with a NaN point: no line AO, a note, the surfaces keep theirs,
+//     not retried every frame
 // Pixels are found by projecting the lines' points; each check reads the
 // drawn line pixel nearest the projection (GetPixelAO > -1).
 #include "vtkContextualAOPass.h"
@@ -229,6 +234,73 @@ int TestLinesInPass(int, char*[])
     Field(report, "pixels"));
   Check(tubeCentre.ao >= 0.0 && tubeAlone.ao > 0.95 && tubeCentre.ao < tubeAlone.ao - 0.15,
     "tubes: the bundle's centre is darker than the isolated tube");
+
+  // 5: the lines occlude a surface: a plane under the bundle (z = -0.3),
+  // read beside the bundle's projection; control: LineAO off.
+  lines->GetProperty()->SetRenderLinesAsTubes(false);
+  lines->GetProperty()->SetLineWidth(4.0);
+  vtkNew<vtkCubeSource> floor;
+  floor->SetBounds(-2, 2, -0.7, 0.7, -0.32, -0.3);
+  vtkNew<vtkPolyDataMapper> floorMapper;
+  floorMapper->SetInputConnection(floor->GetOutputPort());
+  vtkNew<vtkActor> floorActor;
+  floorActor->SetMapper(floorMapper);
+  renderer->AddActor(floorActor);
+  window->Render();
+  report = pass->GetLastFrameReport();
+  std::printf("report 5: %s\n", report.c_str());
+  auto floorAO = [&]() {
+    renderer->SetWorldPoint(0.5, 0.3, -0.3, 1.0);
+    renderer->WorldToDisplay();
+    double p[3];
+    renderer->GetDisplayPoint(p);
+    return pass->GetPixelAO(static_cast<int>(p[0]), static_cast<int>(p[1]));
+  };
+  const double shadowed = floorAO();
+  Check(report.find("\"occlude_surfaces\": true") != std::string::npos, "the report says the lines occlude surfaces");
+  pass->SetLineAO(false);
+  window->Render();
+  const double bare = floorAO();
+  std::printf("the floor beside the bundle: AO %.4f (LineAO off: %.4f)\n", shadowed, bare);
+  Check(bare > 0.99 && shadowed >= 0.0 && shadowed < bare - 0.02, "the lines occlude the floor under them");
+
+  // 6: the depth G-buffer: the lines' pixels as with the ray cast (they
+  // come from the drawn depth either way), give or take the floor's pixels
+  // within a line's reach; the floor still darkened.
+  pass->SetLineAO(true);
+  window->Render();
+  const double castPixels = Field(pass->GetLastFrameReport(), "pixels");
+  pass->SetGBuffer(vtkContextualAOPass::DEPTH_BUFFER);
+  window->Render();
+  report = pass->GetLastFrameReport();
+  const double depthPixels = Field(report, "pixels");
+  std::printf("depth G-buffer: %g line pixels (ray cast: %g), floor AO %.4f\n", depthPixels, castPixels, floorAO());
+  Check(castPixels > 1000 && std::fabs(depthPixels - castPixels) <= 0.1 * castPixels && floorAO() < bare - 0.02,
+    "the depth G-buffer finds the same line pixels, within 10%");
+  pass->SetGBuffer(vtkContextualAOPass::RAY_CAST);
+
+  // 7: lines that cannot be built (a NaN point): the lines keep their
+  // colour, the report says why, the floor keeps its AO; no error.
+  vtkSmartPointer<vtkPolyData> broken = Lines({ { 0.5, 0.5 } });
+  broken->GetPoints()->SetPoint(3, 0.0, std::nan(""), 0.0);
+  vtkNew<vtkPolyDataMapper> brokenMapper;
+  brokenMapper->SetInputData(broken);
+  vtkNew<vtkActor> brokenActor;
+  brokenActor->SetMapper(brokenMapper);
+  renderer->AddActor(brokenActor);
+  window->Render();
+  report = pass->GetLastFrameReport();
+  std::printf("report 7: %s\n", report.c_str());
+  Check(report.find("\"lines_note\": \"Line AO:") != std::string::npos && report.find("\"error\"") == std::string::npos &&
+      std::atof(report.c_str() + report.find("\"combined_pixels\": ") + 19) > 1000 &&
+      pass->GetPixelAO(centre.x, centre.y) != centre.ao,
+    "lines with a NaN point: no line AO, said in the report, the surfaces keep theirs");
+  window->Render();
+  Check(pass->GetLastFrameStages().find("lines") == std::string::npos,
+    "a failed line scene is not built again every frame (" + pass->GetLastFrameStages() + ")");
+  renderer->RemoveActor(brokenActor);
+  window->Render();
+  Check(Field(pass->GetLastFrameReport(), "segments") == 160, "removed, the lines get their AO again");
   std::printf("%d failure(s)\n", failures);
   return failures ? 1 : 0;
 }
