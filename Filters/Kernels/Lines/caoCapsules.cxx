@@ -350,9 +350,11 @@ bool CapsuleBVH::Segment(std::int64_t s, double a[3], double b[3]) const
 
 namespace
 {
-/// `frame` sized to the camera's pixels, all background, assigned in place
-/// (a frame made again keeps its memory: caoSurfaceReference.cxx's
-/// ResetFrame says why).
+/// `frame` sized to the camera's pixels, all background, in place (a frame
+/// made again keeps its memory: caoSurfaceReference.cxx's ResetFrame says
+/// why). The per-pixel vectors are zeroed only when their size changes:
+/// they mean something only where segment >= 0, and at 1920 x 1080 zeroing
+/// them would write 250 MB per frame.
 void ResetLineFrame(const PixelCamera& camera, LineFrame& frame)
 {
   const std::size_t pixels = static_cast<std::size_t>(camera.width) * camera.height;
@@ -360,11 +362,9 @@ void ResetLineFrame(const PixelCamera& camera, LineFrame& frame)
   frame.width = camera.width;
   frame.height = camera.height;
   frame.segment.assign(pixels, -1);
-  frame.position.assign(3 * pixels, 0.0);
-  frame.normal.assign(3 * pixels, 0.0);
-  frame.tangent.assign(3 * pixels, 0.0);
-  frame.axis.assign(3 * pixels, 0.0);
-  frame.view.assign(3 * pixels, 0.0);
+  for (std::vector<double>* v : { &frame.position, &frame.normal, &frame.tangent, &frame.axis, &frame.view })
+    if (v->size() != 3 * pixels)
+      v->assign(3 * pixels, 0.0);
   frame.depth.assign(pixels, Infinity);
   frame.ao.assign(pixels, std::numeric_limits<double>::quiet_NaN());
 }
@@ -469,14 +469,26 @@ bool LineFrameFromDepth(const CapsuleBVH& lines, const PixelCamera& camera,
     const Vec3 drawn = LoadVec3(p), o = LoadVec3(nearPoint), v = LoadVec3(rayDirection);
     const double footprint =
       std::max(glm::length(LoadVec3(px) - drawn), glm::length(LoadVec3(py) - drawn));
-    const double tLo = glm::dot(LoadVec3(pLo) - o, v), tHi = glm::dot(LoadVec3(pHi) - o, v);
+    // (At most MaximumDepthSlack footprints each way: near the far plane a
+    // window depth step is a long way in the world.)
+    const double tDrawn = glm::dot(drawn - o, v), most = MaximumDepthSlack * footprint;
+    const double tLo = std::max(glm::dot(LoadVec3(pLo) - o, v), tDrawn - most);
+    const double tHi = std::min(glm::dot(LoadVec3(pHi) - o, v), tDrawn + most);
     const double slackReach = reachPixels * footprint * 2.0; // the footprint grows along the stretch
     const Vec3 centre = o + (0.5 * (tLo + tHi)) * v;
     double centreArray[3];
     StoreVec3(centre, centreArray);
-    // The segment nearest the ray within reach, at the drawn depth.
-    std::int64_t best = -1;
-    double bestDistance = 0.0, bestT = 0.0, bestS = 0.0;
+    // The segments within reach of the ray at the drawn depth; of those, the
+    // ones in front (within two reaches of the frontmost: the drawn line,
+    // not one hidden behind it), and of these the nearest the ray.
+    struct Candidate
+    {
+      std::int64_t segment;
+      double distance, t, s;
+    };
+    constexpr int MostCandidates = 32;
+    Candidate found[MostCandidates];
+    int candidates = 0;
     lines.Near(centreArray, 0.5 * (tHi - tLo) + slackReach, [&](std::int64_t segment, const double* a, const double* b) {
       const Vec3 va = LoadVec3(a), u = LoadVec3(b) - va;
       const double C = glm::dot(u, u), B = glm::dot(v, u);
@@ -496,13 +508,42 @@ bool LineFrameFromDepth(const CapsuleBVH& lines, const PixelCamera& camera,
         : reachPixels;
       if (!(t >= tLo - slackReach && t <= tHi + slackReach) || !(distance <= reach * footprint))
         return;
-      if (best >= 0 && (distance > bestDistance || (distance == bestDistance && segment > best)))
+      if (candidates < MostCandidates)
+      {
+        found[candidates++] = { segment, distance, t, s };
         return;
-      best = segment;
-      bestDistance = distance;
-      bestT = t;
-      bestS = s;
+      }
+      // Full: the one farthest back makes room.
+      int back = 0;
+      for (int c = 1; c < MostCandidates; ++c)
+        if (found[c].t > found[back].t)
+          back = c;
+      if (t < found[back].t)
+        found[back] = { segment, distance, t, s };
     });
+    // A segment whose nearest point to the ray lies in front of the drawn
+    // depth (by more than a reach: a tube's axis lies behind its drawn
+    // surface) would have been drawn over this pixel had it covered it:
+    // not this pixel's (a renderer's offset only brings lines nearer). Of
+    // the others, the one nearest the drawn point along the ray and across
+    // it: the drawn line, not one hidden behind it nor one passing beside.
+    const double inFront = tDrawn - reachPixels * footprint;
+    std::int64_t best = -1;
+    double bestScore = 0.0, bestDistance = 0.0, bestT = 0.0, bestS = 0.0;
+    for (int c = 0; c < candidates; ++c)
+    {
+      const Candidate& k = found[c];
+      if (k.t < inFront)
+        continue;
+      const double score = k.distance + std::fabs(k.t - tDrawn);
+      if (best >= 0 && (score > bestScore || (score == bestScore && k.segment > best)))
+        continue;
+      best = k.segment;
+      bestScore = score;
+      bestDistance = k.distance;
+      bestT = k.t;
+      bestS = k.s;
+    }
     if (best < 0)
       return;
     double a[3], b[3];

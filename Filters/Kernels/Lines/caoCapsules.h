@@ -106,7 +106,9 @@ private:
 };
 
 /// What the camera sees of tubes: per pixel the first capsule hit (the
-/// line G-buffer), and the AO there.
+/// line G-buffer), and the AO there. The per-pixel vectors mean something
+/// only where segment >= 0 (a frame made again leaves the others as they
+/// were).
 struct LineFrame
 {
   int width = 0, height = 0;
@@ -131,8 +133,9 @@ bool CastLinePrimary(const CapsuleBVH& tubes, const PixelCamera& camera, LineFra
 /// (window depth 0..1 per pixel, row 0 at the bottom; 1: background): a
 /// drawn pixel is a line's when a segment passes within `reachPixels`
 /// pixel footprints of the pixel's ray (the drawn half width plus the
-/// raster's slack), at a depth within LineDepthSlack of the drawn one (the
-/// nearest such segment to the ray), so that each line's own pixels get
+/// raster's slack), at a depth within LineDepthSlack of the drawn one (and
+/// within MaximumDepthSlack footprints; of those in front, not hidden
+/// behind another, the one nearest the ray), so that each line's own pixels get
 /// its segment, axis point and tangent, whatever offset the renderer gave
 /// the lines' depth. The surface point: with `drawings`, where the ray
 /// enters the tube of the drawn half width (a flat line: the ray's point
@@ -158,6 +161,8 @@ struct LineDrawing
 /// coincident surfaces (VTK's coincident topology resolution; ParaView's
 /// is 2.6e-5 on llvmpipe).
 constexpr double LineDepthSlack = 2e-4;
+/// The depth slack's bound in pixel footprints each way along the ray.
+constexpr double MaximumDepthSlack = 64.0;
 bool LineFrameFromDepth(const CapsuleBVH& lines, const PixelCamera& camera,
   const std::vector<float>& depth, double reachPixels, bool tubes,
   const std::vector<unsigned char>* skip, LineFrame& frame, std::string& error,

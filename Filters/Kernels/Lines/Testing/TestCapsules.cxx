@@ -166,6 +166,30 @@ bool BruteForce(const Capsules& c, double r, const double o[3], const double d[3
   return segment >= 0;
 }
 
+/// The window depth (0..1; 1: background) a renderer would draw for
+/// `frame`'s surface points under `camera`, `offset` nearer the camera.
+std::vector<float> DrawnDepth(const cao::LineFrame& frame, const cao::PixelCamera& camera, double offset)
+{
+  double toNDC[16];
+  std::vector<float> depth(frame.segment.size(), 1.0f);
+  if (!cao::WorldToNDC(camera, toNDC))
+  {
+    std::printf("FAIL: the camera does not invert\n");
+    ++failures;
+    return depth;
+  }
+  for (std::size_t k = 0; k < frame.segment.size(); ++k)
+    if (frame.segment[k] >= 0)
+    {
+      const double* x = &frame.position[3 * k];
+      double c[4];
+      for (int row = 0; row < 4; ++row)
+        c[row] = toNDC[4 * row] * x[0] + toNDC[4 * row + 1] * x[1] + toNDC[4 * row + 2] * x[2] + toNDC[4 * row + 3];
+      depth[k] = static_cast<float>(0.5 * (c[2] / c[3]) + 0.5 - offset);
+    }
+  return depth;
+}
+
 /// Row-major 4x4 product.
 void Multiply(const double a[16], const double b[16], double out[16])
 {
@@ -618,25 +642,18 @@ int TestCapsules(int, char*[])
     std::string error;
     cao::LineFrame cast;
     CAO_CHECK(cao::CastLinePrimary(tubes, cam, cast, error), "%s", error.c_str());
-    double toNDC[16];
-    CAO_CHECK(cao::WorldToNDC(cam, toNDC), "the camera inverts");
     const std::size_t count = static_cast<std::size_t>(side) * side;
-    std::vector<float> depth(count, 1.0f);
-    for (std::size_t k = 0; k < count; ++k)
-      if (cast.segment[k] >= 0)
-      {
-        const double* x = &cast.position[3 * k];
-        double c[4];
-        for (int row = 0; row < 4; ++row)
-          c[row] = toNDC[4 * row] * x[0] + toNDC[4 * row + 1] * x[1] + toNDC[4 * row + 2] * x[2] + toNDC[4 * row + 3];
-        depth[k] = static_cast<float>(0.5 * (c[2] / c[3]) + 0.5);
-      }
+    const std::vector<float> depth = DrawnDepth(cast, cam, 0.0);
     // The tubes' radius is 2.7 to 3.7 pixels at depths 3.5 to 4.5: a reach
     // of 5 pixels finds every drawn pixel. The segment found is the one
-    // nearest the pixel's ray, which near a polyline's bend (within a
-    // radius of it: a third of these 0.3-long segments) is often the
-    // neighbour of the one the cast hit (16% of the pixels here): each
-    // must be at least as near the ray, and they must stay under a quarter.
+    // nearest the pixel's ray among those in front, which near a polyline's
+    // bend (within a radius of it: a third of these 0.3-long segments) is
+    // often the neighbour of the one the cast hit (16% of the pixels here):
+    // the drawn point must lie in its tube too, and they must stay under a
+    // quarter. Where another line passes within the reach but not over the
+    // pixel (the reach, 5, exceeds these tubes' radius), the score (across
+    // plus along the ray) may take it: at most 2% (27 of 2199 here; the
+    // ray's nearest alone took 290).
     cao::LineFrame drawn;
     CAO_CHECK(cao::LineFrameFromDepth(tubes, cam, depth, 5.0, true, nullptr, drawn, error), "%s", error.c_str());
     std::int64_t same = 0, other = 0, notNearer = 0, withNormal = 0;
@@ -664,32 +681,22 @@ int TestCapsules(int, char*[])
         ++same;
         continue;
       }
-      // Another segment (a joint, a crossing): then one at least as near
-      // the pixel's ray (sampled densely along it around the drawn point).
+      // Another segment: the hit one's neighbour at a polyline's bend (they
+      // share a point), or one whose tube holds the drawn point too.
       ++other;
       const std::int64_t a = drawn.segment[k], b = cast.segment[k];
-      double o[3], dir[3], len = 0.0;
-      cao::PixelRay(cam, static_cast<int>(k % side), static_cast<int>(k / side), o, dir, len);
-      auto rayDistance = [&](std::int64_t seg) {
-        double bestRay = std::numeric_limits<double>::infinity();
-        const double t0 = cast.depth[k];
-        for (int q = -400; q <= 400; ++q)
-        {
-          const double t = t0 + q * 0.0005;
-          const double x[3] = { o[0] + t * dir[0], o[1] + t * dir[1], o[2] + t * dir[2] };
-          bestRay = std::min(bestRay, SegmentDistance(x, &points[3 * segments[2 * seg]], &points[3 * segments[2 * seg + 1]]));
-        }
-        return bestRay;
-      };
-      notNearer += rayDistance(a) > rayDistance(b) + 1e-3;
+      const bool neighbour = segments[2 * a] == segments[2 * b] || segments[2 * a] == segments[2 * b + 1] ||
+        segments[2 * a + 1] == segments[2 * b] || segments[2 * a + 1] == segments[2 * b + 1];
+      notNearer += !neighbour && SegmentDistance(&cast.position[3 * k], &points[3 * segments[2 * a]],
+                                   &points[3 * segments[2 * a + 1]]) > r * (1.0 + 1e-6);
     }
-    std::printf("G-buffer from depth %dx%d: cast %lld pixels, found %lld (same segment %lld, another as near %lld, "
-                "not nearer %lld); position error %.1e, 1 - cos(normal) %.1e, %lld with a normal\n",
+    std::printf("G-buffer from depth %dx%d: cast %lld pixels, found %lld (same segment %lld, another %lld, "
+                "of which neither a neighbour nor through the drawn point's tube %lld); position error %.1e, 1 - cos(normal) %.1e, %lld with a normal\n",
       side, side, static_cast<long long>(cast.covered), static_cast<long long>(drawn.covered),
       static_cast<long long>(same), static_cast<long long>(other), static_cast<long long>(notNearer), worstPosition,
       worstNormal, static_cast<long long>(withNormal));
     CAO_CHECK(cast.covered > 2000 && drawn.covered == cast.covered && same + other == cast.covered &&
-        notNearer == 0 && other < cast.covered / 4 && worstPosition < 1e-4 && worstNormal < 1e-3 &&
+        notNearer <= cast.covered / 50 && other < cast.covered / 4 && worstPosition < 1e-4 && worstNormal < 1e-3 &&
         withNormal > cast.covered * 8 / 10,
       "G-buffer from depth");
     // Flat lines: no normals (the camera-facing half ball).
@@ -730,21 +737,8 @@ int TestCapsules(int, char*[])
       close.width = close.height = side;
       Multiply(eye, inverse2, close.ndcToWorld);
       cao::LineFrame cast2;
-      double toNDC2[16];
-      CAO_CHECK(cao::CastLinePrimary(tubes, close, cast2, error) && cao::WorldToNDC(close, toNDC2), "%s", error.c_str());
-      auto shifted = [&](double offset) {
-        std::vector<float> out(count, 1.0f);
-        for (std::size_t k = 0; k < count; ++k)
-          if (cast2.segment[k] >= 0)
-          {
-            const double* x = &cast2.position[3 * k];
-            double c[4];
-            for (int row = 0; row < 4; ++row)
-              c[row] = toNDC2[4 * row] * x[0] + toNDC2[4 * row + 1] * x[1] + toNDC2[4 * row + 2] * x[2] + toNDC2[4 * row + 3];
-            out[k] = static_cast<float>(0.5 * (c[2] / c[3]) + 0.5 - offset);
-          }
-        return out;
-      };
+      CAO_CHECK(cao::CastLinePrimary(tubes, close, cast2, error), "%s", error.c_str());
+      auto shifted = [&](double offset) { return DrawnDepth(cast2, close, offset); };
       cao::LineFrame pushed, far;
       CAO_CHECK(cao::LineFrameFromDepth(tubes, close, shifted(1e-4), 5.0, true, nullptr, pushed, error) &&
           cao::LineFrameFromDepth(tubes, close, shifted(2e-3), 5.0, true, nullptr, far, error),
