@@ -24,6 +24,7 @@
 #include "vtkRenderPassCollection.h"
 #include "vtkRenderState.h"
 #include "vtkHardwareSelector.h"
+#include "vtkPropCollection.h"
 #include "vtkRenderer.h"
 #include "vtkSequencePass.h"
 #include "vtkSmartPointer.h"
@@ -90,6 +91,33 @@ std::vector<vtkPolyData*> Pieces(vtkMapper* mapper, bool lines = false)
                  }),
     pieces.end());
   return pieces;
+}
+
+/// The renderer's actors that are the scene's (GetActors' list, the parts of
+/// assemblies included) but not the parts of an interaction widget's
+/// representation (ParaView draws its 3D widgets, such as a slice's plane
+/// with its handles and outline, in the view's renderer): a widget neither
+/// receives AO nor occludes the data.
+std::vector<vtkActor*> SceneActors(vtkRenderer* ren)
+{
+  std::vector<vtkActor*> actors;
+  vtkNew<vtkPropCollection> parts;
+  vtkPropCollection* props = ren->GetViewProps();
+  vtkCollectionSimpleIterator it;
+  props->InitTraversal(it);
+  while (vtkProp* prop = props->GetNextProp(it))
+  {
+    if (!prop->GetVisibility() || prop->IsA("vtkWidgetRepresentation"))
+      continue;
+    parts->RemoveAllItems();
+    prop->GetActors(parts);
+    vtkCollectionSimpleIterator p;
+    parts->InitTraversal(p);
+    while (vtkProp* part = parts->GetNextProp(p))
+      if (auto* actor = vtkActor::SafeDownCast(part))
+        actors.push_back(actor);
+  }
+  return actors;
 }
 
 using Clock = std::chrono::steady_clock;
@@ -721,13 +749,11 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
     key.insert(key.end(), { static_cast<double>(self->Slices), static_cast<double>(self->Grid) });
   // The processes whose pieces the scene holds (1: this one's).
   key.push_back(this->Distributed() ? static_cast<double>(this->controller->GetNumberOfProcesses()) : 1.0);
-  vtkActorCollection* actors = ren->GetActors();
   vtkCollectionSimpleIterator it;
-  actors->InitTraversal(it);
   double position = 0.0; // an actor's place among the renderer's actors
   std::vector<std::pair<vtkActor*, vtkPolyData*>> linePieces;
   std::vector<double> geometry; // the surfaces' pieces and poses
-  while (vtkActor* actor = actors->GetNextActor(it))
+  for (vtkActor* actor : SceneActors(ren))
   {
     position += 1.0;
     if (!actor->GetVisibility() || !actor->HasOpaqueGeometry())
