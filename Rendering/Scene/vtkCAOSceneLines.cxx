@@ -6,6 +6,7 @@
 
 #include "vtkActor.h"
 #include "vtkCellArray.h"
+#include "vtkMapper.h"
 #include "vtkMatrix4x4.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
@@ -28,6 +29,26 @@ double Address(const void* p)
 {
   return static_cast<double>(reinterpret_cast<std::uintptr_t>(p));
 }
+/// How far in front of the line's own (window depth) VTK may draw a line:
+/// its coincident-topology offset (the global and the mapper's relative
+/// line offset parameters; the OpenGL mappers move a line's fragments by
+/// 1.6e-5 per unit and by factor times the depth slope), and a margin.
+double DepthSlack(vtkMapper* mapper)
+{
+  constexpr double Margin = 3e-5;
+  if (!mapper || vtkMapper::GetResolveCoincidentTopology() == VTK_RESOLVE_OFF)
+    return Margin;
+  if (vtkMapper::GetResolveCoincidentTopology() != VTK_RESOLVE_POLYGON_OFFSET)
+    return cao::LineDepthSlack; // (the z-buffer shift: not a per-line offset)
+  double factor = 0.0, units = 0.0, relativeFactor = 0.0, relativeUnits = 0.0;
+  vtkMapper::GetResolveCoincidentTopologyLineOffsetParameters(factor, units);
+  mapper->GetRelativeCoincidentTopologyLineOffsetParameters(relativeFactor, relativeUnits);
+  // (A factor's slope term: up to four units per unit of factor, for lines
+  // steep in depth.)
+  return std::min(cao::LineDepthSlack * 10.0,
+    1.6e-5 * (std::fabs(units + relativeUnits) + 4.0 * std::fabs(factor + relativeFactor)) + Margin);
+}
+
 /// The lines' width in pixels as VTK draws them (at least one pixel).
 double DrawnWidth(vtkActor* actor)
 {
@@ -66,10 +87,11 @@ void SceneLines::Collect(const std::vector<std::pair<vtkActor*, vtkPolyData*>>& 
       // image plane; LineFrameFromDepth measures across the pixel's ray).
       drawing.halfWidthPixels = 0.5 * DrawnWidth(actor);
       drawing.reachPixels = std::min(cao::MaximumReach, drawing.halfWidthPixels + 1.0);
+      drawing.depthSlack = DepthSlack(actor->GetMapper());
       this->drawings.push_back(drawing);
       this->tubes = this->tubes || drawing.tubes;
       this->widest = std::max(this->widest, DrawnWidth(actor));
-      this->drawKey.insert(this->drawKey.end(), { drawing.tubes ? 1.0 : 0.0, drawing.reachPixels });
+      this->drawKey.insert(this->drawKey.end(), { drawing.tubes ? 1.0 : 0.0, drawing.reachPixels, drawing.depthSlack });
     }
     last = actor;
     this->pieceDrawing.push_back(static_cast<std::int32_t>(this->drawings.size() - 1));
@@ -249,7 +271,6 @@ bool SceneLines::Update(const cao::PixelCamera& camera, const double right[3], c
   key.push_back(static_cast<double>(this->meshKey.size()));
   key.insert(key.end(), this->meshKey.begin(), this->meshKey.end());
   key.insert(key.end(), { this->radius, tubeRadius, static_cast<double>(slices) });
-  key.insert(key.end(), this->drawKey.begin(), this->drawKey.end());
   for (int d = 0; d < 3; ++d)
     key.insert(key.end(), { std::round(right[d] * 1e9) * 1e-9, std::round(up[d] * 1e9) * 1e-9 });
   const bool meshes = !this->meshPoints.empty();
@@ -284,6 +305,7 @@ bool SceneLines::Update(const cao::PixelCamera& camera, const double right[3], c
   // The AO: of the grid, the camera, the viewport, the drawn depth and the
   // pixels left to the lines.
   std::vector<double> view = key;
+  view.insert(view.end(), this->drawKey.begin(), this->drawKey.end()); // the pixels' search
   view.insert(view.end(), camera.ndcToWorld, camera.ndcToWorld + 16);
   view.insert(view.end(), { static_cast<double>(camera.width), static_cast<double>(camera.height),
                             static_cast<double>(samples) });

@@ -1108,7 +1108,7 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
   if (this->linesOccludeSurfaces)
   {
     // Lines that cannot be voxelized leave the surfaces' grid as it is
-    // (UpdateLines says why in the report).
+    // (a scene that cannot be built: UpdateLines says why in the report).
     std::string why;
     this->linesOccludeSurfaces = this->lines.VoxelizeInto(this->grid, why);
   }
@@ -1359,9 +1359,11 @@ bool vtkContextualAOPass::Internals::UpdateLines(vtkContextualAOPass* self, vtkR
   auto skipLines = [&](const std::string& why) {
     this->linesOn = false;
     this->linesNote = "Line AO: " + why;
-    if (this->linesNote != this->saidLines)
+    // (a retried scene's reason carries " (said once...)": the same reason)
+    const std::string reason = this->linesNote.substr(0, this->linesNote.find(" (said once"));
+    if (reason != this->saidLines)
       vtkWarningWithObjectMacro(self, << this->linesNote);
-    this->saidLines = this->linesNote;
+    this->saidLines = reason;
     return true;
   };
   if (!this->depthOk)

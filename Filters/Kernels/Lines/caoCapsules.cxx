@@ -448,6 +448,17 @@ bool LineFrameFromDepth(const CapsuleBVH& lines, const PixelCamera& camera,
     error = text;
     return false;
   }
+  // Without drawings, one for every segment from the arguments.
+  LineDrawing only;
+  only.reachPixels = reachPixels;
+  only.halfWidthPixels = std::max(0.5, reachPixels - 1.0);
+  only.tubes = tubes;
+  double widestSlack = 0.0;
+  if (drawings)
+    for (const LineDrawing& d : *drawings)
+      widestSlack = std::max(widestSlack, d.depthSlack);
+  else
+    widestSlack = only.depthSlack;
   ResetLineFrame(camera, frame);
   ParallelFor(pixels, 0, [&](std::size_t index) {
     const double d = depth[index];
@@ -458,92 +469,85 @@ bool LineFrameFromDepth(const CapsuleBVH& lines, const PixelCamera& camera,
     if (!PixelRay(camera, i, j, nearPoint, rayDirection, length))
       return;
     // The drawn point, the pixel's footprint there (its neighbours' points
-    // at the same depth), and the stretch of the ray within the depth slack.
+    // at the same depth), and how far behind it the line may lie (the
+    // widest depth slack; at most MaximumDepthSlack footprints: near the far
+    // plane a window depth step is a long way in the world).
     const double x = (i + 0.5) / w * 2.0 - 1.0, y = (j + 0.5) / h * 2.0 - 1.0, z = 2.0 * d - 1.0;
-    double p[3], px[3], py[3], pLo[3], pHi[3];
+    double p[3], px[3], py[3], pHi[3];
     if (!NDCToWorld(camera, x, y, z, p) || !NDCToWorld(camera, x + 2.0 / w, y, z, px) ||
       !NDCToWorld(camera, x, y + 2.0 / h, z, py) ||
-      !NDCToWorld(camera, x, y, 2.0 * std::max(0.0, d - LineDepthSlack) - 1.0, pLo) ||
-      !NDCToWorld(camera, x, y, 2.0 * std::min(1.0, d + LineDepthSlack) - 1.0, pHi))
+      !NDCToWorld(camera, x, y, 2.0 * std::min(1.0, d + widestSlack) - 1.0, pHi))
       return;
     const Vec3 drawn = LoadVec3(p), o = LoadVec3(nearPoint), v = LoadVec3(rayDirection);
     const double footprint =
       std::max(glm::length(LoadVec3(px) - drawn), glm::length(LoadVec3(py) - drawn));
-    // (At most MaximumDepthSlack footprints each way: near the far plane a
-    // window depth step is a long way in the world.)
-    const double tDrawn = glm::dot(drawn - o, v), most = MaximumDepthSlack * footprint;
-    const double tLo = std::max(glm::dot(LoadVec3(pLo) - o, v), tDrawn - most);
-    const double tHi = std::min(glm::dot(LoadVec3(pHi) - o, v), tDrawn + most);
-    const double slackReach = reachPixels * footprint * 2.0; // the footprint grows along the stretch
-    const Vec3 centre = o + (0.5 * (tLo + tHi)) * v;
-    double centreArray[3];
-    StoreVec3(centre, centreArray);
-    // The segments within reach of the ray at the drawn depth; of those, the
-    // ones in front (within two reaches of the frontmost: the drawn line,
-    // not one hidden behind it), and of these the nearest the ray.
-    struct Candidate
-    {
-      std::int64_t segment;
-      double distance, t, s;
-    };
-    constexpr int MostCandidates = 32;
-    Candidate found[MostCandidates];
-    int candidates = 0;
-    lines.Near(centreArray, 0.5 * (tHi - tLo) + slackReach, [&](std::int64_t segment, const double* a, const double* b) {
+    const double tDrawn = glm::dot(drawn - o, v);
+    const double behind = std::max(0.0,
+      std::min(glm::dot(LoadVec3(pHi) - o, v), tDrawn + MaximumDepthSlack * footprint) - tDrawn);
+    // (the footprint grows along the stretch: twice the reach around it)
+    const double reachAround = 2.0 * reachPixels * footprint;
+    double centre[3];
+    StoreVec3(o + (tDrawn + 0.5 * behind) * v, centre);
+    // Of the segments within their reach of the ray, from a reach in front
+    // of the drawn depth (a tube's axis lies behind its drawn surface; a
+    // line further in front would have been drawn over this pixel) to their
+    // depth slack behind it (a renderer's offset only brings lines nearer):
+    // those covering the pixel (within their drawn half width and half a
+    // pixel's diagonal) before the others, then the frontmost, as the depth
+    // test chose; of those passing beside, the nearest the ray.
+    std::int64_t best = -1;
+    bool bestCovers = false;
+    double bestDistance = 0.0, bestT = 0.0, bestS = 0.0;
+    lines.Near(centre, 0.5 * behind + reachAround, [&](std::int64_t segment, const double* a, const double* b) {
+      const LineDrawing& own = drawings
+        ? (*drawings)[static_cast<std::size_t>((*segmentDrawing)[static_cast<std::size_t>(segment)])]
+        : only;
       const Vec3 va = LoadVec3(a), u = LoadVec3(b) - va;
       const double C = glm::dot(u, u), B = glm::dot(v, u);
       const Vec3 w0 = o - va;
       double s = 0.0;
       const double denominator = C - B * B; // |v| = 1
-      if (denominator > 1e-12 * C)
-        s = (C > 0.0) ? (glm::dot(u, w0) - B * glm::dot(v, w0)) / denominator : 0.0;
+      if (C > 0.0 && denominator > 1e-12 * C)
+        s = (glm::dot(u, w0) - B * glm::dot(v, w0)) / denominator;
       else if (C > 0.0) // (nearly) along the ray: the segment's point at the drawn depth
         s = glm::dot(drawn - va, u) / C;
       s = std::min(1.0, std::max(0.0, s));
       const Vec3 q = va + s * u;
       const double t = glm::dot(q - o, v);
       const double distance = glm::length(o + t * v - q);
-      const double reach = drawings
-        ? (*drawings)[static_cast<std::size_t>((*segmentDrawing)[static_cast<std::size_t>(segment)])].reachPixels
-        : reachPixels;
-      if (!(t >= tLo - slackReach && t <= tHi + slackReach) || !(distance <= reach * footprint))
-        return;
-      if (candidates < MostCandidates)
+      const double reach = own.reachPixels * footprint;
+      if (!drawings)
       {
-        found[candidates++] = { segment, distance, t, s };
+        // An exact depth (a cast's): the segment nearest the drawn point.
+        const Vec3 ab = LoadVec3(b) - va;
+        const double along = C > 0.0 ? std::min(1.0, std::max(0.0, glm::dot(drawn - va, ab) / C)) : 0.0;
+        const double near = glm::length(drawn - (va + along * ab));
+        if (!(near <= reach) || (best >= 0 && (near > bestDistance || (near == bestDistance && segment > best))))
+          return;
+        best = segment;
+        bestDistance = near;
+        bestT = glm::dot(va + along * ab - o, v);
+        bestS = along;
         return;
       }
-      // Full: the one farthest back makes room.
-      int back = 0;
-      for (int c = 1; c < MostCandidates; ++c)
-        if (found[c].t > found[back].t)
-          back = c;
-      if (t < found[back].t)
-        found[back] = { segment, distance, t, s };
+      const double slack = widestSlack > 0.0 ? behind * (own.depthSlack / widestSlack) : 0.0;
+      if (!(distance <= reach) || !(t >= tDrawn - reach) || !(t <= tDrawn + slack + reach))
+        return;
+      const bool covers = distance <= (own.halfWidthPixels + 0.71) * footprint;
+      bool better = best < 0 || (covers && !bestCovers);
+      if (!better && covers == bestCovers)
+      {
+        const double mine = covers ? t : distance, theirs = covers ? bestT : bestDistance;
+        better = mine < theirs || (mine == theirs && segment < best);
+      }
+      if (!better)
+        return;
+      best = segment;
+      bestCovers = covers;
+      bestDistance = distance;
+      bestT = t;
+      bestS = s;
     });
-    // A segment whose nearest point to the ray lies in front of the drawn
-    // depth (by more than a reach: a tube's axis lies behind its drawn
-    // surface) would have been drawn over this pixel had it covered it:
-    // not this pixel's (a renderer's offset only brings lines nearer). Of
-    // the others, the one nearest the drawn point along the ray and across
-    // it: the drawn line, not one hidden behind it nor one passing beside.
-    const double inFront = tDrawn - reachPixels * footprint;
-    std::int64_t best = -1;
-    double bestScore = 0.0, bestDistance = 0.0, bestT = 0.0, bestS = 0.0;
-    for (int c = 0; c < candidates; ++c)
-    {
-      const Candidate& k = found[c];
-      if (k.t < inFront)
-        continue;
-      const double score = k.distance + std::fabs(k.t - tDrawn);
-      if (best >= 0 && (score > bestScore || (score == bestScore && k.segment > best)))
-        continue;
-      best = k.segment;
-      bestScore = score;
-      bestDistance = k.distance;
-      bestT = k.t;
-      bestS = k.s;
-    }
     if (best < 0)
       return;
     double a[3], b[3];
@@ -552,27 +556,29 @@ bool LineFrameFromDepth(const CapsuleBVH& lines, const PixelCamera& camera,
     const Vec3 axisPoint = va + bestS * (vb - va);
     Vec3 tangent = vb - va;
     DivideByLength(tangent);
-    const LineDrawing* own =
-      drawings ? &(*drawings)[static_cast<std::size_t>((*segmentDrawing)[static_cast<std::size_t>(best)])] : nullptr;
-    const bool asTube = own ? own->tubes : tubes;
+    const LineDrawing& own =
+      drawings ? (*drawings)[static_cast<std::size_t>((*segmentDrawing)[static_cast<std::size_t>(best)])] : only;
     Vec3 position = drawn, normal(0.0);
-    if (own)
+    if (drawings)
     {
-      // Where the ray enters the tube of the drawn half width (a flat
-      // line, or a ray outside it: its point nearest the axis).
+      // Where the ray enters the capsule of the drawn half width (caps
+      // included); a flat line, or a ray missing it: its point nearest the
+      // axis.
       position = o + bestT * v;
-      const double radius = own->halfWidthPixels * footprint;
-      const double sine = glm::length(glm::cross(v, tangent));
-      if (asTube && radius > bestDistance)
-        position = o + (bestT - std::sqrt(radius * radius - bestDistance * bestDistance) / std::max(sine, 0.05)) * v;
+      const double radius = own.halfWidthPixels * footprint;
+      double entry = 0.0, exit = 0.0;
+      if (own.tubes && CapsuleInterval(o, v, va, vb, radius * radius, entry, exit) && exit > 0.0)
+        position = o + std::max(0.0, entry) * v;
     }
     // A tube's point off its axis (by more than half a pixel) has its
     // surface's normal; a flat line's, or one on the axis, none (0).
-    if (asTube)
+    if (own.tubes)
     {
-      normal = position - (va + std::min(1.0, std::max(0.0, glm::dot(position - va, vb - va) /
-                                                              std::max(glm::dot(vb - va, vb - va), 1e-300))) *
-                                  (vb - va));
+      const Vec3 ab = vb - va;
+      const double along = glm::dot(ab, ab) > 0.0
+        ? std::min(1.0, std::max(0.0, glm::dot(position - va, ab) / glm::dot(ab, ab)))
+        : 0.0;
+      normal = position - (va + along * ab);
       if (!(glm::length(normal) > 0.5 * footprint) || !(DivideByLength(normal) > 0.0))
         normal = Vec3(0.0);
     }

@@ -133,13 +133,17 @@ bool CastLinePrimary(const CapsuleBVH& tubes, const PixelCamera& camera, LineFra
 /// (window depth 0..1 per pixel, row 0 at the bottom; 1: background): a
 /// drawn pixel is a line's when a segment passes within `reachPixels`
 /// pixel footprints of the pixel's ray (the drawn half width plus the
-/// raster's slack), at a depth within LineDepthSlack of the drawn one (and
-/// within MaximumDepthSlack footprints; of those in front, not hidden
-/// behind another, the one nearest the ray), so that each line's own pixels get
+/// raster's slack), from a reach in front of the drawn depth to its depth
+/// slack behind it (and within MaximumDepthSlack footprints); of those,
+/// the ones covering the pixel (within their drawn half width) first and
+/// the frontmost of them, as the renderer's depth test chose, else the one
+/// nearest the ray; so that each line's own pixels get
 /// its segment, axis point and tangent, whatever offset the renderer gave
 /// the lines' depth. The surface point: with `drawings`, where the ray
-/// enters the tube of the drawn half width (a flat line: the ray's point
-/// nearest the axis); without, the drawn point. Pixels where `skip` is
+/// enters the capsule of the drawn half width (a flat line: the ray's
+/// point nearest the axis). Without drawings the depth is taken as exact
+/// (a cast's, as the tests make it): the segment nearest the drawn point
+/// within the reach, and the drawn point as the surface point. Pixels where `skip` is
 /// non-zero (another kind's, such as surfaces) are left out. With `tubes`
 /// (lines drawn as tubes), a pixel off the axis has the tube's outward
 /// normal there; otherwise (lines drawn flat, or a point on the axis) the
@@ -150,17 +154,19 @@ bool CastLinePrimary(const CapsuleBVH& tubes, const PixelCamera& camera, LineFra
 /// bound the search). False with the reason on a bad camera, a depth or
 /// skip of another size, drawings that do not match, or a reach not in
 /// (0, MaximumReach].
+/// How far (window depth, 0..1) a drawn line's depth may lie in front of
+/// the line's own when the renderer says nothing (LineDrawing::depthSlack):
+/// renderers push lines toward the camera to draw them over coincident
+/// surfaces (VTK's coincident topology resolution: 1.6e-5 per unit of
+/// offset; ParaView's lines measured 2.6e-5 in front here).
+constexpr double LineDepthSlack = 2e-4;
 struct LineDrawing
 {
-  double reachPixels = 1.5;     ///< how far from its axis a drawn pixel may lie
+  double reachPixels = 1.5;     ///< how far across the ray from its axis a drawn pixel may lie
   double halfWidthPixels = 0.5; ///< the drawn half width (a tube's radius)
+  double depthSlack = LineDepthSlack; ///< how far in front (window depth) its drawn depth may be
   bool tubes = false;
 };
-/// How far (window depth, 0..1) the drawn depth of a line may lie from the
-/// line's own: renderers push lines toward the camera to draw them over
-/// coincident surfaces (VTK's coincident topology resolution; ParaView's
-/// is 2.6e-5 on llvmpipe).
-constexpr double LineDepthSlack = 2e-4;
 /// The depth slack's bound in pixel footprints each way along the ray.
 constexpr double MaximumDepthSlack = 64.0;
 bool LineFrameFromDepth(const CapsuleBVH& lines, const PixelCamera& camera,

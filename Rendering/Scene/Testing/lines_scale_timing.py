@@ -77,7 +77,7 @@ for size in sizes:
     report = json.loads(chain.GetLastFrameReport())
     view.GetActiveCamera().Azimuth(10)
     turn = timed()
-    lines.AmbientColor = lines.DiffuseColor = [0.3 + 0.1 * len(size) % 0.7, 0.8, 0.9]
+    lines.AmbientColor = lines.DiffuseColor = [0.2 + 0.6 * (sizes.index(size) % 2), 0.8, 0.9]
     colour = timed()
     stages = ", ".join("%s %.0f" % (k, v) for k, v in report["stages"].items())
     print("| %s | %d | %d | %s | %.0f | %.0f | %.0f | %.0f | %.1f | %s |" % (
