@@ -787,8 +787,9 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
     ? "lines get no AO in parallel rendering yet (several processes)"
     : std::string();
   // The lines occlude the surfaces through the world or eye grid: the grid
-  // depends on them (UpdateGrid; not on the GPU, not across processes).
-  if (vct && this->linesOn && self->Grid != FRUSTUM_GRID)
+  // depends on them (UpdateGrid; on the CPU only, so not when the last
+  // frame's grid was on the GPU: a change of backend rebuilds it anyway).
+  if (vct && this->linesOn && self->Grid != FRUSTUM_GRID && !this->onGPU)
   {
     key.push_back(static_cast<double>(this->lines.Key().size()));
     key.insert(key.end(), this->lines.Key().begin(), this->lines.Key().end());

@@ -18,6 +18,8 @@
 //   6 the depth G-buffer finds the same line pixels (within 10%)
 //   7 lines with a NaN point: no line AO, a note, the surfaces keep theirs,
 //     not retried every frame
+//   8 moving the lines rebuilds the surfaces' grid on the CPU (it holds
+//     them), not on the GPU (control: the CPU's)
 // Pixels are found by projecting the lines' points; each check reads the
 // drawn line pixel nearest the projection (GetPixelAO > -1).
 #include "vtkContextualAOPass.h"
@@ -302,6 +304,24 @@ int TestLinesInPass(int, char*[])
   renderer->RemoveActor(brokenActor);
   window->Render();
   Check(Field(pass->GetLastFrameReport(), "segments") == 160, "removed, the lines get their AO again");
+
+  // 8: moving the lines rebuilds the surfaces' grid on the CPU (it holds
+  // them) but not on the GPU (it does not).
+  auto stagesAfterMove = [&](int backend, double dz) {
+    pass->SetBackend(backend);
+    window->Render();
+    window->Render(); // (the first frame on a backend keys the grid by the last one's)
+    lines->AddPosition(0.0, 0.0, dz);
+    window->Render();
+    return pass->GetLastFrameStages();
+  };
+  const std::string onCPU = stagesAfterMove(vtkContextualAOPass::BACKEND_CPU, 0.01);
+  const std::string onGL = stagesAfterMove(vtkContextualAOPass::BACKEND_OPENGL, -0.01);
+  const bool cpuGrid = ("," + onCPU + ",").find(",voxelize,") != std::string::npos;
+  const bool glGrid = ("," + onGL + ",").find(",voxelize,") != std::string::npos;
+  std::printf("lines moved: CPU stages %s; OpenGL stages %s\n", onCPU.c_str(), onGL.c_str());
+  Check(cpuGrid && !glGrid && onGL.find("line_ao") != std::string::npos,
+    "moving the lines rebuilds the surfaces' grid on the CPU only");
   std::printf("%d failure(s)\n", failures);
   return failures ? 1 : 0;
 }
