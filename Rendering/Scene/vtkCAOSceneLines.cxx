@@ -70,7 +70,6 @@ void SceneLines::Collect(const std::vector<std::pair<vtkActor*, vtkPolyData*>>& 
   this->drawKey.clear();
   this->drawings.clear();
   this->pieceDrawing.clear();
-  this->tubes = false;
   this->widest = 1.0;
   vtkActor* last = nullptr;
   this->actors = 0;
@@ -89,7 +88,6 @@ void SceneLines::Collect(const std::vector<std::pair<vtkActor*, vtkPolyData*>>& 
       drawing.reachPixels = std::min(cao::MaximumReach, drawing.halfWidthPixels + 1.0);
       drawing.depthSlack = DepthSlack(actor->GetMapper());
       this->drawings.push_back(drawing);
-      this->tubes = this->tubes || drawing.tubes;
       this->widest = std::max(this->widest, DrawnWidth(actor));
       this->drawKey.insert(this->drawKey.end(), { drawing.tubes ? 1.0 : 0.0, drawing.reachPixels, drawing.depthSlack });
     }

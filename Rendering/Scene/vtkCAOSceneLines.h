@@ -85,7 +85,6 @@ private:
   std::vector<std::int32_t> pieceDrawing;     ///< each piece's actor
   std::vector<std::int32_t> segmentDrawing;   ///< each segment's actor
   int actors = 0;
-  bool tubes = false;     ///< some actor renders its lines as tubes
   double widest = 1.0;    ///< the widest drawn line, in pixels
   cao::LineSegments lines;
   cao::CapsuleBVH nearest; ///< the segments, for the pixels' nearest axis

@@ -1371,8 +1371,8 @@ bool vtkContextualAOPass::Internals::UpdateLines(vtkContextualAOPass* self, vtkR
     return skipLines("it reads the drawn depth: " + this->depthError);
   int width = 0, height = 0, x0 = 0, y0 = 0;
   ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
-  vtkMatrix4x4* toNDC = nullptr;
-  const std::vector<double> view = this->ViewKey(self, ren, toNDC);
+  vtkMatrix4x4* toNDC = ren->GetActiveCamera()->GetCompositeProjectionTransformMatrix(
+    width > 0 && height > 0 ? double(width) / height : 1.0, -1, 1); // (as ViewKey's)
   cao::PixelCamera camera;
   vtkMatrix4x4::Invert(&toNDC->Element[0][0], camera.ndcToWorld);
   camera.width = width;
