@@ -351,10 +351,38 @@ struct ScreenAOParams
 #define CAO_BINDING_SS_FILTERED 4  /* storage: float per pixel, the blurred or filtered AO (NaN: not
                                       covered; the frame's AO buffer on the GPU frame) */
 
+/* Line AO (Kernels/Lines/caoLineAO.h, GL/Lines/shaders/caoLineAO.glsl): the
+ * prisms of each covered pixel's half ball, counted in the lines' bit grid
+ * (and the solids', planned alike). The host sets each half ball up in
+ * double (cao::LineHalfBallOfPixel) and packs it as a LineAOPixel. */
+struct LineAOParams
+{
+  ivec4 grid;    /* x: nx, y: ny, z: slices, w: 32-bit words per column */
+  ivec4 counts;  /* x: samples per set, y: half balls (pixels), z: flags (1 paper weights, 2 solids), w: 0 */
+  vec4 scalars;  /* x: R (voxels), y: voxel (world), z: occlusion scale s (cao::LineOcclusionScale), w: strength */
+  vec4 paper;    /* x: the seed's AO factor; yzw: 0 */
+};
+struct LineAOPixel
+{
+  vec4 centre;   /* xyz: the half ball's centre (voxel units); w: its base plane's offset along plane.xyz */
+  vec4 plane;    /* xyz: the base plane's unit normal (grid frame); w: 0 */
+  vec4 tangent;  /* xyz: the line's unit tangent (grid frame; 0: a point); w: 0 */
+  ivec4 pixel;   /* x: the output index, y: flags (1 a line, 2 cosine weight), z: sample set, w: 0 */
+};
+#define CAO_LA_MAX_SETS 16
+#define CAO_BINDING_LA_PARAMS 2   /* uniform block: LineAOParams */
+#define CAO_BINDING_LA_BITS 0     /* storage: uint, the lines' grid ((j nx + i) words + word) */
+#define CAO_BINDING_LA_SOLIDS 1   /* storage: uint, the solids' grid (flag 2), planned as the lines' */
+#define CAO_BINDING_LA_PIXELS 2   /* storage: LineAOPixel per half ball */
+#define CAO_BINDING_LA_SAMPLES 3  /* storage: vec4 per disk sample (xy; zw 0), set s from s x samples */
+#define CAO_BINDING_LA_AO 4       /* storage: float AO per half ball */
+
 #ifdef __cplusplus
 static_assert(sizeof(ScreenAOParams) == (13 + CAO_SS_MAX_FILTER_WEIGHTS / 4 + CAO_SS_TILE * CAO_SS_TILE) * 16,
   "ScreenAOParams must match std140");
 static_assert(sizeof(FrameParams) == 13 * 16, "FrameParams must match std140");
+static_assert(sizeof(LineAOParams) == 4 * 16, "LineAOParams must match std140");
+static_assert(sizeof(LineAOPixel) == 4 * 16, "LineAOPixel must match std430");
 static_assert(sizeof(DMTriangle) == 128, "DMTriangle must match std430");
 static_assert(sizeof(DMHit) == 16, "DMHit must match std430");
 static_assert(sizeof(DMOffset) == 16, "DMOffset must match std430");

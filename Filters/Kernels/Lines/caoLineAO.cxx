@@ -318,12 +318,11 @@ std::vector<double> LineAOSamples(int count, std::uint64_t seed)
   return out;
 }
 
-double LineOccupancyAt(const BitGrid& grid, const LineAOSettings& settings, const double* samples,
-  const double axisPoint[3], const double tangent[3], const double view[3], const double* surface,
-  const double* normal, const BitGrid* solids, double* solidOccupancy)
+LineHalfBall LineHalfBallAt(const BitGrid& grid, const LineAOSettings& settings, const double axisPoint[3],
+  const double tangent[3], const double view[3], const double* surface, const double* normal)
 {
   const double h = grid.voxel;
-  const double R = settings.radius / h, rho = settings.tubeRadius / h;
+  const double rho = settings.tubeRadius / h;
   Vec3 T = ToGridDirection(grid, tangent);
   const bool line = glm::dot(T, T) > 0.0;
   if (line)
@@ -332,7 +331,8 @@ double LineOccupancyAt(const BitGrid& grid, const LineAOSettings& settings, cons
   // plane's offset from the centre along w (voxel units).
   Vec3 centre, w;
   double base = 0.0;
-  if (settings.hemisphere == LineAOHemisphere::Normal && surface && normal)
+  const bool cosine = settings.hemisphere == LineAOHemisphere::Normal && surface && normal;
+  if (cosine)
   {
     // At the tube's surface, facing its normal (the surface definition):
     // the own tube's voxel centres lie inside it, behind the plane, except
@@ -354,9 +354,44 @@ double LineOccupancyAt(const BitGrid& grid, const LineAOSettings& settings, cons
     w = glm::normalize(w);
     base = std::max(rho, HalfVoxelDiagonal);
   }
-  base += 1e-9;
+  LineHalfBall ball;
+  StoreVec3(centre, ball.centre);
+  StoreVec3(w, ball.w);
+  StoreVec3(T, ball.tangent);
+  ball.base = base + 1e-9;
+  ball.line = line;
+  ball.cosine = cosine;
+  return ball;
+}
+
+LineHalfBall LineHalfBallOfPixel(const BitGrid& grid, const LineAOSettings& settings, const LineFrame& frame,
+  std::size_t p)
+{
+  // A G-buffer of lines drawn as lines has no surface, and a pixel whose
+  // normal is 0 (a flat line's in LineFrameFromDepth) neither: their half
+  // balls face the camera.
+  const std::size_t pixels = static_cast<std::size_t>(frame.width) * frame.height;
+  const bool surfaces = frame.position.size() == 3 * pixels && frame.normal.size() == 3 * pixels;
+  const double* n = surfaces ? &frame.normal[3 * p] : nullptr;
+  const bool faced = n && (n[0] != 0.0 || n[1] != 0.0 || n[2] != 0.0);
+  return LineHalfBallAt(grid, settings, &frame.axis[3 * p], &frame.tangent[3 * p], &frame.view[3 * p],
+    faced ? &frame.position[3 * p] : nullptr, faced ? n : nullptr);
+}
+
+int LineSampleSet(int i, int j)
+{
+  return (i & 3) + 4 * (j & 3);
+}
+
+double LineOccupancyOf(const BitGrid& grid, const LineAOSettings& settings, const double* samples,
+  const LineHalfBall& ball, const BitGrid* solids, double* solidOccupancy)
+{
+  const double h = grid.voxel;
+  const double R = settings.radius / h;
+  const Vec3 centre = LoadVec3(ball.centre), w = LoadVec3(ball.w), T = LoadVec3(ball.tangent);
+  const double base = ball.base;
+  const bool line = ball.line, cosine = ball.cosine;
   const bool paper = settings.weights == LineAOWeights::Paper;
-  const bool cosine = settings.hemisphere == LineAOHemisphere::Normal && surface && normal;
   double sum = 0.0, solidSum = 0.0, weights = 0.0;
   for (int n = 0; n < settings.samples; ++n)
   {
@@ -417,6 +452,14 @@ double LineOccupancyAt(const BitGrid& grid, const LineAOSettings& settings, cons
   return weights > 0.0 ? sum / weights : 0.0;
 }
 
+double LineOccupancyAt(const BitGrid& grid, const LineAOSettings& settings, const double* samples,
+  const double axisPoint[3], const double tangent[3], const double view[3], const double* surface,
+  const double* normal, const BitGrid* solids, double* solidOccupancy)
+{
+  return LineOccupancyOf(grid, settings, samples,
+    LineHalfBallAt(grid, settings, axisPoint, tangent, view, surface, normal), solids, solidOccupancy);
+}
+
 double LineOcclusionScale(const LineAOSettings& settings, double voxel)
 {
   // A thin tube blocks rays in proportion to its width (2 r) but fills a
@@ -444,56 +487,53 @@ double LineAOAt(const BitGrid& grid, const LineAOSettings& settings, const doubl
     LineOccupancyAt(grid, settings, samples, axisPoint, tangent, view, surface, normal));
 }
 
-bool LineAOFrame(const BitGrid& grid, const LineAOSettings& settings, LineFrame& frame,
-  std::string& error, const BitGrid* solids)
+std::string CheckLineAOFrame(const BitGrid& grid, const LineAOSettings& settings, const LineFrame& frame,
+  const BitGrid* solids)
 {
-  error = settings.Validate();
+  std::string error = settings.Validate();
   if (!error.empty())
-    return false;
-  if (grid.IsFrustum() || grid.bits.empty())
-  {
-    error = "line AO needs a voxelized world or eye grid";
-    return false;
-  }
+    return error;
+  if (grid.IsFrustum() || grid.bits.empty() ||
+    grid.bits.size() != static_cast<std::size_t>(grid.nx) * grid.ny * grid.words)
+    return "line AO needs a voxelized world or eye grid";
   if (solids &&
     (solids->nx != grid.nx || solids->ny != grid.ny || solids->slices != grid.slices ||
       solids->voxel != grid.voxel || solids->origin != grid.origin || solids->axes != grid.axes ||
       solids->bits.size() != grid.bits.size()))
-  {
-    error = "the solids' grid is not planned as the lines' grid";
-    return false;
-  }
+    return "the solids' grid is not planned as the lines' grid";
   const std::size_t pixels = static_cast<std::size_t>(frame.width) * frame.height;
-  if (frame.segment.size() != pixels || frame.axis.size() != 3 * pixels ||
+  if (frame.width < 0 || frame.height < 0 || frame.segment.size() != pixels || frame.axis.size() != 3 * pixels ||
     frame.tangent.size() != 3 * pixels || frame.view.size() != 3 * pixels)
-  {
-    error = "the line G-buffer's arrays do not match its size";
+    return "the line G-buffer's arrays do not match its size";
+  return std::string();
+}
+
+double LineFrameAO(const LineAOSettings& settings, double voxel, double occupancy, double solidOccupancy)
+{
+  // Solid occluders fill what they occlude: their occupancy as it is.
+  return LineAOFromOccupancy(settings, voxel, occupancy) * (1.0 - std::min(1.0, solidOccupancy));
+}
+
+bool LineAOFrame(const BitGrid& grid, const LineAOSettings& settings, LineFrame& frame,
+  std::string& error, const BitGrid* solids)
+{
+  error = CheckLineAOFrame(grid, settings, frame, solids);
+  if (!error.empty())
     return false;
-  }
-  // A G-buffer of lines drawn as lines has no surface: its half balls face
-  // the camera.
-  const bool surfaces = frame.position.size() == 3 * pixels && frame.normal.size() == 3 * pixels;
+  const std::size_t pixels = static_cast<std::size_t>(frame.width) * frame.height;
   frame.ao.assign(pixels, std::numeric_limits<double>::quiet_NaN());
   const std::vector<double> samples = LineAOSamples(settings.samples, settings.seed);
   const int width = frame.width;
   ParallelFor(pixels, settings.threads, [&](std::size_t p) {
     if (frame.segment[p] < 0)
       return;
-    const int i = static_cast<int>(p % width), j = static_cast<int>(p / width);
-    const int set = (i & 3) + 4 * (j & 3);
+    const int set = LineSampleSet(static_cast<int>(p % width), static_cast<int>(p / width));
     const double* sample = &samples[static_cast<std::size_t>(set) * 2 * settings.samples];
-    // (A pixel whose normal is 0, a flat line's in LineFrameFromDepth,
-    // faces the camera too.)
-    const double* n = surfaces ? &frame.normal[3 * p] : nullptr;
-    const bool faced = n && (n[0] != 0.0 || n[1] != 0.0 || n[2] != 0.0);
-    const double* position = faced ? &frame.position[3 * p] : nullptr;
-    const double* normal = faced ? n : nullptr;
-    // One walk of the prisms counts both grids; solid occluders fill what
-    // they occlude: their occupancy as it is.
+    // One walk of the prisms counts both grids.
     double solidOccupancy = 0.0;
-    const double occupancy = LineOccupancyAt(grid, settings, sample, &frame.axis[3 * p], &frame.tangent[3 * p],
-      &frame.view[3 * p], position, normal, solids, &solidOccupancy);
-    frame.ao[p] = LineAOFromOccupancy(settings, grid.voxel, occupancy) * (1.0 - std::min(1.0, solidOccupancy));
+    const double occupancy = LineOccupancyOf(grid, settings, sample,
+      LineHalfBallOfPixel(grid, settings, frame, p), solids, &solidOccupancy);
+    frame.ao[p] = LineFrameAO(settings, grid.voxel, occupancy, solidOccupancy);
   });
   return true;
 }

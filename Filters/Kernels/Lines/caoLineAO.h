@@ -45,6 +45,7 @@
 #include "caoCapsules.h"
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -133,6 +134,33 @@ constexpr double MaximumVoxelVisits = 2e10;
 /// the same for the same seed.
 std::vector<double> LineAOSamples(int count, std::uint64_t seed);
 
+/// The half ball of a line's pixel in a grid's voxel units: what
+/// LineOccupancyAt sets up before its prisms, and what the GPU's host
+/// packs per pixel (Filters/GL/Lines), so both walk the same half ball.
+struct LineHalfBall
+{
+  double centre[3];  ///< voxel units (voxel (i, j, k) spans [i, i + 1) ...)
+  double w[3];       ///< the base plane's unit normal, grid frame
+  double tangent[3]; ///< the line's unit tangent, grid frame (0: a point)
+  double base;       ///< the base plane's offset from the centre along w, voxels
+  bool line;         ///< the tangent is not 0
+  bool cosine;       ///< angular weight: the cosine to w (a surface's normal), else the seed's sine to the tangent
+};
+/// The half ball at a line's axis point (or, with `surface` and `normal`,
+/// at its tube's surface point) as LineOccupancyAt documents it.
+LineHalfBall LineHalfBallAt(const BitGrid& grid, const LineAOSettings& settings, const double axisPoint[3],
+  const double tangent[3], const double view[3], const double* surface, const double* normal);
+/// The half ball of covered pixel p of `frame` as LineAOFrame takes it (a
+/// pixel with no surface or a zero normal faces the camera).
+LineHalfBall LineHalfBallOfPixel(const BitGrid& grid, const LineAOSettings& settings, const LineFrame& frame,
+  std::size_t p);
+/// The disk sample set of pixel (i, j): (i mod 4) + 4 (j mod 4).
+int LineSampleSet(int i, int j);
+/// The weighted occupancy of `ball`'s prisms (LineOccupancyAt after its
+/// set-up).
+double LineOccupancyOf(const BitGrid& grid, const LineAOSettings& settings, const double* samples,
+  const LineHalfBall& ball, const BitGrid* solids = nullptr, double* solidOccupancy = nullptr);
+
 /// The occupancy (0..1, the weighted mean of the prisms' set fraction) of
 /// the half ball of a line's pixel: its axis point `axisPoint` with unit
 /// `tangent` (zero: a point, lit as a sphere), seen along unit `view` (eye
@@ -157,6 +185,16 @@ double LineAOFromOccupancy(const LineAOSettings& settings, double voxel, double 
 double LineAOAt(const BitGrid& grid, const LineAOSettings& settings, const double* samples,
   const double axisPoint[3], const double tangent[3], const double view[3],
   const double* surface = nullptr, const double* normal = nullptr);
+
+/// Empty when LineAOFrame can run on these, else why not (invalid
+/// settings, a frustum or unvoxelized grid, `solids` planned otherwise, a
+/// G-buffer whose arrays do not match its size).
+std::string CheckLineAOFrame(const BitGrid& grid, const LineAOSettings& settings, const LineFrame& frame,
+  const BitGrid* solids = nullptr);
+/// A pixel's AO from the lines' and the solids' occupancy of its half
+/// ball: LineAOFromOccupancy times 1 - solid occupancy (a solid fills what
+/// it occludes).
+double LineFrameAO(const LineAOSettings& settings, double voxel, double occupancy, double solidOccupancy);
 
 /// Line AO of every covered pixel of `frame` (its axis point, tangent and
 /// view, and where it has a non-zero normal its surface point and normal;

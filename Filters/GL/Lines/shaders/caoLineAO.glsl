@@ -1,0 +1,127 @@
+// caoLineAO.glsl - the GPU side of cao::LineAOFrame (caoLineAO.cxx), in
+// float, one invocation per covered pixel: the prisms of the pixel's half
+// ball (set up by the host in double: caoGPULayout.h's LineAOPixel) counted
+// in the lines' bit grid (and the solids'), weighted as
+// cao::LineOccupancyOf weights them, and turned into AO as
+// cao::LineFrameAO does.
+layout(local_size_x = 64) in;
+
+layout(std140, binding = CAO_BINDING_LA_PARAMS) uniform LineAOBlock
+{
+  LineAOParams la;
+};
+layout(std430, binding = CAO_BINDING_LA_BITS) readonly buffer BitsBlock
+{
+  uint bits[];
+};
+layout(std430, binding = CAO_BINDING_LA_SOLIDS) readonly buffer SolidsBlock
+{
+  uint solids[];
+};
+layout(std430, binding = CAO_BINDING_LA_PIXELS) readonly buffer PixelsBlock
+{
+  LineAOPixel balls[];
+};
+layout(std430, binding = CAO_BINDING_LA_SAMPLES) readonly buffer SamplesBlock
+{
+  vec4 disk[];
+};
+layout(std430, binding = CAO_BINDING_LA_AO) writeonly buffer AOBlock
+{
+  float ao[];
+};
+
+/// Set bits in slices [k0, k1] of column (i, j) of the lines' grid
+/// (solid: the solids'), clamped; 0 outside (cao::BitGrid::CountBits).
+int CountBits(bool solid, int i, int j, int k0, int k1)
+{
+  if (i < 0 || j < 0 || i >= la.grid.x || j >= la.grid.y)
+    return 0;
+  k0 = max(k0, 0);
+  k1 = min(k1, la.grid.z - 1);
+  if (k1 < k0)
+    return 0;
+  int column = (j * la.grid.x + i) * la.grid.w;
+  int count = 0;
+  for (int w = k0 >> 5; w <= (k1 >> 5); ++w)
+  {
+    uint word = solid ? solids[column + w] : bits[column + w];
+    int lo = w == (k0 >> 5) ? (k0 & 31) : 0, hi = w == (k1 >> 5) ? (k1 & 31) : 31;
+    word &= (0xffffffffu << uint(lo)) & (0xffffffffu >> uint(31 - hi));
+    count += bitCount(word);
+  }
+  return count;
+}
+
+/// Clamped to just outside the grid before the cast (CountBits counts
+/// nothing there), as the CPU's index().
+int Index(float v, int n)
+{
+  return int(min(float(n), max(-1.0, v)));
+}
+
+void main()
+{
+  int k = int(gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x + gl_GlobalInvocationID.x);
+  if (k >= la.counts.y)
+    return;
+  LineAOPixel ball = balls[k];
+  const vec3 centre = ball.centre.xyz, w = ball.plane.xyz, T = ball.tangent.xyz;
+  const float base = ball.centre.w;
+  const bool line = (ball.pixel.y & 1) != 0, cosine = (ball.pixel.y & 2) != 0;
+  const bool paper = (la.counts.z & 1) != 0, withSolids = (la.counts.z & 2) != 0;
+  const float R = la.scalars.x, h = la.scalars.y;
+  const int samples = la.counts.x, first = ball.pixel.z * samples;
+  float sum = 0.0, solidSum = 0.0, weights = 0.0;
+  for (int n = 0; n < samples; ++n)
+  {
+    vec2 s = disk[first + n].xy;
+    // The prism along the view axis through the voxel centres of the
+    // column nearest the sample.
+    float ci = floor(centre.x + R * s.x), cj = floor(centre.y + R * s.y);
+    vec3 c = vec3(ci + 0.5, cj + 0.5, centre.z);
+    float lateral2 = (c.x - centre.x) * (c.x - centre.x) + (c.y - centre.y) * (c.y - centre.y);
+    float halfChord = sqrt(max(0.0, R * R - lateral2));
+    float u0 = -halfChord, u1 = halfChord;
+    float along = dot(c - centre, w);
+    if (abs(w.z) < 1e-12)
+    {
+      if (along < base)
+        continue;
+    }
+    else if (w.z > 0.0)
+      u0 = max(u0, (base - along) / w.z);
+    else
+      u1 = min(u1, (base - along) / w.z);
+    if (!(u0 <= u1))
+      continue;
+    float k0 = ceil(c.z + u0 - 0.5), k1 = floor(c.z + u1 - 0.5);
+    if (!(k0 <= k1))
+      continue;
+    int i = Index(ci, la.grid.x), j = Index(cj, la.grid.y), kf = Index(k0, la.grid.z), kl = Index(k1, la.grid.z);
+    float cells = k1 - k0 + 1.0;
+    float ratio = float(CountBits(false, i, j, kf, kl)) / cells;
+    float solidRatio = withSolids ? float(CountBits(true, i, j, kf, kl)) / cells : 0.0;
+    vec3 nearEnd = c + vec3(0.0, 0.0, u0) - centre, farEnd = c + vec3(0.0, 0.0, u1) - centre;
+    float dm = max(0.5 * (length(nearEnd) + length(farEnd)), 1e-12);
+    if (paper)
+    {
+      float d2 = (dm * h) * (dm * h);
+      sum += ratio / d2;
+      solidSum += solidRatio / d2;
+      weights += 1.0;
+      continue;
+    }
+    vec3 middle = 0.5 * (nearEnd + farEnd);
+    float ml = length(middle);
+    float angular = !(ml > 0.0) ? 0.0 : cosine ? max(0.0, dot(w, middle) / ml) : line ? length(cross(T, middle)) / ml : 1.0;
+    float weight = angular / ((dm / R) * (dm / R));
+    sum += weight * ratio;
+    solidSum += weight * solidRatio;
+    weights += weight;
+  }
+  float occupancy = weights > 0.0 ? sum / weights : 0.0;
+  float solidOccupancy = weights > 0.0 ? solidSum / weights : 0.0;
+  float lines = paper ? 1.0 - clamp(la.paper.x * occupancy, 0.0, 1.0) : exp(-la.scalars.w * la.scalars.z * occupancy);
+  ao[k] = lines * (1.0 - min(1.0, solidOccupancy));
+}
