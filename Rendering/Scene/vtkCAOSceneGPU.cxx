@@ -7,6 +7,7 @@
 
 #include "caoFrameGL.h"
 #include "caoGLContext.h"
+#include "caoLineAOGL.h"
 #include "caoScreenAOGL.h"
 #include "caoVCTGL.h"
 
@@ -19,6 +20,7 @@ struct SceneGPU::Impl
   std::unique_ptr<cao::gl::VCTEngine> engine;
   std::unique_ptr<cao::gl::ScreenAOEngine> screen;
   std::unique_ptr<cao::gl::FrameEngine> frame;
+  std::unique_ptr<cao::gl::LineAOEngine> lines;
   std::string failure; ///< why the window's OpenGL cannot be used (tried once per window)
   bool Ready(std::string& error) const
   {
@@ -47,9 +49,11 @@ struct SceneGPU::Impl
     drop(this->engine);
     drop(this->screen);
     drop(this->frame);
+    drop(this->lines);
     this->engine.reset();
     this->screen.reset();
     this->frame.reset();
+    this->lines.reset();
     this->context.reset();
     this->window = nullptr;
     this->tried = false;
@@ -86,6 +90,7 @@ bool SceneGPU::Resolve(vtkRenderWindow* window, int backend, std::string& error)
       p.engine.reset(new cao::gl::VCTEngine(*p.context));
       p.screen.reset(new cao::gl::ScreenAOEngine(*p.context));
       p.frame.reset(new cao::gl::FrameEngine(*p.context));
+      p.lines.reset(new cao::gl::LineAOEngine(*p.context));
     }
   }
   if (!p.context)
@@ -147,6 +152,13 @@ bool SceneGPU::VAO(const cao::PixelCamera& camera, const cao::VAOSettings& setti
 {
   double ms = 0.0;
   return this->P->Ready(error) && this->P->screen->VAO(camera, settings, frame, ms, error);
+}
+
+bool SceneGPU::LineAO(const cao::BitGrid& grid, const cao::LineAOSettings& settings, cao::LineFrame& frame,
+  const cao::BitGrid* solids, std::string& error)
+{
+  double ms = 0.0;
+  return this->P->Ready(error) && this->P->lines->Frame(grid, settings, frame, ms, error, solids);
 }
 
 bool SceneGPU::FrameDepth(unsigned framebuffer, const int rect[4], std::int64_t& changed, std::string& error)
@@ -241,7 +253,8 @@ long long SceneGPU::ResidentBytes() const
 {
   return (this->P->engine ? static_cast<long long>(this->P->engine->ResidentBytes()) : 0) +
     (this->P->screen ? static_cast<long long>(this->P->screen->ResidentBytes()) : 0) +
-    (this->P->frame ? static_cast<long long>(this->P->frame->ResidentBytes()) : 0);
+    (this->P->frame ? static_cast<long long>(this->P->frame->ResidentBytes()) : 0) +
+    (this->P->lines ? static_cast<long long>(this->P->lines->ResidentBytes()) : 0);
 }
 
 int SceneGPU::Generation() const

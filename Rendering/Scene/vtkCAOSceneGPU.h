@@ -3,7 +3,8 @@
  * window's own OpenGL context (the pass runs inside the window's render,
  * its context current): voxel cone tracing's grid and cones
  * (cao::gl::VCTEngine) and the screen-space methods' estimators
- * (cao::gl::ScreenAOEngine) of the VTK-free GL layer, whose state guard
+ * (cao::gl::ScreenAOEngine) and line AO's prism sampling
+ * (cao::gl::LineAOEngine) of the VTK-free GL layer, whose state guard
  * gives VTK's GL state back as it was. Backend choice as the filters'
  * (vtkCAOGPUSession.h): CPU never touches OpenGL; OpenGL needs the window's
  * OpenGL 4.3 (else an error); Auto uses it on a hardware GPU and the CPU
@@ -13,6 +14,7 @@
 #ifndef vtkCAOSceneGPU_h
 #define vtkCAOSceneGPU_h
 
+#include "caoLineAO.h"
 #include "caoScreenSpaceAO.h"
 #include "caoVoxelConeTracing.h"
 
@@ -56,6 +58,10 @@ public:
     std::string& error);
   bool VAO(const cao::PixelCamera& camera, const cao::VAOSettings& settings, cao::SurfaceFrame& frame,
     std::string& error);
+  /// cao::gl::LineAOEngine::Frame: cao::LineAOFrame's twin (the lines'
+  /// grid and G-buffer made on the CPU, the prisms counted on the GPU).
+  bool LineAO(const cao::BitGrid& grid, const cao::LineAOSettings& settings, cao::LineFrame& frame,
+    const cao::BitGrid* solids, std::string& error);
   ///@{
   /// The frame kept on the GPU (cao::gl::FrameEngine; the depth G-buffer;
   /// VCT, HBAO, VAO without indirect light): the drawn depth of `framebuffer`'s rectangle (x0, y0,

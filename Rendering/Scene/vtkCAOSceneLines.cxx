@@ -1,5 +1,6 @@
 // vtkCAOSceneLines.cxx - the lines' AO in the render pass (vtkCAOSceneLines.h).
 #include "vtkCAOSceneLines.h"
+#include "vtkCAOSceneGPU.h"
 
 #include "caoAORadius.h"
 #include "caoVoxelConeTracing.h"
@@ -219,7 +220,7 @@ bool SceneLines::VoxelizeInto(cao::BitGrid& grid, std::string& error)
 
 bool SceneLines::Update(const cao::PixelCamera& camera, const double right[3], const double up[3],
   const std::vector<float>& depth, const std::vector<unsigned char>* skip, double aoRadius, int samples,
-  int slices, std::vector<std::string>& stages, std::vector<double>& ms, std::string& error)
+  int slices, SceneGPU* gpu, std::vector<std::string>& stages, std::vector<double>& ms, std::string& error)
 {
   auto start = Clock::now();
   bool built = false;
@@ -306,7 +307,7 @@ bool SceneLines::Update(const cao::PixelCamera& camera, const double right[3], c
   view.insert(view.end(), this->drawKey.begin(), this->drawKey.end()); // the pixels' search
   view.insert(view.end(), camera.ndcToWorld, camera.ndcToWorld + 16);
   view.insert(view.end(), { static_cast<double>(camera.width), static_cast<double>(camera.height),
-                            static_cast<double>(samples) });
+                            static_cast<double>(samples), gpu ? 1.0 : 0.0 });
   std::uint64_t hash = 1469598103934665603ull;
   for (std::size_t i = 0; i < depth.size(); ++i)
   {
@@ -328,7 +329,10 @@ bool SceneLines::Update(const cao::PixelCamera& camera, const double right[3], c
   stages.push_back("line_gbuffer");
   ms.push_back(Since(start));
   start = Clock::now();
-  if (!cao::LineAOFrame(this->grid, settings, this->frame, error, meshes ? &this->solids : nullptr))
+  // The prisms on the window's OpenGL (the pass's backend) or the CPU.
+  this->onGPU = gpu != nullptr;
+  if (gpu ? !gpu->LineAO(this->grid, settings, this->frame, meshes ? &this->solids : nullptr, error)
+          : !cao::LineAOFrame(this->grid, settings, this->frame, error, meshes ? &this->solids : nullptr))
     return false;
   this->aoKey = view;
   stages.push_back("line_ao");

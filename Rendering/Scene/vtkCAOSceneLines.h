@@ -1,7 +1,9 @@
 /**
  * vtkCAOSceneLines — the lines of a scene as the render pass gives them
  * ambient occlusion: line voxelization and prism sampling (seed 004,
- * Filters/Kernels/Lines) on the CPU. Private to vtkContextualAOPass.
+ * Filters/Kernels/Lines) on the CPU, the prisms on the window's OpenGL
+ * when the pass's backend resolves there (Filters/GL/Lines). Private to
+ * vtkContextualAOPass.
  *
  * The lines are the visible opaque actors' polydata pieces that have lines
  * and no polygons or strips (streamlines, polylines), drawn as lines or as
@@ -35,6 +37,7 @@ class vtkRenderer;
 
 namespace vtkCAO
 {
+class SceneGPU;
 class SceneLines
 {
 public:
@@ -49,12 +52,16 @@ public:
   /// The line AO of `camera`'s drawn pixels (`depth`: window depth, row 0
   /// at the bottom) except those in `skip`; `right` and `up` the camera's
   /// axes. `radius` is the AO radius (0: the default of the lines'
-  /// extent). Appends what ran
+  /// extent). With `gpu` (resolved to the window's OpenGL) the prisms are
+  /// counted there (cao::gl::LineAOEngine), else on the CPU; the G-buffer
+  /// and the grid are made on the CPU either way. Appends what ran
   /// to `stages` / `ms`. False with the reason (a scene that failed is not
   /// built again until its lines change).
   bool Update(const cao::PixelCamera& camera, const double right[3], const double up[3],
     const std::vector<float>& depth, const std::vector<unsigned char>* skip, double radius, int samples,
-    int slices, std::vector<std::string>& stages, std::vector<double>& ms, std::string& error);
+    int slices, SceneGPU* gpu, std::vector<std::string>& stages, std::vector<double>& ms, std::string& error);
+  /// Whether the last line AO ran on the GPU.
+  bool OnGPU() const { return this->onGPU; }
 
   /// What the lines' segments depend on (this frame's pieces).
   const std::vector<double>& Key() const { return this->frameKey; }
@@ -96,6 +103,7 @@ private:
   cao::BitGrid grid, solids;
   cao::LineFrame frame;
   int voxelizations = 0;
+  bool onGPU = false;
 };
 }
 

@@ -595,6 +595,7 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
       << p.lines.NumberOfSegments() << ", \"radius\": " << p.lines.Radius() << ", \"pixels\": "
       << p.lines.Frame().covered << ", \"combined_pixels\": " << p.lineCombined
       << ", \"voxelizations\": " << p.lines.Voxelizations() << ", \"radius_voxels\": " << p.lines.RadiusVoxels()
+      << ", \"prisms\": \"" << (p.lines.OnGPU() ? "OpenGL" : "CPU") << "\""
       << (p.lines.RadiusVoxels() < 2.0
              ? ", \"radius_note\": \"the AO radius spans under 2 voxels of the lines' grid: the half balls hold "
                "too few to see the neighbours (raise the Radius or LineSlices)\""
@@ -676,7 +677,10 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
     this->gpuFrame = false;
     if (!this->linesOn)
       return; // no surfaces and no lines: no work
-    // Lines alone: their AO on the drawn depth, and the combine.
+    // Lines alone: their AO on the drawn depth (the prisms where the
+    // backend resolves), and the combine.
+    if (!this->ResolveBackend(self, ren))
+      return;
     this->depthOk = vtkCAO::ReadViewportDepth(ren, this->depth, this->depthError);
     if (this->UpdateLines(self, ren) && this->Combine(self, s))
       this->said.clear();
@@ -699,8 +703,8 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
   this->gpuFrame = this->onGPU && this->gbuffer == DEPTH_BUFFER && !(self->Method == VAO && self->IndirectLight) &&
     !frustum && !this->linesOn;
   if (this->onGPU && this->gbuffer == DEPTH_BUFFER && this->linesOn)
-    this->backendNote = "the lines' AO runs on the CPU: the frame's pixels are read back (the surfaces' AO still "
-                        "on the GPU)";
+    this->backendNote = "the lines' G-buffer and grid are made on the CPU: the frame's pixels are read back (the "
+                        "surfaces' AO and the lines' prisms still on the GPU)";
   if (this->onGPU && this->gbuffer == DEPTH_BUFFER && self->Method == VAO && self->IndirectLight)
     this->backendNote = "VAO's indirect light runs on the CPU: the frame's pixels are read back (the AO still on the GPU)";
   if (this->onGPU && this->gbuffer == DEPTH_BUFFER && frustum)
@@ -1407,7 +1411,7 @@ bool vtkContextualAOPass::Internals::UpdateLines(vtkContextualAOPass* self, vtkR
   }
   std::string error;
   if (!this->lines.Update(camera, right, up, this->depth, skip.empty() ? nullptr : &skip, self->Radius,
-        self->LineSamples, self->LineSlices, this->stages, this->ms, error))
+        self->LineSamples, self->LineSlices, this->onGPU ? &this->gpu : nullptr, this->stages, this->ms, error))
     return skipLines(error);
   this->saidLines.clear();
   return true;

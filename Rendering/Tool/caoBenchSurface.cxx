@@ -211,7 +211,7 @@ int Run(Options& o, const CLI::App*)
   std::vector<Row> rows;
   std::vector<std::string> notes;
   std::map<std::string, double> radiusOf; ///< each mesh's radius (the JSON's rows)
-  VCTGPU gpu;
+  SurfaceGPU gpu;
   for (const std::string& path : o.meshes)
   {
     SurfaceScene scene;

@@ -3,6 +3,7 @@
 
 #include "caoCommandLine.h"
 #include "caoSurfaceReference.h"
+#include "caoLineAOGL.h"
 #include "caoScreenAOGL.h"
 #include "caoVCTGL.h"
 #include "caoVoxelConeTracing.h"
@@ -283,25 +284,27 @@ void FitCamera(vtkCamera* camera, const double b[6], const SurfaceView& o)
   camera->SetClippingRange(std::max(1e-3 * d, d - 1.01 * radius), d + 1.01 * radius);
 }
 
-struct VCTGPU::Impl
+struct SurfaceGPU::Impl
 {
   std::unique_ptr<cao::gl::Context> context;
   std::unique_ptr<cao::gl::VCTEngine> engine;
   std::unique_ptr<cao::gl::ScreenAOEngine> screen;
+  std::unique_ptr<cao::gl::LineAOEngine> lines;
 };
 
-VCTGPU::VCTGPU()
+SurfaceGPU::SurfaceGPU()
   : P(new Impl)
 {
 }
 
-VCTGPU::~VCTGPU()
+SurfaceGPU::~SurfaceGPU()
 {
   this->P->engine.reset(); // before its context
   this->P->screen.reset();
+  this->P->lines.reset();
 }
 
-bool VCTGPU::ScreenAO(const cao::PixelCamera& camera, const cao::HBAOSettings* hbao, const cao::VAOSettings* vao,
+bool SurfaceGPU::ScreenAO(const cao::PixelCamera& camera, const cao::HBAOSettings* hbao, const cao::VAOSettings* vao,
   cao::SurfaceFrame& frame, double& ms, std::string& error)
 {
   if (!this->P->context)
@@ -312,7 +315,17 @@ bool VCTGPU::ScreenAO(const cao::PixelCamera& camera, const cao::HBAOSettings* h
               : this->P->screen->VAO(camera, *vao, frame, ms, error);
 }
 
-bool VCTGPU::Open(std::string& error)
+bool SurfaceGPU::LineAO(const cao::BitGrid& grid, const cao::LineAOSettings& settings, cao::LineFrame& frame,
+  const cao::BitGrid* solids, double& ms, std::string& error)
+{
+  if (!this->P->context)
+    return error = "no OpenGL context (open one first)", false;
+  if (!this->P->lines)
+    this->P->lines.reset(new cao::gl::LineAOEngine(*this->P->context));
+  return this->P->lines->Frame(grid, settings, frame, ms, error, solids);
+}
+
+bool SurfaceGPU::Open(std::string& error)
 {
   if (this->P->engine)
     return true;
@@ -323,19 +336,19 @@ bool VCTGPU::Open(std::string& error)
   return true;
 }
 
-bool VCTGPU::Software() const
+bool SurfaceGPU::Software() const
 {
   const std::string d = this->Description();
   return d.find("llvmpipe") != std::string::npos || d.find("softpipe") != std::string::npos ||
     d.find("OSMesa") != std::string::npos;
 }
 
-std::string VCTGPU::Description() const
+std::string SurfaceGPU::Description() const
 {
   return this->P->context ? this->P->context->Description() : std::string();
 }
 
-bool VCTGPU::Voxelize(const SurfaceScene& scene, const cao::BitGrid& shape,
+bool SurfaceGPU::Voxelize(const SurfaceScene& scene, const cao::BitGrid& shape,
   std::vector<std::int64_t>& openEdges, double& ms, std::string& error, bool surfaceVoxels)
 {
   if (!this->P->engine)
@@ -347,7 +360,7 @@ bool VCTGPU::Voxelize(const SurfaceScene& scene, const cao::BitGrid& shape,
   return this->P->engine->Voxelize(shape, views, openEdges, ms, error, surfaceVoxels);
 }
 
-bool VCTGPU::Trace(const cao::BitGrid& grid, const cao::VCTPlan& plan, cao::SurfaceFrame& frame, double& ms,
+bool SurfaceGPU::Trace(const cao::BitGrid& grid, const cao::VCTPlan& plan, cao::SurfaceFrame& frame, double& ms,
   std::string& error)
 {
   if (!this->P->engine)
@@ -356,6 +369,31 @@ bool VCTGPU::Trace(const cao::BitGrid& grid, const cao::VCTPlan& plan, cao::Surf
     return false;
   }
   return this->P->engine->TraceFrame(grid, plan, frame, ms, error);
+}
+
+bool ChooseBackend(const std::string& backend, SurfaceGPU& gpu, bool& useGL, std::string& note, std::string& error)
+{
+  useGL = false;
+  note.clear();
+  if (backend == "cpu")
+    return true;
+  std::string why;
+  const bool opened = gpu.Open(why);
+  if (backend == "gl" && !opened)
+    return error = "--backend gl: no OpenGL 4.3 context: " + why, false;
+  useGL = opened && (backend == "gl" || !gpu.Software());
+  if (!useGL) // auto chose the CPU: say why (in --json's backend_note)
+    note = opened ? "auto: OpenGL is a software rasteriser (" + gpu.Description() + "): the CPU"
+                  : "auto: no OpenGL 4.3 context (" + why + "): the CPU";
+  for (char& c : note)
+    if (c == '"' || c == '\\')
+      c = '\'';
+  return true;
+}
+
+std::string NoteField(const std::string& note)
+{
+  return note.empty() ? std::string() : ", \"backend_note\": \"" + note + "\"";
 }
 
 bool SSAORenderer::Setup(const SurfaceScene& scene, const std::string& windowKind,
@@ -753,34 +791,6 @@ bool LoadOccludingVolume(
   return vtkCAO::VolumeOpacity(volume, opacity, error);
 }
 
-/// --backend: OpenGL for gl, or for auto on a hardware GPU (a context is
-/// opened to ask); false with the reason when gl has no context.
-bool ChooseBackend(const SurfaceOptions& o, VCTGPU& gpu, bool& useGL, std::string& note, std::string& error)
-{
-  useGL = false;
-  note.clear();
-  if (o.backend == "cpu")
-    return true;
-  std::string why;
-  const bool opened = gpu.Open(why);
-  if (o.backend == "gl" && !opened)
-    return error = "--backend gl: no OpenGL 4.3 context: " + why, false;
-  useGL = opened && (o.backend == "gl" || !gpu.Software());
-  if (!useGL) // auto chose the CPU: say why (in --json's backend_note)
-    note = opened ? "auto: OpenGL is a software rasteriser (" + gpu.Description() + "): the CPU"
-                  : "auto: no OpenGL 4.3 context (" + why + "): the CPU";
-  for (char& c : note)
-    if (c == '"' || c == '\\')
-      c = '\'';
-  return true;
-}
-
-/// `, "backend_note": "..."` when there is one.
-std::string NoteField(const std::string& note)
-{
-  return note.empty() ? std::string() : ", \"backend_note\": \"" + note + "\"";
-}
-
 double Milliseconds(std::chrono::steady_clock::time_point since)
 {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since).count();
@@ -837,7 +847,7 @@ int Run(SurfaceOptions& o, const CLI::App* app)
   }
   // The options that only some methods read: refused for the others.
   static const std::vector<std::pair<std::string, std::vector<std::string>>> methodOptions{
-    { "--quality", { "vct", "hbao", "vao" } }, { "--backend", { "vct", "hbao", "vao" } },
+    { "--quality", { "vct", "hbao", "vao" } }, { "--backend", { "vct", "hbao", "vao", "lineao" } },
     { "--slices", { "vct", "lineao" } }, { "--grid", { "vct" } }, { "--cone-weights", { "vct" } },
     { "--fill", { "vct" } }, { "--occupancy", { "vct" } }, { "--ray-step", { "vct" } },
     { "--cone-angle", { "vct" } }, { "--apex-offset", { "vct" } }, { "--rays", { "reference" } },
@@ -922,10 +932,10 @@ int Run(SurfaceOptions& o, const CLI::App* app)
   {
     // What the lines' path does not read: refused, not ignored.
     const bool meshes = std::any_of(read.begin(), read.end(), [](vtkPolyData* m) { return !IsLineInput(m); });
-    for (const char* name : { "--volume", "--backend", "--grid", "--filter", "--march", "--samples" })
+    for (const char* name : { "--volume", "--grid", "--filter", "--march", "--samples" })
       if (app->count(name) > 0)
         return Fail(2, std::string(name) + " is not read with line inputs (line AO and the meshes' voxel cones "
-                                           "beside it run on the CPU, on one eye grid, without an occluding volume)");
+                                           "beside it run on one eye grid, without an occluding volume)");
     if (!meshes)
       for (const char* name : { "--quality", "--cone-weights", "--fill", "--occupancy", "--ray-step", "--cone-angle",
              "--apex-offset" })
@@ -949,6 +959,7 @@ int Run(SurfaceOptions& o, const CLI::App* app)
     job.vct = o.vct;
     job.kernel = o.kernel;
     job.threads = o.threads;
+    job.backend = o.backend;
     job.aoOnly = o.aoOnly;
     job.json = o.json;
     return RunSurfaceLines(job, o.meshes, read);
@@ -994,9 +1005,9 @@ int Run(SurfaceOptions& o, const CLI::App* app)
   if (o.method == "vct")
   {
     o.vct.radius = radius;
-    VCTGPU gpu;
+    SurfaceGPU gpu;
     bool useGL = false;
-    if (!ChooseBackend(o, gpu, useGL, backendNote, error))
+    if (!ChooseBackend(o.backend, gpu, useGL, backendNote, error))
       return Fail(1, error);
     start = std::chrono::steady_clock::now(); // the grid's time, not the OpenGL probe's
     cao::VCTPlan plan;
@@ -1062,9 +1073,9 @@ int Run(SurfaceOptions& o, const CLI::App* app)
   {
     const cao::PixelCamera pixels = MakePixelCamera(camera, o.view);
     o.hbao.radius = o.vao.radius = radius;
-    VCTGPU gpu;
+    SurfaceGPU gpu;
     bool useGL = false;
-    if (!ChooseBackend(o, gpu, useGL, backendNote, error))
+    if (!ChooseBackend(o.backend, gpu, useGL, backendNote, error))
       return Fail(1, error);
     const bool hbao = o.method == "hbao";
     double ms = 0.0;

@@ -13,6 +13,7 @@
 
 #include "caoOptions.h"
 
+#include "caoLineAO.h"
 #include "caoScreenSpaceAO.h"
 #include "caoSurfaceReference.h"
 #include "caoVoxelConeTracing.h"
@@ -131,13 +132,14 @@ bool WriteFramePicture(const std::string& path, int width, int height, bool aoOn
 bool CastFrame(const SurfaceScene& scene, vtkCamera* camera, const SurfaceView& view,
   cao::SurfaceFrame& frame, std::string& error);
 
-/// Voxel cone tracing on the GPU: a headless context (EGL, then OSMesa) and
-/// the engine, kept between frames.
-class VCTGPU
+/// `cao surface`'s GPU: a headless context (EGL, then OSMesa) and the
+/// engines (voxel cone tracing, horizon-based and volumetric AO, line AO's
+/// prisms), kept between frames.
+class SurfaceGPU
 {
 public:
-  VCTGPU();
-  ~VCTGPU();
+  SurfaceGPU();
+  ~SurfaceGPU();
   /// A context; false with the reason. `software`: the renderer is a
   /// software rasterizer (llvmpipe), slower than the CPU twin here.
   bool Open(std::string& error);
@@ -155,11 +157,22 @@ public:
   /// GPU (caoScreenAOGL), blurred or filtered as the CPU twin; `ms` GPU time.
   bool ScreenAO(const cao::PixelCamera& camera, const cao::HBAOSettings* hbao, const cao::VAOSettings* vao,
     cao::SurfaceFrame& frame, double& ms, std::string& error);
+  /// Line AO's prisms on the GPU (cao::gl::LineAOEngine, cao::LineAOFrame's
+  /// twin) on a grid made on the CPU; `ms` GPU time.
+  bool LineAO(const cao::BitGrid& grid, const cao::LineAOSettings& settings, cao::LineFrame& frame,
+    const cao::BitGrid* solids, double& ms, std::string& error);
 
 private:
   struct Impl;
   std::unique_ptr<Impl> P;
 };
+
+/// --backend (auto, cpu, gl): OpenGL for gl, or for auto on a hardware GPU
+/// (a context is opened to ask); false with the reason when gl has no
+/// context. `note`: why auto chose the CPU.
+bool ChooseBackend(const std::string& backend, SurfaceGPU& gpu, bool& useGL, std::string& note, std::string& error);
+/// `, "backend_note": "..."` when there is one.
+std::string NoteField(const std::string& note);
 
 /// vtkSSAOPass on the scene's meshes (unlit white), in one offscreen window
 /// kept between renders, read back as the AO (NaN on the background).

@@ -292,8 +292,16 @@ int RunSurfaceLines(LineJob& job, const std::vector<std::string>& files,
   job.reference.radius = radius;
   job.reference.threads = job.threads;
   std::vector<double> surfaceAO(surface.triangle.size(), std::numeric_limits<double>::quiet_NaN());
+  std::string lineBackend = "CPU", backendNote;
+  SurfaceGPU gpu;
   if (job.method == "lineao" || job.method == "vct")
   {
+    // The prisms where --backend says (the grid and the G-buffer: the CPU).
+    bool useGL = false;
+    if (!ChooseBackend(job.backend, gpu, useGL, backendNote, error))
+      return Fail(2, error);
+    if (useGL)
+      lineBackend = "OpenGL (" + gpu.Description() + ")";
     // One eye grid for both kinds: the lines' voxels and the meshes'.
     double right[3], up[3];
     CameraAxes(camera, right, up);
@@ -315,7 +323,9 @@ int RunSurfaceLines(LineJob& job, const std::vector<std::string>& files,
       std::cerr << "cao: warning: the AO radius " << radius << " spans " << radius / grid.voxel
                 << " voxels of the grid (" << grid.slices
                 << " slices): the half balls hold too few to see the neighbours; use more --slices\n";
-    if (!cao::LineAOFrame(grid, job.lineAO, frame, error, mixed ? &solids : nullptr))
+    double gpuMs = 0.0;
+    if (lineBackend != "CPU" ? !gpu.LineAO(grid, job.lineAO, frame, mixed ? &solids : nullptr, gpuMs, error)
+                             : !cao::LineAOFrame(grid, job.lineAO, frame, error, mixed ? &solids : nullptr))
       return Fail(2, error);
     if (mixed)
     {
@@ -443,7 +453,7 @@ int RunSurfaceLines(LineJob& job, const std::vector<std::string>& files,
                 << ", \"grid\": \"eye\", \"columns\": [" << grid.nx << ", " << grid.ny << "], \"voxel\": "
                 << grid.voxel << ", \"set_voxels\": " << grid.CountAll()
                 << (mixed ? ", \"mesh_voxels\": " + std::to_string(solids.CountAll()) : std::string())
-                << ", \"backend\": \"CPU\"}";
+                << ", \"backend\": \"" << lineBackend << "\"" << NoteField(backendNote) << "}";
     if (job.method == "reference")
       std::cout << ", \"reference\": {\"rays\": " << job.reference.rays << ", \"falloff\": \""
                 << cao::FalloffName(job.reference.falloff) << "\", \"weighting\": \""

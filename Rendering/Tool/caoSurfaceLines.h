@@ -73,6 +73,7 @@ struct LineJob
   cao::AOReferenceSettings reference;
   cao::VCTSettings vct; ///< the meshes' voxel cones, when meshes come with the lines
   int kernel = 32, threads = 0;
+  std::string backend = "auto"; ///< line AO's prisms: auto, cpu or gl (the grid and G-buffer: the CPU)
   bool aoOnly = false, json = false;
 };
 

@@ -5,7 +5,9 @@ stages: no AO, the first line AO frame, a still view, a camera turn, a
 colour change, a dolly.
 
   PYTHONPATH=build/python xvfb-run -a -s "-screen 0 2000x1200x24" pvpython --dr \
-    lines_frame_timing.py PLUGIN.so DATA_DIR SEEDS WxH
+    lines_frame_timing.py PLUGIN.so DATA_DIR SEEDS WxH [BACKEND]
+
+BACKEND: the view's Surface AO Backend (Auto, CPU or OpenGL; default Auto).
 """
 import json
 import os
@@ -22,6 +24,7 @@ view.OrientationAxesVisibility = 0
 view.ViewSize = [W, H]
 view.LineAO = 0
 view.SurfaceAOMethod = "None"
+view.SurfaceAOBackend = sys.argv[5] if len(sys.argv) > 5 else "Auto"
 carotid = LegacyVTKReader(FileNames=[os.path.join(data, "carotid.vtk")])
 tracer = StreamTracer(Input=carotid, SeedType="Point Cloud")
 tracer.Vectors = ["POINTS", "vectors"]
@@ -48,12 +51,12 @@ def frame(label):
     r = json.loads(chain.GetLastFrameReport())
     stages = ", ".join("%s %.0f" % (k, v) for k, v in r["stages"].items())
     line = r.get("lines", {})
-    print("| %d | %dx%d | %s | %.0f | %s | %d |" % (line.get("segments", 0), W, H, label, ms, stages,
-                                                  line.get("pixels", 0)))
+    print("| %d | %dx%d | %s | %.0f | %s | %d | %s |" % (line.get("segments", 0), W, H, label, ms, stages,
+                                                       line.get("pixels", 0), line.get("prisms", "")))
 
 
-print("| segments | image | frame | ms | stages (ms) | line pixels |")
-print("|---:|---|---|---:|---|---:|")
+print("| segments | image | frame | ms | stages (ms) | line pixels | prisms |")
+print("|---:|---|---|---:|---|---:|---|")
 frame("no AO (Method None)")
 view.SurfaceAOMethod = "Voxel Cones"
 view.LineAO = 1
