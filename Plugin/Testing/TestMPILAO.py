@@ -19,14 +19,8 @@ plugin, outdir = sys.argv[1], sys.argv[2]
 data = os.environ["CAO_DATA_DIR"]
 LoadPlugin(plugin, remote=False, ns=globals())
 ranks = servermanager.vtkProcessModule.GetProcessModule().GetNumberOfLocalPartitions()
-failures = []
-
-
-def check(ok, what):
-    print(("ok: " if ok else "FAIL: ") + what)
-    sys.stdout.flush()
-    if not ok:
-        failures.append(what)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from mpi_view_checks import check, finish  # noqa: E402
 
 
 reader = OpenDataFile(os.path.join(data, "hydrogen.vti"))
@@ -168,7 +162,4 @@ for name in ("AmbientOcclusion", "ClipCategory"):
     check(ok and differing == 0, "distributed CAO %s == serial at every voxel (%d differ)" % (name, differing))
 check(v_cao.GetOutput().GetPointData().GetArray("ClipCategory").GetRange() == (0.0, 2.0),
       "the pose clips, affects and leaves voxels")
-print("%d failure(s)" % len(failures))
-sys.stdout.flush()
-if failures:
-    sys.exit(1)
+finish()

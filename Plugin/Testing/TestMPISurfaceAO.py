@@ -20,29 +20,18 @@ import sys
 
 from paraview.simple import *  # noqa: F401,F403
 from paraview import servermanager
-from vtkmodules.vtkIOImage import vtkPNGReader
-from vtkmodules.util.numpy_support import vtk_to_numpy
 
 plugin, outdir = sys.argv[1], sys.argv[2]
 LoadPlugin(plugin, remote=False, ns=globals())
 import contextualao  # noqa: F401,E402  (the pass's Python wrapping, for its report)
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from mpi_view_checks import apart, check, find_pass, finish, ranks_as_started, read  # noqa: E402
+
 ranks = servermanager.vtkProcessModule.GetProcessModule().GetNumberOfLocalPartitions()
-failures = []
 
 
-def check(ok, what):
-    print(("ok: " if ok else "FAIL: ") + what)
-    sys.stdout.flush()
-    if not ok:
-        failures.append(what)
-
-
-# The run must have the ranks it was started with (mpirun -np N passes N):
-# a pvbatch that fell back to one process would compare the serial run
-# with itself.
-if len(sys.argv) > 3:
-    check(ranks == int(sys.argv[3]), "%d MPI ranks, as started (%s)" % (ranks, sys.argv[3]))
+ranks_as_started(ranks)
 
 view = CreateView("ContextualAORenderView")
 view.OrientationAxesVisibility = 0
@@ -58,10 +47,7 @@ view.CameraFocalPoint = [0.0, 0.0, 0.2]
 view.CameraViewUp = [0.0, 0.0, 1.0]
 view.SurfaceAORadius = 0.8
 view.SurfaceAOBackend = "CPU"
-pas = view.GetRenderer().GetPass()
-while pas is not None and pas.GetClassName() != "vtkContextualAOPass":  # (IceT's pass holds it in parallel)
-    pas = pas.GetDelegatePass() if hasattr(pas, "GetDelegatePass") else \
-        pas.GetRenderPass() if hasattr(pas, "GetRenderPass") else None
+pas = find_pass(view)
 check(pas is not None, "the pass is in the view's render pass chain")
 
 
@@ -69,14 +55,6 @@ def grey(name):
     path = os.path.join(outdir, "np%d-%s.png" % (ranks, name))
     SaveScreenshot(path, view, ImageResolution=[300, 240])
     return path
-
-
-def read(path):
-    r = vtkPNGReader()
-    r.SetFileName(path)
-    r.Update()
-    a = vtk_to_numpy(r.GetOutput().GetPointData().GetScalars()).astype(float)
-    return a[:, :3].mean(axis=1)
 
 
 view.SurfaceAOMethod = "None"
@@ -181,9 +159,6 @@ else:
     # for a few pixels there: at most 0.5% of them more than 8 levels
     # apart, as the OpenGL check below (measured: 0.00-0.01%, largest 11
     # levels, on the sphere's silhouette).
-    def apart(a, b):
-        return (abs(a - b) > 8).mean()
-
     for grid in ("world", "eye"):
         diff = abs(serial[grid] - here[grid])
         ratio = dark[("n", grid)] / dark[("1", grid)]
@@ -221,7 +196,4 @@ else:
     check(frustumRatio < 0.9,
           "negative control: the frustum grid (no exchange) keeps only %.3f of the serial darkening on %d "
           "processes" % (frustumRatio, ranks))
-print("%d failure(s)" % len(failures))
-sys.stdout.flush()
-if failures:
-    sys.exit(1)
+finish()

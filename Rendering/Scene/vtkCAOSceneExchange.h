@@ -67,12 +67,13 @@ public:
   /// Exchanges that found a change (the grids rebuilt).
   int Changes() const { return this->ChangeCount; }
 
-private:
   /// `values` becomes the minimum over the processes, value by value.
   static bool Min(vtkMultiProcessController* controller, double* values, int count);
   /// `all`: every process's `mine`, one after the other (any lengths).
   static bool Gather(vtkMultiProcessController* controller, const std::vector<double>& mine,
     std::vector<double>& all);
+
+private:
   /// `words` becomes the XOR of every process's (the same length on each).
   static bool Xor(vtkMultiProcessController* controller, std::vector<std::uint32_t>& words);
   std::vector<double> Key;

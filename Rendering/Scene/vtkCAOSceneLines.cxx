@@ -1,5 +1,6 @@
 // vtkCAOSceneLines.cxx - the lines' AO in the render pass (vtkCAOSceneLines.h).
 #include "vtkCAOSceneLines.h"
+#include "vtkCAOSceneExchange.h"
 #include "vtkCAOSceneGPU.h"
 
 #include "caoAORadius.h"
@@ -116,7 +117,6 @@ bool SceneLines::UpdateScene(std::string& error)
   this->sceneKey.clear();
   this->lines = cao::LineSegments();
   this->segmentDrawing.clear();
-  this->length = 0.0;
   for (std::size_t k = 0; k < this->pieces.size(); ++k)
   {
     const auto& piece = this->pieces[k];
@@ -151,33 +151,11 @@ bool SceneLines::UpdateScene(std::string& error)
     error = "the lines have no segment (no line with two points or more)";
     return false;
   }
-  std::array<double, 6> b{ { 1, -1, 1, -1, 1, -1 } };
-  bool any = false;
-  for (std::size_t s = 0; s < this->lines.segments.size(); s += 2)
-  {
-    const double* a = &this->lines.points[3 * static_cast<std::size_t>(this->lines.segments[s])];
-    const double* c = &this->lines.points[3 * static_cast<std::size_t>(this->lines.segments[s + 1])];
-    this->length += std::sqrt((a[0] - c[0]) * (a[0] - c[0]) + (a[1] - c[1]) * (a[1] - c[1]) +
-      (a[2] - c[2]) * (a[2] - c[2]));
-    for (const double* x : { a, c })
-      for (int d = 0; d < 3; ++d)
-      {
-        b[2 * d] = any ? std::min(b[2 * d], x[d]) : x[d];
-        b[2 * d + 1] = any ? std::max(b[2 * d + 1], x[d]) : x[d];
-      }
-    any = true;
-  }
-  this->bounds = b;
-  this->diagonal = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
-    (b[5] - b[4]) * (b[5] - b[4]));
-  if (!(this->diagonal > 0.0) || !std::isfinite(this->diagonal))
-  {
-    error = "the lines have no extent (every point is the same) or a coordinate is not finite";
+  if (!ExtentOf(this->lines, this->extent, error))
     return false;
-  }
   // The capsules only find each pixel's nearest axis: a radius far below
   // any pixel keeps the tree's boxes tight.
-  if (!this->nearest.Build(this->lines.points, this->lines.segments, 1e-9 * this->diagonal, error))
+  if (!this->nearest.Build(this->lines.points, this->lines.segments, 1e-9 * this->extent.diagonal, error))
     return false;
   this->sceneKey = this->frameKey;
   return true;
@@ -211,10 +189,212 @@ bool SceneLines::VoxelizeInto(cao::BitGrid& grid, std::string& error)
 {
   bool built = false;
   cao::BitGrid mine = grid; // the same plan; VoxelizeLines replaces its bits
-  if (!this->EnsureScene(built, error) || !cao::VoxelizeLines(this->lines, 0.0, mine, error))
+  if (this->shared ? !cao::VoxelizeLines(this->all, 0.0, mine, error)
+                   : !this->EnsureScene(built, error) || !cao::VoxelizeLines(this->lines, 0.0, mine, error))
     return false;
   for (std::size_t w = 0; w < grid.bits.size(); ++w)
     grid.bits[w] |= mine.bits[w];
+  return true;
+}
+
+bool SceneLines::ExtentOf(const cao::LineSegments& lines, Extent& extent, std::string& error)
+{
+  extent = Extent();
+  std::array<double, 6>& b = extent.bounds;
+  bool any = false;
+  for (std::size_t s = 0; s < lines.segments.size(); s += 2)
+  {
+    const double* a = &lines.points[3 * static_cast<std::size_t>(lines.segments[s])];
+    const double* c = &lines.points[3 * static_cast<std::size_t>(lines.segments[s + 1])];
+    extent.length += std::sqrt((a[0] - c[0]) * (a[0] - c[0]) + (a[1] - c[1]) * (a[1] - c[1]) +
+      (a[2] - c[2]) * (a[2] - c[2]));
+    for (const double* x : { a, c })
+      for (int d = 0; d < 3; ++d)
+      {
+        b[2 * d] = any ? std::min(b[2 * d], x[d]) : x[d];
+        b[2 * d + 1] = any ? std::max(b[2 * d + 1], x[d]) : x[d];
+      }
+    any = true;
+  }
+  extent.diagonal = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
+    (b[5] - b[4]) * (b[5] - b[4]));
+  if (!any || !(extent.diagonal > 0.0) || !std::isfinite(extent.diagonal))
+  {
+    error = "the lines have no extent (every point is the same) or a coordinate is not finite";
+    return false;
+  }
+  return true;
+}
+
+bool SceneLines::SettingsOf(const cao::PixelCamera& camera, const Extent& extent, double widest, double aoRadius,
+  int samples, int slices, cao::LineAOSettings& settings, std::string& error)
+{
+  // The AO radius: the pass's, or the default of the lines drawn as tubes
+  // of 1/200 of their extent (as `cao surface` takes lines).
+  const std::array<double, 6>& b = extent.bounds;
+  settings.radius = aoRadius > 0.0
+    ? aoRadius
+    : cao::DefaultAORadius(b, 2.0 * 3.14159265358979323846 * 0.005 * extent.diagonal * extent.length);
+  // The lines occlude as tubes as wide in the world as their drawn width
+  // at the lines' centre (flat lines too: a line drawn w pixels wide hides
+  // what a tube of that width would).
+  double tubeRadius = 0.0;
+  double toNDC[16], c[4], centre[3] = { 0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]) };
+  if (cao::WorldToNDC(camera, toNDC))
+  {
+    for (int r = 0; r < 4; ++r)
+      c[r] = toNDC[4 * r] * centre[0] + toNDC[4 * r + 1] * centre[1] + toNDC[4 * r + 2] * centre[2] + toNDC[4 * r + 3];
+    double p[3], q[3];
+    if (c[3] != 0.0 && cao::NDCToWorld(camera, c[0] / c[3], c[1] / c[3], c[2] / c[3], p) &&
+      cao::NDCToWorld(camera, c[0] / c[3] + 2.0 / camera.width, c[1] / c[3], c[2] / c[3], q))
+      tubeRadius = 0.5 * widest *
+        std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
+  }
+  settings.tubeRadius = std::min(tubeRadius, extent.diagonal);
+  settings.samples = samples;
+  settings.slices = slices;
+  error = settings.Validate();
+  return error.empty();
+}
+
+std::array<double, 6> SceneLines::LocalBounds()
+{
+  bool built = false;
+  std::string error;
+  if (this->pieces.empty() || !this->EnsureScene(built, error))
+    return { { 1, -1, 1, -1, 1, -1 } }; // (lines that fail are this process's to say: none shared)
+  return this->extent.bounds;
+}
+
+void SceneLines::Unshare()
+{
+  if (!this->shared)
+    return;
+  this->shared = false;
+  this->all = cao::LineSegments();
+  this->sharedKey.clear();
+  this->sharedError.clear();
+  this->gridKey.clear();
+  this->aoKey.clear();
+  this->grid = cao::BitGrid();
+  this->solids = cao::BitGrid();
+}
+
+bool SceneLines::Share(vtkMultiProcessController* controller, std::vector<std::string>& stages,
+  std::vector<double>& ms, std::string& error)
+{
+  // Each segment as its two points, rank by rank; the widest drawn width.
+  const auto start = Clock::now();
+  std::vector<double> mine, gathered;
+  bool built = false;
+  std::string why;
+  if (!this->pieces.empty() && this->EnsureScene(built, why))
+  {
+    mine.reserve(3 * this->lines.segments.size());
+    for (std::int64_t id : this->lines.segments)
+      mine.insert(mine.end(), this->lines.points.begin() + 3 * id, this->lines.points.begin() + 3 * id + 3);
+  }
+  double widest = this->pieces.empty() ? -1.0 : -this->widest;
+  const bool ok = SceneExchange::Gather(controller, mine, gathered) && SceneExchange::Min(controller, &widest, 1);
+  this->Unshare();
+  this->shared = true;
+  ++this->shares;
+  this->sharedError.clear();
+  this->all.points.swap(gathered);
+  this->all.segments.resize(this->all.points.size() / 3);
+  for (std::size_t i = 0; i < this->all.segments.size(); ++i)
+    this->all.segments[i] = static_cast<std::int64_t>(i);
+  this->allWidest = std::max(1.0, -widest);
+  if (!ok)
+    this->sharedError = "the processes' lines could not be gathered";
+  else if (this->all.segments.empty())
+    this->sharedError = "no process has a line with two points or more";
+  else if (!ExtentOf(this->all, this->allExtent, this->sharedError))
+    this->sharedError = "the processes' lines: " + this->sharedError;
+  error = this->sharedError;
+  stages.push_back("share_lines");
+  ms.push_back(Since(start));
+  return error.empty();
+}
+
+bool SceneLines::ShareGrid(vtkMultiProcessController* controller, const cao::PixelCamera& camera,
+  const double right[3], const double up[3], double aoRadius, int samples, int slices, double meshSerial,
+  const std::function<void(std::vector<cao::MeshView>&)>& meshes, const std::vector<int>& pieceActor, int actors,
+  double signature, std::vector<std::string>& stages, std::vector<double>& ms)
+{
+  // Every call to the controller below is made by every process, in the
+  // same order: what decides them is reduced first.
+  const auto start = Clock::now();
+  cao::LineAOSettings settings;
+  std::string why;
+  const bool gathered = this->shared && !this->all.segments.empty() && this->sharedError.empty();
+  const bool valid = gathered && SettingsOf(camera, this->allExtent, this->allWidest, aoRadius, samples, slices,
+    settings, why);
+  std::vector<double> key = { meshSerial, settings.radius, settings.tubeRadius, static_cast<double>(slices),
+    static_cast<double>(this->all.segments.size()) };
+  for (int d = 0; d < 3; ++d)
+    key.insert(key.end(), { std::round(right[d] * 1e9) * 1e-9, std::round(up[d] * 1e9) * 1e-9 });
+  key.push_back(static_cast<double>(this->shares));
+  double flags[2] = { key != this->sharedKey ? -1.0 : 0.0, valid ? 0.0 : -1.0 };
+  if (!SceneExchange::Min(controller, flags, 2))
+  {
+    this->sharedError = "the processes could not agree on the lines' grid";
+    return false;
+  }
+  if (flags[0] == 0.0)
+    return this->sharedError.empty();
+  this->sharedKey = key;
+  this->grid = cao::BitGrid();
+  this->solids = cao::BitGrid();
+  this->gridKey.clear();
+  this->aoKey.clear();
+  if (flags[1] < 0.0)
+  {
+    if (this->sharedError.empty())
+      this->sharedError = !why.empty() ? why : "another process's lines or line settings failed";
+    return false;
+  }
+  this->sharedError.clear();
+  this->sharedSettings = settings;
+  // The meshes' bounds in the grid's axes, over every process's.
+  std::vector<cao::MeshView> views;
+  meshes(views);
+  std::array<double, 9> axes;
+  std::array<double, 6> meshBounds{ { 1, -1, 1, -1, 1, -1 } };
+  std::string error;
+  if (!views.empty() && (!cao::EyeAxes(right, up, axes, error) || !cao::EyeBounds(views, axes, meshBounds, error)))
+    meshBounds = { { 1, -1, 1, -1, 1, -1 } }; // (this process's meshes fail: none from it)
+  const bool common = SceneExchange::CommonBounds(controller, meshBounds);
+  const bool withMeshes = common && meshBounds[0] <= meshBounds[1];
+  double planned = cao::PlanLineGrid(this->all, right, up, settings, this->grid, error,
+                     withMeshes ? &meshBounds : nullptr) &&
+      cao::VoxelizeLines(this->all, settings.tubeRadius, this->grid, error)
+    ? 0.0
+    : -1.0;
+  const std::string planError = error;
+  if (!SceneExchange::Min(controller, &planned, 1) || planned < 0.0)
+  {
+    this->grid = cao::BitGrid();
+    this->sharedError = !planError.empty() ? planError : "another process could not voxelize the lines";
+    return false;
+  }
+  if (withMeshes)
+  {
+    this->solids = this->grid;
+    const double span = std::sqrt((meshBounds[1] - meshBounds[0]) * (meshBounds[1] - meshBounds[0]) +
+      (meshBounds[3] - meshBounds[2]) * (meshBounds[3] - meshBounds[2]) +
+      (meshBounds[5] - meshBounds[4]) * (meshBounds[5] - meshBounds[4]));
+    if (!SceneExchange::CombineGrid(controller, views, pieceActor, actors, signature, 1e-9 * span, this->solids,
+          error))
+    {
+      this->solids = cao::BitGrid();
+      this->sharedError = "the meshes beside the lines: " + error;
+      return false;
+    }
+  }
+  ++this->voxelizations;
+  stages.push_back("voxelize_lines");
+  ms.push_back(Since(start));
   return true;
 }
 
@@ -232,51 +412,40 @@ bool SceneLines::Update(const cao::PixelCamera& camera, const double right[3], c
     ms.push_back(Since(start));
     start = Clock::now();
   }
-  // The AO radius: the pass's, or the default of the lines drawn as tubes
-  // of 1/200 of their extent (as `cao surface` takes lines).
-  this->radius = aoRadius > 0.0 ? aoRadius
-                                : cao::DefaultAORadius(this->bounds,
-                                    2.0 * 3.14159265358979323846 * 0.005 * this->diagonal * this->length);
-  // The lines occlude as tubes as wide in the world as their drawn width
-  // at the lines' centre (flat lines too: a line drawn w pixels wide hides
-  // what a tube of that width would).
-  double tubeRadius = 0.0;
-  {
-    double toNDC[16], c[4], centre[3] = { 0.5 * (this->bounds[0] + this->bounds[1]),
-      0.5 * (this->bounds[2] + this->bounds[3]), 0.5 * (this->bounds[4] + this->bounds[5]) };
-    if (cao::WorldToNDC(camera, toNDC))
-    {
-      for (int r = 0; r < 4; ++r)
-        c[r] = toNDC[4 * r] * centre[0] + toNDC[4 * r + 1] * centre[1] + toNDC[4 * r + 2] * centre[2] +
-          toNDC[4 * r + 3];
-      double p[3], q[3];
-      if (c[3] != 0.0 && cao::NDCToWorld(camera, c[0] / c[3], c[1] / c[3], c[2] / c[3], p) &&
-        cao::NDCToWorld(camera, c[0] / c[3] + 2.0 / camera.width, c[1] / c[3], c[2] / c[3], q))
-        tubeRadius = 0.5 * this->widest *
-          std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
-    }
-    tubeRadius = std::min(tubeRadius, this->diagonal);
-  }
   cao::LineAOSettings settings;
-  settings.radius = this->radius;
-  settings.tubeRadius = tubeRadius;
-  settings.samples = samples;
-  settings.slices = slices;
-  error = settings.Validate();
-  if (!error.empty())
+  if (this->shared)
+  {
+    // The grid of every process's lines and meshes (ShareGrid).
+    if (!this->sharedError.empty() || this->sharedKey.empty())
+    {
+      error = this->sharedError.empty() ? "the processes' lines have no grid" : this->sharedError;
+      return false;
+    }
+    settings = this->sharedSettings;
+    settings.samples = samples;
+    error = settings.Validate();
+    if (!error.empty())
+      return false;
+  }
+  else if (!SettingsOf(camera, this->extent, this->widest, aoRadius, samples, slices, settings, error))
     return false;
+  this->radius = settings.radius;
+  const double tubeRadius = settings.tubeRadius;
   // The grid: of the lines and meshes, the camera's orientation, the settings.
-  std::vector<double> key = this->sceneKey;
-  key.push_back(static_cast<double>(this->meshKey.size()));
-  key.insert(key.end(), this->meshKey.begin(), this->meshKey.end());
-  key.insert(key.end(), { this->radius, tubeRadius, static_cast<double>(slices) });
-  for (int d = 0; d < 3; ++d)
-    key.insert(key.end(), { std::round(right[d] * 1e9) * 1e-9, std::round(up[d] * 1e9) * 1e-9 });
-  const bool meshes = !this->meshPoints.empty();
+  std::vector<double> key = this->shared ? this->sharedKey : this->sceneKey;
+  key.push_back(static_cast<double>(this->shared ? this->voxelizations : this->meshKey.size()));
+  if (!this->shared)
+  {
+    key.insert(key.end(), this->meshKey.begin(), this->meshKey.end());
+    key.insert(key.end(), { this->radius, tubeRadius, static_cast<double>(slices) });
+    for (int d = 0; d < 3; ++d)
+      key.insert(key.end(), { std::round(right[d] * 1e9) * 1e-9, std::round(up[d] * 1e9) * 1e-9 });
+  }
+  const bool meshes = this->shared ? !this->solids.bits.empty() : !this->meshPoints.empty();
   std::vector<cao::MeshView> views;
   for (std::size_t i = 0; i < this->meshPoints.size(); ++i)
     views.push_back({ &this->meshPoints[i], &this->meshTriangles[i] });
-  if (key != this->gridKey)
+  if (key != this->gridKey && !this->shared)
   {
     this->gridKey.clear();
     this->aoKey.clear();

@@ -24,14 +24,17 @@
 
 #include "caoCapsules.h"
 #include "caoLineAO.h"
+#include "caoVoxelConeTracing.h" // For cao::MeshView
 
 #include <array>
 #include <chrono>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
 
 class vtkActor;
+class vtkMultiProcessController;
 class vtkPolyData;
 class vtkRenderer;
 
@@ -65,9 +68,37 @@ public:
 
   /// What the lines' segments depend on (this frame's pieces).
   const std::vector<double>& Key() const { return this->frameKey; }
+  /// The widest drawn line this frame, in pixels (1 without lines).
+  double Widest() const { return this->widest; }
   /// ORs the lines into `grid` (the surfaces' world or eye grid, planned),
   /// as thin as their supercover: so that they occlude the surfaces.
   bool VoxelizeInto(cao::BitGrid& grid, std::string& error);
+
+  /// Parallel rendering. Every call below is collective: every process
+  /// makes it at every frame, in this order, whatever it holds. Share
+  /// (after SceneExchange::Frame on LocalBounds said some process's lines
+  /// changed) gathers every process's segments and the widest drawn width;
+  /// ShareGrid then plans and voxelizes their grid when those, the meshes
+  /// (`meshSerial`), the camera's axes or zoom or the settings changed, the
+  /// solids combined from every process's `meshes` (CombineGrid's
+  /// `pieceActor`, `actors`, `signature`). Update then counts this
+  /// process's pixels' prisms in that grid. False with the reason (Update
+  /// says it again).
+  std::array<double, 6> LocalBounds();
+  bool Share(vtkMultiProcessController* controller, std::vector<std::string>& stages, std::vector<double>& ms,
+    std::string& error);
+  bool ShareGrid(vtkMultiProcessController* controller, const cao::PixelCamera& camera, const double right[3],
+    const double up[3], double radius, int samples, int slices, double meshSerial,
+    const std::function<void(std::vector<cao::MeshView>&)>& meshes, const std::vector<int>& pieceActor, int actors,
+    double signature, std::vector<std::string>& stages, std::vector<double>& ms);
+  /// Back to this process's lines alone (no process has lines).
+  void Unshare();
+  bool Shared() const { return this->shared; }
+  /// The segments the grid holds: every process's when shared.
+  std::int64_t NumberOfGridSegments() const
+  {
+    return this->shared ? this->all.NumberOfSegments() : this->lines.NumberOfSegments();
+  }
 
   /// Per pixel the line AO (NaN: not a line's pixel).
   const cao::LineFrame& Frame() const { return this->frame; }
@@ -82,6 +113,17 @@ public:
   void Clear();
 
 private:
+  /// The lines' bounds, total length and diagonal.
+  struct Extent
+  {
+    std::array<double, 6> bounds{ { 1, -1, 1, -1, 1, -1 } };
+    double length = 0.0, diagonal = 0.0;
+  };
+  static bool ExtentOf(const cao::LineSegments& lines, Extent& extent, std::string& error);
+  /// The AO radius (`radius`, or the default of `extent`) and the lines'
+  /// tube radius (`widest` pixels at the lines' centre) for `camera`.
+  static bool SettingsOf(const cao::PixelCamera& camera, const Extent& extent, double widest, double radius,
+    int samples, int slices, cao::LineAOSettings& settings, std::string& error);
   bool UpdateScene(std::string& error);
   /// UpdateScene when the pieces changed; `built`: whether it ran.
   bool EnsureScene(bool& built, std::string& error);
@@ -95,8 +137,18 @@ private:
   double widest = 1.0;    ///< the widest drawn line, in pixels
   cao::LineSegments lines;
   cao::CapsuleBVH nearest; ///< the segments, for the pixels' nearest axis
-  std::array<double, 6> bounds{ { 1, -1, 1, -1, 1, -1 } };
-  double length = 0.0, diagonal = 0.0, radius = 0.0;
+  Extent extent;
+  double radius = 0.0;
+  // Parallel rendering: every process's segments (each its own two
+  // points), their extent and widest width, and the grid made of them.
+  bool shared = false;
+  cao::LineSegments all;
+  Extent allExtent;
+  double allWidest = 1.0;
+  int shares = 0; ///< gathers so far (a new one: the grid again)
+  std::vector<double> sharedKey;
+  std::string sharedError;
+  cao::LineAOSettings sharedSettings;
   std::vector<std::vector<double>> meshPoints;
   std::vector<std::vector<std::int64_t>> meshTriangles;
   std::vector<double> meshKey;

@@ -131,6 +131,27 @@ double Address(const void* p)
   return static_cast<double>(reinterpret_cast<std::uintptr_t>(p));
 }
 
+/// The camera as the lines' kernels take it (the viewport's, as ViewKey's),
+/// and its right and up axes.
+cao::PixelCamera LineCamera(vtkRenderer* ren, double right[3], double up[3])
+{
+  int width = 0, height = 0, x0 = 0, y0 = 0;
+  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+  vtkMatrix4x4* toNDC = ren->GetActiveCamera()->GetCompositeProjectionTransformMatrix(
+    width > 0 && height > 0 ? double(width) / height : 1.0, -1, 1);
+  cao::PixelCamera camera;
+  vtkMatrix4x4::Invert(&toNDC->Element[0][0], camera.ndcToWorld);
+  camera.width = width;
+  camera.height = height;
+  vtkMatrix4x4* eye = ren->GetActiveCamera()->GetViewTransformMatrix();
+  for (int c = 0; c < 3; ++c)
+  {
+    right[c] = eye->GetElement(0, c);
+    up[c] = eye->GetElement(1, c);
+  }
+  return camera;
+}
+
 /// The step between the opaque and the translucent geometry: the AO.
 class vtkCAOAOStep : public vtkRenderPass
 {
@@ -348,6 +369,8 @@ struct vtkContextualAOPass::Internals
   // every process agrees on.
   vtkSmartPointer<vtkMultiProcessController> controller;
   vtkCAO::SceneExchange exchange;
+  vtkCAO::SceneExchange lineExchange; ///< whether any process's lines changed
+  bool sharedLinesOred = false;        ///< the shared grid holds every process's lines
   // The lines (LineAO): their pieces this frame, their AO, the pixels it darkened.
   vtkCAO::SceneLines lines;
   bool linesOn = false;   ///< this frame has lines that get line AO
@@ -362,6 +385,10 @@ struct vtkContextualAOPass::Internals
   std::string sharedError; ///< why there is none
   bool Distributed() const { return this->controller && this->controller->GetNumberOfProcesses() > 1; }
   void Exchange(vtkContextualAOPass* self);
+  /// Every process's lines gathered when any changed, and (after Exchange)
+  /// their grid (SceneLines::Share, ShareGrid); collective, every frame.
+  void ShareLines(vtkContextualAOPass* self);
+  void ShareLineGrid(vtkContextualAOPass* self, vtkRenderer* ren);
   bool EyeAxesOfKey(std::array<double, 9>& axes, std::string& error) const;
 
   void Stage(const char* name, Clock::time_point start)
@@ -596,6 +623,7 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
       << p.lines.Frame().covered << ", \"combined_pixels\": " << p.lineCombined
       << ", \"voxelizations\": " << p.lines.Voxelizations() << ", \"radius_voxels\": " << p.lines.RadiusVoxels()
       << ", \"prisms\": \"" << (p.lines.OnGPU() ? "OpenGL" : "CPU") << "\""
+      << ", \"segments_of_all_processes\": " << p.lines.NumberOfGridSegments()
       << (p.lines.RadiusVoxels() < 2.0
              ? ", \"radius_note\": \"the AO radius spans under 2 voxels of the lines' grid: the half balls hold "
                "too few to see the neighbours (raise the Radius or LineSlices)\""
@@ -663,7 +691,15 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
   this->Collect(self, ren);
   this->frameProcesses = this->Distributed() ? this->controller->GetNumberOfProcesses() : 1;
   if (this->frameProcesses > 1)
-    this->Exchange(self); // every process, every frame, before anything that may differ between them
+  {
+    // Every process, every frame, before anything that may differ between
+    // them: the lines, the surfaces' grid (holding the lines), the lines' grid.
+    this->ShareLines(self);
+    if (self->Method == VCT && self->Grid != FRUSTUM_GRID && this->lines.Shared())
+      this->frameSceneKey.insert(this->frameSceneKey.begin() + 2, -1.0 - this->lineExchange.Changes());
+    this->Exchange(self);
+    this->ShareLineGrid(self, ren);
+  }
   if (!std::isfinite(self->Radius) || !std::isfinite(self->Strength))
   {
     this->linesOn = false;
@@ -786,14 +822,11 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
   }
   this->meshGeometry = geometry;
   this->lines.Collect(linePieces);
-  this->linesOn = !linePieces.empty() && !this->Distributed();
-  this->linesNote = !linePieces.empty() && this->Distributed()
-    ? "lines get no AO in parallel rendering yet (several processes)"
-    : std::string();
+  this->linesOn = !linePieces.empty();
   // The lines occlude the surfaces through the world or eye grid: the grid
   // depends on them (UpdateGrid; on the CPU only, so not when the last
   // frame's grid was on the GPU: a change of backend rebuilds it anyway).
-  if (vct && this->linesOn && self->Grid != FRUSTUM_GRID && !this->onGPU)
+  if (vct && this->linesOn && self->Grid != FRUSTUM_GRID && !this->onGPU && !this->Distributed())
   {
     key.push_back(static_cast<double>(this->lines.Key().size()));
     key.insert(key.end(), this->lines.Key().begin(), this->lines.Key().end());
@@ -941,6 +974,7 @@ void vtkContextualAOPass::Internals::Exchange(vtkContextualAOPass* self)
   this->rebuild = true;
   this->sharedGrid = cao::BitGrid();
   this->sharedError.clear();
+  this->sharedLinesOred = false;
   gather();
   std::vector<cao::MeshView> views;
   for (std::size_t i = 0; i < points.size(); ++i)
@@ -981,7 +1015,47 @@ void vtkContextualAOPass::Internals::Exchange(vtkContextualAOPass* self)
              this->actorSignature, 1e-9 * diagonal, g, error)) // (ends a rounding apart: one point)
     this->sharedError = error;
   else
+  {
+    // Every process's lines occlude the surfaces (the same on each).
+    std::string why;
+    this->sharedLinesOred = this->lines.Shared() && this->lines.VoxelizeInto(g, why);
     this->sharedGrid = std::move(g);
+  }
+}
+
+void vtkContextualAOPass::Internals::ShareLines(vtkContextualAOPass* self)
+{
+  std::vector<double> key = this->lines.Key();
+  key.push_back(this->lines.Widest()); // (never empty: a process without lines has a key too)
+  const bool changed = this->lineExchange.Frame(this->controller, key, [&]() { return this->lines.LocalBounds(); });
+  if (!this->lineExchange.HasBounds())
+  {
+    this->lines.Unshare(); // no process has lines (the same on each)
+    return;
+  }
+  std::string error;
+  if (changed && !this->lines.Share(this->controller, this->stages, this->ms, error) && this->linesOn)
+    vtkDebugWithObjectMacro(self, << "Line AO: " << error); // (said by UpdateLines, in the report)
+}
+
+void vtkContextualAOPass::Internals::ShareLineGrid(vtkContextualAOPass* self, vtkRenderer* ren)
+{
+  if (!this->lines.Shared())
+    return;
+  double right[3], up[3];
+  const cao::PixelCamera camera = LineCamera(ren, right, up);
+  std::vector<std::vector<double>> points;
+  std::vector<std::vector<std::int64_t>> triangles;
+  std::vector<double> all;
+  std::vector<std::int64_t> allTris;
+  auto meshes = [&](std::vector<cao::MeshView>& views) {
+    this->Gather(points, triangles, all, allTris);
+    for (std::size_t i = 0; i < points.size(); ++i)
+      views.push_back({ &points[i], &triangles[i] });
+  };
+  this->lines.ShareGrid(this->controller, camera, right, up, self->Radius, self->LineSamples, self->LineSlices,
+    static_cast<double>(this->exchange.Changes()), meshes, this->pieceActor, this->surfaceActors,
+    this->actorSignature, this->stages, this->ms);
 }
 
 bool vtkContextualAOPass::Internals::EyeAxesOfKey(std::array<double, 9>& axes, std::string& error) const
@@ -1109,8 +1183,8 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
                                            : cao::FillGrid(views, this->grid, error)));
   // The lines' voxels occlude the surfaces (the CPU's grid; the GPU's is
   // voxelized there, and a distributed one combined across processes).
-  this->linesOccludeSurfaces = ok && this->linesOn && !distributed && !this->onGPU;
-  if (this->linesOccludeSurfaces)
+  this->linesOccludeSurfaces = ok && (distributed ? this->sharedLinesOred : this->linesOn && !this->onGPU);
+  if (this->linesOccludeSurfaces && !distributed)
   {
     // Lines that cannot be voxelized leave the surfaces' grid as it is
     // (a scene that cannot be built: UpdateLines says why in the report).
@@ -1373,15 +1447,9 @@ bool vtkContextualAOPass::Internals::UpdateLines(vtkContextualAOPass* self, vtkR
   };
   if (!this->depthOk)
     return skipLines("it reads the drawn depth: " + this->depthError);
-  int width = 0, height = 0, x0 = 0, y0 = 0;
-  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
-  vtkMatrix4x4* toNDC = ren->GetActiveCamera()->GetCompositeProjectionTransformMatrix(
-    width > 0 && height > 0 ? double(width) / height : 1.0, -1, 1); // (as ViewKey's)
-  cao::PixelCamera camera;
-  vtkMatrix4x4::Invert(&toNDC->Element[0][0], camera.ndcToWorld);
-  camera.width = width;
-  camera.height = height;
-  const std::size_t count = static_cast<std::size_t>(width) * height;
+  double right[3], up[3];
+  const cao::PixelCamera camera = LineCamera(ren, right, up);
+  const std::size_t count = static_cast<std::size_t>(camera.width) * camera.height;
   std::vector<unsigned char> skip;
   const bool surfaces = !this->pieces.empty() && this->frame.ao.size() == count;
   if (surfaces && this->gbuffer == RAY_CAST)
@@ -1401,13 +1469,6 @@ bool vtkContextualAOPass::Internals::UpdateLines(vtkContextualAOPass* self, vtkR
     if (surfaces)
       this->Gather(points, triangles, all, allTris);
     this->lines.SetMeshes(points, triangles, meshKey);
-  }
-  double right[3], up[3];
-  vtkMatrix4x4* eye = ren->GetActiveCamera()->GetViewTransformMatrix();
-  for (int c = 0; c < 3; ++c)
-  {
-    right[c] = eye->GetElement(0, c);
-    up[c] = eye->GetElement(1, c);
   }
   std::string error;
   if (!this->lines.Update(camera, right, up, this->depth, skip.empty() ? nullptr : &skip, self->Radius,
