@@ -123,6 +123,11 @@ bool SceneGPU::Upload(const cao::BitGrid& grid, std::string& error)
   return this->P->Ready(error) && this->P->engine->Upload(grid, error);
 }
 
+bool SceneGPU::Read(cao::BitGrid& grid, std::string& error)
+{
+  return this->P->Ready(error) && this->P->engine->Read(grid.bits, error);
+}
+
 bool SceneGPU::Volumes(const std::vector<const cao::OpacityVolume*>& volumes, std::string& error)
 {
   return this->P->Ready(error) && this->P->engine->UploadVolumes(volumes, error);

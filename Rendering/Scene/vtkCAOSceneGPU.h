@@ -44,6 +44,8 @@ public:
   bool Voxelize(cao::BitGrid& grid, const std::vector<cao::MeshView>& meshes, std::string& error);
   /// cao::gl::VCTEngine::Upload: a grid made on the CPU, traced next.
   bool Upload(const cao::BitGrid& grid, std::string& error);
+  /// cao::gl::VCTEngine::Read: the grid's bits (Voxelize's) into `grid.bits`.
+  bool Read(cao::BitGrid& grid, std::string& error);
   /// cao::gl::VCTEngine::UploadVolumes: the volumes' opacity for the plans
   /// that name them (again whenever it was rebuilt); FitsVolumes: whether
   /// `count` volumes of `voxels` voxels in all fit its limits here.

@@ -824,9 +824,9 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
   this->lines.Collect(linePieces);
   this->linesOn = !linePieces.empty();
   // The lines occlude the surfaces through the world or eye grid: the grid
-  // depends on them (UpdateGrid; on the CPU only, so not when the last
-  // frame's grid was on the GPU: a change of backend rebuilds it anyway).
-  if (vct && this->linesOn && self->Grid != FRUSTUM_GRID && !this->onGPU && !this->Distributed())
+  // depends on them (UpdateGrid; across processes on every process's
+  // lines: RunAO).
+  if (vct && this->linesOn && self->Grid != FRUSTUM_GRID && !this->Distributed())
   {
     key.push_back(static_cast<double>(this->lines.Key().size()));
     key.insert(key.end(), this->lines.Key().begin(), this->lines.Key().end());
@@ -1181,15 +1181,25 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
     ok = cao::PlanGrid(b, 1.05 * this->radius, self->Slices, this->grid, error);
   ok = ok && (distributed || (this->onGPU ? this->gpu.Voxelize(this->grid, views, error)
                                            : cao::FillGrid(views, this->grid, error)));
-  // The lines' voxels occlude the surfaces (the CPU's grid; the GPU's is
-  // voxelized there, and a distributed one combined across processes).
-  this->linesOccludeSurfaces = ok && (distributed ? this->sharedLinesOred : this->linesOn && !this->onGPU);
+  // The lines' voxels occlude the surfaces: ORed into the CPU's grid, or
+  // into the GPU's read back (and put back); a distributed grid holds
+  // every process's lines already (Exchange).
+  this->linesOccludeSurfaces = ok && (distributed ? this->sharedLinesOred : this->linesOn);
+  double linesMs = 0.0; // (its own stage, not counted in "voxelize" again)
   if (this->linesOccludeSurfaces && !distributed)
   {
     // Lines that cannot be voxelized leave the surfaces' grid as it is
     // (a scene that cannot be built: UpdateLines says why in the report).
     std::string why;
-    this->linesOccludeSurfaces = this->lines.VoxelizeInto(this->grid, why);
+    const auto linesStart = Clock::now();
+    this->linesOccludeSurfaces = (!this->onGPU || this->gpu.Read(this->grid, why)) &&
+      this->lines.VoxelizeInto(this->grid, why);
+    if (this->onGPU && this->linesOccludeSurfaces && !this->gpu.Upload(this->grid, error))
+      ok = this->linesOccludeSurfaces = false;
+    if (this->onGPU)
+      this->grid.bits.clear(); // (they stay on the GPU)
+    this->Stage("lines_into_grid", linesStart);
+    linesMs = this->ms.back();
   }
   if (!ok)
   {
@@ -1203,6 +1213,7 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
   ++this->serial;
   ++self->VoxelizeCount;
   this->Stage("voxelize", start);
+  this->ms.back() -= linesMs;
   return true;
 }
 
