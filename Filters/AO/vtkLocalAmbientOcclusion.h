@@ -270,13 +270,15 @@ public:
    * number): closed vtkPolyData surfaces in the volume's physical
    * coordinates. Every voxel whose centre lies inside one is opaque
    * (opacity 1) for the LAO, as an isosurface or a solid part placed in
-   * the volume blocks its light. When an occluder moves or changes (its
+   * the volume blocks its light. Lines (vtkPolyData with lines and no
+   * polygons: streamlines) occlude by the voxels their segments pass
+   * through (their supercover in the volume's voxels). When an occluder moves or changes (its
    * data change), a CPU run is an opacity edit: only the voxels within
    * the rays' reach of a voxel whose opacity changed are recomputed, bit
    * for bit as a full run (field "LAOUpdate"; "LAOOccludedVoxels" counts
    * the voxels inside the occluders, of the input read: a piece's with its
    * ghost margin). On the OpenGL backend every voxel is recomputed. An
-   * open mesh is an error that names it; an empty one occludes nothing.
+   * open surface is an error that names it; an empty one occludes nothing.
    * The output's opacity ("AmbientOcclusionOpacity") includes the
    * occluders, so vtkContextualAmbientOcclusion downstream continues
    * this LAO; a clip there removes the occluders' voxels with the volume's

@@ -10,9 +10,11 @@
 #include "vtkCAOInput.h"
 #include "vtkImageData.h"
 #include "vtkMatrix4x4.h"
+#include "vtkCellArray.h"
 #include "vtkPolyData.h"
 
 #include "caoLAO.h"
+#include "caoLineAO.h"
 #include "caoVoxelConeTracing.h"
 
 #include <array>
@@ -145,6 +147,59 @@ bool ComputeOpacity(vtkAlgorithm* self, vtkDataArray* scalars, int component,
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+/// The voxels (one byte each, x fastest) that `mesh`'s line segments pass
+/// through, its points mapped to continuous index by `toIndex` (3 x 4, row
+/// major): the lines' supercover, as the render pass voxelizes them into
+/// the surfaces' grid (cao::VoxelizeLines with no tube radius, on a grid
+/// whose voxels are the volume's).
+bool LineVoxels(vtkPolyData* mesh, const int dims[3], const std::array<double, 12>& toIndex,
+  std::vector<std::uint8_t>& inside, std::string& error)
+{
+  cao::LineSegments lines;
+  lines.points.resize(3 * static_cast<std::size_t>(mesh->GetNumberOfPoints()));
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    double x[3];
+    mesh->GetPoint(p, x);
+    for (int r = 0; r < 3; ++r)
+      lines.points[3 * static_cast<std::size_t>(p) + r] =
+        toIndex[4 * r] * x[0] + toIndex[4 * r + 1] * x[1] + toIndex[4 * r + 2] * x[2] + toIndex[4 * r + 3];
+  }
+  vtkCellArray* cells = mesh->GetLines();
+  vtkIdType n = 0;
+  const vtkIdType* ids = nullptr;
+  for (cells->InitTraversal(); cells->GetNextCell(n, ids);)
+    for (vtkIdType k = 0; k + 1 < n; ++k)
+      lines.segments.insert(lines.segments.end(), { ids[k], ids[k + 1] });
+  if (lines.segments.empty())
+  {
+    error = "its lines have no segment (no line with two points or more)";
+    return false;
+  }
+  // The volume's voxels as a world grid in index space (voxel centres at
+  // integers, cubes of side 1), its slices the volume's k rounded up to words.
+  cao::BitGrid grid;
+  grid.nx = dims[0];
+  grid.ny = dims[1];
+  grid.words = (dims[2] + 31) / 32;
+  grid.slices = 32 * grid.words;
+  grid.origin = { { -0.5, -0.5, -0.5 } };
+  grid.voxel = 1.0;
+  if (!cao::VoxelizeLines(lines, 0.0, grid, error))
+    return false;
+  const std::size_t sliceSize = static_cast<std::size_t>(dims[0]) * dims[1];
+  inside.assign(sliceSize * dims[2], 0);
+  for (int j = 0; j < dims[1]; ++j)
+    for (int i = 0; i < dims[0]; ++i)
+      for (int k = 0; k < dims[2]; ++k)
+        if (grid.Bit(i, j, k))
+          inside[static_cast<std::size_t>(k) * sliceSize + static_cast<std::size_t>(j) * dims[0] + i] = 1;
+  return true;
+}
+}
+
 bool OccludeOpacity(vtkImageData* grid, const std::vector<vtkPolyData*>& meshes, float* opacity,
   std::int64_t& occupied, std::string& error, const std::vector<vtkMatrix4x4*>& poses)
 {
@@ -178,9 +233,11 @@ bool OccludeOpacity(vtkImageData* grid, const std::vector<vtkPolyData*>& meshes,
     std::vector<double> points;
     std::vector<std::int64_t> triangles;
     TrianglesOf(meshes[m], points, triangles);
+    // Lines (streamlines: lines and no polygons) occlude by their voxels.
+    const bool lines = triangles.empty() && meshes[m]->GetNumberOfLines() > 0;
     std::string why;
-    if (triangles.empty())
-      why = "it has no polygons";
+    if (triangles.empty() && !lines)
+      why = "it has no polygons and no lines";
     else
       for (double x : points)
         if (!std::isfinite(x))
@@ -188,12 +245,14 @@ bool OccludeOpacity(vtkImageData* grid, const std::vector<vtkPolyData*>& meshes,
           why = "it has a NaN or infinite point coordinate";
           break;
         }
-    if (why.empty() && !cao::InsideMask({ &points, &triangles }, dims, toIndex, inside, why))
+    if (why.empty() && lines && !LineVoxels(meshes[m], dims, toIndex, inside, why))
+      why = why.empty() ? "its voxels could not be found" : why;
+    if (why.empty() && !lines && !cao::InsideMask({ &points, &triangles }, dims, toIndex, inside, why))
       why = why.empty() ? "its inside could not be found" : why;
     if (!why.empty())
     {
       error = "occluder mesh " + std::to_string(m) + " of " + std::to_string(meshes.size()) +
-        ": " + why + " (an occluder must be a closed surface)";
+        ": " + why + (lines ? "" : " (an occluder must be a closed surface or lines)");
       return false;
     }
     if (all.empty())

@@ -44,10 +44,13 @@ CAOFILTERSCORE_EXPORT bool ComputeOpacity(vtkAlgorithm* self, vtkDataArray* scal
  * lies inside one of `meshes` (closed triangle meshes, polygons
  * triangulated, in the grid's physical coordinates) gets opacity 1, an
  * opaque solid at any sample step (the voxelizer's parity along the grid's
- * k axis: cao::InsideMask). `occupied` counts those voxels (each once).
+ * k axis: cao::InsideMask); a mesh with lines and no polygons
+ * (streamlines) makes opaque the voxels its segments pass through (their
+ * supercover: cao::VoxelizeLines on the volume's voxels). `occupied`
+ * counts those voxels (each once).
  * A mesh with no points (an isosurface whose value leaves the data's
  * range) occludes nothing. False with the reason, naming the mesh, when a
- * mesh is open, has points but no polygons, or has non-finite points, or the grid's index-to-physical
+ * mesh is open, has points but no polygons nor lines, or has non-finite points, or the grid's index-to-physical
  * matrix is singular; `opacity` is then unchanged. `poses[m]`, when given
  * and not null, maps mesh m's points to the grid's physical coordinates
  * (no copy of the mesh is made).

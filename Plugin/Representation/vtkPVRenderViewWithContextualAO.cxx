@@ -101,6 +101,11 @@ void vtkPVRenderViewWithContextualAO::SetVolumesOccludeSurfaces(int on)
   this->Pass->SetOccludingVolumes(on != 0);
   this->Modified();
 }
+void vtkPVRenderViewWithContextualAO::SetGeometryOccludesVolumeAO(int on)
+{
+  this->Pass->SetGeometryOccludesVolumeAO(on != 0);
+  this->Modified();
+}
 void vtkPVRenderViewWithContextualAO::SetSurfaceAORadius(double radius)
 {
   this->Pass->SetRadius(radius);

@@ -35,12 +35,13 @@ public:
   ///@{
   /// Forwarded to the pass (vtkContextualAOPass's Method, ApplyTo, Radius,
   /// Strength, Quality, Slices, Grid, GBuffer, OccludingVolumes,
-  /// IndirectLight, Backend, Occupancy, LineAO, LineSamples, LineSlices).
+  /// GeometryOccludesVolumeAO, IndirectLight, Backend, Occupancy, LineAO, LineSamples, LineSlices).
   void SetSurfaceAOMethod(int method);
   void SetApplyAOTo(int mode);
   void SetSurfaceAOGrid(int grid);
   void SetSurfaceAOGBuffer(int source);
   void SetVolumesOccludeSurfaces(int on);
+  void SetGeometryOccludesVolumeAO(int on);
   void SetSurfaceAORadius(double radius);
   void SetSurfaceAOStrength(double strength);
   void SetSurfaceAOQuality(int quality);

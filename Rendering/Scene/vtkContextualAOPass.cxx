@@ -30,6 +30,7 @@
 #include "vtkSmartPointer.h"
 #include "vtkProp.h"
 #include "vtkVolume.h"
+#include "vtkWeakPointer.h"
 #include "vtkVolumeCollection.h"
 #include "vtkVolumetricPass.h"
 #include "vtk_glew.h"
@@ -40,6 +41,7 @@
 #include "vtkCAOSceneLines.h"
 #include "vtkCAOInput.h"
 #include "vtkCAOSceneVolume.h"
+#include "vtkContextualAOVolumeMapper.h"
 #include "vtkCompositeDataDisplayAttributes.h"
 #include "vtkCompositePolyDataMapper2.h"
 
@@ -370,6 +372,10 @@ struct vtkContextualAOPass::Internals
   vtkSmartPointer<vtkMultiProcessController> controller;
   vtkCAO::SceneExchange exchange;
   vtkCAO::SceneExchange lineExchange; ///< whether any process's lines changed
+  /// The volume mappers whose occluders the pass set, and what it set
+  /// (GeometryOccludesVolumeAO).
+  std::vector<std::pair<vtkWeakPointer<vtkContextualAOVolumeMapper>, std::vector<vtkProp3D*>>> volumeOccluders;
+  void SetVolumeOccluders(vtkContextualAOPass* self, vtkRenderer* ren);
   bool sharedLinesOred = false;        ///< the shared grid holds every process's lines
   // The lines (LineAO): their pieces this frame, their AO, the pixels it darkened.
   vtkCAO::SceneLines lines;
@@ -656,6 +662,8 @@ void vtkContextualAOPass::Render(const vtkRenderState* s)
                                    : static_cast<vtkRenderPass*>(p.sequence.Get());
   p.camera->SetDelegatePass(inner);
   vtkRenderPass* scene = this->SetsCamera ? static_cast<vtkRenderPass*>(p.camera.Get()) : inner;
+  if (!selecting && s->GetRenderer())
+    p.SetVolumeOccluders(this, s->GetRenderer()); // (before the volumes are drawn)
   scene->Render(s); // lights, opaque, RunAO, translucent, volumes, overlay
   this->NumberOfRenderedProps = scene->GetNumberOfRenderedProps();
 }
@@ -1020,6 +1028,45 @@ void vtkContextualAOPass::Internals::Exchange(vtkContextualAOPass* self)
     std::string why;
     this->sharedLinesOred = this->lines.Shared() && this->lines.VoxelizeInto(g, why);
     this->sharedGrid = std::move(g);
+  }
+}
+
+void vtkContextualAOPass::Internals::SetVolumeOccluders(vtkContextualAOPass* self, vtkRenderer* ren)
+{
+  // The visible opaque actors (surfaces and lines), in the renderer's order.
+  std::vector<vtkProp3D*> occluders;
+  if (self->GeometryOccludesVolumeAO)
+    for (vtkActor* actor : SceneActors(ren))
+      if (actor->GetVisibility() && actor->HasOpaqueGeometry() && actor->GetMapper() &&
+        actor->GetProperty()->GetRepresentation() == VTK_SURFACE) // (a wireframe's polygons are not solid)
+        occluders.push_back(actor);
+  auto& wired = this->volumeOccluders;
+  wired.erase(std::remove_if(wired.begin(), wired.end(), [](const auto& w) { return !w.first; }), wired.end());
+  std::vector<vtkContextualAOVolumeMapper*> mappers;
+  vtkCollectionSimpleIterator it;
+  vtkVolumeCollection* volumes = ren->GetVolumes(); // (collected again at each call)
+  volumes->InitTraversal(it);
+  while (vtkVolume* volume = volumes->GetNextVolume(it))
+    if (auto* mapper = vtkContextualAOVolumeMapper::SafeDownCast(volume->GetMapper()))
+      mappers.push_back(mapper);
+  for (vtkContextualAOVolumeMapper* mapper : mappers)
+  {
+    auto w = std::find_if(wired.begin(), wired.end(), [mapper](const auto& e) { return e.first == mapper; });
+    const std::vector<vtkProp3D*> none;
+    const std::vector<vtkProp3D*>& set = w == wired.end() ? none : w->second;
+    if (set == occluders)
+      continue;
+    // An application's own occluders stay: only a list this pass set, or
+    // an empty one, is replaced.
+    if (mapper->GetNumberOfOccluders() != static_cast<int>(set.size()))
+      continue;
+    mapper->RemoveAllOccluders();
+    for (vtkProp3D* prop : occluders)
+      mapper->AddOccluder(prop);
+    if (w == wired.end())
+      wired.emplace_back(mapper, occluders);
+    else
+      w->second = occluders;
   }
 }
 

@@ -195,6 +195,24 @@ public:
   ///@}
 
   ///@{
+  /// Whether the visible opaque surfaces and lines occlude the AO of the
+  /// volumes drawn by vtkContextualAOVolumeMapper (default off): at each
+  /// frame, before the volumes are drawn, the pass makes the renderer's
+  /// visible opaque actors those mappers' occluders
+  /// (vtkContextualAOVolumeMapper::AddOccluder: a closed surface's inside
+  /// and a line's voxels become opaque for the volume's LAO; when one moves
+  /// or changes, the mapper recomputes only the voxels within reach, bit for
+  /// bit as a full precompute; a camera or colour change recomputes
+  /// nothing). An open surface is left out with the mapper's warning. The
+  /// pass sets only occluder lists it set itself or that are empty: a
+  /// mapper given occluders by the application keeps them. Off: the lists
+  /// it set are emptied.
+  vtkSetMacro(GeometryOccludesVolumeAO, bool);
+  vtkGetMacro(GeometryOccludesVolumeAO, bool);
+  vtkBooleanMacro(GeometryOccludesVolumeAO, bool);
+  ///@}
+
+  ///@{
   /// The AO radius in world units; 0 (default): from the opaque actors'
   /// feature size, as `cao surface` (cao::DefaultAORadius: half the mean
   /// free path between their surfaces, 2V/A over their bounding box V and
@@ -324,6 +342,7 @@ protected:
   int Grid = WORLD_GRID;
   int GBuffer = GBUFFER_AUTO;
   bool OccludingVolumes = true;
+  bool GeometryOccludesVolumeAO = false;
   double Radius = 0.0;
   double Strength = 1.0;
   int Quality = 2;

@@ -1,6 +1,8 @@
 #include "vtkContextualAOVolumeMapper.h"
 
 #include "vtkActor.h"
+#include "vtkCompositeDataIterator.h"
+#include "vtkCompositeDataSet.h"
 #include "vtkAlgorithm.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
@@ -339,6 +341,7 @@ struct vtkContextualAOVolumeMapper::Internals
   /// its pose in the volume's physical coordinates, read by UploadVolume.
   std::vector<vtkPolyData*> OccluderMeshes;
   std::vector<vtkSmartPointer<vtkMatrix4x4>> OccluderPoses;
+  std::vector<std::size_t> OccluderOf; ///< each mesh's occluder (a composite input gives several)
   /// Gathers them, and the volume key's part for them.
   void GatherOccluders(Frame& f, std::vector<double>& key);
   bool UpdateTable(vtkContextualAOVolumeMapper* self, Frame& f, double& step);
@@ -834,7 +837,7 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
       {
         std::string& said = this->OccluderWarnings[m];
         if (said != why)
-          vtkWarningWithObjectMacro(self, "Occluder " << m << " is left out: " << why << ".");
+          vtkWarningWithObjectMacro(self, "Occluder " << this->OccluderOf[m] << " is left out: " << why << ".");
         said = why;
         continue;
       }
@@ -941,27 +944,46 @@ void vtkContextualAOVolumeMapper::Internals::GatherOccluders(Frame& f, std::vect
   // physical coordinates: (the volume's matrix)^-1 * the prop's matrix.
   this->OccluderMeshes.clear();
   this->OccluderPoses.clear();
+  this->OccluderOf.clear();
   if (this->Occluders.empty())
     return;
   vtkNew<vtkMatrix4x4> worldToVolume;
   vtkMatrix4x4::Invert(f.volume->GetMatrix(), worldToVolume);
-  for (vtkProp3D* prop : this->Occluders)
+  for (std::size_t o = 0; o < this->Occluders.size(); ++o)
   {
-    vtkPolyData* mesh = nullptr;
+    vtkProp3D* prop = this->Occluders[o];
+    // Its mapper's input: one polydata, or each polydata block of a
+    // composite input (ParaView's surfaces), all with the prop's pose.
+    std::vector<vtkPolyData*> meshes;
+    vtkDataObject* input = nullptr;
     if (vtkActor* actor = vtkActor::SafeDownCast(prop))
       if (vtkMapper* m = actor->GetMapper())
       {
         if (vtkAlgorithm* a = m->GetInputAlgorithm())
           a->Update();
-        mesh = vtkPolyData::SafeDownCast(m->GetInputDataObject(0, 0));
+        input = m->GetInputDataObject(0, 0);
       }
+    if (vtkCompositeDataSet* blocks = vtkCompositeDataSet::SafeDownCast(input))
+    {
+      vtkSmartPointer<vtkCompositeDataIterator> it;
+      it.TakeReference(blocks->NewIterator());
+      for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+        if (vtkPolyData* block = vtkPolyData::SafeDownCast(it->GetCurrentDataObject()))
+          meshes.push_back(block); // (a composite with none occludes nothing)
+    }
+    else
+      meshes.push_back(vtkPolyData::SafeDownCast(input)); // (null: left out, with a warning)
     auto toVolume = vtkSmartPointer<vtkMatrix4x4>::New();
     vtkMatrix4x4::Multiply4x4(worldToVolume, prop->GetMatrix(), toVolume);
-    key.push_back(static_cast<double>(reinterpret_cast<std::uintptr_t>(mesh)));
-    key.push_back(mesh ? static_cast<double>(mesh->GetMTime()) : 0.0);
-    key.insert(key.end(), toVolume->GetData(), toVolume->GetData() + 16);
-    this->OccluderMeshes.push_back(mesh);
-    this->OccluderPoses.push_back(toVolume);
+    for (vtkPolyData* mesh : meshes)
+    {
+      key.push_back(static_cast<double>(reinterpret_cast<std::uintptr_t>(mesh)));
+      key.push_back(mesh ? static_cast<double>(mesh->GetMTime()) : 0.0);
+      key.insert(key.end(), toVolume->GetData(), toVolume->GetData() + 16);
+      this->OccluderMeshes.push_back(mesh);
+      this->OccluderPoses.push_back(toVolume);
+      this->OccluderOf.push_back(o);
+    }
   }
 }
 

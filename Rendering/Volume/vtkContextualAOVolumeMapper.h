@@ -261,7 +261,8 @@ public:
    * vtkPolyDataMapper's input: a closed surface such as an isosurface),
    * posed by the prop's matrix, makes the voxels whose centre lies inside
    * it opaque for the LAO (as vtkLocalAmbientOcclusion's occluders), so the
-   * volume around it darkens. When an occluder moves or its mesh changes,
+   * volume around it darkens; a mesh of lines (streamlines) makes the
+   * voxels its segments pass through opaque. When an occluder moves or its mesh changes,
    * only the voxels within the rays' reach of a voxel whose opacity changed
    * are recomputed (the opacity edit), exactly as a full precompute. An
    * occluder that is open or has no mesh is left out with a warning that

@@ -22,6 +22,11 @@ each pose's contextual AO bit for bit a new pipeline's. Also:
   one occludes nothing;
 - piece k of 3 equals the serial AO, with the occluder reaching past the
   piece's input extent;
+- lines (streamlines) occlude by their voxels: a segment along x through
+  voxel centres exactly its 16 voxels; a diagonal one every voxel a dense
+  walk along it visits (no gap), and at most 1.3 times as many; a bundle
+  darkens the matter around it, and its moves are opacity edits bit for
+  bit a full run's;
 - an open mesh (a plane) is refused with an error that names it, and the
   filter runs again once it is removed.
 """
@@ -278,6 +283,89 @@ for piece in range(3):
     check(np.array_equal(got, whole[e[4]:e[5] + 1, e[2]:e[3] + 1, e[0]:e[1] + 1]),
           "piece %d of 3 (extent %s, input read %s, the ball reaching past it): the serial AO "
           "bit for bit" % (piece, e, read))
+
+# Lines (streamlines: lines and no polygons) occlude by their voxels: the
+# voxels whose cube a segment passes through (the supercover, as the render
+# pass voxelizes lines into the surfaces' grid). neghip's voxel centres are
+# at integer coordinates (origin 0, spacing 1).
+from vtkmodules.vtkCommonCore import vtkPoints  # noqa: E402
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData  # noqa: E402
+
+
+def polylines(lines):
+    points, cells = vtkPoints(), vtkCellArray()
+    for line in lines:
+        cells.InsertNextCell(len(line))
+        for p in line:
+            cells.InsertCellPoint(points.InsertNextPoint(*p))
+    data = vtkPolyData()
+    data.SetPoints(points)
+    data.SetLines(cells)
+    return data
+
+
+def occluded_by(lines):
+    f = new_lao()
+    f.AddOccluderData(polylines(lines))
+    f.Update()
+    out = f.GetOutput()
+    return f, out, int(field(out, "LAOOccludedVoxels"))
+
+
+# A segment along x through voxel centres: exactly its 16 voxels.
+_, rowOut, rowCount = occluded_by([[(5, 10, 12), (20, 10, 12)]])
+rowOpacity = vtk_to_numpy(rowOut.GetPointData().GetArray("AmbientOcclusionOpacity")).reshape(66, 66, 66)
+check(rowCount == 16 and np.all(rowOpacity[12, 10, 5:21] == 1.0),
+      "a segment along x through 16 voxel centres occludes exactly those (%d voxels)" % rowCount)
+# A diagonal segment: every voxel a dense walk along it visits is opaque (no
+# gap), and not many more (the supercover adds only voxels whose cube it
+# grazes).
+a, b = np.array([5.2, 5.3, 5.1]), np.array([40.7, 24.2, 19.9])
+_, diagOut, diagCount = occluded_by([[tuple(a), tuple(b)]])
+diagOpacity = vtk_to_numpy(diagOut.GetPointData().GetArray("AmbientOcclusionOpacity")).reshape(66, 66, 66)
+walk = {tuple(np.floor(a + t * (b - a) + 0.5).astype(int)) for t in np.linspace(0.0, 1.0, 20001)}
+covered = all(diagOpacity[k, j, i] == 1.0 for i, j, k in walk)
+check(covered and len(walk) <= diagCount <= 1.3 * len(walk),
+      "a diagonal segment: the %d voxels a dense walk visits are all opaque (%d opaque; bound 1.3x)"
+      % (len(walk), diagCount))
+# A bundle of streamline-like lines through the matter darkens the LAO
+# around it; moving it is an opacity edit, bit for bit a full run's.
+bundleWhere = vtkTransform()
+bundleMove = vtkTransformPolyDataFilter()
+bundleMove.SetTransform(bundleWhere)
+bundleMove.SetInputData(polylines([[(x, 30 + dy, 30 + dz) for x in range(10, 56, 3)]
+                                   for dy in (-2, 0, 2) for dz in (-2, 0, 2)]))
+lineLAO = new_lao()
+lineLAO.AddOccluderConnection(bundleMove.GetOutputPort())
+for k, shift in enumerate([(0, 0, 0), (0, 1.5, 0.5), (0, 6, -4)]):
+    bundleWhere.Identity()
+    bundleWhere.Translate(*shift)
+    bundleMove.Update()
+    lineLAO.Update()
+    out = lineLAO.GetOutput()
+    copy = vtkPolyData()
+    copy.DeepCopy(bundleMove.GetOutput())
+    full = new_lao()
+    full.AddOccluderData(copy)
+    full.Update()
+    same = np.array_equal(bits(out, "AmbientOcclusion"), bits(full.GetOutput(), "AmbientOcclusion"))
+    recomputed = field(out, "LAOUpdateVoxels", 1)
+    check(same and (k == 0 or (reason(out) == "opacity edit" and recomputed < voxels)),
+          "lines, pose %d: the AO equals a full run's bit for bit (%s, %d of %d voxels recomputed)"
+          % (k, reason(out), recomputed, voxels))
+    if k == 0:
+        ao = vtk_to_numpy(out.GetPointData().GetArray("AmbientOcclusion")).reshape(66, 66, 66)
+        # The ring of voxels 1 and 2 outside the bundle (lines at y, z of
+        # 28, 30, 32), in the matter (plain LAO under 1).
+        near = np.zeros((66, 66, 66), bool)
+        near[26:35, 26:35, 12:54] = True  # (z, y, x)
+        near[28:33, 28:33, :] = False
+        base = alone.reshape(66, 66, 66)
+        near &= base < 1.0
+        darker = float(np.mean(base[near] - ao[near]))
+        check(near.sum() > 100 and darker > 0.02 and np.all(ao[near] <= base[near] + 1e-6),
+              "the bundle darkens the matter around it (%d voxels: mean %.3f darker, never lighter)"
+              % (near.sum(), darker))
 
 # An open mesh: refused, with its name; the filter works again without it.
 errors = []
