@@ -101,6 +101,11 @@ void vtkPVRenderViewWithContextualAO::SetVolumesOccludeSurfaces(int on)
   this->Pass->SetOccludingVolumes(on != 0);
   this->Modified();
 }
+void vtkPVRenderViewWithContextualAO::SetLineShading(int mode)
+{
+  this->Pass->SetLineShading(mode);
+  this->Modified();
+}
 void vtkPVRenderViewWithContextualAO::SetGeometryOccludesVolumeAO(int on)
 {
   this->Pass->SetGeometryOccludesVolumeAO(on != 0);

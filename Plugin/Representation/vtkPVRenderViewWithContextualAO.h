@@ -35,7 +35,8 @@ public:
   ///@{
   /// Forwarded to the pass (vtkContextualAOPass's Method, ApplyTo, Radius,
   /// Strength, Quality, Slices, Grid, GBuffer, OccludingVolumes,
-  /// GeometryOccludesVolumeAO, IndirectLight, Backend, Occupancy, LineAO, LineSamples, LineSlices).
+  /// GeometryOccludesVolumeAO, IndirectLight, Backend, Occupancy, LineAO, LineSamples, LineSlices,
+  /// LineShading).
   void SetSurfaceAOMethod(int method);
   void SetApplyAOTo(int mode);
   void SetSurfaceAOGrid(int grid);
@@ -52,6 +53,7 @@ public:
   void SetLineAO(int on);
   void SetLineAOSamples(int samples);
   void SetLineAOSlices(int slices);
+  void SetLineShading(int mode);
   ///@}
 
   /// The pass, for its frame report.

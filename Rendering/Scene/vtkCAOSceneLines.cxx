@@ -71,6 +71,7 @@ void SceneLines::Collect(const std::vector<std::pair<vtkActor*, vtkPolyData*>>& 
   this->frameKey.clear();
   this->drawKey.clear();
   this->drawings.clear();
+  this->looks.clear();
   this->pieceDrawing.clear();
   this->widest = 1.0;
   vtkActor* last = nullptr;
@@ -90,6 +91,15 @@ void SceneLines::Collect(const std::vector<std::pair<vtkActor*, vtkPolyData*>>& 
       drawing.reachPixels = std::min(cao::MaximumReach, drawing.halfWidthPixels + 1.0);
       drawing.depthSlack = DepthSlack(actor->GetMapper());
       this->drawings.push_back(drawing);
+      vtkProperty* property = actor->GetProperty();
+      LineLook look;
+      look.tubes = drawing.tubes;
+      const double lit = property->GetAmbient() + property->GetDiffuse();
+      look.ambientShare = lit > 0.0 ? std::max(0.0, property->GetAmbient()) / lit : 1.0;
+      look.specular = std::max(0.0, property->GetSpecular());
+      look.power = std::max(0.0, property->GetSpecularPower());
+      property->GetSpecularColor(look.specularColor);
+      this->looks.push_back(look);
       this->widest = std::max(this->widest, DrawnWidth(actor));
       this->drawKey.insert(this->drawKey.end(), { drawing.tubes ? 1.0 : 0.0, drawing.reachPixels, drawing.depthSlack });
     }
@@ -183,6 +193,17 @@ bool SceneLines::EnsureScene(bool& built, std::string& error)
   this->failedKey.clear();
   built = true;
   return true;
+}
+
+const LineLook* SceneLines::LookOfPixel(std::size_t i) const
+{
+  if (i >= this->frame.segment.size() || this->frame.segment[i] < 0)
+    return nullptr;
+  const std::size_t s = static_cast<std::size_t>(this->frame.segment[i]);
+  if (s >= this->segmentDrawing.size())
+    return nullptr;
+  const std::size_t d = static_cast<std::size_t>(this->segmentDrawing[s]);
+  return d < this->looks.size() ? &this->looks[d] : nullptr;
 }
 
 bool SceneLines::VoxelizeInto(cao::BitGrid& grid, std::string& error)

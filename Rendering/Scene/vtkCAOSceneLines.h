@@ -41,6 +41,15 @@ class vtkRenderer;
 namespace vtkCAO
 {
 class SceneGPU;
+/// How an actor's lines are lit in the pass's line shading (its vtkProperty).
+struct LineLook
+{
+  bool tubes = false;         ///< drawn as tubes (VTK lights them: left as drawn)
+  double ambientShare = 0.0;  ///< Ambient / (Ambient + Diffuse): the part the light does not scale
+  double specular = 0.0;      ///< Specular
+  double power = 1.0;         ///< SpecularPower
+  double specularColor[3] = { 1, 1, 1 };
+};
 class SceneLines
 {
 public:
@@ -100,6 +109,9 @@ public:
     return this->shared ? this->all.NumberOfSegments() : this->lines.NumberOfSegments();
   }
 
+  /// The look of pixel i's line (`Frame().segment[i]` >= 0), null if none.
+  const LineLook* LookOfPixel(std::size_t i) const;
+
   /// Per pixel the line AO (NaN: not a line's pixel).
   const cao::LineFrame& Frame() const { return this->frame; }
   std::int64_t NumberOfSegments() const { return this->lines.NumberOfSegments(); }
@@ -131,6 +143,7 @@ private:
   std::vector<double> frameKey, sceneKey, gridKey, aoKey, drawKey, failedKey;
   std::string failedError;
   std::vector<cao::LineDrawing> drawings;     ///< per actor: reach and tube mode
+  std::vector<LineLook> looks;                ///< per actor: how the pass's shading lights it
   std::vector<std::int32_t> pieceDrawing;     ///< each piece's actor
   std::vector<std::int32_t> segmentDrawing;   ///< each segment's actor
   int actors = 0;

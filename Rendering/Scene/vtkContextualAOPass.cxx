@@ -29,6 +29,8 @@
 #include "vtkSequencePass.h"
 #include "vtkSmartPointer.h"
 #include "vtkProp.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
 #include "vtkVolume.h"
 #include "vtkWeakPointer.h"
 #include "vtkVolumeCollection.h"
@@ -41,6 +43,7 @@
 #include "vtkCAOSceneLines.h"
 #include "vtkCAOInput.h"
 #include "vtkCAOSceneVolume.h"
+#include "caoLineShading.h"
 #include "vtkContextualAOVolumeMapper.h"
 #include "vtkCompositeDataDisplayAttributes.h"
 #include "vtkCompositePolyDataMapper2.h"
@@ -131,6 +134,83 @@ double Since(Clock::time_point t)
 double Address(const void* p)
 {
   return static_cast<double>(reinterpret_cast<std::uintptr_t>(p));
+}
+
+/// A light as the lines' shading takes it: direction to it (directional)
+/// or position (positional), world coordinates, and intensity.
+struct LineLight
+{
+  double at[3];
+  bool positional;
+  double intensity;
+};
+
+/// The renderer's lights that are on (the renderer has placed its camera
+/// lights and headlights by the time the opaque props are drawn).
+std::vector<LineLight> LineLights(vtkRenderer* ren)
+{
+  std::vector<LineLight> lights;
+  vtkLightCollection* all = ren->GetLights();
+  vtkCollectionSimpleIterator it;
+  all->InitTraversal(it);
+  while (vtkLight* light = all->GetNextLight(it))
+  {
+    if (!light->GetSwitch() || !(light->GetIntensity() > 0.0))
+      continue;
+    LineLight l;
+    double p[3], f[3];
+    light->GetTransformedPosition(p);
+    light->GetTransformedFocalPoint(f);
+    l.positional = light->GetPositional() != 0;
+    double n = 0.0;
+    for (int d = 0; d < 3; ++d)
+    {
+      l.at[d] = l.positional ? p[d] : p[d] - f[d];
+      n += (p[d] - f[d]) * (p[d] - f[d]);
+    }
+    if (!l.positional && !(n > 0.0))
+      continue;
+    for (int d = 0; d < 3 && !l.positional; ++d)
+      l.at[d] /= std::sqrt(n);
+    l.intensity = light->GetIntensity();
+    lights.push_back(l);
+  }
+  return lights;
+}
+
+/// Pixel i of a flat line lit by `lights` (vtkContextualAOPass::LineShading):
+/// its drawn colour `rgba` times (a + (1 - a) Mallo) times `aoFactor`, plus
+/// Banks' specular, each light by its intensity.
+void ShadeLinePixel(const vtkCAO::LineLook& look, const std::vector<LineLight>& lights,
+  const cao::LineFrame& frame, std::size_t i, float aoFactor, float* rgba)
+{
+  const double* t = &frame.tangent[3 * i];
+  const double* p = &frame.position[3 * i];
+  const double v[3] = { -frame.view[3 * i], -frame.view[3 * i + 1], -frame.view[3 * i + 2] };
+  double diffuse = 0.0, specular = 0.0;
+  for (const LineLight& light : lights)
+  {
+    double l[3] = { light.at[0], light.at[1], light.at[2] };
+    if (light.positional)
+    {
+      double n = 0.0;
+      for (int d = 0; d < 3; ++d)
+      {
+        l[d] = light.at[d] - p[d];
+        n += l[d] * l[d];
+      }
+      if (!(n > 0.0))
+        continue;
+      for (double& c : l)
+        c /= std::sqrt(n);
+    }
+    diffuse += light.intensity * cao::MalloDiffuseRelative(t, l, v);
+    specular += light.intensity * cao::BanksSpecular(t, l, v, look.power);
+  }
+  const double lit = look.ambientShare + (1.0 - look.ambientShare) * diffuse;
+  for (int k = 0; k < 3; ++k)
+    rgba[k] = std::min(1.0f, static_cast<float>(rgba[k] * lit * aoFactor +
+      look.specular * look.specularColor[k] * specular));
 }
 
 /// The camera as the lines' kernels take it (the viewport's, as ViewKey's),
@@ -1616,18 +1696,24 @@ bool vtkContextualAOPass::Internals::Combine(vtkContextualAOPass* self, const vt
     this->Stage("indirect", start);
   }
   const auto start = Clock::now();
+  const std::vector<LineLight> lights =
+    lineAO && self->LineShading == LINE_SHADING_MALLO_BANKS ? LineLights(ren) : std::vector<LineLight>();
   for (std::size_t i = 0; i < count; ++i)
   {
     // A line's pixel: its line AO, on its whole colour (a line drawn flat
-    // has no separate ambient term).
+    // has no separate ambient term), or on its lit colour (LineShading).
     if (lineAO && lineFrame.segment[i] >= 0)
     {
       const double ao = lineFrame.ao[i];
       if (!std::isfinite(ao))
         continue;
       const float dark = static_cast<float>(self->Strength * (1.0 - std::min(1.0, std::max(0.0, ao))));
-      for (int k = 0; k < 3; ++k)
-        rgba[4 * i + k] *= 1.0f - dark;
+      const vtkCAO::LineLook* look = lights.empty() ? nullptr : this->lines.LookOfPixel(i);
+      if (look && !look->tubes)
+        ShadeLinePixel(*look, lights, lineFrame, i, 1.0f - dark, &rgba[4 * i]);
+      else
+        for (int k = 0; k < 3; ++k)
+          rgba[4 * i + k] *= 1.0f - dark;
       ++this->lineCombined;
       continue;
     }

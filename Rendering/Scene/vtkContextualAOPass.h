@@ -314,6 +314,26 @@ public:
   vtkGetMacro(LineSlices, int);
   ///@}
 
+  ///@{
+  /// How the lines drawn flat (not as tubes) are lit. VTK draws them unlit,
+  /// in their colour alone (LINE_SHADING_AS_DRAWN, the default: the AO
+  /// scales that colour). LINE_SHADING_MALLO_BANKS lights them as seed 004
+  /// does, by the renderer's lights that are on (each by its intensity;
+  /// a headlight or camera light follows the camera): the drawn colour
+  /// times (a + (1 - a) MalloDiffuseRelative), a = Ambient / (Ambient +
+  /// Diffuse) of the actor's property (Mallo's cylinder-averaged diffuse, 1
+  /// across a headlight, 0 along the light), both scaled by the AO as for
+  /// surfaces, plus Specular x SpecularColor x Banks' term ^ SpecularPower.
+  /// Lines drawn as tubes are lit by VTK already and keep its shading.
+  enum LineShadingMode
+  {
+    LINE_SHADING_AS_DRAWN = 0,
+    LINE_SHADING_MALLO_BANKS = 1
+  };
+  vtkSetClampMacro(LineShading, int, LINE_SHADING_AS_DRAWN, LINE_SHADING_MALLO_BANKS);
+  vtkGetMacro(LineShading, int);
+  ///@}
+
   /// What the last frame ran, as JSON: frame, stages, reasons, pixels,
   /// triangles, open meshes, volumes, milliseconds per stage.
   std::string GetLastFrameReport() const;
@@ -353,6 +373,7 @@ protected:
   bool LineAO = true;
   int LineSamples = 64;
   int LineSlices = 128;
+  int LineShading = LINE_SHADING_AS_DRAWN;
   int FrameCount = 0;
   int VoxelizeCount = 0;
   int VolumeCount = 0;

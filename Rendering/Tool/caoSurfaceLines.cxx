@@ -411,7 +411,7 @@ int RunSurfaceLines(LineJob& job, const std::vector<std::string>& files,
       const double* v = &frame.view[3 * i];
       const double toEye[3] = { -v[0], -v[1], -v[2] };
       const double* t = &frame.tangent[3 * i];
-      const double diffuse = cao::MalloDiffuse(t, toEye, toEye) / (Pi / 4.0);
+      const double diffuse = cao::MalloDiffuseRelative(t, toEye, toEye);
       return a * (0.35 + 0.55 * diffuse) + 0.15 * cao::BanksSpecular(t, toEye, toEye, 24.0);
     },
     error);

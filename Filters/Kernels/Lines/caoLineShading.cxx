@@ -26,6 +26,11 @@ double MalloDiffuse(const double T[3], const double L[3], const double V[3])
   return sl * (std::sin(a) + (Pi - a) * std::cos(a)) / 4.0;
 }
 
+double MalloDiffuseRelative(const double T[3], const double L[3], const double V[3])
+{
+  return MalloDiffuse(T, L, V) / (Pi / 4.0);
+}
+
 double BanksSpecular(const double T[3], const double L[3], const double V[3], double exponent)
 {
   const Vec3 t = LoadVec3(T), l = LoadVec3(L), v = LoadVec3(V);

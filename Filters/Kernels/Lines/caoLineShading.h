@@ -16,6 +16,11 @@ namespace cao
 /// tangent (a point) is lit as a sphere facing the viewer: (1 + V.L) pi / 8.
 double MalloDiffuse(const double T[3], const double L[3], const double V[3]);
 
+/// MalloDiffuse relative to a line across a headlight (divided by pi / 4):
+/// 1 there, so that a line lit that way keeps the colour it is drawn with
+/// unlit (what the CLI's picture and the render pass scale by).
+double MalloDiffuseRelative(const double T[3], const double L[3], const double V[3]);
+
 /// Banks' specular term (-V_T L_T + sqrt(1 - V_T^2) sqrt(1 - L_T^2))^n,
 /// clamped at 0.
 double BanksSpecular(const double T[3], const double L[3], const double V[3], double exponent);

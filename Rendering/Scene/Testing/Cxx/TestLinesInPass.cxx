@@ -26,6 +26,10 @@
 //     twin's bound of the CPU's (GL.TestGLLineAO: mean under 1e-4, 99.9%
 //     within 0.005; control: the CPU with 48 samples misses it); Auto on a
 //     software rasteriser keeps them on the CPU
+//  10 LineShading Mallo-Banks: a line across the headlight keeps its
+//     colour, one tilted towards the view is darkened by sqrt(1 - (V.T)^2),
+//     Specular adds Banks' term, tubes keep VTK's shading; control: as
+//     drawn, both keep their colour
 // Pixels are found by projecting the lines' points; each check reads the
 // drawn line pixel nearest the projection (GetPixelAO > -1).
 #include "vtkContextualAOPass.h"
@@ -399,6 +403,86 @@ int TestLinesInPass(int, char*[])
   const bool software = autoReport.find("software rasteriser") != std::string::npos;
   Check(!software || autoReport.find("\"prisms\": \"CPU\"") != std::string::npos,
     "Auto on a software rasteriser keeps the lines' prisms on the CPU");
+
+  // 10: LineShading. Two lines apart, across the view and tilted 63 degrees
+  // towards it, under the renderer's headlight: Mallo-Banks keeps the
+  // across line's colour and darkens the tilted one by sqrt(1 - (V.T)^2)
+  // (0.447 at the view's centre); Specular adds Banks' term on top; tubes
+  // keep VTK's shading. Control: as drawn, both keep their colour.
+  {
+    vtkNew<vtkContextualAOEGLWindow> w;
+    w->SetSize(240, 200);
+    w->SetMultiSamples(0);
+    vtkNew<vtkRenderer> r;
+    r->SetBackground(0.0, 0.0, 0.0);
+    w->AddRenderer(r);
+    vtkNew<vtkPoints> pts;
+    vtkNew<vtkCellArray> cells;
+    const double tilted[3] = { 1.0 / std::sqrt(5.0), 0.0, 2.0 / std::sqrt(5.0) };
+    cells->InsertNextCell(2);
+    cells->InsertCellPoint(pts->InsertNextPoint(-1.5, 0.6, 0.0));
+    cells->InsertCellPoint(pts->InsertNextPoint(1.5, 0.6, 0.0));
+    cells->InsertNextCell(2);
+    cells->InsertCellPoint(pts->InsertNextPoint(-0.5 * tilted[0], -0.6, -0.5 * tilted[2]));
+    cells->InsertCellPoint(pts->InsertNextPoint(0.5 * tilted[0], -0.6, 0.5 * tilted[2]));
+    vtkNew<vtkPolyData> two;
+    two->SetPoints(pts);
+    two->SetLines(cells);
+    vtkNew<vtkPolyDataMapper> m;
+    m->SetInputData(two);
+    vtkNew<vtkActor> a;
+    a->SetMapper(m);
+    a->GetProperty()->SetColor(0.4, 0.4, 0.4);
+    a->GetProperty()->SetLineWidth(5.0);
+    r->AddActor(a);
+    r->GetActiveCamera()->SetPosition(0, 0, 6);
+    r->GetActiveCamera()->SetFocalPoint(0, 0, 0);
+    r->GetActiveCamera()->SetViewUp(0, 1, 0);
+    r->ResetCameraClippingRange();
+    vtkNew<vtkContextualAOPass> shading;
+    shading->SetRadius(0.3);
+    shading->SetBackend(vtkContextualAOPass::BACKEND_CPU);
+    r->SetPass(shading);
+    auto greyAt = [&](double x, double y, double z) {
+      r->SetWorldPoint(x, y, z, 1.0);
+      r->WorldToDisplay();
+      double dp[3];
+      r->GetDisplayPoint(dp);
+      return Grey(w, static_cast<int>(dp[0]), static_cast<int>(dp[1]));
+    };
+    auto look = [&](int mode, double specular, bool tubes, double out[2]) {
+      shading->SetLineShading(mode);
+      a->GetProperty()->SetSpecular(specular);
+      a->GetProperty()->SetSpecularPower(1.0);
+      a->GetProperty()->SetRenderLinesAsTubes(tubes);
+      w->Render();
+      out[0] = greyAt(0.0, 0.6, 0.0);
+      out[1] = greyAt(0.0, -0.6, 0.0);
+    };
+    double drawn[2], lit[2], shiny[2], tubesDrawn[2], tubesLit[2];
+    look(vtkContextualAOPass::LINE_SHADING_AS_DRAWN, 0.0, false, drawn);
+    look(vtkContextualAOPass::LINE_SHADING_MALLO_BANKS, 0.0, false, lit);
+    look(vtkContextualAOPass::LINE_SHADING_MALLO_BANKS, 0.5, false, shiny);
+    look(vtkContextualAOPass::LINE_SHADING_AS_DRAWN, 0.0, true, tubesDrawn);
+    look(vtkContextualAOPass::LINE_SHADING_MALLO_BANKS, 0.0, true, tubesLit);
+    const double expected = std::sqrt(1.0 - tilted[2] * tilted[2]);
+    std::printf("line shading: as drawn %.1f / %.1f, Mallo-Banks %.1f / %.1f (tilted ratio %.3f, expected %.3f), "
+                "Specular 0.5 %.1f / %.1f; tubes %.1f / %.1f as drawn, %.1f / %.1f lit\n",
+      drawn[0], drawn[1], lit[0], lit[1], lit[1] / drawn[1], expected, shiny[0], shiny[1], tubesDrawn[0],
+      tubesDrawn[1], tubesLit[0], tubesLit[1]);
+    Check(drawn[0] > 50 && drawn[1] > 50 && std::fabs(drawn[1] / drawn[0] - 1.0) < 0.05,
+      "control: as drawn, the across and the tilted line keep their colour");
+    Check(std::fabs(lit[0] / drawn[0] - 1.0) < 0.03 && std::fabs(lit[1] / drawn[1] - expected) < 0.05,
+      "Mallo-Banks: the line across the headlight keeps its colour, the tilted one is darkened by "
+      "sqrt(1 - (V.T)^2)");
+    // (vtkProperty::SetColor sets the specular colour too: 0.4; Banks' term
+    // is 1 across the headlight, 0 on the tilted line, V.T 0.89.)
+    Check(std::fabs(shiny[0] - lit[0] - 0.5 * 0.4 * 255.0) < 3 && std::fabs(shiny[1] - lit[1]) < 1,
+      "Specular 0.5 adds Banks' term times the specular colour on the line across the headlight (+51 "
+      "levels), none on the tilted one");
+    Check(std::fabs(tubesLit[0] - tubesDrawn[0]) < 1 && std::fabs(tubesLit[1] - tubesDrawn[1]) < 1,
+      "lines drawn as tubes keep VTK's shading");
+  }
   std::printf("%d failure(s)\n", failures);
   return failures ? 1 : 0;
 }
