@@ -159,6 +159,13 @@ bool SceneGPU::VAO(const cao::PixelCamera& camera, const cao::VAOSettings& setti
   return this->P->Ready(error) && this->P->screen->VAO(camera, settings, frame, ms, error);
 }
 
+bool SceneGPU::VoxelizeLines(const cao::BitGrid& grid, const cao::LineSegments& lines, double tubeRadius,
+  std::string& error)
+{
+  double ms = 0.0;
+  return this->P->Ready(error) && this->P->lines->Voxelize(grid, lines, tubeRadius, ms, error);
+}
+
 bool SceneGPU::LineAO(const cao::BitGrid& grid, const cao::LineAOSettings& settings, cao::LineFrame& frame,
   const cao::BitGrid* solids, std::string& error)
 {

@@ -60,6 +60,11 @@ public:
     std::string& error);
   bool VAO(const cao::PixelCamera& camera, const cao::VAOSettings& settings, cao::SurfaceFrame& frame,
     std::string& error);
+  /// cao::gl::LineAOEngine::Voxelize: cao::VoxelizeLines' twin into
+  /// `grid`'s plan; the bits stay on the GPU for LineAO given a grid of
+  /// that plan with no bits.
+  bool VoxelizeLines(const cao::BitGrid& grid, const cao::LineSegments& lines, double tubeRadius,
+    std::string& error);
   /// cao::gl::LineAOEngine::Frame: cao::LineAOFrame's twin (the lines'
   /// grid and G-buffer made on the CPU, the prisms counted on the GPU).
   bool LineAO(const cao::BitGrid& grid, const cao::LineAOSettings& settings, cao::LineFrame& frame,

@@ -461,6 +461,8 @@ bool SceneLines::Update(const cao::PixelCamera& camera, const double right[3], c
     key.insert(key.end(), { this->radius, tubeRadius, static_cast<double>(slices) });
     for (int d = 0; d < 3; ++d)
       key.insert(key.end(), { std::round(right[d] * 1e9) * 1e-9, std::round(up[d] * 1e9) * 1e-9 });
+    // Where the grid's bits are (the GPU's engine: a new one holds none).
+    key.insert(key.end(), { gpu ? 1.0 : 0.0, gpu ? static_cast<double>(gpu->Generation()) : 0.0 });
   }
   const bool meshes = this->shared ? !this->solids.bits.empty() : !this->meshPoints.empty();
   std::vector<cao::MeshView> views;
@@ -476,9 +478,14 @@ bool SceneLines::Update(const cao::PixelCamera& camera, const double right[3], c
       return false;
     this->grid = cao::BitGrid();
     this->solids = cao::BitGrid();
+    // On the GPU the bits stay there for the prisms (SceneGPU::LineAO).
     if (!cao::PlanLineGrid(this->lines, right, up, settings, this->grid, error, meshes ? &meshBounds : nullptr) ||
-      !cao::VoxelizeLines(this->lines, tubeRadius, this->grid, error))
+      (gpu ? !gpu->VoxelizeLines(this->grid, this->lines, tubeRadius, error)
+           : !cao::VoxelizeLines(this->lines, tubeRadius, this->grid, error)))
       return false;
+    if (gpu)
+      this->grid.bits.clear();
+    this->gridOnGPU = gpu != nullptr;
     if (meshes)
     {
       this->solids = this->grid;

@@ -64,16 +64,18 @@ public:
   /// The line AO of `camera`'s drawn pixels (`depth`: window depth, row 0
   /// at the bottom) except those in `skip`; `right` and `up` the camera's
   /// axes. `radius` is the AO radius (0: the default of the lines'
-  /// extent). With `gpu` (resolved to the window's OpenGL) the prisms are
-  /// counted there (cao::gl::LineAOEngine), else on the CPU; the G-buffer
-  /// and the grid are made on the CPU either way. Appends what ran
+  /// extent). With `gpu` (resolved to the window's OpenGL) the lines' grid
+  /// is voxelized and the prisms are counted there (cao::gl::LineAOEngine),
+  /// else on the CPU; the G-buffer (and the meshes' solids, and in parallel
+  /// rendering the shared grid) are made on the CPU either way. Appends what ran
   /// to `stages` / `ms`. False with the reason (a scene that failed is not
   /// built again until its lines change).
   bool Update(const cao::PixelCamera& camera, const double right[3], const double up[3],
     const std::vector<float>& depth, const std::vector<unsigned char>* skip, double radius, int samples,
     int slices, SceneGPU* gpu, std::vector<std::string>& stages, std::vector<double>& ms, std::string& error);
-  /// Whether the last line AO ran on the GPU.
+  /// Whether the last line AO ran on the GPU, and the lines' grid was voxelized there.
   bool OnGPU() const { return this->onGPU; }
+  bool GridOnGPU() const { return this->gridOnGPU && !this->shared; }
 
   /// What the lines' segments depend on (this frame's pieces).
   const std::vector<double>& Key() const { return this->frameKey; }
@@ -169,6 +171,7 @@ private:
   cao::LineFrame frame;
   int voxelizations = 0;
   bool onGPU = false;
+  bool gridOnGPU = false;
 };
 }
 

@@ -709,6 +709,7 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
       << p.lines.Frame().covered << ", \"combined_pixels\": " << p.lineCombined
       << ", \"voxelizations\": " << p.lines.Voxelizations() << ", \"radius_voxels\": " << p.lines.RadiusVoxels()
       << ", \"prisms\": \"" << (p.lines.OnGPU() ? "OpenGL" : "CPU") << "\""
+      << ", \"voxelization\": \"" << (p.lines.GridOnGPU() ? "OpenGL" : "CPU") << "\""
       << ", \"segments_of_all_processes\": " << p.lines.NumberOfGridSegments()
       << (p.lines.RadiusVoxels() < 2.0
              ? ", \"radius_note\": \"the AO radius spans under 2 voxels of the lines' grid: the half balls hold "
@@ -827,8 +828,8 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
   this->gpuFrame = this->onGPU && this->gbuffer == DEPTH_BUFFER && !(self->Method == VAO && self->IndirectLight) &&
     !frustum && !this->linesOn;
   if (this->onGPU && this->gbuffer == DEPTH_BUFFER && this->linesOn)
-    this->backendNote = "the lines' G-buffer and grid are made on the CPU: the frame's pixels are read back (the "
-                        "surfaces' AO and the lines' prisms still on the GPU)";
+    this->backendNote = "the lines' G-buffer is made on the CPU: the frame's pixels are read back (the surfaces' "
+                        "AO and the lines' grid and prisms still on the GPU)";
   if (this->onGPU && this->gbuffer == DEPTH_BUFFER && self->Method == VAO && self->IndirectLight)
     this->backendNote = "VAO's indirect light runs on the CPU: the frame's pixels are read back (the AO still on the GPU)";
   if (this->onGPU && this->gbuffer == DEPTH_BUFFER && frustum)

@@ -315,6 +315,17 @@ bool SurfaceGPU::ScreenAO(const cao::PixelCamera& camera, const cao::HBAOSetting
               : this->P->screen->VAO(camera, *vao, frame, ms, error);
 }
 
+bool SurfaceGPU::VoxelizeLines(cao::BitGrid& grid, const cao::LineSegments& lines, double tubeRadius, double& ms,
+  std::string& error)
+{
+  if (!this->P->context)
+    return error = "no OpenGL context (open one first)", false;
+  if (!this->P->lines)
+    this->P->lines.reset(new cao::gl::LineAOEngine(*this->P->context));
+  grid.bits.clear();
+  return this->P->lines->Voxelize(grid, lines, tubeRadius, ms, error) && this->P->lines->ReadGrid(grid.bits, error);
+}
+
 bool SurfaceGPU::LineAO(const cao::BitGrid& grid, const cao::LineAOSettings& settings, cao::LineFrame& frame,
   const cao::BitGrid* solids, double& ms, std::string& error)
 {

@@ -157,8 +157,13 @@ public:
   /// GPU (caoScreenAOGL), blurred or filtered as the CPU twin; `ms` GPU time.
   bool ScreenAO(const cao::PixelCamera& camera, const cao::HBAOSettings* hbao, const cao::VAOSettings* vao,
     cao::SurfaceFrame& frame, double& ms, std::string& error);
+  /// The lines' voxelization on the GPU (cao::gl::LineAOEngine::Voxelize,
+  /// cao::VoxelizeLines' twin) into `grid`'s plan, its bits read back into
+  /// `grid.bits`; `ms` GPU time.
+  bool VoxelizeLines(cao::BitGrid& grid, const cao::LineSegments& lines, double tubeRadius, double& ms,
+    std::string& error);
   /// Line AO's prisms on the GPU (cao::gl::LineAOEngine, cao::LineAOFrame's
-  /// twin) on a grid made on the CPU; `ms` GPU time.
+  /// twin); `ms` GPU time.
   bool LineAO(const cao::BitGrid& grid, const cao::LineAOSettings& settings, cao::LineFrame& frame,
     const cao::BitGrid* solids, double& ms, std::string& error);
 

@@ -309,8 +309,10 @@ int RunSurfaceLines(LineJob& job, const std::vector<std::string>& files,
     std::array<double, 6> meshBounds{ { 1, -1, 1, -1, 1, -1 } };
     if (mixed && (!cao::EyeAxes(right, up, axes, error) || !cao::EyeBounds(views, axes, meshBounds, error)))
       return Fail(2, error);
+    double voxelizeGPUMs = 0.0; // (the grid's bits read back: the meshes' cones read them too)
     if (!cao::PlanLineGrid(scene.lines, right, up, job.lineAO, grid, error, mixed ? &meshBounds : nullptr) ||
-      !cao::VoxelizeLines(scene.lines, scene.tubeRadius, grid, error))
+      (lineBackend != "CPU" ? !gpu.VoxelizeLines(grid, scene.lines, scene.tubeRadius, voxelizeGPUMs, error)
+                            : !cao::VoxelizeLines(scene.lines, scene.tubeRadius, grid, error)))
       return Fail(2, error);
     if (mixed)
     {

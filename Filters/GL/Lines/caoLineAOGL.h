@@ -1,5 +1,7 @@
 /**
- * caoLineAOGL - line AO (seed 004) on the GPU, with no VTK: one compute
+ * caoLineAOGL - line AO (seed 004) on the GPU, with no VTK: the lines'
+ * voxelization (caoLineVoxelize.glsl, the twin of cao::VoxelizeLines: the
+ * bits stay on the GPU for the prisms) and one compute
  * shader (caoLineAO.glsl) counts each covered pixel's prisms in the lines'
  * bit grid (and the solids') in float, with the CPU twin's disk samples,
  * weights and occupancy-to-AO (caoLineAO.h). The host sets each pixel's
@@ -19,6 +21,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace cao
 {
@@ -39,8 +42,22 @@ public:
   /// False with the reason on what LineAOFrame refuses
   /// (cao::CheckLineAOFrame), a grid larger than this OpenGL's largest
   /// storage block, or a GL error.
+  /// A `grid` with no bits uses the grid Voxelize left on the GPU (its
+  /// plan must be that one's).
   bool Frame(const BitGrid& grid, const LineAOSettings& settings, LineFrame& frame, double& ms,
     std::string& error, const BitGrid* solids = nullptr);
+
+  /// cao::VoxelizeLines on the GPU into `grid`'s plan (its bits are not
+  /// read nor written): the bits stay on the GPU for Frame (given a grid of
+  /// that plan with no bits) and ReadGrid. The ends are mapped to voxel
+  /// units in double, the boxes and tests run in float: a voxel the
+  /// segment only grazes (within float rounding of its cube or of the tube
+  /// radius) may differ from the CPU's. False with VoxelizeLines' reasons
+  /// (cao::CheckVoxelizeLines), a grid larger than the largest storage
+  /// block, or a GL error. `ms`: the shader's GPU time.
+  bool Voxelize(const BitGrid& grid, const LineSegments& lines, double tubeRadius, double& ms, std::string& error);
+  /// The bits Voxelize made (BitGrid::bits' layout).
+  bool ReadGrid(std::vector<std::uint32_t>& bits, std::string& error);
 
   /// Bytes of GPU memory held.
   std::int64_t ResidentBytes() const;

@@ -370,6 +370,21 @@ struct LineAOPixel
   ivec4 pixel;   /* x: the output index, y: flags (1 a line, 2 cosine weight), z: sample set, w: 0 */
 };
 #define CAO_LA_MAX_SETS 16
+
+/* Line voxelization (cao::VoxelizeLines on the GPU, caoLineVoxelize.glsl):
+ * one invocation per segment, its pieces' boxes visited as the CPU does,
+ * the bits OR-ed atomically. The host maps the segments' ends to voxel
+ * units in double (the grid frame, origin at 0) and packs them as two
+ * vec4 per segment. */
+struct LineVoxelizeParams
+{
+  ivec4 grid;    /* x: nx, y: ny, z: slices, w: 32-bit words per column */
+  ivec4 counts;  /* x: segments; yzw: 0 */
+  vec4 tube;     /* x: the tube radius (voxels), y: its square, z: the piece length (voxels), w: 0 */
+};
+#define CAO_BINDING_LV_PARAMS 2   /* uniform block: LineVoxelizeParams */
+#define CAO_BINDING_LV_ENDS 1     /* storage: vec4 per segment end (xyz voxel units), two per segment */
+#define CAO_BINDING_LV_BITS 0     /* storage: uint, the lines' grid (the same buffer LA_BITS reads) */
 #define CAO_BINDING_LA_PARAMS 2   /* uniform block: LineAOParams */
 #define CAO_BINDING_LA_BITS 0     /* storage: uint, the lines' grid ((j nx + i) words + word) */
 #define CAO_BINDING_LA_SOLIDS 1   /* storage: uint, the solids' grid (flag 2), planned as the lines' */
@@ -383,6 +398,7 @@ static_assert(sizeof(ScreenAOParams) == (13 + CAO_SS_MAX_FILTER_WEIGHTS / 4 + CA
 static_assert(sizeof(FrameParams) == 13 * 16, "FrameParams must match std140");
 static_assert(sizeof(LineAOParams) == 4 * 16, "LineAOParams must match std140");
 static_assert(sizeof(LineAOPixel) == 4 * 16, "LineAOPixel must match std430");
+static_assert(sizeof(LineVoxelizeParams) == 3 * 16, "LineVoxelizeParams must match std140");
 static_assert(sizeof(DMTriangle) == 128, "DMTriangle must match std430");
 static_assert(sizeof(DMHit) == 16, "DMHit must match std430");
 static_assert(sizeof(DMOffset) == 16, "DMOffset must match std430");

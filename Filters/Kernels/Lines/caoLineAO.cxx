@@ -197,28 +197,21 @@ bool PlanLineGrid(const LineSegments& lines, const double right[3], const double
   return true;
 }
 
-bool VoxelizeLines(const LineSegments& lines, double tubeRadius, BitGrid& grid, std::string& error)
+std::string CheckVoxelizeLines(const LineSegments& lines, double tubeRadius, const BitGrid& grid)
 {
-  error = lines.Validate();
+  std::string error = lines.Validate();
   if (!error.empty())
-    return false;
+    return error;
   if (grid.IsFrustum() || grid.nx < 1 || grid.ny < 1 || grid.words < 1 || !(grid.voxel > 0.0))
-  {
-    error = "line voxelization needs a planned world or eye grid";
-    return false;
-  }
+    return "line voxelization needs a planned world or eye grid";
   if (!(tubeRadius >= 0.0) || !std::isfinite(tubeRadius))
-  {
-    error = "the tube radius must be finite and not negative";
-    return false;
-  }
-  const double rho = tubeRadius / grid.voxel, rho2 = rho * rho;
+    return "the tube radius must be finite and not negative";
+  const double rho = tubeRadius / grid.voxel;
   const int dims[3] = { grid.nx, grid.ny, grid.slices };
-  constexpr double PieceLength = 4.0; // voxels
   // The voxels the pieces' boxes visit, bounded before any is: a tube far
   // wider than the grid's voxels would otherwise visit the grid per piece.
   double visits = 0.0;
-  const double side = PieceLength + 2.0 * rho + 3.0;
+  const double side = LinePieceLength + 2.0 * rho + 3.0;
   const double perPiece = std::min(side * side * side, static_cast<double>(dims[0]) * dims[1] * dims[2]);
   for (std::size_t s = 0; s + 1 < lines.segments.size(); s += 2)
   {
@@ -226,16 +219,24 @@ bool VoxelizeLines(const LineSegments& lines, double tubeRadius, BitGrid& grid, 
     const double* b = &lines.points[3 * static_cast<std::size_t>(lines.segments[s + 1])];
     const double length = std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
       (a[2] - b[2]) * (a[2] - b[2])) / grid.voxel;
-    visits += std::max(1.0, std::ceil(length / PieceLength)) * perPiece;
+    visits += std::max(1.0, std::ceil(length / LinePieceLength)) * perPiece;
   }
   if (visits > MaximumVoxelVisits)
-  {
-    error = "voxelizing these lines would visit about " + std::to_string(static_cast<long long>(visits)) +
+    return "voxelizing these lines would visit about " + std::to_string(static_cast<long long>(visits)) +
       " voxels (the tube radius " + std::to_string(tubeRadius) + " is " + std::to_string(rho) +
       " voxels of the grid); at most " + std::to_string(static_cast<long long>(MaximumVoxelVisits)) +
       ": use a smaller tube radius or fewer slices";
+  return std::string();
+}
+
+bool VoxelizeLines(const LineSegments& lines, double tubeRadius, BitGrid& grid, std::string& error)
+{
+  error = CheckVoxelizeLines(lines, tubeRadius, grid);
+  if (!error.empty())
     return false;
-  }
+  const double rho = tubeRadius / grid.voxel, rho2 = rho * rho;
+  const int dims[3] = { grid.nx, grid.ny, grid.slices };
+  constexpr double PieceLength = LinePieceLength;
   grid.bits.assign(static_cast<std::size_t>(grid.nx) * grid.ny * grid.words, 0u);
   for (std::size_t s = 0; s + 1 < lines.segments.size(); s += 2)
   {
@@ -488,18 +489,19 @@ double LineAOAt(const BitGrid& grid, const LineAOSettings& settings, const doubl
 }
 
 std::string CheckLineAOFrame(const BitGrid& grid, const LineAOSettings& settings, const LineFrame& frame,
-  const BitGrid* solids)
+  const BitGrid* solids, bool bitsElsewhere)
 {
   std::string error = settings.Validate();
   if (!error.empty())
     return error;
-  if (grid.IsFrustum() || grid.bits.empty() ||
-    grid.bits.size() != static_cast<std::size_t>(grid.nx) * grid.ny * grid.words)
+  const std::size_t words = static_cast<std::size_t>(grid.nx) * grid.ny * grid.words;
+  if (grid.IsFrustum() || grid.nx < 1 || grid.ny < 1 || grid.words < 1 ||
+    (!bitsElsewhere && (grid.bits.empty() || grid.bits.size() != words)))
     return "line AO needs a voxelized world or eye grid";
   if (solids &&
     (solids->nx != grid.nx || solids->ny != grid.ny || solids->slices != grid.slices ||
       solids->voxel != grid.voxel || solids->origin != grid.origin || solids->axes != grid.axes ||
-      solids->bits.size() != grid.bits.size()))
+      solids->bits.size() != words))
     return "the solids' grid is not planned as the lines' grid";
   const std::size_t pixels = static_cast<std::size_t>(frame.width) * frame.height;
   if (frame.width < 0 || frame.height < 0 || frame.segment.size() != pixels || frame.axis.size() != 3 * pixels ||

@@ -125,6 +125,12 @@ bool PlanLineGrid(const LineSegments& lines, const double right[3], const double
 /// Refused when its pieces' boxes would visit more than MaximumVoxelVisits
 /// voxels (a tube radius far above the voxel), with the reason.
 bool VoxelizeLines(const LineSegments& lines, double tubeRadius, BitGrid& grid, std::string& error);
+/// What VoxelizeLines refuses (bad lines, a grid not planned, a bad tube
+/// radius, more than MaximumVoxelVisits visits), its GPU twin too; empty
+/// when it can run.
+std::string CheckVoxelizeLines(const LineSegments& lines, double tubeRadius, const BitGrid& grid);
+/// The pieces VoxelizeLines cuts a segment into: at most this long, in voxels.
+constexpr double LinePieceLength = 4.0;
 /// VoxelizeLines' bound on its work (about half a minute here: carotid.vtk's
 /// 1.2 M streamline segments visit 1.1e9 voxels in 1.4 s).
 constexpr double MaximumVoxelVisits = 2e10;
@@ -188,9 +194,10 @@ double LineAOAt(const BitGrid& grid, const LineAOSettings& settings, const doubl
 
 /// Empty when LineAOFrame can run on these, else why not (invalid
 /// settings, a frustum or unvoxelized grid, `solids` planned otherwise, a
-/// G-buffer whose arrays do not match its size).
+/// G-buffer whose arrays do not match its size). `bitsElsewhere`: the
+/// grid's bits are not in `grid` (the GPU holds them): its plan is checked.
 std::string CheckLineAOFrame(const BitGrid& grid, const LineAOSettings& settings, const LineFrame& frame,
-  const BitGrid* solids = nullptr);
+  const BitGrid* solids = nullptr, bool bitsElsewhere = false);
 /// A pixel's AO from the lines' and the solids' occupancy of its half
 /// ball: LineAOFromOccupancy times 1 - solid occupancy (a solid fills what
 /// it occludes).

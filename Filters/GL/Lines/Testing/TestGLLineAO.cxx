@@ -12,6 +12,13 @@
 //   of 1e-7 to 3e-7 and at most 0.0009);
 // - negative controls: the CPU with another seed (other disk samples), and
 //   the CPU without the solids against the GPU with them, miss those bounds;
+// - the voxelization on the GPU (LineAOEngine::Voxelize) against
+//   cao::VoxelizeLines on the same plans (lines, tubes, 256 slices, wide
+//   tubes): at most 0.1% of the set bits differ (voxels a segment grazes
+//   within float rounding), and the AO from the grid left on the GPU agrees
+//   with the CPU's within the bound above; control: the CPU with a tube a
+//   quarter voxel wider differs by more; a NaN tube radius is refused with
+//   the CPU's reason, a grid of another plan is not taken for the GPU's;
 // - bad input, refused with the reason as the CPU refuses it: a G-buffer of
 //   the wrong size, a grid never voxelized, solids planned otherwise, bad
 //   settings.
@@ -231,6 +238,82 @@ int TestGLLineAO(int argc, char* argv[])
       const Agreement b = Compare(gpu, control);
       Check(!Agrees(b), "control, the CPU with other disk samples: " + Describe(b));
     }
+  }
+
+  // The voxelization on the GPU (caoLineVoxelize.glsl) against the CPU's,
+  // on the same plans: the bits, and the AO from the grid left on the GPU
+  // against the CPU's from its own grid.
+  {
+    struct VoxCase
+    {
+      const char* name;
+      double tube;
+      int slices;
+    };
+    const VoxCase vox[] = { { "lines (the supercover)", 0.0, 128 }, { "tubes", scene.radius, 128 },
+      { "tubes, 256 slices", scene.radius, 256 }, { "wide tubes (about 3 voxels)", 0.03, 128 } };
+    for (const VoxCase& c : vox)
+    {
+      cao::LineAOSettings settings;
+      settings.radius = 0.15;
+      settings.tubeRadius = c.tube;
+      settings.slices = c.slices;
+      cao::BitGrid cpuGrid;
+      CAO_CHECK(scene.Grid(settings, c.tube, cpuGrid, error), "%s", error.c_str());
+      cao::BitGrid planned = cpuGrid;
+      planned.bits.clear();
+      double ms = 0.0;
+      std::vector<std::uint32_t> gpuBits;
+      CAO_CHECK(engine.Voxelize(planned, scene.lines, c.tube, ms, error) && engine.ReadGrid(gpuBits, error), "%s: %s",
+        c.name, error.c_str());
+      std::int64_t set = 0, differ = 0;
+      for (std::size_t w = 0; w < cpuGrid.bits.size(); ++w)
+      {
+        set += __builtin_popcount(cpuGrid.bits[w]);
+        differ += __builtin_popcount(cpuGrid.bits[w] ^ (w < gpuBits.size() ? gpuBits[w] : 0u));
+      }
+      // The AO from the resident grid: the prisms read what Voxelize left.
+      cao::LineFrame cpu = c.tube > 0.0 ? tubes : flat, gpu = cpu;
+      CAO_CHECK(cao::LineAOFrame(cpuGrid, settings, cpu, error), "%s", error.c_str());
+      CAO_CHECK(engine.Frame(planned, settings, gpu, ms, error), "%s: %s", c.name, error.c_str());
+      const Agreement a = Compare(gpu, cpu);
+      char text[240];
+      std::snprintf(text, sizeof(text), "GPU voxelization, %s: %lld of %lld set bits differ from the CPU's (bound "
+        "0.1%%: voxels a segment grazes within float rounding); AO from the grid on the GPU: %s",
+        c.name, static_cast<long long>(differ), static_cast<long long>(set), Describe(a).c_str());
+      Check(set > 1000 && differ <= set / 1000 && Agrees(a), text);
+      if (c.tube > 0.0 && c.slices == 128 && c.tube < 0.02)
+      {
+        // Control: the CPU with a tube a quarter voxel wider misses the bound.
+        cao::BitGrid wider = cpuGrid;
+        CAO_CHECK(cao::VoxelizeLines(scene.lines, c.tube + 0.25 * cpuGrid.voxel, wider, error), "%s", error.c_str());
+        std::int64_t off = 0;
+        for (std::size_t w = 0; w < wider.bits.size(); ++w)
+          off += __builtin_popcount(wider.bits[w] ^ gpuBits[w]);
+        Check(off > set / 1000, "control: a tube a quarter voxel wider on the CPU differs in " + std::to_string(off) +
+          " bits (over the bound)");
+      }
+    }
+    // Refused as the CPU refuses, and a grid of another plan is not the
+    // one on the GPU.
+    cao::LineAOSettings settings;
+    settings.radius = 0.15;
+    cao::BitGrid planned;
+    CAO_CHECK(scene.Grid(settings, 0.0, planned, error), "%s", error.c_str());
+    planned.bits.clear();
+    double ms = 0.0;
+    std::string cpuWhy;
+    cao::BitGrid probe = planned;
+    cao::VoxelizeLines(scene.lines, std::nan(""), probe, cpuWhy);
+    bool refused = !engine.Voxelize(planned, scene.lines, std::nan(""), ms, error);
+    Check(refused && !cpuWhy.empty() && error == cpuWhy, "a NaN tube radius is refused with the CPU's reason: " + error);
+    CAO_CHECK(engine.Voxelize(planned, scene.lines, 0.0, ms, error), "%s", error.c_str());
+    cao::BitGrid moved = planned;
+    moved.origin[0] += moved.voxel;
+    cao::LineFrame f = flat;
+    refused = !engine.Frame(moved, settings, f, ms, error);
+    Check(refused && error.find("voxelized") != std::string::npos,
+      "a grid of another plan than the one on the GPU is refused: " + error);
   }
 
   // Bad input: refused with the CPU's reasons.

@@ -21,8 +21,8 @@
 //   8 moving the lines rebuilds the surfaces' grid on the CPU and on the
 //     GPU (both hold them); on OpenGL the lines darken the floor as on the
 //     CPU (control: LineAO off leaves it open)
-//   9 the lines alone with Backend OpenGL: the prisms on the window's
-//     OpenGL (the report says so), every line pixel's AO within the GPU
+//   9 the lines alone with Backend OpenGL: the grid and the prisms on the
+//     window's OpenGL (the report says so), every line pixel's AO within the GPU
 //     twin's bound of the CPU's (GL.TestGLLineAO: mean under 1e-4, 99.9%
 //     within 0.005; control: the CPU with 48 samples misses it); Auto on a
 //     software rasteriser keeps them on the CPU
@@ -396,9 +396,10 @@ int TestLinesInPass(int, char*[])
   const bool same = agree(glAO, cpuAO, agreement);
   const bool controlSame = agree(controlAO, cpuAO, control);
   std::printf("OpenGL against the CPU: %s\ncontrol, the CPU with 48 samples: %s\n", agreement.c_str(), control.c_str());
-  Check(glReport.find("\"prisms\": \"OpenGL\"") != std::string::npos &&
-      cpuReport.find("\"prisms\": \"CPU\"") != std::string::npos && glReport.find("\"error\"") == std::string::npos,
-    "Backend OpenGL counts the lines' prisms on the window's OpenGL, CPU on the CPU");
+  Check(glReport.find("\"prisms\": \"OpenGL\", \"voxelization\": \"OpenGL\"") != std::string::npos &&
+      cpuReport.find("\"prisms\": \"CPU\", \"voxelization\": \"CPU\"") != std::string::npos &&
+      glReport.find("\"error\"") == std::string::npos,
+    "Backend OpenGL voxelizes the lines and counts their prisms on the window's OpenGL, CPU on the CPU");
   Check(same && !controlSame, "the OpenGL line AO is the CPU's within the GPU twin's bound (control: 48 samples misses it)");
   const bool software = autoReport.find("software rasteriser") != std::string::npos;
   Check(!software || autoReport.find("\"prisms\": \"CPU\"") != std::string::npos,
