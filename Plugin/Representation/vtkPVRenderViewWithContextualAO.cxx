@@ -66,6 +66,7 @@ void vtkPVRenderViewWithContextualAO::Render(bool interactive, bool skip_renderi
   const bool ssao = this->UseSSAO;
   if (this->Pass->GetMethod() != vtkContextualAOPass::NONE)
     this->UseSSAO = false;
+  this->Pass->SetInteractiveFrames(interactive); // (a drag keeps the lines' grid of its start)
   this->Superclass::Render(interactive, skip_rendering);
   this->UseSSAO = ssao;
   this->Pass->SetController(nullptr); // a render outside the view's (one process alone) exchanges nothing

@@ -421,7 +421,8 @@ bool SceneLines::ShareGrid(vtkMultiProcessController* controller, const cao::Pix
 
 bool SceneLines::Update(const cao::PixelCamera& camera, const double right[3], const double up[3],
   const std::vector<float>& depth, const std::vector<unsigned char>* skip, double aoRadius, int samples,
-  int slices, SceneGPU* gpu, std::vector<std::string>& stages, std::vector<double>& ms, std::string& error)
+  int slices, SceneGPU* gpu, std::vector<std::string>& stages, std::vector<double>& ms, std::string& error,
+  bool keepGrid)
 {
   auto start = Clock::now();
   bool built = false;
@@ -455,15 +456,24 @@ bool SceneLines::Update(const cao::PixelCamera& camera, const double right[3], c
   // The grid: of the lines and meshes, the camera's orientation, the settings.
   std::vector<double> key = this->shared ? this->sharedKey : this->sceneKey;
   key.push_back(static_cast<double>(this->shared ? this->voxelizations : this->meshKey.size()));
+  std::size_t cameraPart = key.size(); // (where the camera's part of the key starts)
   if (!this->shared)
   {
     key.insert(key.end(), this->meshKey.begin(), this->meshKey.end());
-    key.insert(key.end(), { this->radius, tubeRadius, static_cast<double>(slices) });
-    for (int d = 0; d < 3; ++d)
-      key.insert(key.end(), { std::round(right[d] * 1e9) * 1e-9, std::round(up[d] * 1e9) * 1e-9 });
+    key.insert(key.end(), { this->radius, static_cast<double>(slices) });
     // Where the grid's bits are (the GPU's engine: a new one holds none).
     key.insert(key.end(), { gpu ? 1.0 : 0.0, gpu ? static_cast<double>(gpu->Generation()) : 0.0 });
+    // The camera's: its orientation, and its zoom through the tube radius.
+    cameraPart = key.size();
+    key.push_back(tubeRadius);
+    for (int d = 0; d < 3; ++d)
+      key.insert(key.end(), { std::round(right[d] * 1e9) * 1e-9, std::round(up[d] * 1e9) * 1e-9 });
   }
+  // An interactive frame keeps the grid when only the camera changed.
+  this->keptGrid = keepGrid && !this->shared && key != this->gridKey && this->gridKey.size() == key.size() &&
+    std::equal(key.begin(), key.begin() + static_cast<std::ptrdiff_t>(cameraPart), this->gridKey.begin());
+  if (this->keptGrid)
+    key = this->gridKey;
   const bool meshes = this->shared ? !this->solids.bits.empty() : !this->meshPoints.empty();
   std::vector<cao::MeshView> views;
   for (std::size_t i = 0; i < this->meshPoints.size(); ++i)

@@ -70,9 +70,16 @@ public:
   /// rendering the shared grid) are made on the CPU either way. Appends what ran
   /// to `stages` / `ms`. False with the reason (a scene that failed is not
   /// built again until its lines change).
+  /// `keepGrid` (an interactive frame): when only the camera changed, the
+  /// last grid is kept (its axes the last camera's: the prisms then run
+  /// along them, not along this view axis); the next frame without it
+  /// builds the camera's own.
   bool Update(const cao::PixelCamera& camera, const double right[3], const double up[3],
     const std::vector<float>& depth, const std::vector<unsigned char>* skip, double radius, int samples,
-    int slices, SceneGPU* gpu, std::vector<std::string>& stages, std::vector<double>& ms, std::string& error);
+    int slices, SceneGPU* gpu, std::vector<std::string>& stages, std::vector<double>& ms, std::string& error,
+    bool keepGrid = false);
+  /// Whether the last Update kept a grid of another camera (keepGrid).
+  bool KeptGrid() const { return this->keptGrid; }
   /// Whether the last line AO ran on the GPU, and the lines' grid was voxelized there.
   bool OnGPU() const { return this->onGPU; }
   bool GridOnGPU() const { return this->gridOnGPU && !this->shared; }
@@ -172,6 +179,7 @@ private:
   int voxelizations = 0;
   bool onGPU = false;
   bool gridOnGPU = false;
+  bool keptGrid = false;
 };
 }
 

@@ -710,6 +710,7 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
       << ", \"voxelizations\": " << p.lines.Voxelizations() << ", \"radius_voxels\": " << p.lines.RadiusVoxels()
       << ", \"prisms\": \"" << (p.lines.OnGPU() ? "OpenGL" : "CPU") << "\""
       << ", \"voxelization\": \"" << (p.lines.GridOnGPU() ? "OpenGL" : "CPU") << "\""
+      << (p.lines.KeptGrid() ? ", \"grid_kept\": \"an interactive frame: the grid of an earlier camera\"" : "")
       << ", \"segments_of_all_processes\": " << p.lines.NumberOfGridSegments()
       << (p.lines.RadiusVoxels() < 2.0
              ? ", \"radius_note\": \"the AO radius spans under 2 voxels of the lines' grid: the half balls hold "
@@ -1611,7 +1612,8 @@ bool vtkContextualAOPass::Internals::UpdateLines(vtkContextualAOPass* self, vtkR
   }
   std::string error;
   if (!this->lines.Update(camera, right, up, this->depth, skip.empty() ? nullptr : &skip, self->Radius,
-        self->LineSamples, self->LineSlices, this->onGPU ? &this->gpu : nullptr, this->stages, this->ms, error))
+        self->LineSamples, self->LineSlices, this->onGPU ? &this->gpu : nullptr, this->stages, this->ms, error,
+        self->InteractiveFrames))
     return skipLines(error);
   this->saidLines.clear();
   return true;

@@ -334,6 +334,20 @@ public:
   vtkGetMacro(LineShading, int);
   ///@}
 
+  ///@{
+  /// Whether the frames to come are interactive (a camera drag; ParaView's
+  /// view sets it for its interactive renders, off for its still ones;
+  /// default off). Then the lines' eye grid of the last frame is kept when
+  /// only the camera changed: a drag step does not voxelize the lines
+  /// again, and their prisms run along that grid's axes (the view axis of
+  /// the drag's start, an approximation: the seed's prisms run along the
+  /// view axis). The next frame that is not interactive builds the
+  /// camera's own grid (the report's lines section says "grid_kept").
+  vtkSetMacro(InteractiveFrames, bool);
+  vtkGetMacro(InteractiveFrames, bool);
+  vtkBooleanMacro(InteractiveFrames, bool);
+  ///@}
+
   /// What the last frame ran, as JSON: frame, stages, reasons, pixels,
   /// triangles, open meshes, volumes, milliseconds per stage.
   std::string GetLastFrameReport() const;
@@ -374,6 +388,7 @@ protected:
   int LineSamples = 64;
   int LineSlices = 128;
   int LineShading = LINE_SHADING_AS_DRAWN;
+  bool InteractiveFrames = false;
   int FrameCount = 0;
   int VoxelizeCount = 0;
   int VolumeCount = 0;

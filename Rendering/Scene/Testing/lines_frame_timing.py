@@ -2,7 +2,8 @@
 table): carotid.vtk streamlines of SEEDS Stream Tracer seeds drawn as lines
 2 pixels wide, at WxH; per frame the wall time of Render and the pass's
 stages: no AO, the first line AO frame, a still view, a camera turn, a
-colour change, a dolly.
+colour change, a dolly, three steps of a camera drag (interactive renders)
+and the still render at its release.
 
   PYTHONPATH=build/python xvfb-run -a -s "-screen 0 2000x1200x24" pvpython --dr \
     lines_frame_timing.py PLUGIN.so DATA_DIR SEEDS WxH [BACKEND]
@@ -44,9 +45,12 @@ while chain.GetClassName() != "vtkContextualAOPass":
     chain = chain.GetDelegatePass()
 
 
-def frame(label):
+def frame(label, interactive=False):
     t = time.perf_counter()
-    Render(view)
+    if interactive:
+        view.SMProxy.InteractiveRender()
+    else:
+        Render(view)
     ms = 1000 * (time.perf_counter() - t)
     r = json.loads(chain.GetLastFrameReport())
     stages = ", ".join("%s %.0f" % (k, v) for k, v in r["stages"].items())
@@ -68,3 +72,11 @@ lines.AmbientColor = lines.DiffuseColor = [0.6, 0.9, 0.95]
 frame("colour change")
 view.GetActiveCamera().Dolly(1.2)
 frame("dolly 1.2")
+# A camera drag's steps (interactive renders; the LOD threshold raised so
+# that ParaView draws the lines themselves, not a decimated copy): the
+# lines' grid of the last still frame is kept.
+view.LODThreshold = 1.0e6
+for step in range(3):
+    view.GetActiveCamera().Azimuth(3)
+    frame("drag step %d (interactive, 3 deg)" % (step + 1), interactive=True)
+frame("release (still)")
