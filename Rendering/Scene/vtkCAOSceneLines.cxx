@@ -295,6 +295,7 @@ void SceneLines::Unshare()
   this->all = cao::LineSegments();
   this->sharedKey.clear();
   this->sharedError.clear();
+  this->shareError.clear();
   this->gridKey.clear();
   this->aoKey.clear();
   this->grid = cao::BitGrid();
@@ -316,7 +317,9 @@ bool SceneLines::Share(vtkMultiProcessController* controller, std::vector<std::s
       mine.insert(mine.end(), this->lines.points.begin() + 3 * id, this->lines.points.begin() + 3 * id + 3);
   }
   double widest = this->pieces.empty() ? -1.0 : -this->widest;
-  const bool ok = SceneExchange::Gather(controller, mine, gathered) && SceneExchange::Min(controller, &widest, 1);
+  // (Both calls on every process, whatever the first gave.)
+  const bool gatheredOk = SceneExchange::Gather(controller, mine, gathered);
+  const bool ok = SceneExchange::Min(controller, &widest, 1) && gatheredOk;
   this->Unshare();
   this->shared = true;
   ++this->shares;
@@ -326,13 +329,16 @@ bool SceneLines::Share(vtkMultiProcessController* controller, std::vector<std::s
   for (std::size_t i = 0; i < this->all.segments.size(); ++i)
     this->all.segments[i] = static_cast<std::int64_t>(i);
   this->allWidest = std::max(1.0, -widest);
+  std::string& failed = this->shareError; // (the gather's: ShareGrid's own errors are not)
+  failed.clear();
   if (!ok)
-    this->sharedError = "the processes' lines could not be gathered";
+    failed = "the processes' lines could not be gathered";
   else if (this->all.segments.empty())
-    this->sharedError = "no process has a line with two points or more";
-  else if (!ExtentOf(this->all, this->allExtent, this->sharedError))
-    this->sharedError = "the processes' lines: " + this->sharedError;
-  error = this->sharedError;
+    failed = "no process has a line with two points or more";
+  else if (!ExtentOf(this->all, this->allExtent, failed))
+    failed = "the processes' lines: " + failed;
+  this->sharedError = failed;
+  error = failed;
   stages.push_back("share_lines");
   ms.push_back(Since(start));
   return error.empty();
@@ -348,9 +354,22 @@ bool SceneLines::ShareGrid(vtkMultiProcessController* controller, const cao::Pix
   const auto start = Clock::now();
   cao::LineAOSettings settings;
   std::string why;
-  const bool gathered = this->shared && !this->all.segments.empty() && this->sharedError.empty();
-  const bool valid = gathered && SettingsOf(camera, this->allExtent, this->allWidest, aoRadius, samples, slices,
+  const bool gathered = this->shared && !this->all.segments.empty() && this->shareError.empty();
+  bool valid = gathered && SettingsOf(camera, this->allExtent, this->allWidest, aoRadius, samples, slices,
     settings, why);
+  // One plan on every process: the radii every process computed from its
+  // own camera (the same camera in one view; a tile's may differ) reduced
+  // to the largest.
+  double agreed[3] = { valid ? 0.0 : -1.0, valid ? -settings.radius : 0.0, valid ? -settings.tubeRadius : 0.0 };
+  if (!SceneExchange::Min(controller, agreed, 3))
+    agreed[0] = -1.0;
+  if (agreed[0] == 0.0)
+  {
+    settings.radius = -agreed[1];
+    settings.tubeRadius = -agreed[2];
+  }
+  else
+    valid = false;
   std::vector<double> key = { meshSerial, settings.radius, settings.tubeRadius, static_cast<double>(slices),
     static_cast<double>(this->all.segments.size()) };
   for (int d = 0; d < 3; ++d)
@@ -371,8 +390,9 @@ bool SceneLines::ShareGrid(vtkMultiProcessController* controller, const cao::Pix
   this->aoKey.clear();
   if (flags[1] < 0.0)
   {
-    if (this->sharedError.empty())
-      this->sharedError = !why.empty() ? why : "another process's lines or line settings failed";
+    this->sharedError = !this->shareError.empty() ? this->shareError
+      : !why.empty()                              ? why
+                                                  : "another process's lines or line settings failed";
     return false;
   }
   this->sharedError.clear();
@@ -426,6 +446,7 @@ bool SceneLines::Update(const cao::PixelCamera& camera, const double right[3], c
 {
   auto start = Clock::now();
   bool built = false;
+  this->keptGrid = false;
   if (!this->EnsureScene(built, error))
     return false;
   if (built)

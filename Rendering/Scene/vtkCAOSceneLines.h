@@ -93,9 +93,10 @@ public:
   bool VoxelizeInto(cao::BitGrid& grid, std::string& error);
 
   /// Parallel rendering. Every call below is collective: every process
-  /// makes it at every frame, in this order, whatever it holds. Share
-  /// (after SceneExchange::Frame on LocalBounds said some process's lines
-  /// changed) gathers every process's segments and the widest drawn width;
+  /// makes it in this order, whatever it holds (LocalBounds when
+  /// SceneExchange::Frame asks for it, Share when that Frame said some
+  /// process's lines changed, ShareGrid at every frame with lines on any
+  /// process). Share gathers every process's segments and the widest drawn width;
   /// ShareGrid then plans and voxelizes their grid when those, the meshes
   /// (`meshSerial`), the camera's axes or zoom or the settings changed, the
   /// solids combined from every process's `meshes` (CombineGrid's
@@ -169,7 +170,8 @@ private:
   double allWidest = 1.0;
   int shares = 0; ///< gathers so far (a new one: the grid again)
   std::vector<double> sharedKey;
-  std::string sharedError;
+  std::string sharedError; ///< why there is no shared grid (the gather's or the grid's)
+  std::string shareError;  ///< the last gather's failure alone
   cao::LineAOSettings sharedSettings;
   std::vector<std::vector<double>> meshPoints;
   std::vector<std::vector<std::int64_t>> meshTriangles;

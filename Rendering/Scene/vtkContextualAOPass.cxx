@@ -1122,6 +1122,14 @@ void vtkContextualAOPass::Internals::SetVolumeOccluders(vtkContextualAOPass* sel
       if (actor->GetVisibility() && actor->HasOpaqueGeometry() && actor->GetMapper() &&
         actor->GetProperty()->GetRepresentation() == VTK_SURFACE) // (a wireframe's polygons are not solid)
         occluders.push_back(actor);
+  // A mapper's list is the pass's to set when it is empty or is what the
+  // pass set last (an application's own occluders stay).
+  auto listOf = [](vtkContextualAOVolumeMapper* mapper) {
+    std::vector<vtkProp3D*> list;
+    for (int i = 0; i < mapper->GetNumberOfOccluders(); ++i)
+      list.push_back(mapper->GetOccluder(i));
+    return list;
+  };
   auto& wired = this->volumeOccluders;
   wired.erase(std::remove_if(wired.begin(), wired.end(), [](const auto& w) { return !w.first; }), wired.end());
   std::vector<vtkContextualAOVolumeMapper*> mappers;
@@ -1131,17 +1139,24 @@ void vtkContextualAOPass::Internals::SetVolumeOccluders(vtkContextualAOPass* sel
   while (vtkVolume* volume = volumes->GetNextVolume(it))
     if (auto* mapper = vtkContextualAOVolumeMapper::SafeDownCast(volume->GetMapper()))
       mappers.push_back(mapper);
+  for (auto& w : wired) // (a volume gone from the renderer keeps none of the pass's)
+    if (std::find(mappers.begin(), mappers.end(), w.first.Get()) == mappers.end() && !w.second.empty() &&
+      listOf(w.first) == w.second)
+    {
+      w.first->RemoveAllOccluders();
+      w.second.clear();
+    }
   for (vtkContextualAOVolumeMapper* mapper : mappers)
   {
     auto w = std::find_if(wired.begin(), wired.end(), [mapper](const auto& e) { return e.first == mapper; });
-    const std::vector<vtkProp3D*> none;
-    const std::vector<vtkProp3D*>& set = w == wired.end() ? none : w->second;
-    if (set == occluders)
+    const std::vector<vtkProp3D*> current = listOf(mapper);
+    const bool ours = current.empty() || (w != wired.end() && current == w->second);
+    if (!ours || current == occluders)
+    {
+      if (ours && w != wired.end())
+        w->second = current;
       continue;
-    // An application's own occluders stay: only a list this pass set, or
-    // an empty one, is replaced.
-    if (mapper->GetNumberOfOccluders() != static_cast<int>(set.size()))
-      continue;
+    }
     mapper->RemoveAllOccluders();
     for (vtkProp3D* prop : occluders)
       mapper->AddOccluder(prop);

@@ -203,10 +203,12 @@ public:
   /// and a line's voxels become opaque for the volume's LAO; when one moves
   /// or changes, the mapper recomputes only the voxels within reach, bit for
   /// bit as a full precompute; a camera or colour change recomputes
-  /// nothing). An open surface is left out with the mapper's warning. The
-  /// pass sets only occluder lists it set itself or that are empty: a
-  /// mapper given occluders by the application keeps them. Off: the lists
-  /// it set are emptied.
+  /// nothing). Every visible opaque actor drawn as a surface counts (glyphs
+  /// and outlines too: an outline is lines). An open surface is left out
+  /// with the mapper's warning. The pass sets only occluder lists that are
+  /// empty or that it set itself: a mapper given occluders by the
+  /// application keeps them. Off (or the volume gone from the renderer):
+  /// the lists it set are emptied.
   vtkSetMacro(GeometryOccludesVolumeAO, bool);
   vtkGetMacro(GeometryOccludesVolumeAO, bool);
   vtkBooleanMacro(GeometryOccludesVolumeAO, bool);

@@ -425,6 +425,12 @@ void vtkContextualAOVolumeMapper::RemoveAllOccluders()
   this->Modified();
 }
 
+vtkProp3D* vtkContextualAOVolumeMapper::GetOccluder(int i)
+{
+  return i >= 0 && i < this->GetNumberOfOccluders() ? this->Internal->Occluders[static_cast<std::size_t>(i)].Get()
+                                                    : nullptr;
+}
+
 int vtkContextualAOVolumeMapper::GetNumberOfOccluders()
 {
   return static_cast<int>(this->Internal->Occluders.size());

@@ -272,6 +272,8 @@ public:
   void AddOccluder(vtkProp3D* prop);
   void RemoveAllOccluders();
   int GetNumberOfOccluders();
+  /// Occluder i of GetNumberOfOccluders() (null out of range).
+  vtkProp3D* GetOccluder(int i);
   ///@}
   /// Clip shape i of GetNumberOfClipShapes() (ClipShape first when set),
   /// its mode, and its mesh in its local frame (ClipMesh for ClipShape when

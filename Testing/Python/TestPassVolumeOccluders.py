@@ -17,7 +17,8 @@ streamline-like lines and a ball inside it, in the project's EGL window.
 - Hiding the lines removes them from the occluders; turning the property
   off empties the list the pass set.
 - A mapper given its own occluder by the application keeps it (the pass
-  leaves its list alone).
+  leaves its list alone); an emptied list is filled again; a volume taken
+  out of the renderer keeps none of the pass's occluders.
 """
 import json
 import os
@@ -184,6 +185,20 @@ check(scene.mapper.GetNumberOfOccluders() == 1, "the lines hidden: the ball alon
 scene.aoPass.SetGeometryOccludesVolumeAO(False)
 scene.frame()
 check(scene.mapper.GetNumberOfOccluders() == 0, "off again: the pass empties the list it set")
+
+# An emptied list is the pass's to fill again; a volume taken out of the
+# renderer keeps none of the pass's occluders.
+again = Scene(wired=True)
+again.frame()
+again.mapper.RemoveAllOccluders()
+again.frame()
+refilled = again.mapper.GetNumberOfOccluders()
+volume = again.renderer.GetVolumes().GetItemAsObject(0)
+again.renderer.RemoveVolume(volume)
+again.frame()
+check(refilled == 2 and again.mapper.GetNumberOfOccluders() == 0,
+      "an emptied list is filled again (%d); a volume taken out of the renderer keeps none (%d)"
+      % (refilled, again.mapper.GetNumberOfOccluders()))
 
 # The application's own occluder stays.
 own = Scene(wired=False)

@@ -95,7 +95,7 @@ LineAOEngine::~LineAOEngine()
 void LineAOEngine::ReleaseGraphicsResources()
 {
   Impl& p = *this->P;
-  if (this->ResidentBytes() == 0 && !p.program.Valid())
+  if (this->ResidentBytes() == 0 && !p.program.Valid() && !p.voxelize.Valid())
     return;
   CurrentScope scope(p.Ctx);
   if (scope.Ok())
@@ -105,13 +105,15 @@ void LineAOEngine::ReleaseGraphicsResources()
 void LineAOEngine::AbandonGraphicsResources()
 {
   Impl& p = *this->P;
-  for (int b = 0; b < 6; ++b)
+  for (int b = 0; b < Impl::BufferCount; ++b)
   {
     *p.Buffers[b] = 0;
     p.sizes[b] = 0;
   }
   p.program.Abandon();
+  p.voxelize.Abandon();
   p.timer.Abandon();
+  p.resident = BitGrid();
 }
 
 std::int64_t LineAOEngine::ResidentBytes() const

@@ -60,7 +60,8 @@ float SegmentDistance2(vec3 q, vec3 p0, vec3 d)
 
 void main()
 {
-  const int segment = int(gl_GlobalInvocationID.x);
+  // (DispatchLinear spreads more than 65 535 groups over y.)
+  const int segment = int(gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x + gl_GlobalInvocationID.x);
   if (segment >= lv.counts.x)
     return;
   const vec3 a = ends[2 * segment].xyz, b = ends[2 * segment + 1].xyz;
