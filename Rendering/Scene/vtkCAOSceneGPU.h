@@ -66,7 +66,8 @@ public:
   bool VoxelizeLines(const cao::BitGrid& grid, const cao::LineSegments& lines, double tubeRadius,
     std::string& error);
   /// cao::gl::LineAOEngine::Frame: cao::LineAOFrame's twin (the lines'
-  /// grid and G-buffer made on the CPU, the prisms counted on the GPU).
+  /// G-buffer made on the CPU, the prisms counted on the GPU, in the grid
+  /// VoxelizeLines left there when `grid` has no bits).
   bool LineAO(const cao::BitGrid& grid, const cao::LineAOSettings& settings, cao::LineFrame& frame,
     const cao::BitGrid* solids, std::string& error);
   ///@{

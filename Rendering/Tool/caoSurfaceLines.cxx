@@ -296,7 +296,7 @@ int RunSurfaceLines(LineJob& job, const std::vector<std::string>& files,
   SurfaceGPU gpu;
   if (job.method == "lineao" || job.method == "vct")
   {
-    // The prisms where --backend says (the grid and the G-buffer: the CPU).
+    // The voxelization and the prisms where --backend says (the G-buffer: the CPU).
     bool useGL = false;
     if (!ChooseBackend(job.backend, gpu, useGL, backendNote, error))
       return Fail(2, error);

@@ -25,7 +25,6 @@ import os
 import sys
 
 import numpy as np
-from contextualao import vtkContextualAOEGLWindow, vtkContextualAOVolumeMapper
 from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.util.vtkConstants import VTK_STRING
@@ -33,10 +32,9 @@ from vtkmodules.vtkCommonCore import vtkCommand
 from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction
 from vtkmodules.vtkFiltersSources import vtkPlaneSource, vtkSphereSource
 from vtkmodules.vtkIOImage import vtkSLCReader
-from vtkmodules.vtkRenderingCore import (vtkActor, vtkColorTransferFunction, vtkPolyDataMapper,
-                                         vtkRenderer, vtkVolume, vtkVolumeProperty,
-                                         vtkWindowToImageFilter)
-import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
+from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper
+
+from neghip_scene import add_volume, frame, oblique_camera, window_and_renderer  # (this folder)
 
 data = os.environ.get("CAO_DATA_DIR", "Data")
 failures = []
@@ -54,36 +52,8 @@ reader.Update()
 
 
 def scene(occluder_source=None, centre=(30, 34, 33), occlude=True):
-    window = vtkContextualAOEGLWindow()
-    if not window.IsUsable():
-        if os.environ.get("CAO_REQUIRE_GL", "0") not in ("", "0"):
-            sys.exit("no EGL OpenGL 4.3 context (CAO_REQUIRE_GL is set): %s" % window.GetContextError())
-        print("skipped: no EGL OpenGL 4.3 context: %s" % window.GetContextError())
-        sys.exit(125)
-    window.SetSize(240, 240)
-    renderer = vtkRenderer()
-    renderer.SetBackground(1, 1, 1)
-    window.AddRenderer(renderer)
-    opacity = vtkPiecewiseFunction()
-    opacity.AddPoint(0, 0.0)
-    opacity.AddPoint(40, 0.0)
-    opacity.AddPoint(255, 0.8)
-    color = vtkColorTransferFunction()
-    color.AddRGBPoint(0, 0.9, 0.8, 0.7)
-    color.AddRGBPoint(255, 1.0, 0.9, 0.8)
-    prop = vtkVolumeProperty()
-    prop.SetScalarOpacity(opacity)
-    prop.SetColor(color)
-    prop.ShadeOn()
-    prop.SetAmbient(0.6)
-    prop.SetDiffuse(0.5)
-    prop.SetInterpolationTypeToLinear()
-    mapper = vtkContextualAOVolumeMapper()
-    mapper.SetInputConnection(reader.GetOutputPort())
-    volume = vtkVolume()
-    volume.SetMapper(mapper)
-    volume.SetProperty(prop)
-    renderer.AddVolume(volume)
+    window, renderer = window_and_renderer()
+    mapper = add_volume(renderer, reader)
     actor = None
     if occluder_source is not None:
         m = vtkPolyDataMapper()
@@ -95,23 +65,8 @@ def scene(occluder_source=None, centre=(30, 34, 33), occlude=True):
         renderer.AddActor(actor)
         if occlude:
             mapper.AddOccluder(actor)
-    renderer.ResetCamera()
-    renderer.GetActiveCamera().Azimuth(30)
-    renderer.GetActiveCamera().Elevation(20)
-    renderer.ResetCameraClippingRange()
+    oblique_camera(renderer)
     return window, renderer, mapper, actor
-
-
-def frame(window):
-    window.Render()
-    grab = vtkWindowToImageFilter()
-    grab.SetInput(window)
-    grab.ReadFrontBufferOff()
-    grab.ShouldRerenderOff()
-    grab.Update()
-    image = grab.GetOutput()
-    w, h, _ = image.GetDimensions()
-    return vtk_to_numpy(image.GetPointData().GetScalars()).reshape(h, w, -1)[:, :, :3].astype(int)
 
 
 ball = vtkSphereSource()  # centred at the origin; the actor's position moves it

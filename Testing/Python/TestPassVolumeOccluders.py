@@ -25,16 +25,14 @@ import os
 import sys
 
 import numpy as np
-from contextualao import vtkContextualAOEGLWindow, vtkContextualAOPass, vtkContextualAOVolumeMapper
-from vtkmodules.util.numpy_support import vtk_to_numpy
+from contextualao import vtkContextualAOPass
 from vtkmodules.vtkCommonCore import vtkPoints
-from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPiecewiseFunction, vtkPolyData
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
 from vtkmodules.vtkFiltersSources import vtkSphereSource
 from vtkmodules.vtkIOImage import vtkSLCReader
-from vtkmodules.vtkRenderingCore import (vtkActor, vtkColorTransferFunction, vtkPolyDataMapper,
-                                         vtkRenderer, vtkVolume, vtkVolumeProperty,
-                                         vtkWindowToImageFilter)
-import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
+from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper
+
+from neghip_scene import add_volume, frame, oblique_camera, window_and_renderer  # (this folder)
 
 data = os.environ.get("CAO_DATA_DIR", "Data")
 failures = []
@@ -71,36 +69,8 @@ ball.Update()
 
 class Scene:
     def __init__(self, wired=False, by_hand=False):
-        self.window = vtkContextualAOEGLWindow()
-        if not self.window.IsUsable():
-            if os.environ.get("CAO_REQUIRE_GL", "0") not in ("", "0"):
-                sys.exit("no EGL OpenGL 4.3 context (CAO_REQUIRE_GL is set): %s" % self.window.GetContextError())
-            print("skipped: no EGL OpenGL 4.3 context: %s" % self.window.GetContextError())
-            sys.exit(125)
-        self.window.SetSize(240, 240)
-        self.renderer = vtkRenderer()
-        self.renderer.SetBackground(1, 1, 1)
-        self.window.AddRenderer(self.renderer)
-        opacity = vtkPiecewiseFunction()
-        opacity.AddPoint(0, 0.0)
-        opacity.AddPoint(40, 0.0)
-        opacity.AddPoint(255, 0.8)
-        color = vtkColorTransferFunction()
-        color.AddRGBPoint(0, 0.9, 0.8, 0.7)
-        color.AddRGBPoint(255, 1.0, 0.9, 0.8)
-        prop = vtkVolumeProperty()
-        prop.SetScalarOpacity(opacity)
-        prop.SetColor(color)
-        prop.ShadeOn()
-        prop.SetAmbient(0.6)
-        prop.SetDiffuse(0.5)
-        prop.SetInterpolationTypeToLinear()
-        self.mapper = vtkContextualAOVolumeMapper()
-        self.mapper.SetInputConnection(reader.GetOutputPort())
-        volume = vtkVolume()
-        volume.SetMapper(self.mapper)
-        volume.SetProperty(prop)
-        self.renderer.AddVolume(volume)
+        self.window, self.renderer = window_and_renderer()
+        self.mapper = add_volume(self.renderer, reader)
         self.actors = []
         for source in (bundle, ball.GetOutput()):
             m = vtkPolyDataMapper()
@@ -117,21 +87,10 @@ class Scene:
         self.aoPass.SetMethod(vtkContextualAOPass.NONE)  # (the surfaces' AO is not what is judged here)
         self.aoPass.SetGeometryOccludesVolumeAO(wired)
         self.renderer.SetPass(self.aoPass)
-        self.renderer.ResetCamera()
-        self.renderer.GetActiveCamera().Azimuth(30)
-        self.renderer.GetActiveCamera().Elevation(20)
-        self.renderer.ResetCameraClippingRange()
+        oblique_camera(self.renderer)
 
     def frame(self):
-        self.window.Render()
-        grab = vtkWindowToImageFilter()
-        grab.SetInput(self.window)
-        grab.ReadFrontBufferOff()
-        grab.ShouldRerenderOff()
-        grab.Update()
-        image = grab.GetOutput()
-        w, h, _ = image.GetDimensions()
-        return vtk_to_numpy(image.GetPointData().GetScalars()).reshape(h, w, -1)[:, :, :3].astype(int)
+        return frame(self.window)
 
     def report(self):
         return json.loads(self.mapper.GetLastFrameReport())
