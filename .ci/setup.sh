@@ -20,6 +20,8 @@ packages=(
   # an X server for the tests that run inside an ordinary VTK window, and
   # real pointer events for the GUI drag test
   xvfb xdotool
+  # the GUI tests that read ParaView's Properties panel (its Qt widgets)
+  python3-pyqt5
   # image regression tests: OpenImageIO's library (comparison) and idiff
   libopenimageio-dev openimageio-tools
   # the command line's option parser (header-only)

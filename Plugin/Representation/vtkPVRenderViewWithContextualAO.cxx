@@ -77,6 +77,11 @@ vtkContextualAOPass* vtkPVRenderViewWithContextualAO::GetSurfaceAOPass()
   return this->Pass;
 }
 
+int vtkPVRenderViewWithContextualAO::GetLineActorsInView()
+{
+  return this->Pass->GetNumberOfLineActors();
+}
+
 void vtkPVRenderViewWithContextualAO::SetSurfaceAOMethod(int method)
 {
   this->Pass->SetMethod(method);

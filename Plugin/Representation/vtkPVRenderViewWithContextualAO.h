@@ -59,6 +59,12 @@ public:
   /// The pass, for its frame report.
   vtkContextualAOPass* GetSurfaceAOPass();
 
+  /// The actors with lines in the pass's last AO frame
+  /// (vtkContextualAOPass::GetNumberOfLineActors): the view's line
+  /// settings are shown while it is above 0 (its information property
+  /// LineActorsInView, read by the GUI's CAOLinesInView decorator).
+  int GetLineActorsInView();
+
   /// As the Render View's; on several processes (MPI), warns once that each
   /// process's AO sees only its own pieces of the geometry.
   void Update() override;

@@ -114,6 +114,41 @@ singleDisplay.LineWidth = 6.0
 singleDisplay.RenderLinesAsTubes = 1
 singleDisplay.DiffuseColor = [1.0, 1.0, 1.0]
 off_and_on("single")
+# The view's LineActorsInView (the GUI shows the line settings while it is
+# above 0) is the most actors with lines any process holds: a line on the
+# last process alone still counts on rank 0, whose information property the
+# client reads. Control: a sphere alone counts 0. (Without the reduction
+# rank 0 said 0 with 2 ranks: run by hand.)
+Hide(single, view)
+lastOnly = ProgrammableSource(OutputDataSetType="vtkPolyData")
+lastOnly.Script = (
+    "from vtkmodules.vtkCommonCore import vtkPoints\n"
+    "from vtkmodules.vtkCommonDataModel import vtkCellArray\n"
+    "from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp\n"
+    "info = self.GetOutputInformation(0)\n"
+    "piece = info.Get(sddp.UPDATE_PIECE_NUMBER()) if info.Has(sddp.UPDATE_PIECE_NUMBER()) else 0\n"
+    "pieces = info.Get(sddp.UPDATE_NUMBER_OF_PIECES()) if info.Has(sddp.UPDATE_NUMBER_OF_PIECES()) else 1\n"
+    "points, cells = vtkPoints(), vtkCellArray()\n"
+    "if piece == pieces - 1:\n"
+    "    cells.InsertNextCell(2)\n"
+    "    cells.InsertCellPoint(points.InsertNextPoint(-1.2, 0.3, 0.5))\n"
+    "    cells.InsertCellPoint(points.InsertNextPoint(1.2, 0.3, 0.5))\n"
+    "out = self.GetOutput()\n"
+    "out.SetPoints(points)\n"
+    "out.SetLines(cells)\n")
+
+
+def line_actors_in_view():
+    Render(view)
+    view.SMProxy.UpdatePropertyInformation()
+    return view.SMProxy.GetProperty("LineActorsInView").GetElement(0)
+
+
+check(line_actors_in_view() == 0, "a sphere alone: the view's LineActorsInView is 0")
+Show(lastOnly, view)
+counted = line_actors_in_view()
+check(counted == 1, "a line on the last of %d processes alone: the view's LineActorsInView is %d (1)" % (ranks, counted))
+Hide(lastOnly, view)
 with open(os.path.join(outdir, "np%d-reports.json" % ranks), "w") as f:
     json.dump(reports, f)
 print("rank 0's report (lines and sphere): %s" % json.dumps(reports["both"]))

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Run a GUI startup script in the ParaView GUI under a private Xvfb and pass
-# when the result file it writes ends with PASSED and the GUI's log has no
+# when the result file it writes ends with PASSED (skip: SKIPPED, 125) and the GUI's log has no
 # VTK GL-state ("Error in cache state") or ray-cast errors.
 #   test-gui-script.sh SCRIPT.py PLUGIN.so DATA_DIR RESULT.txt
 set -uo pipefail
@@ -20,4 +20,6 @@ if grep -E "Error in cache state|The ray cast failed" "$CAO_RESULT.log"; then
   echo "FAIL: the GUI's log has OpenGL state or ray-cast errors (above)"
   exit 1
 fi
+# A script that cannot run here says why and ends with SKIPPED.
+if tail -n 1 "$CAO_RESULT" | grep -qx SKIPPED; then exit 125; fi
 tail -n 1 "$CAO_RESULT" | grep -qx PASSED

@@ -460,6 +460,7 @@ struct vtkContextualAOPass::Internals
   // The lines (LineAO): their pieces this frame, their AO, the pixels it darkened.
   vtkCAO::SceneLines lines;
   bool linesOn = false;   ///< this frame has lines that get line AO
+  int lineActors = 0;     ///< actors with lines (LineAO on or off): GetNumberOfLineActors
   bool linesOccludeSurfaces = false; ///< the surfaces' grid holds the lines' voxels
   std::string linesNote;  ///< why lines in view get none
   std::string saidLines;  ///< the line failure last logged
@@ -608,6 +609,11 @@ void vtkContextualAOPass::ReleaseGraphicsResources(vtkWindow* w)
 int vtkContextualAOPass::GetNumberOfOpenMeshes() const
 {
   return this->Internal->open;
+}
+
+int vtkContextualAOPass::GetNumberOfLineActors() const
+{
+  return this->Internal->lineActors;
 }
 
 int vtkContextualAOPass::GetNumberOfOccludingVolumes() const
@@ -866,6 +872,7 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
   this->pieces.clear();
   this->pieceActor.clear();
   this->surfaceActors = 0;
+  this->lineActors = 0;
   this->actorSignature = 0.0;
   this->volumes.clear();
   std::vector<double>& key = this->frameSceneKey;
@@ -888,10 +895,16 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
     position += 1.0;
     if (!actor->GetVisibility() || !actor->HasOpaqueGeometry())
       continue;
-    // Lines (as surface or wireframe: drawn as lines either way) get line AO.
-    if (self->LineAO && actor->GetProperty()->GetRepresentation() != VTK_POINTS)
-      for (vtkPolyData* data : Pieces(actor->GetMapper(), true))
-        linePieces.emplace_back(actor, data);
+    // Lines (as surface or wireframe: drawn as lines either way) get line
+    // AO; counted with LineAO off too (the view shows the line settings).
+    if (actor->GetProperty()->GetRepresentation() != VTK_POINTS)
+    {
+      const std::vector<vtkPolyData*> withLines = Pieces(actor->GetMapper(), true);
+      this->lineActors += withLines.empty() ? 0 : 1;
+      if (self->LineAO)
+        for (vtkPolyData* data : withLines)
+          linePieces.emplace_back(actor, data);
+    }
     if (actor->GetProperty()->GetRepresentation() != VTK_SURFACE)
       continue; // wireframe and points are drawn, not surfaces: no AO on them, none from them
     const int index = this->surfaceActors++;
@@ -1169,6 +1182,10 @@ void vtkContextualAOPass::Internals::SetVolumeOccluders(vtkContextualAOPass* sel
 
 void vtkContextualAOPass::Internals::ShareLines(vtkContextualAOPass* self)
 {
+  // The most actors with lines any process holds (the view's settings).
+  double fewest = -static_cast<double>(this->lineActors);
+  if (vtkCAO::SceneExchange::Min(this->controller, &fewest, 1))
+    this->lineActors = static_cast<int>(-fewest);
   std::vector<double> key = this->lines.Key();
   key.push_back(this->lines.Widest()); // (never empty: a process without lines has a key too)
   const bool changed = this->lineExchange.Frame(this->controller, key, [&]() { return this->lines.LocalBounds(); });

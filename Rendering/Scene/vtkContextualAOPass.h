@@ -364,6 +364,12 @@ public:
   int GetNumberOfOpenMeshes() const;
   /// Volumes that occluded the surfaces in the last frame.
   int GetNumberOfOccludingVolumes() const;
+  /// The actors with lines (the visible opaque actors whose pieces line AO
+  /// takes: lines and no polygons, not drawn as points) in the last frame
+  /// that ran the AO (Method not NONE), counted whether LineAO is on or
+  /// off; with several processes the most any process holds. ParaView's
+  /// view shows its line settings only while this is above 0.
+  int GetNumberOfLineActors() const;
   /// The AO of pixel (x, y) of the renderer's viewport in the last frame
   /// (1 open .. 0 occluded); -1 on the background or outside.
   double GetPixelAO(int x, int y) const;

@@ -1,0 +1,79 @@
+"""The view's line settings in the ParaView GUI's Properties panel (a
+startup script under Xvfb, ParaView's default settings) are shown only
+while the view draws lines: with a sphere alone, Line AO, Line AO Samples,
+Line AO Slices and Line Shading are hidden (the Surface AO Radius beside
+them shown: the widgets are found); with a Line source shown too, all four
+are shown; Line AO off hides its three settings and keeps Line AO; the
+line hidden again hides all four. The panel's widgets are read through
+PyQt5 (Debian's python3-pyqt5, which .ci/setup.sh installs) from the
+GUI's own QApplication; without PyQt5 the test skips (125). Negative
+control: before the CAOLinesInView decorator the four were shown with the
+sphere alone (the first check failed).
+Writes CAO_RESULT (ok/FAIL lines, then PASSED, FAILED or SKIPPED)."""
+import os
+
+out = open(os.environ["CAO_RESULT"], "w")
+failures = []
+
+
+def check(ok, what):
+    out.write(("ok: " if ok else "FAIL: ") + what + "\n")
+    if not ok:
+        failures.append(what)
+
+
+LINE_SETTINGS = ("LineAO", "LineAOSamples", "LineAOSlices", "LineShading")
+
+try:
+    from PyQt5 import QtWidgets
+except ImportError as e:
+    out.write("SKIP: PyQt5 is needed to read the Properties panel's widgets (%s); "
+              "install Debian's python3-pyqt5 (.ci/setup.sh does)\nSKIPPED\n" % e)
+    out.close()
+    os._exit(0)
+
+try:
+    from paraview.simple import *  # noqa: F401,F403
+    LoadPlugin(os.environ["CAO_PLUGIN"], remote=False, ns=globals())
+    old = GetActiveViewOrCreate("RenderView")
+    layout = GetLayout(old)
+    Delete(old)
+    view = CreateView("ContextualAORenderView")
+    AssignViewToLayout(view=view, layout=layout, hint=0)
+    SetActiveView(view)
+    app = QtWidgets.QApplication.instance()
+
+    def shown(name):
+        """Whether the panel shows property NAME's widget (None: not one such widget)."""
+        app.processEvents()
+        widgets = [w for w in app.allWidgets() if w.objectName() == name and isinstance(w, QtWidgets.QFrame)]
+        return widgets[0].isVisible() if len(widgets) == 1 else None
+
+    def expect(scene, visible):
+        states = {name: shown(name) for name in LINE_SETTINGS + ("SurfaceAORadius",)}
+        check(states["SurfaceAORadius"] is True, "%s: Surface AO Radius is shown (%s)" % (scene, states["SurfaceAORadius"]))
+        for name in LINE_SETTINGS:
+            check(states[name] is (name in visible),
+                  "%s: %s is %s (widget shown: %s)" % (scene, name, "shown" if name in visible else "hidden",
+                                                        states[name]))
+
+    ball = Show(Sphere(), view)
+    Render(view)
+    expect("a sphere alone", ())
+    line = Line(Point1=[-1.0, 0.0, 0.6], Point2=[1.0, 0.0, 0.6], Resolution=20)
+    Show(line, view)
+    Render(view)
+    expect("a sphere and a line", LINE_SETTINGS)
+    view.LineAO = 0
+    Render(view)
+    expect("Line AO off", ("LineAO",))
+    view.LineAO = 1
+    Hide(line, view)
+    Render(view)
+    expect("the line hidden", ())
+except Exception as e:  # noqa: BLE001  (reported in the result)
+    import traceback
+    check(False, "the script ran: %s" % traceback.format_exc())
+out.write("PASSED\n" if not failures else "FAILED\n")
+out.close()
+os._exit(0)
