@@ -5,18 +5,18 @@
  *
  * After each render of the view it reads how many actors with lines the
  * view's pass saw (vtkPVRenderViewWithContextualAO::GetLineActorsInView:
- * the client's own view, and in a remote session also the server's, the
- * information property LineActorsInView, whichever draws) and asks the
- * panel to show or hide the widget when that crosses 0.
+ * the client's own view, and in a remote session after each still render
+ * also the server's, gathered as vtkCAOLineActorsInformation; whichever
+ * draws) and asks the panel to show or hide the widget when that crosses 0.
  */
 #ifndef pqCAOLinesInViewDecorator_h
 #define pqCAOLinesInViewDecorator_h
 
 #include "pqPropertyWidgetDecorator.h"
+#include "vtkWeakPointer.h" // For the view proxy
 
-#include <QPointer>
-
-class pqView;
+class vtkObject;
+class vtkSMProxy;
 
 class pqCAOLinesInViewDecorator : public pqPropertyWidgetDecorator
 {
@@ -30,13 +30,13 @@ public:
   /// Whether the view's last AO frame had actors with lines.
   bool canShowWidget(bool showAdvanced) const override;
 
-private Q_SLOTS:
-  void watch(pqView* view);
-  void update();
-
 private:
   Q_DISABLE_COPY(pqCAOLinesInViewDecorator)
-  QPointer<pqView> View;
+  /// The view proxy's EndEvent (its call data: 1 after an interactive render).
+  void rendered(vtkObject* caller, unsigned long event, void* callData);
+  void update(bool still);
+  vtkWeakPointer<vtkSMProxy> Proxy; ///< the view's (its widget may be gone first)
+  unsigned long Observer = 0;
   bool Lines = false;
 };
 

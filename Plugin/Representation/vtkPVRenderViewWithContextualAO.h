@@ -60,9 +60,9 @@ public:
   vtkContextualAOPass* GetSurfaceAOPass();
 
   /// The actors with lines in the pass's last AO frame
-  /// (vtkContextualAOPass::GetNumberOfLineActors): the view's line
-  /// settings are shown while it is above 0 (its information property
-  /// LineActorsInView, read by the GUI's CAOLinesInView decorator).
+  /// (vtkContextualAOPass::GetNumberOfLineActors): the GUI shows the view's
+  /// line settings while it is above 0 (the CAOLinesInView decorator; from
+  /// a remote server through vtkCAOLineActorsInformation).
   int GetLineActorsInView();
 
   /// As the Render View's; on several processes (MPI), warns once that each

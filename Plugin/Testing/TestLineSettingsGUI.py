@@ -4,7 +4,13 @@ while the view draws lines: with a sphere alone, Line AO, Line AO Samples,
 Line AO Slices and Line Shading are hidden (the Surface AO Radius beside
 them shown: the widgets are found); with a Line source shown too, all four
 are shown; Line AO off hides its three settings and keeps Line AO; the
-line hidden again hides all four. The panel's widgets are read through
+line hidden again hides all four; after the view is closed, a new view
+hides them until it draws the line. Plugin.GUI.LineSettingsRemote runs it
+in a GUI connected to a pvserver on 2 processes, the server drawing
+(remote rendering; the count gathered from the server as
+vtkCAOLineActorsInformation; before that the settings stayed hidden with
+the line shown, the view's information property being read from the
+client's view). The panel's widgets are read through
 PyQt5 (Debian's python3-pyqt5, which .ci/setup.sh installs) from the
 GUI's own QApplication; without PyQt5 the test skips (125). Negative
 control: before the CAOLinesInView decorator the four were shown with the
@@ -25,7 +31,7 @@ def check(ok, what):
 LINE_SETTINGS = ("LineAO", "LineAOSamples", "LineAOSlices", "LineShading")
 
 try:
-    from PyQt5 import QtWidgets
+    from PyQt5 import QtCore, QtWidgets
 except ImportError as e:
     out.write("SKIP: PyQt5 is needed to read the Properties panel's widgets (%s); "
               "install Debian's python3-pyqt5 (.ci/setup.sh does)\nSKIPPED\n" % e)
@@ -34,11 +40,18 @@ except ImportError as e:
 
 try:
     from paraview.simple import *  # noqa: F401,F403
+    from paraview import servermanager
     LoadPlugin(os.environ["CAO_PLUGIN"], remote=False, ns=globals())
+    remote = servermanager.ActiveConnection.IsRemote()
+    if remote:  # (Plugin.GUI.LineSettingsRemote: a pvserver on 2 processes)
+        LoadPlugin(os.environ["CAO_PLUGIN"], remote=True, ns=globals())
     old = GetActiveViewOrCreate("RenderView")
     layout = GetLayout(old)
     Delete(old)
     view = CreateView("ContextualAORenderView")
+    if remote:
+        view.RemoteRenderThreshold = 0  # the server draws: the client's view holds no lines
+    check(remote == ("CAO_SERVER_URL" in os.environ), "connected as started (remote: %s)" % remote)
     AssignViewToLayout(view=view, layout=layout, hint=0)
     SetActiveView(view)
     app = QtWidgets.QApplication.instance()
@@ -71,6 +84,22 @@ try:
     Hide(line, view)
     Render(view)
     expect("the line hidden", ())
+    # A view closed (its panel and decorators go) and a new one: the old
+    # decorators leave no observer behind, the new view starts hidden and
+    # shows the settings once it draws the line.
+    Delete(view)
+    del view
+    QtCore.QCoreApplication.sendPostedEvents(None, QtCore.QEvent.DeferredDelete)
+    view = CreateView("ContextualAORenderView")
+    if remote:
+        view.RemoteRenderThreshold = 0
+    AssignViewToLayout(view=view, layout=layout, hint=0)
+    SetActiveView(view)
+    QtCore.QCoreApplication.sendPostedEvents(None, QtCore.QEvent.DeferredDelete)
+    expect("a new view, before a render", ())
+    Show(line, view)
+    Render(view)
+    expect("a new view with the line", LINE_SETTINGS)
 except Exception as e:  # noqa: BLE001  (reported in the result)
     import traceback
     check(False, "the script ran: %s" % traceback.format_exc())

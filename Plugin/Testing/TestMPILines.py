@@ -114,11 +114,10 @@ singleDisplay.LineWidth = 6.0
 singleDisplay.RenderLinesAsTubes = 1
 singleDisplay.DiffuseColor = [1.0, 1.0, 1.0]
 off_and_on("single")
-# The view's LineActorsInView (the GUI shows the line settings while it is
-# above 0) is the most actors with lines any process holds: a line on the
-# last process alone still counts on rank 0, whose information property the
-# client reads. Control: a sphere alone counts 0. (Without the reduction
-# rank 0 said 0 with 2 ranks: run by hand.)
+# The pass's count of actors with lines (the GUI shows the view's line
+# settings while it is above 0) is the most any process holds: a line on
+# the last process alone still counts on rank 0. Control: a sphere alone
+# counts 0. (Without the reduction rank 0 said 0 with 2 ranks: run by hand.)
 Hide(single, view)
 lastOnly = ProgrammableSource(OutputDataSetType="vtkPolyData")
 lastOnly.Script = (
@@ -140,14 +139,13 @@ lastOnly.Script = (
 
 def line_actors_in_view():
     Render(view)
-    view.SMProxy.UpdatePropertyInformation()
-    return view.SMProxy.GetProperty("LineActorsInView").GetElement(0)
+    return pas.GetNumberOfLineActors()
 
 
-check(line_actors_in_view() == 0, "a sphere alone: the view's LineActorsInView is 0")
+check(line_actors_in_view() == 0, "a sphere alone: the pass counts 0 actors with lines")
 Show(lastOnly, view)
 counted = line_actors_in_view()
-check(counted == 1, "a line on the last of %d processes alone: the view's LineActorsInView is %d (1)" % (ranks, counted))
+check(counted == 1, "a line on the last of %d processes alone: rank 0's pass counts %d actors with lines (1)" % (ranks, counted))
 Hide(lastOnly, view)
 with open(os.path.join(outdir, "np%d-reports.json" % ranks), "w") as f:
     json.dump(reports, f)

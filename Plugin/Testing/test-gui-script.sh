@@ -10,7 +10,8 @@ here=$(cd "$(dirname "$0")" && pwd)
 export PYTHONPATH="$here${PYTHONPATH:+:$PYTHONPATH}" # clip_widget_pose.py
 command -v paraview >/dev/null || { echo "SKIP: no paraview executable"; exit 125; }
 rm -f "$CAO_RESULT"
-timeout 300 bash "$here/../../Testing/run-with-xvfb.sh" paraview --dr --script="$script" \
+# (CAO_SERVER_URL: connect to that server first: test-gui-remote.sh.)
+timeout 300 bash "$here/../../Testing/run-with-xvfb.sh" paraview --dr ${CAO_SERVER_URL:+--server-url="$CAO_SERVER_URL"} --script="$script" \
   >"$CAO_RESULT.log" 2>&1 || true
 [ -f "$CAO_RESULT" ] || { echo "FAIL: the script wrote no result:"; cat "$CAO_RESULT.log"; exit 1; }
 cat "$CAO_RESULT"
