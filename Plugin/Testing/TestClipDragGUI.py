@@ -112,6 +112,14 @@ def box_point(u):
 targets = {"centre": to_display(view, box_point([0, 0, 0])),
            "face": to_display(view, box_point([0.5, 0, 1])),
            "size": list(view.GetRenderWindow().GetSize()),
+           # The centre handle 80 pixels right; the face 70 up; the middle
+           # button moves the box from anywhere on it, whatever the view
+           # (head on, the front face's handle covers the centre handle):
+           # over the box's centre where the first drag left it (80 pixels
+           # right of the target; the face drag turned the box about its
+           # centre), 60 pixels down.
+           "drags": [["centre", "centre", 0, 0, 80, 0, 1], ["face", "face", 0, 0, 0, -70, 1],
+                     ["middle", "centre", 80, 0, 0, 60, 2]],
            "depth_peeling_for_volumes": int(view.DepthPeelingForVolumes)}
 with open(base + ".targets", "w") as f:
     json.dump(targets, f)

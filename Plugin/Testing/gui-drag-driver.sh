@@ -73,15 +73,14 @@ drag() { # name x y dx dy [button: 1 left (default), 2 middle]
 xdotool mousemove $((ox + 20)) $((oy + height - 21)) click 1
 sleep 0.5
 idle
-read -r cx cy < <(screen centre)
-drag centre "$cx" "$cy" 80 0
-read -r fx fy < <(screen face)
-
-drag face "$fx" "$fy" 0 -70
-# The middle button moves the box from anywhere on it, whatever the view
-# (head on, the front face's handle covers the centre handle): over the
-# box's centre where the first drag left it (80 pixels right of the
-# target; the face drag turned the box about its centre), 60 pixels down.
-drag middle "$((cx + 80))" "$cy" 0 60 2
+# The drags the startup script asked for (its targets' "drags": name,
+# target, offset x and y in pixels, drag x and y, button), each from that
+# target plus its offset.
+mapfile -t drags < <(/usr/bin/python3 -c "import json,sys; [print(*d) for d in json.load(open(sys.argv[1]))['drags']]" "$CAO_RESULT.targets")
+for line in "${drags[@]}"; do
+  read -r name target ox2 oy2 dx dy button <<<"$line"
+  read -r x y < <(screen "$target")
+  drag "$name" "$((x + ox2))" "$((y + oy2))" "$dx" "$dy" "$button"
+done
 import -window root "$CAO_RESULT.png" 2>/dev/null || true
 exit 0

@@ -15,7 +15,9 @@
 #   draws the clip at the pose the widget shows.
 # It prints what the user saw: frames during the drag and the time from the
 # release to the last frame (measured, never asserted).
-#   test-gui-drag.sh PLUGIN.so DATA_DIR RESULT_BASE
+# With SCRIPT.py and CHECK.py, another scene's drags and checks
+# (TestLinesDragGUI.py: the camera turned over streamlines).
+#   test-gui-drag.sh PLUGIN.so DATA_DIR RESULT_BASE [SCRIPT.py CHECK.py]
 set -uo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 export PYTHONPATH="$here${PYTHONPATH:+:$PYTHONPATH}" # clip_widget_pose.py
@@ -24,7 +26,7 @@ command -v xdotool >/dev/null || { echo "FAIL: xdotool is missing (.ci/setup.sh 
 export CAO_PLUGIN=$1 CAO_DATA_DIR=$2 CAO_RESULT=$3
 rm -f "$CAO_RESULT".*
 timeout 900 bash "$here/../../Testing/run-with-xvfb.sh" bash "$here/gui-drag-driver.sh" \
-  "$here/TestClipDragGUI.py" >"$CAO_RESULT.log" 2>&1
+  "$here/${4:-TestClipDragGUI.py}" >"$CAO_RESULT.log" 2>&1
 status=$?
 cat "$CAO_RESULT.log" | grep -E "^(driver|ok|FAIL|PASSED|FAILED)" || true
 if [ "$status" -ne 0 ]; then
@@ -36,4 +38,4 @@ if grep -E "Error in cache state|The ray cast failed" "$CAO_RESULT.gui.log"; the
   echo "FAIL: the GUI's log has OpenGL state or ray-cast errors (above)"
   exit 1
 fi
-/usr/bin/python3 "$here/gui-drag-check.py" "$CAO_RESULT"
+/usr/bin/python3 "$here/${5:-gui-drag-check.py}" "$CAO_RESULT"
