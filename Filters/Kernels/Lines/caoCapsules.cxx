@@ -362,9 +362,16 @@ void ResetLineFrame(const PixelCamera& camera, LineFrame& frame)
   frame.width = camera.width;
   frame.height = camera.height;
   frame.segment.assign(pixels, -1);
+  // (New memory as huge pages where the system gives them on request: at
+  // 1920 x 1080 these five are 250 MB, and first touching them page by
+  // page cost the view's first line AO frame 0.2 s more here.)
   for (std::vector<double>* v : { &frame.position, &frame.normal, &frame.tangent, &frame.axis, &frame.view })
     if (v->size() != 3 * pixels)
+    {
+      std::vector<double>().swap(*v);
+      ReserveHuge(*v, 3 * pixels);
       v->assign(3 * pixels, 0.0);
+    }
   frame.depth.assign(pixels, Infinity);
   frame.ao.assign(pixels, std::numeric_limits<double>::quiet_NaN());
 }
