@@ -205,8 +205,20 @@ bool ReferenceAOOfPixels(const RayOccluders& scene, const AOReferenceSettings& s
   const std::vector<std::int64_t>& covered, const std::vector<double>& position,
   const std::vector<double>& normal, std::vector<double>& ao, std::string& error)
 {
+  if (position.size() != normal.size())
+  {
+    error = "the frame's buffers do not match its size (cast it first)";
+    return false;
+  }
+  return ReferenceAOOfPixels(scene, settings, covered, position.data(), normal.data(), position.size(), ao, error);
+}
+
+bool ReferenceAOOfPixels(const RayOccluders& scene, const AOReferenceSettings& settings,
+  const std::vector<std::int64_t>& covered, const double* position, const double* normal, std::size_t values,
+  std::vector<double>& ao, std::string& error)
+{
   const std::size_t pixels = covered.size();
-  if (position.size() != 3 * pixels || normal.size() != 3 * pixels || ao.size() != pixels)
+  if (values != 3 * pixels || ao.size() != pixels)
   {
     error = "the frame's buffers do not match its size (cast it first)";
     return false;
@@ -220,12 +232,12 @@ bool ReferenceAOOfPixels(const RayOccluders& scene, const AOReferenceSettings& s
       points.insert(points.end(), &position[3 * i], &position[3 * i] + 3);
       normals.insert(normals.end(), &normal[3 * i], &normal[3 * i] + 3);
     }
-  std::vector<double> values(where.size());
+  std::vector<double> found(where.size());
   if (!ReferenceAO(scene, points.data(), normals.data(), where.size(), settings, SelfDistance(scene),
-        values.data(), error))
+        found.data(), error))
     return false;
   for (std::size_t k = 0; k < where.size(); ++k)
-    ao[where[k]] = values[k];
+    ao[where[k]] = found[k];
   return true;
 }
 

@@ -119,6 +119,10 @@ double SelfDistance(const RayOccluders& scene);
 bool ReferenceAOOfPixels(const RayOccluders& scene, const AOReferenceSettings& settings,
   const std::vector<std::int64_t>& covered, const std::vector<double>& position,
   const std::vector<double>& normal, std::vector<double>& ao, std::string& error);
+/// The same over `values` doubles each of position and normal (3 per pixel).
+bool ReferenceAOOfPixels(const RayOccluders& scene, const AOReferenceSettings& settings,
+  const std::vector<std::int64_t>& covered, const double* position, const double* normal, std::size_t values,
+  std::vector<double>& ao, std::string& error);
 
 }
 

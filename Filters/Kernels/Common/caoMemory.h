@@ -14,6 +14,11 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <new>
+#include <type_traits>
+#include <utility>
+#include <vector>
 
 namespace cao
 {
@@ -24,6 +29,37 @@ constexpr std::int64_t MaxVoxels = (std::int64_t(1) << 31) - 1;
 /// Advise the kernel to back [data, data + bytes) with huge pages (the
 /// 2 MiB-aligned part of it; nothing below 4 MiB). Returns whether it did.
 bool AdviseHugePages(void* data, std::size_t bytes);
+
+/// std::allocator, except that resize() leaves new elements of a trivial
+/// type unwritten (default-initialised), so that a large per-pixel buffer
+/// costs only the pages its writer touches.
+template <class T>
+struct DefaultInitAllocator : std::allocator<T>
+{
+  template <class U>
+  struct rebind
+  {
+    using other = DefaultInitAllocator<U>;
+  };
+  DefaultInitAllocator() = default;
+  template <class U>
+  DefaultInitAllocator(const DefaultInitAllocator<U>&) noexcept
+  {
+  }
+  template <class U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible<U>::value)
+  {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args)
+  {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+/// A vector whose resize() writes nothing: read only what was written.
+template <class T>
+using UninitializedVector = std::vector<T, DefaultInitAllocator<T>>;
 }
 
 #endif

@@ -107,17 +107,17 @@ private:
 
 /// What the camera sees of tubes: per pixel the first capsule hit (the
 /// line G-buffer), and the AO there. The per-pixel vectors mean something
-/// only where segment >= 0 (a frame made again leaves the others as they
-/// were).
+/// only where segment >= 0: the others are never written (new memory is
+/// left unwritten, a frame made again leaves them as they were).
 struct LineFrame
 {
   int width = 0, height = 0;
   std::vector<std::int64_t> segment; ///< -1: background
-  std::vector<double> position;      ///< x, y, z per pixel: the hit on the tube's surface
-  std::vector<double> normal;        ///< the tube's outward unit normal there
-  std::vector<double> tangent;       ///< the segment's unit direction (0 for a sphere)
-  std::vector<double> axis;          ///< the axis point nearest the hit
-  std::vector<double> view;          ///< the pixel's unit ray direction (eye to scene)
+  UninitializedVector<double> position; ///< x, y, z per pixel: the hit on the tube's surface
+  UninitializedVector<double> normal;   ///< the tube's outward unit normal there
+  UninitializedVector<double> tangent;  ///< the segment's unit direction (0 for a sphere)
+  UninitializedVector<double> axis;     ///< the axis point nearest the hit
+  UninitializedVector<double> view;     ///< the pixel's unit ray direction (eye to scene)
   std::vector<double> depth;         ///< distance along the pixel's ray from the near plane
   std::vector<double> ao;            ///< NaN on background
   std::int64_t covered = 0;
