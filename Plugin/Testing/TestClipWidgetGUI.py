@@ -15,16 +15,12 @@ import os
 
 from paraview.simple import *  # noqa: F401,F403
 
+from gui_scene import Result
+
 from clip_widget_pose import expected_matrix, matrix_list, to_display
 
-out = open(os.environ["CAO_RESULT"], "w")
-failures = []
-
-
-def check(ok, what):
-    out.write(("ok: " if ok else "FAIL: ") + what + "\n")
-    if not ok:
-        failures.append(what)
+result = Result()
+check = result.check
 
 
 def drag(view, x, y, dx, dy=0):
@@ -150,6 +146,4 @@ try:
 except Exception as e:  # noqa: BLE001  (reported as a failure)
     check(False, "exception: %r" % (e,))
 finally:
-    out.write("PASSED\n" if not failures else "FAILED\n")
-    out.close()
-    os._exit(0)
+    result.finish()

@@ -18,25 +18,17 @@ sphere alone (the first check failed).
 Writes CAO_RESULT (ok/FAIL lines, then PASSED, FAILED or SKIPPED)."""
 import os
 
-out = open(os.environ["CAO_RESULT"], "w")
-failures = []
+from gui_scene import Result, contextual_ao_view
 
-
-def check(ok, what):
-    out.write(("ok: " if ok else "FAIL: ") + what + "\n")
-    if not ok:
-        failures.append(what)
-
-
+result = Result()
+check = result.check
 LINE_SETTINGS = ("LineAO", "LineAOSamples", "LineAOSlices", "LineShading")
 
 try:
     from PyQt5 import QtCore, QtWidgets
 except ImportError as e:
-    out.write("SKIP: PyQt5 is needed to read the Properties panel's widgets (%s); "
-              "install Debian's python3-pyqt5 (.ci/setup.sh does)\nSKIPPED\n" % e)
-    out.close()
-    os._exit(0)
+    result.finish(skipped="PyQt5 is needed to read the Properties panel's widgets (%s); "
+                  "install Debian's python3-pyqt5 (.ci/setup.sh does)" % e)
 
 try:
     from paraview.simple import *  # noqa: F401,F403
@@ -45,15 +37,10 @@ try:
     remote = servermanager.ActiveConnection.IsRemote()
     if remote:  # (Plugin.GUI.LineSettingsRemote: a pvserver on 2 processes)
         LoadPlugin(os.environ["CAO_PLUGIN"], remote=True, ns=globals())
-    old = GetActiveViewOrCreate("RenderView")
-    layout = GetLayout(old)
-    Delete(old)
-    view = CreateView("ContextualAORenderView")
+    view, layout = contextual_ao_view()
     if remote:
         view.RemoteRenderThreshold = 0  # the server draws: the client's view holds no lines
     check(remote == ("CAO_SERVER_URL" in os.environ), "connected as started (remote: %s)" % remote)
-    AssignViewToLayout(view=view, layout=layout, hint=0)
-    SetActiveView(view)
     app = QtWidgets.QApplication.instance()
 
     def shown(name):
@@ -100,9 +87,7 @@ try:
     Show(line, view)
     Render(view)
     expect("a new view with the line", LINE_SETTINGS)
-except Exception as e:  # noqa: BLE001  (reported in the result)
+except Exception:  # noqa: BLE001  (reported in the result)
     import traceback
     check(False, "the script ran: %s" % traceback.format_exc())
-out.write("PASSED\n" if not failures else "FAILED\n")
-out.close()
-os._exit(0)
+result.finish()

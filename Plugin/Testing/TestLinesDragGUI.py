@@ -25,6 +25,8 @@ import time
 
 from paraview.simple import *  # noqa: F401,F403
 
+from gui_scene import carotid_streamlines, contextual_ao_view
+
 base = os.environ["CAO_RESULT"]
 log = open(base + ".events", "a", buffering=1)
 
@@ -38,22 +40,9 @@ def emit(kind, **fields):
 LoadPlugin(os.environ["CAO_PLUGIN"], remote=False, ns=globals())
 import contextualao  # noqa: E402,F401  (wraps vtkContextualAOPass)
 
-old = GetActiveViewOrCreate("RenderView")
-layout = GetLayout(old)
-Delete(old)
-view = CreateView("ContextualAORenderView")
-AssignViewToLayout(view=view, layout=layout, hint=0)
-SetActiveView(view)
+view, layout = contextual_ao_view()
 view.SurfaceAOBackend = "CPU"
-carotid = OpenDataFile(os.path.join(os.environ["CAO_DATA_DIR"], "carotid.vtk"))
-tracer = StreamTracer(Input=carotid, SeedType="Point Cloud")
-tracer.Vectors = ["POINTS", "vectors"]
-tracer.SeedType.Center = [137.0, 104.0, 23.0]
-tracer.SeedType.Radius = 12.0
-tracer.SeedType.NumberOfPoints = 150
-tracer.MaximumStreamlineLength = 200.0
-lines = Show(tracer, view)
-lines.LineWidth = 2.0
+carotid_streamlines(view)
 view.CameraPosition = [137.5, 40.0, 70.0]
 view.CameraFocalPoint = [137.5, 104.0, 20.0]
 view.CameraViewUp = [0.0, 0.0, 1.0]

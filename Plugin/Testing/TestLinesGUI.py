@@ -16,33 +16,17 @@ import os
 
 from paraview.simple import *  # noqa: F401,F403
 
-out = open(os.environ["CAO_RESULT"], "w")
-failures = []
+from gui_scene import Result, carotid_streamlines, contextual_ao_view
 
-
-def check(ok, what):
-    out.write(("ok: " if ok else "FAIL: ") + what + "\n")
-    if not ok:
-        failures.append(what)
+result = Result()
+check = result.check
 
 
 try:
     LoadPlugin(os.environ["CAO_PLUGIN"], remote=False, ns=globals())
     import contextualao  # noqa: F401  (wraps vtkContextualAOPass)
-    old = GetActiveViewOrCreate("RenderView")
-    layout = GetLayout(old)
-    Delete(old)
-    view = CreateView("ContextualAORenderView")
-    AssignViewToLayout(view=view, layout=layout, hint=0)
-    carotid = OpenDataFile(os.path.join(os.environ["CAO_DATA_DIR"], "carotid.vtk"))
-    tracer = StreamTracer(Input=carotid, SeedType="Point Cloud")
-    tracer.Vectors = ["POINTS", "vectors"]
-    tracer.SeedType.Center = [137.0, 104.0, 23.0]
-    tracer.SeedType.Radius = 12.0
-    tracer.SeedType.NumberOfPoints = 150
-    tracer.MaximumStreamlineLength = 200.0
-    lines = Show(tracer, view)
-    lines.LineWidth = 2.0
+    view, layout = contextual_ao_view()
+    carotid, tracer, lines = carotid_streamlines(view)
     cut = Slice(Input=carotid)
     cut.SliceType.Origin = [137.5, 104.0, 12.0]
     cut.SliceType.Normal = [0.0, 0.0, 1.0]
@@ -74,6 +58,4 @@ try:
 except Exception as e:  # noqa: BLE001  (reported as a failure)
     check(False, "exception: %r" % (e,))
 finally:
-    out.write("PASSED\n" if not failures else "FAILED\n")
-    out.close()
-    os._exit(0)  # leave the GUI (the result is written)
+    result.finish()

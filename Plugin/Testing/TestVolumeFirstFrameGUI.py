@@ -13,24 +13,16 @@ import os
 
 from paraview.simple import *  # noqa: F401,F403
 
-out = open(os.environ["CAO_RESULT"], "w")
-failures = []
+from gui_scene import Result, contextual_ao_view
 
-
-def check(ok, what):
-    out.write(("ok: " if ok else "FAIL: ") + what + "\n")
-    if not ok:
-        failures.append(what)
+result = Result()
+check = result.check
 
 
 try:
     LoadPlugin(os.environ["CAO_PLUGIN"], remote=False, ns=globals())
     import contextualao  # noqa: F401  (wraps vtkContextualAOVolumeMapper)
-    old = GetActiveViewOrCreate("RenderView")
-    layout = GetLayout(old)
-    Delete(old)
-    view = CreateView("ContextualAORenderView")
-    AssignViewToLayout(view=view, layout=layout, hint=0)
+    view, layout = contextual_ao_view()
     reader = OpenDataFile(os.path.join(os.environ["CAO_DATA_DIR"], "HeadMRVolume.mhd"))
     contour = Contour(Input=reader, ContourBy=["POINTS", "MetaImage"], Isosurfaces=[120])
     Show(contour, view)
@@ -52,6 +44,4 @@ try:
 except Exception as e:  # noqa: BLE001  (reported as a failure)
     check(False, "exception: %r" % (e,))
 finally:
-    out.write("PASSED\n" if not failures else "FAILED\n")
-    out.close()
-    os._exit(0)  # leave the GUI (the result is written)
+    result.finish()
