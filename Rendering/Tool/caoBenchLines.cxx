@@ -32,13 +32,13 @@ struct Options
   double tubeRadius = 0.0, radius = 0.0, orbit = 0.5;
   int rays = 256, repeats = 3, threads = 0;
   std::vector<int> samples{ 16, 64, 150 }, slices{ 128, 256 }, kernels{ 16, 32, 64 };
-  std::vector<std::string> hemispheres{ "normal", "camera" };
+  std::vector<std::string> hemispheres{ "normal", "camera" }, backends{ "cpu" };
   std::string window = "auto", output = "lines-bench";
 };
 
 struct Row
 {
-  std::string scene, configuration, method;
+  std::string scene, configuration, method, backend = "-";
   double ms = 0, rmse = 0, bias = 0, p99 = 0, rank = 0, flicker = 0, referenceFlicker = 0;
   std::int64_t pixels = 0, lines = 0;
 };
@@ -77,6 +77,16 @@ void Measure(Row& row, const std::vector<double>& ao, const std::vector<double>&
   row.rank = cao::RankCorrelation(a, b);
 }
 
+/// `text` with its double quotes and backslashes made single quotes: safe
+/// inside a quoted csv or json field.
+std::string Plain(std::string text)
+{
+  for (char& c : text)
+    if (c == '"' || c == '\\')
+      c = '\'';
+  return text;
+}
+
 double Since(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -91,7 +101,19 @@ int Run(Options& o, const CLI::App*)
   std::vector<Row> rows;
   std::vector<PlotPoint> points;
   const std::vector<std::string> series{ "line AO, normal half ball", "line AO, camera-facing (the thesis')",
-    "vtkSSAOPass on tubes" };
+    "vtkSSAOPass on tubes", "line AO on OpenGL, normal half ball", "line AO on OpenGL, camera-facing" };
+  // --backends gl: one headless OpenGL context for every scene.
+  SurfaceGPU gpu;
+  std::string glName;
+  if (std::find(o.backends.begin(), o.backends.end(), "gl") != o.backends.end())
+  {
+    bool useGL = false;
+    std::string note;
+    if (!ChooseBackend("gl", gpu, useGL, note, error))
+      return Fail(2, error);
+    glName = "OpenGL (" + gpu.Description() + ")";
+    std::cerr << "cao: line AO on " << glName << "\n";
+  }
   for (const std::string& file : o.files)
   {
     std::vector<vtkSmartPointer<vtkPolyData>> read{ vtkCAO::ReadMesh(file, error) };
@@ -146,11 +168,13 @@ int Run(Options& o, const CLI::App*)
       if (plotSeries >= 0 && row.ms > 0 && row.rmse > 0)
         points.push_back({ row.ms, row.rmse, row.configuration, plotSeries });
     };
-    // Line AO: each half ball, sample count and slice count.
+    // Line AO: each backend, half ball, sample count and slice count.
+    for (const std::string& backend : o.backends)
     for (const std::string& hemisphere : o.hemispheres)
       for (int samples : o.samples)
         for (int slices : o.slices)
         {
+          const bool gl = backend == "gl";
           cao::LineAOSettings s;
           cao::ParseLineAOHemisphere(hemisphere, s.hemisphere);
           s.samples = samples;
@@ -167,20 +191,25 @@ int Run(Options& o, const CLI::App*)
               double right[3], up[3];
               CameraAxes(cameras[c], right, up);
               cao::BitGrid grid;
+              double gpuMs = 0.0;
+              // On OpenGL as in the pass: the bits stay on the GPU for the prisms.
               if (!cao::PlanLineGrid(scene.lines, right, up, s, grid, error) ||
-                !cao::VoxelizeLines(scene.lines, scene.tubeRadius, grid, error) ||
-                !cao::LineAOFrame(grid, s, frames[c], error))
+                (gl ? !gpu.VoxelizeLines(grid, scene.lines, scene.tubeRadius, gpuMs, error, false)
+                    : !cao::VoxelizeLines(scene.lines, scene.tubeRadius, grid, error)) ||
+                (gl ? !gpu.LineAO(grid, s, frames[c], nullptr, gpuMs, error)
+                    : !cao::LineAOFrame(grid, s, frames[c], error)))
                 return Fail(2, error);
               if (c == 0)
                 times.push_back(Since(start));
               ao[c] = frames[c].ao;
             }
           Row row;
-          row.method = "lineao";
-          row.configuration = std::string("lineao ") + hemisphere + " " + std::to_string(samples) + "s " +
-            std::to_string(slices) + "z";
+          row.method = gl ? "lineao-gl" : "lineao";
+          row.backend = gl ? glName : "CPU";
+          row.configuration = std::string(gl ? "lineao-gl " : "lineao ") + hemisphere + " " +
+            std::to_string(samples) + "s " + std::to_string(slices) + "z";
           row.ms = Median(times);
-          add(row, ao[0], ao[1], hemisphere == "normal" ? 0 : 1);
+          add(row, ao[0], ao[1], (hemisphere == "normal" ? 0 : 1) + (gl ? 3 : 0));
         }
     // vtkSSAOPass on the tubes as vtkTubeFilter draws them.
     if (!o.kernels.empty())
@@ -199,6 +228,7 @@ int Run(Options& o, const CLI::App*)
           return Fail(1, error);
         Row row;
         row.method = "ssao";
+        row.backend = ssao.Description;
         row.configuration = "ssao k" + std::to_string(kernel);
         row.ms = ms;
         add(row, ao[0], ao[1], 2);
@@ -222,7 +252,8 @@ int Run(Options& o, const CLI::App*)
   std::ofstream json(o.output + "/lines.json");
   if (!csv || !json)
     return Fail(1, "cannot write into '" + o.output + "'");
-  csv << "scene,configuration,method,ms,rmse,bias,p99,rank_correlation,lines,flicker,reference_flicker,pixels\n";
+  csv << "scene,configuration,method,ms,rmse,bias,p99,rank_correlation,lines,flicker,reference_flicker,pixels,"
+         "backend\n";
   json << "[";
   std::cout << "| scene | configuration | ms/frame | RMSE | bias | p99 | rank corr. (lines) | flicker (ref) |\n"
             << "|---|---|---:|---:|---:|---:|---:|---:|\n";
@@ -231,13 +262,14 @@ int Run(Options& o, const CLI::App*)
     const Row& r = rows[k];
     csv << r.scene << "," << r.configuration << "," << r.method << "," << r.ms << "," << r.rmse << "," << r.bias
         << "," << r.p99 << "," << r.rank << "," << r.lines << "," << r.flicker << "," << r.referenceFlicker << ","
-        << r.pixels << "\n";
+        << r.pixels << ",\"" << Plain(r.backend) << "\"\n";
     json << (k ? ",\n " : "") << "{\"scene\": \"" << r.scene << "\", \"configuration\": \"" << r.configuration
          << "\", \"method\": \"" << r.method << "\", \"ms\": " << r.ms << ", \"rmse\": " << r.rmse
          << ", \"bias\": " << r.bias << ", \"p99\": " << r.p99 << ", \"rank_correlation\": "
          << (std::isfinite(r.rank) ? std::to_string(r.rank) : std::string("null"))
          << ", \"lines\": " << r.lines << ", \"flicker\": " << r.flicker << ", \"reference_flicker\": "
-         << r.referenceFlicker << ", \"pixels\": " << r.pixels << "}";
+         << r.referenceFlicker << ", \"pixels\": " << r.pixels << ", \"backend\": \"" << Plain(r.backend)
+         << "\"}";
     std::cout << std::fixed << "| " << r.scene << " | " << r.configuration << " | " << std::setprecision(1) << r.ms
               << " | " << std::setprecision(4) << r.rmse << " | " << std::showpos << r.bias << std::noshowpos
               << " | " << r.p99 << " | " << std::setprecision(3)
@@ -253,9 +285,12 @@ int Run(Options& o, const CLI::App*)
   return 0;
 }
 
-const char* Footer = R"(Times: line AO is the voxelization and the estimate on the CPU (the
-G-buffer, a ray cast of the capsules, excluded); vtkSSAOPass is a whole
-offscreen frame of the tubes with the pass, read back. The reference is the
+const char* Footer = R"(Times: line AO is the voxelization and the estimate, wall clock, on the
+CPU or (--backends gl) on a headless OpenGL with the bits left on the GPU
+for the prisms as in the pass, each pixel's half ball set up on the CPU
+and the AO read back (the G-buffer, a ray cast of the capsules,
+excluded); vtkSSAOPass is a whole offscreen frame of the tubes with the
+pass, read back. The backend column names where each row ran. The reference is the
 tubes' exact capsules at --rays; its flicker is its own noise plus the
 picture's motion.
 
@@ -293,6 +328,11 @@ Command AddBenchLinesCommand(CLI::App& bench)
   AddIntegerList(app, "--kernels", o->kernels, 1, 1024,
     "vtkSSAOPass kernel sizes, 1 to 1024 (default 16,32,64; 32 is VTK's)");
   AddOrbit(app, o->orbit, 45.0, "the second camera's azimuth step, for flicker, in (0, 45] degrees (default 0.5)");
+  AddList(app, "--backends", "LIST", "line AO on: cpu, gl (a headless OpenGL 4.3; default cpu)",
+    [](const std::string& item) {
+      return item == "cpu" || item == "gl" ? std::string() : "bad value '" + item + "' (expected cpu or gl)";
+    },
+    [o](const std::vector<std::string>& items) { o->backends = items; });
   AddRepeats(app, o->repeats, "timed runs per configuration, 1 to 100, the median kept (default 3)");
   AddThreads(app, o->threads);
   AddSurfaceWindow(app, o->window, "the SSAO window");

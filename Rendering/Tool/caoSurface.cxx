@@ -316,14 +316,15 @@ bool SurfaceGPU::ScreenAO(const cao::PixelCamera& camera, const cao::HBAOSetting
 }
 
 bool SurfaceGPU::VoxelizeLines(cao::BitGrid& grid, const cao::LineSegments& lines, double tubeRadius, double& ms,
-  std::string& error)
+  std::string& error, bool readBack)
 {
   if (!this->P->context)
     return error = "no OpenGL context (open one first)", false;
   if (!this->P->lines)
     this->P->lines.reset(new cao::gl::LineAOEngine(*this->P->context));
   grid.bits.clear();
-  return this->P->lines->Voxelize(grid, lines, tubeRadius, ms, error) && this->P->lines->ReadGrid(grid.bits, error);
+  return this->P->lines->Voxelize(grid, lines, tubeRadius, ms, error) &&
+    (!readBack || this->P->lines->ReadGrid(grid.bits, error));
 }
 
 bool SurfaceGPU::LineAO(const cao::BitGrid& grid, const cao::LineAOSettings& settings, cao::LineFrame& frame,

@@ -159,9 +159,11 @@ public:
     cao::SurfaceFrame& frame, double& ms, std::string& error);
   /// The lines' voxelization on the GPU (cao::gl::LineAOEngine::Voxelize,
   /// cao::VoxelizeLines' twin) into `grid`'s plan, its bits read back into
-  /// `grid.bits`; `ms` GPU time.
+  /// `grid.bits` (with `readBack` false they stay on the GPU, as in the
+  /// pass, and `grid.bits` is left empty: LineAO then reads the GPU's);
+  /// `ms` GPU time.
   bool VoxelizeLines(cao::BitGrid& grid, const cao::LineSegments& lines, double tubeRadius, double& ms,
-    std::string& error);
+    std::string& error, bool readBack = true);
   /// Line AO's prisms on the GPU (cao::gl::LineAOEngine, cao::LineAOFrame's
   /// twin); `ms` GPU time.
   bool LineAO(const cao::BitGrid& grid, const cao::LineAOSettings& settings, cao::LineFrame& frame,

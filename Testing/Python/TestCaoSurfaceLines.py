@@ -19,6 +19,12 @@
 - cao bench lines: a row per configuration, every method's error below
   no AO's (the control row), line AO's ranking of the lines near the
   reference's, its csv, json and plot;
+  each row names where it ran; --backends cpu,gl adds a GPU row per
+  configuration, its RMSE the CPU row's within 1e-3 (control: another
+  sample count is further off);
+- cao bench surface-frame on lines: the pass's line AO beside
+  vtkSSAOPass and a plain frame, its line stages, the first frame and its
+  ratio in the csv; lines and meshes together refused;
 - lines and a mesh in one frame (a plane under the bundle): both kinds'
   AO against the reference over capsules and triangles, RMSE at most half
   of no AO's; the lines darken the plane (control: the plane alone is
@@ -309,6 +315,57 @@ if p.returncode == 0:
     check(all(r["ms"] > 0 for r in rows[:5]) and os.path.getsize(os.path.join(bench, "lines.png")) > 1000 and
           open(os.path.join(bench, "lines.csv")).read().count("\n") == 7,
           "times, the plot and the csv are written")
+    check(all(by[n]["backend"] == "CPU" for n in names[:4]) and by["none"]["backend"] == "-",
+          "each row names where it ran: %s" % [r["backend"] for r in rows])
+
+# cao bench lines --backends cpu,gl: line AO on a headless OpenGL too, each
+# GPU row's error that of its CPU row within the twin's bound (the same
+# grid plan and samples; control: another sample count is further off).
+bench_gl = os.path.join(tmp, "bench-gl")
+p = subprocess.run([tool, "bench", "lines", path, "--image", "96x64", "--samples", "16,64", "--slices", "128",
+                    "--hemispheres", "normal", "--kernels", "32", "--rays", "64", "--repeats", "1", "--tube-radius",
+                    "0.1", "--radius", "0.6", "--backends", "cpu,gl", "-o", bench_gl],
+                   capture_output=True, text=True, timeout=900)
+if p.returncode == 2 and "no OpenGL 4.3 context" in p.stderr and not os.environ.get("CAO_REQUIRE_GL"):
+    print("info: cao bench lines --backends gl not checked: %s" % p.stderr.strip()[:200])
+else:
+    check(p.returncode == 0, "cao bench lines --backends cpu,gl ran: rc %d %s" % (p.returncode, p.stderr.strip()[-300:]))
+    if p.returncode == 0:
+        rows = json.load(open(os.path.join(bench_gl, "lines.json")))
+        by = {r["configuration"]: r for r in rows}
+        names = [r["configuration"] for r in rows]
+        gap = max(abs(by["lineao-gl normal %ds 128z" % n]["rmse"] - by["lineao normal %ds 128z" % n]["rmse"])
+                  for n in (16, 64)) if "lineao-gl normal 64s 128z" in by else 1.0
+        control = abs(by["lineao normal 16s 128z"]["rmse"] - by["lineao normal 64s 128z"]["rmse"])
+        check(names == ["lineao normal 16s 128z", "lineao normal 64s 128z", "lineao-gl normal 16s 128z",
+                        "lineao-gl normal 64s 128z", "ssao k32", "none"] and gap < 1e-3 and control > gap and
+              by["lineao-gl normal 64s 128z"]["backend"].startswith("OpenGL (") and
+              by["lineao-gl normal 64s 128z"]["ms"] > 0,
+              "--backends cpu,gl: a GPU row per configuration, its RMSE the CPU row's within 1e-3 (%.2e; control, "
+              "16 against 64 samples: %.2e): %s" % (gap, control, names))
+
+# cao bench surface-frame on lines: whole frames of the pass's line AO
+# beside vtkSSAOPass and a plain frame, the first frame timed, the csv.
+frames = os.path.join(tmp, "frames")
+p = subprocess.run([tool, "bench", "surface-frame", path, "--sizes", "96x64", "--backends", "cpu", "--frames", "2",
+                    "-o", frames], capture_output=True, text=True, timeout=600)
+rows = [l for l in p.stdout.splitlines() if l.startswith("| ") and not l.startswith("| configuration")]
+labels = [l.split(" | ")[0][2:] for l in rows]
+check(p.returncode == 0 and labels == ["vtkSSAOPass k32", "plain frame (no AO)", "pass line AO (backend cpu)"] and
+      "line_ao " in rows[2] and "first frame: lines " in rows[2] and "still frame: combine " in rows[2] and
+      "line segments" in p.stdout,
+      "cao bench surface-frame on lines: a row per configuration with the line stages (rc %d: %s %s)"
+      % (p.returncode, labels, p.stderr.strip()[-200:]))
+if p.returncode == 0:
+    import csv
+    table = list(csv.DictReader(open(os.path.join(frames, "surface-frame.csv"))))
+    check(len(table) == 3 and float(table[2]["first_ms"]) > 0 and float(table[2]["first_over_plain"]) > 0 and
+          float(table[0]["first_ms"]) == 0,
+          "its csv: the pass's first frame and its ratio to the plain frame")
+p = subprocess.run([tool, "bench", "surface-frame", path, plane, "--sizes", "96x64", "--frames", "1",
+                    "-o", frames], capture_output=True, text=True, timeout=600)
+check(p.returncode == 2 and "give lines or meshes" in p.stderr,
+      "cao bench surface-frame refuses lines and meshes together: rc %d, %r" % (p.returncode, p.stderr.strip()[:200]))
 
 # Bad input.
 sphere = vtkSphereSource()

@@ -14,7 +14,7 @@ from vtkmodules.vtkCommonCore import vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkPolyData
 from vtkmodules.vtkFiltersFlowPaths import vtkStreamTracer
 from vtkmodules.vtkIOLegacy import vtkDataSetReader
-from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
+from lines_file import write_lines
 
 source, output, count = sys.argv[1], sys.argv[2], int(sys.argv[3])
 reader = vtkDataSetReader()
@@ -41,9 +41,5 @@ tracer.SetIntegratorTypeToRungeKutta45()
 tracer.SetInitialIntegrationStep(0.5)
 tracer.SetMaximumNumberOfSteps(4000)
 tracer.Update()
-lines = tracer.GetOutput()
-writer = vtkXMLPolyDataWriter()
-writer.SetFileName(output)
-writer.SetInputData(lines)
-writer.Write()
+lines = write_lines(tracer.GetOutput(), output)
 print("%s: %d lines, %d points" % (output, lines.GetNumberOfLines(), lines.GetNumberOfPoints()))
