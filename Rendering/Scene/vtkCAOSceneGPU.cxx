@@ -239,6 +239,16 @@ bool SceneGPU::FrameCombine(double strength, bool wholeColor, unsigned framebuff
     this->P->frame->Write(framebuffer, rect[0], rect[1], error);
 }
 
+bool SceneGPU::FrameCombineAO(const std::vector<float>& ao, double strength, unsigned framebuffer,
+  const int rect[4], std::string& error)
+{
+  using F = cao::gl::FrameEngine;
+  return this->P->Ready(error) && this->P->frame->Read(F::Depth, framebuffer, rect[0], rect[1], rect[2], rect[3], error) &&
+    this->P->frame->SetAO(ao, error) &&
+    this->P->frame->Read(F::Color, framebuffer, rect[0], rect[1], rect[2], rect[3], error) &&
+    this->P->frame->Combine(strength, true, error) && this->P->frame->Write(framebuffer, rect[0], rect[1], error);
+}
+
 bool SceneGPU::FrameAO(std::vector<float>& ao, std::string& error)
 {
   Impl& p = *this->P;

@@ -90,6 +90,13 @@ public:
   bool FrameRead(bool ambient, unsigned framebuffer, const int rect[4], std::string& error);
   bool FrameCombine(double strength, bool wholeColor, unsigned framebuffer, const int rect[4], std::string& error);
   bool FrameAO(std::vector<float>& ao, std::string& error);
+  /// The lines' combine on the GPU: `ao` (one float per pixel of the
+  /// rectangle, NaN where nothing is darkened) on the drawn colour of
+  /// `framebuffer`'s rectangle, colour (1 - strength (1 - AO)), written
+  /// back there (FrameEngine: depth and colour blitted, SetAO, Combine,
+  /// Write); no pixel comes back to the host.
+  bool FrameCombineAO(const std::vector<float>& ao, double strength, unsigned framebuffer, const int rect[4],
+    std::string& error);
   /// "blit" or "read": how the GPU frame's depth came (FrameEngine::DepthBlitted).
   std::string FrameDepthPath() const;
   ///@}

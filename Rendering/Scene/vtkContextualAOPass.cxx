@@ -466,6 +466,7 @@ struct vtkContextualAOPass::Internals
   std::string saidLines;  ///< the line failure last logged
   std::vector<double> meshGeometry; ///< the surfaces' pieces and poses (what the lines' solids depend on)
   std::int64_t lineCombined = 0;
+  bool lineCombineOnGPU = false; ///< this frame's lines were combined on the GPU
   bool rebuild = false;   ///< a process's scene changed: bounds, radius and grid again
   int frameProcesses = 1; ///< the last frame's (the report's)
   cao::BitGrid sharedGrid; ///< the world or eye grid of every process's pieces (CombineGrid)
@@ -553,6 +554,10 @@ struct vtkContextualAOPass::Internals
   /// tolerance): the surfaces' AO goes there.
   bool DrawnIsTraced(std::size_t i) const;
   bool Combine(vtkContextualAOPass* self, const vtkRenderState* s);
+  /// Lines alone, drawn as VTK draws them, with the AO on the GPU: their
+  /// combine there too (1 done, 0 not for this frame: the CPU's Combine
+  /// runs, -1 failed: Fail was called).
+  int CombineLinesOnGPU(vtkContextualAOPass* self, const vtkRenderState* s);
   bool RunGPUFrame(vtkContextualAOPass* self, const vtkRenderState* s);
   bool DrawAmbient(const vtkRenderState* s, std::vector<float>* ambient, std::string& error);
 };
@@ -716,6 +721,7 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
       << ", \"voxelizations\": " << p.lines.Voxelizations() << ", \"radius_voxels\": " << p.lines.RadiusVoxels()
       << ", \"prisms\": \"" << (p.lines.OnGPU() ? "OpenGL" : "CPU") << "\""
       << ", \"voxelization\": \"" << (p.lines.GridOnGPU() ? "OpenGL" : "CPU") << "\""
+      << ", \"combine\": \"" << (p.lineCombineOnGPU ? "OpenGL" : "CPU") << "\""
       << (p.lines.KeptGrid() ? ", \"grid_kept\": \"an interactive frame: the grid of an earlier camera\"" : "")
       << ", \"segments_of_all_processes\": " << p.lines.NumberOfGridSegments()
       << (p.lines.RadiusVoxels() < 2.0
@@ -743,6 +749,7 @@ void vtkContextualAOPass::Render(const vtkRenderState* s)
   p.ms.clear();
   p.error.clear();
   p.combined = p.hidden = p.lineCombined = 0;
+  p.lineCombineOnGPU = false;
   // A selection render draws ids through the renderer's own path; every
   // other frame, VTK's steps with the AO after the opaque one.
   const bool selecting = s->GetRenderer() && s->GetRenderer()->GetSelector();
@@ -814,7 +821,10 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
     if (!this->ResolveBackend(self, ren))
       return;
     this->depthOk = vtkCAO::ReadViewportDepth(ren, this->depth, this->depthError);
-    if (this->UpdateLines(self, ren) && this->Combine(self, s))
+    if (!this->UpdateLines(self, ren))
+      return;
+    const int onGPU = this->CombineLinesOnGPU(self, s);
+    if (onGPU == 1 || (onGPU == 0 && this->Combine(self, s)))
       this->said.clear();
     return;
   }
@@ -1774,6 +1784,42 @@ bool vtkContextualAOPass::Internals::Combine(vtkContextualAOPass* self, const vt
     return this->Fail(self, error);
   this->Stage("combine", start);
   return true;
+}
+
+int vtkContextualAOPass::Internals::CombineLinesOnGPU(vtkContextualAOPass* self, const vtkRenderState* s)
+{
+  // Only where the CPU's combine would multiply each line pixel's colour
+  // by its AO and touch nothing else: the GPU does the same product.
+  vtkRenderer* ren = s->GetRenderer();
+  const cao::LineFrame& lineFrame = this->lines.Frame();
+  int width = 0, height = 0, x0 = 0, y0 = 0;
+  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+  const std::size_t count = static_cast<std::size_t>(width) * height;
+  bool multisampled = false;
+  std::string error;
+  if (!this->onGPU || !this->pieces.empty() || !this->linesOn || lineFrame.ao.size() != count ||
+    lineFrame.segment.size() != count ||
+    (self->LineShading == LINE_SHADING_MALLO_BANKS && !LineLights(ren).empty()) ||
+    !vtkCAO::DrawTarget(ren, this->target, this->rect, multisampled, error) || multisampled)
+    return 0;
+  const auto start = Clock::now();
+  std::vector<float> ao(count, std::numeric_limits<float>::quiet_NaN());
+  std::int64_t combined = 0;
+  for (std::size_t i = 0; i < count; ++i)
+    if (lineFrame.segment[i] >= 0 && std::isfinite(lineFrame.ao[i]))
+    {
+      ao[i] = static_cast<float>(lineFrame.ao[i]);
+      ++combined;
+    }
+  if (!this->gpu.FrameCombineAO(ao, self->Strength, this->target, this->rect, error))
+  {
+    this->Fail(self, "the lines' combine on the GPU: " + error);
+    return -1;
+  }
+  this->lineCombined = combined;
+  this->lineCombineOnGPU = true;
+  this->Stage("combine", start);
+  return 1;
 }
 
 bool vtkContextualAOPass::Internals::DrawAmbient(

@@ -466,6 +466,25 @@ int FrameEngine::Width() const
   return this->P->width;
 }
 
+bool FrameEngine::SetAO(const std::vector<float>& ao, std::string& error)
+{
+  Impl& p = *this->P;
+  if (p.width < 1 || static_cast<std::int64_t>(ao.size()) != p.PixelCount())
+    return error = "the AO image does not fit the frame (read its depth first)", false;
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
+    return false;
+  const Functions& gl = p.gl;
+  StateGuard guard(gl, p.Ctx.Kind() == ContextKind::External);
+  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, p.ao);
+  gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(ao.size() * sizeof(float)), ao.data());
+  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+  if (!CheckError(gl, "uploading the AO image", error))
+    return false;
+  p.hasAO = true;
+  return true;
+}
+
 bool FrameEngine::Combine(double strength, bool wholeColor, std::string& error)
 {
   Impl& p = *this->P;

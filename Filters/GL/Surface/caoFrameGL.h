@@ -68,6 +68,11 @@ public:
   std::int64_t Pixels() const;
   /// The width of the depth read last (its pixels' rows).
   int Width() const;
+  /// An AO image made elsewhere (the lines' prisms; NaN: not combined),
+  /// one float per pixel of the depth read last, row by row, into the AO
+  /// buffer for Combine, in place of a G-buffer's trace. False, with the
+  /// reason, on another size.
+  bool SetAO(const std::vector<float>& ao, std::string& error);
   /// The AO into the colour read last (`wholeColor`: colour (1 - s (1 -
   /// AO)); else colour - s (1 - AO) ambient, the ambient read last).
   bool Combine(double strength, bool wholeColor, std::string& error);

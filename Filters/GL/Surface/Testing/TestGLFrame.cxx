@@ -15,6 +15,9 @@
 // - the combine written back into the framebuffer: whole colour c (1 - s
 //   (1 - AO)) and ambient term c - s (1 - AO) a, to the RGBA8 step, the
 //   background kept;
+// - an AO image set from the host (SetAO, the lines' path) combines as
+//   the traced AO it was read from, value for value (control: a uniform
+//   0.5); an image of the wrong size is refused;
 // - bad input: a colour read before the depth, an empty rectangle, a
 //   combine without AO or with a strength out of [0, 1].
 #include "caoFrameGL.h"
@@ -30,6 +33,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 
 namespace
@@ -367,6 +371,62 @@ int TestGLFrame(int argc, char* argv[])
       whole ? "whole colour" : "ambient term", worst, worstOther, darkened, background, error.c_str());
     Check(ok && worst <= kUnormTolerance && worstOther > 2.0 / 255.0 && darkened > 1000 &&
         background == static_cast<int>(aoBlit.size()) - static_cast<int>(cpu.covered), text);
+  }
+
+  // An AO image set from the host (the lines' path: SetAO in place of a
+  // trace) combines as the traced one: the AO read back above, set again
+  // on a fresh engine, gives the same picture; control: a uniform AO of
+  // 0.5 gives another.
+  {
+    auto combineSet = [&](const std::vector<float>& ao, std::vector<unsigned char>& px, std::string& why) {
+      cao::gl::FrameEngine engine(*context);
+      fill(colour);
+      const bool ok = engine.Read(cao::gl::FrameEngine::Depth, fbo, 0, 0, w, h, why) && engine.SetAO(ao, why) &&
+        engine.Read(cao::gl::FrameEngine::Color, fbo, 0, 0, w, h, why) && engine.Combine(0.8, true, why) &&
+        engine.Write(fbo, 0, 0, why);
+      px.assign(4 * static_cast<std::size_t>(w) * h, 0);
+      gl.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+      gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+      gl.ReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, px.data());
+      gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+      return ok;
+    };
+    std::vector<unsigned char> traced, set, half;
+    std::string why1, why2, why3, why4;
+    // (aoBlit holds the last combine's AO: whole colour, strength 0.8.)
+    cao::gl::FrameEngine tracer(*context);
+    fill(colour);
+    std::int64_t changed = 0, covered = 0;
+    double ms = 0;
+    bool ok = tracer.Read(cao::gl::FrameEngine::Depth, fbo, 0, 0, w, h, why1) &&
+      tracer.ChangedPixels(changed, why1) && tracer.GBuffer(camera.ndcToWorld, grid.axes, covered, why1) &&
+      cones.TracePixels(plan, tracer.PointBuffer(), tracer.NormalBuffer(), tracer.AOBuffer(), tracer.Pixels(), ms,
+        why1, w) &&
+      (tracer.AOWritten(), true) && tracer.Read(cao::gl::FrameEngine::Color, fbo, 0, 0, w, h, why1) &&
+      tracer.Combine(0.8, true, why1) && tracer.Write(fbo, 0, 0, why1) && tracer.ReadAO(aoBlit, why1);
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+    traced.assign(4 * static_cast<std::size_t>(w) * h, 0);
+    gl.ReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, traced.data());
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    std::vector<float> uniform(aoBlit.size(), std::numeric_limits<float>::quiet_NaN());
+    for (std::size_t k = 0; k < aoBlit.size(); ++k)
+      if (std::isfinite(aoBlit[k]))
+        uniform[k] = 0.5f;
+    ok = ok && combineSet(aoBlit, set, why2) && combineSet(uniform, half, why3);
+    cao::gl::FrameEngine sized(*context);
+    const bool wrongSize = sized.Read(cao::gl::FrameEngine::Depth, fbo, 0, 0, w, h, why4) &&
+      sized.SetAO(std::vector<float>(aoBlit.size() + 1, 1.0f), why4);
+    int apart = 0, controlApart = 0;
+    for (std::size_t i = 0; i < traced.size(); ++i)
+    {
+      apart += traced[i] != set[i];
+      controlApart += traced[i] != half[i];
+    }
+    std::snprintf(text, sizeof(text),
+      "an AO image set from the host combines as the traced one: %d values apart (control, a uniform 0.5: %d); "
+      "a wrong size refused: %s %s%s%s",
+      apart, controlApart, why4.c_str(), why1.c_str(), why2.c_str(), why3.c_str());
+    Check(ok && apart == 0 && controlApart > 1000 && !wrongSize && !why4.empty(), text);
   }
 
   // Bad input.

@@ -24,8 +24,10 @@
 //   9 the lines alone with Backend OpenGL: the grid and the prisms on the
 //     window's OpenGL (the report says so), every line pixel's AO within the GPU
 //     twin's bound of the CPU's (GL.TestGLLineAO: mean under 1e-4, 99.9%
-//     within 0.005; control: the CPU with 48 samples misses it); Auto on a
-//     software rasteriser keeps them on the CPU
+//     within 0.005; control: the CPU with 48 samples misses it); their
+//     combine runs there too (the report says so), the picture the CPU
+//     combine's within 1 level and darker than Line AO off (control: 48
+//     samples miss it); Auto on a software rasteriser keeps them on the CPU
 //  10 LineShading Mallo-Banks: a line across the headlight keeps its
 //     colour, one tilted towards the view is darkened by sqrt(1 - (V.T)^2),
 //     Specular adds Banks' term, tubes keep VTK's shading; control: as
@@ -52,6 +54,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -352,12 +355,16 @@ int TestLinesInPass(int, char*[])
 
   // 9: the lines alone, their prisms on the window's OpenGL.
   renderer->RemoveActor(floorActor);
+  std::map<std::string, std::vector<unsigned char>> pictures; // (by the report: each render's picture)
   auto lineAO = [&](int backend, int samples, std::string& text) {
     pass->SetBackend(backend);
     pass->SetLineSamples(samples);
     window->Render();
     text = pass->GetLastFrameReport();
     const int* size = window->GetSize();
+    vtkNew<vtkUnsignedCharArray> rgb;
+    window->GetPixelData(0, 0, size[0] - 1, size[1] - 1, 0, rgb, 0);
+    pictures[text].assign(rgb->GetPointer(0), rgb->GetPointer(0) + 3 * size[0] * size[1]);
     std::vector<double> ao;
     for (int y = 0; y < size[1]; ++y)
       for (int x = 0; x < size[0]; ++x)
@@ -401,6 +408,35 @@ int TestLinesInPass(int, char*[])
       glReport.find("\"error\"") == std::string::npos,
     "Backend OpenGL voxelizes the lines and counts their prisms on the window's OpenGL, CPU on the CPU");
   Check(same && !controlSame, "the OpenGL line AO is the CPU's within the GPU twin's bound (control: 48 samples misses it)");
+  // The combine of lines alone on OpenGL runs there (the colour never read
+  // back): the picture is the CPU combine's but for the AO's float
+  // rounding (under a quarter of a level: 0.0009 at most, above) and the
+  // float product, so 1 level; control: 48 samples miss it.
+  auto largest = [&](const std::string& a, const std::string& b, std::size_t& darkened) {
+    int most = 0;
+    darkened = 0;
+    for (std::size_t i = 0; i < pictures[a].size(); ++i)
+    {
+      most = std::max(most, std::abs(int(pictures[a][i]) - int(pictures[b][i])));
+      darkened += pictures[a][i] != pictures[b][i];
+    }
+    return most;
+  };
+  pass->LineAOOff();
+  std::string offReport;
+  lineAO(vtkContextualAOPass::BACKEND_OPENGL, 64, offReport);
+  pass->LineAOOn();
+  std::size_t apart = 0, darkened = 0, controlApart = 0;
+  const int glCpu = largest(glReport, cpuReport, apart), glOff = largest(glReport, offReport, darkened),
+            controlCpu = largest(controlReport, cpuReport, controlApart);
+  std::printf("the lines' combine on OpenGL against the CPU's: %zu values apart, at most %d levels; %zu values "
+              "darkened from AO off; control, the CPU with 48 samples: at most %d levels, %zu apart\n",
+    apart, glCpu, darkened, controlCpu, controlApart);
+  Check(glReport.find("\"combine\": \"OpenGL\"") != std::string::npos &&
+      cpuReport.find("\"combine\": \"CPU\"") != std::string::npos && glCpu <= 1 && darkened > 1000 &&
+      controlCpu > 1,
+    "lines alone on OpenGL are combined there, the picture the CPU combine's within 1 level (" +
+      std::to_string(glCpu) + "; control, 48 samples: " + std::to_string(controlCpu) + ")");
   const bool software = autoReport.find("software rasteriser") != std::string::npos;
   Check(!software || autoReport.find("\"prisms\": \"CPU\"") != std::string::npos,
     "Auto on a software rasteriser keeps the lines' prisms on the CPU");
