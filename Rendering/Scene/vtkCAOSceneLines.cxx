@@ -4,10 +4,13 @@
 #include "vtkCAOSceneGPU.h"
 
 #include "caoAORadius.h"
+#include "caoParallelFor.h"
 #include "caoVoxelConeTracing.h"
 
 #include "vtkActor.h"
 #include "vtkCellArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
 #include "vtkMapper.h"
 #include "vtkMatrix4x4.h"
 #include "vtkPolyData.h"
@@ -127,20 +130,54 @@ bool SceneLines::UpdateScene(std::string& error)
   this->sceneKey.clear();
   this->lines = cao::LineSegments();
   this->segmentDrawing.clear();
+  std::size_t allPoints = 0, allSegments = 0;
+  for (const auto& piece : this->pieces)
+  {
+    allPoints += static_cast<std::size_t>(piece.second->GetNumberOfPoints());
+    vtkCellArray* cells = piece.second->GetLines();
+    allSegments += static_cast<std::size_t>(
+      std::max<vtkIdType>(0, cells->GetNumberOfConnectivityIds() - cells->GetNumberOfCells()));
+  }
+  this->lines.points.reserve(3 * allPoints);
+  this->lines.segments.reserve(2 * allSegments);
+  this->segmentDrawing.reserve(allSegments);
   for (std::size_t k = 0; k < this->pieces.size(); ++k)
   {
     const auto& piece = this->pieces[k];
     vtkPolyData* data = piece.second;
     vtkMatrix4x4* m = piece.first->GetMatrix();
-    const std::int64_t base = static_cast<std::int64_t>(this->lines.points.size() / 3);
-    for (vtkIdType p = 0; p < data->GetNumberOfPoints(); ++p)
-    {
+    const std::size_t first = this->lines.points.size();
+    const std::int64_t base = static_cast<std::int64_t>(first / 3);
+    const std::size_t count = static_cast<std::size_t>(data->GetNumberOfPoints());
+    this->lines.points.resize(first + 3 * count);
+    // Each point through the actor's matrix (vtkMatrix4x4's own product),
+    // on the CPU's threads; float and double coordinates read in place.
+    const double* elements = m->GetData();
+    vtkDataArray* coordinates = data->GetPoints() ? data->GetPoints()->GetData() : nullptr;
+    const float* floats = vtkFloatArray::FastDownCast(coordinates) && coordinates->GetNumberOfComponents() == 3
+      ? vtkFloatArray::FastDownCast(coordinates)->GetPointer(0) : nullptr;
+    const double* doubles = vtkDoubleArray::FastDownCast(coordinates) && coordinates->GetNumberOfComponents() == 3
+      ? vtkDoubleArray::FastDownCast(coordinates)->GetPointer(0) : nullptr;
+    double* into = this->lines.points.data() + first;
+    auto transform = [&](std::size_t p) {
       double in[4] = { 0, 0, 0, 1 }, out[4];
-      data->GetPoint(p, in);
-      m->MultiplyPoint(in, out);
       for (int d = 0; d < 3; ++d)
-        this->lines.points.push_back(out[d] / out[3]);
-    }
+        in[d] = floats ? static_cast<double>(floats[3 * p + d]) : doubles[3 * p + d];
+      vtkMatrix4x4::MultiplyPoint(elements, in, out);
+      for (int d = 0; d < 3; ++d)
+        into[3 * p + d] = out[d] / out[3];
+    };
+    if (floats || doubles)
+      cao::ParallelFor(count, 0, transform);
+    else
+      for (std::size_t p = 0; p < count; ++p)
+      {
+        double in[4] = { 0, 0, 0, 1 }, out[4];
+        data->GetPoint(static_cast<vtkIdType>(p), in);
+        vtkMatrix4x4::MultiplyPoint(elements, in, out);
+        for (int d = 0; d < 3; ++d)
+          into[3 * p + d] = out[d] / out[3];
+      }
     const std::int32_t drawing = this->pieceDrawing[k];
     vtkCellArray* cells = data->GetLines();
     vtkIdType n = 0;

@@ -4,6 +4,7 @@
 #include "caoGLStateGuard.h"
 #include "caoGLTimer.h"
 #include "caoGPULayout.h"
+#include "caoParallelFor.h"
 
 #include "caoLineAO_glsl.h"
 #include "caoLineVoxelize_glsl.h"
@@ -145,8 +146,8 @@ bool LineAOEngine::Frame(const BitGrid& grid, const LineAOSettings& settings, Li
   if (where.size() > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max() / 64))
     return error = "too many line pixels for the GPU's line AO", false;
   balls.resize(where.size());
-  for (std::size_t k = 0; k < where.size(); ++k)
-  {
+  // (Each pixel's record depends on that pixel alone: on the CPU's threads.)
+  ParallelFor(where.size(), settings.threads, [&](std::size_t k) {
     const std::size_t p = where[k];
     const LineHalfBall b = LineHalfBallOfPixel(grid, settings, frame, p);
     layout::LineAOPixel& o = balls[k];
@@ -157,7 +158,7 @@ bool LineAOEngine::Frame(const BitGrid& grid, const LineAOSettings& settings, Li
       static_cast<float>(b.tangent[2]), 0.0f };
     o.pixel = { static_cast<std::int32_t>(k), (b.line ? 1 : 0) | (b.cosine ? 2 : 0),
       LineSampleSet(static_cast<int>(p % frame.width), static_cast<int>(p / frame.width)), 0 };
-  }
+  });
   if (balls.empty())
     return true;
   const std::vector<double> disk = LineAOSamples(settings.samples, settings.seed);
@@ -243,14 +244,13 @@ bool LineAOEngine::Voxelize(const BitGrid& grid, const LineSegments& lines, doub
   if (count > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max() / 2))
     return error = "too many segments for the GPU's line voxelization", false;
   std::vector<layout::vec4> ends(2 * count);
-  for (std::size_t e = 0; e < 2 * count; ++e)
-  {
+  ParallelFor(2 * count, 0, [&](std::size_t e) {
     double g[3];
     grid.ToGrid(&lines.points[3 * static_cast<std::size_t>(lines.segments[e])], g);
     ends[e] = { static_cast<float>((g[0] - grid.origin[0]) / grid.voxel),
       static_cast<float>((g[1] - grid.origin[1]) / grid.voxel),
       static_cast<float>((g[2] - grid.origin[2]) / grid.voxel), 0.0f };
-  }
+  });
   const double rho = tubeRadius / grid.voxel;
   layout::LineVoxelizeParams block{};
   block.grid = { grid.nx, grid.ny, grid.slices, grid.words };

@@ -3,7 +3,10 @@
 // Lines/caoCapsules.h), in double precision end to end: items split at the
 // median of their centres along the centres' widest axis, leaves of at most
 // LeafSize items; a leaf's box grown from its items' boxes, an inner node's
-// from its children's (no level reads the items again). The traversal
+// from its children's (no level reads the items again). The top levels'
+// two halves are built on two threads each, into separate node lists
+// joined in the serial build's order: the tree is the same node for node
+// whatever the thread count. The traversal
 // visits the leaves a ray's slab test admits, nearest bound first not
 // required: each visitor keeps the best distance found so far.
 #ifndef caoBoxTree_h
@@ -15,6 +18,8 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <system_error>
+#include <thread>
 #include <vector>
 
 namespace cao
@@ -44,9 +49,11 @@ public:
   static constexpr int MaximumDepth = 64;
 
   /// Builds over `items` (reordered into leaf order); box(id, lo, hi) grows
-  /// lo and hi (3 each) by item id's box.
+  /// lo and hi (3 each) by item id's box, and may be called from several
+  /// threads at once. `threads`: at most so many (0: the hardware's); the
+  /// tree does not depend on it.
   template <class Box>
-  void Build(std::vector<Item>& items, Box box)
+  void Build(std::vector<Item>& items, Box box, int threads = 0)
   {
     this->nodes.clear();
     if (items.empty())
@@ -55,7 +62,11 @@ public:
     // leaf holds at least 2 (one only when there is one): fewer nodes than
     // items.
     ReserveHuge(this->nodes, items.size() + 1);
-    this->BuildNode(items, box, 0, static_cast<std::int64_t>(items.size()), 0);
+    const unsigned n = threads > 0 ? static_cast<unsigned>(threads) : std::thread::hardware_concurrency();
+    int spawn = 0; // the levels whose right halves get a thread of their own
+    while ((1u << spawn) < n && spawn < 8)
+      ++spawn;
+    BuildNode(this->nodes, items, box, 0, static_cast<std::int64_t>(items.size()), 0, spawn);
   }
 
   /// Calls leaf(first, count, best) for every leaf whose box a ray
@@ -140,6 +151,15 @@ public:
   }
 
   void Clear() { this->nodes.clear(); }
+  /// Whether `other` holds the same nodes, bit for bit, in the same order.
+  bool SameNodes(const BoxTree& other) const
+  {
+    return this->nodes.size() == other.nodes.size() &&
+      std::equal(this->nodes.begin(), this->nodes.end(), other.nodes.begin(), [](const Node& a, const Node& b) {
+        return std::equal(a.lo, a.lo + 3, b.lo) && std::equal(a.hi, a.hi + 3, b.hi) && a.first == b.first &&
+          a.count == b.count;
+      });
+  }
   bool Empty() const { return this->nodes.empty(); }
   std::int64_t NumberOfNodes() const { return static_cast<std::int64_t>(this->nodes.size()); }
   /// The root's box (xmin, xmax, ...); inverted when empty.
@@ -159,11 +179,17 @@ private:
     std::int32_t count; ///< leaf: items; inner: 0
   };
 
+  /// Halves smaller than this are built on their parent's thread.
+  static constexpr std::int64_t ParallelItems = 1 << 14;
+
+  /// The subtree of items [begin, end) appended to `nodes` in depth-first
+  /// order (a node, its left subtree, its right one): its root's index.
   template <class Box>
-  std::int64_t BuildNode(std::vector<Item>& items, Box& box, std::int64_t begin, std::int64_t end, int depth)
+  static std::int64_t BuildNode(std::vector<Node>& nodes, std::vector<Item>& items, Box& box, std::int64_t begin,
+    std::int64_t end, int depth, int spawn)
   {
-    const std::int64_t index = static_cast<std::int64_t>(this->nodes.size());
-    this->nodes.push_back(Node{});
+    const std::int64_t index = static_cast<std::int64_t>(nodes.size());
+    nodes.push_back(Node{});
     Node node;
     double clo[3], chi[3];
     for (int d = 0; d < 3; ++d)
@@ -188,24 +214,55 @@ private:
         box(items[static_cast<std::size_t>(i)].id, node.lo, node.hi);
       node.first = begin;
       node.count = static_cast<std::int32_t>(count);
-      this->nodes[static_cast<std::size_t>(index)] = node;
+      nodes[static_cast<std::size_t>(index)] = node;
       return index;
     }
     const std::int64_t middle = begin + count / 2;
     std::nth_element(items.begin() + begin, items.begin() + middle, items.begin() + end,
       [axis](const Item& a, const Item& b) { return a.c[axis] < b.c[axis]; });
-    const std::int64_t left = this->BuildNode(items, box, begin, middle, depth + 1);
-    const std::int64_t right = this->BuildNode(items, box, middle, end, depth + 1);
+    std::int64_t left = 0, right = 0;
+    bool built = false;
+    if (depth < spawn && count >= 2 * ParallelItems)
+    {
+      // The right half on its own thread into its own list (its indices
+      // from 0), appended after the left half: the serial order.
+      std::vector<Node> half;
+      try
+      {
+        std::thread worker(
+          [&]() { BuildNode(half, items, box, middle, end, depth + 1, spawn); });
+        left = BuildNode(nodes, items, box, begin, middle, depth + 1, spawn);
+        worker.join();
+        right = static_cast<std::int64_t>(nodes.size());
+        for (Node h : half)
+        {
+          if (h.count == 0)
+            h.first += right; // an inner node's right child; a leaf's first slot stays
+          nodes.push_back(h);
+        }
+        built = true;
+      }
+      catch (const std::system_error&)
+      {
+        // No thread to be had: the serial build from this node.
+        nodes.resize(static_cast<std::size_t>(index) + 1);
+      }
+    }
+    if (!built)
+    {
+      left = BuildNode(nodes, items, box, begin, middle, depth + 1, spawn);
+      right = BuildNode(nodes, items, box, middle, end, depth + 1, spawn);
+    }
     for (int d = 0; d < 3; ++d)
     {
-      const Node& l = this->nodes[static_cast<std::size_t>(left)];
-      const Node& r = this->nodes[static_cast<std::size_t>(right)];
+      const Node& l = nodes[static_cast<std::size_t>(left)];
+      const Node& r = nodes[static_cast<std::size_t>(right)];
       node.lo[d] = std::min(l.lo[d], r.lo[d]);
       node.hi[d] = std::max(l.hi[d], r.hi[d]);
     }
     node.first = right;
     node.count = 0;
-    this->nodes[static_cast<std::size_t>(index)] = node;
+    nodes[static_cast<std::size_t>(index)] = node;
     return index;
   }
 
