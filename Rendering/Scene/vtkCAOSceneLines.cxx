@@ -167,8 +167,11 @@ bool SceneLines::UpdateScene(std::string& error)
       for (int d = 0; d < 3; ++d)
         into[3 * p + d] = out[d] / out[3];
     };
-    if (floats || doubles)
-      cao::ParallelFor(count, 0, transform);
+    if ((floats || doubles) && count >= 16384)
+      cao::ParallelFor(count, 0, transform); // (threads only for big pieces: many small ones run here)
+    else if (floats || doubles)
+      for (std::size_t p = 0; p < count; ++p)
+        transform(p);
     else
       for (std::size_t p = 0; p < count; ++p)
       {

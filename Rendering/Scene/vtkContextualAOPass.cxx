@@ -555,8 +555,8 @@ struct vtkContextualAOPass::Internals
   bool DrawnIsTraced(std::size_t i) const;
   bool Combine(vtkContextualAOPass* self, const vtkRenderState* s);
   /// Lines alone, drawn as VTK draws them, with the AO on the GPU: their
-  /// combine there too (1 done, 0 not for this frame: the CPU's Combine
-  /// runs, -1 failed: Fail was called).
+  /// combine there too (1 done; 0 not for this frame, or failed there and
+  /// said so in the backend note: the CPU's Combine runs).
   int CombineLinesOnGPU(vtkContextualAOPass* self, const vtkRenderState* s);
   bool RunGPUFrame(vtkContextualAOPass* self, const vtkRenderState* s);
   bool DrawAmbient(const vtkRenderState* s, std::vector<float>* ambient, std::string& error);
@@ -823,8 +823,7 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
     this->depthOk = vtkCAO::ReadViewportDepth(ren, this->depth, this->depthError);
     if (!this->UpdateLines(self, ren))
       return;
-    const int onGPU = this->CombineLinesOnGPU(self, s);
-    if (onGPU == 1 || (onGPU == 0 && this->Combine(self, s)))
+    if (this->CombineLinesOnGPU(self, s) == 1 || this->Combine(self, s))
       this->said.clear();
     return;
   }
@@ -1813,8 +1812,12 @@ int vtkContextualAOPass::Internals::CombineLinesOnGPU(vtkContextualAOPass* self,
     }
   if (!this->gpu.FrameCombineAO(ao, self->Strength, this->target, this->rect, error))
   {
-    this->Fail(self, "the lines' combine on the GPU: " + error);
-    return -1;
+    // The CPU's combine still can: it runs, and the report says why.
+    for (char& c : error)
+      if (c == '"' || c == '\\' || static_cast<unsigned char>(c) < 0x20)
+        c = '\''; // (the note goes into the JSON report)
+    this->backendNote = "the lines' combine on the GPU failed (" + error + "): the CPU's ran";
+    return 0;
   }
   this->lineCombined = combined;
   this->lineCombineOnGPU = true;

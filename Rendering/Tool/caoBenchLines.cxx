@@ -77,13 +77,15 @@ void Measure(Row& row, const std::vector<double>& ao, const std::vector<double>&
   row.rank = cao::RankCorrelation(a, b);
 }
 
-/// `text` with its double quotes and backslashes made single quotes: safe
-/// inside a quoted csv or json field.
+/// `text` with its double quotes and backslashes made single quotes and
+/// its control characters spaces: safe inside a quoted csv or json field.
 std::string Plain(std::string text)
 {
   for (char& c : text)
     if (c == '"' || c == '\\')
       c = '\'';
+    else if (static_cast<unsigned char>(c) < 0x20)
+      c = ' ';
   return text;
 }
 
@@ -260,10 +262,10 @@ int Run(Options& o, const CLI::App*)
   for (std::size_t k = 0; k < rows.size(); ++k)
   {
     const Row& r = rows[k];
-    csv << r.scene << "," << r.configuration << "," << r.method << "," << r.ms << "," << r.rmse << "," << r.bias
+    csv << "\"" << Plain(r.scene) << "\"," << r.configuration << "," << r.method << "," << r.ms << "," << r.rmse << "," << r.bias
         << "," << r.p99 << "," << r.rank << "," << r.lines << "," << r.flicker << "," << r.referenceFlicker << ","
         << r.pixels << ",\"" << Plain(r.backend) << "\"\n";
-    json << (k ? ",\n " : "") << "{\"scene\": \"" << r.scene << "\", \"configuration\": \"" << r.configuration
+    json << (k ? ",\n " : "") << "{\"scene\": \"" << Plain(r.scene) << "\", \"configuration\": \"" << r.configuration
          << "\", \"method\": \"" << r.method << "\", \"ms\": " << r.ms << ", \"rmse\": " << r.rmse
          << ", \"bias\": " << r.bias << ", \"p99\": " << r.p99 << ", \"rank_correlation\": "
          << (std::isfinite(r.rank) ? std::to_string(r.rank) : std::string("null"))

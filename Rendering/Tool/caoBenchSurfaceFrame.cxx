@@ -167,10 +167,12 @@ int Run(Options& o, const CLI::App*)
   long long elements = 0; // triangles, or line segments
   if (lines)
   {
+    const std::size_t lineFile = static_cast<std::size_t>(
+      std::find_if(read.begin(), read.end(), [](vtkPolyData* d) { return IsLineInput(d); }) - read.begin());
     for (std::size_t i = 0; i < read.size(); ++i)
     {
       if (!IsLineInput(read[i]))
-        return Fail(2, "'" + o.meshes[i] + "' is not a line input while '" + o.meshes[0] +
+        return Fail(2, "'" + o.meshes[i] + "' is not a line input while '" + o.meshes[lineFile] +
             "' is: give lines or meshes");
       double b[6];
       read[i]->GetBounds(b);

@@ -3,10 +3,10 @@
 // Lines/caoCapsules.h), in double precision end to end: items split at the
 // median of their centres along the centres' widest axis, leaves of at most
 // LeafSize items; a leaf's box grown from its items' boxes, an inner node's
-// from its children's (no level reads the items again). The top levels'
-// two halves are built on two threads each, into separate node lists
-// joined in the serial build's order: the tree is the same node for node
-// whatever the thread count. The traversal
+// from its children's (no level reads the items again). While threads are
+// left, a node's right half is built on a thread of its own, into a
+// separate node list joined in the serial build's order: the tree is the
+// same node for node whatever the thread count. The traversal
 // visits the leaves a ray's slab test admits, nearest bound first not
 // required: each visitor keeps the best distance found so far.
 #ifndef caoBoxTree_h
@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <exception>
 #include <limits>
 #include <system_error>
 #include <thread>
@@ -50,8 +51,8 @@ public:
 
   /// Builds over `items` (reordered into leaf order); box(id, lo, hi) grows
   /// lo and hi (3 each) by item id's box, and may be called from several
-  /// threads at once. `threads`: at most so many (0: the hardware's); the
-  /// tree does not depend on it.
+  /// threads at once. `threads`: at most so many at once (0: the
+  /// hardware's); the tree does not depend on it.
   template <class Box>
   void Build(std::vector<Item>& items, Box box, int threads = 0)
   {
@@ -63,10 +64,8 @@ public:
     // items.
     ReserveHuge(this->nodes, items.size() + 1);
     const unsigned n = threads > 0 ? static_cast<unsigned>(threads) : std::thread::hardware_concurrency();
-    int spawn = 0; // the levels whose right halves get a thread of their own
-    while ((1u << spawn) < n && spawn < 8)
-      ++spawn;
-    BuildNode(this->nodes, items, box, 0, static_cast<std::int64_t>(items.size()), 0, spawn);
+    BuildNode(this->nodes, items, box, 0, static_cast<std::int64_t>(items.size()), 0,
+      static_cast<int>(std::max(1u, std::min(n, 1024u))));
   }
 
   /// Calls leaf(first, count, best) for every leaf whose box a ray
@@ -183,10 +182,11 @@ private:
   static constexpr std::int64_t ParallelItems = 1 << 14;
 
   /// The subtree of items [begin, end) appended to `nodes` in depth-first
-  /// order (a node, its left subtree, its right one): its root's index.
+  /// order (a node, its left subtree, its right one): its root's index; on
+  /// at most `budget` threads at once (this one included).
   template <class Box>
   static std::int64_t BuildNode(std::vector<Node>& nodes, std::vector<Item>& items, Box& box, std::int64_t begin,
-    std::int64_t end, int depth, int spawn)
+    std::int64_t end, int depth, int budget)
   {
     const std::int64_t index = static_cast<std::int64_t>(nodes.size());
     nodes.push_back(Node{});
@@ -222,17 +222,45 @@ private:
       [axis](const Item& a, const Item& b) { return a.c[axis] < b.c[axis]; });
     std::int64_t left = 0, right = 0;
     bool built = false;
-    if (depth < spawn && count >= 2 * ParallelItems)
+    if (budget > 1 && count >= 2 * ParallelItems)
     {
       // The right half on its own thread into its own list (its indices
-      // from 0), appended after the left half: the serial order.
+      // from 0), appended after the left half: the serial order. An
+      // exception on either side (memory) reaches the caller after the join.
       std::vector<Node> half;
+      std::exception_ptr failed;
+      std::thread worker;
       try
       {
-        std::thread worker(
-          [&]() { BuildNode(half, items, box, middle, end, depth + 1, spawn); });
-        left = BuildNode(nodes, items, box, begin, middle, depth + 1, spawn);
+        worker = std::thread([&]() {
+          try
+          {
+            BuildNode(half, items, box, middle, end, depth + 1, budget - budget / 2);
+          }
+          catch (...)
+          {
+            failed = std::current_exception();
+          }
+        });
+      }
+      catch (const std::system_error&)
+      {
+        // No thread to be had: the serial build below.
+      }
+      if (worker.joinable())
+      {
+        try
+        {
+          left = BuildNode(nodes, items, box, begin, middle, depth + 1, budget / 2);
+        }
+        catch (...)
+        {
+          worker.join();
+          throw;
+        }
         worker.join();
+        if (failed)
+          std::rethrow_exception(failed);
         right = static_cast<std::int64_t>(nodes.size());
         for (Node h : half)
         {
@@ -242,16 +270,11 @@ private:
         }
         built = true;
       }
-      catch (const std::system_error&)
-      {
-        // No thread to be had: the serial build from this node.
-        nodes.resize(static_cast<std::size_t>(index) + 1);
-      }
     }
     if (!built)
     {
-      left = BuildNode(nodes, items, box, begin, middle, depth + 1, spawn);
-      right = BuildNode(nodes, items, box, middle, end, depth + 1, spawn);
+      left = BuildNode(nodes, items, box, begin, middle, depth + 1, 1);
+      right = BuildNode(nodes, items, box, middle, end, depth + 1, 1);
     }
     for (int d = 0; d < 3; ++d)
     {

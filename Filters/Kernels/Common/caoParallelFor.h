@@ -1,12 +1,14 @@
 // caoParallelFor.h - the kernels' loop over independent items on a
-// few std::threads (chunks of 64 handed out by an atomic counter), so that
-// each item's result does not depend on the number of threads.
+// few std::threads (chunks of 64 handed out by an atomic counter; no more
+// threads than chunks), so that each item's result does not depend on the
+// number of threads.
 #ifndef caoParallelFor_h
 #define caoParallelFor_h
 
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -16,10 +18,11 @@ namespace cao
 template <typename Body>
 void ParallelFor(std::size_t count, int threads, Body body)
 {
-  unsigned n = threads > 0 ? static_cast<unsigned>(threads) : std::thread::hardware_concurrency();
-  n = std::max(1u, std::min<unsigned>(n, static_cast<unsigned>(std::min<std::size_t>(count, 256))));
-  std::atomic<std::size_t> next{ 0 };
   const std::size_t chunk = 64;
+  unsigned n = threads > 0 ? static_cast<unsigned>(threads) : std::thread::hardware_concurrency();
+  // (no more threads than chunks: a few dozen items run here alone)
+  n = std::max(1u, std::min<unsigned>(n, static_cast<unsigned>(std::min<std::size_t>((count + chunk - 1) / chunk, 256))));
+  std::atomic<std::size_t> next{ 0 };
   auto work = [&]() {
     for (;;)
     {
@@ -32,8 +35,18 @@ void ParallelFor(std::size_t count, int threads, Body body)
     }
   };
   std::vector<std::thread> pool;
+  pool.reserve(n);
   for (unsigned t = 1; t < n; ++t)
-    pool.emplace_back(work);
+  {
+    try
+    {
+      pool.emplace_back(work);
+    }
+    catch (const std::system_error&)
+    {
+      break; // no more threads to be had: those started (and this one) do the rest
+    }
+  }
   work();
   for (std::thread& t : pool)
     t.join();
