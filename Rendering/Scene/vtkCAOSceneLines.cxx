@@ -161,26 +161,20 @@ bool SceneLines::UpdateScene(std::string& error)
     double* into = this->lines.points.data() + first;
     auto transform = [&](std::size_t p) {
       double in[4] = { 0, 0, 0, 1 }, out[4];
-      for (int d = 0; d < 3; ++d)
-        in[d] = floats ? static_cast<double>(floats[3 * p + d]) : doubles[3 * p + d];
+      if (floats || doubles)
+        for (int d = 0; d < 3; ++d)
+          in[d] = floats ? static_cast<double>(floats[3 * p + d]) : doubles[3 * p + d];
+      else
+        data->GetPoint(static_cast<vtkIdType>(p), in);
       vtkMatrix4x4::MultiplyPoint(elements, in, out);
       for (int d = 0; d < 3; ++d)
         into[3 * p + d] = out[d] / out[3];
     };
     if ((floats || doubles) && count >= 16384)
-      cao::ParallelFor(count, 0, transform); // (threads only for big pieces: many small ones run here)
-    else if (floats || doubles)
-      for (std::size_t p = 0; p < count; ++p)
-        transform(p);
+      cao::ParallelFor(count, 0, transform); // (threads only for big pieces read in place)
     else
       for (std::size_t p = 0; p < count; ++p)
-      {
-        double in[4] = { 0, 0, 0, 1 }, out[4];
-        data->GetPoint(static_cast<vtkIdType>(p), in);
-        vtkMatrix4x4::MultiplyPoint(elements, in, out);
-        for (int d = 0; d < 3; ++d)
-          into[3 * p + d] = out[d] / out[3];
-      }
+        transform(p);
     const std::int32_t drawing = this->pieceDrawing[k];
     vtkCellArray* cells = data->GetLines();
     vtkIdType n = 0;

@@ -467,6 +467,7 @@ struct vtkContextualAOPass::Internals
   std::vector<double> meshGeometry; ///< the surfaces' pieces and poses (what the lines' solids depend on)
   std::int64_t lineCombined = 0;
   bool lineCombineOnGPU = false; ///< this frame's lines were combined on the GPU
+  std::vector<float> lineAOImage; ///< the lines' AO as the GPU combine takes it (kept: no new 8 MB a frame)
   bool rebuild = false;   ///< a process's scene changed: bounds, radius and grid again
   int frameProcesses = 1; ///< the last frame's (the report's)
   cao::BitGrid sharedGrid; ///< the world or eye grid of every process's pieces (CombineGrid)
@@ -1802,7 +1803,8 @@ int vtkContextualAOPass::Internals::CombineLinesOnGPU(vtkContextualAOPass* self,
     !vtkCAO::DrawTarget(ren, this->target, this->rect, multisampled, error) || multisampled)
     return 0;
   const auto start = Clock::now();
-  std::vector<float> ao(count, std::numeric_limits<float>::quiet_NaN());
+  std::vector<float>& ao = this->lineAOImage;
+  ao.assign(count, std::numeric_limits<float>::quiet_NaN());
   std::int64_t combined = 0;
   for (std::size_t i = 0; i < count; ++i)
     if (lineFrame.segment[i] >= 0 && std::isfinite(lineFrame.ao[i]))
