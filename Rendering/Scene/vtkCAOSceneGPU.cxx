@@ -160,17 +160,48 @@ bool SceneGPU::VAO(const cao::PixelCamera& camera, const cao::VAOSettings& setti
 }
 
 bool SceneGPU::VoxelizeLines(const cao::BitGrid& grid, const cao::LineSegments& lines, double tubeRadius,
-  std::string& error)
+  std::string& error, std::uint64_t version, const std::vector<std::int32_t>* segmentDrawing)
 {
   double ms = 0.0;
-  return this->P->Ready(error) && this->P->lines->Voxelize(grid, lines, tubeRadius, ms, error);
+  if (!this->P->Ready(error))
+    return false;
+  // (Lines the GPU cannot hold in double are mapped on the host instead.)
+  std::string unused;
+  const bool set = version != 0 && segmentDrawing && this->P->lines->SetLines(lines, *segmentDrawing, version, unused);
+  const bool ok = this->P->lines->Voxelize(grid, lines, tubeRadius, ms, error, set ? version : 0);
+  this->lineMs[0] = ms;
+  return ok;
 }
 
 bool SceneGPU::LineAO(const cao::BitGrid& grid, const cao::LineAOSettings& settings, cao::LineFrame& frame,
   const cao::BitGrid* solids, std::string& error)
 {
   double ms = 0.0;
-  return this->P->Ready(error) && this->P->lines->Frame(grid, settings, frame, ms, error, solids);
+  const bool ok = this->P->Ready(error) && this->P->lines->Frame(grid, settings, frame, ms, error, solids);
+  this->lineMs[1] = 0.0;
+  this->lineMs[2] = ms;
+  return ok;
+}
+
+bool SceneGPU::LineGBuffer(const cao::BitGrid& grid, const cao::LineAOSettings& settings,
+  const cao::LineSegments& lines, std::uint64_t version, const std::vector<cao::LineDrawing>& drawings,
+  const std::vector<std::int32_t>& segmentDrawing, const cao::PixelCamera& camera, const std::vector<float>& depth,
+  const std::vector<unsigned char>* skip, std::string& error)
+{
+  double ms = 0.0;
+  const bool ok = this->P->Ready(error) && this->P->lines->SetLines(lines, segmentDrawing, version, error) &&
+    this->P->lines->LineGBuffer(grid, settings, drawings, camera, depth, skip, ms, error);
+  this->lineMs[1] = ms;
+  return ok;
+}
+
+bool SceneGPU::LineAOOfGBuffer(const cao::BitGrid& grid, const cao::LineAOSettings& settings, cao::LineFrame& frame,
+  const cao::BitGrid* solids, std::string& error)
+{
+  double ms = 0.0;
+  const bool ok = this->P->Ready(error) && this->P->lines->FrameOfLineGBuffer(grid, settings, frame, ms, error, solids);
+  this->lineMs[2] = ms;
+  return ok;
 }
 
 bool SceneGPU::FrameDepth(unsigned framebuffer, const int rect[4], std::int64_t& changed, std::string& error)

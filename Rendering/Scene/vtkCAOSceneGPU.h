@@ -63,12 +63,27 @@ public:
   /// cao::gl::LineAOEngine::Voxelize: cao::VoxelizeLines' twin into
   /// `grid`'s plan; the bits stay on the GPU for LineAO given a grid of
   /// that plan with no bits.
+  /// With `segmentDrawing` the lines go to the GPU once per `version`
+  /// (LineAOEngine::SetLines) and are mapped into the grid there.
   bool VoxelizeLines(const cao::BitGrid& grid, const cao::LineSegments& lines, double tubeRadius,
-    std::string& error);
+    std::string& error, std::uint64_t version = 0, const std::vector<std::int32_t>* segmentDrawing = nullptr);
   /// cao::gl::LineAOEngine::Frame: cao::LineAOFrame's twin (the lines'
   /// G-buffer made on the CPU, the prisms counted on the GPU, in the grid
   /// VoxelizeLines left there when `grid` has no bits).
   bool LineAO(const cao::BitGrid& grid, const cao::LineAOSettings& settings, cao::LineFrame& frame,
+    const cao::BitGrid* solids, std::string& error);
+  /// The GPU time (ms, the shaders') of the last VoxelizeLines, LineGBuffer
+  /// and LineAO or LineAOOfGBuffer, in that order.
+  const double* LineMilliseconds() const { return this->lineMs; }
+  /// cao::gl::LineAOEngine::LineGBuffer and FrameOfLineGBuffer: the lines'
+  /// G-buffer from the drawn depth with no search on the CPU (each segment
+  /// visits the drawn pixels within its reach), then the prisms, on the GPU.
+  /// `version` names `lines` (uploaded when it changes).
+  bool LineGBuffer(const cao::BitGrid& grid, const cao::LineAOSettings& settings, const cao::LineSegments& lines,
+    std::uint64_t version, const std::vector<cao::LineDrawing>& drawings,
+    const std::vector<std::int32_t>& segmentDrawing, const cao::PixelCamera& camera, const std::vector<float>& depth,
+    const std::vector<unsigned char>* skip, std::string& error);
+  bool LineAOOfGBuffer(const cao::BitGrid& grid, const cao::LineAOSettings& settings, cao::LineFrame& frame,
     const cao::BitGrid* solids, std::string& error);
   ///@{
   /// The frame kept on the GPU (cao::gl::FrameEngine; the depth G-buffer;
@@ -119,6 +134,7 @@ private:
     std::string& error);
   struct Impl;
   std::unique_ptr<Impl> P;
+  double lineMs[3] = { 0.0, 0.0, 0.0 };
 };
 }
 

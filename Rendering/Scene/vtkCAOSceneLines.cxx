@@ -17,6 +17,7 @@
 #include "vtkProperty.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -197,10 +198,11 @@ bool SceneLines::UpdateScene(std::string& error)
   }
   if (!ExtentOf(this->lines, this->extent, error))
     return false;
-  // The capsules only find each pixel's nearest axis: a radius far below
-  // any pixel keeps the tree's boxes tight.
-  if (!this->nearest.Build(this->lines.points, this->lines.segments, 1e-9 * this->extent.diagonal, error))
-    return false;
+  // The tree over the segments waits for the CPU's G-buffer (the GPU's needs none).
+  this->nearest = cao::CapsuleBVH();
+  this->treeBuilt = false;
+  static std::atomic<std::uint64_t> versions{ 0 };
+  this->linesVersion = ++versions;
   this->sceneKey = this->frameKey;
   return true;
 }
@@ -481,6 +483,7 @@ bool SceneLines::Update(const cao::PixelCamera& camera, const double right[3], c
   auto start = Clock::now();
   bool built = false;
   this->keptGrid = false;
+  this->gpuMs = { { 0.0, 0.0, 0.0 } };
   if (!this->EnsureScene(built, error))
     return false;
   if (built)
@@ -545,11 +548,14 @@ bool SceneLines::Update(const cao::PixelCamera& camera, const double right[3], c
     this->solids = cao::BitGrid();
     // On the GPU the bits stay there for the prisms (SceneGPU::LineAO).
     if (!cao::PlanLineGrid(this->lines, right, up, settings, this->grid, error, meshes ? &meshBounds : nullptr) ||
-      (gpu ? !gpu->VoxelizeLines(this->grid, this->lines, tubeRadius, error)
+      (gpu ? !gpu->VoxelizeLines(this->grid, this->lines, tubeRadius, error, this->linesVersion, &this->segmentDrawing)
            : !cao::VoxelizeLines(this->lines, tubeRadius, this->grid, error)))
       return false;
     if (gpu)
+    {
       this->grid.bits.clear();
+      this->gpuMs[0] = gpu->LineMilliseconds()[0];
+    }
     this->gridOnGPU = gpu != nullptr;
     if (meshes)
     {
@@ -569,33 +575,89 @@ bool SceneLines::Update(const cao::PixelCamera& camera, const double right[3], c
   view.insert(view.end(), this->drawKey.begin(), this->drawKey.end()); // the pixels' search
   view.insert(view.end(), camera.ndcToWorld, camera.ndcToWorld + 16);
   view.insert(view.end(), { static_cast<double>(camera.width), static_cast<double>(camera.height),
-                            static_cast<double>(samples), gpu ? 1.0 : 0.0 });
-  std::uint64_t hash = 1469598103934665603ull;
-  for (std::size_t i = 0; i < depth.size(); ++i)
-  {
-    std::uint32_t bits;
-    static_assert(sizeof(float) == sizeof(bits), "float is 32 bits");
-    std::memcpy(&bits, &depth[i], sizeof(bits));
-    if (skip && (*skip)[i])
-      bits = 0xFFFFFFFFu;
-    hash = (hash ^ bits) * 1099511628211ull;
-  }
+                            static_cast<double>(samples), gpu ? 1.0 : 0.0, this->fullGBuffer ? 1.0 : 0.0 });
+  // (FNV-1a of each row's depths, the skipped as all ones, on the CPU's
+  // threads; then of the rows' hashes.)
+  const std::size_t W = static_cast<std::size_t>(camera.width);
+  const std::size_t rows = W > 0 ? depth.size() / W : 0;
+  std::vector<std::uint64_t> rowHash(rows);
+  cao::ParallelFor(rows, 0, [&](std::size_t j) {
+    std::uint64_t h = 1469598103934665603ull;
+    for (std::size_t i = j * W; i < (j + 1) * W; ++i)
+    {
+      std::uint32_t bits;
+      static_assert(sizeof(float) == sizeof(bits), "float is 32 bits");
+      std::memcpy(&bits, &depth[i], sizeof(bits));
+      if (skip && (*skip)[i])
+        bits = 0xFFFFFFFFu;
+      h = (h ^ bits) * 1099511628211ull;
+    }
+    rowHash[j] = h;
+  });
+  std::uint64_t hash = 1469598103934665603ull ^ depth.size();
+  for (std::uint64_t h : rowHash)
+    hash = (hash ^ h) * 1099511628211ull;
   view.push_back(static_cast<double>(hash >> 11));
   if (view == this->aoKey)
     return true;
   this->aoKey.clear();
-  // Each actor's drawn half width and raster slack, and tube mode.
-  if (!cao::LineFrameFromDepth(this->nearest, camera, depth, 1.0, false, skip, this->frame, error,
-        &this->drawings, &this->segmentDrawing))
-    return false;
+  // The G-buffer (each actor's drawn half width and raster slack, and tube
+  // mode): on the GPU where the prisms run there, else (or when the GPU's
+  // fails: the note says why) on the CPU.
+  this->gbufferOnGPU = false;
+  this->gbufferNote.clear();
+  const cao::BitGrid* solids = meshes ? &this->solids : nullptr;
+  if (gpu)
+  {
+    std::string why;
+    this->gbufferOnGPU = gpu->LineGBuffer(this->grid, settings, this->lines, this->linesVersion, this->drawings,
+      this->segmentDrawing, camera, depth, skip, why);
+    if (!this->gbufferOnGPU)
+      this->gbufferNote = "the lines' G-buffer on the GPU failed (" + why + "): the CPU's ran";
+  }
+  if (!this->gbufferOnGPU)
+  {
+    if (!this->treeBuilt)
+    {
+      // The capsules only find each pixel's nearest axis: a radius far
+      // below any pixel keeps the tree's boxes tight.
+      if (!this->nearest.Build(this->lines.points, this->lines.segments, 1e-9 * this->extent.diagonal, error))
+        return false;
+      this->treeBuilt = true;
+    }
+    if (!cao::LineFrameFromDepth(this->nearest, camera, depth, 1.0, false, skip, this->frame, error,
+          &this->drawings, &this->segmentDrawing))
+      return false;
+  }
   stages.push_back("line_gbuffer");
   ms.push_back(Since(start));
   start = Clock::now();
   // The prisms on the window's OpenGL (the pass's backend) or the CPU.
   this->onGPU = gpu != nullptr;
-  if (gpu ? !gpu->LineAO(this->grid, settings, this->frame, meshes ? &this->solids : nullptr, error)
-          : !cao::LineAOFrame(this->grid, settings, this->frame, error, meshes ? &this->solids : nullptr))
+  if (this->gbufferOnGPU)
+  {
+    if (!gpu->LineAOOfGBuffer(this->grid, settings, this->frame, solids, error))
+      return false;
+    // The rest of the G-buffer where the line shading reads it (the AO kept).
+    if (this->fullGBuffer)
+    {
+      std::vector<double> ao;
+      ao.swap(this->frame.ao);
+      const std::vector<std::int64_t> chosen = this->frame.segment;
+      if (!cao::LineFrameOfSegments(this->lines.points, this->lines.segments, camera, depth, this->drawings,
+            this->segmentDrawing, chosen, this->frame, error))
+        return false;
+      this->frame.ao.swap(ao);
+    }
+  }
+  else if (gpu ? !gpu->LineAO(this->grid, settings, this->frame, solids, error)
+               : !cao::LineAOFrame(this->grid, settings, this->frame, error, solids))
     return false;
+  if (gpu)
+  {
+    this->gpuMs[1] = this->gbufferOnGPU ? gpu->LineMilliseconds()[1] : 0.0;
+    this->gpuMs[2] = gpu->LineMilliseconds()[2];
+  }
   this->aoKey = view;
   stages.push_back("line_ao");
   ms.push_back(Since(start));

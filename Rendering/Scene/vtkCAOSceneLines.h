@@ -10,7 +10,7 @@
  * tubes (vtkProperty's RenderLinesAsTubes), in world coordinates. Their
  * G-buffer comes from the drawn depth (cao::LineFrameFromDepth: a drawn
  * pixel within its actor's drawn half width plus a pixel of a segment is
- * that line's), so what
+ * that line's; on the GPU its twin, where the prisms run there), so what
  * gets AO is exactly what the renderer drew (each actor's lines with its
  * own width and tube mode). The lines occlude as tubes of their drawn
  * width (the widest actor's, at the lines' centre). The eye grid of the lines
@@ -65,9 +65,10 @@ public:
   /// at the bottom) except those in `skip`; `right` and `up` the camera's
   /// axes. `radius` is the AO radius (0: the default of the lines'
   /// extent). With `gpu` (resolved to the window's OpenGL) the lines' grid
-  /// is voxelized and the prisms are counted there (cao::gl::LineAOEngine),
-  /// else on the CPU; the G-buffer (and the meshes' solids, and in parallel
-  /// rendering the shared grid) are made on the CPU either way. Appends what ran
+  /// is voxelized, their G-buffer made and the prisms counted there
+  /// (cao::gl::LineAOEngine; a G-buffer the GPU refuses is made on the CPU,
+  /// GBufferNote says why), else on the CPU; the meshes' solids, and in
+  /// parallel rendering the shared grid, are made on the CPU either way. Appends what ran
   /// to `stages` / `ms`. False with the reason (a scene that failed is not
   /// built again until its lines change).
   /// `keepGrid` (an interactive frame): when only the camera changed, the
@@ -82,6 +83,19 @@ public:
   bool KeptGrid() const { return this->keptGrid; }
   /// Whether the last line AO ran on the GPU, and the lines' grid was voxelized there.
   bool OnGPU() const { return this->onGPU; }
+  /// Whether the last line AO's G-buffer was made on the GPU (with the
+  /// prisms: no search on the CPU), and why not when the GPU's failed
+  /// (the CPU's ran).
+  bool GBufferOnGPU() const { return this->gbufferOnGPU; }
+  const std::string& GBufferNote() const { return this->gbufferNote; }
+  /// The last Update's GPU shader time (ms) of the voxelization (0: none
+  /// this frame), the G-buffer and the prisms (0: not on the GPU).
+  const std::array<double, 3>& GPUMilliseconds() const { return this->gpuMs; }
+  /// Whether Frame() must hold every G-buffer array (the line shading reads
+  /// each pixel's point, tangent and view): a G-buffer made on the GPU
+  /// holds only the segments and the AO, and the CPU then writes the rest
+  /// (cao::LineFrameOfSegments).
+  void SetFullGBuffer(bool full) { this->fullGBuffer = full; }
   bool GridOnGPU() const { return this->gridOnGPU && !this->shared; }
 
   /// What the lines' segments depend on (this frame's pieces).
@@ -159,7 +173,7 @@ private:
   int actors = 0;
   double widest = 1.0;    ///< the widest drawn line, in pixels
   cao::LineSegments lines;
-  cao::CapsuleBVH nearest; ///< the segments, for the pixels' nearest axis
+  cao::CapsuleBVH nearest; ///< the segments, for the pixels' nearest axis (the CPU's G-buffer)
   Extent extent;
   double radius = 0.0;
   // Parallel rendering: every process's segments (each its own two
@@ -181,6 +195,11 @@ private:
   int voxelizations = 0;
   bool onGPU = false;
   bool gridOnGPU = false;
+  bool gbufferOnGPU = false, fullGBuffer = false;
+  std::string gbufferNote;
+  std::array<double, 3> gpuMs{ { 0.0, 0.0, 0.0 } };
+  std::uint64_t linesVersion = 0; ///< names `lines` for the GPU's copy (new each UpdateScene)
+  bool treeBuilt = false;         ///< `nearest` is of `lines` (built when the CPU's G-buffer first runs)
   bool keptGrid = false;
 };
 }

@@ -44,6 +44,7 @@
 #include "vtkCAOInput.h"
 #include "vtkCAOSceneVolume.h"
 #include "caoLineShading.h"
+#include "caoParallelFor.h"
 #include "vtkContextualAOVolumeMapper.h"
 #include "vtkCompositeDataDisplayAttributes.h"
 #include "vtkCompositePolyDataMapper2.h"
@@ -53,6 +54,7 @@
 #include "caoVoxelConeTracing.h"
 
 #include <algorithm>
+#include <atomic>
 #include <limits>
 #include <chrono>
 #include <cstring>
@@ -181,6 +183,16 @@ std::vector<LineLight> LineLights(vtkRenderer* ren)
 /// Pixel i of a flat line lit by `lights` (vtkContextualAOPass::LineShading):
 /// its drawn colour `rgba` times (a + (1 - a) Mallo) times `aoFactor`, plus
 /// Banks' specular, each light by its intensity.
+/// `text` fit for a JSON string of the frame report (quotes, backslashes
+/// and control characters become apostrophes).
+std::string JsonText(std::string text)
+{
+  for (char& c : text)
+    if (c == '"' || c == '\\' || static_cast<unsigned char>(c) < 0x20)
+      c = '\'';
+  return text;
+}
+
 void ShadeLinePixel(const vtkCAO::LineLook& look, const std::vector<LineLight>& lights,
   const cao::LineFrame& frame, std::size_t i, float aoFactor, float* rgba)
 {
@@ -720,9 +732,12 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
       << p.lines.NumberOfSegments() << ", \"radius\": " << p.lines.Radius() << ", \"pixels\": "
       << p.lines.Frame().covered << ", \"combined_pixels\": " << p.lineCombined
       << ", \"voxelizations\": " << p.lines.Voxelizations() << ", \"radius_voxels\": " << p.lines.RadiusVoxels()
+      << ", \"gbuffer\": \"" << (p.lines.GBufferOnGPU() ? "OpenGL" : "CPU") << "\""
       << ", \"prisms\": \"" << (p.lines.OnGPU() ? "OpenGL" : "CPU") << "\""
       << ", \"voxelization\": \"" << (p.lines.GridOnGPU() ? "OpenGL" : "CPU") << "\""
       << ", \"combine\": \"" << (p.lineCombineOnGPU ? "OpenGL" : "CPU") << "\""
+      << ", \"gpu_ms\": {\"voxelize\": " << p.lines.GPUMilliseconds()[0] << ", \"gbuffer\": "
+      << p.lines.GPUMilliseconds()[1] << ", \"prisms\": " << p.lines.GPUMilliseconds()[2] << "}"
       << (p.lines.KeptGrid() ? ", \"grid_kept\": \"an interactive frame: the grid of an earlier camera\"" : "")
       << ", \"segments_of_all_processes\": " << p.lines.NumberOfGridSegments()
       << (p.lines.RadiusVoxels() < 2.0
@@ -845,8 +860,8 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
   this->gpuFrame = this->onGPU && this->gbuffer == DEPTH_BUFFER && !(self->Method == VAO && self->IndirectLight) &&
     !frustum && !this->linesOn;
   if (this->onGPU && this->gbuffer == DEPTH_BUFFER && this->linesOn)
-    this->backendNote = "the lines' G-buffer is made on the CPU: the frame's pixels are read back (the surfaces' "
-                        "AO and the lines' grid and prisms still on the GPU)";
+    this->backendNote = "the lines' drawn depth is read back to the host (the surfaces' AO and the lines' "
+                        "G-buffer, grid and prisms still on the GPU)";
   if (this->onGPU && this->gbuffer == DEPTH_BUFFER && self->Method == VAO && self->IndirectLight)
     this->backendNote = "VAO's indirect light runs on the CPU: the frame's pixels are read back (the AO still on the GPU)";
   if (this->onGPU && this->gbuffer == DEPTH_BUFFER && frustum)
@@ -1653,10 +1668,13 @@ bool vtkContextualAOPass::Internals::UpdateLines(vtkContextualAOPass* self, vtkR
     this->lines.SetMeshes(points, triangles, meshKey);
   }
   std::string error;
+  this->lines.SetFullGBuffer(self->LineShading == LINE_SHADING_MALLO_BANKS);
   if (!this->lines.Update(camera, right, up, this->depth, skip.empty() ? nullptr : &skip, self->Radius,
         self->LineSamples, self->LineSlices, this->onGPU ? &this->gpu : nullptr, this->stages, this->ms, error,
         self->InteractiveFrames))
     return skipLines(error);
+  if (!this->lines.GBufferNote().empty())
+    this->backendNote += (this->backendNote.empty() ? "" : "; ") + JsonText(this->lines.GBufferNote());
   this->saidLines.clear();
   return true;
 }
@@ -1804,21 +1822,22 @@ int vtkContextualAOPass::Internals::CombineLinesOnGPU(vtkContextualAOPass* self,
     return 0;
   const auto start = Clock::now();
   std::vector<float>& ao = this->lineAOImage;
-  ao.assign(count, std::numeric_limits<float>::quiet_NaN());
-  std::int64_t combined = 0;
-  for (std::size_t i = 0; i < count; ++i)
-    if (lineFrame.segment[i] >= 0 && std::isfinite(lineFrame.ao[i]))
+  ao.resize(count);
+  std::atomic<std::int64_t> combined{ 0 };
+  cao::ParallelFor((count + 1023) / 1024, 0, [&](std::size_t block) {
+    std::int64_t mine = 0;
+    for (std::size_t i = 1024 * block; i < std::min(count, 1024 * (block + 1)); ++i)
     {
-      ao[i] = static_cast<float>(lineFrame.ao[i]);
-      ++combined;
+      const bool line = lineFrame.segment[i] >= 0 && std::isfinite(lineFrame.ao[i]);
+      ao[i] = line ? static_cast<float>(lineFrame.ao[i]) : std::numeric_limits<float>::quiet_NaN();
+      mine += line;
     }
+    combined += mine;
+  });
   if (!this->gpu.FrameCombineAO(ao, self->Strength, this->target, this->rect, error))
   {
     // The CPU's combine still can: it runs, and the report says why.
-    for (char& c : error)
-      if (c == '"' || c == '\\' || static_cast<unsigned char>(c) < 0x20)
-        c = '\''; // (the note goes into the JSON report)
-    this->backendNote = "the lines' combine on the GPU failed (" + error + "): the CPU's ran";
+    this->backendNote = "the lines' combine on the GPU failed (" + JsonText(error) + "): the CPU's ran";
     return 0;
   }
   this->lineCombined = combined;

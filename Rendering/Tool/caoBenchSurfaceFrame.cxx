@@ -313,6 +313,9 @@ int Run(Options& o, const CLI::App*)
           const Timing t = TimeFrames(window, renderer->GetActiveCamera(), o.frames, o.orbit, [&]() {
             const std::string report = pass->GetLastFrameReport();
             stages = CompactStages(ReportField(report, "stages"));
+            const std::string shaders = ReportField(report, "gpu_ms"); // (the lines' GPU time of their own)
+            if (!shaders.empty())
+              stages += " (GPU shaders: " + CompactStages(shaders) + ")";
             where = ReportField(report, "backend");
             frameOnGPU = ReportField(report, "frame_on_gpu") == "true";
             depthPath = ReportField(report, "frame_depth");

@@ -4,8 +4,9 @@
  * (compute shaders, via #include after vtk_encode_string embedding).
  *
  * Rules that keep the two sides identical:
- *  - every member is a 16-byte vec4/ivec4, so std140 and std430 agree with
- *    the C++ layout (checked by static_asserts at the end);
+ *  - every member is a 16-byte vec4/ivec4 (or a 32-byte dvec4, all of a
+ *    block's first), so std140 and std430 agree with the C++ layout
+ *    (checked by static_asserts at the end);
  *  - no bool, no vec3, no implicit padding;
  *  - constants are plain ints usable from both languages.
  */
@@ -25,6 +26,10 @@ struct vec4
 struct ivec4
 {
   std::int32_t x, y, z, w;
+};
+struct dvec4
+{
+  double x, y, z, w;
 };
 using uint = std::uint32_t;
 #define CAO_CONST static constexpr int
@@ -367,7 +372,7 @@ struct LineAOPixel
   vec4 centre;   /* xyz: the half ball's centre (voxel units); w: its base plane's offset along plane.xyz */
   vec4 plane;    /* xyz: the base plane's unit normal (grid frame); w: 0 */
   vec4 tangent;  /* xyz: the line's unit tangent (grid frame; 0: a point); w: 0 */
-  ivec4 pixel;   /* x: the output index, y: flags (1 a line, 2 cosine weight), z: sample set, w: 0 */
+  ivec4 pixel;   /* x: the output index, y: flags (1 a line, 2 cosine weight, 4 none: the AO is NaN), z: sample set, w: 0 */
 };
 #define CAO_LA_MAX_SETS 16
 
@@ -383,8 +388,49 @@ struct LineVoxelizeParams
   vec4 tube;     /* x: the tube radius (voxels), y: its square, z: the piece length (voxels), w: 0 */
 };
 #define CAO_BINDING_LV_PARAMS 2   /* uniform block: LineVoxelizeParams */
+#define CAO_BINDING_LV_MAP 3      /* uniform block: LineGridMap (CAO_LV_WORLD: the ends are the G-buffer's
+                                     world segments, LG_SEGMENTS, mapped here) */
 #define CAO_BINDING_LV_ENDS 1     /* storage: vec4 per segment end (xyz voxel units), two per segment */
 #define CAO_BINDING_LV_BITS 0     /* storage: uint, the lines' grid (the same buffer LA_BITS reads) */
+/* The line G-buffer on the GPU (caoLineGBuffer.glsl, the twin of
+ * cao::LineFrameFromDepth with drawings, in double): each drawn pixel's
+ * ray, each segment's candidate pixels (a key per pixel: covering first,
+ * then the frontmost, else the nearest; the lowest segment of that key),
+ * and each chosen pixel's half ball as a LineAOPixel (the prisms' input),
+ * in one pass per stage. Slots are the drawn pixels, numbered by the host. */
+/* A world point to the lines' grid's voxel units (cao::BitGrid::ToGrid,
+ * less the origin, over the voxel), in double: caoLineGridMap.glsl. */
+struct LineGridMap
+{
+  dvec4 rows[3]; /* rows of the grid's axes (world -> grid frame); w: the grid's origin on that row */
+  dvec4 voxel;   /* x: the voxel's side (world); yzw: 0 */
+};
+struct LineGBufferParams
+{
+  dvec4 ndcToWorld[4];  /* rows of the camera's NDC -> world matrix */
+  dvec4 worldToClip[4]; /* rows of its inverse */
+  LineGridMap map;      /* the grid the half balls are in */
+  dvec4 scalars;        /* x: 0, y: the widest depth slack (window depth), z: the tube radius (voxels),
+                           w: the widest reach (pixels) */
+  dvec4 constants;      /* x: MaximumDepthSlack, y: LineCoverSlack, z: half a voxel's diagonal, w: 0 */
+  ivec4 counts;         /* x: width, y: height, z: segments, w: drawn pixels (slots) */
+  ivec4 flags;          /* x: 1 the half ball at the tube's surface (LineAOHemisphere::Normal); yzw: 0 */
+};
+struct LineRay
+{
+  dvec4 origin;    /* xyz: the near-plane point; w: the drawn point's distance along the ray (NaN: none) */
+  dvec4 direction; /* xyz: unit; w: the pixel's footprint at the drawn depth */
+  dvec4 drawn;     /* xyz: the drawn point; w: how far behind it a line may lie */
+};
+#define CAO_BINDING_LG_PARAMS 2   /* uniform block: LineGBufferParams */
+#define CAO_BINDING_LG_SLOTS 0    /* storage: int per pixel, its slot (-1: not drawn, or another kind's) */
+#define CAO_BINDING_LG_DRAWN 1    /* storage: uvec2 per slot (x: pixel, y: window depth's float bits) */
+#define CAO_BINDING_LG_RAYS 2     /* storage: LineRay per slot */
+#define CAO_BINDING_LG_SEGMENTS 3 /* storage: dvec4 pair per segment (xyz ends; first w: its drawing) */
+#define CAO_BINDING_LG_DRAWINGS 4 /* storage: dvec4 per drawing (reach, half width (pixels), depth slack,
+                                     1 tubes) */
+#define CAO_BINDING_LG_KEYS 5     /* storage: uvec2 per slot (x: the best key, y: its lowest segment) */
+#define CAO_BINDING_LG_RECORDS 6  /* storage: LineAOPixel per slot (pixel.y flag 4: no line) */
 #define CAO_BINDING_LA_PARAMS 2   /* uniform block: LineAOParams */
 #define CAO_BINDING_LA_BITS 0     /* storage: uint, the lines' grid ((j nx + i) words + word) */
 #define CAO_BINDING_LA_SOLIDS 1   /* storage: uint, the solids' grid (flag 2), planned as the lines' */
@@ -399,6 +445,9 @@ static_assert(sizeof(FrameParams) == 13 * 16, "FrameParams must match std140");
 static_assert(sizeof(LineAOParams) == 4 * 16, "LineAOParams must match std140");
 static_assert(sizeof(LineAOPixel) == 4 * 16, "LineAOPixel must match std430");
 static_assert(sizeof(LineVoxelizeParams) == 3 * 16, "LineVoxelizeParams must match std140");
+static_assert(sizeof(LineGridMap) == 4 * 32, "LineGridMap must match std140");
+static_assert(sizeof(LineGBufferParams) == 14 * 32 + 2 * 16, "LineGBufferParams must match std140");
+static_assert(sizeof(LineRay) == 3 * 32, "LineRay must match std430");
 static_assert(sizeof(DMTriangle) == 128, "DMTriangle must match std430");
 static_assert(sizeof(DMHit) == 16, "DMHit must match std430");
 static_assert(sizeof(DMOffset) == 16, "DMOffset must match std430");

@@ -417,33 +417,132 @@ bool CastLinePrimary(const CapsuleBVH& tubes, const PixelCamera& camera, LineFra
   return true;
 }
 
-bool LineFrameFromDepth(const CapsuleBVH& lines, const PixelCamera& camera,
-  const std::vector<float>& depth, double reachPixels, bool tubes,
-  const std::vector<unsigned char>* skip, LineFrame& frame, std::string& error,
-  const std::vector<LineDrawing>* drawings, const std::vector<std::int32_t>* segmentDrawing)
+namespace
+{
+/// A drawn pixel's ray (LineFrameFromDepth): from its near-plane point `o`
+/// along unit `v`; the drawn point, its distance along the ray, the pixel's
+/// footprint there (its neighbours' points at the same depth), and how far
+/// behind it a line may lie (the widest depth slack; at most
+/// MaximumDepthSlack footprints: near the far plane a window depth step is
+/// a long way in the world).
+struct DrawnRay
+{
+  Vec3 o, v, drawn;
+  double footprint = 0.0, tDrawn = 0.0, behind = 0.0;
+};
+bool DrawnRayOf(const PixelCamera& camera, int i, int j, double d, double widestSlack, DrawnRay& r)
+{
+  const int w = camera.width, h = camera.height;
+  double nearPoint[3], rayDirection[3], length = 0.0;
+  if (!PixelRay(camera, i, j, nearPoint, rayDirection, length))
+    return false;
+  const double x = (i + 0.5) / w * 2.0 - 1.0, y = (j + 0.5) / h * 2.0 - 1.0, z = 2.0 * d - 1.0;
+  double p[3], px[3], py[3], pHi[3];
+  if (!NDCToWorld(camera, x, y, z, p) || !NDCToWorld(camera, x + 2.0 / w, y, z, px) ||
+    !NDCToWorld(camera, x, y + 2.0 / h, z, py) ||
+    !NDCToWorld(camera, x, y, 2.0 * std::min(1.0, d + widestSlack) - 1.0, pHi))
+    return false;
+  r.drawn = LoadVec3(p);
+  r.o = LoadVec3(nearPoint);
+  r.v = LoadVec3(rayDirection);
+  r.footprint = std::max(glm::length(LoadVec3(px) - r.drawn), glm::length(LoadVec3(py) - r.drawn));
+  r.tDrawn = glm::dot(r.drawn - r.o, r.v);
+  r.behind = std::max(0.0,
+    std::min(glm::dot(LoadVec3(pHi) - r.o, r.v), r.tDrawn + MaximumDepthSlack * r.footprint) - r.tDrawn);
+  return true;
+}
+
+/// Segment [a, b] against a drawn pixel's ray, as drawn by `own`: the
+/// segment's point nearest the ray (parameter s, at t along the ray,
+/// `distance` across it), whether it is a candidate (within its reach of
+/// the ray, from a reach in front of the drawn depth to its depth slack
+/// behind it) and whether it covers the pixel (within its drawn half width
+/// and half a pixel's diagonal: LineCoverSlack).
+struct Candidate
+{
+  double s = 0.0, t = 0.0, distance = 0.0;
+  bool covers = false;
+};
+bool Evaluate(const DrawnRay& r, const Vec3& va, const Vec3& vb, const LineDrawing& own, double widestSlack,
+  Candidate& c)
+{
+  const Vec3 u = vb - va;
+  const double C = glm::dot(u, u), B = glm::dot(r.v, u);
+  const Vec3 w0 = r.o - va;
+  double s = 0.0;
+  const double denominator = C - B * B; // |v| = 1
+  if (C > 0.0 && denominator > 1e-12 * C)
+    s = (glm::dot(u, w0) - B * glm::dot(r.v, w0)) / denominator;
+  else if (C > 0.0) // (nearly) along the ray: the segment's point at the drawn depth
+    s = glm::dot(r.drawn - va, u) / C;
+  c.s = std::min(1.0, std::max(0.0, s));
+  const Vec3 q = va + c.s * u;
+  c.t = glm::dot(q - r.o, r.v);
+  c.distance = glm::length(r.o + c.t * r.v - q);
+  const double reach = own.reachPixels * r.footprint;
+  const double slack = widestSlack > 0.0 ? r.behind * (own.depthSlack / widestSlack) : 0.0;
+  c.covers = c.distance <= (own.halfWidthPixels + LineCoverSlack) * r.footprint;
+  return c.distance <= reach && c.t >= r.tDrawn - reach && c.t <= r.tDrawn + slack + reach;
+}
+
+/// Pixel `index`'s G-buffer entries for segment [va, vb] chosen at (s, t):
+/// with drawings, where the ray enters the capsule of the drawn half width
+/// (caps included); a flat line, or a ray missing it: its point nearest the
+/// axis. Without, the drawn point.
+void WriteDrawnPixel(LineFrame& frame, std::size_t index, const DrawnRay& r, std::int64_t segment,
+  const Vec3& va, const Vec3& vb, const LineDrawing& own, double s, double t, bool drawings)
+{
+  const Vec3 axisPoint = va + s * (vb - va);
+  Vec3 tangent = vb - va;
+  DivideByLength(tangent);
+  Vec3 position = r.drawn, normal(0.0);
+  if (drawings)
+  {
+    position = r.o + t * r.v;
+    const double radius = own.halfWidthPixels * r.footprint;
+    double entry = 0.0, exit = 0.0;
+    if (own.tubes && CapsuleInterval(r.o, r.v, va, vb, radius * radius, entry, exit) && exit > 0.0)
+      position = r.o + std::max(0.0, entry) * r.v;
+  }
+  // A tube's point off its axis (by more than half a pixel) has its
+  // surface's normal; a flat line's, or one on the axis, none (0).
+  if (own.tubes)
+  {
+    const Vec3 ab = vb - va;
+    const double along = glm::dot(ab, ab) > 0.0
+      ? std::min(1.0, std::max(0.0, glm::dot(position - va, ab) / glm::dot(ab, ab)))
+      : 0.0;
+    normal = position - (va + along * ab);
+    if (!(glm::length(normal) > 0.5 * r.footprint) || !(DivideByLength(normal) > 0.0))
+      normal = Vec3(0.0);
+  }
+  frame.segment[index] = segment;
+  frame.depth[index] = glm::length(position - r.o);
+  StoreVec3(position, &frame.position[3 * index]);
+  StoreVec3(normal, &frame.normal[3 * index]);
+  StoreVec3(tangent, &frame.tangent[3 * index]);
+  StoreVec3(axisPoint, &frame.axis[3 * index]);
+  StoreVec3(r.v, &frame.view[3 * index]);
+}
+
+}
+
+bool CheckLineFrameFromDepth(std::int64_t segments, const PixelCamera& camera, const std::vector<float>& depth,
+  double& reachPixels, const std::vector<unsigned char>* skip, const std::vector<LineDrawing>* drawings,
+  const std::vector<std::int32_t>* segmentDrawing, double& widestSlack, std::string& error)
 {
   error = CheckPixelCamera(camera);
   if (!error.empty())
     return false;
-  const int w = camera.width, h = camera.height;
-  const std::size_t pixels = static_cast<std::size_t>(w) * h;
+  const std::size_t pixels = static_cast<std::size_t>(camera.width) * camera.height;
   if (depth.size() != pixels || (skip && skip->size() != pixels))
-  {
-    error = "the depth buffer (or the pixels to skip) does not match the image size";
-    return false;
-  }
-  if (drawings && (!segmentDrawing || segmentDrawing->size() != static_cast<std::size_t>(lines.NumberOfSegments())))
-  {
-    error = "the segments' drawings do not match the segments";
-    return false;
-  }
+    return error = "the depth buffer (or the pixels to skip) does not match the image size", false;
+  if (drawings && (!segmentDrawing || segmentDrawing->size() != static_cast<std::size_t>(segments)))
+    return error = "the segments' drawings do not match the segments", false;
   if (drawings)
     for (std::int32_t d : *segmentDrawing)
       if (d < 0 || static_cast<std::size_t>(d) >= drawings->size())
-      {
-        error = "a segment's drawing is out of range";
-        return false;
-      }
+        return error = "a segment's drawing is out of range", false;
   if (drawings)
     for (const LineDrawing& d : *drawings)
       reachPixels = std::max(reachPixels, d.reachPixels);
@@ -455,147 +554,136 @@ bool LineFrameFromDepth(const CapsuleBVH& lines, const PixelCamera& camera,
     error = text;
     return false;
   }
+  widestSlack = 0.0;
+  if (drawings)
+    for (const LineDrawing& d : *drawings)
+      widestSlack = std::max(widestSlack, d.depthSlack);
+  else
+    widestSlack = LineDrawing().depthSlack;
+  return true;
+}
+
+bool LineFrameFromDepth(const CapsuleBVH& lines, const PixelCamera& camera,
+  const std::vector<float>& depth, double reachPixels, bool tubes,
+  const std::vector<unsigned char>* skip, LineFrame& frame, std::string& error,
+  const std::vector<LineDrawing>* drawings, const std::vector<std::int32_t>* segmentDrawing)
+{
+  double widestSlack = 0.0;
+  if (!CheckLineFrameFromDepth(lines.NumberOfSegments(), camera, depth, reachPixels, skip, drawings, segmentDrawing,
+        widestSlack, error))
+    return false;
+  const int w = camera.width;
+  const std::size_t pixels = static_cast<std::size_t>(w) * camera.height;
   // Without drawings, one for every segment from the arguments.
   LineDrawing only;
   only.reachPixels = reachPixels;
   only.halfWidthPixels = std::max(0.5, reachPixels - 1.0);
   only.tubes = tubes;
-  double widestSlack = 0.0;
-  if (drawings)
-    for (const LineDrawing& d : *drawings)
-      widestSlack = std::max(widestSlack, d.depthSlack);
-  else
-    widestSlack = only.depthSlack;
   ResetLineFrame(camera, frame);
   ParallelFor(pixels, 0, [&](std::size_t index) {
     const double d = depth[index];
     if (!(d >= 0.0 && d < 1.0) || (skip && (*skip)[index]))
       return;
-    const int i = static_cast<int>(index % w), j = static_cast<int>(index / w);
-    double nearPoint[3], rayDirection[3], length = 0.0;
-    if (!PixelRay(camera, i, j, nearPoint, rayDirection, length))
+    DrawnRay r;
+    if (!DrawnRayOf(camera, static_cast<int>(index % w), static_cast<int>(index / w), d, widestSlack, r))
       return;
-    // The drawn point, the pixel's footprint there (its neighbours' points
-    // at the same depth), and how far behind it the line may lie (the
-    // widest depth slack; at most MaximumDepthSlack footprints: near the far
-    // plane a window depth step is a long way in the world).
-    const double x = (i + 0.5) / w * 2.0 - 1.0, y = (j + 0.5) / h * 2.0 - 1.0, z = 2.0 * d - 1.0;
-    double p[3], px[3], py[3], pHi[3];
-    if (!NDCToWorld(camera, x, y, z, p) || !NDCToWorld(camera, x + 2.0 / w, y, z, px) ||
-      !NDCToWorld(camera, x, y + 2.0 / h, z, py) ||
-      !NDCToWorld(camera, x, y, 2.0 * std::min(1.0, d + widestSlack) - 1.0, pHi))
-      return;
-    const Vec3 drawn = LoadVec3(p), o = LoadVec3(nearPoint), v = LoadVec3(rayDirection);
-    const double footprint =
-      std::max(glm::length(LoadVec3(px) - drawn), glm::length(LoadVec3(py) - drawn));
-    const double tDrawn = glm::dot(drawn - o, v);
-    const double behind = std::max(0.0,
-      std::min(glm::dot(LoadVec3(pHi) - o, v), tDrawn + MaximumDepthSlack * footprint) - tDrawn);
     // (the footprint grows along the stretch: twice the reach around it)
-    const double reachAround = 2.0 * reachPixels * footprint;
+    const double reachAround = 2.0 * reachPixels * r.footprint;
     double centre[3];
-    StoreVec3(o + (tDrawn + 0.5 * behind) * v, centre);
+    StoreVec3(r.o + (r.tDrawn + 0.5 * r.behind) * r.v, centre);
     // Of the segments within their reach of the ray, from a reach in front
     // of the drawn depth (a tube's axis lies behind its drawn surface; a
     // line further in front would have been drawn over this pixel) to their
     // depth slack behind it (a renderer's offset only brings lines nearer):
-    // those covering the pixel (within their drawn half width and half a
-    // pixel's diagonal) before the others, then the frontmost, as the depth
-    // test chose; of those passing beside, the nearest the ray.
+    // those covering the pixel before the others, then the frontmost, as
+    // the depth test chose; of those passing beside, the nearest the ray.
     std::int64_t best = -1;
     bool bestCovers = false;
     double bestDistance = 0.0, bestT = 0.0, bestS = 0.0;
-    lines.Near(centre, 0.5 * behind + reachAround, [&](std::int64_t segment, const double* a, const double* b) {
+    lines.Near(centre, 0.5 * r.behind + reachAround, [&](std::int64_t segment, const double* a, const double* b) {
       const LineDrawing& own = drawings
         ? (*drawings)[static_cast<std::size_t>((*segmentDrawing)[static_cast<std::size_t>(segment)])]
         : only;
-      const Vec3 va = LoadVec3(a), u = LoadVec3(b) - va;
-      const double C = glm::dot(u, u), B = glm::dot(v, u);
-      const Vec3 w0 = o - va;
-      double s = 0.0;
-      const double denominator = C - B * B; // |v| = 1
-      if (C > 0.0 && denominator > 1e-12 * C)
-        s = (glm::dot(u, w0) - B * glm::dot(v, w0)) / denominator;
-      else if (C > 0.0) // (nearly) along the ray: the segment's point at the drawn depth
-        s = glm::dot(drawn - va, u) / C;
-      s = std::min(1.0, std::max(0.0, s));
-      const Vec3 q = va + s * u;
-      const double t = glm::dot(q - o, v);
-      const double distance = glm::length(o + t * v - q);
-      const double reach = own.reachPixels * footprint;
+      const Vec3 va = LoadVec3(a), vb = LoadVec3(b);
       if (!drawings)
       {
         // An exact depth (a cast's): the segment nearest the drawn point.
-        const Vec3 ab = LoadVec3(b) - va;
-        const double along = C > 0.0 ? std::min(1.0, std::max(0.0, glm::dot(drawn - va, ab) / C)) : 0.0;
-        const double near = glm::length(drawn - (va + along * ab));
-        if (!(near <= reach) || (best >= 0 && (near > bestDistance || (near == bestDistance && segment > best))))
+        const Vec3 ab = vb - va;
+        const double C = glm::dot(ab, ab);
+        const double along = C > 0.0 ? std::min(1.0, std::max(0.0, glm::dot(r.drawn - va, ab) / C)) : 0.0;
+        const double near = glm::length(r.drawn - (va + along * ab));
+        if (!(near <= own.reachPixels * r.footprint) ||
+          (best >= 0 && (near > bestDistance || (near == bestDistance && segment > best))))
           return;
         best = segment;
         bestDistance = near;
-        bestT = glm::dot(va + along * ab - o, v);
+        bestT = glm::dot(va + along * ab - r.o, r.v);
         bestS = along;
         return;
       }
-      const double slack = widestSlack > 0.0 ? behind * (own.depthSlack / widestSlack) : 0.0;
-      if (!(distance <= reach) || !(t >= tDrawn - reach) || !(t <= tDrawn + slack + reach))
+      Candidate c;
+      if (!Evaluate(r, va, vb, own, widestSlack, c))
         return;
-      const bool covers = distance <= (own.halfWidthPixels + 0.71) * footprint;
-      bool better = best < 0 || (covers && !bestCovers);
-      if (!better && covers == bestCovers)
+      bool better = best < 0 || (c.covers && !bestCovers);
+      if (!better && c.covers == bestCovers)
       {
-        const double mine = covers ? t : distance, theirs = covers ? bestT : bestDistance;
+        const double mine = c.covers ? c.t : c.distance, theirs = c.covers ? bestT : bestDistance;
         better = mine < theirs || (mine == theirs && segment < best);
       }
       if (!better)
         return;
       best = segment;
-      bestCovers = covers;
-      bestDistance = distance;
-      bestT = t;
-      bestS = s;
+      bestCovers = c.covers;
+      bestDistance = c.distance;
+      bestT = c.t;
+      bestS = c.s;
     });
     if (best < 0)
       return;
     double a[3], b[3];
     lines.Segment(best, a, b);
-    const Vec3 va = LoadVec3(a), vb = LoadVec3(b);
-    const Vec3 axisPoint = va + bestS * (vb - va);
-    Vec3 tangent = vb - va;
-    DivideByLength(tangent);
     const LineDrawing& own =
       drawings ? (*drawings)[static_cast<std::size_t>((*segmentDrawing)[static_cast<std::size_t>(best)])] : only;
-    Vec3 position = drawn, normal(0.0);
-    if (drawings)
-    {
-      // Where the ray enters the capsule of the drawn half width (caps
-      // included); a flat line, or a ray missing it: its point nearest the
-      // axis.
-      position = o + bestT * v;
-      const double radius = own.halfWidthPixels * footprint;
-      double entry = 0.0, exit = 0.0;
-      if (own.tubes && CapsuleInterval(o, v, va, vb, radius * radius, entry, exit) && exit > 0.0)
-        position = o + std::max(0.0, entry) * v;
-    }
-    // A tube's point off its axis (by more than half a pixel) has its
-    // surface's normal; a flat line's, or one on the axis, none (0).
-    if (own.tubes)
-    {
-      const Vec3 ab = vb - va;
-      const double along = glm::dot(ab, ab) > 0.0
-        ? std::min(1.0, std::max(0.0, glm::dot(position - va, ab) / glm::dot(ab, ab)))
-        : 0.0;
-      normal = position - (va + along * ab);
-      if (!(glm::length(normal) > 0.5 * footprint) || !(DivideByLength(normal) > 0.0))
-        normal = Vec3(0.0);
-    }
-    frame.segment[index] = best;
-    frame.depth[index] = glm::length(position - o);
-    StoreVec3(position, &frame.position[3 * index]);
-    StoreVec3(normal, &frame.normal[3 * index]);
-    StoreVec3(tangent, &frame.tangent[3 * index]);
-    StoreVec3(axisPoint, &frame.axis[3 * index]);
-    StoreVec3(v, &frame.view[3 * index]);
+    WriteDrawnPixel(frame, index, r, best, LoadVec3(a), LoadVec3(b), own, bestS, bestT, drawings != nullptr);
+  });
+  frame.covered = std::count_if(frame.segment.begin(), frame.segment.end(),
+    [](std::int64_t s) { return s >= 0; });
+  return true;
+}
+
+bool LineFrameOfSegments(const std::vector<double>& points, const std::vector<std::int64_t>& segments,
+  const PixelCamera& camera, const std::vector<float>& depth, const std::vector<LineDrawing>& drawings,
+  const std::vector<std::int32_t>& segmentDrawing, const std::vector<std::int64_t>& chosen, LineFrame& frame,
+  std::string& error)
+{
+  double reachPixels = 0.0, widestSlack = 0.0;
+  const std::int64_t count = static_cast<std::int64_t>(segments.size() / 2);
+  if (!CheckLineFrameFromDepth(count, camera, depth, reachPixels, nullptr, &drawings, &segmentDrawing, widestSlack, error))
+    return false;
+  const int w = camera.width;
+  const std::size_t pixels = static_cast<std::size_t>(w) * camera.height;
+  if (chosen.size() != pixels)
+    return error = "the chosen segments do not match the image size", false;
+  for (std::int64_t s : chosen)
+    if (s >= count)
+      return error = "a chosen segment is out of range", false;
+  for (std::int64_t id : segments)
+    if (id < 0 || static_cast<std::size_t>(3 * id + 2) >= points.size())
+      return error = "a segment's point is out of range", false;
+  ResetLineFrame(camera, frame);
+  ParallelFor(pixels, 0, [&](std::size_t index) {
+    const std::int64_t s = chosen[index];
+    const double d = depth[index];
+    DrawnRay r;
+    if (s < 0 || !(d >= 0.0 && d < 1.0) ||
+      !DrawnRayOf(camera, static_cast<int>(index % w), static_cast<int>(index / w), d, widestSlack, r))
+      return;
+    const Vec3 va = LoadVec3(&points[3 * static_cast<std::size_t>(segments[2 * s])]);
+    const Vec3 vb = LoadVec3(&points[3 * static_cast<std::size_t>(segments[2 * s + 1])]);
+    const LineDrawing& own = drawings[static_cast<std::size_t>(segmentDrawing[static_cast<std::size_t>(s)])];
+    Candidate c;
+    Evaluate(r, va, vb, own, widestSlack, c); // (chosen elsewhere: its point whatever the test says)
+    WriteDrawnPixel(frame, index, r, s, va, vb, own, c.s, c.t, true);
   });
   frame.covered = std::count_if(frame.segment.begin(), frame.segment.end(),
     [](std::int64_t s) { return s >= 0; });

@@ -169,12 +169,32 @@ struct LineDrawing
 };
 /// The depth slack's bound in pixel footprints each way along the ray.
 constexpr double MaximumDepthSlack = 64.0;
+/// A segment covers a drawn pixel within its drawn half width plus this
+/// (pixel footprints: half a pixel's diagonal).
+constexpr double LineCoverSlack = 0.71;
 bool LineFrameFromDepth(const CapsuleBVH& lines, const PixelCamera& camera,
   const std::vector<float>& depth, double reachPixels, bool tubes,
   const std::vector<unsigned char>* skip, LineFrame& frame, std::string& error,
   const std::vector<LineDrawing>* drawings = nullptr, const std::vector<std::int32_t>* segmentDrawing = nullptr);
 /// LineFrameFromDepth's largest reach, in pixels.
 constexpr double MaximumReach = 256.0;
+/// LineFrameFromDepth's checks of its arguments (`segments` of them), with
+/// the reason; `reachPixels` made the drawings' widest, and the widest
+/// depth slack.
+bool CheckLineFrameFromDepth(std::int64_t segments, const PixelCamera& camera, const std::vector<float>& depth,
+  double& reachPixels, const std::vector<unsigned char>* skip, const std::vector<LineDrawing>* drawings,
+  const std::vector<std::int32_t>* segmentDrawing, double& widestSlack, std::string& error);
+/// The line G-buffer LineFrameFromDepth writes with drawings, of segments
+/// chosen elsewhere (`chosen`: per pixel a segment, or -1; the GPU's
+/// search, cao::gl::LineAOEngine::FrameFromDepth): each chosen pixel's
+/// entries as LineFrameFromDepth writes them for that segment. `points`
+/// and `segments` as cao::LineSegments. False with the reason on what
+/// LineFrameFromDepth refuses, or chosen segments of another size or out of
+/// range.
+bool LineFrameOfSegments(const std::vector<double>& points, const std::vector<std::int64_t>& segments,
+  const PixelCamera& camera, const std::vector<float>& depth, const std::vector<LineDrawing>& drawings,
+  const std::vector<std::int32_t>& segmentDrawing, const std::vector<std::int64_t>& chosen, LineFrame& frame,
+  std::string& error);
 
 /// The reference AO (caoAOReference.h) of every covered pixel of `frame`
 /// at its surface point and normal, against `scene` (the tubes, or the

@@ -4,6 +4,7 @@
 #include "caoVectorMath.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -14,7 +15,6 @@ namespace
 {
 constexpr double Pi = 3.14159265358979323846;
 constexpr int SampleSets = 16;
-constexpr double HalfVoxelDiagonal = 0.8660254037844386;
 /// The mean area a unit cube projects along a random direction (Cauchy:
 /// a quarter of its surface): a thin line's supercover per unit length.
 constexpr double SupercoverArea = 1.5;
@@ -138,19 +138,57 @@ bool ParseLineAOHemisphere(const std::string& text, LineAOHemisphere& hemisphere
   return false;
 }
 
+namespace
+{
+/// body(first, last) over [0, count) in fixed blocks of 1 024, on the
+/// CPU's threads (ParallelFor hands out 64 blocks at a time: a million
+/// items keep 16 threads busy); a block's index is first / 1 024 (results
+/// kept per block and combined in block order do not depend on the thread
+/// count).
+constexpr std::size_t BlockSize = 1024;
+template <typename Body>
+void ForBlocks(std::size_t count, Body body)
+{
+  ParallelFor((count + BlockSize - 1) / BlockSize, 0,
+    [&](std::size_t b) { body(b * BlockSize, std::min(count, (b + 1) * BlockSize)); });
+}
+std::size_t Blocks(std::size_t count)
+{
+  return (count + BlockSize - 1) / BlockSize;
+}
+}
+
 std::string LineSegments::Validate() const
 {
   if (this->points.size() % 3 != 0)
     return "the line points are not x, y, z triples";
   if (this->segments.size() % 2 != 0)
     return "the segments are not pairs of point ids";
-  for (double c : this->points)
-    if (!std::isfinite(c))
-      return "a line point has a NaN or infinite coordinate";
   const std::int64_t n = static_cast<std::int64_t>(this->points.size() / 3);
-  for (std::int64_t id : this->segments)
-    if (id < 0 || id >= n)
-      return "a segment's point id " + std::to_string(id) + " is outside 0.." + std::to_string(n - 1);
+  // (Both scans on the CPU's threads; the first bad one found again in order.)
+  std::atomic<bool> notFinite{ false }, outside{ false };
+  ForBlocks(this->points.size(), [&](std::size_t first, std::size_t last) {
+    for (std::size_t i = first; i < last; ++i)
+      if (!std::isfinite(this->points[i]))
+      {
+        notFinite = true;
+        return;
+      }
+  });
+  if (notFinite)
+    return "a line point has a NaN or infinite coordinate";
+  ForBlocks(this->segments.size(), [&](std::size_t first, std::size_t last) {
+    for (std::size_t i = first; i < last; ++i)
+      if (this->segments[i] < 0 || this->segments[i] >= n)
+      {
+        outside = true;
+        return;
+      }
+  });
+  if (outside)
+    for (std::int64_t id : this->segments)
+      if (id < 0 || id >= n)
+        return "a segment's point id " + std::to_string(id) + " is outside 0.." + std::to_string(n - 1);
   return std::string();
 }
 
@@ -169,14 +207,27 @@ bool PlanLineGrid(const LineSegments& lines, const double right[3], const double
   frame.axes = axes;
   std::array<double, 6> b{ { 0, 0, 0, 0, 0, 0 } };
   bool any = false;
-  for (std::int64_t id : lines.segments)
+  // (Each block's bounds on the CPU's threads, then all of them.)
+  std::vector<std::array<double, 6>> blockBounds(Blocks(lines.segments.size()));
+  ForBlocks(lines.segments.size(), [&](std::size_t first, std::size_t last) {
+    std::array<double, 6>& c = blockBounds[first / BlockSize];
+    for (std::size_t i = first; i < last; ++i)
+    {
+      double g[3];
+      frame.ToGrid(&lines.points[3 * static_cast<std::size_t>(lines.segments[i])], g);
+      for (int d = 0; d < 3; ++d)
+      {
+        c[2 * d] = i > first ? std::min(c[2 * d], g[d]) : g[d];
+        c[2 * d + 1] = i > first ? std::max(c[2 * d + 1], g[d]) : g[d];
+      }
+    }
+  });
+  for (const std::array<double, 6>& c : blockBounds)
   {
-    double g[3];
-    frame.ToGrid(&lines.points[3 * static_cast<std::size_t>(id)], g);
     for (int d = 0; d < 3; ++d)
     {
-      b[2 * d] = any ? std::min(b[2 * d], g[d]) : g[d];
-      b[2 * d + 1] = any ? std::max(b[2 * d + 1], g[d]) : g[d];
+      b[2 * d] = any ? std::min(b[2 * d], c[2 * d]) : c[2 * d];
+      b[2 * d + 1] = any ? std::max(b[2 * d + 1], c[2 * d + 1]) : c[2 * d + 1];
     }
     any = true;
   }
@@ -210,17 +261,26 @@ std::string CheckVoxelizeLines(const LineSegments& lines, double tubeRadius, con
   const int dims[3] = { grid.nx, grid.ny, grid.slices };
   // The voxels the pieces' boxes visit, bounded before any is: a tube far
   // wider than the grid's voxels would otherwise visit the grid per piece.
-  double visits = 0.0;
   const double side = LinePieceLength + 2.0 * rho + 3.0;
   const double perPiece = std::min(side * side * side, static_cast<double>(dims[0]) * dims[1] * dims[2]);
-  for (std::size_t s = 0; s + 1 < lines.segments.size(); s += 2)
-  {
-    const double* a = &lines.points[3 * static_cast<std::size_t>(lines.segments[s])];
-    const double* b = &lines.points[3 * static_cast<std::size_t>(lines.segments[s + 1])];
-    const double length = std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
-      (a[2] - b[2]) * (a[2] - b[2])) / grid.voxel;
-    visits += std::max(1.0, std::ceil(length / LinePieceLength)) * perPiece;
-  }
+  // (Each block of segments summed on the CPU's threads, then the blocks in order.)
+  const std::size_t count = lines.segments.size() / 2;
+  std::vector<double> blockVisits(Blocks(count), 0.0);
+  ForBlocks(count, [&](std::size_t first, std::size_t last) {
+    double sum = 0.0;
+    for (std::size_t s = first; s < last; ++s)
+    {
+      const double* a = &lines.points[3 * static_cast<std::size_t>(lines.segments[2 * s])];
+      const double* b = &lines.points[3 * static_cast<std::size_t>(lines.segments[2 * s + 1])];
+      const double length = std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+        (a[2] - b[2]) * (a[2] - b[2])) / grid.voxel;
+      sum += std::max(1.0, std::ceil(length / LinePieceLength)) * perPiece;
+    }
+    blockVisits[first / BlockSize] = sum;
+  });
+  double visits = 0.0;
+  for (double v : blockVisits)
+    visits += v;
   if (visits > MaximumVoxelVisits)
     return "voxelizing these lines would visit about " + std::to_string(static_cast<long long>(visits)) +
       " voxels (the tube radius " + std::to_string(tubeRadius) + " is " + std::to_string(rho) +
@@ -340,7 +400,7 @@ LineHalfBall LineHalfBallAt(const BitGrid& grid, const LineAOSettings& settings,
     // a thin tube's supercover (half a voxel diagonal from the axis).
     centre = ToVoxels(grid, surface);
     w = Normalized(ToGridDirection(grid, normal));
-    base = std::max(0.0, HalfVoxelDiagonal - rho);
+    base = std::max(0.0, LineHalfVoxelDiagonal - rho);
   }
   else
   {
@@ -353,7 +413,7 @@ LineHalfBall LineHalfBallAt(const BitGrid& grid, const LineAOSettings& settings,
     if (!(glm::length(w) > 1e-9))
       w = glm::cross(T, std::fabs(T.x) < 0.6 ? Vec3(1, 0, 0) : Vec3(0, 1, 0));
     w = glm::normalize(w);
-    base = std::max(rho, HalfVoxelDiagonal);
+    base = std::max(rho, LineHalfVoxelDiagonal);
   }
   LineHalfBall ball;
   StoreVec3(centre, ball.centre);

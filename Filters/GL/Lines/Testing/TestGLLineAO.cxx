@@ -19,12 +19,26 @@
 //   with the CPU's within the bound above; control: the CPU with a tube a
 //   quarter voxel wider differs by more; a NaN tube radius is refused with
 //   the CPU's reason, a grid of another plan is not taken for the GPU's;
+//   the lines uploaded once (SetLines) and mapped to voxels on the GPU
+//   give the host-mapped grid's bits (within the same bound);
+// - the G-buffer on the GPU (LineAOEngine::FrameFromDepth) against
+//   cao::LineFrameFromDepth then cao::LineAOFrame, on the drawn depth of the
+//   capsules (the cast's depth, the lines in two drawings: tubes 2.5 pixels
+//   wide and flat lines 1 pixel wide, depth slacks 2e-4 and 3e-5), a
+//   quarter of the pixels skipped (another kind's) and a square drawn with
+//   no line near: the same covered pixels, the same segment on at least
+//   99.5% of them (two candidates may tie within a float's precision of
+//   their rank; llvmpipe: all), the AO within the prisms' bound, and
+//   cao::LineFrameOfSegments of the GPU's segments equal to the CPU's
+//   G-buffer where the segment is the same; controls: the CPU with every
+//   drawing flat, and with the skipped pixels drawn, miss those bounds;
 // - bad input, refused with the reason as the CPU refuses it: a G-buffer of
 //   the wrong size, a grid never voxelized, solids planned otherwise, bad
 //   settings.
 // With "time" on the command line it also prints the GPU's and the CPU's
 // time at 1024 x 768 and 1920 x 1080 (a table; no assertion).
 #include "caoLineAOGL.h"
+#include "caoLineTestScenes.h"
 #include "caoGLTestUtilities.h"
 #include "caoSurfaceTestScenes.h"
 #include "caoTestUtilities.h"
@@ -162,6 +176,55 @@ cao::BitGrid Solids(const cao::BitGrid& grid)
   return s;
 }
 
+/// The drawn lines of the G-buffer case: even lines as tubes 2.5 pixels
+/// wide, odd ones flat 1 pixel wide (40 segments a line).
+struct Drawn
+{
+  std::vector<cao::LineDrawing> drawings;
+  std::vector<std::int32_t> segmentDrawing;
+  std::vector<unsigned char> skip;
+  std::vector<float> depth;
+  cao::PixelCamera camera;
+  cao::CapsuleBVH nearest;
+};
+bool MakeDrawn(Scene& scene, int w, int h, Drawn& d, std::string& error)
+{
+  cao::LineDrawing tubes, flat;
+  tubes.tubes = true;
+  tubes.halfWidthPixels = 1.25;
+  tubes.reachPixels = 2.25;
+  tubes.depthSlack = 2e-4;
+  flat.halfWidthPixels = 0.5;
+  flat.reachPixels = 1.5;
+  flat.depthSlack = 3e-5;
+  d.drawings = { tubes, flat };
+  d.segmentDrawing.resize(static_cast<std::size_t>(scene.lines.NumberOfSegments()));
+  for (std::size_t s = 0; s < d.segmentDrawing.size(); ++s)
+    d.segmentDrawing[s] = static_cast<std::int32_t>((s / 40) % 2);
+  RightUp(scene.eye, scene.at, scene.right, scene.up);
+  d.camera = caotest::LookAt(w, h, scene.eye, scene.at, 30.0, 0.5, 10.0);
+  // The depth: the tubes cast at 1.5 pixels' radius (about: 0.012 at 160 x 120).
+  cao::CapsuleBVH wide;
+  cao::LineFrame cast;
+  const double radius = scene.radius * 160.0 / w;
+  if (!wide.Build(scene.lines.points, scene.lines.segments, radius, error) ||
+    !cao::CastLinePrimary(wide, d.camera, cast, error))
+    return false;
+  d.depth = caotest::DrawnDepth(cast, d.camera);
+  if (d.depth.empty())
+    return error = "the camera does not invert", false;
+  // A square drawn with no line near, and a quarter of the pixels skipped.
+  for (int j = 0; j < h / 10; ++j)
+    for (int i = 0; i < w / 10; ++i)
+      d.depth[static_cast<std::size_t>(j) * w + i] = 0.3f;
+  d.skip.assign(d.depth.size(), 0);
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i)
+      d.skip[static_cast<std::size_t>(j) * w + i] = i >= w / 2 && j >= h / 2;
+  double diagonal = std::sqrt(3.0);
+  return d.nearest.Build(scene.lines.points, scene.lines.segments, 1e-9 * diagonal, error);
+}
+
 std::string Describe(const Agreement& a)
 {
   char text[200];
@@ -282,6 +345,19 @@ int TestGLLineAO(int argc, char* argv[])
         "0.1%%: voxels a segment grazes within float rounding); AO from the grid on the GPU: %s",
         c.name, static_cast<long long>(differ), static_cast<long long>(set), Describe(a).c_str());
       Check(set > 1000 && differ <= set / 1000 && Agrees(a), text);
+      // The same from the lines SetLines left on the GPU (their ends mapped
+      // to voxels there, in double): the host-mapped GPU grid's bits.
+      std::vector<std::int32_t> drawingOf(static_cast<std::size_t>(scene.lines.NumberOfSegments()), 0);
+      std::vector<std::uint32_t> worldBits;
+      CAO_CHECK(engine.SetLines(scene.lines, drawingOf, 11, error) &&
+          engine.Voxelize(planned, scene.lines, c.tube, ms, error, 11) && engine.ReadGrid(worldBits, error),
+        "%s: %s", c.name, error.c_str());
+      std::int64_t worldDiffer = 0;
+      for (std::size_t w = 0; w < gpuBits.size(); ++w)
+        worldDiffer += __builtin_popcount(gpuBits[w] ^ (w < worldBits.size() ? worldBits[w] : 0u));
+      Check(worldBits.size() == gpuBits.size() && worldDiffer <= set / 1000,
+        std::string("GPU voxelization of the lines on the GPU (mapped there), ") + c.name + ": " +
+          std::to_string(worldDiffer) + " bits differ from the host-mapped GPU grid's");
       if (c.tube > 0.0 && c.slices == 128 && c.tube < 0.02)
       {
         // Control: the CPU with a tube a quarter voxel wider misses the bound.
@@ -314,6 +390,79 @@ int TestGLLineAO(int argc, char* argv[])
     refused = !engine.Frame(moved, settings, f, ms, error);
     Check(refused && error.find("voxelized") != std::string::npos,
       "a grid of another plan than the one on the GPU is refused: " + error);
+  }
+
+  // The G-buffer on the GPU against the CPU's, then the AO of each.
+  {
+    Drawn d;
+    CAO_CHECK(MakeDrawn(scene, 160, 120, d, error), "%s", error.c_str());
+    cao::LineAOSettings settings;
+    settings.radius = 0.15;
+    settings.tubeRadius = scene.radius;
+    cao::BitGrid grid;
+    CAO_CHECK(scene.Grid(settings, scene.radius, grid, error), "%s", error.c_str());
+    cao::LineFrame cpu, gpu;
+    double ms[2] = { 0.0, 0.0 };
+    CAO_CHECK(cao::LineFrameFromDepth(d.nearest, d.camera, d.depth, 1.0, false, &d.skip, cpu, error, &d.drawings,
+                &d.segmentDrawing) && cao::LineAOFrame(grid, settings, cpu, error),
+      "%s", error.c_str());
+    CAO_CHECK(engine.FrameFromDepth(grid, settings, scene.lines, 1, d.drawings, d.segmentDrawing, d.camera, d.depth,
+                &d.skip, gpu, ms, error),
+      "%s", error.c_str());
+    std::int64_t both = 0, same = 0, onlyOne = 0;
+    for (std::size_t k = 0; k < cpu.segment.size(); ++k)
+    {
+      onlyOne += (cpu.segment[k] >= 0) != (gpu.segment[k] >= 0);
+      both += cpu.segment[k] >= 0 && gpu.segment[k] >= 0;
+      same += cpu.segment[k] >= 0 && gpu.segment[k] == cpu.segment[k];
+    }
+    // The CPU's G-buffer of the GPU's segments, where they are the CPU's.
+    cao::LineFrame filled;
+    CAO_CHECK(cao::LineFrameOfSegments(scene.lines.points, scene.lines.segments, d.camera, d.depth, d.drawings,
+                d.segmentDrawing, gpu.segment, filled, error),
+      "%s", error.c_str());
+    double worst = 0.0;
+    for (std::size_t k = 0; k < cpu.segment.size(); ++k)
+      if (cpu.segment[k] >= 0 && gpu.segment[k] == cpu.segment[k])
+        for (int c = 0; c < 3; ++c)
+          for (auto v : { &cao::LineFrame::position, &cao::LineFrame::normal, &cao::LineFrame::tangent,
+                 &cao::LineFrame::axis, &cao::LineFrame::view })
+            worst = std::max(worst, std::fabs((filled.*v)[3 * k + c] - (cpu.*v)[3 * k + c]));
+    const Agreement a = Compare(gpu, cpu);
+    char text[400];
+    std::snprintf(text, sizeof(text), "GPU G-buffer: %lld covered pixels on both, %lld on one only, the same segment on "
+      "%lld; LineFrameOfSegments of the GPU's segments off the CPU's G-buffer by %.1e; AO: %s (GPU %.2f ms + %.2f ms)",
+      static_cast<long long>(both), static_cast<long long>(onlyOne), static_cast<long long>(same), worst,
+      Describe(a).c_str(), ms[0], ms[1]);
+    Check(both > 1500 && onlyOne == 0 && same >= both - both / 200 && worst < 1e-12 && Agrees(a), text);
+    // Controls: the CPU with every drawing flat, and with the skipped pixels drawn.
+    std::vector<cao::LineDrawing> flat = d.drawings;
+    for (cao::LineDrawing& f : flat)
+      f.tubes = false;
+    cao::LineFrame control;
+    CAO_CHECK(cao::LineFrameFromDepth(d.nearest, d.camera, d.depth, 1.0, false, &d.skip, control, error, &flat,
+                &d.segmentDrawing) && cao::LineAOFrame(grid, settings, control, error),
+      "%s", error.c_str());
+    const Agreement b = Compare(gpu, control);
+    Check(!Agrees(b), "control, the CPU's G-buffer with every drawing flat: " + Describe(b));
+    CAO_CHECK(cao::LineFrameFromDepth(d.nearest, d.camera, d.depth, 1.0, false, nullptr, control, error, &d.drawings,
+                &d.segmentDrawing) && cao::LineAOFrame(grid, settings, control, error),
+      "%s", error.c_str());
+    const Agreement c = Compare(gpu, control);
+    Check(!Agrees(c), "control, the CPU's G-buffer with the skipped pixels drawn: " + Describe(c));
+    // Refused as the CPU refuses: a depth of another size, a drawing out of range.
+    std::vector<float> shortDepth(d.depth.begin(), d.depth.end() - 1);
+    cao::LineFrame f;
+    bool refused = !engine.FrameFromDepth(grid, settings, scene.lines, 1, d.drawings, d.segmentDrawing, d.camera,
+      shortDepth, nullptr, f, ms, error);
+    Check(refused && error.find("does not match") != std::string::npos,
+      "the GPU G-buffer refuses a depth of another size: " + error);
+    std::vector<std::int32_t> outOfRange = d.segmentDrawing;
+    outOfRange[3] = 7;
+    refused = !engine.FrameFromDepth(grid, settings, scene.lines, 0, d.drawings, outOfRange, d.camera, d.depth,
+      nullptr, f, ms, error); // (version 0: the lines uploaded again)
+    Check(refused && error.find("out of range") != std::string::npos,
+      "the GPU G-buffer refuses a drawing out of range: " + error);
   }
 
   // Bad input: refused with the CPU's reasons.
@@ -354,7 +503,9 @@ int TestGLLineAO(int argc, char* argv[])
     timing = timing || std::string(argv[i]) == "time";
   if (timing)
   {
-    std::printf("\n| image | covered pixels | GPU shader ms | GPU call ms | CPU ms (all threads) |\n|---|---:|---:|---:|---:|\n");
+    std::printf("\n| image | covered pixels | GPU shader ms | GPU call ms | CPU ms (all threads) | G-buffer + AO: GPU "
+                "shaders ms | GPU call ms | CPU G-buffer ms | CPU G-buffer + AO ms |\n"
+                "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     const int sizes[2][2] = { { 1024, 768 }, { 1920, 1080 } };
     for (const auto& s : sizes)
     {
@@ -373,10 +524,29 @@ int TestGLLineAO(int argc, char* argv[])
       auto t1 = std::chrono::steady_clock::now();
       CAO_CHECK(cao::LineAOFrame(grid, settings, cpu, error), "%s", error.c_str());
       auto t2 = std::chrono::steady_clock::now();
-      std::printf("| %d x %d | %lld | %.1f | %.1f | %.1f |\n", s[0], s[1],
+      // The G-buffer of the drawn depth too: on the GPU (FrameFromDepth,
+      // the segments uploaded by a first call) and on the CPU.
+      Drawn d;
+      CAO_CHECK(MakeDrawn(scene, s[0], s[1], d, error), "%s", error.c_str());
+      double gms[2] = { 0.0, 0.0 };
+      cao::LineFrame g, c;
+      CAO_CHECK(engine.FrameFromDepth(grid, settings, scene.lines, 2, d.drawings, d.segmentDrawing, d.camera, d.depth,
+                  &d.skip, g, gms, error), "%s", error.c_str());
+      auto t3 = std::chrono::steady_clock::now();
+      CAO_CHECK(engine.FrameFromDepth(grid, settings, scene.lines, 2, d.drawings, d.segmentDrawing, d.camera, d.depth,
+                  &d.skip, g, gms, error), "%s", error.c_str());
+      auto t4 = std::chrono::steady_clock::now();
+      CAO_CHECK(cao::LineFrameFromDepth(d.nearest, d.camera, d.depth, 1.0, false, &d.skip, c, error, &d.drawings,
+                  &d.segmentDrawing), "%s", error.c_str());
+      auto t5 = std::chrono::steady_clock::now();
+      CAO_CHECK(cao::LineAOFrame(grid, settings, c, error), "%s", error.c_str());
+      auto t6 = std::chrono::steady_clock::now();
+      auto since = [](std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
+        return std::chrono::duration<double, std::milli>(b - a).count();
+      };
+      std::printf("| %d x %d | %lld | %.1f | %.1f | %.1f | %.1f + %.1f | %.1f | %.1f | %.1f |\n", s[0], s[1],
         static_cast<long long>(std::count_if(frame.segment.begin(), frame.segment.end(), [](std::int64_t v) { return v >= 0; })),
-        ms, std::chrono::duration<double, std::milli>(t1 - t0).count(),
-        std::chrono::duration<double, std::milli>(t2 - t1).count());
+        ms, since(t0, t1), since(t1, t2), gms[0], gms[1], since(t3, t4), since(t4, t5), since(t4, t6));
     }
   }
   std::printf("%d failure(s)\n", failures);

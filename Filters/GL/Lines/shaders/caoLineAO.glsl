@@ -66,6 +66,11 @@ void main()
   if (k >= la.counts.y)
     return;
   LineAOPixel ball = balls[k];
+  if ((ball.pixel.y & 4) != 0)
+  {
+    ao[k] = uintBitsToFloat(0x7fc00000u); // (no line: NaN)
+    return;
+  }
   const vec3 centre = ball.centre.xyz, w = ball.plane.xyz, T = ball.tangent.xyz;
   const float base = ball.centre.w;
   const bool line = (ball.pixel.y & 1) != 0, cosine = (ball.pixel.y & 2) != 0;

@@ -4,17 +4,40 @@
 // box (grown by the tube radius and a voxel) is set when the piece passes
 // through its closed cube (the supercover) or its centre lies within the
 // tube radius of the piece, as the CPU twin decides it in double. The
-// host maps the ends to voxel units (grid frame, origin 0) in double.
+// host maps the ends to voxel units (grid frame, origin 0) in double, or
+// (CAO_LV_WORLD) this shader does, in double, from the world segments.
 layout(local_size_x = 64) in;
 
 layout(std140, binding = CAO_BINDING_LV_PARAMS) uniform LineVoxelizeBlock
 {
   LineVoxelizeParams lv;
 };
+#ifdef CAO_LV_WORLD
+// The world segments the G-buffer reads (two dvec4 a segment), mapped to
+// voxel units here in double as the host maps them (caoLineGridMap.glsl,
+// included before this file), then rounded to float.
+layout(std140, binding = CAO_BINDING_LV_MAP) uniform LineGridMapBlock
+{
+  LineGridMap map;
+};
+layout(std430, binding = CAO_BINDING_LV_ENDS) readonly buffer EndsBlock
+{
+  dvec4 worldEnds[];
+};
+vec3 End(int e)
+{
+  return vec3(GridVoxels(map, worldEnds[e].xyz));
+}
+#else
 layout(std430, binding = CAO_BINDING_LV_ENDS) readonly buffer EndsBlock
 {
   vec4 ends[];
 };
+vec3 End(int e)
+{
+  return ends[e].xyz;
+}
+#endif
 layout(std430, binding = CAO_BINDING_LV_BITS) buffer BitsBlock
 {
   uint bits[];
@@ -64,7 +87,7 @@ void main()
   const int segment = int(gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x + gl_GlobalInvocationID.x);
   if (segment >= lv.counts.x)
     return;
-  const vec3 a = ends[2 * segment].xyz, b = ends[2 * segment + 1].xyz;
+  const vec3 a = End(2 * segment), b = End(2 * segment + 1);
   const vec3 d = b - a;
   const float rho = lv.tube.x, rho2 = lv.tube.y;
   const ivec3 dims = lv.grid.xyz;

@@ -33,6 +33,7 @@
 // 2e-4) of the exact value. Negative control per check: the same estimate
 // (or hit, or count) must miss the value of a 2%-changed geometry.
 #include "caoCapsules.h"
+#include "caoLineTestScenes.h"
 #include "caoReferenceEstimate.h"
 #include "caoTestUtilities.h"
 
@@ -170,27 +171,16 @@ bool BruteForce(const Capsules& c, double r, const double o[3], const double d[3
   return segment >= 0;
 }
 
-/// The window depth (0..1; 1: background) a renderer would draw for
-/// `frame`'s surface points under `camera`, `offset` nearer the camera.
+/// caotest::DrawnDepth, a failure counted when the camera does not invert.
 std::vector<float> DrawnDepth(const cao::LineFrame& frame, const cao::PixelCamera& camera, double offset)
 {
-  double toNDC[16];
-  std::vector<float> depth(frame.segment.size(), 1.0f);
-  if (!cao::WorldToNDC(camera, toNDC))
+  std::vector<float> depth = caotest::DrawnDepth(frame, camera, offset);
+  if (depth.empty())
   {
     std::printf("FAIL: the camera does not invert\n");
     ++failures;
-    return depth;
+    depth.assign(frame.segment.size(), 1.0f);
   }
-  for (std::size_t k = 0; k < frame.segment.size(); ++k)
-    if (frame.segment[k] >= 0)
-    {
-      const double* x = &frame.position[3 * k];
-      double c[4];
-      for (int row = 0; row < 4; ++row)
-        c[row] = toNDC[4 * row] * x[0] + toNDC[4 * row + 1] * x[1] + toNDC[4 * row + 2] * x[2] + toNDC[4 * row + 3];
-      depth[k] = static_cast<float>(0.5 * (c[2] / c[3]) + 0.5 - offset);
-    }
   return depth;
 }
 
