@@ -180,9 +180,6 @@ std::vector<LineLight> LineLights(vtkRenderer* ren)
   return lights;
 }
 
-/// Pixel i of a flat line lit by `lights` (vtkContextualAOPass::LineShading):
-/// its drawn colour `rgba` times (a + (1 - a) Mallo) times `aoFactor`, plus
-/// Banks' specular, each light by its intensity.
 /// `text` fit for a JSON string of the frame report (quotes, backslashes
 /// and control characters become apostrophes).
 std::string JsonText(std::string text)
@@ -193,6 +190,9 @@ std::string JsonText(std::string text)
   return text;
 }
 
+/// Pixel i of a flat line lit by `lights` (vtkContextualAOPass::LineShading):
+/// its drawn colour `rgba` times (a + (1 - a) Mallo) times `aoFactor`, plus
+/// Banks' specular, each light by its intensity.
 void ShadeLinePixel(const vtkCAO::LineLook& look, const std::vector<LineLight>& lights,
   const cao::LineFrame& frame, std::size_t i, float aoFactor, float* rgba)
 {

@@ -26,6 +26,57 @@ namespace gl
 {
 namespace
 {
+/// The camera's largest angle between two neighbouring pixels' rays (at
+/// the image's centre, where a flat image's pixels subtend most; 0 for a
+/// parallel camera) and 1 / cos of the largest angle between a pixel's
+/// ray (the corners') and the view axis; false when a ray is degenerate.
+bool ScreenScale(const PixelCamera& camera, double& pixelAngle, double& oblique)
+{
+  const int w = camera.width, h = camera.height;
+  double o[3], axis[3], d[3], l = 0.0;
+  // The view axis: the ray through NDC (0, 0).
+  double nearPoint[3], farPoint[3];
+  if (!NDCToWorld(camera, 0.0, 0.0, -1.0, nearPoint) || !NDCToWorld(camera, 0.0, 0.0, 1.0, farPoint))
+    return false;
+  double al = 0.0;
+  for (int k = 0; k < 3; ++k)
+  {
+    axis[k] = farPoint[k] - nearPoint[k];
+    al += axis[k] * axis[k];
+  }
+  al = std::sqrt(al);
+  if (!(al > 0.0))
+    return false;
+  for (double& a : axis)
+    a /= al;
+  auto cosine = [&](int i, int j, double& c) {
+    if (!PixelRay(camera, i, j, o, d, l))
+      return false;
+    c = std::min(1.0, d[0] * axis[0] + d[1] * axis[1] + d[2] * axis[2]);
+    return c > 0.0;
+  };
+  double smallest = 1.0, c = 1.0;
+  const int corners[4][2] = { { 0, 0 }, { w - 1, 0 }, { 0, h - 1 }, { w - 1, h - 1 } };
+  for (const auto& k : corners)
+  {
+    if (!cosine(k[0], k[1], c))
+      return false;
+    smallest = std::min(smallest, c);
+  }
+  oblique = 1.0 / smallest;
+  double a[3], b[3], e[3];
+  const int ci = w / 2, cj = h / 2;
+  if (!PixelRay(camera, ci, cj, o, a, l) || !PixelRay(camera, std::min(w - 1, ci + 1), cj, o, b, l) ||
+    !PixelRay(camera, ci, std::min(h - 1, cj + 1), o, e, l))
+    return false;
+  auto angle = [](const double* x, const double* y) {
+    const double dot = std::min(1.0, x[0] * y[0] + x[1] * y[1] + x[2] * y[2]);
+    return std::acos(dot);
+  };
+  pixelAngle = std::max(angle(a, b), angle(a, e));
+  return std::isfinite(pixelAngle) && std::isfinite(oblique);
+}
+
 /// `grid`'s world-to-voxel map as the shaders read it.
 layout::LineGridMap MapOf(const BitGrid& grid)
 {
@@ -146,10 +197,13 @@ struct LineAOEngine::Impl
     for (Program& g : gbufferStages)
       g.Release(gl);
     gbuffer = GBuffer();
+    voxelizeWorld.Release(gl);
     timer.Release(gl);
     gtimer.Release(gl);
     resident = BitGrid();
     segmentsVersion = 0;
+    setSegments = 0;
+    setDrawings = 0;
   }
 };
 
@@ -188,6 +242,7 @@ void LineAOEngine::AbandonGraphicsResources()
   p.gbuffer = Impl::GBuffer();
   p.voxelizeWorld.Abandon();
   p.setSegments = 0;
+  p.setDrawings = 0;
   p.timer.Abandon();
   p.gtimer.Abandon();
   p.resident = BitGrid();
@@ -236,9 +291,10 @@ bool LineAOEngine::Frame(const BitGrid& grid, const LineAOSettings& settings, Li
     o.pixel = { static_cast<std::int32_t>(k), (b.line ? 1 : 0) | (b.cosine ? 2 : 0),
       LineSampleSet(static_cast<int>(p % frame.width), static_cast<int>(p / frame.width)), 0 };
   });
+  Impl& P = *this->P;
+  P.gbuffer = Impl::GBuffer(); // (the half balls below replace a G-buffer's)
   if (balls.empty())
     return true;
-  Impl& P = *this->P;
   const Functions& gl = P.gl;
   CurrentScope scope(P.Ctx);
   if (!scope.Ok(error))
@@ -358,13 +414,13 @@ bool LineAOEngine::SetLines(const LineSegments& lines, const std::vector<std::in
     return false;
   const std::int64_t count = lines.NumberOfSegments();
   if (count < 1 || count > static_cast<std::int64_t>(std::numeric_limits<std::int32_t>::max() / 2))
-    return error = "the GPU's lines take 1 to 2^30 segments", false;
+    return error = "the GPU's lines take 1 to 2^30 - 1 segments", false;
   if (segmentDrawing.size() != static_cast<std::size_t>(count))
     return error = "the segments' drawings do not match the segments", false;
   std::int32_t drawings = 0;
   for (std::int32_t d : segmentDrawing)
   {
-    if (d < 0)
+    if (d < 0 || d == std::numeric_limits<std::int32_t>::max())
       return error = "a segment's drawing is out of range", false;
     drawings = std::max(drawings, d + 1);
   }
@@ -470,7 +526,24 @@ bool LineAOEngine::LineGBuffer(const BitGrid& grid, const LineAOSettings& settin
     block.worldToClip[r] = { c[0], c[1], c[2], c[3] };
   }
   block.map = MapOf(grid);
-  block.scalars = { 0.0, widestSlack, settings.tubeRadius / grid.voxel, reach };
+  // How far on screen a candidate may lie, per pixel of reach: the depth
+  // ratio (a candidate up to a reach in front of the drawn depth: at most
+  // 1.5 while the reach stays under a third of the drawn depth over a
+  // pixel's angle) times the obliquity (a perpendicular offset from a ray
+  // at angle a to the view axis lands 1 / cos(a) farther on screen; the
+  // image's corners).
+  double pixelAngle = 0.0, oblique = 1.0;
+  if (!ScreenScale(camera, pixelAngle, oblique))
+    return error = "the camera's pixel rays are degenerate", false;
+  if (reach * pixelAngle * oblique > 1.0 / 3.0)
+  {
+    char text[200];
+    std::snprintf(text, sizeof(text),
+      "the lines' reach (%.3g pixels) spans more than a third of the depth at this image's pixel angle: the "
+      "GPU's G-buffer takes at most %.3g pixels here", reach, 1.0 / (3.0 * pixelAngle * oblique));
+    return error = text, false;
+  }
+  block.scalars = { 1.5 * oblique, widestSlack, settings.tubeRadius / grid.voxel, reach };
   block.constants = { MaximumDepthSlack, LineCoverSlack, LineHalfVoxelDiagonal, 0.0 };
   block.counts = { camera.width, camera.height, static_cast<std::int32_t>(count),
     static_cast<std::int32_t>(drawnCount) };
@@ -581,12 +654,16 @@ bool LineAOEngine::FrameOfLineGBuffer(const BitGrid& grid, const LineAOSettings&
   gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
   if (!CheckError(gl, "the line G-buffer's read-back", error))
     return false;
-  std::atomic<std::int64_t> covered{ 0 };
+  std::atomic<std::int64_t> covered{ 0 }, unmatched{ 0 };
   ParallelFor((drawnCount + 1023) / 1024, 0, [&](std::size_t b) {
     std::int64_t mine = 0;
     for (std::size_t k = 1024 * b; k < std::min(drawnCount, 1024 * (b + 1)); ++k)
     {
       const std::uint32_t segment = keys[2 * k + 1];
+      // (A best key with no segment: the two searches ranked a candidate
+      // differently, which `precise` rules out; said, not hidden.)
+      if (segment == 0xffffffffu && keys[2 * k] != 0xffffffffu)
+        ++unmatched;
       if (segment == 0xffffffffu || static_cast<std::int64_t>(segment) >= g.segments)
         continue;
       const std::size_t p = g.drawn[2 * k];
@@ -597,6 +674,9 @@ bool LineAOEngine::FrameOfLineGBuffer(const BitGrid& grid, const LineAOSettings&
     covered += mine;
   });
   frame.covered = covered;
+  if (unmatched > 0)
+    return error = "the line G-buffer's two searches disagree at " + std::to_string(unmatched.load()) +
+             " pixels (this OpenGL rounds one program's arithmetic otherwise)", false;
   return true;
 }
 

@@ -60,7 +60,9 @@ public:
   /// only where two candidates tie within a float's precision of their
   /// rank. `ms`: the shaders' GPU time (the G-buffer's stages, the prisms').
   /// False with the reason on what LineFrameFromDepth or Frame refuse,
-  /// buffers larger than this OpenGL's largest storage block, or a GL error.
+  /// buffers larger than this OpenGL's largest storage block, a reach over
+  /// a third of the depth at the image's pixel angle (the screen search's
+  /// bound; the CPU's G-buffer takes it), or a GL error.
   bool FrameFromDepth(const BitGrid& grid, const LineAOSettings& settings, const LineSegments& lines,
     std::uint64_t linesVersion, const std::vector<LineDrawing>& drawings,
     const std::vector<std::int32_t>& segmentDrawing, const PixelCamera& camera, const std::vector<float>& depth,

@@ -410,16 +410,16 @@ struct LineGBufferParams
   dvec4 ndcToWorld[4];  /* rows of the camera's NDC -> world matrix */
   dvec4 worldToClip[4]; /* rows of its inverse */
   LineGridMap map;      /* the grid the half balls are in */
-  dvec4 scalars;        /* x: 0, y: the widest depth slack (window depth), z: the tube radius (voxels),
-                           w: the widest reach (pixels) */
+  dvec4 scalars;        /* x: the screen scale (pixels on screen per pixel of reach), y: the widest depth
+                           slack (window depth), z: the tube radius (voxels), w: the widest reach (pixels) */
   dvec4 constants;      /* x: MaximumDepthSlack, y: LineCoverSlack, z: half a voxel's diagonal, w: 0 */
   ivec4 counts;         /* x: width, y: height, z: segments, w: drawn pixels (slots) */
   ivec4 flags;          /* x: 1 the half ball at the tube's surface (LineAOHemisphere::Normal); yzw: 0 */
 };
 struct LineRay
 {
-  dvec4 origin;    /* xyz: the near-plane point; w: the drawn point's distance along the ray (NaN: none) */
-  dvec4 direction; /* xyz: unit; w: the pixel's footprint at the drawn depth */
+  dvec4 origin;    /* xyz: the near-plane point; w: the drawn point's distance along the ray */
+  dvec4 direction; /* xyz: unit; w: the pixel's footprint at the drawn depth (-1: no ray, no candidate) */
   dvec4 drawn;     /* xyz: the drawn point; w: how far behind it a line may lie */
 };
 #define CAO_BINDING_LG_PARAMS 2   /* uniform block: LineGBufferParams */

@@ -140,12 +140,12 @@ constexpr double MaximumVoxelVisits = 2e10;
 /// the same for the same seed.
 std::vector<double> LineAOSamples(int count, std::uint64_t seed);
 
-/// The half ball of a line's pixel in a grid's voxel units: what
-/// LineOccupancyAt sets up before its prisms, and what the GPU's host
-/// packs per pixel (Filters/GL/Lines), so both walk the same half ball.
 /// Half a voxel's diagonal (voxels): how far from the axis a thin tube's
 /// supercover reaches, and the half ball's least offset off the axis.
 constexpr double LineHalfVoxelDiagonal = 0.8660254037844386;
+/// The half ball of a line's pixel in a grid's voxel units: what
+/// LineOccupancyAt sets up before its prisms, and what the GPU's host
+/// packs per pixel (Filters/GL/Lines), so both walk the same half ball.
 struct LineHalfBall
 {
   double centre[3];  ///< voxel units (voxel (i, j, k) spans [i, i + 1) ...)

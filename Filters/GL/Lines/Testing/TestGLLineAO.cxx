@@ -32,6 +32,13 @@
 //   cao::LineFrameOfSegments of the GPU's segments equal to the CPU's
 //   G-buffer where the segment is the same; controls: the CPU with every
 //   drawing flat, and with the skipped pixels drawn, miss those bounds;
+//   the same in a wide view (120 degrees high, 320 x 240, from 0.2 of the
+//   distance: the lines 2.4 times as wide, reaching the corners, whose rays
+//   are 71 degrees off the axis, and crossing the near plane), where the
+//   screen reach must grow by the corners' obliquity and the segments be
+//   cut behind the eye, not at the near plane (negative controls, by hand:
+//   with neither factor of the screen reach 56 pixels were covered on one
+//   side only; cut at the near plane, 12);
 // - bad input, refused with the reason as the CPU refuses it: a G-buffer of
 //   the wrong size, a grid never voxelized, solids planned otherwise, bad
 //   settings.
@@ -187,28 +194,36 @@ struct Drawn
   cao::PixelCamera camera;
   cao::CapsuleBVH nearest;
 };
-bool MakeDrawn(Scene& scene, int w, int h, Drawn& d, std::string& error)
+/// `wide`: a view 120 degrees high from 0.2 of the distance, the lines
+/// reaching the image's corners and crossing the near plane, drawn 2.4
+/// times as wide.
+bool MakeDrawn(Scene& scene, int w, int h, Drawn& d, std::string& error, bool wide = false)
 {
+  const double k = wide ? 2.4 : 1.0;
   cao::LineDrawing tubes, flat;
   tubes.tubes = true;
-  tubes.halfWidthPixels = 1.25;
-  tubes.reachPixels = 2.25;
+  tubes.halfWidthPixels = 1.25 * k;
+  tubes.reachPixels = tubes.halfWidthPixels + 1.0;
   tubes.depthSlack = 2e-4;
-  flat.halfWidthPixels = 0.5;
-  flat.reachPixels = 1.5;
+  flat.halfWidthPixels = 0.5 * k;
+  flat.reachPixels = flat.halfWidthPixels + 1.0;
   flat.depthSlack = 3e-5;
   d.drawings = { tubes, flat };
   d.segmentDrawing.resize(static_cast<std::size_t>(scene.lines.NumberOfSegments()));
   for (std::size_t s = 0; s < d.segmentDrawing.size(); ++s)
     d.segmentDrawing[s] = static_cast<std::int32_t>((s / 40) % 2);
   RightUp(scene.eye, scene.at, scene.right, scene.up);
-  d.camera = caotest::LookAt(w, h, scene.eye, scene.at, 30.0, 0.5, 10.0);
-  // The depth: the tubes cast at 1.5 pixels' radius (about: 0.012 at 160 x 120).
-  cao::CapsuleBVH wide;
+  double eye[3];
+  for (int c = 0; c < 3; ++c)
+    eye[c] = scene.at[c] + (wide ? 0.2 : 1.0) * (scene.eye[c] - scene.at[c]);
+  d.camera = caotest::LookAt(w, h, eye, scene.at, wide ? 120.0 : 30.0, wide ? 0.2 : 0.5, 10.0);
+  // The depth: the tubes cast at 1.5 pixels' radius (about: 0.012 at 160 x
+  // 120; wide, 0.03).
+  cao::CapsuleBVH drawnTubes;
   cao::LineFrame cast;
-  const double radius = scene.radius * 160.0 / w;
-  if (!wide.Build(scene.lines.points, scene.lines.segments, radius, error) ||
-    !cao::CastLinePrimary(wide, d.camera, cast, error))
+  const double radius = wide ? 0.03 : scene.radius * 160.0 / w;
+  if (!drawnTubes.Build(scene.lines.points, scene.lines.segments, radius, error) ||
+    !cao::CastLinePrimary(drawnTubes, d.camera, cast, error))
     return false;
   d.depth = caotest::DrawnDepth(cast, d.camera);
   if (d.depth.empty())
@@ -392,10 +407,14 @@ int TestGLLineAO(int argc, char* argv[])
       "a grid of another plan than the one on the GPU is refused: " + error);
   }
 
-  // The G-buffer on the GPU against the CPU's, then the AO of each.
+  // The G-buffer on the GPU against the CPU's, then the AO of each: in the
+  // view above, and in a wide view (its corners' rays 71 degrees off the
+  // view axis: the screen reach must grow by their obliquity).
+  for (const bool wide : { false, true })
   {
     Drawn d;
-    CAO_CHECK(MakeDrawn(scene, 160, 120, d, error), "%s", error.c_str());
+    CAO_CHECK(MakeDrawn(scene, wide ? 320 : 160, wide ? 240 : 120, d, error, wide), "%s", error.c_str());
+    const std::string view = wide ? "wide view, " : "";
     cao::LineAOSettings settings;
     settings.radius = 0.15;
     settings.tubeRadius = scene.radius;
@@ -430,9 +449,9 @@ int TestGLLineAO(int argc, char* argv[])
             worst = std::max(worst, std::fabs((filled.*v)[3 * k + c] - (cpu.*v)[3 * k + c]));
     const Agreement a = Compare(gpu, cpu);
     char text[400];
-    std::snprintf(text, sizeof(text), "GPU G-buffer: %lld covered pixels on both, %lld on one only, the same segment on "
+    std::snprintf(text, sizeof(text), "GPU G-buffer, %s%lld covered pixels on both, %lld on one only, the same segment on "
       "%lld; LineFrameOfSegments of the GPU's segments off the CPU's G-buffer by %.1e; AO: %s (GPU %.2f ms + %.2f ms)",
-      static_cast<long long>(both), static_cast<long long>(onlyOne), static_cast<long long>(same), worst,
+      view.c_str(), static_cast<long long>(both), static_cast<long long>(onlyOne), static_cast<long long>(same), worst,
       Describe(a).c_str(), ms[0], ms[1]);
     Check(both > 1500 && onlyOne == 0 && same >= both - both / 200 && worst < 1e-12 && Agrees(a), text);
     // Controls: the CPU with every drawing flat, and with the skipped pixels drawn.
@@ -444,7 +463,9 @@ int TestGLLineAO(int argc, char* argv[])
                 &d.segmentDrawing) && cao::LineAOFrame(grid, settings, control, error),
       "%s", error.c_str());
     const Agreement b = Compare(gpu, control);
-    Check(!Agrees(b), "control, the CPU's G-buffer with every drawing flat: " + Describe(b));
+    Check(!Agrees(b), "control, " + view + "the CPU's G-buffer with every drawing flat: " + Describe(b));
+    if (wide)
+      continue;
     CAO_CHECK(cao::LineFrameFromDepth(d.nearest, d.camera, d.depth, 1.0, false, nullptr, control, error, &d.drawings,
                 &d.segmentDrawing) && cao::LineAOFrame(grid, settings, control, error),
       "%s", error.c_str());

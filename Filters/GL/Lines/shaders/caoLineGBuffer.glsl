@@ -66,9 +66,10 @@ bool Finite(dvec3 p)
 bool NDCToWorld(double x, double y, double z, out dvec3 p)
 {
   const dvec4 r0 = lg.ndcToWorld[0], r1 = lg.ndcToWorld[1], r2 = lg.ndcToWorld[2], r3 = lg.ndcToWorld[3];
-  const double w = r3.x * x + r3.y * y + r3.z * z + r3.w;
-  p = dvec3((r0.x * x + r0.y * y + r0.z * z + r0.w) / w, (r1.x * x + r1.y * y + r1.z * z + r1.w) / w,
+  precise double w = r3.x * x + r3.y * y + r3.z * z + r3.w;
+  precise dvec3 q = dvec3((r0.x * x + r0.y * y + r0.z * z + r0.w) / w, (r1.x * x + r1.y * y + r1.z * z + r1.w) / w,
     (r2.x * x + r2.y * y + r2.z * z + r2.w) / w);
+  p = q;
   return Finite(p);
 }
 
@@ -80,24 +81,31 @@ bool Evaluate(LineRay r, dvec3 a, dvec3 b, dvec4 own, out double s, out double t
 {
   const dvec3 o = r.origin.xyz, v = r.direction.xyz, drawnPoint = r.drawn.xyz;
   const double footprint = r.direction.w, tDrawn = r.origin.w, behind = r.drawn.w;
-  const dvec3 u = b - a;
-  const double C = dot(u, u), B = dot(v, u);
-  const dvec3 w0 = o - a;
-  s = 0.0;
-  const double denominator = C - B * B;
+  // (`precise`: no contraction into FMA, as the CPU's -ffp-contract=off;
+  // stages 1 and 2 must rank a candidate alike.)
+  precise dvec3 u = b - a;
+  precise double C = dot(u, u), B = dot(v, u);
+  precise dvec3 w0 = o - a;
+  precise double si = 0.0;
+  precise double denominator = C - B * B;
   if (C > 0.0 && denominator > 1e-12lf * C)
-    s = (dot(u, w0) - B * dot(v, w0)) / denominator;
+    si = (dot(u, w0) - B * dot(v, w0)) / denominator;
   else if (C > 0.0)
-    s = dot(drawnPoint - a, u) / C;
-  s = min(1.0, max(0.0, s));
-  const dvec3 q = a + s * u;
-  t = dot(q - o, v);
-  distance = length(o + t * v - q);
-  const double reach = own.x * footprint;
+    si = dot(drawnPoint - a, u) / C;
+  si = min(1.0, max(0.0, si));
+  precise dvec3 q = a + si * u;
+  precise double ti = dot(q - o, v);
+  precise double di = length(o + ti * v - q);
+  precise double reach = own.x * footprint;
   const double widestSlack = lg.scalars.y;
-  const double slack = widestSlack > 0.0 ? behind * (own.z / widestSlack) : 0.0;
-  covers = distance <= (own.y + lg.constants.y) * footprint;
-  return distance <= reach && t >= tDrawn - reach && t <= tDrawn + slack + reach;
+  precise double slack = widestSlack > 0.0 ? behind * (own.z / widestSlack) : 0.0;
+  precise double coverLimit = (own.y + lg.constants.y) * footprint;
+  precise double front = tDrawn - reach, back = tDrawn + slack + reach;
+  s = si;
+  t = ti;
+  distance = di;
+  covers = di <= coverLimit;
+  return di <= reach && ti >= front && ti <= back;
 }
 
 #if CAO_LG_STAGE == 0
@@ -134,9 +142,9 @@ void main()
     return;
   }
   v /= l;
-  const double footprint = max(length(px - p), length(py - p));
-  const double tDrawn = dot(p - o, v);
-  const double behind = max(0.0, min(dot(pHi - o, v), tDrawn + lg.constants.x * footprint) - tDrawn);
+  precise double footprint = max(length(px - p), length(py - p));
+  precise double tDrawn = dot(p - o, v);
+  precise double behind = max(0.0, min(dot(pHi - o, v), tDrawn + lg.constants.x * footprint) - tDrawn);
   r.origin = dvec4(o, tDrawn);
   r.direction = dvec4(v, footprint);
   r.drawn = dvec4(p, behind);
@@ -148,15 +156,16 @@ void main()
 /// distance (beside), as a non-negative float's bits (ordered as the value).
 uint KeyOf(LineRay r, double t, double distance, bool covers)
 {
-  const double metric = covers ? t - (r.origin.w - lg.scalars.w * r.direction.w) : distance;
+  precise double nearest = r.origin.w - lg.scalars.w * r.direction.w;
+  precise double metric = covers ? t - nearest : distance;
   return (covers ? 0u : 0x80000000u) | (floatBitsToUint(float(max(0.0, metric))) >> 1);
 }
 
-/// The segment [ca, cb] (clip space) cut to where plane . c >= 0; false
-/// when none of it is.
-bool Clip(dvec4 plane, inout dvec4 ca, inout dvec4 cb)
+/// The segment [ca, cb] (clip space) cut to where plane . c >= offset;
+/// false when none of it is.
+bool Clip(dvec4 plane, double offset, inout dvec4 ca, inout dvec4 cb)
 {
-  const double fa = dot(plane, ca), fb = dot(plane, cb);
+  const double fa = dot(plane, ca) - offset, fb = dot(plane, cb) - offset;
   if (fa < 0.0 && fb < 0.0)
     return false;
   if (fa < 0.0)
@@ -195,20 +204,25 @@ void main()
   const dvec4 A = ends[2 * segment], B = ends[2 * segment + 1];
   const dvec4 own = drawings[int(A.w)];
   const dvec3 a = A.xyz, b = B.xyz;
-  // The segment in clip space, cut at the near plane (z >= -w) and at the
-  // sides R pixels beyond the image (a pixel farther from them is no
+  // The segment in clip space, cut where it passes behind the eye and at
+  // the sides R pixels beyond the image (a pixel farther from them is no
   // candidate), so that its pixel coordinates stay small.
   const dmat4 m = dmat4(lg.worldToClip[0], lg.worldToClip[1], lg.worldToClip[2], lg.worldToClip[3]); // (rows)
   dvec4 ca = dvec4(a, 1.0) * m, cb = dvec4(b, 1.0) * m; // (row vector times the transpose: the rows' dots)
   const int W = lg.counts.x, H = lg.counts.y;
   // A candidate's nearest point lies within its reach of the pixel's ray,
   // at most a reach in front of the drawn depth: on screen within the reach
-  // times the depths' ratio (at most 1.5 while the reach is below a third
-  // of the drawn depth over a pixel's angle), and a pixel's rounding.
-  const float R = float(own.x) * 1.5 + 1.5;
+  // times the host's screen scale (the depths' ratio, at most 1.5 for the
+  // reaches it takes, times the obliquity of the image's corners), and a
+  // pixel's rounding.
+  const float R = float(own.x * lg.scalars.x) + 1.5;
   const double kx = 1.0 + 2.0 * (double(R) + 1.0) / double(W), ky = 1.0 + 2.0 * (double(R) + 1.0) / double(H);
-  if (!Clip(dvec4(0, 0, 1, 1), ca, cb) || !Clip(dvec4(1, 0, 0, kx), ca, cb) || !Clip(dvec4(-1, 0, 0, kx), ca, cb) ||
-    !Clip(dvec4(0, 1, 0, ky), ca, cb) || !Clip(dvec4(0, -1, 0, ky), ca, cb))
+  // (In front of the eye, not of the near plane: a candidate up to a reach
+  // in front of a drawn depth may lie before the near plane.)
+  const double eps = 1e-9lf * max(abs(ca.w), abs(cb.w));
+  if (!Clip(dvec4(0, 0, 0, 1), eps, ca, cb) || !Clip(dvec4(1, 0, 0, kx), 0.0, ca, cb) ||
+    !Clip(dvec4(-1, 0, 0, kx), 0.0, ca, cb) || !Clip(dvec4(0, 1, 0, ky), 0.0, ca, cb) ||
+    !Clip(dvec4(0, -1, 0, ky), 0.0, ca, cb))
     return;
   if (!(ca.w > 0.0) || !(cb.w > 0.0))
     return;
@@ -252,7 +266,9 @@ bool SolveQuadratic(dvec3 p, dvec3 v, double r2, out double t0, out double t1)
   if (!(h >= 0.0))
     return false;
   const double root = sqrt(a * h);
-  const double q = -(b + (b < 0.0 ? -root : root));
+  // (copysign: -0 counts as negative, as the CPU's std::copysign)
+  const bool negative = (unpackDouble2x32(b).y & 0x80000000u) != 0u;
+  const double q = -(b + (negative ? -root : root));
   if (q == 0.0)
     return true;
   const double x0 = q / a, x1 = (dot(p, p) - r2) / q;
