@@ -33,6 +33,10 @@
 //     Specular adds Banks' term, tubes keep VTK's shading; control: as
 //     drawn, both keep their colour; on OpenGL (the GPU's G-buffer, the
 //     rest of it written on the CPU) the same picture within a level
+//  11 lines so wide for their window that the GPU's G-buffer refuses them
+//     (a reach over a third of the depth at a pixel's angle): the CPU's
+//     G-buffer runs, the lines keep the CPU backend's AO, the report says why;
+//     control: 3 pixels wide stays on the GPU
 // Pixels are found by projecting the lines' points; each check reads the
 // drawn line pixel nearest the projection (GetPixelAO > -1).
 #include "vtkContextualAOPass.h"
@@ -536,6 +540,80 @@ int TestLinesInPass(int, char*[])
     Check(glShading.find("\"gbuffer\": \"OpenGL\"") != std::string::npos && std::fabs(glShiny[0] - shiny[0]) <= 1 &&
         std::fabs(glShiny[1] - shiny[1]) <= 1 && std::fabs(drawn[1] - shiny[1]) > 10,
       "Mallo-Banks on OpenGL's line G-buffer lights the lines as on the CPU's");
+  }
+  // 11: a G-buffer the GPU refuses falls back to the CPU's. Lines 40
+  // pixels wide in a 40 x 30 window: their reach spans more than a third
+  // of the depth at a pixel's angle (the GPU's screen search's bound), so
+  // the CPU's G-buffer runs, the lines keep the AO the CPU backend gives
+  // them and the report says why; control: the same lines 3 pixels wide
+  // stay on the GPU.
+  {
+    vtkNew<vtkContextualAOEGLWindow> w;
+    w->SetSize(40, 30);
+    w->SetMultiSamples(0);
+    vtkNew<vtkRenderer> r;
+    w->AddRenderer(r);
+    vtkNew<vtkPoints> pts;
+    vtkNew<vtkCellArray> cells;
+    for (int l = 0; l < 3; ++l)
+    {
+      cells->InsertNextCell(2);
+      cells->InsertCellPoint(pts->InsertNextPoint(-1.0, 0.3 * (l - 1), 0.1 * l));
+      cells->InsertCellPoint(pts->InsertNextPoint(1.0, 0.3 * (l - 1), 0.1 * l));
+    }
+    vtkNew<vtkPolyData> three;
+    three->SetPoints(pts);
+    three->SetLines(cells);
+    vtkNew<vtkPolyDataMapper> m;
+    m->SetInputData(three);
+    vtkNew<vtkActor> a;
+    a->SetMapper(m);
+    r->AddActor(a);
+    r->GetActiveCamera()->SetPosition(0, 0, 4);
+    r->GetActiveCamera()->SetFocalPoint(0, 0, 0);
+    r->ResetCameraClippingRange();
+    vtkNew<vtkContextualAOPass> wide;
+    wide->SetRadius(0.5);
+    wide->SetBackend(vtkContextualAOPass::BACKEND_OPENGL);
+    r->SetPass(wide);
+    auto frame = [&](double width, int backend, std::string& report) {
+      a->GetProperty()->SetLineWidth(width);
+      wide->SetBackend(backend);
+      w->Render();
+      report = wide->GetLastFrameReport();
+      std::vector<double> ao;
+      for (int y = 0; y < 30; ++y)
+        for (int x = 0; x < 40; ++x)
+          ao.push_back(wide->GetPixelAO(x, y));
+      return ao;
+    };
+    // (The same pixels, each AO the CPU backend's within the prisms' float bound.)
+    auto same = [](const std::vector<double>& p, const std::vector<double>& q, int& covered) {
+      covered = 0;
+      bool ok = p.size() == q.size();
+      for (std::size_t i = 0; ok && i < p.size(); ++i)
+      {
+        ok = (p[i] > -1.0) == (q[i] > -1.0) && std::fabs(p[i] - q[i]) < 0.005;
+        covered += p[i] > -1.0;
+      }
+      return ok;
+    };
+    std::string thick, thin, cpuThick;
+    const std::vector<double> thickAO = frame(40.0, vtkContextualAOPass::BACKEND_OPENGL, thick);
+    const std::vector<double> cpuAO40 = frame(40.0, vtkContextualAOPass::BACKEND_CPU, cpuThick);
+    frame(3.0, vtkContextualAOPass::BACKEND_OPENGL, thin);
+    int covered = 0;
+    const bool agrees = same(thickAO, cpuAO40, covered);
+    std::printf("lines 40 pixels wide on OpenGL in 40 x 30: %d line pixels, %s the CPU backend's AO; report %s\n",
+      covered, agrees ? "with" : "NOT with", thick.c_str());
+    Check(thick.find("\"gbuffer\": \"CPU\", \"prisms\": \"OpenGL\"") != std::string::npos &&
+        thick.find("G-buffer on the GPU failed") != std::string::npos && thick.find("third") != std::string::npos &&
+        agrees && covered > 200,
+      "a reach the GPU's G-buffer refuses: the CPU's G-buffer runs (the prisms still on OpenGL), the lines keep "
+      "the CPU backend's AO at their " + std::to_string(covered) + " pixels, the report says why");
+    Check(thin.find("\"gbuffer\": \"OpenGL\"") != std::string::npos &&
+        thin.find("G-buffer on the GPU failed") == std::string::npos,
+      "control: the same lines 3 pixels wide keep their G-buffer on the GPU");
   }
   std::printf("%d failure(s)\n", failures);
   return failures ? 1 : 0;
