@@ -1824,9 +1824,9 @@ int vtkContextualAOPass::Internals::CombineLinesOnGPU(vtkContextualAOPass* self,
   std::vector<float>& ao = this->lineAOImage;
   ao.resize(count);
   std::atomic<std::int64_t> combined{ 0 };
-  cao::ParallelFor((count + 1023) / 1024, 0, [&](std::size_t block) {
+  cao::ParallelForBlocks(count, 0, [&](std::size_t first, std::size_t last) {
     std::int64_t mine = 0;
-    for (std::size_t i = 1024 * block; i < std::min(count, 1024 * (block + 1)); ++i)
+    for (std::size_t i = first; i < last; ++i)
     {
       const bool line = lineFrame.segment[i] >= 0 && std::isfinite(lineFrame.ao[i]);
       ao[i] = line ? static_cast<float>(lineFrame.ao[i]) : std::numeric_limits<float>::quiet_NaN();

@@ -630,10 +630,9 @@ bool LineAOEngine::FrameOfLineGBuffer(const BitGrid& grid, const LineAOSettings&
   frame.depth.clear();
   frame.segment.resize(pixels);
   frame.ao.resize(pixels);
-  ParallelFor((pixels + 1023) / 1024, 0, [&](std::size_t b) {
-    const std::size_t end = std::min(pixels, 1024 * (b + 1));
-    std::fill(frame.segment.begin() + 1024 * b, frame.segment.begin() + end, -1);
-    std::fill(frame.ao.begin() + 1024 * b, frame.ao.begin() + end, std::numeric_limits<double>::quiet_NaN());
+  ParallelForBlocks(pixels, 0, [&](std::size_t first, std::size_t last) {
+    std::fill(frame.segment.begin() + first, frame.segment.begin() + last, -1);
+    std::fill(frame.ao.begin() + first, frame.ao.begin() + last, std::numeric_limits<double>::quiet_NaN());
   });
   if (drawnCount == 0)
     return true;
@@ -655,9 +654,9 @@ bool LineAOEngine::FrameOfLineGBuffer(const BitGrid& grid, const LineAOSettings&
   if (!CheckError(gl, "the line G-buffer's read-back", error))
     return false;
   std::atomic<std::int64_t> covered{ 0 }, unmatched{ 0 };
-  ParallelFor((drawnCount + 1023) / 1024, 0, [&](std::size_t b) {
+  ParallelForBlocks(drawnCount, 0, [&](std::size_t first, std::size_t last) {
     std::int64_t mine = 0;
-    for (std::size_t k = 1024 * b; k < std::min(drawnCount, 1024 * (b + 1)); ++k)
+    for (std::size_t k = first; k < last; ++k)
     {
       const std::uint32_t segment = keys[2 * k + 1];
       // (A best key with no segment: the two searches ranked a candidate

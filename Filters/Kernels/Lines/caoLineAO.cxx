@@ -138,26 +138,6 @@ bool ParseLineAOHemisphere(const std::string& text, LineAOHemisphere& hemisphere
   return false;
 }
 
-namespace
-{
-/// body(first, last) over [0, count) in fixed blocks of 1 024, on the
-/// CPU's threads (ParallelFor hands out 64 blocks at a time: a million
-/// items keep 16 threads busy); a block's index is first / 1 024 (results
-/// kept per block and combined in block order do not depend on the thread
-/// count).
-constexpr std::size_t BlockSize = 1024;
-template <typename Body>
-void ForBlocks(std::size_t count, Body body)
-{
-  ParallelFor((count + BlockSize - 1) / BlockSize, 0,
-    [&](std::size_t b) { body(b * BlockSize, std::min(count, (b + 1) * BlockSize)); });
-}
-std::size_t Blocks(std::size_t count)
-{
-  return (count + BlockSize - 1) / BlockSize;
-}
-}
-
 std::string LineSegments::Validate() const
 {
   if (this->points.size() % 3 != 0)
@@ -167,7 +147,7 @@ std::string LineSegments::Validate() const
   const std::int64_t n = static_cast<std::int64_t>(this->points.size() / 3);
   // (Both scans on the CPU's threads; the first bad one found again in order.)
   std::atomic<bool> notFinite{ false }, outside{ false };
-  ForBlocks(this->points.size(), [&](std::size_t first, std::size_t last) {
+  ParallelForBlocks(this->points.size(), 0, [&](std::size_t first, std::size_t last) {
     for (std::size_t i = first; i < last; ++i)
       if (!std::isfinite(this->points[i]))
       {
@@ -177,7 +157,7 @@ std::string LineSegments::Validate() const
   });
   if (notFinite)
     return "a line point has a NaN or infinite coordinate";
-  ForBlocks(this->segments.size(), [&](std::size_t first, std::size_t last) {
+  ParallelForBlocks(this->segments.size(), 0, [&](std::size_t first, std::size_t last) {
     for (std::size_t i = first; i < last; ++i)
       if (this->segments[i] < 0 || this->segments[i] >= n)
       {
@@ -208,9 +188,9 @@ bool PlanLineGrid(const LineSegments& lines, const double right[3], const double
   std::array<double, 6> b{ { 0, 0, 0, 0, 0, 0 } };
   bool any = false;
   // (Each block's bounds on the CPU's threads, then all of them.)
-  std::vector<std::array<double, 6>> blockBounds(Blocks(lines.segments.size()));
-  ForBlocks(lines.segments.size(), [&](std::size_t first, std::size_t last) {
-    std::array<double, 6>& c = blockBounds[first / BlockSize];
+  std::vector<std::array<double, 6>> blockBounds(ParallelBlocks(lines.segments.size()));
+  ParallelForBlocks(lines.segments.size(), 0, [&](std::size_t first, std::size_t last) {
+    std::array<double, 6>& c = blockBounds[first / ParallelBlockSize];
     for (std::size_t i = first; i < last; ++i)
     {
       double g[3];
@@ -265,8 +245,8 @@ std::string CheckVoxelizeLines(const LineSegments& lines, double tubeRadius, con
   const double perPiece = std::min(side * side * side, static_cast<double>(dims[0]) * dims[1] * dims[2]);
   // (Each block of segments summed on the CPU's threads, then the blocks in order.)
   const std::size_t count = lines.segments.size() / 2;
-  std::vector<double> blockVisits(Blocks(count), 0.0);
-  ForBlocks(count, [&](std::size_t first, std::size_t last) {
+  std::vector<double> blockVisits(ParallelBlocks(count), 0.0);
+  ParallelForBlocks(count, 0, [&](std::size_t first, std::size_t last) {
     double sum = 0.0;
     for (std::size_t s = first; s < last; ++s)
     {
@@ -276,7 +256,7 @@ std::string CheckVoxelizeLines(const LineSegments& lines, double tubeRadius, con
         (a[2] - b[2]) * (a[2] - b[2])) / grid.voxel;
       sum += std::max(1.0, std::ceil(length / LinePieceLength)) * perPiece;
     }
-    blockVisits[first / BlockSize] = sum;
+    blockVisits[first / ParallelBlockSize] = sum;
   });
   double visits = 0.0;
   for (double v : blockVisits)
