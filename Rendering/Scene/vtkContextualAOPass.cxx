@@ -886,8 +886,12 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
   }
   this->hostAOStale = false; // frame.ao is the CPU's (or the read-back path's) from here
   this->depthOk = vtkCAO::ReadViewportDepth(ren, this->depth, this->depthError);
-  if (this->UpdateGrid(self) && this->UpdateVolumes(self) && this->UpdateAO(self, ren) &&
-    this->UpdateLines(self, ren) && this->Combine(self, s))
+  // With the depth G-buffer the lines go first: the surfaces' normals then
+  // leave the lines' pixels out (FrameFromDepth's otherDrawing). With the
+  // ray cast the lines leave out the surfaces' traced pixels instead.
+  const bool linesFirst = this->gbuffer == DEPTH_BUFFER;
+  if (this->UpdateGrid(self) && this->UpdateVolumes(self) && (!linesFirst || this->UpdateLines(self, ren)) &&
+    this->UpdateAO(self, ren) && (linesFirst || this->UpdateLines(self, ren)) && this->Combine(self, s))
     this->said.clear();
 }
 
@@ -1586,7 +1590,17 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
   this->primaryKey.clear();
   if (!keep)
   {
-    if (this->gbuffer == DEPTH_BUFFER ? !cao::FrameFromDepth(pixels, this->depth, this->frame, error)
+    // The lines' pixels (UpdateLines ran first): no neighbour of a surface's.
+    std::vector<unsigned char> linePixels;
+    const cao::LineFrame& lineFrame = this->lines.Frame();
+    if (this->gbuffer == DEPTH_BUFFER && this->linesOn && lineFrame.segment.size() == count)
+    {
+      linePixels.resize(count);
+      for (std::size_t i = 0; i < count; ++i)
+        linePixels[i] = lineFrame.segment[i] >= 0;
+    }
+    if (this->gbuffer == DEPTH_BUFFER
+        ? !cao::FrameFromDepth(pixels, this->depth, this->frame, error, linePixels.empty() ? nullptr : &linePixels)
                                       : !cao::CastPrimary(this->bvh, pixels, this->frame, error))
       return this->Fail(self, error);
     this->Stage(this->gbuffer == DEPTH_BUFFER ? "gbuffer" : "primary", start);
@@ -1648,7 +1662,9 @@ bool vtkContextualAOPass::Internals::UpdateLines(vtkContextualAOPass* self, vtkR
   const cao::PixelCamera camera = LineCamera(ren, right, up);
   const std::size_t count = static_cast<std::size_t>(camera.width) * camera.height;
   std::vector<unsigned char> skip;
-  const bool surfaces = !this->pieces.empty() && this->frame.ao.size() == count;
+  // (with the depth G-buffer the lines run before the surfaces' frame)
+  const bool surfaces =
+    !this->pieces.empty() && (this->gbuffer == DEPTH_BUFFER || this->frame.ao.size() == count);
   if (surfaces && this->gbuffer == RAY_CAST)
   {
     skip.assign(count, 0);

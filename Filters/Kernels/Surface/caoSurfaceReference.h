@@ -45,8 +45,12 @@ bool CastPrimary(const TriangleBVH& scene, const PixelCamera& camera, SurfaceFra
 /// (the drawn surface, whatever drew it), -1 on the background or where no
 /// neighbour gives a normal. Float depth: positions to about 1e-7 of the
 /// depth range, normals to about a degree on surfaces at grazing angles.
+/// `otherDrawing` (optional, one per pixel): the pixels another kind of
+/// geometry drew (the lines'), never a neighbour for a surface pixel's
+/// normal: a surface seen edge on, a pixel wide between lines, gets no
+/// normal (as a ray cast misses it) instead of one across to a line.
 bool FrameFromDepth(const PixelCamera& camera, const std::vector<float>& depth, SurfaceFrame& frame,
-  std::string& error);
+  std::string& error, const std::vector<unsigned char>* otherDrawing = nullptr);
 
 /// The reference AO of every covered pixel of `frame`.
 bool ReferenceFrame(const TriangleBVH& scene, const AOReferenceSettings& settings,

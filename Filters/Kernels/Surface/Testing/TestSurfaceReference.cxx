@@ -408,6 +408,69 @@ int TestSurfaceReference(int, char*[])
     CAO_CHECK(!cao::FrameFromDepth(cam, small, f, error) && error.find("does not match") != std::string::npos,
       "a depth buffer of the wrong size is refused: %s", error.c_str());
   }
+  // Another kind's pixels (otherDrawing, the lines'): a surface a pixel
+  // wide (column 20: a plane seen nearly edge on, its depth steep in y)
+  // between two lines (columns 19 and 21, nearer) gets no normal across to
+  // them, so no AO (a ray cast misses it too); the lines' own pixels stay
+  // covered (occluders for the screen-space estimators); a tilted plane
+  // apart (columns 32-63) is the same bit for bit. Negative control: without
+  // the mask every strip pixel is covered, its x tangent taken to a line.
+  {
+    std::string error;
+    cao::PixelCamera cam;
+    cam.width = 64;
+    cam.height = 48;
+    const double m[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 2, 0, 0, 0, 0, 1 }; // ndc -> world
+    std::copy(m, m + 16, cam.ndcToWorld);
+    std::vector<float> depth(64 * 48, 1.0f);
+    std::vector<unsigned char> lines(64 * 48, 0);
+    for (int j = 0; j < 48; ++j)
+      for (int i = 0; i < 64; ++i)
+      {
+        const double x = (i + 0.5) / 64 * 2 - 1, y = (j + 0.5) / 48 * 2 - 1;
+        double z = 2.0;
+        if (i == 19 || i == 21)
+          z = -0.5 + 0.1 * y, lines[j * 64 + i] = 1;
+        else if (i == 20)
+          z = 0.2 + 1.5 * y;
+        else if (i >= 32)
+          z = 0.3 * x - 0.2 * y;
+        if (z < 2.0)
+          depth[j * 64 + i] = static_cast<float>((z / 2.0 + 1.0) / 2.0);
+      }
+    cao::SurfaceFrame plain, masked;
+    CAO_CHECK(cao::FrameFromDepth(cam, depth, plain, error) && cao::FrameFromDepth(cam, depth, masked, error, &lines),
+      "%s", error.c_str());
+    int stripCovered = 0, linesCovered = 0, planeSame = 0;
+    int controlCovered = 0;
+    for (int j = 2; j < 46; ++j)
+    {
+      const std::size_t k = static_cast<std::size_t>(j) * 64 + 20;
+      stripCovered += masked.triangle[k] >= 0;
+      linesCovered += (masked.triangle[k - 1] >= 0) + (masked.triangle[k + 1] >= 0);
+      controlCovered += plain.triangle[k] >= 0;
+    }
+    for (int j = 0; j < 48; ++j)
+      for (int i = 32; i < 64; ++i)
+      {
+        const std::size_t k = static_cast<std::size_t>(j) * 64 + i;
+        bool same = plain.triangle[k] == masked.triangle[k];
+        for (int d = 0; d < 3; ++d)
+          same = same && plain.normal[3 * k + d] == masked.normal[3 * k + d] &&
+            plain.position[3 * k + d] == masked.position[3 * k + d];
+        planeSame += same;
+      }
+    std::printf("depth G-buffer beside lines: the strip's pixels covered %d of 44 (without the mask %d), the "
+                "lines' %d of 88, the plane apart the same at %d of %d\n",
+      stripCovered, controlCovered, linesCovered, planeSame, 32 * 48);
+    CAO_CHECK(stripCovered == 0 && linesCovered == 88 && planeSame == 32 * 48 && controlCovered == 44,
+      "depth G-buffer beside lines: strip %d, lines %d, plane %d, control %d", stripCovered, linesCovered, planeSame,
+      controlCovered);
+    std::vector<unsigned char> shortMask(10, 0);
+    CAO_CHECK(!cao::FrameFromDepth(cam, depth, masked, error, &shortMask) &&
+        error.find("does not match") != std::string::npos,
+      "a pixel mask of the wrong size is refused: %s", error.c_str());
+  }
   std::printf("%d failure(s)\n", failures);
   return failures ? 1 : 0;
 }

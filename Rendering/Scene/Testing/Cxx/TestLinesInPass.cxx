@@ -37,6 +37,8 @@
 //     (a reach over a third of the depth at a pixel's angle): the CPU's
 //     G-buffer runs, the lines keep the CPU backend's AO, the report says why;
 //     control: 3 pixels wide stays on the GPU
+//  12 the depth G-buffer beside lines: a plane seen edge on, a pixel wide
+//     between two lines, gets no surface AO (no normal across to a line)
 // Pixels are found by projecting the lines' points; each check reads the
 // drawn line pixel nearest the projection (GetPixelAO > -1).
 #include "vtkContextualAOPass.h"
@@ -614,6 +616,91 @@ int TestLinesInPass(int, char*[])
     Check(thin.find("\"gbuffer\": \"OpenGL\"") != std::string::npos &&
         thin.find("G-buffer on the GPU failed") == std::string::npos,
       "control: the same lines 3 pixels wide keep their G-buffer on the GPU");
+  }
+  // 12: a surface seen nearly edge on between two lines, with the depth
+  // G-buffer. A parallel view, 0.02 units a pixel, column 60 centred at
+  // x = 0.01: the plane x = 0.01 + 0.004 z (z from -1 to 1) covers that
+  // column's centres alone, and lines 3 pixels wide at x = -0.03 and 0.05
+  // (z = 0.3, nearer the camera) cover columns 57-59 and 61-63. The plane's
+  // pixels' neighbours across are the lines', whose depths give no normal
+  // of the plane: those pixels get no surface AO (as a ray cast misses a
+  // plane seen edge on), where a normal taken across to a line darkened
+  // them (AO down to 0.03 in a ParaView scene; by hand: the pass without
+  // its line mask fails this check).
+  {
+    vtkNew<vtkContextualAOEGLWindow> w;
+    w->SetSize(120, 100);
+    w->SetMultiSamples(0);
+    vtkNew<vtkRenderer> r;
+    w->AddRenderer(r);
+    vtkNew<vtkPoints> pts;
+    vtkNew<vtkCellArray> cells;
+    for (double x : { -0.03, 0.05 })
+    {
+      cells->InsertNextCell(2);
+      cells->InsertCellPoint(pts->InsertNextPoint(x, -1.2, 0.3));
+      cells->InsertCellPoint(pts->InsertNextPoint(x, 1.2, 0.3));
+    }
+    vtkNew<vtkPolyData> pair;
+    pair->SetPoints(pts);
+    pair->SetLines(cells);
+    vtkNew<vtkPolyDataMapper> m;
+    m->SetInputData(pair);
+    vtkNew<vtkActor> a;
+    a->SetMapper(m);
+    a->GetProperty()->SetLineWidth(3.0);
+    r->AddActor(a);
+    vtkNew<vtkPoints> quad;
+    quad->InsertNextPoint(0.006, -0.6, -1.0);
+    quad->InsertNextPoint(0.006, 0.6, -1.0);
+    quad->InsertNextPoint(0.014, 0.6, 1.0);
+    quad->InsertNextPoint(0.014, -0.6, 1.0);
+    vtkNew<vtkCellArray> polys;
+    const vtkIdType ids[4] = { 0, 1, 2, 3 };
+    polys->InsertNextCell(4, ids);
+    vtkNew<vtkPolyData> plane;
+    plane->SetPoints(quad);
+    plane->SetPolys(polys);
+    vtkNew<vtkPolyDataMapper> pm;
+    pm->SetInputData(plane);
+    vtkNew<vtkActor> pa;
+    pa->SetMapper(pm);
+    pa->GetProperty()->SetAmbient(0.8); // lit edge on, its diffuse term is 0
+    pa->GetProperty()->SetDiffuse(0.2);
+    r->AddActor(pa);
+    vtkCamera* c = r->GetActiveCamera();
+    c->ParallelProjectionOn();
+    c->SetParallelScale(1.0);
+    c->SetPosition(0, 0, 4);
+    c->SetFocalPoint(0, 0, 0);
+    c->SetViewUp(0, 1, 0);
+    r->ResetCameraClippingRange();
+    vtkNew<vtkContextualAOPass> edge;
+    edge->SetRadius(0.3);
+    edge->SetBackend(vtkContextualAOPass::BACKEND_CPU);
+    edge->SetGBuffer(vtkContextualAOPass::DEPTH_BUFFER);
+    r->SetPass(edge);
+    w->Render();
+    const std::string rep = edge->GetLastFrameReport();
+    int drawn = 0, withAO = 0, lineLeft = 0, lineRight = 0;
+    double darkest = 1.0;
+    for (int y = 25; y < 75; ++y)
+    {
+      drawn += Grey(w, 60, y) > 40.0;
+      const double ao = edge->GetPixelAO(60, y);
+      withAO += ao > -1.0;
+      if (ao > -1.0)
+        darkest = std::min(darkest, ao);
+      lineLeft += edge->GetPixelAO(59, y) > -1.0;
+      lineRight += edge->GetPixelAO(61, y) > -1.0;
+    }
+    std::printf("a plane edge on between lines (depth G-buffer): column 60 drawn at %d of 50 rows, %d with AO "
+                "(darkest %.3f); the lines' columns 59 and 61 with line AO at %d and %d rows; report %s\n",
+      drawn, withAO, darkest, lineLeft, lineRight, rep.c_str());
+    Check(drawn == 50 && lineLeft == 50 && lineRight == 50 && withAO == 0,
+      "a plane seen edge on between lines takes no normal across to them: no surface AO at its " +
+        std::to_string(drawn) + " pixels (" + std::to_string(withAO) + " with AO, darkest " +
+        std::to_string(darkest) + ")");
   }
   std::printf("%d failure(s)\n", failures);
   return failures ? 1 : 0;
