@@ -88,6 +88,20 @@ layout::LineGridMap MapOf(const BitGrid& grid)
 }
 }
 
+namespace
+{
+/// A block's size for a message: MiB to two decimals, or KiB under one MiB.
+std::string BlockBytes(double bytes)
+{
+  char text[64];
+  if (bytes >= 1048576.0)
+    std::snprintf(text, sizeof(text), "%.2f MiB", bytes / 1048576.0);
+  else
+    std::snprintf(text, sizeof(text), "%.1f KiB", bytes / 1024.0);
+  return text;
+}
+}
+
 struct LineAOEngine::Impl
 {
   Context& Ctx;
@@ -147,12 +161,23 @@ struct LineAOEngine::Impl
     return r.nx > 0 && grid.bits.empty() && r.nx == grid.nx && r.ny == grid.ny && r.slices == grid.slices &&
       r.words == grid.words && r.voxel == grid.voxel && r.origin == grid.origin && r.axes == grid.axes;
   }
-  /// Whether `bytes` fit this OpenGL's largest storage block.
+  /// The largest storage block: this OpenGL's, or the host's lower limit.
   double LargestBlock() const
   {
     GLint largest = 0;
     gl.GetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &largest);
-    return largest > 0 ? static_cast<double>(largest) : 2147483647.0;
+    const double own = largest > 0 ? static_cast<double>(largest) : 2147483647.0;
+    return this->storageLimit > 0.0 ? std::min(own, this->storageLimit) : own;
+  }
+  double storageLimit = 0.0; ///< SetStorageBlockLimit (0: none)
+  /// The largest block, named with its size, for a refusal.
+  std::string LargestBlockText() const
+  {
+    GLint largest = 0;
+    gl.GetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &largest);
+    const bool host = this->storageLimit > 0.0 && (largest <= 0 || this->storageLimit < largest);
+    return (host ? "the storage block limit set (" : "this OpenGL's largest storage block (") +
+      BlockBytes(this->LargestBlock()) + ")";
   }
   StageTimer timer{ 1 }, gtimer{ 1 };
   /// The prisms of the `count` half balls in `pixels` (LineAOPixel) into
@@ -215,6 +240,11 @@ LineAOEngine::LineAOEngine(Context& context)
 LineAOEngine::~LineAOEngine()
 {
   this->ReleaseGraphicsResources();
+}
+
+void LineAOEngine::SetStorageBlockLimit(double bytes)
+{
+  this->P->storageLimit = std::isfinite(bytes) && bytes > 0.0 ? bytes : 0.0;
 }
 
 void LineAOEngine::ReleaseGraphicsResources()
@@ -302,11 +332,10 @@ bool LineAOEngine::Frame(const BitGrid& grid, const LineAOSettings& settings, Li
   StateGuard guard(gl, P.Ctx.Kind() == ContextKind::External);
   if (static_cast<double>(balls.size()) * sizeof(layout::LineAOPixel) > P.LargestBlock())
   {
-    char text[200];
-    std::snprintf(text, sizeof(text), "the lines' %zu pixels (%.2f MiB) exceed this OpenGL's largest storage block "
-      "(%.2f MiB): use a smaller image", balls.size(), balls.size() * sizeof(layout::LineAOPixel) / 1048576.0,
-      P.LargestBlock() / 1048576.0);
-    return error = text, false;
+    error = "the lines' " + std::to_string(balls.size()) + " pixels (" +
+      BlockBytes(static_cast<double>(balls.size() * sizeof(layout::LineAOPixel))) + ") exceed " +
+      P.LargestBlockText() + ": use a smaller image";
+    return false;
   }
   P.Upload(3, GL_SHADER_STORAGE_BUFFER, balls.size() * sizeof(layout::LineAOPixel), balls.data());
   if (!P.Prisms(grid, settings, balls.size(), solids, ms, error))
@@ -350,11 +379,8 @@ bool LineAOEngine::Impl::Prisms(const BitGrid& grid, const LineAOSettings& setti
   const double limit = P.LargestBlock();
   if (gridBytes > limit)
   {
-    char text[200];
-    std::snprintf(text, sizeof(text),
-      "the lines' grid (%.2f MiB) exceeds this OpenGL's largest storage block (%.2f MiB): use fewer slices",
-      gridBytes / 1048576.0, limit / 1048576.0);
-    return error = text, false;
+    error = "the lines' grid (" + BlockBytes(gridBytes) + ") exceeds " + P.LargestBlockText() + ": use fewer slices";
+    return false;
   }
   if (!P.program.Valid() && !P.program.BuildCompute(gl, { caoLineAO_glsl }, {}, error))
     return false;
@@ -438,10 +464,9 @@ bool LineAOEngine::SetLines(const LineSegments& lines, const std::vector<std::in
   const double bytes = static_cast<double>(ends.size()) * sizeof(layout::dvec4);
   if (bytes > P.LargestBlock())
   {
-    char text[200];
-    std::snprintf(text, sizeof(text), "the %lld segments (%.2f MiB) exceed this OpenGL's largest storage block "
-      "(%.2f MiB): use fewer lines", static_cast<long long>(count), bytes / 1048576.0, P.LargestBlock() / 1048576.0);
-    return error = text, false;
+    error = "the " + std::to_string(count) + " segments (" + BlockBytes(bytes) + ") exceed " + P.LargestBlockText() +
+      ": use fewer lines";
+    return false;
   }
   P.Upload(11, GL_SHADER_STORAGE_BUFFER, ends.size() * sizeof(layout::dvec4), ends.data());
   if (!CheckError(P.gl, "the lines' upload", error))
@@ -563,12 +588,9 @@ bool LineAOEngine::LineGBuffer(const BitGrid& grid, const LineAOSettings& settin
     static_cast<double>(pixels) * sizeof(std::int32_t));
   if (largest > limit)
   {
-    char text[240];
-    std::snprintf(text, sizeof(text),
-      "the GPU's line G-buffer needs a storage block of %.2f MiB (%zu drawn pixels), more than this OpenGL's "
-      "largest (%.2f MiB): use a smaller image",
-      largest / 1048576.0, drawnCount, limit / 1048576.0);
-    return error = text, false;
+    error = "the GPU's line G-buffer needs a storage block of " + BlockBytes(largest) + " (" +
+      std::to_string(drawnCount) + " drawn pixels), more than " + P.LargestBlockText() + ": use a smaller image";
+    return false;
   }
   for (int stage = 0; stage < 4; ++stage)
     if (!P.gbufferStages[stage].Valid() &&
@@ -718,13 +740,10 @@ bool LineAOEngine::Voxelize(const BitGrid& grid, const LineSegments& lines, doub
   if (static_cast<double>(words) * sizeof(std::uint32_t) > limit ||
     static_cast<double>(ends.size()) * sizeof(layout::vec4) > limit)
   {
-    char text[240];
-    std::snprintf(text, sizeof(text),
-      "the lines' grid (%.2f MiB) or their %zu segments (%.2f MiB) exceed this OpenGL's largest storage block "
-      "(%.2f MiB): use fewer slices or fewer lines",
-      words * sizeof(std::uint32_t) / 1048576.0, count, ends.size() * sizeof(layout::vec4) / 1048576.0,
-      limit / 1048576.0);
-    return error = text, false;
+    error = "the lines' grid (" + BlockBytes(static_cast<double>(words * sizeof(std::uint32_t))) + ") or their " +
+      std::to_string(count) + " segments (" + BlockBytes(static_cast<double>(ends.size() * sizeof(layout::vec4))) +
+      ") exceed " + P.LargestBlockText() + ": use fewer slices or fewer lines";
+    return false;
   }
   Program& program = world ? P.voxelizeWorld : P.voxelize;
   if (!program.Valid() &&

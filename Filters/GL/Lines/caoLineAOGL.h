@@ -36,6 +36,12 @@ public:
   LineAOEngine(const LineAOEngine&) = delete;
   LineAOEngine& operator=(const LineAOEngine&) = delete;
 
+  /// At most `bytes` in one storage block (0, the default: this OpenGL's
+  /// largest, GL_MAX_SHADER_STORAGE_BLOCK_SIZE; a larger value is capped
+  /// at it). A host sharing the GPU may lower it; every call that needs a
+  /// larger block is refused, naming the block's size and the limit.
+  void SetStorageBlockLimit(double bytes);
+
   /// cao::LineAOFrame on the GPU: frame.ao of every covered pixel (NaN
   /// elsewhere); the grids and the covered pixels' half balls are uploaded
   /// each call. `ms`: the shader's GPU time.

@@ -484,6 +484,33 @@ int TestGLLineAO(int argc, char* argv[])
       nullptr, f, ms, error); // (version 0: the lines uploaded again)
     Check(refused && error.find("out of range") != std::string::npos,
       "the GPU G-buffer refuses a drawing out of range: " + error);
+    // A storage block over the host's limit (SetStorageBlockLimit): the
+    // lines (64 bytes a segment) and then the G-buffer's pixels refused,
+    // naming the block's size and the limit (the pass then makes the
+    // G-buffer on the CPU); the limit lifted, the same G-buffer and AO.
+    const double segmentBytes = 64.0 * static_cast<double>(scene.lines.NumberOfSegments());
+    std::string segmentsWhy, pixelsWhy;
+    engine.SetStorageBlockLimit(segmentBytes - 64.0);
+    refused = !engine.FrameFromDepth(grid, settings, scene.lines, 0, d.drawings, d.segmentDrawing, d.camera,
+      d.depth, &d.skip, f, ms, segmentsWhy);
+    const bool segmentsRefused = refused && segmentsWhy.find("segments") != std::string::npos &&
+      segmentsWhy.find("the storage block limit set (149.9 KiB)") != std::string::npos;
+    engine.SetStorageBlockLimit(segmentBytes);
+    refused = !engine.FrameFromDepth(grid, settings, scene.lines, 0, d.drawings, d.segmentDrawing, d.camera,
+      d.depth, &d.skip, f, ms, pixelsWhy);
+    const bool pixelsRefused = refused && pixelsWhy.find("G-buffer needs a storage block") != std::string::npos &&
+      pixelsWhy.find("the storage block limit set (150.0 KiB)") != std::string::npos;
+    engine.SetStorageBlockLimit(0.0);
+    cao::LineFrame lifted;
+    CAO_CHECK(engine.FrameFromDepth(grid, settings, scene.lines, 0, d.drawings, d.segmentDrawing, d.camera, d.depth,
+                &d.skip, lifted, ms, error),
+      "%s", error.c_str());
+    bool identical = lifted.segment == gpu.segment && lifted.ao.size() == gpu.ao.size();
+    for (std::size_t k = 0; identical && k < gpu.ao.size(); ++k)
+      identical = (lifted.ao[k] == gpu.ao[k]) || (std::isnan(lifted.ao[k]) && std::isnan(gpu.ao[k]));
+    Check(segmentsRefused && pixelsRefused && identical,
+      "a storage block over the host's limit is refused, naming it: '" + segmentsWhy + "', then '" + pixelsWhy +
+        "'; the limit lifted, the same G-buffer and AO bit for bit");
   }
 
   // Bad input: refused with the CPU's reasons.
