@@ -1,6 +1,6 @@
 /**
  * vtkCAOSceneLines — the lines of a scene as the render pass gives them
- * ambient occlusion: line voxelization and prism sampling (seed 004,
+ * ambient occlusion: line voxelization and prism sampling (Benevides 2015,
  * Filters/Kernels/Lines) on the CPU, the prisms on the window's OpenGL
  * when the pass's backend resolves there (Filters/GL/Lines). Private to
  * vtkContextualAOPass.

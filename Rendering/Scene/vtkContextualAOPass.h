@@ -290,7 +290,7 @@ public:
   ///@}
 
   ///@{
-  /// Line AO (seed 004: line voxelization and prism sampling, on the CPU)
+  /// Line AO (Benevides 2015: line voxelization and prism sampling, on the CPU)
   /// for the lines among the opaque actors: polydata pieces with lines and
   /// no polygons (streamlines, polylines), drawn as lines or as tubes
   /// (vtkProperty's RenderLinesAsTubes), in the same frame as the surfaces
@@ -319,7 +319,7 @@ public:
   ///@{
   /// How the lines drawn flat (not as tubes) are lit. VTK draws them unlit,
   /// in their colour alone (LINE_SHADING_AS_DRAWN, the default: the AO
-  /// scales that colour). LINE_SHADING_MALLO_BANKS lights them as seed 004
+  /// scales that colour). LINE_SHADING_MALLO_BANKS lights them as Benevides 2015
   /// does, by the renderer's lights that are on (each by its intensity;
   /// a headlight or camera light follows the camera): the drawn colour
   /// times (a + (1 - a) MalloDiffuseRelative), a = Ambient / (Ambient +

@@ -1,7 +1,7 @@
 /**
  * caoSurfaceLines — `cao surface` on lines (polylines, streamlines): each
  * line is a tube of radius --tube-radius, seen by the same fitted camera
- * as meshes are, its AO by line AO (seed 004's line voxelization and prism
+ * as meshes are, its AO by line AO (Benevides 2015's line voxelization and prism
  * sampling, Kernels/Lines), the ray-traced reference on the exact tubes
  * (capsules), vtkSSAOPass on the tubes as vtkTubeFilter draws them, or
  * none. The pieces are shared with `cao bench lines`.

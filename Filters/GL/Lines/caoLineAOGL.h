@@ -1,5 +1,5 @@
 /**
- * caoLineAOGL - line AO (seed 004) on the GPU, with no VTK: the lines'
+ * caoLineAOGL - line AO (Benevides') on the GPU, with no VTK: the lines'
  * voxelization (caoLineVoxelize.glsl, the twin of cao::VoxelizeLines: the
  * bits stay on the GPU for the prisms) and one compute
  * shader (caoLineAO.glsl) counts each covered pixel's prisms in the lines'

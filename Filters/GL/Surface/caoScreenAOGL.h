@@ -1,5 +1,5 @@
 /**
- * caoScreenAOGL — horizon-based AO (seed 002) and volumetric AO (seed 001)
+ * caoScreenAOGL — horizon-based AO (Bavoil et al.) and volumetric AO (Szirmay-Kalos et al.)
  * on the GPU, with no VTK: one compute shader (caoScreenAO.glsl,
  * specialised per method) evaluates the CPU twin's estimator
  * (caoScreenSpaceAO.h) in float per pixel, with the same randomization

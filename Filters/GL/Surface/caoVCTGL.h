@@ -1,5 +1,5 @@
 /**
- * caoVCTGL — voxel cone tracing (seed 000) on the GPU, with no VTK: the
+ * caoVCTGL — voxel cone tracing (Dalla Favera and Celes) on the GPU, with no VTK: the
  * world-space bit grid voxelized in a compute shader (caoVoxelize.glsl: a
  * software rasterizer in double with the CPU's top-left rule, so the bits
  * are cao::VoxelizeWorld's on every GPU, not the hardware rasterizer's),

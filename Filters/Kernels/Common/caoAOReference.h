@@ -6,7 +6,7 @@
 //
 // where D is the distance to the first occluder along omega (infinite when
 // none), mu the falloff (step: 1 beyond R, else 0; linear: min(D/R, 1);
-// quartic: min(D/R, 1)^4, seed 001's recommended measure) and w the
+// quartic: min(D/R, 1)^4, Szirmay-Kalos et al.'s recommended measure) and w the
 // direction weighting (cosine: density cos(theta)/pi, the Lambertian
 // definition; uniform: 1/(2 pi) on the hemisphere, LAO's). AO = 1 is fully
 // open, as the volume's LAO. The common definition every method is also
@@ -33,8 +33,8 @@ namespace cao
 enum class AOFalloff
 {
   Step = 0,   ///< binary within R (the common definition; seeds 000, 002)
-  Linear = 1, ///< min(D/R, 1): LAO's measure for a binary occluder (seed 003)
-  Quartic = 2 ///< min(D/R, 1)^4 (seed 001)
+  Linear = 1, ///< min(D/R, 1): LAO's measure for a binary occluder (Titov et al.)
+  Quartic = 2 ///< min(D/R, 1)^4 (Szirmay-Kalos et al.)
 };
 
 enum class AOWeighting

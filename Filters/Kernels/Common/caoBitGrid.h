@@ -28,7 +28,7 @@ struct BitGrid
   std::array<double, 9> axes{ { 1, 0, 0, 0, 1, 0, 0, 0, 1 } };
   void ToGrid(const double world[3], double out[3]) const;
   void ToWorld(const double grid[3], double out[3]) const;
-  /// The frustum grid (PlanFrustumGrid; seed 000 Sec. III-B, the paper's
+  /// The frustum grid (PlanFrustumGrid; Dalla Favera and Celes Sec. III-B, the paper's
   /// eye-space grid): column (i, j) is the ray of pixel (i, j), slice k of
   /// a column spans depths [near + k step, near + (k + 1) step), step =
   /// (far - near) / slices, `near` the column's own (its pixel's visible

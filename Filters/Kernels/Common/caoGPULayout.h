@@ -240,7 +240,7 @@ CAO_CONST CAO_DM_STAT_BOXES = 8;     /* then per layer: covered x0, y0, x1, y1 *
 #define CAO_DM_END 0xFFFFFFFFu
 
 /*
- * Voxel cone tracing (seed 000; caoVoxelConeTracing.h is the CPU twin,
+ * Voxel cone tracing (Dalla Favera and Celes; caoVoxelConeTracing.h is the CPU twin,
  * caoVCTGL the GPU side). The grid: column (i, j) holds `words` 32-bit
  * words, slice k in bit k % 32 of word k / 32, column-major as the CPU's
  * BitGrid. The voxelizer (caoVoxelize.glsl) reads the points in grid units

@@ -1,5 +1,5 @@
 // caoLineAO.h - ambient occlusion for lines by line voxelization and prism
-// sampling (seed 004, Benevides 2015), the CPU twin: the lines are
+// sampling (Benevides 2015), the CPU twin: the lines are
 // voxelized into a bit grid with OR (lines are not solids), and each
 // pixel's AO comes from the occupancy of a half ball of radius R at its
 // line (facing the tube's normal, or the camera as the seed's), sampled by

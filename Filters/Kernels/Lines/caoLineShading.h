@@ -1,4 +1,4 @@
-// caoLineShading.h - how a line is lit without a normal (seed 004 Sec. 2.1,
+// caoLineShading.h - how a line is lit without a normal (Benevides 2015, Sec. 2.1,
 // the shading its comparisons use): the diffuse term averaged over the
 // visible half of an infinitesimal cylinder (Mallo et al. 2005, Eq. 2.4-2.5)
 // and the specular term of maximum reflection (Banks 1994, Eq. 2.3). The AO

@@ -3,7 +3,7 @@
 // FrameFromDepth's drawn depth) and its camera. Both see only what the
 // camera sees (the depth buffer is taken as infinitely thick).
 //
-// Horizon-based AO (seed 002, Bavoil, Sainz and Dimitrov): per pixel P
+// Horizon-based AO (Bavoil, Sainz and Dimitrov): per pixel P
 // (normal n), N_d directions t in the tangent plane, rotated per pixel by
 // a 4 x 4 randomization pattern, each marched in N_s jittered steps of
 // R / N_s from P' = P + offset * (a pixel's world size) * n (Eq. 13, the
@@ -24,7 +24,7 @@
 // the mean of H^2 is the cosine-weighted occlusion), not uniform in screen
 // angle. Then a depth-aware 5 x 5 Gaussian blur (sigma 1.5 pixels).
 //
-// Volumetric AO (seed 001, Szirmay-Kalos et al.), the base-disk form: the
+// Volumetric AO (Szirmay-Kalos et al.), the base-disk form: the
 // obscurance O (1 = open) with the fuzzy measure mu = (r / R)^4, from
 // `samples` points (x, y) uniform on the disk of radius R across the
 // pixel's viewing ray (the quasi-orthographic frame: z toward the camera),
@@ -57,7 +57,7 @@
 namespace cao
 {
 
-/// Seed 002's configurations (its Table 1 and Fig. 11 (a)-(d)).
+/// Bavoil et al.'s configurations (their Table 1 and Fig. 11 (a)-(d)).
 enum class HBAOPreset
 {
   Custom = 0,
@@ -111,7 +111,7 @@ enum class VAOQuality
   High = 3    ///< 32
 };
 
-/// The settings of volumetric AO (seed 001, base disk).
+/// The settings of volumetric AO (Szirmay-Kalos et al., base disk).
 struct VAOSettings
 {
   VAOQuality quality = VAOQuality::Medium;

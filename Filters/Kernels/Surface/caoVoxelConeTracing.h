@@ -1,4 +1,4 @@
-// caoVoxelConeTracing.h - seed 000 (Dalla Favera & Celes, "Ambient
+// caoVoxelConeTracing.h - Dalla Favera & Celes ("Ambient
 // occlusion using cone tracing with scene voxelization"): the CPU twin of
 // the method, over a world-space bit grid (the paper's future work for
 // static scenes: built once while the geometry does not change), an eye
@@ -11,7 +11,7 @@
 //    rasterizer (so that a column through a shared edge or vertex counts
 //    one crossing, and the CPU and GPU grids can agree bit for bit). A
 //    closed mesh XORs, at each crossing, every slice whose centre lies
-//    beyond it (seed 000 / Eisemann and Decoret's solid voxelization):
+//    beyond it (the paper's / Eisemann and Decoret's solid voxelization):
 //    odd parity is inside. A mesh with boundary edges (open) cannot be
 //    filled that way; it is voxelized as a shell (each crossing sets its
 //    own slice) and reported. By default a closed mesh's crossings set
@@ -68,7 +68,7 @@ namespace cao
 enum class VCTQuality
 {
   Custom = 0,
-  Low = 1,    ///< 3 spheres, 3 prisms (seed 000, Table I)
+  Low = 1,    ///< 3 spheres, 3 prisms (the paper's Table I)
   Medium = 2, ///< 5 spheres, 6 prisms (the paper's choice)
   High = 3    ///< 7 spheres, 12 prisms
 };
@@ -77,7 +77,7 @@ enum class VCTQuality
 enum class VCTOccupancy
 {
   Rays = 0,  ///< the cosine-weighted share of its rays that meet a set voxel (default)
-  Volume = 1 ///< per sphere, the set share of its z-column prisms' bits (seed 000's bitCount)
+  Volume = 1 ///< per sphere, the set share of its z-column prisms' bits (the paper's bitCount)
 };
 
 const char* VCTOccupancyName(VCTOccupancy occupancy);
@@ -210,7 +210,7 @@ bool PlanEyeGrid(const std::vector<MeshView>& meshes, const std::array<double, 9
 bool EyeBounds(const std::vector<MeshView>& meshes, const std::array<double, 9>& axes,
   std::array<double, 6>& bounds, std::string& error);
 
-/// The paper's eye-space grid for `camera` (seed 000 Sec. III-B and Eq. 2):
+/// The paper's eye-space grid for `camera` (Dalla Favera and Celes, Sec. III-B and Eq. 2):
 /// a column per pixel (under a perspective camera the columns fan out with
 /// the pixels' rays), `slices` slices per column, linear in depth from the
 /// column's visible depth in `frame` (its z_nearest: Eisemann's local
@@ -252,7 +252,7 @@ bool InsideMask(const MeshView& mesh, const int dims[3], const std::array<double
 /// sphere of radius r sees the mean opacity a of the volume at its centre
 /// and its prisms' points (on the sphere's disk across the grid's z axis,
 /// where the bits are counted), over its diameter: 1 - (1 - a)^(2r / unit), the
-/// step-length correction LAO uses (seed 003 Eq. 2, seed 000 Sec. III-C2:
+/// step-length correction LAO uses (Titov et al. Eq. 2, Dalla Favera and Celes Sec. III-C2:
 /// one absorption model), composed with the sphere's voxel occupancy as
 /// 1 - (1 - occ)(1 - alpha) (occupancy "volume"), or with the cone's rays'
 /// occlusion as 1 - (1 - occ_rays) prod_k (1 - alpha_k) ("rays").
