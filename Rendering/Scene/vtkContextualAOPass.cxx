@@ -1584,21 +1584,27 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
   std::vector<double> primary{ key[0], key[2], key[3] };
   primary.insert(primary.end(), key.begin() + 8, key.end());
   const std::size_t count = static_cast<std::size_t>(width) * height;
+  // The lines' pixels (UpdateLines ran first): no surface's in the depth
+  // G-buffer; part of what the G-buffer was made for.
+  std::vector<unsigned char> linePixels;
+  const cao::LineFrame& lineFrame = this->lines.Frame();
+  if (this->gbuffer == DEPTH_BUFFER && this->linesOn && lineFrame.segment.size() == count)
+  {
+    linePixels.resize(count);
+    std::uint64_t hash = 1469598103934665603ull;
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      linePixels[i] = lineFrame.segment[i] >= 0;
+      hash = (hash ^ linePixels[i]) * 1099511628211ull;
+    }
+    primary.push_back(static_cast<double>(hash >> 11));
+  }
   const bool keep = primary == this->primaryKey && this->frame.width == width &&
     this->frame.height == height && this->frame.position.size() == 3 * count &&
     this->frame.normal.size() == 3 * count && this->frame.ao.size() == count;
   this->primaryKey.clear();
   if (!keep)
   {
-    // The lines' pixels (UpdateLines ran first): no neighbour of a surface's.
-    std::vector<unsigned char> linePixels;
-    const cao::LineFrame& lineFrame = this->lines.Frame();
-    if (this->gbuffer == DEPTH_BUFFER && this->linesOn && lineFrame.segment.size() == count)
-    {
-      linePixels.resize(count);
-      for (std::size_t i = 0; i < count; ++i)
-        linePixels[i] = lineFrame.segment[i] >= 0;
-    }
     if (this->gbuffer == DEPTH_BUFFER
         ? !cao::FrameFromDepth(pixels, this->depth, this->frame, error, linePixels.empty() ? nullptr : &linePixels)
                                       : !cao::CastPrimary(this->bvh, pixels, this->frame, error))

@@ -127,11 +127,10 @@ bool FrameFromDepth(const PixelCamera& camera, const std::vector<float>& depth, 
       const double x = (i + 0.5) / w * 2.0 - 1.0, y = (j + 0.5) / h * 2.0 - 1.0;
       valid[k] = unproject(x, y, 2.0 * d - 1.0, &frame.position[3 * k]);
     }
-  // A neighbour: a drawn pixel that no other kind of geometry drew.
-  std::vector<char> neighbour(valid);
+  // Another kind's pixels are no surface's: not covered, no neighbour.
   if (otherDrawing)
     for (std::size_t k = 0; k < count; ++k)
-      neighbour[k] = valid[k] && !(*otherDrawing)[k];
+      valid[k] = valid[k] && !(*otherDrawing)[k];
   auto distance2 = [&frame](std::size_t a, std::size_t b) {
     double s = 0.0;
     for (int d = 0; d < 3; ++d)
@@ -155,10 +154,7 @@ bool FrameFromDepth(const PixelCamera& camera, const std::vector<float>& depth, 
         const std::size_t step = axis == 0 ? 1 : static_cast<std::size_t>(w);
         const bool hasMinus = axis == 0 ? i > 0 : j > 0;
         const bool hasPlus = axis == 0 ? i + 1 < w : j + 1 < h;
-        // (a pixel another kind drew keeps every neighbour: it stays a
-        // covered occluder for the screen-space estimators, as before)
-        const std::vector<char>& near = neighbour[k] ? neighbour : valid;
-        const bool minus = hasMinus && near[k - step], plus = hasPlus && near[k + step];
+        const bool minus = hasMinus && valid[k - step], plus = hasPlus && valid[k + step];
         if (!minus && !plus)
         {
           ok = false;
@@ -170,8 +166,8 @@ bool FrameFromDepth(const PixelCamera& camera, const std::vector<float>& depth, 
         // (Measured: RMSE 0.0641 -> 0.0606 for VCT Medium at 256^2 on the
         // four shared meshes; the central difference where both sides are
         // smooth gave 0.0612.)
-        const bool minus2 = minus && (axis == 0 ? i > 1 : j > 1) && near[k - 2 * step];
-        const bool plus2 = plus && (axis == 0 ? i + 2 < w : j + 2 < h) && near[k + 2 * step];
+        const bool minus2 = minus && (axis == 0 ? i > 1 : j > 1) && valid[k - 2 * step];
+        const bool plus2 = plus && (axis == 0 ? i + 2 < w : j + 2 < h) && valid[k + 2 * step];
         bool usePlus = plus && (!minus || distance2(k, k + step) <= distance2(k, k - step));
         if (minus2 && plus2)
           usePlus = Bend(frame.position, k, k + step, k + 2 * step) <= Bend(frame.position, k, k - step, k - 2 * step);

@@ -46,9 +46,11 @@ bool CastPrimary(const TriangleBVH& scene, const PixelCamera& camera, SurfaceFra
 /// neighbour gives a normal. Float depth: positions to about 1e-7 of the
 /// depth range, normals to about a degree on surfaces at grazing angles.
 /// `otherDrawing` (optional, one per pixel): the pixels another kind of
-/// geometry drew (the lines'), never a neighbour for a surface pixel's
-/// normal: a surface seen edge on, a pixel wide between lines, gets no
-/// normal (as a ray cast misses it) instead of one across to a line.
+/// geometry drew (the lines'), which are no surface's: not covered (so
+/// the screen-space estimators do not take a thin line for a depth wall)
+/// and never a neighbour for a surface pixel's normal (a surface seen
+/// edge on, a pixel wide between lines, gets no normal, as a ray cast
+/// misses it, instead of one across to a line).
 bool FrameFromDepth(const PixelCamera& camera, const std::vector<float>& depth, SurfaceFrame& frame,
   std::string& error, const std::vector<unsigned char>* otherDrawing = nullptr);
 

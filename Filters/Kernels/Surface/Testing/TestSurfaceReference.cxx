@@ -411,10 +411,11 @@ int TestSurfaceReference(int, char*[])
   // Another kind's pixels (otherDrawing, the lines'): a surface a pixel
   // wide (column 20: a plane seen nearly edge on, its depth steep in y)
   // between two lines (columns 19 and 21, nearer) gets no normal across to
-  // them, so no AO (a ray cast misses it too); the lines' own pixels stay
-  // covered (occluders for the screen-space estimators); a tilted plane
-  // apart (columns 32-63) is the same bit for bit. Negative control: without
-  // the mask every strip pixel is covered, its x tangent taken to a line.
+  // them, so no AO (a ray cast misses it too); the lines' own pixels are
+  // not covered (no depth wall for the screen-space estimators); a tilted
+  // plane apart (columns 32-63) is the same bit for bit. Negative control:
+  // without the mask every strip pixel is covered, its x tangent taken to a
+  // line, and so is every line pixel.
   {
     std::string error;
     cao::PixelCamera cam;
@@ -442,13 +443,14 @@ int TestSurfaceReference(int, char*[])
     CAO_CHECK(cao::FrameFromDepth(cam, depth, plain, error) && cao::FrameFromDepth(cam, depth, masked, error, &lines),
       "%s", error.c_str());
     int stripCovered = 0, linesCovered = 0, planeSame = 0;
-    int controlCovered = 0;
+    int controlCovered = 0, controlLines = 0;
     for (int j = 2; j < 46; ++j)
     {
       const std::size_t k = static_cast<std::size_t>(j) * 64 + 20;
       stripCovered += masked.triangle[k] >= 0;
       linesCovered += (masked.triangle[k - 1] >= 0) + (masked.triangle[k + 1] >= 0);
       controlCovered += plain.triangle[k] >= 0;
+      controlLines += (plain.triangle[k - 1] >= 0) + (plain.triangle[k + 1] >= 0);
     }
     for (int j = 0; j < 48; ++j)
       for (int i = 32; i < 64; ++i)
@@ -461,11 +463,12 @@ int TestSurfaceReference(int, char*[])
         planeSame += same;
       }
     std::printf("depth G-buffer beside lines: the strip's pixels covered %d of 44 (without the mask %d), the "
-                "lines' %d of 88, the plane apart the same at %d of %d\n",
-      stripCovered, controlCovered, linesCovered, planeSame, 32 * 48);
-    CAO_CHECK(stripCovered == 0 && linesCovered == 88 && planeSame == 32 * 48 && controlCovered == 44,
-      "depth G-buffer beside lines: strip %d, lines %d, plane %d, control %d", stripCovered, linesCovered, planeSame,
-      controlCovered);
+                "lines' %d of 88 (without the mask %d), the plane apart the same at %d of %d\n",
+      stripCovered, controlCovered, linesCovered, controlLines, planeSame, 32 * 48);
+    CAO_CHECK(stripCovered == 0 && linesCovered == 0 && planeSame == 32 * 48 && controlCovered == 44 &&
+        controlLines == 88,
+      "depth G-buffer beside lines: strip %d, lines %d, plane %d, controls %d %d", stripCovered, linesCovered,
+      planeSame, controlCovered, controlLines);
     std::vector<unsigned char> shortMask(10, 0);
     CAO_CHECK(!cao::FrameFromDepth(cam, depth, masked, error, &shortMask) &&
         error.find("does not match") != std::string::npos,

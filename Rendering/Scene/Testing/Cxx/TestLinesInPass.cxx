@@ -39,6 +39,9 @@
 //     control: 3 pixels wide stays on the GPU
 //  12 the depth G-buffer beside lines: a plane seen edge on, a pixel wide
 //     between two lines, gets no surface AO (no normal across to a line)
+//  13 the screen-space methods with the depth G-buffer take no line for a
+//     depth wall: a floor under 15 lines stays open (control: Line AO off,
+//     the lines' pixels unknown, darkens it)
 // Pixels are found by projecting the lines' points; each check reads the
 // drawn line pixel nearest the projection (GetPixelAO > -1).
 #include "vtkContextualAOPass.h"
@@ -701,6 +704,78 @@ int TestLinesInPass(int, char*[])
       "a plane seen edge on between lines takes no normal across to them: no surface AO at its " +
         std::to_string(drawn) + " pixels (" + std::to_string(withAO) + " with AO, darkest " +
         std::to_string(darkest) + ")");
+  }
+  // 13: the screen-space methods with the depth G-buffer take no line for
+  // a depth wall: 15 lines 0.1 apart, 0.5 above a floor, AO radius 1, seen
+  // from above at a slant. Horizon Based and Volumetric leave the floor
+  // between the lines as open as without them (the lines' pixels are no
+  // surface's); the report says the lines do not occlude the surfaces
+  // there. Control: with Line AO off the lines' pixels are not known, the
+  // drawn lines are depth walls and the floor between them goes black (the
+  // same G-buffer kept across the toggle had hidden this: the lines' pixels
+  // are part of its key).
+  {
+    vtkNew<vtkContextualAOEGLWindow> w;
+    w->SetSize(200, 150);
+    w->SetMultiSamples(0);
+    vtkNew<vtkRenderer> r;
+    r->SetBackground(0.1, 0.1, 0.1);
+    w->AddRenderer(r);
+    std::vector<std::pair<double, double>> rows;
+    for (int l = 0; l < 15; ++l)
+      rows.push_back({ -0.7 + 0.1 * l, 0.5 });
+    vtkNew<vtkPolyDataMapper> m;
+    m->SetInputData(Lines(rows));
+    vtkNew<vtkActor> a;
+    a->SetMapper(m);
+    a->GetProperty()->SetLineWidth(2.0);
+    a->GetProperty()->SetColor(1.0, 0.0, 0.0);
+    r->AddActor(a);
+    vtkNew<vtkCubeSource> ground;
+    ground->SetBounds(-3, 3, -3, 3, -0.02, 0.0);
+    vtkNew<vtkPolyDataMapper> gm;
+    gm->SetInputConnection(ground->GetOutputPort());
+    vtkNew<vtkActor> ga;
+    ga->SetMapper(gm);
+    r->AddActor(ga);
+    r->GetActiveCamera()->SetPosition(0, -3, 6);
+    r->GetActiveCamera()->SetFocalPoint(0, 0, 0);
+    r->GetActiveCamera()->SetViewUp(0, 0, 1);
+    r->ResetCameraClippingRange();
+    vtkNew<vtkContextualAOPass> ss;
+    ss->SetRadius(1.0);
+    ss->SetBackend(vtkContextualAOPass::BACKEND_CPU);
+    ss->SetGBuffer(vtkContextualAOPass::DEPTH_BUFFER);
+    r->SetPass(ss);
+    // The floor's darkest AO over the pixels near the bundle that are no line's.
+    auto floorDarkest = [&](int method, bool lineAO, std::string& rep) {
+      ss->SetMethod(method);
+      ss->SetLineAO(lineAO);
+      w->Render();
+      rep = ss->GetLastFrameReport();
+      double darkest = 1.0;
+      for (int y = 40; y < 110; ++y)
+        for (int x = 40; x < 160; ++x)
+        {
+          const double ao = ss->GetPixelAO(x, y);
+          // (a line's pixel is red, the floor grey)
+          vtkNew<vtkUnsignedCharArray> c;
+          static_cast<vtkRenderWindow*>(w.Get())->GetPixelData(x, y, x, y, 0, c.Get());
+          if (ao > -1.0 && c->GetValue(1) * 2 > c->GetValue(0))
+            darkest = std::min(darkest, ao);
+        }
+      return darkest;
+    };
+    std::string hbaoRep, vaoRep, offRep;
+    const double hbao = floorDarkest(vtkContextualAOPass::HBAO, true, hbaoRep);
+    const double vao = floorDarkest(vtkContextualAOPass::VAO, true, vaoRep);
+    const double hbaoOff = floorDarkest(vtkContextualAOPass::HBAO, false, offRep);
+    std::printf("a floor 0.5 under 15 lines, depth G-buffer: darkest floor AO, Horizon Based %.3f, Volumetric %.3f; "
+                "control, Line AO off: %.3f; report %s\n", hbao, vao, hbaoOff, hbaoRep.c_str());
+    Check(hbao > 0.9 && vao > 0.9 && hbaoRep.find("\"occlude_surfaces\": false") != std::string::npos &&
+        hbaoOff < 0.5,
+      "the screen-space methods take no line for a depth wall (darkest floor AO " + std::to_string(hbao) + ", " +
+        std::to_string(vao) + "; control, Line AO off: " + std::to_string(hbaoOff) + ")");
   }
   std::printf("%d failure(s)\n", failures);
   return failures ? 1 : 0;
