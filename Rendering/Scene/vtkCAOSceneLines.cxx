@@ -289,6 +289,12 @@ bool SceneLines::SettingsOf(const cao::PixelCamera& camera, const Extent& extent
   // The AO radius: the pass's, or the default of the lines drawn as tubes
   // of 1/200 of their extent (as `cao surface` takes lines).
   const std::array<double, 6>& b = extent.bounds;
+  if (aoRadius > 0.0)
+  {
+    error = cao::CheckAORadius(aoRadius, extent.diagonal);
+    if (!error.empty())
+      return false;
+  }
   settings.radius = aoRadius > 0.0
     ? aoRadius
     : cao::DefaultAORadius(b, 2.0 * 3.14159265358979323846 * 0.005 * extent.diagonal * extent.length);

@@ -1321,6 +1321,15 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
       sum += cao::MeshArea({ &points[i], &triangles[i] });
     return sum;
   };
+  if (self->Radius > 0)
+  {
+    const std::string why = cao::CheckAORadius(self->Radius, diagonal);
+    if (!why.empty())
+    {
+      this->failedSceneKey = this->frameSceneKey;
+      return this->Fail(self, "Radius: " + why + " (0: the scene's default)");
+    }
+  }
   this->radius = self->Radius > 0 ? self->Radius
                                   : cao::DefaultAORadius(b, distributed ? this->commonArea : area());
   // The drawn-is-traced test's tolerance: half a voxel (the screen-space

@@ -989,6 +989,14 @@ int Run(SurfaceOptions& o, const CLI::App* app)
   double area = 0.0;
   for (const cao::MeshView& m : scene.Views())
     area += cao::MeshArea(m);
+  if (o.radius > 0)
+  {
+    const double diagonal = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
+      (b[5] - b[4]) * (b[5] - b[4]));
+    const std::string why = cao::CheckAORadius(o.radius, diagonal);
+    if (!why.empty())
+      return Fail(2, "--radius: " + why);
+  }
   const double radius = o.radius > 0 ? o.radius : cao::DefaultAORadius(b, area);
   o.reference.radius = radius;
   vtkNew<vtkCamera> camera;
@@ -1220,10 +1228,10 @@ Command AddSurfaceCommand(CLI::App& cao)
   AddMeshes(app, o->meshes);
   AddChoice(app, "--method", o->method, { "vct", "hbao", "vao", "lineao", "reference", "ssao", "none" },
     "the method (default vct; for lines, lineao):\n"
-    "vct: voxel cone tracing (seed 000) on a bit grid of the meshes (CPU or OpenGL: --backend);\n"
-    "hbao: horizon-based AO (seed 002) on the G-buffer (CPU or OpenGL: --backend);\n"
-    "vao: volumetric AO (seed 001, base disk, mu = (r/R)^4) on the G-buffer (CPU or OpenGL);\n"
-    "lineao: line AO (seed 004) for line inputs: the lines voxelized into an eye grid, prisms "
+    "vct: voxel cone tracing (Dalla Favera and Celes) on a bit grid of the meshes (CPU or OpenGL: --backend);\n"
+    "hbao: horizon-based AO (Bavoil et al.) on the G-buffer (CPU or OpenGL: --backend);\n"
+    "vao: volumetric AO (Szirmay-Kalos et al., base disk, mu = (r/R)^4) on the G-buffer (CPU or OpenGL);\n"
+    "lineao: line AO (Benevides 2015) for line inputs: the lines voxelized into an eye grid, prisms "
     "sampled in a half ball facing each tube pixel's normal (CPU);\n"
     "reference: CPU ray tracing in double precision (Kernels/Surface; lines: exact capsules);\n"
     "ssao: VTK's vtkSSAOPass, its default kernel (32, --kernel) and bias, blurred, at the same "
@@ -1233,7 +1241,8 @@ Command AddSurfaceCommand(CLI::App& cao)
     "each line is a tube of --tube-radius");
   AddLength(app, "--radius", o->radius,
     "world units (default: half the mean free path between the meshes' surfaces, 2V/A over "
-    "their bounding box V and area A, between a fortieth and a tenth of the box's diagonal)")
+    "their bounding box V and area A, between a fortieth and a tenth of the box's diagonal; "
+    "a radius given must be 1e-6 to 1e3 times the scene's diagonal)")
     ->type_name("R");
   AddSurfaceQuality(app, o->quality, true,
     "vct: low|medium|high, the paper's presets (spheres 3/5/7, prisms 3/6/12; default medium);\n"

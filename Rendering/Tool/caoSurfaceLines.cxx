@@ -263,6 +263,14 @@ int RunSurfaceLines(LineJob& job, const std::vector<std::string>& files,
   for (const cao::MeshView& m : views)
     area += cao::MeshArea(m);
   const double defaultRadius = cao::DefaultAORadius(bounds, area);
+  if (job.radius > 0.0)
+  {
+    const double diagonal = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
+      (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) + (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
+    error = cao::CheckAORadius(job.radius, diagonal);
+    if (!error.empty())
+      return Fail(2, "--radius: " + error);
+  }
   const double radius = job.radius > 0.0 ? job.radius : defaultRadius;
   if (job.method == "lineao" && radius > 3.0 * defaultRadius)
     std::cerr << "cao: warning: --radius " << radius << " is " << radius / defaultRadius

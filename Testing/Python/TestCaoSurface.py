@@ -524,5 +524,18 @@ for args, words in [(["--method", "magic", bunny, "-o", "x.png"], "--method: bad
     rc, so, se = run(*args)
     check(rc == 2 and words in se and "Segmentation" not in se, "bad input %s: rc %d, %r" % (args[:2], rc, se.strip()[:160]))
 
+# A radius outside 1e-6 to 1e3 times the scene's diagonal is refused with
+# the limits, for every method (volumetric AO gave AO 0 at 1e-300 and
+# 1e100, voxel cones 1 at 1e10); at the limits it runs.
+for method in ("vct", "hbao", "vao", "reference"):
+    for radius in (1e-300, 1.001e3 * bunny_diagonal, 0.999e-6 * bunny_diagonal):
+        rays = ["--rays", "16"] if method == "reference" else []
+        rc, so, se = run(bunny, "--method", method, "--radius", repr(radius), "--image", "48x48", *rays,
+                         "-o", os.path.join(tmp, "r.png"))
+        check(rc == 2 and "1e-6 to 1e3 times" in se, "%s --radius %g refused with the limits (rc %d: %s)"
+              % (method, radius, rc, se.strip()[-160:]))
+rc, so, se = run(bunny, "--method", "vao", "--radius", repr(0.999e3 * bunny_diagonal), "--image", "48x48",
+                 "-o", os.path.join(tmp, "r.png"))
+check(rc == 0, "control: vao at 999 times the diagonal runs (rc %d: %s)" % (rc, se.strip()[-160:]))
 print("%d failure(s)" % len(failures))
 sys.exit(1 if failures else 0)

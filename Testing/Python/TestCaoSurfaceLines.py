@@ -425,5 +425,13 @@ p = subprocess.run([tool, "bench", "lines", path, "--image", "32x24", "--tube-ra
 check(p.returncode == 2 and "no pixel" in p.stderr,
       "cao bench lines with tubes thinner than a pixel: rc %d, %r" % (p.returncode, p.stderr.strip()[:160]))
 
+# A radius outside 1e-6 to 1e3 times the scene's diagonal is refused with
+# the limits (control: the default radius runs on the same lines).
+for radius in ("1e-300", "1e300"):
+    rc, so, se = run(single, "--radius", radius, "--image", "64x48", "-o", os.path.join(tmp, "r.png"))
+    check(rc == 2 and "1e-6 to 1e3 times" in se, "lines: --radius %s refused with the limits (rc %d: %s)"
+          % (radius, rc, se.strip()[-200:]))
+rc, so, se = run(single, "--image", "64x48", "-o", os.path.join(tmp, "r.png"))
+check(rc == 0, "control: the default radius runs (rc %d)" % rc)
 print("%d failure(s)" % len(failures))
 sys.exit(1 if failures else 0)

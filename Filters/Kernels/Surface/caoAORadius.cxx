@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace cao
 {
@@ -45,5 +46,18 @@ double DefaultAORadius(const std::array<double, 6>& b, double area)
   if (!(area > 0.0) || !std::isfinite(area) || !std::isfinite(volume))
     return most;
   return std::clamp(2.0 * volume / area, least, most);
+}
+
+std::string CheckAORadius(double radius, double diagonal)
+{
+  if (!(diagonal > 0.0) || !std::isfinite(diagonal))
+    return std::string();
+  if (radius >= AORadiusLeast * diagonal && radius <= AORadiusMost * diagonal)
+    return std::string();
+  char text[320];
+  std::snprintf(text, sizeof(text),
+    "the AO radius %g is outside %g to %g (1e-6 to 1e3 times the scene's bounding-box diagonal, %g)", radius,
+    AORadiusLeast * diagonal, AORadiusMost * diagonal, diagonal);
+  return text;
 }
 }

@@ -21,6 +21,7 @@
 #include "caoVoxelConeTracing.h" // For MeshView
 
 #include <array>
+#include <string>
 
 namespace cao
 {
@@ -37,6 +38,15 @@ double DefaultAORadius(const std::array<double, 6>& bounds, double area);
 
 /// The fractions of the diagonal that bound DefaultAORadius.
 constexpr double DefaultAORadiusMost = 0.1, DefaultAORadiusLeast = 0.025;
+
+/// The AO radius a scene of bounding-box diagonal `diagonal` takes: from
+/// 1e-6 to 1e3 times the diagonal. Beyond, the estimators' arithmetic
+/// fails silently (a new-user trial on footbones: volumetric AO's mean 0
+/// at radii of 1e-300 and 1e100, voxel cones' 1 at 1e10 and above). ""
+/// when `radius` is inside (or `diagonal` is not positive and finite: the
+/// scene's own error), else the reason with the limits.
+std::string CheckAORadius(double radius, double diagonal);
+constexpr double AORadiusLeast = 1e-6, AORadiusMost = 1e3;
 }
 
 #endif

@@ -107,5 +107,23 @@ int TestAORadius(int, char*[])
     CAO_CHECK(Near(area, 0.5), "bad triangles counted: %.17g", area);
     CAO_CHECK(cao::MeshArea({ nullptr, nullptr }) == 0.0, "no mesh");
   }
+  // The radius a scene takes (CheckAORadius): 1e-6 to 1e3 times its
+  // diagonal, inclusive; outside, the reason names both limits; no scene
+  // (a diagonal that is not positive and finite) is the scene's error.
+  {
+    const double d = 12.5;
+    const bool inside = cao::CheckAORadius(1e-6 * d, d).empty() && cao::CheckAORadius(1e3 * d, d).empty() &&
+      cao::CheckAORadius(0.1 * d, d).empty();
+    std::string big = cao::CheckAORadius(1.001e3 * d, d), small = cao::CheckAORadius(0.999e-6 * d, d);
+    const bool outside = big.find("1.25e-05 to 12500") != std::string::npos &&
+      small.find("1.25e-05 to 12500") != std::string::npos && !cao::CheckAORadius(1e-300, d).empty() &&
+      !cao::CheckAORadius(1e300, d).empty() &&
+      !cao::CheckAORadius(std::numeric_limits<double>::quiet_NaN(), d).empty();
+    const bool noScene = cao::CheckAORadius(1e300, 0.0).empty() &&
+      cao::CheckAORadius(1.0, std::numeric_limits<double>::infinity()).empty();
+    std::printf("radius limits: '%s'\n", big.c_str());
+    CAO_CHECK(inside && outside && noScene, "CheckAORadius: inside %d, outside %d ('%s', '%s'), no scene %d", inside,
+      outside, big.c_str(), small.c_str(), noScene);
+  }
   return 0;
 }

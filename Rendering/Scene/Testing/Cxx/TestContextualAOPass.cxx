@@ -1523,6 +1523,27 @@ int TestContextualAOPass(int, char*[])
     pass->SetMethod(vtkContextualAOPass::VCT);
     pass->SetGBuffer(vtkContextualAOPass::RAY_CAST);
   }
+  // A radius outside 1e-6 to 1e3 times the scene's diagonal: refused with
+  // the limits (the estimators fail silently out there: VAO's AO went to
+  // 0, VCT's to 1); back inside, the AO again.
+  {
+    std::string reports;
+    bool refused = true;
+    for (double r : { 1e-300, 1e300 })
+    {
+      pass->SetRadius(r);
+      window->Render();
+      const std::string report = pass->GetLastFrameReport();
+      refused = refused && report.find("Radius: the AO radius") != std::string::npos &&
+        report.find("1e-6 to 1e3 times") != std::string::npos;
+      reports += report.substr(0, 240) + " | ";
+    }
+    pass->SetRadius(0.8);
+    window->Render();
+    const bool back = pass->GetLastFrameReport().find("\"error\"") == std::string::npos &&
+      pass->GetPixelAO(100, 80) > -1.0;
+    Check(refused && back, "a radius of 1e-300 or 1e300 is refused with the limits, 0.8 runs again: " + reports);
+  }
   // The default radius from the feature size: 12 x 12 closed rods (0.1
   // wide, 0.25 apart, 2 long) alone: 2V/A of their bounds and analytic
   // area, below the tenth of the diagonal (the slab and sphere alone keep
