@@ -52,6 +52,10 @@ void AppendVolumeOpacityKey(vtkVolume* volume, std::vector<double>& key)
   key.push_back(property->GetScalarOpacityUnitDistance(0));
   AppendMatrix(volume->GetMatrix(), key);
   if (auto* mapper = vtkContextualAOVolumeMapper::SafeDownCast(volume->GetMapper()))
+  {
+    // Whether it is drawn (a bad setting leaves it out of the frame).
+    std::string why;
+    key.push_back(mapper->CanDraw(input, why) ? 1.0 : 0.0);
     for (int i = 0; i < mapper->GetNumberOfClipShapes(); ++i)
     {
       vtkPolyData* mesh = mapper->GetClipShapeMeshAt(i);
@@ -60,6 +64,7 @@ void AppendVolumeOpacityKey(vtkVolume* volume, std::vector<double>& key)
       key.push_back(mapper->GetClipShapeModeAt(i));
       AppendMatrix(mapper->GetClipShapeAt(i)->GetMatrix(), key);
     }
+  }
 }
 
 long long VolumeVoxels(vtkVolume* volume)
@@ -78,6 +83,14 @@ bool VolumeOpacity(vtkVolume* volume, cao::OpacityVolume& out, std::string& erro
   if (!scalars)
   {
     error = "the volume's input is not image data with point scalars";
+    return false;
+  }
+  // A volume its mapper does not draw (a bad setting) occludes nothing.
+  std::string why;
+  auto* drawer = vtkContextualAOVolumeMapper::SafeDownCast(volume->GetMapper());
+  if (drawer && !drawer->CanDraw(input, why))
+  {
+    error = "it is not drawn: " + why;
     return false;
   }
   int dims[3];

@@ -580,6 +580,23 @@ bool vtkContextualAOVolumeMapper::CheckSettings(std::string& why) const
 }
 
 //------------------------------------------------------------------------------
+bool vtkContextualAOVolumeMapper::CanDraw(vtkImageData* input, std::string& why) const
+{
+  if (!this->CheckSettings(why))
+    return false;
+  if (!input)
+    return why = "the volume has no image data", false;
+  if (this->AmbientOcclusion && !(this->AmbientOcclusionArrayName && *this->AmbientOcclusionArrayName))
+  {
+    cao::LAOPlan plan;
+    std::string error;
+    if (!cao::BuildLAOPlan(vtkCAO::GeometryOf(input), this->Internal->Settings, plan, error))
+      return why = "Cannot plan the LAO: " + error + ".", false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
 vtkImageData* vtkContextualAOVolumeMapper::Internals::CellsAsVoxels(vtkImageData* input)
 {
   // vtkCAO::CellsAsVoxels, remade only when the input changes, so that the

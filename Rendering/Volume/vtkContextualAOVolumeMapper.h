@@ -430,6 +430,13 @@ public:
   void Render(vtkRenderer* ren, vtkVolume* vol) override;
   void ReleaseGraphicsResources(vtkWindow* window) override;
 
+  /// Whether Render would draw `input` with the present settings: the
+  /// mapper's own and, with the AO on and no AO array given, the LAO plan
+  /// on this input's grid; `why` says what Render would refuse. The render
+  /// pass asks it before a volume occludes the surfaces: a volume that is
+  /// not drawn does not occlude them.
+  bool CanDraw(vtkImageData* input, std::string& why) const;
+
 protected:
   vtkContextualAOVolumeMapper();
   ~vtkContextualAOVolumeMapper() override;

@@ -31,6 +31,7 @@
 // - an open mesh is counted; bad Slices and a NaN Strength are refused with
 //   the reason;
 // - the volume occludes: a dense block of volume (vtkContextualAOVolumeMapper)
+//   (not when its mapper refuses to draw it: AOStrength 5)
 //   (on OpenGL too, by the read-back path and the GPU frame, as the CPU)
 //   darkens the slab under it; a camera turn does not rebuild its opacity,
 //   and a change of the volumes (or of a setting) traces again on the same
@@ -924,6 +925,20 @@ int TestContextualAOPass(int, char*[])
         under < alone - 0.2,
       "the block darkens the slab under it: AO " + std::to_string(under) + " against " + std::to_string(alone) +
         " without it (" + pass->GetLastFrameStages() + ")");
+    // A volume its mapper does not draw (AOStrength 5: refused) occludes
+    // nothing: the slab's own AO, the report saying why; back in range,
+    // the block darkens it again.
+    mapper->SetAOStrength(5.0);
+    window->Render();
+    const double undrawn = pass->GetPixelAO(bx, by);
+    const std::string undrawnReport = pass->GetLastFrameReport();
+    mapper->SetAOStrength(1.0);
+    window->Render();
+    const double redrawn = pass->GetPixelAO(bx, by);
+    Check(undrawn == alone && undrawnReport.find("not drawn: AOStrength must be in [0, 1]") != std::string::npos &&
+        redrawn == under,
+      "a volume its mapper refuses to draw occludes nothing: AO " + std::to_string(undrawn) + " (alone " +
+        std::to_string(alone) + "), back in range " + std::to_string(redrawn) + " (" + std::to_string(under) + ")");
     camera->Azimuth(10);
     renderer->ResetCameraClippingRange();
     window->Render();
