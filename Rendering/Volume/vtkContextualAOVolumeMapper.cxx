@@ -1242,6 +1242,22 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateMaps(vtkContextualAOVolumeMap
   const double smin = vtkCAO::MinimumScale(pose), smax = vtkCAO::MaximumScale(pose);
   if (!(smin > 0.0) || !std::isfinite(smax))
     return f.Fail("The clip pose must be an invertible affine transform.");
+  // Each shape's scale within what the maps resolve (as cao carve checks
+  // its poses): under half a voxel it clips nothing, over 2^23 voxels the
+  // float depths cannot resolve one.
+  for (std::size_t i = 0; i < parts.size(); ++i)
+  {
+    vtkMatrix4x4* m = several ? parts[i].pose.Get() : pose;
+    for (double scale : { vtkCAO::MinimumScale(m), vtkCAO::MaximumScale(m) })
+    {
+      vtkCAO::Pose p;
+      p.scale = scale;
+      std::string why;
+      if (!vtkCAO::CheckPoseScales({ p }, parts[i].mesh, f.input, why))
+        return f.Fail("Clip shape " + std::to_string(i + 1) + " of " + std::to_string(parts.size()) + ": " +
+          why.substr(why.find(": ") + 2) + " (its clip scale).");
+    }
+  }
   ::MeshKey key;
   key.mesh = parts[0].mesh;
   key.meshTime = parts[0].mesh->GetMTime();

@@ -737,6 +737,12 @@ void BadInput(const Options& o)
   const int frames = m->GetFrameCount();
   s.window->Render();
   CAO_EXPECT(errors.empty() && m->GetFrameCount() == frames + 1, "no recovery after bad input");
+  // A clip scale the depth maps cannot resolve (the sphere 2e9 voxels
+  // across) is refused naming the scale's range, as cao carve refuses it
+  // (it asked for a PixelSize the representation does not have before).
+  s.clip->SetScale(1e8);
+  expect("clip scale 1e8", "the scale must lie in [");
+  s.clip->SetScale(1.0);
   // A setting out of range after a good frame (everything cached) is still
   // refused, whether or not it changes what is cached.
   m->SetQualityPreset(7);
