@@ -684,6 +684,14 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
 {
   const Internals& p = *this->Internal;
   std::ostringstream o;
+  if (this->Method == NONE)
+  {
+    // Nothing ran: no other frame's grid, pixels or backend.
+    o << "{\"frame\": " << this->FrameCount
+      << ", \"method\": \"none\", \"stages\": {}, \"reasons\": [], \"note\": \"Method None: no AO; the "
+         "surfaces and lines are as the renderer draws them\"}";
+    return o.str();
+  }
   o << "{\"frame\": " << this->FrameCount << ", \"method\": \""
     << (this->Method == VCT ? "vct" : this->Method == HBAO ? "hbao" : this->Method == VAO ? "vao" : "none")
     << "\", \"apply_to\": \""

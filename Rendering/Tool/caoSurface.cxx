@@ -1151,7 +1151,7 @@ int Run(SurfaceOptions& o, const CLI::App* app)
     std::cout << std::setprecision(10) << "{\"method\": \"" << o.method << "\", \"image\": [" << o.view.width
               << ", " << o.view.height << "], \"radius\": " << radius << ", \"triangles\": "
               << scene.bvh.NumberOfTriangles() << ", \"covered_pixels\": " << covered
-              << ", \"mean_ao\": " << (covered ? sum / covered : 0.0);
+              << ", \"mean_ao\": " << MeanText(covered, sum, "null");
     if (o.method == "reference")
       std::cout << ", \"reference\": {\"rays\": " << o.reference.rays << ", \"falloff\": \""
                 << cao::FalloffName(o.reference.falloff) << "\", \"weighting\": \""
@@ -1203,7 +1203,7 @@ int Run(SurfaceOptions& o, const CLI::App* app)
   }
   else
     std::cout << "wrote " << o.output << " (" << o.method << ", " << covered << " pixels, radius "
-              << radius << ", mean AO " << (covered ? sum / covered : 0.0) << ", AO "
+              << radius << ", mean AO " << MeanText(covered, sum, "n/a (no pixel)", 6) << ", AO "
               << std::fixed << std::setprecision(1) << aoMs << " ms)\n";
   return 0;
 }

@@ -45,6 +45,15 @@ std::string Compact(double x)
   return text.str();
 }
 
+std::string MeanText(std::int64_t count, double sum, const char* none, int digits)
+{
+  if (count <= 0)
+    return none;
+  std::ostringstream text;
+  text << std::setprecision(digits) << sum / static_cast<double>(count);
+  return text.str();
+}
+
 bool IsLineInput(vtkPolyData* mesh)
 {
   return mesh && mesh->GetNumberOfLines() > 0 && mesh->GetNumberOfPolys() == 0 && mesh->GetNumberOfStrips() == 0;
@@ -443,19 +452,18 @@ int RunSurfaceLines(LineJob& job, const std::vector<std::string>& files,
                      : std::string(": check --zoom, --azimuth, --elevation"))
               << "\n";
   }
-  const double mean = all ? (sum[0] + sum[1]) / all : 0.0;
   if (job.json)
   {
     std::cout << std::setprecision(10) << "{\"method\": \"" << job.method << "\", \"image\": ["
               << job.view.width << ", " << job.view.height << "], \"radius\": " << radius
               << ", \"tube_radius\": " << scene.tubeRadius << ", \"polylines\": " << scene.polylines
               << ", \"segments\": " << scene.lines.NumberOfSegments() << ", \"covered_pixels\": " << all
-              << ", \"mean_ao\": " << mean;
+              << ", \"mean_ao\": " << MeanText(all, sum[0] + sum[1], "null");
     if (mixed)
       std::cout << ", \"triangles\": " << meshes.bvh.NumberOfTriangles() << ", \"line_pixels\": " << covered[0]
-                << ", \"mean_ao_lines\": " << (covered[0] ? sum[0] / covered[0] : 0.0)
+                << ", \"mean_ao_lines\": " << MeanText(covered[0], sum[0], "null")
                 << ", \"mesh_pixels\": " << covered[1]
-                << ", \"mean_ao_meshes\": " << (covered[1] ? sum[1] / covered[1] : 0.0);
+                << ", \"mean_ao_meshes\": " << MeanText(covered[1], sum[1], "null");
     if (job.method == "lineao" || job.method == "vct")
       std::cout << ", \"lineao\": {\"samples\": " << job.lineAO.samples << ", \"slices\": " << grid.slices
                 << ", \"weights\": \"" << cao::LineAOWeightsName(job.lineAO.weights) << "\", \"hemisphere\": \""
@@ -479,7 +487,7 @@ int RunSurfaceLines(LineJob& job, const std::vector<std::string>& files,
   else
     std::cout << "wrote " << job.output << " (" << job.method << ", lines" << (mixed ? " and meshes" : "") << ", "
               << all << " pixels, radius " << radius << ", tube radius " << scene.tubeRadius << ", mean AO "
-              << mean << ", AO " << std::fixed << std::setprecision(1) << aoMs << " ms)\n";
+              << MeanText(all, sum[0] + sum[1], "n/a (no pixel)", 6) << ", AO " << std::fixed << std::setprecision(1) << aoMs << " ms)\n";
   return 0;
 }
 }

@@ -15,6 +15,7 @@
 #include "caoLineAO.h"
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,9 @@ constexpr double DefaultTubeFraction = 0.005;
 
 /// `x` as a message shows a number (6 significant digits).
 std::string Compact(double x);
+/// The mean of `count` values summing to `sum`, or `none` (JSON null, or
+/// "n/a") when there is none: a mean of no pixel is not an AO of 0.
+std::string MeanText(std::int64_t count, double sum, const char* none, int digits = 10);
 
 /// Whether `mesh` is a line input: lines and no polygons or strips (a mesh
 /// with feature edges or outlines among its cells is a mesh: its lines are

@@ -425,6 +425,16 @@ p = subprocess.run([tool, "bench", "lines", path, "--image", "32x24", "--tube-ra
 check(p.returncode == 2 and "no pixel" in p.stderr,
       "cao bench lines with tubes thinner than a pixel: rc %d, %r" % (p.returncode, p.stderr.strip()[:160]))
 
+# No pixel sees a line (tubes far thinner than a pixel): the warning, and
+# no mean AO of nothing (it printed "mean AO 0"); control: the default tubes.
+rc, so, se = run(single, "--tube-radius", "1e-30", "--image", "64x48", "--json", "-o", os.path.join(tmp, "r.png"))
+empty = json.loads(so) if rc == 0 else {}
+rc2, so2, se2 = run(single, "--tube-radius", "1e-30", "--image", "64x48", "-o", os.path.join(tmp, "r.png"))
+check(rc == 0 and empty.get("covered_pixels") == 0 and empty.get("mean_ao", 0) is None and
+      "thinner than a pixel" in se and "mean AO n/a" in so2,
+      "no pixel sees a line: mean_ao null, 'mean AO n/a' (rc %d, %s)" % (rc, so2.strip()[-120:]))
+rc, so, se = run(single, "--image", "64x48", "--json", "-o", os.path.join(tmp, "r.png"))
+check(rc == 0 and isinstance(json.loads(so).get("mean_ao"), (int, float)), "control: the default tubes have a mean AO")
 # A radius outside 1e-6 to 1e3 times the scene's diagonal is refused with
 # the limits (control: the default radius runs on the same lines).
 for radius in ("1e-300", "1e300"):

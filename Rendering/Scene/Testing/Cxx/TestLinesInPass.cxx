@@ -206,8 +206,12 @@ int TestLinesInPass(int, char*[])
   pass->SetLineAO(true);
   pass->SetMethod(vtkContextualAOPass::NONE);
   window->Render();
-  Check(pass->GetLastFrameStages().empty() && Grey(window, centre.x, centre.y) == plainCentre,
-    "control: Method NONE draws the lines as the renderer does");
+  const std::string noneReport = pass->GetLastFrameReport();
+  Check(pass->GetLastFrameStages().empty() && Grey(window, centre.x, centre.y) == plainCentre &&
+      noneReport.find("\"method\": \"none\"") != std::string::npos &&
+      noneReport.find("\"backend\"") == std::string::npos && noneReport.find("\"lines\"") == std::string::npos,
+    "control: Method NONE draws the lines as the renderer does, and its report keeps nothing of the last AO "
+    "frame: " + noneReport);
   pass->SetMethod(vtkContextualAOPass::VCT);
   window->Render();
   lines->GetProperty()->SetColor(0.9, 0.6, 0.3);
