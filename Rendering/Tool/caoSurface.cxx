@@ -1093,6 +1093,18 @@ int Run(SurfaceOptions& o, const CLI::App* app)
   {
     const cao::PixelCamera pixels = MakePixelCamera(camera, o.view);
     o.hbao.radius = o.vao.radius = radius;
+    {
+      // A pixel's width at the scene's centre, roughly (the fitted view
+      // spans about the bounds' diagonal): a radius under it leaves the
+      // screen-space methods no neighbour to read.
+      const double diagonal = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
+        (b[5] - b[4]) * (b[5] - b[4]));
+      const double pixel = diagonal / (o.view.zoom * std::min(o.view.width, o.view.height));
+      if (radius < pixel)
+        std::cerr << "cao: warning: the AO radius " << radius << " is under a pixel at the scene's centre (about "
+                  << pixel << "): " << o.method << " reads the screen's pixels and sees no neighbour within it "
+                  << "(its AO is then not the reference's); raise --radius or --image\n";
+    }
     SurfaceGPU gpu;
     bool useGL = false;
     if (!ChooseBackend(o.backend, gpu, useGL, backendNote, error))
