@@ -741,7 +741,7 @@ void TrianglesOf(vtkPolyData* mesh, std::vector<double>& points, std::vector<std
 }
 
 bool CheckPoseScales(const std::vector<Pose>& poses, vtkPolyData* mesh, vtkImageData* volume,
-  std::string& error)
+  std::string& error, bool largestOnly)
 {
   if (!mesh || !volume || mesh->GetNumberOfPoints() == 0)
     return true; // the mesh's own checks report it
@@ -757,7 +757,7 @@ bool CheckPoseScales(const std::vector<Pose>& poses, vtkPolyData* mesh, vtkImage
   for (std::size_t i = 0; i < poses.size(); ++i)
   {
     const double s = poses[i].scale, across = s * size / voxel;
-    if (s >= lo && s <= hi)
+    if ((largestOnly || s >= lo) && s <= hi)
       continue;
     char text[400];
     std::snprintf(text, sizeof text,

@@ -100,9 +100,10 @@ CAOFILTERSCORE_EXPORT double PlaneSlabSize(vtkImageData* volume, const double sh
 /// no depth-map pixel and clips nothing), at most MaxClipVoxels of it (the
 /// depth maps hold float32 depths, which resolve one voxel only up to 2^23
 /// of them). False with one line naming the pose, its scale, the size it
-/// gives and the scales allowed.
+/// gives and the scales allowed. `largestOnly`: only the upper limit (the
+/// volume mapper draws a shape under half a voxel unclipped).
 CAOFILTERSCORE_EXPORT bool CheckPoseScales(const std::vector<Pose>& poses, vtkPolyData* mesh,
-  vtkImageData* volume, std::string& error);
+  vtkImageData* volume, std::string& error, bool largestOnly = false);
 constexpr double MaxClipVoxels = 8388608.0; // 2^23
 }
 

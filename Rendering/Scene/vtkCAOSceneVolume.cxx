@@ -122,6 +122,11 @@ bool VolumeOpacity(vtkVolume* volume, cao::OpacityVolume& out, std::string& erro
   out.alpha.resize(static_cast<std::size_t>(voxels));
   std::int64_t nonFinite = 0;
   vtkCAO::ComputeOpacity(nullptr, scalars, 0, property->GetScalarOpacity(0), 1.0, out.alpha.data(), nonFinite);
+  if (drawer && nonFinite > 0)
+  {
+    error = "it is not drawn: the scalars contain NaN or infinite values";
+    return false;
+  }
   // The clip: the voxels the mapper's shapes remove.
   auto* mapper = vtkContextualAOVolumeMapper::SafeDownCast(volume->GetMapper());
   const int shapes = mapper ? mapper->GetNumberOfClipShapes() : 0;

@@ -1331,12 +1331,10 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
   };
   if (self->Radius > 0)
   {
+    // (checked again each frame, cheaply: not a scene that failed to build)
     const std::string why = cao::CheckAORadius(self->Radius, diagonal);
     if (!why.empty())
-    {
-      this->failedSceneKey = this->frameSceneKey;
       return this->Fail(self, "Radius: " + why + " (0: the scene's default)");
-    }
   }
   this->radius = self->Radius > 0 ? self->Radius
                                   : cao::DefaultAORadius(b, distributed ? this->commonArea : area());
@@ -1579,6 +1577,24 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
     }
     key.push_back(static_cast<double>(hash >> 11));
   }
+  // The lines' pixels (UpdateLines ran first): no surface's in the depth
+  // G-buffer; part of what the G-buffer and the AO image are made for.
+  const std::size_t pixelCount = static_cast<std::size_t>(width) * height;
+  std::vector<unsigned char> linePixels;
+  const cao::LineFrame& lineFrame = this->lines.Frame();
+  if (this->gbuffer == DEPTH_BUFFER && this->linesOn && lineFrame.segment.size() == pixelCount)
+  {
+    linePixels.resize(pixelCount);
+    std::uint64_t hash = 1469598103934665603ull;
+    for (std::size_t i = 0; i < pixelCount; ++i)
+    {
+      linePixels[i] = lineFrame.segment[i] >= 0;
+      hash = (hash ^ linePixels[i]) * 1099511628211ull;
+    }
+    key.push_back(static_cast<double>(hash >> 11));
+  }
+  else
+    key.push_back(-1.0); // (no mask)
   if (key == this->viewKey)
     return true;
   this->reasons.push_back(!this->stages.empty() ? "new grid or volumes"
@@ -1601,21 +1617,6 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
   std::vector<double> primary{ key[0], key[2], key[3] };
   primary.insert(primary.end(), key.begin() + 8, key.end());
   const std::size_t count = static_cast<std::size_t>(width) * height;
-  // The lines' pixels (UpdateLines ran first): no surface's in the depth
-  // G-buffer; part of what the G-buffer was made for.
-  std::vector<unsigned char> linePixels;
-  const cao::LineFrame& lineFrame = this->lines.Frame();
-  if (this->gbuffer == DEPTH_BUFFER && this->linesOn && lineFrame.segment.size() == count)
-  {
-    linePixels.resize(count);
-    std::uint64_t hash = 1469598103934665603ull;
-    for (std::size_t i = 0; i < count; ++i)
-    {
-      linePixels[i] = lineFrame.segment[i] >= 0;
-      hash = (hash ^ linePixels[i]) * 1099511628211ull;
-    }
-    primary.push_back(static_cast<double>(hash >> 11));
-  }
   const bool keep = primary == this->primaryKey && this->frame.width == width &&
     this->frame.height == height && this->frame.position.size() == 3 * count &&
     this->frame.normal.size() == 3 * count && this->frame.ao.size() == count;

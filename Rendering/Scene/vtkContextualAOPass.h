@@ -59,7 +59,9 @@
  *    same triangles, or with GBuffer DEPTH_BUFFER "gbuffer": the drawn
  *    depth) and their AO (cones, horizons or pipes), only when the grid, the volumes'
  *    opacity, the camera, the viewport, the AO settings or (DEPTH_BUFFER)
- *    the drawn depth changed;
+ *    the drawn depth or the lines' pixels in it changed (with Line AO on,
+ *    the lines' pixels are no surface's: the screen-space methods do not
+ *    take a thin line for a depth wall);
  *  - "ambient" (AMBIENT_TERM only), "indirect" (VAO with IndirectLight:
  *    the neighbours' colour, I = L (1 - AO)) and "combine": every frame
  *    that has surfaces (a colour, colour-map or light change re-runs the
@@ -219,7 +221,9 @@ public:
   /// feature size, as `cao surface` (cao::DefaultAORadius: half the mean
   /// free path between their surfaces, 2V/A over their bounding box V and
   /// triangles' area A, between a fortieth and a tenth of the box's
-  /// diagonal). The frame report's "radius" gives the one used.
+  /// diagonal). The frame report's "radius" gives the one used. A radius
+  /// set must lie within 1e-6 to 1e3 times the scene's bounding-box
+  /// diagonal (the lines': their own), else the frame fails with the limits.
   vtkSetClampMacro(Radius, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(Radius, double);
   ///@}

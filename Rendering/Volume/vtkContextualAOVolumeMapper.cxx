@@ -62,6 +62,21 @@ vtkCxxSetObjectMacro(vtkContextualAOVolumeMapper, ClipMesh, vtkPolyData);
 
 namespace
 {
+/// Why the maps cannot resolve a clip shape `mesh` at pose `m` on `input`
+/// (its largest scale over 2^23 voxels; vtkCAO::CheckPoseScales), "" if they can.
+std::string ClipScaleError(vtkPolyData* mesh, vtkMatrix4x4* m, vtkImageData* input)
+{
+  vtkCAO::Pose p;
+  p.scale = vtkCAO::MaximumScale(m);
+  std::string why;
+  if (vtkCAO::CheckPoseScales({ p }, mesh, input, why, true))
+    return std::string();
+  return why.substr(why.find(": ") + 2) + " (its clip scale)";
+}
+}
+
+namespace
+{
 /// Entries of the transfer-function table.
 constexpr int TableEntries = 1024;
 /// Accumulated opacity at which a ray stops.
@@ -221,6 +236,10 @@ struct Frame
 
 struct vtkContextualAOVolumeMapper::Internals
 {
+  /// CanDraw's last LAO plan check: the mapper's and the input's times.
+  vtkMTimeType planCheckMapper = 0, planCheckInput = 0;
+  vtkImageData* planCheckSource = nullptr;
+  std::string planCheckError;
   cao::LAOSettings Settings; // the one definition: defaults and limits in caoLAOSettings.h
   vtkCAO::GPUSession GPU;
   std::unique_ptr<cao::gl::RayCaster> Caster;
@@ -582,16 +601,45 @@ bool vtkContextualAOVolumeMapper::CheckSettings(std::string& why) const
 //------------------------------------------------------------------------------
 bool vtkContextualAOVolumeMapper::CanDraw(vtkImageData* input, std::string& why) const
 {
+  // Render's refusals that do not need the GPU, cheaply (the LAO plan is
+  // checked again only when the mapper or the input changed).
   if (!this->CheckSettings(why))
     return false;
   if (!input)
     return why = "the volume has no image data", false;
+  int dims[3];
+  input->GetDimensions(dims);
+  if (dims[0] < 2 || dims[1] < 2 || dims[2] < 2)
+    return why = "The input must have at least 2 voxels along each axis.", false;
+  auto* self = const_cast<vtkContextualAOVolumeMapper*>(this);
+  for (int i = 0; i < self->GetNumberOfClipShapes(); ++i)
+  {
+    vtkProp3D* shape = self->GetClipShapeAt(i);
+    vtkPolyData* mesh = self->GetClipShapeMeshAt(i);
+    if (!shape || !mesh)
+      return why = "clip shape " + std::to_string(i + 1) + " has no mesh", false;
+    why = ClipScaleError(mesh, shape->GetMatrix(), input);
+    if (!why.empty())
+      return why = "Clip shape " + std::to_string(i + 1) + ": " + why, false;
+  }
   if (this->AmbientOcclusion && !(this->AmbientOcclusionArrayName && *this->AmbientOcclusionArrayName))
   {
-    cao::LAOPlan plan;
-    std::string error;
-    if (!cao::BuildLAOPlan(vtkCAO::GeometryOf(input), this->Internal->Settings, plan, error))
-      return why = "Cannot plan the LAO: " + error + ".", false;
+    Internals& in = *this->Internal;
+    if (in.planCheckSource != input || in.planCheckInput != input->GetMTime() ||
+      in.planCheckMapper != self->GetMTime())
+    {
+      // (counting the taps would do; a plan at the settings' limit is built once per change)
+      cao::LAOPlan plan;
+      std::string error;
+      in.planCheckError = cao::BuildLAOPlan(vtkCAO::GeometryOf(input), in.Settings, plan, error)
+        ? std::string()
+        : "Cannot plan the LAO: " + error + ".";
+      in.planCheckSource = input;
+      in.planCheckInput = input->GetMTime();
+      in.planCheckMapper = self->GetMTime();
+    }
+    if (!in.planCheckError.empty())
+      return why = in.planCheckError, false;
   }
   return true;
 }
@@ -1243,20 +1291,12 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateMaps(vtkContextualAOVolumeMap
   if (!(smin > 0.0) || !std::isfinite(smax))
     return f.Fail("The clip pose must be an invertible affine transform.");
   // Each shape's scale within what the maps resolve (as cao carve checks
-  // its poses): under half a voxel it clips nothing, over 2^23 voxels the
-  // float depths cannot resolve one.
+  // its poses): over 2^23 voxels the float depths cannot resolve one.
   for (std::size_t i = 0; i < parts.size(); ++i)
   {
-    vtkMatrix4x4* m = several ? parts[i].pose.Get() : pose;
-    for (double scale : { vtkCAO::MinimumScale(m), vtkCAO::MaximumScale(m) })
-    {
-      vtkCAO::Pose p;
-      p.scale = scale;
-      std::string why;
-      if (!vtkCAO::CheckPoseScales({ p }, parts[i].mesh, f.input, why))
-        return f.Fail("Clip shape " + std::to_string(i + 1) + " of " + std::to_string(parts.size()) + ": " +
-          why.substr(why.find(": ") + 2) + " (its clip scale).");
-    }
+    const std::string why = ClipScaleError(parts[i].mesh, several ? parts[i].pose.Get() : pose, f.input);
+    if (!why.empty())
+      return f.Fail("Clip shape " + std::to_string(i + 1) + " of " + std::to_string(parts.size()) + ": " + why);
   }
   ::MeshKey key;
   key.mesh = parts[0].mesh;

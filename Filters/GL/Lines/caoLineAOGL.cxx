@@ -90,14 +90,15 @@ layout::LineGridMap MapOf(const BitGrid& grid)
 
 namespace
 {
-/// A block's size for a message: MiB to two decimals, or KiB under one MiB.
+/// A block's size for a message: MiB to two decimals, or KiB under one
+/// MiB, and the bytes (two sizes a byte apart read apart).
 std::string BlockBytes(double bytes)
 {
-  char text[64];
+  char text[96];
   if (bytes >= 1048576.0)
-    std::snprintf(text, sizeof(text), "%.2f MiB", bytes / 1048576.0);
+    std::snprintf(text, sizeof(text), "%.2f MiB, %.0f bytes", bytes / 1048576.0, bytes);
   else
-    std::snprintf(text, sizeof(text), "%.1f KiB", bytes / 1024.0);
+    std::snprintf(text, sizeof(text), "%.1f KiB, %.0f bytes", bytes / 1024.0, bytes);
   return text;
 }
 }

@@ -32,14 +32,14 @@ namespace cao
 
 enum class AOFalloff
 {
-  Step = 0,   ///< binary within R (the common definition; seeds 000, 002)
+  Step = 0,   ///< binary within R (the common definition; voxel cone tracing and HBAO)
   Linear = 1, ///< min(D/R, 1): LAO's measure for a binary occluder (Titov et al.)
   Quartic = 2 ///< min(D/R, 1)^4 (Szirmay-Kalos et al.)
 };
 
 enum class AOWeighting
 {
-  Cosine = 0, ///< cos(theta)/pi (the common definition; seeds 001, 002)
+  Cosine = 0, ///< cos(theta)/pi (the common definition; volumetric AO and HBAO)
   Uniform = 1 ///< 1/(2 pi) over the hemisphere
 };
 

@@ -2,16 +2,16 @@
 // sampling (Benevides 2015), the CPU twin: the lines are
 // voxelized into a bit grid with OR (lines are not solids), and each
 // pixel's AO comes from the occupancy of a half ball of radius R at its
-// line (facing the tube's normal, or the camera as the seed's), sampled by
+// line (facing the tube's normal, or the camera as the paper's), sampled by
 // prisms parallel to the view axis.
 //
-// Choices the seed leaves open, and why (docs/lines.md measures them):
+// Choices the paper leaves open, and why (docs/lines.md measures them):
 // - The grid is an eye grid (Common/caoBitGrid.h: a world grid turned to
-//   the camera, cubic voxels, slices along the view axis), not the seed's
+//   the camera, cubic voxels, slices along the view axis), not the paper's
 //   pixel x 128-slice frustum: a prism along the view axis is then exactly
 //   one column of bits, its voxels are the same size everywhere in the
 //   half ball, and it depends only on the camera's orientation and the
-//   lines, not on the pixels. 128 slices by default, as the seed: 256 were
+//   lines, not on the pixels. 128 slices by default, as the paper: 256 were
 //   no more accurate against the reference on the streamlines measured, at
 //   twice the time (docs/lines.md).
 // - Conservative voxelization: a voxel is set when the segment passes
@@ -21,13 +21,13 @@
 //   volume).
 // - The half ball: at a tube's surface point facing its normal where the
 //   G-buffer has one (LineAOHemisphere::Normal, the surface definition the
-//   reference computes), else the seed's, at the axis facing the camera.
+//   reference computes), else the paper's, at the axis facing the camera.
 //   Prisms run through the voxel centres of the column nearest each sample,
 //   so which voxels they count is exact, and a line's own voxels never
 //   occlude it (the base plane is moved past them).
 // - Weights: normalized and scale-free, w = a / (dm / R)^2 (the design
 //   notes' proposal; dm: the prism ends' mean distance; a: the cosine to
-//   the normal, or the seed's sine to the tangent); the seed's own,
+//   the normal, or the paper's sine to the tangent); the paper's own,
 //   (on / total) / dm^2 in world units times its AO factor, is kept as
 //   LineAOWeights::Paper.
 // - From occupancy to AO: a thin tube blocks rays in proportion to its
@@ -36,8 +36,8 @@
 //   A (A: the voxelized cross-section), calibrated against the ray-traced
 //   reference (docs/lines.md); exp, not 1 - s occ, for dense bundles.
 // - Samples: Poisson disk sets (best candidate, seeded), one of 16 sets per
-//   pixel by its position modulo 4 (the seed's texture of sets); not the
-//   seed's sum of three sets, which bunches samples at the centre.
+//   pixel by its position modulo 4 (the paper's texture of sets); not the
+//   paper's sum of three sets, which bunches samples at the centre.
 #ifndef caoLineAO_h
 #define caoLineAO_h
 
@@ -56,7 +56,7 @@ namespace cao
 enum class LineAOHemisphere
 {
   Normal = 0,      ///< at the tube's surface, facing its normal (where the G-buffer has one)
-  CameraFacing = 1 ///< the seed's: at the axis, facing the camera, perpendicular to the line
+  CameraFacing = 1 ///< the paper's: at the axis, facing the camera, perpendicular to the line
 };
 
 /// The occupancy-to-occlusion constant (the header says how it is used;
@@ -65,8 +65,8 @@ constexpr double OcclusionCalibration = 0.54;
 
 enum class LineAOWeights
 {
-  Normalized = 0, ///< a / (dm / R)^2 (a: the cosine to the normal, or the seed's sine to the tangent), normalized: scale-free
-  Paper = 1       ///< the seed's (on / total) / dm^2 (world units) times aoFactor, averaged
+  Normalized = 0, ///< a / (dm / R)^2 (a: the cosine to the normal, or the paper's sine to the tangent), normalized: scale-free
+  Paper = 1       ///< the paper's (on / total) / dm^2 (world units) times aoFactor, averaged
 };
 
 /// The settings of line AO (one definition; the CLI and the view write
@@ -75,12 +75,12 @@ struct LineAOSettings
 {
   double radius = 1.0;      ///< R, the half ball's radius in world units (> 0)
   double tubeRadius = 0.0;  ///< the lines' radius in world units (0: lines drawn as lines)
-  int samples = 64;         ///< prisms per pixel, 1..MaximumSamples (the seed: 150)
-  int slices = 128;         ///< grid slices along the view axis, 32..1024, a multiple of 32 (the seed's)
+  int samples = 64;         ///< prisms per pixel, 1..MaximumSamples (the paper: 150)
+  int slices = 128;         ///< grid slices along the view axis, 32..1024, a multiple of 32 (the paper's)
   LineAOWeights weights = LineAOWeights::Normalized;
   LineAOHemisphere hemisphere = LineAOHemisphere::Normal;
   double strength = 1.0;    ///< scales the calibrated occlusion, 0..100 (1: calibrated)
-  double aoFactor = 4.0;    ///< the seed's AO_Factor (Paper weights only)
+  double aoFactor = 4.0;    ///< the paper's AO_Factor (Paper weights only)
   std::uint64_t seed = 1;   ///< the Poisson sets
   int threads = 0;          ///< 0: the hardware's
   static constexpr int MaximumSamples = 1024;
@@ -153,7 +153,7 @@ struct LineHalfBall
   double tangent[3]; ///< the line's unit tangent, grid frame (0: a point)
   double base;       ///< the base plane's offset from the centre along w, voxels
   bool line;         ///< the tangent is not 0
-  bool cosine;       ///< angular weight: the cosine to w (a surface's normal), else the seed's sine to the tangent
+  bool cosine;       ///< angular weight: the cosine to w (a surface's normal), else the paper's sine to the tangent
 };
 /// The half ball at a line's axis point (or, with `surface` and `normal`,
 /// at its tube's surface point) as LineOccupancyAt documents it.
@@ -176,7 +176,7 @@ double LineOccupancyOf(const BitGrid& grid, const LineAOSettings& settings, cons
 /// to point), and where the G-buffer has them the tube's `surface` point
 /// and unit outward `normal` (null: the camera-facing half ball), with
 /// disk sample set `samples` (2 * settings.samples values). With Paper
-/// weights, the seed's mean of (on / total) / dm^2 instead. With `solids`
+/// weights, the paper's mean of (on / total) / dm^2 instead. With `solids`
 /// (planned as `grid`), the same prisms' occupancy of its voxels into
 /// `solidOccupancy`.
 double LineOccupancyAt(const BitGrid& grid, const LineAOSettings& settings, const double* samples,
@@ -188,7 +188,7 @@ double LineOccupancyAt(const BitGrid& grid, const LineAOSettings& settings, cons
 /// supercover (0.69 voxel), so their AO depends on the slices.
 double LineOcclusionScale(const LineAOSettings& settings, double voxel);
 /// The AO (1 = open) of an occupancy: exp(-strength s occupancy), or with
-/// Paper weights the seed's 1 - clamp(aoFactor occupancy).
+/// Paper weights the paper's 1 - clamp(aoFactor occupancy).
 double LineAOFromOccupancy(const LineAOSettings& settings, double voxel, double occupancy);
 /// LineAOFromOccupancy of LineOccupancyAt.
 double LineAOAt(const BitGrid& grid, const LineAOSettings& settings, const double* samples,

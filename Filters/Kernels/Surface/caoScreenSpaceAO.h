@@ -19,7 +19,7 @@
 // H^2) / N_n, each of weight (1 - H^2) / (N_d N_n), marched as the horizon
 // is; a ray is occluded at its first step behind the buffer whose buffer
 // point lies above P's tangent plane and within R of P'. A = 1 - (O_T + O_N), which cannot
-// exceed 1 (the design notes' consistent form of the seed's Eq. 10-11).
+// exceed 1 (the design notes' consistent form of the paper's Eq. 10-11).
 // Choice recorded: the directions are uniform in azimuth around n (so that
 // the mean of H^2 is the cosine-weighted occlusion), not uniform in screen
 // angle. Then a depth-aware 5 x 5 Gaussian blur (sigma 1.5 pixels).
@@ -81,7 +81,7 @@ struct HBAOSettings
   double offsetPixels = 1.0; ///< P' = P + this x a pixel's world size x n, 0..8
   int blurRadius = 2;   ///< taps each side of the Gaussian (2: the paper's 5 x 5), 0..8 (0: none)
   double blurTolerance = 0.1; ///< in R: taps off the centre's tangent plane by more are left out
-  /// How the horizon is marched: true (default), the seed's Fig. 4, the
+  /// How the horizon is marched: true (default), the paper's Fig. 4, the
   /// march deflected up to each new horizon point; false, along the tangent
   /// line, the horizon the highest depth-buffer point seen at its steps
   /// (the screen-space sweep of later HBAO implementations). Measured on

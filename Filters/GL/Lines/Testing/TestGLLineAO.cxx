@@ -494,12 +494,12 @@ int TestGLLineAO(int argc, char* argv[])
     refused = !engine.FrameFromDepth(grid, settings, scene.lines, 0, d.drawings, d.segmentDrawing, d.camera,
       d.depth, &d.skip, f, ms, segmentsWhy);
     const bool segmentsRefused = refused && segmentsWhy.find("segments") != std::string::npos &&
-      segmentsWhy.find("the storage block limit set (149.9 KiB)") != std::string::npos;
+      segmentsWhy.find("the storage block limit set (149.9 KiB, 153536 bytes)") != std::string::npos;
     engine.SetStorageBlockLimit(segmentBytes);
     refused = !engine.FrameFromDepth(grid, settings, scene.lines, 0, d.drawings, d.segmentDrawing, d.camera,
       d.depth, &d.skip, f, ms, pixelsWhy);
     const bool pixelsRefused = refused && pixelsWhy.find("G-buffer needs a storage block") != std::string::npos &&
-      pixelsWhy.find("the storage block limit set (150.0 KiB)") != std::string::npos;
+      pixelsWhy.find("the storage block limit set (150.0 KiB, 153600 bytes)") != std::string::npos;
     engine.SetStorageBlockLimit(0.0);
     cao::LineFrame lifted;
     CAO_CHECK(engine.FrameFromDepth(grid, settings, scene.lines, 0, d.drawings, d.segmentDrawing, d.camera, d.depth,

@@ -31,7 +31,7 @@
 // - an open mesh is counted; bad Slices and a NaN Strength are refused with
 //   the reason;
 // - the volume occludes: a dense block of volume (vtkContextualAOVolumeMapper)
-//   (not when its mapper refuses to draw it: AOStrength 5)
+//   (not when its mapper refuses to draw it: AOStrength 5, a clip scale of 1e9)
 //   (on OpenGL too, by the read-back path and the GPU frame, as the CPU)
 //   darkens the slab under it; a camera turn does not rebuild its opacity,
 //   and a change of the volumes (or of a setting) traces again on the same
@@ -933,9 +933,23 @@ int TestContextualAOPass(int, char*[])
     const double undrawn = pass->GetPixelAO(bx, by);
     const std::string undrawnReport = pass->GetLastFrameReport();
     mapper->SetAOStrength(1.0);
+    // A clip shape the depth maps cannot resolve (scale 1e9): the mapper
+    // refuses the volume, so it occludes nothing either.
+    vtkNew<vtkCubeSource> hugeCube;
+    vtkNew<vtkPolyDataMapper> hugeMapper;
+    hugeMapper->SetInputConnection(hugeCube->GetOutputPort());
+    vtkNew<vtkActor> huge;
+    huge->SetMapper(hugeMapper);
+    huge->SetScale(1e9);
+    mapper->SetClipShape(huge);
+    window->Render();
+    const double unresolved = pass->GetPixelAO(bx, by);
+    const std::string unresolvedReport = pass->GetLastFrameReport();
+    mapper->SetClipShape(nullptr);
     window->Render();
     const double redrawn = pass->GetPixelAO(bx, by);
     Check(undrawn == alone && undrawnReport.find("not drawn: AOStrength must be in [0, 1]") != std::string::npos &&
+        unresolved == alone && unresolvedReport.find("not drawn: Clip shape 1: scale 1e+09") != std::string::npos &&
         redrawn == under,
       "a volume its mapper refuses to draw occludes nothing: AO " + std::to_string(undrawn) + " (alone " +
         std::to_string(alone) + "), back in range " + std::to_string(redrawn) + " (" + std::to_string(under) + ")");
@@ -1545,14 +1559,15 @@ int TestContextualAOPass(int, char*[])
     std::string reports;
     bool refused = true;
     for (double r : { 1e-300, 1e300 })
-    {
-      pass->SetRadius(r);
-      window->Render();
-      const std::string report = pass->GetLastFrameReport();
-      refused = refused && report.find("Radius: the AO radius") != std::string::npos &&
-        report.find("1e-6 to 1e3 times") != std::string::npos;
-      reports += report.substr(0, 240) + " | ";
-    }
+      for (int frame = 0; frame < 2; ++frame) // (the second frame says it again)
+      {
+        pass->SetRadius(r);
+        window->Render();
+        const std::string report = pass->GetLastFrameReport();
+        refused = refused && report.find("Radius: the AO radius") != std::string::npos &&
+          report.find("1e-6 to 1e3 times") != std::string::npos;
+        reports += report.substr(report.find("\"error\""), 120) + " | ";
+      }
     pass->SetRadius(0.8);
     window->Render();
     const bool back = pass->GetLastFrameReport().find("\"error\"") == std::string::npos &&
