@@ -195,6 +195,14 @@ bool ContextualUpdate::Update(const Volume& volume, const layout::ClipParams& cl
   // are concatenated in slice order, so the list is sorted whatever the
   // threads.
   const float* of[4] = { maps.front, maps.back, maps.candFront, maps.candBack };
+  // The summaries of new maps (tiles, proof maps) are built once per maps,
+  // as the maps are: setup, not this pose's work, when the maps have a
+  // version; remade for another reason (no version, another radius), they
+  // are the pose's.
+  const bool newMaps = mapsVersion != 0 &&
+    (mapsVersion != this->TilesVersion || !std::equal(of, of + 4, this->TilesOf));
+  double mapsSetupMs = 0.0;
+  auto tMaps = std::chrono::steady_clock::now();
   if (useTiles &&
     (mapsVersion == 0 || mapsVersion != this->TilesVersion ||
       !std::equal(of, of + 4, this->TilesOf) ||
@@ -205,13 +213,19 @@ bool ContextualUpdate::Update(const Volume& volume, const layout::ClipParams& cl
     std::copy(of, of + 4, this->TilesOf);
   }
   const ClipMapsTiles* tiles = useTiles ? &this->Tiles : nullptr;
-  // (The tiles and proof maps, remade when the maps or the reach a pose
-  // needs change, are the pose's work: in classifyMs.)
+  if (newMaps)
+    mapsSetupMs += MillisecondsSince(tMaps);
+  // (The proof maps remade for another reach on the same maps are the
+  // pose's work: in classifyMs.)
   ProofMaps::View proofView;
+  tMaps = std::chrono::steady_clock::now();
+  const bool proofNewMaps = mapsVersion != 0 && mapsVersion != this->Proof.version;
   const ProofMaps::View* proof = useTiles && pixelSize &&
       this->Proof.Prepare(clip, maps, mapsVersion, pixelSize, dims, proofView)
     ? &proofView
     : nullptr;
+  if (proofNewMaps)
+    mapsSetupMs += MillisecondsSince(tMaps);
   const int slabs = Empty(box) ? 0 : box[5] - box[4] + 1;
   const int groups = (slabs + BrickSize - 1) / BrickSize;
   std::mutex mutex;
@@ -235,7 +249,8 @@ bool ContextualUpdate::Update(const Volume& volume, const layout::ClipParams& cl
   else
     counts.clipped += outside;
   stats.counts = counts;
-  stats.classifyMs = MillisecondsSince(t0);
+  stats.classifyMs = MillisecondsSince(t0) - mapsSetupMs;
+  stats.setupMs += mapsSetupMs;
 
   // 4. Narrow b by opacity: march only the b voxels whose footprint may
   // hold a voxel whose clipped opacity differs from its opacity, decided
@@ -335,13 +350,21 @@ bool ContextualUpdate::NarrowByBricks(const Volume& volume, const int box[6])
   const std::int64_t nx = dims[0], nxy = std::int64_t(dims[0]) * dims[1];
   for (int z = box[4]; z <= box[5]; ++z)
   {
+    // The slice's list is in increasing order: walk its rows along with it
+    // (no division per voxel).
     std::vector<std::int64_t>& list = this->SliceLists[z];
     std::size_t kept = 0;
+    int j = 0;
+    std::int64_t rowStart = z * nxy;
     for (std::int64_t v : list)
     {
-      const std::int64_t k = v / nxy, j = (v - k * nxy) / nx, i = v - k * nxy - j * nx;
-      if (b[at(static_cast<int>(i / BrickSize), static_cast<int>(j / BrickSize),
-            static_cast<int>(k / BrickSize))])
+      while (v >= rowStart + nx)
+      {
+        rowStart += nx;
+        ++j;
+      }
+      const int i = static_cast<int>(v - rowStart);
+      if (b[at(i / BrickSize, j / BrickSize, z / BrickSize)])
         list[kept++] = v;
     }
     list.resize(kept);

@@ -92,7 +92,10 @@ public:
     /// opacity, the unclipped category, the bricks' memory): the first pose
     /// after Reset() or a change of mode only, before that pose's own
     /// classification; it does not depend on the pose; not in classifyMs or
-    /// copyMs.
+    /// copyMs. Also the summaries of new maps (their tiles and proof maps,
+    /// built once per maps version as the maps themselves are), whatever
+    /// the pose; remade for the same maps (no version, another reach), they
+    /// are in classifyMs.
     double setupMs = 0;
   };
 
