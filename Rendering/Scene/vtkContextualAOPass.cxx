@@ -525,7 +525,7 @@ struct vtkContextualAOPass::Internals
   bool BuildPlan(vtkContextualAOPass* self, cao::VCTPlan& plan, std::string& error)
   {
     cao::VCTSettings settings;
-    settings.quality = static_cast<cao::VCTQuality>(self->Quality);
+    settings.quality = static_cast<cao::Quality>(self->Quality);
     settings.slices = self->Slices;
     settings.radius = this->radius;
     settings.occupancy = static_cast<cao::VCTOccupancy>(self->Occupancy);
@@ -549,15 +549,14 @@ struct vtkContextualAOPass::Internals
   cao::HBAOSettings HBAOSettingsOf(vtkContextualAOPass* self) const
   {
     cao::HBAOSettings settings;
-    const cao::HBAOPreset presets[] = { cao::HBAOPreset::Fig11a, cao::HBAOPreset::Table1, cao::HBAOPreset::Fig11d };
-    settings.preset = presets[self->Quality - 1];
+    settings.quality = static_cast<cao::Quality>(self->Quality);
     settings.radius = this->radius;
     return settings;
   }
   cao::VAOSettings VAOSettingsOf(vtkContextualAOPass* self) const
   {
     cao::VAOSettings settings;
-    settings.quality = static_cast<cao::VAOQuality>(self->Quality);
+    settings.quality = static_cast<cao::Quality>(self->Quality);
     settings.radius = this->radius;
     return settings;
   }

@@ -235,9 +235,12 @@ public:
   ///@}
 
   ///@{
-  /// The method's presets: 1 low, 2 medium (default), 3 high: VCT's
-  /// cao::VCTQuality; HBAO the paper's Fig. 11 (a), Table 1, Fig. 11 (d);
-  /// VAO 8, 16, 32 samples per pixel.
+  /// The method's quality (cao::Quality, one vocabulary for every method):
+  /// 1 low, 2 medium (default), 3 high. What each sets is in its settings
+  /// type: VCT spheres per cone 3 / 5 / 7 and prisms per sphere 3 / 6 / 12
+  /// (cao::VCTSettings); HBAO directions / steps / normal rays 6/9/0
+  /// (linear attenuation), 7/12/1, 18/25/2 (cao::HBAOSettings); VAO 8, 16,
+  /// 32 samples per pixel (cao::VAOSettings).
   vtkSetClampMacro(Quality, int, 1, 3);
   vtkGetMacro(Quality, int);
   ///@}

@@ -11,6 +11,7 @@
 #include "vtkNew.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -34,8 +35,7 @@ struct Options
   double radiusFraction = 0.1, orbit = 0.5;
   bool defaultRadius = false; ///< --default-radius: cao::DefaultAORadius per scene
   int referenceRays = 1024, band = 2, repeats = 3, threads = 0;
-  std::vector<cao::VCTQuality> qualities{ cao::VCTQuality::Low, cao::VCTQuality::Medium,
-    cao::VCTQuality::High };
+  std::vector<cao::Quality> qualities{ cao::Quality::Low, cao::Quality::Medium, cao::Quality::High };
   std::vector<cao::VCTOccupancy> occupancies{ cao::VCTOccupancy::Rays };
   std::vector<double> raySteps{ cao::VCTSettings().rayStep };
   std::vector<int> patterns{ 1 }; ///< --vct-pattern: 1 on (the default), 0 off (rows "... no pattern")
@@ -44,15 +44,39 @@ struct Options
   bool vctCPU = true, vctGL = false;
   std::vector<std::string> grids{ "world" };
   std::vector<int> gbuffers{ 0 }; ///< 0 ray cast, 1 depth
-  std::vector<cao::HBAOPreset> hbao{ cao::HBAOPreset::Fig11a, cao::HBAOPreset::Table1, cao::HBAOPreset::Fig11b,
-    cao::HBAOPreset::Fig11c, cao::HBAOPreset::Fig11d };
-  std::vector<cao::VAOQuality> vao{ cao::VAOQuality::Low, cao::VAOQuality::Medium, cao::VAOQuality::High };
+  /// --hbao's items: low, medium, high, or D/S/N (directions, steps and
+  /// normal rays of a custom configuration, step attenuation).
+  std::vector<std::string> hbao{ "low", "medium", "8/18/0", "8/18/1", "high" };
+  std::vector<cao::Quality> vao{ cao::Quality::Low, cao::Quality::Medium, cao::Quality::High };
 };
 
 const char* Footer = R"(Measures what surface AO accuracy costs in time, against the ray-traced
 reference (cosine-weighted, binary within R: the common definition), from
 the same camera for every method. Writes DIR/surface.csv, DIR/surface.json
 and DIR/surface.png (error against time, log-log, with the Pareto front).)";
+
+/// An --hbao item: low, medium or high, or D/S/N, a custom configuration
+/// (directions, steps, normal rays; step attenuation). False when it is
+/// neither, or out of HBAOSettings' ranges.
+bool ParseHBAOItem(const std::string& item, cao::HBAOSettings& settings)
+{
+  cao::Quality q;
+  if (cao::ParseQuality(item, q))
+  {
+    settings.quality = q;
+    return q != cao::Quality::Custom;
+  }
+  int d = 0, s = 0, n = 0;
+  char tail = 0;
+  if (std::sscanf(item.c_str(), "%d/%d/%d%c", &d, &s, &n, &tail) != 3)
+    return false;
+  settings.quality = cao::Quality::Custom;
+  settings.directions = d;
+  settings.steps = s;
+  settings.normalRays = n;
+  settings.attenuation = cao::AOFalloff::Step;
+  return settings.Validate().empty();
+}
 
 /// "bad value 'ITEM' (expected ...)" unless `ok`.
 std::string Refused(bool ok, const std::string& item, const std::string& expected)
@@ -348,7 +372,7 @@ int Run(Options& o, const CLI::App*)
         for (double step : occupancy == cao::VCTOccupancy::Rays ? o.raySteps
                                                                 : std::vector<double>{ cao::VCTSettings().rayStep })
         for (int pattern : o.patterns)
-        for (cao::VCTQuality q : o.qualities)
+        for (cao::Quality q : o.qualities)
         {
           if (kind == "frustum" && gb)
             continue; // its slices start at the ray cast's visible depths
@@ -391,7 +415,7 @@ int Run(Options& o, const CLI::App*)
           Row row;
           row.mesh = name;
           row.method = onGPU ? "vct-gl" : "vct";
-          row.label = row.method + " " + cao::VCTQualityName(q) + " " + std::to_string(slices) +
+          row.label = row.method + " " + cao::QualityName(q) + " " + std::to_string(slices) +
             (kind == "world" ? "" : " " + kind) + (occupancy == cao::VCTOccupancy::Volume ? " volume" : "") +
             (occupancy == cao::VCTOccupancy::Rays && step != cao::VCTSettings().rayStep ? stepLabel.str() : "") +
             (gb ? " depth" : "") + (pattern ? "" : " no pattern");
@@ -467,29 +491,29 @@ int Run(Options& o, const CLI::App*)
     for (int gb : o.gbuffers)
     {
     screenG = gb;
-    for (cao::HBAOPreset preset : o.hbao)
+    for (const std::string& item : o.hbao)
     {
       cao::HBAOSettings hs;
-      hs.preset = preset;
+      ParseHBAOItem(item, hs);
       hs.radius = radius;
-      if (!screenSpace("hbao", std::string("hbao ") + cao::HBAOPresetName(preset), 5, hs.EffectiveAttenuation(),
+      if (!screenSpace("hbao", "hbao " + item, 5, hs.EffectiveAttenuation(),
             [&](const cao::PixelCamera& c, cao::SurfaceFrame& f) { return cao::HBAOFrame(c, hs, f, o.threads, error); }))
         return Fail(1, error);
       if (o.vctGL &&
-        !screenSpace("hbao-gl", std::string("hbao-gl ") + cao::HBAOPresetName(preset), 7, hs.EffectiveAttenuation(),
+        !screenSpace("hbao-gl", "hbao-gl " + item, 7, hs.EffectiveAttenuation(),
           [&](const cao::PixelCamera& c, cao::SurfaceFrame& f) { return gpu.ScreenAO(c, &hs, nullptr, f, gpuMs, error); }))
         return Fail(1, error);
     }
-    for (cao::VAOQuality q : o.vao)
+    for (cao::Quality q : o.vao)
     {
       cao::VAOSettings vs;
       vs.quality = q;
       vs.radius = radius;
-      if (!screenSpace("vao", std::string("vao ") + cao::VAOQualityName(q), 6, cao::AOFalloff::Quartic,
+      if (!screenSpace("vao", std::string("vao ") + cao::QualityName(q), 6, cao::AOFalloff::Quartic,
             [&](const cao::PixelCamera& c, cao::SurfaceFrame& f) { return cao::VAOFrame(c, vs, f, o.threads, error); }))
         return Fail(1, error);
       if (o.vctGL &&
-        !screenSpace("vao-gl", std::string("vao-gl ") + cao::VAOQualityName(q), 8, cao::AOFalloff::Quartic,
+        !screenSpace("vao-gl", std::string("vao-gl ") + cao::QualityName(q), 8, cao::AOFalloff::Quartic,
           [&](const cao::PixelCamera& c, cao::SurfaceFrame& f) { return gpu.ScreenAO(c, nullptr, &vs, f, gpuMs, error); }))
         return Fail(1, error);
     }
@@ -621,7 +645,7 @@ int Run(Options& o, const CLI::App*)
             << "ssao in the offscreen window (wall clock, vtkSSAOPass with blur), ssao-gl (with --vct-backends gl) "
             << "the GPU time vtkSSAOPass adds to a frame (timer queries around its frame less around the plain "
             << "frame: its G-buffer draw, AO, blur and combine), the reference on the CPU. "
-            << "Own-definition RMSE: against the reference in the method's own falloff (hbao: step, fig11a "
+            << "Own-definition RMSE: against the reference in the method's own falloff (hbao: step, low "
             << "linear; vao: quartic, (r/R)^4). Ripple: the RMS second difference of the AO along rows and "
             << "columns of pixels on flat faces (bands, rings and grain show there; the reference's row is its "
             << "own without its noise: the mean product of its 1x and 4x rays' second differences).\n";
@@ -698,16 +722,16 @@ Command AddBenchSurfaceCommand(CLI::App& bench)
     "measured against 4N");
   AddList(app, "--qualities", "LIST", "vct presets (default low,medium,high)",
     [](const std::string& item) {
-      cao::VCTQuality q;
-      return Refused(cao::ParseVCTQuality(item, q) && q != cao::VCTQuality::Custom, item,
+      cao::Quality q;
+      return Refused(cao::ParseQuality(item, q) && q != cao::Quality::Custom, item,
         "low, medium or high");
     },
     [o](const std::vector<std::string>& items) {
       o->qualities.clear();
       for (const std::string& item : items)
       {
-        cao::VCTQuality q;
-        cao::ParseVCTQuality(item, q);
+        cao::Quality q = cao::Quality::Medium;
+        cao::ParseQuality(item, q);
         o->qualities.push_back(q);
       }
     });
@@ -743,33 +767,32 @@ Command AddBenchSurfaceCommand(CLI::App& bench)
   AddSurfaceSlices(app, o->slices, "vct grid depth slices, each 32 to 1024, a multiple of 32 (default 128,256,512)");
   AddIntegerList(app, "--kernels", o->kernels, 1, 1024,
     "vtkSSAOPass kernel sizes, 1 to 1024 (default 16,32,64,128; 32 is VTK's)");
-  AddList(app, "--hbao", "LIST", "hbao configurations (default fig11a,table1,fig11b,fig11c,fig11d; none)",
+  AddList(app, "--hbao", "LIST",
+    "hbao configurations: low, medium, high, or D/S/N (a custom one: directions 1-64, steps 1-1024, "
+    "normal rays 0-16, step attenuation) (default low,medium,8/18/0,8/18/1,high; none)",
     [](const std::string& item) {
-      cao::HBAOPreset h;
-      return Refused(item == "none" || (cao::ParseHBAOPreset(item, h) && h != cao::HBAOPreset::Custom),
-        item, "table1, fig11a, fig11b, fig11c, fig11d, low, medium, high or none");
+      cao::HBAOSettings h;
+      return Refused(item == "none" || ParseHBAOItem(item, h), item,
+        "low, medium, high, D/S/N (directions 1-64, steps 1-1024, normal rays 0-16, e.g. 8/18/0) or none");
     },
     [o](const std::vector<std::string>& items) {
       o->hbao.clear();
       for (const std::string& item : items)
-      {
-        cao::HBAOPreset h;
-        if (item != "none" && cao::ParseHBAOPreset(item, h))
-          o->hbao.push_back(h);
-      }
+        if (item != "none")
+          o->hbao.push_back(item);
     });
   AddList(app, "--vao", "LIST", "vao qualities (default low,medium,high; none)",
     [](const std::string& item) {
-      cao::VAOQuality q;
-      return Refused(item == "none" || (cao::ParseVAOQuality(item, q) && q != cao::VAOQuality::Custom),
+      cao::Quality q;
+      return Refused(item == "none" || (cao::ParseQuality(item, q) && q != cao::Quality::Custom),
         item, "low, medium, high or none");
     },
     [o](const std::vector<std::string>& items) {
       o->vao.clear();
       for (const std::string& item : items)
       {
-        cao::VAOQuality q;
-        if (item != "none" && cao::ParseVAOQuality(item, q))
+        cao::Quality q;
+        if (item != "none" && cao::ParseQuality(item, q))
           o->vao.push_back(q);
       }
     });

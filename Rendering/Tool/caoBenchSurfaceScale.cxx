@@ -29,7 +29,7 @@ struct Options
   std::vector<int> copies{ 1, 9, 81 };
   std::vector<std::pair<int, int>> sizes{ { 256, 256 }, { 1024, 768 }, { 1920, 1080 } };
   std::string qualityName = "medium"; ///< --quality, into `quality`
-  cao::VCTQuality quality = cao::VCTQuality::Medium;
+  cao::Quality quality = cao::Quality::Medium;
   int slices = cao::VCTSettings().slices, repeats = 3, threads = 0;
   double radiusFraction = 0.1;
   std::string window = "auto", output = "surface-scale";
@@ -65,7 +65,7 @@ namespace
 int Run(Options& o, const CLI::App*)
 {
   std::string error;
-  cao::ParseVCTQuality(o.qualityName, o.quality);
+  cao::ParseQuality(o.qualityName, o.quality);
   SelectThreads(o.threads);
   ::mkdir(o.output.c_str(), 0755);
   std::ofstream csv(o.output + "/surface-scale.csv");

@@ -878,20 +878,16 @@ int Run(SurfaceOptions& o, const CLI::App* app)
     if (app->count(name) > 0 && !reads(methods))
       return Fail(2, name + " is for --method " + Or(methods) + " (got --method " + o.method + ")");
   if (app->count("--samples") > 0)
-    o.vao.quality = cao::VAOQuality::Custom;
-  if (!o.quality.empty() && o.vao.quality == cao::VAOQuality::Custom && o.method == "vao")
+    o.vao.quality = cao::Quality::Custom;
+  if (!o.quality.empty() && o.vao.quality == cao::Quality::Custom && o.method == "vao")
     return Fail(2, "give --quality or --samples, not both");
   if (!o.quality.empty())
   {
     const std::string& q = o.quality;
-    if (o.method == "hbao" ? !cao::ParseHBAOPreset(q, o.hbao.preset) || o.hbao.preset == cao::HBAOPreset::Custom
-        : o.method == "vao" ? !cao::ParseVAOQuality(q, o.vao.quality) || o.vao.quality == cao::VAOQuality::Custom
-                            : !cao::ParseVCTQuality(q, o.vct.quality) || o.vct.quality == cao::VCTQuality::Custom)
-      return Fail(2,
-        "--quality for --method " + o.method + " is " +
-          (o.method == "hbao" ? std::string("table1, fig11a, fig11b, fig11c, fig11d, low, medium or high")
-                              : std::string("low, medium or high")) +
-          " (got '" + q + "')");
+    cao::Quality quality = cao::Quality::Custom;
+    if (!cao::ParseQuality(q, quality) || quality == cao::Quality::Custom)
+      return Fail(2, "--quality for --method " + o.method + " is low, medium or high (got '" + q + "')");
+    (o.method == "hbao" ? o.hbao.quality : o.method == "vao" ? o.vao.quality : o.vct.quality) = quality;
   }
   if (!o.filter.empty())
   {
@@ -1172,19 +1168,19 @@ int Run(SurfaceOptions& o, const CLI::App* app)
     if (o.method == "ssao")
       std::cout << ", \"window\": \"" << window << "\"";
     if (o.method == "hbao")
-      std::cout << ", \"hbao\": {\"preset\": \"" << cao::HBAOPresetName(o.hbao.preset) << "\", \"directions\": "
+      std::cout << ", \"hbao\": {\"quality\": \"" << cao::QualityName(o.hbao.quality) << "\", \"directions\": "
                 << o.hbao.EffectiveDirections() << ", \"steps\": " << o.hbao.EffectiveSteps()
                 << ", \"normal_rays\": " << o.hbao.EffectiveNormalRays() << ", \"attenuation\": \""
                 << cao::FalloffName(o.hbao.EffectiveAttenuation()) << "\", \"march\": \""
                 << (o.hbao.deflect ? "deflect" : "sweep") << "\", \"blur_radius\": " << o.hbao.blurRadius
                 << ", \"backend\": \"" << vctBackend << "\"" << NoteField(backendNote) << "}";
     if (o.method == "vao")
-      std::cout << ", \"vao\": {\"quality\": \"" << cao::VAOQualityName(o.vao.quality) << "\", \"samples\": "
+      std::cout << ", \"vao\": {\"quality\": \"" << cao::QualityName(o.vao.quality) << "\", \"samples\": "
                 << o.vao.EffectiveSamples() << ", \"measure\": \"quartic\", \"interleave\": "
                 << (o.vao.interleave ? 4 : 1) << ", \"backend\": \"" << vctBackend << "\"" << NoteField(backendNote) << "}";
     if (o.method == "vct")
     {
-      std::cout << ", \"vct\": {\"quality\": \"" << cao::VCTQualityName(o.vct.quality)
+      std::cout << ", \"vct\": {\"quality\": \"" << cao::QualityName(o.vct.quality)
                 << "\", \"spheres\": " << o.vct.EffectiveSpheres() << ", \"prisms\": "
                 << o.vct.EffectivePrisms() << ", \"cone_half_angle\": " << o.vct.coneHalfAngle
                 << ", \"cone_weights\": \""
@@ -1258,9 +1254,8 @@ Command AddSurfaceCommand(CLI::App& cao)
     ->type_name("R");
   AddSurfaceQuality(app, o->quality, true,
     "vct: low|medium|high, the paper's presets (spheres 3/5/7, prisms 3/6/12; default medium);\n"
-    "hbao: the paper's configurations table1|fig11a|fig11b|fig11c|fig11d (directions/steps/normal "
-    "rays 7/12/1, 6/9/0 with linear attenuation, 8/18/0, 8/18/1, 18/25/2), or low|medium|high = "
-    "fig11a|table1|fig11d (default table1);\n"
+    "hbao: low|medium|high, directions/steps/normal rays 6/9/0 with linear attenuation, 7/12/1, "
+    "18/25/2 (the paper's Fig. 11 (a), Table 1, Fig. 11 (d); default medium);\n"
     "vao: low|medium|high, 8/16/32 samples per pixel (default medium)");
   AddChoice(app, "--march", o->march, { "deflect", "sweep" },
     "hbao: the horizon march (default deflect, the paper's Fig. 4)");

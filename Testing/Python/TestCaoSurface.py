@@ -188,7 +188,7 @@ for method in ("hbao", "vao"):
     check(np.array_equal(ball_ss[0][3], lit[3]) and b.min() < (0.6 if method == "hbao" else 0.75) and
           b.max() <= 1.0 and b.min() >= 0.0,
           "%s: the resting sphere darkens the square (min %.3f), AO in [0, 1]" % (method, b.min()))
-    check(method in js and (js[method]["preset"] == "table1" and js[method]["directions"] == 7
+    check(method in js and (js[method]["quality"] == "medium" and js[method]["directions"] == 7
                             if method == "hbao" else js[method]["samples"] == 16),
           "--json reports the %s settings: %s" % (method, js.get(method)))
     mm = np.logical_and(covered, bun[0][3])
@@ -259,7 +259,7 @@ check((auto_vct["backend"] == "CPU") == ("backend_note" in auto_vct) and
 bench = os.path.join(tmp, "bench")
 p = subprocess.run([tool, "bench", "surface", bunny, "--image", "96x96", "--reference-rays", "128",
                     "--slices", "128,256", "--qualities", "low,high", "--kernels", "32", "--repeats", "1",
-                    "--hbao", "fig11a,table1", "--vao", "medium", "--gbuffers", "ray-cast,depth",
+                    "--hbao", "low,8/18/1", "--vao", "medium", "--gbuffers", "ray-cast,depth",
                     "-o", bench], capture_output=True, text=True, timeout=600)
 check(p.returncode == 0 and all(os.path.exists(os.path.join(bench, f))
                                 for f in ("surface.csv", "surface.json", "surface.png")),
@@ -267,7 +267,7 @@ check(p.returncode == 0 and all(os.path.exists(os.path.join(bench, f))
 if p.returncode == 0:
     result = json.load(open(os.path.join(bench, "surface.json")))
     by = {r["configuration"]: r for r in result["rows"]}
-    exact = {"vct low 128", "vct high 128", "vct low 256", "vct high 256", "hbao fig11a", "hbao table1", "vao medium"}
+    exact = {"vct low 128", "vct high 128", "vct low 256", "vct high 256", "hbao low", "hbao 8/18/1", "vao medium"}
     expected = {"reference 128 rays", "none", "ssao k32"} | exact | {c + " depth" for c in exact}
     check(set(by) == expected, "every configuration has a row, each method's also with the depth G-buffer: %s"
           % sorted(by))
@@ -286,10 +286,10 @@ if p.returncode == 0:
           "vct high at 256 slices beats low at 128 (%.4f < %.4f)"
           % (by["vct high 256"]["rmse"], by["vct low 128"]["rmse"]))
     check(by["vao medium"]["own_falloff"] == "quartic" and by["vao medium"]["own_rmse"] > 0 and
-          by["hbao fig11a"]["own_falloff"] == "linear" and by["hbao table1"]["own_rmse"] == by["hbao table1"]["rmse"] and
+          by["hbao low"]["own_falloff"] == "linear" and by["hbao 8/18/1"]["own_rmse"] == by["hbao 8/18/1"]["rmse"] and
           by["vao medium"]["own_rmse"] != by["vao medium"]["rmse"],
-          "the screen-space rows carry their own-definition error (vao quartic %.4f, hbao fig11a linear %.4f)"
-          % (by["vao medium"]["own_rmse"], by["hbao fig11a"]["own_rmse"]))
+          "the screen-space rows carry their own-definition error (vao quartic %.4f, hbao low linear %.4f)"
+          % (by["vao medium"]["own_rmse"], by["hbao low"]["own_rmse"]))
     # The Pareto front is exactly the non-dominated method rows.
     methods = [r for r in result["rows"] if r["method"] in ("vct", "ssao", "hbao", "vao")]
     def dominated(r, rows):
@@ -304,6 +304,12 @@ rc = subprocess.run([tool, "bench", "surface", "--slices", "100", bunny], captur
 check(rc == 2, "cao bench surface with --slices 100 exits 2 (%d)" % rc)
 rc = subprocess.run([tool, "bench", "surface", "--gbuffers", "zbuffer", bunny], capture_output=True, text=True).returncode
 check(rc == 2, "cao bench surface with --gbuffers zbuffer exits 2 (%d)" % rc)
+# --hbao: low, medium, high or a custom D/S/N within HBAOSettings' ranges;
+# the paper's old configuration names are not the vocabulary any more.
+for bad in ("fig11a", "0/18/1", "8/18", "8/18/1x", "8/2000/1"):
+    p = subprocess.run([tool, "bench", "surface", "--hbao", bad, bunny], capture_output=True, text=True)
+    check(p.returncode == 2 and "D/S/N" in p.stderr, "cao bench surface --hbao %s exits 2 naming the forms (%d: %s)"
+          % (bad, p.returncode, p.stderr.strip()[-160:]))
 
 # cao bench surface-frame: whole frames of the pass beside vtkSSAOPass, a
 # row per configuration with its stages, the csv; bad options exit 2.
@@ -506,7 +512,8 @@ for args, words in [(["--method", "magic", bunny, "-o", "x.png"], "--method: bad
                     (["--volume", block_vti, "--mode", "sideways", bunny, "-o", "x.png"], "--mode: bad value 'sideways'"),
                     (["--volume", bunny, bunny, "-o", "x.png"], "Bunny.vtp"),
                     (["--quality", "ultra", bunny, "-o", "x.png"], "--quality for --method vct is"),
-                    (["--method", "hbao", "--quality", "fig12", bunny, "-o", "x.png"], "table1, fig11a"),
+                    (["--method", "hbao", "--quality", "fig12", bunny, "-o", "x.png"], "is low, medium or high"),
+                    (["--method", "hbao", "--quality", "table1", bunny, "-o", "x.png"], "is low, medium or high"),
                     (["--method", "vao", "--samples", "0", bunny, "-o", "x.png"], "--samples"),
                     (["--march", "up", bunny, "-o", "x.png"], "--march: bad value 'up'"),
                     (["--march", "sweep", bunny, "-o", "x.png"], "--march is for --method hbao"),

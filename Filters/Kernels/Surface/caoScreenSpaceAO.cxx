@@ -179,17 +179,13 @@ struct HBAOConfiguration
 };
 HBAOConfiguration Configuration(const HBAOSettings& s)
 {
-  switch (s.preset)
+  switch (s.quality)
   {
-    case HBAOPreset::Table1:
-      return { 7, 12, 1, AOFalloff::Step };
-    case HBAOPreset::Fig11a:
+    case Quality::Low:
       return { 6, 9, 0, AOFalloff::Linear };
-    case HBAOPreset::Fig11b:
-      return { 8, 18, 0, AOFalloff::Step };
-    case HBAOPreset::Fig11c:
-      return { 8, 18, 1, AOFalloff::Step };
-    case HBAOPreset::Fig11d:
+    case Quality::Medium:
+      return { 7, 12, 1, AOFalloff::Step };
+    case Quality::High:
       return { 18, 25, 2, AOFalloff::Step };
     default:
       return { s.directions, s.steps, s.normalRays, s.attenuation };
@@ -231,8 +227,8 @@ AOFalloff HBAOSettings::EffectiveAttenuation() const
 
 std::string HBAOSettings::Validate() const
 {
-  if (static_cast<int>(this->preset) < 0 || static_cast<int>(this->preset) > 5)
-    return "unknown HBAO preset";
+  if (!ValidQuality(this->quality))
+    return "unknown HBAO quality";
   if (this->directions < 1 || this->directions > 64)
     return "HBAO directions must be 1..64 (got " + std::to_string(this->directions) + ")";
   if (this->steps < 1 || this->steps > 1024)
@@ -253,55 +249,15 @@ std::string HBAOSettings::Validate() const
   return CheckFrameSettings(this->radius);
 }
 
-namespace
-{
-// One name table per enumeration: the names a preset prints and parses as
-// (the first of a value is its name; low / medium / high are aliases).
-const std::pair<const char*, HBAOPreset> HBAONames[] = { { "custom", HBAOPreset::Custom },
-  { "table1", HBAOPreset::Table1 }, { "fig11a", HBAOPreset::Fig11a }, { "fig11b", HBAOPreset::Fig11b },
-  { "fig11c", HBAOPreset::Fig11c }, { "fig11d", HBAOPreset::Fig11d }, { "low", HBAOPreset::Fig11a },
-  { "medium", HBAOPreset::Table1 }, { "high", HBAOPreset::Fig11d } };
-const std::pair<const char*, VAOQuality> VAONames[] = { { "custom", VAOQuality::Custom },
-  { "low", VAOQuality::Low }, { "medium", VAOQuality::Medium }, { "high", VAOQuality::High } };
-
-template <typename E, std::size_t N>
-const char* NameOf(const std::pair<const char*, E> (&table)[N], E value)
-{
-  for (const auto& entry : table)
-    if (entry.second == value)
-      return entry.first;
-  return "custom";
-}
-
-template <typename E, std::size_t N>
-bool Parse(const std::pair<const char*, E> (&table)[N], const std::string& text, E& value)
-{
-  for (const auto& entry : table)
-    if (text == entry.first)
-      return value = entry.second, true;
-  return false;
-}
-}
-
-const char* HBAOPresetName(HBAOPreset preset)
-{
-  return NameOf(HBAONames, preset);
-}
-
-bool ParseHBAOPreset(const std::string& text, HBAOPreset& preset)
-{
-  return Parse(HBAONames, text, preset);
-}
-
 int VAOSettings::EffectiveSamples() const
 {
   switch (this->quality)
   {
-    case VAOQuality::Low:
+    case Quality::Low:
       return 8;
-    case VAOQuality::Medium:
+    case Quality::Medium:
       return 16;
-    case VAOQuality::High:
+    case Quality::High:
       return 32;
     default:
       return this->samples;
@@ -310,23 +266,13 @@ int VAOSettings::EffectiveSamples() const
 
 std::string VAOSettings::Validate() const
 {
-  if (static_cast<int>(this->quality) < 0 || static_cast<int>(this->quality) > 3)
+  if (!ValidQuality(this->quality))
     return "unknown VAO quality";
   if (this->samples < 1 || this->samples > 256)
     return "VAO samples per pixel must be 1..256 (got " + std::to_string(this->samples) + ")";
   if (!(this->filterTolerance > 0.0) || !std::isfinite(this->filterTolerance))
     return "the filter tolerance must be positive and finite";
   return CheckFrameSettings(this->radius);
-}
-
-const char* VAOQualityName(VAOQuality quality)
-{
-  return NameOf(VAONames, quality);
-}
-
-bool ParseVAOQuality(const std::string& text, VAOQuality& quality)
-{
-  return Parse(VAONames, text, quality);
 }
 
 void DepthAwareFilter(const SurfaceFrame& frame, const std::vector<double>& weights, double tolerance,

@@ -47,6 +47,7 @@
 #ifndef caoScreenSpaceAO_h
 #define caoScreenSpaceAO_h
 
+#include "caoQuality.h"
 #include "caoSurfaceReference.h"
 
 #include <cstdint>
@@ -56,27 +57,18 @@
 
 namespace cao
 {
-
-/// Bavoil et al.'s configurations (their Table 1 and Fig. 11 (a)-(d)).
-enum class HBAOPreset
-{
-  Custom = 0,
-  Table1 = 1, ///< 7 directions, 12 steps, 1 normal ray per direction
-  Fig11a = 2, ///< 6, 9, 0, linear attenuation
-  Fig11b = 3, ///< 8, 18, 0
-  Fig11c = 4, ///< 8, 18, 1
-  Fig11d = 5  ///< 18, 25, 2
-};
-
 /// The settings of horizon-based AO (one definition: the CLI's --quality,
 /// --radius and the view's properties write these).
 struct HBAOSettings
 {
-  HBAOPreset preset = HBAOPreset::Table1;
+  /// Low: 6 directions, 9 steps, no normal ray, linear attenuation;
+  /// Medium: 7, 12, 1, step; High: 18, 25, 2, step (Bavoil et al.'s
+  /// Fig. 11 (a), Table 1 and Fig. 11 (d)); Custom: the four below.
+  Quality quality = Quality::Medium;
   int directions = 7;   ///< N_d (Custom), 1..64
   int steps = 12;       ///< N_s (Custom), 1..1024
   int normalRays = 1;   ///< N_n per direction (Custom), 0..16
-  AOFalloff attenuation = AOFalloff::Step; ///< step or linear (Custom; Fig11a: linear)
+  AOFalloff attenuation = AOFalloff::Step; ///< step or linear (Custom; Low: linear)
   double radius = 1.0;  ///< R, world units (> 0, finite)
   double offsetPixels = 1.0; ///< P' = P + this x a pixel's world size x n, 0..8
   int blurRadius = 2;   ///< taps each side of the Gaussian (2: the paper's 5 x 5), 0..8 (0: none)
@@ -98,23 +90,14 @@ struct HBAOSettings
   std::string Validate() const;
 };
 
-const char* HBAOPresetName(HBAOPreset preset);
-/// "table1", "fig11a".."fig11d", and low / medium / high (Fig11a, Table1,
-/// Fig11d); false when unknown.
-bool ParseHBAOPreset(const std::string& text, HBAOPreset& preset);
 
-enum class VAOQuality
-{
-  Custom = 0,
-  Low = 1,    ///< 8 samples per pixel
-  Medium = 2, ///< 16 (the paper's "12-16 samples per pixel")
-  High = 3    ///< 32
-};
 
 /// The settings of volumetric AO (Szirmay-Kalos et al., base disk).
 struct VAOSettings
 {
-  VAOQuality quality = VAOQuality::Medium;
+  /// Low: 8 samples per pixel; Medium: 16 (the paper's "12-16 samples
+  /// per pixel"); High: 32; Custom: `samples`.
+  Quality quality = Quality::Medium;
   int samples = 16;       ///< per pixel (Custom), 1..256
   double radius = 1.0;    ///< R, world units (> 0, finite)
   bool interleave = true; ///< 4 x 4 sample sets and the filter of the same size
@@ -133,8 +116,6 @@ struct VAOSettings
   std::string Validate() const;
 };
 
-const char* VAOQualityName(VAOQuality quality);
-bool ParseVAOQuality(const std::string& text, VAOQuality& quality);
 
 /// Horizon-based AO of every covered pixel of `frame` (seen by `camera`)
 /// into frame.ao, blurred as set (`only`: just these pixels, unblurred,

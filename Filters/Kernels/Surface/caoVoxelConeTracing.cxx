@@ -268,11 +268,11 @@ int VCTSettings::EffectiveSpheres() const
 {
   switch (this->quality)
   {
-    case VCTQuality::Low:
+    case Quality::Low:
       return 3;
-    case VCTQuality::Medium:
+    case Quality::Medium:
       return 5;
-    case VCTQuality::High:
+    case Quality::High:
       return 7;
     default:
       return this->spheres;
@@ -283,11 +283,11 @@ int VCTSettings::EffectivePrisms() const
 {
   switch (this->quality)
   {
-    case VCTQuality::Low:
+    case Quality::Low:
       return 3;
-    case VCTQuality::Medium:
+    case Quality::Medium:
       return 6;
-    case VCTQuality::High:
+    case Quality::High:
       return 12;
     default:
       return this->prisms;
@@ -296,7 +296,7 @@ int VCTSettings::EffectivePrisms() const
 
 std::string VCTSettings::Validate() const
 {
-  if (static_cast<int>(this->quality) < 0 || static_cast<int>(this->quality) > 3)
+  if (!ValidQuality(this->quality))
     return "unknown quality";
   if (this->spheres < 1 || this->spheres > 16)
     return "spheres per cone must be 1..16 (got " + std::to_string(this->spheres) + ")";
@@ -318,32 +318,6 @@ std::string VCTSettings::Validate() const
   if (!(this->filterTolerance > 0.0 && this->filterTolerance <= 10.0))
     return "the filter tolerance must be in (0, 10] radii";
   return std::string();
-}
-
-const char* VCTQualityName(VCTQuality quality)
-{
-  switch (quality)
-  {
-    case VCTQuality::Low:
-      return "low";
-    case VCTQuality::Medium:
-      return "medium";
-    case VCTQuality::High:
-      return "high";
-    default:
-      return "custom";
-  }
-}
-
-bool ParseVCTQuality(const std::string& text, VCTQuality& quality)
-{
-  for (VCTQuality q : { VCTQuality::Custom, VCTQuality::Low, VCTQuality::Medium, VCTQuality::High })
-    if (text == VCTQualityName(q))
-    {
-      quality = q;
-      return true;
-    }
-  return false;
 }
 
 const char* VCTOccupancyName(VCTOccupancy occupancy)

@@ -57,6 +57,8 @@
 #include "caoGPULayout.h"
 #include "caoSurfaceReference.h"
 
+#include "caoQuality.h"
+
 #include <array>
 #include <cstdint>
 #include <string>
@@ -65,13 +67,6 @@
 namespace cao
 {
 
-enum class VCTQuality
-{
-  Custom = 0,
-  Low = 1,    ///< 3 spheres, 3 prisms (the paper's Table I)
-  Medium = 2, ///< 5 spheres, 6 prisms (the paper's choice)
-  High = 3    ///< 7 spheres, 12 prisms
-};
 
 /// What a cone's occlusion measures (VCTSettings::occupancy).
 enum class VCTOccupancy
@@ -93,7 +88,9 @@ enum class ConeWeights
 /// --quality, --slices, --radius and the view's properties write these).
 struct VCTSettings
 {
-  VCTQuality quality = VCTQuality::Medium;
+  /// Low: 3 spheres, 3 prisms (the paper's Table I); Medium: 5, 6 (the
+  /// paper's choice); High: 7, 12; Custom: `spheres` and `prisms`.
+  Quality quality = Quality::Medium;
   int spheres = 5;            ///< per cone (Custom), 1..16
   int prisms = 6;             ///< per sphere (Custom), 1..MaximumPrisms
   double coneHalfAngle = 30.0; ///< degrees, 5..45
@@ -140,8 +137,6 @@ struct VCTSettings
   std::string Validate() const;
 };
 
-const char* VCTQualityName(VCTQuality quality);
-bool ParseVCTQuality(const std::string& text, VCTQuality& quality);
 
 /// One mesh to voxelize: points (x, y, z) and triangles (3 ids each).
 struct MeshView

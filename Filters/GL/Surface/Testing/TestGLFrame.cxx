@@ -135,7 +135,7 @@ int TestGLFrame(int argc, char* argv[])
   settings.radius = 0.8;
   cao::VCTPlan plan, low;
   CAO_CHECK(cao::BuildVCTPlan(settings, grid, plan, error), "%s", error.c_str());
-  settings.quality = cao::VCTQuality::Low;
+  settings.quality = cao::Quality::Low;
   CAO_CHECK(cao::BuildVCTPlan(settings, grid, low, error), "%s", error.c_str());
   cao::SurfaceFrame cpu;
   CAO_CHECK(cao::FrameFromDepth(camera, depth, cpu, error) && cao::VCTFrame(grid, plan, cpu, 1, error), "%s",
@@ -255,8 +255,8 @@ int TestGLFrame(int argc, char* argv[])
         cao::HBAOSettings hbao, hbaoOther;
         cao::VAOSettings vao, vaoOther;
         hbao.radius = hbaoOther.radius = vao.radius = vaoOther.radius = 0.8;
-        hbaoOther.preset = cao::HBAOPreset::Fig11a;
-        vaoOther.quality = cao::VAOQuality::Low;
+        hbaoOther.quality = cao::Quality::Low;
+        vaoOther.quality = cao::Quality::Low;
         if (!finish)
         {
           hbao.blurRadius = hbaoOther.blurRadius = 0;

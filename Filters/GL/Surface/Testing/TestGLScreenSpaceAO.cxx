@@ -1,7 +1,7 @@
 // Horizon-based AO and volumetric AO on the GPU (caoScreenAOGL) against
 // their CPU twins (caoScreenSpaceAO), on the ray-cast G-buffer of a sphere
 // resting on a slab with a block beside it, seen in perspective at 160 x
-// 120, each method at each preset, blur and filter on:
+// 120, each method at each quality, blur and filter on:
 // - the GPU's AO (float) against the CPU's (double): the mean |difference|
 //   under 2e-3 and at least 99% of the covered pixels within 0.02 (a
 //   step's below-the-buffer test or a sample's pixel can round the other
@@ -97,23 +97,28 @@ int TestGLScreenSpaceAO(int argc, char* argv[])
   std::printf("%lld covered pixels\n", static_cast<long long>(frame.covered));
   cao::gl::ScreenAOEngine engine(*context);
   char text[300];
-  for (cao::HBAOPreset preset : { cao::HBAOPreset::Fig11a, cao::HBAOPreset::Table1, cao::HBAOPreset::Fig11d })
+  for (cao::Quality quality : { cao::Quality::Low, cao::Quality::Medium, cao::Quality::High })
   {
     cao::HBAOSettings h;
-    h.preset = preset;
+    h.quality = quality;
     h.radius = 0.8;
     cao::SurfaceFrame cpu = frame, gpu = frame, other = frame;
     double ms = 0;
     const bool ran = cao::HBAOFrame(cam, h, cpu, 0, error) && engine.HBAO(cam, h, gpu, ms, error);
     cao::HBAOSettings o = h;
-    o.preset = preset == cao::HBAOPreset::Table1 ? cao::HBAOPreset::Fig11b : cao::HBAOPreset::Table1;
+    // The control: another configuration (8 directions, 18 steps, no
+    // normal ray for Medium; Medium for the others).
+    o.quality = quality == cao::Quality::Medium ? cao::Quality::Custom : cao::Quality::Medium;
+    o.directions = 8;
+    o.steps = 18;
+    o.normalRays = 0;
     cao::HBAOFrame(cam, o, other, 0, error);
     const Agreement a = Compare(cpu, gpu), c = Compare(other, gpu);
     std::snprintf(text, sizeof(text), "HBAO %s: GPU against CPU mean |diff| %.2e, %.2f%% within 0.02 (%.3f ms); "
-      "another preset: %.2e, %.2f%%", cao::HBAOPresetName(preset), a.mean, 100 * a.within, ms, c.mean, 100 * c.within);
+      "another configuration: %.2e, %.2f%%", cao::QualityName(quality), a.mean, 100 * a.within, ms, c.mean, 100 * c.within);
     Check(ran && a.samePixels && a.mean < 2e-3 && a.within >= 0.99 && !(c.mean < 2e-3 && c.within >= 0.99), text);
   }
-  for (cao::VAOQuality q : { cao::VAOQuality::Low, cao::VAOQuality::Medium, cao::VAOQuality::High })
+  for (cao::Quality q : { cao::Quality::Low, cao::Quality::Medium, cao::Quality::High })
   {
     cao::VAOSettings v;
     v.quality = q;
@@ -127,7 +132,7 @@ int TestGLScreenSpaceAO(int argc, char* argv[])
     cao::VAOFrame(cam, o, other, 0, error);
     const Agreement a = Compare(cpu, gpu), c = Compare(other, gpu);
     std::snprintf(text, sizeof(text), "VAO %s: GPU against CPU mean |diff| %.2e, %.2f%% within 0.02 (%.3f ms); "
-      "other samples: %.2e, %.2f%%", cao::VAOQualityName(q), a.mean, 100 * a.within, ms, c.mean, 100 * c.within);
+      "other samples: %.2e, %.2f%%", cao::QualityName(q), a.mean, 100 * a.within, ms, c.mean, 100 * c.within);
     Check(ran && a.samePixels && a.mean < 2e-3 && a.within >= 0.99 && !(c.mean < 2e-3 && c.within >= 0.99), text);
   }
   // The raw estimators (no blur, no filter) and the other switches: the
@@ -160,7 +165,7 @@ int TestGLScreenSpaceAO(int argc, char* argv[])
     Check(refused && error.find("does not match") != std::string::npos, "a frame of the wrong size is refused: " + error);
     cao::VAOSettings v;
     v.samples = 0;
-    v.quality = cao::VAOQuality::Custom;
+    v.quality = cao::Quality::Custom;
     const bool bad = !engine.VAO(cam, v, frame, ms, error);
     Check(bad && error.find("1..256") != std::string::npos, "bad settings are refused: " + error);
   }
@@ -194,16 +199,16 @@ int TestGLScreenSpaceAO(int argc, char* argv[])
         return t[t.size() / 2];
       };
       cao::HBAOSettings nvpro; // nvpro gl_ssao's default shape: 8 directions x 4 steps
-      nvpro.preset = cao::HBAOPreset::Custom;
+      nvpro.quality = cao::Quality::Custom;
       nvpro.directions = 8;
       nvpro.steps = 4;
       nvpro.normalRays = 0;
       std::vector<std::pair<std::string, cao::HBAOSettings>> hbaos{ { "hbao 8 x 4, no normal rays", nvpro } };
-      for (cao::HBAOPreset preset : { cao::HBAOPreset::Fig11a, cao::HBAOPreset::Table1, cao::HBAOPreset::Fig11d })
+      for (cao::Quality quality : { cao::Quality::Low, cao::Quality::Medium, cao::Quality::High })
       {
         cao::HBAOSettings h;
-        h.preset = preset;
-        hbaos.push_back({ std::string("hbao ") + cao::HBAOPresetName(preset), h });
+        h.quality = quality;
+        hbaos.push_back({ std::string("hbao ") + cao::QualityName(quality), h });
       }
       for (auto& h : hbaos)
       {
@@ -212,14 +217,14 @@ int TestGLScreenSpaceAO(int argc, char* argv[])
         std::printf("| %dx%d | %lld | %s | %.3f |\n", size.first, size.second, static_cast<long long>(f.covered),
           h.first.c_str(), ms);
       }
-      for (cao::VAOQuality q : { cao::VAOQuality::Low, cao::VAOQuality::Medium, cao::VAOQuality::High })
+      for (cao::Quality q : { cao::Quality::Low, cao::Quality::Medium, cao::Quality::High })
       {
         cao::VAOSettings v;
         v.quality = q;
         v.radius = 0.8;
         const double ms = median([&](cao::SurfaceFrame& g, double& t) { return engine.VAO(big, v, g, t, error); });
         std::printf("| %dx%d | %lld | vao %s | %.3f |\n", size.first, size.second, static_cast<long long>(f.covered),
-          cao::VAOQualityName(q), ms);
+          cao::QualityName(q), ms);
       }
     }
   }

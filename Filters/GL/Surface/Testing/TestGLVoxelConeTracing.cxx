@@ -463,7 +463,7 @@ int TestGLVoxelConeTracing(int argc, char* argv[])
     return 1;
   cao::VCTSettings settings;
   settings.radius = 0.35;
-  settings.quality = cao::VCTQuality::High;
+  settings.quality = cao::Quality::High;
   cao::VCTPlan plan;
   CAO_CHECK(cao::BuildVCTPlan(settings, grid, plan, error), "%s", error.c_str());
   // Points on the spheres' surfaces and the floor's top, normals outward.

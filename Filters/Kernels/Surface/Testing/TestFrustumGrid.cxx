@@ -260,7 +260,7 @@ int TestFrustumGrid(int, char*[])
       const cao::PixelCamera c = caotest::LookAt(side, side, top, centre, 40, 0.5, 20);
       cao::BitGrid g;
       cao::VCTSettings s;
-      s.quality = cao::VCTQuality::Custom;
+      s.quality = cao::Quality::Custom;
       s.spheres = 5;
       s.prisms = 32;
       s.radius = 1.0;

@@ -254,7 +254,7 @@ int TestScreenSpaceAO(int, char*[])
         for (int steps : { 64, 1024 })
         {
           cao::HBAOSettings h;
-          h.preset = cao::HBAOPreset::Custom;
+          h.quality = cao::Quality::Custom;
           h.directions = 64;
           h.steps = steps;
           h.normalRays = 0;
@@ -294,7 +294,7 @@ int TestScreenSpaceAO(int, char*[])
           linear += H * H / (r * r) * (1.0 - r / R) / 100000;
       }
       cao::HBAOSettings h;
-      h.preset = cao::HBAOPreset::Custom;
+      h.quality = cao::Quality::Custom;
       h.directions = 64;
       h.steps = 1024;
       h.normalRays = 0;
@@ -326,7 +326,7 @@ int TestScreenSpaceAO(int, char*[])
     CAO_CHECK(Frame(s, cam, f), "wall");
     const std::size_t p = Nearest(f, -1e-4, 0, 0);
     cao::VAOSettings v;
-    v.quality = cao::VAOQuality::Custom;
+    v.quality = cao::Quality::Custom;
     v.samples = 256;
     v.interleave = false;
     v.radius = 1.0;
@@ -483,9 +483,20 @@ int TestScreenSpaceAO(int, char*[])
     cao::SurfaceFrame f;
     CAO_CHECK(!cao::VAOFrame(cam, v, f, 0, error) && error.find("does not match") != std::string::npos, "%s",
       error.c_str());
-    cao::HBAOPreset p;
-    CAO_CHECK(cao::ParseHBAOPreset("fig11d", p) && p == cao::HBAOPreset::Fig11d && !cao::ParseHBAOPreset("x", p),
-      "preset names");
+    // One quality vocabulary: the names parse back to their values, an
+    // unknown one (a paper configuration's old name) is refused, and each
+    // level sets its configuration.
+    cao::Quality q = cao::Quality::Custom;
+    bool names = !cao::ParseQuality("fig11d", q) && !cao::ParseQuality("table1", q) && q == cao::Quality::Custom;
+    for (cao::Quality level : { cao::Quality::Custom, cao::Quality::Low, cao::Quality::Medium, cao::Quality::High })
+      names = names && cao::ParseQuality(cao::QualityName(level), q) && q == level;
+    cao::HBAOSettings low, high;
+    low.quality = cao::Quality::Low;
+    high.quality = cao::Quality::High;
+    CAO_CHECK(names && low.EffectiveDirections() == 6 && low.EffectiveAttenuation() == cao::AOFalloff::Linear &&
+        high.EffectiveDirections() == 18 && high.EffectiveSteps() == 25 && high.EffectiveNormalRays() == 2 &&
+        !cao::ValidQuality(static_cast<cao::Quality>(4)),
+      "quality names and levels");
   }
   return failures ? 1 : 0;
 }

@@ -283,7 +283,7 @@ int TestVoxelConeTracing(int, char*[])
       std::vector<double> dummy;
       Box(0, 1, dummy, t); // the box's triangles, on these 8 points
       cao::VCTSettings s;
-      s.quality = cao::VCTQuality::Custom;
+      s.quality = cao::Quality::Custom;
       s.spheres = 5;
       s.prisms = 32;
       s.radius = 1.0;
@@ -727,7 +727,7 @@ int TestVoxelConeTracing(int, char*[])
     s.slices = 100;
     CAO_CHECK(s.Validate().find("multiple of 32") != std::string::npos, "%s", s.Validate().c_str());
     s.slices = 128;
-    s.quality = cao::VCTQuality::Custom;
+    s.quality = cao::Quality::Custom;
     s.prisms = 0;
     CAO_CHECK(s.Validate().find("prisms") != std::string::npos, "%s", s.Validate().c_str());
     std::vector<double> p = { 0, 0, 0, 1, 0, 0, 0, 1, 0 };
