@@ -43,6 +43,7 @@
 #include "vtkCAOSceneLines.h"
 #include "vtkCAOInput.h"
 #include "vtkCAOSceneVolume.h"
+#include "vtkCAOScreenTechnique.h"
 #include "caoLineShading.h"
 #include "caoParallelFor.h"
 #include "vtkContextualAOVolumeMapper.h"
@@ -448,7 +449,6 @@ struct vtkContextualAOPass::Internals
   cao::PixelCamera pixels;       ///< the traced camera, as the kernels take it
   double tolerance = 1e-9;       ///< drawn against traced point: half a voxel
   bool ignoredVolumes = false;   ///< volumes in view that a screen-space method does not see
-  cao::VAOSettings vao;          ///< the last VAO run's settings (its indirect term reuses them)
   vtkCAO::SceneGPU gpu;          ///< the AO on the window's OpenGL (Backend)
   bool onGPU = false;            ///< this frame's AO runs there
   bool gpuFrame = false;         ///< and its pixels stay there (VCT, depth G-buffer): no read-back
@@ -545,19 +545,18 @@ struct vtkContextualAOPass::Internals
   }
   int uploadedVolumes[2] = { -1, -1 }; ///< the volume serial and GPU generation on the GPU
   int volumeUploads = 0;               ///< the volumes' opacity put on the GPU, so far (the report)
-  /// HBAO's and VAO's settings from the pass's.
-  cao::HBAOSettings HBAOSettingsOf(vtkContextualAOPass* self) const
+  /// The screen-space technique of the pass's Method (null: None or Voxel
+  /// Cones, the pass's own step) and what it gets from the pass.
+  static const vtkCAO::ScreenTechnique* Screen(const vtkContextualAOPass* self)
   {
-    cao::HBAOSettings settings;
-    settings.quality = static_cast<cao::Quality>(self->Quality);
-    settings.radius = this->radius;
-    return settings;
+    return self->Method > VCT ? vtkCAO::FindScreenTechnique(self->Method) : nullptr;
   }
-  cao::VAOSettings VAOSettingsOf(vtkContextualAOPass* self) const
+  vtkCAO::ScreenTechniqueSettings ScreenSettingsOf(const vtkContextualAOPass* self) const
   {
-    cao::VAOSettings settings;
-    settings.quality = static_cast<cao::Quality>(self->Quality);
+    vtkCAO::ScreenTechniqueSettings settings;
+    settings.quality = self->Quality;
     settings.radius = this->radius;
+    settings.indirectLight = self->IndirectLight;
     return settings;
   }
   bool UpdateAO(vtkContextualAOPass* self, vtkRenderer* ren);
@@ -679,6 +678,22 @@ std::string vtkContextualAOPass::GetLastFrameStages() const
   return s;
 }
 
+void vtkContextualAOPass::SetMethod(int method)
+{
+  if (method != NONE && method != VCT && !vtkCAO::FindScreenTechnique(method))
+  {
+    vtkErrorMacro("Method " << method << " is none of 0 (None), 1 (Voxel Cones) and the registered screen-space "
+                               "techniques ("
+                            << vtkCAO::ScreenTechniqueList() << "); the Method stays " << this->Method);
+    return;
+  }
+  if (this->Method != method)
+  {
+    this->Method = method;
+    this->Modified();
+  }
+}
+
 std::string vtkContextualAOPass::GetLastFrameReport() const
 {
   const Internals& p = *this->Internal;
@@ -692,7 +707,7 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
     return o.str();
   }
   o << "{\"frame\": " << this->FrameCount << ", \"method\": \""
-    << (this->Method == VCT ? "vct" : this->Method == HBAO ? "hbao" : this->Method == VAO ? "vao" : "none")
+    << (this->Method == VCT ? std::string("vct") : Internals::Screen(this) ? Internals::Screen(this)->name : std::string("none"))
     << "\", \"apply_to\": \""
     << (this->ApplyTo == AMBIENT_TERM ? "ambient" : "whole colour") << "\", \"grid\": \""
     << (this->Grid == EYE_GRID ? "eye" : this->Grid == FRUSTUM_GRID ? "frustum" : "world") << "\", \"occupancy\": \""
@@ -725,7 +740,7 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
     o << ", \"frame_depth\": \"" << p.gpu.FrameDepthPath() << "\"";
   if (p.ignoredVolumes)
     o << ", \"volumes\": \"not seen: the screen-space methods read the opaque depth, drawn before the volumes\"";
-  if (this->Method == VAO)
+  if (Internals::Screen(this) && Internals::Screen(this)->indirect)
     o << ", \"indirect_light\": " << (this->IndirectLight ? "true" : "false");
   if (!p.skippedVolumes.empty())
   {
@@ -806,11 +821,12 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
   // tile alone, so its edges show as seams; said once per tiling.
   int* tileScale = ren->GetRenderWindow() ? ren->GetRenderWindow()->GetTileScale() : nullptr;
   const bool tiled = tileScale && (tileScale[0] > 1 || tileScale[1] > 1);
-  const bool screenBound = self->Method == HBAO || self->Method == VAO || self->Grid == FRUSTUM_GRID;
+  const vtkCAO::ScreenTechnique* screen = Screen(self);
+  const bool screenBound = screen || self->Grid == FRUSTUM_GRID;
   if (tiled && screenBound && !this->warnedTiles)
     vtkWarningWithObjectMacro(self, << "A tiled render (" << tileScale[0] << " x " << tileScale[1]
       << " tiles: an image larger than the window): "
-      << (self->Method == VCT ? "the frustum grid" : self->Method == HBAO ? "HBAO" : "VAO")
+      << (screen ? screen->label : std::string("the frustum grid"))
       << " sees each tile alone, so the tiles' edges show as seams; render at the window's size, or use "
          "Voxel Cones on the world or eye grid");
   this->warnedTiles = tiled && screenBound;
@@ -864,13 +880,18 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
   // the combine's drawn-is-traced test both read it.
   const bool wasOnGPU = this->gpuFrame;
   const bool frustum = self->Method == VCT && self->Grid == FRUSTUM_GRID;
-  this->gpuFrame = this->onGPU && this->gbuffer == DEPTH_BUFFER && !(self->Method == VAO && self->IndirectLight) &&
+  const bool hostIndirect = screen && screen->indirect && self->IndirectLight;
+  this->gpuFrame = this->onGPU && this->gbuffer == DEPTH_BUFFER && !hostIndirect && !(screen && !screen->gpuFrame) &&
     !frustum && !this->linesOn;
   if (this->onGPU && this->gbuffer == DEPTH_BUFFER && this->linesOn)
     this->backendNote = "the lines' drawn depth is read back to the host (the surfaces' AO and the lines' "
                         "G-buffer, grid and prisms still on the GPU)";
-  if (this->onGPU && this->gbuffer == DEPTH_BUFFER && self->Method == VAO && self->IndirectLight)
-    this->backendNote = "VAO's indirect light runs on the CPU: the frame's pixels are read back (the AO still on the GPU)";
+  if (this->onGPU && this->gbuffer == DEPTH_BUFFER && hostIndirect)
+    this->backendNote = screen->label + "'s indirect light runs on the CPU: the frame's pixels are read back (the AO "
+      "still on the GPU)";
+  if (this->onGPU && this->gbuffer == DEPTH_BUFFER && screen && !screen->gpuFrame)
+    this->backendNote = screen->label + " has no GPU frame step: the frame's pixels are read back" +
+      (screen->gpu ? " (the AO still on the GPU)" : ", its AO on the CPU");
   if (this->onGPU && this->gbuffer == DEPTH_BUFFER && frustum)
     this->backendNote = "the frustum grid's columns start at the G-buffer's depths: the frame's pixels are read back "
                         "(the grid and cones still on the GPU)";
@@ -1518,9 +1539,9 @@ bool vtkContextualAOPass::Internals::RunGPUFrame(vtkContextualAOPass* self, cons
     pixels.width = rect[2];
     pixels.height = rect[3];
     cao::VCTPlan plan;
+    const vtkCAO::ScreenTechnique* screen = Screen(self); // (one with a GPU frame step: RunAO)
     if (vct ? !this->BuildPlan(self, plan, error) || !this->gpu.FrameTrace(plan, error)
-        : self->Method == HBAO ? !this->gpu.FrameHBAO(pixels, this->HBAOSettingsOf(self), error)
-                               : !this->gpu.FrameVAO(pixels, this->vao = this->VAOSettingsOf(self), error))
+            : !screen || !screen->gpuFrame(this->gpu, pixels, this->ScreenSettingsOf(self), error))
       return this->Fail(self, error);
     this->Stage("trace", start);
     this->frame = cao::SurfaceFrame();
@@ -1630,18 +1651,11 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
   }
   this->primaryKey = primary;
   start = Clock::now();
-  if (self->Method == HBAO)
+  if (const vtkCAO::ScreenTechnique* screen = Screen(self))
   {
-    const cao::HBAOSettings settings = this->HBAOSettingsOf(self);
-    if (this->onGPU ? !this->gpu.HBAO(pixels, settings, this->frame, error)
-                    : !cao::HBAOFrame(pixels, settings, this->frame, 0, error))
-      return this->Fail(self, error);
-  }
-  else if (self->Method == VAO)
-  {
-    this->vao = this->VAOSettingsOf(self);
-    if (this->onGPU ? !this->gpu.VAO(pixels, this->vao, this->frame, error)
-                    : !cao::VAOFrame(pixels, this->vao, this->frame, 0, error))
+    const vtkCAO::ScreenTechniqueSettings settings = this->ScreenSettingsOf(self);
+    if (this->onGPU && screen->gpu ? !screen->gpu(this->gpu, pixels, settings, this->frame, error)
+                                   : !screen->cpu(pixels, settings, this->frame, error))
       return this->Fail(self, error);
   }
   else
@@ -1785,7 +1799,8 @@ bool vtkContextualAOPass::Internals::Combine(vtkContextualAOPass* self, const vt
     this->Stage("ambient", start);
   }
   std::vector<float> indirect;
-  const bool bleeding = surfaces && self->Method == VAO && self->IndirectLight;
+  const vtkCAO::ScreenTechnique* screen = Screen(self);
+  const bool bleeding = surfaces && screen && screen->indirect && self->IndirectLight;
   if (bleeding)
   {
     const auto start = Clock::now();
@@ -1793,7 +1808,7 @@ bool vtkContextualAOPass::Internals::Combine(vtkContextualAOPass* self, const vt
     for (std::size_t i = 0; i < count; ++i)
       for (int k = 0; k < 3; ++k)
         rgb[3 * i + k] = rgba[4 * i + k];
-    if (!cao::VAOIndirect(this->pixels, this->vao, this->frame, rgb, indirect, 0, error))
+    if (!screen->indirect(this->pixels, this->ScreenSettingsOf(self), this->frame, rgb, indirect, error))
       return this->Fail(self, error);
     this->Stage("indirect", start);
   }

@@ -112,10 +112,13 @@ public:
   vtkBooleanMacro(SetsCamera, bool);
   ///@}
 
+  /// The built-in methods. HBAO and VAO are screen-space techniques
+  /// registered in vtkCAOScreenTechnique.h (Techniques/); a technique
+  /// registered there with another value is a Method too.
   enum Methods
   {
     NONE = 0, ///< draw the scene only
-    VCT = 1,  ///< voxel cone tracing (Dalla Favera and Celes 2012)
+    VCT = 1,  ///< voxel cone tracing (Dalla Favera and Celes 2012), the pass's own step
     HBAO = 2, ///< horizon-based AO (Bavoil, Sainz and Dimitrov 2008)
     VAO = 3   ///< volumetric AO (Szirmay-Kalos et al. 2010)
   };
@@ -138,8 +141,10 @@ public:
   };
 
   ///@{
-  /// NONE, VCT (default), HBAO or VAO.
-  vtkSetClampMacro(Method, int, NONE, VAO);
+  /// NONE, VCT (default), HBAO, VAO, or the value of a screen-space
+  /// technique registered with vtkCAO::RegisterScreenTechnique. Any other
+  /// value is an error that lists the registered ones, and the Method stays.
+  virtual void SetMethod(int method);
   vtkGetMacro(Method, int);
   ///@}
 

@@ -1,0 +1,42 @@
+// Volumetric AO (Szirmay-Kalos et al. 2010) as a screen-space technique of
+// the pass: cao::VAOFrame on the CPU, its GL twin on the window's OpenGL
+// (read back, or kept on the GPU frame), and its indirect light (the
+// neighbours' colours, I = L (1 - AO)) on the host.
+#include "vtkCAOScreenTechnique.h"
+
+#include "caoScreenSpaceAO.h"
+#include "vtkCAOSceneGPU.h"
+
+namespace vtkCAO
+{
+bool RegisterBuiltIn(const ScreenTechnique& technique);
+
+namespace
+{
+cao::VAOSettings SettingsOf(const ScreenTechniqueSettings& s)
+{
+  cao::VAOSettings settings;
+  settings.quality = static_cast<cao::Quality>(s.quality);
+  settings.radius = s.radius;
+  return settings;
+}
+}
+
+void RegisterVAOTechnique()
+{
+  ScreenTechnique t;
+  t.method = 3; // vtkContextualAOPass::VAO
+  t.name = "vao";
+  t.label = "VAO";
+  t.cpu = [](const cao::PixelCamera& camera, const ScreenTechniqueSettings& s, cao::SurfaceFrame& frame,
+            std::string& error) { return cao::VAOFrame(camera, SettingsOf(s), frame, 0, error); };
+  t.gpu = [](SceneGPU& gpu, const cao::PixelCamera& camera, const ScreenTechniqueSettings& s,
+            cao::SurfaceFrame& frame, std::string& error) { return gpu.VAO(camera, SettingsOf(s), frame, error); };
+  t.gpuFrame = [](SceneGPU& gpu, const cao::PixelCamera& camera, const ScreenTechniqueSettings& s,
+                 std::string& error) { return gpu.FrameVAO(camera, SettingsOf(s), error); };
+  t.indirect = [](const cao::PixelCamera& camera, const ScreenTechniqueSettings& s,
+                 const cao::SurfaceFrame& frame, const std::vector<float>& rgb, std::vector<float>& indirect,
+                 std::string& error) { return cao::VAOIndirect(camera, SettingsOf(s), frame, rgb, indirect, 0, error); };
+  RegisterBuiltIn(t);
+}
+}
