@@ -266,12 +266,14 @@ bool SceneLines::ExtentOf(const cao::LineSegments& lines, Extent& extent, std::s
     extent.length += std::sqrt((a[0] - c[0]) * (a[0] - c[0]) + (a[1] - c[1]) * (a[1] - c[1]) +
       (a[2] - c[2]) * (a[2] - c[2]));
     for (const double* x : { a, c })
+    {
       for (int d = 0; d < 3; ++d)
       {
         b[2 * d] = any ? std::min(b[2 * d], x[d]) : x[d];
         b[2 * d + 1] = any ? std::max(b[2 * d + 1], x[d]) : x[d];
       }
-    any = true;
+      any = true; // (after each point: a segment's first point counts too)
+    }
   }
   extent.diagonal = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
     (b[5] - b[4]) * (b[5] - b[4]));

@@ -42,6 +42,9 @@
 //  13 the screen-space methods with the depth G-buffer take no line for a
 //     depth wall: a floor under 15 lines stays open (control: Line AO off,
 //     the lines' pixels unknown, darkens it)
+//  14 a line of a single segment (two points) gets line AO (its extent
+//     counted its second point only, so the lines had "no extent");
+//     control: a segment whose two points coincide is refused with that note
 // Pixels are found by projecting the lines' points; each check reads the
 // drawn line pixel nearest the projection (GetPixelAO > -1).
 #include "vtkContextualAOPass.h"
@@ -784,6 +787,45 @@ int TestLinesInPass(int, char*[])
       "the screen-space methods take no line for a depth wall (darkest floor AO " + std::to_string(hbao) + ", " +
         std::to_string(hbaoAgain) + " after Line AO off and on, " + std::to_string(vao) +
         "; control, Line AO off: " + std::to_string(hbaoOff) + ")");
+  }
+  // 14 a single segment.
+  {
+    vtkNew<vtkContextualAOEGLWindow> w;
+    w->SetSize(120, 90);
+    w->SetMultiSamples(0);
+    vtkNew<vtkRenderer> r;
+    w->AddRenderer(r);
+    vtkNew<vtkPoints> pts;
+    pts->InsertNextPoint(-1.0, 0.0, 0.0);
+    pts->InsertNextPoint(1.0, 0.2, 0.1);
+    vtkNew<vtkCellArray> cells;
+    const vtkIdType ids[2] = { 0, 1 };
+    cells->InsertNextCell(2, ids);
+    vtkNew<vtkPolyData> one;
+    one->SetPoints(pts);
+    one->SetLines(cells);
+    vtkNew<vtkPolyDataMapper> m;
+    m->SetInputData(one);
+    vtkNew<vtkActor> a;
+    a->SetMapper(m);
+    a->GetProperty()->SetLineWidth(3.0);
+    r->AddActor(a);
+    r->ResetCamera();
+    vtkNew<vtkContextualAOPass> ss;
+    ss->SetBackend(vtkContextualAOPass::BACKEND_CPU);
+    r->SetPass(ss);
+    w->Render();
+    const std::string rep = ss->GetLastFrameReport();
+    pts->SetPoint(1, -1.0, 0.0, 0.0); // both points the same: no extent
+    pts->Modified();
+    one->Modified();
+    w->Render();
+    const std::string degenerate = ss->GetLastFrameReport();
+    std::printf("one segment: %s\ntwo equal points: %s\n", rep.c_str(), degenerate.c_str());
+    Check(Field(rep, "segments") == 1 && Field(rep, "pixels") > 0 &&
+        rep.find("lines_note") == std::string::npos &&
+        degenerate.find("the lines have no extent") != std::string::npos,
+      "a line of one segment gets line AO (control: two equal points are refused with a note)");
   }
   std::printf("%d failure(s)\n", failures);
   return failures ? 1 : 0;
