@@ -159,7 +159,7 @@ float PixelAO(int k)
     float zNDC;
     int q = Lookup(p + xy.x * X + xy.y * Y, zNDC);
     float surface = -3.0e38;
-    if (q >= 0 && Covered(q))
+    if (q >= 0 && q != k && Covered(q)) // (the pixel itself: its tangent plane only, as on the CPU)
     {
       surface = dot(positions[q].xyz - p, Z);
       if (ss.vao.z != 0 && surface >= chord)

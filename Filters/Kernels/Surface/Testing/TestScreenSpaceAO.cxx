@@ -210,6 +210,26 @@ int TestScreenSpaceAO(int, char*[])
     CAO_CHECK(f.covered > 10000 && low == 1.0 && std::fabs(mean - 1.0) < 0.01, "open plane: HBAO %.6f VAO %.4f",
       low, mean);
     CAO_CHECK(ch.ao[foot] < 0.9 && cv.ao[foot] < 0.9, "the box's foot: HBAO %.3f VAO %.3f", ch.ao[foot], cv.ao[foot]);
+    // VAO at a radius under a pixel (about 1/16 of one here): every pipe
+    // falls in the pixel itself, whose depth says nothing past its tangent
+    // plane, so the open plane is as open as at R = 1 above (its mean was
+    // 0.82, lowest 0.64, when the pixel's own depth stood for the surface, as if the
+    // plane were half-buried; the box's foot above is the control that VAO
+    // darkens).
+    cao::VAOSettings tiny = v;
+    tiny.radius = 0.002;
+    cao::SurfaceFrame t = f;
+    CAO_CHECK(cao::VAOFrame(cam, tiny, t, 0, error), "%s", error.c_str());
+    double tinyLow = 1.0, tinyMean = 0.0;
+    for (double x : t.ao)
+      if (std::isfinite(x))
+      {
+        tinyLow = std::min(tinyLow, x);
+        tinyMean += x / f.covered;
+      }
+    std::printf("open plane, VAO at a radius of 1/16 pixel: mean AO %.4f, lowest %.4f\n", tinyMean, tinyLow);
+    CAO_CHECK(std::fabs(tinyMean - 1.0) < 0.01 && tinyLow > 0.95,
+      "VAO under a pixel leaves an open plane open (mean %.4f, lowest %.4f)", tinyMean, tinyLow);
   }
   // 2. HBAO's horizon term on the step (A5): a block of height H at
   // distance d (k = H/d), reach R = 8 d, normal rays off (the horizon term
