@@ -1354,7 +1354,10 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
     // (checked again each frame, cheaply: not a scene that failed to build)
     const std::string why = cao::CheckAORadius(self->Radius, diagonal);
     if (!why.empty())
+    {
+      this->radius = self->Radius; // (the report names the radius refused, not the last one used)
       return this->Fail(self, "Radius: " + why + " (0: the scene's default)");
+    }
   }
   this->radius = self->Radius > 0 ? self->Radius
                                   : cao::DefaultAORadius(b, distributed ? this->commonArea : area());

@@ -11,6 +11,7 @@
 #include "vtkActor.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
+#include "vtkClipDepthMaps.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkCommand.h"
 #include "vtkContextualAOVolumeMapper.h"
@@ -177,10 +178,33 @@ int Render(RenderOptions& o, const CLI::App* app)
   vtkDataArray* scalars = volume->GetPointData()->GetScalars();
   if (!scalars)
     return Fail(2, "'" + o.volume + "' has no point or cell scalars");
+  if (scalars->GetNumberOfComponents() != 1)
+    return Fail(2, "'" + o.volume + "' has " + std::to_string(scalars->GetNumberOfComponents()) +
+        " components a voxel: cao render draws one-component scalars (cao lao and cao carve take "
+        "--component)");
   double range[2];
   scalars->GetRange(range, 0);
   if (!std::isfinite(range[0]) || !std::isfinite(range[1]))
     return Fail(2, "the scalars contain NaN or infinite values");
+  {
+    // (GetRange skips NaN: counted here, as the mapper would at its first frame)
+    long long nonFinite = 0;
+    const vtkIdType n = scalars->GetNumberOfTuples();
+    for (vtkIdType i = 0; i < n; ++i)
+      nonFinite += !std::isfinite(scalars->GetComponent(i, 0));
+    if (nonFinite > 0)
+      return Fail(2, "the scalars of '" + o.volume + "' contain " + std::to_string(nonFinite) +
+          " NaN or infinite value(s)");
+    const double* sp = volume->GetSpacing();
+    for (int d = 0; d < 3; ++d)
+      if (!(sp[d] > 0.0) || !std::isfinite(sp[d]))
+      {
+        std::ostringstream msg;
+        msg << "the spacing of '" << o.volume << "' must be positive and finite on every axis (got " << sp[0]
+            << ", " << sp[1] << ", " << sp[2] << ")";
+        return Fail(2, msg.str());
+      }
+  }
   if (!(range[1] > range[0]))
   {
     std::cerr << "cao: warning: '" << o.volume << "' is constant (every voxel " << range[0]
@@ -338,6 +362,12 @@ int Render(RenderOptions& o, const CLI::App* app)
       : ReadMesh(o.clipping.mesh, error);
     if (!mesh)
       return Fail(2, error);
+    // A mesh that cannot clip (open, NaN points, too few polygons) is bad
+    // input, said before anything is drawn (the mapper would draw the
+    // volume unclipped and say so per frame).
+    if (!vtkClipDepthMaps::CheckMesh(mesh, error))
+      return Fail(2, (o.clipping.mesh.empty() ? std::string("the clip shape") : "'" + o.clipping.mesh + "'") +
+          ": " + error);
     if (!vtkCAO::CheckPoseScales(poses, mesh, volume, error))
       return Fail(2, std::string(o.clipping.poseTexts.empty() && o.clipping.posesFile.empty()
                                    ? "the path's poses (--path): "
@@ -367,6 +397,14 @@ int Render(RenderOptions& o, const CLI::App* app)
   grab->ShouldRerenderOff(); // the frame just rendered, not another one
   vtkNew<vtkPNGWriter> png;
   png->SetInputConnection(grab->GetOutputPort());
+  // What the mapper would refuse at its first frame (its settings, fewer
+  // than 2 voxels on an axis, an LAO it cannot plan, a clip scale it cannot
+  // resolve): bad input, before the first line of output.
+  {
+    std::string why;
+    if (!mapper->CanDraw(drawn, why))
+      return Fail(2, why);
+  }
   if (o.json)
     std::printf("[");
   else

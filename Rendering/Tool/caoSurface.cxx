@@ -753,6 +753,10 @@ bool LoadOccludingVolume(
   vtkDataArray* scalars = image->GetPointData()->GetScalars();
   if (!scalars)
     return error = "'" + o.volume + "' has no point or cell scalars", false;
+  if (scalars->GetNumberOfComponents() != 1)
+    return error = "'" + o.volume + "' has " + std::to_string(scalars->GetNumberOfComponents()) +
+             " components a voxel: --volume takes one-component scalars (extract one first, as vtkImageExtractComponents does)",
+           false;
   double range[2];
   scalars->GetRange(range, 0);
   if (!std::isfinite(range[0]) || !std::isfinite(range[1]))

@@ -444,6 +444,54 @@ expect_error(["render", neghip, "--preset-file", os.path.join(tmp, "none.json"),
               os.path.join(tmp, "x_%d.png")], 2, "cannot read the preset", "missing preset file")
 expect_error(["render", neghip, "-o", os.path.join(tmp, "x.png")], 2, "frame-number conversion",
              "output without a frame pattern")
+# Bad input to render is exit 2, said before its first line of output
+# (an open clip mesh, a NaN mesh point, two components, NaN scalars, a
+# negative spacing with --no-ao gave exit 1 after the header, and the
+# mapper's "drawn unclipped"); the control: the same volume and a closed
+# shape render.
+from vtkmodules.vtkFiltersSources import vtkCylinderSource, vtkSphereSource as _Sphere
+from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter as _PW, vtkXMLImageDataWriter as _IW
+from vtkmodules.vtkCommonDataModel import vtkImageData as _Img
+open_cyl = os.path.join(tmp, "open_cyl.vtp")
+cyl = vtkCylinderSource()
+cyl.CappingOff()
+cyl.SetRadius(10)
+cyl.SetHeight(20)
+pw = _PW()
+pw.SetInputConnection(cyl.GetOutputPort())
+pw.SetFileName(open_cyl)
+pw.Write()
+def small_volume(name, components=1, spacing=(1, 1, 1), nan=False):
+    img = _Img()
+    img.SetDimensions(12, 12, 12)
+    img.SetSpacing(*spacing)
+    img.AllocateScalars(10, components)
+    arr = img.GetPointData().GetScalars()
+    for c in range(components):
+        arr.FillComponent(c, 100.0)
+    arr.SetComponent(0, 0, 0.0)
+    if nan:
+        arr.SetComponent(5, 0, float("nan"))
+    path = os.path.join(tmp, name)
+    iw = _IW()
+    iw.SetInputData(img)
+    iw.SetFileName(path)
+    iw.Write()
+    return path
+good_vol = small_volume("good.vti")
+for args, words, what in (
+        ([good_vol, "--mesh", open_cyl], "the clip mesh is open", "render with an open clip mesh"),
+        ([small_volume("two.vti", components=2), "--no-clip"], "has 2 components a voxel", "render of 2 components"),
+        ([small_volume("nan.vti", nan=True), "--no-clip"], "1 NaN or infinite value(s)", "render of a NaN voxel"),
+        ([small_volume("neg.vti", spacing=(-1, 1, 1)), "--no-clip", "--no-ao"], "must be positive and finite",
+         "render of a negative spacing, AO off")):
+    rc, out, err = run("render", *args, "--image", "32x32", "-o", os.path.join(tmp, "bad_%d.png"))
+    check(rc == 2 and words in err and out == "" and not os.path.exists(os.path.join(tmp, "bad_0.png")),
+          "%s: exit 2, said before any output (rc %d, stdout %r, stderr %r)" % (what, rc, out[:80], err.strip()[:160]))
+rc, out, err = run("render", good_vol, "--shape", "sphere", "--path", "1", "--image", "32x32", "-o",
+                   os.path.join(tmp, "good_%d.png"))
+check(rc == 0 and os.path.exists(os.path.join(tmp, "good_0.png")),
+      "the control: the same volume with a closed clip shape renders (rc %d, %r)" % (rc, err.strip()[:160]))
 # -o is a frame pattern, never a printf format: conversions other than one
 # %d or %i are refused (before, %s%n crashed and %s wrote "(null)").
 for pattern in ("x_%s%s%s%s%n.png", "x_%s.png", "x_%d_%d.png", "x_%-3d.png", "x_%10d.png"):

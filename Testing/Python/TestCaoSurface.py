@@ -493,6 +493,16 @@ check(rc == 0 and "no pixel sees a mesh" in se and rc2 == 0 and "no pixel sees a
       "an empty picture is written with a warning (rc %d: %s)" % (rc, se.strip()[:100]))
 
 # Bad input.
+# A block of two components a voxel (an --volume takes one: it used the
+# first in silence).
+blk2 = vtkImageData()
+blk2.SetDimensions(11, 11, 6)
+blk2.AllocateScalars(10, 2)
+blk2.GetPointData().GetScalars().Fill(1.0)
+block2c_vti = os.path.join(tmp, "block2c.vti")
+bw.SetInputData(blk2)
+bw.SetFileName(block2c_vti)
+bw.Write()
 for args, words in [(["--method", "magic", bunny, "-o", "x.png"], "--method: bad value 'magic'"),
                     (["--rays", "0", bunny, "-o", "x.png"], "--rays"),
                     (["--image", "0x5", bunny, "-o", "x.png"], "--image: bad value '0x5' (WxH"),
@@ -511,6 +521,7 @@ for args, words in [(["--method", "magic", bunny, "-o", "x.png"], "--method: bad
                     (["--volume", block_vti, "--unit-distance", "0", bunny, "-o", "x.png"], "--unit-distance"),
                     (["--volume", block_vti, "--mode", "sideways", bunny, "-o", "x.png"], "--mode: bad value 'sideways'"),
                     (["--volume", bunny, bunny, "-o", "x.png"], "Bunny.vtp"),
+                    (["--volume", block2c_vti, bunny, "-o", "x.png"], "has 2 components a voxel"),
                     (["--quality", "ultra", bunny, "-o", "x.png"], "--quality for --method vct is"),
                     (["--method", "hbao", "--quality", "fig12", bunny, "-o", "x.png"], "is low, medium or high"),
                     (["--method", "hbao", "--quality", "table1", bunny, "-o", "x.png"], "is low, medium or high"),

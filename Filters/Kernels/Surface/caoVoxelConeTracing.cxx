@@ -374,13 +374,20 @@ std::int64_t OpenRuns(const std::vector<std::int64_t>& t, const std::vector<std:
   std::vector<Key> edges;
   edges.reserve(t.size());
   for (std::size_t f = 0; f + 2 < t.size(); f += 3)
+  {
+    const std::uint64_t ids[3] = { canonical[static_cast<std::size_t>(t[f])],
+      canonical[static_cast<std::size_t>(t[f + 1])], canonical[static_cast<std::size_t>(t[f + 2])] };
+    // A triangle with a repeated point (ids i, i, j) has no area and bounds
+    // nothing: its edges are not the mesh's (it would use edge i-j twice
+    // and make a closed mesh's edge look non-manifold).
+    if (ids[0] == ids[1] || ids[1] == ids[2] || ids[0] == ids[2])
+      continue;
     for (int e = 0; e < 3; ++e)
     {
-      const std::uint64_t a = canonical[static_cast<std::size_t>(t[f + e])];
-      const std::uint64_t b = canonical[static_cast<std::size_t>(t[f + (e + 1) % 3])];
-      if (a != b)
-        edges.push_back(EdgeKey(std::min(a, b), std::max(a, b), static_cast<Key*>(nullptr)));
+      const std::uint64_t a = ids[e], b = ids[(e + 1) % 3];
+      edges.push_back(EdgeKey(std::min(a, b), std::max(a, b), static_cast<Key*>(nullptr)));
     }
+  }
   std::sort(edges.begin(), edges.end());
   std::int64_t open = 0;
   for (std::size_t k = 0; k < edges.size();)

@@ -98,6 +98,14 @@ int TestVoxelConeTracing(int, char*[])
     CAO_CHECK(closed == 0 && opened == 3 && nonManifold == 3 && unmerged == 36, "open edges %lld %lld %lld %lld",
       static_cast<long long>(closed), static_cast<long long>(opened), static_cast<long long>(nonManifold),
       static_cast<long long>(unmerged));
+    // Degenerate triangles by their ids (i, i, j and i, i, i) added to the
+    // closed box leave it closed (they had made its edges non-manifold); a
+    // third real triangle on an edge, the control above, still counts.
+    std::vector<std::int64_t> degenerate = s;
+    degenerate.insert(degenerate.end(), { s[0], s[0], s[1], s[2], s[2], s[2], s[3], s[4], s[3] });
+    const std::int64_t withDegenerate = cao::OpenEdges({ &q, &degenerate });
+    CAO_CHECK(withDegenerate == 0, "a closed box with 3 degenerate triangles: %lld open edges (0 expected)",
+      static_cast<long long>(withDegenerate));
   }
   // The cube on column centres: h = 1/16, origin -1; vertices at
   // -1 + 8.5/16 and -1 + 23.5/16.

@@ -1564,8 +1564,11 @@ int TestContextualAOPass(int, char*[])
         pass->SetRadius(r);
         window->Render();
         const std::string report = pass->GetLastFrameReport();
+        // (and the report's "radius" is the one refused, not the last one used)
+        const std::size_t at = report.find("\"radius\": ");
+        const double said = at == std::string::npos ? 0.0 : std::atof(report.c_str() + at + 10);
         refused = refused && report.find("Radius: the AO radius") != std::string::npos &&
-          report.find("1e-6 to 1e3 times") != std::string::npos;
+          report.find("1e-6 to 1e3 times") != std::string::npos && said == pass->GetRadius(); // (1e300 is clamped to VTK_DOUBLE_MAX, 1e299)
         reports += report.substr(report.find("\"error\""), 120) + " | ";
       }
     pass->SetRadius(0.8);
