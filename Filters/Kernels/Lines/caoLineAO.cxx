@@ -372,17 +372,38 @@ LineHalfBall LineHalfBallAt(const BitGrid& grid, const LineAOSettings& settings,
   // plane's offset from the centre along w (voxel units).
   Vec3 centre, w;
   double base = 0.0;
-  const bool cosine = settings.hemisphere == LineAOHemisphere::Normal && surface && normal;
+  bool cosine = settings.hemisphere == LineAOHemisphere::Normal && surface && normal;
   if (cosine)
   {
-    // At the tube's surface, facing its normal (the surface definition):
-    // the own tube's voxel centres lie inside it, behind the plane, except
-    // a thin tube's supercover (half a voxel diagonal from the axis).
+    // At the tube's surface, facing its normal (the surface definition),
+    // turned across the line: a pixel's segment is the one drawn nearest,
+    // and where that is a neighbour of the segment under the pixel (short
+    // segments, every pixel or two), the ray meets its end cap, whose
+    // normal leans along the line, and a half ball leaning so holds the
+    // own tube ahead of it (an isolated straight line of 200 segments drawn
+    // as an 8-pixel tube: mean AO 0.91, down to 0.79; of 2 segments 0.999).
+    // The own tube's voxel centres lie within max(rho, half a voxel
+    // diagonal: a thin tube's supercover) of its axis, and the surface
+    // point lies d from it (rho on the tube voxelized; less on a cap, or
+    // where a tube drawn a fixed number of pixels wide is thinner in the
+    // world than the one voxelized): the base plane goes max(rho, half
+    // diagonal) - d past the point, so the own voxels never occlude it.
     centre = ToVoxels(grid, surface);
     w = Normalized(ToGridDirection(grid, normal));
-    base = std::max(0.0, LineHalfVoxelDiagonal - rho);
+    if (line)
+      w -= glm::dot(w, T) * T;
+    if (glm::length(w) > 0.1) // (else an end cap seen along the line: the paper's half ball)
+    {
+      w = glm::normalize(w);
+      Vec3 radial = centre - ToVoxels(grid, axisPoint);
+      if (line)
+        radial -= glm::dot(radial, T) * T;
+      base = std::max(0.0, std::max(rho, LineHalfVoxelDiagonal) - glm::length(radial));
+    }
+    else
+      cosine = false;
   }
-  else
+  if (!cosine)
   {
     // The seed's (Eq. 3.5-3.7): at the axis, toward the camera and
     // perpendicular to the line (a line along the view ray: any normal

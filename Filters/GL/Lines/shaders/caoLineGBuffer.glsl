@@ -405,14 +405,27 @@ void main()
     T = normalize(T);
   dvec3 centre, w;
   double base;
-  const bool cosine = lg.flags.x == 1 && any(notEqual(normal, dvec3(0.0)));
+  bool cosine = lg.flags.x == 1 && any(notEqual(normal, dvec3(0.0)));
   if (cosine)
   {
+    // (turned across the line, the base past the own voxels from the
+    // point's distance to the axis: as the CPU twin)
     centre = ToVoxels(position);
     w = Normalized(ToGrid(normal));
-    base = max(0.0, halfDiagonal - rho);
+    if (line)
+      w -= dot(w, T) * T;
+    if (length(w) > 0.1lf)
+    {
+      w = normalize(w);
+      dvec3 radial = centre - ToVoxels(axisPoint);
+      if (line)
+        radial -= dot(radial, T) * T;
+      base = max(0.0lf, max(rho, halfDiagonal) - length(radial));
+    }
+    else
+      cosine = false;
   }
-  else
+  if (!cosine)
   {
     centre = ToVoxels(axisPoint);
     const dvec3 toCamera = -Normalized(ToGrid(v));

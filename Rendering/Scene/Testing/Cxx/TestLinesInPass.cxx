@@ -45,6 +45,11 @@
 //  14 a line of a single segment (two points) gets line AO (its extent
 //     counted its second point only, so the lines had "no extent");
 //     control: a segment whose two points coincide is refused with that note
+//  15 an isolated straight line of 200 segments drawn as a tube 8 pixels
+//     wide is open (AO 1 at every pixel: each pixel's segment is the one
+//     drawn nearest, often a neighbour whose end cap leans along the line,
+//     and its half ball held the own tube: mean 0.91, down to 0.79);
+//     control: a second line beside it darkens it
 // Pixels are found by projecting the lines' points; each check reads the
 // drawn line pixel nearest the projection (GetPixelAO > -1).
 #include "vtkContextualAOPass.h"
@@ -826,6 +831,74 @@ int TestLinesInPass(int, char*[])
         rep.find("lines_note") == std::string::npos &&
         degenerate.find("the lines have no extent") != std::string::npos,
       "a line of one segment gets line AO (control: two equal points are refused with a note)");
+  }
+  // 15 an isolated straight tube of many segments.
+  {
+    vtkNew<vtkContextualAOEGLWindow> w;
+    w->SetSize(400, 300);
+    w->SetMultiSamples(0);
+    vtkNew<vtkRenderer> r;
+    w->AddRenderer(r);
+    auto polyline = [](double dy, int n) {
+      vtkNew<vtkPoints> pts;
+      vtkNew<vtkCellArray> cells;
+      cells->InsertNextCell(n + 1);
+      for (int i = 0; i <= n; ++i)
+      {
+        const double t = static_cast<double>(i) / n;
+        cells->InsertCellPoint(pts->InsertNextPoint(10.0 * t, 3.0 * t + dy, 1.0 * t));
+      }
+      auto pd = vtkSmartPointer<vtkPolyData>::New();
+      pd->SetPoints(pts);
+      pd->SetLines(cells);
+      return pd;
+    };
+    vtkNew<vtkPolyDataMapper> m, m2;
+    m->SetInputData(polyline(0.0, 200));
+    m2->SetInputData(polyline(0.35, 200));
+    vtkNew<vtkActor> a, a2;
+    a->SetMapper(m);
+    a2->SetMapper(m2);
+    for (vtkActor* actor : { a.Get(), a2.Get() })
+    {
+      actor->GetProperty()->SetRenderLinesAsTubes(true);
+      actor->GetProperty()->SetLineWidth(8.0);
+    }
+    r->AddActor(a);
+    r->ResetCamera();
+    r->GetActiveCamera()->Elevation(20);
+    r->ResetCameraClippingRange();
+    vtkNew<vtkContextualAOPass> ss;
+    ss->SetBackend(vtkContextualAOPass::BACKEND_CPU);
+    r->SetPass(ss);
+    auto lineAOs = [&](double& lowest, double& mean) {
+      w->Render();
+      lowest = 2.0;
+      mean = 0.0;
+      int n = 0;
+      for (int y = 0; y < 300; ++y)
+        for (int x = 0; x < 400; ++x)
+        {
+          const double ao = ss->GetPixelAO(x, y);
+          if (ao > -1.0)
+          {
+            lowest = std::min(lowest, ao);
+            mean += ao;
+            ++n;
+          }
+        }
+      mean = n ? mean / n : -1.0;
+      return n;
+    };
+    double lowest = 0.0, mean = 0.0, lowestPair = 0.0, meanPair = 0.0;
+    const int alone = lineAOs(lowest, mean);
+    r->AddActor(a2); // (the camera stays)
+    lineAOs(lowestPair, meanPair);
+    std::printf("an isolated straight tube of 200 segments, 8 pixels wide: %d pixels, AO lowest %.4f mean %.4f; "
+                "beside a second one: lowest %.4f mean %.4f\n", alone, lowest, mean, lowestPair, meanPair);
+    Check(alone > 1000 && lowest > 0.999 && lowestPair < 0.95,
+      "an isolated straight tube of many segments is open (lowest AO " + std::to_string(lowest) +
+        "; control, a second tube beside it: " + std::to_string(lowestPair) + ")");
   }
   std::printf("%d failure(s)\n", failures);
   return failures ? 1 : 0;
