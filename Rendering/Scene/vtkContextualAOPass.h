@@ -228,10 +228,7 @@ public:
   /// triangles' area A, between a fortieth and a tenth of the box's
   /// diagonal). The frame report's "radius" gives the one used. A radius
   /// set must lie within 1e-6 to 1e3 times the scene's bounding-box
-  /// diagonal (the lines': their own), else the frame fails with the limits;
-  /// with voxel cones on the world or eye grid, at least a voxel of the grid
-  /// (cones shorter see only the surface's own voxels: the frame fails and
-  /// says to raise Radius or Slices).
+  /// diagonal (the lines': their own), else the frame fails with the limits.
   vtkSetClampMacro(Radius, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(Radius, double);
   ///@}
