@@ -355,7 +355,7 @@ struct PoseResult
   vtkCAO::Pose pose;
   double counts[3];
   double ms[4];
-  double setupMs = 0.0; ///< the unclipped state written (first pose only)
+  double setupMs = 0.0; ///< the unclipped state written (the first pose) and new maps' summaries
   double fullMs = -1.0, maxDiff = -1.0, differing = -1.0;
   double recomputed = -1.0; ///< b voxels marched (after the opacity narrowing)
   bool newMaps = false;         ///< the maps were (re)made for this pose's scale

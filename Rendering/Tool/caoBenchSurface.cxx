@@ -66,10 +66,26 @@ bool ParseHBAOItem(const std::string& item, cao::HBAOSettings& settings)
     settings.quality = q;
     return q != cao::Quality::Custom;
   }
-  int d = 0, s = 0, n = 0;
-  char tail = 0;
-  if (std::sscanf(item.c_str(), "%d/%d/%d%c", &d, &s, &n, &tail) != 3)
+  // Three unsigned integers of at most 4 digits, split by '/', and nothing else.
+  int values[3] = { 0, 0, 0 }, field = 0, digits = 0;
+  for (char ch : item)
+  {
+    if (ch == '/' && digits > 0 && field < 2)
+    {
+      ++field;
+      digits = 0;
+    }
+    else if (ch >= '0' && ch <= '9' && digits < 4)
+    {
+      values[field] = 10 * values[field] + (ch - '0');
+      ++digits;
+    }
+    else
+      return false;
+  }
+  if (field != 2 || digits == 0)
     return false;
+  const int d = values[0], s = values[1], n = values[2];
   settings.quality = cao::Quality::Custom;
   settings.directions = d;
   settings.steps = s;

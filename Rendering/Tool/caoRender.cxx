@@ -190,8 +190,10 @@ int Render(RenderOptions& o, const CLI::App* app)
     // (GetRange skips NaN: counted here, as the mapper would at its first frame)
     long long nonFinite = 0;
     const vtkIdType n = scalars->GetNumberOfTuples();
-    for (vtkIdType i = 0; i < n; ++i)
-      nonFinite += !std::isfinite(scalars->GetComponent(i, 0));
+    const int type = scalars->GetDataType();
+    if (type == VTK_FLOAT || type == VTK_DOUBLE) // (integers hold no NaN)
+      for (vtkIdType i = 0; i < n; ++i)
+        nonFinite += !std::isfinite(scalars->GetComponent(i, 0));
     if (nonFinite > 0)
       return Fail(2, "the scalars of '" + o.volume + "' contain " + std::to_string(nonFinite) +
           " NaN or infinite value(s)");

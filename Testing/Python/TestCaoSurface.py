@@ -306,7 +306,7 @@ rc = subprocess.run([tool, "bench", "surface", "--gbuffers", "zbuffer", bunny], 
 check(rc == 2, "cao bench surface with --gbuffers zbuffer exits 2 (%d)" % rc)
 # --hbao: low, medium, high or a custom D/S/N within HBAOSettings' ranges;
 # the paper's old configuration names are not the vocabulary any more.
-for bad in ("fig11a", "0/18/1", "8/18", "8/18/1x", "8/2000/1"):
+for bad in ("fig11a", "0/18/1", "8/18", "8/18/1x", "8/2000/1", "+8/18/1", " 8/18/1"):
     p = subprocess.run([tool, "bench", "surface", "--hbao", bad, bunny], capture_output=True, text=True)
     check(p.returncode == 2 and "D/S/N" in p.stderr, "cao bench surface --hbao %s exits 2 naming the forms (%d: %s)"
           % (bad, p.returncode, p.stderr.strip()[-160:]))
