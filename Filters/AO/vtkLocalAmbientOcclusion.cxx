@@ -64,6 +64,12 @@ struct vtkLocalAmbientOcclusion::Internals
   double LastUnitDistance = 0.0;
   /// Whether the last run had occluders (its opacity then holds them).
   bool LastOccluded = false;
+  /// The scalars (identity, modification time, component) whose NaN or
+  /// infinite values the last warning counted: an edit of the opacity map
+  /// over the same scalars does not repeat it.
+  const vtkDataArray* WarnedScalars = nullptr;
+  vtkMTimeType WarnedScalarsTime = 0;
+  int WarnedComponent = -1;
 
   /// `kept` when only this filter holds it and it has `n` values: it is
   /// then written again in place (no new pages: on a virtual machine a
@@ -519,8 +525,17 @@ int vtkLocalAmbientOcclusion::RequestData(
       ok = this->Internal->March(
         this, plan, scalars, component, geometry, settings, opacity, ao, reason, edit);
   });
-  if (nonFinite > 0)
+  if (nonFinite > 0 &&
+    (in.WarnedScalars != scalars || in.WarnedScalarsTime != scalars->GetMTime() ||
+      in.WarnedComponent != component))
+  {
     vtkWarningMacro(<< nonFinite << " NaN or Inf scalar value(s) treated as transparent.");
+    in.WarnedScalars = scalars;
+    in.WarnedScalarsTime = scalars->GetMTime();
+    in.WarnedComponent = component;
+  }
+  else if (nonFinite == 0)
+    in.WarnedScalars = nullptr;
   if (occluderFailed)
   {
     vtkErrorMacro("Cannot compute LAO: " << error << ".");

@@ -13,7 +13,10 @@
 #include "vtkTransform.h"
 
 #include "vtkCAOInput.h"
+#include "vtkCellData.h"
+#include "vtkDataObject.h"
 #include "vtkFieldData.h"
+#include "vtkInformation.h"
 #include "vtkImageData.h"
 #include "vtkPointData.h"
 
@@ -127,6 +130,7 @@ void vtkContextualAOVolumeRepresentation::UpdateMapperParameters()
     data->GetPointData()->GetArray("AmbientOcclusion") &&
     data->GetFieldData()->GetAbstractArray("LAOSettings");
   mapper->SetAmbientOcclusionArrayName(upstream ? "AmbientOcclusion" : nullptr);
+  this->WarnWithoutScalars(data);
   this->UpdateBuiltInShape(data);
   if (this->MeshesChanged)
   {
@@ -140,6 +144,32 @@ void vtkContextualAOVolumeRepresentation::UpdateMapperParameters()
     }
     this->MeshesChanged = false;
   }
+}
+
+//------------------------------------------------------------------------------
+void vtkContextualAOVolumeRepresentation::WarnWithoutScalars(vtkImageData* data)
+{
+  // A volume draws the array it is coloured by; without one nothing is
+  // drawn. Said once per input (and again when the input changes), not at
+  // every render.
+  vtkInformation* info = this->GetInputArrayInformation(0);
+  const char* name = info && info->Has(vtkDataObject::FIELD_NAME())
+    ? info->Get(vtkDataObject::FIELD_NAME())
+    : nullptr;
+  if (!data || !this->GetVisibility() || (name && name[0]))
+  {
+    this->WarnedInputTime = 0;
+    return;
+  }
+  if (this->WarnedInputTime == data->GetMTime())
+    return;
+  this->WarnedInputTime = data->GetMTime();
+  if (data->GetPointData()->GetNumberOfArrays() == 0 && data->GetCellData()->GetNumberOfArrays() == 0)
+    vtkWarningMacro("Contextual AO Volume draws nothing: the input has no point or cell arrays "
+                    "(a volume is drawn from the scalars it is coloured by).");
+  else
+    vtkWarningMacro("Contextual AO Volume draws nothing while it is coloured by Solid Color: "
+                    "colour it by a point or cell array (Coloring).");
 }
 
 //------------------------------------------------------------------------------

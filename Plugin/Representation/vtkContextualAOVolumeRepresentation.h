@@ -160,6 +160,10 @@ protected:
   std::vector<vtkSmartPointer<vtkActor>> MeshActors;
   std::vector<int> MeshModes;
   bool MeshesChanged = false;
+  /// The input's modification time when the representation last warned
+  /// that it draws nothing without a colouring array (0: not warned).
+  vtkMTimeType WarnedInputTime = 0;
+  void WarnWithoutScalars(vtkImageData* data);
   /// The mapper's progress as the representation's.
   void ForwardProgress(vtkObject*, unsigned long, void*);
   /// The built-in shape onto the mapper (or none).

@@ -14,7 +14,8 @@ axes turned by 30 degrees (the centres written out by hand).
 The negative control: the point image at origin 0 (the values half a voxel
 off the cells' centres) differs from the cell picture at more than 0.5%
 of the pixels, so the comparison sees a half-voxel shift. A one-cell-thick
-image is refused with the reason (2 cells, 3 points, along each axis).
+image is refused with the reason (2 cells, 3 points, along each axis). An image
+with no arrays, or coloured by Solid Color, draws nothing and says so once.
 
   pvpython TestCellScalars.py PLUGIN.so OUT_DIR   (under Testing/run-with-xvfb.sh)"""
 import os
@@ -142,6 +143,38 @@ print("%s: a one-cell-thick image is refused with the reason: %s"
       % ("ok" if ok else "FAIL", " ".join(text.split())[-160:]))
 if not ok:
     failures.append("the one-cell-thick image was not refused with its reason")
+
+# No array to draw: an image with no point or cell arrays, and one coloured
+# by Solid Color, draw nothing and say why, once (three renders, one
+# warning each). Control: coloured by its array, the same image draws, and
+# no warning comes.
+bare = vtkImageData()
+bare.SetDimensions(n, n, n)
+bare_source = TrivialProducer()
+bare_source.GetClientSideObject().SetOutput(bare)
+bare_source.UpdatePipeline()
+for case, source, colour in (("no arrays", bare_source, None), ("Solid Color", centres, None),
+                             ("coloured by v (control)", centres, ("POINTS", "v"))):
+    log = vtkStringOutputWindow()
+    vtkOutputWindow.SetInstance(log)
+    display = Show(source, view)
+    display.SetRepresentationType("Contextual AO Volume")
+    ColorBy(display, colour)
+    shots = [volume_phantom.picture(view, os.path.join(out, "bare-%d.png" % i)) for i in range(3)]
+    Hide(source, view)
+    vtkOutputWindow.SetInstance(None)
+    text = " ".join(log.GetOutput().split())
+    said = text.count("Contextual AO Volume draws nothing")
+    drawn = covered(shots[-1])
+    if colour is None:
+        words = "no point or cell arrays" if source is bare_source else "Solid Color"
+        ok = said == 1 and words in text and drawn < 0.001
+    else:
+        ok = said == 0 and drawn > 0.05
+    print("%s: %s: %d warning(s) over three renders, %.1f%% drawn: %s"
+          % ("ok" if ok else "FAIL", case, said, 100 * drawn, text[-200:]))
+    if not ok:
+        failures.append("%s: %d warnings, %.1f%% drawn" % (case, said, 100 * drawn))
 
 if failures:
     print("FAILED: " + "; ".join(failures))

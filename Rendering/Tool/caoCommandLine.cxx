@@ -23,6 +23,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <set>
 #include <sstream>
 #include <unistd.h>
 
@@ -267,11 +268,18 @@ public:
     if (m.find("returned failure for request") == std::string::npos)
       std::fprintf(stderr, "cao: error: %s\n", m.c_str());
   }
+  /// Each warning once: a command that runs a filter again (cao tf's
+  /// edit and its full recompute) does not repeat what it said.
   void DisplayWarningText(const char* text) override
   {
-    std::fprintf(stderr, "cao: warning: %s\n", CleanMessage(text).c_str());
+    const std::string m = CleanMessage(text);
+    if (this->Warned.insert(m).second)
+      std::fprintf(stderr, "cao: warning: %s\n", m.c_str());
   }
   void DisplayGenericWarningText(const char* text) override { this->DisplayWarningText(text); }
+
+private:
+  std::set<std::string> Warned;
 };
 vtkStandardNewMacro(CliOutputWindow);
 }

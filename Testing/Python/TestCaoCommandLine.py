@@ -698,6 +698,25 @@ def write_volume(name, dims, spacing=(1.0, 1.0, 1.0), value=None):
     return os.path.join(tmp, name)
 
 
+# A volume with NaN scalars: cao tf runs the LAO filter three times (the
+# --from LAO, the edit, the full recompute), and the warning that NaN reads
+# as transparent is printed once (it was printed three times). Control: the
+# warning is there, with its count.
+nan_im = vtkImageData()
+nan_im.SetDimensions(24, 24, 24)
+nan_im.AllocateScalars(10, 1)  # float
+nan_a = vtk_to_numpy(nan_im.GetPointData().GetScalars())
+nan_a[:] = (np.arange(nan_a.size) * 37 % 256).astype(np.float32)
+nan_a[:500:7] = np.nan
+nan_w = vtkXMLImageDataWriter()
+nan_w.SetInputData(nan_im)
+nan_w.SetFileName(os.path.join(tmp, "nan.vti"))
+nan_w.Write()
+rc, out, err = run("tf", os.path.join(tmp, "nan.vti"), "--from", "0,0,255,0.8", "--to", "0,0,200,0,255,0.8",
+                   "--rays", "6", "--verify")
+check(rc == 0 and err.count("NaN or Inf") == 1 and "72 NaN or Inf scalar value(s)" in err,
+      f"tf on NaN scalars warns once, with the count: rc={rc} {err.strip()[:400]!r}")
+
 # bench accuracy on an 8^3 volume: its clip sphere (radius 1.75 voxels) is
 # narrower than the default depth-map pixels of 4 and 2 voxels; those rows
 # are skipped, saying why, and the rest runs (it failed at the end).

@@ -98,3 +98,52 @@ if direct.GetPrecomputeCount() != 2:
     print("FAIL: changing the reach must recompute the internal LAO")
     sys.exit(1)
 print("ok: internal LAO cached across poses, recomputed when its settings change")
+
+# NaN scalars: the LAO filter warns that they read as transparent once for
+# the same scalars; an opacity edit does not repeat it (ParaView re-runs the
+# filter at every edit of the map); new scalars warn again (the control).
+import numpy as np  # noqa: E402
+from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
+from vtkmodules.util.misc import calldata_type  # noqa: E402
+from vtkmodules.vtkCommonCore import VTK_STRING, vtkCommand  # noqa: E402
+from vtkmodules.vtkCommonDataModel import vtkImageData  # noqa: E402
+
+nan_image = vtkImageData()
+nan_image.SetDimensions(16, 16, 16)
+nan_image.AllocateScalars(10, 1)  # float
+values = vtk_to_numpy(nan_image.GetPointData().GetScalars())
+values[:] = (np.arange(values.size) * 37 % 256).astype(np.float32)
+values[:100:10] = np.nan
+warnings = []
+
+
+@calldata_type(VTK_STRING)
+def on_warning(obj, event, text):
+    warnings.append(text)
+
+
+nan_lao = vtkLocalAmbientOcclusion()
+nan_lao.AddObserver(vtkCommand.WarningEvent, on_warning)
+nan_lao.SetInputData(nan_image)
+nan_tf = vtkPiecewiseFunction()
+nan_tf.AddPoint(0, 0.0)
+nan_tf.AddPoint(255, 0.8)
+nan_lao.SetOpacityFunction(nan_tf)
+nan_lao.Update()
+nan_tf.AddPoint(128, 0.3)
+nan_lao.Update()
+nan_tf.AddPoint(200, 0.1)
+nan_lao.Update()
+nan_warnings = sum(1 for w in warnings if "NaN or Inf" in w)
+print(f"NaN warnings over a run and two opacity edits: {nan_warnings}")
+if nan_warnings != 1:
+    print(f"FAIL: the NaN warning came {nan_warnings} times for the same scalars (expected once): {warnings}")
+    sys.exit(1)
+values[5] = np.nan
+nan_image.GetPointData().GetScalars().Modified()
+nan_lao.Update()
+nan_warnings = sum(1 for w in warnings if "NaN or Inf" in w)
+if nan_warnings != 2 or "11 NaN or Inf" not in warnings[-1]:
+    print(f"FAIL: new scalars with NaN must warn again, with their count: {warnings}")
+    sys.exit(1)
+print("ok: the NaN warning once per scalars, not per opacity edit; again for new scalars")
