@@ -7,7 +7,7 @@
  * of vtkLocalAmbientOcclusion with OutputOpacity on), those are the
  * precomputed unclipped LAO, and the LAO plan is rebuilt from the recorded
  * settings (read by component name; the older "LAOParameters" array is read
- * too), so a quality preset set upstream applies here as well; otherwise
+ * too), so a quality level set upstream applies here as well; otherwise
  * the filter computes them with its own LAO settings (forwarded below) and
  * caches them until the input or those settings change.
  *
@@ -147,8 +147,8 @@ public:
   double GetStartOffset() { return this->Precompute->GetStartOffset(); }
   void SetRayVariation(int v) { this->Precompute->SetRayVariation(v); }
   int GetRayVariation() { return this->Precompute->GetRayVariation(); }
-  void SetQualityPreset(int v) { this->Precompute->SetQualityPreset(v); }
-  int GetQualityPreset() { return this->Precompute->GetQualityPreset(); }
+  void SetQuality(int v) { this->Precompute->SetQuality(v); }
+  int GetQuality() { return this->Precompute->GetQuality(); }
   void SetReach(double v) { this->Precompute->SetReach(v); }
   double GetReach() { return this->Precompute->GetReach(); }
   void SetComponent(int v) { this->Precompute->SetComponent(v); }

@@ -166,7 +166,7 @@ vtkCAOLAOSettingMacro(vtkLocalAmbientOcclusion, NumberOfSamples, int, this->Inte
 vtkCAOLAOSettingMacro(vtkLocalAmbientOcclusion, SampleDensity, double, this->Internal->Settings.sampleDensity);
 vtkCAOLAOSettingMacro(vtkLocalAmbientOcclusion, StartOffset, double, this->Internal->Settings.startOffset);
 vtkCAOLAOSettingMacro(vtkLocalAmbientOcclusion, RayVariation, int, this->Internal->Settings.variation);
-vtkCAOLAOSettingMacro(vtkLocalAmbientOcclusion, QualityPreset, int, this->Internal->Settings.preset);
+vtkCAOLAOSettingMacro(vtkLocalAmbientOcclusion, Quality, int, this->Internal->Settings.quality);
 
 //------------------------------------------------------------------------------
 vtkLocalAmbientOcclusion::vtkLocalAmbientOcclusion()
@@ -454,11 +454,11 @@ int vtkLocalAmbientOcclusion::RequestData(
     return 0;
 
   // 1. The settings in effect and their plan.
-  const std::string overridden = cao::PresetOverrides(this->Internal->Settings);
+  const std::string overridden = cao::QualityOverrides(this->Internal->Settings);
   if (!overridden.empty())
-    vtkWarningMacro("QualityPreset " << cao::QualityPresetName(this->Internal->Settings.preset)
+    vtkWarningMacro("Quality " << cao::QualityName(this->Internal->Settings.quality)
                                      << " overrides " << overridden
-                                     << "; set QualityPreset to Custom (0) to use them.");
+                                     << "; set Quality to Custom (0) to use them.");
   const cao::VolumeGeometry geometry = vtkCAO::GeometryOf(input);
   const cao::LAOSettings settings =
     cao::ResolveLAOSettings(this->Internal->Settings, geometry.spacing);
@@ -570,7 +570,7 @@ int vtkLocalAmbientOcclusion::RequestData(
   run.step = plan.step;
   run.unitDistance = this->ScalarOpacityUnitDistance;
   run.milliseconds = vtkCAO::MillisecondsSince(start);
-  run.preset = this->Internal->Settings.preset;
+  run.quality = this->Internal->Settings.quality;
   vtkCAO::WriteLAOSettings(output->GetFieldData(), settings, run);
   vtkCAO::WriteLAOUpdate(output->GetFieldData(), reason, edit.changed, edit.recomputed);
   {

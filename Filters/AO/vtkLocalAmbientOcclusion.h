@@ -16,9 +16,9 @@
  * and, unless OutputOpacity is off, "AmbientOcclusionOpacity" (the corrected
  * opacity, which vtkContextualAmbientOcclusion reuses), and the field array
  * "LAOSettings" recording the settings actually used (after a
- * QualityPreset and the reach's default), one component per setting named
+ * Quality and the reach's default), one component per setting named
  * as its property (RayPattern, NumberOfRays, Reach, NumberOfSamples,
- * SampleDensity, StartOffset, RayVariation, QualityPreset) plus Rays, Step,
+ * SampleDensity, StartOffset, RayVariation, Quality) plus Rays, Step,
  * ScalarOpacityUnitDistance and Milliseconds: vtkContextualAmbientOcclusion
  * reads them by name and rebuilds the identical plan.
  *
@@ -35,7 +35,7 @@
  * ReleaseEditBuffers() frees the spare opacity and the masks and list.
  *
  * The settings are one cao::LAOSettings (caoLAOSettings.h: defaults, limits
- * and presets in one place, shared with the mapper, the plugin and `cao`).
+ * and quality levels in one place, shared with the mapper, the plugin and `cao`).
  *
  * The work runs in the VTK-free kernel caoLAO through vtkSMPTools (STDThread
  * unless VTK_SMP_BACKEND_IN_USE says otherwise); the result does not depend
@@ -108,8 +108,8 @@ public:
   ///@}
 
   ///@{
-  /// Ray pattern (RayPatterns). Default RAYS_6 (the Interactive preset's);
-  /// it applies when QualityPreset is CUSTOM.
+  /// Ray pattern (RayPatterns). Default RAYS_14 (Low quality's);
+  /// it applies when Quality is CUSTOM.
   void SetRayPattern(int pattern);
   int GetRayPattern();
   ///@}
@@ -132,7 +132,7 @@ public:
   ///@{
   /**
    * Samples per smallest voxel spacing when NumberOfSamples is 0. Default 2
-   * (the Interactive preset's); 0.001 to 1000.
+   * (Low quality's); 0.001 to 1000.
    */
   void SetSampleDensity(double density);
   double GetSampleDensity();
@@ -167,8 +167,8 @@ public:
 
   ///@{
   /**
-   * Ray variation (RayVariations). Default NONE (the Interactive
-   * preset's): every voxel uses the same rays. The interleaved variations
+   * Ray variation (RayVariations). Default NONE (Low
+   * quality's): every voxel uses the same rays. The interleaved variations
    * lower the per-voxel error of few rays, but a picture shows the 2x2x2
    * interleave as grain. The variant follows the global voxel index, so a piece of a
    * volume gets the values the whole volume gets.
@@ -181,32 +181,33 @@ public:
   void SetRayVariationToRotateJitter() { this->SetRayVariation(ROTATE_JITTER); }
   ///@}
 
-  /// Quality presets: fixed accuracy/time trade-offs (see QualityPreset).
-  enum QualityPresets
+  /// Quality levels (cao::Quality's values): fixed accuracy/time trade-offs.
+  enum Qualities
   {
     CUSTOM = 0,
-    INTERACTIVE = 1,
-    BALANCED = 2,
-    REFERENCE = 3
+    LOW = 1,
+    MEDIUM = 2,
+    HIGH = 3
   };
 
   ///@{
   /**
-   * Quality preset (QualityPresets). INTERACTIVE (default, a point on the
-   * measured accuracy front, equal to the individual defaults). CUSTOM:
-   * RayPattern, NumberOfRays, NumberOfSamples, SampleDensity, StartOffset
-   * and RayVariation apply. Any other preset replaces the ray pattern, the
-   * Fibonacci ray count, the sample density, the start offset and the
-   * variation with the preset's (NumberOfSamples is then ignored: the
+   * Quality (Qualities), the vocabulary every technique shares. LOW
+   * (default, a point on the measured accuracy front, equal to the
+   * individual defaults), MEDIUM, HIGH. CUSTOM: RayPattern, NumberOfRays,
+   * NumberOfSamples, SampleDensity, StartOffset and RayVariation apply. Any
+   * other level replaces the ray pattern, the Fibonacci ray count, the
+   * sample density, the start offset and the variation with the level's
+   * (NumberOfSamples is then ignored: the
    * sample count follows the density); Reach stays this filter's. The
    * "LAOSettings" field array records the settings actually used.
    */
-  void SetQualityPreset(int preset);
-  int GetQualityPreset();
-  void SetQualityPresetToCustom() { this->SetQualityPreset(CUSTOM); }
-  void SetQualityPresetToInteractive() { this->SetQualityPreset(INTERACTIVE); }
-  void SetQualityPresetToBalanced() { this->SetQualityPreset(BALANCED); }
-  void SetQualityPresetToReference() { this->SetQualityPreset(REFERENCE); }
+  void SetQuality(int quality);
+  int GetQuality();
+  void SetQualityToCustom() { this->SetQuality(CUSTOM); }
+  void SetQualityToLow() { this->SetQuality(LOW); }
+  void SetQualityToMedium() { this->SetQuality(MEDIUM); }
+  void SetQualityToHigh() { this->SetQuality(HIGH); }
   ///@}
 
   ///@{

@@ -26,7 +26,7 @@ void WriteLAOSettings(vtkFieldData* fd, const cao::LAOSettings& resolved, const 
   a->SetNumberOfComponents(count + 4);
   cao::LAOSettings recorded = resolved;
   recorded.samples = run.samples;
-  recorded.preset = run.preset;
+  recorded.quality = run.quality;
   for (int c = 0; c < count; ++c)
   {
     a->SetComponentName(c, table[c].name);
@@ -91,6 +91,8 @@ bool ReadLAOSettings(vtkFieldData* fd, cao::LAOSettings& settings, LAORun* run)
         r.unitDistance = v;
       else if (n == "Milliseconds")
         r.milliseconds = v;
+      else if (n == "QualityPreset") // the quality's name before it was one vocabulary
+        s.quality = static_cast<cao::Quality>(static_cast<int>(v));
     }
     if (!any)
       return false;
@@ -98,7 +100,7 @@ bool ReadLAOSettings(vtkFieldData* fd, cao::LAOSettings& settings, LAORun* run)
   else
   {
     // The predecessor: RayPattern, Rays, Samples, Reach, Step, UnitDistance,
-    // FibonacciRays, Milliseconds[, StartOffset, RayVariation, QualityPreset].
+    // FibonacciRays, Milliseconds[, StartOffset, RayVariation, Quality].
     a = fd ? fd->GetArray(LegacyLAOParametersName) : nullptr;
     const int n = a ? a->GetNumberOfComponents() : 0;
     if (!a || a->GetNumberOfTuples() < 1 || (n != 11 && n != 8))
@@ -115,11 +117,11 @@ bool ReadLAOSettings(vtkFieldData* fd, cao::LAOSettings& settings, LAORun* run)
     r.milliseconds = v[7];
     s.startOffset = v[8];
     s.variation = static_cast<cao::RayVariation>(static_cast<int>(v[9]));
-    s.preset = static_cast<cao::QualityPreset>(static_cast<int>(v[10]));
+    s.quality = static_cast<cao::Quality>(static_cast<int>(v[10]));
   }
   // The recorded values are the ones in effect: rebuild from them as given.
-  r.preset = s.preset;
-  s.preset = cao::QualityPreset::Custom;
+  r.quality = s.quality;
+  s.quality = cao::Quality::Custom;
   r.samples = s.samples;
   settings = s;
   if (run)
@@ -137,6 +139,6 @@ void PrintLAOSettings(ostream& os, vtkIndent indent, const cao::LAOSettings& s)
   os << indent << "SampleDensity: " << s.sampleDensity << "\n";
   os << indent << "StartOffset: " << s.startOffset << "\n";
   os << indent << "RayVariation: " << cao::RayVariationName(s.variation) << "\n";
-  os << indent << "QualityPreset: " << cao::QualityPresetName(s.preset) << "\n";
+  os << indent << "Quality: " << cao::QualityName(s.quality) << "\n";
 }
 }

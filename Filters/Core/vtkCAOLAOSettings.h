@@ -30,12 +30,12 @@ constexpr const char* LegacyLAOParametersName = "LAOParameters";
 /// What a run adds to its settings.
 struct LAORun
 {
-  int rays = 0;    ///< K, after the pattern and the preset
+  int rays = 0;    ///< K, after the pattern and the quality
   int samples = 0; ///< M, after the density
   double step = 0.0;
   double unitDistance = 1.0;
   double milliseconds = 0.0;
-  cao::QualityPreset preset = cao::QualityPreset::Custom; ///< the preset that set them
+  cao::Quality quality = cao::Quality::Custom; ///< the quality level that set them
 };
 
 /// Record `resolved` (the settings in effect, cao::ResolveLAOSettings) and
@@ -52,10 +52,10 @@ CAOFILTERSCORE_EXPORT void WriteLAOUpdate(
 
 /**
  * Read back what WriteLAOSettings recorded, by component name: the
- * settings that rebuild the identical plan (samples = M, preset Custom:
- * the preset's values are already in), and the run. Also reads the older
+ * settings that rebuild the identical plan (samples = M, quality Custom:
+ * the level's values are already in), and the run. Also reads the older
  * "LAOParameters" arrays by position (11 components; 8 before the start
- * offset, the variation and the preset existed: offset 0, no variation).
+ * offset, the variation and the quality existed: offset 0, no variation).
  * False when `fd` holds neither.
  */
 CAOFILTERSCORE_EXPORT bool ReadLAOSettings(

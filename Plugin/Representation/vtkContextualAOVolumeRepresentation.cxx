@@ -104,9 +104,9 @@ void vtkContextualAOVolumeRepresentation::SetRayVariation(int v)
 {
   this->GetAOMapper()->SetRayVariation(v);
 }
-void vtkContextualAOVolumeRepresentation::SetQualityPreset(int p)
+void vtkContextualAOVolumeRepresentation::SetQuality(int p)
 {
-  this->GetAOMapper()->SetQualityPreset(p);
+  this->GetAOMapper()->SetQuality(p);
 }
 void vtkContextualAOVolumeRepresentation::SetMode(int m)
 {

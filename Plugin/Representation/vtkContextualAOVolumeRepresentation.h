@@ -53,7 +53,7 @@ public:
   void SetSampleDensity(double density);
   void SetStartOffset(double offset);
   void SetRayVariation(int variation);
-  void SetQualityPreset(int preset);
+  void SetQuality(int quality);
   void SetMode(int mode);
   void SetNumberOfClipLayers(int layers);
   ///@}

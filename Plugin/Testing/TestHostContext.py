@@ -135,7 +135,7 @@ try:
         for backend in ("Auto", "CPU", "OpenGL"):
             screenshot(view, results[backend][3], f"{order}-{backend}")
             lao = results[backend][0]
-            lao.QualityPreset = "Custom"
+            lao.Quality = "Custom"
             lao.RayPattern = "14 rays (faces + corners)"  # runs again, view current
             results[backend][3].UpdatePipeline()
             expect_label(backend, label(results[backend][3]), view_current=True)

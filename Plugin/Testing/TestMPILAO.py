@@ -25,7 +25,7 @@ from mpi_view_checks import check, finish  # noqa: E402
 
 reader = OpenDataFile(os.path.join(data, "hydrogen.vti"))
 lao = LocalAmbientOcclusion(Input=reader)
-lao.QualityPreset = "Custom"  # the settings below apply
+lao.Quality = "Custom"  # the settings below apply
 lao.RayPattern = "26 rays (faces + edges + corners)"
 lao.Backend = "CPU"
 # An explicit opacity function: without one the filter ramps over the
@@ -90,7 +90,7 @@ serial_reader = vtkXMLImageDataReader()
 serial_reader.SetFileName(os.path.join(data, "hydrogen.vti"))
 serial = contextualao.vtkLocalAmbientOcclusion()
 serial.SetInputConnection(serial_reader.GetOutputPort())
-serial.SetQualityPresetToCustom()
+serial.SetQualityToCustom()
 serial.SetRayPattern(serial.RAYS_26)
 serial.SetBackendToCPU()
 from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction  # noqa: E402

@@ -55,7 +55,7 @@ check(len(lao.GetProperty("RayPattern").Available) == 6 and
 check(cao.GetProperty("Mode").Available == ["Subtraction", "Probing"], "the clip modes")
 
 # The LAO quality settings: defaults and domains as the VTK filter's.
-PRESETS = ["Custom", "Interactive", "Balanced", "Reference"]
+QUALITIES = ["Custom", "Low", "Medium", "High"]
 VARIATIONS = ["None", "Rotate", "Jitter", "Rotate + Jitter"]
 
 
@@ -63,15 +63,15 @@ def range_domain(proxy, name):
     return proxy.GetProperty(name).SMProperty.FindDomain("vtkSMDoubleRangeDomain")
 
 
-check(list(lao.GetProperty("QualityPreset").Available) == PRESETS and lao.QualityPreset == "Interactive",
-      "QualityPreset: Custom, Interactive, Balanced, Reference; default Interactive (%s)"
-      % lao.QualityPreset)
+check(list(lao.GetProperty("Quality").Available) == QUALITIES and lao.Quality == "Low",
+      "Quality: Custom, Low, Medium, High; default Low (%s)"
+      % lao.Quality)
 check(list(lao.GetProperty("RayVariation").Available) == VARIATIONS and lao.RayVariation == "None",
-      "RayVariation: None, Rotate, Jitter, Rotate + Jitter; default None, the Interactive "
-      "preset's (%s)" % lao.RayVariation)
+      "RayVariation: None, Rotate, Jitter, Rotate + Jitter; default None, Low "
+      "quality's (%s)" % lao.RayVariation)
 density, offset = range_domain(lao, "SampleDensity"), range_domain(lao, "StartOffset")
 check(lao.SampleDensity == 1.0 and density is not None and density.GetMinimum(0) == 0.001,
-      "SampleDensity: default 1 (the Interactive preset's), at least 0.001 (%s)" % lao.SampleDensity)
+      "SampleDensity: default 1 (Low quality's), at least 0.001 (%s)" % lao.SampleDensity)
 check(lao.StartOffset == 0.5 and offset is not None and offset.GetMinimum(0) == 0.0 and
       offset.GetMaximum(0) == 0.999, "StartOffset: default 0.5, in [0, 0.999] (%s)" % lao.StartOffset)
 
@@ -84,16 +84,16 @@ if rep is not None:
     def entries(name):
         d = rep.GetProperty(name).FindDomain("vtkSMEnumerationDomain")
         return [d.GetEntryText(i) for i in range(d.GetNumberOfEntries())] if d else None
-    names = ("AOQualityPreset", "AOSampleDensity", "AOStartOffset", "AORayVariation")
+    names = ("AOQuality", "AOSampleDensity", "AOStartOffset", "AORayVariation")
     check(all(rep.GetProperty(n) is not None and rep.GetProperty(n).GetDocumentation() for n in names),
           "the representation has documented %s" % (names,))
-    check(entries("AOQualityPreset") == PRESETS and entries("AORayVariation") == VARIATIONS and
-          rep.GetProperty("AOQualityPreset").GetElement(0) == 1 and
+    check(entries("AOQuality") == QUALITIES and entries("AORayVariation") == VARIATIONS and
+          rep.GetProperty("AOQuality").GetElement(0) == 1 and
           rep.GetProperty("AORayVariation").GetElement(0) == 0 and
           rep.GetProperty("AOSampleDensity").GetElement(0) == 1.0 and
           rep.GetProperty("AOStartOffset").GetElement(0) == 0.5,
           "the representation's quality enumerations and defaults")
-    rep.GetProperty("AOQualityPreset").SetElement(0, 2)
+    rep.GetProperty("AOQuality").SetElement(0, 2)
     rep.GetProperty("AORayVariation").SetElement(0, 3)
     rep.GetProperty("AOSampleDensity").SetElement(0, 1.5)
     rep.GetProperty("AOStartOffset").SetElement(0, 0.25)
@@ -102,13 +102,13 @@ if rep is not None:
     # which is, through its wrapped superclass's volume actor.)
     import contextualao  # noqa: E402,F401  (wraps vtkContextualAOVolumeMapper)
     mapper = rep.GetClientSideObject().GetActor().GetMapper()
-    check((mapper.GetQualityPreset(), mapper.GetRayVariation(), mapper.GetSampleDensity(),
+    check((mapper.GetQuality(), mapper.GetRayVariation(), mapper.GetSampleDensity(),
            mapper.GetStartOffset()) == (2, 3, 1.5, 0.25),
           "the representation forwards the quality settings to the mapper")
     # Panel labels: ParaView splits an unlabelled "AOStrength" into
     # "A OStrength"; every AO property carries its own label.
     labels = {n: rep.GetProperty(n).GetXMLLabel() for n in
-              ("AmbientOcclusion", "AOStrength", "AOCalibration", "AOQualityPreset", "AORayPattern",
+              ("AmbientOcclusion", "AOStrength", "AOCalibration", "AOQuality", "AORayPattern",
                "AONumberOfRays", "AOReach", "AONumberOfSamples", "AOSampleDensity",
                "AOStartOffset", "AORayVariation")}
     check(all(label and label.startswith(("AO ", "Ambient")) for label in labels.values()),
@@ -264,7 +264,7 @@ for ext in ("nii", "nii.gz"):
           "OpenDataFile reads a .%s volume with the plugin's NIfTI reader" % ext)
 
 # The same results as the VTK filters.
-lao.QualityPreset = "Custom"  # the settings below apply
+lao.Quality = "Custom"  # the settings below apply
 lao.RayPattern = "14 rays (faces + corners)"
 lao.Backend = "CPU"
 maps.Reach = 32.0
@@ -289,7 +289,7 @@ r = vtkMetaImageReader()
 r.SetFileName(os.path.join(data, "HeadMRVolume.mhd"))
 v_lao = vcao.vtkLocalAmbientOcclusion()
 v_lao.SetInputConnection(r.GetOutputPort())
-v_lao.SetQualityPresetToCustom()
+v_lao.SetQualityToCustom()
 v_lao.SetRayPattern(v_lao.RAYS_14)
 v_lao.SetBackendToCPU()
 s = vtkSphereSource()
@@ -335,8 +335,8 @@ check(a16 is not None and a16.GetDataTypeAsString() == "unsigned short" and
 cao.AOFormat = "Float"
 
 
-# A quality preset on the LAO proxy: the same settings in effect
-# (LAOSettings) and the same AO as the VTK filter with that preset.
+# A quality level on the LAO proxy: the same settings in effect
+# (LAOSettings) and the same AO as the VTK filter with that level.
 def lao_parameters(image):
     a = image.GetFieldData().GetArray("LAOSettings")
     return {a.GetComponentName(c): a.GetComponent(0, c) for c in range(a.GetNumberOfComponents())
@@ -344,24 +344,24 @@ def lao_parameters(image):
 
 
 default_params = lao_parameters(servermanager.Fetch(lao))
-check(len(default_params) == 11 and default_params["QualityPreset"] == 0
+check(len(default_params) == 11 and default_params["Quality"] == 0
       and default_params["Rays"] == 14,
       "the LAO proxy's LAOSettings: 12 components, Custom with the 14 rays set above (%s)"
       % default_params)
-lao.QualityPreset = "Balanced"
+lao.Quality = "Medium"
 lao.UpdatePipeline()
-pv_preset = servermanager.Fetch(lao)
-v_lao.SetQualityPresetToBalanced()
+pv_level = servermanager.Fetch(lao)
+v_lao.SetQualityToMedium()
 v_lao.Update()
-pv_params, v_params = lao_parameters(pv_preset), lao_parameters(v_lao.GetOutput())
-check(pv_params == v_params and pv_params["QualityPreset"] == 2 and pv_params != default_params,
-      "QualityPreset Balanced changes the proxy's LAOSettings as the VTK filter's: %s"
+pv_params, v_params = lao_parameters(pv_level), lao_parameters(v_lao.GetOutput())
+check(pv_params == v_params and pv_params["Quality"] == 2 and pv_params != default_params,
+      "Quality Medium changes the proxy's LAOSettings as the VTK filter's: %s"
       % pv_params)
-a = pv_preset.GetPointData().GetArray("AmbientOcclusion")
+a = pv_level.GetPointData().GetArray("AmbientOcclusion")
 b = v_lao.GetOutput().GetPointData().GetArray("AmbientOcclusion")
 check(a is not None and a.GetNumberOfTuples() == b.GetNumberOfTuples() and
       all(a.GetValue(i) == b.GetValue(i) for i in range(a.GetNumberOfTuples())),
-      "the Balanced AO equals the VTK filter's value for value")
+      "the Medium AO equals the VTK filter's value for value")
 
 print("%d failure(s)" % len(failures))
 sys.exit(1 if failures else 0)

@@ -37,7 +37,7 @@ table = [dict(name=LAO.GetSettingName(i), default=LAO.GetSettingDefault(i),
               integer=LAO.GetSettingIsInteger(i)) for i in range(LAO.GetNumberOfSettings())]
 check([r["name"] for r in table] == ["RayPattern", "NumberOfRays", "Reach", "NumberOfSamples",
                                      "SampleDensity", "StartOffset", "RayVariation",
-                                     "QualityPreset"],
+                                     "Quality"],
       "the table names the eight LAO settings: %s" % [r["name"] for r in table])
 
 pxm = servermanager.ProxyManager()

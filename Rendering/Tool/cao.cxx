@@ -185,7 +185,7 @@ void ConfigureLAO(const Options& o, const std::string& rays, vtkLocalAmbientOccl
   lao->SetSampleDensity(o.lao.settings.sampleDensity);
   lao->SetStartOffset(o.lao.settings.startOffset);
   lao->SetRayVariation(static_cast<int>(o.lao.settings.variation));
-  lao->SetQualityPreset(static_cast<int>(o.lao.settings.preset));
+  lao->SetQuality(static_cast<int>(o.lao.settings.quality));
   lao->SetScalarOpacityUnitDistance(o.unitDistance);
   lao->SetComponent(o.component);
   lao->SetNumberOfThreads(o.threads);
@@ -243,7 +243,7 @@ std::string JsonEscape(const std::string& text)
 }
 
 /// The settings an LAO output was computed with (its LAOSettings field
-/// array, after any quality preset), as a JSON fragment or as text: the ray
+/// array, after any quality level), as a JSON fragment or as text: the ray
 /// pattern as --rays spells it, the start offset, the variation and the
 /// preset; and the run (rays, samples, milliseconds).
 struct LAOUsed
@@ -260,7 +260,7 @@ struct LAOUsed
       : cao::RayPatternName(settings.pattern);
     offset = settings.startOffset;
     variation = cao::RayVariationName(settings.variation);
-    quality = cao::QualityPresetName(run.preset);
+    quality = cao::QualityName(run.quality);
   }
   std::string Json() const
   {

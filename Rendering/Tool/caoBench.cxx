@@ -626,7 +626,7 @@ void Bench::Configure(vtkLocalAmbientOcclusion* lao, const std::string& pattern,
   lao->SetInputData(image);
   lao->SetOpacityFunction(tf);
   lao->SetScalarOpacityUnitDistance(1.0);
-  lao->SetQualityPresetToCustom(); // the sweep sets every setting
+  lao->SetQualityToCustom(); // the sweep sets every setting
   lao->SetRayPattern(static_cast<int>(p));
   lao->SetNumberOfRays(k);
   lao->SetReach(reach);
@@ -858,8 +858,8 @@ int Bench::Contextual()
   // The same rays on the exactly clipped opacity (float, as the filters):
   // the error the depth maps and the anti-aliasing add, alone.
   cao::LAOSettings balanced;
-  balanced.preset = cao::QualityPreset::Balanced;
-  cao::ApplyQualityPreset(balanced.preset, balanced);
+  balanced.quality = cao::Quality::Medium;
+  cao::ApplyLAOQuality(balanced.quality, balanced);
   balanced.reach = reach;
   std::vector<double> exactClipAO(static_cast<std::size_t>(voxels), 1.0);
   {
@@ -892,7 +892,7 @@ int Bench::Contextual()
     lao->SetInputData(image);
     lao->SetOpacityFunction(tf);
     lao->SetReach(reach);
-    lao->SetQualityPreset(vtkLocalAmbientOcclusion::BALANCED);
+    lao->SetQuality(vtkLocalAmbientOcclusion::MEDIUM);
     lao->SetNumberOfThreads(o.threads);
     lao->SetBackend(backend);
     lao->Update();
@@ -958,7 +958,7 @@ int Bench::ContextualRow(int backend, vtkLocalAmbientOcclusion* lao, vtkPolyData
   row.pattern = cao::RayPatternName(balanced.pattern);
   if (balanced.pattern == cao::RayPattern::Fibonacci)
     row.pattern = "fib:" + std::to_string(balanced.fibonacciRays);
-  row.variant = "balanced preset";
+  row.variant = "medium quality";
   row.density = balanced.sampleDensity;
   cao::LAOSettings used;
   vtkCAO::LAORun run;

@@ -312,19 +312,26 @@ void AddLAOOptions(CLI::App* app, LAOCommandLine& lao, bool samplesOption)
 {
   app
     ->add_option_function<std::string>(
-      "--quality", [&lao](const std::string& v) { cao::ParseQualityPreset(v, lao.settings.preset); },
-      Wrap(std::string("LAO quality preset: interactive (the default, equal to the defaults of "
-                       "the options below), balanced, reference or custom; a preset sets the "
+      "--quality", [&lao](const std::string& v) { cao::ParseQuality(v, lao.settings.quality); },
+      Wrap(std::string("LAO quality: low (the default, equal to the defaults of the options "
+                       "below), medium, high or custom; a level other than custom sets the "
                        "rays, ") +
         (samplesOption ? "samples, " : "") +
         "density, offset and variation (so it is not combined with those options; giving any of "
         "them without --quality means custom); --reach still applies"))
     ->type_name("NAME")
     ->check(Check([](std::string& v) -> std::string {
-      cao::QualityPreset p;
-      return cao::ParseQualityPreset(v, p)
-        ? ""
-        : "bad value '" + v + "' (expected custom, interactive, balanced or reference)";
+      cao::Quality p;
+      if (cao::ParseQuality(v, p))
+        return "";
+      // The LAO's levels before every technique shared one vocabulary.
+      const char* renamed = v == "interactive" ? "low"
+        : v == "balanced"                      ? "medium"
+        : v == "reference"                     ? "high"
+                                               : nullptr;
+      return renamed ? "'" + v + "' is now '" + renamed +
+          "' (one quality vocabulary for every technique: low, medium, high or custom)"
+                     : "bad value '" + v + "' (expected low, medium, high or custom)";
     }));
   AddNumber(app, "--density", lao.settings.sampleDensity, MinDensity, MaxDensity, false,
     "samples per voxel, 0.001 to 1000",

@@ -138,7 +138,7 @@ struct ClipOptions
 void AddClipOptions(CLI::App* app, ClipOptions& clip, int maxLayers);
 
 /// After the parse: --samples and --density are not both given; which LAO
-/// options a preset overrides were given (the first in command-line
+/// options a quality level overrides were given (the first in command-line
 /// order), then CheckLAOCommandLine.
 bool FinishLAO(const CLI::App* app, LAOCommandLine& lao, std::string& error);
 

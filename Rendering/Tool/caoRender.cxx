@@ -307,7 +307,7 @@ int Render(RenderOptions& o, const CLI::App* app)
   mapper->SetSampleDensity(o.lao.settings.sampleDensity);
   mapper->SetStartOffset(o.lao.settings.startOffset);
   mapper->SetRayVariation(static_cast<int>(o.lao.settings.variation));
-  mapper->SetQualityPreset(static_cast<int>(o.lao.settings.preset));
+  mapper->SetQuality(static_cast<int>(o.lao.settings.quality));
   mapper->SetAOStrength(o.strength);
   mapper->SetAOCalibration(o.calibration == "none"
       ? vtkContextualAOVolumeMapper::AO_CALIBRATION_NONE

@@ -376,7 +376,7 @@ vtkCAOLAOSettingMacro(vtkContextualAOVolumeMapper, NumberOfSamples, int, this->I
 vtkCAOLAOSettingMacro(vtkContextualAOVolumeMapper, SampleDensity, double, this->Internal->Settings.sampleDensity);
 vtkCAOLAOSettingMacro(vtkContextualAOVolumeMapper, StartOffset, double, this->Internal->Settings.startOffset);
 vtkCAOLAOSettingMacro(vtkContextualAOVolumeMapper, RayVariation, int, this->Internal->Settings.variation);
-vtkCAOLAOSettingMacro(vtkContextualAOVolumeMapper, QualityPreset, int, this->Internal->Settings.preset);
+vtkCAOLAOSettingMacro(vtkContextualAOVolumeMapper, Quality, int, this->Internal->Settings.quality);
 
 //------------------------------------------------------------------------------
 vtkContextualAOVolumeMapper::vtkContextualAOVolumeMapper()
@@ -566,14 +566,14 @@ bool vtkContextualAOVolumeMapper::CheckSettings(std::string& why) const
   auto outside = [&bad](const char* name, double v, const char* range) {
     bad << name << " must be " << range << "; got " << v << ".";
   };
-  const int preset = static_cast<int>(this->Internal->Settings.preset);
+  const int quality = static_cast<int>(this->Internal->Settings.quality);
   if (!(this->AOStrength >= 0.0 && this->AOStrength <= 1.0))
     outside("AOStrength", this->AOStrength, "in [0, 1]");
   else if (this->AOCalibration != AO_CALIBRATION_NONE &&
     this->AOCalibration != AO_CALIBRATION_HALF_SPACE)
     outside("AOCalibration", this->AOCalibration, "0 (None) or 1 (HalfSpace)");
-  else if (preset < CUSTOM || preset > REFERENCE)
-    outside("QualityPreset", preset, "0 (Custom) to 3 (Reference)");
+  else if (quality < CUSTOM || quality > HIGH)
+    outside("Quality", quality, "0 (Custom) to 3 (High)");
   else if (this->Mode != SUBTRACTION && this->Mode != PROBING)
     outside("Mode", this->Mode, "0 (subtraction) or 1 (probing)");
   else if (this->NumberOfClipLayers < 1 || this->NumberOfClipLayers > 16)
@@ -799,9 +799,9 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateVolume(
     key.opacityFunction = f.opacityFunction;
     key.opacityTime = f.opacityFunction->GetMTime();
     key.unitDistance = f.unitDistance;
-    // The settings in effect (individual settings a preset overrides change nothing).
+    // The settings in effect (individual settings a quality level overrides change nothing).
     key.settings = cao::ResolveLAOSettings(this->PlanSettings(f, givenAO), f.spacing);
-    key.settings.preset = cao::QualityPreset::Custom;
+    key.settings.quality = cao::Quality::Custom;
     key.givenAO = givenAO;
     key.givenAOTime = givenAO ? givenAO->GetMTime() : 0;
     if (!givenAO)
@@ -812,11 +812,11 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateVolume(
   this->OpacityEdit = this->HaveVolume && f.engine->HasPrecomputed() &&
     key.OpacityOnlyChange(this->Volume);
   this->HaveVolume = false;
-  const std::string overridden = ao && !givenAO ? cao::PresetOverrides(this->Settings) : "";
+  const std::string overridden = ao && !givenAO ? cao::QualityOverrides(this->Settings) : "";
   if (!overridden.empty())
     vtkWarningWithObjectMacro(self,
-      "QualityPreset " << cao::QualityPresetName(this->Settings.preset) << " overrides "
-                       << overridden << "; set QualityPreset to Custom (0) to use them.");
+      "Quality " << cao::QualityName(this->Settings.quality) << " overrides "
+                       << overridden << "; set Quality to Custom (0) to use them.");
   if (!this->UploadVolume(self, f, givenAO))
     return false;
   ++this->PrecomputeGeneration;
@@ -830,7 +830,7 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateVolume(
 bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
   vtkContextualAOVolumeMapper* self, Frame& f, vtkDataArray* givenAO)
 {
-  // The LAO settings in effect: a quality preset overrides the individual
+  // The LAO settings in effect: a quality level overrides the individual
   // ones, a reach of 0 is 8 voxels (checked with the plan).
   cao::gl::AOEngine& engine = *f.engine;
   std::string error;

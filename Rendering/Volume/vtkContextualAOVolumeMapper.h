@@ -27,7 +27,7 @@
  * Only the work a change calls for is done:
  *  - the clip pose: re-classify, recompute category b;
  *  - the scalar-opacity function, its unit distance, the scalars or the
- *    LAO settings (QualityPreset included): the full LAO precompute;
+ *    LAO settings (Quality included): the full LAO precompute;
  *  - the clip mesh's geometry (or the map settings): new depth maps;
  *  - the camera, the colour function, the lighting: no AO work at all;
  *  - no clip shape: the precomputed AO only (no maps, no classification);
@@ -141,7 +141,7 @@ public:
   };
 
   ///@{
-  /// LAO ray pattern. Default RAYS_6 (the Interactive preset's; applies under CUSTOM).
+  /// LAO ray pattern. Default RAYS_14 (Low quality's; applies under CUSTOM).
   virtual void SetRayPattern(int value);
   virtual int GetRayPattern();
   ///@}
@@ -202,28 +202,30 @@ public:
   void SetRayVariationToRotateJitter() { this->SetRayVariation(ROTATE_JITTER); }
   ///@}
 
-  /// LAO quality presets, as vtkLocalAmbientOcclusion's.
-  enum QualityPresets
+  /// LAO quality levels, as vtkLocalAmbientOcclusion's (cao::Quality's values).
+  enum Qualities
   {
     CUSTOM = 0,
-    INTERACTIVE = 1,
-    BALANCED = 2,
-    REFERENCE = 3
+    LOW = 1,
+    MEDIUM = 2,
+    HIGH = 3
   };
 
   ///@{
   /**
-   * LAO quality preset. INTERACTIVE (default, equal to the individual
-   * defaults); CUSTOM: the individual LAO settings apply; any other preset replaces the ray pattern, the Fibonacci ray
-   * count, the sample density, the start offset and the ray variation with
-   * the preset's (NumberOfSamples is ignored); Reach stays the mapper's.
+   * LAO quality, the vocabulary every technique shares: LOW (default,
+   * equal to the individual defaults), MEDIUM, HIGH; CUSTOM: the individual
+   * LAO settings apply; any other level replaces the ray pattern, the
+   * Fibonacci ray count, the sample density, the start offset and the ray
+   * variation with the level's (NumberOfSamples is ignored); Reach stays
+   * the mapper's.
    */
-  virtual void SetQualityPreset(int value);
-  virtual int GetQualityPreset();
-  void SetQualityPresetToCustom() { this->SetQualityPreset(CUSTOM); }
-  void SetQualityPresetToInteractive() { this->SetQualityPreset(INTERACTIVE); }
-  void SetQualityPresetToBalanced() { this->SetQualityPreset(BALANCED); }
-  void SetQualityPresetToReference() { this->SetQualityPreset(REFERENCE); }
+  virtual void SetQuality(int value);
+  virtual int GetQuality();
+  void SetQualityToCustom() { this->SetQuality(CUSTOM); }
+  void SetQualityToLow() { this->SetQuality(LOW); }
+  void SetQualityToMedium() { this->SetQuality(MEDIUM); }
+  void SetQualityToHigh() { this->SetQuality(HIGH); }
   ///@}
 
   ///@{

@@ -24,12 +24,12 @@ namespace caotest
 {
 /// Explicit LAO settings the kernel tests state their cases in: Custom
 /// (no preset), 26 rays, one sample per voxel, offset 0.5, no variation.
-/// (The product's defaults are the Interactive preset; the tests set what
+/// (The product's defaults are Low quality; the tests set what
 /// they measure.)
 inline cao::LAOSettings ExplicitSettings()
 {
   cao::LAOSettings s;
-  s.preset = cao::QualityPreset::Custom;
+  s.quality = cao::Quality::Custom;
   s.pattern = cao::RayPattern::Rays26;
   s.sampleDensity = 1.0;
   s.variation = cao::RayVariation::None;

@@ -26,7 +26,7 @@ int main(int argc, char* argv[])
   reader->SetFileName(argv[1]);
   vtkNew<vtkLocalAmbientOcclusion> lao;
   lao->SetInputConnection(reader->GetOutputPort());
-  lao->SetQualityPresetToCustom(); // the settings below apply (default: the Interactive preset)
+  lao->SetQualityToCustom(); // the settings below apply (default: Low quality)
   lao->SetRayPattern(vtkLocalAmbientOcclusion::RAYS_14);
   lao->SetBackendToCPU();
   vtkNew<vtkSphereSource> sphere;

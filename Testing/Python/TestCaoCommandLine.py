@@ -296,7 +296,7 @@ check(rc == 0 and out.startswith("cao (ContextualAO) ") and "VTK 9." in out and 
       f"--version: rc={rc} {out.strip()[:100]}")
 expect_error(["--versions"], 2, "unknown option '--versions'", "--versions is not --version")
 
-# Quality presets: `--quality interactive` runs, reports (JSON) and records
+# Quality levels: `--quality low` runs, reports (JSON) and records
 # (LAOSettings in the .vti) the settings in effect, and its AO equals the
 # AO of those settings given as explicit options.
 def lao_field(path):
@@ -308,70 +308,75 @@ def lao_field(path):
     return params, vtk_to_numpy(image.GetPointData().GetArray("AmbientOcclusion")).copy()
 
 
-preset_vti = os.path.join(tmp, "interactive.vti")
-rc, out, err = run("lao", neghip, "--quality", "interactive", "--reach", "4", "--json", "-o", preset_vti)
-check(rc == 0, f"lao --quality interactive: rc={rc} {err.strip()[:200]}")
+level_vti = os.path.join(tmp, "low.vti")
+rc, out, err = run("lao", neghip, "--quality", "low", "--reach", "4", "--json", "-o", level_vti)
+check(rc == 0, f"lao --quality low: rc={rc} {err.strip()[:200]}")
 if rc == 0:
     q = json.loads(out)
-    params, preset_ao = lao_field(preset_vti)
-    check(q["quality"] == "interactive" and params["QualityPreset"] == 1 and
+    params, level_ao = lao_field(level_vti)
+    check(q["quality"] == "low" and params["Quality"] == 1 and
           all(k in q for k in ("pattern", "samples", "start_offset", "variation")),
-          f"--quality interactive: the JSON and the field data name the preset: {q}")
+          f"--quality low: the JSON and the field data name the level: {q}")
     pattern = q["pattern"]
     check(params["RayPattern"] == {"6": 0, "14": 1, "26": 2, "54": 3}.get(pattern, 4) and
           (not pattern.startswith("fib:") or params["NumberOfRays"] == int(pattern[4:])) and
           params["NumberOfSamples"] == q["samples"] and params["StartOffset"] == q["start_offset"],
-          f"--quality interactive: the field data holds the pattern in effect ({pattern}): {params}")
+          f"--quality low: the field data holds the pattern in effect ({pattern}): {params}")
     hand_vti = os.path.join(tmp, "by-hand.vti")
     rc, out, err = run("lao", neghip, "--rays", pattern, "--samples", str(q["samples"]),
                        "--offset", repr(q["start_offset"]), "--variation", q["variation"],
                        "--reach", "4", "--json", "-o", hand_vti)
-    check(rc == 0, f"lao with the preset's settings by hand: rc={rc} {err.strip()[:200]}")
+    check(rc == 0, f"lao with the level's settings by hand: rc={rc} {err.strip()[:200]}")
     if rc == 0:
         h = json.loads(out)
         hand_params, hand_ao = lao_field(hand_vti)
-        check(h["quality"] == "custom" and hand_params["QualityPreset"] == 0 and
+        check(h["quality"] == "custom" and hand_params["Quality"] == 0 and
               all(h[k] == q[k] for k in ("pattern", "rays", "samples", "start_offset", "variation")),
-              "the explicit options give the preset's settings")
-        check(np.array_equal(preset_ao, hand_ao),
-              "--quality interactive equals its settings given by hand, voxel for voxel")
+              "the explicit options give the level's settings")
+        check(np.array_equal(level_ao, hand_ao),
+              "--quality low equals its settings given by hand, voxel for voxel")
     rc, out, err = run("lao", neghip, "--reach", "4", "-o", os.path.join(tmp, "default.vti"))
-    check(rc == 0 and np.array_equal(preset_ao, lao_field(os.path.join(tmp, "default.vti"))[1])
-          and lao_field(os.path.join(tmp, "default.vti"))[0]["QualityPreset"] == 1,
-          "the default is --quality interactive, voxel for voxel")
+    check(rc == 0 and np.array_equal(level_ao, lao_field(os.path.join(tmp, "default.vti"))[1])
+          and lao_field(os.path.join(tmp, "default.vti"))[0]["Quality"] == 1,
+          "the default is --quality low, voxel for voxel")
     rc, out, err = run("lao", neghip, "--reach", "4", "--rays", "26", "--density", "1",
                        "--variation", "none", "-o", os.path.join(tmp, "old-default.vti"))
     old_params, old_ao = lao_field(os.path.join(tmp, "old-default.vti")) if rc == 0 else ({}, None)
-    check(rc == 0 and old_params.get("QualityPreset") == 0 and old_params.get("RayPattern") == 2
-          and not np.array_equal(preset_ao, old_ao),
+    check(rc == 0 and old_params.get("Quality") == 0 and old_params.get("RayPattern") == 2
+          and not np.array_equal(level_ao, old_ao),
           "--rays 26 --density 1 --variation none without --quality: custom, the old default, "
           "another AO")
-    rc, out, err = run("lao", neghip, "--reach", "4", "--quality", "balanced", "--rays", "26",
+    rc, out, err = run("lao", neghip, "--reach", "4", "--quality", "medium", "--rays", "26",
                        "-o", os.path.join(tmp, "conflict.vti"))
     check(rc == 2 and "cannot be combined with --rays" in err,
           f"--quality with --rays is refused: rc={rc} {err.strip()[:160]}")
-# carve with a preset: the contextual AO is still exact.
-rc, out, err = run("carve", neghip, "--quality", "balanced", "--reach", "4", "--path", "3",
+# carve with a quality level: the contextual AO is still exact.
+rc, out, err = run("carve", neghip, "--quality", "medium", "--reach", "4", "--path", "3",
                    "--verify", "--json")
-check(rc == 0 and json.loads(out)["runs"][0]["quality"] == "balanced" and
+check(rc == 0 and json.loads(out)["runs"][0]["quality"] == "medium" and
       all(p["max_abs_difference"] == 0 for p in json.loads(out)["runs"][0]["poses"]),
-      f"carve --quality balanced --verify: rc={rc} {err.strip()[:200]}")
+      f"carve --quality medium --verify: rc={rc} {err.strip()[:200]}")
+# The LAO's former level names are refused, naming the new one (one
+# quality vocabulary for every technique).
+for old, new in (("interactive", "low"), ("balanced", "medium"), ("reference", "high")):
+    expect_error(["lao", neghip, "--quality", old], 2, "'%s' is now '%s'" % (old, new), "--quality " + old)
+expect_error(["lao", neghip, "--quality", "best"], 2, "expected low, medium, high or custom", "--quality best")
 # Explicit offset, density and variation are accepted and recorded.
 rc, out, err = run("lao", neghip, "--reach", "4", "--rays", "6", "--density", "2", "--offset", "0.5",
                    "--variation", "rotate+jitter", "--json")
 check(rc == 0 and json.loads(out)["samples"] == 8 and json.loads(out)["start_offset"] == 0.5 and
       json.loads(out)["variation"] == "rotate+jitter",
       f"lao --density 2 --offset 0.5 --variation rotate+jitter: rc={rc} {out.strip()[:300]}")
-expect_error(["lao", neghip, "--quality", "bogus"], 2, "--quality: bad value 'bogus' (expected custom",
-             "unknown quality preset")
+expect_error(["lao", neghip, "--quality", "bogus"], 2, "--quality: bad value 'bogus' (expected low",
+             "unknown quality")
 expect_error(["carve", neghip, "--variation", "bogus"], 2, "--variation: bad value 'bogus' (expected none",
              "unknown variation")
 expect_error(["lao", neghip, "--offset", "1.5"], 2, "--offset", "offset out of range")
 expect_error(["lao", neghip, "--density", "0"], 2, "--density", "zero density")
-expect_error(["lao", neghip, "--quality", "reference", "--rays", "6"], 2, "cannot be combined",
-             "a preset and an explicit ray pattern")
+expect_error(["lao", neghip, "--quality", "high", "--rays", "6"], 2, "cannot be combined",
+             "a quality level and an explicit ray pattern")
 expect_error(["render", neghip, "--quality", "bogus", "-o", os.path.join(tmp, "x_%d.png")], 2,
-             "--quality: bad value 'bogus'", "render: unknown quality preset")
+             "--quality: bad value 'bogus'", "render: unknown quality")
 expect_error(["render", neghip, "--variation", "spin", "-o", os.path.join(tmp, "x_%d.png")], 2,
              "--variation: bad value 'spin'", "render: unknown variation")
 expect_error(["render", neghip, "--offset", "1.5", "-o", os.path.join(tmp, "x_%d.png")], 2,
@@ -420,12 +425,12 @@ else:
                        "--rays", "6", "-o", os.path.join(tmp, "pct%%_%04i.png"))
     check(rc == 0 and os.path.exists(os.path.join(tmp, "pct%_0000.png")),
           "render -o with %%%% and %%04i: " + err)
-    # A quality preset (not a colour preset) for the mapper's LAO.
+    # A quality level (not a colour preset) for the mapper's LAO.
     rc, out, err = run("render", neghip, "--image", "64x64", "--no-clip", "--window", "egl",
-                       "--quality", "interactive", "--reach", "4", "--json", "-o",
+                       "--quality", "low", "--reach", "4", "--json", "-o",
                        os.path.join(tmp, "q_%d.png"))
     check(rc == 0 and "precompute" in [s["name"] for s in json.loads(out)[0]["report"]["stages"]],
-          "render --quality interactive: " + err)
+          "render --quality low: " + err)
     # A frame of background alone says so (a plane whose first pose of the
     # path leaves only a transparent slab); frames with matter do not.
     rc, out, err = run("render", neghip, "--image", "48x48", "--shape", "plane", "--path", "4",

@@ -58,7 +58,7 @@ def function(points):
 
 lao = cao.vtkLocalAmbientOcclusion()
 lao.SetInputData(volume)
-lao.SetQualityPresetToCustom()
+lao.SetQualityToCustom()
 lao.SetRayPattern({6: lao.RAYS_6, 14: lao.RAYS_14, 26: lao.RAYS_26}[args.rays])
 lao.SetNumberOfThreads(args.threads)
 lao.SetBackendToCPU()

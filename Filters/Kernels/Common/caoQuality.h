@@ -1,10 +1,12 @@
 /**
- * caoQuality — the one quality vocabulary of the surface techniques (voxel
- * cone tracing, horizon-based AO, volumetric AO): Low, Medium and High,
- * each a fixed set of the technique's own settings (its settings type says
- * which), or Custom (the technique's individual settings apply). The pass's
- * Quality property, the view's "Surface AO Quality" and `cao surface
- * --quality` take the same values and names. No VTK.
+ * caoQuality — the one quality vocabulary of every technique (the volumes'
+ * LAO; the surfaces' voxel cone tracing, horizon-based AO, volumetric AO):
+ * Low, Medium and High, each a fixed set of the technique's own settings
+ * (its settings type says which), or Custom (the technique's individual
+ * settings apply). The LAO filters' and the mapper's Quality, the
+ * representation's "AO Quality", the pass's Quality, the view's "Surface
+ * AO Quality" and `cao lao|carve|render|surface --quality` take the same
+ * values and names. No VTK.
  */
 #ifndef caoQuality_h
 #define caoQuality_h

@@ -43,35 +43,35 @@ bool ParseRayVariation(const std::string& text, RayVariation& variation)
 
 namespace
 {
-/// One preset's settings. Values chosen from the measured front: see
-/// docs/accuracy.md (embryo.slc and neghip.slc).
-struct PresetSettings
+/// One quality level's settings. Values chosen from the measured front:
+/// see docs/accuracy.md (embryo.slc and neghip.slc).
+struct LevelSettings
 {
   RayPattern pattern;
   int fibonacciRays;
   double sampleDensity;
   RayVariation variation;
 };
-// Interactive: 14 rays, 1 sample per voxel, the same rays at every voxel.
+// Low: 14 rays, 1 sample per voxel, the same rays at every voxel.
 // (Before: the 6 axes rotated per voxel, 2 samples per voxel: less error per
 // voxel, but the picture showed the 2x2x2 interleave as grain, and the 6
 // axes barely darkened a slot along an axis: docs/pictures.md, "Grain".)
-// Balanced: 14 rays, 4 samples per voxel.
-// Reference: 100 Fibonacci rays, 4 samples per voxel.
+// Medium: 14 rays, 4 samples per voxel.
+// High: 100 Fibonacci rays, 4 samples per voxel.
 // All mid-step (start offset 0.5).
-constexpr PresetSettings Presets[] = {
+constexpr LevelSettings Levels[] = {
   { RayPattern::Rays14, 64, 1.0, RayVariation::None },
   { RayPattern::Rays14, 14, 4.0, RayVariation::None },
   { RayPattern::Fibonacci, 100, 4.0, RayVariation::None },
 };
 }
 
-void ApplyQualityPreset(QualityPreset preset, LAOSettings& s)
+void ApplyLAOQuality(Quality quality, LAOSettings& s)
 {
-  const int index = static_cast<int>(preset);
+  const int index = static_cast<int>(quality);
   if (index < 1 || index > 3)
     return; // Custom, or invalid (CheckLAOSettings reports it)
-  const PresetSettings& p = Presets[index - 1];
+  const LevelSettings& p = Levels[index - 1];
   s.pattern = p.pattern;
   s.fibonacciRays = p.fibonacciRays;
   s.sampleDensity = p.sampleDensity;
@@ -80,14 +80,14 @@ void ApplyQualityPreset(QualityPreset preset, LAOSettings& s)
   s.samples = 0;
 }
 
-std::string PresetOverrides(const LAOSettings& s)
+std::string QualityOverrides(const LAOSettings& s)
 {
-  if (s.preset == QualityPreset::Custom)
+  if (s.quality == Quality::Custom)
     return std::string();
-  // What the preset replaces, among the settings changed from the defaults
+  // What the quality replaces, among the settings changed from the defaults
   // (a setting left at its default was not asked for).
   LAOSettings p = s;
-  ApplyQualityPreset(s.preset, p);
+  ApplyLAOQuality(s.quality, p);
   const LAOSettings d;
   std::ostringstream out;
   auto note = [&out](const char* name, double value) {
@@ -107,36 +107,6 @@ std::string PresetOverrides(const LAOSettings& s)
   if (s.variation != p.variation && s.variation != d.variation)
     note("RayVariation", static_cast<int>(s.variation));
   return out.str();
-}
-
-const char* QualityPresetName(QualityPreset preset)
-{
-  switch (preset)
-  {
-    case QualityPreset::Custom:
-      return "custom";
-    case QualityPreset::Interactive:
-      return "interactive";
-    case QualityPreset::Balanced:
-      return "balanced";
-    case QualityPreset::Reference:
-      return "reference";
-  }
-  return "unknown";
-}
-
-bool ParseQualityPreset(const std::string& text, QualityPreset& preset)
-{
-  for (QualityPreset p : { QualityPreset::Custom, QualityPreset::Interactive,
-         QualityPreset::Balanced, QualityPreset::Reference })
-  {
-    if (text == QualityPresetName(p))
-    {
-      preset = p;
-      return true;
-    }
-  }
-  return false;
 }
 
 bool CheckLAOSettings(const LAOSettings& s, std::string& error)
@@ -165,8 +135,8 @@ bool CheckLAOSettings(const LAOSettings& s, std::string& error)
     msg << "the start offset must be in [0, 1) steps; got " << s.startOffset;
   else if (static_cast<int>(s.variation) < 0 || static_cast<int>(s.variation) > 3)
     msg << "unknown ray variation " << static_cast<int>(s.variation);
-  else if (static_cast<int>(s.preset) < 0 || static_cast<int>(s.preset) > 3)
-    msg << "QualityPreset must be 0 (Custom) to 3 (Reference); got " << static_cast<int>(s.preset);
+  else if (static_cast<int>(s.quality) < 0 || static_cast<int>(s.quality) > 3)
+    msg << "Quality must be 0 (Custom) to 3 (High); got " << static_cast<int>(s.quality);
   if (msg.tellp() == 0)
     return true;
   error = msg.str();
@@ -176,7 +146,7 @@ bool CheckLAOSettings(const LAOSettings& s, std::string& error)
 LAOSettings ResolveLAOSettings(const LAOSettings& settings, const double spacing[3])
 {
   LAOSettings s = settings;
-  ApplyQualityPreset(s.preset, s);
+  ApplyLAOQuality(s.quality, s);
   if (s.reach == 0.0)
     s.reach = 8.0 * std::min(spacing[0], std::min(spacing[1], spacing[2]));
   return s;
@@ -196,7 +166,7 @@ constexpr LAOSettingInfo Table[] = {
     LAOLimits::MaxSampleDensity, false },
   { "StartOffset", Defaults.startOffset, 0, 0.999, false },
   { "RayVariation", static_cast<double>(Defaults.variation), 0, 3, true },
-  { "QualityPreset", static_cast<double>(Defaults.preset), 0, 3, true },
+  { "Quality", static_cast<double>(Defaults.quality), 0, 3, true },
 };
 }
 
@@ -222,8 +192,8 @@ double GetLAOSetting(const LAOSettings& s, const std::string& name)
     return s.startOffset;
   if (name == "RayVariation")
     return static_cast<double>(s.variation);
-  if (name == "QualityPreset")
-    return static_cast<double>(s.preset);
+  if (name == "Quality")
+    return static_cast<double>(s.quality);
   return std::numeric_limits<double>::quiet_NaN();
 }
 
@@ -248,8 +218,8 @@ bool SetLAOSetting(LAOSettings& s, const std::string& name, double v)
     s.startOffset = v;
   else if (name == "RayVariation")
     s.variation = static_cast<RayVariation>(integer());
-  else if (name == "QualityPreset")
-    s.preset = static_cast<QualityPreset>(integer());
+  else if (name == "Quality")
+    s.quality = static_cast<Quality>(integer());
   else
     return false;
   return true;

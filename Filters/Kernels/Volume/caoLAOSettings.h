@@ -1,6 +1,6 @@
 /**
  * caoLAOSettings — the one definition of the LAO settings: the type, its
- * enumerations, defaults, limits, quality presets and names. No VTK.
+ * enumerations, defaults, limits, quality levels and names. No VTK.
  *
  * Every layer uses it: vtkLocalAmbientOcclusion, vtkContextualAmbientOcclusion
  * and vtkContextualAOVolumeMapper hold a LAOSettings (their Set/Get methods
@@ -11,16 +11,18 @@
  * by name, not by position.
  *
  * A parameter's path: the XML property or the setter or the CLI option sets
- * a LAOSettings field (1) -> ResolveLAOSettings applies the preset and the
+ * a LAOSettings field (1) -> ResolveLAOSettings applies the quality and the
  * reach's default (2) -> BuildLAOPlan turns it into the taps (3) -> the
  * AO engine uploads the taps the shader reads (4).
  */
 #ifndef caoLAOSettings_h
 #define caoLAOSettings_h
 
+#include "caoQuality.h"
 #include "caoRayPattern.h"
 
 #include <cstdint>
+
 #include <string>
 
 namespace cao
@@ -52,27 +54,17 @@ int RayVariationCount(RayVariation variation);
 const char* RayVariationName(RayVariation variation);
 bool ParseRayVariation(const std::string& text, RayVariation& variation);
 
-/**
- * Quality presets: fixed accuracy/time trade-offs chosen from the Pareto
- * front that `cao bench accuracy` measures (docs/accuracy.md). A preset fixes the pattern, the sample density, the start offset
- * and the variation; the reach stays the user's.
- */
-enum class QualityPreset : int
-{
-  Custom = 0, ///< the individual settings apply
-  Interactive = 1,
-  Balanced = 2,
-  Reference = 3
-};
-
-/// "custom", "interactive", "balanced" or "reference"; Parse accepts the same.
-const char* QualityPresetName(QualityPreset preset);
-bool ParseQualityPreset(const std::string& text, QualityPreset& preset);
+// The LAO's quality is cao::Quality, the one vocabulary of every technique
+// (caoQuality.h). Low, Medium and High are fixed accuracy/time trade-offs
+// chosen from the Pareto front that `cao bench accuracy` measures
+// (docs/accuracy.md); each fixes the pattern, the sample density, the start
+// offset and the variation; the reach stays the user's. Custom: the
+// individual settings apply.
 
 /**
  * The LAO settings; reach in world units. Defaults are the product's: the
- * Interactive preset, a point on the measured accuracy front
- * (docs/accuracy.md, "The presets"), with the individual settings equal to that preset's, so
+ * Low quality, a point on the measured accuracy front
+ * (docs/accuracy.md, "The quality levels"), with the individual settings equal to Low's, so
  * that switching to Custom starts from the same point. (Before: 26 rays,
  * one sample per voxel, off the front.)
  *  - reach 0: 8 times the smallest voxel spacing (ResolveLAOSettings);
@@ -82,7 +74,7 @@ bool ParseQualityPreset(const std::string& text, QualityPreset& preset);
  *    the paper's march has startOffset 0; 0.5 (the default: it measured a
  *    third less error at the same cost) puts each sample in the middle of
  *    the step it decides. Jitter variations replace it per variant;
- *  - a preset other than Custom replaces pattern, fibonacciRays,
+ *  - a quality other than Custom replaces pattern, fibonacciRays,
  *    sampleDensity, startOffset and variation, and resets samples to 0.
  */
 struct LAOSettings
@@ -94,14 +86,14 @@ struct LAOSettings
   double sampleDensity = 1.0;
   double startOffset = 0.5;
   RayVariation variation = RayVariation::None;
-  QualityPreset preset = QualityPreset::Interactive;
+  Quality quality = Quality::Low;
 };
 
 inline bool operator==(const LAOSettings& a, const LAOSettings& b)
 {
   return a.pattern == b.pattern && a.fibonacciRays == b.fibonacciRays && a.reach == b.reach &&
     a.samples == b.samples && a.sampleDensity == b.sampleDensity &&
-    a.startOffset == b.startOffset && a.variation == b.variation && a.preset == b.preset;
+    a.startOffset == b.startOffset && a.variation == b.variation && a.quality == b.quality;
 }
 inline bool operator!=(const LAOSettings& a, const LAOSettings& b)
 {
@@ -123,20 +115,21 @@ constexpr std::int64_t MaxTaps = std::int64_t(1) << 24; ///< variants x rays x s
 /// setting, its value and the limit.
 bool CheckLAOSettings(const LAOSettings& settings, std::string& error);
 
-/// The settings in effect: the preset applied (preset kept, to record it)
+/// The settings in effect: the quality applied (kept, to record it)
 /// and a reach of 0 replaced by 8 times the smallest of `spacing`.
 LAOSettings ResolveLAOSettings(const LAOSettings& settings, const double spacing[3]);
 
 /// Overwrite the pattern, Fibonacci count, sample density, start offset and
-/// variation with the preset's (samples reset to 0). Custom changes nothing.
-void ApplyQualityPreset(QualityPreset preset, LAOSettings& settings);
+/// variation with the quality level's (samples reset to 0). Custom changes
+/// nothing.
+void ApplyLAOQuality(Quality quality, LAOSettings& settings);
 
-/// The individual settings, changed from their defaults, that a preset
+/// The individual settings, changed from their defaults, that a quality
 /// other than Custom overrides with other values ("RayPattern 2,
 /// NumberOfSamples 4"; the Fibonacci count only for that pattern), or ""
 /// when there are none: what a warning tells a user who set them and kept a
-/// preset.
-std::string PresetOverrides(const LAOSettings& settings);
+/// quality level.
+std::string QualityOverrides(const LAOSettings& settings);
 
 /**
  * The settings by name, one row each, in the order of the field array that
@@ -151,7 +144,7 @@ struct LAOSettingInfo
   bool integer;
 };
 /// RayPattern, NumberOfRays, Reach, NumberOfSamples, SampleDensity,
-/// StartOffset, RayVariation, QualityPreset.
+/// StartOffset, RayVariation, Quality.
 const LAOSettingInfo* LAOSettingTable(int& count);
 /// The value of the named setting (NaN for an unknown name).
 double GetLAOSetting(const LAOSettings& settings, const std::string& name);

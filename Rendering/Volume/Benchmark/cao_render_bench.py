@@ -118,7 +118,7 @@ def main():
 
     caom = cao.vtkContextualAOVolumeMapper()
     caom.SetInputData(image)
-    caom.SetQualityPresetToCustom()  # --rays applies
+    caom.SetQualityToCustom()  # --rays applies
     caom.SetRayPattern(RAYS[a.rays])
     caom.SetSampleDistance(step)
     caom.SetClipShape(clip)

@@ -39,7 +39,7 @@ vtkSmartPointer<vtkFloatArray> LAO(vtkImageData* image, int pattern, double reac
   vtkNew<vtkLocalAmbientOcclusion> lao;
   if (events)
     events->Watch(lao);
-  lao->SetQualityPresetToCustom(); // the cases state their settings
+  lao->SetQualityToCustom(); // the cases state their settings
   lao->SetRayVariationToNone();
   lao->SetStartOffset(offset);
   lao->SetInputData(image);
@@ -133,7 +133,7 @@ int TestAmbientOcclusionHardCases(int argc, char* argv[])
     vtkNew<vtkLocalAmbientOcclusion> lao;
     lao->SetInputData(neghip);
     lao->SetOpacityFunction(tf);
-    lao->SetQualityPresetToCustom();
+    lao->SetQualityToCustom();
     lao->SetRayVariationToNone();
     lao->SetRayPattern(R6);
     lao->SetReach(1000.0);

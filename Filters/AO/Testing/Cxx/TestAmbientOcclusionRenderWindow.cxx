@@ -63,7 +63,7 @@ struct Pipeline
     tf->AddPoint(255, 0.9);
     lao->SetInputData(volume);
     lao->SetOpacityFunction(tf);
-    lao->SetQualityPresetToCustom(); // the settings below apply
+    lao->SetQualityToCustom(); // the settings below apply
     lao->SetRayPattern(vtkLocalAmbientOcclusion::RAYS_6);
     lao->SetReach(4.0);
     lao->SetNumberOfSamples(4);

@@ -110,7 +110,7 @@ int TestClipScales(int argc, char* argv[])
   vtkNew<vtkLocalAmbientOcclusion> lao;
   lao->SetInputData(volume);
   lao->SetOpacityFunction(tf);
-  lao->SetQualityPresetToCustom(); // the settings below apply
+  lao->SetQualityToCustom(); // the settings below apply
   lao->SetRayPattern(vtkLocalAmbientOcclusion::RAYS_6);
   lao->SetBackendToCPU();
   const double reach = 16.0; // 4 voxels

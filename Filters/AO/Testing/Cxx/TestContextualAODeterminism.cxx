@@ -48,7 +48,7 @@ int TestContextualAODeterminism(int argc, char* argv[])
     vtkNew<vtkLocalAmbientOcclusion> lao;
     lao->SetInputData(volume);
     lao->SetOpacityFunction(tf);
-    lao->SetQualityPresetToCustom(); // the settings below apply
+    lao->SetQualityToCustom(); // the settings below apply
     lao->SetRayPattern(vtkLocalAmbientOcclusion::RAYS_54);
     lao->SetNumberOfThreads(threads);
     vtkNew<vtkClipDepthMaps> maps;

@@ -39,7 +39,7 @@ int RunPoses(vtkImageData* volume, vtkPolyData* mesh, const std::vector<vtkCAO::
   vtkNew<vtkLocalAmbientOcclusion> lao;
   lao->SetInputData(volume);
   lao->SetOpacityFunction(tf);
-  lao->SetQualityPresetToCustom(); // the settings below apply
+  lao->SetQualityToCustom(); // the settings below apply
   lao->SetRayPattern(pattern);
   const double* s = volume->GetSpacing();
   lao->SetReach(4.0 * std::min({ s[0], s[1], s[2] }));

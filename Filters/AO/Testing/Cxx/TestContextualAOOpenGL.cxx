@@ -51,7 +51,7 @@ void Configure(Pipeline& p, vtkImageData* volume, vtkPolyData* mesh, vtkPiecewis
 {
   p.lao->SetInputData(volume);
   p.lao->SetOpacityFunction(tf);
-  p.lao->SetQualityPresetToCustom(); // the settings below apply
+  p.lao->SetQualityToCustom(); // the settings below apply
   p.lao->SetRayPattern(pattern);
   const double* s = volume->GetSpacing();
   p.lao->SetReach(4.0 * std::min({ s[0], s[1], s[2] }));

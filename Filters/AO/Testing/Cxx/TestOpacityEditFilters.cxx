@@ -67,7 +67,7 @@ int TestOpacityEditFilters(int argc, char* argv[])
   vtkNew<vtkLocalAmbientOcclusion> lao;
   lao->SetInputData(volume);
   lao->SetOpacityFunction(tf);
-  lao->SetQualityPresetToCustom();
+  lao->SetQualityToCustom();
   lao->SetRayPattern(vtkLocalAmbientOcclusion::RAYS_14);
   lao->SetReach(12.0);
   lao->SetBackend(vtkAOAlgorithm::CPU);
@@ -111,7 +111,7 @@ int TestOpacityEditFilters(int argc, char* argv[])
     vtkNew<vtkLocalAmbientOcclusion> full;
     full->SetInputData(volume);
     full->SetOpacityFunction(f);
-    full->SetQualityPresetToCustom();
+    full->SetQualityToCustom();
     full->SetRayPattern(vtkLocalAmbientOcclusion::RAYS_14);
     full->SetReach(12.0);
     full->SetBackend(vtkAOAlgorithm::CPU);
@@ -219,7 +219,7 @@ int TestOpacityEditFilters(int argc, char* argv[])
     vtkNew<vtkLocalAmbientOcclusion> solo;
     solo->SetInputData(volume);
     solo->SetOpacityFunction(f);
-    solo->SetQualityPresetToCustom();
+    solo->SetQualityToCustom();
     solo->SetRayPattern(vtkLocalAmbientOcclusion::RAYS_14);
     solo->SetReach(12.0);
     solo->SetBackend(vtkAOAlgorithm::CPU);
@@ -229,7 +229,7 @@ int TestOpacityEditFilters(int argc, char* argv[])
       vtkNew<vtkLocalAmbientOcclusion> run;
       run->SetInputData(volume);
       run->SetOpacityFunction(g);
-      run->SetQualityPresetToCustom();
+      run->SetQualityToCustom();
       run->SetRayPattern(vtkLocalAmbientOcclusion::RAYS_14);
       run->SetReach(12.0);
       run->SetBackend(vtkAOAlgorithm::CPU);

@@ -59,7 +59,7 @@ void Build(Pipeline& p, vtkImageData* volume, vtkPiecewiseFunction* tf, double r
 {
   p.lao->SetInputData(volume);
   p.lao->SetOpacityFunction(tf);
-  p.lao->SetQualityPresetToCustom(); // the settings below apply
+  p.lao->SetQualityToCustom(); // the settings below apply
   p.lao->SetRayPattern(vtkLocalAmbientOcclusion::RAYS_6);
   p.lao->SetReach(reach);
   p.lao->SetNumberOfSamples(4);

@@ -61,7 +61,7 @@ lao = LAO()
 lao.SetInputConnection(reader.GetOutputPort())
 lao.SetOpacityFunction(tf)
 lao.SetReach(4.0)
-lao.SetQualityPresetToCustom()  # the settings below apply
+lao.SetQualityToCustom()  # the settings below apply
 lao.SetRayPattern(LAO.RAYS_14)
 lao.SetBackendToCPU()
 lao.OutputOpacityOn()

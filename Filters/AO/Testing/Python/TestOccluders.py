@@ -73,7 +73,7 @@ def new_lao():
     f.SetInputData(volume)
     f.SetOpacityFunction(tf)
     f.SetReach(4.0)
-    f.SetQualityPresetToCustom()
+    f.SetQualityToCustom()
     f.SetRayPattern(LAO.RAYS_14)
     f.SetBackendToCPU()
     f.OutputOpacityOn()

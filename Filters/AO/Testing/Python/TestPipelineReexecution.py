@@ -41,7 +41,7 @@ tf.AddPoint(255, 0.8)
 lao = vtkLocalAmbientOcclusion()
 lao.SetInputConnection(reader.GetOutputPort())
 lao.SetOpacityFunction(tf)
-lao.SetQualityPresetToCustom()  # the settings below apply
+lao.SetQualityToCustom()  # the settings below apply
 lao.SetRayPattern(vtkLocalAmbientOcclusion.RAYS_14)
 sphere = vtkSphereSource()
 sphere.SetRadius(12)
@@ -83,7 +83,7 @@ direct = vtkContextualAmbientOcclusion()
 direct.SetInputConnection(0, reader.GetOutputPort())
 direct.SetInputConnection(1, maps.GetOutputPort())
 direct.SetOpacityFunction(tf)
-direct.SetQualityPreset(0)  # Custom: the settings below apply
+direct.SetQuality(0)  # Custom: the settings below apply
 direct.SetRayPattern(vtkLocalAmbientOcclusion.RAYS_14)
 direct.SetPoseTransform(pose)
 for step in range(3):

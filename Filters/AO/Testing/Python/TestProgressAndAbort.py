@@ -36,7 +36,7 @@ def long_run(backend, rays, abort_at):
     """Returns the progress values seen and the filter, aborted at `abort_at`."""
     lao = cao.vtkLocalAmbientOcclusion()
     lao.SetInputConnection(reader.GetOutputPort())
-    lao.SetQualityPresetToCustom()  # the settings below apply
+    lao.SetQualityToCustom()  # the settings below apply
     lao.SetSampleDensity(1.0)
     lao.SetRayPattern(lao.FIBONACCI)
     lao.SetNumberOfRays(rays)
@@ -110,7 +110,7 @@ if not window.IsUsable():
 else:
     mapper = cao.vtkContextualAOVolumeMapper()
     mapper.SetInputConnection(reader.GetOutputPort())
-    mapper.SetQualityPresetToCustom()  # the settings below apply
+    mapper.SetQualityToCustom()  # the settings below apply
     mapper.SetSampleDensity(1.0)
     mapper.SetRayPattern(mapper.FIBONACCI)
     mapper.SetNumberOfRays(48)

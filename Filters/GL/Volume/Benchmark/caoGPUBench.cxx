@@ -164,7 +164,7 @@ int main(int argc, char* argv[])
     cao::VolumeGeometry g;
     std::copy(dims, dims + 3, g.dims);
     cao::LAOSettings settings; // the pattern given, one sample per voxel, no variation
-    settings.preset = cao::QualityPreset::Custom;
+    settings.quality = cao::Quality::Custom;
     settings.sampleDensity = 1.0;
     settings.variation = cao::RayVariation::None;
     int k = 64;

@@ -563,17 +563,17 @@ void Report(const Options& o)
   st = frame("scalars modified");
   CAO_EXPECT(Has(st, "precompute") && !Has(st, "depth_maps"), "%s", Join(st).c_str());
 
-  // A quality preset: the full LAO. A setting the preset fixes changes
+  // A quality level: the full LAO. A setting the level fixes changes
   // nothing; back to the individual settings, the full LAO again.
-  m->SetQualityPresetToBalanced(); // (the default is Interactive)
-  st = frame("quality preset set");
+  m->SetQualityToMedium(); // (the default is Low)
+  st = frame("quality level set");
   CAO_EXPECT(Has(st, "precompute") && Has(st, "classify") && !Has(st, "depth_maps"), "%s",
     Join(st).c_str());
   m->SetStartOffset(0.25);
   m->SetRayVariationToJitter();
   st = frame("settings the preset fixes");
   CAO_EXPECT(!Has(st, "precompute") && !Has(st, "depth_maps"), "%s", Join(st).c_str());
-  m->SetQualityPresetToCustom();
+  m->SetQualityToCustom();
   st = frame("quality preset custom");
   CAO_EXPECT(Has(st, "precompute") && !Has(st, "depth_maps"), "%s", Join(st).c_str());
   m->SetSampleDensity(3.0);
@@ -745,9 +745,9 @@ void BadInput(const Options& o)
   s.clip->SetScale(1.0);
   // A setting out of range after a good frame (everything cached) is still
   // refused, whether or not it changes what is cached.
-  m->SetQualityPreset(7);
-  expect("quality preset 7 after a good frame", "QualityPreset");
-  m->SetQualityPreset(vtkContextualAOVolumeMapper::CUSTOM);
+  m->SetQuality(7);
+  expect("quality 7 after a good frame", "Quality");
+  m->SetQuality(vtkContextualAOVolumeMapper::CUSTOM);
   // A bad reach is refused with its limit while the AO is on; with the AO
   // off no LAO is planned, so it does not matter and the volume draws (it
   // vanished with an error before: the plan was built either way).
@@ -908,7 +908,7 @@ struct MatterViews
 };
 
 bool MatterPhantom(const Options& o, int calibration, MatterViews& out, caotest::Image* top,
-  int preset = vtkContextualAOVolumeMapper::INTERACTIVE, bool oblique = true)
+  int preset = vtkContextualAOVolumeMapper::LOW, bool oblique = true)
 {
   Scene s;
   if (!s.Open(o.window))
@@ -920,7 +920,7 @@ bool MatterPhantom(const Options& o, int calibration, MatterViews& out, caotest:
   }, 63.75, 255.0, 0.8, 0.9, 0.85, 0.7);
   s.renderer->SetBackground(0.0, 0.0, 0.0);
   s.mapper->SetAOCalibration(calibration);
-  s.mapper->SetQualityPreset(preset);
+  s.mapper->SetQuality(preset);
   vtkCamera* camera = s.renderer->GetActiveCamera();
   camera->ParallelProjectionOn();
   const auto frame = [&](bool ao) {
@@ -998,21 +998,21 @@ void MatterCalibration(const Options& o)
       m->median[1][2], m->median[1][3]);
   CAO_EXPECT(cal.topFace >= 0.95, "the open face from above: %.3f of AO off", cal.topFace);
   // The slot: at most 0.70 of AO off at the default (14 rays, measured
-  // 0.68; the former default's 6 rotated axes gave 0.75) and at Balanced
-  // (0.65); the accurate LAO (Reference) measured 0.70, bounded at 0.75.
+  // 0.68; the former default's 6 rotated axes gave 0.75) and at Medium
+  // (0.65); the accurate LAO (High) measured 0.70, bounded at 0.75.
   CAO_EXPECT(cal.slotFloor <= 0.70, "the slot's floor from above: %.3f of AO off", cal.slotFloor);
-  for (int preset : { vtkContextualAOVolumeMapper::BALANCED, vtkContextualAOVolumeMapper::REFERENCE })
+  for (int preset : { vtkContextualAOVolumeMapper::MEDIUM, vtkContextualAOVolumeMapper::HIGH })
   {
     MatterViews accurate;
     if (!MatterPhantom(o, vtkContextualAOVolumeMapper::AO_CALIBRATION_HALF_SPACE, accurate, nullptr,
           preset, false))
       return;
     std::printf("block of opacity 0.8, half-space, %s: open face %.3f, slot floor %.3f\n",
-      preset == vtkContextualAOVolumeMapper::BALANCED ? "Balanced" : "Reference", accurate.topFace,
+      preset == vtkContextualAOVolumeMapper::MEDIUM ? "Medium" : "High", accurate.topFace,
       accurate.slotFloor);
     CAO_EXPECT(accurate.topFace >= 0.95 &&
-        accurate.slotFloor <= (preset == vtkContextualAOVolumeMapper::BALANCED ? 0.70 : 0.75),
-      "preset %d: open face %.3f, slot floor %.3f of AO off", preset, accurate.topFace,
+        accurate.slotFloor <= (preset == vtkContextualAOVolumeMapper::MEDIUM ? 0.70 : 0.75),
+      "quality %d: open face %.3f, slot floor %.3f of AO off", preset, accurate.topFace,
       accurate.slotFloor);
   }
   double worst = 1.0, worstRaw = 1.0;
@@ -1056,7 +1056,7 @@ bool GrainPhantom(const Options& o, bool rotated, double ratio[2][4], caotest::I
   s.window->SetSize(400, 400); // a few pixels per voxel, as a user sees a volume
   if (rotated)
   {
-    s.mapper->SetQualityPresetToCustom();
+    s.mapper->SetQualityToCustom();
     s.mapper->SetRayPattern(vtkContextualAOVolumeMapper::RAYS_6);
     s.mapper->SetSampleDensity(2.0);
     s.mapper->SetRayVariation(vtkContextualAOVolumeMapper::ROTATE);
@@ -1225,10 +1225,10 @@ void Calibration(const Options& o)
     q.Frame();
     const double qTop = q.top, qSlot = q.slot;
     q.s.mapper->AmbientOcclusionOn();
-    for (int preset : { vtkContextualAOVolumeMapper::INTERACTIVE, vtkContextualAOVolumeMapper::BALANCED,
-           vtkContextualAOVolumeMapper::REFERENCE, vtkContextualAOVolumeMapper::CUSTOM })
+    for (int preset : { vtkContextualAOVolumeMapper::LOW, vtkContextualAOVolumeMapper::MEDIUM,
+           vtkContextualAOVolumeMapper::HIGH, vtkContextualAOVolumeMapper::CUSTOM })
     {
-      q.s.mapper->SetQualityPreset(preset);
+      q.s.mapper->SetQuality(preset);
       if (preset == vtkContextualAOVolumeMapper::CUSTOM)
       {
         q.s.mapper->SetRayPattern(vtkContextualAOVolumeMapper::RAYS_26);
@@ -1236,30 +1236,30 @@ void Calibration(const Options& o)
         q.s.mapper->SetRayVariation(vtkContextualAOVolumeMapper::NONE);
       }
       q.Frame();
-      const char* names[] = { "26 rays, 1/voxel (old default)", "Interactive (default)",
-        "Balanced", "Reference" };
+      const char* names[] = { "26 rays, 1/voxel (old default)", "Low (default)", "Medium",
+        "High" };
       std::printf("%d | %s | %.3f | %.3f\n", width, names[preset], q.top / qTop, q.slot / qSlot);
       slotAt[preset] = q.slot / qSlot;
-      if (width == 3 && preset == vtkContextualAOVolumeMapper::REFERENCE)
+      if (width == 3 && preset == vtkContextualAOVolumeMapper::HIGH)
         CAO_EXPECT(q.slot / qSlot <= 0.70 && std::fabs(q.top / qTop - 1.0) <= 0.05,
-          "the accurate LAO (Reference) should agree: top %.3f, slot %.3f", q.top / qTop,
+          "the accurate LAO (High) should agree: top %.3f, slot %.3f", q.top / qTop,
           q.slot / qSlot);
     }
     // The default's picture follows the accurate one at every width:
     // within 0.1, and 0.12 for the 2-voxel slot, where 14 fixed rays see
-    // its sky through 2 directions against Reference's 100 (measured 0.117;
-    // Balanced, 14 rays at 4 samples per voxel, 0.140, so the directions,
+    // its sky through 2 directions against High's 100 (measured 0.117;
+    // Medium, 14 rays at 4 samples per voxel, 0.140, so the directions,
     // not the step, set it).
     const double agree = width == 2 ? 0.12 : 0.1;
-    CAO_EXPECT(std::fabs(slotAt[vtkContextualAOVolumeMapper::INTERACTIVE] -
-                 slotAt[vtkContextualAOVolumeMapper::REFERENCE]) <= agree,
-      "slot %d wide: the default (%.3f) and Reference (%.3f) differ by more than %.2f", width,
-      slotAt[vtkContextualAOVolumeMapper::INTERACTIVE], slotAt[vtkContextualAOVolumeMapper::REFERENCE],
+    CAO_EXPECT(std::fabs(slotAt[vtkContextualAOVolumeMapper::LOW] -
+                 slotAt[vtkContextualAOVolumeMapper::HIGH]) <= agree,
+      "slot %d wide: the default (%.3f) and High (%.3f) differ by more than %.2f", width,
+      slotAt[vtkContextualAOVolumeMapper::LOW], slotAt[vtkContextualAOVolumeMapper::HIGH],
       agree);
   }
   // One sample per ray: every LAO is 1 (its only sample is never occluded),
   // so nothing darkens, calibrated or not (the calibration's range is empty).
-  p.s.mapper->SetQualityPresetToCustom();
+  p.s.mapper->SetQualityToCustom();
   p.s.mapper->SetNumberOfSamples(1);
   p.Frame();
   CAO_EXPECT(std::fabs(p.top / topOff - 1.0) <= 0.01 && std::fabs(p.slot / slotOff - 1.0) <= 0.01,

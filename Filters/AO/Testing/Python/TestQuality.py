@@ -1,17 +1,17 @@
-"""Quality presets, start offsets and ray variations, end to end through the
+"""Quality levels (Low, Medium, High, Custom: cao::Quality), start offsets and ray variations, end to end through the
 VTK filters (CPU backend, small reach so it runs in seconds):
 
- - for each preset, vtkLocalAmbientOcclusion with QualityPreset=P gives
-   bit for bit the AO of the same filter with the preset's settings set by
+ - for each quality level, vtkLocalAmbientOcclusion with Quality=P gives
+   bit for bit the AO of the same filter with the level's settings set by
    hand (read back from the LAOSettings field array, which records the
    settings in effect), and differs from the CUSTOM defaults;
- - changing QualityPreset re-executes the filter, setting it again does not;
+ - changing Quality re-executes the filter, setting it again does not;
  - vtkContextualAmbientOcclusion downstream of an LAO with RayVariation
    ROTATE_JITTER and StartOffset 0.5 rebuilds the same plan from
    LAOSettings: its Verify (a full recompute) finds no difference at any
    pose; with the variation stripped from the array (an old 8-component
    array) the same check does find differences, so it is not vacuous; the
-   CAO filter's own LAO (no upstream) honours a forwarded preset;
+   CAO filter's own LAO (no upstream) honours a forwarded quality;
  - a piece of an LAO with RayVariation ROTATE whose input starts at odd
    indices equals the whole volume's values at those voxels (the variant
    follows the global voxel index)."""
@@ -69,7 +69,7 @@ def lao_filter(**settings):
     f.SetOpacityFunction(tf)
     f.SetReach(REACH)
     f.SetBackendToCPU()
-    f.SetQualityPresetToCustom()  # the individual settings apply (unless given a preset)
+    f.SetQualityToCustom()  # the individual settings apply (unless given a quality level)
     for name, value in settings.items():
         getattr(f, "Set" + name)(value)
     return f
@@ -80,14 +80,14 @@ def lao_filter(**settings):
 # clamped, or, for the reach, silently replaced by the default).
 f = LAO()
 check((f.GetRayPattern(), f.GetSampleDensity(), f.GetStartOffset(), f.GetRayVariation(),
-       f.GetQualityPreset())
-      == (LAO.RAYS_14, 1.0, 0.5, LAO.NONE, LAO.INTERACTIVE),
-      "defaults: the Interactive preset, the individual settings equal to its (14 rays, density 1, "
+       f.GetQuality())
+      == (LAO.RAYS_14, 1.0, 0.5, LAO.NONE, LAO.LOW),
+      "defaults: Low quality, the individual settings equal to its (14 rays, density 1, "
       "offset 0.5, no variation)")
 errors = []
 for name, value, limit in (("StartOffset", 1.5, "[0, 1)"), ("SampleDensity", -1.0, "0.001 to 1000"),
                            ("RayVariation", 7, "unknown ray variation"),
-                           ("QualityPreset", 9, "(Reference); got 9"),
+                           ("Quality", 9, "(High); got 9"),
                            ("Reach", -1.0, "0 selects the default"),
                            ("Reach", float("nan"), "0 selects the default"),
                            ("NumberOfSamples", 1000000000, "1 to 65536"),
@@ -104,11 +104,11 @@ for name, value, limit in (("StartOffset", 1.5, "[0, 1)"), ("SampleDensity", -1.
     check(kept and limit in text and g.GetOutput().GetPointData().GetArray("AmbientOcclusion") is None,
           "%s = %r is kept and is an error stating the limit (%r)" % (name, value, limit))
 f.SetRayVariationToRotate()
-f.SetQualityPresetToBalanced()
-check((f.GetRayVariation(), f.GetQualityPreset()) == (LAO.ROTATE, LAO.BALANCED),
-      "SetRayVariationTo... and SetQualityPresetTo...")
+f.SetQualityToMedium()
+check((f.GetRayVariation(), f.GetQuality()) == (LAO.ROTATE, LAO.MEDIUM),
+      "SetRayVariationTo... and SetQualityTo...")
 
-# The defaults before the Interactive preset: 26 rays, one sample per voxel.
+# The defaults before Low quality: 26 rays, one sample per voxel.
 custom = lao_filter(RayPattern=LAO.RAYS_26, SampleDensity=1.0, RayVariation=LAO.NONE)
 custom.Update()
 custom_ao = ao_of(custom.GetOutput())
@@ -116,14 +116,14 @@ p = parameters(custom.GetOutput())
 # One component per setting, named as the setting (its Set method and the
 # ParaView property), then what the run made of them.
 SETTING_NAMES = ["RayPattern", "NumberOfRays", "Reach", "NumberOfSamples", "SampleDensity",
-                 "StartOffset", "RayVariation", "QualityPreset", "Rays", "Step",
+                 "StartOffset", "RayVariation", "Quality", "Rays", "Step",
                  "ScalarOpacityUnitDistance", "Milliseconds"]
 check(list(p) == SETTING_NAMES
-      and (p["RayPattern"], p["StartOffset"], p["RayVariation"], p["QualityPreset"], p["Reach"])
+      and (p["RayPattern"], p["StartOffset"], p["RayVariation"], p["Quality"], p["Reach"])
       == (LAO.RAYS_26, 0.5, LAO.NONE, LAO.CUSTOM, REACH),
       "LAOSettings names every setting, the custom settings in effect: %s" % p)
 
-# The default filter is the Interactive preset, bit for bit, and equal to
+# The default filter is Low quality, bit for bit, and equal to
 # Custom with the individual defaults.
 default = LAO()
 default.SetInputData(volume)
@@ -131,52 +131,52 @@ default.SetOpacityFunction(tf)
 default.SetReach(REACH)
 default.SetBackendToCPU()
 default.Update()
-interactive = lao_filter(QualityPreset=LAO.INTERACTIVE)
-interactive.Update()
+low = lao_filter(Quality=LAO.LOW)
+low.Update()
 custom_defaults = lao_filter()
 custom_defaults.Update()
-check(parameters(default.GetOutput())["QualityPreset"] == LAO.INTERACTIVE
-      and np.array_equal(ao_of(default.GetOutput()), ao_of(interactive.GetOutput()))
+check(parameters(default.GetOutput())["Quality"] == LAO.LOW
+      and np.array_equal(ao_of(default.GetOutput()), ao_of(low.GetOutput()))
       and np.array_equal(ao_of(default.GetOutput()), ao_of(custom_defaults.GetOutput())),
-      "the default is the Interactive preset, equal to Custom with the individual defaults")
-# A setting the default preset overrides is named in a warning.
+      "the default is Low quality, equal to Custom with the individual defaults")
+# A setting the default quality overrides is named in a warning.
 default.SetRayPattern(LAO.RAYS_26)
 window = vtkStringOutputWindow()
 vtkOutputWindow.SetInstance(window)
 default.Update()
 vtkOutputWindow.SetInstance(None)
-check("QualityPreset interactive overrides RayPattern 2" in window.GetOutput()
+check("Quality low overrides RayPattern 2" in window.GetOutput()
       and "Custom (0)" in window.GetOutput(),
-      "a ray pattern set under the default preset is reported as overridden: %r"
+      "a ray pattern set under the default quality is reported as overridden: %r"
       % " ".join(window.GetOutput().split())[:200])
-check(np.array_equal(ao_of(default.GetOutput()), ao_of(interactive.GetOutput())),
+check(np.array_equal(ao_of(default.GetOutput()), ao_of(low.GetOutput())),
       "... and does not change the AO")
-# Negative control: another preset over settings left at their defaults
+# Negative control: another quality level over settings left at their defaults
 # (what ParaView pushes) warns of nothing.
 quiet = LAO()
 quiet.SetInputData(volume)
 quiet.SetOpacityFunction(tf)
 quiet.SetReach(REACH)
 quiet.SetBackendToCPU()
-quiet.SetQualityPresetToBalanced()
+quiet.SetQualityToMedium()
 window = vtkStringOutputWindow()
 vtkOutputWindow.SetInstance(window)
 quiet.Update()
 vtkOutputWindow.SetInstance(None)
 check("overrides" not in window.GetOutput(),
-      "a preset over default settings warns of nothing: %r" % window.GetOutput()[:200])
+      "a quality level over default settings warns of nothing: %r" % window.GetOutput()[:200])
 
-# Each preset equals its own settings set by hand, and is not the old default.
-for preset, name in ((LAO.INTERACTIVE, "interactive"), (LAO.BALANCED, "balanced"),
-                     (LAO.REFERENCE, "reference")):
-    # NumberOfSamples and the other individual settings are ignored under a preset.
-    f = lao_filter(QualityPreset=preset, NumberOfSamples=3, StartOffset=0.25,
+# Each quality level equals its own settings set by hand, and is not the old default.
+for level, name in ((LAO.LOW, "low"), (LAO.MEDIUM, "medium"),
+                     (LAO.HIGH, "high")):
+    # NumberOfSamples and the other individual settings are ignored under a quality level.
+    f = lao_filter(Quality=level, NumberOfSamples=3, StartOffset=0.25,
                    RayVariation=LAO.JITTER, SampleDensity=3.0)
     f.Update()
     got = ao_of(f.GetOutput())
     p = parameters(f.GetOutput())
-    check(p["QualityPreset"] == preset and p["Reach"] == REACH,
-          "%s: LAOSettings records the preset and the user's reach" % name)
+    check(p["Quality"] == level and p["Reach"] == REACH,
+          "%s: LAOSettings records the quality and the user's reach" % name)
     by_hand = lao_filter(RayPattern=int(p["RayPattern"]), NumberOfRays=int(p["NumberOfRays"]),
                          NumberOfSamples=int(p["NumberOfSamples"]), StartOffset=p["StartOffset"],
                          RayVariation=int(p["RayVariation"]))
@@ -191,22 +191,22 @@ for preset, name in ((LAO.INTERACTIVE, "interactive"), (LAO.BALANCED, "balanced"
                              p["RayVariation"]))
     check(not np.array_equal(got, custom_ao), "%s: differs from 26 rays at one sample per voxel" % name)
 
-# Re-execution: a new preset re-executes the filter, the same one does not.
+# Re-execution: a new quality re-executes the filter, the same one does not.
 runs = [0]
 f = lao_filter(RayPattern=LAO.RAYS_26, SampleDensity=1.0, RayVariation=LAO.NONE)
 f.AddObserver("StartEvent", lambda *_: runs.__setitem__(0, runs[0] + 1))
 f.Update()
-f.SetQualityPreset(LAO.INTERACTIVE)
+f.SetQuality(LAO.LOW)
 f.Update()
-interactive = ao_of(f.GetOutput())
-f.SetQualityPreset(LAO.INTERACTIVE)
+low = ao_of(f.GetOutput())
+f.SetQuality(LAO.LOW)
 f.Update()
-check(runs[0] == 2, "a preset change re-executes the LAO, the same preset again does not (%d runs)"
+check(runs[0] == 2, "a quality level change re-executes the LAO, the same level again does not (%d runs)"
       % runs[0])
-f.SetQualityPresetToCustom()
+f.SetQualityToCustom()
 f.Update()
 check(runs[0] == 3 and np.array_equal(ao_of(f.GetOutput()), custom_ao)
-      and not np.array_equal(interactive, custom_ao), "back to custom: the custom AO again")
+      and not np.array_equal(low, custom_ao), "back to custom: the custom AO again")
 
 # The contextual update stays exact with a variation and a start offset.
 neghip = vtkSLCReader()
@@ -285,7 +285,7 @@ check(v is not None and v.GetComponent(0, 1) > 0,
       "%s differing voxels)" % (v.GetComponent(0, 1) if v else None))
 # An 8-component array of an LAO without offset or variation is still exact.
 plain = LAO()
-plain.SetQualityPresetToCustom()
+plain.SetQualityToCustom()
 plain.SetSampleDensity(1.0)
 plain.SetRayVariationToNone()
 plain.SetInputConnection(neghip.GetOutputPort())
@@ -311,7 +311,7 @@ direct.SetInputConnection(0, neghip.GetOutputPort())
 direct.SetInputConnection(1, maps.GetOutputPort())
 direct.SetOpacityFunction(ntf)
 direct.SetReach(4.0)
-direct.SetQualityPreset(LAO.BALANCED)
+direct.SetQuality(LAO.MEDIUM)
 direct.SetBackendToCPU()
 direct.VerifyOn()
 direct.SetPoseTransform(pose)
@@ -321,20 +321,20 @@ ref = LAO()
 ref.SetInputConnection(neghip.GetOutputPort())
 ref.SetOpacityFunction(ntf)
 ref.SetReach(4.0)
-ref.SetQualityPreset(LAO.BALANCED)
+ref.SetQuality(LAO.MEDIUM)
 ref.SetBackendToCPU()
 ref.Update()
 v = direct.GetOutput().GetFieldData().GetArray("Verification")
 check(p == {**parameters(ref.GetOutput()), "Milliseconds": p["Milliseconds"]}
       and v.GetComponent(0, 0) == 0.0,
-      "the CAO filter's internal LAO follows a forwarded QualityPreset, exactly")
-direct.SetStartOffset(0.5)  # overridden by the preset: the settings in effect are unchanged
-direct.SetQualityPreset(LAO.CUSTOM)
+      "the CAO filter's internal LAO follows a forwarded Quality, exactly")
+direct.SetStartOffset(0.5)  # overridden by the quality: the settings in effect are unchanged
+direct.SetQuality(LAO.CUSTOM)
 direct.SetRayVariation(LAO.ROTATE)
 direct.Update()
 p = parameters(direct.GetOutput())
 check((direct.GetStartOffset(), direct.GetRayVariation(), direct.GetSampleDensity()) ==
-      (0.5, LAO.ROTATE, 1.0) and (p["StartOffset"], p["RayVariation"], p["QualityPreset"]) ==
+      (0.5, LAO.ROTATE, 1.0) and (p["StartOffset"], p["RayVariation"], p["Quality"]) ==
       (0.5, LAO.ROTATE, LAO.CUSTOM) and direct.GetPrecomputeCount() == 2,
       "forwarded StartOffset and RayVariation reach the internal LAO")
 
@@ -347,7 +347,7 @@ def hydrogen_lao():
     htf.AddPoint(0.05, 0.1)
     htf.AddPoint(0.4, 0.9)
     f = LAO()
-    f.SetQualityPresetToCustom()
+    f.SetQualityToCustom()
     f.SetInputConnection(reader.GetOutputPort())
     f.SetOpacityFunction(htf)
     f.SetReach(4.0)
