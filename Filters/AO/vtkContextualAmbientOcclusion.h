@@ -149,6 +149,10 @@ public:
   int GetRayVariation() { return this->Precompute->GetRayVariation(); }
   void SetQuality(int v) { this->Precompute->SetQuality(v); }
   int GetQuality() { return this->Precompute->GetQuality(); }
+  void SetQualityToCustom() { this->SetQuality(vtkLocalAmbientOcclusion::CUSTOM); }
+  void SetQualityToLow() { this->SetQuality(vtkLocalAmbientOcclusion::LOW); }
+  void SetQualityToMedium() { this->SetQuality(vtkLocalAmbientOcclusion::MEDIUM); }
+  void SetQualityToHigh() { this->SetQuality(vtkLocalAmbientOcclusion::HIGH); }
   void SetReach(double v) { this->Precompute->SetReach(v); }
   double GetReach() { return this->Precompute->GetReach(); }
   void SetComponent(int v) { this->Precompute->SetComponent(v); }

@@ -64,12 +64,13 @@ struct vtkLocalAmbientOcclusion::Internals
   double LastUnitDistance = 0.0;
   /// Whether the last run had occluders (its opacity then holds them).
   bool LastOccluded = false;
-  /// The scalars (identity, modification time, component) whose NaN or
-  /// infinite values the last warning counted: an edit of the opacity map
+  /// The scalars (identity, modification time, component) and the count
+  /// of NaN or infinite values the last warning gave: an edit of the opacity map
   /// over the same scalars does not repeat it.
   const vtkDataArray* WarnedScalars = nullptr;
   vtkMTimeType WarnedScalarsTime = 0;
   int WarnedComponent = -1;
+  std::int64_t WarnedCount = 0; // (values changed without the array's Modified: a new count warns)
 
   /// `kept` when only this filter holds it and it has `n` values: it is
   /// then written again in place (no new pages: on a virtual machine a
@@ -527,12 +528,13 @@ int vtkLocalAmbientOcclusion::RequestData(
   });
   if (nonFinite > 0 &&
     (in.WarnedScalars != scalars || in.WarnedScalarsTime != scalars->GetMTime() ||
-      in.WarnedComponent != component))
+      in.WarnedComponent != component || in.WarnedCount != nonFinite))
   {
     vtkWarningMacro(<< nonFinite << " NaN or Inf scalar value(s) treated as transparent.");
     in.WarnedScalars = scalars;
     in.WarnedScalarsTime = scalars->GetMTime();
     in.WarnedComponent = component;
+    in.WarnedCount = nonFinite;
   }
   else if (nonFinite == 0)
     in.WarnedScalars = nullptr;

@@ -71,7 +71,8 @@ bool ComputeOpacity(vtkAlgorithm* self, vtkDataArray* scalars, int component,
     std::vector<float> table(size);
     for (std::size_t i = 0; i < size; ++i)
     {
-      table[i] = cao::CorrectOpacity(tf->GetValue(static_cast<double>(lo + i)), stepOverUnit);
+      table[i] = cao::CorrectOpacity(
+        tf->GetValue(static_cast<double>(lo + static_cast<long long>(i))), stepOverUnit);
     }
     // Arrays in VTK's standard layout are read through their pointer, by
     // type (GetComponent is a virtual call per voxel: 0.3 s on 256^3).

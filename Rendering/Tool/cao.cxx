@@ -245,7 +245,7 @@ std::string JsonEscape(const std::string& text)
 /// The settings an LAO output was computed with (its LAOSettings field
 /// array, after any quality level), as a JSON fragment or as text: the ray
 /// pattern as --rays spells it, the start offset, the variation and the
-/// preset; and the run (rays, samples, milliseconds).
+/// quality level; and the run (rays, samples, milliseconds).
 struct LAOUsed
 {
   std::string pattern, variation, quality;

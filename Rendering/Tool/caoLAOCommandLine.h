@@ -1,7 +1,7 @@
 /**
  * caoLAOCommandLine — what the LAO quality options shared by `cao lao`,
  * `cao carve`, `cao tf` and `cao render` set (--quality NAME, a quality
- * preset; --density D, --offset F, --variation NAME; parsed by
+ * level; --density D, --offset F, --variation NAME; parsed by
  * caoOptions' AddLAOOptions) and the check between them and a quality level.
  */
 #ifndef caoLAOCommandLine_h
@@ -21,7 +21,7 @@ namespace caocli
 /// would override.
 struct LAOCommandLine
 {
-  cao::LAOSettings settings; ///< preset, sampleDensity, startOffset, variation
+  cao::LAOSettings settings; ///< quality, sampleDensity, startOffset, variation
   /// The first option given that a quality level overrides (--rays,
   /// --samples, --density, --offset, --variation), for the conflict check.
   std::string overridden;

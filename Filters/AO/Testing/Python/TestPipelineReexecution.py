@@ -146,4 +146,13 @@ nan_warnings = sum(1 for w in warnings if "NaN or Inf" in w)
 if nan_warnings != 2 or "11 NaN or Inf" not in warnings[-1]:
     print(f"FAIL: new scalars with NaN must warn again, with their count: {warnings}")
     sys.exit(1)
-print("ok: the NaN warning once per scalars, not per opacity edit; again for new scalars")
+# Values changed and only the image marked modified (the array's time
+# stays): a new count warns again.
+values[6] = np.nan
+nan_image.Modified()
+nan_lao.Update()
+nan_warnings = sum(1 for w in warnings if "NaN or Inf" in w)
+if nan_warnings != 3 or "12 NaN or Inf" not in warnings[-1]:
+    print(f"FAIL: a new NaN count must warn again: {warnings}")
+    sys.exit(1)
+print("ok: the NaN warning once per scalars, not per opacity edit; again for new scalars or a new count")

@@ -305,13 +305,36 @@ check(v is not None and v.GetComponent(0, 0) == 0.0 and
       cao_legacy.GetOutput().GetFieldData().GetArray("CategoryCounts").GetComponent(0, 1) > 0,
       "an 8-component LAOParameters without variation: CAO exact")
 
+# An LAO written before the quality levels were one vocabulary names its
+# level "QualityPreset": still read, the CAO over it exact (the settings
+# travel in the other components).
+old_named = vtkImageData()
+old_named.ShallowCopy(lao.GetOutput())
+renamed = vtkDoubleArray()
+renamed.DeepCopy(lao.GetOutput().GetFieldData().GetArray("LAOSettings"))
+for c in range(renamed.GetNumberOfComponents()):
+    if renamed.GetComponentName(c) == "Quality":
+        renamed.SetComponentName(c, "QualityPreset")
+old_named.GetFieldData().RemoveArray("LAOSettings")
+old_named.GetFieldData().AddArray(renamed)
+cao_old = vtkContextualAmbientOcclusion()
+cao_old.SetInputData(0, old_named)
+cao_old.SetInputConnection(1, maps.GetOutputPort())
+cao_old.SetBackendToCPU()
+cao_old.VerifyOn()
+cao_old.SetPoseTransform(pose)
+cao_old.Update()
+v = cao_old.GetOutput().GetFieldData().GetArray("Verification")
+check(v is not None and v.GetComponent(0, 0) == 0.0 and v.GetComponent(0, 1) == 0,
+      "an LAOSettings with the former component name QualityPreset: CAO exact")
+
 # The CAO filter's own LAO (no upstream LAO) takes the forwarded settings.
 direct = vtkContextualAmbientOcclusion()
 direct.SetInputConnection(0, neghip.GetOutputPort())
 direct.SetInputConnection(1, maps.GetOutputPort())
 direct.SetOpacityFunction(ntf)
 direct.SetReach(4.0)
-direct.SetQuality(LAO.MEDIUM)
+direct.SetQualityToMedium()  # (the LAO filter's levels, by name)
 direct.SetBackendToCPU()
 direct.VerifyOn()
 direct.SetPoseTransform(pose)
@@ -328,6 +351,12 @@ v = direct.GetOutput().GetFieldData().GetArray("Verification")
 check(p == {**parameters(ref.GetOutput()), "Milliseconds": p["Milliseconds"]}
       and v.GetComponent(0, 0) == 0.0,
       "the CAO filter's internal LAO follows a forwarded Quality, exactly")
+named = []
+for setter, level in (("SetQualityToLow", LAO.LOW), ("SetQualityToHigh", LAO.HIGH),
+                      ("SetQualityToCustom", LAO.CUSTOM), ("SetQualityToMedium", LAO.MEDIUM)):
+    getattr(direct, setter)()
+    named.append(direct.GetQuality() == level)
+check(all(named), "the CAO filter names the levels as the LAO filter does: %s" % named)
 direct.SetStartOffset(0.5)  # overridden by the quality: the settings in effect are unchanged
 direct.SetQuality(LAO.CUSTOM)
 direct.SetRayVariation(LAO.ROTATE)
