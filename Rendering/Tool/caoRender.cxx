@@ -184,19 +184,24 @@ int Render(RenderOptions& o, const CLI::App* app)
         "--component)");
   double range[2];
   scalars->GetRange(range, 0);
-  if (!std::isfinite(range[0]) || !std::isfinite(range[1]))
-    return Fail(2, "the scalars contain NaN or infinite values");
   {
-    // (GetRange skips NaN: counted here, as the mapper would at its first frame)
-    long long nonFinite = 0;
+    // NaN values draw as empty space (the mapper says how many); an
+    // infinite one, or nothing but NaN, has no place on the colour map.
+    long long nan = 0, infinite = 0;
     const vtkIdType n = scalars->GetNumberOfTuples();
     const int type = scalars->GetDataType();
-    if (type == VTK_FLOAT || type == VTK_DOUBLE) // (integers hold no NaN)
+    if (type == VTK_FLOAT || type == VTK_DOUBLE) // (integers hold neither)
       for (vtkIdType i = 0; i < n; ++i)
-        nonFinite += !std::isfinite(scalars->GetComponent(i, 0));
-    if (nonFinite > 0)
-      return Fail(2, "the scalars of '" + o.volume + "' contain " + std::to_string(nonFinite) +
-          " NaN or infinite value(s)");
+      {
+        const double v = scalars->GetComponent(i, 0);
+        nan += std::isnan(v);
+        infinite += std::isinf(v);
+      }
+    if (infinite > 0)
+      return Fail(2, "the scalars of '" + o.volume + "' contain " + std::to_string(infinite) +
+          " infinite value(s) (NaN ones draw as empty space)");
+    if (n > 0 && nan == n)
+      return Fail(2, "every scalar of '" + o.volume + "' is NaN: nothing to draw");
     const double* sp = volume->GetSpacing();
     for (int d = 0; d < 3; ++d)
       if (!(sp[d] > 0.0) || !std::isfinite(sp[d]))

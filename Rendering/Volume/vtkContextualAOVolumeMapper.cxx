@@ -356,6 +356,11 @@ struct vtkContextualAOVolumeMapper::Internals
   /// AddOccluder's props, and per occluder the last reason warned.
   std::vector<vtkSmartPointer<vtkProp3D>> Occluders;
   std::map<std::size_t, std::string> OccluderWarnings;
+  /// The scalars (identity, time, count) whose NaN values were last said
+  /// to draw as empty space: an opacity edit does not repeat it.
+  const vtkDataArray* NaNWarnedScalars = nullptr;
+  vtkMTimeType NaNWarnedTime = 0;
+  std::int64_t NaNWarnedCount = 0;
   /// This frame's occluders (GatherOccluders): each mesh (null: none) and
   /// its pose in the volume's physical coordinates, read by UploadVolume.
   std::vector<vtkPolyData*> OccluderMeshes;
@@ -710,7 +715,8 @@ bool vtkContextualAOVolumeMapper::Internals::GatherInput(
       std::to_string(f.scalars->GetNumberOfComponents()) + ").");
   f.scalars->GetRange(f.range, 0);
   if (!std::isfinite(f.range[0]) || !std::isfinite(f.range[1]))
-    return f.Fail("The scalars contain NaN or infinite values.");
+    return f.Fail("The scalars contain infinite values (NaN ones draw as empty space; an "
+                  "infinite value has no place on the colour map).");
   f.property = f.volume->GetProperty();
   f.opacityFunction = f.property->GetScalarOpacity(0);
   f.unitDistance = f.property->GetScalarOpacityUnitDistance(0);
@@ -882,9 +888,21 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
     f.why.clear();
     return false;
   }
-  if (nonFinite > 0) // (GetRange skips NaN, so they are counted here)
-    return f.Fail("The scalars contain " + std::to_string(nonFinite) +
-      " NaN or infinite value(s); nothing is drawn.");
+  if (nonFinite >= f.voxels)
+    return f.Fail("Every scalar is NaN: nothing to draw.");
+  if (nonFinite > 0) // NaN (GetRange skips them; an infinite value failed above)
+  {
+    // Empty space, as the LAO's opacity takes them and the ray cast skips
+    // them (with the samples they enter by interpolation).
+    if (this->NaNWarnedScalars != f.scalars || this->NaNWarnedTime != f.scalars->GetMTime() ||
+      this->NaNWarnedCount != nonFinite)
+      vtkWarningWithObjectMacro(self, "The scalars contain " << nonFinite
+                                                             << " NaN value(s): drawn as empty space.");
+    this->NaNWarnedScalars = f.scalars;
+    this->NaNWarnedTime = f.scalars->GetMTime();
+    this->NaNWarnedCount = nonFinite;
+    f.report.reasons.emplace_back(std::to_string(nonFinite) + " NaN scalars drawn as empty space");
+  }
   // The occluders' voxels are opaque for the LAO (with the AO on and no
   // given AO: the opacity then feeds the precompute or the edit).
   if (self->AmbientOcclusion && !givenAO && !this->OccluderMeshes.empty())

@@ -251,7 +251,8 @@ void DepthBefore(float k0, int flags, float stepVoxels, out float depth, out flo
   for (float k = from; k < k0; k += 1.0)
   {
     vec3 p = g_origin + (g_first + k * step) * g_dir;
-    vec4 c = texture(tableTexture, vec2(Scalar((p + 0.5) * rp.invDims.xyz) * rp.sampling.y +
+    float sv = Scalar((p + 0.5) * rp.invDims.xyz);
+    vec4 c = isnan(sv) ? vec4(0.0) : texture(tableTexture, vec2(sv * rp.sampling.y +
         rp.sampling.z, 0.5));
     if (c.a <= 0.0 || (clipped && Removed(p, flags)))
     {
@@ -301,7 +302,9 @@ vec4 CastRay(float tFrom, float tTo, bool inclusive)
     vec3 p = origin + t * dir;
     vec3 tc = (p + 0.5) * rp.invDims.xyz;
     float s = Scalar(tc);
-    vec4 c = texture(tableTexture, vec2(s * rp.sampling.y + rp.sampling.z, 0.5));
+    // A NaN voxel (and the samples it enters by interpolation) is empty,
+    // as the LAO's opacity takes it.
+    vec4 c = isnan(s) ? vec4(0.0) : texture(tableTexture, vec2(s * rp.sampling.y + rp.sampling.z, 0.5));
     if (c.a <= 0.0)
     {
       depthBefore = 0.0;
@@ -339,7 +342,7 @@ vec4 CastRay(float tFrom, float tTo, bool inclusive)
         p = origin + t * dir;
         tc = (p + 0.5) * rp.invDims.xyz;
         s = Scalar(tc);
-        c = texture(tableTexture, vec2(s * rp.sampling.y + rp.sampling.z, 0.5));
+        c = isnan(s) ? vec4(0.0) : texture(tableTexture, vec2(s * rp.sampling.y + rp.sampling.z, 0.5));
         if (c.a <= 0.0)
           continue;
       }
@@ -368,6 +371,8 @@ vec4 CastRay(float tFrom, float tTo, bool inclusive)
       // Where the field is flat (inside matter, and so on the faces the
       // clip cuts through it) the gradient has no direction: blend towards
       // a normal facing the viewer, as a cut face would be lit.
+      if (any(isnan(g)))
+        g = vec3(0.0); // beside a NaN voxel: no direction (faces the viewer)
       vec3 n = normalMatrix * g;
       float len = length(n);
       vec3 facing = -dirWorld;
