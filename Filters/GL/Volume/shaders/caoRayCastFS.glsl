@@ -356,8 +356,19 @@ vec4 CastRay(float tFrom, float tTo, bool inclusive)
       float past = max(depthBefore - 1.0, 0.0) * muBefore / mu;
       float inMatter = max(1.0, min(depthBefore, 1.0) + past + stepVoxels);
       float depth;
-      float ao = clipped || calibrated ? VoxelAO(p, calibrated, inMatter, depth)
-                                       : texture(aoTexture, tc).r;
+      // The ray's first sample in the box, in matter: the matter starts at
+      // the box's face, and the AO there changes fast with depth (opaque
+      // matter: from the face's to the enclosed value within a voxel), so
+      // the per-pixel jitter of the sample's depth showed as grain on the
+      // faces. Its AO is read at the face, where the ray enters.
+      vec3 pAO = p, tcAO = tc;
+      if (t - step < g_tEnter && depthBefore == 0.0)
+      {
+        pAO = origin + g_tEnter * dir;
+        tcAO = (pAO + 0.5) * rp.invDims.xyz;
+      }
+      float ao = clipped || calibrated ? VoxelAO(pAO, calibrated, inMatter, depth)
+                                       : texture(aoTexture, tcAO).r;
       ambient = 1.0 - rp.sampling.w * (1.0 - ao);
       depthBefore = depth;
       muBefore = mu;
