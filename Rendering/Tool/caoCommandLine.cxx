@@ -32,12 +32,14 @@ namespace caocli
 bool FramePattern::Parse(const std::string& pattern, std::string& error)
 {
   const std::string rule = "-o '" + pattern +
-    "': the pattern needs exactly one frame-number conversion, %d or %i with an optional 0 "
-    "flag and width up to 9 (e.g. frame_%03d.png), and %% for a literal percent sign";
+    "': the pattern needs one frame-number conversion, %d or %i with an optional 0 "
+    "flag and width up to 9 (e.g. frame_%03d.png), or none for a single frame, and %% for a "
+    "literal percent sign";
   this->prefix.clear();
   this->suffix.clear();
   this->width = 0;
   this->zeroPad = false;
+  this->oneFile = false;
   int conversions = 0;
   std::string* out = &this->prefix;
   for (std::size_t i = 0; i < pattern.size(); ++i)
@@ -78,16 +80,23 @@ bool FramePattern::Parse(const std::string& pattern, std::string& error)
     out = &this->suffix;
     i = j;
   }
-  if (conversions != 1)
-  {
-    error = rule;
-    return false;
-  }
+  if (conversions == 0)
+    this->oneFile = true; // (prefix is the whole name)
   return true;
+}
+
+std::string FramePattern::OneFileError(const std::string& pattern, std::size_t frames) const
+{
+  if (!this->oneFile || frames <= 1)
+    return std::string();
+  return "-o '" + pattern + "' names one file, but " + std::to_string(frames) +
+    " frames are drawn: give a frame-number conversion (e.g. frame_%03d.png)";
 }
 
 std::string FramePattern::Name(long long frame) const
 {
+  if (this->oneFile)
+    return this->prefix;
   std::string number = std::to_string(frame < 0 ? 0 : frame);
   if (number.size() < static_cast<std::size_t>(this->width))
     number.insert(0, std::string(this->width - number.size(), this->zeroPad ? '0' : ' '));

@@ -38,10 +38,16 @@ struct FramePattern
   std::string prefix, suffix;
   int width = 0;
   bool zeroPad = false;
+  /// No conversion: one file, `prefix` (the caller refuses it for more
+  /// than one frame: OneFileError).
+  bool oneFile = false;
   /// Parse `pattern`; false with `error` naming the pattern and the rule.
   bool Parse(const std::string& pattern, std::string& error);
   /// The name of frame `frame` (0 or more).
   std::string Name(long long frame) const;
+  /// "" when `frames` fit the pattern; else why not (one file named, more
+  /// frames drawn).
+  std::string OneFileError(const std::string& pattern, std::size_t frames) const;
 };
 
 /// A VTK message without its "vtkClass (0x...): " prefix and trailing blanks.

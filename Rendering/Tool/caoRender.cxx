@@ -388,6 +388,11 @@ int Render(RenderOptions& o, const CLI::App* app)
   {
     poses.resize(1);
   }
+  {
+    const std::string oneFile = frames.OneFileError(o.output, poses.size());
+    if (!oneFile.empty())
+      return Fail(2, oneFile);
+  }
 
   renderer->ResetCamera();
   vtkCamera* camera = renderer->GetActiveCamera();

@@ -515,6 +515,14 @@ for pattern in ("x_%s%s%s%s%n.png", "x_%s.png", "x_%d_%d.png", "x_%-3d.png", "x_
     expect_error(["render", neghip, "-o", os.path.join(tmp, pattern)], 2,
                  "frame-number conversion", "-o %r refused" % pattern)
 expect_error(["render", neghip, "--image", "5x5"], 2, "--image", "tiny image")
+# One frame may take a plain name (it needed a %d); more frames may not.
+rc, out, err = run("render", neghip, "--no-clip", "--image", "32x32", "-o", os.path.join(tmp, "one.png"))
+check(rc == 0 and os.path.exists(os.path.join(tmp, "one.png")),
+      "render of one frame to a plain name: rc=%d %r" % (rc, err.strip()[:200]))
+rc, out, err = run("render", neghip, "--path", "3", "--image", "32x32", "-o", os.path.join(tmp, "three.png"))
+check(rc == 2 and "names one file, but 3 frames are drawn" in err and out == "" and
+      not os.path.exists(os.path.join(tmp, "three.png")),
+      "render of 3 frames to a plain name is refused before any output: rc=%d %r" % (rc, err.strip()[:200]))
 
 # Held-out defects (issue 13), each with the case that found it.
 head = os.path.join(data, "HeadMRVolume.mhd")
