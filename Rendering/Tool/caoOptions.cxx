@@ -324,11 +324,16 @@ void AddLAOOptions(CLI::App* app, LAOCommandLine& lao, bool samplesOption)
       cao::Quality p;
       if (cao::ParseQuality(v, p))
         return "";
+      std::string lower = v;
+      std::transform(lower.begin(), lower.end(), lower.begin(),
+        [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
       // The LAO's levels before every technique shared one vocabulary.
-      const char* renamed = v == "interactive" ? "low"
-        : v == "balanced"                      ? "medium"
-        : v == "reference"                     ? "high"
-                                               : nullptr;
+      const char* renamed = lower == "interactive" ? "low"
+        : lower == "balanced"                      ? "medium"
+        : lower == "reference"                     ? "high"
+                                                   : nullptr;
+      if (lower != v && cao::ParseQuality(lower, p))
+        return "bad value '" + v + "' (the names are lower case: '" + lower + "')";
       return renamed ? "'" + v + "' is now '" + renamed +
           "' (one quality vocabulary for every technique: low, medium, high or custom)"
                      : "bad value '" + v + "' (expected low, medium, high or custom)";

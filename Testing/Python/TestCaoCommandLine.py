@@ -361,6 +361,7 @@ check(rc == 0 and json.loads(out)["runs"][0]["quality"] == "medium" and
 for old, new in (("interactive", "low"), ("balanced", "medium"), ("reference", "high")):
     expect_error(["lao", neghip, "--quality", old], 2, "'%s' is now '%s'" % (old, new), "--quality " + old)
 expect_error(["lao", neghip, "--quality", "best"], 2, "expected low, medium, high or custom", "--quality best")
+expect_error(["lao", neghip, "--quality", "Low"], 2, "the names are lower case: 'low'", "--quality Low")
 # Explicit offset, density and variation are accepted and recorded.
 rc, out, err = run("lao", neghip, "--reach", "4", "--rays", "6", "--density", "2", "--offset", "0.5",
                    "--variation", "rotate+jitter", "--json")
