@@ -64,7 +64,9 @@ bool ComputeOpacity(vtkAlgorithm* self, vtkDataArray* scalars, int component,
   const bool integer = type != VTK_FLOAT && type != VTK_DOUBLE;
   double range[2] = { 0, 0 };
   scalars->GetRange(range, component);
-  if (integer && range[1] - range[0] < 65536.0)
+  // (Values beyond a long long's range, 64-bit unsigned ones above 2^63,
+  // take the per-value path: the table is indexed in long long.)
+  if (integer && range[1] - range[0] < 65536.0 && range[0] >= -9.2e18 && range[1] <= 9.2e18)
   {
     const long long lo = static_cast<long long>(range[0]);
     const std::size_t size = static_cast<std::size_t>(range[1] - range[0]) + 1;

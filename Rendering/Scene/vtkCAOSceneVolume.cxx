@@ -124,8 +124,17 @@ bool VolumeOpacity(vtkVolume* volume, cao::OpacityVolume& out, std::string& erro
   vtkCAO::ComputeOpacity(nullptr, scalars, 0, property->GetScalarOpacity(0), 1.0, out.alpha.data(), nonFinite);
   if (drawer && nonFinite > 0)
   {
-    error = "it is not drawn: the scalars contain NaN or infinite values";
-    return false;
+    // As the mapper: NaN voxels are empty space (opacity 0 here); an
+    // infinite value, or nothing but NaN, is not drawn.
+    double range[2];
+    scalars->GetRange(range, 0);
+    if (nonFinite >= voxels || !std::isfinite(range[0]) || !std::isfinite(range[1]) ||
+      range[0] > range[1])
+    {
+      error = nonFinite >= voxels ? "it is not drawn: every scalar is NaN"
+                                  : "it is not drawn: the scalars contain infinite values";
+      return false;
+    }
   }
   // The clip: the voxels the mapper's shapes remove.
   auto* mapper = vtkContextualAOVolumeMapper::SafeDownCast(volume->GetMapper());

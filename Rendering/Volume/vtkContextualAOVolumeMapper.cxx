@@ -717,6 +717,8 @@ bool vtkContextualAOVolumeMapper::Internals::GatherInput(
   if (!std::isfinite(f.range[0]) || !std::isfinite(f.range[1]))
     return f.Fail("The scalars contain infinite values (NaN ones draw as empty space; an "
                   "infinite value has no place on the colour map).");
+  if (f.range[0] > f.range[1]) // (GetRange over nothing but NaN: an empty range)
+    return f.Fail("Every scalar is NaN: nothing to draw.");
   f.property = f.volume->GetProperty();
   f.opacityFunction = f.property->GetScalarOpacity(0);
   f.unitDistance = f.property->GetScalarOpacityUnitDistance(0);
@@ -867,6 +869,11 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
   {
     std::copy(givenOpacity->GetPointer(0), givenOpacity->GetPointer(0) + f.voxels, opacity.begin());
     computed = true;
+    // (The NaN among the scalars, said as when the opacity is computed here.)
+    const int type = f.scalars->GetDataType();
+    if (type == VTK_FLOAT || type == VTK_DOUBLE)
+      for (std::int64_t v = 0; v < f.voxels; ++v)
+        nonFinite += std::isnan(f.scalars->GetComponent(v, 0)) ? 1 : 0;
   }
   else
     // Its ProgressEvents (as the precompute's below) may run the

@@ -361,11 +361,21 @@ vec4 CastRay(float tFrom, float tTo, bool inclusive)
       // matter: from the face's to the enclosed value within a voxel), so
       // the per-pixel jitter of the sample's depth showed as grain on the
       // faces. Its AO is read at the face, where the ray enters.
+      // (Only the ray's first lattice sample, never one the clip entry
+      // moved; only where the face itself holds matter the clip keeps.)
       vec3 pAO = p, tcAO = tc;
-      if (t - step < g_tEnter && depthBefore == 0.0)
+      if (i == 0 && depthBefore == 0.0)
       {
-        pAO = origin + g_tEnter * dir;
-        tcAO = (pAO + 0.5) * rp.invDims.xyz;
+        vec3 face = origin + g_tEnter * dir;
+        vec3 tcFace = (face + 0.5) * rp.invDims.xyz;
+        float sf = Scalar(tcFace);
+        bool faceMatter = !isnan(sf) &&
+          texture(tableTexture, vec2(sf * rp.sampling.y + rp.sampling.z, 0.5)).a > 0.0;
+        if (faceMatter && !(clipped && Removed(face, flags)))
+        {
+          pAO = face;
+          tcAO = tcFace;
+        }
       }
       float ao = clipped || calibrated ? VoxelAO(pAO, calibrated, inMatter, depth)
                                        : texture(aoTexture, tcAO).r;

@@ -953,6 +953,21 @@ int TestContextualAOPass(int, char*[])
         redrawn == under,
       "a volume its mapper refuses to draw occludes nothing: AO " + std::to_string(undrawn) + " (alone " +
         std::to_string(alone) + "), back in range " + std::to_string(redrawn) + " (" + std::to_string(under) + ")");
+    // A NaN voxel is empty space, as the mapper draws it: the block (one
+    // corner voxel NaN) still darkens the slab (it was refused, "not drawn:
+    // NaN", and occluded nothing).
+    vtkDataArray* blockValues = block->GetPointData()->GetScalars();
+    blockValues->SetComponent(blockValues->GetNumberOfTuples() - 1, 0, std::nan(""));
+    blockValues->Modified();
+    window->Render();
+    const double withNaN = pass->GetPixelAO(bx, by);
+    const std::string nanReport = pass->GetLastFrameReport();
+    blockValues->SetComponent(blockValues->GetNumberOfTuples() - 1, 0, 1.0);
+    blockValues->Modified();
+    window->Render();
+    Check(std::fabs(withNaN - under) < 0.02 && nanReport.find("not drawn") == std::string::npos,
+      "a volume with a NaN voxel still occludes: AO " + std::to_string(withNaN) + " (without the NaN " +
+        std::to_string(under) + ", alone " + std::to_string(alone) + ")");
     camera->Azimuth(10);
     renderer->ResetCameraClippingRange();
     window->Render();

@@ -761,6 +761,12 @@ void BadInput(const Options& o)
     m->SetInputData(infinite);
   }
   expect("an infinite scalar", "infinite");
+  {
+    vtkSmartPointer<vtkImageData> allNaN = Small(8, 8, 8, 1, true);
+    allNaN->GetPointData()->GetScalars()->Fill(std::nan(""));
+    m->SetInputData(allNaN);
+  }
+  expect("nothing but NaN", "Every scalar is NaN");
   m->SetInputData(Small(8, 8, 1, 1, false));
   expect("one voxel thick", "at least 2 voxels");
   m->SetInputData(s.image);
