@@ -64,13 +64,8 @@ struct vtkLocalAmbientOcclusion::Internals
   double LastUnitDistance = 0.0;
   /// Whether the last run had occluders (its opacity then holds them).
   bool LastOccluded = false;
-  /// The scalars (identity, modification time, component) and the count
-  /// of NaN or infinite values the last warning gave: an edit of the opacity map
-  /// over the same scalars does not repeat it.
-  const vtkDataArray* WarnedScalars = nullptr;
-  vtkMTimeType WarnedScalarsTime = 0;
-  int WarnedComponent = -1;
-  std::int64_t WarnedCount = 0; // (values changed without the array's Modified: a new count warns)
+  /// What the last NaN warning said (an opacity edit does not repeat it).
+  vtkCAO::NonFiniteNote NonFinite;
 
   /// `kept` when only this filter holds it and it has `n` values: it is
   /// then written again in place (no new pages: on a virtual machine a
@@ -526,18 +521,8 @@ int vtkLocalAmbientOcclusion::RequestData(
       ok = this->Internal->March(
         this, plan, scalars, component, geometry, settings, opacity, ao, reason, edit);
   });
-  if (nonFinite > 0 &&
-    (in.WarnedScalars != scalars || in.WarnedScalarsTime != scalars->GetMTime() ||
-      in.WarnedComponent != component || in.WarnedCount != nonFinite))
-  {
+  if (in.NonFinite.Changed(scalars, component, nonFinite))
     vtkWarningMacro(<< nonFinite << " NaN or Inf scalar value(s) treated as transparent.");
-    in.WarnedScalars = scalars;
-    in.WarnedScalarsTime = scalars->GetMTime();
-    in.WarnedComponent = component;
-    in.WarnedCount = nonFinite;
-  }
-  else if (nonFinite == 0)
-    in.WarnedScalars = nullptr;
   if (occluderFailed)
   {
     vtkErrorMacro("Cannot compute LAO: " << error << ".");

@@ -26,6 +26,23 @@
 
 namespace vtkCAO
 {
+bool NonFiniteNote::Changed(const vtkDataArray* scalars, int component, std::int64_t count)
+{
+  if (count <= 0 || !scalars)
+  {
+    this->Scalars = nullptr;
+    return false;
+  }
+  const unsigned long time = const_cast<vtkDataArray*>(scalars)->GetMTime(); // (GetMTime is not const)
+  const bool changed = this->Scalars != scalars || this->Time != time ||
+    this->Component != component || this->Count != count;
+  this->Scalars = scalars;
+  this->Time = time;
+  this->Component = component;
+  this->Count = count;
+  return changed;
+}
+
 /// Evaluate the transfer function for every voxel, corrected for the step.
 /// Integer arrays with at most 65536 distinct values use an exact table.
 bool ComputeOpacity(vtkAlgorithm* self, vtkDataArray* scalars, int component,

@@ -40,6 +40,24 @@ CAOFILTERSCORE_EXPORT bool ComputeOpacity(vtkAlgorithm* self, vtkDataArray* scal
   std::uint8_t* changed = nullptr);
 
 /**
+ * Whether a warning about `count` NaN (or infinite) values of `scalars`
+ * (component `component`) says something new: the scalars (identity,
+ * modification time), the component or the count differ from the last
+ * said. A filter or mapper that runs again over the same scalars (an edit
+ * of the opacity map) does not repeat it; a count of 0 forgets.
+ */
+struct NonFiniteNote
+{
+  bool Changed(const vtkDataArray* scalars, int component, std::int64_t count);
+
+private:
+  const vtkDataArray* Scalars = nullptr;
+  unsigned long Time = 0; // (vtkMTimeType)
+  int Component = -1;
+  std::int64_t Count = 0;
+};
+
+/**
  * Opaque meshes in a volume's opacity: every voxel of `grid` whose centre
  * lies inside one of `meshes` (closed triangle meshes, polygons
  * triangulated, in the grid's physical coordinates) gets opacity 1, an

@@ -356,11 +356,8 @@ struct vtkContextualAOVolumeMapper::Internals
   /// AddOccluder's props, and per occluder the last reason warned.
   std::vector<vtkSmartPointer<vtkProp3D>> Occluders;
   std::map<std::size_t, std::string> OccluderWarnings;
-  /// The scalars (identity, time, count) whose NaN values were last said
-  /// to draw as empty space: an opacity edit does not repeat it.
-  const vtkDataArray* NaNWarnedScalars = nullptr;
-  vtkMTimeType NaNWarnedTime = 0;
-  std::int64_t NaNWarnedCount = 0;
+  /// What the last NaN warning said (an opacity edit does not repeat it).
+  vtkCAO::NonFiniteNote NonFinite;
   /// This frame's occluders (GatherOccluders): each mesh (null: none) and
   /// its pose in the volume's physical coordinates, read by UploadVolume.
   std::vector<vtkPolyData*> OccluderMeshes;
@@ -895,21 +892,14 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
     f.why.clear();
     return false;
   }
-  if (nonFinite >= f.voxels)
-    return f.Fail("Every scalar is NaN: nothing to draw.");
-  if (nonFinite > 0) // NaN (GetRange skips them; an infinite value failed above)
-  {
-    // Empty space, as the LAO's opacity takes them and the ray cast skips
-    // them (with the samples they enter by interpolation).
-    if (this->NaNWarnedScalars != f.scalars || this->NaNWarnedTime != f.scalars->GetMTime() ||
-      this->NaNWarnedCount != nonFinite)
-      vtkWarningWithObjectMacro(self, "The scalars contain " << nonFinite
-                                                             << " NaN value(s): drawn as empty space.");
-    this->NaNWarnedScalars = f.scalars;
-    this->NaNWarnedTime = f.scalars->GetMTime();
-    this->NaNWarnedCount = nonFinite;
+  // NaN (GetRange skips them; an infinite value or nothing but NaN failed
+  // in GatherInput): empty space, as the LAO's opacity takes them and the
+  // ray cast skips them (with the samples they enter by interpolation).
+  if (this->NonFinite.Changed(f.scalars, 0, nonFinite))
+    vtkWarningWithObjectMacro(self, "The scalars contain " << nonFinite
+                                                           << " NaN value(s): drawn as empty space.");
+  if (nonFinite > 0)
     f.report.reasons.emplace_back(std::to_string(nonFinite) + " NaN scalars drawn as empty space");
-  }
   // The occluders' voxels are opaque for the LAO (with the AO on and no
   // given AO: the opacity then feeds the precompute or the edit).
   if (self->AmbientOcclusion && !givenAO && !this->OccluderMeshes.empty())
