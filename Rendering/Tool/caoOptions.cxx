@@ -21,6 +21,13 @@ namespace
 {
 constexpr std::size_t NameColumn = 30, HelpWidth = 79;
 
+std::string Lower(std::string v)
+{
+  std::transform(v.begin(), v.end(), v.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return v;
+}
+
 std::string Shortest(double x)
 {
   char text[64];
@@ -145,8 +152,31 @@ CLI::Option* AddChoice(CLI::App* app, const std::string& name, std::string& targ
       for (const std::string& c : choices)
         if (v == c)
           return "";
+      const std::string lower = Lower(v);
+      for (const std::string& c : choices)
+        if (lower == c)
+          return "bad value '" + v + "' (the names are lower case: '" + lower + "')";
       return "bad value '" + v + "' (expected " + Or(choices) + ")";
     }));
+}
+
+std::string QualityValueError(const std::string& v, bool custom)
+{
+  cao::Quality p;
+  if (cao::ParseQuality(v, p) && (custom || p != cao::Quality::Custom))
+    return "";
+  const std::string lower = Lower(v);
+  const std::string names = custom ? "low, medium, high or custom" : "low, medium or high";
+  // The LAO's levels before every technique shared one vocabulary.
+  const char* renamed = lower == "interactive" ? "low"
+    : lower == "balanced"                      ? "medium"
+    : lower == "reference"                     ? "high"
+                                               : nullptr;
+  if (lower != v && cao::ParseQuality(lower, p) && (custom || p != cao::Quality::Custom))
+    return "bad value '" + v + "' (the names are lower case: '" + lower + "')";
+  return renamed
+    ? "'" + v + "' is now '" + renamed + "' (one quality vocabulary for every technique: " + names + ")"
+    : "bad value '" + v + "' (expected " + names + ")";
 }
 
 CLI::Option* AddText(CLI::App* app, const std::string& name, std::string& target,
@@ -320,24 +350,7 @@ void AddLAOOptions(CLI::App* app, LAOCommandLine& lao, bool samplesOption)
         "density, offset and variation (so it is not combined with those options; giving any of "
         "them without --quality means custom); --reach still applies"))
     ->type_name("NAME")
-    ->check(Check([](std::string& v) -> std::string {
-      cao::Quality p;
-      if (cao::ParseQuality(v, p))
-        return "";
-      std::string lower = v;
-      std::transform(lower.begin(), lower.end(), lower.begin(),
-        [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-      // The LAO's levels before every technique shared one vocabulary.
-      const char* renamed = lower == "interactive" ? "low"
-        : lower == "balanced"                      ? "medium"
-        : lower == "reference"                     ? "high"
-                                                   : nullptr;
-      if (lower != v && cao::ParseQuality(lower, p))
-        return "bad value '" + v + "' (the names are lower case: '" + lower + "')";
-      return renamed ? "'" + v + "' is now '" + renamed +
-          "' (one quality vocabulary for every technique: low, medium, high or custom)"
-                     : "bad value '" + v + "' (expected low, medium, high or custom)";
-    }));
+    ->check(Check([](std::string& v) -> std::string { return QualityValueError(v, true); }));
   AddNumber(app, "--density", lao.settings.sampleDensity, MinDensity, MaxDensity, false,
     "samples per voxel, 0.001 to 1000",
     samplesOption

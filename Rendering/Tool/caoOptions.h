@@ -49,9 +49,14 @@ CLI::Option* AddLength(
 /// (an integer, lo to hi)".
 CLI::Option* AddInteger(
   CLI::App* app, const std::string& name, int& target, int lo, int hi, const std::string& help);
-/// One of `choices`, refused as "bad value 'V' (expected a, b or c)".
+/// One of `choices`, refused as "bad value 'V' (expected a, b or c)", or
+/// as "(the names are lower case: 'v')" when V in lower case is a choice.
 CLI::Option* AddChoice(CLI::App* app, const std::string& name, std::string& target,
   const std::vector<std::string>& choices, const std::string& help);
+/// Why `v` is not a quality level ("" when it is): low, medium, high, and
+/// custom where `custom`; a name in the wrong case or a former LAO level
+/// ("Balanced" is now "medium") says so.
+std::string QualityValueError(const std::string& v, bool custom);
 /// A non-empty text (a file name, an array name, ...).
 CLI::Option* AddText(CLI::App* app, const std::string& name, std::string& target,
   const std::string& typeName, const std::string& help);

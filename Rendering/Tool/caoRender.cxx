@@ -7,6 +7,7 @@
 #include "vtkCAOInput.h"
 #include "caoLAOCommandLine.h"
 #include "caoPresets.h"
+#include "caoRayPattern.h"
 
 #include "vtkActor.h"
 #include "vtkCallbackCommand.h"
@@ -147,6 +148,35 @@ bool BackgroundOnly(vtkImageData* frame)
   const auto* p = static_cast<const unsigned char*>(rgb->GetVoidPointer(0));
   const vtkIdType n = rgb->GetNumberOfTuples() * rgb->GetNumberOfComponents();
   return std::all_of(p, p + n, [](unsigned char c) { return c == 255; });
+}
+
+/// The AO a run draws, in a line: the LAO's quality and the settings it
+/// stands for (rays, samples per voxel, reach in voxels and world units),
+/// the strength and the calibration; or that it draws none.
+std::string AOSummary(const RenderOptions& o, cao::RayPattern pattern, int fibonacciRays,
+  const double spacing[3])
+{
+  if (!o.ao)
+    return "off (--no-ao)";
+  cao::LAOSettings s = o.lao.settings;
+  s.pattern = pattern;
+  s.fibonacciRays = fibonacciRays;
+  s.reach = o.reach;
+  s = cao::ResolveLAOSettings(s, spacing);
+  const double voxel = std::min({ std::fabs(spacing[0]), std::fabs(spacing[1]), std::fabs(spacing[2]) });
+  char samples[64], text[512];
+  if (s.samples > 0)
+    std::snprintf(samples, sizeof(samples), "%d samples per ray", s.samples);
+  else
+    std::snprintf(samples, sizeof(samples), "%g sample(s) per voxel", s.sampleDensity);
+  std::snprintf(text, sizeof(text),
+    "LAO quality %s: %d rays, %s, reach %g voxels (%g world units), start offset %g, "
+    "variation %s; strength %g, calibration %s",
+    cao::QualityName(s.quality), cao::RayPatternSize(s.pattern, s.fibonacciRays),
+    samples,
+    voxel > 0.0 ? s.reach / voxel : 0.0, s.reach, s.startOffset,
+    cao::RayVariationName(s.variation), o.strength, o.calibration.c_str());
+  return text;
 }
 
 int Render(RenderOptions& o, const CLI::App* app)
@@ -417,11 +447,15 @@ int Render(RenderOptions& o, const CLI::App* app)
     if (!mapper->CanDraw(drawn, why))
       return Fail(2, why);
   }
+  const std::string aoSummary = AOSummary(o, parsed, fib, volume->GetSpacing());
   if (o.json)
     std::printf("[");
   else
+  {
     std::printf("cao render: %s, %dx%d, %s, %zu frame(s) -> %s\n", o.volume.c_str(), o.width,
       o.height, windowKind.c_str(), poses.size(), o.output.c_str());
+    std::printf("AO: %s\n", aoSummary.c_str());
+  }
   for (std::size_t f = 0; f < poses.size(); ++f)
   {
     if (o.clip)
@@ -452,8 +486,8 @@ int Render(RenderOptions& o, const CLI::App* app)
     const bool backgroundOnly = BackgroundOnly(grab->GetOutput());
     if (o.json)
       std::printf("%s\n  {\"pose\": %zu, \"file\": \"%s\", \"wall_ms\": %.3f, "
-                  "\"background_only\": %s, \"report\": %s}",
-        f ? "," : "", f, name.c_str(), ms, backgroundOnly ? "true" : "false",
+                  "\"background_only\": %s, \"ao\": \"%s\", \"report\": %s}",
+        f ? "," : "", f, name.c_str(), ms, backgroundOnly ? "true" : "false", aoSummary.c_str(),
         mapper->GetLastFrameReport().c_str());
     else
     {

@@ -146,9 +146,9 @@ CLI::Option* AddSurfaceKernel(CLI::App* app, int& kernel, const std::string& hel
 CLI::Option* AddSurfaceQuality(
   CLI::App* app, std::string& quality, bool perMethod, const std::string& help)
 {
-  if (perMethod)
-    return AddText(app, "--quality", quality, "NAME", help);
-  return AddChoice(app, "--quality", quality, { "low", "medium", "high" }, help);
+  return app->add_option("--quality", quality, Wrap(help))
+    ->type_name(perMethod ? "NAME" : "low|medium|high")
+    ->check(Check([](std::string& v) -> std::string { return QualityValueError(v, false); }));
 }
 
 CLI::Option* AddSurfaceSlices(CLI::App* app, int& slices, const std::string& help)
@@ -887,10 +887,8 @@ int Run(SurfaceOptions& o, const CLI::App* app)
     return Fail(2, "give --quality or --samples, not both");
   if (!o.quality.empty())
   {
-    const std::string& q = o.quality;
-    cao::Quality quality = cao::Quality::Custom;
-    if (!cao::ParseQuality(q, quality) || quality == cao::Quality::Custom)
-      return Fail(2, "--quality for --method " + o.method + " is low, medium or high (got '" + q + "')");
+    cao::Quality quality = cao::Quality::Low; // the name was checked at the parse
+    cao::ParseQuality(o.quality, quality);
     (o.method == "hbao" ? o.hbao.quality : o.method == "vao" ? o.vao.quality : o.vct.quality) = quality;
   }
   if (!o.filter.empty())

@@ -79,8 +79,9 @@ CLI::Option* AddSurfaceImage(CLI::App* app, SurfaceView& view, int lo, int hi);
 CLI::Option* AddSurfaceWindow(CLI::App* app, std::string& window, const std::string& what);
 /// --kernel N: vtkSSAOPass's kernel size, 1 to 1024.
 CLI::Option* AddSurfaceKernel(CLI::App* app, int& kernel, const std::string& help);
-/// --quality NAME. `perMethod` (cao surface): any name, checked against
-/// --method after the parse; otherwise low, medium or high.
+/// --quality low|medium|high (QualityValueError: a name in the wrong case
+/// or a former LAO level says so). `perMethod` (cao surface): which
+/// method's quality is checked against --method after the parse.
 CLI::Option* AddSurfaceQuality(
   CLI::App* app, std::string& quality, bool perMethod, const std::string& help);
 /// --slices: vct grid depth slices, 32 to 1024, a multiple of 32; one, or a

@@ -432,6 +432,14 @@ else:
                        os.path.join(tmp, "q_%d.png"))
     check(rc == 0 and "precompute" in [s["name"] for s in json.loads(out)[0]["report"]["stages"]],
           "render --quality low: " + err)
+    # The AO it draws is stated: the level and what it stands for.
+    said = json.loads(out)[0].get("ao", "") if rc == 0 else ""
+    check(said.startswith("LAO quality low: 14 rays") and "reach 4 voxels" in said,
+          "render --json states the LAO settings: %r" % said)
+    rc, out, err = run("render", neghip, "--image", "32x32", "--no-clip", "--window", "egl",
+                       "--quality", "medium", "-o", os.path.join(tmp, "m.png"))
+    check(rc == 0 and "AO: LAO quality medium: 14 rays, 4 sample(s) per voxel, reach 8 voxels" in out,
+          "render states the LAO settings in its header: %r" % out[:300])
     # A frame of background alone says so (a plane whose first pose of the
     # path leaves only a transparent slab); frames with matter do not.
     rc, out, err = run("render", neghip, "--image", "48x48", "--shape", "plane", "--path", "4",
