@@ -113,6 +113,21 @@ if "paraview.simple" in blocks:
               "each pose clips, affects and leaves voxels: %s" % ranges)
         png = os.path.join(work, "headmr-cao.png")
         check(os.path.exists(png) and os.path.getsize(png) > 1000, "it saves the rendering")
+        # The carve is in sight: the clip reveals the inside, which the
+        # default colour map draws red, in the middle of the picture (a
+        # trial found the sphere inside the head's fog from the default
+        # camera: the picture showed no clip, and no red pixel).
+        if os.path.exists(png):
+            from vtkmodules.vtkIOImage import vtkPNGReader
+            reader = vtkPNGReader()
+            reader.SetFileName(png)
+            reader.Update()
+            image = reader.GetOutput()
+            w, h, _ = image.GetDimensions()
+            rgb = image.GetPointData().GetScalars()
+            red = sum(1 for y in range(h // 4, 3 * h // 4) for x in range(w // 4, 3 * w // 4)
+                      if rgb.GetComponent(y * w + x, 0) - rgb.GetComponent(y * w + x, 2) > 40)
+            check(red > 100, "the saved picture shows the carve: %d red pixels in its middle" % red)
         # Held-out: each pose logged "update extent ... outside the whole
         # extent 0 -1 0 -1 0 -1" (the CAO filter asked ParaView's post
         # filter of the depth maps for the extent they held); in the GUI each
