@@ -27,7 +27,7 @@ void vtkPVRenderViewWithContextualAO::Update()
 {
   this->Superclass::Update();
   // Voxel cones on the world and eye grids see every process's pieces; the
-  // frustum grid, HBAO and VAO only this process's.
+  // frustum grid, HBAO and volumetric AO only this process's.
   vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
   const int processes = controller ? controller->GetNumberOfProcesses() : 1;
   const bool shared =

@@ -13,7 +13,7 @@
  * Builtin sessions, pvserver, and several MPI processes with distributed
  * rendering: then the pass exchanges the scene between the processes (its
  * controller, set at each render), so voxel cones on the world and eye
- * grids see every process's pieces; the frustum grid, HBAO and VAO see
+ * grids see every process's pieces; the frustum grid, HBAO and volumetric AO see
  * their own process's, with a warning.
  */
 #ifndef vtkPVRenderViewWithContextualAO_h

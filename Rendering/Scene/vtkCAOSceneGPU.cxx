@@ -152,11 +152,11 @@ bool SceneGPU::HBAO(const cao::PixelCamera& camera, const cao::HBAOSettings& set
   return this->P->Ready(error) && this->P->screen->HBAO(camera, settings, frame, ms, error);
 }
 
-bool SceneGPU::VAO(const cao::PixelCamera& camera, const cao::VAOSettings& settings, cao::SurfaceFrame& frame,
+bool SceneGPU::VolumetricAO(const cao::PixelCamera& camera, const cao::VolumetricAOSettings& settings, cao::SurfaceFrame& frame,
   std::string& error)
 {
   double ms = 0.0;
-  return this->P->Ready(error) && this->P->screen->VAO(camera, settings, frame, ms, error);
+  return this->P->Ready(error) && this->P->screen->VolumetricAO(camera, settings, frame, ms, error);
 }
 
 bool SceneGPU::VoxelizeLines(const cao::BitGrid& grid, const cao::LineSegments& lines, double tubeRadius,
@@ -234,13 +234,13 @@ bool SceneGPU::FrameHBAO(const cao::PixelCamera& camera, const cao::HBAOSettings
   return this->FrameScreenAO(&camera, &settings, nullptr, error);
 }
 
-bool SceneGPU::FrameVAO(const cao::PixelCamera& camera, const cao::VAOSettings& settings, std::string& error)
+bool SceneGPU::FrameVolumetricAO(const cao::PixelCamera& camera, const cao::VolumetricAOSettings& settings, std::string& error)
 {
   return this->FrameScreenAO(&camera, nullptr, &settings, error);
 }
 
 bool SceneGPU::FrameScreenAO(const cao::PixelCamera* camera, const cao::HBAOSettings* hbao,
-  const cao::VAOSettings* vao, std::string& error)
+  const cao::VolumetricAOSettings* volumetric, std::string& error)
 {
   double ms = 0.0;
   if (!this->P->Ready(error))
@@ -250,7 +250,7 @@ bool SceneGPU::FrameScreenAO(const cao::PixelCamera* camera, const cao::HBAOSett
   if (static_cast<std::int64_t>(camera->width) * camera->height != f->Pixels())
     return error = "the camera's image is not the GPU frame's", false;
   if (hbao ? !s->HBAOPixels(*camera, *hbao, f->PointBuffer(), f->NormalBuffer(), f->AOBuffer(), ms, error)
-           : !s->VAOPixels(*camera, *vao, f->PointBuffer(), f->NormalBuffer(), f->AOBuffer(), ms, error))
+           : !s->VolumetricAOPixels(*camera, *volumetric, f->PointBuffer(), f->NormalBuffer(), f->AOBuffer(), ms, error))
     return false;
   f->AOWritten();
   return true;

@@ -54,11 +54,11 @@ public:
   /// cao::gl::VCTEngine::TraceFrame on the grid voxelized last.
   bool Trace(const cao::BitGrid& grid, const cao::VCTPlan& plan, cao::SurfaceFrame& frame,
     std::string& error);
-  /// cao::gl::ScreenAOEngine's HBAO and VAO (cao::HBAOFrame's and
-  /// cao::VAOFrame's twins, their blur or filter on the host).
+  /// cao::gl::ScreenAOEngine's HBAO and volumetric AO (cao::HBAOFrame's and
+  /// cao::VolumetricAOFrame's twins, their blur or filter on the host).
   bool HBAO(const cao::PixelCamera& camera, const cao::HBAOSettings& settings, cao::SurfaceFrame& frame,
     std::string& error);
-  bool VAO(const cao::PixelCamera& camera, const cao::VAOSettings& settings, cao::SurfaceFrame& frame,
+  bool VolumetricAO(const cao::PixelCamera& camera, const cao::VolumetricAOSettings& settings, cao::SurfaceFrame& frame,
     std::string& error);
   /// cao::gl::LineAOEngine::Voxelize: cao::VoxelizeLines' twin into
   /// `grid`'s plan; the bits stay on the GPU for LineAO given a grid of
@@ -87,7 +87,7 @@ public:
     const cao::BitGrid* solids, std::string& error);
   ///@{
   /// The frame kept on the GPU (cao::gl::FrameEngine; the depth G-buffer;
-  /// VCT, HBAO, VAO without indirect light): the drawn depth of `framebuffer`'s rectangle (x0, y0,
+  /// VCT, HBAO, volumetric AO without indirect light): the drawn depth of `framebuffer`'s rectangle (x0, y0,
   /// width, height) read on the GPU and its pixels that changed since the
   /// last G-buffer counted; the G-buffer (`ndcToWorld` row-major, into
   /// `grid`'s frame), its covered pixels counted; the cones on the grid
@@ -98,10 +98,10 @@ public:
   bool FrameGBuffer(const double ndcToWorld[16], const cao::BitGrid& grid, std::int64_t& covered,
     std::string& error);
   bool FrameTrace(const cao::VCTPlan& plan, std::string& error);
-  /// HBAO or VAO on the GPU frame's G-buffer (made with world axes), their
-  /// blur or filter there too (cao::gl::ScreenAOEngine::HBAOPixels, VAOPixels).
+  /// HBAO or volumetric AO on the GPU frame's G-buffer (made with world axes), their
+  /// blur or filter there too (cao::gl::ScreenAOEngine::HBAOPixels, VolumetricAOPixels).
   bool FrameHBAO(const cao::PixelCamera& camera, const cao::HBAOSettings& settings, std::string& error);
-  bool FrameVAO(const cao::PixelCamera& camera, const cao::VAOSettings& settings, std::string& error);
+  bool FrameVolumetricAO(const cao::PixelCamera& camera, const cao::VolumetricAOSettings& settings, std::string& error);
   bool FrameRead(bool ambient, unsigned framebuffer, const int rect[4], std::string& error);
   bool FrameCombine(double strength, bool wholeColor, unsigned framebuffer, const int rect[4], std::string& error);
   bool FrameAO(std::vector<float>& ao, std::string& error);
@@ -130,7 +130,7 @@ public:
   std::string Note; ///< why Auto chose the CPU (empty otherwise)
 
 private:
-  bool FrameScreenAO(const cao::PixelCamera* camera, const cao::HBAOSettings* hbao, const cao::VAOSettings* vao,
+  bool FrameScreenAO(const cao::PixelCamera* camera, const cao::HBAOSettings* hbao, const cao::VolumetricAOSettings* volumetric,
     std::string& error);
   struct Impl;
   std::unique_ptr<Impl> P;

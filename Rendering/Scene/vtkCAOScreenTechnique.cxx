@@ -8,7 +8,7 @@ namespace vtkCAO
 {
 // The built-ins, each in its own file under Techniques/.
 void RegisterHBAOTechnique();
-void RegisterVAOTechnique();
+void RegisterVolumetricAOTechnique();
 
 namespace
 {
@@ -52,7 +52,7 @@ void RegisterBuiltIns()
   static std::once_flag once;
   std::call_once(once, [] {
     RegisterHBAOTechnique();
-    RegisterVAOTechnique();
+    RegisterVolumetricAOTechnique();
   });
 }
 }

@@ -73,14 +73,14 @@ struct ScreenTechnique
 
 /// Register `technique`; false, saying why in `error`, when its method is
 /// not above 1 (None and Voxel Cones) or is taken, or it has no name or no
-/// `cpu` step. The built-ins (HBAO 2, VAO 3) are registered first.
+/// `cpu` step. The built-ins (HBAO 2, volumetric AO 3) are registered first.
 CAORENDERINGSCENE_EXPORT bool RegisterScreenTechnique(
   const ScreenTechnique& technique, std::string* error = nullptr);
 
 /// The technique of Method value `method`, or null.
 CAORENDERINGSCENE_EXPORT const ScreenTechnique* FindScreenTechnique(int method);
 
-/// The registered methods and names, in method order ("2 hbao, 3 vao").
+/// The registered methods and names, in method order ("2 hbao, 3 volumetric").
 CAORENDERINGSCENE_EXPORT std::string ScreenTechniqueList();
 }
 

@@ -817,7 +817,7 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
   if (width < 1 || height < 1)
     return; // nothing on screen: no work
   // A tiled render (an image larger than the window, drawn tile by tile):
-  // the methods that read the screen (HBAO, VAO, the frustum grid) see each
+  // the methods that read the screen (HBAO, volumetric AO, the frustum grid) see each
   // tile alone, so its edges show as seams; said once per tiling.
   int* tileScale = ren->GetRenderWindow() ? ren->GetRenderWindow()->GetTileScale() : nullptr;
   const bool tiled = tileScale && (tileScale[0] > 1 || tileScale[1] > 1);
@@ -875,7 +875,7 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
     return;
   }
   // The AO on the GPU with the depth G-buffer keeps the frame there (no
-  // read-back; VAO's indirect light, on the CPU, reads the pixels back);
+  // read-back; Volumetric AO's indirect light, on the CPU, reads the pixels back);
   // every other frame reads the drawn depth once: the depth G-buffer and
   // the combine's drawn-is-traced test both read it.
   const bool wasOnGPU = this->gpuFrame;

@@ -43,7 +43,7 @@
  *    mapper's polydata input, or the polydata leaves of a composite one),
  *    only when one of them, its data, its pose, the grid's settings or (eye
  *    grid) the camera's orientation changed; a closed mesh is filled, an
- *    open one is a shell (GetNumberOfOpenMeshes); "scene" (HBAO, VAO): the
+ *    open one is a shell (GetNumberOfOpenMeshes); "scene" (HBAO, volumetric AO): the
  *    same triangles for the ray cast only (or, with DEPTH_BUFFER, their
  *    bounds for the default radius), no grid. The ray cast's BVH is built
  *    only for the RAY_CAST G-buffer (the report's "bvh"); asked for later
@@ -62,22 +62,22 @@
  *    the drawn depth or the lines' pixels in it changed (with Line AO on,
  *    the lines' pixels are no surface's: the screen-space methods do not
  *    take a thin line for a depth wall);
- *  - "ambient" (AMBIENT_TERM only), "indirect" (VAO with IndirectLight:
+ *  - "ambient" (AMBIENT_TERM only), "indirect" (Volumetric AO with IndirectLight:
  *    the neighbours' colour, I = L (1 - AO)) and "combine": every frame
  *    that has surfaces (a colour, colour-map or light change re-runs the
  *    scene's own drawing and these steps alone).
  * No visible opaque polygonal actor, or an empty viewport: none of them
  * runs. A scene the grid failed on is not tried again until it changes.
  *
- * The AO is cao::VCTFrame's, cao::HBAOFrame's or cao::VAOFrame's
+ * The AO is cao::VCTFrame's, cao::HBAOFrame's or cao::VolumetricAOFrame's
  * (Filters/Kernels/Surface) on the CPU, or (Backend) their GL twins on the
  * window's own OpenGL. The pixels' surface points come from the CPU ray
  * cast or the drawn depth, and the picture is read back and written
  * through the window (any OpenGL, slowly on large windows); except the AO
  * on the GPU with the drawn depth (GBuffer DEPTH_BUFFER, or the default
- * GBUFFER_AUTO there; VAO without IndirectLight): then the whole frame
+ * GBUFFER_AUTO there; Volumetric AO without IndirectLight): then the whole frame
  * stays on the GPU (the depth and colours blitted in, the G-buffer, the
- * cones or HBAO's and VAO's estimator with their blur or filter, and the
+ * cones or HBAO's and volumetric AO's estimator with their blur or filter, and the
  * combine there, cao::gl::FrameEngine), the report's "frame_on_gpu" says so, and nothing
  * is read back but two counters; GetPixelAO then reads the AO back on
  * demand (making the window's context current).
@@ -112,7 +112,7 @@ public:
   vtkBooleanMacro(SetsCamera, bool);
   ///@}
 
-  /// The built-in methods. HBAO and VAO are screen-space techniques
+  /// The built-in methods. HBAO and volumetric AO are screen-space techniques
   /// registered in vtkCAOScreenTechnique.h (Techniques/); a technique
   /// registered there with another value is a Method too.
   enum Methods
@@ -120,7 +120,7 @@ public:
     NONE = 0, ///< draw the scene only
     VCT = 1,  ///< voxel cone tracing (Dalla Favera and Celes 2012), the pass's own step
     HBAO = 2, ///< horizon-based AO (Bavoil, Sainz and Dimitrov 2008)
-    VAO = 3   ///< volumetric AO (Szirmay-Kalos et al. 2010)
+    VOLUMETRIC = 3   ///< volumetric AO (Szirmay-Kalos et al. 2010)
   };
   enum ApplyToModes
   {
@@ -141,7 +141,7 @@ public:
   };
 
   ///@{
-  /// NONE, VCT (default), HBAO, VAO, or the value of a screen-space
+  /// NONE, VCT (default), HBAO, volumetric AO, or the value of a screen-space
   /// technique registered with vtkCAO::RegisterScreenTechnique. Any other
   /// value is an error that lists the registered ones, and the Method stays.
   virtual void SetMethod(int method);
@@ -187,7 +187,7 @@ public:
   /// axes for the eye grid) and the bits are combined across the processes
   /// at each change: per actor, its pieces' parities XOR-ed (a closed
   /// surface split between them is filled as on one process; one open as
-  /// a whole takes its pieces' shells). The frustum grid, HBAO and VAO see
+  /// a whole takes its pieces' shells). The frustum grid, HBAO and volumetric AO see
   /// this process's pieces only.
   /// Null (default): this process's pieces only, no exchange.
   void SetController(vtkMultiProcessController* controller);
@@ -244,14 +244,14 @@ public:
   /// 1 low, 2 medium (default), 3 high. What each sets is in its settings
   /// type: VCT spheres per cone 3 / 5 / 7 and prisms per sphere 3 / 6 / 12
   /// (cao::VCTSettings); HBAO directions / steps / normal rays 6/9/0
-  /// (linear attenuation), 7/12/1, 18/25/2 (cao::HBAOSettings); VAO 8, 16,
-  /// 32 samples per pixel (cao::VAOSettings).
+  /// (linear attenuation), 7/12/1, 18/25/2 (cao::HBAOSettings); Volumetric AO 8, 16,
+  /// 32 samples per pixel (cao::VolumetricAOSettings).
   vtkSetClampMacro(Quality, int, 1, 3);
   vtkGetMacro(Quality, int);
   ///@}
 
   ///@{
-  /// VAO's indirect light (the colour bleeding of Szirmay-Kalos et al.): the neighbours'
+  /// Volumetric AO's indirect light (the colour bleeding of Szirmay-Kalos et al.): the neighbours'
   /// colour times (1 - AO), times the pixel's own colour, added (default
   /// off).
   vtkSetMacro(IndirectLight, bool);
@@ -279,13 +279,13 @@ public:
     BACKEND_OPENGL = vtkCAO::BACKEND_OPENGL ///< the window's OpenGL 4.3 (even a software rasteriser); none: an error
   };
   ///@{
-  /// Where the AO runs (VCT's grid and cones, HBAO's and VAO's estimator):
+  /// Where the AO runs (VCT's grid and cones, HBAO's and volumetric AO's estimator):
   /// AUTO (default), CPU or OPENGL, in the render window's own context (no
   /// second context; the GL state comes back as it was). The GPU cone
   /// tracer reads the occluding volumes' opacity as the CPU's does (uploaded
   /// when it is rebuilt, not on a camera change). With the drawn-depth
   /// G-buffer the whole frame stays on the GPU (its G-buffer, the AO, HBAO's
-  /// blur, VAO's filter, the combine; VAO's indirect light excepted, which
+  /// blur, volumetric AO's filter, the combine; Volumetric AO's indirect light excepted, which
   /// runs on the CPU); with the ray cast, the G-buffer, blur and filter run
   /// on the CPU. The report's "backend" says what ran, "frame_on_gpu"
   /// whether the pixels stayed there, and "backend_note" why not the GPU.

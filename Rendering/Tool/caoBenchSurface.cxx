@@ -47,7 +47,7 @@ struct Options
   /// --hbao's items: low, medium, high, or D/S/N (directions, steps and
   /// normal rays of a custom configuration, step attenuation).
   std::vector<std::string> hbao{ "low", "medium", "8/18/0", "8/18/1", "high" };
-  std::vector<cao::Quality> vao{ cao::Quality::Low, cao::Quality::Medium, cao::Quality::High };
+  std::vector<cao::Quality> volumetric{ cao::Quality::Low, cao::Quality::Medium, cao::Quality::High };
 };
 
 const char* Footer = R"(Measures what surface AO accuracy costs in time, against the ray-traced
@@ -107,7 +107,7 @@ namespace
 struct Row
 {
   std::string mesh, method, label;
-  int series = 0; ///< 0 vct (CPU), 1 ssao, 2 none, 3 reference, 4 vct (GL), 5 hbao, 6 vao, 7 hbao (GL), 8 vao (GL),
+  int series = 0; ///< 0 vct (CPU), 1 ssao, 2 none, 3 reference, 4 vct (GL), 5 hbao, 6 volumetric, 7 hbao (GL), 8 volumetric (GL),
                   ///< 9 ssao (GPU time the pass adds)
   double ms = 0, gridMs = -1;
   double ownRmse = -1; ///< against the reference in the method's own falloff (-1: none)
@@ -445,7 +445,7 @@ int Run(Options& o, const CLI::App*)
       }
     }
     // The screen-space methods on the same G-buffers, each also against the
-    // reference in its own falloff (quartic for vao, linear for fig11a).
+    // reference in its own falloff (quartic for volumetric, linear for fig11a).
     std::map<int, std::pair<cao::SurfaceFrame, cao::SurfaceFrame>> own;
     auto ownReference = [&](cao::AOFalloff falloff) -> const std::pair<cao::SurfaceFrame, cao::SurfaceFrame>* {
       const int key = static_cast<int>(falloff);
@@ -520,16 +520,16 @@ int Run(Options& o, const CLI::App*)
           [&](const cao::PixelCamera& c, cao::SurfaceFrame& f) { return gpu.ScreenAO(c, &hs, nullptr, f, gpuMs, error); }))
         return Fail(1, error);
     }
-    for (cao::Quality q : o.vao)
+    for (cao::Quality q : o.volumetric)
     {
-      cao::VAOSettings vs;
+      cao::VolumetricAOSettings vs;
       vs.quality = q;
       vs.radius = radius;
-      if (!screenSpace("vao", std::string("vao ") + cao::QualityName(q), 6, cao::AOFalloff::Quartic,
-            [&](const cao::PixelCamera& c, cao::SurfaceFrame& f) { return cao::VAOFrame(c, vs, f, o.threads, error); }))
+      if (!screenSpace("volumetric", std::string("volumetric ") + cao::QualityName(q), 6, cao::AOFalloff::Quartic,
+            [&](const cao::PixelCamera& c, cao::SurfaceFrame& f) { return cao::VolumetricAOFrame(c, vs, f, o.threads, error); }))
         return Fail(1, error);
       if (o.vctGL &&
-        !screenSpace("vao-gl", std::string("vao-gl ") + cao::QualityName(q), 8, cao::AOFalloff::Quartic,
+        !screenSpace("volumetric-gl", std::string("volumetric-gl ") + cao::QualityName(q), 8, cao::AOFalloff::Quartic,
           [&](const cao::PixelCamera& c, cao::SurfaceFrame& f) { return gpu.ScreenAO(c, nullptr, &vs, f, gpuMs, error); }))
         return Fail(1, error);
     }
@@ -656,13 +656,13 @@ int Run(Options& o, const CLI::App*)
             << (o.threads ? std::to_string(o.threads) : std::string("all")) << " threads), "
             << (o.vctGL ? "vct-gl on " + gpu.Description() + " (GPU queries, the trace only), "
                         : std::string("no vct-gl rows (--vct-backends gl adds them), "))
-            << "hbao and vao on the CPU (wall clock, their blur and filter included, the G-buffer not), "
-            << "hbao-gl and vao-gl (with --vct-backends gl) by GPU queries of the estimator (the host's blur not), "
+            << "hbao and volumetric on the CPU (wall clock, their blur and filter included, the G-buffer not), "
+            << "hbao-gl and volumetric-gl (with --vct-backends gl) by GPU queries of the estimator (the host's blur not), "
             << "ssao in the offscreen window (wall clock, vtkSSAOPass with blur), ssao-gl (with --vct-backends gl) "
             << "the GPU time vtkSSAOPass adds to a frame (timer queries around its frame less around the plain "
             << "frame: its G-buffer draw, AO, blur and combine), the reference on the CPU. "
             << "Own-definition RMSE: against the reference in the method's own falloff (hbao: step, low "
-            << "linear; vao: quartic, (r/R)^4). Ripple: the RMS second difference of the AO along rows and "
+            << "linear; volumetric: quartic, (r/R)^4). Ripple: the RMS second difference of the AO along rows and "
             << "columns of pixels on flat faces (bands, rings and grain show there; the reference's row is its "
             << "own without its noise: the mean product of its 1x and 4x rays' second differences).\n";
   for (const std::string& n : notes)
@@ -707,8 +707,8 @@ int Run(Options& o, const CLI::App*)
   bool plotted = false;
   if (!points.empty())
   {
-    plotted = WriteErrorTimePlot(points, { "vct (CPU)", "vtkSSAOPass (GL)", "vct (GL)", "hbao (CPU)", "vao (CPU)", "hbao (GL)",
-                                      "vao (GL)", "vtkSSAOPass (GPU time)" },
+    plotted = WriteErrorTimePlot(points, { "vct (CPU)", "vtkSSAOPass (GL)", "vct (GL)", "hbao (CPU)", "volumetric (CPU)", "hbao (GL)",
+                                      "volumetric (GL)", "vtkSSAOPass (GPU time)" },
           "Surface AO: RMSE against the ray-traced reference", "ms per frame", "RMSE",
           o.output + "/surface.png", 900, 600, error);
     if (!plotted)
@@ -797,19 +797,19 @@ Command AddBenchSurfaceCommand(CLI::App& bench)
         if (item != "none")
           o->hbao.push_back(item);
     });
-  AddList(app, "--vao", "LIST", "vao qualities (default low,medium,high; none)",
+  AddList(app, "--volumetric", "LIST", "volumetric qualities (default low,medium,high; none)",
     [](const std::string& item) {
       cao::Quality q;
       return Refused(item == "none" || (cao::ParseQuality(item, q) && q != cao::Quality::Custom),
         item, "low, medium, high or none");
     },
     [o](const std::vector<std::string>& items) {
-      o->vao.clear();
+      o->volumetric.clear();
       for (const std::string& item : items)
       {
         cao::Quality q;
         if (item != "none" && cao::ParseQuality(item, q))
-          o->vao.push_back(q);
+          o->volumetric.push_back(q);
       }
     });
   AddOrbit(app, o->orbit, 45.0,
@@ -819,7 +819,7 @@ Command AddBenchSurfaceCommand(CLI::App& bench)
     ->type_name("PX");
   AddList(app, "--vct-backends", "LIST",
     "where vct runs: cpu, gl (default cpu; gl: the OpenGL 4.3 compute twin, its grid voxelized on "
-    "the GPU, timed by GPU queries; gl also adds hbao-gl and vao-gl rows, the screen-space "
+    "the GPU, timed by GPU queries; gl also adds hbao-gl and volumetric-gl rows, the screen-space "
     "methods' GPU twins)",
     [](const std::string& item) { return Refused(item == "cpu" || item == "gl", item, "cpu or gl"); },
     [o](const std::vector<std::string>& items) {

@@ -41,7 +41,7 @@ struct Options
 {
   std::vector<std::string> meshes;
   std::vector<std::pair<int, int>> sizes{ { 1024, 768 }, { 1920, 1080 } };
-  std::vector<int> methods{ vtkContextualAOPass::VCT, vtkContextualAOPass::HBAO, vtkContextualAOPass::VAO };
+  std::vector<int> methods{ vtkContextualAOPass::VCT, vtkContextualAOPass::HBAO, vtkContextualAOPass::VOLUMETRIC };
   std::vector<int> backends{ vtkContextualAOPass::BACKEND_CPU, vtkContextualAOPass::BACKEND_OPENGL };
   std::vector<int> gbuffers{ vtkContextualAOPass::GBUFFER_AUTO };
   std::string qualityName = "medium"; ///< --quality: low, medium or high (quality 1, 2, 3)
@@ -204,7 +204,7 @@ int Run(Options& o, const CLI::App*)
   csv << "width,height,configuration,backend,turning_ms,still_ms,turning_over_ssao,still_over_ssao,stages,"
          "first_ms,first_over_plain\n";
   const double radius = o.radiusFraction * scene.diagonal;
-  const char* methodNames[] = { "none", "vct", "hbao", "vao" };
+  const char* methodNames[] = { "none", "vct", "hbao", "volumetric" };
   const char* backendNames[] = { "auto", "cpu", "gl" };
   for (const auto& size : o.sizes)
   {
@@ -362,9 +362,9 @@ Command AddBenchSurfaceFrameCommand(CLI::App& bench)
     "whole VTK frames, wall clock: vtkContextualAOPass against vtkSSAOPass and a plain frame");
   AddMeshes(app, o->meshes);
   AddSizes(app, o->sizes, "image sizes WxH, each side 16 to 8192 (default 1024x768,1920x1080)");
-  AddNameList(app, "--methods", o->methods, { "vct", "hbao", "vao" },
-    { vtkContextualAOPass::VCT, vtkContextualAOPass::HBAO, vtkContextualAOPass::VAO },
-    "the pass's methods: vct, hbao, vao (default all three)");
+  AddNameList(app, "--methods", o->methods, { "vct", "hbao", "volumetric" },
+    { vtkContextualAOPass::VCT, vtkContextualAOPass::HBAO, vtkContextualAOPass::VOLUMETRIC },
+    "the pass's methods: vct, hbao, volumetric (default all three)");
   AddNameList(app, "--backends", o->backends, { "auto", "cpu", "gl" },
     { vtkContextualAOPass::BACKEND_AUTO, vtkContextualAOPass::BACKEND_CPU,
       vtkContextualAOPass::BACKEND_OPENGL },

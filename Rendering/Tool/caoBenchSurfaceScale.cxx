@@ -72,11 +72,11 @@ int Run(Options& o, const CLI::App*)
   if (!csv)
     return Fail(1, "cannot write '" + o.output + "/surface-scale.csv'");
   csv << "copies,triangles,width,height,covered_pixels,primary_ms,world_grid_ms,eye_grid_ms,trace_ms,ssao_ms,"
-         "trace_ns_per_covered_pixel,trace_over_ssao,frame_world_over_ssao,frame_eye_over_ssao,hbao_ms,vao_ms,"
-         "hbao_over_ssao,vao_over_ssao\n";
+         "trace_ns_per_covered_pixel,trace_over_ssao,frame_world_over_ssao,frame_eye_over_ssao,hbao_ms,volumetric_ms,"
+         "hbao_over_ssao,volumetric_over_ssao\n";
   std::printf("| copies | triangles | image | covered pixels | G-buffer ms | world grid ms (once) | eye grid ms (per turn) | "
               "trace ms | trace ns / covered pixel | vtkSSAOPass ms | trace / SSAO | G-buffer + trace / SSAO | eye grid + G-buffer + trace / "
-              "SSAO | hbao ms | vao ms | hbao / SSAO | vao / SSAO |\n"
+              "SSAO | hbao ms | volumetric ms | hbao / SSAO | volumetric / SSAO |\n"
               "|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (int copies : o.copies)
   {
@@ -126,12 +126,12 @@ int Run(Options& o, const CLI::App*)
       const cao::PixelCamera pixels = MakePixelCamera(camera, view);
       cao::HBAOSettings hbao;
       hbao.radius = radius;
-      cao::VAOSettings vao;
-      vao.radius = radius;
+      cao::VolumetricAOSettings volumetric;
+      volumetric.radius = radius;
       cao::SurfaceFrame ss = frame;
       const double hbaoMs = Time(o.repeats, [&]() { return cao::HBAOFrame(pixels, hbao, ss, o.threads, error); },
         error, ok);
-      const double vaoMs = Time(o.repeats, [&]() { return cao::VAOFrame(pixels, vao, ss, o.threads, error); },
+      const double volumetricMs = Time(o.repeats, [&]() { return cao::VolumetricAOFrame(pixels, volumetric, ss, o.threads, error); },
         error, ok);
       if (!ok)
         return Fail(1, error);
@@ -159,13 +159,13 @@ int Run(Options& o, const CLI::App*)
                   "%.2f | %.2f |\n",
         copies, tri, view.width, view.height, static_cast<long long>(frame.covered), primaryMs, worldMs, eyeMs,
         traceMs, perPixel, ssaoMs, ratio(traceMs),
-        ratio(primaryMs + traceMs), ratio(eyeMs + primaryMs + eyeTraceMs), hbaoMs, vaoMs, ratio(hbaoMs), ratio(vaoMs));
+        ratio(primaryMs + traceMs), ratio(eyeMs + primaryMs + eyeTraceMs), hbaoMs, volumetricMs, ratio(hbaoMs), ratio(volumetricMs));
       std::fflush(stdout);
       csv << copies << "," << tri << "," << view.width << "," << view.height << "," << frame.covered << ","
           << primaryMs << "," << worldMs
           << "," << eyeMs << "," << traceMs << "," << ssaoMs << "," << perPixel << "," << ratio(traceMs) << ","
           << ratio(primaryMs + traceMs) << "," << ratio(eyeMs + primaryMs + eyeTraceMs) << "," << hbaoMs << ","
-          << vaoMs << "," << ratio(hbaoMs) << "," << ratio(vaoMs) << "\n";
+          << volumetricMs << "," << ratio(hbaoMs) << "," << ratio(volumetricMs) << "\n";
     }
   }
   csv.close();

@@ -141,7 +141,8 @@ CLI::Option* AddInteger(
 }
 
 CLI::Option* AddChoice(CLI::App* app, const std::string& name, std::string& target,
-  const std::vector<std::string>& choices, const std::string& help)
+  const std::vector<std::string>& choices, const std::string& help,
+  const std::vector<std::pair<std::string, std::string>>& renamed)
 {
   std::string type;
   for (const std::string& c : choices)
@@ -156,6 +157,9 @@ CLI::Option* AddChoice(CLI::App* app, const std::string& name, std::string& targ
       for (const std::string& c : choices)
         if (lower == c)
           return "bad value '" + v + "' (the names are lower case: '" + lower + "')";
+      for (const auto& r : renamed)
+        if (lower == r.first)
+          return "'" + v + "' is now '" + r.second + "' (expected " + Or(choices) + ")";
       return "bad value '" + v + "' (expected " + Or(choices) + ")";
     }));
 }

@@ -69,7 +69,7 @@ struct SurfaceOptions
   cao::AOReferenceSettings reference;
   cao::VCTSettings vct;
   cao::HBAOSettings hbao;
-  cao::VAOSettings vao;
+  cao::VolumetricAOSettings volumetric;
   std::string quality; ///< --quality as given, read per method
   std::string filter, march, fill, coneWeights, falloff, weighting; ///< as given, applied after the parse
   std::vector<int> backends{ vtkLocalAmbientOcclusion::AUTO }; ///< --backend
@@ -304,7 +304,7 @@ SurfaceGPU::~SurfaceGPU()
   this->P->lines.reset();
 }
 
-bool SurfaceGPU::ScreenAO(const cao::PixelCamera& camera, const cao::HBAOSettings* hbao, const cao::VAOSettings* vao,
+bool SurfaceGPU::ScreenAO(const cao::PixelCamera& camera, const cao::HBAOSettings* hbao, const cao::VolumetricAOSettings* volumetric,
   cao::SurfaceFrame& frame, double& ms, std::string& error)
 {
   if (!this->P->context)
@@ -312,7 +312,7 @@ bool SurfaceGPU::ScreenAO(const cao::PixelCamera& camera, const cao::HBAOSetting
   if (!this->P->screen)
     this->P->screen.reset(new cao::gl::ScreenAOEngine(*this->P->context));
   return hbao ? this->P->screen->HBAO(camera, *hbao, frame, ms, error)
-              : this->P->screen->VAO(camera, *vao, frame, ms, error);
+              : this->P->screen->VolumetricAO(camera, *volumetric, frame, ms, error);
 }
 
 bool SurfaceGPU::VoxelizeLines(cao::BitGrid& grid, const cao::LineSegments& lines, double tubeRadius, double& ms,
@@ -847,23 +847,23 @@ int Run(SurfaceOptions& o, const CLI::App* app)
     for (const char* name : { "--line-samples", "--line-weights", "--line-hemisphere", "--strength" })
       if (app->count(name) > 0)
         o.method = "lineao";
-  // --march and --samples are for hbao or vao, --filter for vct, hbao or
-  // vao (the first that is not for --method, in the command line's order).
+  // --march and --samples are for hbao or volumetric, --filter for vct, hbao or
+  // volumetric (the first that is not for --method, in the command line's order).
   for (const CLI::Option* option : app->parse_order())
   {
     const std::string name = option->get_name();
     if (name != "--march" && name != "--samples" && name != "--filter")
       continue;
-    if (!(o.method == "vao" && name != "--march") && !(o.method == "hbao" && name != "--samples") &&
+    if (!(o.method == "volumetric" && name != "--march") && !(o.method == "hbao" && name != "--samples") &&
       !(o.method == "vct" && name == "--filter"))
       return Fail(2,
         name + " is for --method " +
-          (name == "--march" ? "hbao" : name == "--samples" ? "vao" : "vct, hbao or vao") +
+          (name == "--march" ? "hbao" : name == "--samples" ? "volumetric" : "vct, hbao or volumetric") +
           " (got --method " + o.method + ")");
   }
   // The options that only some methods read: refused for the others.
   static const std::vector<std::pair<std::string, std::vector<std::string>>> methodOptions{
-    { "--quality", { "vct", "hbao", "vao" } }, { "--backend", { "vct", "hbao", "vao", "lineao" } },
+    { "--quality", { "vct", "hbao", "volumetric" } }, { "--backend", { "vct", "hbao", "volumetric", "lineao" } },
     { "--slices", { "vct", "lineao" } }, { "--grid", { "vct" } }, { "--cone-weights", { "vct" } },
     { "--fill", { "vct" } }, { "--occupancy", { "vct" } }, { "--ray-step", { "vct" } },
     { "--cone-angle", { "vct" } }, { "--apex-offset", { "vct" } }, { "--rays", { "reference" } },
@@ -882,18 +882,18 @@ int Run(SurfaceOptions& o, const CLI::App* app)
     if (app->count(name) > 0 && !reads(methods))
       return Fail(2, name + " is for --method " + Or(methods) + " (got --method " + o.method + ")");
   if (app->count("--samples") > 0)
-    o.vao.quality = cao::Quality::Custom;
-  if (!o.quality.empty() && o.vao.quality == cao::Quality::Custom && o.method == "vao")
+    o.volumetric.quality = cao::Quality::Custom;
+  if (!o.quality.empty() && o.volumetric.quality == cao::Quality::Custom && o.method == "volumetric")
     return Fail(2, "give --quality or --samples, not both");
   if (!o.quality.empty())
   {
     cao::Quality quality = cao::Quality::Low; // the name was checked at the parse
     cao::ParseQuality(o.quality, quality);
-    (o.method == "hbao" ? o.hbao.quality : o.method == "vao" ? o.vao.quality : o.vct.quality) = quality;
+    (o.method == "hbao" ? o.hbao.quality : o.method == "volumetric" ? o.volumetric.quality : o.vct.quality) = quality;
   }
   if (!o.filter.empty())
   {
-    o.vao.interleave = o.filter == "on";
+    o.volumetric.interleave = o.filter == "on";
     o.vct.interleave = o.filter == "on";
     o.hbao.blurRadius = o.filter == "on" ? 2 : 0;
   }
@@ -1087,10 +1087,10 @@ int Run(SurfaceOptions& o, const CLI::App* app)
       return Fail(2, error);
     ao = frame.ao;
   }
-  else if (o.method == "hbao" || o.method == "vao")
+  else if (o.method == "hbao" || o.method == "volumetric")
   {
     const cao::PixelCamera pixels = MakePixelCamera(camera, o.view);
-    o.hbao.radius = o.vao.radius = radius;
+    o.hbao.radius = o.volumetric.radius = radius;
     {
       // A pixel's width at the scene's centre, roughly (the fitted view
       // spans about the bounds' diagonal): a radius under it leaves the
@@ -1111,12 +1111,12 @@ int Run(SurfaceOptions& o, const CLI::App* app)
     double ms = 0.0;
     if (useGL)
     {
-      if (!gpu.ScreenAO(pixels, hbao ? &o.hbao : nullptr, hbao ? nullptr : &o.vao, frame, ms, error))
+      if (!gpu.ScreenAO(pixels, hbao ? &o.hbao : nullptr, hbao ? nullptr : &o.volumetric, frame, ms, error))
         return Fail(1, error);
       vctBackend = "OpenGL (" + gpu.Description() + ")";
     }
     else if (!(hbao ? cao::HBAOFrame(pixels, o.hbao, frame, o.threads, error)
-                    : cao::VAOFrame(pixels, o.vao, frame, o.threads, error)))
+                    : cao::VolumetricAOFrame(pixels, o.volumetric, frame, o.threads, error)))
       return Fail(2, error);
     ao = frame.ao;
   }
@@ -1176,10 +1176,10 @@ int Run(SurfaceOptions& o, const CLI::App* app)
                 << cao::FalloffName(o.hbao.EffectiveAttenuation()) << "\", \"march\": \""
                 << (o.hbao.deflect ? "deflect" : "sweep") << "\", \"blur_radius\": " << o.hbao.blurRadius
                 << ", \"backend\": \"" << vctBackend << "\"" << NoteField(backendNote) << "}";
-    if (o.method == "vao")
-      std::cout << ", \"vao\": {\"quality\": \"" << cao::QualityName(o.vao.quality) << "\", \"samples\": "
-                << o.vao.EffectiveSamples() << ", \"measure\": \"quartic\", \"interleave\": "
-                << (o.vao.interleave ? 4 : 1) << ", \"backend\": \"" << vctBackend << "\"" << NoteField(backendNote) << "}";
+    if (o.method == "volumetric")
+      std::cout << ", \"volumetric\": {\"quality\": \"" << cao::QualityName(o.volumetric.quality) << "\", \"samples\": "
+                << o.volumetric.EffectiveSamples() << ", \"measure\": \"quartic\", \"interleave\": "
+                << (o.volumetric.interleave ? 4 : 1) << ", \"backend\": \"" << vctBackend << "\"" << NoteField(backendNote) << "}";
     if (o.method == "vct")
     {
       std::cout << ", \"vct\": {\"quality\": \"" << cao::QualityName(o.vct.quality)
@@ -1232,15 +1232,15 @@ Command AddSurfaceCommand(CLI::App& cao)
 {
   auto o = std::make_shared<SurfaceOptions>();
   CLI::App* app = cao.add_subcommand("surface",
-    "ambient occlusion of triangle meshes and lines seen by one camera (voxel cone tracing, HBAO, VAO, "
+    "ambient occlusion of triangle meshes and lines seen by one camera (voxel cone tracing, HBAO, volumetric AO, "
     "line AO, "
     "the ray-traced reference, vtkSSAOPass or none), as a picture or the AO term alone");
   AddMeshes(app, o->meshes);
-  AddChoice(app, "--method", o->method, { "vct", "hbao", "vao", "lineao", "reference", "ssao", "none" },
+  AddChoice(app, "--method", o->method, { "vct", "hbao", "volumetric", "lineao", "reference", "ssao", "none" },
     "the method (default vct; for lines, lineao):\n"
     "vct: voxel cone tracing (Dalla Favera and Celes) on a bit grid of the meshes (CPU or OpenGL: --backend);\n"
     "hbao: horizon-based AO (Bavoil et al.) on the G-buffer (CPU or OpenGL: --backend);\n"
-    "vao: volumetric AO (Szirmay-Kalos et al., base disk, mu = (r/R)^4) on the G-buffer (CPU or OpenGL);\n"
+    "volumetric: volumetric AO (Szirmay-Kalos et al., base disk, mu = (r/R)^4) on the G-buffer (CPU or OpenGL);\n"
     "lineao: line AO (Benevides 2015) for line inputs: the lines voxelized into an eye grid, prisms "
     "sampled in a half ball facing each tube pixel's normal (CPU);\n"
     "reference: CPU ray tracing in double precision (Kernels/Surface; lines: exact capsules);\n"
@@ -1248,7 +1248,8 @@ Command AddSurfaceCommand(CLI::App& cao)
     "radius, read back from an unlit white material (lines: the tubes of vtkTubeFilter);\n"
     "none: AO = 1\n"
     "Line inputs (files with lines: polylines, streamlines) take lineao, reference, ssao or none; "
-    "each line is a tube of --tube-radius");
+    "each line is a tube of --tube-radius",
+    { { "vao", "volumetric" } });
   AddLength(app, "--radius", o->radius,
     "world units (default: half the mean free path between the meshes' surfaces, 2V/A over "
     "their bounding box V and area A, between a fortieth and a tenth of the box's diagonal; "
@@ -1258,14 +1259,14 @@ Command AddSurfaceCommand(CLI::App& cao)
     "vct: low|medium|high, the paper's presets (spheres 3/5/7, prisms 3/6/12; default medium);\n"
     "hbao: low|medium|high, directions/steps/normal rays 6/9/0 with linear attenuation, 7/12/1, "
     "18/25/2 (the paper's Fig. 11 (a), Table 1, Fig. 11 (d); default medium);\n"
-    "vao: low|medium|high, 8/16/32 samples per pixel (default medium)");
+    "volumetric: low|medium|high, 8/16/32 samples per pixel (default medium)");
   AddChoice(app, "--march", o->march, { "deflect", "sweep" },
     "hbao: the horizon march (default deflect, the paper's Fig. 4)");
-  AddInteger(app, "--samples", o->vao.samples, 1, 256,
-    "vao: samples per pixel, 1 to 256 (instead of --quality)");
+  AddInteger(app, "--samples", o->volumetric.samples, 1, 256,
+    "volumetric: samples per pixel, 1 to 256 (instead of --quality)");
   AddChoice(app, "--filter", o->filter, { "on", "off" },
     "vct: its cones turned over a 4 x 4 pattern of pixels and the filter of that size; hbao: its blur; "
-    "vao: its 4 x 4 sample sets and filter (default on)");
+    "volumetric: its 4 x 4 sample sets and filter (default on)");
   AddSurfaceSlices(app, o->vct.slices,
     "vct, lineao: depth slices of the grid, 32 to 1024, a multiple of 32 (default: vct 256, lineao "
     "128; the papers' 128)");
@@ -1277,7 +1278,7 @@ Command AddSurfaceCommand(CLI::App& cao)
   AddChoice(app, "--cone-weights", o->coneWeights, { "cosine", "equal" },
     "vct (default cosine; equal: the paper's average)");
   AddBackend(app, o->backends, false)
-    ->description(Wrap("vct, hbao, vao: where it runs (auto: OpenGL 4.3 on a hardware GPU, the "
+    ->description(Wrap("vct, hbao, volumetric: where it runs (auto: OpenGL 4.3 on a hardware GPU, the "
                        "CPU with a software rasterizer such as llvmpipe or none; gl: OpenGL even "
                        "on llvmpipe, an error without a context)"));
   AddChoice(app, "--fill", o->fill, { "surface", "parity" },

@@ -154,9 +154,9 @@ public:
   /// (`grid`: its frame turns the points into an eye grid's).
   bool Trace(const cao::BitGrid& grid, const cao::VCTPlan& plan, cao::SurfaceFrame& frame, double& ms,
     std::string& error);
-  /// Horizon-based (`hbao`) or volumetric AO (`vao`) of the frame on the
+  /// Horizon-based (`hbao`) or volumetric AO (`volumetric`) of the frame on the
   /// GPU (caoScreenAOGL), blurred or filtered as the CPU twin; `ms` GPU time.
-  bool ScreenAO(const cao::PixelCamera& camera, const cao::HBAOSettings* hbao, const cao::VAOSettings* vao,
+  bool ScreenAO(const cao::PixelCamera& camera, const cao::HBAOSettings* hbao, const cao::VolumetricAOSettings* volumetric,
     cao::SurfaceFrame& frame, double& ms, std::string& error);
   /// The lines' voxelization on the GPU (cao::gl::LineAOEngine::Voxelize,
   /// cao::VoxelizeLines' twin) into `grid`'s plan, its bits read back into

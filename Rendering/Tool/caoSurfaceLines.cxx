@@ -247,7 +247,7 @@ int RunSurfaceLines(LineJob& job, const std::vector<std::string>& files,
     (lines ? lineRead : meshRead).push_back(read[m]);
   }
   const bool mixed = !meshRead.empty();
-  if (mixed ? job.method == "hbao" || job.method == "vao"
+  if (mixed ? job.method == "hbao" || job.method == "volumetric"
             : job.method != "lineao" && job.method != "reference" && job.method != "ssao" && job.method != "none")
     return Fail(2, mixed ? "the inputs hold lines and meshes: --method lineao or vct (each kind by its own "
                            "technique on one grid: line AO for the lines, voxel cones for the meshes), reference, "

@@ -12,9 +12,9 @@
 - voxel cone tracing (the default): the reference's pixels, AO in [0, 1],
   dark by a sphere, open elsewhere; an open mesh is reported and voxelized
   as a shell;
-- horizon-based AO (--method hbao) and volumetric AO (--method vao): the
+- horizon-based AO (--method hbao) and volumetric AO (--method volumetric): the
   reference's pixels, AO in [0, 1]; on the open square hbao gives 1 at
-  every pixel and vao 1 on average; the resting sphere darkens both;
+  every pixel and volumetric 1 on average; the resting sphere darkens both;
   --json reports their settings; against the reference on Bunny, their
   error is below no AO's (negative control: none);
 - cao bench surface: csv, json and plot; every configuration has a row
@@ -171,7 +171,7 @@ w2.Write()
 check(lit[2][lit[3]].min() < 0.3, "a sphere resting on the square darkens it (min AO %.3f)" % lit[2][lit[3]].min())
 
 # The screen-space methods on the same scenes.
-for method in ("hbao", "vao"):
+for method in ("hbao", "volumetric"):
     got = surface("square-" + method, [square], "--method", method, "--elevation", "0", "--azimuth", "0",
                   "--radius", "1")
     ball_ss = surface("square-ball-" + method, [square, ball], "--method", method, "--radius", "1")
@@ -184,7 +184,7 @@ for method in ("hbao", "vao"):
           "%s on the open square: the reference's pixels, AO %s (min %.4f, mean %.4f)"
           % (method, "1 everywhere" if method == "hbao" else "1 on average", a.min(), a.mean()))
     b = ball_ss[0][2][ball_ss[0][3]]
-    # vao's quartic measure weighs near occluders less: lighter than the step's.
+    # volumetric's quartic measure weighs near occluders less: lighter than the step's.
     check(np.array_equal(ball_ss[0][3], lit[3]) and b.min() < (0.6 if method == "hbao" else 0.75) and
           b.max() <= 1.0 and b.min() >= 0.0,
           "%s: the resting sphere darkens the square (min %.3f), AO in [0, 1]" % (method, b.min()))
@@ -209,11 +209,11 @@ check(rc == 0 and report.get("method") == "vct" and report["vct"]["open_meshes"]
       "vct is the default; the open square is reported (%s) and voxelized as a shell: %r"
       % (report.get("vct", {}).get("open_meshes"), se.strip()[:200]))
 if rc == 0:
-    _, _, vao, vcov = ao_png(out)
-    check(vcov.sum() == report["covered_pixels"] and vao[vcov].min() >= 0 and vao[vcov].max() <= 1 and
-          vao[vcov].min() < 0.8 and np.percentile(vao[vcov], 90) > 0.99,
+    _, _, volumetric, vcov = ao_png(out)
+    check(vcov.sum() == report["covered_pixels"] and volumetric[vcov].min() >= 0 and volumetric[vcov].max() <= 1 and
+          volumetric[vcov].min() < 0.8 and np.percentile(volumetric[vcov], 90) > 0.99,
           "vct: AO in [0, 1], dark near the ball (min %.3f), open elsewhere (90th percentile %.3f)"
-          % (vao[vcov].min(), np.percentile(vao[vcov], 90)))
+          % (volumetric[vcov].min(), np.percentile(volumetric[vcov], 90)))
 (vb, vb_json) = surface("bunny-vct", [bunny])
 m = np.logical_and(covered, vb[3])
 d = vb[2][m] - ao[m]
@@ -259,7 +259,7 @@ check((auto_vct["backend"] == "CPU") == ("backend_note" in auto_vct) and
 bench = os.path.join(tmp, "bench")
 p = subprocess.run([tool, "bench", "surface", bunny, "--image", "96x96", "--reference-rays", "128",
                     "--slices", "128,256", "--qualities", "low,high", "--kernels", "32", "--repeats", "1",
-                    "--hbao", "low,8/18/1", "--vao", "medium", "--gbuffers", "ray-cast,depth",
+                    "--hbao", "low,8/18/1", "--volumetric", "medium", "--gbuffers", "ray-cast,depth",
                     "-o", bench], capture_output=True, text=True, timeout=600)
 check(p.returncode == 0 and all(os.path.exists(os.path.join(bench, f))
                                 for f in ("surface.csv", "surface.json", "surface.png")),
@@ -267,7 +267,7 @@ check(p.returncode == 0 and all(os.path.exists(os.path.join(bench, f))
 if p.returncode == 0:
     result = json.load(open(os.path.join(bench, "surface.json")))
     by = {r["configuration"]: r for r in result["rows"]}
-    exact = {"vct low 128", "vct high 128", "vct low 256", "vct high 256", "hbao low", "hbao 8/18/1", "vao medium"}
+    exact = {"vct low 128", "vct high 128", "vct low 256", "vct high 256", "hbao low", "hbao 8/18/1", "volumetric medium"}
     expected = {"reference 128 rays", "none", "ssao k32"} | exact | {c + " depth" for c in exact}
     check(set(by) == expected, "every configuration has a row, each method's also with the depth G-buffer: %s"
           % sorted(by))
@@ -285,13 +285,13 @@ if p.returncode == 0:
     check(by["vct high 256"]["rmse"] < by["vct low 128"]["rmse"],
           "vct high at 256 slices beats low at 128 (%.4f < %.4f)"
           % (by["vct high 256"]["rmse"], by["vct low 128"]["rmse"]))
-    check(by["vao medium"]["own_falloff"] == "quartic" and by["vao medium"]["own_rmse"] > 0 and
+    check(by["volumetric medium"]["own_falloff"] == "quartic" and by["volumetric medium"]["own_rmse"] > 0 and
           by["hbao low"]["own_falloff"] == "linear" and by["hbao 8/18/1"]["own_rmse"] == by["hbao 8/18/1"]["rmse"] and
-          by["vao medium"]["own_rmse"] != by["vao medium"]["rmse"],
-          "the screen-space rows carry their own-definition error (vao quartic %.4f, hbao low linear %.4f)"
-          % (by["vao medium"]["own_rmse"], by["hbao low"]["own_rmse"]))
+          by["volumetric medium"]["own_rmse"] != by["volumetric medium"]["rmse"],
+          "the screen-space rows carry their own-definition error (volumetric quartic %.4f, hbao low linear %.4f)"
+          % (by["volumetric medium"]["own_rmse"], by["hbao low"]["own_rmse"]))
     # The Pareto front is exactly the non-dominated method rows.
-    methods = [r for r in result["rows"] if r["method"] in ("vct", "ssao", "hbao", "vao")]
+    methods = [r for r in result["rows"] if r["method"] in ("vct", "ssao", "hbao", "volumetric")]
     def dominated(r, rows):
         return any(o["ms"] <= r["ms"] and o["rmse"] <= r["rmse"] and (o["ms"] < r["ms"] or o["rmse"] < r["rmse"])
                    for o in rows)
@@ -529,16 +529,18 @@ for args, words in [(["--method", "magic", bunny, "-o", "x.png"], "--method: bad
                     (["--quality", "Low", bunny, "-o", "x.png"], "the names are lower case: 'low'"),
                     (["--method", "hbao", "--quality", "Balanced", bunny, "-o", "x.png"], "is now 'medium'"),
                     (["--method", "HBAO", bunny, "-o", "x.png"], "the names are lower case: 'hbao'"),
-                    (["--method", "vao", "--samples", "0", bunny, "-o", "x.png"], "--samples"),
+                    # Volumetric AO's former name (it collided with OpenGL's vertex array object).
+                    (["--method", "vao", bunny, "-o", "x.png"], "'vao' is now 'volumetric'"),
+                    (["--method", "volumetric", "--samples", "0", bunny, "-o", "x.png"], "--samples"),
                     (["--march", "up", bunny, "-o", "x.png"], "--march: bad value 'up'"),
                     (["--march", "sweep", bunny, "-o", "x.png"], "--march is for --method hbao"),
                     # Options another method reads, given with this one (ignored before).
                     (["--method", "hbao", "--grid", "eye", bunny, "-o", "x.png"], "--grid is for --method vct"),
-                    (["--method", "ssao", "--quality", "high", bunny, "-o", "x.png"], "--quality is for --method vct, hbao or vao"),
+                    (["--method", "ssao", "--quality", "high", bunny, "-o", "x.png"], "--quality is for --method vct, hbao or volumetric"),
                     (["--kernel", "8", bunny, "-o", "x.png"], "--kernel is for --method ssao"),
                     (["--method", "reference", "--backend", "cpu", bunny, "-o", "x.png"], "--backend is for"),
                     (["--falloff", "linear", bunny, "-o", "x.png"], "--falloff is for --method reference"),
-                    (["--method", "vao", "--quality", "low", "--samples", "8", bunny, "-o", "x.png"], "not both"),
+                    (["--method", "volumetric", "--quality", "low", "--samples", "8", bunny, "-o", "x.png"], "not both"),
                     ([volume_vtk, "-o", "x.png"], "not a polygonal mesh"),
                     ([bunny, "-o", os.path.join(tmp, "no", "such", "x.png")], "does not exist"),
                     ([os.path.join(tmp, "missing.vtp"), "-o", "x.png"], "missing.vtp"),
@@ -549,20 +551,20 @@ for args, words in [(["--method", "magic", bunny, "-o", "x.png"], "--method: bad
 # A radius outside 1e-6 to 1e3 times the scene's diagonal is refused with
 # the limits, for every method (volumetric AO gave AO 0 at 1e-300 and
 # 1e100, voxel cones 1 at 1e10); at the limits it runs.
-for method in ("vct", "hbao", "vao", "reference"):
+for method in ("vct", "hbao", "volumetric", "reference"):
     for radius in (1e-300, 1.001e3 * bunny_diagonal, 0.999e-6 * bunny_diagonal):
         rays = ["--rays", "16"] if method == "reference" else []
         rc, so, se = run(bunny, "--method", method, "--radius", repr(radius), "--image", "48x48", *rays,
                          "-o", os.path.join(tmp, "r.png"))
         check(rc == 2 and "1e-6 to 1e3 times" in se, "%s --radius %g refused with the limits (rc %d: %s)"
               % (method, radius, rc, se.strip()[-160:]))
-rc, so, se = run(bunny, "--method", "vao", "--radius", repr(0.999e3 * bunny_diagonal), "--image", "48x48",
+rc, so, se = run(bunny, "--method", "volumetric", "--radius", repr(0.999e3 * bunny_diagonal), "--image", "48x48",
                  "-o", os.path.join(tmp, "r.png"))
-check(rc == 0, "control: vao at 999 times the diagonal runs (rc %d: %s)" % (rc, se.strip()[-160:]))
+check(rc == 0, "control: volumetric at 999 times the diagonal runs (rc %d: %s)" % (rc, se.strip()[-160:]))
 # A radius under a pixel: the screen-space methods warn that they see no
-# neighbour (vao gave AO 0.84 on a scene the reference sees open there);
+# neighbour (volumetric gave AO 0.84 on a scene the reference sees open there);
 # control: the default radius, no warning.
-for method in ("hbao", "vao"):
+for method in ("hbao", "volumetric"):
     rc, so, se = run(bunny, "--method", method, "--radius", repr(1e-5 * bunny_diagonal), "--image", "48x48",
                      "-o", os.path.join(tmp, "r.png"))
     rc2, so2, se2 = run(bunny, "--method", method, "--image", "48x48", "-o", os.path.join(tmp, "r.png"))

@@ -287,7 +287,7 @@ commands = {
            ["--reach", "--density", "--threads"]),
     "surface": (["surface", meshes["mesh.vtp"], "--image", "48x48", "-o", path("o.png")],
                 ["--radius", "--slices", "--zoom", "--azimuth", "--elevation"]),
-    "surface --method vao": (["surface", meshes["mesh.vtp"], "--image", "48x48", "--method", "vao",
+    "surface --method volumetric": (["surface", meshes["mesh.vtp"], "--image", "48x48", "--method", "volumetric",
                               "-o", path("o.png")], ["--samples", "--radius"]),
     "render": (["render", volume, "--image", "48x48", "--path", "1", "--rays", "6", "-o",
                 path("r_%d.png")],

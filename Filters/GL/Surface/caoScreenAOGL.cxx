@@ -23,7 +23,7 @@ struct ScreenAOEngine::Impl
   Context& Ctx;
   const Functions& gl;
   GLuint params = 0, positions = 0, normals = 0, ao = 0, disk = 0;
-  Program programs[2]; ///< 0 hbao, 1 vao
+  Program programs[2]; ///< 0 hbao, 1 volumetric
   Program filter;      ///< the blur or filter (GPU frames)
   StageTimer timer{ 2 };
   std::int64_t bytes = 0;
@@ -56,7 +56,7 @@ struct ScreenAOEngine::Impl
     timer.Release(gl);
     bytes = 0;
   }
-  /// Runs method 0 (hbao) or 1 (vao) with `block` over `frame`.
+  /// Runs method 0 (hbao) or 1 (volumetric) with `block` over `frame`.
   bool Run(int method, layout::ScreenAOParams& block, const std::vector<layout::vec4>& samples,
     const PixelCamera& camera, SurfaceFrame& frame, double& ms, std::string& error);
   /// Runs method 0 or 1 over pixels already on the GPU, then the filter
@@ -106,7 +106,7 @@ bool CommonBlock(const PixelCamera& camera, double radius, layout::ScreenAOParam
 }
 
 /// The filter's part of the block: taps each side, their weights, the
-/// tolerance, the clamp (as FinishHBAO and FinishVAO call DepthAwareFilter).
+/// tolerance, the clamp (as FinishHBAO and FinishVolumetricAO call DepthAwareFilter).
 void FilterBlock(const std::vector<double>& weights, double tolerance, bool clampUnit, layout::ScreenAOParams& b)
 {
   float w[CAO_SS_MAX_FILTER_WEIGHTS] = { 0 };
@@ -132,19 +132,19 @@ void HBAOBlock(const HBAOSettings& settings, layout::ScreenAOParams& block)
   FilterBlock(HBAOBlurWeights(settings), settings.blurTolerance * settings.radius, false, block);
 }
 
-/// VAO's part of the block (and its filter), and its disk samples.
-void VAOBlock(const VAOSettings& settings, layout::ScreenAOParams& block, std::vector<layout::vec4>& samples)
+/// Volumetric AO's part of the block (and its filter), and its disk samples.
+void VolumetricAOBlock(const VolumetricAOSettings& settings, layout::ScreenAOParams& block, std::vector<layout::vec4>& samples)
 {
-  const int tile = settings.interleave ? VAOSettings::Tile : 1;
+  const int tile = settings.interleave ? VolumetricAOSettings::Tile : 1;
   block.image.z = 1;
   block.image.w = tile;
-  block.vao = { settings.EffectiveSamples(), tile * tile, settings.haloGuard ? 1 : 0, 0 };
+  block.volumetric = { settings.EffectiveSamples(), tile * tile, settings.haloGuard ? 1 : 0, 0 };
   std::vector<double> x, y;
-  VAODiskSamples(settings, x, y);
+  VolumetricAODiskSamples(settings, x, y);
   samples.resize(x.size());
   for (std::size_t i = 0; i < x.size(); ++i)
     samples[i] = { static_cast<float>(x[i]), static_cast<float>(y[i]), 0.0f, 0.0f };
-  FilterBlock(VAOFilterWeights(settings), settings.filterTolerance * settings.radius, true, block);
+  FilterBlock(VolumetricAOFilterWeights(settings), settings.filterTolerance * settings.radius, true, block);
 }
 }
 
@@ -329,7 +329,7 @@ bool ScreenAOEngine::HBAOPixels(const PixelCamera& camera, const HBAOSettings& s
   return this->P->RunPixels(0, block, { layout::vec4{ 0, 0, 0, 0 } }, points, normals, ao, ms, error);
 }
 
-bool ScreenAOEngine::VAOPixels(const PixelCamera& camera, const VAOSettings& settings, unsigned points,
+bool ScreenAOEngine::VolumetricAOPixels(const PixelCamera& camera, const VolumetricAOSettings& settings, unsigned points,
   unsigned normals, unsigned ao, double& ms, std::string& error)
 {
   error = settings.Validate();
@@ -337,7 +337,7 @@ bool ScreenAOEngine::VAOPixels(const PixelCamera& camera, const VAOSettings& set
   if (!error.empty() || !CommonBlock(camera, settings.radius, block, error))
     return false;
   std::vector<layout::vec4> samples;
-  VAOBlock(settings, block, samples);
+  VolumetricAOBlock(settings, block, samples);
   CurrentScope scope(this->P->Ctx);
   if (!scope.Ok(error))
     return false;
@@ -345,7 +345,7 @@ bool ScreenAOEngine::VAOPixels(const PixelCamera& camera, const VAOSettings& set
   return this->P->RunPixels(1, block, samples, points, normals, ao, ms, error);
 }
 
-bool ScreenAOEngine::VAO(const PixelCamera& camera, const VAOSettings& settings, SurfaceFrame& frame, double& ms,
+bool ScreenAOEngine::VolumetricAO(const PixelCamera& camera, const VolumetricAOSettings& settings, SurfaceFrame& frame, double& ms,
   std::string& error)
 {
   error = settings.Validate();
@@ -354,10 +354,10 @@ bool ScreenAOEngine::VAO(const PixelCamera& camera, const VAOSettings& settings,
     !(error = CheckScreenFrame(camera, frame)).empty())
     return false;
   std::vector<layout::vec4> samples;
-  VAOBlock(settings, block, samples);
+  VolumetricAOBlock(settings, block, samples);
   if (!this->P->Run(1, block, samples, camera, frame, ms, error))
     return false;
-  FinishVAO(settings, frame, 0);
+  FinishVolumetricAO(settings, frame, 0);
   return true;
 }
 

@@ -4,8 +4,8 @@
  * specialised per method) evaluates the CPU twin's estimator
  * (caoScreenSpaceAO.h) in float per pixel, with the same randomization
  * pattern and disk samples; the host then applies the twin's own blur or
- * filter (FinishHBAO, FinishVAO), so the two differ only by float against
- * double. On a frame kept on the GPU (HBAOPixels, VAOPixels) the blur or
+ * filter (FinishHBAO, FinishVolumetricAO), so the two differ only by float against
+ * double. On a frame kept on the GPU (HBAOPixels, VolumetricAOPixels) the blur or
  * filter runs there too (caoScreenFilter.glsl, DepthAwareFilter's twin). The parameter block is caoGPULayout.h's ScreenAOParams. Every
  * entry point runs in a CurrentScope and a StateGuard: a host
  * application's context and GL state come back as they were.
@@ -36,13 +36,13 @@ public:
   ScreenAOEngine(const ScreenAOEngine&) = delete;
   ScreenAOEngine& operator=(const ScreenAOEngine&) = delete;
 
-  /// cao::HBAOFrame / cao::VAOFrame on the GPU: frame.ao of every covered
+  /// cao::HBAOFrame / cao::VolumetricAOFrame on the GPU: frame.ao of every covered
   /// pixel, blurred or filtered on the host as the twin does. `ms`: the
   /// estimator's GPU time. False with the reason on bad settings, a frame
   /// that does not match the camera, or a GL error.
   bool HBAO(const PixelCamera& camera, const HBAOSettings& settings, SurfaceFrame& frame, double& ms,
     std::string& error);
-  bool VAO(const PixelCamera& camera, const VAOSettings& settings, SurfaceFrame& frame, double& ms,
+  bool VolumetricAO(const PixelCamera& camera, const VolumetricAOSettings& settings, SurfaceFrame& frame, double& ms,
     std::string& error);
 
   /// The same on a frame kept on the GPU (cao::gl::FrameEngine's buffers,
@@ -54,7 +54,7 @@ public:
   /// GPU time.
   bool HBAOPixels(const PixelCamera& camera, const HBAOSettings& settings, unsigned points, unsigned normals,
     unsigned ao, double& ms, std::string& error);
-  bool VAOPixels(const PixelCamera& camera, const VAOSettings& settings, unsigned points, unsigned normals,
+  bool VolumetricAOPixels(const PixelCamera& camera, const VolumetricAOSettings& settings, unsigned points, unsigned normals,
     unsigned ao, double& ms, std::string& error);
 
   /// Bytes of GPU memory held.

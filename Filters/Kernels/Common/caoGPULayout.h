@@ -328,21 +328,21 @@ struct FrameParams
 
 /* The screen-space surface AO (caoScreenSpaceAO.h, caoScreenAO.glsl): one
  * block for horizon-based AO and volumetric AO; the frame's pixels as vec4
- * buffers; VAO's disk samples (16 sets of up to 256) as a buffer. */
+ * buffers; Volumetric AO's disk samples (16 sets of up to 256) as a buffer. */
 #define CAO_SS_TILE 4
-#define CAO_SS_MAX_SAMPLES 4096 /* 16 sets x VAOSettings' 256 samples */
+#define CAO_SS_MAX_SAMPLES 4096 /* 16 sets x VolumetricAOSettings' 256 samples */
 #define CAO_SS_MAX_FILTER_WEIGHTS 20 /* 2 x HBAOSettings' 8 taps + 1, in whole vec4s */
 struct ScreenAOParams
 {
   vec4 worldToNDC[4]; /* rows */
   vec4 ndcToWorld[4]; /* rows */
-  ivec4 image;        /* x: width, y: height, z: method (0 hbao, 1 vao), w: pattern tile side (4 or 1) */
+  ivec4 image;        /* x: width, y: height, z: method (0 hbao, 1 volumetric), w: pattern tile side (4 or 1) */
   ivec4 hbao;         /* x: directions, y: steps, z: normal rays, w: flags (1 deflect, 2 linear attenuation) */
-  ivec4 vao;          /* x: samples per pixel, y: sets, z: halo guard, w: 0 */
+  ivec4 volumetric;          /* x: samples per pixel, y: sets, z: halo guard, w: 0 */
   vec4 scalars;       /* x: radius R (world), y: offset (pixels), zw: 0 */
   vec4 pattern[CAO_SS_TILE * CAO_SS_TILE]; /* hbao per tile cell: x rotation (radians), y jitter (0, 1] */
   vec4 finish;        /* the blur or filter (caoScreenFilter.glsl, cao::DepthAwareFilter): x taps each side
-                         (0: none), y tolerance (world), z 1: clamp to [0, 1] after (VAO); w: the taps'
+                         (0: none), y tolerance (world), z 1: clamp to [0, 1] after (Volumetric AO); w: the taps'
                          reach from the pixel's point (world; 0: unlimited) */
   vec4 finishWeights[CAO_SS_MAX_FILTER_WEIGHTS / 4]; /* the taps' weights per axis, -r..r, 4 a row */
 };

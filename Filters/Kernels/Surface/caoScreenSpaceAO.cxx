@@ -131,14 +131,14 @@ struct Screen
   }
 };
 
-/// VAO's sample points on the disk of radius R: set s's sample q at index
+/// Volumetric AO's sample points on the disk of radius R: set s's sample q at index
 /// s + sets q. Each set covers the whole disk: radius^2 (q + (s + 1/2) /
 /// sets) / n (the sets interleave their radii), angle the radical inverse
 /// of q turned by a per-set offset.
-void DiskSamplesOf(const VAOSettings& settings, std::vector<double>& diskX, std::vector<double>& diskY)
+void DiskSamplesOf(const VolumetricAOSettings& settings, std::vector<double>& diskX, std::vector<double>& diskY)
 {
   const double R = settings.radius;
-  const int n = settings.EffectiveSamples(), tile = settings.interleave ? VAOSettings::Tile : 1;
+  const int n = settings.EffectiveSamples(), tile = settings.interleave ? VolumetricAOSettings::Tile : 1;
   const int sets = tile * tile, total = sets * n;
   diskX.assign(total, 0.0);
   diskY.assign(total, 0.0);
@@ -203,7 +203,7 @@ void HBAOPattern(const HBAOSettings& settings, double rotation[16], double jitte
   }
 }
 
-void VAODiskSamples(const VAOSettings& settings, std::vector<double>& x, std::vector<double>& y)
+void VolumetricAODiskSamples(const VolumetricAOSettings& settings, std::vector<double>& x, std::vector<double>& y)
 {
   DiskSamplesOf(settings, x, y);
 }
@@ -249,7 +249,7 @@ std::string HBAOSettings::Validate() const
   return CheckFrameSettings(this->radius);
 }
 
-int VAOSettings::EffectiveSamples() const
+int VolumetricAOSettings::EffectiveSamples() const
 {
   switch (this->quality)
   {
@@ -264,12 +264,12 @@ int VAOSettings::EffectiveSamples() const
   }
 }
 
-std::string VAOSettings::Validate() const
+std::string VolumetricAOSettings::Validate() const
 {
   if (!ValidQuality(this->quality))
-    return "unknown VAO quality";
+    return "unknown volumetric AO quality";
   if (this->samples < 1 || this->samples > 256)
-    return "VAO samples per pixel must be 1..256 (got " + std::to_string(this->samples) + ")";
+    return "Volumetric AO samples per pixel must be 1..256 (got " + std::to_string(this->samples) + ")";
   if (!(this->filterTolerance > 0.0) || !std::isfinite(this->filterTolerance))
     return "the filter tolerance must be positive and finite";
   return CheckFrameSettings(this->radius);
@@ -318,7 +318,7 @@ std::vector<double> HBAOBlurWeights(const HBAOSettings& settings)
   return weights;
 }
 
-std::vector<double> VAOFilterWeights(const VAOSettings& settings)
+std::vector<double> VolumetricAOFilterWeights(const VolumetricAOSettings& settings)
 {
   return settings.interleave ? std::vector<double>{ 0.5, 1.0, 1.0, 1.0, 0.5 } : std::vector<double>();
 }
@@ -330,9 +330,9 @@ void FinishHBAO(const HBAOSettings& settings, SurfaceFrame& frame, int threads)
     DepthAwareFilter(frame, weights, settings.blurTolerance * settings.radius, frame.ao, threads);
 }
 
-void FinishVAO(const VAOSettings& settings, SurfaceFrame& frame, int threads)
+void FinishVolumetricAO(const VolumetricAOSettings& settings, SurfaceFrame& frame, int threads)
 {
-  const std::vector<double> weights = VAOFilterWeights(settings);
+  const std::vector<double> weights = VolumetricAOFilterWeights(settings);
   if (!weights.empty())
     DepthAwareFilter(frame, weights, settings.filterTolerance * settings.radius, frame.ao, threads);
   for (double& a : frame.ao)
@@ -446,7 +446,7 @@ bool HBAOFrame(const PixelCamera& camera, const HBAOSettings& settings, SurfaceF
   return true;
 }
 
-bool VAOFrame(const PixelCamera& camera, const VAOSettings& settings, SurfaceFrame& frame, int threads,
+bool VolumetricAOFrame(const PixelCamera& camera, const VolumetricAOSettings& settings, SurfaceFrame& frame, int threads,
   std::string& error, const std::vector<std::size_t>* only)
 {
   error = settings.Validate();
@@ -457,11 +457,11 @@ bool VAOFrame(const PixelCamera& camera, const VAOSettings& settings, SurfaceFra
     return false;
   const std::size_t pixels = frame.ao.size();
   const double R = settings.radius;
-  const int n = settings.EffectiveSamples(), tile = settings.interleave ? VAOSettings::Tile : 1;
+  const int n = settings.EffectiveSamples(), tile = settings.interleave ? VolumetricAOSettings::Tile : 1;
   const int sets = tile * tile;
   std::vector<double> diskX, diskY;
   DiskSamplesOf(settings, diskX, diskY);
-  std::vector<double>& ao = frame.ao; // in place: VAO reads no AO
+  std::vector<double>& ao = frame.ao; // in place: Volumetric AO reads no AO
   ao.assign(pixels, std::numeric_limits<double>::quiet_NaN());
   const double scale = 4.0 / (R * R * R * R);
   ParallelFor(only ? only->size() : pixels, threads, [&](std::size_t index) {
@@ -502,7 +502,7 @@ bool VAOFrame(const PixelCamera& camera, const VAOSettings& settings, SurfaceFra
     ao[k] = R * R * sum / n;
   });
   if (!only)
-    FinishVAO(settings, frame, threads);
+    FinishVolumetricAO(settings, frame, threads);
   else
     for (double& a : ao)
       if (std::isfinite(a))
@@ -510,7 +510,7 @@ bool VAOFrame(const PixelCamera& camera, const VAOSettings& settings, SurfaceFra
   return true;
 }
 
-bool VAOIndirect(const PixelCamera& camera, const VAOSettings& settings, const SurfaceFrame& frame,
+bool VolumetricAOIndirect(const PixelCamera& camera, const VolumetricAOSettings& settings, const SurfaceFrame& frame,
   const std::vector<float>& colour, std::vector<float>& indirect, int threads, std::string& error)
 {
   error = settings.Validate();
@@ -524,7 +524,7 @@ bool VAOIndirect(const PixelCamera& camera, const VAOSettings& settings, const S
     return error = "the colour buffer does not match the image size", false;
   std::vector<double> diskX, diskY;
   DiskSamplesOf(settings, diskX, diskY);
-  const int n = settings.EffectiveSamples(), tile = settings.interleave ? VAOSettings::Tile : 1;
+  const int n = settings.EffectiveSamples(), tile = settings.interleave ? VolumetricAOSettings::Tile : 1;
   const double R = settings.radius;
   indirect.assign(3 * pixels, 0.0f);
   ParallelFor(pixels, threads, [&](std::size_t k) {

@@ -93,7 +93,7 @@ struct HBAOSettings
 
 
 /// The settings of volumetric AO (Szirmay-Kalos et al., base disk).
-struct VAOSettings
+struct VolumetricAOSettings
 {
   /// Low: 8 samples per pixel; Medium: 16 (the paper's "12-16 samples
   /// per pixel"); High: 32; Custom: `samples`.
@@ -126,35 +126,35 @@ bool HBAOFrame(const PixelCamera& camera, const HBAOSettings& settings, SurfaceF
 
 /// Volumetric AO of every covered pixel into frame.ao (`only`: just these
 /// pixels, unfiltered).
-bool VAOFrame(const PixelCamera& camera, const VAOSettings& settings, SurfaceFrame& frame, int threads,
+bool VolumetricAOFrame(const PixelCamera& camera, const VolumetricAOSettings& settings, SurfaceFrame& frame, int threads,
   std::string& error, const std::vector<std::size_t>* only = nullptr);
 
-/// VAO's indirect term on a frame whose AO VAOFrame made: per covered
+/// Volumetric AO's indirect term on a frame whose AO VolumetricAOFrame made: per covered
 /// pixel I = L (1 - O), L the mean of `colour` (RGB per pixel, the lit
 /// picture) over the pixel's sample points whose surface faces it (the
 /// same samples as its AO); `indirect` RGB per pixel, 0 on the background.
 /// Only this runs again when the colours change.
-bool VAOIndirect(const PixelCamera& camera, const VAOSettings& settings, const SurfaceFrame& frame,
+bool VolumetricAOIndirect(const PixelCamera& camera, const VolumetricAOSettings& settings, const SurfaceFrame& frame,
   const std::vector<float>& colour, std::vector<float>& indirect, int threads, std::string& error);
 
 /// HBAO's per-pixel randomization (the same on CPU and GPU): per cell of
 /// the 4 x 4 tile (i % 4 + 4 (j % 4)), the directions' rotation in [0, 2
 /// pi / N_d) and the steps' jitter in (0, 1].
 void HBAOPattern(const HBAOSettings& settings, double rotation[16], double jitter[16]);
-/// VAO's sample points (x, y world units on the disk of radius R): set s's
+/// Volumetric AO's sample points (x, y world units on the disk of radius R): set s's
 /// sample q at index s + sets q, sets = 16 (interleaved) or 1.
-void VAODiskSamples(const VAOSettings& settings, std::vector<double>& x, std::vector<double>& y);
+void VolumetricAODiskSamples(const VolumetricAOSettings& settings, std::vector<double>& x, std::vector<double>& y);
 
 /// What each method does after its per-pixel estimate (CPU or GPU): HBAO
-/// its depth-aware Gaussian blur; VAO its depth-limited filter of the
+/// its depth-aware Gaussian blur; Volumetric AO its depth-limited filter of the
 /// sample sets' size, then the clamp to [0, 1].
 void FinishHBAO(const HBAOSettings& settings, SurfaceFrame& frame, int threads);
-void FinishVAO(const VAOSettings& settings, SurfaceFrame& frame, int threads);
+void FinishVolumetricAO(const VolumetricAOSettings& settings, SurfaceFrame& frame, int threads);
 /// Their filters' weights per axis, for offsets -r..r (empty: none): HBAO's
-/// Gaussian (sigma 1.5 pixels, blurRadius taps each side), VAO's 5 taps
+/// Gaussian (sigma 1.5 pixels, blurRadius taps each side), volumetric AO's 5 taps
 /// (1/2, 1, 1, 1, 1/2: each of the 4 x 4 sample sets once) when interleaved.
 std::vector<double> HBAOBlurWeights(const HBAOSettings& settings);
-std::vector<double> VAOFilterWeights(const VAOSettings& settings);
+std::vector<double> VolumetricAOFilterWeights(const VolumetricAOSettings& settings);
 /// Empty when `frame` is a frame of `camera`'s image (its buffers sized
 /// for it), else why not.
 std::string CheckScreenFrame(const PixelCamera& camera, const SurfaceFrame& frame);

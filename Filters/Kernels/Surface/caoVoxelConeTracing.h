@@ -114,7 +114,7 @@ struct VCTSettings
   double rayStep = 1.0;
   /// The cones turned about the normal per pixel, by one of 16 angles over
   /// a 4 x 4 tile of pixels (VCTPatternRotations), then the depth-aware
-  /// filter of the tile's size (VAO's: DepthAwareFilter, 5 taps 1/2, 1, 1,
+  /// filter of the tile's size (Volumetric AO's: DepthAwareFilter, 5 taps 1/2, 1, 1,
   /// 1, 1/2, its taps within R of the pixel's point), so each pixel's AO
 /// averages 16 ray sets. Default true: with
   /// one set for every pixel, each ray's hit or miss is a step in the AO,
@@ -123,7 +123,7 @@ struct VCTSettings
   /// AO (ConeTraceAO) has no pixel.
   bool interleave = true;
   /// The filter's tangent-plane tolerance, in R (0..10]. Default 0.02:
-  /// VAO's 0.1 blurred the AO across nearby surfaces of fine geometry
+  /// Volumetric AO's 0.1 blurred the AO across nearby surfaces of fine geometry
   /// (measured, `cao bench surface --default-radius`, Medium, 256 slices,
   /// 4 shared meshes, 256-ray reference: mean RMSE 0.0569 at 0.1, 0.0475
   /// at 0.03, 0.0465 at 0.02, 0.0466 at 0.01; without the pattern 0.0486).
@@ -328,7 +328,7 @@ double VCTPixelRotation(const VCTPlan& plan, std::int64_t k, int width);
 /// The filter after the per-pixel AO (none without interleave), on CPU
 /// frames and after the GPU's trace of a frame read back.
 void FinishVCT(const VCTPlan& plan, SurfaceFrame& frame, int threads);
-/// Its weights per axis (empty: none), as VAOFilterWeights.
+/// Its weights per axis (empty: none), as VolumetricAOFilterWeights.
 std::vector<double> VCTFilterWeights(const VCTPlan& plan);
 
 /// The AO of every covered pixel of `frame` (CastPrimary's): the per-pixel

@@ -45,7 +45,7 @@ import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (the OpenGL factories)
 import vtkmodules.vtkRenderingVolumeOpenGL2  # noqa: F401
 
 METHODS = {"none": vtkContextualAOPass.NONE, "vct": vtkContextualAOPass.VCT,
-           "hbao": vtkContextualAOPass.HBAO, "vao": vtkContextualAOPass.VAO}
+           "hbao": vtkContextualAOPass.HBAO, "volumetric": vtkContextualAOPass.VOLUMETRIC}
 
 parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
 parser.add_argument("volume", help="carotid.vtk (scalars and velocity vectors)")

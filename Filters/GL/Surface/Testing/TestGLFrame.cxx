@@ -8,7 +8,7 @@
 //   voxel face); negative control: Low against Medium;
 // - the depth read into a buffer instead (SetBlitDepth(false), the path for
 //   framebuffers whose depth format is not known): the same AO exactly;
-// - HBAO and VAO on the GPU frame (estimator, blur, filter on the GPU)
+// - HBAO and volumetric AO on the GPU frame (estimator, blur, filter on the GPU)
 //   against the CPU's on the same depth, with and without their blur and
 //   filter (another preset is the control);
 // - ChangedPixels: 0 on the same depth, 1 after one texel changes;
@@ -228,9 +228,9 @@ int TestGLFrame(int argc, char* argv[])
       ", " + std::to_string(lowApart.differing) + " pixels)");
   CAO_CHECK(run(blitted, plan, aoBlit, false), "again: %s", error.c_str());
 
-  // HBAO and VAO on the GPU frame (its G-buffer in world axes, the
+  // HBAO and volumetric AO on the GPU frame (its G-buffer in world axes, the
   // estimator, blur and filter on the GPU) against the CPU's on the same
-  // depth (FrameFromDepth + HBAOFrame / VAOFrame, their blur and filter):
+  // depth (FrameFromDepth + HBAOFrame / VolumetricAOFrame, their blur and filter):
   // GL.TestGLScreenSpaceAO's bounds (mean under 2e-3, 99% within 0.02);
   // negative control: another preset; the blur turned off on both sides
   // (the filter's control: the blurred ones differ from it).
@@ -253,22 +253,22 @@ int TestGLFrame(int argc, char* argv[])
       for (int finish = 1; finish >= 0; --finish)
       {
         cao::HBAOSettings hbao, hbaoOther;
-        cao::VAOSettings vao, vaoOther;
-        hbao.radius = hbaoOther.radius = vao.radius = vaoOther.radius = 0.8;
+        cao::VolumetricAOSettings volumetric, volumetricOther;
+        hbao.radius = hbaoOther.radius = volumetric.radius = volumetricOther.radius = 0.8;
         hbaoOther.quality = cao::Quality::Low;
-        vaoOther.quality = cao::Quality::Low;
+        volumetricOther.quality = cao::Quality::Low;
         if (!finish)
         {
           hbao.blurRadius = hbaoOther.blurRadius = 0;
-          vao.interleave = vaoOther.interleave = false;
+          volumetric.interleave = volumetricOther.interleave = false;
         }
         // The other preset, or (with the blur or filter) the estimator without it.
         if (finish)
         {
           hbaoOther = hbao;
           hbaoOther.blurRadius = 0;
-          vaoOther = vao;
-          vaoOther.interleave = false;
+          volumetricOther = volumetric;
+          volumetricOther.interleave = false;
         }
         cao::SurfaceFrame ref, other;
         CAO_CHECK(cao::FrameFromDepth(camera, depth, ref, error) && cao::FrameFromDepth(camera, depth, other, error),
@@ -278,14 +278,14 @@ int TestGLFrame(int argc, char* argv[])
           ? cao::HBAOFrame(camera, hbao, ref, 1, error) && cao::HBAOFrame(camera, hbaoOther, other, 1, error) &&
             screen.HBAOPixels(camera, hbao, blitted.PointBuffer(), blitted.NormalBuffer(), blitted.AOBuffer(), ms,
               error)
-          : cao::VAOFrame(camera, vao, ref, 1, error) && cao::VAOFrame(camera, vaoOther, other, 1, error) &&
-            screen.VAOPixels(camera, vao, blitted.PointBuffer(), blitted.NormalBuffer(), blitted.AOBuffer(), ms, error);
+          : cao::VolumetricAOFrame(camera, volumetric, ref, 1, error) && cao::VolumetricAOFrame(camera, volumetricOther, other, 1, error) &&
+            screen.VolumetricAOPixels(camera, volumetric, blitted.PointBuffer(), blitted.NormalBuffer(), blitted.AOBuffer(), ms, error);
         CAO_CHECK(ran && (blitted.AOWritten(), blitted.ReadAO(ao, error)), "%s", error.c_str());
         double mean = 0, otherMean = 0;
         const double share = within(ao, ref, mean), otherShare = within(ao, other, otherMean);
         char line[320];
         std::snprintf(line, sizeof(line), "the GPU frame's %s (%s) against the CPU's on the same depth: mean %.2g, "
-          "%.4f within 0.02 (%s: mean %.2g, %.4f within)", method ? "VAO" : "HBAO",
+          "%.4f within 0.02 (%s: mean %.2g, %.4f within)", method ? "Volumetric AO" : "HBAO",
           finish ? (method ? "filtered" : "blurred") : (method ? "one sample set, no filter" : "no blur"), mean,
           share, finish ? (method ? "the CPU unfiltered" : "the CPU unblurred") : "another preset", otherMean,
           otherShare);

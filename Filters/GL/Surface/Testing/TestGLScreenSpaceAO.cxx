@@ -120,18 +120,18 @@ int TestGLScreenSpaceAO(int argc, char* argv[])
   }
   for (cao::Quality q : { cao::Quality::Low, cao::Quality::Medium, cao::Quality::High })
   {
-    cao::VAOSettings v;
+    cao::VolumetricAOSettings v;
     v.quality = q;
     v.radius = 0.8;
     cao::SurfaceFrame cpu = frame, gpu = frame, other = frame;
     double ms = 0;
-    const bool ran = cao::VAOFrame(cam, v, cpu, 0, error) && engine.VAO(cam, v, gpu, ms, error);
-    cao::VAOSettings o = v;
+    const bool ran = cao::VolumetricAOFrame(cam, v, cpu, 0, error) && engine.VolumetricAO(cam, v, gpu, ms, error);
+    cao::VolumetricAOSettings o = v;
     o.seed = 7;
     o.interleave = false;
-    cao::VAOFrame(cam, o, other, 0, error);
+    cao::VolumetricAOFrame(cam, o, other, 0, error);
     const Agreement a = Compare(cpu, gpu), c = Compare(other, gpu);
-    std::snprintf(text, sizeof(text), "VAO %s: GPU against CPU mean |diff| %.2e, %.2f%% within 0.02 (%.3f ms); "
+    std::snprintf(text, sizeof(text), "Volumetric AO %s: GPU against CPU mean |diff| %.2e, %.2f%% within 0.02 (%.3f ms); "
       "other samples: %.2e, %.2f%%", cao::QualityName(q), a.mean, 100 * a.within, ms, c.mean, 100 * c.within);
     Check(ran && a.samePixels && a.mean < 2e-3 && a.within >= 0.99 && !(c.mean < 2e-3 && c.within >= 0.99), text);
   }
@@ -142,16 +142,16 @@ int TestGLScreenSpaceAO(int argc, char* argv[])
     h.radius = 0.8;
     h.blurRadius = 0;
     h.deflect = false;
-    cao::VAOSettings v;
+    cao::VolumetricAOSettings v;
     v.radius = 0.8;
     v.interleave = false;
     v.haloGuard = true;
     cao::SurfaceFrame hc = frame, hg = frame, vc = frame, vg = frame;
     double ms = 0;
     const bool ran = cao::HBAOFrame(cam, h, hc, 0, error) && engine.HBAO(cam, h, hg, ms, error) &&
-      cao::VAOFrame(cam, v, vc, 0, error) && engine.VAO(cam, v, vg, ms, error);
+      cao::VolumetricAOFrame(cam, v, vc, 0, error) && engine.VolumetricAO(cam, v, vg, ms, error);
     const Agreement a = Compare(hc, hg), b = Compare(vc, vg);
-    std::snprintf(text, sizeof(text), "unblurred sweep HBAO: mean |diff| %.2e, %.2f%% within 0.02; unfiltered VAO "
+    std::snprintf(text, sizeof(text), "unblurred sweep HBAO: mean |diff| %.2e, %.2f%% within 0.02; unfiltered volumetric AO "
       "with the halo guard: %.2e, %.2f%%", a.mean, 100 * a.within, b.mean, 100 * b.within);
     Check(ran && a.samePixels && b.samePixels && a.mean < 2e-3 && a.within >= 0.99 && b.mean < 2e-3 &&
         b.within >= 0.99, text);
@@ -163,10 +163,10 @@ int TestGLScreenSpaceAO(int argc, char* argv[])
     cao::HBAOSettings h;
     const bool refused = !engine.HBAO(cam, h, small, ms, error);
     Check(refused && error.find("does not match") != std::string::npos, "a frame of the wrong size is refused: " + error);
-    cao::VAOSettings v;
+    cao::VolumetricAOSettings v;
     v.samples = 0;
     v.quality = cao::Quality::Custom;
-    const bool bad = !engine.VAO(cam, v, frame, ms, error);
+    const bool bad = !engine.VolumetricAO(cam, v, frame, ms, error);
     Check(bad && error.find("1..256") != std::string::npos, "bad settings are refused: " + error);
   }
   // With "time" on the command line: the GPU estimator's time (timer
@@ -219,11 +219,11 @@ int TestGLScreenSpaceAO(int argc, char* argv[])
       }
       for (cao::Quality q : { cao::Quality::Low, cao::Quality::Medium, cao::Quality::High })
       {
-        cao::VAOSettings v;
+        cao::VolumetricAOSettings v;
         v.quality = q;
         v.radius = 0.8;
-        const double ms = median([&](cao::SurfaceFrame& g, double& t) { return engine.VAO(big, v, g, t, error); });
-        std::printf("| %dx%d | %lld | vao %s | %.3f |\n", size.first, size.second, static_cast<long long>(f.covered),
+        const double ms = median([&](cao::SurfaceFrame& g, double& t) { return engine.VolumetricAO(big, v, g, t, error); });
+        std::printf("| %dx%d | %lld | volumetric %s | %.3f |\n", size.first, size.second, static_cast<long long>(f.covered),
           cao::QualityName(q), ms);
       }
     }

@@ -1,4 +1,4 @@
-// caoScreenAO.glsl - the GPU side of cao::HBAOFrame and cao::VAOFrame
+// caoScreenAO.glsl - the GPU side of cao::HBAOFrame and cao::VolumetricAOFrame
 // (caoScreenSpaceAO.cxx), in float, one invocation per pixel: the same
 // pattern, samples, marches and closed-form pipes as the CPU twin, before
 // its depth-aware blur or filter (the host applies it, or
@@ -140,7 +140,7 @@ float PixelAO(int k)
 float PixelAO(int k)
 {
   int i = k % ss.image.x, j = k / ss.image.x;
-  int tile = ss.image.w, sets = ss.vao.y, n = ss.vao.x;
+  int tile = ss.image.w, sets = ss.volumetric.y, n = ss.volumetric.x;
   int set = (j % tile) * tile + (i % tile);
   float R = ss.scalars.x;
   vec3 Z;
@@ -162,7 +162,7 @@ float PixelAO(int k)
     if (q >= 0 && q != k && Covered(q)) // (the pixel itself: its tangent plane only, as on the CPU)
     {
       surface = dot(positions[q].xyz - p, Z);
-      if (ss.vao.z != 0 && surface >= chord)
+      if (ss.volumetric.z != 0 && surface >= chord)
         surface = -3.0e38;
     }
     float tangent = -(xy.x * nx + xy.y * ny) / nz;

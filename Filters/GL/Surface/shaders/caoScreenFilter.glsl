@@ -1,9 +1,9 @@
 // caoScreenFilter.glsl - the GPU side of cao::DepthAwareFilter
-// (caoScreenSpaceAO.cxx: FinishHBAO's blur, FinishVAO's filter), in float,
+// (caoScreenSpaceAO.cxx: FinishHBAO's blur, FinishVolumetricAO's filter), in float,
 // one invocation per pixel: the weighted mean of the covered taps of a
 // (2r + 1)^2 window whose points lie within the tolerance of the pixel's
 // tangent plane (and, ss.finish.w > 0, within that reach of its point;
-// weights per axis, multiplied), then (VAO) clamped to
+// weights per axis, multiplied), then (Volumetric AO) clamped to
 // [0, 1]. Reads the estimator's AO (NaN: not covered), writes the filtered
 // AO (NaN: not covered) where the frame's combine reads it. After
 // caoScreenCommon.glsl.

@@ -2,10 +2,10 @@
 // (seed 002) and volumetric AO (seed 001), each on a real G-buffer (the
 // ray-cast frame of a triangle scene) against the analytic cases in its
 // own definition:
-//   open plane            HBAO 1 exactly; VAO 1 in expectation
+//   open plane            HBAO 1 exactly; Volumetric AO 1 in expectation
 //   A5 step, k = H/d      HBAO's horizon term (1 - 1/sqrt(1 + k^2)) / 2, and
 //                         with linear attenuation (Fig. 11 (a))
-//   V1 wall at a.R        VAO (mu = (r/R)^4): 0.5000, 0.5845, 0.7434, 0.9228 at a = 0, 0.1, 0.3, 0.6
+//   V1 wall at a.R        volumetric AO (mu = (r/R)^4): 0.5000, 0.5845, 0.7434, 0.9228 at a = 0, 0.1, 0.3, 0.6
 // each with a negative control (the value of a changed geometry must be
 // missed); the depth-aware filter keeps the two sides of a depth edge apart
 // (negative control: an unlimited tolerance mixes them); seed 001's five
@@ -174,7 +174,7 @@ int TestScreenSpaceAO(int, char*[])
   std::string error;
   int failures = 0;
   // 1. An open plane seen by a tilted perspective camera: HBAO gives 1 at
-  // every pixel (nothing is above any horizon), VAO 1 in expectation.
+  // every pixel (nothing is above any horizon), volumetric AO 1 in expectation.
   {
     Scene s;
     s.Quad({ -50, -50, 0, 50, -50, 0, 50, 50, 0, -50, 50, 0 });
@@ -190,10 +190,10 @@ int TestScreenSpaceAO(int, char*[])
     for (double v : a.ao)
       if (std::isfinite(v))
         low = std::min(low, v);
-    cao::VAOSettings v;
+    cao::VolumetricAOSettings v;
     v.radius = 1.0;
     cao::SurfaceFrame b = f;
-    CAO_CHECK(cao::VAOFrame(cam, v, b, 0, error), "%s", error.c_str());
+    CAO_CHECK(cao::VolumetricAOFrame(cam, v, b, 0, error), "%s", error.c_str());
     double mean = 0.0;
     for (double x : b.ao)
       if (std::isfinite(x))
@@ -203,23 +203,23 @@ int TestScreenSpaceAO(int, char*[])
     cao::SurfaceFrame c;
     CAO_CHECK(Frame(s, cam, c), "open plane with a box");
     cao::SurfaceFrame ch = c, cv = c;
-    CAO_CHECK(cao::HBAOFrame(cam, h, ch, 0, error) && cao::VAOFrame(cam, v, cv, 0, error), "%s", error.c_str());
+    CAO_CHECK(cao::HBAOFrame(cam, h, ch, 0, error) && cao::VolumetricAOFrame(cam, v, cv, 0, error), "%s", error.c_str());
     const std::size_t foot = Nearest(c, 0.15, 0, 0);
-    std::printf("open plane: HBAO min %.6f over %lld pixels; VAO mean %.4f; with a box, at its foot: HBAO %.3f, "
-                "VAO %.3f\n", low, static_cast<long long>(f.covered), mean, ch.ao[foot], cv.ao[foot]);
-    CAO_CHECK(f.covered > 10000 && low == 1.0 && std::fabs(mean - 1.0) < 0.01, "open plane: HBAO %.6f VAO %.4f",
+    std::printf("open plane: HBAO min %.6f over %lld pixels; Volumetric AO mean %.4f; with a box, at its foot: HBAO %.3f, "
+                "Volumetric AO %.3f\n", low, static_cast<long long>(f.covered), mean, ch.ao[foot], cv.ao[foot]);
+    CAO_CHECK(f.covered > 10000 && low == 1.0 && std::fabs(mean - 1.0) < 0.01, "open plane: HBAO %.6f volumetric AO %.4f",
       low, mean);
-    CAO_CHECK(ch.ao[foot] < 0.9 && cv.ao[foot] < 0.9, "the box's foot: HBAO %.3f VAO %.3f", ch.ao[foot], cv.ao[foot]);
-    // VAO at a radius under a pixel (about 1/16 of one here): every pipe
+    CAO_CHECK(ch.ao[foot] < 0.9 && cv.ao[foot] < 0.9, "the box's foot: HBAO %.3f volumetric AO %.3f", ch.ao[foot], cv.ao[foot]);
+    // Volumetric AO at a radius under a pixel (about 1/16 of one here): every pipe
     // falls in the pixel itself, whose depth says nothing past its tangent
     // plane, so the open plane is as open as at R = 1 above (its mean was
     // 0.82, lowest 0.64, when the pixel's own depth stood for the surface, as if the
-    // plane were half-buried; the box's foot above is the control that VAO
+    // plane were half-buried; the box's foot above is the control that volumetric AO
     // darkens).
-    cao::VAOSettings tiny = v;
+    cao::VolumetricAOSettings tiny = v;
     tiny.radius = 0.002;
     cao::SurfaceFrame t = f;
-    CAO_CHECK(cao::VAOFrame(cam, tiny, t, 0, error), "%s", error.c_str());
+    CAO_CHECK(cao::VolumetricAOFrame(cam, tiny, t, 0, error), "%s", error.c_str());
     double tinyLow = 1.0, tinyMean = 0.0;
     for (double x : t.ao)
       if (std::isfinite(x))
@@ -227,9 +227,9 @@ int TestScreenSpaceAO(int, char*[])
         tinyLow = std::min(tinyLow, x);
         tinyMean += x / f.covered;
       }
-    std::printf("open plane, VAO at a radius of 1/16 pixel: mean AO %.4f, lowest %.4f\n", tinyMean, tinyLow);
+    std::printf("open plane, volumetric AO at a radius of 1/16 pixel: mean AO %.4f, lowest %.4f\n", tinyMean, tinyLow);
     CAO_CHECK(std::fabs(tinyMean - 1.0) < 0.01 && tinyLow > 0.95,
-      "VAO under a pixel leaves an open plane open (mean %.4f, lowest %.4f)", tinyMean, tinyLow);
+      "Volumetric AO under a pixel leaves an open plane open (mean %.4f, lowest %.4f)", tinyMean, tinyLow);
   }
   // 2. HBAO's horizon term on the step (A5): a block of height H at
   // distance d (k = H/d), reach R = 8 d, normal rays off (the horizon term
@@ -331,7 +331,7 @@ int TestScreenSpaceAO(int, char*[])
         "HBAO linear attenuation k = %g: %.4f against %.4f", k, 1.0 - g.ao[p], linear);
     }
   }
-  // 3. VAO on the wall case (V1): the plane z = 0 and a block filling x >=
+  // 3. Volumetric AO on the wall case (V1): the plane z = 0 and a block filling x >=
   // a R up to 2 R, seen from straight above (the quasi-orthographic frame
   // is then exact): the pixel at the origin, 256 samples, no interleaving,
   // the mean of 8 seeds (one seed's 256 points still err by up to 0.011 on
@@ -345,7 +345,7 @@ int TestScreenSpaceAO(int, char*[])
     cao::SurfaceFrame f;
     CAO_CHECK(Frame(s, cam, f), "wall");
     const std::size_t p = Nearest(f, -1e-4, 0, 0);
-    cao::VAOSettings v;
+    cao::VolumetricAOSettings v;
     v.quality = cao::Quality::Custom;
     v.samples = 256;
     v.interleave = false;
@@ -356,22 +356,22 @@ int TestScreenSpaceAO(int, char*[])
       v.seed = static_cast<std::uint64_t>(seed);
       cao::SurfaceFrame g = f;
       const std::vector<std::size_t> only{ p };
-      CAO_CHECK(cao::VAOFrame(cam, v, g, 0, error, &only), "%s", error.c_str());
+      CAO_CHECK(cao::VolumetricAOFrame(cam, v, g, 0, error, &only), "%s", error.c_str());
       o += g.ao[p] / 8;
     }
-    cao::VAOSettings m; // the default: 16 samples, 4 x 4 sets and the filter
+    cao::VolumetricAOSettings m; // the default: 16 samples, 4 x 4 sets and the filter
     m.radius = 1.0;
     cao::SurfaceFrame gm = f;
-    CAO_CHECK(cao::VAOFrame(cam, m, gm, 0, error), "%s", error.c_str());
+    CAO_CHECK(cao::VolumetricAOFrame(cam, m, gm, 0, error), "%s", error.c_str());
     const double exact = WallObscurance(a), changed = WallObscurance(a + 0.05), tolerance = 0.01;
-    std::printf("VAO wall a = %.1f: O %.4f (default medium %.4f), exact %.4f (a + 0.05: %.4f)\n", a, o,
+    std::printf("Volumetric AO wall a = %.1f: O %.4f (default medium %.4f), exact %.4f (a + 0.05: %.4f)\n", a, o,
       gm.ao[p], exact, changed);
     CAO_CHECK(std::fabs(o - exact) < tolerance && std::fabs(o - changed) > tolerance,
-      "VAO wall a = %g: %.4f against %.4f", a, o, exact);
-    CAO_CHECK(std::fabs(gm.ao[p] - exact) < 0.05, "VAO medium on the wall a = %g: %.4f against %.4f", a,
+      "Volumetric AO wall a = %g: %.4f against %.4f", a, o, exact);
+    CAO_CHECK(std::fabs(gm.ao[p] - exact) < 0.05, "Volumetric AO medium on the wall a = %g: %.4f against %.4f", a,
       gm.ao[p], exact);
   }
-  // 3b. VAO's indirect term: the step (H = 1 at x = 1) seen at 45 degrees,
+  // 3b. Volumetric AO's indirect term: the step (H = 1 at x = 1) seen at 45 degrees,
   // its face red, its top blue, the floor green; on the floor near the
   // face the indirect light is red only: the top faces away from the floor
   // point and the floor's own pixels are coplanar (both ignored).
@@ -391,12 +391,12 @@ int TestScreenSpaceAO(int, char*[])
         const int c = q[2] > 1.0 - 1e-9 ? 2 : (q[0] > 1.0 - 1e-9 ? 0 : 1); // top blue, face red, floor green
         colour[3 * k + c] = 1.0f;
       }
-    cao::VAOSettings v;
+    cao::VolumetricAOSettings v;
     v.radius = 1.0;
-    CAO_CHECK(cao::VAOFrame(cam, v, f, 0, error) && cao::VAOIndirect(cam, v, f, colour, indirect, 0, error), "%s",
+    CAO_CHECK(cao::VolumetricAOFrame(cam, v, f, 0, error) && cao::VolumetricAOIndirect(cam, v, f, colour, indirect, 0, error), "%s",
       error.c_str());
     const std::size_t p = Nearest(f, 0.8, 0, 0);
-    std::printf("VAO indirect on the floor 0.2 from a red face: O %.3f, indirect (%.3f, %.3f, %.3f)\n", f.ao[p],
+    std::printf("Volumetric AO indirect on the floor 0.2 from a red face: O %.3f, indirect (%.3f, %.3f, %.3f)\n", f.ao[p],
       indirect[3 * p], indirect[3 * p + 1], indirect[3 * p + 2]);
     CAO_CHECK(indirect[3 * p] > 0.05 && indirect[3 * p + 1] == 0.0f && indirect[3 * p + 2] == 0.0f,
       "indirect (%.3f, %.3f, %.3f)", indirect[3 * p], indirect[3 * p + 1], indirect[3 * p + 2]);
@@ -495,13 +495,13 @@ int TestScreenSpaceAO(int, char*[])
     h.radius = 1;
     h.directions = 0;
     CAO_CHECK(h.Validate().find("1..64") != std::string::npos, "%s", h.Validate().c_str());
-    cao::VAOSettings v;
+    cao::VolumetricAOSettings v;
     v.samples = 100000;
     CAO_CHECK(v.Validate().find("1..256") != std::string::npos, "%s", v.Validate().c_str());
     v.samples = 16;
     const cao::PixelCamera cam = TopCamera(8, 0, 0, 1);
     cao::SurfaceFrame f;
-    CAO_CHECK(!cao::VAOFrame(cam, v, f, 0, error) && error.find("does not match") != std::string::npos, "%s",
+    CAO_CHECK(!cao::VolumetricAOFrame(cam, v, f, 0, error) && error.find("does not match") != std::string::npos, "%s",
       error.c_str());
     // One quality vocabulary: the names parse back to their values, an
     // unknown one (a paper configuration's old name) is refused, and each

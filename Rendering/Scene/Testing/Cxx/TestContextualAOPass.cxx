@@ -22,9 +22,9 @@
 //   world grid does not);
 // - the pass's AO at a pixel equals cao::VCTFrame's for the same triangles
 //   and camera (the kernel's, not a second implementation);
-// - HBAO and VAO: no grid, their AO the kernels' on the same G-buffer, a
+// - HBAO and volumetric AO: no grid, their AO the kernels' on the same G-buffer, a
 //   colour change or a grid setting runs only the combine, a turn casts and
-//   traces; VAO's indirect light reddens the slab by a red sphere (not by a
+//   traces; Volumetric AO's indirect light reddens the slab by a red sphere (not by a
 //   blue one; off: not at all); on the depth G-buffer no BVH is built;
 // - a hardware selection through the pass picks the sphere and the slab
 //   (the pass leaves selection renders alone);
@@ -477,10 +477,10 @@ int TestContextualAOPass(int, char*[])
       "back to the CPU: its grid again, the kernel's AO exactly (" + pass->GetLastFrameStages() + ")");
   }
 
-  // The screen-space methods (HBAO, VAO): no grid (a "scene" stage builds
+  // The screen-space methods (HBAO, volumetric AO): no grid (a "scene" stage builds
   // only the ray cast's triangles), their AO is the kernel's on the same
   // G-buffer, a colour change runs only the combine, a turn casts and
-  // traces; VAO's indirect light carries the red sphere's colour onto the
+  // traces; Volumetric AO's indirect light carries the red sphere's colour onto the
   // white slab by the contact (negative control: off, no red); with the
   // depth G-buffer no triangles are even gathered into a BVH.
   {
@@ -489,9 +489,9 @@ int TestContextualAOPass(int, char*[])
     std::string error;
     cao::TriangleBVH bvh;
     bvh.Build(scene.all, scene.allTris, error);
-    for (int method : { vtkContextualAOPass::HBAO, vtkContextualAOPass::VAO })
+    for (int method : { vtkContextualAOPass::HBAO, vtkContextualAOPass::VOLUMETRIC })
     {
-      const std::string name = method == vtkContextualAOPass::HBAO ? "HBAO" : "VAO";
+      const std::string name = method == vtkContextualAOPass::HBAO ? "HBAO" : "Volumetric AO";
       pass->SetMethod(method);
       window->Render();
       const std::string first = pass->GetLastFrameStages();
@@ -506,14 +506,14 @@ int TestContextualAOPass(int, char*[])
       }
       else
       {
-        cao::VAOSettings vs;
+        cao::VolumetricAOSettings vs;
         vs.radius = 0.8;
-        ran = ran && cao::VAOFrame(pixels, vs, frame, 0, error);
+        ran = ran && cao::VolumetricAOFrame(pixels, vs, frame, 0, error);
       }
       int compared = 0;
       const double worst = WorstDifference(frame, pass, compared);
       // From VCT the triangles are gathered again (no grid); from HBAO to
-      // VAO they are kept, and so is the G-buffer: the AO alone is made again.
+      // Volumetric AO they are kept, and so is the G-buffer: the AO alone is made again.
       const std::string expected = method == vtkContextualAOPass::HBAO ? "scene,primary,trace,ambient,combine"
                                                                        : "trace,ambient,combine";
       Check(first == expected && pass->GetVoxelizeCount() == grids && ran &&
@@ -568,7 +568,7 @@ int TestContextualAOPass(int, char*[])
       camera->Azimuth(-5);
       window->Render();
     }
-    // VAO's indirect light: a red sphere on the white slab.
+    // Volumetric AO's indirect light: a red sphere on the white slab.
     sphereActor->GetProperty()->SetColor(1.0, 0.0, 0.0);
     pass->SetApplyTo(vtkContextualAOPass::WHOLE_COLOR);
     project(0.0, -0.55, 0.0, cx, cy);
@@ -589,7 +589,7 @@ int TestContextualAOPass(int, char*[])
     const double blue = redness();
     Check(bleedStages == "indirect,combine" && plain == 0.0 && bled > 3.0 && recolour == "indirect,combine" &&
         blue <= 0.0,
-      "VAO's indirect light: the slab by a red sphere turns red by " + std::to_string(bled) +
+      "Volumetric AO's indirect light: the slab by a red sphere turns red by " + std::to_string(bled) +
         " levels (off: " + std::to_string(plain) + "), not when the sphere is blue (" + std::to_string(blue) +
         "); stages " + bleedStages + " then " + recolour);
     pass->IndirectLightOff();
@@ -600,7 +600,7 @@ int TestContextualAOPass(int, char*[])
     Check(pass->GetLastFrameStages() == "scene,gbuffer,trace,combine" &&
         report.find("\"bvh\": false") != std::string::npos && report.find("\"triangles\": 0,") == std::string::npos &&
         pass->GetPixelAO(cx, cy) < 0.9,
-      "VAO on the depth G-buffer builds no BVH (" + pass->GetLastFrameStages() + ")");
+      "Volumetric AO on the depth G-buffer builds no BVH (" + pass->GetLastFrameStages() + ")");
     pass->SetGBuffer(vtkContextualAOPass::RAY_CAST);
     pass->SetApplyTo(vtkContextualAOPass::AMBIENT_TERM);
     sphereActor->GetProperty()->SetColor(0.9, 0.3, 0.2);
@@ -1454,17 +1454,17 @@ int TestContextualAOPass(int, char*[])
         autoCPU.find("\"gbuffer\": \"ray cast (auto)\", \"frame_on_gpu\": false") != std::string::npos &&
         pass->GetLastFrameStages() == "voxelize,primary,trace,ambient,combine",
       "GBuffer Auto: the GPU frame on OpenGL, the ray cast on the CPU (" + pass->GetLastFrameStages() + ")");
-    // HBAO and VAO on the GPU frame: estimator, blur or filter on the GPU,
+    // HBAO and volumetric AO on the GPU frame: estimator, blur or filter on the GPU,
     // against the CPU's on the same drawn depth (the bounds of
     // GL.TestGLScreenSpaceAO: mean under 2e-3, 99% within 0.02; float
     // against double, and the depth's last bit, blit against glReadPixels);
-    // the other preset is the control; a still frame only combines; VAO's
+    // the other preset is the control; a still frame only combines; Volumetric AO's
     // indirect light (on the CPU) reads the pixels back.
     pass->SetGBuffer(vtkContextualAOPass::DEPTH_BUFFER);
     pass->SetApplyTo(vtkContextualAOPass::WHOLE_COLOR);
-    for (int method : { vtkContextualAOPass::HBAO, vtkContextualAOPass::VAO })
+    for (int method : { vtkContextualAOPass::HBAO, vtkContextualAOPass::VOLUMETRIC })
     {
-      const std::string name = method == vtkContextualAOPass::HBAO ? "HBAO" : "VAO";
+      const std::string name = method == vtkContextualAOPass::HBAO ? "HBAO" : "Volumetric AO";
       pass->SetMethod(method);
       pass->SetBackend(vtkContextualAOPass::BACKEND_CPU);
       window->Render();
@@ -1519,7 +1519,7 @@ int TestContextualAOPass(int, char*[])
     Check(indirect.find("\"frame_on_gpu\": false") != std::string::npos &&
         indirect.find("indirect light runs on the CPU") != std::string::npos &&
         pass->GetLastFrameStages().find("indirect") != std::string::npos && pass->GetPixelAO(cx, cy) >= 0.0,
-      "GPU frame, VAO with indirect light: the pixels read back for the CPU's indirect step (" +
+      "GPU frame, volumetric AO with indirect light: the pixels read back for the CPU's indirect step (" +
         pass->GetLastFrameStages() + ")");
     pass->SetIndirectLight(false);
     pass->SetMethod(vtkContextualAOPass::VCT);
@@ -1568,7 +1568,7 @@ int TestContextualAOPass(int, char*[])
     pass->SetGBuffer(vtkContextualAOPass::RAY_CAST);
   }
   // A radius outside 1e-6 to 1e3 times the scene's diagonal: refused with
-  // the limits (the estimators fail silently out there: VAO's AO went to
+  // the limits (the estimators fail silently out there: the volumetric AO went to
   // 0, VCT's to 1); back inside, the AO again.
   {
     std::string reports;

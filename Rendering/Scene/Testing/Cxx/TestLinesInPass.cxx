@@ -778,19 +778,19 @@ int TestLinesInPass(int, char*[])
         }
       return darkest;
     };
-    std::string hbaoRep, vaoRep, offRep, againRep;
+    std::string hbaoRep, volumetricRep, offRep, againRep;
     const double hbao = floorDarkest(vtkContextualAOPass::HBAO, true, hbaoRep);
     const double hbaoOff = floorDarkest(vtkContextualAOPass::HBAO, false, offRep);
     // (Line AO on again, nothing else changed: the mask is part of the AO's key)
     const double hbaoAgain = floorDarkest(vtkContextualAOPass::HBAO, true, againRep);
-    const double vao = floorDarkest(vtkContextualAOPass::VAO, true, vaoRep);
+    const double volumetric = floorDarkest(vtkContextualAOPass::VOLUMETRIC, true, volumetricRep);
     std::printf("a floor 0.5 under 15 lines, depth G-buffer: darkest floor AO, Horizon Based %.3f (after Line AO "
                 "off and on: %.3f), Volumetric %.3f; control, Line AO off: %.3f; report %s\n",
-      hbao, hbaoAgain, vao, hbaoOff, hbaoRep.c_str());
-    Check(hbao > 0.9 && hbaoAgain == hbao && vao > 0.9 &&
+      hbao, hbaoAgain, volumetric, hbaoOff, hbaoRep.c_str());
+    Check(hbao > 0.9 && hbaoAgain == hbao && volumetric > 0.9 &&
         hbaoRep.find("\"occlude_surfaces\": false") != std::string::npos && hbaoOff < 0.5,
       "the screen-space methods take no line for a depth wall (darkest floor AO " + std::to_string(hbao) + ", " +
-        std::to_string(hbaoAgain) + " after Line AO off and on, " + std::to_string(vao) +
+        std::to_string(hbaoAgain) + " after Line AO off and on, " + std::to_string(volumetric) +
         "; control, Line AO off: " + std::to_string(hbaoOff) + ")");
   }
   // 14 a single segment.

@@ -116,7 +116,7 @@ int TestScreenTechnique(int, char*[])
   Check(refused && !vtkCAO::FindScreenTechnique(42), "a technique without a CPU step is refused: " + error);
   Check(vtkCAO::FindScreenTechnique(vtkContextualAOPass::HBAO) &&
       vtkCAO::FindScreenTechnique(vtkContextualAOPass::HBAO)->name == "hbao" &&
-      vtkCAO::FindScreenTechnique(vtkContextualAOPass::VAO)->name == "vao",
+      vtkCAO::FindScreenTechnique(vtkContextualAOPass::VOLUMETRIC)->name == "volumetric",
     "the built-ins are registered: " + vtkCAO::ScreenTechniqueList());
 
   vtkNew<vtkContextualAOPass> pass;

@@ -1,5 +1,5 @@
 // Volumetric AO (Szirmay-Kalos et al. 2010) as a screen-space technique of
-// the pass: cao::VAOFrame on the CPU, its GL twin on the window's OpenGL
+// the pass: cao::VolumetricAOFrame on the CPU, its GL twin on the window's OpenGL
 // (read back, or kept on the GPU frame), and its indirect light (the
 // neighbours' colours, I = L (1 - AO)) on the host.
 #include "vtkCAOScreenTechnique.h"
@@ -13,30 +13,30 @@ bool RegisterBuiltIn(const ScreenTechnique& technique);
 
 namespace
 {
-cao::VAOSettings SettingsOf(const ScreenTechniqueSettings& s)
+cao::VolumetricAOSettings SettingsOf(const ScreenTechniqueSettings& s)
 {
-  cao::VAOSettings settings;
+  cao::VolumetricAOSettings settings;
   settings.quality = static_cast<cao::Quality>(s.quality);
   settings.radius = s.radius;
   return settings;
 }
 }
 
-void RegisterVAOTechnique()
+void RegisterVolumetricAOTechnique()
 {
   ScreenTechnique t;
-  t.method = 3; // vtkContextualAOPass::VAO
-  t.name = "vao";
-  t.label = "VAO";
+  t.method = 3; // vtkContextualAOPass::VOLUMETRIC
+  t.name = "volumetric";
+  t.label = "Volumetric AO";
   t.cpu = [](const cao::PixelCamera& camera, const ScreenTechniqueSettings& s, cao::SurfaceFrame& frame,
-            std::string& error) { return cao::VAOFrame(camera, SettingsOf(s), frame, 0, error); };
+            std::string& error) { return cao::VolumetricAOFrame(camera, SettingsOf(s), frame, 0, error); };
   t.gpu = [](SceneGPU& gpu, const cao::PixelCamera& camera, const ScreenTechniqueSettings& s,
-            cao::SurfaceFrame& frame, std::string& error) { return gpu.VAO(camera, SettingsOf(s), frame, error); };
+            cao::SurfaceFrame& frame, std::string& error) { return gpu.VolumetricAO(camera, SettingsOf(s), frame, error); };
   t.gpuFrame = [](SceneGPU& gpu, const cao::PixelCamera& camera, const ScreenTechniqueSettings& s,
-                 std::string& error) { return gpu.FrameVAO(camera, SettingsOf(s), error); };
+                 std::string& error) { return gpu.FrameVolumetricAO(camera, SettingsOf(s), error); };
   t.indirect = [](const cao::PixelCamera& camera, const ScreenTechniqueSettings& s,
                  const cao::SurfaceFrame& frame, const std::vector<float>& rgb, std::vector<float>& indirect,
-                 std::string& error) { return cao::VAOIndirect(camera, SettingsOf(s), frame, rgb, indirect, 0, error); };
+                 std::string& error) { return cao::VolumetricAOIndirect(camera, SettingsOf(s), frame, rgb, indirect, 0, error); };
   RegisterBuiltIn(t);
 }
 }
