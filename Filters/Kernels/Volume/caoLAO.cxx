@@ -523,12 +523,15 @@ float LAOVoxel(const LAOPlan& plan, const float* opacity, int i, int j, int k)
   return VoxelAt(plan, opacity, i, j, k, base);
 }
 
-void LAORange(
-  const LAOPlan& plan, const float* opacity, float* ao, std::int64_t begin, std::int64_t end)
+namespace
+{
+void MarchRange(const LAOPlan& plan, const float* opacity, float* ao, std::uint16_t* ao16,
+  std::int64_t begin, std::int64_t end)
 {
   const layout::LAOMarchBlock& p = plan.params;
   const std::int64_t nx = p.dims.x, nxy = std::int64_t(p.dims.x) * p.dims.y;
   RunScratch scratch;
+  scratch.ao16 = ao16;
   const MarchRunFunction march = ActiveMarchRun();
   std::int64_t v = begin;
   while (v < end)
@@ -541,6 +544,19 @@ void LAORange(
     march(plan, opacity, ao, j, k, i, i1, scratch);
     v += i1 - i;
   }
+}
+}
+
+void LAORange(
+  const LAOPlan& plan, const float* opacity, float* ao, std::int64_t begin, std::int64_t end)
+{
+  MarchRange(plan, opacity, ao, nullptr, begin, end);
+}
+
+void LAORange(const LAOPlan& plan, const float* opacity, std::uint16_t* ao, std::int64_t begin,
+  std::int64_t end)
+{
+  MarchRange(plan, opacity, nullptr, ao, begin, end);
 }
 
 namespace

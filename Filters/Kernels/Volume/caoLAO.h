@@ -90,6 +90,10 @@ float LAOVoxel(const LAOPlan& plan, const float* opacity, int i, int j, int k);
 /// LAO of the voxels with linear index in [begin, end).
 void LAORange(
   const LAOPlan& plan, const float* opacity, float* ao, std::int64_t begin, std::int64_t end);
+/// The same, stored as 16-bit unsigned normalised AO (QuantizeAO of what
+/// the float LAORange writes: the GPU precompute's storage).
+void LAORange(const LAOPlan& plan, const float* opacity, std::uint16_t* ao, std::int64_t begin,
+  std::int64_t end);
 
 /// LAO of one voxel like LAOVoxel, from the same plan and opacities, but
 /// with every operation in double: the reference for the float

@@ -1782,6 +1782,39 @@ void TFEdit(const Options& o)
     CAO_EXPECT(changed > 0, "negative control: %s should change the picture", e.name);
     before = after;
   }
+  // On a software rasteriser (llvmpipe) the full precompute runs on the
+  // CPU (the same march as an edit's; 20-40 times faster there than the
+  // compute shader): a fresh mapper's frame equals the one whose
+  // precompute ran on the OpenGL (CAO_GL_ALLOW_SOFTWARE=1), bit for bit.
+  auto fresh = [&](bool allowSoftware, std::string& report) {
+    if (allowSoftware)
+      setenv("CAO_GL_ALLOW_SOFTWARE", "1", 1);
+    Scene scene;
+    caotest::Image image;
+    if (scene.Open(o.window) && scene.Load(o.data + "/HeadMRVolume.mhd"))
+    {
+      carve(scene);
+      apply(scene, base);
+      image = scene.Frame();
+      report = scene.mapper->GetLastFrameReport();
+    }
+    unsetenv("CAO_GL_ALLOW_SOFTWARE");
+    return image;
+  };
+  std::string cpuReport, glReport;
+  const caotest::Image cpu = fresh(false, cpuReport), gl = fresh(true, glReport);
+  const bool software = cpuReport.find("llvmpipe") != std::string::npos;
+  const bool onCPU = cpuReport.find("precompute on the CPU") != std::string::npos;
+  std::printf("first precompute: %s; on the OpenGL: %s; %ld pixels differ\n",
+    onCPU ? "on the CPU" : "on the OpenGL", glReport.find("precompute on the CPU") == std::string::npos
+      ? "yes" : "no", caotest::DifferingPixels(cpu, gl));
+  CAO_EXPECT(onCPU == software, "the first precompute runs on the CPU exactly on a software "
+    "rasteriser: %s", cpuReport.c_str());
+  CAO_EXPECT(glReport.find("precompute on the CPU") == std::string::npos,
+    "CAO_GL_ALLOW_SOFTWARE=1 keeps the precompute on the OpenGL: %s", glReport.c_str());
+  CAO_EXPECT(!cpu.rgb.empty() && caotest::DifferingPixels(cpu, gl) == 0,
+    "the CPU precompute's frame is the OpenGL precompute's (%ld pixels differ)",
+    caotest::DifferingPixels(cpu, gl));
 }
 
 /// Frames while the user drags the clip or turns the camera. An
