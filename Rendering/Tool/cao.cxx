@@ -396,9 +396,9 @@ int MakeClip(const Options& o, vtkImageData* volume, CarveSetup& s)
 {
   std::string error;
   // (A plane's slab covers the volume at every pose: sized from the poses.)
-  const double size = o.clipping.size > 0.0 ? o.clipping.size
-    : o.clipping.shape == "plane"           ? vtkCAO::PlaneSlabSize(volume, s.poses)
-                                   : vtkCAO::DefaultShapeSize(volume);
+  const double size = o.clipping.shape == "plane" ? vtkCAO::PlaneSlabSize(volume, s.poses)
+    : o.clipping.size > 0.0                       ? o.clipping.size
+                                                  : vtkCAO::DefaultShapeSize(volume);
   s.mesh = o.clipping.mesh.empty() ? vtkCAO::MakeShape(o.clipping.shape, size, error) : vtkCAO::ReadMesh(o.clipping.mesh, error);
   if (!s.mesh)
     return Fail(2, error);
@@ -950,6 +950,8 @@ int Run(Options& o, const CLI::App* app)
   if (o.command == "tf" && o.backend == vtkLocalAmbientOcclusion::OPENGL)
     return Fail(2, "tf runs on the CPU (--backend cpu or auto): the opacity edit has no GPU path yet");
   if (!caocli::FinishLAO(app, o.lao, error))
+    return Fail(2, error);
+  if (o.command == "carve" && !(error = caocli::PlaneSizeError(app, o.clipping.shape)).empty())
     return Fail(2, error);
   caocli::SelectThreads(o.threads);
   vtkSmartPointer<vtkImageData> volume = vtkCAO::ReadVolume(o.volume, error);

@@ -585,8 +585,8 @@ void AddClipOptions(CLI::App* app, ClipOptions& clip, int maxLayers)
     "(the pose's orientation turns it)");
   AddNumber(app, "--size", clip.size, 0.0, 1e30, true,
     "a positive length in world units, at most 1e30: the clip mesh's points are float",
-    "shape size in world units, at most 1e30 (default: 1/4 of the volume's smallest extent; for "
-    "a plane, its slab's half width: 1.25 x the farthest volume corner from any pose)")
+    "shape size in world units, at most 1e30 (default: 1/4 of the volume's smallest extent; not "
+    "for a plane, a half-space)")
     ->type_name("S");
   auto* mesh = AddText(
     app, "--mesh", clip.mesh, "FILE", "clip mesh (.vtp, .vtk, .stl, .ply, .obj) instead of a shape");
@@ -610,6 +610,15 @@ void AddClipOptions(CLI::App* app, ClipOptions& clip, int maxLayers)
     "depth-peel layers, 1 to " + std::to_string(maxLayers) + " (default 2)")
     ->type_name("L");
   AddInteger(app, "--aa", clip.aa, 0, 32, "extra anti-aliasing samples, 0 to 32 (default 16)");
+}
+
+std::string PlaneSizeError(const CLI::App* app, const std::string& shape)
+{
+  if (shape != "plane" || app->count("--size") == 0)
+    return "";
+  return "--size is for sphere, cube and torus: --shape plane is the half-space on the +z side "
+         "of the pose's frame whatever its size (its slab is made to cover the volume at every "
+         "pose)";
 }
 
 bool FinishLAO(const CLI::App* app, LAOCommandLine& lao, std::string& error)

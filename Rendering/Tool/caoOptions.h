@@ -144,6 +144,10 @@ struct ClipOptions
 /// --shape, --size, --mesh, --pose, --poses, --path, --mode, --layers (1 to
 /// `maxLayers`) and --aa into `clip`; --shape and --mesh exclude each other.
 void AddClipOptions(CLI::App* app, ClipOptions& clip, int maxLayers);
+/// Why a clip's options cannot go together ("" when they can): --size with
+/// --shape plane (a plane is a half-space; its slab is made to cover the
+/// volume at every pose, so a size would only cut it short).
+std::string PlaneSizeError(const CLI::App* app, const std::string& shape);
 
 /// After the parse: --samples and --density are not both given; which LAO
 /// options a quality level overrides were given (the first in command-line

@@ -196,6 +196,8 @@ int Render(RenderOptions& o, const CLI::App* app)
       if (app->count(aoOption) > 0)
         return Fail(2,
           std::string("--no-ao draws no AO, but ") + aoOption + " was given: drop one of them");
+  if (!(error = PlaneSizeError(app, o.clipping.shape)).empty())
+    return Fail(2, error);
   caocli::FramePattern frames;
   if (!frames.Parse(o.output, error))
     return Fail(2, error);
@@ -391,9 +393,9 @@ int Render(RenderOptions& o, const CLI::App* app)
       return Fail(2, error);
     if (poses.empty())
       poses = DefaultPath(bounds, o.clipping.path);
-    const double size = o.clipping.size > 0.0 ? o.clipping.size
-      : o.clipping.shape == "plane"           ? vtkCAO::PlaneSlabSize(volume, poses)
-                                              : vtkCAO::DefaultShapeSize(volume);
+    const double size = o.clipping.shape == "plane" ? vtkCAO::PlaneSlabSize(volume, poses)
+      : o.clipping.size > 0.0                       ? o.clipping.size
+                                                    : vtkCAO::DefaultShapeSize(volume);
     vtkSmartPointer<vtkPolyData> mesh = o.clipping.mesh.empty()
       ? MakeShape(o.clipping.shape, size, error)
       : ReadMesh(o.clipping.mesh, error);

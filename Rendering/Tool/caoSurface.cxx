@@ -781,11 +781,6 @@ bool LoadOccludingVolume(
   vtkNew<vtkPolyDataMapper> clipMapper;
   if (!o.shape.empty() || !o.clipMesh.empty())
   {
-    const double size = o.size > 0 ? o.size : vtkCAO::DefaultShapeSize(image);
-    vtkSmartPointer<vtkPolyData> mesh = o.clipMesh.empty() ? vtkCAO::MakeShape(o.shape, size, error)
-                                                           : vtkCAO::ReadMesh(o.clipMesh, error);
-    if (!mesh)
-      return false;
     vtkCAO::Pose pose;
     if (o.pose.empty())
     {
@@ -795,6 +790,14 @@ bool LoadOccludingVolume(
     }
     else if (!vtkCAO::ParsePose(o.pose, pose, error))
       return error = "--pose: " + error, false;
+    // A plane is a half-space: its slab covers the volume at the pose.
+    const double size = o.shape == "plane" ? vtkCAO::PlaneSlabSize(image, { pose })
+      : o.size > 0                         ? o.size
+                                           : vtkCAO::DefaultShapeSize(image);
+    vtkSmartPointer<vtkPolyData> mesh = o.clipMesh.empty() ? vtkCAO::MakeShape(o.shape, size, error)
+                                                           : vtkCAO::ReadMesh(o.clipMesh, error);
+    if (!mesh)
+      return false;
     vtkNew<vtkTransform> t;
     vtkCAO::PoseToTransform(pose, t);
     clipMapper->SetInputData(mesh);
@@ -918,6 +921,8 @@ int Run(SurfaceOptions& o, const CLI::App* app)
     return Fail(2,
       "--preset, --preset-file, --absolute, --unit-distance, --shape, --size, --mesh, --pose and "
       "--mode describe the occluding volume: give --volume");
+  if (!PlaneSizeError(app, o.shape).empty())
+    return Fail(2, PlaneSizeError(app, o.shape));
   if (!o.volume.empty() && o.method != "vct")
     return Fail(2,
       "--volume occludes the meshes in --method vct (its cones read the volume's opacity; the "
@@ -1360,7 +1365,7 @@ Command AddSurfaceCommand(CLI::App& cao)
     ->group(volume);
   AddLength(app, "--size", o->size,
     "the clip shape's size, world units, 1e-12 to 1e+12 (default: 1/4 of the volume's smallest "
-    "extent)")
+    "extent; not for a plane, a half-space)")
     ->check(Within(1e-12, 1e12, Interval(1e-12, 1e12)))
     ->type_name("S")
     ->group(volume);

@@ -531,6 +531,8 @@ for args, words in [(["--method", "magic", bunny, "-o", "x.png"], "--method: bad
                     (["--method", "HBAO", bunny, "-o", "x.png"], "the names are lower case: 'hbao'"),
                     # Volumetric AO's former name (it collided with OpenGL's vertex array object).
                     (["--method", "vao", bunny, "-o", "x.png"], "'vao' is now 'volumetric'"),
+                    (["--volume", block_vti, "--shape", "plane", "--size", "2", bunny, "-o", "x.png"],
+                     "--shape plane is the half-space"),
                     (["--method", "volumetric", "--samples", "0", bunny, "-o", "x.png"], "--samples"),
                     (["--march", "up", bunny, "-o", "x.png"], "--march: bad value 'up'"),
                     (["--march", "sweep", bunny, "-o", "x.png"], "--march is for --method hbao"),
