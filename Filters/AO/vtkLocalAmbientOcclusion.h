@@ -123,7 +123,8 @@ public:
   ///@{
   /**
    * Samples per ray M, 1 to 65536. 0 (default) means SampleDensity samples
-   * per smallest voxel spacing: max(1, round(SampleDensity * Reach / h_min)).
+   * per smallest voxel spacing: max(2, round(SampleDensity * Reach / h_min)) (one sample per ray
+   * sees no occluder: its first sample is never occluded, so M = 1 gives 1).
    */
   void SetNumberOfSamples(int samples);
   int GetNumberOfSamples();

@@ -366,7 +366,11 @@ int DefaultSampleCount(double reach, const double spacing[3], double density)
   const double m = std::round(density * reach / h);
   if (!(m <= LAOLimits::MaxSamples)) // also NaN and Inf
     return LAOLimits::MaxSamples + 1;
-  return static_cast<int>(std::max(1.0, m));
+  // At least 2: a ray's first sample is never occluded (its transmittance
+  // starts at 1), so one sample per ray gives an LAO of 1 everywhere; a
+  // reach under 1.5 voxels at density 1 rounded to it, and a trial saw no
+  // AO at all, silently.
+  return static_cast<int>(std::max(2.0, m));
 }
 
 

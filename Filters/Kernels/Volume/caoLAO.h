@@ -72,7 +72,7 @@ struct LAOPlan
 };
 
 /// Default number of samples for a reach: `density` per smallest voxel
-/// spacing, max(1, round(density * R / h_min)); above LAOLimits::MaxSamples
+/// spacing, max(2, round(density * R / h_min)); above LAOLimits::MaxSamples
 /// it returns MaxSamples + 1 (BuildLAOPlan then refuses the plan).
 int DefaultSampleCount(double reach, const double spacing[3], double density = 1.0);
 

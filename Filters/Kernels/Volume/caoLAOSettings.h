@@ -69,7 +69,8 @@ bool ParseRayVariation(const std::string& text, RayVariation& variation);
  * one sample per voxel, off the front.)
  *  - reach 0: 8 times the smallest voxel spacing (ResolveLAOSettings);
  *  - samples 0: `sampleDensity` samples per smallest voxel spacing,
- *    max(1, round(density * R / h_min));
+ *    max(2, round(density * R / h_min)) (a ray's first sample is never
+ *    occluded, so one sample per ray gives an LAO of 1);
  *  - sample m (1 .. M) of a ray lies at distance (m - startOffset) * R / M:
  *    the paper's march has startOffset 0; 0.5 (the default: it measured a
  *    third less error at the same cost) puts each sample in the middle of

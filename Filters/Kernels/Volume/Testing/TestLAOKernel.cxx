@@ -160,6 +160,22 @@ int TestLAOKernel(int, char*[])
   cao::LAORange(plan, opaque.data(), out.data(), 0, g.NumberOfVoxels());
   for (float v : out)
     CAO_CHECK(v == 1.0f, "M = 1 must give exactly 1, got %.9g", v);
+  // So the default count is at least 2: a reach of one voxel (a trial's
+  // --reach 1 rounded to M = 1 and gave no AO at all) still sees its
+  // neighbours.
+  {
+    const double unit[3] = { 1.0, 1.0, 1.0 };
+    CAO_CHECK(cao::DefaultSampleCount(1.0, unit) == 2 && cao::DefaultSampleCount(0.2, unit) == 2 &&
+        cao::DefaultSampleCount(3.0, unit) == 3,
+      "default samples for reach 1, 0.2, 3: %d, %d, %d", cao::DefaultSampleCount(1.0, unit),
+      cao::DefaultSampleCount(0.2, unit), cao::DefaultSampleCount(3.0, unit));
+    cao::LAOSettings near = s;
+    near.samples = 0;
+    near.reach = 1.0;
+    CAO_CHECK(cao::BuildLAOPlan(g, near, plan, error), "plan, reach 1");
+    cao::LAORange(plan, opaque.data(), out.data(), 0, g.NumberOfVoxels());
+    CAO_CHECK(out[centre] < 1.0f, "reach 1 voxel: an opaque interior is occluded, got %.9g", out[centre]);
+  }
 
   CAO_CHECK(cao::CorrectOpacity(0.0, 0.37) == 0.0f, "opacity 0 stays 0");
   CAO_CHECK(cao::CorrectOpacity(1.0, 0.37) == 1.0f, "opacity 1 stays 1");
