@@ -1245,10 +1245,19 @@ bool vtkContextualAOVolumeMapper::Internals::GatherClipParts(
   {
     ClipPart part;
     part.mesh = self->GetClipShapeMeshAt(i);
+    const auto leaveOut = [&](const std::string& why) {
+      skipped += (skipped.empty() ? "" : " ") +
+        (shapes == 1 ? std::string()
+                     : std::string("Clip shape ") + std::to_string(i) + " of " +
+               std::to_string(shapes) + " is left out: ") +
+        why;
+    };
     if (!part.mesh)
-      return f.Fail("Clip shape " + std::to_string(i) +
-        " has no mesh: give it a vtkPolyDataMapper input" +
+    {
+      leaveOut(std::string("The clip shape has no mesh: give it a vtkPolyDataMapper input") +
         (i == 0 && self->ClipShape ? " or set ClipMesh." : "."));
+      continue;
+    }
     {
       // A shape that cannot clip (an open surface, a NaN) is left out and
       // the others carve; with none left the volume is drawn unclipped, as
@@ -1264,17 +1273,41 @@ bool vtkContextualAOVolumeMapper::Internals::GatherClipParts(
       }
       if (!c.ok)
       {
-        skipped += (skipped.empty() ? "" : " ") +
-          (shapes == 1 ? std::string()
-                       : std::string("Clip shape ") + std::to_string(i) + " of " +
-                 std::to_string(shapes) + " is left out: ") +
-          c.why;
+        leaveOut(c.why);
         continue;
       }
     }
-    // Pose: the mesh's local frame to the volume's physical frame.
+    // Pose: the mesh's local frame to the volume's physical frame. A pose
+    // the maps cannot serve (a NaN or infinite entry, a zero scale on an
+    // axis, a shape under half a voxel or over 2^23 voxels across) clips
+    // nothing, said with its reason, as an open mesh is.
     part.pose = vtkSmartPointer<vtkMatrix4x4>::New();
-    vtkMatrix4x4::Multiply4x4(worldToVolume, self->GetClipShapeAt(i)->GetMatrix(), part.pose);
+    vtkMatrix4x4* prop = self->GetClipShapeAt(i)->GetMatrix();
+    if (!std::all_of(prop->GetData(), prop->GetData() + 16, [](double x) { return std::isfinite(x); }))
+    {
+      leaveOut("The clip shape's pose has a NaN or infinite entry (its position, orientation and "
+               "scale must be finite).");
+      continue;
+    }
+    vtkMatrix4x4::Multiply4x4(worldToVolume, prop, part.pose);
+    const double smin = vtkCAO::MinimumScale(part.pose), smax = vtkCAO::MaximumScale(part.pose);
+    if (!(smin > 0.0) || !std::isfinite(smax))
+    {
+      leaveOut("The clip shape's pose is not invertible (a scale of 0 on some axis): it encloses "
+               "no volume.");
+      continue;
+    }
+    {
+      vtkCAO::Pose scales;
+      scales.scale = smax;
+      std::string why;
+      if (!vtkCAO::CheckPoseScales({ scales }, part.mesh, f.input, why, false) ||
+        (scales.scale = smin, !vtkCAO::CheckPoseScales({ scales }, part.mesh, f.input, why, false)))
+      {
+        leaveOut("The clip shape's " + why.substr(why.find(": ") + 2) + " (its clip scale).");
+        continue;
+      }
+    }
     part.mode =
       self->GetClipShapeModeAt(i) == SUBTRACTION ? cao::layout::CAO_MODE_SUBTRACT : cao::layout::CAO_MODE_PROBE;
     parts.push_back(part);

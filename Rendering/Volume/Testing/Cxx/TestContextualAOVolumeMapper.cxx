@@ -770,9 +770,55 @@ void BadInput(const Options& o)
   m->SetInputData(Small(8, 8, 1, 1, false));
   expect("one voxel thick", "at least 2 voxels");
   m->SetInputData(s.image);
+  // A clip shape that cannot clip is left out with its reason and the
+  // volume drawn unclipped, as an empty clip box is (a trial saw a blank
+  // frame for a prop with no mapper, a scale of 0, 1e-9 or 1e9, a flat
+  // scale and a NaN position; each of these drew nothing before).
+  m->SetClipShape(nullptr);
+  const caotest::Image whole = s.Frame(); // no clip shape
+  auto unclipped = [&](const char* what, const char* words) {
+    errors.clear();
+    const int frames = m->GetFrameCount();
+    const caotest::Image image = s.Frame();
+    const std::string last = errors.empty() ? "" : errors.back();
+    std::printf("%-28s -> %s\n", what, last.empty() ? "(no error)" : last.c_str());
+    CAO_EXPECT(last.find(words) != std::string::npos && last.find("drawn unclipped") != std::string::npos,
+      "%s: the error says why (%s) and that the volume is drawn unclipped: %s", what, words, last.c_str());
+    CAO_EXPECT(m->GetFrameCount() == frames + 1 && image == whole,
+      "%s: the unclipped frame is drawn (%d frame(s), %s the frame with no clip)", what,
+      m->GetFrameCount() - frames, image == whole ? "equal to" : "NOT equal to");
+  };
   vtkNew<vtkActor> bare; // a clip shape with no mesh
   m->SetClipShape(bare);
-  expect("clip shape without a mesh", "no mesh");
+  unclipped("clip shape without a mesh", "no mesh");
+  vtkNew<vtkSphereSource> ball;
+  ball->SetRadius(1.0);
+  vtkNew<vtkPolyDataMapper> ballMapper;
+  ballMapper->SetInputConnection(ball->GetOutputPort());
+  vtkNew<vtkActor> scaled;
+  scaled->SetMapper(ballMapper);
+  scaled->SetPosition(33.0, 33.0, 33.0);
+  m->SetClipShape(scaled);
+  scaled->SetScale(0.0);
+  unclipped("clip scale 0", "not invertible");
+  scaled->SetScale(10.0); // (a frame that carves, so the same reason is said again)
+  s.Frame();
+  scaled->SetScale(10.0, 10.0, 0.0);
+  unclipped("clip scale (10, 10, 0)", "not invertible");
+  scaled->SetScale(1e-9);
+  unclipped("clip scale 1e-9", "under half a voxel");
+  scaled->SetScale(1e9);
+  unclipped("clip scale 1e9", "over 2^23 voxels");
+  scaled->SetScale(10.0);
+  scaled->SetPosition(std::nan(""), 33.0, 33.0);
+  unclipped("clip position NaN", "NaN or infinite");
+  scaled->SetPosition(33.0, 33.0, 33.0);
+  {
+    // The control: the same sphere at scale 10 carves (another frame).
+    errors.clear();
+    const caotest::Image carved = s.Frame();
+    CAO_EXPECT(errors.empty() && !(carved == whole), "the control: a sphere of radius 10 carves");
+  }
   vtkNew<vtkSphereSource> cup; // an open mesh: a hemisphere
   cup->SetRadius(12.0);
   cup->SetEndPhi(90.0);
@@ -828,10 +874,19 @@ void BadInput(const Options& o)
   s.window->Render();
   CAO_EXPECT(errors.empty() && m->GetFrameCount() == frames + 1, "no recovery after bad input");
   // A clip scale the depth maps cannot resolve (the sphere 2e9 voxels
-  // across) is refused naming the scale's range, as cao carve refuses it
-  // (it asked for a PixelSize the representation does not have before).
+  // across) names the scale's range, as cao carve does (it asked for a
+  // PixelSize the representation does not have before), and the volume is
+  // drawn unclipped (it drew nothing before).
   s.clip->SetScale(1e8);
-  expect("clip scale 1e8", "the scale must lie in [");
+  {
+    errors.clear();
+    const int before = m->GetFrameCount();
+    s.window->Render();
+    CAO_EXPECT(!errors.empty() && errors.back().find("the scale must lie in [") != std::string::npos &&
+        errors.back().find("drawn unclipped") != std::string::npos && m->GetFrameCount() == before + 1,
+      "clip scale 1e8: the range said and the volume drawn unclipped (%s)",
+      errors.empty() ? "no error" : errors.back().c_str());
+  }
   s.clip->SetScale(1.0);
   // A setting out of range after a good frame (everything cached) is still
   // refused, whether or not it changes what is cached.
