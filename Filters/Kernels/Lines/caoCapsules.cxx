@@ -107,6 +107,32 @@ bool CapsuleInterval(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b,
   return any;
 }
 
+/// Where the line o + t d (d unit) enters the infinite cylinder of radius
+/// r around the line through a and b (t >= 0; false when the ray left it
+/// before t = 0, misses it, or runs (nearly) along the axis), when that
+/// point lies along the axis within the segment's capsule span ([-r,
+/// |ab| + r] from a): the surface a renderer's tube impostor draws for this
+/// segment (VTK's RenderLinesAsTubes draws each segment as a quad shaded
+/// and depth-offset as a cylinder, stretched past its ends when it is short
+/// on screen; never a round end cap).
+bool CylinderEntry(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b, double r, double& entry)
+{
+  entry = 0.0;
+  const Vec3 ba = b - a;
+  const double l2 = glm::dot(ba, ba);
+  if (!(l2 > 1e-24 * r * r))
+    return false;
+  const Vec3 oa = o - a;
+  const double along = glm::dot(oa, ba), speed = glm::dot(d, ba);
+  const Vec3 p = oa - (along / l2) * ba, v = d - (speed / l2) * ba;
+  double c0 = 0.0, c1 = 0.0;
+  if (!(glm::dot(v, v) > 1e-12) || !SolveQuadratic(p, v, r * r, c0, c1) || !(c1 > 0.0))
+    return false;
+  entry = std::max(0.0, c0);
+  const double l = std::sqrt(l2), x = (along + entry * speed) / l; // along the axis from a
+  return x >= -r && x <= l + r;
+}
+
 /// The parameter in [0, 1] of the point of segment [a, b] nearest `x`.
 double AxisParameter(const Vec3& x, const Vec3& a, const Vec3& b)
 {
@@ -462,6 +488,10 @@ struct Candidate
 {
   double s = 0.0, t = 0.0, distance = 0.0;
   bool covers = false;
+  /// Its point nearest the ray is not clamped to an end: the ray passes
+  /// beside the segment's own stretch (where a renderer draws the segment),
+  /// not only beside its end point (where the next segment is drawn).
+  bool interior = false;
 };
 bool Evaluate(const DrawnRay& r, const Vec3& va, const Vec3& vb, const LineDrawing& own, double widestSlack,
   Candidate& c)
@@ -475,6 +505,7 @@ bool Evaluate(const DrawnRay& r, const Vec3& va, const Vec3& vb, const LineDrawi
     s = (glm::dot(u, w0) - B * glm::dot(r.v, w0)) / denominator;
   else if (C > 0.0) // (nearly) along the ray: the segment's point at the drawn depth
     s = glm::dot(r.drawn - va, u) / C;
+  c.interior = s >= 0.0 && s <= 1.0;
   c.s = std::min(1.0, std::max(0.0, s));
   const Vec3 q = va + c.s * u;
   c.t = glm::dot(q - r.o, r.v);
@@ -486,9 +517,13 @@ bool Evaluate(const DrawnRay& r, const Vec3& va, const Vec3& vb, const LineDrawi
 }
 
 /// Pixel `index`'s G-buffer entries for segment [va, vb] chosen at (s, t):
-/// with drawings, where the ray enters the capsule of the drawn half width
-/// (caps included); a flat line, or a ray missing it: its point nearest the
-/// axis. Without, the drawn point.
+/// with drawings, where the ray enters the cylinder of the drawn half width
+/// around the segment's axis, within its capsule's span (CylinderEntry: a
+/// renderer's tube impostor, which has no end caps; at a polyline's joint
+/// the neighbour's cap would lean the normal along the line and down to the
+/// horizon), else the capsule (caps included: a segment seen along its
+/// axis); a flat line, or a ray missing both: its point nearest the axis.
+/// Without, the drawn point.
 void WriteDrawnPixel(LineFrame& frame, std::size_t index, const DrawnRay& r, std::int64_t segment,
   const Vec3& va, const Vec3& vb, const LineDrawing& own, double s, double t, bool drawings)
 {
@@ -496,12 +531,18 @@ void WriteDrawnPixel(LineFrame& frame, std::size_t index, const DrawnRay& r, std
   Vec3 tangent = vb - va;
   DivideByLength(tangent);
   Vec3 position = r.drawn, normal(0.0);
+  bool cylinder = false; // (the position on the segment's cylinder: its normal across the unclamped axis)
   if (drawings)
   {
     position = r.o + t * r.v;
     const double radius = own.halfWidthPixels * r.footprint;
     double entry = 0.0, exit = 0.0;
-    if (own.tubes && CapsuleInterval(r.o, r.v, va, vb, radius * radius, entry, exit) && exit > 0.0)
+    if (own.tubes && CylinderEntry(r.o, r.v, va, vb, radius, entry))
+    {
+      position = r.o + entry * r.v;
+      cylinder = true;
+    }
+    else if (own.tubes && CapsuleInterval(r.o, r.v, va, vb, radius * radius, entry, exit) && exit > 0.0)
       position = r.o + std::max(0.0, entry) * r.v;
   }
   // A tube's point off its axis (by more than half a pixel) has its
@@ -509,9 +550,9 @@ void WriteDrawnPixel(LineFrame& frame, std::size_t index, const DrawnRay& r, std
   if (own.tubes)
   {
     const Vec3 ab = vb - va;
-    const double along = glm::dot(ab, ab) > 0.0
-      ? std::min(1.0, std::max(0.0, glm::dot(position - va, ab) / glm::dot(ab, ab)))
-      : 0.0;
+    double along = glm::dot(ab, ab) > 0.0 ? glm::dot(position - va, ab) / glm::dot(ab, ab) : 0.0;
+    if (!cylinder)
+      along = std::min(1.0, std::max(0.0, along));
     normal = position - (va + along * ab);
     if (!(glm::length(normal) > 0.5 * r.footprint) || !(DivideByLength(normal) > 0.0))
       normal = Vec3(0.0);
@@ -597,8 +638,18 @@ bool LineFrameFromDepth(const CapsuleBVH& lines, const PixelCamera& camera,
     // depth slack behind it (a renderer's offset only brings lines nearer):
     // those covering the pixel before the others, then the frontmost, as
     // the depth test chose; of those passing beside, the nearest the ray.
+    // One covering it beside an end only (its nearest point clamped) counts
+    // a cover limit further: a renderer draws a segment's tube between its
+    // ends, without caps, and at a polyline's joint the neighbour's clamped
+    // end point often lies nearer in t (in perspective, or by rounding)
+    // though the pixel is the other segment's; the end point lies within
+    // the cover limit of the ray, so the one drawn there is at most that
+    // much further where the segments meet at 45 degrees or more to the ray.
+    // (A line's true end, or another line's, still wins where nothing
+    // covers the pixel beside its own stretch within that.)
     std::int64_t best = -1;
     bool bestCovers = false;
+    double bestKey = 0.0; // (t, plus the penalty of an end, for one covering)
     double bestDistance = 0.0, bestT = 0.0, bestS = 0.0;
     lines.Near(centre, 0.5 * r.behind + reachAround, [&](std::int64_t segment, const double* a, const double* b) {
       const LineDrawing& own = drawings
@@ -624,16 +675,18 @@ bool LineFrameFromDepth(const CapsuleBVH& lines, const PixelCamera& camera,
       Candidate c;
       if (!Evaluate(r, va, vb, own, widestSlack, c))
         return;
+      const double key = c.covers && !c.interior ? c.t + (own.halfWidthPixels + LineCoverSlack) * r.footprint : c.t;
       bool better = best < 0 || (c.covers && !bestCovers);
       if (!better && c.covers == bestCovers)
       {
-        const double mine = c.covers ? c.t : c.distance, theirs = c.covers ? bestT : bestDistance;
+        const double mine = c.covers ? key : c.distance, theirs = c.covers ? bestKey : bestDistance;
         better = mine < theirs || (mine == theirs && segment < best);
       }
       if (!better)
         return;
       best = segment;
       bestCovers = c.covers;
+      bestKey = key;
       bestDistance = c.distance;
       bestT = c.t;
       bestS = c.s;

@@ -447,7 +447,18 @@ int TestGLLineAO(int argc, char* argv[])
           for (auto v : { &cao::LineFrame::position, &cao::LineFrame::normal, &cao::LineFrame::tangent,
                  &cao::LineFrame::axis, &cao::LineFrame::view })
             worst = std::max(worst, std::fabs((filled.*v)[3 * k + c] - (cpu.*v)[3 * k + c]));
-    const Agreement a = Compare(gpu, cpu);
+    // The AO where both chose the same segment: the GPU ranks candidates
+    // by float keys and the CPU by doubles, so a tie within a float's
+    // precision may pick another segment (at most 0.5% of the pixels, the
+    // bound above); there the AO is another segment's, not comparable.
+    // (Since joints rank a segment covering beside its end a cover limit
+    // further, 13 of 4 054 pixels here picked differently on llvmpipe, 0
+    // before, and their AO differed by up to 0.06.)
+    cao::LineFrame gpuSame = gpu;
+    for (std::size_t k = 0; k < cpu.segment.size(); ++k)
+      if (gpu.segment[k] != cpu.segment[k] && std::isfinite(gpuSame.ao[k]) && std::isfinite(cpu.ao[k]))
+        gpuSame.ao[k] = cpu.ao[k];
+    const Agreement a = Compare(gpuSame, cpu);
     char text[400];
     std::snprintf(text, sizeof(text), "GPU G-buffer, %s%lld covered pixels on both, %lld on one only, the same segment on "
       "%lld; LineFrameOfSegments of the GPU's segments off the CPU's G-buffer by %.1e; AO: %s (GPU %.2f ms + %.2f ms)",

@@ -9,10 +9,12 @@
 //   0, per drawn pixel (slot): its ray (LineRay), its key reset;
 //   1, per segment: the best key of each candidate pixel (atomicMin: covering
 //      before passing beside (the high bit), then the smaller t past the
-//      nearest a candidate may lie, or the smaller distance);
+//      nearest a candidate may lie (a cover limit more for one covering
+//      beside an end only), or the smaller distance);
 //   2, per segment: the lowest segment of that key (atomicMin);
-//   3, per slot: the chosen segment's surface point, normal, tangent and
-//      axis point, and its half ball as a LineAOPixel for caoLineAO.glsl.
+//   3, per slot: the chosen segment's surface point (on its cylinder, as
+//      the CPU's CylinderEntry), normal, tangent and axis point, and its
+//      half ball as a LineAOPixel for caoLineAO.glsl.
 layout(local_size_x = 64) in;
 
 layout(std140, binding = CAO_BINDING_LG_PARAMS) uniform LineGBufferBlock
@@ -75,9 +77,10 @@ bool NDCToWorld(double x, double y, double z, out dvec3 p)
 
 /// Segment [a, b] against slot's ray as drawn by `own` (the CPU's
 /// Evaluate): its point nearest the ray (s, t, distance), whether it is a
-/// candidate and whether it covers the pixel.
+/// candidate, whether it covers the pixel and whether that point is not
+/// clamped to an end (interior).
 bool Evaluate(LineRay r, dvec3 a, dvec3 b, dvec4 own, out double s, out double t, out double distance,
-  out bool covers)
+  out bool covers, out bool interior)
 {
   const dvec3 o = r.origin.xyz, v = r.direction.xyz, drawnPoint = r.drawn.xyz;
   const double footprint = r.direction.w, tDrawn = r.origin.w, behind = r.drawn.w;
@@ -92,6 +95,7 @@ bool Evaluate(LineRay r, dvec3 a, dvec3 b, dvec4 own, out double s, out double t
     si = (dot(u, w0) - B * dot(v, w0)) / denominator;
   else if (C > 0.0)
     si = dot(drawnPoint - a, u) / C;
+  interior = si >= 0.0 && si <= 1.0;
   si = min(1.0, max(0.0, si));
   precise dvec3 q = a + si * u;
   precise double ti = dot(q - o, v);
@@ -152,12 +156,15 @@ void main()
 }
 #elif CAO_LG_STAGE == 1 || CAO_LG_STAGE == 2
 /// A pixel's key for a candidate: covering (0) before passing beside (the
-/// high bit), then t past the nearest a candidate may lie (covering) or the
-/// distance (beside), as a non-negative float's bits (ordered as the value).
-uint KeyOf(LineRay r, double t, double distance, bool covers)
+/// high bit), then t past the nearest a candidate may lie (covering; one
+/// covering beside an end only, its nearest point clamped, a cover limit
+/// further: the CPU's LineFrameFromDepth says why) or the distance
+/// (beside), as a non-negative float's bits (ordered as the value).
+uint KeyOf(LineRay r, dvec4 own, double t, double distance, bool covers, bool interior)
 {
   precise double nearest = r.origin.w - lg.scalars.w * r.direction.w;
-  precise double metric = covers ? t - nearest : distance;
+  precise double penalty = interior ? 0.0lf : (own.y + lg.constants.y) * r.direction.w;
+  precise double metric = covers ? t + penalty - nearest : distance;
   return (covers ? 0u : 0x80000000u) | (floatBitsToUint(float(max(0.0, metric))) >> 1);
 }
 
@@ -184,10 +191,10 @@ void Visit(int pixel, uint segment, dvec3 a, dvec3 b, dvec4 own)
   if (r.direction.w < 0.0)
     return;
   double s, t, distance;
-  bool covers;
-  if (!Evaluate(r, a, b, own, s, t, distance, covers))
+  bool covers, interior;
+  if (!Evaluate(r, a, b, own, s, t, distance, covers, interior))
     return;
-  const uint key = KeyOf(r, t, distance, covers);
+  const uint key = KeyOf(r, own, t, distance, covers, interior);
 #if CAO_LG_STAGE == 1
   atomicMin(keys[2 * slot], key);
 #else
@@ -333,6 +340,28 @@ bool CapsuleInterval(dvec3 o, dvec3 d, dvec3 a, dvec3 b, double r2, out double e
   return hit;
 }
 
+/// The CPU's CylinderEntry: where the ray o + t d (d unit) enters the
+/// infinite cylinder of `radius` around the line through a and b, when that
+/// point lies within the segment's capsule span along the axis (a tube
+/// impostor's surface: no end caps).
+bool CylinderEntry(dvec3 o, dvec3 d, dvec3 a, dvec3 b, double radius, out double entry)
+{
+  entry = 0.0;
+  const dvec3 ba = b - a;
+  const double l2 = dot(ba, ba);
+  if (!(l2 > 1e-24lf * radius * radius))
+    return false;
+  const dvec3 oa = o - a;
+  const double along = dot(oa, ba), speed = dot(d, ba);
+  const dvec3 p = oa - (along / l2) * ba, v = d - (speed / l2) * ba;
+  double c0, c1;
+  if (!(dot(v, v) > 1e-12lf) || !SolveQuadratic(p, v, radius * radius, c0, c1) || !(c1 > 0.0))
+    return false;
+  entry = max(0.0, c0);
+  const double l = sqrt(l2), x = (along + entry * speed) / l;
+  return x >= -radius && x <= l + radius;
+}
+
 /// A world direction in the grid's frame, a world point in voxel units
 /// (caoLineGridMap.glsl).
 dvec3 ToGrid(dvec3 x)
@@ -372,8 +401,8 @@ void main()
   const dvec3 a = A.xyz, b = B.xyz, o = r.origin.xyz, v = r.direction.xyz;
   const double footprint = r.direction.w;
   double s, t, distance;
-  bool covers;
-  Evaluate(r, a, b, own, s, t, distance, covers);
+  bool covers, interior;
+  Evaluate(r, a, b, own, s, t, distance, covers, interior);
   // The CPU's WriteDrawnPixel.
   const dvec3 axisPoint = a + s * (b - a);
   dvec3 tangent = b - a;
@@ -384,12 +413,20 @@ void main()
   const bool tubes = own.w != 0.0;
   const double radius = own.y * footprint;
   double entry, leave;
-  if (tubes && CapsuleInterval(o, v, a, b, radius * radius, entry, leave) && leave > 0.0)
+  bool cylinder = false;
+  if (tubes && CylinderEntry(o, v, a, b, radius, entry))
+  {
+    position = o + entry * v;
+    cylinder = true;
+  }
+  else if (tubes && CapsuleInterval(o, v, a, b, radius * radius, entry, leave) && leave > 0.0)
     position = o + max(0.0, entry) * v;
   if (tubes)
   {
     const dvec3 ab = b - a;
-    const double along = dot(ab, ab) > 0.0 ? min(1.0, max(0.0, dot(position - a, ab) / dot(ab, ab))) : 0.0;
+    double along = dot(ab, ab) > 0.0 ? dot(position - a, ab) / dot(ab, ab) : 0.0;
+    if (!cylinder)
+      along = min(1.0, max(0.0, along));
     normal = position - (a + along * ab);
     const double nl = length(normal);
     if (!(nl > 0.5 * footprint) || !(nl > 0.0))
