@@ -32,6 +32,23 @@ vtkImageData* InputOf(vtkVolume* volume)
   return vtkImageData::SafeDownCast(mapper->GetDataSetInput());
 }
 
+/// The scalars the volume's mapper draws: the array its scalar mode and
+/// array name or id select (ParaView's "Color by" sets them, and the
+/// input's active scalars may be another array or none), else the active
+/// point scalars. `cells` is set when the selection is cell data.
+vtkDataArray* DrawnScalars(vtkVolume* volume, vtkImageData* input, bool& cells)
+{
+  cells = false;
+  vtkAbstractVolumeMapper* mapper = volume ? volume->GetMapper() : nullptr;
+  if (!input || !mapper)
+    return nullptr;
+  int cellFlag = 0;
+  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(input, mapper->GetScalarMode(),
+    mapper->GetArrayAccessMode(), mapper->GetArrayId(), mapper->GetArrayName(), cellFlag);
+  cells = scalars && cellFlag == 1;
+  return scalars;
+}
+
 void AppendMatrix(vtkMatrix4x4* m, std::vector<double>& key)
 {
   for (int i = 0; i < 16; ++i)
@@ -47,6 +64,10 @@ void AppendVolumeOpacityKey(vtkVolume* volume, std::vector<double>& key)
   key.push_back(static_cast<double>(reinterpret_cast<std::uintptr_t>(volume)));
   key.push_back(static_cast<double>(reinterpret_cast<std::uintptr_t>(input)));
   key.push_back(input ? static_cast<double>(input->GetMTime()) : 0.0);
+  bool cells = false;
+  vtkDataArray* scalars = DrawnScalars(volume, input, cells);
+  key.push_back(static_cast<double>(reinterpret_cast<std::uintptr_t>(scalars)));
+  key.push_back(scalars ? static_cast<double>(scalars->GetMTime()) : 0.0);
   vtkVolumeProperty* property = volume->GetProperty();
   key.push_back(static_cast<double>(property->GetScalarOpacity(0)->GetMTime()));
   key.push_back(property->GetScalarOpacityUnitDistance(0));
@@ -79,10 +100,26 @@ long long VolumeVoxels(vtkVolume* volume)
 bool VolumeOpacity(vtkVolume* volume, cao::OpacityVolume& out, std::string& error)
 {
   vtkImageData* input = InputOf(volume);
-  vtkDataArray* scalars = input ? input->GetPointData()->GetScalars() : nullptr;
+  bool cells = false;
+  vtkDataArray* scalars = DrawnScalars(volume, input, cells);
+  if (!input)
+  {
+    error = "the volume's input is not image data";
+    return false;
+  }
   if (!scalars)
   {
-    error = "the volume's input is not image data with point scalars";
+    error = "the volume's input has no point array its mapper draws (colour it by a point array)";
+    return false;
+  }
+  if (cells)
+  {
+    error = "the volume is coloured by cell data; a volume occludes surfaces through point scalars";
+    return false;
+  }
+  if (scalars->GetNumberOfTuples() != input->GetNumberOfPoints())
+  {
+    error = "the volume's drawn array has a value count other than its voxels'";
     return false;
   }
   // A volume its mapper does not draw (a bad setting) occludes nothing.

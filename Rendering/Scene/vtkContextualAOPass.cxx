@@ -444,6 +444,12 @@ struct vtkContextualAOPass::Internals
   std::int64_t combined = 0, hidden = 0;
   std::vector<float> depth; ///< this frame's drawn depth (read once, after the opaque step)
   bool depthOk = false;
+  /// The drawn depth's resolution in NDC (2^-bits of the window's depth
+  /// buffer, at most 2^-24 as a float buffer's near 1, times 2).
+  double depthQuantum = std::ldexp(2.0, -24);
+  /// The drawn depth came from a multisampled framebuffer: each pixel's is
+  /// one of its samples' (or between their extremes), not the centre's.
+  bool depthMultisampled = false;
   std::string depthError;
   double ndcToWorld[16] = { 0 }; ///< the traced camera's
   cao::PixelCamera pixels;       ///< the traced camera, as the kernels take it
@@ -459,6 +465,7 @@ struct vtkContextualAOPass::Internals
   int rect[4] = { 0, 0, 0, 0 };
   std::string backendNote;       ///< why not, when Auto chose the CPU (or a multisampled frame read back)
   bool warnedTiles = false;      ///< a tiled render's seams said (until the tiling ends)
+  bool warnedAmbient = false;    ///< no surface with an ambient term said (until one has)
   // Parallel rendering (SetController, several processes): the scene
   // every process agrees on.
   vtkSmartPointer<vtkMultiProcessController> controller;
@@ -562,8 +569,14 @@ struct vtkContextualAOPass::Internals
   bool UpdateAO(vtkContextualAOPass* self, vtkRenderer* ren);
   bool UpdateLines(vtkContextualAOPass* self, vtkRenderer* ren);
   /// Whether pixel i's drawn point is the surface G-buffer's (within the
-  /// tolerance): the surfaces' AO goes there.
+  /// tolerance, beyond the traced plane's depth span over the pixel): the
+  /// surfaces' AO goes there.
   bool DrawnIsTraced(std::size_t i) const;
+  /// Whether pixel i's traced point is at a silhouette or crease of the
+  /// G-buffer: a 4-neighbour on the background or off its plane.
+  bool TracedEdge(std::size_t i) const;
+  /// What the drawn depth just read is: its resolution and sampling.
+  void NoteDepthFormat(vtkRenderer* ren);
   bool Combine(vtkContextualAOPass* self, const vtkRenderState* s);
   /// Lines alone, drawn as VTK draws them, with the AO on the GPU: their
   /// combine there too (1 done; 0 not for this frame, or failed there and
@@ -842,11 +855,31 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
     this->Exchange(self);
     this->ShareLineGrid(self, ren);
   }
-  if (!std::isfinite(self->Radius) || !std::isfinite(self->Strength))
+  if (!(self->Radius >= 0.0) || !std::isfinite(self->Radius) || !(self->Strength >= 0.0) ||
+    !(self->Strength <= 1.0))
   {
+    // (Out of range they were taken silently: a radius of -1 as the
+    // default, a strength of 2 as 1 and of -1 as 0.)
     this->linesOn = false;
-    this->Fail(self, "Radius (0 or more, world units) and Strength (0..1) must be numbers");
+    this->Fail(self, "Radius must be 0 (the default: from the scene) or more, in world units, and "
+                     "Strength within [0, 1] (they are " + std::to_string(self->Radius) + " and " +
+                     std::to_string(self->Strength) + ")");
     return;
+  }
+  {
+    // The default pass darkens the ambient term, and VTK's default
+    // property has none: on such a scene the AO changes nothing. Said once
+    // (until a surface has an ambient term or ApplyTo changes).
+    const bool noAmbient = self->ApplyTo == AMBIENT_TERM && !this->pieces.empty() &&
+      std::none_of(this->pieces.begin(), this->pieces.end(),
+        [](const auto& piece) { return piece.first->GetProperty()->GetAmbient() > 0.0; });
+    if (noAmbient && !this->warnedAmbient)
+      vtkWarningWithObjectMacro(self, "No surface has an ambient term (vtkProperty Ambient is 0, "
+                                      "VTK's default), and the AO darkens the ambient term "
+                                      "(ApplyTo AMBIENT_TERM): it changes nothing. Give the "
+                                      "surfaces an ambient term (e.g. SetAmbient(0.3)) or darken "
+                                      "the whole colour (SetApplyTo(WHOLE_COLOR)).");
+    this->warnedAmbient = noAmbient;
   }
   if (this->pieces.empty())
   {
@@ -914,6 +947,7 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
   }
   this->hostAOStale = false; // frame.ao is the CPU's (or the read-back path's) from here
   this->depthOk = vtkCAO::ReadViewportDepth(ren, this->depth, this->depthError);
+  this->NoteDepthFormat(ren);
   // With the depth G-buffer the lines go first: the surfaces' normals then
   // leave the lines' pixels out (FrameFromDepth's otherDrawing). With the
   // ray cast the lines leave out the surfaces' traced pixels instead.
@@ -1735,19 +1769,112 @@ bool vtkContextualAOPass::Internals::UpdateLines(vtkContextualAOPass* self, vtkR
   return true;
 }
 
+void vtkContextualAOPass::Internals::NoteDepthFormat(vtkRenderer* ren)
+{
+  // A fixed-point buffer of b bits resolves 2^-b of the window's depth; a
+  // float one near 1 (where a perspective scene's depths crowd) 2^-24.
+  int bits = ren->GetRenderWindow() ? ren->GetRenderWindow()->GetDepthBufferSize() : 0;
+  if (bits < 16 || bits > 32)
+    bits = 24; // (not known: a 24-bit buffer's, as most)
+  this->depthQuantum = std::ldexp(2.0, -std::min(bits, 24));
+  unsigned framebuffer = 0;
+  int rect[4];
+  std::string error;
+  this->depthMultisampled = false;
+  if (!vtkCAO::DrawTarget(ren, framebuffer, rect, this->depthMultisampled, error))
+    this->depthMultisampled = false;
+}
+
 bool vtkContextualAOPass::Internals::DrawnIsTraced(std::size_t i) const
 {
-  // The drawn point of this pixel, back to world space, against the traced one.
+  // The drawn depth of this pixel against the traced point, along the
+  // pixel's centre ray. The drawn depth need not be the centre's: a
+  // multisampled framebuffer's depth is resolved to one of the pixel's
+  // samples, or to a value between their extremes (the GL leaves it to the
+  // implementation; Mesa takes sample 0, (-1/8, -3/8) of a pixel off the
+  // centre at 4x). On the traced triangle a sample lies anywhere over the
+  // pixel's square, and its depth differs from the centre's by the
+  // triangle's depth slope times up to half a pixel: a fixed fraction of a
+  // pixel, so a world length that grows as the pixel's footprint on the
+  // surface, 1/cos of the grazing angle. A plane stays a plane in NDC (its
+  // depth affine in x, y), so over the pixel the traced plane's NDC depth
+  // is the centre's +- s, s = |dz/dx| / width + |dz/dy| / height (half a
+  // pixel each way: glPolygonOffset's slope term; 0 when the depth is
+  // single-sampled, at the centre), widened by the depth buffer's
+  // resolution. The drawn depth within that span is the traced
+  // surface; outside it, within the tolerance (half a voxel) in world
+  // space of the span's nearer end.
   const double* m = this->ndcToWorld;
-  const int px = static_cast<int>(i % this->frame.width), py = static_cast<int>(i / this->frame.width);
-  const double ndc[4] = { (px + 0.5) / this->frame.width * 2.0 - 1.0,
-    (py + 0.5) / this->frame.height * 2.0 - 1.0, 2.0 * this->depth[i] - 1.0, 1.0 };
-  double q[4];
-  for (int r = 0; r < 4; ++r)
-    q[r] = m[4 * r] * ndc[0] + m[4 * r + 1] * ndc[1] + m[4 * r + 2] * ndc[2] + m[4 * r + 3] * ndc[3];
+  const int width = this->frame.width, height = this->frame.height;
+  const int px = static_cast<int>(i % width), py = static_cast<int>(i / width);
+  const double x = (px + 0.5) / width * 2.0 - 1.0, y = (py + 0.5) / height * 2.0 - 1.0;
+  const double zd = 2.0 * this->depth[i] - 1.0;
   const double* p = &this->frame.position[3 * i];
-  const double dx = q[0] / q[3] - p[0], dy = q[1] / q[3] - p[1], dz = q[2] / q[3] - p[2];
-  return dx * dx + dy * dy + dz * dz <= this->tolerance * this->tolerance;
+  const double* n = &this->frame.normal[3 * i];
+  // The traced triangle's plane (n, -n.p) in NDC: ndcToWorld transposed times it.
+  const double plane[4] = { n[0], n[1], n[2], -(n[0] * p[0] + n[1] * p[1] + n[2] * p[2]) };
+  double c[4];
+  for (int k = 0; k < 4; ++k)
+    c[k] = plane[0] * m[k] + plane[1] * m[4 + k] + plane[2] * m[8 + k] + plane[3] * m[12 + k];
+  const auto unproject = [m, x, y](double z, double out[3]) {
+    const double ndc[4] = { x, y, z, 1.0 };
+    double h[4];
+    for (int r = 0; r < 4; ++r)
+      h[r] = m[4 * r] * ndc[0] + m[4 * r + 1] * ndc[1] + m[4 * r + 2] * ndc[2] + m[4 * r + 3] * ndc[3];
+    for (int k = 0; k < 3; ++k)
+      out[k] = h[k] / h[3];
+  };
+  const auto within = [this](const double a[3], const double b[3]) {
+    const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+    return dx * dx + dy * dy + dz * dz <= this->tolerance * this->tolerance;
+  };
+  double drawn[3];
+  unproject(zd, drawn);
+  const double zc = c[2] != 0.0 ? -(c[0] * x + c[1] * y + c[3]) / c[2] : 0.0;
+  // (a single-sampled pixel's depth is its centre's: no slope term)
+  const double slope = this->depthMultisampled && c[2] != 0.0
+    ? (std::fabs(c[0]) / width + std::fabs(c[1]) / height) / std::fabs(c[2])
+    : 0.0;
+  if (c[2] == 0.0 || !std::isfinite(zc) || !std::isfinite(slope))
+  {
+    // The plane seen edge on: any depth over a multisampled pixel; at a
+    // single-sampled one's centre, the traced point's.
+    return this->depthMultisampled || within(drawn, p);
+  }
+  const double s = slope + this->depthQuantum;
+  const double zr = std::min(std::min(1.0, zc + s), std::max(std::max(-1.0, zc - s), zd));
+  if (zr == zd)
+    return true;
+  // A multisampled pixel at the G-buffer's silhouette or crease: its sample
+  // may lie on the other side of the edge (a farther surface, the
+  // background, or the nearer face of the crease), not on a prop in front.
+  if (this->depthMultisampled && this->TracedEdge(i))
+    return true;
+  double end[3];
+  unproject(zr, end);
+  return within(drawn, end);
+}
+
+bool vtkContextualAOPass::Internals::TracedEdge(std::size_t i) const
+{
+  const int width = this->frame.width, height = this->frame.height;
+  const int px = static_cast<int>(i % width), py = static_cast<int>(i / width);
+  const double* p = &this->frame.position[3 * i];
+  const double* n = &this->frame.normal[3 * i];
+  const int step[4][2] = { { -1, 0 }, { 1, 0 }, { 0, -1 }, { 0, 1 } };
+  for (const auto& d : step)
+  {
+    const int x = px + d[0], y = py + d[1];
+    if (x < 0 || y < 0 || x >= width || y >= height)
+      continue;
+    const std::size_t j = static_cast<std::size_t>(y) * width + x;
+    if (this->frame.triangle[j] < 0)
+      return true;
+    const double* o = &this->frame.position[3 * j];
+    if (std::fabs(n[0] * (o[0] - p[0]) + n[1] * (o[1] - p[1]) + n[2] * (o[2] - p[2])) > this->tolerance)
+      return true;
+  }
+  return false;
 }
 
 bool vtkContextualAOPass::Internals::VoxelizeFrustum(vtkContextualAOPass* self, Clock::time_point& start)

@@ -228,14 +228,16 @@ public:
   /// triangles' area A, between a fortieth and a tenth of the box's
   /// diagonal). The frame report's "radius" gives the one used. A radius
   /// set must lie within 1e-6 to 1e3 times the scene's bounding-box
-  /// diagonal (the lines': their own), else the frame fails with the limits.
-  vtkSetClampMacro(Radius, double, 0.0, VTK_DOUBLE_MAX);
+  /// diagonal (the lines': their own), else the frame fails with the limits;
+  /// a negative or NaN radius fails too (taken as given, never clamped).
+  vtkSetMacro(Radius, double);
   vtkGetMacro(Radius, double);
   ///@}
 
   ///@{
-  /// 0 no darkening .. 1 the full AO (default).
-  vtkSetClampMacro(Strength, double, 0.0, 1.0);
+  /// 0 no darkening .. 1 the full AO (default). Outside [0, 1] (or NaN) the
+  /// frame fails with the range (taken as given, never clamped).
+  vtkSetMacro(Strength, double);
   vtkGetMacro(Strength, double);
   ///@}
 

@@ -874,11 +874,46 @@ int TestContextualAOPass(int, char*[])
   Check(pass->GetLastFrameReport().find("multiple of 32") != std::string::npos,
     "Slices 100 is refused with the reason");
   pass->SetSlices(256);
-  pass->SetStrength(std::nan(""));
-  window->Render();
-  Check(pass->GetLastFrameReport().find("must be numbers") != std::string::npos &&
-      pass->GetLastFrameStages().empty(),
-    "a NaN Strength is refused with the reason, and nothing runs");
+  // A NaN, and values out of range (taken silently before: a Strength of
+  // 2 as 1, of -1 as 0, a Radius of -1 as the default), are refused with
+  // the range, and nothing runs.
+  for (const std::pair<double, double>& bad : std::vector<std::pair<double, double>>{
+         { 0.0, std::nan("") }, { 0.0, 2.0 }, { 0.0, -1.0 }, { -1.0, 1.0 } })
+  {
+    pass->SetRadius(bad.first);
+    pass->SetStrength(bad.second);
+    window->Render();
+    Check(pass->GetLastFrameReport().find("Strength within [0, 1]") != std::string::npos &&
+        pass->GetLastFrameStages().empty(),
+      "Radius " + std::to_string(bad.first) + ", Strength " + std::to_string(bad.second) +
+        ": refused with the range, and nothing runs");
+  }
+  pass->SetRadius(0.0);
+  {
+    // No surface with an ambient term (VTK's default property) while the
+    // AO darkens the ambient term: said once, as it changes nothing (a
+    // trial used the pass as vtkSSAOPass is and saw no change, no word);
+    // with an ambient term, nothing is said (the control).
+    int warnings = 0;
+    vtkNew<vtkCallbackCommand> count;
+    count->SetClientData(&warnings);
+    count->SetCallback([](vtkObject*, unsigned long, void* data, void*) { ++*static_cast<int*>(data); });
+    const unsigned long tag = pass->AddObserver(vtkCommand::WarningEvent, count);
+    const int applyTo = pass->GetApplyTo();
+    pass->SetApplyTo(vtkContextualAOPass::AMBIENT_TERM);
+    sphereActor->GetProperty()->SetAmbient(0.0);
+    window->Render();
+    window->Render();
+    const int without = warnings;
+    sphereActor->GetProperty()->SetAmbient(0.3);
+    warnings = 0;
+    window->Render();
+    pass->RemoveObserver(tag);
+    pass->SetApplyTo(applyTo);
+    Check(without == 1 && warnings == 0,
+      "no ambient term on any surface: one warning over two frames (" + std::to_string(without) +
+        "), none with one (" + std::to_string(warnings) + ")");
+  }
   pass->SetStrength(1.0);
   // The volume occludes the surfaces, and carving it lightens them: a slab
   // under a dense block of volume, carved by the volume mapper's clip box.
