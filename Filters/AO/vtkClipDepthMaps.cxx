@@ -258,7 +258,7 @@ bool CheckRawMaps(vtkClipDepthMaps* self, const cao::ClipDepthMaps& raw,
       "The clip mesh covers no depth-map pixel: it is smaller than one pixel of "
         << cam.pixelSize[0] << " x " << cam.pixelSize[1] << " local units ("
         << (self->GetPixelSize() > 0.0
-               ? "PixelSize; make it smaller"
+               ? "PixelSize: set a smaller one, or scale the mesh up"
                : "half a voxel at MaximumPoseScale, or the dilation radius / 32; "
                  "a mesh this small clips nothing")
         << ").");
@@ -272,9 +272,9 @@ bool CheckRawMaps(vtkClipDepthMaps* self, const cao::ClipDepthMaps& raw,
     vtkWarningWithObjectMacro(self, << raw.overflowPixels << " pixel(s) have more than "
                                     << cam.layers
                                     << " inside intervals; the extra ones were merged into the "
-                                       "last layer. Increase NumberOfLayers (Clip Layers in "
-                                       "ParaView's Contextual AO Volume) to clip this mesh "
-                                       "exactly.");
+                                       "last layer. Increase the layers to clip this mesh exactly "
+                                       "(NumberOfLayers; cao's --layers; Clip Layers in "
+                                       "ParaView's Contextual AO Volume).");
   return true;
 }
 }

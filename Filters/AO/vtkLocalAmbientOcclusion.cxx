@@ -382,7 +382,7 @@ vtkDataArray* vtkLocalAmbientOcclusion::SelectScalars(
       << ".");
   else if (this->Component < 0 && nc != 1)
     vtkErrorMacro("Array '" << name << "' has " << nc
-                            << " components; choose one with SetComponent().");
+                            << " components; choose one with SetComponent() (Component in ParaView).");
   else if (this->Component >= nc)
     vtkErrorMacro("Component " << this->Component << " requested but the array has " << nc
                                << " components.");
