@@ -122,7 +122,8 @@ public:
 
   ///@{
   /**
-   * Samples per ray M, 1 to 65536. 0 (default) means SampleDensity samples
+   * Samples per ray M, 2 to 65536 (one sees no occluder: refused). 0
+   * (default) means SampleDensity samples
    * per smallest voxel spacing: max(2, round(SampleDensity * Reach / h_min)) (one sample per ray
    * sees no occluder: its first sample is never occluded, so M = 1 gives 1).
    */

@@ -276,6 +276,18 @@ void vtkContextualAOVolumeRepresentation::UpdateBuiltInShape(vtkImageData* data)
   const double* s = this->ClipScale;
   const bool scaleOk = std::all_of(s, s + 3, [](double v) { return std::isfinite(v) && v != 0.0; }) &&
     std::all_of(matrix, matrix + 16, [](double v) { return std::isfinite(v); });
+  const double* p = this->ClipPosition;
+  const double* r = this->ClipOrientation;
+  const bool poseOk = std::all_of(p, p + 3, [](double v) { return std::isfinite(v); }) &&
+    std::all_of(r, r + 3, [](double v) { return std::isfinite(v); });
+  if (!poseOk)
+  {
+    vtkErrorMacro("The clip box's Clip Position (" << p[0] << " " << p[1] << " " << p[2]
+      << ") or Clip Rotation (" << r[0] << " " << r[1] << " " << r[2]
+      << ") is not finite: nothing is clipped, the volume is drawn unclipped.");
+    mapper->SetClipShape(nullptr);
+    return;
+  }
   if (!boundsOk || !scaleOk)
   {
     vtkErrorMacro("The clip box is empty or not finite (Clip Scale "

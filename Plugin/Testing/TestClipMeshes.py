@@ -228,6 +228,18 @@ vtkOutputWindow.SetInstance(previous)
 check("clip box is empty" in errors.GetOutput() and changed(plain, empty) == 0,
       "an empty reference box clips nothing, with the reason: %s" % " ".join(errors.GetOutput().split())[:200])
 display.ClipReferenceBounds = [-1.0, 1.0, -1.0, 1.0, -1.0, 1.0]
+# A NaN Clip Position clips nothing and names the position (a trial got a
+# message blaming a valid Clip Scale).
+errors = vtkStringOutputWindow()
+vtkOutputWindow.SetInstance(errors)
+kept_position = list(display.ClipPosition)
+display.ClipPosition = [float("nan"), kept_position[1], kept_position[2]]
+nan_pose = frame("box-nan-position")
+vtkOutputWindow.SetInstance(previous)
+said = " ".join(errors.GetOutput().split())
+check("Clip Position" in said and "drawn unclipped" in said and changed(plain, nan_pose) == 0,
+      "a NaN Clip Position clips nothing, naming the position: %s" % said[:200])
+display.ClipPosition = kept_position
 display.ClipShape = "None"
 
 # Negative control: an open mesh is refused with the reason.

@@ -420,8 +420,8 @@ CLI::Option* AddReach(CLI::App* app, double& reach)
 
 CLI::Option* AddSamples(CLI::App* app, int& samples)
 {
-  return AddInteger(app, "--samples", samples, 1, cao::LAOLimits::MaxSamples,
-    "samples per ray, 1 to 65536 (default: --density per voxel)")
+  return AddInteger(app, "--samples", samples, 2, cao::LAOLimits::MaxSamples,
+    "samples per ray, 2 to 65536 (default: --density per voxel; one would see no occluder)")
     ->type_name("M");
 }
 

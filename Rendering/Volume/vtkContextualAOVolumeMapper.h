@@ -159,7 +159,8 @@ public:
   ///@}
 
   ///@{
-  /// Samples per LAO ray M, 1 to 65536; 0 (default) means SampleDensity per smallest spacing.
+  /// Samples per LAO ray M, 2 to 65536 (one sees no occluder: refused); 0 (default) means
+  /// SampleDensity per smallest spacing.
   virtual void SetNumberOfSamples(int value);
   virtual int GetNumberOfSamples();
   ///@}

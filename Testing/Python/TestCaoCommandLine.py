@@ -629,8 +629,10 @@ rc, out, err = run("lao", full_vti, "--rays", "6")
 check(rc == 0, f"an appended-raw .vti reads: rc={rc} {err.strip()[:200]}")
 expect_error(["lao", cut_vti, "--rays", "6"], 2, "the file is short", "a .vti cut at 80%")
 expect_error(["carve", neghip, "--path", "1000000000"], 2, "1 to 100000", "--path 1e9")
-expect_error(["lao", neghip, "--samples", "1000000000"], 2, "1 to 65536", "--samples 1000000000")
-expect_error(["lao", neghip, "--samples", "1e9"], 2, "1 to 65536", "--samples 1e9")
+expect_error(["lao", neghip, "--samples", "1000000000"], 2, "2 to 65536", "--samples 1000000000")
+expect_error(["lao", neghip, "--samples", "1e9"], 2, "2 to 65536", "--samples 1e9")
+# One sample per ray sees no occluder (a trial got AO 1 everywhere): refused.
+expect_error(["lao", neghip, "--samples", "1"], 2, "2 to 65536", "--samples 1")
 expect_error(["lao", neghip, "--rays", "fib:100000"], 2, "1 to 65536", "--rays fib:100000")
 expect_error(["render", neghip, "--aa", "64", "-o", os.path.join(tmp, "x_%d.png")], 2, "0 to 32",
              "render --aa 64")

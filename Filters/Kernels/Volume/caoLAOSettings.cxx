@@ -123,9 +123,13 @@ bool CheckLAOSettings(const LAOSettings& s, std::string& error)
     !(s.fibonacciRays >= 1 && s.fibonacciRays <= LAOLimits::MaxRays))
     msg << "a Fibonacci ray count must be 1 to " << LAOLimits::MaxRays << "; got "
         << s.fibonacciRays;
-  else if (s.samples < 0 || s.samples > LAOLimits::MaxSamples)
-    msg << "the number of samples per ray must be 1 to " << LAOLimits::MaxSamples
-        << " (0 derives it from the sample density); got " << s.samples;
+  else if (s.samples < 0 || s.samples == 1 || s.samples > LAOLimits::MaxSamples)
+    msg << "the number of samples per ray must be 2 to " << LAOLimits::MaxSamples
+        << " (0 derives it from the sample density"
+        << (s.samples == 1 ? "; one sees no occluder: a ray's first sample is never occluded, "
+                             "so the LAO would be 1 everywhere"
+                           : "")
+        << "); got " << s.samples;
   else if (s.samples == 0 &&
     !(s.sampleDensity >= LAOLimits::MinSampleDensity &&
       s.sampleDensity <= LAOLimits::MaxSampleDensity))

@@ -90,7 +90,8 @@ for name, value, limit in (("StartOffset", 1.5, "[0, 1)"), ("SampleDensity", -1.
                            ("Quality", 9, "(High); got 9"),
                            ("Reach", -1.0, "0 selects the default"),
                            ("Reach", float("nan"), "0 selects the default"),
-                           ("NumberOfSamples", 1000000000, "1 to 65536"),
+                           ("NumberOfSamples", 1000000000, "2 to 65536"),
+                           ("NumberOfSamples", 1, "one sees no occluder"),
                            ("RayPattern", 99, "unknown ray pattern"),
                            ("ScalarOpacityUnitDistance", 0.0, "positive and finite")):
     g = lao_filter(**{name: value})
