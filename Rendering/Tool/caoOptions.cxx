@@ -376,8 +376,10 @@ void AddLAOOptions(CLI::App* app, LAOCommandLine& lao, bool samplesOption)
     ->type_name("NAME")
     ->check(Check([](std::string& v) -> std::string {
       cao::RayVariation r;
-      return cao::ParseRayVariation(v, r)
-        ? ""
+      if (cao::ParseRayVariation(v, r))
+        return "";
+      return cao::ParseRayVariation(Lower(v), r)
+        ? "bad value '" + v + "' (the names are lower case: '" + Lower(v) + "')"
         : "bad value '" + v + "' (expected none, rotate, jitter or rotate+jitter)";
     }));
 }
@@ -505,7 +507,9 @@ CLI::Option* AddBackend(CLI::App* app, std::vector<int>& backends, bool list)
       {
         int backend = 0;
         if (!parse(b, backend))
-          return "bad value '" + b + "' (expected auto, cpu or gl)";
+          return parse(Lower(b), backend)
+            ? "bad value '" + b + "' (the names are lower case: '" + Lower(b) + "')"
+            : "bad value '" + b + "' (expected auto, cpu or gl)";
       }
       return "";
     }));

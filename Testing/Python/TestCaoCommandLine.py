@@ -631,6 +631,10 @@ expect_error(["lao", cut_vti, "--rays", "6"], 2, "the file is short", "a .vti cu
 expect_error(["carve", neghip, "--path", "1000000000"], 2, "1 to 100000", "--path 1e9")
 expect_error(["lao", neghip, "--samples", "1000000000"], 2, "2 to 65536", "--samples 1000000000")
 expect_error(["lao", neghip, "--samples", "1e9"], 2, "2 to 65536", "--samples 1e9")
+# A right name in another case says so (a re-trial got the bare list).
+expect_error(["lao", neghip, "--variation", "Rotate"], 2, "the names are lower case: 'rotate'", "--variation Rotate")
+expect_error(["lao", neghip, "--backend", "CPU"], 2, "the names are lower case: 'cpu'", "--backend CPU")
+expect_error(["carve", neghip, "--shape", "Sphere"], 2, "the names are lower case: 'sphere'", "--shape Sphere")
 # One sample per ray sees no occluder (a trial got AO 1 everywhere): refused.
 expect_error(["lao", neghip, "--samples", "1"], 2, "2 to 65536", "--samples 1")
 expect_error(["lao", neghip, "--rays", "fib:100000"], 2, "1 to 65536", "--rays fib:100000")
