@@ -21,15 +21,16 @@ pass (voxel cones, the ray-cast G-buffer), a 50 x 40 x 1 slab:
   less its 1-pixel rim.
 """
 import json
-import os
 import sys
 
-from contextualao import vtkContextualAOEGLWindow, vtkContextualAOPass
+from contextualao import vtkContextualAOPass
 from vtkmodules.vtkCommonCore import vtkFloatArray, vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkPolyData
 from vtkmodules.vtkFiltersSources import vtkCubeSource
-from vtkmodules.vtkRenderingCore import vtkActor, vtkGlyph3DMapper, vtkPolyDataMapper, vtkRenderer
+from vtkmodules.vtkRenderingCore import vtkActor, vtkGlyph3DMapper, vtkPolyDataMapper
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
+
+from neghip_scene import window_and_renderer  # (this folder)
 
 failures = []
 
@@ -41,16 +42,8 @@ def check(ok, what):
 
 
 def scene(elevation, glyph, with_pass=True, samples=4):
-    window = vtkContextualAOEGLWindow()
-    if not window.IsUsable():
-        if os.environ.get("CAO_REQUIRE_GL", "0") not in ("", "0"):
-            sys.exit("no EGL OpenGL 4.3 context (CAO_REQUIRE_GL is set): %s" % window.GetContextError())
-        print("skipped: no EGL OpenGL 4.3 context: %s" % window.GetContextError())
-        sys.exit(125)
-    window.SetSize(400, 300)
+    window, renderer = window_and_renderer(400, 300)
     window.SetMultiSamples(samples)
-    renderer = vtkRenderer()
-    window.AddRenderer(renderer)
     slab = vtkCubeSource()
     slab.SetBounds(-25, 25, -20, 20, -1, 0)
     mapper = vtkPolyDataMapper()

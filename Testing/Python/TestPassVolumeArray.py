@@ -19,16 +19,17 @@ over a slab:
   (the negative control: the same pixel within 0.01 of the hidden case's).
 """
 import json
-import os
 import sys
 
-from contextualao import vtkContextualAOEGLWindow, vtkContextualAOPass, vtkContextualAOVolumeMapper
+from contextualao import vtkContextualAOPass, vtkContextualAOVolumeMapper
 from vtkmodules.vtkCommonCore import vtkFloatArray
 from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPiecewiseFunction
 from vtkmodules.vtkFiltersSources import vtkCubeSource
-from vtkmodules.vtkRenderingCore import (vtkActor, vtkColorTransferFunction, vtkPolyDataMapper, vtkRenderer,
-                                         vtkVolume, vtkVolumeProperty)
+from vtkmodules.vtkRenderingCore import (vtkActor, vtkColorTransferFunction, vtkPolyDataMapper, vtkVolume,
+                                         vtkVolumeProperty)
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
+
+from neghip_scene import window_and_renderer  # (this folder)
 
 failures = []
 
@@ -39,16 +40,7 @@ def check(ok, what):
         failures.append(what)
 
 
-window = vtkContextualAOEGLWindow()
-if not window.IsUsable():
-    if os.environ.get("CAO_REQUIRE_GL", "0") not in ("", "0"):
-        sys.exit("no EGL OpenGL 4.3 context (CAO_REQUIRE_GL is set): %s" % window.GetContextError())
-    print("skipped: no EGL OpenGL 4.3 context: %s" % window.GetContextError())
-    sys.exit(125)
-window.SetSize(240, 240)
-renderer = vtkRenderer()
-renderer.SetBackground(1, 1, 1)
-window.AddRenderer(renderer)
+window, renderer = window_and_renderer(240)
 
 n = 32
 image = vtkImageData()

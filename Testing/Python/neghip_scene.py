@@ -1,5 +1,6 @@
 """The neghip scene the occluder tests share (TestMapperOccluders.py,
-TestPassVolumeOccluders.py): an EGL window (or the skip, 125, when there is
+TestPassVolumeOccluders.py; the window also TestPassMultisampled.py and
+TestPassVolumeArray.py): an EGL window (or the skip, 125, when there is
 none and CAO_REQUIRE_GL is not set), neghip.slc drawn by
 vtkContextualAOVolumeMapper with one transfer function and volume
 property, and a frame grabbed as an (h, w, 3) int array."""
@@ -14,15 +15,17 @@ from vtkmodules.vtkRenderingCore import (vtkColorTransferFunction, vtkRenderer, 
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
 
 
-def window_and_renderer(size=240):
-    """A size x size EGL window with a white-background renderer, or exit."""
+def window_and_renderer(size=240, height=None):
+    """A size x size (or size x height) EGL window with a white-background
+    renderer, or exit (125 when there is no EGL context and CAO_REQUIRE_GL
+    is not set)."""
     window = vtkContextualAOEGLWindow()
     if not window.IsUsable():
         if os.environ.get("CAO_REQUIRE_GL", "0") not in ("", "0"):
             sys.exit("no EGL OpenGL 4.3 context (CAO_REQUIRE_GL is set): %s" % window.GetContextError())
         print("skipped: no EGL OpenGL 4.3 context: %s" % window.GetContextError())
         sys.exit(125)
-    window.SetSize(size, size)
+    window.SetSize(size, height if height else size)
     renderer = vtkRenderer()
     renderer.SetBackground(1, 1, 1)
     window.AddRenderer(renderer)
