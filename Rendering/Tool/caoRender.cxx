@@ -453,11 +453,8 @@ int Render(RenderOptions& o, const CLI::App* app)
   if (o.json)
     std::printf("[");
   else
-  {
-    std::printf("cao render: %s, %dx%d, %s, %zu frame(s) -> %s\n", o.volume.c_str(), o.width,
-      o.height, windowKind.c_str(), poses.size(), o.output.c_str());
-    std::printf("AO: %s\n", aoSummary.c_str());
-  }
+    std::printf("cao render: %s, %dx%d, %s, %zu frame(s) -> %s\nAO: %s\n", o.volume.c_str(),
+      o.width, o.height, windowKind.c_str(), poses.size(), o.output.c_str(), aoSummary.c_str());
   for (std::size_t f = 0; f < poses.size(); ++f)
   {
     if (o.clip)

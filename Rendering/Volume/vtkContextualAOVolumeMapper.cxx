@@ -1191,13 +1191,13 @@ bool vtkContextualAOVolumeMapper::Internals::EditLAO(
   // Where the precompute runs on the CPU too (a software rasteriser), both
   // are the same march and an edit's list costs at least a full march's
   // per voxel: the share decides, with no timing noise in the choice.
-  const bool gpuFaster = vtkCAO::AvoidSoftware(f.report.backend) ? share > 0.5
+  const bool fullFaster = vtkCAO::AvoidSoftware(f.report.backend) ? share > 0.5
     : this->EditNsPerVoxel > 0.0
     ? this->PrecomputeNsPerVoxel > 0.0 &&
       this->EditNsPerVoxel * static_cast<double>(reached.size()) >
         this->PrecomputeNsPerVoxel * static_cast<double>(f.voxels)
     : share > 0.5;
-  if (gpuFaster)
+  if (fullFaster)
     return true;
   const auto marchStart = std::chrono::steady_clock::now();
   // Marched straight into the stored 16-bit AO (the march's store
@@ -1298,11 +1298,11 @@ bool vtkContextualAOVolumeMapper::Internals::GatherClipParts(
       continue;
     }
     {
-      vtkCAO::Pose scales;
-      scales.scale = smax;
+      vtkCAO::Pose largest, smallest;
+      largest.scale = smax;
+      smallest.scale = smin;
       std::string why;
-      if (!vtkCAO::CheckPoseScales({ scales }, part.mesh, f.input, why, false) ||
-        (scales.scale = smin, !vtkCAO::CheckPoseScales({ scales }, part.mesh, f.input, why, false)))
+      if (!vtkCAO::CheckPoseScales({ largest, smallest }, part.mesh, f.input, why, false))
       {
         leaveOut("The clip shape's " + why.substr(why.find(": ") + 2) + " (its clip scale).");
         continue;
@@ -1408,16 +1408,10 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateMaps(vtkContextualAOVolumeMap
   const bool several = parts.size() > 1;
   const int mode = parts[0].mode;
   const double smin = vtkCAO::MinimumScale(pose), smax = vtkCAO::MaximumScale(pose);
+  // (Each part's pose is invertible and its scales within what the maps
+  // resolve: GatherClipParts left out the others.)
   if (!(smin > 0.0) || !std::isfinite(smax))
     return f.Fail("The clip pose must be an invertible affine transform.");
-  // Each shape's scale within what the maps resolve (as cao carve checks
-  // its poses): over 2^23 voxels the float depths cannot resolve one.
-  for (std::size_t i = 0; i < parts.size(); ++i)
-  {
-    const std::string why = ClipScaleError(parts[i].mesh, several ? parts[i].pose.Get() : pose, f.input);
-    if (!why.empty())
-      return f.Fail("Clip shape " + std::to_string(i + 1) + " of " + std::to_string(parts.size()) + ": " + why);
-  }
   ::MeshKey key;
   key.mesh = parts[0].mesh;
   key.meshTime = parts[0].mesh->GetMTime();
