@@ -179,12 +179,11 @@ bool VolumeOpacity(vtkVolume* volume, cao::OpacityVolume& out, std::string& erro
   std::vector<std::uint8_t> probeKeeps, subtracts, inside;
   for (int s = 0; s < shapes; ++s)
   {
+    // A shape the mapper leaves out (it cannot clip) is left out here too:
+    // the volume occludes as it is drawn.
+    if (!mapper->ClipShapeProblem(s, input, volume->GetMatrix()).empty())
+      continue;
     vtkPolyData* mesh = mapper->GetClipShapeMeshAt(s);
-    if (!mesh)
-    {
-      error = "clip shape " + std::to_string(s) + " has no mesh";
-      return false;
-    }
     std::vector<double> points;
     std::vector<std::int64_t> triangles;
     vtkCAO::TrianglesOf(mesh, points, triangles);

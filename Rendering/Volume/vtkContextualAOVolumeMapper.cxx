@@ -63,21 +63,6 @@ vtkCxxSetObjectMacro(vtkContextualAOVolumeMapper, ClipMesh, vtkPolyData);
 
 namespace
 {
-/// Why the maps cannot resolve a clip shape `mesh` at pose `m` on `input`
-/// (its largest scale over 2^23 voxels; vtkCAO::CheckPoseScales), "" if they can.
-std::string ClipScaleError(vtkPolyData* mesh, vtkMatrix4x4* m, vtkImageData* input)
-{
-  vtkCAO::Pose p;
-  p.scale = vtkCAO::MaximumScale(m);
-  std::string why;
-  if (vtkCAO::CheckPoseScales({ p }, mesh, input, why, true))
-    return std::string();
-  return why.substr(why.find(": ") + 2) + " (its clip scale)";
-}
-}
-
-namespace
-{
 /// Entries of the transfer-function table.
 constexpr int TableEntries = 1024;
 /// Accumulated opacity at which a ray stops.
@@ -617,16 +602,6 @@ bool vtkContextualAOVolumeMapper::CanDraw(vtkImageData* input, std::string& why)
   if (dims[0] < 2 || dims[1] < 2 || dims[2] < 2)
     return why = "The input must have at least 2 voxels along each axis.", false;
   auto* self = const_cast<vtkContextualAOVolumeMapper*>(this);
-  for (int i = 0; i < self->GetNumberOfClipShapes(); ++i)
-  {
-    vtkProp3D* shape = self->GetClipShapeAt(i);
-    vtkPolyData* mesh = self->GetClipShapeMeshAt(i);
-    if (!shape || !mesh)
-      return why = "clip shape " + std::to_string(i + 1) + " has no mesh", false;
-    why = ClipScaleError(mesh, shape->GetMatrix(), input);
-    if (!why.empty())
-      return why = "Clip shape " + std::to_string(i + 1) + ": " + why, false;
-  }
   if (this->AmbientOcclusion && !(this->AmbientOcclusionArrayName && *this->AmbientOcclusionArrayName))
   {
     Internals& in = *this->Internal;
@@ -1231,6 +1206,59 @@ bool vtkContextualAOVolumeMapper::Internals::EditLAO(
 }
 
 //------------------------------------------------------------------------------
+std::string vtkContextualAOVolumeMapper::ClipShapeProblem(
+  int i, vtkImageData* input, vtkMatrix4x4* volumeMatrix)
+{
+  vtkPolyData* mesh = i >= 0 && i < this->GetNumberOfClipShapes() ? this->GetClipShapeMeshAt(i) : nullptr;
+  vtkProp3D* shape = mesh ? this->GetClipShapeAt(i) : nullptr;
+  if (!mesh || !shape)
+    return std::string("The clip shape has no mesh: give it a vtkPolyDataMapper input") +
+      (i == 0 && this->ClipShape ? " or set ClipMesh." : ".");
+  if (!input)
+    return "There is no input image to clip.";
+  {
+    // An open surface or a NaN point cannot clip; checked once per mesh
+    // version.
+    Internals& in = *this->Internal;
+    if (in.MeshChecks.size() > 64)
+      in.MeshChecks.clear();
+    Internals::MeshCheck& c = in.MeshChecks[mesh];
+    if (c.mtime != mesh->GetMTime())
+    {
+      c.mtime = mesh->GetMTime();
+      c.ok = vtkClipDepthMaps::CheckMesh(mesh, c.why);
+    }
+    if (!c.ok)
+      return c.why;
+  }
+  vtkMatrix4x4* prop = shape->GetMatrix();
+  if (!std::all_of(prop->GetData(), prop->GetData() + 16, [](double x) { return std::isfinite(x); }))
+    return "The clip shape's pose has a NaN or infinite entry (its position, orientation and "
+           "scale must be finite).";
+  // The pose in the volume's physical frame, where the maps are made.
+  vtkNew<vtkMatrix4x4> pose;
+  if (volumeMatrix)
+  {
+    vtkNew<vtkMatrix4x4> worldToVolume;
+    vtkMatrix4x4::Invert(volumeMatrix, worldToVolume);
+    vtkMatrix4x4::Multiply4x4(worldToVolume, prop, pose);
+  }
+  else
+    pose->DeepCopy(prop);
+  const double smin = vtkCAO::MinimumScale(pose), smax = vtkCAO::MaximumScale(pose);
+  if (!(smin > 0.0) || !std::isfinite(smax))
+    return "The clip shape's pose is not invertible (a scale of 0 on some axis): it encloses "
+           "no volume.";
+  vtkCAO::Pose largest, smallest;
+  largest.scale = smax;
+  smallest.scale = smin;
+  std::string why;
+  if (!vtkCAO::CheckPoseScales({ largest, smallest }, mesh, input, why, false))
+    return "The clip shape's " + why.substr(why.find(": ") + 2) + " (its clip scale).";
+  return std::string();
+}
+
+//------------------------------------------------------------------------------
 bool vtkContextualAOVolumeMapper::Internals::GatherClipParts(
   vtkContextualAOVolumeMapper* self, Frame& f, std::vector<ClipPart>& parts)
 {
@@ -1243,71 +1271,25 @@ bool vtkContextualAOVolumeMapper::Internals::GatherClipParts(
   std::string skipped;
   for (int i = 0; i < shapes; ++i)
   {
+    // A shape that cannot clip (no mesh, an open surface, a NaN pose, a
+    // size the maps cannot resolve) is left out and the others carve; with
+    // none left the volume is drawn unclipped, as an empty clip box is,
+    // and the error says why.
     ClipPart part;
-    part.mesh = self->GetClipShapeMeshAt(i);
-    const auto leaveOut = [&](const std::string& why) {
+    const std::string why = self->ClipShapeProblem(i, f.input, f.volume->GetMatrix());
+    if (!why.empty())
+    {
       skipped += (skipped.empty() ? "" : " ") +
         (shapes == 1 ? std::string()
                      : std::string("Clip shape ") + std::to_string(i) + " of " +
                std::to_string(shapes) + " is left out: ") +
         why;
-    };
-    if (!part.mesh)
-    {
-      leaveOut(std::string("The clip shape has no mesh: give it a vtkPolyDataMapper input") +
-        (i == 0 && self->ClipShape ? " or set ClipMesh." : "."));
       continue;
     }
-    {
-      // A shape that cannot clip (an open surface, a NaN) is left out and
-      // the others carve; with none left the volume is drawn unclipped, as
-      // an empty clip box is, and the error says why. Checked once per
-      // mesh version.
-      if (this->MeshChecks.size() > 64)
-        this->MeshChecks.clear();
-      MeshCheck& c = this->MeshChecks[part.mesh];
-      if (c.mtime != part.mesh->GetMTime())
-      {
-        c.mtime = part.mesh->GetMTime();
-        c.ok = vtkClipDepthMaps::CheckMesh(part.mesh, c.why);
-      }
-      if (!c.ok)
-      {
-        leaveOut(c.why);
-        continue;
-      }
-    }
-    // Pose: the mesh's local frame to the volume's physical frame. A pose
-    // the maps cannot serve (a NaN or infinite entry, a zero scale on an
-    // axis, a shape under half a voxel or over 2^23 voxels across) clips
-    // nothing, said with its reason, as an open mesh is.
+    part.mesh = self->GetClipShapeMeshAt(i);
+    // Pose: the mesh's local frame to the volume's physical frame.
     part.pose = vtkSmartPointer<vtkMatrix4x4>::New();
-    vtkMatrix4x4* prop = self->GetClipShapeAt(i)->GetMatrix();
-    if (!std::all_of(prop->GetData(), prop->GetData() + 16, [](double x) { return std::isfinite(x); }))
-    {
-      leaveOut("The clip shape's pose has a NaN or infinite entry (its position, orientation and "
-               "scale must be finite).");
-      continue;
-    }
-    vtkMatrix4x4::Multiply4x4(worldToVolume, prop, part.pose);
-    const double smin = vtkCAO::MinimumScale(part.pose), smax = vtkCAO::MaximumScale(part.pose);
-    if (!(smin > 0.0) || !std::isfinite(smax))
-    {
-      leaveOut("The clip shape's pose is not invertible (a scale of 0 on some axis): it encloses "
-               "no volume.");
-      continue;
-    }
-    {
-      vtkCAO::Pose largest, smallest;
-      largest.scale = smax;
-      smallest.scale = smin;
-      std::string why;
-      if (!vtkCAO::CheckPoseScales({ largest, smallest }, part.mesh, f.input, why, false))
-      {
-        leaveOut("The clip shape's " + why.substr(why.find(": ") + 2) + " (its clip scale).");
-        continue;
-      }
-    }
+    vtkMatrix4x4::Multiply4x4(worldToVolume, self->GetClipShapeAt(i)->GetMatrix(), part.pose);
     part.mode =
       self->GetClipShapeModeAt(i) == SUBTRACTION ? cao::layout::CAO_MODE_SUBTRACT : cao::layout::CAO_MODE_PROBE;
     parts.push_back(part);

@@ -437,8 +437,19 @@ public:
   /// mapper's own and, with the AO on and no AO array given, the LAO plan
   /// on this input's grid; `why` says what Render would refuse. The render
   /// pass asks it before a volume occludes the surfaces: a volume that is
-  /// not drawn does not occlude them.
+  /// not drawn does not occlude them. A clip shape that cannot clip does
+  /// not stop the drawing (ClipShapeProblem).
   bool CanDraw(vtkImageData* input, std::string& why) const;
+
+  /// Why clip shape i of GetNumberOfClipShapes() cannot clip `input` drawn
+  /// by a vtkVolume whose matrix is `volumeMatrix` (null: identity), or ""
+  /// when it can: no mesh, an open or degenerate mesh, a NaN or infinite
+  /// pose, a zero scale, or a size the depth maps cannot resolve (under
+  /// half a voxel or over 2^23 voxels across). Render leaves such a shape
+  /// out, saying why, and the others carve (with none left, the volume is
+  /// drawn unclipped); the render pass leaves it out of the opacity by
+  /// which the volume occludes the surfaces, so both see the same volume.
+  std::string ClipShapeProblem(int i, vtkImageData* input, vtkMatrix4x4* volumeMatrix);
 
 protected:
   vtkContextualAOVolumeMapper();
