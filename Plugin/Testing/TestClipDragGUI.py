@@ -97,6 +97,10 @@ def on_move(obj, event):
 
 errorTag = mapper.AddObserver("ErrorEvent", on_error)
 frameTag = view.GetRenderWindow().AddObserver("EndEvent", on_frame)
+# A render under way (started, not ended) keeps the driver waiting: a still
+# frame of a large volume on a software rasteriser takes longer than the
+# driver's 3 s of quiet.
+startTag = view.GetRenderWindow().AddObserver("StartEvent", lambda obj, event: emit("start"))
 moveTag = view.GetRenderWindow().GetInteractor().AddObserver("MouseMoveEvent", on_move)
 
 # The widget's box is the unit shape's box under its pose: its centre
@@ -112,13 +116,16 @@ def box_point(u):
 targets = {"centre": to_display(view, box_point([0, 0, 0])),
            "face": to_display(view, box_point([0.5, 0, 1])),
            "size": list(view.GetRenderWindow().GetSize()),
-           # The centre handle 80 pixels right; the face 70 up; the middle
-           # button moves the box from anywhere on it, whatever the view
-           # (head on, the front face's handle covers the centre handle):
-           # over the box's centre where the first drag left it (80 pixels
-           # right of the target; the face drag turned the box about its
-           # centre), 60 pixels down.
-           "drags": [["centre", "centre", 0, 0, 80, 0, 1], ["face", "face", 0, 0, 0, -70, 1],
+           # The centre handle 80 pixels right; the face 70 up, pressed
+           # where the first drag left it (80 pixels right of the target:
+           # on a box less than about 160 pixels wide on the screen the
+           # target itself is off the moved box, and the drag turned
+           # nothing); the middle button moves the box from anywhere on it,
+           # whatever the view (head on, the front face's handle covers the
+           # centre handle): over the box's centre where the first drag
+           # left it (80 pixels right of the target; the face drag turned
+           # the box about its centre), 60 pixels down.
+           "drags": [["centre", "centre", 0, 0, 80, 0, 1], ["face", "face", 80, 0, 0, -70, 1],
                      ["middle", "centre", 80, 0, 0, 60, 2]],
            "depth_peeling_for_volumes": int(view.DepthPeelingForVolumes)}
 with open(base + ".targets", "w") as f:

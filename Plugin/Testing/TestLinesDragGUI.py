@@ -72,6 +72,10 @@ def on_move(obj, event):
 
 
 frameTag = view.GetRenderWindow().AddObserver("EndEvent", on_frame)
+# A render under way (started, not ended) keeps the driver waiting: a still
+# frame of a large volume on a software rasteriser takes longer than the
+# driver's 3 s of quiet.
+startTag = view.GetRenderWindow().AddObserver("StartEvent", lambda obj, event: emit("start"))
 moveTag = view.GetRenderWindow().GetInteractor().AddObserver("MouseMoveEvent", on_move)
 size = list(view.GetRenderWindow().GetSize())
 with open(base + ".targets", "w") as f:

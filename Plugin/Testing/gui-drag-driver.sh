@@ -18,14 +18,17 @@ for _ in $(seq 240); do
   sleep 1
 done
 [ -s "$CAO_RESULT.targets" ] || { echo "driver: no targets after 240 s"; exit 1; }
-# Wait for the GUI to draw no more (no frame logged for 3 s, at most 120 s;
-# five waits and the start fit test-gui-drag.sh's 900 s).
+# Wait for the GUI to draw no more (nothing logged for 3 s and no render
+# under way: the last line is not a render's start; at most 120 s; five
+# waits and the start fit test-gui-drag.sh's 900 s). A frame longer than
+# 3 s (a still frame of embryo.slc on llvmpipe: 5 s) ended the wait while
+# it was drawn, and its pose was taken for the next drag's.
 idle() {
   local size
   for _ in $(seq 40); do
     size=$(stat -c %s "$events")
     sleep 3
-    [ "$(stat -c %s "$events")" = "$size" ] && return 0
+    [ "$(stat -c %s "$events")" = "$size" ] && ! tail -1 "$events" | grep -q '"kind": "start"' && return 0
   done
   echo "driver: the GUI was still drawing after 120 s"
 }

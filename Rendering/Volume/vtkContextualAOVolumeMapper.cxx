@@ -131,6 +131,26 @@ std::vector<double> MatrixKey(vtkMatrix4x4* m)
   return std::vector<double>(m->GetData(), m->GetData() + 16);
 }
 
+/// The clip parameters' 32-bit words (floats and ints, no padding), each
+/// as a double: all that the classification and the ray cast's clip test
+/// read of a pose. Two poses with the same words give the same categories,
+/// AO and picture bit for bit, so a pose that differs from the last only
+/// below float precision (a widget's pose read back through its properties:
+/// rotations 1e-14 apart) does not update the AO again.
+std::vector<double> ClipParamsKey(const cao::layout::ClipParams& clip)
+{
+  static_assert(sizeof(clip) % sizeof(std::uint32_t) == 0, "ClipParams holds 32-bit words");
+  std::vector<double> key(sizeof(clip) / sizeof(std::uint32_t));
+  const auto* bytes = reinterpret_cast<const unsigned char*>(&clip);
+  for (std::size_t i = 0; i < key.size(); ++i)
+  {
+    std::uint32_t word;
+    std::memcpy(&word, bytes + i * sizeof(word), sizeof(word));
+    key[i] = static_cast<double>(word);
+  }
+  return key;
+}
+
 /// What the volume on the GPU was made from: a different one re-uploads it
 /// (and re-runs the LAO precompute when the AO is on).
 struct VolumeKey
@@ -1349,7 +1369,7 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateClip(
   if (!vtkCAO::MakeClipParams(f.input, clipMaps, pose, this->Plan.reach, mode,
         self->AntiAliasingSamples, clip, error))
     return f.Fail(error);
-  std::vector<double> poseKey = MatrixKey(pose);
+  std::vector<double> poseKey = ClipParamsKey(clip);
   poseKey.insert(poseKey.end(), { static_cast<double>(mode),
     static_cast<double>(self->AntiAliasingSamples), static_cast<double>(self->AOUpdate),
     static_cast<double>(this->MapsGeneration), static_cast<double>(this->PrecomputeGeneration),
