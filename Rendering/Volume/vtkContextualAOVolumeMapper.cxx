@@ -20,6 +20,7 @@
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkOpenGLRenderWindow.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -297,6 +298,7 @@ struct vtkContextualAOVolumeMapper::Internals
   cao::gl::RayCaster::DrawOptions Options;
   double CastMsPerRay = 0.0, FrameCastMs = 0.0, FrameCastRays = 0.0;
   double UpdateMs = 0.0; ///< the last interactive frame's work before its ray cast
+  double ClipUpdateMs = 0.0; ///< the last clip AO update's classify, copy and recompute
   ::MeshKey Mesh;
   bool HaveMesh = false;
   std::vector<double> MapsUploadKey, PoseKey, TableKey; // numbers only
@@ -528,6 +530,15 @@ void vtkContextualAOVolumeMapper::ReleaseGraphicsResources(vtkWindow*)
       in.Caster->AbandonGraphicsResources();
     in.GPU.Abandon();
   }
+  // Our objects live in our window's context, which need not be current
+  // here (a mapper deleted while another view's window is current, as
+  // ParaView's views are at exit: deleting them in that context failed
+  // with GL_INVALID_VALUE, reported by the next VTK framebuffer check);
+  // the host's current context is restored after (an X window's
+  // PushContext saves it).
+  auto* own = in.HaveWindow ? vtkOpenGLRenderWindow::SafeDownCast(in.Window) : nullptr;
+  if (own)
+    own->PushContext();
   if (in.Caster)
   {
     in.Caster->ReleaseGraphicsResources();
@@ -539,6 +550,8 @@ void vtkContextualAOVolumeMapper::ReleaseGraphicsResources(vtkWindow*)
   in.GPU.Release();
   in.ForgetGPU();
   in.HaveWindow = false;
+  if (own)
+    own->PopContext();
 }
 
 //------------------------------------------------------------------------------
@@ -1376,6 +1389,28 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateClip(
     static_cast<double>(ao) });
   if (poseKey == this->PoseKey)
     return true;
+  // An interactive frame whose AO update would not fit it draws the new
+  // clip with the AO last updated; the still frame updates it (PoseKey is
+  // left as it was).
+  const double frameMs = 1000.0 / std::max(1e-9, f.window->GetDesiredUpdateRate());
+  const bool interactive = f.window->GetDesiredUpdateRate() > 1.0;
+  const bool defer = ao && interactive &&
+    (self->InteractiveAOUpdate == STILL_AO_UPDATE ||
+      (self->InteractiveAOUpdate == AUTOMATIC_AO_UPDATE && this->ClipUpdateMs > frameMs));
+  if (defer)
+  {
+    if (!engine.SetClipParams(clip, error))
+      return f.Fail("The clip parameters upload failed: " + error + ".");
+    std::ostringstream why;
+    why << "AO update left to the still frame (";
+    if (self->InteractiveAOUpdate == STILL_AO_UPDATE)
+      why << "InteractiveAOUpdate: still frames only)";
+    else
+      why << "the last took " << std::lround(this->ClipUpdateMs) << " ms, an interactive frame "
+          << std::lround(frameMs) << " ms)";
+    f.report.reasons.push_back(why.str());
+    return true;
+  }
   if (!ao)
   {
     // Only the shadow test needs the pose: no classification, no AO.
@@ -1390,6 +1425,8 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateClip(
         full ? cao::gl::AOEngine::UpdateMode::Full : cao::gl::AOEngine::UpdateMode::Contextual))
     return f.Fail("The AO update failed: " + error + ".");
   const cao::gl::StageTimes& t = engine.Times();
+  this->ClipUpdateMs =
+    std::max(0.0, t.classify) + std::max(0.0, t.copy) + std::max(0.0, t.recompute);
   f.report.stages.push_back({ "classify", t.classify, f.glTimer });
   f.report.stages.push_back({ "copy", t.copy, f.glTimer });
   f.report.stages.push_back({ full ? "full_recompute" : "recompute", t.recompute, f.glTimer });
@@ -1867,6 +1904,7 @@ void vtkContextualAOVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SampleDistance: " << this->SampleDistance << "\n";
   os << indent << "InteractiveSampleDistance: " << this->InteractiveSampleDistance << "\n";
   os << indent << "InteractiveImageSampleDistance: " << this->InteractiveImageSampleDistance << "\n";
+  os << indent << "InteractiveAOUpdate: " << this->InteractiveAOUpdate << "\n";
   os << indent << "UseJittering: " << (this->UseJittering ? "On" : "Off") << "\n";
   os << indent << "SmoothClipSurface: " << (this->SmoothClipSurface ? "On" : "Off") << "\n";
   os << indent << "SampleAtClipSurface: " << (this->SampleAtClipSurface ? "On" : "Off") << "\n";

@@ -368,6 +368,28 @@ public:
   ///@}
   static constexpr int MaximumAutomaticImageSampleDistance = 4;
 
+  /// When an interactive frame updates the AO for a moved clip.
+  enum InteractiveAOUpdates
+  {
+    /// Update it when the last clip AO update (classification, copy and
+    /// recompute) took at most the window's time for an interactive frame
+    /// (1 / its desired update rate); otherwise draw the new clip (the ray
+    /// cast's clip test follows the pose) with the AO of the last pose
+    /// updated, and let the next still frame update it. On a GPU the update
+    /// takes milliseconds and follows the drag; a 256^3 volume on a
+    /// software rasteriser takes seconds a pose, and a drag then follows
+    /// the hand with the AO of the pose where it began.
+    AUTOMATIC_AO_UPDATE = 0,
+    ALWAYS_AO_UPDATE = 1, ///< every frame updates the AO of its pose
+    STILL_AO_UPDATE = 2   ///< only still frames update the AO
+  };
+  ///@{
+  /// When an interactive frame updates the AO for a moved clip (default
+  /// AUTOMATIC_AO_UPDATE). A still frame always draws the AO of its pose.
+  vtkSetClampMacro(InteractiveAOUpdate, int, AUTOMATIC_AO_UPDATE, STILL_AO_UPDATE);
+  vtkGetMacro(InteractiveAOUpdate, int);
+  ///@}
+
   ///@{
   /// Per-pixel jittered ray starts (deterministic per pixel). Default on.
   vtkSetMacro(UseJittering, bool);
@@ -473,6 +495,7 @@ protected:
   double SampleDistance = 0.0;
   double InteractiveSampleDistance = 0.0;
   int InteractiveImageSampleDistance = 0;
+  int InteractiveAOUpdate = AUTOMATIC_AO_UPDATE;
   bool UseJittering = true;
   bool SmoothClipSurface = true;
   bool SampleAtClipSurface = true;

@@ -2040,6 +2040,57 @@ void Interactive(const Options& o)
   CAO_EXPECT(s.mapper->GetClassifyCount() - updates == 1, "%d updates for five queued poses",
     s.mapper->GetClassifyCount() - updates);
   CAO_EXPECT(differing == 0, "the last pose's frame is not a fresh mapper's (%ld pixels)", differing);
+
+  // An interactive frame whose AO update would not fit it draws the new
+  // clip with the AO last updated, and the still frame updates it: with
+  // STILL_AO_UPDATE always, with AUTOMATIC_AO_UPDATE when the last update
+  // took longer than the window's time for a frame (here a microsecond);
+  // ALWAYS_AO_UPDATE updates (the control).
+  {
+    // (the pose alone moves, as a drag moves it: the same mesh and maps)
+    auto move = [&](double dx) {
+      s.clip->SetPosition(centre[0] + dx, centre[1], centre[2] + 0.2 * size);
+    };
+    const int atStart = s.mapper->GetClassifyCount();
+    s.mapper->SetInteractiveAOUpdate(vtkContextualAOVolumeMapper::STILL_AO_UPDATE);
+    move(-0.1 * size);
+    const caotest::Image dragged = interactive(1);
+    const std::string draggedReport = s.mapper->GetLastFrameReport();
+    const long carvedElsewhere = caotest::DifferingPixels(dragged, last);
+    const int duringDrag = s.mapper->GetClassifyCount() - atStart;
+    const caotest::Image settled = still();
+    const int afterRelease = s.mapper->GetClassifyCount() - atStart;
+    carve(fresh, -0.1 * size);
+    const long settledDiffers = caotest::DifferingPixels(settled, fresh.Frame());
+    std::printf("STILL_AO_UPDATE: %d AO update(s) in the interactive frame (%ld pixels from the "
+                "pose before: the clip moved), %d after the still frame, which differs from a "
+                "fresh mapper's in %ld pixel(s)\n",
+      duringDrag, carvedElsewhere, afterRelease, settledDiffers);
+    CAO_EXPECT(duringDrag == 0 && draggedReport.find("AO update left to the still frame") != std::string::npos &&
+        carvedElsewhere > 100,
+      "STILL_AO_UPDATE: the interactive frame updated the AO or did not move the clip (%d, %ld): %s",
+      duringDrag, carvedElsewhere, draggedReport.c_str());
+    CAO_EXPECT(afterRelease == 1 && settledDiffers == 0,
+      "STILL_AO_UPDATE: the still frame after it: %d updates, %ld pixels from a fresh mapper's",
+      afterRelease, settledDiffers);
+    s.mapper->SetInteractiveAOUpdate(vtkContextualAOVolumeMapper::AUTOMATIC_AO_UPDATE);
+    move(-0.05 * size);
+    interactive(1, 1e6);
+    const std::string automatic = s.mapper->GetLastFrameReport();
+    const int automaticUpdates = s.mapper->GetClassifyCount() - atStart - afterRelease;
+    s.mapper->SetInteractiveAOUpdate(vtkContextualAOVolumeMapper::ALWAYS_AO_UPDATE);
+    move(-0.02 * size);
+    interactive(1, 1e6);
+    const int alwaysUpdates = s.mapper->GetClassifyCount() - atStart - afterRelease - automaticUpdates;
+    std::printf("a microsecond a frame: AUTOMATIC_AO_UPDATE %d update(s), ALWAYS_AO_UPDATE %d\n",
+      automaticUpdates, alwaysUpdates);
+    CAO_EXPECT(automaticUpdates == 0 && automatic.find("the last took") != std::string::npos &&
+        alwaysUpdates == 1,
+      "a microsecond a frame: AUTOMATIC %d updates (%s), ALWAYS %d", automaticUpdates,
+      automatic.c_str(), alwaysUpdates);
+    s.mapper->SetInteractiveAOUpdate(vtkContextualAOVolumeMapper::AUTOMATIC_AO_UPDATE);
+    s.mapper->SetInteractiveImageSampleDistance(0);
+  }
 }
 
 int TestContextualAOVolumeMapper(int argc, char* argv[])
