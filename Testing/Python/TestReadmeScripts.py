@@ -84,7 +84,8 @@ names = [[s["name"] for s in r["stages"]] for r in reports]
 assert len(reports) == 3, reports
 assert "precompute" in names[0] and "depth_maps" in names[0], names[0]
 for n, r in zip(names[1:], reports[1:]):
-    assert n == ["classify", "copy", "recompute", "ao_samples", "raycast"], n
+    # (on a software rasteriser the update runs on the CPU and uploads the box that changed)
+    assert [x for x in n if x != "upload"] == ["classify", "copy", "recompute", "ao_samples", "raycast"], n
     assert 0 < r["recomputed_voxels"] < 66 ** 3 // 2, r
 print("mapper example: checked")
 '''

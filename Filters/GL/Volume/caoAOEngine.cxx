@@ -691,6 +691,66 @@ bool AOEngine::SetClipParams(const layout::ClipParams& clip, std::string& error)
   return p.CheckError("the clip parameters upload", error);
 }
 
+bool AOEngine::SetClipState(const layout::ClipParams& clip, const std::uint8_t* category,
+  const std::uint16_t* ao, const int region[6], std::string& error)
+{
+  Impl& p = *this->P;
+  if (!p.havePrecomputed || !category || !ao)
+  {
+    error = "SetClipState needs a precomputed AO and the state and AO to upload";
+    return false;
+  }
+  Box box;
+  for (int d = 0; d < 3; ++d)
+  {
+    box.lo[d] = std::max(0, region[2 * d]);
+    box.hi[d] = std::min(p.dims[d] - 1, region[2 * d + 1]);
+  }
+  CurrentScope scope(p.Ctx);
+  if (!scope.Ok(error))
+    return false;
+  StateGuard guard(p.gl, p.External());
+  const Functions& gl = p.gl;
+  p.BufferUpload(p.clipParams, GL_UNIFORM_BUFFER, sizeof(clip), &clip);
+  p.bytes[8] = sizeof(clip);
+  if (!box.Empty())
+  {
+    // The box out of the whole-volume arrays (x fastest), slice by slice:
+    // the state as its byte (category << shift) from a slice's copy, the AO
+    // in place through the unpack row length and skips.
+    const int w = box.hi[0] - box.lo[0] + 1, h = box.hi[1] - box.lo[1] + 1;
+    const std::int64_t nx = p.dims[0], nxy = nx * p.dims[1];
+    std::vector<std::uint8_t> slice(static_cast<std::size_t>(w) * h);
+    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    for (int z = box.lo[2]; z <= box.hi[2]; ++z)
+    {
+      for (int y = 0; y < h; ++y)
+      {
+        const std::uint8_t* row = category + z * nxy + (box.lo[1] + y) * nx + box.lo[0];
+        std::uint8_t* to = slice.data() + static_cast<std::size_t>(y) * w;
+        for (int x = 0; x < w; ++x)
+          to[x] = static_cast<std::uint8_t>(row[x] << layout::CAO_STATE_CATEGORY_SHIFT);
+      }
+      gl.BindTexture(GL_TEXTURE_3D, p.state);
+      gl.TexSubImage3D(GL_TEXTURE_3D, 0, box.lo[0], box.lo[1], z, w, h, 1, GL_RED_INTEGER,
+        GL_UNSIGNED_BYTE, slice.data());
+      gl.BindTexture(GL_TEXTURE_3D, p.aoCur);
+      gl.PixelStorei(GL_UNPACK_ROW_LENGTH, p.dims[0]);
+      gl.TexSubImage3D(GL_TEXTURE_3D, 0, box.lo[0], box.lo[1], z, w, h, 1, GL_RED_INTEGER,
+        GL_UNSIGNED_SHORT, ao + z * nxy + box.lo[1] * nx + box.lo[0]);
+      gl.PixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+    }
+    gl.BindTexture(GL_TEXTURE_3D, 0);
+    gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+  }
+  p.Changed(box);
+  // The state's counts are gone: a GPU update reclassifies every voxel.
+  p.previous = p.WholeVolume();
+  p.previousMode = -1;
+  p.times = StageTimes();
+  return p.CheckError("the clip state upload", error);
+}
+
 bool AOEngine::ResetClip(std::string& error)
 {
   Impl& p = *this->P;

@@ -111,6 +111,16 @@ public:
   /// the clipped LAO of every other voxel, recomputed.
   bool Update(const layout::ClipParams& clip, UpdateStats& stats, std::string& error,
     UpdateMode mode = UpdateMode::Contextual);
+  /// A pose's state and AO made on the CPU (ContextualUpdate: the same
+  /// categories and, on the same march, the same stored AO): `clip` as
+  /// SetClipParams takes it, and of the whole-volume arrays `category`
+  /// (CAO_CATEGORY_*) and `ao` (16-bit), the box `region` (x0, x1, y0, y1,
+  /// z0, z1, inclusive), which must hold every voxel that changed since
+  /// the state and AO the engine holds. The state keeps the category only
+  /// (a renderer reads no more of it); an Update after this starts from the
+  /// whole volume again.
+  bool SetClipState(const layout::ClipParams& clip, const std::uint8_t* category,
+    const std::uint16_t* ao, const int region[6], std::string& error);
   /// Upload a pose's ClipParams for a renderer's shadow test only: no
   /// classification, no AO (for rendering with the AO off). Needs SetVolume.
   bool SetClipParams(const layout::ClipParams& clip, std::string& error);

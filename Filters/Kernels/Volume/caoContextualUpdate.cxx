@@ -79,12 +79,15 @@ bool ContextualUpdate::Update(const Volume& volume, const layout::ClipParams& cl
   // (the first pose: every voxel). Nothing else differs from it.
   auto t0 = std::chrono::steady_clock::now();
   const float* pre = volume.precomputed;
+  const std::uint16_t* pre16 = volume.precomputed16;
   float* ao = out.ao;
   std::uint16_t* ao16 = out.ao16;
-  if (!ao == !ao16)
-    return fail(); // exactly one AO buffer
-  const auto restore = [ao, ao16, pre](std::int64_t v) {
-    if (ao16)
+  if (!ao == !ao16 || !pre == !pre16 || (pre16 && !ao16))
+    return fail(); // exactly one AO buffer, one precomputed AO; a 16-bit one into 16 bits
+  const auto restore = [ao, ao16, pre, pre16](std::int64_t v) {
+    if (pre16)
+      ao16[v] = pre16[v];
+    else if (ao16)
       ao16[v] = QuantizeAO(pre[v]);
     else
       ao[v] = pre[v];
@@ -116,7 +119,9 @@ bool ContextualUpdate::Update(const Volume& volume, const layout::ClipParams& cl
     stats.restoredVoxels = restored;
   }
   else if (!parallel(voxels, 1 << 16, 0.0, 0.05, [&](std::int64_t b, std::int64_t e) {
-             if (ao16)
+             if (pre16)
+               std::copy(pre16 + b, pre16 + e, ao16 + b);
+             else if (ao16)
                std::transform(pre + b, pre + e, ao16 + b, QuantizeAO);
              else
                std::copy(pre + b, pre + e, ao + b);

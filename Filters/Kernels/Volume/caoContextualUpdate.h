@@ -62,6 +62,10 @@ public:
     const LAOPlan* plan = nullptr;
     const float* opacity = nullptr;     ///< unclipped, step-corrected
     const float* precomputed = nullptr; ///< the LAO of `opacity` with `plan`
+    /// Instead of `precomputed` (Update only, with Buffers::ao16): that LAO
+    /// as stored in 16 bits (QuantizeAO of it), which the restored voxels
+    /// get as it is: half the memory of a float copy, the same bits.
+    const std::uint16_t* precomputed16 = nullptr;
   };
   /// The outputs, kept by the caller between poses (contents included).
   /// The AO is written to exactly one of `ao` (float) and `ao16` (16-bit
