@@ -297,6 +297,24 @@ vec4 CastRay(float tFrom, float tTo, bool inclusive)
   // first sample behind a cut still moves onto the clip surface).
   bool wasRemoved = k0 > 0.0 && (flags & CAO_RENDER_CLIP) != 0 &&
     Removed(origin + (t - step) * dir, flags);
+  // The ray's first sample in the box, in matter: the matter starts at the
+  // box's face, and the AO there changes fast with depth (opaque matter:
+  // from the face's to the enclosed value within a voxel), so the
+  // per-pixel jitter of the sample's depth showed as grain on the faces.
+  // Its AO is read at the face, where the ray enters: only the ray's first
+  // lattice sample (i == 0), never one the clip entry moved, and only where
+  // the face itself holds matter the clip keeps. Decided here, once a
+  // segment, not in the loop (whose body llvmpipe runs for every sample).
+  vec3 face = origin + g_tEnter * dir;
+  vec3 tcFace = (face + 0.5) * rp.invDims.xyz;
+  bool aoAtFace = false;
+  if (CAO_AO_COMPILED && (flags & CAO_RENDER_AO) != 0 && k0 == 0.0)
+  {
+    float sf = Scalar(tcFace);
+    aoAtFace = !isnan(sf) &&
+      texture(tableTexture, vec2(sf * rp.sampling.y + rp.sampling.z, 0.5)).a > 0.0 &&
+      !((flags & CAO_RENDER_CLIP) != 0 && Removed(face, flags));
+  }
   for (int i = int(k0); i < rp.limits.x && (inclusive ? t <= tEnd : t < tEnd); ++i, t += step)
   {
     vec3 p = origin + t * dir;
@@ -356,27 +374,9 @@ vec4 CastRay(float tFrom, float tTo, bool inclusive)
       float past = max(depthBefore - 1.0, 0.0) * muBefore / mu;
       float inMatter = max(1.0, min(depthBefore, 1.0) + past + stepVoxels);
       float depth;
-      // The ray's first sample in the box, in matter: the matter starts at
-      // the box's face, and the AO there changes fast with depth (opaque
-      // matter: from the face's to the enclosed value within a voxel), so
-      // the per-pixel jitter of the sample's depth showed as grain on the
-      // faces. Its AO is read at the face, where the ray enters.
-      // (Only the ray's first lattice sample, never one the clip entry
-      // moved; only where the face itself holds matter the clip keeps.)
-      vec3 pAO = p, tcAO = tc;
-      if (i == 0 && depthBefore == 0.0)
-      {
-        vec3 face = origin + g_tEnter * dir;
-        vec3 tcFace = (face + 0.5) * rp.invDims.xyz;
-        float sf = Scalar(tcFace);
-        bool faceMatter = !isnan(sf) &&
-          texture(tableTexture, vec2(sf * rp.sampling.y + rp.sampling.z, 0.5)).a > 0.0;
-        if (faceMatter && !(clipped && Removed(face, flags)))
-        {
-          pAO = face;
-          tcAO = tcFace;
-        }
-      }
+      // (the first sample's AO at the box's face: aoAtFace, above)
+      bool atFace = aoAtFace && i == 0 && depthBefore == 0.0;
+      vec3 pAO = atFace ? face : p, tcAO = atFace ? tcFace : tc;
       float ao = clipped || calibrated ? VoxelAO(pAO, calibrated, inMatter, depth)
                                        : texture(aoTexture, tcAO).r;
       ambient = 1.0 - rp.sampling.w * (1.0 - ao);
