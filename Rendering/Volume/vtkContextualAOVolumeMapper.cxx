@@ -1106,6 +1106,26 @@ void vtkContextualAOVolumeMapper::Internals::GatherOccluders(Frame& f, std::vect
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+/// Run `job` on the CPU with the default threads (their count in
+/// `threads`), the mapper's abort flag cleared first, around the host's
+/// events (its progress handlers may make another context current): false
+/// when the render window's context could not be made current again.
+bool RunOnCPU(vtkContextualAOVolumeMapper* self, const Frame& f, int& threads,
+  const std::function<void()>& job)
+{
+  self->SetAbortExecute(0);
+  return vtkCAO::AroundForeignEvents(f.window, [&] {
+    vtkCAO::WithThreads(0, [&] {
+      threads = vtkSMPTools::GetEstimatedNumberOfThreads();
+      job();
+    });
+  });
+}
+}
+
+//------------------------------------------------------------------------------
 bool vtkContextualAOVolumeMapper::Internals::PrecomputeOnCPU(
   vtkContextualAOVolumeMapper* self, Frame& f, std::vector<float>& opacity, bool& done)
 {
@@ -1125,13 +1145,9 @@ bool vtkContextualAOVolumeMapper::Internals::PrecomputeOnCPU(
   ao.resize(static_cast<std::size_t>(f.voxels));
   bool ok = false;
   int threads = 1;
-  self->SetAbortExecute(0);
-  const bool kept = vtkCAO::AroundForeignEvents(f.window, [&] {
-    vtkCAO::WithThreads(0, [&] {
-      threads = vtkSMPTools::GetEstimatedNumberOfThreads();
-      ok = vtkCAO::ParallelFor(self, f.voxels, 4096, 0.1, 1.0, [&](std::int64_t b, std::int64_t e) {
-        cao::LAORange(this->Plan, opacity.data(), ao.data(), b, e);
-      });
+  const bool kept = RunOnCPU(self, f, threads, [&] {
+    ok = vtkCAO::ParallelFor(self, f.voxels, 4096, 0.1, 1.0, [&](std::int64_t b, std::int64_t e) {
+      cao::LAORange(this->Plan, opacity.data(), ao.data(), b, e);
     });
   });
   if (!ok || !kept)
@@ -1524,13 +1540,9 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateClipOnCPU(vtkContextualAOVolu
   cao::ContextualUpdate::Stats stats;
   bool ok = false;
   int threads = 1;
-  self->SetAbortExecute(0);
-  const bool kept = vtkCAO::AroundForeignEvents(f.window, [&] {
-    vtkCAO::WithThreads(0, [&] {
-      threads = vtkSMPTools::GetEstimatedNumberOfThreads();
-      ok = this->CPUUpdate.Update(volume, clip, view, version, buffers, parallel, stats, true,
-        pixelSize);
-    });
+  const bool kept = RunOnCPU(self, f, threads, [&] {
+    ok = this->CPUUpdate.Update(volume, clip, view, version, buffers, parallel, stats, true,
+      pixelSize);
   });
   if (!kept)
     return f.Fail("The render window's OpenGL context was lost while the application handled "
