@@ -81,7 +81,7 @@ def on_frame(obj, event):
     emit("frame", count=count, peel=report.get("depth_peeling", "?"),
          sample_distance=report.get("sample_distance"), reasons=report.get("reasons", []),
          image_sample_distance=report.get("image_sample_distance"),
-         interactive=report.get("interactive"),
+         interactive=report.get("interactive"), redrawn=report.get("redrawn"),
          ms={s["name"]: s["ms"] for s in report.get("stages", []) if s["name"] != "raycast"},
          raycast_ms=sum(s["ms"] for s in report.get("stages", []) if s["name"] == "raycast"),
          stages=[s["name"] for s in report.get("stages", [])],

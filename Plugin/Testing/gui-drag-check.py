@@ -24,6 +24,15 @@ check(targets["depth_peeling_for_volumes"] == 1,
 errors = [e for e in events if e["kind"] == "error"]
 check(not errors, "no mapper error in any frame (%d)" % len(errors))
 frames = [e for e in events if e["kind"] == "frame"]
+# When each frame began: the render window's StartEvent logged before it.
+began = {}
+start = None
+for e in events:
+    if e["kind"] == "start":
+        start = e["t"]
+    elif e["kind"] == "frame":
+        began[e["count"]] = start if start is not None else e["t"]
+        start = None
 before = [f for f in frames if f["t"] < at("centre-press")]
 check(before and before[-1]["follows"], "the first frames are drawn (%d)" % len(before))
 for name in ("centre", "face", "middle"):
@@ -33,8 +42,11 @@ for name in ("centre", "face", "middle"):
     last = (after or during or before)[-1]
     first = ([f for f in frames if f["t"] < press] or before)[-1]
     settle = (after[-1]["t"] - release) if after else 0.0
+    # (a pose read back through the widget's properties may differ in the
+    # last bits: the same pose within 1e-9)
+    same = lambda a, b: max(abs(x - y) for x, y in zip(a, b)) < 1e-9
     final = [f for f in after if not f.get("interactive") and f["follows"] and
-             f["rotation"] == last["rotation"] and f["position"] == last["position"]]
+             same(f["rotation"], last["rotation"]) and same(f["position"], last["position"])]
     exact = (final[0]["t"] - release) if final else float("nan")
     print("driver: %s drag: %d frames during the 2.5 s drag (interactive: %d, image sample "
           "distances %s), %d after the release, the last %.2f s after it, the first still frame "
@@ -51,6 +63,25 @@ for name in ("centre", "face", "middle"):
     check(any(f["peel"] != "off" for f in during + after),
           "%s drag: the volume was drawn inside the depth peeling" % name)
     check(last["follows"], "%s drag: the last frame draws the clip at the widget's pose" % name)
+    # Every frame begun while the button is held is interactive: ParaView's
+    # still frames of intermediate poses (for the property the widget sets)
+    # too. (A still frame begun there may end after the release.)
+    held = [f for f in frames if press <= began[f["count"]] < release]
+    stills = [f["count"] for f in held if not f.get("interactive")]
+    check(not stills, "%s drag: every frame begun while the button is held is interactive "
+          "(%d frames; still: %s)" % (name, len(held), stills))
+    # ParaView draws the final pose again with nothing changed: those draws
+    # are copies of the kept ray cast (when a still ray cast is slow enough
+    # to keep: KeepDrawsAboveMilliseconds, 50 ms).
+    repeats = [f for f in final[1:] if not f["reasons"]]
+    if final and final[0]["raycast_ms"] >= 50.0:
+        check(repeats and all(f.get("redrawn") for f in repeats),
+              "%s drag: the still frames repeating the final pose are copies (redrawn: %s, ray "
+              "cast ms %s)" % (name, [f.get("redrawn") for f in repeats],
+                               [round(f["raycast_ms"]) for f in repeats]))
+    else:
+        print("driver: %s drag: the final still frame took %s ms: not kept" %
+              (name, final[0]["raycast_ms"] if final else "?"))
     if name == "centre":
         moved = [b - a for a, b in zip(first["position"], last["position"])]
         check(abs(moved[0]) > 1.0 and max(abs(v) for v in last["rotation"]) < 1e-9,

@@ -88,9 +88,10 @@ struct FrameReport
   std::string backend;
   double sampleDistance = 0.0;
   int imageSampleDistance = 1; // one ray per k x k pixels
-  bool interactive = false;    // the window asked for an interactive frame
+  bool interactive = false;    // an interactive frame (the window's rate, or a drag)
   int peelStage = 0; // the host's depth-peeling stage this draw was (0: none)
   std::int64_t aoSampleVoxels = 0; // the ray caster's AO samples remade (RayCaster)
+  int redrawn = 0; // draws of this frame copied from kept ones (KeepDraws)
 
   std::string Json() const
   {
@@ -110,7 +111,8 @@ struct FrameReport
     static const char* const peel[4] = { "off", "outside", "layer", "remainder" };
     o << "], \"sample_distance\": " << sampleDistance
       << ", \"image_sample_distance\": " << imageSampleDistance
-      << ", \"interactive\": " << (interactive ? "true" : "false") << ", \"context\": \"" << backend
+      << ", \"interactive\": " << (interactive ? "true" : "false") << ", \"redrawn\": " << redrawn
+      << ", \"context\": \"" << backend
       << "\", \"depth_peeling\": \"" << peel[peelStage & 3] << "\"}";
     return o.str();
   }
@@ -230,7 +232,11 @@ struct Frame
   cao::gl::AOEngine* engine = nullptr;
   const char* glTimer = "gl_timestamp";
   bool clipping = false;
-  bool interactive = false; ///< the window's desired update rate asks for an interactive frame
+  /// An interactive frame: the window's desired update rate asks for one,
+  /// or a pointer button is held (InteractiveWhileDragging); updateRate is
+  /// the frames a second it is drawn for (the interactor's in a drag).
+  bool interactive = false, dragging = false;
+  double updateRate = 0.0;
   FrameReport report;
   std::string why; ///< the error that stopped the frame (empty: aborted)
 
@@ -313,6 +319,8 @@ struct vtkContextualAOVolumeMapper::Internals
   cao::gl::RayCaster::DrawOptions Options;
   double CastMsPerRay = 0.0, FrameCastMs = 0.0, FrameCastRays = 0.0;
   double UpdateMs = 0.0; ///< the last interactive frame's work before its ray cast
+  double StillCastMs = -1.0; ///< the last still frame's ray cast, over its stages (-1: none yet)
+  bool FrameRedrawn = false; ///< the frame being drawn was copied from kept draws
   double ClipUpdateMs = 0.0; ///< the last clip AO update's classify, copy and recompute
   ::MeshKey Mesh;
   bool HaveMesh = false;
@@ -392,6 +400,8 @@ struct vtkContextualAOVolumeMapper::Internals
   void GatherOccluders(Frame& f, std::vector<double>& key);
   bool UpdateTable(vtkContextualAOVolumeMapper* self, Frame& f, double& step);
   int ChooseImageSampleDistance(vtkContextualAOVolumeMapper* self, const Frame& f);
+  /// The ray caster's options for this draw: k, kept draws, the drag.
+  void SetDrawOptions(vtkContextualAOVolumeMapper* self, Frame& f, int peelStage);
   void MakeRenderParams(vtkContextualAOVolumeMapper* self, const Frame& f, double step,
     cao::layout::RenderParams& params);
 };
@@ -404,6 +414,32 @@ vtkCAOLAOSettingMacro(vtkContextualAOVolumeMapper, SampleDensity, double, this->
 vtkCAOLAOSettingMacro(vtkContextualAOVolumeMapper, StartOffset, double, this->Internal->Settings.startOffset);
 vtkCAOLAOSettingMacro(vtkContextualAOVolumeMapper, RayVariation, int, this->Internal->Settings.variation);
 vtkCAOLAOSettingMacro(vtkContextualAOVolumeMapper, Quality, int, this->Internal->Settings.quality);
+
+//------------------------------------------------------------------------------
+// The application's pointer (InteractiveWhileDragging): one for the process,
+// as the mouse is; set and read on the thread that renders.
+namespace
+{
+bool PointerHeld = false;
+int FramesDrawnWhileHeld = 0;
+}
+
+void vtkContextualAOVolumeMapper::SetPointerHeld(bool held)
+{
+  if (held && !PointerHeld)
+    FramesDrawnWhileHeld = 0;
+  PointerHeld = held;
+}
+
+bool vtkContextualAOVolumeMapper::GetPointerHeld()
+{
+  return PointerHeld;
+}
+
+int vtkContextualAOVolumeMapper::GetFramesDrawnWhileHeld()
+{
+  return FramesDrawnWhileHeld;
+}
 
 //------------------------------------------------------------------------------
 vtkContextualAOVolumeMapper::vtkContextualAOVolumeMapper()
@@ -762,6 +798,17 @@ bool vtkContextualAOVolumeMapper::Internals::AcquireContext(
     self->ReleaseGraphicsResources(nullptr); // another window's (or a destroyed one's) objects
   this->Window = f.window;
   this->HaveWindow = true;
+  // Interactive or still: the rate the window asks for, or a drag (at the
+  // interactor's interactive rate; ParaView's 5 frames a second without one).
+  f.updateRate = f.window->GetDesiredUpdateRate();
+  f.interactive = f.updateRate > 1.0;
+  if (!f.interactive && self->InteractiveWhileDragging && PointerHeld)
+  {
+    f.interactive = f.dragging = true;
+    vtkRenderWindowInteractor* interactor = f.window->GetInteractor();
+    f.updateRate = std::max(1.0, interactor ? interactor->GetDesiredUpdateRate() : 5.0);
+  }
+  f.report.interactive = f.interactive;
   bool failed = false;
   auto dropCaster = [this] {
     // Its context may be gone (the session abandons a lost one): no GL calls.
@@ -1426,9 +1473,8 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateClip(
   // An interactive frame whose AO update would not fit it draws the new
   // clip with the AO last updated; the still frame updates it (PoseKey is
   // left as it was).
-  const double frameMs = 1000.0 / std::max(1e-9, f.window->GetDesiredUpdateRate());
-  const bool interactive = f.window->GetDesiredUpdateRate() > 1.0;
-  const bool defer = ao && interactive &&
+  const double frameMs = 1000.0 / std::max(1e-9, f.updateRate);
+  const bool defer = ao && f.interactive &&
     (self->InteractiveAOUpdate == STILL_AO_UPDATE ||
       (self->InteractiveAOUpdate == AUTOMATIC_AO_UPDATE && this->ClipUpdateMs > frameMs));
   if (defer)
@@ -1725,10 +1771,8 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateTable(
   vtkContextualAOVolumeMapper* self, Frame& f, double& step)
 {
   // The transfer-function table: colour and opacity, step-corrected.
-  const bool interactive = f.window->GetDesiredUpdateRate() > 1.0;
-  f.interactive = f.report.interactive = interactive;
   step = self->SampleDistance > 0.0 ? self->SampleDistance : 0.5 * f.minSpacing;
-  if (interactive)
+  if (f.interactive)
     step = self->InteractiveSampleDistance > 0.0 ? self->InteractiveSampleDistance : 2.0 * step;
   f.report.sampleDistance = step;
   // Ask for the kind of function the property has: asking for the other
@@ -1929,10 +1973,16 @@ void vtkContextualAOVolumeMapper::Internals::MakeRenderParams(vtkContextualAOVol
 int vtkContextualAOVolumeMapper::Internals::ChooseImageSampleDistance(
   vtkContextualAOVolumeMapper* self, const Frame& f)
 {
-  // The cost of the frame before, per ray, summed over its peeling stages.
-  if (this->FrameCastRays > 0.0 && this->FrameCastMs > 0.0)
+  // The cost of the frame before, per ray, summed over its peeling stages
+  // (a frame copied from kept draws cast none).
+  if (this->FrameCastRays > 0.0 && this->FrameCastMs > 0.0 && !this->FrameRedrawn)
+  {
     this->CastMsPerRay = this->FrameCastMs / this->FrameCastRays;
+    if (this->Options.imageSampleDistance == 1)
+      this->StillCastMs = this->FrameCastMs;
+  }
   this->FrameCastMs = this->FrameCastRays = 0.0;
+  this->FrameRedrawn = false;
   if (!f.interactive)
     return 1;
   if (self->InteractiveImageSampleDistance > 0)
@@ -1945,10 +1995,32 @@ int vtkContextualAOVolumeMapper::Internals::ChooseImageSampleDistance(
     return 2;
   const int* r = this->Options.region;
   const double rays = std::max(1.0, static_cast<double>(r[2] - r[0]) * (r[3] - r[1]));
-  const double frame = 1000.0 / f.window->GetDesiredUpdateRate();
+  const double frame = 1000.0 / f.updateRate;
   const double budget = std::max(0.25 * frame, frame - this->UpdateMs);
   const double k = std::ceil(std::sqrt(this->CastMsPerRay * rays / budget) - 1e-9);
   return static_cast<int>(std::max(1.0, std::min<double>(MaximumAutomaticImageSampleDistance, k)));
+}
+
+//------------------------------------------------------------------------------
+void vtkContextualAOVolumeMapper::Internals::SetDrawOptions(
+  vtkContextualAOVolumeMapper* self, Frame& f, int peelStage)
+{
+  // (the stages of one peeled frame share the first stage's choice)
+  const bool first = peelStage <= cao::layout::CAO_PEEL_OUTSIDE;
+  const int k = first ? this->ChooseImageSampleDistance(self, f) : this->Options.imageSampleDistance;
+  this->Options.imageSampleDistance = k;
+  this->Options.keepDraws = k == 1 &&
+    (self->KeepDraws == ALWAYS_KEEP_DRAWS ||
+      (self->KeepDraws == AUTOMATIC_KEEP_DRAWS &&
+        this->StillCastMs >= KeepDrawsAboveMilliseconds));
+  if (f.dragging && first)
+  {
+    f.report.reasons.push_back("interactive: a pointer button is held");
+    ++FramesDrawnWhileHeld;
+  }
+  this->Options.prepareInteractive = f.window->GetInteractor() != nullptr;
+  f.report.imageSampleDistance = k;
+  this->Caster->SetDrawOptions(this->Options);
 }
 
 //------------------------------------------------------------------------------
@@ -1981,14 +2053,7 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     // Draw over what the opaque geometry left.
     in.MakeRenderParams(this, f, step, params);
-    // (the stages of one peeled frame share the first stage's choice)
-    const int k = peel.stage <= cao::layout::CAO_PEEL_OUTSIDE ?
-      in.ChooseImageSampleDistance(this, f) :
-      in.Options.imageSampleDistance;
-    in.Options.imageSampleDistance = k;
-    in.Options.prepareInteractive = f.window->GetInteractor() != nullptr;
-    f.report.imageSampleDistance = k;
-    in.Caster->SetDrawOptions(in.Options);
+    in.SetDrawOptions(this, f, peel.stage);
     int size[2], origin[2];
     ren->GetTiledSizeAndOrigin(&size[0], &size[1], &origin[0], &origin[1]);
     const int viewport[4] = { origin[0], origin[1], size[0], size[1] };
@@ -2016,6 +2081,11 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     return;
   }
   const double castMs = in.Caster->LastMilliseconds();
+  if (in.Caster->LastRedrawn())
+  {
+    f.report.redrawn = 1;
+    in.FrameRedrawn = true;
+  }
   f.report.aoSampleVoxels = in.Caster->LastAOSampleVoxels();
   if (f.report.aoSampleVoxels > 0)
     f.report.stages.push_back({ "ao_samples", in.Caster->LastAOSampleMilliseconds(), f.glTimer });
@@ -2041,6 +2111,7 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     in.Last.stages.insert(in.Last.stages.end(), f.report.stages.begin(), f.report.stages.end());
     in.Last.reasons.insert(in.Last.reasons.end(), f.report.reasons.begin(), f.report.reasons.end());
     in.Last.peelStage = f.report.peelStage;
+    in.Last.redrawn += f.report.redrawn;
     return;
   }
   in.Last = f.report;

@@ -391,6 +391,68 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Draw a still frame as an interactive one while the application's
+   * pointer button is held over a render view (SetPointerHeld; default
+   * on): a drag. ParaView asks for still frames during a widget drag (to
+   * show the property the widget sets), each a full-resolution ray cast;
+   * drawn as interactive frames (at the interactor's desired update rate)
+   * they keep up with the hand. The frame report says "interactive: a
+   * pointer button is held".
+   */
+  vtkSetMacro(InteractiveWhileDragging, bool);
+  vtkGetMacro(InteractiveWhileDragging, bool);
+  vtkBooleanMacro(InteractiveWhileDragging, bool);
+  ///@}
+
+  ///@{
+  /**
+   * The application's pointer, for InteractiveWhileDragging: whether a
+   * button was pressed over a render view and not released yet. ParaView's
+   * GUI sets it (the plugin watches the application's mouse events); a Qt
+   * application may set it from its own. It cannot be read from a VTK
+   * interactor: a widget being dragged takes the interactor's focus, and
+   * the release reaches only the widget. The application must render once
+   * more after the release when GetFramesDrawnWhileHeld() is not 0 (the
+   * plugin does; VTK's widgets and interactor styles render a still frame
+   * when their interaction ends anyway). Setting it held restarts that
+   * count.
+   */
+  static void SetPointerHeld(bool held);
+  static bool GetPointerHeld();
+  static int GetFramesDrawnWhileHeld();
+  ///@}
+
+  /// When a still frame's ray cast is kept, to be drawn again when nothing
+  /// it reads has changed.
+  enum KeepDrawsModes
+  {
+    /// Keep it when the last still frame's ray cast took at least
+    /// KeepDrawsAboveMilliseconds (a software rasteriser: seconds for a
+    /// 256^3 volume; a GPU: milliseconds, where a copy gains nothing).
+    AUTOMATIC_KEEP_DRAWS = 0,
+    ALWAYS_KEEP_DRAWS = 1,
+    NEVER_KEEP_DRAWS = 2
+  };
+  static constexpr double KeepDrawsAboveMilliseconds = 50.0;
+  ///@{
+  /**
+   * Keep still frames' ray casts (default AUTOMATIC_KEEP_DRAWS). ParaView
+   * draws a frame again when nothing in it changed (after a drag, two or
+   * three times); a kept draw is then copied, not cast again. The key is
+   * everything the ray cast reads: the camera, viewport, transfer function,
+   * volume, AO and clip state, and the contents of the opaque geometry's
+   * depth (or, inside depth peeling, of the peeled depths), read back and
+   * hashed: a few milliseconds per draw. Interactive frames are never
+   * kept. The picture is the same bit for bit; the frame report's
+   * "redrawn" counts the draws copied. Kept draws hold 32 bytes a pixel,
+   * at most 6 of them (a peeled frame draws one per stage) and 256 MiB.
+   */
+  vtkSetClampMacro(KeepDraws, int, AUTOMATIC_KEEP_DRAWS, NEVER_KEEP_DRAWS);
+  vtkGetMacro(KeepDraws, int);
+  ///@}
+
+  ///@{
   /// Per-pixel jittered ray starts (deterministic per pixel). Default on.
   vtkSetMacro(UseJittering, bool);
   vtkGetMacro(UseJittering, bool);
@@ -496,6 +558,8 @@ protected:
   double InteractiveSampleDistance = 0.0;
   int InteractiveImageSampleDistance = 0;
   int InteractiveAOUpdate = AUTOMATIC_AO_UPDATE;
+  bool InteractiveWhileDragging = true;
+  int KeepDraws = AUTOMATIC_KEEP_DRAWS;
   bool UseJittering = true;
   bool SmoothClipSurface = true;
   bool SampleAtClipSurface = true;

@@ -72,6 +72,7 @@
   X(GetShaderiv, GETSHADERIV)                                                                    \
   X(GetString, GETSTRING)                                                                        \
   X(GetTexImage, GETTEXIMAGE)                                                                    \
+  X(GetTexLevelParameteriv, GETTEXLEVELPARAMETERIV)                                              \
   X(GetUniformLocation, GETUNIFORMLOCATION)                                                      \
   X(IsBuffer, ISBUFFER)                                                                          \
   X(IsEnabled, ISENABLED)                                                                        \

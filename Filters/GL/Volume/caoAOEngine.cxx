@@ -89,6 +89,9 @@ struct AOEngine::Impl
   // a count of the writes to them, and the box the last one wrote.
   std::uint64_t contents = 0, changedFrom = 0;
   Box changed;
+  // Every call that may change what a renderer reads (volumes, maps, clip
+  // parameters, state, AO), whether it succeeded or not.
+  std::uint64_t edits = 0;
 
   /// A write to the state or the AO over `box`.
   void Changed(const Box& box)
@@ -329,6 +332,7 @@ Context& AOEngine::GetContext()
 bool AOEngine::SetVolume(const VolumeUpload& v, std::string& error)
 {
   Impl& p = *this->P;
+  ++p.edits; // (a renderer keeping a draw must draw again)
   CurrentScope scope(p.Ctx);
   if (!scope.Ok(error))
     return false;
@@ -412,6 +416,7 @@ bool AOEngine::SetVolume(const VolumeUpload& v, std::string& error)
 bool AOEngine::SetPlan(const LAOPlan& plan, std::string& error)
 {
   Impl& p = *this->P;
+  ++p.edits; // (a renderer keeping a draw must draw again)
   if (!p.volume)
   {
     error = "SetVolume must come before SetPlan";
@@ -473,6 +478,7 @@ bool AOEngine::SetPlan(const LAOPlan& plan, std::string& error)
 bool AOEngine::Precompute(std::string& error, const std::function<bool(double)>& progress)
 {
   Impl& p = *this->P;
+  ++p.edits; // (a renderer keeping a draw must draw again)
   if (!p.havePlan)
   {
     error = "SetVolume and SetPlan must come before Precompute";
@@ -524,6 +530,7 @@ bool AOEngine::Precompute(std::string& error, const std::function<bool(double)>&
 bool AOEngine::SetPrecomputed(const std::uint16_t* ao, std::string& error)
 {
   Impl& p = *this->P;
+  ++p.edits; // (a renderer keeping a draw must draw again)
   if (!p.havePlan || !ao)
   {
     error = "SetVolume and SetPlan must come before SetPrecomputed";
@@ -553,6 +560,7 @@ bool AOEngine::SetMaps(int width, int height, int layers, const float* front, co
   const float* candFront, const float* candBack, std::string& error)
 {
   Impl& p = *this->P;
+  ++p.edits; // (a renderer keeping a draw must draw again)
   if (width < 1 || height < 1 || layers < 1 || !front || !back || !candFront || !candBack)
   {
     error = "the depth maps are empty";
@@ -577,6 +585,7 @@ bool AOEngine::SetMaps(int width, int height, int layers, const float* front, co
 bool AOEngine::SetMaps(const ClipDepthMapsGL& raster, int mode, std::string& error)
 {
   Impl& p = *this->P;
+  ++p.edits; // (a renderer keeping a draw must draw again)
   if (!raster.MapBuffer() || raster.Width() < 1)
   {
     error = "the depth maps are empty";
@@ -606,6 +615,7 @@ bool AOEngine::Update(
   const layout::ClipParams& clip, UpdateStats& stats, std::string& error, UpdateMode mode)
 {
   Impl& p = *this->P;
+  ++p.edits; // (a renderer keeping a draw must draw again)
   if (!p.havePrecomputed)
   {
     error = "Precompute must come before Update";
@@ -677,6 +687,7 @@ bool AOEngine::Update(
 bool AOEngine::SetClipParams(const layout::ClipParams& clip, std::string& error)
 {
   Impl& p = *this->P;
+  ++p.edits; // (a renderer keeping a draw must draw again)
   if (!p.volume)
   {
     error = "SetVolume must come before SetClipParams";
@@ -695,6 +706,7 @@ bool AOEngine::SetClipState(const layout::ClipParams& clip, const std::uint8_t* 
   const std::uint16_t* ao, const int region[6], std::string& error)
 {
   Impl& p = *this->P;
+  ++p.edits; // (a renderer keeping a draw must draw again)
   if (!p.havePrecomputed || !category || !ao)
   {
     error = "SetClipState needs a precomputed AO and the state and AO to upload";
@@ -754,6 +766,7 @@ bool AOEngine::SetClipState(const layout::ClipParams& clip, const std::uint8_t* 
 bool AOEngine::ResetClip(std::string& error)
 {
   Impl& p = *this->P;
+  ++p.edits; // (a renderer keeping a draw must draw again)
   if (!p.havePrecomputed)
   {
     error = "Precompute must come before ResetClip";
@@ -782,6 +795,7 @@ AOEngine::Resources AOEngine::GetResources() const
   std::copy(p.dims, p.dims + 3, r.dims);
   r.generation = p.generation;
   r.contents = p.contents;
+  r.edits = p.edits;
   r.changedFrom = p.changedFrom;
   for (int d = 0; d < 3; ++d)
   {
@@ -794,6 +808,7 @@ AOEngine::Resources AOEngine::GetResources() const
 bool AOEngine::FullRecompute(std::vector<std::uint16_t>& ao, std::string& error)
 {
   Impl& p = *this->P;
+  ++p.edits; // (a renderer keeping a draw must draw again)
   if (!p.havePrecomputed)
   {
     error = "Precompute must come before FullRecompute";
@@ -828,6 +843,7 @@ bool AOEngine::FullRecompute(std::vector<std::uint16_t>& ao, std::string& error)
 bool AOEngine::Verify(Verification& result, std::string& error)
 {
   Impl& p = *this->P;
+  ++p.edits; // (a renderer keeping a draw must draw again)
   if (!p.havePrecomputed)
   {
     error = "Precompute must come before Verify";

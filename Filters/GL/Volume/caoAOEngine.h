@@ -167,6 +167,10 @@ public:
     /// redo only that box.
     std::uint64_t contents = 0, changedFrom = 0;
     int changedMin[3] = { 0, 0, 0 }, changedMax[3] = { -1, -1, -1 };
+    /// Counts every call that may have changed what a renderer reads (the
+    /// volumes, maps, clip parameters, state or AO): a renderer that kept
+    /// a draw of the same count needs no new one for the engine's sake.
+    std::uint64_t edits = 0;
   };
   Resources GetResources() const;
   /// Bytes resident on the GPU now: volumes, tables, maps, parameters.

@@ -10,7 +10,9 @@
 #include "caoVolumeOpacity_glsl.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 namespace cao
@@ -66,6 +68,20 @@ struct RayCaster::Impl
   std::int64_t samplesVoxels = 0;
   bool timed = false;
   RayCaster::PeelTextures peel;
+  // Full-resolution draws kept to be spread again (DrawOptions::keepDraws),
+  // each in a target of its own with the key of what its ray cast read.
+  struct Kept
+  {
+    GLuint fbo = 0, back = 0, front = 0;
+    int size[2] = { 0, 0 };
+    std::uint64_t key = 0, used = 0;
+  };
+  std::vector<Kept> kept;
+  std::uint64_t keptClock = 0;
+  std::uint64_t edits = 0; ///< SetTable and SetScalars calls
+  bool redrawn = false;    ///< the last Draw spread a kept draw
+  double keyMs = 0.0;      ///< the last Draw's key (host clock: read-backs and hashing)
+  std::vector<float> readBack; ///< scratch of the depth hashes
 
   Impl(Context& c)
     : Ctx(c)
@@ -287,11 +303,155 @@ struct RayCaster::Impl
     lowSize[1] = h;
     return CheckError(gl, "the reduced-resolution target", error);
   }
+  void FreeKept()
+  {
+    for (Kept& e : kept)
+    {
+      if (e.fbo)
+        gl.DeleteFramebuffers(1, &e.fbo);
+      this->Free(e.back);
+      this->Free(e.front);
+    }
+    kept.clear();
+  }
+  /// A 64-bit hash of a 2D texture's level 0 (its depth, or its colour as
+  /// float), read back on the host: what the ray cast read of the host's
+  /// depths. 0 for no texture.
+  std::uint64_t TextureHash(GLuint texture, std::uint64_t h)
+  {
+    if (!texture)
+      return Mix(h, 0);
+    gl.ActiveTexture(GL_TEXTURE0 + CAO_UNIT_LOW_BACK);
+    gl.BindTexture(GL_TEXTURE_2D, texture);
+    GLint w = 0, hgt = 0, depthBits = 0, format = 0;
+    gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &w);
+    gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &hgt);
+    gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_DEPTH_SIZE, &depthBits);
+    gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+    h = Mix(Mix(Mix(h, static_cast<std::uint64_t>(w)), static_cast<std::uint64_t>(hgt)),
+      static_cast<std::uint64_t>(format));
+    if (w < 1 || hgt < 1)
+      return h;
+    // Depth as stored (32-bit float, or integers: no rounding through
+    // float), colour as floats of the channels it has (R, RG, RGB, RGBA).
+    const bool depth = depthBits > 0;
+    GLint sizes[4] = { 0, 0, 0, 0 };
+    const GLenum sizeNames[4] = { GL_TEXTURE_RED_SIZE, GL_TEXTURE_GREEN_SIZE,
+      GL_TEXTURE_BLUE_SIZE, GL_TEXTURE_ALPHA_SIZE };
+    for (int c = 0; c < 4; ++c)
+      gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, sizeNames[c], &sizes[c]);
+    const int channels = sizes[3] > 0 ? 4 : sizes[2] > 0 ? 3 : sizes[1] > 0 ? 2 : 1;
+    const GLenum layouts[4] = { GL_RED, GL_RG, GL_RGB, GL_RGBA };
+    const std::size_t words = static_cast<std::size_t>(w) * hgt * (depth ? 1 : channels);
+    readBack.resize(words);
+    gl.BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
+    gl.PixelStorei(GL_PACK_SKIP_PIXELS, 0);
+    gl.PixelStorei(GL_PACK_SKIP_ROWS, 0);
+    if (depth)
+      gl.GetTexImage(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT,
+        format == GL_DEPTH_COMPONENT32F || format == GL_DEPTH32F_STENCIL8 ? GL_FLOAT
+                                                                          : GL_UNSIGNED_INT,
+        readBack.data());
+    else
+      gl.GetTexImage(GL_TEXTURE_2D, 0, layouts[channels - 1], GL_FLOAT, readBack.data());
+    const std::uint32_t* bits = reinterpret_cast<const std::uint32_t*>(readBack.data());
+    for (std::size_t i = 0; i + 1 < words; i += 2)
+      h = Mix(h, static_cast<std::uint64_t>(bits[i]) | (static_cast<std::uint64_t>(bits[i + 1]) << 32));
+    if (words % 2)
+      h = Mix(h, bits[words - 1]);
+    return h;
+  }
+  static std::uint64_t Mix(std::uint64_t h, std::uint64_t v)
+  {
+    h ^= v + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
+    return h * 0xff51afd7ed558ccdull;
+  }
+  /// The kept draw of `key`, or a target for it (the least recently used
+  /// one, or a new one within MaximumKeptDraws and MaximumKeptBytes;
+  /// null if none fits). `found`: it holds that draw already.
+  Kept* FindKept(std::uint64_t key, int w, int h, bool& found, std::string& error)
+  {
+    found = false;
+    ++keptClock;
+    for (Kept& e : kept)
+      if (e.key == key && e.size[0] == w && e.size[1] == h)
+      {
+        e.used = keptClock;
+        found = true;
+        return &e;
+      }
+    const std::int64_t bytes = std::int64_t(w) * h * 32; // two RGBA32F
+    Kept* target = nullptr;
+    std::int64_t held = 0;
+    for (Kept& e : kept)
+      held += std::int64_t(e.size[0]) * e.size[1] * 32;
+    if (static_cast<int>(kept.size()) < MaximumKeptDraws && held + bytes <= MaximumKeptBytes)
+    {
+      kept.emplace_back();
+      target = &kept.back();
+    }
+    else
+    {
+      for (Kept& e : kept)
+        if (!target || e.used < target->used)
+          target = &e;
+      if (!target)
+        return nullptr;
+      if (target->size[0] != w || target->size[1] != h)
+      {
+        // Another size: only if it fits in place of the old one.
+        const std::int64_t old = std::int64_t(target->size[0]) * target->size[1] * 32;
+        if (held - old + bytes > MaximumKeptBytes)
+          return nullptr;
+      }
+    }
+    if (target->size[0] != w || target->size[1] != h || !target->fbo)
+    {
+      GLint draw = 0; // (the host's, which the draw reads afterwards)
+      gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
+      if (target->fbo)
+        gl.DeleteFramebuffers(1, &target->fbo);
+      this->Free(target->back);
+      this->Free(target->front);
+      gl.GenFramebuffers(1, &target->fbo);
+      gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, target->fbo);
+      GLuint* textures[2] = { &target->back, &target->front };
+      for (int i = 0; i < 2; ++i)
+      {
+        gl.ActiveTexture(GL_TEXTURE0 + (i ? CAO_UNIT_LOW_FRONT : CAO_UNIT_LOW_BACK));
+        gl.GenTextures(1, textures[i]);
+        gl.BindTexture(GL_TEXTURE_2D, *textures[i]);
+        gl.TexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, w, h);
+        gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        gl.FramebufferTexture2D(
+          GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D, *textures[i], 0);
+      }
+      target->size[0] = w;
+      target->size[1] = h;
+      const bool complete =
+        gl.CheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+      gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
+      if (!complete)
+      {
+        error = "the kept draw's target (" + std::to_string(w) + "x" + std::to_string(h) +
+          " RGBA32F) is incomplete";
+        this->FreeKept();
+        return nullptr;
+      }
+    }
+    target->key = key;
+    target->used = keptClock;
+    return target;
+  }
   void ReleaseAll()
   {
     gl.UseProgram(0);
     this->FreeViews();
     this->FreeLowTarget();
+    this->FreeKept();
     upsample.Release(gl);
     for (Program& q : samples)
       q.Release(gl);
@@ -346,6 +506,7 @@ bool RayCaster::SetTable(const float* rgba, int entries, std::string& error)
     return false;
   StateGuard guard(p.gl, p.External());
   const Functions& gl = p.gl;
+  ++p.edits;
   if (!p.table)
     gl.GenTextures(1, &p.table);
   gl.ActiveTexture(GL_TEXTURE0 + CAO_UNIT_TABLE);
@@ -370,6 +531,7 @@ bool RayCaster::SetScalars(const float* values, const int dims[3], std::string& 
     return false;
   StateGuard guard(p.gl, p.External());
   const Functions& gl = p.gl;
+  ++p.edits;
   if (!std::equal(dims, dims + 3, p.scalarDims))
   {
     p.Free(p.scalars);
@@ -507,7 +669,9 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
       gl, { caoRayCastVS_glsl }, { caoClipTest_glsl, caoRayCastFS_glsl }, defines, error))
     return false;
   const int k = std::max(1, std::min(p.options.imageSampleDistance, MaximumImageSampleDistance));
-  if (k > 1 && !p.upsample.Valid() &&
+  const bool keep = k == 1 && p.options.keepDraws;
+  p.redrawn = false;
+  if ((k > 1 || keep) && !p.upsample.Valid() &&
     !p.upsample.BuildRaster(gl, { caoRayCastVS_glsl }, { caoUpsampleFS_glsl }, {}, error))
     return false;
   if (!p.vertexArray)
@@ -541,6 +705,38 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
     box[2] = std::min(box[2], host[0] + host[2]);
     box[3] = std::min(box[3], host[1] + host[3]);
   }
+  // A kept draw: the key of everything the ray cast reads (DrawOptions).
+  Impl::Kept* kept = nullptr;
+  bool found = false;
+  p.keyMs = 0.0;
+  if (keep)
+  {
+    const auto keyStart = std::chrono::steady_clock::now();
+    std::uint64_t key = 0x6a09e667f3bcc909ull;
+    const unsigned char* bytes = reinterpret_cast<const unsigned char*>(&params);
+    for (std::size_t i = 0; i + 8 <= sizeof(params); i += 8)
+    {
+      std::uint64_t word = 0;
+      std::memcpy(&word, bytes + i, 8);
+      key = Impl::Mix(key, word);
+    }
+    for (int v : box)
+      key = Impl::Mix(key, static_cast<std::uint64_t>(static_cast<std::uint32_t>(v)));
+    for (std::uint64_t v : { std::uint64_t(precomputedAO), r.generation, r.edits,
+           std::uint64_t(r.volume), std::uint64_t(r.source), p.edits })
+      key = Impl::Mix(key, v);
+    if (peel)
+      for (GLuint t : { p.peel.outer, p.peel.inner, p.peel.opaque })
+        key = p.TextureHash(t, key);
+    else if (flags & layout::CAO_RENDER_OPAQUE_DEPTH)
+      key = p.TextureHash(p.depth, key);
+    key |= 1; // (0: no draw)
+    p.keyMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - keyStart).count();
+    std::string why;
+    kept = p.FindKept(key, width, height, found, why);
+    // (no room for one: drawn directly)
+  }
   const bool hostBlend = gl.IsEnabled(GL_BLEND);
   GLboolean hostMask[4] = { 1, 1, 1, 1 };
   gl.GetBooleanv(GL_COLOR_WRITEMASK, hostMask);
@@ -554,8 +750,10 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
   gl.BindBuffer(GL_UNIFORM_BUFFER, p.block);
   layout::RenderParams cast = params;
   cast.limits.w = k;
-  if (k > 1)
+  if (k > 1 || kept)
     cast.viewport.x = cast.viewport.y = 0.0f; // the caster's own target
+  if (kept)
+    cast.dims.w |= layout::CAO_RENDER_OWN_TARGET;
   gl.BufferData(GL_UNIFORM_BUFFER, sizeof(cast), &cast, GL_STREAM_DRAW);
   gl.BindBufferBase(GL_UNIFORM_BUFFER, CAO_BINDING_RENDER_PARAMS, p.block);
   gl.BindBufferBase(GL_UNIFORM_BUFFER, CAO_BINDING_CLIP_PARAMS, r.clipParams);
@@ -620,7 +818,7 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
     gl.Scissor(b[0], b[1], std::max(0, b[2] - b[0]), std::max(0, b[3] - b[1]));
   };
   p.timer.Begin(gl, 0);
-  if (k == 1)
+  if (k == 1 && !kept)
   {
     blendOver();
     scissor(box);
@@ -628,29 +826,37 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
   }
   else
   {
-    // One ray per k x k pixels into the caster's target (cleared to "drew
-    // nothing": alpha -1 inside depth peeling, transparent otherwise)...
+    // One ray per k x k pixels, or a kept draw's ray per pixel, into the
+    // caster's target (cleared to "drew nothing": alpha -1 inside depth
+    // peeling, transparent otherwise); a kept draw found is not cast again.
     const int lw = (width + k - 1) / k, lh = (height + k - 1) / k;
-    if (!p.LowTarget(lw, lh, error))
+    if (!kept && !p.LowTarget(lw, lh, error))
     {
       p.timer.End(gl, 0);
       return false;
     }
-    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, p.lowFbo);
-    const GLenum buffers[2] = { GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1 };
-    gl.DrawBuffers(2, buffers);
-    gl.Viewport(0, 0, lw, lh);
-    gl.Disable(GL_SCISSOR_TEST);
-    gl.Disable(GL_BLEND);
-    gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    const float none[4] = { 0.0f, 0.0f, 0.0f, peel ? -1.0f : 0.0f }, zero[4] = { 0, 0, 0, 0 };
-    gl.ClearBufferfv(GL_COLOR, 0, none);
-    gl.ClearBufferfv(GL_COLOR, 1, zero);
-    // (a texel of margin: the linear spread reads one beyond the box)
-    const int low[4] = { std::max(0, (box[0] - x0) / k - 1), std::max(0, (box[1] - y0) / k - 1),
-      std::min(lw, (box[2] - x0 + k - 1) / k + 1), std::min(lh, (box[3] - y0 + k - 1) / k + 1) };
-    scissor(low);
-    gl.DrawArrays(GL_TRIANGLES, 0, 3);
+    const GLuint targetFbo = kept ? kept->fbo : p.lowFbo;
+    const GLuint targetBack = kept ? kept->back : p.lowBack;
+    const GLuint targetFront = kept ? kept->front : p.lowFront;
+    if (!found)
+    {
+      gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, targetFbo);
+      const GLenum buffers[2] = { GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1 };
+      gl.DrawBuffers(2, buffers);
+      gl.Viewport(0, 0, lw, lh);
+      gl.Disable(GL_SCISSOR_TEST);
+      gl.Disable(GL_BLEND);
+      gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+      const float none[4] = { 0.0f, 0.0f, 0.0f, peel ? -1.0f : 0.0f }, zero[4] = { 0, 0, 0, 0 };
+      gl.ClearBufferfv(GL_COLOR, 0, none);
+      gl.ClearBufferfv(GL_COLOR, 1, zero);
+      // (a texel of margin: the linear spread reads one beyond the box)
+      const int low[4] = { std::max(0, (box[0] - x0) / k - 1), std::max(0, (box[1] - y0) / k - 1),
+        std::min(lw, (box[2] - x0 + k - 1) / k + 1), std::min(lh, (box[3] - y0 + k - 1) / k + 1) };
+      scissor(low);
+      gl.DrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    p.redrawn = found;
     // ... then spread over the host's viewport.
     gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(hostFramebuffer));
     gl.Viewport(hostViewport[0], hostViewport[1], hostViewport[2], hostViewport[3]);
@@ -664,9 +870,9 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
     gl.BindBuffer(GL_UNIFORM_BUFFER, p.spreadBlock);
     gl.BufferData(GL_UNIFORM_BUFFER, sizeof(cast), &cast, GL_STREAM_DRAW);
     gl.BindBufferBase(GL_UNIFORM_BUFFER, CAO_BINDING_RENDER_PARAMS, p.spreadBlock);
-    const GLenum filter = peel ? GL_NEAREST : GL_LINEAR;
-    const GLuint lowUnits[2][2] = { { CAO_UNIT_LOW_BACK, p.lowBack },
-      { CAO_UNIT_LOW_FRONT, p.lowFront } };
+    const GLenum filter = peel || kept ? GL_NEAREST : GL_LINEAR;
+    const GLuint lowUnits[2][2] = { { CAO_UNIT_LOW_BACK, targetBack },
+      { CAO_UNIT_LOW_FRONT, targetFront } };
     for (const auto& u : lowUnits)
     {
       gl.ActiveTexture(GL_TEXTURE0 + u[0]);
@@ -688,7 +894,12 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
   // would otherwise wait for.
   p.timed = true;
   if (!CheckError(gl, "the ray cast", error))
+  {
+    if (kept)
+      kept->key = 0; // (what it holds is not that draw)
+    p.redrawn = false;
     return false;
+  }
   const int kind = peel ? (params.limits.z & 3) : 0;
   if (k == 1 && p.options.prepareInteractive && !p.prepared[kind])
   {
@@ -726,7 +937,13 @@ double RayCaster::LastMilliseconds()
   CurrentScope scope(p.Ctx);
   if (!scope.Ok())
     return -1.0;
-  return p.timer.Milliseconds(p.gl, 0);
+  const double ms = p.timer.Milliseconds(p.gl, 0);
+  return ms < 0.0 ? ms : ms + p.keyMs;
+}
+
+bool RayCaster::LastRedrawn() const
+{
+  return this->P->redrawn;
 }
 
 std::int64_t RayCaster::LastAOSampleVoxels() const
@@ -755,6 +972,14 @@ std::vector<std::pair<char, unsigned int>> RayCaster::ObjectNames() const
       names.emplace_back('t', t);
   if (p.lowFbo)
     names.emplace_back('f', p.lowFbo);
+  for (const Impl::Kept& e : p.kept)
+  {
+    for (GLuint t : { e.back, e.front })
+      if (t)
+        names.emplace_back('t', t);
+    if (e.fbo)
+      names.emplace_back('f', e.fbo);
+  }
   for (const Program* q : { &p.upsample, &p.samples[0], &p.samples[1], &p.samples[2] })
     if (q->Valid())
       names.emplace_back('p', q->Id());
@@ -801,6 +1026,7 @@ void RayCaster::AbandonGraphicsResources()
   for (Program& q : p.samples)
     q.Abandon();
   p.lowSize[0] = p.lowSize[1] = 0;
+  p.kept.clear(); // (their names went with the context)
   std::fill(p.prepared, p.prepared + 4, false);
   for (Program& v : p.variants)
     v.Abandon();

@@ -37,6 +37,7 @@
 #include "caoGLProgram.h"
 #include "caoGLTimer.h"
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <utility>
@@ -87,12 +88,26 @@ public:
   /// (outside depth peeling, each peeling stage) also draws one pixel at
   /// reduced resolution, so that a driver compiling shader variants lazily
   /// (llvmpipe: seconds) does so before the first interactive frame.
+  /// `keepDraws`: a full-resolution draw (k = 1) goes through a target
+  /// of its own (RGBA32F, so that the picture is the direct draw's bit for
+  /// bit), kept with a key of everything the ray cast read: the
+  /// parameters, the region, the engine's edits (AOEngine::Resources), the
+  /// caster's table and scalars, and the contents of the captured depth or
+  /// of the host's peeled depths. A later draw with the same key spreads
+  /// the kept target instead of casting (LastRedrawn()): a host that draws
+  /// an unchanged frame again (ParaView does, after a drag) pays a copy,
+  /// not a ray cast. At most MaximumKeptDraws draws (a peeled frame draws
+  /// one per stage) and MaximumKeptBytes are kept, the least recently
+  /// used replaced.
   struct DrawOptions
   {
     int region[4] = { 0, 0, 0, 0 };
     int imageSampleDistance = 1;
     bool prepareInteractive = false;
+    bool keepDraws = false;
   };
+  static constexpr int MaximumKeptDraws = 6;
+  static constexpr std::int64_t MaximumKeptBytes = std::int64_t(256) << 20;
   static constexpr int MaximumImageSampleDistance = 8;
   void SetDrawOptions(const DrawOptions& options);
 
@@ -102,8 +117,12 @@ public:
   bool Draw(const AOEngine& engine, bool precomputedAO, const layout::RenderParams& params,
     std::string& error);
 
-  /// GPU milliseconds of the last Draw (timer query; waits for the GPU).
+  /// GPU milliseconds of the last Draw (timer query; waits for the GPU),
+  /// plus, for a kept draw, the host's milliseconds to make its key.
   double LastMilliseconds();
+  /// Whether the last Draw spread a kept draw instead of casting rays
+  /// (DrawOptions::keepDraws).
+  bool LastRedrawn() const;
 
   /// Voxels of the AO samples the last Draw remade (0 when they were
   /// current or the draw read none): the ray caster samples a clipped or

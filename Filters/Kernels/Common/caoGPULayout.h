@@ -140,6 +140,7 @@ CAO_CONST CAO_RENDER_AO_CALIBRATED = 32; /* the AO as the light an open face wou
 CAO_CONST CAO_RENDER_CLIP_SMOOTH = 64; /* the picture's clip test blends the 4 nearest map pixels */
 CAO_CONST CAO_RENDER_CLIP_ENTRY = 128; /* the first sample behind a cut moves onto the clip surface */
 CAO_CONST CAO_RENDER_PEEL = 256; /* drawn inside a host's dual depth peeling (limits.z: the stage) */
+CAO_CONST CAO_RENDER_OWN_TARGET = 512; /* drawn into the caster's own target, spread afterwards (as k > 1) */
 /* The stages of VTK's dual depth peeling a volume is drawn in (vtkDualDepthPeelingPass): the
  * ray segments outside the translucent geometry's depth range (front and back outputs), one
  * peel between two translucent layers, and the alpha-blended remainder. */

@@ -474,9 +474,10 @@ void Peel(ivec2 pixel)
       back = CastRay(DepthToT(backStart), DepthToT(backEnd), false);
     fragColor = back;
     // Under-blend the front segment (the host keeps 1 - alpha for its MAX
-    // blending); at one ray per k x k pixels the spread does it per pixel.
+    // blending); drawn into the caster's own target (one ray per k x k
+    // pixels, or a kept draw) the spread does it per pixel.
     float transmitted = 1.0 - last.a;
-    frontColor = rp.limits.w > 1 ?
+    frontColor = rp.limits.w > 1 || (rp.dims.w & CAO_RENDER_OWN_TARGET) != 0 ?
       front :
       vec4(transmitted * front.rgb + last.rgb, 1.0 - transmitted * (1.0 - front.a));
   }

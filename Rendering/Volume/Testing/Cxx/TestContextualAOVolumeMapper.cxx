@@ -1986,7 +1986,32 @@ void TFEdit(const Options& o)
 /// - the first still frame after the interaction is the still frame before
 ///   it, bit for bit;
 /// - the latest pose wins: poses set between two frames give one AO
-///   update, for the last pose, whose frame equals a fresh mapper's.
+///   update, for the last pose, whose frame equals a fresh mapper's;
+/// - a still frame asked for while the application's pointer is held is
+///   drawn as an interactive one (InteractiveWhileDragging; off: the control).
+/// A translucent sphere over the left of a volume of `size` at `centre`,
+/// with the renderer's depth peeling for volumes on (ParaView's default).
+vtkSmartPointer<vtkActor> AddTranslucentSphere(Scene& s, const double centre[3], double size)
+{
+  vtkNew<vtkSphereSource> ball;
+  ball->SetCenter(centre[0] - 0.2 * size, centre[1], centre[2]);
+  ball->SetRadius(0.3 * size);
+  ball->SetThetaResolution(48);
+  ball->SetPhiResolution(24);
+  vtkNew<vtkPolyDataMapper> ballMapper;
+  ballMapper->SetInputConnection(ball->GetOutputPort());
+  auto sphere = vtkSmartPointer<vtkActor>::New();
+  sphere->SetMapper(ballMapper);
+  sphere->GetProperty()->SetColor(0.2, 0.45, 1.0);
+  sphere->GetProperty()->SetOpacity(0.3);
+  s.renderer->AddActor(sphere);
+  s.renderer->SetUseDepthPeeling(true);
+  s.renderer->SetUseDepthPeelingForVolumes(true);
+  s.renderer->SetMaximumNumberOfPeels(4);
+  s.renderer->SetOcclusionRatio(0.0);
+  return sphere;
+}
+
 void Interactive(const Options& o)
 {
   Scene s;
@@ -2003,22 +2028,7 @@ void Interactive(const Options& o)
     scene.clip->SetPosition(centre[0] + dx, centre[1], centre[2] + 0.2 * size);
   };
   carve(s, 0.0);
-  vtkNew<vtkSphereSource> ball;
-  ball->SetCenter(centre[0] - 0.2 * size, centre[1], centre[2]);
-  ball->SetRadius(0.3 * size);
-  ball->SetThetaResolution(48);
-  ball->SetPhiResolution(24);
-  vtkNew<vtkPolyDataMapper> ballMapper;
-  ballMapper->SetInputConnection(ball->GetOutputPort());
-  vtkNew<vtkActor> sphere;
-  sphere->SetMapper(ballMapper);
-  sphere->GetProperty()->SetColor(0.2, 0.45, 1.0);
-  sphere->GetProperty()->SetOpacity(0.3);
-  s.renderer->AddActor(sphere);
-  s.renderer->SetUseDepthPeeling(true);
-  s.renderer->SetUseDepthPeelingForVolumes(true);
-  s.renderer->SetMaximumNumberOfPeels(4);
-  s.renderer->SetOcclusionRatio(0.0);
+  vtkSmartPointer<vtkActor> sphere = AddTranslucentSphere(s, centre, size);
   auto still = [&]() {
     s.window->SetDesiredUpdateRate(0.0001); // vtkRenderWindow's default
     return s.Frame();
@@ -2164,6 +2174,147 @@ void Interactive(const Options& o)
     s.mapper->SetInteractiveAOUpdate(vtkContextualAOVolumeMapper::AUTOMATIC_AO_UPDATE);
     s.mapper->SetInteractiveImageSampleDistance(0);
   }
+
+  // A still frame asked for while the application's pointer button is
+  // held (ParaView asks for them during a widget drag) is drawn as an
+  // interactive one; the frame after the release is the still frame, bit
+  // for bit, and the count of frames drawn while held says the application
+  // must render again. Control: InteractiveWhileDragging off draws the still
+  // frame.
+  {
+    s.mapper->SetInteractiveImageSampleDistance(2);
+    const caotest::Image reference = still();
+    auto drawn = [&]() {
+      const std::string r = s.mapper->GetLastFrameReport();
+      return r.find("\"interactive\": true") != std::string::npos &&
+        r.find("a pointer button is held") != std::string::npos &&
+        number("image_sample_distance") == 2;
+    };
+    vtkContextualAOVolumeMapper::SetPointerHeld(true);
+    const int heldBefore = vtkContextualAOVolumeMapper::GetFramesDrawnWhileHeld();
+    const caotest::Image held = still();
+    const bool heldInteractive = drawn();
+    const int heldFrames = vtkContextualAOVolumeMapper::GetFramesDrawnWhileHeld() - heldBefore;
+    const std::string heldReport = s.mapper->GetLastFrameReport();
+    vtkContextualAOVolumeMapper::SetPointerHeld(false);
+    const caotest::Image released = still();
+    const bool releasedInteractive = drawn() || number("image_sample_distance") != 1;
+    s.mapper->SetInteractiveWhileDragging(false);
+    vtkContextualAOVolumeMapper::SetPointerHeld(true);
+    const caotest::Image off = still();
+    const bool offInteractive = number("image_sample_distance") != 1;
+    vtkContextualAOVolumeMapper::SetPointerHeld(false);
+    s.mapper->SetInteractiveWhileDragging(true);
+    const long heldDiffers = caotest::DifferingPixels(held, reference);
+    const long releasedDiffers = caotest::DifferingPixels(released, reference);
+    const long offDiffers = caotest::DifferingPixels(off, reference);
+    std::printf("a still frame with the pointer held: interactive %d (%ld pixels from the still "
+                "frame; %d frame(s) counted); after the release: interactive %d, %ld pixel(s) "
+                "differ; InteractiveWhileDragging off: interactive %d, %ld pixel(s) differ\n",
+      heldInteractive, heldDiffers, heldFrames, releasedInteractive, releasedDiffers,
+      offInteractive, offDiffers);
+    CAO_EXPECT(heldInteractive && heldDiffers > 100 && heldFrames == 1,
+      "a still frame with the pointer held was not drawn as an interactive one (%ld pixels, %d "
+      "counted): %s", heldDiffers, heldFrames, heldReport.c_str());
+    CAO_EXPECT(!releasedInteractive && releasedDiffers == 0,
+      "the frame after the release is not the still frame (%ld pixels)", releasedDiffers);
+    CAO_EXPECT(!offInteractive && offDiffers == 0,
+      "InteractiveWhileDragging off: the frame with the pointer held is not the still frame (%ld)",
+      offDiffers);
+    s.mapper->SetInteractiveImageSampleDistance(0);
+  }
+}
+
+/// Kept draws (KeepDraws): a still frame drawn again with nothing changed
+/// is copied from the kept ray cast, and any change the ray cast reads
+/// casts again. On a carved HeadMR with AO and an opaque box in front of
+/// part of it, without and with a translucent sphere (depth peeling): at
+/// each step the frame with ALWAYS_KEEP_DRAWS equals the frame with
+/// NEVER_KEEP_DRAWS bit for bit, and the report's "redrawn" says whether
+/// it was copied: yes for the same frame again, no after a camera turn, a
+/// clip move, a colour change, the opaque box moved (its depth) and, with
+/// peeling, the translucent sphere moved (the peeled depths).
+void Keep(const Options& o)
+{
+  Scene s;
+  if (!s.Open(o.window) || !s.Load(o.data + "/HeadMRVolume.mhd"))
+    return;
+  ErrorLog log(s.mapper);
+  double b[6];
+  s.image->GetBounds(b);
+  const double centre[3] = { 0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]) };
+  const double size = b[1] - b[0];
+  s.Shape("sphere", 0.3 * size);
+  s.clip->SetPosition(centre[0], centre[1], centre[2] + 0.2 * size);
+  vtkNew<vtkConeSource> box; // opaque geometry over part of the volume
+  box->SetResolution(4);
+  box->SetHeight(0.4 * size);
+  box->SetRadius(0.15 * size);
+  vtkNew<vtkPolyDataMapper> boxMapper;
+  boxMapper->SetInputConnection(box->GetOutputPort());
+  vtkNew<vtkActor> opaque;
+  opaque->SetMapper(boxMapper);
+  opaque->SetPosition(centre[0] + 0.2 * size, centre[1], centre[2]);
+  s.renderer->AddActor(opaque);
+  vtkSmartPointer<vtkActor> translucent = AddTranslucentSphere(s, centre, size);
+  auto redrawn = [&]() {
+    const std::string r = s.mapper->GetLastFrameReport();
+    const std::size_t at = r.find("\"redrawn\": ");
+    return at == std::string::npos ? -1 : std::atoi(r.c_str() + at + 11);
+  };
+  // copied: 1 every draw of the frame, 0 none, -1 not every one (a
+  // peeled frame's stages whose depths did not change may be copied).
+  auto step = [&](const char* scene, const char* what, int copied) {
+    s.mapper->SetKeepDraws(vtkContextualAOVolumeMapper::ALWAYS_KEEP_DRAWS);
+    const caotest::Image kept = s.Frame();
+    const int n = redrawn();
+    const std::string report = s.mapper->GetLastFrameReport();
+    int draws = 0;
+    for (std::size_t at = report.find("\"raycast\""); at != std::string::npos;
+         at = report.find("\"raycast\"", at + 1))
+      ++draws;
+    s.mapper->SetKeepDraws(vtkContextualAOVolumeMapper::NEVER_KEEP_DRAWS);
+    const caotest::Image cast = s.Frame();
+    const int castRedrawn = redrawn();
+    const long differing = caotest::DifferingPixels(kept, cast);
+    std::printf("%s, %s: %d of %d draw(s) copied; %ld pixel(s) differ from the frame cast "
+                "again\n", scene, what, n, draws, differing);
+    CAO_EXPECT(differing == 0, "%s, %s: the frame with kept draws differs from the one cast (%ld "
+      "pixels)", scene, what, differing);
+    CAO_EXPECT(copied == 1 ? n == draws && n > 0 : copied == 0 ? n == 0 : n < draws,
+      "%s, %s: %d of %d draw(s) copied, expected %s: %s", scene, what, n, draws,
+      copied == 1 ? "all" : copied == 0 ? "none" : "not all", report.c_str());
+    CAO_EXPECT(castRedrawn == 0, "%s, %s: NEVER_KEEP_DRAWS copied %d draw(s)", scene, what,
+      castRedrawn);
+  };
+  for (int peel = 0; peel < 2; ++peel)
+  {
+    translucent->SetVisibility(peel);
+    const char* scene = peel ? "with a translucent sphere (depth peeling)" : "opaque box only";
+    const double move = 0.05 * (peel + 1) * size; // (each pass moves things anew)
+    step(scene, "first frame", peel ? -1 : 0);
+    step(scene, "the same frame again", 1);
+    s.renderer->GetActiveCamera()->Azimuth(2.0);
+    step(scene, "camera turned by 2 degrees", 0);
+    step(scene, "the same frame again", 1);
+    s.clip->SetPosition(centre[0] + move, centre[1], centre[2] + 0.2 * size);
+    step(scene, "clip moved", 0);
+    const double* range = s.image->GetScalarRange();
+    s.color->AddRGBPoint(range[0] + (0.5 + 0.1 * peel) * (range[1] - range[0]), 0.3, 0.9, 0.4);
+    step(scene, "colour changed", 0);
+    opaque->SetPosition(centre[0] + 0.2 * size, centre[1] + move, centre[2]);
+    step(scene, "opaque box moved", peel ? -1 : 0);
+    step(scene, "the same frame again", 1);
+    if (peel)
+    {
+      translucent->SetPosition(0.0, 0.04 * size, 0.0);
+      step(scene, "translucent sphere moved", -1);
+      step(scene, "the same frame again", 1);
+    }
+  }
+  CAO_EXPECT(log.errors.empty(), "the mapper reported: %s",
+    log.errors.empty() ? "" : log.errors[0].c_str());
+  s.mapper->SetKeepDraws(vtkContextualAOVolumeMapper::AUTOMATIC_KEEP_DRAWS);
 }
 
 int TestContextualAOVolumeMapper(int argc, char* argv[])
@@ -2186,10 +2337,10 @@ int TestContextualAOVolumeMapper(int argc, char* argv[])
   if ((o.window != "egl" && o.window != "x") ||
     (o.mode != "images" && o.mode != "report" && o.mode != "badinput" &&
       o.mode != "calibration" && o.mode != "silhouette" && o.mode != "cutface" &&
-      o.mode != "peeling" && o.mode != "tfedit" && o.mode != "interactive") ||
+      o.mode != "peeling" && o.mode != "tfedit" && o.mode != "interactive" && o.mode != "keep") ||
     o.data.empty() || o.baselines.empty() || o.output.empty())
   {
-    std::printf("usage: TestContextualAOVolumeMapper <egl|x> <images|report|badinput|calibration|silhouette|cutface|peeling|tfedit|interactive> -D data -B "
+    std::printf("usage: TestContextualAOVolumeMapper <egl|x> <images|report|badinput|calibration|silhouette|cutface|peeling|tfedit|interactive|keep> -D data -B "
                 "baselines -T output\n");
     return 1;
   }
@@ -2214,6 +2365,8 @@ int TestContextualAOVolumeMapper(int argc, char* argv[])
     TFEdit(o);
   else if (o.mode == "interactive")
     Interactive(o);
+  else if (o.mode == "keep")
+    Keep(o);
   else
     BadInput(o);
   std::printf("%s: %d failure(s)\n", failures ? "FAILED" : "PASSED", failures);
