@@ -51,9 +51,14 @@ bool pqCAOPointerTracker::eventFilter(QObject* watched, QEvent* event)
   {
     vtkContextualAOVolumeMapper::SetPointerHeld(true);
   }
-  else if (type == QEvent::MouseButtonRelease && vtkContextualAOVolumeMapper::GetPointerHeld() &&
-    static_cast<QMouseEvent*>(event)->buttons() == Qt::NoButton)
+  else if (vtkContextualAOVolumeMapper::GetPointerHeld() &&
+    (((type == QEvent::MouseButtonRelease || type == QEvent::MouseMove) &&
+       static_cast<QMouseEvent*>(event)->buttons() == Qt::NoButton) ||
+      type == QEvent::ApplicationDeactivate || type == QEvent::WindowBlocked))
   {
+    // The release, or, should it have been lost (the application left, or
+    // a modal dialog opened, while the button was held), a move with no
+    // button held, the application's deactivation or a blocked window.
     vtkContextualAOVolumeMapper::SetPointerHeld(false);
     // Frames drawn while held were interactive: one still frame of every
     // view after the release, after the widget's own (queued).

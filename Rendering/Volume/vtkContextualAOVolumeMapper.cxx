@@ -92,6 +92,7 @@ struct FrameReport
   int peelStage = 0; // the host's depth-peeling stage this draw was (0: none)
   std::int64_t aoSampleVoxels = 0; // the ray caster's AO samples remade (RayCaster)
   int redrawn = 0; // draws of this frame copied from kept ones (KeepDraws)
+  double keyMs = 0.0; // host ms of the kept draws' keys (read-backs, hashing)
 
   std::string Json() const
   {
@@ -112,6 +113,7 @@ struct FrameReport
     o << "], \"sample_distance\": " << sampleDistance
       << ", \"image_sample_distance\": " << imageSampleDistance
       << ", \"interactive\": " << (interactive ? "true" : "false") << ", \"redrawn\": " << redrawn
+      << ", \"kept_key_ms\": " << keyMs
       << ", \"context\": \"" << backend
       << "\", \"depth_peeling\": \"" << peel[peelStage & 3] << "\"}";
     return o.str();
@@ -237,6 +239,7 @@ struct Frame
   /// the frames a second it is drawn for (the interactor's in a drag).
   bool interactive = false, dragging = false;
   double updateRate = 0.0;
+  int peelStage = 0; ///< the host's depth-peeling stage of this draw (0: none)
   FrameReport report;
   std::string why; ///< the error that stopped the frame (empty: aborted)
 
@@ -321,6 +324,14 @@ struct vtkContextualAOVolumeMapper::Internals
   double UpdateMs = 0.0; ///< the last interactive frame's work before its ray cast
   double StillCastMs = -1.0; ///< the last still frame's ray cast, over its stages (-1: none yet)
   bool FrameRedrawn = false; ///< the frame being drawn was copied from kept draws
+  int FrameDraws = 0, LastFrameDraws = 0; ///< draws (peeling stages) of this frame, of the last
+  bool LastInteractive = false; ///< (becomes the last frame's kind when the next one begins)
+  /// The frame's kind, decided at its first stage (Frame::interactive, ...).
+  struct
+  {
+    bool interactive = false, dragging = false;
+    double updateRate = 0.0;
+  } FrameKind;
   double ClipUpdateMs = 0.0; ///< the last clip AO update's classify, copy and recompute
   ::MeshKey Mesh;
   bool HaveMesh = false;
@@ -799,14 +810,27 @@ bool vtkContextualAOVolumeMapper::Internals::AcquireContext(
   this->Window = f.window;
   this->HaveWindow = true;
   // Interactive or still: the rate the window asks for, or a drag (at the
-  // interactor's interactive rate; ParaView's 5 frames a second without one).
-  f.updateRate = f.window->GetDesiredUpdateRate();
-  f.interactive = f.updateRate > 1.0;
-  if (!f.interactive && self->InteractiveWhileDragging && PointerHeld)
+  // interactor's interactive rate; ParaView's 5 frames a second without
+  // one), decided once a frame: the later stages of a peeled frame take the
+  // first one's decision.
+  if (f.peelStage <= cao::layout::CAO_PEEL_OUTSIDE)
   {
-    f.interactive = f.dragging = true;
-    vtkRenderWindowInteractor* interactor = f.window->GetInteractor();
-    f.updateRate = std::max(1.0, interactor ? interactor->GetDesiredUpdateRate() : 5.0);
+    f.updateRate = f.window->GetDesiredUpdateRate();
+    f.interactive = f.updateRate > 1.0;
+    if (!f.interactive && self->InteractiveWhileDragging && PointerHeld)
+    {
+      f.interactive = f.dragging = true;
+      vtkRenderWindowInteractor* interactor = f.window->GetInteractor();
+      f.updateRate = std::max(1.0, interactor ? interactor->GetDesiredUpdateRate() : 5.0);
+      ++FramesDrawnWhileHeld; // (counted before any work: the release may come during it)
+    }
+    this->FrameKind = { f.interactive, f.dragging, f.updateRate };
+  }
+  else
+  {
+    f.interactive = this->FrameKind.interactive;
+    f.dragging = this->FrameKind.dragging;
+    f.updateRate = this->FrameKind.updateRate;
   }
   f.report.interactive = f.interactive;
   bool failed = false;
@@ -1978,11 +2002,14 @@ int vtkContextualAOVolumeMapper::Internals::ChooseImageSampleDistance(
   if (this->FrameCastRays > 0.0 && this->FrameCastMs > 0.0 && !this->FrameRedrawn)
   {
     this->CastMsPerRay = this->FrameCastMs / this->FrameCastRays;
-    if (this->Options.imageSampleDistance == 1)
-      this->StillCastMs = this->FrameCastMs;
+    if (this->Options.keepDraws || (this->Options.imageSampleDistance == 1 && !this->LastInteractive))
+      this->StillCastMs = this->FrameCastMs; // (a still frame's: its step is the still one)
   }
   this->FrameCastMs = this->FrameCastRays = 0.0;
   this->FrameRedrawn = false;
+  this->LastFrameDraws = this->FrameDraws;
+  this->FrameDraws = 0;
+  this->LastInteractive = f.interactive;
   if (!f.interactive)
     return 1;
   if (self->InteractiveImageSampleDistance > 0)
@@ -2009,15 +2036,20 @@ void vtkContextualAOVolumeMapper::Internals::SetDrawOptions(
   const bool first = peelStage <= cao::layout::CAO_PEEL_OUTSIDE;
   const int k = first ? this->ChooseImageSampleDistance(self, f) : this->Options.imageSampleDistance;
   this->Options.imageSampleDistance = k;
-  this->Options.keepDraws = k == 1 &&
+  // Kept: still frames only, and only when the last frame's draws (one per
+  // peeling stage) all fit (else each would replace another: no copies,
+  // only read-backs).
+  int size[2], origin[2];
+  f.renderer->GetTiledSizeAndOrigin(&size[0], &size[1], &origin[0], &origin[1]);
+  const int draws = std::max(1, this->LastFrameDraws);
+  const bool room = draws <= cao::gl::RayCaster::MaximumKeptDraws &&
+    std::int64_t(draws) * size[0] * size[1] * 32 <= cao::gl::RayCaster::MaximumKeptBytes;
+  this->Options.keepDraws = k == 1 && !f.interactive && room &&
     (self->KeepDraws == ALWAYS_KEEP_DRAWS ||
       (self->KeepDraws == AUTOMATIC_KEEP_DRAWS &&
         this->StillCastMs >= KeepDrawsAboveMilliseconds));
   if (f.dragging && first)
-  {
     f.report.reasons.push_back("interactive: a pointer button is held");
-    ++FramesDrawnWhileHeld;
-  }
   this->Options.prepareInteractive = f.window->GetInteractor() != nullptr;
   f.report.imageSampleDistance = k;
   this->Caster->SetDrawOptions(this->Options);
@@ -2045,6 +2077,7 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     f.why = "The depth peeling's state could not be read: " + error + ".";
   if (ok && peel.stage > cao::layout::CAO_PEEL_OUTSIDE && !in.PeelDrawn)
     return;
+  f.peelStage = peel.stage;
   in.PeelDrawn = false;
   ok = ok && this->CheckSettings(f.why) && in.GatherInput(this, f) &&
     in.AcquireContext(this, f) && in.UpdateVolume(this, f) && in.UpdateClip(this, f) &&
@@ -2081,6 +2114,8 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     return;
   }
   const double castMs = in.Caster->LastMilliseconds();
+  ++in.FrameDraws;
+  f.report.keyMs = in.Caster->LastKeyMilliseconds();
   if (in.Caster->LastRedrawn())
   {
     f.report.redrawn = 1;
@@ -2112,6 +2147,7 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     in.Last.reasons.insert(in.Last.reasons.end(), f.report.reasons.begin(), f.report.reasons.end());
     in.Last.peelStage = f.report.peelStage;
     in.Last.redrawn += f.report.redrawn;
+    in.Last.keyMs += f.report.keyMs;
     return;
   }
   in.Last = f.report;

@@ -81,7 +81,7 @@ struct RayCaster::Impl
   std::uint64_t edits = 0; ///< SetTable and SetScalars calls
   bool redrawn = false;    ///< the last Draw spread a kept draw
   double keyMs = 0.0;      ///< the last Draw's key (host clock: read-backs and hashing)
-  std::vector<float> readBack; ///< scratch of the depth hashes
+  std::vector<std::uint32_t> readBack; ///< scratch of the depth hashes
 
   Impl(Context& c)
     : Ctx(c)
@@ -314,13 +314,17 @@ struct RayCaster::Impl
     }
     kept.clear();
   }
-  /// A 64-bit hash of a 2D texture's level 0 (its depth, or its colour as
-  /// float), read back on the host: what the ray cast read of the host's
-  /// depths. 0 for no texture.
-  std::uint64_t TextureHash(GLuint texture, std::uint64_t h)
+  /// Mix the contents of a 2D texture's level 0 (its depth, or its colour
+  /// as float) into `h`, read back on the host: what the ray cast read of
+  /// the host's depths. False when it cannot be read (an integer format):
+  /// the draw is then not kept.
+  bool TextureHash(GLuint texture, std::uint64_t& h)
   {
     if (!texture)
-      return Mix(h, 0);
+    {
+      h = Mix(h, 0);
+      return true;
+    }
     gl.ActiveTexture(GL_TEXTURE0 + CAO_UNIT_LOW_BACK);
     gl.BindTexture(GL_TEXTURE_2D, texture);
     GLint w = 0, hgt = 0, depthBits = 0, format = 0;
@@ -331,7 +335,7 @@ struct RayCaster::Impl
     h = Mix(Mix(Mix(h, static_cast<std::uint64_t>(w)), static_cast<std::uint64_t>(hgt)),
       static_cast<std::uint64_t>(format));
     if (w < 1 || hgt < 1)
-      return h;
+      return true;
     // Depth as stored (32-bit float, or integers: no rounding through
     // float), colour as floats of the channels it has (R, RG, RGB, RGBA).
     const bool depth = depthBits > 0;
@@ -343,12 +347,16 @@ struct RayCaster::Impl
     const int channels = sizes[3] > 0 ? 4 : sizes[2] > 0 ? 3 : sizes[1] > 0 ? 2 : 1;
     const GLenum layouts[4] = { GL_RED, GL_RG, GL_RGB, GL_RGBA };
     const std::size_t words = static_cast<std::size_t>(w) * hgt * (depth ? 1 : channels);
-    readBack.resize(words);
+    readBack.assign(words, 0u);
     gl.BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
     gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
     gl.PixelStorei(GL_PACK_SKIP_PIXELS, 0);
     gl.PixelStorei(GL_PACK_SKIP_ROWS, 0);
+    while (gl.GetError() != GL_NO_ERROR)
+    {
+      // (errors raised before are not this read's)
+    }
     if (depth)
       gl.GetTexImage(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT,
         format == GL_DEPTH_COMPONENT32F || format == GL_DEPTH32F_STENCIL8 ? GL_FLOAT
@@ -356,38 +364,57 @@ struct RayCaster::Impl
         readBack.data());
     else
       gl.GetTexImage(GL_TEXTURE_2D, 0, layouts[channels - 1], GL_FLOAT, readBack.data());
-    const std::uint32_t* bits = reinterpret_cast<const std::uint32_t*>(readBack.data());
+    bool read = gl.GetError() == GL_NO_ERROR;
+    while (gl.GetError() != GL_NO_ERROR)
+    {
+    }
+    if (!read)
+      return false;
     for (std::size_t i = 0; i + 1 < words; i += 2)
-      h = Mix(h, static_cast<std::uint64_t>(bits[i]) | (static_cast<std::uint64_t>(bits[i + 1]) << 32));
+      h = Mix(h, static_cast<std::uint64_t>(readBack[i]) | (static_cast<std::uint64_t>(readBack[i + 1]) << 32));
     if (words % 2)
-      h = Mix(h, bits[words - 1]);
-    return h;
+      h = Mix(h, readBack[words - 1]);
+    return true;
   }
   static std::uint64_t Mix(std::uint64_t h, std::uint64_t v)
   {
     h ^= v + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
     return h * 0xff51afd7ed558ccdull;
   }
-  /// The kept draw of `key`, or a target for it (the least recently used
-  /// one, or a new one within MaximumKeptDraws and MaximumKeptBytes;
-  /// null if none fits). `found`: it holds that draw already.
-  Kept* FindKept(std::uint64_t key, int w, int h, bool& found, std::string& error)
+  void FreeKeptAt(std::size_t i)
+  {
+    Kept& e = kept[i];
+    if (e.fbo)
+      gl.DeleteFramebuffers(1, &e.fbo);
+    this->Free(e.back);
+    this->Free(e.front);
+    kept.erase(kept.begin() + static_cast<std::ptrdiff_t>(i));
+  }
+  /// The kept draw of `key` (`found`), or a target for it: a new one within
+  /// MaximumKeptDraws and MaximumKeptBytes, else the least recently used
+  /// one; null when none fits or one cannot be made (out of memory: drawn
+  /// directly). Draws of another size are dropped first (a resized view).
+  /// A target returned for a new draw holds no key until the draw is done.
+  Kept* FindKept(std::uint64_t key, int w, int h, bool& found)
   {
     found = false;
     ++keptClock;
+    for (std::size_t i = kept.size(); i-- > 0;)
+      if (kept[i].size[0] != w || kept[i].size[1] != h)
+        this->FreeKeptAt(i);
     for (Kept& e : kept)
-      if (e.key == key && e.size[0] == w && e.size[1] == h)
+      if (e.key == key)
       {
         e.used = keptClock;
         found = true;
         return &e;
       }
     const std::int64_t bytes = std::int64_t(w) * h * 32; // two RGBA32F
+    if (bytes > MaximumKeptBytes)
+      return nullptr;
     Kept* target = nullptr;
-    std::int64_t held = 0;
-    for (Kept& e : kept)
-      held += std::int64_t(e.size[0]) * e.size[1] * 32;
-    if (static_cast<int>(kept.size()) < MaximumKeptDraws && held + bytes <= MaximumKeptBytes)
+    if (static_cast<int>(kept.size()) < MaximumKeptDraws &&
+      static_cast<std::int64_t>(kept.size() + 1) * bytes <= MaximumKeptBytes)
     {
       kept.emplace_back();
       target = &kept.back();
@@ -399,51 +426,44 @@ struct RayCaster::Impl
           target = &e;
       if (!target)
         return nullptr;
-      if (target->size[0] != w || target->size[1] != h)
-      {
-        // Another size: only if it fits in place of the old one.
-        const std::int64_t old = std::int64_t(target->size[0]) * target->size[1] * 32;
-        if (held - old + bytes > MaximumKeptBytes)
-          return nullptr;
-      }
     }
-    if (target->size[0] != w || target->size[1] != h || !target->fbo)
-    {
-      GLint draw = 0; // (the host's, which the draw reads afterwards)
-      gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
-      if (target->fbo)
-        gl.DeleteFramebuffers(1, &target->fbo);
-      this->Free(target->back);
-      this->Free(target->front);
-      gl.GenFramebuffers(1, &target->fbo);
-      gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, target->fbo);
-      GLuint* textures[2] = { &target->back, &target->front };
-      for (int i = 0; i < 2; ++i)
-      {
-        gl.ActiveTexture(GL_TEXTURE0 + (i ? CAO_UNIT_LOW_FRONT : CAO_UNIT_LOW_BACK));
-        gl.GenTextures(1, textures[i]);
-        gl.BindTexture(GL_TEXTURE_2D, *textures[i]);
-        gl.TexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, w, h);
-        gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        gl.FramebufferTexture2D(
-          GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D, *textures[i], 0);
-      }
-      target->size[0] = w;
-      target->size[1] = h;
-      const bool complete =
-        gl.CheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
-      gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
-      if (!complete)
-      {
-        error = "the kept draw's target (" + std::to_string(w) + "x" + std::to_string(h) +
-          " RGBA32F) is incomplete";
-        this->FreeKept();
-        return nullptr;
-      }
-    }
-    target->key = key;
+    target->key = 0;
     target->used = keptClock;
+    if (target->fbo)
+      return target;
+    GLint draw = 0; // (the host's, which the draw reads afterwards)
+    gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
+    while (gl.GetError() != GL_NO_ERROR)
+    {
+      // (errors raised before are not this allocation's)
+    }
+    gl.GenFramebuffers(1, &target->fbo);
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, target->fbo);
+    GLuint* textures[2] = { &target->back, &target->front };
+    for (int i = 0; i < 2; ++i)
+    {
+      gl.ActiveTexture(GL_TEXTURE0 + (i ? CAO_UNIT_LOW_FRONT : CAO_UNIT_LOW_BACK));
+      gl.GenTextures(1, textures[i]);
+      gl.BindTexture(GL_TEXTURE_2D, *textures[i]);
+      gl.TexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, w, h);
+      gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+      gl.FramebufferTexture2D(
+        GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D, *textures[i], 0);
+    }
+    target->size[0] = w;
+    target->size[1] = h;
+    bool ok = gl.GetError() == GL_NO_ERROR &&
+      gl.CheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+    while (gl.GetError() != GL_NO_ERROR)
+    {
+    }
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
+    if (!ok)
+    {
+      this->FreeKeptAt(static_cast<std::size_t>(target - kept.data()));
+      return nullptr;
+    }
     return target;
   }
   void ReleaseAll()
@@ -706,13 +726,17 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
     box[3] = std::min(box[3], host[1] + host[3]);
   }
   // A kept draw: the key of everything the ray cast reads (DrawOptions).
+  // A still frame that keeps none lets the kept ones go.
   Impl::Kept* kept = nullptr;
   bool found = false;
+  std::uint64_t key = 0;
   p.keyMs = 0.0;
+  if (k == 1 && !keep)
+    p.FreeKept();
   if (keep)
   {
     const auto keyStart = std::chrono::steady_clock::now();
-    std::uint64_t key = 0x6a09e667f3bcc909ull;
+    key = 0x6a09e667f3bcc909ull;
     const unsigned char* bytes = reinterpret_cast<const unsigned char*>(&params);
     for (std::size_t i = 0; i + 8 <= sizeof(params); i += 8)
     {
@@ -725,17 +749,24 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
     for (std::uint64_t v : { std::uint64_t(precomputedAO), r.generation, r.edits,
            std::uint64_t(r.volume), std::uint64_t(r.source), p.edits })
       key = Impl::Mix(key, v);
+    // The host's textures the stage's ray cast reads (caoRayCastFS.glsl's
+    // Peel: the opaque depth in the layer stage only; the front colour is
+    // under-blended in the spread, not kept).
+    bool hashed = true;
     if (peel)
-      for (GLuint t : { p.peel.outer, p.peel.inner, p.peel.opaque })
-        key = p.TextureHash(t, key);
+    {
+      const int stage = params.limits.z;
+      hashed = p.TextureHash(p.peel.outer, key) &&
+        (stage == layout::CAO_PEEL_REMAINDER || p.TextureHash(p.peel.inner, key)) &&
+        (stage != layout::CAO_PEEL_LAYER || p.TextureHash(p.peel.opaque, key));
+    }
     else if (flags & layout::CAO_RENDER_OPAQUE_DEPTH)
-      key = p.TextureHash(p.depth, key);
+      hashed = p.TextureHash(p.depth, key);
     key |= 1; // (0: no draw)
+    // (no room for one, or a depth that cannot be read: drawn directly)
+    kept = hashed ? p.FindKept(key, width, height, found) : nullptr;
     p.keyMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - keyStart).count();
-    std::string why;
-    kept = p.FindKept(key, width, height, found, why);
-    // (no room for one: drawn directly)
   }
   const bool hostBlend = gl.IsEnabled(GL_BLEND);
   GLboolean hostMask[4] = { 1, 1, 1, 1 };
@@ -895,11 +926,11 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
   p.timed = true;
   if (!CheckError(gl, "the ray cast", error))
   {
-    if (kept)
-      kept->key = 0; // (what it holds is not that draw)
     p.redrawn = false;
     return false;
   }
+  if (kept && !found)
+    kept->key = key; // (it holds that draw now)
   const int kind = peel ? (params.limits.z & 3) : 0;
   if (k == 1 && p.options.prepareInteractive && !p.prepared[kind])
   {
@@ -937,13 +968,17 @@ double RayCaster::LastMilliseconds()
   CurrentScope scope(p.Ctx);
   if (!scope.Ok())
     return -1.0;
-  const double ms = p.timer.Milliseconds(p.gl, 0);
-  return ms < 0.0 ? ms : ms + p.keyMs;
+  return p.timer.Milliseconds(p.gl, 0);
 }
 
 bool RayCaster::LastRedrawn() const
 {
   return this->P->redrawn;
+}
+
+double RayCaster::LastKeyMilliseconds() const
+{
+  return this->P->keyMs;
 }
 
 std::int64_t RayCaster::LastAOSampleVoxels() const

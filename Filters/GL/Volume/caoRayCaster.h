@@ -98,7 +98,8 @@ public:
   /// an unchanged frame again (ParaView does, after a drag) pays a copy,
   /// not a ray cast. At most MaximumKeptDraws draws (a peeled frame draws
   /// one per stage) and MaximumKeptBytes are kept, the least recently
-  /// used replaced.
+  /// used replaced; draws of another size are dropped. A still draw that
+  /// keeps none (keepDraws off) frees the kept ones.
   struct DrawOptions
   {
     int region[4] = { 0, 0, 0, 0 };
@@ -117,12 +118,14 @@ public:
   bool Draw(const AOEngine& engine, bool precomputedAO, const layout::RenderParams& params,
     std::string& error);
 
-  /// GPU milliseconds of the last Draw (timer query; waits for the GPU),
-  /// plus, for a kept draw, the host's milliseconds to make its key.
+  /// GPU milliseconds of the last Draw (timer query; waits for the GPU).
   double LastMilliseconds();
   /// Whether the last Draw spread a kept draw instead of casting rays
   /// (DrawOptions::keepDraws).
   bool LastRedrawn() const;
+  /// Host milliseconds the last Draw spent on its key (read-backs of the
+  /// host's depths and hashing; 0 when it kept nothing).
+  double LastKeyMilliseconds() const;
 
   /// Voxels of the AO samples the last Draw remade (0 when they were
   /// current or the draw read none): the ray caster samples a clipped or

@@ -476,10 +476,12 @@ void Peel(ivec2 pixel)
     // Under-blend the front segment (the host keeps 1 - alpha for its MAX
     // blending); drawn into the caster's own target (one ray per k x k
     // pixels, or a kept draw) the spread does it per pixel.
+    // (precise: the same bits as the spread's under-blend, caoUpsampleFS.glsl,
+    // with no fused multiply-add in one and not the other)
     float transmitted = 1.0 - last.a;
-    frontColor = rp.limits.w > 1 || (rp.dims.w & CAO_RENDER_OWN_TARGET) != 0 ?
-      front :
+    precise vec4 under =
       vec4(transmitted * front.rgb + last.rgb, 1.0 - transmitted * (1.0 - front.a));
+    frontColor = rp.limits.w > 1 || (rp.dims.w & CAO_RENDER_OWN_TARGET) != 0 ? front : under;
   }
   else
   {

@@ -45,8 +45,11 @@ void main()
   if (stage == CAO_PEEL_LAYER)
   {
     vec4 last = texelFetch(peelFront, pixel, 0);
+    // (precise: the same bits as the ray cast's own under-blend at k = 1)
     float transmitted = 1.0 - last.a;
-    front = vec4(transmitted * front.rgb + last.rgb, 1.0 - transmitted * (1.0 - front.a));
+    precise vec4 under =
+      vec4(transmitted * front.rgb + last.rgb, 1.0 - transmitted * (1.0 - front.a));
+    front = under;
   }
   fragColor = back;
   frontColor = front;

@@ -2229,11 +2229,12 @@ void Interactive(const Options& o)
 /// is copied from the kept ray cast, and any change the ray cast reads
 /// casts again. On a carved HeadMR with AO and an opaque box in front of
 /// part of it, without and with a translucent sphere (depth peeling): at
-/// each step the frame with ALWAYS_KEEP_DRAWS equals the frame with
-/// NEVER_KEEP_DRAWS bit for bit, and the report's "redrawn" says whether
+/// each step the frame equals the frame cast again (the colour function
+/// touched) bit for bit, and the report's "redrawn" says whether
 /// it was copied: yes for the same frame again, no after a camera turn, a
 /// clip move, a colour change, the opaque box moved (its depth) and, with
-/// peeling, the translucent sphere moved (the peeled depths).
+/// peeling, the translucent sphere moved (the peeled depths); and the
+/// direct draw (NEVER_KEEP_DRAWS) equals the kept draw's spread.
 void Keep(const Options& o)
 {
   Scene s;
@@ -2263,9 +2264,10 @@ void Keep(const Options& o)
     return at == std::string::npos ? -1 : std::atoi(r.c_str() + at + 11);
   };
   // copied: 1 every draw of the frame, 0 none, -1 not every one (a
-  // peeled frame's stages whose depths did not change may be copied).
+  // peeled frame's stages whose depths did not change may be copied). The
+  // frame cast again for the comparison: the colour function touched (the
+  // table uploaded again, the same values), which no kept draw survives.
   auto step = [&](const char* scene, const char* what, int copied) {
-    s.mapper->SetKeepDraws(vtkContextualAOVolumeMapper::ALWAYS_KEEP_DRAWS);
     const caotest::Image kept = s.Frame();
     const int n = redrawn();
     const std::string report = s.mapper->GetLastFrameReport();
@@ -2273,7 +2275,7 @@ void Keep(const Options& o)
     for (std::size_t at = report.find("\"raycast\""); at != std::string::npos;
          at = report.find("\"raycast\"", at + 1))
       ++draws;
-    s.mapper->SetKeepDraws(vtkContextualAOVolumeMapper::NEVER_KEEP_DRAWS);
+    s.color->Modified();
     const caotest::Image cast = s.Frame();
     const int castRedrawn = redrawn();
     const long differing = caotest::DifferingPixels(kept, cast);
@@ -2284,14 +2286,31 @@ void Keep(const Options& o)
     CAO_EXPECT(copied == 1 ? n == draws && n > 0 : copied == 0 ? n == 0 : n < draws,
       "%s, %s: %d of %d draw(s) copied, expected %s: %s", scene, what, n, draws,
       copied == 1 ? "all" : copied == 0 ? "none" : "not all", report.c_str());
-    CAO_EXPECT(castRedrawn == 0, "%s, %s: NEVER_KEEP_DRAWS copied %d draw(s)", scene, what,
+    CAO_EXPECT(castRedrawn == 0, "%s, %s: the frame cast again copied %d draw(s)", scene, what,
       castRedrawn);
+    const bool peeled = report.find("\"depth_peeling\": \"off\"") == std::string::npos;
+    CAO_EXPECT(peeled == translucent->GetVisibility(), "%s, %s: drawn %s the depth peeling: %s",
+      scene, what, peeled ? "inside" : "outside", report.c_str());
+  };
+  // A kept draw spreads what the direct draw blends: the same frame with
+  // NEVER_KEEP_DRAWS (no target of its own) and ALWAYS_KEEP_DRAWS.
+  auto direct = [&](const char* scene) {
+    s.mapper->SetKeepDraws(vtkContextualAOVolumeMapper::NEVER_KEEP_DRAWS);
+    const caotest::Image drawn = s.Frame();
+    s.mapper->SetKeepDraws(vtkContextualAOVolumeMapper::ALWAYS_KEEP_DRAWS);
+    const long differing = caotest::DifferingPixels(drawn, s.Frame());
+    std::printf("%s: the direct draw and the kept draw's spread: %ld pixel(s) differ\n", scene,
+      differing);
+    CAO_EXPECT(differing == 0, "%s: the kept draw's spread differs from the direct draw (%ld "
+      "pixels)", scene, differing);
   };
   for (int peel = 0; peel < 2; ++peel)
   {
     translucent->SetVisibility(peel);
     const char* scene = peel ? "with a translucent sphere (depth peeling)" : "opaque box only";
     const double move = 0.05 * (peel + 1) * size; // (each pass moves things anew)
+    direct(scene);
+    s.renderer->GetActiveCamera()->Azimuth(1.0);
     step(scene, "first frame", peel ? -1 : 0);
     step(scene, "the same frame again", 1);
     s.renderer->GetActiveCamera()->Azimuth(2.0);
