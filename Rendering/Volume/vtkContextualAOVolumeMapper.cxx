@@ -412,7 +412,7 @@ struct vtkContextualAOVolumeMapper::Internals
   bool UpdateTable(vtkContextualAOVolumeMapper* self, Frame& f, double& step);
   int ChooseImageSampleDistance(vtkContextualAOVolumeMapper* self, const Frame& f);
   /// The ray caster's options for this draw: k, kept draws, the drag.
-  void SetDrawOptions(vtkContextualAOVolumeMapper* self, Frame& f, int peelStage);
+  void SetDrawOptions(vtkContextualAOVolumeMapper* self, Frame& f);
   void MakeRenderParams(vtkContextualAOVolumeMapper* self, const Frame& f, double step,
     cao::layout::RenderParams& params);
 };
@@ -2002,7 +2002,7 @@ int vtkContextualAOVolumeMapper::Internals::ChooseImageSampleDistance(
   if (this->FrameCastRays > 0.0 && this->FrameCastMs > 0.0 && !this->FrameRedrawn)
   {
     this->CastMsPerRay = this->FrameCastMs / this->FrameCastRays;
-    if (this->Options.keepDraws || (this->Options.imageSampleDistance == 1 && !this->LastInteractive))
+    if (this->Options.imageSampleDistance == 1 && !this->LastInteractive)
       this->StillCastMs = this->FrameCastMs; // (a still frame's: its step is the still one)
   }
   this->FrameCastMs = this->FrameCastRays = 0.0;
@@ -2030,10 +2030,10 @@ int vtkContextualAOVolumeMapper::Internals::ChooseImageSampleDistance(
 
 //------------------------------------------------------------------------------
 void vtkContextualAOVolumeMapper::Internals::SetDrawOptions(
-  vtkContextualAOVolumeMapper* self, Frame& f, int peelStage)
+  vtkContextualAOVolumeMapper* self, Frame& f)
 {
   // (the stages of one peeled frame share the first stage's choice)
-  const bool first = peelStage <= cao::layout::CAO_PEEL_OUTSIDE;
+  const bool first = f.peelStage <= cao::layout::CAO_PEEL_OUTSIDE;
   const int k = first ? this->ChooseImageSampleDistance(self, f) : this->Options.imageSampleDistance;
   this->Options.imageSampleDistance = k;
   // Kept: still frames only, and only when the last frame's draws (one per
@@ -2041,9 +2041,8 @@ void vtkContextualAOVolumeMapper::Internals::SetDrawOptions(
   // only read-backs).
   int size[2], origin[2];
   f.renderer->GetTiledSizeAndOrigin(&size[0], &size[1], &origin[0], &origin[1]);
-  const int draws = std::max(1, this->LastFrameDraws);
-  const bool room = draws <= cao::gl::RayCaster::MaximumKeptDraws &&
-    std::int64_t(draws) * size[0] * size[1] * 32 <= cao::gl::RayCaster::MaximumKeptBytes;
+  const bool room =
+    cao::gl::RayCaster::KeptDrawsFit(std::max(1, this->LastFrameDraws), size[0], size[1]);
   this->Options.keepDraws = k == 1 && !f.interactive && room &&
     (self->KeepDraws == ALWAYS_KEEP_DRAWS ||
       (self->KeepDraws == AUTOMATIC_KEEP_DRAWS &&
@@ -2086,7 +2085,7 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     // Draw over what the opaque geometry left.
     in.MakeRenderParams(this, f, step, params);
-    in.SetDrawOptions(this, f, peel.stage);
+    in.SetDrawOptions(this, f);
     int size[2], origin[2];
     ren->GetTiledSizeAndOrigin(&size[0], &size[1], &origin[0], &origin[1]);
     const int viewport[4] = { origin[0], origin[1], size[0], size[1] };

@@ -32,6 +32,13 @@ bool CheckError(const Functions& gl, const char* what, std::string& error)
     error += " (out of GPU memory)";
   return false;
 }
+void ClearErrors(const Functions& gl)
+{
+  for (int i = 0; i < 8 && gl.GetError() != GL_NO_ERROR; ++i)
+  {
+  }
+}
+
 void DispatchLinear(const Functions& gl, std::int64_t groups)
 {
   const std::int64_t x = std::max<std::int64_t>(std::min<std::int64_t>(groups, 65535), 1);

@@ -37,6 +37,10 @@ struct Functions
 /// (and a note for GL_OUT_OF_MEMORY) when the step raised one.
 bool CheckError(const Functions& gl, const char* what, std::string& error);
 
+/// Take the pending errors off the GL (a few at most: a lost context may
+/// keep reporting one), so that the next glGetError is the next step's.
+void ClearErrors(const Functions& gl);
+
 /// Dispatch `groups` workgroups of the bound compute program as a 2D grid
 /// within GL's per-axis limit (65535); the shaders index them as
 /// gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * local size.

@@ -76,9 +76,7 @@ struct FrameEngine::Impl
   {
     if (framebuffer == 0)
       return 0;
-    while (gl.GetError() != GL_NO_ERROR)
-    {
-    } // (a host's pending error is not ours)
+    ClearErrors(gl); // (a host's pending error is not ours)
     GLint type = GL_NONE, bits = 0, stencil = 0, component = GL_NONE;
     gl.GetFramebufferAttachmentParameteriv(GL_READ_FRAMEBUFFER, GL_DEPTH_ATTACHMENT,
       GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
@@ -140,9 +138,7 @@ struct FrameEngine::Impl
     }
     const int target = traced == 0 ? 1 : 0;
     gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, depthFramebuffers[target]);
-    while (gl.GetError() != GL_NO_ERROR)
-    {
-    }
+    ClearErrors(gl);
     gl.Disable(GL_SCISSOR_TEST);
     gl.BlitFramebuffer(x0, y0, x0 + width, y0 + height, 0, 0, width, height, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
     if (gl.GetError() != GL_NO_ERROR)

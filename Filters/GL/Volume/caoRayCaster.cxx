@@ -28,9 +28,14 @@ struct RayCaster::Impl
   /// CAO_WITH_AO_CALIBRATION).
   Program variants[4], upsample;
   StageTimer timer{ 2 }; // 0: the draw, 1: the AO samples
-  // The target of a ray cast at one pixel in k x k: back and front outputs.
-  GLuint lowFbo = 0, lowBack = 0, lowFront = 0;
-  int lowSize[2] = { 0, 0 };
+  // A target of the caster's own: a framebuffer with the back and front
+  // outputs. `low`: the ray cast at one pixel in k x k.
+  struct Target
+  {
+    GLuint fbo = 0, back = 0, front = 0;
+    int size[2] = { 0, 0 };
+  };
+  Target low;
   RayCaster::DrawOptions options;
   bool prepared[4] = { false, false, false, false }; // reduced-resolution variants drawn once
   GLuint vertexArray = 0, table = 0, scalars = 0, depth = 0, block = 0, spreadBlock = 0;
@@ -70,10 +75,8 @@ struct RayCaster::Impl
   RayCaster::PeelTextures peel;
   // Full-resolution draws kept to be spread again (DrawOptions::keepDraws),
   // each in a target of its own with the key of what its ray cast read.
-  struct Kept
+  struct Kept : Target
   {
-    GLuint fbo = 0, back = 0, front = 0;
-    int size[2] = { 0, 0 };
     std::uint64_t key = 0, used = 0;
   };
   std::vector<Kept> kept;
@@ -263,55 +266,67 @@ struct RayCaster::Impl
       GL_RG, GL_FLOAT, pairs.data());
     std::copy(values, values + n, halfSpaceTable);
   }
-  void FreeLowTarget()
+  void FreeTarget(Target& t)
   {
-    if (lowFbo)
-      gl.DeleteFramebuffers(1, &lowFbo);
-    lowFbo = 0;
-    this->Free(lowBack);
-    this->Free(lowFront);
-    lowSize[0] = lowSize[1] = 0;
+    if (t.fbo)
+      gl.DeleteFramebuffers(1, &t.fbo);
+    t.fbo = 0;
+    this->Free(t.back);
+    this->Free(t.front);
+    t.size[0] = t.size[1] = 0;
   }
-  /// The half-float target of a reduced-resolution ray cast, w x h.
-  bool LowTarget(int w, int h, std::string& error)
+  /// Make `t` (freed first): w x h of `format` for both outputs, filtered
+  /// linearly (the spread chooses its filter per draw), each on its own
+  /// unit (the active one may hold a texture a draw reads). False, with
+  /// nothing made, when the GL refused it; the host's draw framebuffer is
+  /// bound again.
+  bool MakeTarget(Target& t, int w, int h, GLenum format)
   {
-    if (lowFbo && lowSize[0] == w && lowSize[1] == h)
-      return true;
-    this->FreeLowTarget();
-    gl.GenFramebuffers(1, &lowFbo);
-    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, lowFbo);
-    GLuint* textures[2] = { &lowBack, &lowFront };
+    this->FreeTarget(t);
+    GLint draw = 0;
+    gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
+    ClearErrors(gl); // (errors raised before are not this allocation's)
+    gl.GenFramebuffers(1, &t.fbo);
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, t.fbo);
+    GLuint* textures[2] = { &t.back, &t.front };
     for (int i = 0; i < 2; ++i)
     {
-      // (on its own unit: the active one may hold a texture a draw reads)
       gl.ActiveTexture(GL_TEXTURE0 + (i ? CAO_UNIT_LOW_FRONT : CAO_UNIT_LOW_BACK));
       gl.GenTextures(1, textures[i]);
       gl.BindTexture(GL_TEXTURE_2D, *textures[i]);
-      gl.TexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA16F, w, h);
+      gl.TexStorage2D(GL_TEXTURE_2D, 1, format, w, h);
       Linear(gl, GL_TEXTURE_2D);
       gl.FramebufferTexture2D(
         GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D, *textures[i], 0);
     }
-    if (gl.CheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    const bool ok = gl.GetError() == GL_NO_ERROR &&
+      gl.CheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+    ClearErrors(gl);
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
+    if (!ok)
     {
-      this->FreeLowTarget();
-      error = "the reduced-resolution target (" + std::to_string(w) + "x" + std::to_string(h) +
-        " RGBA16F) is incomplete";
+      this->FreeTarget(t);
       return false;
     }
-    lowSize[0] = w;
-    lowSize[1] = h;
-    return CheckError(gl, "the reduced-resolution target", error);
+    t.size[0] = w;
+    t.size[1] = h;
+    return true;
+  }
+  /// The half-float target of a reduced-resolution ray cast, w x h.
+  bool LowTarget(int w, int h, std::string& error)
+  {
+    if (low.fbo && low.size[0] == w && low.size[1] == h)
+      return true;
+    if (this->MakeTarget(low, w, h, GL_RGBA16F))
+      return true;
+    error = "the reduced-resolution target (" + std::to_string(w) + "x" + std::to_string(h) +
+      " RGBA16F) could not be made";
+    return false;
   }
   void FreeKept()
   {
     for (Kept& e : kept)
-    {
-      if (e.fbo)
-        gl.DeleteFramebuffers(1, &e.fbo);
-      this->Free(e.back);
-      this->Free(e.front);
-    }
+      this->FreeTarget(e);
     kept.clear();
   }
   /// Mix the contents of a 2D texture's level 0 (its depth, or its colour
@@ -353,10 +368,7 @@ struct RayCaster::Impl
     gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
     gl.PixelStorei(GL_PACK_SKIP_PIXELS, 0);
     gl.PixelStorei(GL_PACK_SKIP_ROWS, 0);
-    while (gl.GetError() != GL_NO_ERROR)
-    {
-      // (errors raised before are not this read's)
-    }
+    ClearErrors(gl); // (errors raised before are not this read's)
     if (depth)
       gl.GetTexImage(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT,
         format == GL_DEPTH_COMPONENT32F || format == GL_DEPTH32F_STENCIL8 ? GL_FLOAT
@@ -364,10 +376,8 @@ struct RayCaster::Impl
         readBack.data());
     else
       gl.GetTexImage(GL_TEXTURE_2D, 0, layouts[channels - 1], GL_FLOAT, readBack.data());
-    bool read = gl.GetError() == GL_NO_ERROR;
-    while (gl.GetError() != GL_NO_ERROR)
-    {
-    }
+    const bool read = gl.GetError() == GL_NO_ERROR;
+    ClearErrors(gl);
     if (!read)
       return false;
     for (std::size_t i = 0; i + 1 < words; i += 2)
@@ -383,11 +393,7 @@ struct RayCaster::Impl
   }
   void FreeKeptAt(std::size_t i)
   {
-    Kept& e = kept[i];
-    if (e.fbo)
-      gl.DeleteFramebuffers(1, &e.fbo);
-    this->Free(e.back);
-    this->Free(e.front);
+    this->FreeTarget(kept[i]);
     kept.erase(kept.begin() + static_cast<std::ptrdiff_t>(i));
   }
   /// The kept draw of `key` (`found`), or a target for it: a new one within
@@ -409,12 +415,10 @@ struct RayCaster::Impl
         found = true;
         return &e;
       }
-    const std::int64_t bytes = std::int64_t(w) * h * 32; // two RGBA32F
-    if (bytes > MaximumKeptBytes)
+    if (!KeptDrawsFit(1, w, h))
       return nullptr;
     Kept* target = nullptr;
-    if (static_cast<int>(kept.size()) < MaximumKeptDraws &&
-      static_cast<std::int64_t>(kept.size() + 1) * bytes <= MaximumKeptBytes)
+    if (KeptDrawsFit(static_cast<int>(kept.size()) + 1, w, h))
     {
       kept.emplace_back();
       target = &kept.back();
@@ -429,48 +433,16 @@ struct RayCaster::Impl
     }
     target->key = 0;
     target->used = keptClock;
-    if (target->fbo)
+    if (target->fbo || this->MakeTarget(*target, w, h, GL_RGBA32F))
       return target;
-    GLint draw = 0; // (the host's, which the draw reads afterwards)
-    gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
-    while (gl.GetError() != GL_NO_ERROR)
-    {
-      // (errors raised before are not this allocation's)
-    }
-    gl.GenFramebuffers(1, &target->fbo);
-    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, target->fbo);
-    GLuint* textures[2] = { &target->back, &target->front };
-    for (int i = 0; i < 2; ++i)
-    {
-      gl.ActiveTexture(GL_TEXTURE0 + (i ? CAO_UNIT_LOW_FRONT : CAO_UNIT_LOW_BACK));
-      gl.GenTextures(1, textures[i]);
-      gl.BindTexture(GL_TEXTURE_2D, *textures[i]);
-      gl.TexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, w, h);
-      gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-      gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-      gl.FramebufferTexture2D(
-        GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D, *textures[i], 0);
-    }
-    target->size[0] = w;
-    target->size[1] = h;
-    bool ok = gl.GetError() == GL_NO_ERROR &&
-      gl.CheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
-    while (gl.GetError() != GL_NO_ERROR)
-    {
-    }
-    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
-    if (!ok)
-    {
-      this->FreeKeptAt(static_cast<std::size_t>(target - kept.data()));
-      return nullptr;
-    }
-    return target;
+    this->FreeKeptAt(static_cast<std::size_t>(target - kept.data()));
+    return nullptr;
   }
   void ReleaseAll()
   {
     gl.UseProgram(0);
     this->FreeViews();
-    this->FreeLowTarget();
+    this->FreeTarget(low);
     this->FreeKept();
     upsample.Release(gl);
     for (Program& q : samples)
@@ -613,10 +585,7 @@ bool RayCaster::CaptureDepth(const int viewport[4], std::string& error)
       GL_READ_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &attached);
   error += " (framebuffer " + std::to_string(draw) + (samples > 0 ? ", multisampled" : "") +
     (draw != 0 && attached == GL_NONE ? ", no depth attachment" : "") + ")";
-  for (int i = 0; i < 8 && gl.GetError() != GL_NO_ERROR; ++i)
-  {
-    // (clear what the queries may have raised)
-  }
+  ClearErrors(gl); // (what the queries may have raised)
   return false;
 }
 
@@ -866,9 +835,9 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
       p.timer.End(gl, 0);
       return false;
     }
-    const GLuint targetFbo = kept ? kept->fbo : p.lowFbo;
-    const GLuint targetBack = kept ? kept->back : p.lowBack;
-    const GLuint targetFront = kept ? kept->front : p.lowFront;
+    const GLuint targetFbo = kept ? kept->fbo : p.low.fbo;
+    const GLuint targetBack = kept ? kept->back : p.low.back;
+    const GLuint targetFront = kept ? kept->front : p.low.front;
     if (!found)
     {
       gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, targetFbo);
@@ -941,10 +910,10 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
       p.upsample.BuildRaster(gl, { caoRayCastVS_glsl }, { caoUpsampleFS_glsl }, {}, ignored);
     if (p.LowTarget((width + 1) / 2, (height + 1) / 2, ignored))
     {
-      gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, p.lowFbo);
+      gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, p.low.fbo);
       const GLenum buffers[2] = { GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1 };
       gl.DrawBuffers(2, buffers);
-      gl.Viewport(0, 0, p.lowSize[0], p.lowSize[1]);
+      gl.Viewport(0, 0, p.low.size[0], p.low.size[1]);
       gl.Disable(GL_BLEND);
       gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
       const int pixel[4] = { 0, 0, 1, 1 };
@@ -952,10 +921,7 @@ bool RayCaster::Draw(const AOEngine& engine, bool precomputedAO,
       gl.UseProgram(program.Id());
       gl.DrawArrays(GL_TRIANGLES, 0, 3);
     }
-    for (int i = 0; i < 8 && gl.GetError() != GL_NO_ERROR; ++i)
-    {
-      // (what the preparation raised is not the frame's)
-    }
+    ClearErrors(gl); // (what the preparation raised is not the frame's)
   }
   return true;
 }
@@ -1002,11 +968,11 @@ std::vector<std::pair<char, unsigned int>> RayCaster::ObjectNames() const
   const Impl& p = *this->P;
   std::vector<std::pair<char, unsigned int>> names;
   for (GLuint t : { p.table, p.scalars, p.depth, p.scalarView, p.currentView, p.precomputedView,
-         p.lowBack, p.lowFront, p.aoSamples, p.halfSpace })
+         p.low.back, p.low.front, p.aoSamples, p.halfSpace })
     if (t)
       names.emplace_back('t', t);
-  if (p.lowFbo)
-    names.emplace_back('f', p.lowFbo);
+  if (p.low.fbo)
+    names.emplace_back('f', p.low.fbo);
   for (const Impl::Kept& e : p.kept)
   {
     for (GLuint t : { e.back, e.front })
@@ -1053,14 +1019,14 @@ void RayCaster::AbandonGraphicsResources()
 {
   Impl& p = *this->P;
   for (GLuint* t : { &p.table, &p.scalars, &p.depth, &p.scalarView, &p.currentView,
-         &p.precomputedView, &p.vertexArray, &p.block, &p.spreadBlock, &p.lowFbo, &p.lowBack, &p.lowFront,
+         &p.precomputedView, &p.vertexArray, &p.block, &p.spreadBlock, &p.low.fbo, &p.low.back, &p.low.front,
          &p.aoSamples, &p.halfSpace })
     *t = 0;
   std::fill(p.samplesDims, p.samplesDims + 3, 0);
   p.samplesValid = false;
   for (Program& q : p.samples)
     q.Abandon();
-  p.lowSize[0] = p.lowSize[1] = 0;
+  p.low.size[0] = p.low.size[1] = 0;
   p.kept.clear(); // (their names went with the context)
   std::fill(p.prepared, p.prepared + 4, false);
   for (Program& v : p.variants)

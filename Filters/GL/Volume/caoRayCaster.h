@@ -109,6 +109,13 @@ public:
   };
   static constexpr int MaximumKeptDraws = 6;
   static constexpr std::int64_t MaximumKeptBytes = std::int64_t(256) << 20;
+  static constexpr int KeptBytesPerPixel = 32; ///< two RGBA32F outputs
+  /// Whether `draws` kept draws of w x h pixels fit both limits.
+  static bool KeptDrawsFit(int draws, int w, int h)
+  {
+    return draws <= MaximumKeptDraws &&
+      std::int64_t(draws) * w * h * KeptBytesPerPixel <= MaximumKeptBytes;
+  }
   static constexpr int MaximumImageSampleDistance = 8;
   void SetDrawOptions(const DrawOptions& options);
 
