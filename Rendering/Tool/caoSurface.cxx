@@ -898,7 +898,7 @@ int Run(SurfaceOptions& o, const CLI::App* app)
   {
     o.volumetric.interleave = o.filter == "on";
     o.vct.interleave = o.filter == "on";
-    o.hbao.blurRadius = o.filter == "on" ? 2 : 0;
+    o.hbao.blurRadius = o.filter == "on" ? cao::HBAOSettings{}.blurRadius : 0;
   }
   if (!o.march.empty())
     o.hbao.deflect = o.march == "deflect";

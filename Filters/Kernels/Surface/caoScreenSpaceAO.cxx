@@ -310,17 +310,22 @@ void DepthAwareFilter(const SurfaceFrame& frame, const std::vector<double>& weig
   });
 }
 
-std::vector<double> HBAOBlurWeights(const HBAOSettings& settings)
+std::vector<double> TentWeights(int r)
 {
   std::vector<double> weights;
-  for (int d = -settings.blurRadius; d <= settings.blurRadius && settings.blurRadius >= 1; ++d)
-    weights.push_back(std::exp(-0.5 * d * d / (1.5 * 1.5)));
+  for (int d = -r; d <= r && r >= 1; ++d)
+    weights.push_back(static_cast<double>(r + 1 - std::abs(d)));
   return weights;
+}
+
+std::vector<double> HBAOBlurWeights(const HBAOSettings& settings)
+{
+  return TentWeights(settings.blurRadius);
 }
 
 std::vector<double> VolumetricAOFilterWeights(const VolumetricAOSettings& settings)
 {
-  return settings.interleave ? std::vector<double>{ 0.5, 1.0, 1.0, 1.0, 0.5 } : std::vector<double>();
+  return settings.interleave ? TentWeights(VolumetricAOSettings::Tile - 1) : std::vector<double>();
 }
 
 void FinishHBAO(const HBAOSettings& settings, SurfaceFrame& frame, int threads)

@@ -22,7 +22,8 @@
 // exceed 1 (the design notes' consistent form of the paper's Eq. 10-11).
 // Choice recorded: the directions are uniform in azimuth around n (so that
 // the mean of H^2 is the cosine-weighted occlusion), not uniform in screen
-// angle. Then a depth-aware 5 x 5 Gaussian blur (sigma 1.5 pixels).
+// angle. Then a depth-aware 7 x 7 tent blur (the paper's 5 x 5 Gaussian left
+// the 4 x 4 pattern's trace on flat faces: measured, see blurRadius).
 //
 // Volumetric AO (Szirmay-Kalos et al.), the base-disk form: the
 // obscurance O (1 = open) with the fuzzy measure mu = (r / R)^4, from
@@ -35,9 +36,10 @@
 //   O = (R^2 / samples) sum h,
 // which is 1 in expectation on an open plane. The pixels of each 4 x 4 tile
 // use 16 different sample sets (together one stratified set of 16 x
-// samples points), then a depth-limited low-pass filter of the same size
-// (5 x 5 taps weighted 1/2, 1, 1, 1, 1/2 per axis: each of the 16 sets
-// once). With a colour buffer, the indirect term I = L (1 - O): L the mean
+// samples points), then a depth-limited low-pass filter over the sets
+// (7 x 7 taps weighted 1, 2, 3, 4, 3, 2, 1 per axis, TentWeights: every
+// window weighs the 16 sets alike; the 5 x 5 box 1/2, 1, 1, 1, 1/2 did to
+// first order and left more ripple, measured). With a colour buffer, the indirect term I = L (1 - O): L the mean
 // colour of the sample pixels within R whose surface faces P (neighbours
 // facing away or coplanar are ignored).
 //
@@ -71,7 +73,12 @@ struct HBAOSettings
   AOFalloff attenuation = AOFalloff::Step; ///< step or linear (Custom; Low: linear)
   double radius = 1.0;  ///< R, world units (> 0, finite)
   double offsetPixels = 1.0; ///< P' = P + this x a pixel's world size x n, 0..8
-  int blurRadius = 2;   ///< taps each side of the Gaussian (2: the paper's 5 x 5), 0..8 (0: none)
+  /// Taps each side of the blur, 0..8 (0: none): a tent, weight r + 1 - |d|
+  /// at offset d. 3, the default, is two passes of a 4-tap box, which
+  /// average each cell of the 4 x 4 pattern alike in every window and so
+  /// leave no trace of the pattern on a flat face; the paper's 5 x 5
+  /// Gaussian left one (docs/surface-benchmarks.md, "The screen-space methods' filter").
+  int blurRadius = Tile - 1;
   double blurTolerance = 0.1; ///< in R: taps off the centre's tangent plane by more are left out
   /// How the horizon is marched: true (default), the paper's Fig. 4, the
   /// march deflected up to each new horizon point; false, along the tangent
@@ -100,7 +107,7 @@ struct VolumetricAOSettings
   Quality quality = Quality::Medium;
   int samples = 16;       ///< per pixel (Custom), 1..256
   double radius = 1.0;    ///< R, world units (> 0, finite)
-  bool interleave = true; ///< 4 x 4 sample sets and the filter of the same size
+  bool interleave = true; ///< 4 x 4 sample sets and their filter (TentWeights(Tile - 1))
   double filterTolerance = 0.1; ///< in R (the paper's unstated "given limit")
   /// A pipe whose depth-buffer surface lies in front of the whole sphere
   /// is taken as open (as a foreground object that does not reach into
@@ -146,13 +153,20 @@ void HBAOPattern(const HBAOSettings& settings, double rotation[16], double jitte
 void VolumetricAODiskSamples(const VolumetricAOSettings& settings, std::vector<double>& x, std::vector<double>& y);
 
 /// What each method does after its per-pixel estimate (CPU or GPU): HBAO
-/// its depth-aware Gaussian blur; Volumetric AO its depth-limited filter of the
+/// its depth-aware blur; Volumetric AO its depth-limited filter of the
 /// sample sets' size, then the clamp to [0, 1].
 void FinishHBAO(const HBAOSettings& settings, SurfaceFrame& frame, int threads);
 void FinishVolumetricAO(const VolumetricAOSettings& settings, SurfaceFrame& frame, int threads);
+/// A tent of r taps each side, per axis: weight r + 1 - |d| at offset d
+/// (empty for r < 1). At r = 3 it is two passes of a 4-tap box: every window
+/// weighs each cell of a 4 x 4 pattern alike, to second order, so the pattern
+/// leaves no trace on a flat face (a 5-tap 1/2, 1, 1, 1, 1/2 box does to
+/// first order, the paper's 5 x 5 Gaussian not at all: docs/surface-benchmarks.md,
+/// "The screen-space methods' filter").
+std::vector<double> TentWeights(int r);
 /// Their filters' weights per axis, for offsets -r..r (empty: none): HBAO's
-/// Gaussian (sigma 1.5 pixels, blurRadius taps each side), volumetric AO's 5 taps
-/// (1/2, 1, 1, 1, 1/2: each of the 4 x 4 sample sets once) when interleaved.
+/// tent of blurRadius, volumetric AO's tent of its 4 x 4 sample sets
+/// (TentWeights(3)) when interleaved.
 std::vector<double> HBAOBlurWeights(const HBAOSettings& settings);
 std::vector<double> VolumetricAOFilterWeights(const VolumetricAOSettings& settings);
 /// Empty when `frame` is a frame of `camera`'s image (its buffers sized

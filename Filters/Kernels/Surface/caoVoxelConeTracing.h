@@ -114,9 +114,10 @@ struct VCTSettings
   double rayStep = 1.0;
   /// The cones turned about the normal per pixel, by one of 16 angles over
   /// a 4 x 4 tile of pixels (VCTPatternRotations), then the depth-aware
-  /// filter of the tile's size (Volumetric AO's: DepthAwareFilter, 5 taps 1/2, 1, 1,
-  /// 1, 1/2, its taps within R of the pixel's point), so each pixel's AO
-/// averages 16 ray sets. Default true: with
+  /// filter of the tile's size (DepthAwareFilter, 5 taps 1/2, 1, 1, 1, 1/2,
+  /// its taps within R of the pixel's point; the screen-space methods'
+  /// 7-tap tent, TentWeights, took a third off the ripple here but raised
+  /// the p99 error: not taken), so each pixel's AO averages 16 ray sets. Default true: with
   /// one set for every pixel, each ray's hit or miss is a step in the AO,
   /// and the steps drew contour bands on flat faces near occluders
   /// (measured by `cao bench surface`'s ripple). Frames only: one point's

@@ -1,7 +1,10 @@
 """Side by side: `cao surface --ao-only` pictures (16-bit grey and alpha) over
 a dark grey background, written as one 8-bit grey PNG.
 
-    /usr/bin/python3 Rendering/Tool/Benchmark/montage.py out.png a.png b.png ...
+    /usr/bin/python3 Rendering/Tool/Benchmark/montage.py [--crop X,Y,W,H] [--zoom N] out.png a.png b.png ...
+
+--crop keeps the W x H pixels from column X, row Y (from the top) of each
+picture; --zoom repeats each pixel N x N times (no interpolation).
 """
 import sys
 
@@ -23,15 +26,39 @@ def tile(path):
     return (41.0 / 255.0) * (1.0 - alpha) + grey * alpha
 
 
-if len(sys.argv) < 3:
+args = sys.argv[1:]
+crop, zoom = None, 1
+while args and args[0] in ("--crop", "--zoom") and len(args) > 1:
+    if args[0] == "--crop":
+        crop = [int(v) for v in args[1].split(",")]
+        if len(crop) != 4 or min(crop) < 0 or crop[2] < 1 or crop[3] < 1:
+            sys.exit("--crop takes X,Y,W,H: four whole numbers, W and H at least 1")
+    else:
+        zoom = int(args[1])
+        if not 1 <= zoom <= 16:
+            sys.exit("--zoom takes a whole number from 1 to 16")
+    args = args[2:]
+if len(args) < 2:
     sys.exit(__doc__)
-row = np.concatenate([tile(p) for p in sys.argv[2:]], axis=1)
+
+
+def part(path):
+    t = tile(path)[::-1]  # rows from the top
+    if crop:
+        x, y, w, h = crop
+        if y + h > t.shape[0] or x + w > t.shape[1]:
+            sys.exit("--crop %s lies outside %s (%d x %d)" % (crop, path, t.shape[1], t.shape[0]))
+        t = t[y:y + h, x:x + w]
+    return np.kron(t, np.ones((zoom, zoom)))[::-1]
+
+
+row = np.concatenate([part(p) for p in args[1:]], axis=1)
 h, w = row.shape
 out = vtkImageData()
 out.SetDimensions(w, h, 1)
 out.GetPointData().SetScalars(numpy_to_vtk(np.clip(row * 255.0 + 0.5, 0, 255).astype(np.uint8).ravel(),
                                            deep=True))
 writer = vtkPNGWriter()
-writer.SetFileName(sys.argv[1])
+writer.SetFileName(args[0])
 writer.SetInputData(out)
 writer.Write()
