@@ -29,14 +29,18 @@ def tile(path):
 args = sys.argv[1:]
 crop, zoom = None, 1
 while args and args[0] in ("--crop", "--zoom") and len(args) > 1:
-    if args[0] == "--crop":
-        crop = [int(v) for v in args[1].split(",")]
-        if len(crop) != 4 or min(crop) < 0 or crop[2] < 1 or crop[3] < 1:
-            sys.exit("--crop takes X,Y,W,H: four whole numbers, W and H at least 1")
-    else:
-        zoom = int(args[1])
-        if not 1 <= zoom <= 16:
-            sys.exit("--zoom takes a whole number from 1 to 16")
+    try:
+        if args[0] == "--crop":
+            crop = [int(v) for v in args[1].split(",")]
+            if len(crop) != 4 or min(crop) < 0 or crop[2] < 1 or crop[3] < 1:
+                raise ValueError
+        else:
+            zoom = int(args[1])
+            if not 1 <= zoom <= 16:
+                raise ValueError
+    except ValueError:
+        sys.exit("--crop takes X,Y,W,H (four whole numbers, W and H at least 1); --zoom a whole number from 1 to 16;"
+                 " got %s %s" % (args[0], args[1]))
     args = args[2:]
 if len(args) < 2:
     sys.exit(__doc__)
