@@ -2,12 +2,14 @@
 
 #include "pqApplicationCore.h"
 #include "vtkContextualAOVolumeMapper.h"
+#include "vtkSMCAOVolumeRepresentationProxy.h"
 
 #include <QApplication>
 #include <QEvent>
 #include <QMouseEvent>
 #include <QTimer>
 #include <QWidget>
+
 
 namespace
 {
@@ -21,6 +23,7 @@ bool InRenderView(QObject* object)
       return true;
   return false;
 }
+
 }
 
 pqCAOPointerTracker::pqCAOPointerTracker(QObject* parent)
@@ -41,6 +44,10 @@ void pqCAOPointerTracker::onShutdown()
   if (qApp)
     qApp->removeEventFilter(this);
   vtkContextualAOVolumeMapper::SetPointerHeld(false);
+  for (const auto& proxy : this->Remote)
+    if (proxy)
+      proxy->PushPointerHeld(false);
+  this->Remote.clear();
 }
 
 bool pqCAOPointerTracker::eventFilter(QObject* watched, QEvent* event)
@@ -50,6 +57,13 @@ bool pqCAOPointerTracker::eventFilter(QObject* watched, QEvent* event)
     !vtkContextualAOVolumeMapper::GetPointerHeld() && InRenderView(watched))
   {
     vtkContextualAOVolumeMapper::SetPointerHeld(true);
+    // A GUI connected to a pvserver: the servers' mappers draw the frames.
+    this->Remote.clear();
+    for (vtkSMCAOVolumeRepresentationProxy* proxy : vtkSMCAOVolumeRepresentationProxy::ShownInRemoteSessions())
+    {
+      proxy->PushPointerHeld(true);
+      this->Remote.emplace_back(proxy);
+    }
   }
   else if (vtkContextualAOVolumeMapper::GetPointerHeld() &&
     (((type == QEvent::MouseButtonRelease || type == QEvent::MouseMove) &&
@@ -60,9 +74,19 @@ bool pqCAOPointerTracker::eventFilter(QObject* watched, QEvent* event)
     // a modal dialog opened, while the button was held), a move with no
     // button held, the application's deactivation or a blocked window.
     vtkContextualAOVolumeMapper::SetPointerHeld(false);
+    bool remote = false;
+    for (const auto& proxy : this->Remote)
+      if (proxy)
+      {
+        proxy->PushPointerHeld(false);
+        remote = true;
+      }
+    this->Remote.clear();
     // Frames drawn while held were interactive: one still frame of every
-    // view after the release, after the widget's own (queued).
-    if (vtkContextualAOVolumeMapper::GetFramesDrawnWhileHeld() > 0)
+    // view after the release, after the widget's own (queued). (A server's
+    // count is not read back: a round trip per release; its still frame,
+    // when nothing moved since the last one, redraws what it kept.)
+    if (vtkContextualAOVolumeMapper::GetFramesDrawnWhileHeld() > 0 || remote)
       QTimer::singleShot(0, []() {
         if (pqApplicationCore* core = pqApplicationCore::instance())
           core->render();

@@ -9,6 +9,10 @@
  * the interactor's focus and the release then reaches only the widget.
  * After the release, if the mapper drew frames while the button was held,
  * every view is rendered once more (still), so that the view ends exact.
+ * When the GUI is connected to a pvserver, the servers' processes draw:
+ * the press and the release are also sent to them (one "Contextual AO
+ * Volume" representation per server, PushPointerHeld), and every view is
+ * rendered once after the release.
  * Started with the GUI (an auto-start interface); pvpython, pvbatch and
  * the server do not load it.
  */
@@ -16,6 +20,12 @@
 #define pqCAOPointerTracker_h
 
 #include <QObject>
+
+#include "vtkWeakPointer.h"
+
+#include <vector>
+
+class vtkSMCAOVolumeRepresentationProxy;
 
 class pqCAOPointerTracker : public QObject
 {
@@ -31,6 +41,11 @@ public:
 
 protected:
   bool eventFilter(QObject* watched, QEvent* event) override;
+
+  /// The remote servers' representations told that the pointer is held
+  /// (vtkSMCAOVolumeRepresentationProxy::PushPointerHeld), to be told of the
+  /// release.
+  std::vector<vtkWeakPointer<vtkSMCAOVolumeRepresentationProxy>> Remote;
 };
 
 #endif

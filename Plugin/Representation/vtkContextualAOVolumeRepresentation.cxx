@@ -7,6 +7,7 @@
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkPVLODVolume.h"
+#include "vtkProcessModule.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkSmartPointer.h"
@@ -37,7 +38,8 @@ vtkContextualAOVolumeRepresentation::vtkContextualAOVolumeRepresentation()
   // The mapper's LAO precompute runs inside a render: its progress becomes
   // the representation's (ParaView shows a representation's progress in
   // the status bar and its Abort button sets the representation's
-  // AbortExecute, handed back to the mapper here).
+  // AbortExecute, handed back to the mapper here; not from a pvserver's
+  // processes: ForwardProgress).
   this->VolumeMapper->AddObserver(vtkCommand::ProgressEvent, this,
     &vtkContextualAOVolumeRepresentation::ForwardProgress);
 }
@@ -51,12 +53,34 @@ void vtkContextualAOVolumeRepresentation::ForwardProgress(vtkObject*, unsigned l
     mapper->SetAbortExecute(1);
     this->SetAbortExecute(0);
   }
+  // In a pvserver the progress reaches the GUI while it waits for the
+  // frame's image, and the GUI's event loop then repaints the render view
+  // in the middle of that render: VTK's cached OpenGL state no longer
+  // matches the context ("Error in cache state" at every clip move on a
+  // server of 2 processes). The GUI's own renders (a builtin session) and
+  // pvbatch keep it.
+  const int process = vtkProcessModule::GetProcessType();
+  if (process != vtkProcessModule::PROCESS_CLIENT && process != vtkProcessModule::PROCESS_BATCH)
+    return;
   this->SetProgressText("Contextual AO: LAO precompute");
   this->UpdateProgress(mapper->GetProgress());
 }
 
 //------------------------------------------------------------------------------
 vtkContextualAOVolumeRepresentation::~vtkContextualAOVolumeRepresentation() = default;
+
+//------------------------------------------------------------------------------
+const char* vtkContextualAOVolumeRepresentation::GetFrameReport()
+{
+  vtkContextualAOVolumeMapper* mapper = this->GetAOMapper();
+  this->FrameReport = mapper ? mapper->GetLastFrameReport() : std::string();
+  return this->FrameReport.c_str();
+}
+
+void vtkContextualAOVolumeRepresentation::SetPointerHeld(int held)
+{
+  vtkContextualAOVolumeMapper::SetPointerHeld(held != 0);
+}
 
 //------------------------------------------------------------------------------
 vtkContextualAOVolumeMapper* vtkContextualAOVolumeRepresentation::GetAOMapper()

@@ -24,6 +24,7 @@
 #include "vtkNew.h"          // For members
 #include "vtkSmartPointer.h" // For members
 
+#include <string> // For members
 #include <vector> // For members
 
 class vtkAlgorithm;
@@ -139,6 +140,24 @@ public:
   /// The mapper, for its work report.
   vtkContextualAOVolumeMapper* GetAOMapper();
 
+  /**
+   * The mapper's report of the last frame this process drew (JSON,
+   * vtkContextualAOVolumeMapper::GetLastFrameReport; empty before one),
+   * for the FrameReport information property: a client connected to a
+   * pvserver reads the first server process's.
+   */
+  const char* GetFrameReport();
+
+  /**
+   * Whether the application's pointer button is held over a render view,
+   * for this process's mappers (vtkContextualAOVolumeMapper::SetPointerHeld,
+   * process-wide): the GUI's pointer tracker sets it in the GUI's process
+   * and, through vtkSMCAOVolumeRepresentationProxy::PushPointerHeld, in the
+   * server's processes when the GUI is connected to a pvserver, where its
+   * own flag does not reach.
+   */
+  void SetPointerHeld(int held);
+
 protected:
   vtkContextualAOVolumeRepresentation();
   ~vtkContextualAOVolumeRepresentation() override;
@@ -146,6 +165,7 @@ protected:
   void UpdateMapperParameters() override;
 
   bool UseInputAmbientOcclusion = true;
+  std::string FrameReport; ///< GetFrameReport's copy
   int ClipShape = NONE;
   double ClipPosition[3] = { 0.0, 0.0, 0.0 };
   double ClipOrientation[3] = { 0.0, 0.0, 0.0 };

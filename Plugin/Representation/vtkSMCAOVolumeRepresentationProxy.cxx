@@ -1,26 +1,97 @@
 #include "vtkSMCAOVolumeRepresentationProxy.h"
 
+#include "vtkCAOFrameReportInformation.h"
+#include "vtkClientServerStream.h"
 #include "vtkCommand.h"
 #include "vtkDataObject.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPVArrayInformation.h"
 #include "vtkPVDataInformation.h"
+#include "vtkPVSession.h"
 #include "vtkSMArrayListDomain.h"
 #include "vtkSMPVRepresentationProxy.h"
 #include "vtkSMProperty.h"
 #include "vtkSMPropertyHelper.h"
 #include "vtkSMSourceProxy.h"
+#include "vtkSMStringVectorProperty.h"
 
+#include "vtkSMSession.h"
+
+#include <algorithm>
 #include <cstring>
+#include <set>
 
 vtkStandardNewMacro(vtkSMCAOVolumeRepresentationProxy);
 
-vtkSMCAOVolumeRepresentationProxy::vtkSMCAOVolumeRepresentationProxy() = default;
+namespace
+{
+/// Every live proxy of the class (the GUI's thread alone creates and reads them).
+std::vector<vtkSMCAOVolumeRepresentationProxy*>& Instances()
+{
+  static std::vector<vtkSMCAOVolumeRepresentationProxy*> instances;
+  return instances;
+}
+}
+
+vtkSMCAOVolumeRepresentationProxy::vtkSMCAOVolumeRepresentationProxy()
+{
+  Instances().push_back(this);
+}
 
 vtkSMCAOVolumeRepresentationProxy::~vtkSMCAOVolumeRepresentationProxy()
 {
+  auto& all = Instances();
+  all.erase(std::remove(all.begin(), all.end(), this), all.end());
   if (this->Watched)
     this->Watched->RemoveObserver(this->Observer);
+}
+
+//------------------------------------------------------------------------------
+void vtkSMCAOVolumeRepresentationProxy::PushPointerHeld(bool held)
+{
+  if (!this->ObjectsCreated)
+    return;
+  vtkClientServerStream stream;
+  stream << vtkClientServerStream::Invoke << VTKOBJECT(this) << "SetPointerHeld" << (held ? 1 : 0)
+         << vtkClientServerStream::End;
+  this->ExecuteStream(stream, false, vtkPVSession::RENDER_SERVER);
+}
+
+//------------------------------------------------------------------------------
+std::vector<vtkSMCAOVolumeRepresentationProxy*>
+vtkSMCAOVolumeRepresentationProxy::ShownInRemoteSessions()
+{
+  std::vector<vtkSMCAOVolumeRepresentationProxy*> found;
+  std::set<vtkSMSession*> sessions;
+  for (vtkSMCAOVolumeRepresentationProxy* proxy : Instances())
+  {
+    vtkSMSession* session = proxy->GetSession();
+    vtkSMProxy* parent = proxy->GetParentProxy();
+    if (!proxy->ObjectsCreated || !session || !session->IsA("vtkSMSessionClient") ||
+      sessions.count(session) || !parent || !parent->GetProperty("Representation"))
+      continue;
+    const char* type = vtkSMPropertyHelper(parent, "Representation").GetAsString();
+    if (type && std::strcmp(type, TypeName()) == 0)
+    {
+      sessions.insert(session);
+      found.push_back(proxy);
+    }
+  }
+  return found;
+}
+
+//------------------------------------------------------------------------------
+void vtkSMCAOVolumeRepresentationProxy::UpdatePropertyInformationInternal(vtkSMProperty* property)
+{
+  this->Superclass::UpdatePropertyInformationInternal(property);
+  auto* report = vtkSMStringVectorProperty::SafeDownCast(this->GetProperty("FrameReport"));
+  if (!report || (property && property != report) || !this->ObjectsCreated ||
+    !this->GetSession() || !this->GetSession()->IsA("vtkSMSessionClient"))
+    return;
+  vtkNew<vtkCAOFrameReportInformation> information;
+  this->GatherInformation(information, vtkPVSession::RENDER_SERVER);
+  report->SetElement(0, information->GetReport());
 }
 
 //------------------------------------------------------------------------------

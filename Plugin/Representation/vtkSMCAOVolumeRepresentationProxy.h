@@ -20,6 +20,8 @@
 #include "vtkSMRepresentationProxy.h"
 #include "vtkWeakPointer.h" // For the watched property
 
+#include <vector> // For ShownInRemoteSessions
+
 class vtkSMProperty;
 
 class CAOPARAVIEWREPRESENTATION_EXPORT vtkSMCAOVolumeRepresentationProxy
@@ -33,11 +35,31 @@ public:
   /// The representation type's name, as the XML gives it.
   static const char* TypeName() { return "Contextual AO Volume"; }
 
+  /**
+   * Tell the processes that draw this representation whether the
+   * application's pointer button is held over a render view
+   * (vtkContextualAOVolumeRepresentation::SetPointerHeld: the mapper's
+   * process-wide flag, so that still frames asked for during a widget drag
+   * are drawn as interactive ones). The GUI's pointer tracker calls it when
+   * connected to a pvserver: the flag it sets in its own process does not
+   * reach the server's. A method call, not a property: no undo entry, no
+   * state. Nothing before the proxy's objects exist.
+   */
+  void PushPointerHeld(bool held);
+
+  /// The proxies of this class whose display is "Contextual AO Volume" in
+  /// a session connected to a server (not builtin): one per session.
+  static std::vector<vtkSMCAOVolumeRepresentationProxy*> ShownInRemoteSessions();
+
 protected:
   vtkSMCAOVolumeRepresentationProxy();
   ~vtkSMCAOVolumeRepresentationProxy() override;
 
   void CreateVTKObjects() override;
+  /// FrameReport in a remote session: gathered from the server's first
+  /// process (the property itself would read the client's representation,
+  /// which draws none of the server's data).
+  void UpdatePropertyInformationInternal(vtkSMProperty* property = nullptr) override;
   /// The parent's Representation changed: colour by an array if it is ours
   /// and nothing is coloured.
   void RepresentationChanged();

@@ -16,7 +16,11 @@ handles, and appends to CAO_RESULT.events one JSON line per event:
 - "frame": each frame the mapper drew (time, its report's depth-peeling
   stage and stages, the clip pose the widget shows and whether the
   mapper's clip matrix is that pose);
-- "error": any error the mapper reported."""
+- "error": any error the mapper reported.
+Connected to a pvserver (test-gui-drag.sh with CAO_SERVER_URL set: a trial,
+docs/interaction.md), the server draws and each frame's report is read
+from it (the representation's FrameReport); the mapper's errors are then
+in the server's log."""
 import json
 import os
 import time
@@ -38,9 +42,18 @@ def emit(kind, **fields):
 
 LoadPlugin(os.environ["CAO_PLUGIN"], remote=False, ns=globals())
 import contextualao  # noqa: E402,F401  (wraps vtkContextualAOVolumeMapper)
+from paraview import servermanager  # noqa: E402
+
+# Connected to a pvserver (CAO_SERVER_URL): the server draws (remote
+# rendering); each frame's report is read from it (FrameReport).
+REMOTE = servermanager.ActiveConnection.IsRemote()
+if REMOTE:
+    LoadPlugin(os.environ["CAO_PLUGIN"], remote=True, ns=globals())
 
 reader = OpenDataFile(os.path.join(os.environ["CAO_DATA_DIR"], "HeadMRVolume.mhd"))
 view = GetActiveViewOrCreate("RenderView")
+if REMOTE:
+    view.RemoteRenderThreshold = 0
 display = Show(reader, view)
 ColorBy(display, ("POINTS", "MetaImage"))
 display.SetRepresentationType("Contextual AO Volume")
@@ -63,7 +76,22 @@ view.ResetCamera()
 Render(view)
 
 mapper = display.GetClientSideObject().GetActiveRepresentation().GetActor().GetMapper()
-frames = [mapper.GetFrameCount()]
+
+
+def last_report():
+    """The last frame's report: the client's mapper's, or the server's first process's."""
+    if not REMOTE:
+        return json.loads(mapper.GetLastFrameReport() or "{}")
+    display.UpdatePropertyInformation()
+    text = display.GetProperty("FrameReport").GetData()
+    return json.loads((text[0] if isinstance(text, (list, tuple)) else text) or "{}")
+
+
+def frame_count():
+    return last_report().get("frame", 0) if REMOTE else mapper.GetFrameCount()
+
+
+frames = [frame_count()]
 
 
 def on_error(obj, event):
@@ -71,11 +99,11 @@ def on_error(obj, event):
 
 
 def on_frame(obj, event):
-    count = mapper.GetFrameCount()
+    report = last_report()
+    count = report.get("frame", 0) if REMOTE else mapper.GetFrameCount()
     if count == frames[0]:
         return
     frames[0] = count
-    report = json.loads(mapper.GetLastFrameReport() or "{}")
     actual = matrix_list(mapper.GetClipShape().GetMatrix())
     follows = max(abs(a - e) for a, e in zip(actual, expected_matrix(display))) < 1e-9
     emit("frame", count=count, peel=report.get("depth_peeling", "?"),

@@ -6,7 +6,8 @@ script=$1
 events="$CAO_RESULT.events"
 now() { date +%s.%N; }
 mark() { echo "{\"kind\": \"driver\", \"what\": \"$1\", \"t\": $(now)}" >>"$events"; }
-paraview --dr --script="$script" >"$CAO_RESULT.gui.log" 2>&1 &
+# (CAO_SERVER_URL: connect to that server first: test-gui-remote.sh.)
+paraview --dr ${CAO_SERVER_URL:+--server-url="$CAO_SERVER_URL"} --script="$script" >"$CAO_RESULT.gui.log" 2>&1 &
 pv=$!
 trap 'kill $pv 2>/dev/null; wait $pv 2>/dev/null' EXIT
 for _ in $(seq 240); do

@@ -17,6 +17,8 @@
 # release to the last frame (measured, never asserted).
 # With SCRIPT.py and CHECK.py, another scene's drags and checks
 # (TestLinesDragGUI.py: the camera turned over streamlines).
+# With CAO_SERVER_URL set, the GUI connects to that server first (a
+# pvserver started by hand: a trial, docs/interaction.md).
 #   test-gui-drag.sh PLUGIN.so DATA_DIR RESULT_BASE [SCRIPT.py CHECK.py]
 set -uo pipefail
 here=$(cd "$(dirname "$0")" && pwd)

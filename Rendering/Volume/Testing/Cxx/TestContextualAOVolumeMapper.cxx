@@ -2225,6 +2225,57 @@ void Interactive(const Options& o)
   }
 }
 
+/// More views of one frame than the ray caster keeps (its
+/// MaximumKeptDraws, 6): cameras 0-5 are kept and each copied when drawn
+/// again; camera 6 replaces the least recently used (camera 0, whose frame
+/// is then cast again) and camera 1 is still copied. Every frame equals
+/// the first cast of its camera. `redrawn`: the report's count of copied
+/// draws. Control: the first pass casts every frame.
+template <typename Redrawn>
+void KeptDrawsEvicted(Scene& s, Redrawn redrawn)
+{
+  constexpr int MaximumKeptDraws = 6; // cao::gl::RayCaster::MaximumKeptDraws
+  vtkCamera* camera = s.renderer->GetActiveCamera();
+  double position[3], focal[3], up[3];
+  camera->GetPosition(position);
+  camera->GetFocalPoint(focal);
+  camera->GetViewUp(up);
+  std::vector<vtkSmartPointer<vtkCamera>> cameras;
+  for (int i = 0; i <= MaximumKeptDraws; ++i)
+  {
+    auto c = vtkSmartPointer<vtkCamera>::New();
+    c->DeepCopy(camera);
+    c->Azimuth(4.0 * (i + 1));
+    cameras.push_back(c);
+  }
+  std::vector<caotest::Image> first(cameras.size());
+  auto view = [&](int i, int copied, const char* what) {
+    camera->DeepCopy(cameras[static_cast<std::size_t>(i)]);
+    const caotest::Image frame = s.Frame();
+    const int n = redrawn();
+    if (first[static_cast<std::size_t>(i)].rgb.empty())
+      first[static_cast<std::size_t>(i)] = frame;
+    const long differing = caotest::DifferingPixels(first[static_cast<std::size_t>(i)], frame);
+    std::printf("kept draws: camera %d, %s: %d draw(s) copied; %ld pixel(s) differ from its first "
+                "frame\n", i, what, n, differing);
+    CAO_EXPECT(n == copied, "kept draws: camera %d, %s: %d draw(s) copied, expected %d", i, what,
+      n, copied);
+    CAO_EXPECT(differing == 0, "kept draws: camera %d, %s: %ld pixel(s) differ from its first "
+      "frame", i, what, differing);
+  };
+  s.mapper->SetKeepDraws(vtkContextualAOVolumeMapper::ALWAYS_KEEP_DRAWS);
+  for (int i = 0; i < MaximumKeptDraws; ++i)
+    view(i, 0, "first frame");
+  for (int i = 0; i < MaximumKeptDraws; ++i)
+    view(i, 1, "again (all kept)");
+  view(MaximumKeptDraws, 0, "one more view (replaces the least recently used)");
+  view(1, 1, "again (still kept)");
+  view(0, 0, "again (replaced: cast)");
+  camera->SetPosition(position);
+  camera->SetFocalPoint(focal);
+  camera->SetViewUp(up);
+}
+
 /// Kept draws (KeepDraws): a still frame drawn again with nothing changed
 /// is copied from the kept ray cast, and any change the ray cast reads
 /// casts again. On a carved HeadMR with AO and an opaque box in front of
@@ -2234,7 +2285,9 @@ void Interactive(const Options& o)
 /// it was copied: yes for the same frame again, no after a camera turn, a
 /// clip move, a colour change, the opaque box moved (its depth) and, with
 /// peeling, the translucent sphere moved (the peeled depths); and the
-/// direct draw (NEVER_KEEP_DRAWS) equals the kept draw's spread.
+/// direct draw (NEVER_KEEP_DRAWS) equals the kept draw's spread. Then in
+/// a viewport that does not start at the window's corner, and moved; and
+/// more views than are kept (KeptDrawsEvicted).
 void Keep(const Options& o)
 {
   Scene s;
@@ -2331,6 +2384,18 @@ void Keep(const Options& o)
       step(scene, "the same frame again", 1);
     }
   }
+  translucent->SetVisibility(0);
+  // A viewport that does not start at the window's corner (a view in a
+  // layout, a renderer beside another): the kept draw is spread where the
+  // cast draws, and moved elsewhere it is not copied.
+  s.renderer->SetViewport(0.3, 0.2, 1.0, 0.9);
+  step("viewport from (0.3, 0.2)", "first frame", 0);
+  step("viewport from (0.3, 0.2)", "the same frame again", 1);
+  s.renderer->SetViewport(0.05, 0.1, 0.75, 0.8);
+  step("viewport moved to (0.05, 0.1)", "first frame", 0);
+  step("viewport moved to (0.05, 0.1)", "the same frame again", 1);
+  s.renderer->SetViewport(0.0, 0.0, 1.0, 1.0);
+  KeptDrawsEvicted(s, redrawn);
   CAO_EXPECT(log.errors.empty(), "the mapper reported: %s",
     log.errors.empty() ? "" : log.errors[0].c_str());
   s.mapper->SetKeepDraws(vtkContextualAOVolumeMapper::AUTOMATIC_KEEP_DRAWS);
