@@ -10,7 +10,6 @@
 #include <QTimer>
 #include <QWidget>
 
-
 namespace
 {
 /// Whether a press delivered to `object` is over a render view: the VTK
@@ -23,7 +22,6 @@ bool InRenderView(QObject* object)
       return true;
   return false;
 }
-
 }
 
 pqCAOPointerTracker::pqCAOPointerTracker(QObject* parent)
@@ -45,8 +43,7 @@ void pqCAOPointerTracker::onShutdown()
     qApp->removeEventFilter(this);
   vtkContextualAOVolumeMapper::SetPointerHeld(false);
   for (const auto& proxy : this->Remote)
-    if (proxy)
-      proxy->PushPointerHeld(false);
+    proxy->PushPointerHeld(false);
   this->Remote.clear();
 }
 
@@ -59,7 +56,8 @@ bool pqCAOPointerTracker::eventFilter(QObject* watched, QEvent* event)
     vtkContextualAOVolumeMapper::SetPointerHeld(true);
     // A GUI connected to a pvserver: the servers' mappers draw the frames.
     this->Remote.clear();
-    for (vtkSMCAOVolumeRepresentationProxy* proxy : vtkSMCAOVolumeRepresentationProxy::ShownInRemoteSessions())
+    for (vtkSMCAOVolumeRepresentationProxy* proxy :
+      vtkSMCAOVolumeRepresentationProxy::ShownInRemoteSessions())
     {
       proxy->PushPointerHeld(true);
       this->Remote.emplace_back(proxy);
@@ -74,13 +72,9 @@ bool pqCAOPointerTracker::eventFilter(QObject* watched, QEvent* event)
     // a modal dialog opened, while the button was held), a move with no
     // button held, the application's deactivation or a blocked window.
     vtkContextualAOVolumeMapper::SetPointerHeld(false);
-    bool remote = false;
+    const bool remote = !this->Remote.empty();
     for (const auto& proxy : this->Remote)
-      if (proxy)
-      {
-        proxy->PushPointerHeld(false);
-        remote = true;
-      }
+      proxy->PushPointerHeld(false);
     this->Remote.clear();
     // Frames drawn while held were interactive: one still frame of every
     // view after the release, after the widget's own (queued). (A server's

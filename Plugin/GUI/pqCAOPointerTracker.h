@@ -21,7 +21,7 @@
 
 #include <QObject>
 
-#include "vtkWeakPointer.h"
+#include "vtkSmartPointer.h"
 
 #include <vector>
 
@@ -44,8 +44,10 @@ protected:
 
   /// The remote servers' representations told that the pointer is held
   /// (vtkSMCAOVolumeRepresentationProxy::PushPointerHeld), to be told of the
-  /// release.
-  std::vector<vtkWeakPointer<vtkSMCAOVolumeRepresentationProxy>> Remote;
+  /// release: held until then, so that a representation deleted during the
+  /// drag still carries the release to its server (else every still frame
+  /// there would stay interactive).
+  std::vector<vtkSmartPointer<vtkSMCAOVolumeRepresentationProxy>> Remote;
 };
 
 #endif

@@ -38,8 +38,8 @@ vtkContextualAOVolumeRepresentation::vtkContextualAOVolumeRepresentation()
   // The mapper's LAO precompute runs inside a render: its progress becomes
   // the representation's (ParaView shows a representation's progress in
   // the status bar and its Abort button sets the representation's
-  // AbortExecute, handed back to the mapper here; not from a pvserver's
-  // processes: ForwardProgress).
+  // AbortExecute, handed back to the mapper here; a pvserver's processes
+  // hand back the abort but keep the progress: ForwardProgress).
   this->VolumeMapper->AddObserver(vtkCommand::ProgressEvent, this,
     &vtkContextualAOVolumeRepresentation::ForwardProgress);
 }
@@ -58,9 +58,13 @@ void vtkContextualAOVolumeRepresentation::ForwardProgress(vtkObject*, unsigned l
   // in the middle of that render: VTK's cached OpenGL state no longer
   // matches the context ("Error in cache state" at every clip move on a
   // server of 2 processes). The GUI's own renders (a builtin session) and
-  // pvbatch keep it.
+  // pvbatch (every rank) keep it. The abort set on the representation
+  // still reaches the mapper (above), though the GUI, seeing no progress,
+  // shows no Abort button for that render.
   const int process = vtkProcessModule::GetProcessType();
-  if (process != vtkProcessModule::PROCESS_CLIENT && process != vtkProcessModule::PROCESS_BATCH)
+  if (process == vtkProcessModule::PROCESS_SERVER ||
+    process == vtkProcessModule::PROCESS_DATA_SERVER ||
+    process == vtkProcessModule::PROCESS_RENDER_SERVER)
     return;
   this->SetProgressText("Contextual AO: LAO precompute");
   this->UpdateProgress(mapper->GetProgress());

@@ -13,10 +13,9 @@
 #include "vtkSMPVRepresentationProxy.h"
 #include "vtkSMProperty.h"
 #include "vtkSMPropertyHelper.h"
+#include "vtkSMSession.h"
 #include "vtkSMSourceProxy.h"
 #include "vtkSMStringVectorProperty.h"
-
-#include "vtkSMSession.h"
 
 #include <algorithm>
 #include <cstring>
@@ -26,11 +25,13 @@ vtkStandardNewMacro(vtkSMCAOVolumeRepresentationProxy);
 
 namespace
 {
-/// Every live proxy of the class (the GUI's thread alone creates and reads them).
+/// Every live proxy of the class (server-manager proxies are made and used
+/// on the application's main thread). Never destroyed: a proxy released
+/// during the exit's static destruction still finds it.
 std::vector<vtkSMCAOVolumeRepresentationProxy*>& Instances()
 {
-  static std::vector<vtkSMCAOVolumeRepresentationProxy*> instances;
-  return instances;
+  static auto* instances = new std::vector<vtkSMCAOVolumeRepresentationProxy*>();
+  return *instances;
 }
 }
 
@@ -50,7 +51,9 @@ vtkSMCAOVolumeRepresentationProxy::~vtkSMCAOVolumeRepresentationProxy()
 //------------------------------------------------------------------------------
 void vtkSMCAOVolumeRepresentationProxy::PushPointerHeld(bool held)
 {
-  if (!this->ObjectsCreated)
+  vtkSMSession* session = this->GetSession();
+  if (!this->ObjectsCreated || !(this->GetLocation() & vtkPVSession::RENDER_SERVER) || !session ||
+    !session->GetIsAlive())
     return;
   vtkClientServerStream stream;
   stream << vtkClientServerStream::Invoke << VTKOBJECT(this) << "SetPointerHeld" << (held ? 1 : 0)

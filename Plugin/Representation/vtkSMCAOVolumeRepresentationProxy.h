@@ -43,7 +43,8 @@ public:
    * are drawn as interactive ones). The GUI's pointer tracker calls it when
    * connected to a pvserver: the flag it sets in its own process does not
    * reach the server's. A method call, not a property: no undo entry, no
-   * state. Nothing before the proxy's objects exist.
+   * state. Nothing before the proxy's objects exist, nor once its session
+   * is closed or lost.
    */
   void PushPointerHeld(bool held);
 

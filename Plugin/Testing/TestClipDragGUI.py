@@ -19,8 +19,10 @@ handles, and appends to CAO_RESULT.events one JSON line per event:
 - "error": any error the mapper reported.
 Connected to a pvserver (test-gui-drag.sh with CAO_SERVER_URL set: a trial,
 docs/interaction.md), the server draws and each frame's report is read
-from it (the representation's FrameReport); the mapper's errors are then
-in the server's log."""
+from it (the representation's FrameReport: a gather from the server at
+each frame the GUI draws, within the timed drag); the mapper's errors are
+then in the server's log, and "follows" reads the GUI's own mapper, which
+is given the same pose but draws nothing."""
 import json
 import os
 import time
