@@ -2286,8 +2286,8 @@ void KeptDrawsEvicted(Scene& s, Redrawn redrawn)
 /// clip move, a colour change, the opaque box moved (its depth) and, with
 /// peeling, the translucent sphere moved (the peeled depths); and the
 /// direct draw (NEVER_KEEP_DRAWS) equals the kept draw's spread. Then in
-/// a viewport that does not start at the window's corner, and moved; and
-/// more views than are kept (KeptDrawsEvicted).
+/// a viewport that does not start at the window's corner, and moved; more
+/// views than are kept (KeptDrawsEvicted); and a frame too large to keep.
 void Keep(const Options& o)
 {
   Scene s;
@@ -2396,6 +2396,32 @@ void Keep(const Options& o)
   step("viewport moved to (0.05, 0.1)", "the same frame again", 1);
   s.renderer->SetViewport(0.0, 0.0, 1.0, 1.0);
   KeptDrawsEvicted(s, redrawn);
+  // A frame too large to keep (more than the ray caster's 256 MiB of kept
+  // draws at 32 bytes a pixel: 2 900 x 2 900 pixels, 269 MB) is drawn
+  // directly every time, with no error; back at the usual size, keeping
+  // resumes. (The volume seen from afar: a few pixels to cast, while what
+  // is kept is the whole viewport.)
+  {
+    vtkCamera* camera = s.renderer->GetActiveCamera();
+    const double angle = camera->GetViewAngle();
+    camera->SetViewAngle(angle * 12.0 > 170.0 ? 170.0 : angle * 12.0);
+    s.window->SetSize(2900, 2900);
+    const caotest::Image first = s.Frame();
+    const caotest::Image again = s.Frame();
+    const int n = redrawn();
+    const long differing = caotest::DifferingPixels(first, again);
+    std::printf("a frame too large to keep (2900 x 2900): %d draw(s) copied when drawn again; %ld "
+                "pixel(s) differ\n", n, differing);
+    CAO_EXPECT(n == 0, "a frame too large to keep was copied (%d draws)", n);
+    CAO_EXPECT(differing == 0, "a frame too large to keep differs when drawn again (%ld pixels)",
+      differing);
+    s.window->SetSize(Size, Size);
+    camera->SetViewAngle(angle);
+    s.Frame();
+    s.Frame();
+    CAO_EXPECT(redrawn() == 1, "back at %d x %d pixels the same frame again is not copied (%d)",
+      Size, Size, redrawn());
+  }
   CAO_EXPECT(log.errors.empty(), "the mapper reported: %s",
     log.errors.empty() ? "" : log.errors[0].c_str());
   s.mapper->SetKeepDraws(vtkContextualAOVolumeMapper::AUTOMATIC_KEEP_DRAWS);
