@@ -101,11 +101,12 @@ def on_error(obj, event):
 
 
 def on_frame(obj, event):
-    report = last_report()
+    report = last_report() if REMOTE else None  # (remote: the count is the report's)
     count = report.get("frame", 0) if REMOTE else mapper.GetFrameCount()
     if count == frames[0]:
         return
     frames[0] = count
+    report = report if REMOTE else last_report()
     actual = matrix_list(mapper.GetClipShape().GetMatrix())
     follows = max(abs(a - e) for a, e in zip(actual, expected_matrix(display))) < 1e-9
     emit("frame", count=count, peel=report.get("depth_peeling", "?"),
