@@ -26,12 +26,13 @@ vtkPVRenderViewWithContextualAO::~vtkPVRenderViewWithContextualAO() = default;
 void vtkPVRenderViewWithContextualAO::Update()
 {
   this->Superclass::Update();
-  // Voxel cones on the world and eye grids see every process's pieces; the
-  // frustum grid, HBAO and volumetric AO only this process's.
+  // A technique that reads the world or eye grid sees every process's
+  // pieces; on the frustum grid, or one that reads only the G-buffer, it
+  // sees this process's alone.
   vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
   const int processes = controller ? controller->GetNumberOfProcesses() : 1;
   const bool shared =
-    this->Pass->GetMethod() == vtkContextualAOPass::VCT && this->Pass->GetGrid() != vtkContextualAOPass::FRUSTUM_GRID;
+    this->Pass->GetMethodReadsGrid() && this->Pass->GetGrid() != vtkContextualAOPass::FRUSTUM_GRID;
   if (processes > 1 && this->Pass->GetMethod() != vtkContextualAOPass::NONE && !shared && !this->WarnedParallel &&
     controller->GetLocalProcessId() == 0)
   {

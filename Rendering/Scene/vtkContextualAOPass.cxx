@@ -43,7 +43,7 @@
 #include "vtkCAOSceneLines.h"
 #include "vtkCAOInput.h"
 #include "vtkCAOSceneVolume.h"
-#include "vtkCAOScreenTechnique.h"
+#include "vtkCAOSurfaceTechnique.h"
 #include "caoLineShading.h"
 #include "caoParallelFor.h"
 #include "vtkContextualAOVolumeMapper.h"
@@ -454,10 +454,10 @@ struct vtkContextualAOPass::Internals
   double ndcToWorld[16] = { 0 }; ///< the traced camera's
   cao::PixelCamera pixels;       ///< the traced camera, as the kernels take it
   double tolerance = 1e-9;       ///< drawn against traced point: half a voxel
-  bool ignoredVolumes = false;   ///< volumes in view that a screen-space method does not see
+  bool ignoredVolumes = false;   ///< volumes in view that a technique that reads only the G-buffer does not see
   vtkCAO::SceneGPU gpu;          ///< the AO on the window's OpenGL (Backend)
   bool onGPU = false;            ///< this frame's AO runs there
-  bool gpuFrame = false;         ///< and its pixels stay there (VCT, depth G-buffer): no read-back
+  bool gpuFrame = false;         ///< and its pixels stay there (a GPU frame step, depth G-buffer): no read-back
   int gbuffer = RAY_CAST;        ///< this frame's G-buffer (GBuffer, Auto resolved)
   bool hostAOStale = false;      ///< the GPU frame's AO not yet read into frame.ao (GetPixelAO)
   int depthSerial = 0;           ///< GPU frame: drawn depths that differed from the traced one
@@ -526,44 +526,58 @@ struct vtkContextualAOPass::Internals
   bool VoxelizeFrustum(vtkContextualAOPass* self, Clock::time_point& start);
   bool UpdateVolumes(vtkContextualAOPass* self);
   std::vector<double> ViewKey(vtkContextualAOPass* self, vtkRenderer* ren, vtkMatrix4x4*& toNDC);
-  /// VCT's plan from the pass's settings on this frame's grid, with the
-  /// volumes' opacity (on the GPU: uploaded when it was rebuilt, or the
-  /// engine is new).
-  bool BuildPlan(vtkContextualAOPass* self, cao::VCTPlan& plan, std::string& error)
+  /// The volumes occluding through the grid, put on the GPU when they were
+  /// rebuilt or the engine is new (a technique that reads the grid, there).
+  bool UploadVolumes(std::string& error)
   {
-    cao::VCTSettings settings;
-    settings.quality = static_cast<cao::Quality>(self->Quality);
-    settings.slices = self->Slices;
-    settings.radius = this->radius;
-    settings.occupancy = static_cast<cao::VCTOccupancy>(self->Occupancy);
-    if (!cao::BuildVCTPlan(settings, this->grid, plan, error))
-      return false;
-    for (const cao::OpacityVolume& volume : this->opacity)
-      plan.volumes.push_back(&volume);
     const int uploaded[2] = { this->volumeSerial, this->gpu.Generation() };
     if (!this->onGPU || (uploaded[0] == this->uploadedVolumes[0] && uploaded[1] == this->uploadedVolumes[1]))
       return true;
-    if (!this->gpu.Volumes(plan.volumes, error))
+    if (!this->gpu.Volumes(this->VolumeList(), error))
       return false;
     ++this->volumeUploads;
     this->uploadedVolumes[0] = uploaded[0];
     this->uploadedVolumes[1] = uploaded[1];
     return true;
   }
+  std::vector<const cao::OpacityVolume*> VolumeList() const
+  {
+    std::vector<const cao::OpacityVolume*> list;
+    for (const cao::OpacityVolume& volume : this->opacity)
+      list.push_back(&volume);
+    return list;
+  }
   int uploadedVolumes[2] = { -1, -1 }; ///< the volume serial and GPU generation on the GPU
   int volumeUploads = 0;               ///< the volumes' opacity put on the GPU, so far (the report)
-  /// The screen-space technique of the pass's Method (null: None or Voxel
-  /// Cones, the pass's own step) and what it gets from the pass.
-  static const vtkCAO::ScreenTechnique* Screen(const vtkContextualAOPass* self)
+  /// The technique of the pass's Method (null: None).
+  static const vtkCAO::SurfaceTechnique* Technique(const vtkContextualAOPass* self)
   {
-    return self->Method > VCT ? vtkCAO::FindScreenTechnique(self->Method) : nullptr;
+    return self->Method != NONE ? vtkCAO::FindSurfaceTechnique(self->Method) : nullptr;
   }
-  vtkCAO::ScreenTechniqueSettings ScreenSettingsOf(const vtkContextualAOPass* self) const
+  /// Whether this frame's technique reads the scene's grid (through which
+  /// volumes and lines occlude the surfaces).
+  static bool ReadsGrid(const vtkContextualAOPass* self)
   {
-    vtkCAO::ScreenTechniqueSettings settings;
+    const vtkCAO::SurfaceTechnique* t = Technique(self);
+    return t && t->readsGrid;
+  }
+  /// What the technique gets from the pass (`volumes`: the list the
+  /// settings point to, kept by the caller).
+  vtkCAO::SurfaceTechniqueSettings SettingsOf(
+    const vtkContextualAOPass* self, std::vector<const cao::OpacityVolume*>& volumes) const
+  {
+    vtkCAO::SurfaceTechniqueSettings settings;
     settings.quality = self->Quality;
     settings.radius = this->radius;
     settings.indirectLight = self->IndirectLight;
+    if (ReadsGrid(self))
+    {
+      volumes = this->VolumeList();
+      settings.grid = &this->grid;
+      settings.slices = self->Slices;
+      settings.occupancy = self->Occupancy;
+      settings.volumes = &volumes;
+    }
     return settings;
   }
   bool UpdateAO(vtkContextualAOPass* self, vtkRenderer* ren);
@@ -693,11 +707,10 @@ std::string vtkContextualAOPass::GetLastFrameStages() const
 
 void vtkContextualAOPass::SetMethod(int method)
 {
-  if (method != NONE && method != VCT && !vtkCAO::FindScreenTechnique(method))
+  if (method != NONE && !vtkCAO::FindSurfaceTechnique(method))
   {
-    vtkErrorMacro("Method " << method << " is none of 0 (None), 1 (Voxel Cones) and the registered screen-space "
-                               "techniques ("
-                            << vtkCAO::ScreenTechniqueList() << "); the Method stays " << this->Method);
+    vtkErrorMacro("Method " << method << " is none of 0 (None) and the registered surface techniques ("
+                            << vtkCAO::SurfaceTechniqueList() << "); the Method stays " << this->Method);
     return;
   }
   if (this->Method != method)
@@ -705,6 +718,11 @@ void vtkContextualAOPass::SetMethod(int method)
     this->Method = method;
     this->Modified();
   }
+}
+
+bool vtkContextualAOPass::GetMethodReadsGrid() const
+{
+  return Internals::ReadsGrid(this);
 }
 
 std::string vtkContextualAOPass::GetLastFrameReport() const
@@ -720,7 +738,7 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
     return o.str();
   }
   o << "{\"frame\": " << this->FrameCount << ", \"method\": \""
-    << (this->Method == VCT ? std::string("vct") : Internals::Screen(this) ? Internals::Screen(this)->name : std::string("none"))
+    << (Internals::Technique(this) ? Internals::Technique(this)->name : std::string("none"))
     << "\", \"apply_to\": \""
     << (this->ApplyTo == AMBIENT_TERM ? "ambient" : "whole colour") << "\", \"grid\": \""
     << (this->Grid == EYE_GRID ? "eye" : this->Grid == FRUSTUM_GRID ? "frustum" : "world") << "\", \"occupancy\": \""
@@ -743,7 +761,7 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
     o << ", \"backend_note\": \"" << p.backendNote << "\"";
   if (p.frameProcesses > 1) // parallel rendering: does the grid hold every process's pieces
     o << ", \"processes\": " << p.frameProcesses << ", \"grid_of_all_processes\": "
-      << (this->Method == VCT && this->Grid != FRUSTUM_GRID && p.sharedError.empty() && !p.sharedGrid.bits.empty()
+      << (Internals::ReadsGrid(this) && this->Grid != FRUSTUM_GRID && p.sharedError.empty() && !p.sharedGrid.bits.empty()
              ? "true"
              : "false")
       << ", \"exchanged_changes\": " << p.exchange.Changes();
@@ -752,8 +770,8 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
   if (p.gpuFrame) // the drawn depth: blitted (a GPU copy) or read into a buffer (on the GPU too)
     o << ", \"frame_depth\": \"" << p.gpu.FrameDepthPath() << "\"";
   if (p.ignoredVolumes)
-    o << ", \"volumes\": \"not seen: the screen-space methods read the opaque depth, drawn before the volumes\"";
-  if (Internals::Screen(this) && Internals::Screen(this)->indirect)
+    o << ", \"volumes\": \"not seen: the technique reads only the G-buffer of the opaque depth, drawn before the volumes\"";
+  if (Internals::Technique(this) && Internals::Technique(this)->indirect)
     o << ", \"indirect_light\": " << (this->IndirectLight ? "true" : "false");
   if (!p.skippedVolumes.empty())
   {
@@ -780,8 +798,9 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
                "too few to see the neighbours (raise the Radius or LineSlices)\""
              : "")
       << ", \"occlude_surfaces\": "
-      << (this->Method == VCT && this->Grid != FRUSTUM_GRID && p.linesOccludeSurfaces && !p.pieces.empty() ? "true"
-                                                                                                            : "false")
+      << (Internals::ReadsGrid(this) && this->Grid != FRUSTUM_GRID && p.linesOccludeSurfaces && !p.pieces.empty()
+             ? "true"
+             : "false")
       << "}";
   if (!p.linesNote.empty())
     o << ", \"lines_note\": \"" << p.linesNote << "\"";
@@ -830,18 +849,25 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
   if (width < 1 || height < 1)
     return; // nothing on screen: no work
   // A tiled render (an image larger than the window, drawn tile by tile):
-  // the methods that read the screen (HBAO, volumetric AO, the frustum grid) see each
-  // tile alone, so its edges show as seams; said once per tiling.
+  // the techniques that read only the screen (HBAO, volumetric AO) and the
+  // frustum grid see each tile alone, so its edges show as seams; said once
+  // per tiling.
   int* tileScale = ren->GetRenderWindow() ? ren->GetRenderWindow()->GetTileScale() : nullptr;
   const bool tiled = tileScale && (tileScale[0] > 1 || tileScale[1] > 1);
-  const vtkCAO::ScreenTechnique* screen = Screen(self);
-  const bool screenBound = screen || self->Grid == FRUSTUM_GRID;
+  const vtkCAO::SurfaceTechnique* technique = Technique(self);
+  if (!technique) // (SetMethod takes only registered values)
+  {
+    this->Fail(self, "Method " + std::to_string(self->Method) + " is no registered surface technique");
+    return;
+  }
+  const bool readsGrid = technique->readsGrid;
+  const bool screenBound = !readsGrid || self->Grid == FRUSTUM_GRID;
   if (tiled && screenBound && !this->warnedTiles)
     vtkWarningWithObjectMacro(self, << "A tiled render (" << tileScale[0] << " x " << tileScale[1]
       << " tiles: an image larger than the window): "
-      << (screen ? screen->label : std::string("the frustum grid"))
+      << (readsGrid ? std::string("the frustum grid") : technique->label)
       << " sees each tile alone, so the tiles' edges show as seams; render at the window's size, or use "
-         "Voxel Cones on the world or eye grid");
+         "a technique that reads the grid (Voxel Cones) on the world or eye grid");
   this->warnedTiles = tiled && screenBound;
   this->Collect(self, ren);
   this->frameProcesses = this->Distributed() ? this->controller->GetNumberOfProcesses() : 1;
@@ -850,7 +876,7 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
     // Every process, every frame, before anything that may differ between
     // them: the lines, the surfaces' grid (holding the lines), the lines' grid.
     this->ShareLines(self);
-    if (self->Method == VCT && self->Grid != FRUSTUM_GRID && this->lines.Shared())
+    if (readsGrid && self->Grid != FRUSTUM_GRID && this->lines.Shared())
       this->frameSceneKey.insert(this->frameSceneKey.begin() + 2, -1.0 - this->lineExchange.Changes());
     this->Exchange(self);
     this->ShareLineGrid(self, ren);
@@ -901,7 +927,7 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
   }
   if (!this->ResolveBackend(self, ren))
     return;
-  if (self->Method == VCT && (self->Slices < 32 || self->Slices > 1024 || self->Slices % 32 != 0))
+  if (readsGrid && (self->Slices < 32 || self->Slices > 1024 || self->Slices % 32 != 0))
   {
     this->Fail(self, "Slices must be 32..1024 and a multiple of 32 (got " +
         std::to_string(self->Slices) + ")");
@@ -912,19 +938,19 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
   // every other frame reads the drawn depth once: the depth G-buffer and
   // the combine's drawn-is-traced test both read it.
   const bool wasOnGPU = this->gpuFrame;
-  const bool frustum = self->Method == VCT && self->Grid == FRUSTUM_GRID;
-  const bool hostIndirect = screen && screen->indirect && self->IndirectLight;
-  this->gpuFrame = this->onGPU && this->gbuffer == DEPTH_BUFFER && !hostIndirect && !(screen && !screen->gpuFrame) &&
+  const bool frustum = readsGrid && self->Grid == FRUSTUM_GRID;
+  const bool hostIndirect = technique->indirect && self->IndirectLight;
+  this->gpuFrame = this->onGPU && this->gbuffer == DEPTH_BUFFER && !hostIndirect && technique->gpuFrame &&
     !frustum && !this->linesOn;
   if (this->onGPU && this->gbuffer == DEPTH_BUFFER && this->linesOn)
     this->backendNote = "the lines' drawn depth is read back to the host (the surfaces' AO and the lines' "
                         "G-buffer, grid and prisms still on the GPU)";
   if (this->onGPU && this->gbuffer == DEPTH_BUFFER && hostIndirect)
-    this->backendNote = screen->label + "'s indirect light runs on the CPU: the frame's pixels are read back (the AO "
+    this->backendNote = technique->label + "'s indirect light runs on the CPU: the frame's pixels are read back (the AO "
       "still on the GPU)";
-  if (this->onGPU && this->gbuffer == DEPTH_BUFFER && screen && !screen->gpuFrame)
-    this->backendNote = screen->label + " has no GPU frame step: the frame's pixels are read back" +
-      (screen->gpu ? " (the AO still on the GPU)" : ", its AO on the CPU");
+  if (this->onGPU && this->gbuffer == DEPTH_BUFFER && !technique->gpuFrame)
+    this->backendNote = technique->label + " has no GPU frame step: the frame's pixels are read back" +
+      (technique->gpu ? " (the AO still on the GPU)" : ", its AO on the CPU");
   if (this->onGPU && this->gbuffer == DEPTH_BUFFER && frustum)
     this->backendNote = "the frustum grid's columns start at the G-buffer's depths: the frame's pixels are read back "
                         "(the grid and cones still on the GPU)";
@@ -967,13 +993,13 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
   this->actorSignature = 0.0;
   this->volumes.clear();
   std::vector<double>& key = this->frameSceneKey;
-  // VCT needs the grid (its slices and kind count); the screen-space
-  // methods need the triangles for the ray cast, or only their bounds.
-  const bool vct = self->Method == VCT;
+  // A technique that reads the grid needs it (its slices and kind count);
+  // the others need the triangles for the ray cast, or only their bounds.
+  const bool readsGrid = ReadsGrid(self);
   // (The G-buffer's Auto is resolved with the backend: ResolveBackend.)
   this->gbuffer = self->GBuffer == GBUFFER_AUTO ? RAY_CAST : self->GBuffer;
-  key = { self->Radius, vct ? 0.0 : this->gbuffer == RAY_CAST ? 1.0 : 2.0 };
-  if (vct)
+  key = { self->Radius, readsGrid ? 0.0 : this->gbuffer == RAY_CAST ? 1.0 : 2.0 };
+  if (readsGrid)
     key.insert(key.end(), { static_cast<double>(self->Slices), static_cast<double>(self->Grid) });
   // The processes whose pieces the scene holds (1: this one's).
   key.push_back(this->Distributed() ? static_cast<double>(this->controller->GetNumberOfProcesses()) : 1.0);
@@ -1020,12 +1046,12 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
   // The lines occlude the surfaces through the world or eye grid: the grid
   // depends on them (UpdateGrid; across processes on every process's
   // lines: RunAO).
-  if (vct && this->linesOn && self->Grid != FRUSTUM_GRID && !this->Distributed())
+  if (readsGrid && this->linesOn && self->Grid != FRUSTUM_GRID && !this->Distributed())
   {
     key.push_back(static_cast<double>(this->lines.Key().size()));
     key.insert(key.end(), this->lines.Key().begin(), this->lines.Key().end());
   }
-  if (vct && self->Grid == EYE_GRID) // the camera's orientation (a dolly or pan moves its last bits only)
+  if (readsGrid && self->Grid == EYE_GRID) // the camera's orientation (a dolly or pan moves its last bits only)
   {
     vtkMatrix4x4* view = ren->GetActiveCamera()->GetViewTransformMatrix();
     for (int i = 0; i < 12; ++i)
@@ -1040,7 +1066,7 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
   while (vtkVolume* volume = volumes->GetNextVolume(it))
     if (volume->GetVisibility() && volume->GetMapper() && volume->GetProperty())
     {
-      if (!vct)
+      if (!readsGrid)
       {
         this->ignoredVolumes = true; // drawn after the AO step: not in the depth it reads
         continue;
@@ -1059,9 +1085,9 @@ bool vtkContextualAOPass::Internals::ResolveBackend(vtkContextualAOPass* self, v
   this->onGPU = self->Backend != BACKEND_CPU && this->gpu.Resolve(ren->GetRenderWindow(), self->Backend, error);
   if (!error.empty())
     return this->Fail(self, error);
-  if (this->onGPU && self->Method == VCT && !this->volumes.empty())
+  if (this->onGPU && ReadsGrid(self) && !this->volumes.empty())
   {
-    // The volumes' opacity must fit the GPU cone tracer's limits: else the
+    // The volumes' opacity must fit the GPU grid's limits: else the
     // CPU under Auto, an error under OpenGL.
     long long voxels = 0;
     for (vtkVolume* volume : this->volumes)
@@ -1080,10 +1106,10 @@ bool vtkContextualAOPass::Internals::ResolveBackend(vtkContextualAOPass* self, v
   if (self->GBuffer == GBUFFER_AUTO)
   {
     this->gbuffer = this->onGPU ? DEPTH_BUFFER : RAY_CAST;
-    if (self->Method != VCT) // the screen-space methods' scene: the ray cast's triangles or not
+    if (!ReadsGrid(self)) // the G-buffer techniques' scene: the ray cast's triangles or not
       this->frameSceneKey[1] = this->gbuffer == RAY_CAST ? 1.0 : 2.0;
   }
-  if (self->Method == VCT) // where the grid is (before the eye grid's view rows, which end the key)
+  if (ReadsGrid(self)) // where the grid is (before the eye grid's view rows, which end the key)
     this->frameSceneKey.insert(this->frameSceneKey.begin() + 2,
       { this->onGPU ? 1.0 : 0.0, static_cast<double>(this->onGPU ? this->gpu.Generation() : 0) });
   return true;
@@ -1177,7 +1203,7 @@ void vtkContextualAOPass::Internals::Exchange(vtkContextualAOPass* self)
   if (!vtkCAO::SceneExchange::CommonArea(this->controller, views, this->pieceActor, this->surfaceActors,
         this->actorSignature, this->commonArea))
     this->commonArea = 0.0; // (the radius then falls back to the tenth of the diagonal)
-  if (self->Method != VCT || self->Grid == FRUSTUM_GRID)
+  if (!ReadsGrid(self) || self->Grid == FRUSTUM_GRID)
     return;
   // The world (or eye) grid of the common bounds, planned alike on every
   // process from the same numbers, then combined.
@@ -1335,10 +1361,10 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
   const auto start = Clock::now();
   // The BVH only for the ray-cast G-buffer (the grids are voxelized from
   // the triangles; a G-buffer changed later builds it then: EnsureBVH).
-  const bool vct = self->Method == VCT, needBVH = this->gbuffer == RAY_CAST;
+  const bool readsGrid = ReadsGrid(self), needBVH = this->gbuffer == RAY_CAST;
   this->reasons.push_back(this->sceneKey.empty() ? "first frame"
-      : vct && self->Grid == EYE_GRID            ? "geometry, grid or camera orientation changed"
-      : vct                                      ? "geometry or grid changed"
+      : readsGrid && self->Grid == EYE_GRID      ? "geometry, grid or camera orientation changed"
+      : readsGrid                                ? "geometry or grid changed"
                                                  : "geometry or method changed");
   std::vector<std::vector<double>> points;
   std::vector<std::vector<std::int64_t>> triangles;
@@ -1398,7 +1424,7 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
   // The drawn-is-traced test's tolerance: half a voxel (the screen-space
   // methods, which have no grid: of a 128-slice grid, a fixed fraction).
   this->tolerance = std::max(0.5 * diagonal / 128.0, 1e-9);
-  if (!vct)
+  if (!readsGrid)
   {
     this->sceneKey = this->frameSceneKey;
     ++this->serial;
@@ -1533,7 +1559,7 @@ std::vector<double> vtkContextualAOPass::Internals::ViewKey(
   std::vector<double> key{ static_cast<double>(this->serial),
     static_cast<double>(this->volumeSerial), static_cast<double>(width),
     static_cast<double>(height), static_cast<double>(self->Quality), this->radius,
-    static_cast<double>(self->Method), static_cast<double>(self->Method == VCT ? self->Occupancy : 0) };
+    static_cast<double>(self->Method), static_cast<double>(ReadsGrid(self) ? self->Occupancy : 0) };
   for (int i = 0; i < 16; ++i)
     key.push_back(toNDC->GetElement(i / 4, i % 4));
   key.push_back(this->gbuffer);
@@ -1564,10 +1590,11 @@ bool vtkContextualAOPass::Internals::RunGPUFrame(vtkContextualAOPass* self, cons
     this->frame = cao::SurfaceFrame(); // no AO until this trace succeeds
     this->hostAOStale = false;
     vtkMatrix4x4::Invert(&toNDC->Element[0][0], this->ndcToWorld);
-    // The cones read the G-buffer in the grid's frame, the screen-space
-    // estimators in world coordinates.
-    const bool vct = self->Method == VCT;
-    if (!this->gpu.FrameGBuffer(this->ndcToWorld, vct ? this->grid : cao::BitGrid(), covered, error))
+    // A technique that reads the grid reads the G-buffer in the grid's
+    // frame, the others in world coordinates.
+    const vtkCAO::SurfaceTechnique* technique = Technique(self); // (one with a GPU frame step: RunAO)
+    const bool readsGrid = technique && technique->readsGrid;
+    if (!this->gpu.FrameGBuffer(this->ndcToWorld, readsGrid ? this->grid : cao::BitGrid(), covered, error))
       return this->Fail(self, "the GPU frame's G-buffer: " + error);
     this->Stage("gbuffer", start);
     start = Clock::now();
@@ -1575,10 +1602,9 @@ bool vtkContextualAOPass::Internals::RunGPUFrame(vtkContextualAOPass* self, cons
     std::copy(this->ndcToWorld, this->ndcToWorld + 16, pixels.ndcToWorld);
     pixels.width = rect[2];
     pixels.height = rect[3];
-    cao::VCTPlan plan;
-    const vtkCAO::ScreenTechnique* screen = Screen(self); // (one with a GPU frame step: RunAO)
-    if (vct ? !this->BuildPlan(self, plan, error) || !this->gpu.FrameTrace(plan, error)
-            : !screen || !screen->gpuFrame(this->gpu, pixels, this->ScreenSettingsOf(self), error))
+    std::vector<const cao::OpacityVolume*> volumes;
+    if (!technique || !technique->gpuFrame || (readsGrid && !this->UploadVolumes(error)) ||
+      !technique->gpuFrame(this->gpu, pixels, this->SettingsOf(self, volumes), error))
       return this->Fail(self, error);
     this->Stage("trace", start);
     this->frame = cao::SurfaceFrame();
@@ -1658,7 +1684,9 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
       : this->gbuffer == DEPTH_BUFFER           ? "camera, drawn depth or settings changed"
                                                 : "camera or settings changed");
   this->viewKey.clear();
-  if (self->Method == VCT && self->Grid == FRUSTUM_GRID)
+  const vtkCAO::SurfaceTechnique* technique = Technique(self); // (not null: RunAO)
+  const bool readsGrid = technique && technique->readsGrid;
+  if (readsGrid && self->Grid == FRUSTUM_GRID)
   {
     // Before the G-buffer: fewer Slices or a smaller view.
     const std::string why = cao::CheckFrustumSize(width, height, self->Slices);
@@ -1688,24 +1716,15 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
   }
   this->primaryKey = primary;
   start = Clock::now();
-  if (const vtkCAO::ScreenTechnique* screen = Screen(self))
-  {
-    const vtkCAO::ScreenTechniqueSettings settings = this->ScreenSettingsOf(self);
-    if (this->onGPU && screen->gpu ? !screen->gpu(this->gpu, pixels, settings, this->frame, error)
-                                   : !screen->cpu(pixels, settings, this->frame, error))
-      return this->Fail(self, error);
-  }
-  else
-  {
-    if (self->Grid == FRUSTUM_GRID && !this->VoxelizeFrustum(self, start))
-      return false;
-    cao::VCTPlan plan;
-    if (!this->BuildPlan(self, plan, error))
-      return this->Fail(self, error);
-    if (this->onGPU ? !this->gpu.Trace(this->grid, plan, this->frame, error)
-                    : !cao::VCTFrame(this->grid, plan, this->frame, 0, error))
-      return this->Fail(self, error);
-  }
+  // The frustum grid's slices start at this G-buffer's depths.
+  if (readsGrid && self->Grid == FRUSTUM_GRID && !this->VoxelizeFrustum(self, start))
+    return false;
+  std::vector<const cao::OpacityVolume*> volumes;
+  const vtkCAO::SurfaceTechniqueSettings settings = this->SettingsOf(self, volumes);
+  if (!technique || (readsGrid && !this->UploadVolumes(error)) ||
+    (this->onGPU && technique->gpu ? !technique->gpu(this->gpu, pixels, settings, this->frame, error)
+                                   : !technique->cpu(pixels, settings, this->frame, error)))
+    return this->Fail(self, error);
   this->viewKey = key;
   ++self->TraceCount;
   this->Stage("trace", start);
@@ -1929,8 +1948,8 @@ bool vtkContextualAOPass::Internals::Combine(vtkContextualAOPass* self, const vt
     this->Stage("ambient", start);
   }
   std::vector<float> indirect;
-  const vtkCAO::ScreenTechnique* screen = Screen(self);
-  const bool bleeding = surfaces && screen && screen->indirect && self->IndirectLight;
+  const vtkCAO::SurfaceTechnique* technique = Technique(self);
+  const bool bleeding = surfaces && technique && technique->indirect && self->IndirectLight;
   if (bleeding)
   {
     const auto start = Clock::now();
@@ -1938,7 +1957,8 @@ bool vtkContextualAOPass::Internals::Combine(vtkContextualAOPass* self, const vt
     for (std::size_t i = 0; i < count; ++i)
       for (int k = 0; k < 3; ++k)
         rgb[3 * i + k] = rgba[4 * i + k];
-    if (!screen->indirect(this->pixels, this->ScreenSettingsOf(self), this->frame, rgb, indirect, error))
+    std::vector<const cao::OpacityVolume*> volumes;
+    if (!technique->indirect(this->pixels, this->SettingsOf(self, volumes), this->frame, rgb, indirect, error))
       return this->Fail(self, error);
     this->Stage("indirect", start);
   }

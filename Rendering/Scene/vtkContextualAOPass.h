@@ -112,13 +112,15 @@ public:
   vtkBooleanMacro(SetsCamera, bool);
   ///@}
 
-  /// The built-in methods. HBAO and volumetric AO are screen-space techniques
-  /// registered in vtkCAOScreenTechnique.h (Techniques/); a technique
-  /// registered there with another value is a Method too.
+  /// The built-in methods, each a surface technique registered in
+  /// vtkCAOSurfaceTechnique.h from its own file (Techniques/); a technique
+  /// registered there with another value is a Method too. The pass runs a
+  /// technique by what it reads (the G-buffer alone, or the scene's grid
+  /// too), never by its value.
   enum Methods
   {
     NONE = 0, ///< draw the scene only
-    VCT = 1,  ///< voxel cone tracing (Dalla Favera and Celes 2012), the pass's own step
+    VCT = 1,  ///< voxel cone tracing (Dalla Favera and Celes 2012): reads the grid
     HBAO = 2, ///< horizon-based AO (Bavoil, Sainz and Dimitrov 2008)
     VOLUMETRIC = 3   ///< volumetric AO (Szirmay-Kalos et al. 2010)
   };
@@ -141,12 +143,18 @@ public:
   };
 
   ///@{
-  /// NONE, VCT (default), HBAO, volumetric AO, or the value of a screen-space
-  /// technique registered with vtkCAO::RegisterScreenTechnique. Any other
+  /// NONE, VCT (default), HBAO, volumetric AO, or the value of a surface
+  /// technique registered with vtkCAO::RegisterSurfaceTechnique. Any other
   /// value is an error that lists the registered ones, and the Method stays.
   virtual void SetMethod(int method);
   vtkGetMacro(Method, int);
   ///@}
+
+  /// Whether the Method's technique reads the scene's grid (the Grid,
+  /// Slices and Occupancy settings; volumes and lines occlude the surfaces
+  /// through it): false for NONE and the techniques that read only the
+  /// G-buffer.
+  bool GetMethodReadsGrid() const;
 
   ///@{
   /// AMBIENT_TERM (default) or WHOLE_COLOR.

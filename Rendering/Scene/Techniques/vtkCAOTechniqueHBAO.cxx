@@ -1,18 +1,18 @@
 // Horizon-based AO (Bavoil, Sainz and Dimitrov 2008) as a screen-space
 // technique of the pass: cao::HBAOFrame on the CPU, its GL twin on the
 // window's OpenGL (read back, or kept on the GPU frame).
-#include "vtkCAOScreenTechnique.h"
+#include "vtkCAOSurfaceTechnique.h"
 
 #include "caoScreenSpaceAO.h"
 #include "vtkCAOSceneGPU.h"
 
 namespace vtkCAO
 {
-bool RegisterBuiltIn(const ScreenTechnique& technique);
+bool RegisterBuiltIn(const SurfaceTechnique& technique);
 
 namespace
 {
-cao::HBAOSettings SettingsOf(const ScreenTechniqueSettings& s)
+cao::HBAOSettings SettingsOf(const SurfaceTechniqueSettings& s)
 {
   cao::HBAOSettings settings;
   settings.quality = static_cast<cao::Quality>(s.quality);
@@ -23,15 +23,15 @@ cao::HBAOSettings SettingsOf(const ScreenTechniqueSettings& s)
 
 void RegisterHBAOTechnique()
 {
-  ScreenTechnique t;
+  SurfaceTechnique t;
   t.method = 2; // vtkContextualAOPass::HBAO
   t.name = "hbao";
   t.label = "HBAO";
-  t.cpu = [](const cao::PixelCamera& camera, const ScreenTechniqueSettings& s, cao::SurfaceFrame& frame,
+  t.cpu = [](const cao::PixelCamera& camera, const SurfaceTechniqueSettings& s, cao::SurfaceFrame& frame,
             std::string& error) { return cao::HBAOFrame(camera, SettingsOf(s), frame, 0, error); };
-  t.gpu = [](SceneGPU& gpu, const cao::PixelCamera& camera, const ScreenTechniqueSettings& s,
+  t.gpu = [](SceneGPU& gpu, const cao::PixelCamera& camera, const SurfaceTechniqueSettings& s,
             cao::SurfaceFrame& frame, std::string& error) { return gpu.HBAO(camera, SettingsOf(s), frame, error); };
-  t.gpuFrame = [](SceneGPU& gpu, const cao::PixelCamera& camera, const ScreenTechniqueSettings& s,
+  t.gpuFrame = [](SceneGPU& gpu, const cao::PixelCamera& camera, const SurfaceTechniqueSettings& s,
                  std::string& error) { return gpu.FrameHBAO(camera, SettingsOf(s), error); };
   RegisterBuiltIn(t);
 }

@@ -2,18 +2,18 @@
 // the pass: cao::VolumetricAOFrame on the CPU, its GL twin on the window's OpenGL
 // (read back, or kept on the GPU frame), and its indirect light (the
 // neighbours' colours, I = L (1 - AO)) on the host.
-#include "vtkCAOScreenTechnique.h"
+#include "vtkCAOSurfaceTechnique.h"
 
 #include "caoScreenSpaceAO.h"
 #include "vtkCAOSceneGPU.h"
 
 namespace vtkCAO
 {
-bool RegisterBuiltIn(const ScreenTechnique& technique);
+bool RegisterBuiltIn(const SurfaceTechnique& technique);
 
 namespace
 {
-cao::VolumetricAOSettings SettingsOf(const ScreenTechniqueSettings& s)
+cao::VolumetricAOSettings SettingsOf(const SurfaceTechniqueSettings& s)
 {
   cao::VolumetricAOSettings settings;
   settings.quality = static_cast<cao::Quality>(s.quality);
@@ -24,17 +24,17 @@ cao::VolumetricAOSettings SettingsOf(const ScreenTechniqueSettings& s)
 
 void RegisterVolumetricAOTechnique()
 {
-  ScreenTechnique t;
+  SurfaceTechnique t;
   t.method = 3; // vtkContextualAOPass::VOLUMETRIC
   t.name = "volumetric";
   t.label = "Volumetric AO";
-  t.cpu = [](const cao::PixelCamera& camera, const ScreenTechniqueSettings& s, cao::SurfaceFrame& frame,
+  t.cpu = [](const cao::PixelCamera& camera, const SurfaceTechniqueSettings& s, cao::SurfaceFrame& frame,
             std::string& error) { return cao::VolumetricAOFrame(camera, SettingsOf(s), frame, 0, error); };
-  t.gpu = [](SceneGPU& gpu, const cao::PixelCamera& camera, const ScreenTechniqueSettings& s,
+  t.gpu = [](SceneGPU& gpu, const cao::PixelCamera& camera, const SurfaceTechniqueSettings& s,
             cao::SurfaceFrame& frame, std::string& error) { return gpu.VolumetricAO(camera, SettingsOf(s), frame, error); };
-  t.gpuFrame = [](SceneGPU& gpu, const cao::PixelCamera& camera, const ScreenTechniqueSettings& s,
+  t.gpuFrame = [](SceneGPU& gpu, const cao::PixelCamera& camera, const SurfaceTechniqueSettings& s,
                  std::string& error) { return gpu.FrameVolumetricAO(camera, SettingsOf(s), error); };
-  t.indirect = [](const cao::PixelCamera& camera, const ScreenTechniqueSettings& s,
+  t.indirect = [](const cao::PixelCamera& camera, const SurfaceTechniqueSettings& s,
                  const cao::SurfaceFrame& frame, const std::vector<float>& rgb, std::vector<float>& indirect,
                  std::string& error) { return cao::VolumetricAOIndirect(camera, SettingsOf(s), frame, rgb, indirect, 0, error); };
   RegisterBuiltIn(t);

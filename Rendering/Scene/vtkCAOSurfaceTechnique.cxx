@@ -1,4 +1,4 @@
-#include "vtkCAOScreenTechnique.h"
+#include "vtkCAOSurfaceTechnique.h"
 
 #include <algorithm>
 #include <memory>
@@ -7,6 +7,7 @@
 namespace vtkCAO
 {
 // The built-ins, each in its own file under Techniques/.
+void RegisterVoxelConesTechnique();
 void RegisterHBAOTechnique();
 void RegisterVolumetricAOTechnique();
 
@@ -15,7 +16,7 @@ namespace
 struct Registry
 {
   std::mutex mutex;
-  std::vector<std::unique_ptr<ScreenTechnique>> techniques; // (pointers stay valid)
+  std::vector<std::unique_ptr<SurfaceTechnique>> techniques; // (pointers stay valid)
 };
 
 Registry& TheRegistry()
@@ -24,24 +25,24 @@ Registry& TheRegistry()
   return registry;
 }
 
-bool Add(const ScreenTechnique& technique, std::string* error)
+bool Add(const SurfaceTechnique& technique, std::string* error)
 {
   const auto fail = [error](const std::string& why) {
     if (error)
       *error = why;
     return false;
   };
-  if (technique.method <= 1)
-    return fail("a screen-space technique's Method value must be above 1 (0 is None, 1 Voxel Cones); got " +
+  if (technique.method < 1)
+    return fail("a surface technique's Method value must be 1 or more (0 is None); got " +
       std::to_string(technique.method));
   if (technique.name.empty() || !technique.cpu)
-    return fail("a screen-space technique needs a name and a CPU step");
+    return fail("a surface technique needs a name and a CPU step");
   Registry& r = TheRegistry();
   std::lock_guard<std::mutex> lock(r.mutex);
   for (const auto& t : r.techniques)
     if (t->method == technique.method)
       return fail("Method " + std::to_string(technique.method) + " is taken (by " + t->name + ")");
-  r.techniques.push_back(std::make_unique<ScreenTechnique>(technique));
+  r.techniques.push_back(std::make_unique<SurfaceTechnique>(technique));
   std::sort(r.techniques.begin(), r.techniques.end(),
     [](const auto& a, const auto& b) { return a->method < b->method; });
   return true;
@@ -51,24 +52,25 @@ void RegisterBuiltIns()
 {
   static std::once_flag once;
   std::call_once(once, [] {
+    RegisterVoxelConesTechnique();
     RegisterHBAOTechnique();
     RegisterVolumetricAOTechnique();
   });
 }
 }
 
-bool RegisterBuiltIn(const ScreenTechnique& technique)
+bool RegisterBuiltIn(const SurfaceTechnique& technique)
 {
   return Add(technique, nullptr);
 }
 
-bool RegisterScreenTechnique(const ScreenTechnique& technique, std::string* error)
+bool RegisterSurfaceTechnique(const SurfaceTechnique& technique, std::string* error)
 {
   RegisterBuiltIns();
   return Add(technique, error);
 }
 
-const ScreenTechnique* FindScreenTechnique(int method)
+const SurfaceTechnique* FindSurfaceTechnique(int method)
 {
   RegisterBuiltIns();
   Registry& r = TheRegistry();
@@ -79,7 +81,7 @@ const ScreenTechnique* FindScreenTechnique(int method)
   return nullptr;
 }
 
-std::string ScreenTechniqueList()
+std::string SurfaceTechniqueList()
 {
   RegisterBuiltIns();
   Registry& r = TheRegistry();

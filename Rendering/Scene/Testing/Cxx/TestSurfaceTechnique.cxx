@@ -1,6 +1,6 @@
-// A screen-space technique registered from this file, with no edit to the
-// pass (vtkCAOScreenTechnique.h): a sphere resting on a slab, the pass on
-// the CPU with the ray-cast G-buffer, Apply To Whole Colour, Strength 1.
+// Surface techniques registered from this file, with no edit to the pass
+// (vtkCAOSurfaceTechnique.h): a sphere resting on a slab, the pass on the
+// CPU with the ray-cast G-buffer, Apply To Whole Colour, Strength 1.
 // - "flat" (AO 0.5 at every covered pixel) is run by the pass under its
 //   Method value: the report names it, the stages are the screen-space
 //   ones (no voxelize), GetPixelAO reads 0.5, and the slab's grey is half
@@ -11,10 +11,15 @@
 // - on the window's OpenGL (a technique without a GPU step), the frame's
 //   pixels are read back and the CPU step runs: the same grey, and the
 //   report says why;
-// - a taken value, a value of 1 or less, a technique without a CPU step are
-//   refused; SetMethod with a value nobody registered is an error that
-//   lists the registered ones, and the Method stays.
-#include "vtkCAOScreenTechnique.h"
+// - "gridded", a technique that reads the scene's grid (readsGrid), gets
+//   the pass's grid (voxelized for it: a "voxelize" stage) with its Slices
+//   and Occupancy, and the grid's volumes; "flat", which reads only the
+//   G-buffer, gets no grid and no voxelize stage (the control);
+// - a taken value (Voxel Cones' 1 included), a value below 1, a technique
+//   without a CPU step are refused; SetMethod with a value nobody
+//   registered is an error that lists the registered ones, and the Method
+//   stays.
+#include "vtkCAOSurfaceTechnique.h"
 #include "vtkContextualAOPass.h"
 
 #include "vtkActor.h"
@@ -28,6 +33,7 @@
 #include "vtkSphereSource.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "caoBitGrid.h"
 #include "caoPixelCamera.h"
 #include "caoSurfaceReference.h"
 #include "caoTestSkip.h"
@@ -53,13 +59,13 @@ double Grey(vtkRenderWindow* w, int x, int y)
 }
 
 /// A technique whose AO is `value` at every covered pixel.
-vtkCAO::ScreenTechnique Constant(int method, const char* name, double value, vtkCAO::ScreenTechniqueSettings* seen)
+vtkCAO::SurfaceTechnique Constant(int method, const char* name, double value, vtkCAO::SurfaceTechniqueSettings* seen)
 {
-  vtkCAO::ScreenTechnique t;
+  vtkCAO::SurfaceTechnique t;
   t.method = method;
   t.name = name;
   t.label = name;
-  t.cpu = [value, seen](const cao::PixelCamera&, const vtkCAO::ScreenTechniqueSettings& s, cao::SurfaceFrame& frame,
+  t.cpu = [value, seen](const cao::PixelCamera&, const vtkCAO::SurfaceTechniqueSettings& s, cao::SurfaceFrame& frame,
             std::string&) {
     if (seen)
       *seen = s;
@@ -72,7 +78,7 @@ vtkCAO::ScreenTechnique Constant(int method, const char* name, double value, vtk
 }
 }
 
-int TestScreenTechnique(int, char*[])
+int TestSurfaceTechnique(int, char*[])
 {
   vtkNew<vtkContextualAOEGLWindow> window;
   if (caotest::PretendNoGL() || !window->IsUsable())
@@ -102,22 +108,41 @@ int TestScreenTechnique(int, char*[])
   renderer->ResetCameraClippingRange();
 
   // Registration's rules.
-  vtkCAO::ScreenTechniqueSettings seen;
+  vtkCAO::SurfaceTechniqueSettings seen;
   std::string error;
-  Check(vtkCAO::RegisterScreenTechnique(Constant(40, "flat", 0.5, &seen), &error), "a new technique registers");
-  Check(vtkCAO::RegisterScreenTechnique(Constant(41, "open", 1.0, nullptr), &error), "a second one registers");
-  bool refused = !vtkCAO::RegisterScreenTechnique(Constant(40, "again", 0.5, nullptr), &error);
+  Check(vtkCAO::RegisterSurfaceTechnique(Constant(40, "flat", 0.5, &seen), &error), "a new technique registers");
+  Check(vtkCAO::RegisterSurfaceTechnique(Constant(41, "open", 1.0, nullptr), &error), "a second one registers");
+  bool refused = !vtkCAO::RegisterSurfaceTechnique(Constant(40, "again", 0.5, nullptr), &error);
   Check(refused && error.find("taken (by flat)") != std::string::npos, "a taken value is refused: " + error);
-  refused = !vtkCAO::RegisterScreenTechnique(Constant(1, "vct2", 0.5, nullptr), &error);
-  Check(refused && error.find("above 1") != std::string::npos, "Voxel Cones' value is refused: " + error);
-  vtkCAO::ScreenTechnique noStep = Constant(42, "nostep", 0.5, nullptr);
+  refused = !vtkCAO::RegisterSurfaceTechnique(Constant(1, "vct2", 0.5, nullptr), &error);
+  Check(refused && error.find("taken (by vct)") != std::string::npos, "Voxel Cones' value is refused: " + error);
+  refused = !vtkCAO::RegisterSurfaceTechnique(Constant(0, "none2", 0.5, nullptr), &error);
+  Check(refused && error.find("1 or more") != std::string::npos, "None's value is refused: " + error);
+  vtkCAO::SurfaceTechniqueSettings seenGrid;
+  std::size_t gridWords = 0;
+  long long gridVolumes = -1;
+  vtkCAO::SurfaceTechnique gridded = Constant(43, "gridded", 0.5, &seenGrid);
+  gridded.readsGrid = true;
+  const auto flatStep = gridded.cpu;
+  gridded.cpu = [flatStep, &gridWords, &gridVolumes](const cao::PixelCamera& c,
+                  const vtkCAO::SurfaceTechniqueSettings& s, cao::SurfaceFrame& frame, std::string& e) {
+    // (the grid and the volumes' list are the pass's during the step only)
+    gridWords = s.grid ? s.grid->bits.size() : 0;
+    gridVolumes = s.volumes ? static_cast<long long>(s.volumes->size()) : -1;
+    return flatStep(c, s, frame, e);
+  };
+  Check(vtkCAO::RegisterSurfaceTechnique(gridded, &error), "a technique that reads the grid registers");
+  vtkCAO::SurfaceTechnique noStep = Constant(42, "nostep", 0.5, nullptr);
   noStep.cpu = nullptr;
-  refused = !vtkCAO::RegisterScreenTechnique(noStep, &error);
-  Check(refused && !vtkCAO::FindScreenTechnique(42), "a technique without a CPU step is refused: " + error);
-  Check(vtkCAO::FindScreenTechnique(vtkContextualAOPass::HBAO) &&
-      vtkCAO::FindScreenTechnique(vtkContextualAOPass::HBAO)->name == "hbao" &&
-      vtkCAO::FindScreenTechnique(vtkContextualAOPass::VOLUMETRIC)->name == "volumetric",
-    "the built-ins are registered: " + vtkCAO::ScreenTechniqueList());
+  refused = !vtkCAO::RegisterSurfaceTechnique(noStep, &error);
+  Check(refused && !vtkCAO::FindSurfaceTechnique(42), "a technique without a CPU step is refused: " + error);
+  Check(vtkCAO::FindSurfaceTechnique(vtkContextualAOPass::HBAO) &&
+      vtkCAO::FindSurfaceTechnique(vtkContextualAOPass::HBAO)->name == "hbao" &&
+      vtkCAO::FindSurfaceTechnique(vtkContextualAOPass::VOLUMETRIC)->name == "volumetric" &&
+      vtkCAO::FindSurfaceTechnique(vtkContextualAOPass::VCT)->name == "vct" &&
+      vtkCAO::FindSurfaceTechnique(vtkContextualAOPass::VCT)->readsGrid &&
+      !vtkCAO::FindSurfaceTechnique(vtkContextualAOPass::HBAO)->readsGrid,
+    "the built-ins are registered: " + vtkCAO::SurfaceTechniqueList());
 
   vtkNew<vtkContextualAOPass> pass;
   pass->SetBackend(vtkContextualAOPass::BACKEND_CPU);
@@ -151,6 +176,25 @@ int TestScreenTechnique(int, char*[])
   Check(seen.quality == 3 && std::fabs(seen.radius - 0.7) < 1e-12 && !seen.indirectLight,
     "the technique gets the pass's settings (quality " + std::to_string(seen.quality) + ", radius " +
       std::to_string(seen.radius) + ")");
+  Check(!seen.grid && !seen.volumes && !pass->GetMethodReadsGrid() &&
+      pass->GetLastFrameStages().find("voxelize") == std::string::npos,
+    "a technique that reads only the G-buffer gets no grid, and none is voxelized");
+
+  // A technique that reads the grid: the pass voxelizes the scene for it.
+  pass->SetSlices(96);
+  pass->SetOccupancy(vtkContextualAOPass::VOLUME);
+  pass->SetMethod(43);
+  window->Render();
+  const std::string gridReport = pass->GetLastFrameReport();
+  std::printf("report: %s\n", gridReport.c_str());
+  Check(pass->GetMethodReadsGrid() && gridReport.find("\"method\": \"gridded\"") != std::string::npos &&
+      pass->GetLastFrameStages().find("voxelize") != std::string::npos && seenGrid.grid && gridWords > 0 &&
+      seenGrid.slices == 96 && seenGrid.occupancy == vtkContextualAOPass::VOLUME && gridVolumes == 0 &&
+      std::fabs(pass->GetPixelAO(px, py) - 0.5) < 1e-12,
+    "a technique that reads the grid gets the pass's grid (" + std::to_string(gridWords) +
+      " words), its Slices and Occupancy, and the volumes: " + pass->GetLastFrameStages());
+  pass->SetSlices(128);
+  pass->SetOccupancy(vtkContextualAOPass::RAYS);
   pass->SetMethod(41);
   window->Render();
   const double open = Grey(window, px, py);

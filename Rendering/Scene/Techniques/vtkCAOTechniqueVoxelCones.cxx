@@ -1,0 +1,62 @@
+// Voxel cone tracing (Dalla Favera and Celes 2012) as a technique of the
+// pass that reads the scene's grid (the surfaces' voxels, with the lines'
+// voxels and the volumes' opacity occluding through it): cao::VCTFrame on
+// the CPU, its GL twin on the window's OpenGL (read back, or kept on the
+// GPU frame).
+#include "vtkCAOSurfaceTechnique.h"
+
+#include "caoVoxelConeTracing.h"
+#include "vtkCAOSceneGPU.h"
+
+namespace vtkCAO
+{
+bool RegisterBuiltIn(const SurfaceTechnique& technique);
+
+namespace
+{
+/// The cones' plan on the frame's grid, with the volumes occluding.
+bool PlanOf(const SurfaceTechniqueSettings& s, cao::VCTPlan& plan, std::string& error)
+{
+  if (!s.grid)
+  {
+    error = "Voxel Cones: no grid (the pass gives one to a technique that reads it)";
+    return false;
+  }
+  cao::VCTSettings settings;
+  settings.quality = static_cast<cao::Quality>(s.quality);
+  settings.slices = s.slices;
+  settings.radius = s.radius;
+  settings.occupancy = static_cast<cao::VCTOccupancy>(s.occupancy);
+  if (!cao::BuildVCTPlan(settings, *s.grid, plan, error))
+    return false;
+  if (s.volumes)
+    for (const cao::OpacityVolume* volume : *s.volumes)
+      plan.volumes.push_back(volume);
+  return true;
+}
+}
+
+void RegisterVoxelConesTechnique()
+{
+  SurfaceTechnique t;
+  t.method = 1; // vtkContextualAOPass::VCT
+  t.name = "vct";
+  t.label = "Voxel Cones";
+  t.readsGrid = true;
+  t.cpu = [](const cao::PixelCamera&, const SurfaceTechniqueSettings& s, cao::SurfaceFrame& frame,
+            std::string& error) {
+    cao::VCTPlan plan;
+    return PlanOf(s, plan, error) && cao::VCTFrame(*s.grid, plan, frame, 0, error);
+  };
+  t.gpu = [](SceneGPU& gpu, const cao::PixelCamera&, const SurfaceTechniqueSettings& s, cao::SurfaceFrame& frame,
+            std::string& error) {
+    cao::VCTPlan plan;
+    return PlanOf(s, plan, error) && gpu.Trace(*s.grid, plan, frame, error);
+  };
+  t.gpuFrame = [](SceneGPU& gpu, const cao::PixelCamera&, const SurfaceTechniqueSettings& s, std::string& error) {
+    cao::VCTPlan plan;
+    return PlanOf(s, plan, error) && gpu.FrameTrace(plan, error);
+  };
+  RegisterBuiltIn(t);
+}
+}
