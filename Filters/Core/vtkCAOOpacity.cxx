@@ -15,7 +15,7 @@
 
 #include "caoLAO.h"
 #include "caoLineAO.h"
-#include "caoVoxelConeTracing.h"
+#include "caoSceneGrid.h"
 
 #include <array>
 

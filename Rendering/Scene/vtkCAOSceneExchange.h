@@ -14,7 +14,7 @@
 
 #include "caoRenderingSceneModule.h" // For export macro
 
-#include "caoVoxelConeTracing.h" // For cao::BitGrid
+#include "caoSceneGrid.h" // For cao::BitGrid
 
 #include <array>      // For the bounds
 #include <cstdint>    // For the words

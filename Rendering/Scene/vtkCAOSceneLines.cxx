@@ -5,7 +5,7 @@
 
 #include "caoAORadius.h"
 #include "caoParallelFor.h"
-#include "caoVoxelConeTracing.h"
+#include "caoSceneGrid.h"
 
 #include "vtkActor.h"
 #include "vtkCellArray.h"

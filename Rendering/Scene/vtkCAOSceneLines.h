@@ -24,7 +24,7 @@
 
 #include "caoCapsules.h"
 #include "caoLineAO.h"
-#include "caoVoxelConeTracing.h" // For cao::MeshView
+#include "caoSceneGrid.h" // For cao::MeshView
 
 #include <array>
 #include <chrono>

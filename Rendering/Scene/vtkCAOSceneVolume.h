@@ -12,7 +12,7 @@
 
 #include "caoRenderingSceneModule.h" // For export macro
 
-#include "caoVoxelConeTracing.h" // For cao::OpacityVolume
+#include "caoSceneGrid.h" // For cao::OpacityVolume
 
 #include <string> // For the error
 #include <vector> // For the key

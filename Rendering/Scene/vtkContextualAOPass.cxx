@@ -52,7 +52,7 @@
 
 #include "caoScreenSpaceAO.h"
 #include "caoSurfaceReference.h"
-#include "caoVoxelConeTracing.h"
+#include "caoSceneGrid.h"
 
 #include <algorithm>
 #include <atomic>

@@ -18,7 +18,7 @@
 #ifndef caoAORadius_h
 #define caoAORadius_h
 
-#include "caoVoxelConeTracing.h" // For MeshView
+#include "caoSceneGrid.h" // For MeshView
 
 #include <array>
 #include <string>

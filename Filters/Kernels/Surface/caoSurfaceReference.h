@@ -7,6 +7,7 @@
 
 #include "caoAOReference.h"
 #include "caoPixelCamera.h"
+#include "caoSurfaceFrame.h"
 #include "caoTriangleBVH.h"
 
 #include <array>
@@ -17,20 +18,6 @@
 
 namespace cao
 {
-
-/// What the camera sees: per pixel the first surface (the G-buffer every
-/// method starts from), and the AO there.
-struct SurfaceFrame
-{
-  int width = 0, height = 0;
-  std::vector<std::int64_t> triangle; ///< -1: background
-  std::vector<double> position;       ///< x, y, z per pixel
-  std::vector<double> normal;         ///< facing the camera (two-sided)
-  std::vector<double> depth;          ///< distance along the pixel's ray
-  std::vector<double> ao;             ///< NaN on background
-  std::vector<double> facing;         ///< |cos| between the normal and the ray
-  std::int64_t covered = 0;
-};
 
 /// The camera's G-buffer by ray casting (no AO yet; `ao` is NaN).
 bool CastPrimary(const TriangleBVH& scene, const PixelCamera& camera, SurfaceFrame& frame,

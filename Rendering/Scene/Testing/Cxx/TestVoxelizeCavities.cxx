@@ -17,7 +17,7 @@
 //   (a wrong reference) finds thousands of wrong voxels.
 #include "caoClipDepthMaps.h"
 #include "caoClipGeometry.h"
-#include "caoVoxelConeTracing.h"
+#include "caoSceneGrid.h"
 #include "vtkCAOInput.h"
 
 #include "vtkPolyData.h"
