@@ -1,11 +1,16 @@
 /**
  * @class   vtkContextualAOPass
- * @brief   Ambient occlusion for the opaque surfaces of a VTK scene, by voxel
- *          cone tracing (Dalla Favera and Celes 2012) on a bit grid,
- *          horizon-based AO (Bavoil, Sainz and Dimitrov 2008) or volumetric
- *          AO (Szirmay-Kalos et al. 2010) on the G-buffer, as a render
- *          pass (used as vtkSSAOPass is: renderer->SetPass(pass)), with the
- *          scene's volumes occluding the surfaces (voxel cone tracing).
+ * @brief   The scene's ambient occlusion in one frame, as a render pass
+ *          (used as vtkSSAOPass is: renderer->SetPass(pass)): the opaque
+ *          surfaces' by a registered surface technique (voxel cone tracing
+ *          (Dalla Favera and Celes 2012) on the scene's grid, horizon-based
+ *          AO (Bavoil, Sainz and Dimitrov 2008) or volumetric AO
+ *          (Szirmay-Kalos et al. 2010) on the G-buffer:
+ *          vtkCAOSurfaceTechnique.h), the lines' by line AO (LineAO), the
+ *          scene's volumes occluding the surfaces through the grid, and the
+ *          surfaces and lines occluding the volumes' contextual AO
+ *          (GeometryOccludesVolumeAO: the volumes' own AO is their
+ *          vtkContextualAOVolumeMapper's). The product's pass, named for it.
  *
  * The pass draws the scene in steps, each through the renderer's own path
  * (so that with Method NONE the picture is the renderer's default one):
@@ -19,7 +24,8 @@
  * window's), and the AO goes only where the drawn surface is the traced
  * one (the drawn depth within half a voxel of the traced point), so props
  * the grid does not hold (glyph mappers, wireframe and points
- * representations, lines) keep their colour. A selection render
+ * representations) keep their colour; lines get their own line AO
+ * (LineAO). A selection render
  * (vtkHardwareSelector) goes through the renderer's whole default path.
  *
  * ApplyTo AMBIENT_TERM (default) scales the opaque surfaces' ambient term
