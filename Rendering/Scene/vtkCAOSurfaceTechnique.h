@@ -47,10 +47,13 @@ struct SurfaceTechniqueSettings
   double radius = 1.0;        ///< the AO radius in world units (resolved and checked)
   bool indirectLight = false; ///< the pass's IndirectLight (read by techniques with `indirect`)
   /// For a technique that reads the grid (null otherwise): the scene's grid
-  /// (world, eye or frustum; on the GPU, its bits are the ones voxelized
-  /// there last), its Slices (checked: 32..1024, a multiple of 32), how its
-  /// occupancy is read (the pass's Occupancy: 0 rays, 1 volume), and the
-  /// volumes that occlude through it (on the GPU, already uploaded).
+  /// (world, eye or frustum; when the AO runs on the GPU, its plan, with the
+  /// bits voxelized there and none on the host: a grid technique without a
+  /// `gpu` step runs on the CPU, grid and all), its Slices (checked:
+  /// 32..1024, a multiple of 32), how its occupancy is read (the pass's
+  /// Occupancy: 0 rays, 1 volume), and the volumes that occlude through it
+  /// (on the GPU, already uploaded). `grid` and `volumes` point to the
+  /// pass's own: valid while the step runs, not after.
   const cao::BitGrid* grid = nullptr;
   int slices = 128;
   int occupancy = 0;

@@ -1085,6 +1085,14 @@ bool vtkContextualAOPass::Internals::ResolveBackend(vtkContextualAOPass* self, v
   this->onGPU = self->Backend != BACKEND_CPU && this->gpu.Resolve(ren->GetRenderWindow(), self->Backend, error);
   if (!error.empty())
     return this->Fail(self, error);
+  const vtkCAO::SurfaceTechnique* technique = Technique(self);
+  if (this->onGPU && technique && technique->readsGrid && !technique->gpu)
+  {
+    // Its CPU step reads the grid's bits, which a GPU voxelization leaves
+    // on the GPU: the grid and the AO on the CPU.
+    this->onGPU = false;
+    this->backendNote = technique->label + " reads the grid and has no GPU step: the grid and its AO on the CPU";
+  }
   if (this->onGPU && ReadsGrid(self) && !this->volumes.empty())
   {
     // The volumes' opacity must fit the GPU grid's limits: else the
@@ -1421,8 +1429,8 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
   }
   this->radius = self->Radius > 0 ? self->Radius
                                   : cao::DefaultAORadius(b, distributed ? this->commonArea : area());
-  // The drawn-is-traced test's tolerance: half a voxel (the screen-space
-  // methods, which have no grid: of a 128-slice grid, a fixed fraction).
+  // The drawn-is-traced test's tolerance: half a voxel (a technique that
+  // reads no grid: of a 128-slice grid, a fixed fraction).
   this->tolerance = std::max(0.5 * diagonal / 128.0, 1e-9);
   if (!readsGrid)
   {
@@ -1516,9 +1524,9 @@ bool vtkContextualAOPass::Internals::UpdateVolumes(vtkContextualAOPass* self)
   this->volumeKey = this->frameVolumeKey;
   if (this->volumes.empty())
   {
-    // The last volume went (or the method reads none): the AO is traced
-    // again without it, and its opacity leaves the GPU now, not at the next
-    // voxel cone trace.
+    // The last volume went (or the technique reads no grid): the AO is
+    // traced again without it, and its opacity leaves the GPU now, not at
+    // the next trace on the grid.
     std::string error;
     if (this->onGPU && this->uploadedVolumes[0] >= 0 && this->gpu.Volumes({}, error))
     {
@@ -1602,8 +1610,10 @@ bool vtkContextualAOPass::Internals::RunGPUFrame(vtkContextualAOPass* self, cons
     std::copy(this->ndcToWorld, this->ndcToWorld + 16, pixels.ndcToWorld);
     pixels.width = rect[2];
     pixels.height = rect[3];
-    std::vector<const cao::OpacityVolume*> volumes;
-    if (!technique || !technique->gpuFrame || (readsGrid && !this->UploadVolumes(error)) ||
+    std::vector<const cao::OpacityVolume*> volumes; // (kept while the step runs: the settings point to it)
+    if (!technique || !technique->gpuFrame)
+      return this->Fail(self, "the GPU frame: the Method's technique has no GPU frame step");
+    if ((readsGrid && !this->UploadVolumes(error)) ||
       !technique->gpuFrame(this->gpu, pixels, this->SettingsOf(self, volumes), error))
       return this->Fail(self, error);
     this->Stage("trace", start);
@@ -1719,9 +1729,11 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
   // The frustum grid's slices start at this G-buffer's depths.
   if (readsGrid && self->Grid == FRUSTUM_GRID && !this->VoxelizeFrustum(self, start))
     return false;
-  std::vector<const cao::OpacityVolume*> volumes;
+  if (!technique)
+    return this->Fail(self, "Method " + std::to_string(self->Method) + " is no registered surface technique");
+  std::vector<const cao::OpacityVolume*> volumes; // (kept while the step runs: the settings point to it)
   const vtkCAO::SurfaceTechniqueSettings settings = this->SettingsOf(self, volumes);
-  if (!technique || (readsGrid && !this->UploadVolumes(error)) ||
+  if ((readsGrid && !this->UploadVolumes(error)) ||
     (this->onGPU && technique->gpu ? !technique->gpu(this->gpu, pixels, settings, this->frame, error)
                                    : !technique->cpu(pixels, settings, this->frame, error)))
     return this->Fail(self, error);

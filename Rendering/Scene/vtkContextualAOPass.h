@@ -45,20 +45,23 @@
  *
  * Only the effects the scene calls for, and nothing its last frame already
  * has (GetLastFrameReport says what ran, and why, as JSON):
- *  - "voxelize" (VCT): the grid of the visible opaque actors' triangles (a
+ *  - "voxelize" (a technique that reads the grid, as voxel cone tracing
+ *    does): the grid of the visible opaque actors' triangles (a
  *    mapper's polydata input, or the polydata leaves of a composite one),
  *    only when one of them, its data, its pose, the grid's settings or (eye
  *    grid) the camera's orientation changed; a closed mesh is filled, an
- *    open one is a shell (GetNumberOfOpenMeshes); "scene" (HBAO, volumetric AO): the
- *    same triangles for the ray cast only (or, with DEPTH_BUFFER, their
+ *    open one is a shell (GetNumberOfOpenMeshes); "scene" (a technique
+ *    that reads only the G-buffer: HBAO, volumetric AO): the same
+ *    triangles for the ray cast only (or, with DEPTH_BUFFER, their
  *    bounds for the default radius), no grid. The ray cast's BVH is built
  *    only for the RAY_CAST G-buffer (the report's "bvh"); asked for later
  *    on the same scene, it is built then ("scene"), without a new grid;
  *  - "volumes": the clipped opacity of the visible volumes
  *    (vtkCAOSceneVolume), only when a volume, its data, its opacity
  *    function, its pose or its clip shapes changed (OccludingVolumes on,
- *    VCT: the screen-space methods read the opaque depth, drawn before the
- *    volumes, so volumes do not occlude in them: the report says so);
+ *    a technique that reads the grid: one that reads only the G-buffer of
+ *    the opaque depth, drawn before the volumes, sees no volume: the
+ *    report says so);
  *    a volume that cannot occlude is left out with a warning (the report's
  *    "skipped_volumes");
  *  - "primary" and "trace": the pixels' first surfaces (a ray cast of the

@@ -14,7 +14,9 @@
 // - "gridded", a technique that reads the scene's grid (readsGrid), gets
 //   the pass's grid (voxelized for it: a "voxelize" stage) with its Slices
 //   and Occupancy, and the grid's volumes; "flat", which reads only the
-//   G-buffer, gets no grid and no voxelize stage (the control);
+//   G-buffer, gets no grid and no voxelize stage (the control); on Backend
+//   OpenGL, having no GPU step, "gridded" gets its grid on the CPU (a GPU
+//   voxelization keeps the bits on the GPU);
 // - a taken value (Voxel Cones' 1 included), a value below 1, a technique
 //   without a CPU step are refused; SetMethod with a value nobody
 //   registered is an error that lists the registered ones, and the Method
@@ -212,10 +214,23 @@ int TestSurfaceTechnique(int, char*[])
       glReport.find("flat has no GPU frame step") != std::string::npos && std::fabs(glFlat - flat) <= 1.5,
     "on OpenGL the frame is read back and the CPU step runs (grey " + std::to_string(glFlat) + "): " + glReport);
 
+  // A technique that reads the grid, without a GPU step, on Backend
+  // OpenGL: its CPU step reads the grid's bits, which a GPU voxelization
+  // leaves on the GPU, so the grid and its AO are made on the CPU.
+  gridWords = 0;
+  pass->SetMethod(43);
+  window->Render();
+  const std::string glGridReport = pass->GetLastFrameReport();
+  Check(gridWords > 0 && glGridReport.find("\"backend\": \"CPU\"") != std::string::npos &&
+      glGridReport.find("gridded reads the grid and has no GPU step") != std::string::npos &&
+      std::fabs(pass->GetPixelAO(px, py) - 0.5) < 1e-12,
+    "on OpenGL a grid technique without a GPU step gets the grid on the CPU (" + std::to_string(gridWords) +
+      " words): " + glGridReport);
+
   // A value nobody registered: an error, and the Method stays.
   pass->SetBackend(vtkContextualAOPass::BACKEND_CPU);
   pass->SetGBuffer(vtkContextualAOPass::RAY_CAST);
   pass->SetMethod(77);
-  Check(pass->GetMethod() == 40, "SetMethod(77) leaves the Method at 40 (an error lists the registered ones)");
+  Check(pass->GetMethod() == 43, "SetMethod(77) leaves the Method at 43 (an error lists the registered ones)");
   return failures ? 1 : 0;
 }
