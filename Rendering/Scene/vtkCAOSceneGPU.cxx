@@ -138,25 +138,14 @@ bool SceneGPU::FitsVolumes(long long voxels, long long count, std::string& error
   return this->P->Ready(error) && this->P->engine->FitsVolumes(voxels, count, error);
 }
 
-bool SceneGPU::Trace(const cao::BitGrid& grid, const cao::VCTPlan& plan, cao::SurfaceFrame& frame,
-  std::string& error)
+cao::gl::VCTEngine* SceneGPU::Cones(std::string& error)
 {
-  double ms = 0.0;
-  return this->P->Ready(error) && this->P->engine->TraceFrame(grid, plan, frame, ms, error);
+  return this->P->Ready(error) ? this->P->engine.get() : nullptr;
 }
 
-bool SceneGPU::HBAO(const cao::PixelCamera& camera, const cao::HBAOSettings& settings, cao::SurfaceFrame& frame,
-  std::string& error)
+cao::gl::ScreenAOEngine* SceneGPU::ScreenAO(std::string& error)
 {
-  double ms = 0.0;
-  return this->P->Ready(error) && this->P->screen->HBAO(camera, settings, frame, ms, error);
-}
-
-bool SceneGPU::VolumetricAO(const cao::PixelCamera& camera, const cao::VolumetricAOSettings& settings, cao::SurfaceFrame& frame,
-  std::string& error)
-{
-  double ms = 0.0;
-  return this->P->Ready(error) && this->P->screen->VolumetricAO(camera, settings, frame, ms, error);
+  return this->P->Ready(error) ? this->P->screen.get() : nullptr;
 }
 
 bool SceneGPU::VoxelizeLines(const cao::BitGrid& grid, const cao::LineSegments& lines, double tubeRadius,
@@ -217,40 +206,15 @@ bool SceneGPU::FrameGBuffer(const double ndcToWorld[16], const cao::BitGrid& gri
   return this->P->Ready(error) && this->P->frame->GBuffer(ndcToWorld, grid.axes, covered, error);
 }
 
-bool SceneGPU::FrameTrace(const cao::VCTPlan& plan, std::string& error)
+bool SceneGPU::FrameAOStep(const cao::PixelCamera* camera,
+  const std::function<bool(cao::gl::FrameEngine& frame, std::string& error)>& step, std::string& error)
 {
-  double ms = 0.0;
-  cao::gl::FrameEngine* f = this->P->frame.get();
-  if (!this->P->Ready(error) ||
-    !this->P->engine->TracePixels(plan, f->PointBuffer(), f->NormalBuffer(), f->AOBuffer(), f->Pixels(), ms, error,
-      f->Width()))
-    return false;
-  f->AOWritten();
-  return true;
-}
-
-bool SceneGPU::FrameHBAO(const cao::PixelCamera& camera, const cao::HBAOSettings& settings, std::string& error)
-{
-  return this->FrameScreenAO(&camera, &settings, nullptr, error);
-}
-
-bool SceneGPU::FrameVolumetricAO(const cao::PixelCamera& camera, const cao::VolumetricAOSettings& settings, std::string& error)
-{
-  return this->FrameScreenAO(&camera, nullptr, &settings, error);
-}
-
-bool SceneGPU::FrameScreenAO(const cao::PixelCamera* camera, const cao::HBAOSettings* hbao,
-  const cao::VolumetricAOSettings* volumetric, std::string& error)
-{
-  double ms = 0.0;
   if (!this->P->Ready(error))
     return false;
   cao::gl::FrameEngine* f = this->P->frame.get();
-  cao::gl::ScreenAOEngine* s = this->P->screen.get();
-  if (static_cast<std::int64_t>(camera->width) * camera->height != f->Pixels())
+  if (camera && static_cast<std::int64_t>(camera->width) * camera->height != f->Pixels())
     return error = "the camera's image is not the GPU frame's", false;
-  if (hbao ? !s->HBAOPixels(*camera, *hbao, f->PointBuffer(), f->NormalBuffer(), f->AOBuffer(), ms, error)
-           : !s->VolumetricAOPixels(*camera, *volumetric, f->PointBuffer(), f->NormalBuffer(), f->AOBuffer(), ms, error))
+  if (!step(*f, error))
     return false;
   f->AOWritten();
   return true;

@@ -19,12 +19,23 @@
 #include "caoVoxelConeTracing.h"
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
 class vtkRenderWindow;
 class vtkWindow;
+
+namespace cao
+{
+namespace gl
+{
+class FrameEngine;
+class ScreenAOEngine;
+class VCTEngine;
+}
+}
 
 namespace vtkCAO
 {
@@ -51,15 +62,22 @@ public:
   /// `count` volumes of `voxels` voxels in all fit its limits here.
   bool Volumes(const std::vector<const cao::OpacityVolume*>& volumes, std::string& error);
   bool FitsVolumes(long long voxels, long long count, std::string& error);
-  /// cao::gl::VCTEngine::TraceFrame on the grid voxelized last.
-  bool Trace(const cao::BitGrid& grid, const cao::VCTPlan& plan, cao::SurfaceFrame& frame,
-    std::string& error);
-  /// cao::gl::ScreenAOEngine's HBAO and volumetric AO (cao::HBAOFrame's and
-  /// cao::VolumetricAOFrame's twins, their blur or filter on the host).
-  bool HBAO(const cao::PixelCamera& camera, const cao::HBAOSettings& settings, cao::SurfaceFrame& frame,
-    std::string& error);
-  bool VolumetricAO(const cao::PixelCamera& camera, const cao::VolumetricAOSettings& settings, cao::SurfaceFrame& frame,
-    std::string& error);
+  ///@{
+  /// The GL layer's engines in the window's context, for the surface
+  /// techniques' GPU steps (vtkCAOSurfaceTechnique.h: each technique's file
+  /// calls its own engine, so a new technique adds no entry point here):
+  /// the grid and the cones (holding the grid voxelized last and the
+  /// volumes uploaded), the screen-space estimators. Null with `error` until
+  /// Resolve chose the GPU.
+  cao::gl::VCTEngine* Cones(std::string& error);
+  cao::gl::ScreenAOEngine* ScreenAO(std::string& error);
+  ///@}
+  /// A GPU frame step of a technique: `step` writes the AO of the GPU
+  /// frame's pixels from its G-buffer (FrameGBuffer's points and normals)
+  /// into its AO buffer, read by FrameCombine and FrameAO; `camera` (when
+  /// given) must be the frame's image.
+  bool FrameAOStep(const cao::PixelCamera* camera,
+    const std::function<bool(cao::gl::FrameEngine& frame, std::string& error)>& step, std::string& error);
   /// cao::gl::LineAOEngine::Voxelize: cao::VoxelizeLines' twin into
   /// `grid`'s plan; the bits stay on the GPU for LineAO given a grid of
   /// that plan with no bits.
@@ -97,11 +115,6 @@ public:
   bool FrameDepth(unsigned framebuffer, const int rect[4], std::int64_t& changed, std::string& error);
   bool FrameGBuffer(const double ndcToWorld[16], const cao::BitGrid& grid, std::int64_t& covered,
     std::string& error);
-  bool FrameTrace(const cao::VCTPlan& plan, std::string& error);
-  /// HBAO or volumetric AO on the GPU frame's G-buffer (made with world axes), their
-  /// blur or filter there too (cao::gl::ScreenAOEngine::HBAOPixels, VolumetricAOPixels).
-  bool FrameHBAO(const cao::PixelCamera& camera, const cao::HBAOSettings& settings, std::string& error);
-  bool FrameVolumetricAO(const cao::PixelCamera& camera, const cao::VolumetricAOSettings& settings, std::string& error);
   bool FrameRead(bool ambient, unsigned framebuffer, const int rect[4], std::string& error);
   bool FrameCombine(double strength, bool wholeColor, unsigned framebuffer, const int rect[4], std::string& error);
   bool FrameAO(std::vector<float>& ao, std::string& error);
@@ -130,8 +143,6 @@ public:
   std::string Note; ///< why Auto chose the CPU (empty otherwise)
 
 private:
-  bool FrameScreenAO(const cao::PixelCamera* camera, const cao::HBAOSettings* hbao, const cao::VolumetricAOSettings* volumetric,
-    std::string& error);
   struct Impl;
   std::unique_ptr<Impl> P;
   double lineMs[3] = { 0.0, 0.0, 0.0 };

@@ -3,6 +3,8 @@
 // window's OpenGL (read back, or kept on the GPU frame).
 #include "vtkCAOSurfaceTechnique.h"
 
+#include "caoFrameGL.h"
+#include "caoScreenAOGL.h"
 #include "caoScreenSpaceAO.h"
 #include "vtkCAOSceneGPU.h"
 
@@ -30,9 +32,20 @@ void RegisterHBAOTechnique()
   t.cpu = [](const cao::PixelCamera& camera, const SurfaceTechniqueSettings& s, cao::SurfaceFrame& frame,
             std::string& error) { return cao::HBAOFrame(camera, SettingsOf(s), frame, 0, error); };
   t.gpu = [](SceneGPU& gpu, const cao::PixelCamera& camera, const SurfaceTechniqueSettings& s,
-            cao::SurfaceFrame& frame, std::string& error) { return gpu.HBAO(camera, SettingsOf(s), frame, error); };
+            cao::SurfaceFrame& frame, std::string& error) {
+    cao::gl::ScreenAOEngine* screen = gpu.ScreenAO(error);
+    double ms = 0.0;
+    return screen && screen->HBAO(camera, SettingsOf(s), frame, ms, error);
+  };
   t.gpuFrame = [](SceneGPU& gpu, const cao::PixelCamera& camera, const SurfaceTechniqueSettings& s,
-                 std::string& error) { return gpu.FrameHBAO(camera, SettingsOf(s), error); };
+                 std::string& error) {
+    cao::gl::ScreenAOEngine* screen = gpu.ScreenAO(error);
+    return screen &&
+      gpu.FrameAOStep(&camera, [&](cao::gl::FrameEngine& f, std::string& e) {
+        double ms = 0.0;
+        return screen->HBAOPixels(camera, SettingsOf(s), f.PointBuffer(), f.NormalBuffer(), f.AOBuffer(), ms, e);
+      }, error);
+  };
   RegisterBuiltIn(t);
 }
 }

@@ -4,6 +4,8 @@
 // neighbours' colours, I = L (1 - AO)) on the host.
 #include "vtkCAOSurfaceTechnique.h"
 
+#include "caoFrameGL.h"
+#include "caoScreenAOGL.h"
 #include "caoScreenSpaceAO.h"
 #include "vtkCAOSceneGPU.h"
 
@@ -31,9 +33,21 @@ void RegisterVolumetricAOTechnique()
   t.cpu = [](const cao::PixelCamera& camera, const SurfaceTechniqueSettings& s, cao::SurfaceFrame& frame,
             std::string& error) { return cao::VolumetricAOFrame(camera, SettingsOf(s), frame, 0, error); };
   t.gpu = [](SceneGPU& gpu, const cao::PixelCamera& camera, const SurfaceTechniqueSettings& s,
-            cao::SurfaceFrame& frame, std::string& error) { return gpu.VolumetricAO(camera, SettingsOf(s), frame, error); };
+            cao::SurfaceFrame& frame, std::string& error) {
+    cao::gl::ScreenAOEngine* screen = gpu.ScreenAO(error);
+    double ms = 0.0;
+    return screen && screen->VolumetricAO(camera, SettingsOf(s), frame, ms, error);
+  };
   t.gpuFrame = [](SceneGPU& gpu, const cao::PixelCamera& camera, const SurfaceTechniqueSettings& s,
-                 std::string& error) { return gpu.FrameVolumetricAO(camera, SettingsOf(s), error); };
+                 std::string& error) {
+    cao::gl::ScreenAOEngine* screen = gpu.ScreenAO(error);
+    return screen &&
+      gpu.FrameAOStep(&camera, [&](cao::gl::FrameEngine& f, std::string& e) {
+        double ms = 0.0;
+        return screen->VolumetricAOPixels(
+          camera, SettingsOf(s), f.PointBuffer(), f.NormalBuffer(), f.AOBuffer(), ms, e);
+      }, error);
+  };
   t.indirect = [](const cao::PixelCamera& camera, const SurfaceTechniqueSettings& s,
                  const cao::SurfaceFrame& frame, const std::vector<float>& rgb, std::vector<float>& indirect,
                  std::string& error) { return cao::VolumetricAOIndirect(camera, SettingsOf(s), frame, rgb, indirect, 0, error); };

@@ -5,6 +5,8 @@
 // GPU frame).
 #include "vtkCAOSurfaceTechnique.h"
 
+#include "caoFrameGL.h"
+#include "caoVCTGL.h"
 #include "caoVoxelConeTracing.h"
 #include "vtkCAOSceneGPU.h"
 
@@ -50,12 +52,21 @@ void RegisterVoxelConesTechnique()
   };
   t.gpu = [](SceneGPU& gpu, const cao::PixelCamera&, const SurfaceTechniqueSettings& s, cao::SurfaceFrame& frame,
             std::string& error) {
+    // On the grid voxelized (or uploaded) last, the volumes uploaded.
     cao::VCTPlan plan;
-    return PlanOf(s, plan, error) && gpu.Trace(*s.grid, plan, frame, error);
+    cao::gl::VCTEngine* cones = gpu.Cones(error);
+    double ms = 0.0;
+    return cones && PlanOf(s, plan, error) && cones->TraceFrame(*s.grid, plan, frame, ms, error);
   };
   t.gpuFrame = [](SceneGPU& gpu, const cao::PixelCamera&, const SurfaceTechniqueSettings& s, std::string& error) {
     cao::VCTPlan plan;
-    return PlanOf(s, plan, error) && gpu.FrameTrace(plan, error);
+    cao::gl::VCTEngine* cones = gpu.Cones(error);
+    return cones && PlanOf(s, plan, error) &&
+      gpu.FrameAOStep(nullptr, [&](cao::gl::FrameEngine& f, std::string& e) {
+        double ms = 0.0;
+        return cones->TracePixels(
+          plan, f.PointBuffer(), f.NormalBuffer(), f.AOBuffer(), f.Pixels(), ms, e, f.Width());
+      }, error);
   };
   RegisterBuiltIn(t);
 }
