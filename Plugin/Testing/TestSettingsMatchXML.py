@@ -13,7 +13,11 @@ the limit, never go past it); an enumeration offers every value of the
 range. The VTK filter's and mapper's own defaults are the table's too.
 
 Negative control: the same comparison against a table with one default
-and one limit changed reports both."""
+and one limit changed reports both.
+
+The view's Surface AO Method list offers None and every registered surface
+technique (vtkContextualAOPass::GetRegisteredMethods), nothing else
+(negative control: one more technique than the list offers is caught)."""
 import sys
 
 from paraview import servermanager
@@ -115,6 +119,31 @@ altered[5]["maximum"] = 0.5  # StartOffset
 found = mismatches(altered, proxies["LocalAmbientOcclusion"][0], "")
 check(len(found) == 2 and "RayPattern" in found[0] and "StartOffset" in found[1],
       "negative control: an altered table is caught (%s)" % "; ".join(found))
+
+# The view's Surface AO Method list offers None and every registered
+# surface technique (vtkCAOSurfaceTechnique.h), by value, and nothing else:
+# a built-in technique registered without its XML entry, or an entry with
+# no technique behind it, is caught.
+from contextualao import vtkContextualAOPass  # noqa: E402
+
+registered = [(int(v), n) for v, n in
+              (e.split(" ", 1) for e in vtkContextualAOPass.GetRegisteredMethods().split(", "))]
+
+
+def method_mismatch(offered, techniques):
+    want = [0] + sorted(v for v, _ in techniques)
+    return None if offered == want else "offered %s, None and the registered %s" % (offered, want)
+
+
+view = pxm.NewProxy("views", "ContextualAORenderView")
+offered = domain_range(view.GetProperty("SurfaceAOMethod"))[2]
+wrong = method_mismatch(offered, registered)
+check(registered and wrong is None,
+      "the view's Surface AO Method list is None and the registered techniques (%s)%s"
+      % (vtkContextualAOPass.GetRegisteredMethods(), (": " + wrong) if wrong else ""))
+# Negative control: one more registered technique than the list offers.
+check(method_mismatch(offered, registered + [(40, "flat")]) is not None,
+      "negative control: a technique the list lacks is caught")
 
 if failures:
     print("%d check(s) failed" % len(failures))

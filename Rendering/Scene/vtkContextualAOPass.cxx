@@ -720,6 +720,11 @@ void vtkContextualAOPass::SetMethod(int method)
   }
 }
 
+std::string vtkContextualAOPass::GetRegisteredMethods()
+{
+  return vtkCAO::SurfaceTechniqueList();
+}
+
 bool vtkContextualAOPass::GetMethodReadsGrid() const
 {
   return Internals::ReadsGrid(this);

@@ -159,6 +159,10 @@ public:
   vtkGetMacro(Method, int);
   ///@}
 
+  /// The registered surface techniques, in method order: "1 vct, 2 hbao,
+  /// 3 volumetric" (value and report name; vtkCAO::SurfaceTechniqueList).
+  static std::string GetRegisteredMethods();
+
   /// Whether the Method's technique reads the scene's grid (the Grid,
   /// Slices and Occupancy settings; volumes and lines occlude the surfaces
   /// through it): false for NONE and the techniques that read only the
