@@ -1091,14 +1091,15 @@ bool vtkContextualAOPass::Internals::ResolveBackend(vtkContextualAOPass* self, v
   if (!error.empty())
     return this->Fail(self, error);
   const vtkCAO::SurfaceTechnique* technique = Technique(self);
-  if (this->onGPU && technique && technique->readsGrid && !technique->gpu)
+  const bool readsGrid = technique && technique->readsGrid;
+  if (this->onGPU && readsGrid && !technique->gpu)
   {
     // Its CPU step reads the grid's bits, which a GPU voxelization leaves
     // on the GPU: the grid and the AO on the CPU.
     this->onGPU = false;
     this->backendNote = technique->label + " reads the grid and has no GPU step: the grid and its AO on the CPU";
   }
-  if (this->onGPU && ReadsGrid(self) && !this->volumes.empty())
+  if (this->onGPU && readsGrid && !this->volumes.empty())
   {
     // The volumes' opacity must fit the GPU grid's limits: else the
     // CPU under Auto, an error under OpenGL.
@@ -1119,10 +1120,10 @@ bool vtkContextualAOPass::Internals::ResolveBackend(vtkContextualAOPass* self, v
   if (self->GBuffer == GBUFFER_AUTO)
   {
     this->gbuffer = this->onGPU ? DEPTH_BUFFER : RAY_CAST;
-    if (!ReadsGrid(self)) // the G-buffer techniques' scene: the ray cast's triangles or not
+    if (!readsGrid) // the G-buffer techniques' scene: the ray cast's triangles or not
       this->frameSceneKey[1] = this->gbuffer == RAY_CAST ? 1.0 : 2.0;
   }
-  if (ReadsGrid(self)) // where the grid is (before the eye grid's view rows, which end the key)
+  if (readsGrid) // where the grid is (before the eye grid's view rows, which end the key)
     this->frameSceneKey.insert(this->frameSceneKey.begin() + 2,
       { this->onGPU ? 1.0 : 0.0, static_cast<double>(this->onGPU ? this->gpu.Generation() : 0) });
   return true;
@@ -1700,7 +1701,9 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
                                                 : "camera or settings changed");
   this->viewKey.clear();
   const vtkCAO::SurfaceTechnique* technique = Technique(self); // (not null: RunAO)
-  const bool readsGrid = technique && technique->readsGrid;
+  if (!technique)
+    return this->Fail(self, "Method " + std::to_string(self->Method) + " is no registered surface technique");
+  const bool readsGrid = technique->readsGrid;
   if (readsGrid && self->Grid == FRUSTUM_GRID)
   {
     // Before the G-buffer: fewer Slices or a smaller view.
@@ -1734,8 +1737,6 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
   // The frustum grid's slices start at this G-buffer's depths.
   if (readsGrid && self->Grid == FRUSTUM_GRID && !this->VoxelizeFrustum(self, start))
     return false;
-  if (!technique)
-    return this->Fail(self, "Method " + std::to_string(self->Method) + " is no registered surface technique");
   std::vector<const cao::OpacityVolume*> volumes; // (kept while the step runs: the settings point to it)
   const vtkCAO::SurfaceTechniqueSettings settings = this->SettingsOf(self, volumes);
   if ((readsGrid && !this->UploadVolumes(error)) ||
