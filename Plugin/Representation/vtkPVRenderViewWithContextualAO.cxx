@@ -151,9 +151,9 @@ void vtkPVRenderViewWithContextualAO::SetSurfaceAOBackend(int backend)
   this->Modified();
 }
 
-void vtkPVRenderViewWithContextualAO::SetLineAO(int on)
+void vtkPVRenderViewWithContextualAO::SetLineAOMethod(int method)
 {
-  this->Pass->SetLineAO(on != 0);
+  this->Pass->SetLineMethod(method);
   this->Modified();
 }
 

@@ -35,7 +35,7 @@ public:
   ///@{
   /// Forwarded to the pass (vtkContextualAOPass's Method, ApplyTo, Radius,
   /// Strength, Quality, Slices, Grid, GBuffer, OccludingVolumes,
-  /// GeometryOccludesVolumeAO, IndirectLight, Backend, Occupancy, LineAO, LineSamples, LineSlices,
+  /// GeometryOccludesVolumeAO, IndirectLight, Backend, Occupancy, LineMethod, LineSamples, LineSlices,
   /// LineShading).
   void SetSurfaceAOMethod(int method);
   void SetApplyAOTo(int mode);
@@ -50,7 +50,7 @@ public:
   void SetSurfaceAOIndirectLight(int on);
   void SetSurfaceAOBackend(int backend);
   void SetSurfaceAOOccupancy(int occupancy);
-  void SetLineAO(int on);
+  void SetLineAOMethod(int method);
   void SetLineAOSamples(int samples);
   void SetLineAOSlices(int slices);
   void SetLineShading(int mode);

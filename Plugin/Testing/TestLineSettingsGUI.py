@@ -22,7 +22,7 @@ from gui_scene import Result, contextual_ao_view
 
 result = Result()
 check = result.check
-LINE_SETTINGS = ("LineAO", "LineAOSamples", "LineAOSlices", "LineShading")
+LINE_SETTINGS = ("LineAOMethod", "LineAOSamples", "LineAOSlices", "LineShading")
 
 try:
     from PyQt5 import QtCore, QtWidgets
@@ -64,10 +64,10 @@ try:
     Show(line, view)
     Render(view)
     expect("a sphere and a line", LINE_SETTINGS)
-    view.LineAO = 0
+    view.LineAOMethod = 0
     Render(view)
-    expect("Line AO off", ("LineAO",))
-    view.LineAO = 1
+    expect("Line AO Method None", ("LineAOMethod",))
+    view.LineAOMethod = 1
     Hide(line, view)
     Render(view)
     expect("the line hidden", ())

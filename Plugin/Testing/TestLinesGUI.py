@@ -52,7 +52,7 @@ try:
               "widget's outline), %d surface pixels, no error (%s)"
               % (backend, found.get("combined_pixels", 0), found.get("actors", 0), report.get("combined_pixels", 0),
                  report.get("error", report.get("backend_note", ""))))
-    view.LineAO = 0
+    view.LineAOMethod = 0
     Render(view)
     check("lines" not in json.loads(chain.GetLastFrameReport()), "control: Line AO off, no line work")
 except Exception as e:  # noqa: BLE001  (reported as a failure)

@@ -100,7 +100,7 @@ check(surfaceCombined > 1000, "the slice gets its surface AO in the same frame (
 # the comparison asks the AO itself never to brighten.
 view.UseFXAA = 0
 on = shot("lines-on-no-fxaa")
-view.LineAO = 0
+view.LineAOMethod = 0
 off = shot("lines-off-no-fxaa")
 view.UseFXAA = 1
 shot("lines-off")
@@ -115,7 +115,7 @@ print("largest brightening %.1f at row %d, column %d: on %s, off %s" % (-darker.
 check(darker.min() >= 0 and changed > 200,
       "line AO only darkens (largest brightening %.1f): %d pixels darker by more than 10 grey levels"
       % (-darker.min(), changed))
-view.LineAO = 1
+view.LineAOMethod = 1
 view.LineAOSamples = 16
 Render(view)
 check(pas.GetLineSamples() == 16 and "line_ao" in pas.GetLastFrameStages(),

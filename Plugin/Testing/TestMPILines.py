@@ -69,7 +69,7 @@ view.CameraFocalPoint = [0.0, 0.0, 0.0]
 view.CameraViewUp = [0.0, 0.0, 1.0]
 view.SurfaceAOBackend = "CPU"
 view.SurfaceAORadius = 0.5
-view.LineAO = 1
+view.LineAOMethod = 1
 pas = find_pass(view)
 check(pas is not None, "the pass is in the view's render pass chain")
 
@@ -157,9 +157,9 @@ for name in ("lines", "both"):
     check(lineReport.get("pixels", 0) > 500 and lineReport.get("segments_of_all_processes") == 36 * 60,
           "%s: rank 0's lines get line AO (%s line pixels) from a grid of every process's %s segments (36 x 60)"
           % (name, lineReport.get("pixels"), lineReport.get("segments_of_all_processes")))
-check(reports["lines-gl"].get("lines", {}).get("prisms") == "OpenGL",
+check(reports["lines-gl"].get("lines", {}).get("ao") == "OpenGL",
       "with the OpenGL backend the prisms run on the window's OpenGL (report: %s)"
-      % reports["lines-gl"].get("lines", {}).get("prisms"))
+      % reports["lines-gl"].get("lines", {}).get("ao"))
 check(reports["single"].get("lines", {}).get("segments_of_all_processes") == 40,
       "one line source: its 40 segments in the grid (report: %s)"
       % reports["single"].get("lines", {}).get("segments_of_all_processes"))

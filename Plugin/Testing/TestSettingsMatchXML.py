@@ -17,7 +17,9 @@ and one limit changed reports both.
 
 The view's Surface AO Method list offers None and every registered surface
 technique (vtkContextualAOPass::GetRegisteredMethods), nothing else
-(negative control: one more technique than the list offers is caught)."""
+(negative control: one more technique than the list offers is caught), and
+the Line AO Method list None and every registered line technique
+(GetRegisteredLineMethods), with the same control."""
 import sys
 
 from paraview import servermanager
@@ -126,8 +128,13 @@ check(len(found) == 2 and "RayPattern" in found[0] and "StartOffset" in found[1]
 # no technique behind it, is caught.
 from contextualao import vtkContextualAOPass  # noqa: E402
 
-registered = [(int(v), n) for v, n in
-              (e.split(" ", 1) for e in vtkContextualAOPass.GetRegisteredMethods().split(", "))]
+
+
+def parse(listing):
+    return [(int(v), n) for v, n in (e.split(" ", 1) for e in listing.split(", "))]
+
+
+registered = parse(vtkContextualAOPass.GetRegisteredMethods())
 
 
 def method_mismatch(offered, techniques):
@@ -144,6 +151,16 @@ check(registered and wrong is None,
 # Negative control: one more registered technique than the list offers.
 check(method_mismatch(offered, registered + [(40, "flat")]) is not None,
       "negative control: a technique the list lacks is caught")
+# The same for the lines: the Line AO Method list is None and every
+# registered line technique (vtkCAOLineTechnique.h).
+lines_registered = parse(vtkContextualAOPass.GetRegisteredLineMethods())
+lines_offered = domain_range(view.GetProperty("LineAOMethod"))[2]
+wrong = method_mismatch(lines_offered, lines_registered)
+check(lines_registered and wrong is None,
+      "the view's Line AO Method list is None and the registered line techniques (%s)%s"
+      % (vtkContextualAOPass.GetRegisteredLineMethods(), (": " + wrong) if wrong else ""))
+check(method_mismatch(lines_offered, lines_registered + [(40, "half")]) is not None,
+      "negative control: a line technique the list lacks is caught")
 
 if failures:
     print("%d check(s) failed" % len(failures))

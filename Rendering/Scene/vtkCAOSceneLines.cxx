@@ -1,5 +1,7 @@
 // vtkCAOSceneLines.cxx - the lines' AO in the render pass (vtkCAOSceneLines.h).
 #include "vtkCAOSceneLines.h"
+
+#include "vtkCAOLineTechnique.h"
 #include "vtkCAOSceneExchange.h"
 #include "vtkCAOSceneGPU.h"
 
@@ -483,10 +485,10 @@ bool SceneLines::ShareGrid(vtkMultiProcessController* controller, const cao::Pix
   return true;
 }
 
-bool SceneLines::Update(const cao::PixelCamera& camera, const double right[3], const double up[3],
-  const std::vector<float>& depth, const std::vector<unsigned char>* skip, double aoRadius, int samples,
-  int slices, SceneGPU* gpu, std::vector<std::string>& stages, std::vector<double>& ms, std::string& error,
-  bool keepGrid)
+bool SceneLines::Update(const LineTechnique& technique, const cao::PixelCamera& camera, const double right[3],
+  const double up[3], const std::vector<float>& depth, const std::vector<unsigned char>* skip, double aoRadius,
+  int samples, int slices, SceneGPU* gpu, std::vector<std::string>& stages, std::vector<double>& ms,
+  std::string& error, bool keepGrid)
 {
   auto start = Clock::now();
   bool built = false;
@@ -583,7 +585,8 @@ bool SceneLines::Update(const cao::PixelCamera& camera, const double right[3], c
   view.insert(view.end(), this->drawKey.begin(), this->drawKey.end()); // the pixels' search
   view.insert(view.end(), camera.ndcToWorld, camera.ndcToWorld + 16);
   view.insert(view.end(), { static_cast<double>(camera.width), static_cast<double>(camera.height),
-                            static_cast<double>(samples), gpu ? 1.0 : 0.0, this->fullGBuffer ? 1.0 : 0.0 });
+                            static_cast<double>(samples), gpu ? 1.0 : 0.0, this->fullGBuffer ? 1.0 : 0.0,
+                            static_cast<double>(technique.method) });
   // (FNV-1a of each row's depths, the skipped as all ones, on the CPU's
   // threads; then of the rows' hashes.)
   const std::size_t W = static_cast<std::size_t>(camera.width);
@@ -615,7 +618,7 @@ bool SceneLines::Update(const cao::PixelCamera& camera, const double right[3], c
   this->gbufferOnGPU = false;
   this->gbufferNote.clear();
   const cao::BitGrid* solids = meshes ? &this->solids : nullptr;
-  if (gpu)
+  if (gpu && technique.gpuOfGBuffer)
   {
     std::string why;
     this->gbufferOnGPU = gpu->LineGBuffer(this->grid, settings, this->lines, this->linesVersion, this->drawings,
@@ -640,12 +643,21 @@ bool SceneLines::Update(const cao::PixelCamera& camera, const double right[3], c
   stages.push_back("line_gbuffer");
   ms.push_back(Since(start));
   start = Clock::now();
-  // The prisms on the window's OpenGL (the pass's backend) or the CPU.
+  // The technique's AO on the window's OpenGL (the pass's backend) or the CPU.
   this->onGPU = gpu != nullptr;
+  LineTechniqueSettings given;
+  given.lineAO = &settings;
+  given.grid = &this->grid;
+  given.solids = solids;
+  const auto failed = [&](const std::string& step) {
+    if (error.empty())
+      error = technique.label + "'s " + step + " step failed and said nothing";
+    return false;
+  };
   if (this->gbufferOnGPU)
   {
-    if (!gpu->LineAOOfGBuffer(this->grid, settings, this->frame, solids, error))
-      return false;
+    if (!technique.gpuOfGBuffer(*gpu, given, this->frame, error))
+      return failed("GPU");
     // The rest of the G-buffer where the line shading reads it (the AO kept).
     if (this->fullGBuffer)
     {
@@ -658,9 +670,8 @@ bool SceneLines::Update(const cao::PixelCamera& camera, const double right[3], c
       this->frame.ao.swap(ao);
     }
   }
-  else if (gpu ? !gpu->LineAO(this->grid, settings, this->frame, solids, error)
-               : !cao::LineAOFrame(this->grid, settings, this->frame, error, solids))
-    return false;
+  else if (gpu ? !technique.gpu(*gpu, given, this->frame, error) : !technique.cpu(given, this->frame, error))
+    return failed(gpu ? "GPU" : "CPU");
   if (gpu)
   {
     this->gpuMs[1] = this->gbufferOnGPU ? gpu->LineMilliseconds()[1] : 0.0;

@@ -41,6 +41,7 @@ class vtkRenderer;
 namespace vtkCAO
 {
 class SceneGPU;
+struct LineTechnique;
 /// How an actor's lines are lit in the pass's line shading (its vtkProperty).
 struct LineLook
 {
@@ -75,10 +76,12 @@ public:
   /// last grid is kept (its axes the last camera's: the prisms then run
   /// along them, not along this view axis); the next frame without it
   /// builds the camera's own.
-  bool Update(const cao::PixelCamera& camera, const double right[3], const double up[3],
-    const std::vector<float>& depth, const std::vector<unsigned char>* skip, double radius, int samples,
-    int slices, SceneGPU* gpu, std::vector<std::string>& stages, std::vector<double>& ms, std::string& error,
-    bool keepGrid = false);
+  /// `technique` (vtkCAOLineTechnique.h) counts the AO of the line pixels
+  /// on the grid: its `gpu` steps with `gpu`, else its `cpu` step.
+  bool Update(const LineTechnique& technique, const cao::PixelCamera& camera, const double right[3],
+    const double up[3], const std::vector<float>& depth, const std::vector<unsigned char>* skip, double radius,
+    int samples, int slices, SceneGPU* gpu, std::vector<std::string>& stages, std::vector<double>& ms,
+    std::string& error, bool keepGrid = false);
   /// Whether the last Update kept a grid of another camera (keepGrid).
   bool KeptGrid() const { return this->keptGrid; }
   /// Whether the last line AO ran on the GPU, and the lines' grid was voxelized there.

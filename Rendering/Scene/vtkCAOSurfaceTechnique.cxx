@@ -1,8 +1,6 @@
 #include "vtkCAOSurfaceTechnique.h"
 
-#include <algorithm>
-#include <memory>
-#include <mutex>
+#include "vtkCAOTechniqueRegistry.h"
 
 namespace vtkCAO
 {
@@ -13,82 +11,34 @@ void RegisterVolumetricAOTechnique();
 
 namespace
 {
-struct Registry
+TechniqueRegistry<SurfaceTechnique>& TheRegistry()
 {
-  std::mutex mutex;
-  std::vector<std::unique_ptr<SurfaceTechnique>> techniques; // (pointers stay valid)
-};
-
-Registry& TheRegistry()
-{
-  static Registry registry;
-  return registry;
-}
-
-bool Add(const SurfaceTechnique& technique, std::string* error)
-{
-  const auto fail = [error](const std::string& why) {
-    if (error)
-      *error = why;
-    return false;
-  };
-  if (technique.method < 1)
-    return fail("a surface technique's Method value must be 1 or more (0 is None); got " +
-      std::to_string(technique.method));
-  if (technique.name.empty() || !technique.cpu)
-    return fail("a surface technique needs a name and a CPU step");
-  Registry& r = TheRegistry();
-  std::lock_guard<std::mutex> lock(r.mutex);
-  for (const auto& t : r.techniques)
-    if (t->method == technique.method)
-      return fail("Method " + std::to_string(technique.method) + " is taken (by " + t->name + ")");
-  r.techniques.push_back(std::make_unique<SurfaceTechnique>(technique));
-  std::sort(r.techniques.begin(), r.techniques.end(),
-    [](const auto& a, const auto& b) { return a->method < b->method; });
-  return true;
-}
-
-void RegisterBuiltIns()
-{
-  static std::once_flag once;
-  std::call_once(once, [] {
+  static TechniqueRegistry<SurfaceTechnique> registry("surface", [] {
     RegisterVoxelConesTechnique();
     RegisterHBAOTechnique();
     RegisterVolumetricAOTechnique();
   });
+  return registry;
 }
 }
 
 bool RegisterBuiltIn(const SurfaceTechnique& technique)
 {
-  return Add(technique, nullptr);
+  return TheRegistry().AddBuiltIn(technique);
 }
 
 bool RegisterSurfaceTechnique(const SurfaceTechnique& technique, std::string* error)
 {
-  RegisterBuiltIns();
-  return Add(technique, error);
+  return TheRegistry().Add(technique, error);
 }
 
 const SurfaceTechnique* FindSurfaceTechnique(int method)
 {
-  RegisterBuiltIns();
-  Registry& r = TheRegistry();
-  std::lock_guard<std::mutex> lock(r.mutex);
-  for (const auto& t : r.techniques)
-    if (t->method == method)
-      return t.get();
-  return nullptr;
+  return TheRegistry().Find(method);
 }
 
 std::string SurfaceTechniqueList()
 {
-  RegisterBuiltIns();
-  Registry& r = TheRegistry();
-  std::lock_guard<std::mutex> lock(r.mutex);
-  std::string list;
-  for (const auto& t : r.techniques)
-    list += (list.empty() ? "" : ", ") + std::to_string(t->method) + " " + t->name;
-  return list;
+  return TheRegistry().List();
 }
 }

@@ -40,6 +40,7 @@
 #include "vtkCAOFrameIO.h"
 #include "vtkCAOSceneExchange.h"
 #include "vtkCAOSceneGPU.h"
+#include "vtkCAOLineTechnique.h"
 #include "vtkCAOSceneLines.h"
 #include "vtkCAOInput.h"
 #include "vtkCAOSceneVolume.h"
@@ -476,10 +477,10 @@ struct vtkContextualAOPass::Internals
   std::vector<std::pair<vtkWeakPointer<vtkContextualAOVolumeMapper>, std::vector<vtkProp3D*>>> volumeOccluders;
   void SetVolumeOccluders(vtkContextualAOPass* self, vtkRenderer* ren);
   bool sharedLinesOred = false;        ///< the shared grid holds every process's lines
-  // The lines (LineAO): their pieces this frame, their AO, the pixels it darkened.
+  // The lines (LineMethod): their pieces this frame, their AO, the pixels it darkened.
   vtkCAO::SceneLines lines;
   bool linesOn = false;   ///< this frame has lines that get line AO
-  int lineActors = 0;     ///< actors with lines (LineAO on or off): GetNumberOfLineActors
+  int lineActors = 0;     ///< actors with lines (whatever the LineMethod): GetNumberOfLineActors
   bool linesOccludeSurfaces = false; ///< the surfaces' grid holds the lines' voxels
   std::string linesNote;  ///< why lines in view get none
   std::string saidLines;  ///< the line failure last logged
@@ -553,6 +554,11 @@ struct vtkContextualAOPass::Internals
   static const vtkCAO::SurfaceTechnique* Technique(const vtkContextualAOPass* self)
   {
     return self->Method != NONE ? vtkCAO::FindSurfaceTechnique(self->Method) : nullptr;
+  }
+  /// The line technique of the pass's LineMethod (null: None).
+  static const vtkCAO::LineTechnique* LineTechniqueOf(const vtkContextualAOPass* self)
+  {
+    return self->LineMethod != LINE_NONE ? vtkCAO::FindLineTechnique(self->LineMethod) : nullptr;
   }
   /// Whether this frame's technique reads the scene's grid (through which
   /// volumes and lines occlude the surfaces).
@@ -725,6 +731,26 @@ std::string vtkContextualAOPass::GetRegisteredMethods()
   return vtkCAO::SurfaceTechniqueList();
 }
 
+void vtkContextualAOPass::SetLineMethod(int method)
+{
+  if (method != LINE_NONE && !vtkCAO::FindLineTechnique(method))
+  {
+    vtkErrorMacro("LineMethod " << method << " is none of 0 (None) and the registered line techniques ("
+                                << vtkCAO::LineTechniqueList() << "); the LineMethod stays " << this->LineMethod);
+    return;
+  }
+  if (this->LineMethod != method)
+  {
+    this->LineMethod = method;
+    this->Modified();
+  }
+}
+
+std::string vtkContextualAOPass::GetRegisteredLineMethods()
+{
+  return vtkCAO::LineTechniqueList();
+}
+
 bool vtkContextualAOPass::GetMethodReadsGrid() const
 {
   return Internals::ReadsGrid(this);
@@ -786,16 +812,17 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
     o << "]";
   }
   if (p.linesOn)
-    o << ", \"lines\": {\"actors\": " << p.lines.NumberOfActors() << ", \"segments\": "
+    o << ", \"lines\": {\"method\": \"" << (Internals::LineTechniqueOf(this) ? Internals::LineTechniqueOf(this)->name : std::string("none"))
+      << "\", \"actors\": " << p.lines.NumberOfActors() << ", \"segments\": "
       << p.lines.NumberOfSegments() << ", \"radius\": " << p.lines.Radius() << ", \"pixels\": "
       << p.lines.Frame().covered << ", \"combined_pixels\": " << p.lineCombined
       << ", \"voxelizations\": " << p.lines.Voxelizations() << ", \"radius_voxels\": " << p.lines.RadiusVoxels()
       << ", \"gbuffer\": \"" << (p.lines.GBufferOnGPU() ? "OpenGL" : "CPU") << "\""
-      << ", \"prisms\": \"" << (p.lines.OnGPU() ? "OpenGL" : "CPU") << "\""
+      << ", \"ao\": \"" << (p.lines.OnGPU() ? "OpenGL" : "CPU") << "\""
       << ", \"voxelization\": \"" << (p.lines.GridOnGPU() ? "OpenGL" : "CPU") << "\""
       << ", \"combine\": \"" << (p.lineCombineOnGPU ? "OpenGL" : "CPU") << "\""
       << ", \"gpu_ms\": {\"voxelize\": " << p.lines.GPUMilliseconds()[0] << ", \"gbuffer\": "
-      << p.lines.GPUMilliseconds()[1] << ", \"prisms\": " << p.lines.GPUMilliseconds()[2] << "}"
+      << p.lines.GPUMilliseconds()[1] << ", \"ao\": " << p.lines.GPUMilliseconds()[2] << "}"
       << (p.lines.KeptGrid() ? ", \"grid_kept\": \"an interactive frame: the grid of an earlier camera\"" : "")
       << ", \"segments_of_all_processes\": " << p.lines.NumberOfGridSegments()
       << (p.lines.RadiusVoxels() < 2.0
@@ -1018,12 +1045,12 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
     if (!actor->GetVisibility() || !actor->HasOpaqueGeometry())
       continue;
     // Lines (as surface or wireframe: drawn as lines either way) get line
-    // AO; counted with LineAO off too (the view shows the line settings).
+    // AO; counted with LineMethod None too (the view shows the line settings).
     if (actor->GetProperty()->GetRepresentation() != VTK_POINTS)
     {
       const std::vector<vtkPolyData*> withLines = Pieces(actor->GetMapper(), true);
       this->lineActors += withLines.empty() ? 0 : 1;
-      if (self->LineAO)
+      if (LineTechniqueOf(self))
         for (vtkPolyData* data : withLines)
           linePieces.emplace_back(actor, data);
     }
@@ -1794,11 +1821,19 @@ bool vtkContextualAOPass::Internals::UpdateLines(vtkContextualAOPass* self, vtkR
       this->Gather(points, triangles, all, allTris);
     this->lines.SetMeshes(points, triangles, meshKey);
   }
+  const vtkCAO::LineTechnique* technique = LineTechniqueOf(self);
+  if (!technique) // (Collect took lines only with one)
+    return skipLines("LineMethod " + std::to_string(self->LineMethod) + " is no registered line technique");
+  // A technique without a GPU step runs on the CPU, its grid included.
+  const bool onGPU = this->onGPU && technique->gpu;
+  if (this->onGPU && !technique->gpu)
+    this->backendNote += (this->backendNote.empty() ? "" : "; ") + technique->label +
+      " has no GPU step: the lines' grid, G-buffer and AO run on the CPU";
   std::string error;
   this->lines.SetFullGBuffer(self->LineShading == LINE_SHADING_MALLO_BANKS);
-  if (!this->lines.Update(camera, right, up, this->depth, skip.empty() ? nullptr : &skip, self->Radius,
-        self->LineSamples, self->LineSlices, this->onGPU ? &this->gpu : nullptr, this->stages, this->ms, error,
-        self->InteractiveFrames))
+  if (!this->lines.Update(*technique, camera, right, up, this->depth, skip.empty() ? nullptr : &skip,
+        self->Radius, self->LineSamples, self->LineSlices, onGPU ? &this->gpu : nullptr, this->stages, this->ms,
+        error, self->InteractiveFrames))
     return skipLines(error);
   if (!this->lines.GBufferNote().empty())
     this->backendNote += (this->backendNote.empty() ? "" : "; ") + JsonText(this->lines.GBufferNote());
@@ -2130,7 +2165,7 @@ void vtkContextualAOPass::PrintSelf(ostream& os, vtkIndent indent)
      << indent << "Backend: " << this->Backend << "\n"
      << indent << "Occupancy: " << this->Occupancy << "\n"
      << indent << "IndirectLight: " << this->IndirectLight << "\n"
-     << indent << "LineAO: " << this->LineAO << "\n"
+     << indent << "LineMethod: " << this->LineMethod << "\n"
      << indent << "LineSamples: " << this->LineSamples << "\n"
      << indent << "LineSlices: " << this->LineSlices << "\n";
 }

@@ -6,7 +6,8 @@
  *          (Dalla Favera and Celes 2012) on the scene's grid, horizon-based
  *          AO (Bavoil, Sainz and Dimitrov 2008) or volumetric AO
  *          (Szirmay-Kalos et al. 2010) on the G-buffer:
- *          vtkCAOSurfaceTechnique.h), the lines' by line AO (LineAO), the
+ *          vtkCAOSurfaceTechnique.h), the lines' by a registered line
+ *          technique (line AO: LineMethod, vtkCAOLineTechnique.h), the
  *          scene's volumes occluding the surfaces through the grid, and the
  *          surfaces and lines occluding the volumes' contextual AO
  *          (GeometryOccludesVolumeAO: the volumes' own AO is their
@@ -25,7 +26,7 @@
  * one (the drawn depth within half a voxel of the traced point), so props
  * the grid does not hold (glyph mappers, wireframe and points
  * representations) keep their colour; lines get their own line AO
- * (LineAO). A selection render
+ * (LineMethod). A selection render
  * (vtkHardwareSelector) goes through the renderer's whole default path.
  *
  * ApplyTo AMBIENT_TERM (default) scales the opaque surfaces' ambient term
@@ -324,22 +325,37 @@ public:
   vtkGetMacro(Slices, int);
   ///@}
 
+  /// The built-in line technique, registered in vtkCAOLineTechnique.h from
+  /// its own file (Techniques/); a technique registered there with another
+  /// value is a LineMethod too.
+  enum LineMethods
+  {
+    LINE_NONE = 0,  ///< the lines as drawn, no AO
+    LINE_PRISMS = 1 ///< line voxelization and prism sampling (Benevides 2015)
+  };
+
   ///@{
-  /// Line AO (Benevides 2015: line voxelization and prism sampling, on the CPU)
-  /// for the lines among the opaque actors: polydata pieces with lines and
-  /// no polygons (streamlines, polylines), drawn as lines or as tubes
-  /// (vtkProperty's RenderLinesAsTubes), in the same frame as the surfaces
-  /// and occluded by them (default on; off: lines keep their colour); with
-  /// VCT on the CPU's world or eye grid the lines' voxels (their
-  /// supercover) occlude the surfaces too. The
-  /// lines' pixels are the drawn ones within their actor's drawn half width
-  /// (plus a pixel) of a segment (cao::LineFrameFromDepth); their AO scales their whole colour
+  /// How the lines among the opaque actors get AO: polydata pieces with
+  /// lines and no polygons (streamlines, polylines), drawn as lines or as
+  /// tubes (vtkProperty's RenderLinesAsTubes), in the same frame as the
+  /// surfaces and occluded by them. LINE_PRISMS (default), LINE_NONE (lines
+  /// keep their colour) or the value of a line technique registered with
+  /// vtkCAO::RegisterLineTechnique; any other value is an error that lists
+  /// the registered ones, and the LineMethod stays. The surfaces' Method
+  /// is chosen apart, but NONE there draws the whole scene without AO. With VCT on the
+  /// CPU's world or eye grid the lines' voxels (their supercover) occlude
+  /// the surfaces too. The lines' pixels are the drawn ones within their
+  /// actor's drawn half width (plus a pixel) of a segment
+  /// (cao::LineFrameFromDepth); their AO scales their whole colour
   /// (1 - Strength (1 - AO)), the Radius as the surfaces' (0: the default
   /// of the lines' extent). The report's "lines" says what ran.
-  vtkSetMacro(LineAO, bool);
-  vtkGetMacro(LineAO, bool);
-  vtkBooleanMacro(LineAO, bool);
+  virtual void SetLineMethod(int method);
+  vtkGetMacro(LineMethod, int);
   ///@}
+
+  /// The registered line techniques, in method order: "1 lineao" (value
+  /// and report name; vtkCAO::LineTechniqueList).
+  static std::string GetRegisteredLineMethods();
 
   ///@{
   /// Line AO's prisms per pixel (cao::LineAOSettings::samples: 1..1024,
@@ -401,8 +417,7 @@ public:
   int GetNumberOfOccludingVolumes() const;
   /// The actors with lines (the visible opaque actors whose pieces line AO
   /// takes: lines and no polygons, not drawn as points) in the last frame
-  /// that ran the AO (Method not NONE), counted whether LineAO is on or
-  /// off; with several processes the most any process holds. ParaView's
+  /// that ran the AO (Method not NONE), counted whatever the LineMethod; with several processes the most any process holds. ParaView's
   /// view shows its line settings only while this is above 0.
   int GetNumberOfLineActors() const;
   /// The AO of pixel (x, y) of the renderer's viewport in the last frame
@@ -427,7 +442,7 @@ protected:
   int Backend = BACKEND_AUTO;
   int Occupancy = RAYS;
   bool IndirectLight = false;
-  bool LineAO = true;
+  int LineMethod = LINE_PRISMS;
   int LineSamples = 64;
   int LineSlices = 128;
   int LineShading = LINE_SHADING_AS_DRAWN;

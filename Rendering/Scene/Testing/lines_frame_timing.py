@@ -23,7 +23,7 @@ W, H = [int(v) for v in sys.argv[4].split("x")]
 view = CreateView("ContextualAORenderView")
 view.OrientationAxesVisibility = 0
 view.ViewSize = [W, H]
-view.LineAO = 0
+view.LineAOMethod = 0
 view.SurfaceAOMethod = "None"
 view.SurfaceAOBackend = sys.argv[5] if len(sys.argv) > 5 else "Auto"
 carotid = LegacyVTKReader(FileNames=[os.path.join(data, "carotid.vtk")])
@@ -56,14 +56,14 @@ def frame(label, interactive=False):
     stages = ", ".join("%s %.0f" % (k, v) for k, v in r["stages"].items())
     line = r.get("lines", {})
     print("| %d | %dx%d | %s | %.0f | %s | %d | %s |" % (line.get("segments", 0), W, H, label, ms, stages,
-                                                       line.get("pixels", 0), line.get("prisms", "")))
+                                                       line.get("pixels", 0), line.get("ao", "")))
 
 
 print("| segments | image | frame | ms | stages (ms) | line pixels | prisms |")
 print("|---:|---|---|---:|---|---:|---|")
 frame("no AO (Method None)")
 view.SurfaceAOMethod = "Voxel Cones"
-view.LineAO = 1
+view.LineAOMethod = 1
 frame("first line AO frame")
 frame("still view")
 view.GetActiveCamera().Azimuth(10)

@@ -41,7 +41,7 @@ tracer.SeedType.NumberOfPoints = seeds
 tracer.MaximumStreamlineLength = diagonal
 view = CreateView("ContextualAORenderView")
 view.OrientationAxesVisibility = 0
-view.LineAO = 0
+view.LineAOMethod = 0
 view.SurfaceAOMethod = "None"
 lines = Show(tracer, view)
 ColorBy(lines, None)
@@ -62,7 +62,7 @@ print("| field | seeds | segments | image | no AO ms | first AO frame ms | camer
 print("|---|---:|---:|---|---:|---:|---:|---:|---:|---|")
 for size in sizes:
     view.ViewSize = [int(v) for v in size.split("x")]
-    view.LineAO = 0
+    view.LineAOMethod = 0
     view.SurfaceAOMethod = "None"
     view.CameraPosition = [tracer.SeedType.Center[0] - diagonal, tracer.SeedType.Center[1] - diagonal,
                            tracer.SeedType.Center[2] + diagonal]
@@ -72,7 +72,7 @@ for size in sizes:
     timed()
     plain = timed()
     view.SurfaceAOMethod = "Voxel Cones"
-    view.LineAO = 1
+    view.LineAOMethod = 1
     first = timed()
     report = json.loads(chain.GetLastFrameReport())
     view.GetActiveCamera().Azimuth(10)

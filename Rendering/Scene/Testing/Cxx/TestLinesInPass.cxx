@@ -1,11 +1,11 @@
-// Lines in vtkContextualAOPass (LineAO): streamline-like polylines drawn by
+// Lines in vtkContextualAOPass (LineMethod): streamline-like polylines drawn by
 // VTK as lines, then as tubes (RenderLinesAsTubes), get line AO in the
 // frame (the project's EGL window, CPU line AO).
 //   1 a 7-line hexagonal bundle seen across its lines: the centre line's
 //     drawn pixels are darker than the top lines' and an isolated line's
 //     (about 1: nothing in its half ball), and each line pixel's grey is
 //     its undarkened grey times AO (the whole colour, Strength 1);
-//     control: LineAO off, or Method NONE, leaves the lines' grey as drawn
+//     control: LineMethod None, or Method NONE, leaves the lines' grey as drawn
 //   2 what runs: the first frame builds the lines, voxelizes, reads the
 //     G-buffer, estimates and combines; a colour change only combines; a
 //     camera turn voxelizes the eye grid again
@@ -14,13 +14,13 @@
 //     the box hidden is open
 //   4 lines drawn as tubes: the same ordering; the background has no AO
 //   5 the lines occlude a floor under them (its surface AO); control:
-//     LineAO off leaves the floor open
+//     LineMethod None leaves the floor open
 //   6 the depth G-buffer finds the same line pixels (within 10%)
 //   7 lines with a NaN point: no line AO, a note, the surfaces keep theirs,
 //     not retried every frame
 //   8 moving the lines rebuilds the surfaces' grid on the CPU and on the
 //     GPU (both hold them); on OpenGL the lines darken the floor as on the
-//     CPU (control: LineAO off leaves it open)
+//     CPU (control: LineMethod None leaves it open)
 //   9 the lines alone with Backend OpenGL: the G-buffer, the grid and the
 //     prisms on the window's OpenGL (the report says so), every line pixel's AO within the GPU
 //     twin's bound of the CPU's (GL.TestGLLineAO: mean under 1e-4, 99.9%
@@ -212,16 +212,16 @@ int TestLinesInPass(int, char*[])
   Check(Field(report, "combined_pixels") > 100 && pass->GetPixelAO(2, 2) == -1.0,
     "the lines' pixels are darkened, the background has no AO");
   const double greyCentre = Grey(window, centre.x, centre.y), greyAlone = Grey(window, alone.x, alone.y);
-  pass->SetLineAO(false);
+  pass->SetLineMethod(vtkContextualAOPass::LINE_NONE);
   window->Render();
   const double plainCentre = Grey(window, centre.x, centre.y), plainAlone = Grey(window, alone.x, alone.y);
-  std::printf("grey: centre %.1f (LineAO off %.1f, x AO %.1f), isolated %.1f (%.1f); stages off: '%s'\n",
+  std::printf("grey: centre %.1f (LineMethod None %.1f, x AO %.1f), isolated %.1f (%.1f); stages off: '%s'\n",
     greyCentre, plainCentre, plainCentre * centre.ao, greyAlone, plainAlone, pass->GetLastFrameStages().c_str());
   Check(std::fabs(greyCentre - plainCentre * centre.ao) <= 1.5 && plainCentre - greyCentre > 20.0,
     "a line pixel's grey is its drawn grey times its AO");
   Check(pass->GetLastFrameStages().empty() && Field(pass->GetLastFrameReport(), "segments") == -1.0,
-    "control: LineAO off runs nothing for the lines");
-  pass->SetLineAO(true);
+    "control: LineMethod None runs nothing for the lines");
+  pass->SetLineMethod(vtkContextualAOPass::LINE_PRISMS);
   pass->SetMethod(vtkContextualAOPass::NONE);
   window->Render();
   const std::string noneReport = pass->GetLastFrameReport();
@@ -283,7 +283,7 @@ int TestLinesInPass(int, char*[])
     "tubes: the bundle's centre is darker than the isolated tube");
 
   // 5: the lines occlude a surface: a plane under the bundle (z = -0.3),
-  // read beside the bundle's projection; control: LineAO off.
+  // read beside the bundle's projection; control: LineMethod None.
   lines->GetProperty()->SetRenderLinesAsTubes(false);
   lines->GetProperty()->SetLineWidth(4.0);
   vtkNew<vtkCubeSource> floor;
@@ -305,16 +305,16 @@ int TestLinesInPass(int, char*[])
   };
   const double shadowed = floorAO();
   Check(report.find("\"occlude_surfaces\": true") != std::string::npos, "the report says the lines occlude surfaces");
-  pass->SetLineAO(false);
+  pass->SetLineMethod(vtkContextualAOPass::LINE_NONE);
   window->Render();
   const double bare = floorAO();
-  std::printf("the floor beside the bundle: AO %.4f (LineAO off: %.4f)\n", shadowed, bare);
+  std::printf("the floor beside the bundle: AO %.4f (LineMethod None: %.4f)\n", shadowed, bare);
   Check(bare > 0.99 && shadowed >= 0.0 && shadowed < bare - 0.02, "the lines occlude the floor under them");
 
   // 6: the depth G-buffer: the lines' pixels as with the ray cast (they
   // come from the drawn depth either way), give or take the floor's pixels
   // within a line's reach; the floor still darkened.
-  pass->SetLineAO(true);
+  pass->SetLineMethod(vtkContextualAOPass::LINE_PRISMS);
   window->Render();
   const double castPixels = Field(pass->GetLastFrameReport(), "pixels");
   pass->SetGBuffer(vtkContextualAOPass::DEPTH_BUFFER);
@@ -353,7 +353,7 @@ int TestLinesInPass(int, char*[])
   // 8: moving the lines rebuilds the surfaces' grid on the CPU and on the
   // GPU (both hold them: the GPU's grid is read back, the lines ORed in,
   // put back); on OpenGL the floor beside the bundle is as dark as on the
-  // CPU; control: LineAO off on OpenGL leaves it open.
+  // CPU; control: LineMethod None on OpenGL leaves it open.
   auto stagesAfterMove = [&](int backend, double dz) {
     pass->SetBackend(backend);
     window->Render();
@@ -370,12 +370,12 @@ int TestLinesInPass(int, char*[])
   const bool cpuGrid = ("," + onCPU + ",").find(",voxelize,") != std::string::npos;
   const bool glGrid = ("," + onGL + ",").find(",voxelize,") != std::string::npos &&
     onGL.find("lines_into_grid") != std::string::npos;
-  pass->SetLineAO(false);
+  pass->SetLineMethod(vtkContextualAOPass::LINE_NONE);
   window->Render();
   const double glBare = floorAO();
-  pass->SetLineAO(true);
+  pass->SetLineMethod(vtkContextualAOPass::LINE_PRISMS);
   std::printf("lines moved: CPU stages %s; OpenGL stages %s\n", onCPU.c_str(), onGL.c_str());
-  std::printf("the floor beside the bundle: CPU %.4f, OpenGL %.4f (OpenGL, LineAO off: %.4f)\n", cpuFloor, glFloor,
+  std::printf("the floor beside the bundle: CPU %.4f, OpenGL %.4f (OpenGL, LineMethod None: %.4f)\n", cpuFloor, glFloor,
     glBare);
   Check(cpuGrid && glGrid && onGL.find("line_ao") != std::string::npos,
     "moving the lines rebuilds the surfaces' grid on the CPU and on the GPU");
@@ -383,7 +383,7 @@ int TestLinesInPass(int, char*[])
   // GL tests bound them within 0.02 per point.)
   Check(glReport8.find("\"occlude_surfaces\": true") != std::string::npos && glBare > 0.99 && glFloor >= 0.0 &&
       glFloor < glBare - 0.02 && std::fabs(glFloor - cpuFloor) < 0.02,
-    "on OpenGL the lines occlude the floor as on the CPU (control: LineAO off leaves it open)");
+    "on OpenGL the lines occlude the floor as on the CPU (control: LineMethod None leaves it open)");
 
   // 9: the lines alone, their prisms on the window's OpenGL.
   renderer->RemoveActor(floorActor);
@@ -435,9 +435,9 @@ int TestLinesInPass(int, char*[])
   const bool same = agree(glAO, cpuAO, agreement);
   const bool controlSame = agree(controlAO, cpuAO, control);
   std::printf("OpenGL against the CPU: %s\ncontrol, the CPU with 48 samples: %s\n", agreement.c_str(), control.c_str());
-  Check(glReport.find("\"gbuffer\": \"OpenGL\", \"prisms\": \"OpenGL\", \"voxelization\": \"OpenGL\"") !=
+  Check(glReport.find("\"gbuffer\": \"OpenGL\", \"ao\": \"OpenGL\", \"voxelization\": \"OpenGL\"") !=
         std::string::npos &&
-      cpuReport.find("\"gbuffer\": \"CPU\", \"prisms\": \"CPU\", \"voxelization\": \"CPU\"") != std::string::npos &&
+      cpuReport.find("\"gbuffer\": \"CPU\", \"ao\": \"CPU\", \"voxelization\": \"CPU\"") != std::string::npos &&
       glReport.find("\"error\"") == std::string::npos,
     "Backend OpenGL makes the lines' G-buffer, voxelizes them and counts their prisms on the window's OpenGL, CPU on the CPU");
   Check(same && !controlSame, "the OpenGL line AO is the CPU's within the GPU twin's bound (control: 48 samples misses it)");
@@ -457,10 +457,10 @@ int TestLinesInPass(int, char*[])
     }
     return most;
   };
-  pass->LineAOOff();
+  pass->SetLineMethod(vtkContextualAOPass::LINE_NONE);
   std::string offReport;
   lineAO(vtkContextualAOPass::BACKEND_OPENGL, 64, offReport);
-  pass->LineAOOn();
+  pass->SetLineMethod(vtkContextualAOPass::LINE_PRISMS);
   std::size_t apart = 0, darkened = 0, controlApart = 0;
   const int glCpu = largest(glReport, cpuReport, apart), glOff = largest(glReport, offReport, darkened),
             controlCpu = largest(controlReport, cpuReport, controlApart);
@@ -473,7 +473,7 @@ int TestLinesInPass(int, char*[])
     "lines alone on OpenGL are combined there, the picture the CPU combine's within 1 level (" +
       std::to_string(glCpu) + "; control, 48 samples: " + std::to_string(controlCpu) + ")");
   const bool software = autoReport.find("software rasteriser") != std::string::npos;
-  Check(!software || autoReport.find("\"prisms\": \"CPU\"") != std::string::npos,
+  Check(!software || autoReport.find("\"ao\": \"CPU\"") != std::string::npos,
     "Auto on a software rasteriser keeps the lines' prisms on the CPU");
 
   // 10: LineShading. Two lines apart, across the view and tilted 63 degrees
@@ -633,7 +633,7 @@ int TestLinesInPass(int, char*[])
     const bool agrees = same(thickAO, cpuAO40, covered);
     std::printf("lines 40 pixels wide on OpenGL in 40 x 30: %d line pixels, %s the CPU backend's AO; report %s\n",
       covered, agrees ? "with" : "NOT with", thick.c_str());
-    Check(thick.find("\"gbuffer\": \"CPU\", \"prisms\": \"OpenGL\"") != std::string::npos &&
+    Check(thick.find("\"gbuffer\": \"CPU\", \"ao\": \"OpenGL\"") != std::string::npos &&
         thick.find("G-buffer on the GPU failed") != std::string::npos && thick.find("third") != std::string::npos &&
         agrees && covered > 200,
       "a reach the GPU's G-buffer refuses: the CPU's G-buffer runs (the prisms still on OpenGL), the lines keep "
@@ -772,7 +772,7 @@ int TestLinesInPass(int, char*[])
     // The floor's darkest AO over the pixels near the bundle that are no line's.
     auto floorDarkest = [&](int method, bool lineAO, std::string& rep) {
       ss->SetMethod(method);
-      ss->SetLineAO(lineAO);
+      ss->SetLineMethod(lineAO ? vtkContextualAOPass::LINE_PRISMS : vtkContextualAOPass::LINE_NONE);
       w->Render();
       rep = ss->GetLastFrameReport();
       double darkest = 1.0;

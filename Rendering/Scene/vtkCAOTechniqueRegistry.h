@@ -1,0 +1,95 @@
+/**
+ * vtkCAOTechniqueRegistry.h — the registry every kind of technique shares
+ * (surfaces: vtkCAOSurfaceTechnique.h; lines: vtkCAOLineTechnique.h): the
+ * techniques of one kind by their Method value, 1 or more (0 is None),
+ * each value once, kept in value order, the built-ins registered first.
+ * Private to the module.
+ */
+#ifndef vtkCAOTechniqueRegistry_h
+#define vtkCAOTechniqueRegistry_h
+
+#include <algorithm>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace vtkCAO
+{
+/// `Technique` has `method`, `name` and a `cpu` step (the required one).
+template <typename Technique>
+class TechniqueRegistry
+{
+public:
+  /// `kind` in messages ("surface"); `builtIns` registers the built-ins
+  /// (with AddBuiltIn), once, before any other call answers.
+  TechniqueRegistry(const char* kind, std::function<void()> builtIns)
+    : Kind(kind)
+    , BuiltIns(std::move(builtIns))
+  {
+  }
+
+  /// False, saying why in `error`, when the method is not 1 or more, is
+  /// taken, or the technique has no name or no CPU step.
+  bool Add(const Technique& technique, std::string* error)
+  {
+    this->EnsureBuiltIns();
+    return this->AddBuiltIn(technique, error);
+  }
+  bool AddBuiltIn(const Technique& technique, std::string* error = nullptr)
+  {
+    const auto fail = [error](const std::string& why) {
+      if (error)
+        *error = why;
+      return false;
+    };
+    if (technique.method < 1)
+      return fail(std::string("a ") + this->Kind + " technique's Method value must be 1 or more (0 is None); got " +
+        std::to_string(technique.method));
+    if (technique.name.empty() || !technique.cpu)
+      return fail(std::string("a ") + this->Kind + " technique needs a name and a CPU step");
+    std::lock_guard<std::mutex> lock(this->Mutex);
+    for (const auto& t : this->Techniques)
+      if (t->method == technique.method)
+        return fail("Method " + std::to_string(technique.method) + " is taken (by " + t->name + ")");
+    this->Techniques.push_back(std::make_unique<Technique>(technique));
+    std::sort(this->Techniques.begin(), this->Techniques.end(),
+      [](const auto& a, const auto& b) { return a->method < b->method; });
+    return true;
+  }
+
+  /// The technique of `method`, or null (the pointer stays valid).
+  const Technique* Find(int method)
+  {
+    this->EnsureBuiltIns();
+    std::lock_guard<std::mutex> lock(this->Mutex);
+    for (const auto& t : this->Techniques)
+      if (t->method == method)
+        return t.get();
+    return nullptr;
+  }
+
+  /// "1 vct, 2 hbao": values and names in value order.
+  std::string List()
+  {
+    this->EnsureBuiltIns();
+    std::lock_guard<std::mutex> lock(this->Mutex);
+    std::string list;
+    for (const auto& t : this->Techniques)
+      list += (list.empty() ? "" : ", ") + std::to_string(t->method) + " " + t->name;
+    return list;
+  }
+
+private:
+  void EnsureBuiltIns() { std::call_once(this->Once, this->BuiltIns); }
+
+  const char* Kind;
+  std::function<void()> BuiltIns;
+  std::once_flag Once;
+  std::mutex Mutex;
+  std::vector<std::unique_ptr<Technique>> Techniques;
+};
+}
+
+#endif
