@@ -1,6 +1,6 @@
 /**
  * pqCAOLinesInViewDecorator — the ParaView GUI shows a Contextual AO view's
- * line settings (Line AO, its samples, slices and shading) only while the
+ * line settings (Line AO Method, its samples, slices and shading) only while the
  * view draws lines: XML type "CAOLinesInView" in ContextualAOView.xml.
  *
  * After each render of the view it reads how many actors with lines the

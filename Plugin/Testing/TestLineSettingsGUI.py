@@ -1,9 +1,10 @@
 """The view's line settings in the ParaView GUI's Properties panel (a
 startup script under Xvfb, ParaView's default settings) are shown only
-while the view draws lines: with a sphere alone, Line AO, Line AO Samples,
+while the view draws lines: with a sphere alone, Line AO Method, Line AO Samples,
 Line AO Slices and Line Shading are hidden (the Surface AO Radius beside
 them shown: the widgets are found); with a Line source shown too, all four
-are shown; Line AO off hides its three settings and keeps Line AO; the
+are shown; Line AO Method None hides its three settings and keeps Line AO
+Method; the
 line hidden again hides all four; after the view is closed, a new view
 hides them until it draws the line. Plugin.GUI.LineSettingsRemote runs it
 in a GUI connected to a pvserver on 2 processes, the server drawing

@@ -54,7 +54,7 @@ try:
                  report.get("error", report.get("backend_note", ""))))
     view.LineAOMethod = 0
     Render(view)
-    check("lines" not in json.loads(chain.GetLastFrameReport()), "control: Line AO off, no line work")
+    check("lines" not in json.loads(chain.GetLastFrameReport()), "control: Line AO Method None, no line work")
 except Exception as e:  # noqa: BLE001  (reported as a failure)
     check(False, "exception: %r" % (e,))
 finally:

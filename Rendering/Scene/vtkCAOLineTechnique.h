@@ -42,9 +42,10 @@ struct LineTechniqueSettings
   /// LineSamples and LineSlices: resolved and checked.
   const cao::LineAOSettings* lineAO = nullptr;
   /// The lines' eye grid: their supercover as tubes of the tube radius
-  /// (when the AO runs on the GPU, its plan, with the bits voxelized there
-  /// and none on the host: a technique without a `gpu` step runs on the
-  /// CPU, grid and all).
+  /// (when the AO runs on the GPU and one process holds the lines, its
+  /// plan, with the bits voxelized there and none on the host; with
+  /// several processes the grid of every process's lines, made on the CPU.
+  /// A technique without a `gpu` step runs on the CPU, grid and all).
   const cao::BitGrid* grid = nullptr;
   /// The meshes beside the lines in that grid's plan, voxelized as solids
   /// (null: none), occluding the lines.
@@ -68,7 +69,7 @@ struct LineTechnique
     gpu;
   /// On the G-buffer that SceneGPU::LineGBuffer made on the GPU (it holds
   /// the segments only; null: the G-buffer is made on the CPU and `gpu`
-  /// runs).
+  /// runs). Only with a `gpu` step (else refused).
   std::function<bool(SceneGPU& gpu, const LineTechniqueSettings& settings, cao::LineFrame& frame,
     std::string& error)>
     gpuOfGBuffer;
@@ -76,7 +77,7 @@ struct LineTechnique
 
 /// Register `technique`; false, saying why in `error`, when its method is
 /// not 1 or more (0 is None) or is taken, or it has no name or no `cpu`
-/// step. The built-in (line voxelization and prism sampling, 1) is
+/// step, or a `gpuOfGBuffer` step without a `gpu` step. The built-in (line voxelization and prism sampling, 1) is
 /// registered first.
 CAORENDERINGSCENE_EXPORT bool RegisterLineTechnique(const LineTechnique& technique, std::string* error = nullptr);
 

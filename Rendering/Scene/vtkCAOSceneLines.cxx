@@ -490,6 +490,8 @@ bool SceneLines::Update(const LineTechnique& technique, const cao::PixelCamera& 
   int samples, int slices, SceneGPU* gpu, std::vector<std::string>& stages, std::vector<double>& ms,
   std::string& error, bool keepGrid)
 {
+  if (!technique.gpu)
+    gpu = nullptr; // (a technique without a GPU step: the grid and the G-buffer on the CPU too)
   auto start = Clock::now();
   bool built = false;
   this->keptGrid = false;

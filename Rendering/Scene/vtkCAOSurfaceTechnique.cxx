@@ -2,6 +2,8 @@
 
 #include "vtkCAOTechniqueRegistry.h"
 
+#include "vtkObject.h" // For vtkGenericWarningMacro
+
 namespace vtkCAO
 {
 // The built-ins, each in its own file under Techniques/.
@@ -13,7 +15,7 @@ namespace
 {
 TechniqueRegistry<SurfaceTechnique>& TheRegistry()
 {
-  static TechniqueRegistry<SurfaceTechnique> registry("surface", [] {
+  static TechniqueRegistry<SurfaceTechnique> registry("surface", "Method", [] {
     RegisterVoxelConesTechnique();
     RegisterHBAOTechnique();
     RegisterVolumetricAOTechnique();
@@ -24,7 +26,11 @@ TechniqueRegistry<SurfaceTechnique>& TheRegistry()
 
 bool RegisterBuiltIn(const SurfaceTechnique& technique)
 {
-  return TheRegistry().AddBuiltIn(technique);
+  std::string error;
+  if (TheRegistry().AddBuiltIn(technique, &error))
+    return true;
+  vtkGenericWarningMacro("The built-in surface technique " << technique.name << " did not register: " << error);
+  return false;
 }
 
 bool RegisterSurfaceTechnique(const SurfaceTechnique& technique, std::string* error)

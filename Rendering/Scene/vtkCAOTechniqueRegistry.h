@@ -22,10 +22,13 @@ template <typename Technique>
 class TechniqueRegistry
 {
 public:
-  /// `kind` in messages ("surface"); `builtIns` registers the built-ins
-  /// (with AddBuiltIn), once, before any other call answers.
-  TechniqueRegistry(const char* kind, std::function<void()> builtIns)
+  /// `kind` in messages ("surface"), `value` the pass's property that takes
+  /// the method values ("Method"); `builtIns` registers the built-ins (with
+  /// AddBuiltIn, never Add, Find or List, which would wait on themselves),
+  /// once, before any other call answers.
+  TechniqueRegistry(const char* kind, const char* value, std::function<void()> builtIns)
     : Kind(kind)
+    , Value(value)
     , BuiltIns(std::move(builtIns))
   {
   }
@@ -35,29 +38,21 @@ public:
   bool Add(const Technique& technique, std::string* error)
   {
     this->EnsureBuiltIns();
-    return this->AddBuiltIn(technique, error);
+    return this->Insert(technique, error);
   }
+  /// Only from the built-ins' callback (else refused: a value taken before
+  /// the built-ins register would push one out).
   bool AddBuiltIn(const Technique& technique, std::string* error = nullptr)
   {
-    const auto fail = [error](const std::string& why) {
+    if (!this->RegisteringBuiltIns)
+    {
       if (error)
-        *error = why;
+        *error = std::string("only the built-in ") + this->Kind + " techniques register as built-ins";
       return false;
-    };
-    if (technique.method < 1)
-      return fail(std::string("a ") + this->Kind + " technique's Method value must be 1 or more (0 is None); got " +
-        std::to_string(technique.method));
-    if (technique.name.empty() || !technique.cpu)
-      return fail(std::string("a ") + this->Kind + " technique needs a name and a CPU step");
-    std::lock_guard<std::mutex> lock(this->Mutex);
-    for (const auto& t : this->Techniques)
-      if (t->method == technique.method)
-        return fail("Method " + std::to_string(technique.method) + " is taken (by " + t->name + ")");
-    this->Techniques.push_back(std::make_unique<Technique>(technique));
-    std::sort(this->Techniques.begin(), this->Techniques.end(),
-      [](const auto& a, const auto& b) { return a->method < b->method; });
-    return true;
+    }
+    return this->Insert(technique, error);
   }
+
 
   /// The technique of `method`, or null (the pointer stays valid).
   const Technique* Find(int method)
@@ -82,9 +77,44 @@ public:
   }
 
 private:
-  void EnsureBuiltIns() { std::call_once(this->Once, this->BuiltIns); }
+  bool Insert(const Technique& technique, std::string* error)
+  {
+    const auto fail = [error](const std::string& why) {
+      if (error)
+        *error = why;
+      return false;
+    };
+    if (technique.method < 1)
+      return fail(std::string("a ") + this->Kind + " technique's " + this->Value +
+        " value must be 1 or more (0 is None); got " + std::to_string(technique.method));
+    if (technique.name.empty() || !technique.cpu)
+      return fail(std::string("a ") + this->Kind + " technique needs a name and a CPU step");
+    std::lock_guard<std::mutex> lock(this->Mutex);
+    for (const auto& t : this->Techniques)
+      if (t->method == technique.method)
+        return fail(std::string(this->Value) + " " + std::to_string(technique.method) + " is taken (by " +
+          t->name + ")");
+    auto copy = std::make_unique<Technique>(technique);
+    if (copy->label.empty())
+      copy->label = copy->name; // (messages name it)
+    this->Techniques.push_back(std::move(copy));
+    std::sort(this->Techniques.begin(), this->Techniques.end(),
+      [](const auto& a, const auto& b) { return a->method < b->method; });
+    return true;
+  }
+
+  void EnsureBuiltIns()
+  {
+    std::call_once(this->Once, [this] {
+      this->RegisteringBuiltIns = true;
+      this->BuiltIns();
+      this->RegisteringBuiltIns = false;
+    });
+  }
 
   const char* Kind;
+  const char* Value;
+  bool RegisteringBuiltIns = false; ///< (set inside the once-callback only)
   std::function<void()> BuiltIns;
   std::once_flag Once;
   std::mutex Mutex;

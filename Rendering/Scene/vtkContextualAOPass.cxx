@@ -481,6 +481,7 @@ struct vtkContextualAOPass::Internals
   vtkCAO::SceneLines lines;
   bool linesOn = false;   ///< this frame has lines that get line AO
   int lineActors = 0;     ///< actors with lines (whatever the LineMethod): GetNumberOfLineActors
+  std::string lineMethodName; ///< the line technique the last frame ran (the report)
   bool linesOccludeSurfaces = false; ///< the surfaces' grid holds the lines' voxels
   std::string linesNote;  ///< why lines in view get none
   std::string saidLines;  ///< the line failure last logged
@@ -812,7 +813,7 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
     o << "]";
   }
   if (p.linesOn)
-    o << ", \"lines\": {\"method\": \"" << (Internals::LineTechniqueOf(this) ? Internals::LineTechniqueOf(this)->name : std::string("none"))
+    o << ", \"lines\": {\"method\": \"" << JsonText(p.lineMethodName)
       << "\", \"actors\": " << p.lines.NumberOfActors() << ", \"segments\": "
       << p.lines.NumberOfSegments() << ", \"radius\": " << p.lines.Radius() << ", \"pixels\": "
       << p.lines.Frame().covered << ", \"combined_pixels\": " << p.lineCombined
@@ -835,7 +836,7 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
              : "false")
       << "}";
   if (!p.linesNote.empty())
-    o << ", \"lines_note\": \"" << p.linesNote << "\"";
+    o << ", \"lines_note\": \"" << JsonText(p.linesNote) << "\"";
   if (!p.error.empty())
     o << ", \"error\": \"" << p.error << "\"";
   o << "}";
@@ -975,8 +976,10 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
   this->gpuFrame = this->onGPU && this->gbuffer == DEPTH_BUFFER && !hostIndirect && technique->gpuFrame &&
     !frustum && !this->linesOn;
   if (this->onGPU && this->gbuffer == DEPTH_BUFFER && this->linesOn)
-    this->backendNote = "the lines' drawn depth is read back to the host (the surfaces' AO and the lines' "
-                        "G-buffer, grid and prisms still on the GPU)";
+    this->backendNote = LineTechniqueOf(self) && LineTechniqueOf(self)->gpu
+      ? "the lines' drawn depth is read back to the host (the surfaces' AO and the lines' G-buffer, grid and AO "
+        "still on the GPU)"
+      : "the lines' drawn depth is read back to the host (the surfaces' AO still on the GPU)";
   if (this->onGPU && this->gbuffer == DEPTH_BUFFER && hostIndirect)
     this->backendNote = technique->label + "'s indirect light runs on the CPU: the frame's pixels are read back (the AO "
       "still on the GPU)";
@@ -1827,8 +1830,9 @@ bool vtkContextualAOPass::Internals::UpdateLines(vtkContextualAOPass* self, vtkR
   // A technique without a GPU step runs on the CPU, its grid included.
   const bool onGPU = this->onGPU && technique->gpu;
   if (this->onGPU && !technique->gpu)
-    this->backendNote += (this->backendNote.empty() ? "" : "; ") + technique->label +
+    this->backendNote += (this->backendNote.empty() ? "" : "; ") + JsonText(technique->label) +
       " has no GPU step: the lines' grid, G-buffer and AO run on the CPU";
+  this->lineMethodName = technique->name;
   std::string error;
   this->lines.SetFullGBuffer(self->LineShading == LINE_SHADING_MALLO_BANKS);
   if (!this->lines.Update(*technique, camera, right, up, this->depth, skip.empty() ? nullptr : &skip,

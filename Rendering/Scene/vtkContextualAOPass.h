@@ -69,7 +69,7 @@
  *    same triangles, or with GBuffer DEPTH_BUFFER "gbuffer": the drawn
  *    depth) and their AO (cones, horizons or pipes), only when the grid, the volumes'
  *    opacity, the camera, the viewport, the AO settings or (DEPTH_BUFFER)
- *    the drawn depth or the lines' pixels in it changed (with Line AO on,
+ *    the drawn depth or the lines' pixels in it changed (with a LineMethod,
  *    the lines' pixels are no surface's: the screen-space methods do not
  *    take a thin line for a depth wall);
  *  - "ambient" (AMBIENT_TERM only), "indirect" (Volumetric AO with IndirectLight:

@@ -61,7 +61,7 @@ The pass's rows say where its time goes (its frame report's stages, ms, of
 the last turning frame) and what its first frame cost (a new pass's first
 Render: its grid, G-buffer and shaders), beside the plain frame's.
 Line inputs (polylines, streamlines: lines and no polygons) are drawn as
-lines --line-width pixels wide and get the pass's line AO (its Line AO, on
+lines --line-width pixels wide and get the pass's line AO (its LineMethod, line voxelization
 by default; --methods is then not read); vtkSSAOPass draws the same lines.
 Time only: `cao bench surface` and `cao bench lines` measure the error.
 Writes DIR/surface-frame.csv.)footer";

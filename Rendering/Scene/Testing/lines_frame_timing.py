@@ -59,7 +59,7 @@ def frame(label, interactive=False):
                                                        line.get("pixels", 0), line.get("ao", "")))
 
 
-print("| segments | image | frame | ms | stages (ms) | line pixels | prisms |")
+print("| segments | image | frame | ms | stages (ms) | line pixels | line AO on |")
 print("|---:|---|---|---:|---|---:|---|")
 frame("no AO (Method None)")
 view.SurfaceAOMethod = "Voxel Cones"

@@ -11,7 +11,8 @@
 //   G-buffer and its step on the CPU, and the report says why; the
 //   built-in (its GPU steps) runs there, and gives another AO;
 // - a taken value (the built-in's 1 included), a value below 1, a
-//   technique without a CPU step are refused; SetLineMethod with a value
+//   technique without a CPU step, a GPU G-buffer step without a GPU step
+//   are refused, and so is a late call to the built-ins' entry; SetLineMethod with a value
 //   nobody registered is an error and the LineMethod stays.
 #include "vtkCAOLineTechnique.h"
 #include "vtkContextualAOPass.h"
@@ -37,6 +38,11 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+
+namespace vtkCAO
+{
+bool RegisterBuiltIn(const LineTechnique& technique); // (vtkCAOLineTechnique.cxx's, for the built-ins)
+}
 
 namespace
 {
@@ -153,6 +159,16 @@ int TestLineTechnique(int, char*[])
   noStep.cpu = nullptr;
   refused = !vtkCAO::RegisterLineTechnique(noStep, &error);
   Check(refused && !vtkCAO::FindLineTechnique(42), "a technique without a CPU step is refused: " + error);
+  vtkCAO::LineTechnique gpuFrameOnly = Constant(44, "gbufferonly", 0.5, nullptr);
+  gpuFrameOnly.gpuOfGBuffer = [](vtkCAO::SceneGPU&, const vtkCAO::LineTechniqueSettings&, cao::LineFrame&,
+                                std::string&) { return true; };
+  refused = !vtkCAO::RegisterLineTechnique(gpuFrameOnly, &error);
+  Check(refused && !vtkCAO::FindLineTechnique(44) && error.find("needs its GPU step") != std::string::npos,
+    "a GPU G-buffer step without a GPU step is refused: " + error);
+  // (The built-ins' own entry takes nothing once they are in: a value taken
+  // before them would push one out.)
+  Check(!vtkCAO::RegisterBuiltIn(Constant(45, "late", 0.5, nullptr)) && !vtkCAO::FindLineTechnique(45),
+    "the built-ins' entry refuses a technique after the built-ins registered");
   const vtkCAO::LineTechnique* builtIn = vtkCAO::FindLineTechnique(vtkContextualAOPass::LINE_PRISMS);
   Check(builtIn && builtIn->name == "lineao" && builtIn->gpu && builtIn->gpuOfGBuffer &&
       vtkContextualAOPass::GetRegisteredLineMethods() == "1 lineao, 40 half, 41 open",
