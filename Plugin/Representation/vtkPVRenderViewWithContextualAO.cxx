@@ -57,15 +57,19 @@ void vtkPVRenderViewWithContextualAO::Render(bool interactive, bool skip_renderi
   const bool distributed = controller && controller->GetNumberOfProcesses() > 1 &&
     (interactive ? this->GetUseDistributedRenderingForLODRender() : this->GetUseDistributedRenderingForRender()) &&
     !this->InTileDisplayMode() && !this->InCaveDisplayMode();
-  const bool exchange = distributed && this->Pass->GetMethod() != vtkContextualAOPass::NONE;
+  const bool ours = this->Pass->GetMethod() != vtkContextualAOPass::NONE ||
+    this->Pass->GetLineMethod() != vtkContextualAOPass::LINE_NONE; // (the pass runs some AO)
+  const bool exchange = distributed && ours;
   if (exchange)
     this->RenderEmptyImages = true;
   this->Pass->SetController(exchange ? controller : nullptr);
   // ParaView's own screen-space AO (the Render View's "Use Ambient
-  // Occlusion") would darken the surfaces a second time: it applies only
-  // while Surface AO Method is None.
+  // Occlusion") would darken the surfaces or lines a second time: it
+  // applies only while Surface AO Method is None and no lines get Line AO
+  // (Line AO Method None, or no lines in the last frame).
   const bool ssao = this->UseSSAO;
-  if (this->Pass->GetMethod() != vtkContextualAOPass::NONE)
+  if (this->Pass->GetMethod() != vtkContextualAOPass::NONE ||
+    (this->Pass->GetLineMethod() != vtkContextualAOPass::LINE_NONE && this->Pass->GetNumberOfLineActors() > 0))
     this->UseSSAO = false;
   this->Pass->SetInteractiveFrames(interactive); // (a drag keeps the lines' grid of its start)
   this->Superclass::Render(interactive, skip_rendering);

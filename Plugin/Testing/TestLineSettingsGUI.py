@@ -4,7 +4,8 @@ while the view draws lines: with a sphere alone, Line AO Method, Line AO Samples
 Line AO Slices and Line Shading are hidden (the Surface AO Radius beside
 them shown: the widgets are found); with a Line source shown too, all four
 are shown; Line AO Method None hides its three settings and keeps Line AO
-Method; the
+Method; Surface AO Method None keeps the four and the Radius (the lines'
+AO uses it), and with Line AO Method None too hides the Radius; the
 line hidden again hides all four; after the view is closed, a new view
 hides them until it draws the line. Plugin.GUI.LineSettingsRemote runs it
 in a GUI connected to a pvserver on 2 processes, the server drawing
@@ -50,9 +51,10 @@ try:
         widgets = [w for w in app.allWidgets() if w.objectName() == name and isinstance(w, QtWidgets.QFrame)]
         return widgets[0].isVisible() if len(widgets) == 1 else None
 
-    def expect(scene, visible):
+    def expect(scene, visible, radius=True):
         states = {name: shown(name) for name in LINE_SETTINGS + ("SurfaceAORadius",)}
-        check(states["SurfaceAORadius"] is True, "%s: Surface AO Radius is shown (%s)" % (scene, states["SurfaceAORadius"]))
+        check(states["SurfaceAORadius"] is radius, "%s: Surface AO Radius is %s (%s)"
+              % (scene, "shown" if radius else "hidden", states["SurfaceAORadius"]))
         for name in LINE_SETTINGS:
             check(states[name] is (name in visible),
                   "%s: %s is %s (widget shown: %s)" % (scene, name, "shown" if name in visible else "hidden",
@@ -69,6 +71,17 @@ try:
     Render(view)
     expect("Line AO Method None", ("LineAOMethod",))
     view.LineAOMethod = 1
+    # One technique per kind: Surface AO Method None keeps the lines' settings
+    # and the Radius (the lines' too) while lines get AO, and hides the
+    # Radius once neither kind does.
+    view.SurfaceAOMethod = "None"
+    Render(view)
+    expect("Surface AO Method None with the line", LINE_SETTINGS)
+    view.LineAOMethod = 0
+    Render(view)
+    expect("Surface and Line AO Method None", ("LineAOMethod",), radius=False)
+    view.LineAOMethod = 1
+    view.SurfaceAOMethod = "Voxel Cones"
     Hide(line, view)
     Render(view)
     expect("the line hidden", ())

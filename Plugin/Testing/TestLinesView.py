@@ -13,10 +13,12 @@ an opaque slice of the same field, as a user builds the scene:
 - a camera drag step (an interactive render) keeps the lines' grid, the
   still render at the release builds the camera's own; the drag's AO near
   the exact one;
-- Surface AO Method None draws the Render View's picture (no stage runs).
+- Surface AO Method None leaves the lines their line AO, with no surface
+  step; with Line AO Method None too no stage runs.
 Writes OUT_DIR/lines-off.png and lines-on.png (and without FXAA).
 
   pvpython TestLinesView.py PLUGIN.so DATA_DIR OUT_DIR   (under run-with-xvfb.sh)"""
+import json
 import os
 import sys
 
@@ -188,7 +190,13 @@ for lod in ("LOD (the default threshold)", "no LOD"):
               "pixels; bound 0.05)" % (meanGap, len(both)))
 view.SurfaceAOMethod = "None"
 Render(view)
-check(pas.GetLastFrameStages() == "", "Surface AO Method None runs nothing")
+noneReport = json.loads(pas.GetLastFrameReport())
+check(noneReport["method"] == "none" and noneReport.get("lines", {}).get("method") == "lineao" and
+      "trace" not in pas.GetLastFrameStages() and "primary" not in pas.GetLastFrameStages(),
+      "Surface AO Method None leaves the lines their Line AO Method, no surface step (%s)" % pas.GetLastFrameStages())
+view.LineAOMethod = "None"
+Render(view)
+check(pas.GetLastFrameStages() == "", "Surface and Line AO Method None run nothing")
 if failures:
     print("%d failure(s)" % len(failures))
     sys.exit(1)

@@ -86,8 +86,10 @@ reports = {}
 def off_and_on(name):
     """The view without AO (NAME-off) and with voxel cones and line AO (NAME)."""
     view.SurfaceAOMethod = "None"
+    view.LineAOMethod = "None"
     grey(name + "-off")
     view.SurfaceAOMethod = "Voxel Cones"
+    view.LineAOMethod = "Voxelized Lines"
     grey(name)
     reports[name] = json.loads(pas.GetLastFrameReport())
 

@@ -761,12 +761,37 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
 {
   const Internals& p = *this->Internal;
   std::ostringstream o;
-  if (this->Method == NONE)
+  if (this->Method == NONE && (this->LineMethod == LINE_NONE || (!p.linesOn && p.linesNote.empty())))
   {
     // Nothing ran: no other frame's grid, pixels or backend.
     o << "{\"frame\": " << this->FrameCount
-      << ", \"method\": \"none\", \"stages\": {}, \"reasons\": [], \"note\": \"Method None: no AO; the "
-         "surfaces and lines are as the renderer draws them\"}";
+      << ", \"method\": \"none\", \"stages\": {}, \"reasons\": [], \"note\": \"Method None"
+      << (this->LineMethod == LINE_NONE ? " and LineMethod None: no AO" : ": no surface AO, and no lines had AO")
+      << "; the scene is as the renderer draws it\"}";
+    return o.str();
+  }
+  const auto stages = [&]() {
+    o << "\"stages\": {";
+    for (std::size_t i = 0; i < p.stages.size(); ++i)
+      o << (i ? ", " : "") << "\"" << p.stages[i] << "\": " << p.ms[i];
+    o << "}, \"reasons\": [";
+    for (std::size_t i = 0; i < p.reasons.size(); ++i)
+      o << (i ? ", " : "") << "\"" << p.reasons[i] << "\"";
+    o << "]";
+  };
+  if (this->Method == NONE)
+  {
+    // The lines' AO alone: the surfaces as the renderer draws them.
+    o << "{\"frame\": " << this->FrameCount << ", \"method\": \"none\", \"note\": \"Method None: the "
+      << "surfaces as the renderer draws them, occluding the lines\", ";
+    stages();
+    o << ", \"backend\": \"" << (p.onGPU ? p.gpu.Description() : std::string("CPU")) << "\"";
+    if (!p.backendNote.empty())
+      o << ", \"backend_note\": \"" << p.backendNote << "\"";
+    if (p.frameProcesses > 1)
+      o << ", \"processes\": " << p.frameProcesses;
+    this->WriteLinesReport(o);
+    o << "}";
     return o.str();
   }
   o << "{\"frame\": " << this->FrameCount << ", \"method\": \""
@@ -777,13 +802,9 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
     << (this->Occupancy == VOLUME ? "volume" : "rays") << "\", \"gbuffer\": \""
     << (p.gbuffer == DEPTH_BUFFER ? "depth buffer" : "ray cast")
     << (this->GBuffer == GBUFFER_AUTO ? " (auto)" : "") << "\", \"frame_on_gpu\": "
-    << (this->Internal->gpuFrame ? "true" : "false") << ", \"stages\": {";
-  for (std::size_t i = 0; i < p.stages.size(); ++i)
-    o << (i ? ", " : "") << "\"" << p.stages[i] << "\": " << p.ms[i];
-  o << "}, \"reasons\": [";
-  for (std::size_t i = 0; i < p.reasons.size(); ++i)
-    o << (i ? ", " : "") << "\"" << p.reasons[i] << "\"";
-  o << "], \"triangles\": " << p.triangles << ", \"bvh\": " << (p.bvh.NumberOfTriangles() > 0 ? "true" : "false")
+    << (this->Internal->gpuFrame ? "true" : "false") << ", ";
+  stages();
+  o << ", \"triangles\": " << p.triangles << ", \"bvh\": " << (p.bvh.NumberOfTriangles() > 0 ? "true" : "false")
     << ", \"open_meshes\": " << p.open
     << ", \"occluding_volumes\": " << p.opacity.size() << ", \"radius\": " << p.radius
     << ", \"slices\": " << p.grid.slices << ", \"covered_pixels\": " << p.frame.covered
@@ -812,6 +833,14 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
       o << (i ? ", " : "") << "\"" << p.skippedVolumes[i] << "\"";
     o << "]";
   }
+  this->WriteLinesReport(o);
+  o << "}";
+  return o.str();
+}
+
+void vtkContextualAOPass::WriteLinesReport(std::ostream& o) const
+{
+  const Internals& p = *this->Internal;
   if (p.linesOn)
     o << ", \"lines\": {\"method\": \"" << JsonText(p.lineMethodName)
       << "\", \"actors\": " << p.lines.NumberOfActors() << ", \"segments\": "
@@ -839,8 +868,6 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
     o << ", \"lines_note\": \"" << JsonText(p.linesNote) << "\"";
   if (!p.error.empty())
     o << ", \"error\": \"" << p.error << "\"";
-  o << "}";
-  return o.str();
 }
 
 void vtkContextualAOPass::Render(const vtkRenderState* s)
@@ -871,12 +898,12 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
   vtkRenderer* ren = s->GetRenderer();
   this->linesOn = false; // (Collect says whether this frame has lines)
   this->linesNote.clear();
-  if (self->Method == NONE || !ren || ren->GetSelector())
-  {
-    if (self->Method == NONE) // the report describes this frame: nothing on the GPU
-      this->gpuFrame = false;
-    return; // a selection pass draws ids, not colours: no AO there
-  }
+  // One technique per kind: the surfaces' (Method) and the lines' (LineMethod).
+  const vtkCAO::SurfaceTechnique* technique = Technique(self);
+  if (self->Method == NONE)
+    this->gpuFrame = false; // (the report describes this frame: no surface frame on the GPU)
+  if ((self->Method == NONE && !LineTechniqueOf(self)) || !ren || ren->GetSelector())
+    return; // no AO asked; a selection pass draws ids, not colours: no AO there
   int width = 0, height = 0, x0 = 0, y0 = 0;
   ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
   if (width < 1 || height < 1)
@@ -887,21 +914,20 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
   // per tiling.
   int* tileScale = ren->GetRenderWindow() ? ren->GetRenderWindow()->GetTileScale() : nullptr;
   const bool tiled = tileScale && (tileScale[0] > 1 || tileScale[1] > 1);
-  const vtkCAO::SurfaceTechnique* technique = Technique(self);
-  if (!technique) // (SetMethod takes only registered values)
+  if (!technique && self->Method != NONE) // (SetMethod takes only registered values)
   {
     this->Fail(self, "Method " + std::to_string(self->Method) + " is no registered surface technique");
     return;
   }
-  const bool readsGrid = technique->readsGrid;
+  const bool readsGrid = technique && technique->readsGrid;
   const bool screenBound = !readsGrid || self->Grid == FRUSTUM_GRID;
-  if (tiled && screenBound && !this->warnedTiles)
+  if (technique && tiled && screenBound && !this->warnedTiles)
     vtkWarningWithObjectMacro(self, << "A tiled render (" << tileScale[0] << " x " << tileScale[1]
       << " tiles: an image larger than the window): "
       << (readsGrid ? std::string("the frustum grid") : technique->label)
       << " sees each tile alone, so the tiles' edges show as seams; render at the window's size, or use "
          "a technique that reads the grid (Voxel Cones) on the world or eye grid");
-  this->warnedTiles = tiled && screenBound;
+  this->warnedTiles = technique && tiled && screenBound;
   this->Collect(self, ren);
   this->frameProcesses = this->Distributed() ? this->controller->GetNumberOfProcesses() : 1;
   if (this->frameProcesses > 1)
@@ -929,7 +955,7 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
     // The default pass darkens the ambient term, and VTK's default
     // property has none: on such a scene the AO changes nothing. Said once
     // (until a surface has an ambient term or ApplyTo changes).
-    const bool noAmbient = self->ApplyTo == AMBIENT_TERM && !this->pieces.empty() &&
+    const bool noAmbient = technique && self->ApplyTo == AMBIENT_TERM && !this->pieces.empty() &&
       std::none_of(this->pieces.begin(), this->pieces.end(),
         [](const auto& piece) { return piece.first->GetProperty()->GetAmbient() > 0.0; });
     if (noAmbient && !this->warnedAmbient)
@@ -940,15 +966,19 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
                                       "the whole colour (SetApplyTo(WHOLE_COLOR)).");
     this->warnedAmbient = noAmbient;
   }
-  if (this->pieces.empty())
+  if (this->pieces.empty() || !technique)
   {
-    this->frame = cao::SurfaceFrame();
-    this->viewKey.clear();
+    if (this->pieces.empty())
+    {
+      this->frame = cao::SurfaceFrame();
+      this->viewKey.clear();
+    } // (Method NONE keeps the surfaces' last frame for when a technique comes back, as it did)
     this->gpuFrame = false;
     if (!this->linesOn)
-      return; // no surfaces and no lines: no work
-    // Lines alone: their AO on the drawn depth (the prisms where the
-    // backend resolves), and the combine.
+      return; // no surfaces (or no surface technique) and no lines: no work
+    // The lines' AO alone (no surfaces, or Method None: the surfaces as
+    // drawn, occluding the lines): on the drawn depth (where the backend
+    // resolves), and the combine.
     if (!this->ResolveBackend(self, ren))
       return;
     this->depthOk = vtkCAO::ReadViewportDepth(ren, this->depth, this->depthError);
@@ -1803,10 +1833,13 @@ bool vtkContextualAOPass::Internals::UpdateLines(vtkContextualAOPass* self, vtkR
   const cao::PixelCamera camera = LineCamera(ren, right, up);
   const std::size_t count = static_cast<std::size_t>(camera.width) * camera.height;
   std::vector<unsigned char> skip;
-  // (with the depth G-buffer the lines run before the surfaces' frame)
-  const bool surfaces =
-    !this->pieces.empty() && (this->gbuffer == DEPTH_BUFFER || this->frame.ao.size() == count);
-  if (surfaces && this->gbuffer == RAY_CAST)
+  // (with the depth G-buffer the lines run before the surfaces' frame;
+  // under Method None the surfaces are drawn and occlude the lines, with
+  // no frame of their own)
+  const bool surfaceFrame = Technique(self) && !this->pieces.empty() &&
+    (this->gbuffer == DEPTH_BUFFER || this->frame.ao.size() == count);
+  const bool surfaces = surfaceFrame || (!Technique(self) && !this->pieces.empty());
+  if (surfaceFrame && this->gbuffer == RAY_CAST)
   {
     skip.assign(count, 0);
     for (std::size_t i = 0; i < count; ++i)
@@ -1983,7 +2016,7 @@ bool vtkContextualAOPass::Internals::Combine(vtkContextualAOPass* self, const vt
   int width = 0, height = 0, x0 = 0, y0 = 0;
   ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
   const std::size_t count = static_cast<std::size_t>(width) * height;
-  const bool surfaces = !this->pieces.empty();
+  const bool surfaces = !this->pieces.empty() && Technique(self); // (Method None: as drawn)
   const cao::LineFrame& lineFrame = this->lines.Frame();
   const bool lineAO = this->linesOn && lineFrame.ao.size() == count;
   std::vector<float> rgba, ambient;
@@ -2076,7 +2109,7 @@ int vtkContextualAOPass::Internals::CombineLinesOnGPU(vtkContextualAOPass* self,
   const std::size_t count = static_cast<std::size_t>(width) * height;
   bool multisampled = false;
   std::string error;
-  if (!this->onGPU || !this->pieces.empty() || !this->linesOn || lineFrame.ao.size() != count ||
+  if (!this->onGPU || (!this->pieces.empty() && Technique(self)) || !this->linesOn || lineFrame.ao.size() != count ||
     lineFrame.segment.size() != count ||
     (self->LineShading == LINE_SHADING_MALLO_BANKS && !LineLights(ren).empty()) ||
     !vtkCAO::DrawTarget(ren, this->target, this->rect, multisampled, error) || multisampled)

@@ -14,7 +14,8 @@
  *          vtkContextualAOVolumeMapper's). The product's pass, named for it.
  *
  * The pass draws the scene in steps, each through the renderer's own path
- * (so that with Method NONE the picture is the renderer's default one):
+ * (so that with Method NONE and LineMethod LINE_NONE the picture is the
+ * renderer's default one):
  * [camera], lights, opaque geometry (hidden-line removal included), the AO
  * combine, translucent geometry (the renderer's depth peeling or
  * order-independent blending), the renderer's FXAA, volumes (unless dual
@@ -129,7 +130,7 @@ public:
   /// too), never by its value.
   enum Methods
   {
-    NONE = 0, ///< draw the scene only
+    NONE = 0, ///< the surfaces as drawn (the lines keep their LineMethod)
     VCT = 1,  ///< voxel cone tracing (Dalla Favera and Celes 2012): reads the grid
     HBAO = 2, ///< horizon-based AO (Bavoil, Sainz and Dimitrov 2008)
     VOLUMETRIC = 3   ///< volumetric AO (Szirmay-Kalos et al. 2010)
@@ -342,7 +343,8 @@ public:
   /// keep their colour) or the value of a line technique registered with
   /// vtkCAO::RegisterLineTechnique; any other value is an error that lists
   /// the registered ones, and the LineMethod stays. The surfaces' Method
-  /// is chosen apart, but NONE there draws the whole scene without AO. With VCT on the
+  /// is chosen apart: under NONE the surfaces are drawn as the renderer
+  /// draws them and still occlude the lines. With VCT on the
   /// CPU's world or eye grid the lines' voxels (their supercover) occlude
   /// the surfaces too. The lines' pixels are the drawn ones within their
   /// actor's drawn half width (plus a pixel) of a segment
@@ -417,7 +419,7 @@ public:
   int GetNumberOfOccludingVolumes() const;
   /// The actors with lines (the visible opaque actors whose pieces line AO
   /// takes: lines and no polygons, not drawn as points) in the last frame
-  /// that ran the AO (Method not NONE), counted whatever the LineMethod; with several processes the most any process holds. ParaView's
+  /// that ran the AO (Method or LineMethod not None), counted whatever the LineMethod; with several processes the most any process holds. ParaView's
   /// view shows its line settings only while this is above 0.
   int GetNumberOfLineActors() const;
   /// The AO of pixel (x, y) of the renderer's viewport in the last frame
@@ -458,6 +460,8 @@ private:
   struct Internals;
   std::unique_ptr<Internals> Internal;
   friend struct Internals;
+  /// The report's "lines" section (and its note and error), as it ran.
+  void WriteLinesReport(std::ostream& o) const;
 };
 
 #endif

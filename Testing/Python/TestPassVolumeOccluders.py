@@ -84,7 +84,9 @@ class Scene:
             if by_hand:
                 self.mapper.AddOccluder(actor)
         self.aoPass = vtkContextualAOPass()
-        self.aoPass.SetMethod(vtkContextualAOPass.NONE)  # (the surfaces' AO is not what is judged here)
+        # (the surfaces' and lines' AO is not what is judged here)
+        self.aoPass.SetMethod(vtkContextualAOPass.NONE)
+        self.aoPass.SetLineMethod(vtkContextualAOPass.LINE_NONE)
         self.aoPass.SetGeometryOccludesVolumeAO(wired)
         self.renderer.SetPass(self.aoPass)
         oblique_camera(self.renderer)

@@ -192,6 +192,7 @@ def draw(ao, pattern):
     """Every pose of the path, in order, with the AO on or off."""
     volumeMapper.SetAmbientOcclusion(ao)
     aoPass.SetMethod(METHODS[args.method] if ao else vtkContextualAOPass.NONE)
+    aoPass.SetLineMethod(vtkContextualAOPass.LINE_PRISMS if ao else vtkContextualAOPass.LINE_NONE)
     reports = []
     for k in range(args.frames):
         clip.SetPosition(*pose(k))
@@ -229,6 +230,7 @@ for k in range(args.frames):
 if args.masks:
     # Each kind alone, AO off, in white on black: where it covers a pixel.
     aoPass.SetMethod(vtkContextualAOPass.NONE)
+    aoPass.SetLineMethod(vtkContextualAOPass.LINE_NONE)
     volumeMapper.SetAmbientOcclusion(False)
     renderer.SetBackground(0, 0, 0)
     kinds = {"volume": volume, "isosurface": surfaces["isosurface"], "tubes": surfaces["tubes"]}

@@ -5,6 +5,9 @@
 //   LineMethod value: the report's lines name it, GetPixelAO reads 0.5 at
 //   a line pixel and its grey is half the grey with LineMethod None;
 // - negative control: "open" (AO 1) leaves the grey as with None;
+// - under Method NONE the surfaces are drawn as the renderer draws them
+//   (the slab's grey as with no AO at all) and the lines keep their
+//   technique, the slab as their solids;
 // - the technique gets the pass's line settings (LineSamples, LineSlices,
 //   the AO radius), the lines' grid with their bits, and the slab as solids;
 // - on Backend OpenGL a technique without a GPU step gets the grid, the
@@ -15,6 +18,7 @@
 //   are refused, and so is a late call to the built-ins' entry; SetLineMethod with a value
 //   nobody registered is an error and the LineMethod stays.
 #include "vtkCAOLineTechnique.h"
+#include "vtkCAOSurfaceTechnique.h"
 #include "vtkContextualAOPass.h"
 
 #include "vtkActor.h"
@@ -33,6 +37,7 @@
 #include "caoBitGrid.h"
 #include "caoCapsules.h"
 #include "caoLineAO.h"
+#include "caoSurfaceFrame.h"
 #include "caoTestSkip.h"
 
 #include <cmath>
@@ -231,13 +236,57 @@ int TestLineTechnique(int, char*[])
   window->Render();
   Check(openSeen.calls == 1, "an unchanged frame runs the technique once");
 
+  // One technique per kind: Method NONE draws the surfaces as the renderer
+  // does and leaves the lines their LineMethod, the slab still occluding them.
+  renderer->SetWorldPoint(1.2, -1.2, 0.0, 1.0); // the slab, away from the lines
+  renderer->WorldToDisplay();
+  renderer->GetDisplayPoint(d);
+  const int sx = static_cast<int>(d[0]), sy = static_cast<int>(d[1]);
+  // (a surface technique of AO 0.5, so that the surfaces' AO shows)
+  vtkCAO::SurfaceTechnique halfSurface;
+  halfSurface.method = 46;
+  halfSurface.name = "halfsurface";
+  halfSurface.cpu = [](const cao::PixelCamera&, const vtkCAO::SurfaceTechniqueSettings&, cao::SurfaceFrame& frame,
+                      std::string&) {
+    frame.ao.assign(frame.triangle.size(), std::nan(""));
+    for (std::size_t i = 0; i < frame.ao.size(); ++i)
+      if (frame.triangle[i] >= 0)
+        frame.ao[i] = 0.5;
+    return true;
+  };
+  Check(vtkCAO::RegisterSurfaceTechnique(halfSurface, &error), "a surface technique registers beside them");
+  pass->SetMethod(46);
+  window->Render();
+  const double slabAO = Grey(window, sx, sy);
+  pass->SetMethod(vtkContextualAOPass::NONE);
+  pass->SetLineMethod(vtkContextualAOPass::LINE_NONE);
+  window->Render();
+  const double slabPlain = Grey(window, sx, sy);
+  pass->SetLineMethod(40);
+  seen = Seen();
+  window->Render();
+  const std::string linesOnly = pass->GetLastFrameReport();
+  std::printf("Method NONE, LineMethod half: %s\n", linesOnly.c_str());
+  Check(std::fabs(Grey(window, px, py) - half) <= 1.5 && seen.calls == 1 && seen.solids &&
+      std::fabs(Grey(window, sx, sy) - slabPlain) <= 1.0 && std::fabs(slabAO - 0.5 * slabPlain) <= 1.5 &&
+      linesOnly.find("\"method\": \"none\"") != std::string::npos &&
+      linesOnly.find("\"lines\": {\"method\": \"half\"") != std::string::npos &&
+      pass->GetLastFrameStages().find("primary") == std::string::npos,
+    "Method NONE: the lines keep their technique (grey " + std::to_string(Grey(window, px, py)) +
+      "), with the slab as solids, and the slab keeps its drawn grey (" + std::to_string(Grey(window, sx, sy)) +
+      " against " + std::to_string(slabPlain) + " drawn, " + std::to_string(slabAO) + " with a surface AO of 0.5): " +
+      pass->GetLastFrameStages());
+  pass->SetMethod(vtkContextualAOPass::HBAO);
+
   // Backend OpenGL: no GPU step, so the grid, the G-buffer and the step on the CPU.
   pass->SetLineMethod(40);
   pass->SetBackend(vtkContextualAOPass::BACKEND_OPENGL);
+  pass->SetLineSamples(33); // (the lines' AO again: nothing else it depends on changes)
+  seen = Seen();
   window->Render();
   const std::string glReport = pass->GetLastFrameReport();
   std::printf("OpenGL report: %s\n", glReport.c_str());
-  Check(seen.calls == 2 && seen.gridWords > 0 && std::fabs(Grey(window, px, py) - half) <= 1.5 &&
+  Check(seen.calls == 1 && seen.gridWords > 0 && std::fabs(Grey(window, px, py) - half) <= 1.5 &&
       glReport.find("half has no GPU step") != std::string::npos &&
       glReport.find("\"gbuffer\": \"CPU\", \"ao\": \"CPU\", \"voxelization\": \"CPU\"") != std::string::npos,
     "on OpenGL a line technique without a GPU step runs on the CPU, grid and all (" +

@@ -5,7 +5,8 @@
 //     drawn pixels are darker than the top lines' and an isolated line's
 //     (about 1: nothing in its half ball), and each line pixel's grey is
 //     its undarkened grey times AO (the whole colour, Strength 1);
-//     control: LineMethod None, or Method NONE, leaves the lines' grey as drawn
+//     control: LineMethod None (with Method NONE too) leaves the lines' grey as
+//     drawn; Method NONE alone leaves them their line AO
 //   2 what runs: the first frame builds the lines, voxelizes, reads the
 //     G-buffer, estimates and combines; a colour change only combines; a
 //     camera turn voxelizes the eye grid again
@@ -221,15 +222,28 @@ int TestLinesInPass(int, char*[])
     "a line pixel's grey is its drawn grey times its AO");
   Check(pass->GetLastFrameStages().empty() && Field(pass->GetLastFrameReport(), "segments") == -1.0,
     "control: LineMethod None runs nothing for the lines");
-  pass->SetLineMethod(vtkContextualAOPass::LINE_PRISMS);
   pass->SetMethod(vtkContextualAOPass::NONE);
   window->Render();
   const std::string noneReport = pass->GetLastFrameReport();
   Check(pass->GetLastFrameStages().empty() && Grey(window, centre.x, centre.y) == plainCentre &&
       noneReport.find("\"method\": \"none\"") != std::string::npos &&
       noneReport.find("\"backend\"") == std::string::npos && noneReport.find("\"lines\"") == std::string::npos,
-    "control: Method NONE draws the lines as the renderer does, and its report keeps nothing of the last AO "
-    "frame: " + noneReport);
+    "control: Method NONE and LineMethod None draw the lines as the renderer does, and the report keeps "
+    "nothing of the last AO frame: " + noneReport);
+  // One technique per kind: Method NONE leaves the lines their LineMethod.
+  pass->SetLineMethod(vtkContextualAOPass::LINE_PRISMS);
+  window->Render();
+  const std::string linesOnlyReport = pass->GetLastFrameReport();
+  std::printf("Method NONE, line AO: %s\n", linesOnlyReport.c_str());
+  Check(std::fabs(Grey(window, centre.x, centre.y) - greyCentre) <= 1.0 &&
+      linesOnlyReport.find("\"method\": \"none\"") != std::string::npos &&
+      linesOnlyReport.find("\"lines\": {\"method\": \"lineao\"") != std::string::npos &&
+      pass->GetLastFrameStages().find("combine") != std::string::npos &&
+      pass->GetLastFrameStages().find("trace") == std::string::npos &&
+      pass->GetLastFrameStages().find("primary") == std::string::npos,
+    "Method NONE with line AO: the lines get the same AO (grey " +
+      std::to_string(Grey(window, centre.x, centre.y)) + " against " + std::to_string(greyCentre) +
+      "; kept: nothing they depend on changed), no surface step runs: " + pass->GetLastFrameStages());
   pass->SetMethod(vtkContextualAOPass::VCT);
   window->Render();
   lines->GetProperty()->SetColor(0.9, 0.6, 0.3);
