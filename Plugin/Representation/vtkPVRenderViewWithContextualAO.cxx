@@ -66,10 +66,12 @@ void vtkPVRenderViewWithContextualAO::Render(bool interactive, bool skip_renderi
   // ParaView's own screen-space AO (the Render View's "Use Ambient
   // Occlusion") would darken the surfaces or lines a second time: it
   // applies only while Surface AO Method is None and no lines get Line AO
-  // (Line AO Method None, or no lines in the last frame).
+  // (Line AO Method None, or no lines: in the last frame on any process,
+  // or in this one's renderer now).
   const bool ssao = this->UseSSAO;
   if (this->Pass->GetMethod() != vtkContextualAOPass::NONE ||
-    (this->Pass->GetLineMethod() != vtkContextualAOPass::LINE_NONE && this->Pass->GetNumberOfLineActors() > 0))
+    (this->Pass->GetLineMethod() != vtkContextualAOPass::LINE_NONE &&
+      (this->Pass->GetNumberOfLineActors() > 0 || vtkContextualAOPass::CountLineActors(this->GetRenderer()) > 0)))
     this->UseSSAO = false;
   this->Pass->SetInteractiveFrames(interactive); // (a drag keeps the lines' grid of its start)
   this->Superclass::Render(interactive, skip_rendering);

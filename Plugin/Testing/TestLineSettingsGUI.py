@@ -80,6 +80,13 @@ try:
     view.LineAOMethod = 0
     Render(view)
     expect("Surface and Line AO Method None", ("LineAOMethod",), radius=False)
+    # (with no AO at all the pass still counts the lines the view draws)
+    Hide(line, view)
+    Render(view)
+    expect("both None, the line hidden", (), radius=False)
+    Show(line, view)
+    Render(view)
+    expect("both None, the line shown again", ("LineAOMethod",), radius=False)
     view.LineAOMethod = 1
     view.SurfaceAOMethod = "Voxel Cones"
     Hide(line, view)

@@ -666,6 +666,16 @@ int vtkContextualAOPass::GetNumberOfLineActors() const
   return this->Internal->lineActors;
 }
 
+int vtkContextualAOPass::CountLineActors(vtkRenderer* ren)
+{
+  int count = 0;
+  if (ren)
+    for (vtkActor* actor : SceneActors(ren))
+      count += actor->GetVisibility() && actor->HasOpaqueGeometry() &&
+        actor->GetProperty()->GetRepresentation() != VTK_POINTS && !Pieces(actor->GetMapper(), true).empty();
+  return count;
+}
+
 int vtkContextualAOPass::GetNumberOfOccludingVolumes() const
 {
   return static_cast<int>(this->Internal->opacity.size());
@@ -697,6 +707,8 @@ double vtkContextualAOPass::GetPixelAO(int x, int y) const
       return a; // a line's pixel
   }
   const cao::SurfaceFrame& f = p.frame;
+  if (this->Method == NONE)
+    return -1.0; // (the surfaces' last frame is kept for a technique's return, not drawn)
   if (x < 0 || y < 0 || x >= f.width || y >= f.height ||
     f.ao.size() != static_cast<std::size_t>(f.width) * static_cast<std::size_t>(f.height))
     return -1.0;
@@ -761,7 +773,7 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
 {
   const Internals& p = *this->Internal;
   std::ostringstream o;
-  if (this->Method == NONE && (this->LineMethod == LINE_NONE || (!p.linesOn && p.linesNote.empty())))
+  if (this->Method == NONE && (this->LineMethod == LINE_NONE || (!p.linesOn && p.linesNote.empty() && p.error.empty())))
   {
     // Nothing ran: no other frame's grid, pixels or backend.
     o << "{\"frame\": " << this->FrameCount
@@ -902,6 +914,8 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
   const vtkCAO::SurfaceTechnique* technique = Technique(self);
   if (self->Method == NONE)
     this->gpuFrame = false; // (the report describes this frame: no surface frame on the GPU)
+  if (self->Method == NONE && !LineTechniqueOf(self) && ren && !ren->GetSelector())
+    this->lineActors = self->CountLineActors(ren); // (no AO: still what the view's line settings show by)
   if ((self->Method == NONE && !LineTechniqueOf(self)) || !ren || ren->GetSelector())
     return; // no AO asked; a selection pass draws ids, not colours: no AO there
   int width = 0, height = 0, x0 = 0, y0 = 0;

@@ -104,6 +104,7 @@
 #include <string> // For the report
 
 class vtkMultiProcessController;
+class vtkRenderer;
 
 class CAORENDERINGSCENE_EXPORT vtkContextualAOPass : public vtkRenderPass
 {
@@ -418,12 +419,18 @@ public:
   /// Volumes that occluded the surfaces in the last frame.
   int GetNumberOfOccludingVolumes() const;
   /// The actors with lines (the visible opaque actors whose pieces line AO
-  /// takes: lines and no polygons, not drawn as points) in the last frame
-  /// that ran the AO (Method or LineMethod not None), counted whatever the LineMethod; with several processes the most any process holds. ParaView's
-  /// view shows its line settings only while this is above 0.
+  /// takes: lines and no polygons, not drawn as points) in the last frame,
+  /// counted whatever the LineMethod; with several processes the most any
+  /// process holds (this process's own when neither Method nor LineMethod
+  /// runs). ParaView's view shows its line settings only while this is
+  /// above 0.
   int GetNumberOfLineActors() const;
+  /// The same count for `renderer` now, on this process alone, without a
+  /// frame.
+  static int CountLineActors(vtkRenderer* renderer);
   /// The AO of pixel (x, y) of the renderer's viewport in the last frame
-  /// (1 open .. 0 occluded); -1 on the background or outside.
+  /// (1 open .. 0 occluded); -1 on the background or outside, and off the
+  /// lines under Method NONE.
   double GetPixelAO(int x, int y) const;
 
 protected:

@@ -9,7 +9,7 @@
 //   ambient draw and the combine (negative control: the AO image is the
 //   same object's), a camera turn casts and traces but does not voxelize,
 //   moving an actor re-voxelizes, removing every actor runs nothing;
-//   Method NONE runs nothing;
+//   Method NONE runs nothing (the scene has no lines);
 // - a translucent sheet drawn over the contact halves the darkening (the
 //   combine runs before translucent geometry; darkening the finished
 //   picture, the negative control, would darken the sheet too), with the

@@ -276,6 +276,15 @@ int TestLineTechnique(int, char*[])
       "), with the slab as solids, and the slab keeps its drawn grey (" + std::to_string(Grey(window, sx, sy)) +
       " against " + std::to_string(slabPlain) + " drawn, " + std::to_string(slabAO) + " with a surface AO of 0.5): " +
       pass->GetLastFrameStages());
+  Check(pass->GetPixelAO(sx, sy) == -1.0 && pass->GetPixelAO(px, py) == 0.5,
+    "under Method NONE GetPixelAO gives the lines' AO and none off them (the slab's: " +
+      std::to_string(pass->GetPixelAO(sx, sy)) + ")");
+  pass->SetRadius(-1.0);
+  window->Render();
+  const std::string failedReport = pass->GetLastFrameReport();
+  Check(failedReport.find("\"error\": \"Radius must be") != std::string::npos,
+    "under Method NONE a refused setting is in the report: " + failedReport);
+  pass->SetRadius(0.6);
   pass->SetMethod(vtkContextualAOPass::HBAO);
 
   // Backend OpenGL: no GPU step, so the grid, the G-buffer and the step on the CPU.
