@@ -102,6 +102,17 @@ std::vector<vtkPolyData*> Pieces(vtkMapper* mapper, bool lines = false)
   return pieces;
 }
 
+/// The pieces of `actor` that get line AO: a visible opaque actor's polydata
+/// with lines and no polygons, unless drawn as points (as surface or
+/// wireframe, lines are drawn as lines either way); none otherwise.
+std::vector<vtkPolyData*> LinePieces(vtkActor* actor)
+{
+  if (!actor->GetVisibility() || !actor->HasOpaqueGeometry() ||
+    actor->GetProperty()->GetRepresentation() == VTK_POINTS)
+    return {};
+  return Pieces(actor->GetMapper(), true);
+}
+
 /// The renderer's actors that are the scene's (GetActors' list, the parts of
 /// assemblies included) but not the parts of an interaction widget's
 /// representation (ParaView draws its 3D widgets, such as a slice's plane
@@ -671,8 +682,7 @@ int vtkContextualAOPass::CountLineActors(vtkRenderer* ren)
   int count = 0;
   if (ren)
     for (vtkActor* actor : SceneActors(ren))
-      count += actor->GetVisibility() && actor->HasOpaqueGeometry() &&
-        actor->GetProperty()->GetRepresentation() != VTK_POINTS && !Pieces(actor->GetMapper(), true).empty();
+      count += !LinePieces(actor).empty();
   return count;
 }
 
@@ -914,9 +924,10 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
   const vtkCAO::SurfaceTechnique* technique = Technique(self);
   if (self->Method == NONE)
     this->gpuFrame = false; // (the report describes this frame: no surface frame on the GPU)
-  if (self->Method == NONE && !LineTechniqueOf(self) && ren && !ren->GetSelector())
+  const bool anyAO = self->Method != NONE || LineTechniqueOf(self);
+  if (!anyAO && ren && !ren->GetSelector())
     this->lineActors = self->CountLineActors(ren); // (no AO: still what the view's line settings show by)
-  if ((self->Method == NONE && !LineTechniqueOf(self)) || !ren || ren->GetSelector())
+  if (!anyAO || !ren || ren->GetSelector())
     return; // no AO asked; a selection pass draws ids, not colours: no AO there
   int width = 0, height = 0, x0 = 0, y0 = 0;
   ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
@@ -1091,16 +1102,13 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
     position += 1.0;
     if (!actor->GetVisibility() || !actor->HasOpaqueGeometry())
       continue;
-    // Lines (as surface or wireframe: drawn as lines either way) get line
-    // AO; counted with LineMethod None too (the view shows the line settings).
-    if (actor->GetProperty()->GetRepresentation() != VTK_POINTS)
-    {
-      const std::vector<vtkPolyData*> withLines = Pieces(actor->GetMapper(), true);
-      this->lineActors += withLines.empty() ? 0 : 1;
-      if (LineTechniqueOf(self))
-        for (vtkPolyData* data : withLines)
-          linePieces.emplace_back(actor, data);
-    }
+    // Lines get line AO; counted with LineMethod None too (the view shows
+    // the line settings).
+    const std::vector<vtkPolyData*> withLines = LinePieces(actor);
+    this->lineActors += withLines.empty() ? 0 : 1;
+    if (LineTechniqueOf(self))
+      for (vtkPolyData* data : withLines)
+        linePieces.emplace_back(actor, data);
     if (actor->GetProperty()->GetRepresentation() != VTK_SURFACE)
       continue; // wireframe and points are drawn, not surfaces: no AO on them, none from them
     const int index = this->surfaceActors++;
