@@ -1,6 +1,7 @@
 #include "vtkPVRenderViewWithContextualAO.h"
 
 #include "vtkContextualAOPass.h"
+#include "vtkCommunicator.h"
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPVSynchronizedRenderer.h"
@@ -57,21 +58,33 @@ void vtkPVRenderViewWithContextualAO::Render(bool interactive, bool skip_renderi
   const bool distributed = controller && controller->GetNumberOfProcesses() > 1 &&
     (interactive ? this->GetUseDistributedRenderingForLODRender() : this->GetUseDistributedRenderingForRender()) &&
     !this->InTileDisplayMode() && !this->InCaveDisplayMode();
-  const bool ours = this->Pass->GetMethod() != vtkContextualAOPass::NONE ||
-    this->Pass->GetLineMethod() != vtkContextualAOPass::LINE_NONE; // (the pass runs some AO)
-  const bool exchange = distributed && ours;
+  const bool surfaceAO = this->Pass->GetMethod() != vtkContextualAOPass::NONE;
+  // Whether any lines get Line AO: in this process's renderer now or in the
+  // last frame; across the processes when they render together (the same
+  // on each: every process takes this branch alike, the properties being
+  // the same on each), so that none keeps ParaView's own AO while another's
+  // lines get ours in the first frame with lines.
+  bool lineAO = false;
+  if (this->Pass->GetLineMethod() != vtkContextualAOPass::LINE_NONE)
+  {
+    int local = (this->Pass->GetNumberOfLineActors() > 0 ||
+      vtkContextualAOPass::CountLineActors(this->GetRenderer()) > 0) ? 1 : 0;
+    int any = local;
+    if (distributed && !surfaceAO)
+      controller->AllReduce(&local, &any, 1, vtkCommunicator::MAX_OP);
+    lineAO = any > 0;
+  }
+  // The pass's exchange: while surfaces get AO, or lines on some process
+  // do (with Surface AO Method None and no lines anywhere, nothing to share).
+  const bool exchange = distributed && (surfaceAO || lineAO);
   if (exchange)
     this->RenderEmptyImages = true;
   this->Pass->SetController(exchange ? controller : nullptr);
   // ParaView's own screen-space AO (the Render View's "Use Ambient
   // Occlusion") would darken the surfaces or lines a second time: it
-  // applies only while Surface AO Method is None and no lines get Line AO
-  // (Line AO Method None, or no lines: in the last frame on any process,
-  // or in this one's renderer now).
+  // applies only while Surface AO Method is None and no lines get Line AO.
   const bool ssao = this->UseSSAO;
-  if (this->Pass->GetMethod() != vtkContextualAOPass::NONE ||
-    (this->Pass->GetLineMethod() != vtkContextualAOPass::LINE_NONE &&
-      (this->Pass->GetNumberOfLineActors() > 0 || vtkContextualAOPass::CountLineActors(this->GetRenderer()) > 0)))
+  if (surfaceAO || lineAO)
     this->UseSSAO = false;
   this->Pass->SetInteractiveFrames(interactive); // (a drag keeps the lines' grid of its start)
   this->Superclass::Render(interactive, skip_rendering);

@@ -149,6 +149,35 @@ Show(lastOnly, view)
 counted = line_actors_in_view()
 check(counted == 1, "a line on the last of %d processes alone: rank 0's pass counts %d actors with lines (1)" % (ranks, counted))
 Hide(lastOnly, view)
+# ParaView's own AO (Use Ambient Occlusion) stays on while no lines get
+# line AO, and is off on every process from the first frame in which lines
+# on any process do: with the line on the last process alone, rank 0 (no
+# lines of its own, none in its last frame) must not darken its pieces with
+# it. A plane on rank 0 alone (a Plane source is not split) under the split
+# sphere shows ParaView's AO. Control: with the view deciding by this
+# process's count alone, the first frame with the line differed from the
+# second on 2 processes (run by hand).
+floor = Plane(Origin=[-1.2, -1.0, -0.45], Point1=[1.8, -1.0, -0.45], Point2=[-1.2, 1.0, -0.45])
+floorDisplay = Show(floor, view)
+floorDisplay.DiffuseColor = [1.0, 1.0, 1.0]
+view.SurfaceAOMethod = "None"
+view.LineAOMethod = "Voxelized Lines"
+view.UseAmbientOcclusion = 0
+plain = read(grey("ssao-off"))
+view.UseAmbientOcclusion = 1
+theirs = read(grey("ssao-on"))
+check(apart(plain, theirs) > 0.005,
+      "no lines anywhere: ParaView's own AO applies (%.2f%% of pixels more than 8 levels apart from it off)"
+      % (100 * apart(plain, theirs)))
+Show(lastOnly, view)
+first = read(grey("ssao-lines-first"))
+second = read(grey("ssao-lines-second"))
+check(apart(first, second) == 0,
+      "the first frame with a line on the last of %d processes has no ParaView AO on any process, as the "
+      "second: %.2f%% of pixels more than 8 levels apart" % (ranks, 100 * apart(first, second)))
+view.UseAmbientOcclusion = 0
+Hide(lastOnly, view)
+Hide(floor, view)
 with open(os.path.join(outdir, "np%d-reports.json" % ranks), "w") as f:
     json.dump(reports, f)
 print("rank 0's report (lines and sphere): %s" % json.dumps(reports["both"]))
