@@ -52,6 +52,11 @@ const LineTechnique* FindLineTechnique(int method)
   return TheRegistry().Find(method);
 }
 
+const LineTechnique* FindLineTechniqueNamed(const std::string& name)
+{
+  return TheRegistry().FindNamed(name);
+}
+
 std::string LineTechniqueList()
 {
   return TheRegistry().List();

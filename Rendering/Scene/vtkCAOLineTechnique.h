@@ -83,6 +83,8 @@ CAORENDERINGSCENE_EXPORT bool RegisterLineTechnique(const LineTechnique& techniq
 
 /// The line technique of LineMethod value `method`, or null.
 CAORENDERINGSCENE_EXPORT const LineTechnique* FindLineTechnique(int method);
+/// The line technique named `name` (its report name: `cao surface --method`), or null.
+CAORENDERINGSCENE_EXPORT const LineTechnique* FindLineTechniqueNamed(const std::string& name);
 
 /// The registered line methods and names, in method order ("1 lineao").
 CAORENDERINGSCENE_EXPORT std::string LineTechniqueList();

@@ -29,6 +29,19 @@ struct SceneGPU::Impl
     return this->engine != nullptr;
   }
   bool tried = false;
+  /// The engines on `made` (none when it is null: `failure` says why).
+  void Make(std::unique_ptr<cao::gl::Context> made)
+  {
+    this->context = std::move(made);
+    if (!this->context)
+      return;
+    ++this->generation;
+    this->engine.reset(new cao::gl::VCTEngine(*this->context));
+    this->screen.reset(new cao::gl::ScreenAOEngine(*this->context));
+    this->frame.reset(new cao::gl::FrameEngine(*this->context));
+    this->lines.reset(new cao::gl::LineAOEngine(*this->context));
+  }
+  bool headless = false; ///< the context is its own (ResolveHeadless), not a window's
 
   int generation = 0; ///< engines made so far (a new one holds no grid)
 
@@ -57,6 +70,7 @@ struct SceneGPU::Impl
     this->context.reset();
     this->window = nullptr;
     this->tried = false;
+    this->headless = false;
     this->failure.clear();
   }
 };
@@ -77,45 +91,66 @@ bool SceneGPU::Resolve(vtkRenderWindow* window, int backend, std::string& error)
   this->Note.clear();
   if (backend == BACKEND_CPU)
     return false;
-  if (p.window != window)
-    p.Drop(); // another window: its objects go first
+  if (p.window != window || p.headless)
+    p.Drop(); // another window (or the headless context): its objects go first
   if (!p.tried)
   {
     p.tried = true;
     p.window = window;
-    p.context = WrapWindowContext(window, p.failure);
-    if (p.context)
-    {
-      ++p.generation;
-      p.engine.reset(new cao::gl::VCTEngine(*p.context));
-      p.screen.reset(new cao::gl::ScreenAOEngine(*p.context));
-      p.frame.reset(new cao::gl::FrameEngine(*p.context));
-      p.lines.reset(new cao::gl::LineAOEngine(*p.context));
-    }
+    p.Make(WrapWindowContext(window, p.failure));
   }
+  return this->Usable(backend, error);
+}
+
+bool SceneGPU::ResolveHeadless(int backend, std::string& error)
+{
+  Impl& p = *this->P;
+  this->Note.clear();
+  if (backend == BACKEND_CPU)
+    return false;
+  if (p.window || (p.tried && !p.headless))
+    p.Drop(); // a window's objects go first
+  if (!p.tried)
+  {
+    p.tried = true;
+    p.headless = true;
+    p.Make(cao::gl::Context::CreateHeadless(cao::gl::ContextKind::Auto, p.failure));
+  }
+  return this->Usable(backend, error);
+}
+
+bool SceneGPU::Usable(int backend, std::string& error)
+{
+  const Impl& p = *this->P;
+  // (The window's or the headless context's, as the caller knows it.)
+  const std::string which = p.headless ? "OpenGL" : "the render window's OpenGL";
   if (!p.context)
   {
     if (backend == BACKEND_OPENGL)
-      error = "Backend is OpenGL but the render window's OpenGL cannot be used: " + p.failure;
+      error = p.headless ? "no OpenGL 4.3 context: " + p.failure
+                         : "Backend is OpenGL but " + which + " cannot be used: " + p.failure;
     else
-      this->Note = "Auto: the render window's OpenGL cannot be used (" + p.failure + "): CPU";
+      this->Note = p.headless ? "Auto: no OpenGL 4.3 context (" + p.failure + "): the CPU"
+                              : "Auto: " + which + " cannot be used (" + p.failure + "): CPU";
     return false;
   }
   if (backend == BACKEND_AUTO && AvoidSoftware(p.context->Description()))
   {
-    this->Note = "Auto: the render window's OpenGL is a software rasteriser (" +
-      p.context->Description() + "): CPU";
+    this->Note = "Auto: " + which + " is a software rasteriser (" + p.context->Description() + "): " +
+      (p.headless ? "the CPU" : "CPU");
     return false;
   }
   return true;
 }
 
-bool SceneGPU::Voxelize(cao::BitGrid& grid, const std::vector<cao::MeshView>& meshes, std::string& error)
+bool SceneGPU::Voxelize(
+  cao::BitGrid& grid, const std::vector<cao::MeshView>& meshes, std::string& error, bool surfaceVoxels)
 {
   double ms = 0.0;
   grid.bits.clear(); // they stay on the GPU
   grid.openEdges.clear();
-  return this->P->Ready(error) && this->P->engine->Voxelize(grid, meshes, grid.openEdges, ms, error);
+  return this->P->Ready(error) &&
+    this->P->engine->Voxelize(grid, meshes, grid.openEdges, ms, error, surfaceVoxels);
 }
 
 bool SceneGPU::Upload(const cao::BitGrid& grid, std::string& error)
@@ -170,6 +205,11 @@ bool SceneGPU::LineAO(const cao::BitGrid& grid, const cao::LineAOSettings& setti
   this->lineMs[1] = 0.0;
   this->lineMs[2] = ms;
   return ok;
+}
+
+bool SceneGPU::ReadLineGrid(cao::BitGrid& grid, std::string& error)
+{
+  return this->P->Ready(error) && this->P->lines->ReadGrid(grid.bits, error);
 }
 
 bool SceneGPU::LineGBuffer(const cao::BitGrid& grid, const cao::LineAOSettings& settings,

@@ -51,8 +51,16 @@ public:
   /// 1 CPU, 2 OpenGL). False and `error` set when OpenGL was asked for and
   /// cannot be had; false with Note set when Auto chose the CPU.
   bool Resolve(vtkRenderWindow* window, int backend, std::string& error);
+  /// The same without a window, on a headless OpenGL context of its own
+  /// (EGL or OSMesa, cao::gl::Context::CreateHeadless), for a caller that
+  /// renders nothing itself (`cao surface`): it runs the techniques' GPU
+  /// steps as the pass does. Made once; a window's Resolve drops it.
+  bool ResolveHeadless(int backend, std::string& error);
   /// cao::gl::VCTEngine::Voxelize into `grid`'s place (its bits stay on the GPU).
-  bool Voxelize(cao::BitGrid& grid, const std::vector<cao::MeshView>& meshes, std::string& error);
+  /// `surfaceVoxels`: the meshes' surface voxels set with the parity fill
+  /// (cao::FillGrid's).
+  bool Voxelize(cao::BitGrid& grid, const std::vector<cao::MeshView>& meshes, std::string& error,
+    bool surfaceVoxels = true);
   /// cao::gl::VCTEngine::Upload: a grid made on the CPU, traced next.
   bool Upload(const cao::BitGrid& grid, std::string& error);
   /// cao::gl::VCTEngine::Read: the grid's bits (Voxelize's) into `grid.bits`.
@@ -90,6 +98,8 @@ public:
   /// VoxelizeLines left there when `grid` has no bits).
   bool LineAO(const cao::BitGrid& grid, const cao::LineAOSettings& settings, cao::LineFrame& frame,
     const cao::BitGrid* solids, std::string& error);
+  /// The bits VoxelizeLines left on the GPU, into `grid.bits`.
+  bool ReadLineGrid(cao::BitGrid& grid, std::string& error);
   /// The GPU time (ms, the shaders') of the last VoxelizeLines, LineGBuffer
   /// and LineAO or LineAOOfGBuffer, in that order.
   const double* LineMilliseconds() const { return this->lineMs; }
@@ -143,6 +153,9 @@ public:
   std::string Note; ///< why Auto chose the CPU (empty otherwise)
 
 private:
+  /// After a Resolve: whether the context is there and, for Auto, not a
+  /// software rasteriser; else the error (OpenGL asked for) or the Note.
+  bool Usable(int backend, std::string& error);
   struct Impl;
   std::unique_ptr<Impl> P;
   double lineMs[3] = { 0.0, 0.0, 0.0 };

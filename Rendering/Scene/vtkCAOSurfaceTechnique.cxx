@@ -43,6 +43,11 @@ const SurfaceTechnique* FindSurfaceTechnique(int method)
   return TheRegistry().Find(method);
 }
 
+const SurfaceTechnique* FindSurfaceTechniqueNamed(const std::string& name)
+{
+  return TheRegistry().FindNamed(name);
+}
+
 std::string SurfaceTechniqueList()
 {
   return TheRegistry().List();

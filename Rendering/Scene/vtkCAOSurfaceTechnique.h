@@ -24,6 +24,7 @@
 
 #include "caoRenderingSceneModule.h" // For export macro
 
+#include <any>        // For a caller's own settings
 #include <functional> // For the steps
 #include <string>     // For the names
 #include <vector>     // For the colours and volumes
@@ -58,6 +59,13 @@ struct SurfaceTechniqueSettings
   int slices = 128;
   int occupancy = 0;
   const std::vector<const cao::OpacityVolume*>* volumes = nullptr;
+  int threads = 0; ///< the CPU steps' threads (0: the machine's)
+  /// The technique's own settings type, whole, from a caller that sets
+  /// each of its fields (`cao surface`'s options): for the built-ins a
+  /// cao::VCTSettings, cao::HBAOSettings or cao::VolumetricAOSettings.
+  /// Holding the technique's type, it is read instead of quality, radius,
+  /// slices and occupancy above; empty from the pass.
+  std::any own;
 };
 
 /// One technique: its steps on the frame's G-buffer (a cao::SurfaceFrame
@@ -101,6 +109,8 @@ CAORENDERINGSCENE_EXPORT bool RegisterSurfaceTechnique(
 
 /// The technique of Method value `method`, or null.
 CAORENDERINGSCENE_EXPORT const SurfaceTechnique* FindSurfaceTechnique(int method);
+/// The surface technique named `name` (its report name: `cao surface --method`), or null.
+CAORENDERINGSCENE_EXPORT const SurfaceTechnique* FindSurfaceTechniqueNamed(const std::string& name);
 
 /// The registered methods and names, in method order ("1 vct, 2 hbao, 3 volumetric").
 CAORENDERINGSCENE_EXPORT std::string SurfaceTechniqueList();

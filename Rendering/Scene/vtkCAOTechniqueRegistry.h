@@ -57,14 +57,13 @@ public:
   /// The technique of `method`, or null (the pointer stays valid).
   const Technique* Find(int method)
   {
-    this->EnsureBuiltIns();
-    std::lock_guard<std::mutex> lock(this->Mutex);
-    for (const auto& t : this->Techniques)
-      if (t->method == method)
-        return t.get();
-    return nullptr;
+    return this->FindIf([method](const Technique& t) { return t.method == method; });
   }
-
+  /// The technique named `name` ("vct"), or null.
+  const Technique* FindNamed(const std::string& name)
+  {
+    return this->FindIf([&name](const Technique& t) { return t.name == name; });
+  }
   /// "1 vct, 2 hbao": values and names in value order.
   std::string List()
   {
@@ -77,6 +76,15 @@ public:
   }
 
 private:
+  const Technique* FindIf(const std::function<bool(const Technique&)>& match)
+  {
+    this->EnsureBuiltIns();
+    std::lock_guard<std::mutex> lock(this->Mutex);
+    for (const auto& t : this->Techniques)
+      if (match(*t))
+        return t.get();
+    return nullptr;
+  }
   bool Insert(const Technique& technique, std::string* error)
   {
     const auto fail = [error](const std::string& why) {

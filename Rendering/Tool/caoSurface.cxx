@@ -30,7 +30,10 @@
 #include "vtkUnsignedCharArray.h"
 #include "vtkUnsignedShortArray.h"
 
+#include "vtkCAOBackend.h"
 #include "vtkCAOInput.h"
+#include "vtkCAOSceneGPU.h"
+#include "vtkCAOSurfaceTechnique.h"
 #include "vtkCAOSceneVolume.h"
 #include "vtkLocalAmbientOcclusion.h"
 #include "vtkColorTransferFunction.h"
@@ -400,6 +403,29 @@ bool ChooseBackend(const std::string& backend, SurfaceGPU& gpu, bool& useGL, std
   for (char& c : note)
     if (c == '"' || c == '\\')
       c = '\'';
+  return true;
+}
+
+bool ChooseBackend(
+  const std::string& backend, vtkCAO::SceneGPU& gpu, bool& useGL, std::string& note, std::string& error)
+{
+  const int kind = backend == "cpu" ? vtkCAO::BACKEND_CPU
+    : backend == "gl"               ? vtkCAO::BACKEND_OPENGL
+                                    : vtkCAO::BACKEND_AUTO;
+  std::string why;
+  useGL = gpu.ResolveHeadless(kind, why);
+  note.clear();
+  if (!why.empty())
+    return error = "--backend gl: " + why, false;
+  if (!useGL && kind == vtkCAO::BACKEND_AUTO)
+  {
+    note = gpu.Note; // "Auto: ...: the CPU" (in --json's backend_note, as "auto: ...")
+    if (!note.empty())
+      note[0] = 'a';
+    for (char& c : note)
+      if (c == '"' || c == '\\')
+        c = '\'';
+  }
   return true;
 }
 
@@ -1025,81 +1051,76 @@ int Run(SurfaceOptions& o, const CLI::App* app)
   cao::OpacityVolume volume;
   std::vector<std::string> openReport;
   std::string vctBackend = "CPU", backendNote;
-  if (o.method == "vct")
+  // The methods the view's pass runs are its registered techniques, run
+  // here through the same steps (vtkCAOSurfaceTechnique.h) on a headless
+  // OpenGL or the CPU; the reference, ssao and none are the tool's own.
+  if (const vtkCAO::SurfaceTechnique* technique = vtkCAO::FindSurfaceTechniqueNamed(o.method))
   {
-    o.vct.radius = radius;
-    SurfaceGPU gpu;
+    vtkCAO::SceneGPU gpu;
     bool useGL = false;
     if (!ChooseBackend(o.backend, gpu, useGL, backendNote, error))
       return Fail(1, error);
-    start = std::chrono::steady_clock::now(); // the grid's time, not the OpenGL probe's
-    cao::VCTPlan plan;
-    if (!PlanSceneGrid(scene, camera, o, radius, frame, grid, error))
-      return Fail(2, error);
-    if (useGL)
+    useGL = useGL && technique->gpu; // (a technique without a GPU step runs on the CPU)
+    const cao::PixelCamera pixels = MakePixelCamera(camera, o.view);
+    vtkCAO::SurfaceTechniqueSettings settings;
+    settings.radius = radius;
+    settings.threads = o.threads;
+    o.vct.radius = o.hbao.radius = o.volumetric.radius = radius;
+    if (o.method == "vct")
+      settings.own = o.vct;
+    else if (o.method == "hbao")
+      settings.own = o.hbao;
+    else if (o.method == "volumetric")
+      settings.own = o.volumetric;
+    std::vector<const cao::OpacityVolume*> volumes;
+    if (technique->readsGrid)
     {
-      double ms = 0;
-      if (!gpu.Voxelize(scene, grid, grid.openEdges, ms, error, o.vct.surfaceVoxels))
-        return Fail(1, error);
-      voxelizeMs = ms;
-      vctBackend = "OpenGL (" + gpu.Description() + ")";
+      start = std::chrono::steady_clock::now(); // the grid's time, not the OpenGL probe's
+      if (!PlanSceneGrid(scene, camera, o, radius, frame, grid, error))
+        return Fail(2, error);
+      const std::vector<cao::MeshView> views = scene.Views();
+      if (useGL ? !gpu.Voxelize(grid, views, error, o.vct.surfaceVoxels)
+                : !cao::FillGrid(views, grid, error, o.vct.surfaceVoxels))
+        return Fail(useGL ? 1 : 2, error);
+      voxelizeMs = Milliseconds(start);
+      if (!o.volume.empty())
+      {
+        start = std::chrono::steady_clock::now();
+        std::array<double, 6> vb;
+        if (!LoadOccludingVolume(o, volume, vb, error))
+          return Fail(2, error);
+        volumes.push_back(&volume);
+        if (useGL && !gpu.Volumes(volumes, error))
+          return Fail(1, error);
+        volumeMs = Milliseconds(start);
+        // A volume farther than the radius from every mesh occludes nothing.
+        const std::array<double, 6>& mb = scene.bvh.Bounds();
+        bool near = true;
+        for (int d = 0; d < 3; ++d)
+          near = near && vb[2 * d] <= mb[2 * d + 1] + radius && vb[2 * d + 1] >= mb[2 * d] - radius;
+        if (!near)
+          std::cerr << "cao: warning: the volume '" << o.volume << "' (bounds " << vb[0] << " " << vb[1]
+                    << ", " << vb[2] << " " << vb[3] << ", " << vb[4] << " " << vb[5]
+                    << ") lies farther than the radius (" << radius << ") from the meshes (bounds " << mb[0]
+                    << " " << mb[1] << ", " << mb[2] << " " << mb[3] << ", " << mb[4] << " " << mb[5]
+                    << "): it occludes nothing\n";
+      }
+      for (std::size_t m = 0; m < grid.openEdges.size(); ++m)
+        if (grid.openEdges[m] > 0)
+        {
+          openReport.push_back(o.meshes[m]);
+          std::cerr << "cao: warning: '" << o.meshes[m] << "' is open (" << grid.openEdges[m]
+                    << " boundary or non-manifold edges): voxelized as a shell, its inside is not filled\n";
+        }
+      settings.grid = &grid;
+      settings.slices = grid.slices;
+      settings.volumes = &volumes;
     }
     else
     {
-      const std::vector<cao::MeshView> views = scene.Views();
-      if (!cao::FillGrid(views, grid, error, o.vct.surfaceVoxels))
-        return Fail(2, error);
-      voxelizeMs = Milliseconds(start);
-    }
-    if (!o.volume.empty())
-    {
-      start = std::chrono::steady_clock::now();
-      std::array<double, 6> vb;
-      if (!LoadOccludingVolume(o, volume, vb, error))
-        return Fail(2, error);
-      volumeMs = Milliseconds(start);
-      // A volume farther than the radius from every mesh occludes nothing.
-      const std::array<double, 6>& mb = scene.bvh.Bounds();
-      bool near = true;
-      for (int d = 0; d < 3; ++d)
-        near = near && vb[2 * d] <= mb[2 * d + 1] + radius && vb[2 * d + 1] >= mb[2 * d] - radius;
-      if (!near)
-        std::cerr << "cao: warning: the volume '" << o.volume << "' (bounds " << vb[0] << " " << vb[1]
-                  << ", " << vb[2] << " " << vb[3] << ", " << vb[4] << " " << vb[5]
-                  << ") lies farther than the radius (" << radius << ") from the meshes (bounds " << mb[0]
-                  << " " << mb[1] << ", " << mb[2] << " " << mb[3] << ", " << mb[4] << " " << mb[5]
-                  << "): it occludes nothing\n";
-    }
-    for (std::size_t m = 0; m < grid.openEdges.size(); ++m)
-      if (grid.openEdges[m] > 0)
-      {
-        openReport.push_back(o.meshes[m]);
-        std::cerr << "cao: warning: '" << o.meshes[m] << "' is open (" << grid.openEdges[m]
-                  << " boundary or non-manifold edges): voxelized as a shell, its inside is not filled\n";
-      }
-    start = std::chrono::steady_clock::now();
-    if (!cao::BuildVCTPlan(o.vct, grid, plan, error))
-      return Fail(2, error);
-    if (!o.volume.empty())
-      plan.volumes.push_back(&volume);
-    if (useGL)
-    {
-      double ms = 0;
-      if (!gpu.Trace(grid, plan, frame, ms, error))
-        return Fail(1, error);
-    }
-    else if (!cao::VCTFrame(grid, plan, frame, o.threads, error))
-      return Fail(2, error);
-    ao = frame.ao;
-  }
-  else if (o.method == "hbao" || o.method == "volumetric")
-  {
-    const cao::PixelCamera pixels = MakePixelCamera(camera, o.view);
-    o.hbao.radius = o.volumetric.radius = radius;
-    {
       // A pixel's width at the scene's centre, roughly (the fitted view
-      // spans about the bounds' diagonal): a radius under it leaves the
-      // screen-space methods no neighbour to read.
+      // spans about the bounds' diagonal): a radius under it leaves a
+      // screen-space technique no neighbour to read.
       const double diagonal = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
         (b[5] - b[4]) * (b[5] - b[4]));
       const double pixel = diagonal / (o.view.zoom * std::min(o.view.width, o.view.height));
@@ -1108,21 +1129,11 @@ int Run(SurfaceOptions& o, const CLI::App* app)
                   << pixel << "): " << o.method << " reads the screen's pixels and sees no neighbour within it "
                   << "(its AO is then not the reference's); raise --radius or --image\n";
     }
-    SurfaceGPU gpu;
-    bool useGL = false;
-    if (!ChooseBackend(o.backend, gpu, useGL, backendNote, error))
-      return Fail(1, error);
-    const bool hbao = o.method == "hbao";
-    double ms = 0.0;
+    start = std::chrono::steady_clock::now();
+    if (useGL ? !technique->gpu(gpu, pixels, settings, frame, error) : !technique->cpu(pixels, settings, frame, error))
+      return Fail(useGL ? 1 : 2, error);
     if (useGL)
-    {
-      if (!gpu.ScreenAO(pixels, hbao ? &o.hbao : nullptr, hbao ? nullptr : &o.volumetric, frame, ms, error))
-        return Fail(1, error);
-      vctBackend = "OpenGL (" + gpu.Description() + ")";
-    }
-    else if (!(hbao ? cao::HBAOFrame(pixels, o.hbao, frame, o.threads, error)
-                    : cao::VolumetricAOFrame(pixels, o.volumetric, frame, o.threads, error)))
-      return Fail(2, error);
+      vctBackend = gpu.Description();
     ao = frame.ao;
   }
   else if (o.method == "reference")

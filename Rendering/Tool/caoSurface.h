@@ -32,6 +32,11 @@ class vtkRenderWindow;
 class vtkRenderer;
 class vtkSSAOPass;
 
+namespace vtkCAO
+{
+class SceneGPU;
+}
+
 namespace caocli
 {
 /// Adds `cao surface` under `cao` (the root app). Its options are bound to
@@ -179,6 +184,10 @@ private:
 /// (a context is opened to ask); false with the reason when gl has no
 /// context. `note`: why auto chose the CPU.
 bool ChooseBackend(const std::string& backend, SurfaceGPU& gpu, bool& useGL, std::string& note, std::string& error);
+/// The same for the techniques' GPU steps, on SceneGPU's headless context
+/// (the one `cao surface` runs the view's techniques on).
+bool ChooseBackend(
+  const std::string& backend, vtkCAO::SceneGPU& gpu, bool& useGL, std::string& note, std::string& error);
 /// `, "backend_note": "..."` when there is one.
 std::string NoteField(const std::string& note);
 

@@ -3,6 +3,9 @@
 #include "caoAORadius.h"
 #include "caoCommandLine.h"
 #include "caoLineShading.h"
+#include "vtkCAOLineTechnique.h"
+#include "vtkCAOSceneGPU.h"
+#include "vtkCAOSurfaceTechnique.h"
 
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
@@ -310,15 +313,24 @@ int RunSurfaceLines(LineJob& job, const std::vector<std::string>& files,
   job.reference.threads = job.threads;
   std::vector<double> surfaceAO(surface.triangle.size(), std::numeric_limits<double>::quiet_NaN());
   std::string lineBackend = "CPU", backendNote;
-  SurfaceGPU gpu;
   if (job.method == "lineao" || job.method == "vct")
   {
-    // The voxelization and the prisms where --backend says (the G-buffer: the CPU).
+    // The view's line technique and, on the meshes beside the lines, its
+    // voxel cones, through the same registered steps
+    // (vtkCAOLineTechnique.h, vtkCAOSurfaceTechnique.h): the voxelization
+    // and the prisms where --backend says (the G-buffer: the CPU).
+    const vtkCAO::LineTechnique* technique = vtkCAO::FindLineTechniqueNamed("lineao");
+    const vtkCAO::SurfaceTechnique* cones = vtkCAO::FindSurfaceTechniqueNamed("vct");
+    if (!technique || !cones)
+      return Fail(1, "the built-in techniques are not registered (" + vtkCAO::LineTechniqueList() + "; " +
+          vtkCAO::SurfaceTechniqueList() + ")");
+    vtkCAO::SceneGPU gpu;
     bool useGL = false;
     if (!ChooseBackend(job.backend, gpu, useGL, backendNote, error))
       return Fail(2, error);
+    useGL = useGL && technique->gpu; // (a technique without a GPU step runs on the CPU)
     if (useGL)
-      lineBackend = "OpenGL (" + gpu.Description() + ")";
+      lineBackend = gpu.Description();
     // One eye grid for both kinds: the lines' voxels and the meshes'.
     double right[3], up[3];
     CameraAxes(camera, right, up);
@@ -326,10 +338,10 @@ int RunSurfaceLines(LineJob& job, const std::vector<std::string>& files,
     std::array<double, 6> meshBounds{ { 1, -1, 1, -1, 1, -1 } };
     if (mixed && (!cao::EyeAxes(right, up, axes, error) || !cao::EyeBounds(views, axes, meshBounds, error)))
       return Fail(2, error);
-    double voxelizeGPUMs = 0.0; // (the grid's bits read back: the meshes' cones read them too)
+    // (On the GPU the grid's bits are read back: the meshes' cones read them too.)
     if (!cao::PlanLineGrid(scene.lines, right, up, job.lineAO, grid, error, mixed ? &meshBounds : nullptr) ||
-      (lineBackend != "CPU" ? !gpu.VoxelizeLines(grid, scene.lines, scene.tubeRadius, voxelizeGPUMs, error)
-                            : !cao::VoxelizeLines(scene.lines, scene.tubeRadius, grid, error)))
+      (useGL ? !gpu.VoxelizeLines(grid, scene.lines, scene.tubeRadius, error) || !gpu.ReadLineGrid(grid, error)
+             : !cao::VoxelizeLines(scene.lines, scene.tubeRadius, grid, error)))
       return Fail(2, error);
     if (mixed)
     {
@@ -342,20 +354,27 @@ int RunSurfaceLines(LineJob& job, const std::vector<std::string>& files,
       std::cerr << "cao: warning: the AO radius " << radius << " spans " << radius / grid.voxel
                 << " voxels of the grid (" << grid.slices
                 << " slices): the half balls hold too few to see the neighbours; use more --slices\n";
-    double gpuMs = 0.0;
-    if (lineBackend != "CPU" ? !gpu.LineAO(grid, job.lineAO, frame, mixed ? &solids : nullptr, gpuMs, error)
-                             : !cao::LineAOFrame(grid, job.lineAO, frame, error, mixed ? &solids : nullptr))
+    vtkCAO::LineTechniqueSettings settings;
+    settings.lineAO = &job.lineAO;
+    settings.grid = &grid;
+    settings.solids = mixed ? &solids : nullptr;
+    if (useGL ? !technique->gpu(gpu, settings, frame, error) : !technique->cpu(settings, frame, error))
       return Fail(2, error);
     if (mixed)
     {
-      // The meshes' voxel cones read the lines' voxels too.
+      // The meshes' voxel cones read the lines' voxels too (on the CPU).
       cao::BitGrid both = solids;
       for (std::size_t w = 0; w < both.bits.size(); ++w)
         both.bits[w] |= grid.bits[w];
       job.vct.radius = radius;
       job.vct.slices = both.slices;
-      cao::VCTPlan plan;
-      if (!cao::BuildVCTPlan(job.vct, both, plan, error) || !cao::VCTFrame(both, plan, surface, job.threads, error))
+      vtkCAO::SurfaceTechniqueSettings coneSettings;
+      coneSettings.own = job.vct;
+      coneSettings.grid = &both;
+      coneSettings.slices = both.slices;
+      coneSettings.radius = radius;
+      coneSettings.threads = job.threads;
+      if (!cones->cpu(cao::PixelCamera(), coneSettings, surface, error))
         return Fail(2, error);
       surfaceAO = surface.ao;
     }

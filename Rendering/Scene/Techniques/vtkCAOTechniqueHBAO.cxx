@@ -16,6 +16,8 @@ namespace
 {
 cao::HBAOSettings SettingsOf(const SurfaceTechniqueSettings& s)
 {
+  if (const auto* own = std::any_cast<cao::HBAOSettings>(&s.own))
+    return *own; // (a caller's, whole)
   cao::HBAOSettings settings;
   settings.quality = static_cast<cao::Quality>(s.quality);
   settings.radius = s.radius;
@@ -30,7 +32,7 @@ void RegisterHBAOTechnique()
   t.name = "hbao";
   t.label = "HBAO";
   t.cpu = [](const cao::PixelCamera& camera, const SurfaceTechniqueSettings& s, cao::SurfaceFrame& frame,
-            std::string& error) { return cao::HBAOFrame(camera, SettingsOf(s), frame, 0, error); };
+            std::string& error) { return cao::HBAOFrame(camera, SettingsOf(s), frame, s.threads, error); };
   t.gpu = [](SceneGPU& gpu, const cao::PixelCamera& camera, const SurfaceTechniqueSettings& s,
             cao::SurfaceFrame& frame, std::string& error) {
     cao::gl::ScreenAOEngine* screen = gpu.ScreenAO(error);

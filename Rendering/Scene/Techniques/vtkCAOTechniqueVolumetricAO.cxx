@@ -17,6 +17,8 @@ namespace
 {
 cao::VolumetricAOSettings SettingsOf(const SurfaceTechniqueSettings& s)
 {
+  if (const auto* own = std::any_cast<cao::VolumetricAOSettings>(&s.own))
+    return *own; // (a caller's, whole)
   cao::VolumetricAOSettings settings;
   settings.quality = static_cast<cao::Quality>(s.quality);
   settings.radius = s.radius;
@@ -31,7 +33,7 @@ void RegisterVolumetricAOTechnique()
   t.name = "volumetric";
   t.label = "Volumetric AO";
   t.cpu = [](const cao::PixelCamera& camera, const SurfaceTechniqueSettings& s, cao::SurfaceFrame& frame,
-            std::string& error) { return cao::VolumetricAOFrame(camera, SettingsOf(s), frame, 0, error); };
+            std::string& error) { return cao::VolumetricAOFrame(camera, SettingsOf(s), frame, s.threads, error); };
   t.gpu = [](SceneGPU& gpu, const cao::PixelCamera& camera, const SurfaceTechniqueSettings& s,
             cao::SurfaceFrame& frame, std::string& error) {
     cao::gl::ScreenAOEngine* screen = gpu.ScreenAO(error);
@@ -50,7 +52,7 @@ void RegisterVolumetricAOTechnique()
   };
   t.indirect = [](const cao::PixelCamera& camera, const SurfaceTechniqueSettings& s,
                  const cao::SurfaceFrame& frame, const std::vector<float>& rgb, std::vector<float>& indirect,
-                 std::string& error) { return cao::VolumetricAOIndirect(camera, SettingsOf(s), frame, rgb, indirect, 0, error); };
+                 std::string& error) { return cao::VolumetricAOIndirect(camera, SettingsOf(s), frame, rgb, indirect, s.threads, error); };
   RegisterBuiltIn(t);
 }
 }

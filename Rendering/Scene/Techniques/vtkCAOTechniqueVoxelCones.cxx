@@ -25,10 +25,15 @@ bool PlanOf(const SurfaceTechniqueSettings& s, cao::VCTPlan& plan, std::string& 
     return false;
   }
   cao::VCTSettings settings;
-  settings.quality = static_cast<cao::Quality>(s.quality);
-  settings.slices = s.slices;
-  settings.radius = s.radius;
-  settings.occupancy = static_cast<cao::VCTOccupancy>(s.occupancy);
+  if (const auto* own = std::any_cast<cao::VCTSettings>(&s.own))
+    settings = *own; // (a caller's, whole)
+  else
+  {
+    settings.quality = static_cast<cao::Quality>(s.quality);
+    settings.slices = s.slices;
+    settings.radius = s.radius;
+    settings.occupancy = static_cast<cao::VCTOccupancy>(s.occupancy);
+  }
   if (!cao::BuildVCTPlan(settings, *s.grid, plan, error))
     return false;
   if (s.volumes)
@@ -48,7 +53,7 @@ void RegisterVoxelConesTechnique()
   t.cpu = [](const cao::PixelCamera&, const SurfaceTechniqueSettings& s, cao::SurfaceFrame& frame,
             std::string& error) {
     cao::VCTPlan plan;
-    return PlanOf(s, plan, error) && cao::VCTFrame(*s.grid, plan, frame, 0, error);
+    return PlanOf(s, plan, error) && cao::VCTFrame(*s.grid, plan, frame, s.threads, error);
   };
   t.gpu = [](SceneGPU& gpu, const cao::PixelCamera&, const SurfaceTechniqueSettings& s, cao::SurfaceFrame& frame,
             std::string& error) {

@@ -21,6 +21,7 @@
 //   without a CPU step are refused; SetMethod with a value nobody
 //   registered is an error that lists the registered ones, and the Method
 //   stays.
+#include "vtkCAOLineTechnique.h"
 #include "vtkCAOSurfaceTechnique.h"
 #include "vtkContextualAOPass.h"
 
@@ -37,12 +38,14 @@
 
 #include "caoBitGrid.h"
 #include "caoPixelCamera.h"
+#include "caoScreenSpaceAO.h"
 #include "caoSurfaceReference.h"
 #include "caoTestSkip.h"
 
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -227,10 +230,66 @@ int TestSurfaceTechnique(int, char*[])
     "on OpenGL a grid technique without a GPU step gets the grid on the CPU (" + std::to_string(gridWords) +
       " words): " + glGridReport);
 
+  // A caller's own settings type (cao surface's options): the built-in
+  // HBAO on the pass's own G-buffer (captured by a technique) reads it
+  // whole instead of the quality field. Control (run by hand): with `own`
+  // ignored, High through `own` gave Low's AO and the second check failed.
+  cao::SurfaceFrame captured;
+  cao::PixelCamera capturedCamera;
+  vtkCAO::SurfaceTechnique capture = Constant(44, "capture", 1.0, nullptr);
+  capture.cpu = [&captured, &capturedCamera](const cao::PixelCamera& c, const vtkCAO::SurfaceTechniqueSettings&,
+                  cao::SurfaceFrame& frame, std::string&) {
+    captured = frame;
+    capturedCamera = c;
+    frame.ao.assign(frame.triangle.size(), 1.0);
+    return true;
+  };
+  Check(vtkCAO::RegisterSurfaceTechnique(capture, &error), "a capturing technique registers");
+  pass->SetBackend(vtkContextualAOPass::BACKEND_CPU);
+  pass->SetGBuffer(vtkContextualAOPass::RAY_CAST);
+  pass->SetMethod(44);
+  window->Render();
+  const vtkCAO::SurfaceTechnique* hbao = vtkCAO::FindSurfaceTechniqueNamed("hbao");
+  Check(hbao && hbao == vtkCAO::FindSurfaceTechnique(vtkContextualAOPass::HBAO) &&
+      !vtkCAO::FindSurfaceTechniqueNamed("none") && vtkCAO::FindLineTechniqueNamed("lineao") &&
+      vtkCAO::FindLineTechniqueNamed("lineao")->method == 1 && captured.covered > 100,
+    "the techniques by name (cao surface --method): hbao is Method 2, none is no technique, lineao is "
+    "LineMethod 1; " + std::to_string(captured.covered) + " pixels captured");
+  if (hbao && captured.covered > 0)
+  {
+    auto run = [&](int quality, const cao::HBAOSettings* own) {
+      vtkCAO::SurfaceTechniqueSettings s;
+      s.quality = quality;
+      s.radius = 0.7;
+      if (own)
+        s.own = *own;
+      cao::SurfaceFrame f = captured;
+      std::string e;
+      if (!hbao->cpu(capturedCamera, s, f, e))
+        Check(false, "HBAO's CPU step ran: " + e);
+      return f.ao;
+    };
+    cao::HBAOSettings low, high;
+    low.quality = cao::Quality::Low;
+    high.quality = cao::Quality::High;
+    low.radius = high.radius = 0.7;
+    const std::vector<double> byField = run(1, nullptr), ownLow = run(3, &low), ownHigh = run(1, &high);
+    auto same = [](const std::vector<double>& a, const std::vector<double>& b) {
+      if (a.size() != b.size())
+        return false;
+      for (std::size_t i = 0; i < a.size(); ++i)
+        if (!(a[i] == b[i] || (std::isnan(a[i]) && std::isnan(b[i]))))
+          return false;
+      return true;
+    };
+    Check(same(byField, ownLow), "own Low (with the quality field at High) gives the quality field's Low exactly");
+    Check(!same(byField, ownHigh), "own High (with the quality field at Low) gives High's AO, not Low's");
+  }
+
   // A value nobody registered: an error, and the Method stays.
   pass->SetBackend(vtkContextualAOPass::BACKEND_CPU);
   pass->SetGBuffer(vtkContextualAOPass::RAY_CAST);
   pass->SetMethod(77);
-  Check(pass->GetMethod() == 43, "SetMethod(77) leaves the Method at 43 (an error lists the registered ones)");
+  Check(pass->GetMethod() == 44, "SetMethod(77) leaves the Method at 44 (an error lists the registered ones)");
   return failures ? 1 : 0;
 }
