@@ -197,6 +197,40 @@ check(changed(plain, builtin) > 300 and changed(builtin, piped) < changed(builti
       "the built-in Cube carves as a Transform of a Box: %d pixels differ, against %d for the box "
       "turned 30 degrees more (%d clipped)" % (changed(builtin, piped), changed(builtin, turned),
                                               changed(plain, builtin)))
+# A box squashed 10 times along one axis (a face handle dragged in the
+# GUI): it carves as the same Transform of a Box, moved and turned without
+# new depth maps. Negative control: before the stretch went into the mesh,
+# the maps for its scales 5 to 50 needed 100 times the dilation work and
+# were refused ("too many pixels to dilate"): the volume vanished.
+display.ClipMeshes = []
+display.ClipShape = "Cube"
+display.ClipScale = [50.0, 5.0, 40.0]
+flat = frame("flat-builtin")
+flat_report = mapper.GetLastFrameReport()
+posed.Transform.Rotate = list(display.ClipOrientation)
+posed.Transform.Scale = list(display.ClipScale)
+display.ClipShape = "None"
+display.ClipMeshes = [posed]
+flat_piped = frame("flat-pipeline")
+check('"categories"' in flat_report and changed(plain, flat) > 300 and
+      changed(flat, flat_piped) < changed(builtin, turned) / 4,
+      "a box squashed 10 times carves as a Transform of a Box: %d pixels differ (%d clipped); report %s"
+      % (changed(flat, flat_piped), changed(plain, flat), flat_report[:120]))
+display.ClipMeshes = []
+display.ClipShape = "Cube"
+frame("flat-builtin-again")
+display.ClipPosition = [centre[0] + 14.0, centre[1] - 70.0, centre[2] + 5.0]
+frame("flat-moved")
+moved_stages = mapper.GetLastFrameStages()
+display.ClipOrientation = [25.0, 50.0, 15.0]
+frame("flat-turned")
+turned_stages = mapper.GetLastFrameStages()
+check("depth_maps" not in moved_stages and "classify" in moved_stages and
+      "depth_maps" not in turned_stages and "classify" in turned_stages,
+      "the squashed box moved and turned keeps its depth maps (%s; %s)" % (moved_stages, turned_stages))
+display.ClipPosition = [centre[0] + 10.0, centre[1] - 70.0, centre[2] + 5.0]
+display.ClipOrientation = [25.0, 40.0, 15.0]
+display.ClipScale = [50.0, 30.0, 40.0]
 display.ClipMeshes = []
 display.ClipShape = "Cube"
 display.ClipUseReferenceBounds = 0  # the unit box [0,1]^3: the position is a corner

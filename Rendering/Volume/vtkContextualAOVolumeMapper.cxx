@@ -17,6 +17,7 @@
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkMapper.h"
+#include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -29,6 +30,8 @@
 #include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
+#include "vtkTransform.h"
+#include "vtkTransformPolyDataFilter.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 #include "vtkWeakPointer.h"
@@ -393,6 +396,20 @@ struct vtkContextualAOVolumeMapper::Internals
     int mode = 0;
   };
   bool GatherClipParts(vtkContextualAOVolumeMapper* self, Frame& f, std::vector<ClipPart>& parts);
+  /// A shape whose pose scales its axes unequally (a clip box squashed
+  /// along one) gets a mesh with that stretch in it (vtkCAO::SplitStretch)
+  /// and the pose's rotation and translation: the depth maps then serve
+  /// its drags and turns at the cost of a uniform scale. The stretched mesh
+  /// is kept while the stretch stays within 1e-9 of it (a turn changes its
+  /// rounding), so that moving the shape keeps the maps.
+  void Unstretch(ClipPart& part);
+  struct Stretched
+  {
+    vtkPolyData* source = nullptr;
+    vtkMTimeType time = 0;
+    double stretch[3][3] = { { 0 } };
+    vtkSmartPointer<vtkPolyData> mesh;
+  } Stretch;
   /// `pose`: the maps' pose (the shape's for one, identity for several).
   bool UpdateMaps(vtkContextualAOVolumeMapper* self, Frame& f, const std::vector<ClipPart>& parts,
     vtkMatrix4x4* pose);
@@ -1441,7 +1458,62 @@ bool vtkContextualAOVolumeMapper::Internals::GatherClipParts(
       vtkWarningWithObjectMacro(self, << skipped);
   }
   this->SkippedShapes = skipped;
+  if (parts.size() == 1)
+    this->Unstretch(parts[0]);
+  else
+    this->Stretch = Stretched();
   return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkContextualAOVolumeMapper::Internals::Unstretch(ClipPart& part)
+{
+  double stretch[3][3];
+  vtkNew<vtkMatrix4x4> rigid;
+  // (Within 1%: the maps' pose-scale range takes it as it is.)
+  if (!vtkCAO::SplitStretch(part.pose, 1.01, stretch, rigid))
+  {
+    this->Stretch = Stretched();
+    return;
+  }
+  Stretched& kept = this->Stretch;
+  double largest = 0.0;
+  for (const auto& row : stretch)
+    for (double v : row)
+      largest = std::max(largest, std::fabs(v));
+  bool same = kept.mesh && kept.source == part.mesh && kept.time == part.mesh->GetMTime();
+  for (int r = 0; same && r < 3; ++r)
+    for (int c = 0; same && c < 3; ++c)
+      same = std::fabs(stretch[r][c] - kept.stretch[r][c]) <= 1e-9 * largest;
+  if (!same)
+  {
+    vtkNew<vtkTransform> t;
+    vtkNew<vtkMatrix4x4> m;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c)
+        m->SetElement(r, c, stretch[r][c]);
+    t->SetMatrix(m);
+    vtkNew<vtkTransformPolyDataFilter> apply;
+    apply->SetInputData(part.mesh);
+    apply->SetTransform(t);
+    apply->Update();
+    kept.mesh = vtkSmartPointer<vtkPolyData>::New();
+    kept.mesh->ShallowCopy(apply->GetOutput());
+    kept.source = part.mesh;
+    kept.time = part.mesh->GetMTime();
+    std::copy(&stretch[0][0], &stretch[0][0] + 9, &kept.stretch[0][0]);
+  }
+  // The pose without the kept stretch: pose * stretch^-1.
+  double inverse[3][3];
+  vtkMath::Invert3x3(kept.stretch, inverse);
+  vtkNew<vtkMatrix4x4> unstretch;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      unstretch->SetElement(r, c, inverse[r][c]);
+  auto posed = vtkSmartPointer<vtkMatrix4x4>::New();
+  vtkMatrix4x4::Multiply4x4(part.pose, unstretch, posed);
+  part.pose = posed;
+  part.mesh = kept.mesh;
 }
 
 //------------------------------------------------------------------------------
