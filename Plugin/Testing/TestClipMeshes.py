@@ -284,6 +284,7 @@ previous = vtkOutputWindow.GetInstance()
 vtkOutputWindow.SetInstance(errors)
 display.ClipMeshes = [Plane(Origin=[0, 0, 82], Point1=[200, 0, 82], Point2=[0, 250, 82], XResolution=4, YResolution=4)]
 opened = frame("open")
+open_report = mapper.GetLastFrameReport()
 vtkOutputWindow.SetInstance(previous)
 text = errors.GetOutput()
 check("open" in text and "closed" in text and "drawn unclipped" in text and changed(plain, opened) == 0,
@@ -305,6 +306,33 @@ check("is left out" in text and "cannot clip" in text and changed(alone, withOpe
       changed(plain, alone) > 100,
       "an open mesh beside a closed one is left out (%s) and the closed one carves as alone "
       "(%d pixels differ)" % (text[:240], changed(alone, withOpen)))
+with_open_report = mapper.GetLastFrameReport()
+# The frame report says what a frame could not do, not the last good
+# frame's work: a shape left out (the report's "error"), the only shape
+# refused (no categories: nothing clipped), a
+# setting refused (the frame not drawn: its number, the error, no
+# categories), then a drawn frame again. Negative control: before, a
+# refused setting left the last good frame's report (categories, no error).
+import json  # noqa: E402
+check("is left out" in json.loads(with_open_report).get("error", "") and
+      "open" in json.loads(open_report).get("error", "") and '"categories"' not in open_report,
+      "the report says a left-out shape, and the only one refused: %s / %s"
+      % (with_open_report, open_report))
+drawn = mapper.GetFrameCount()
+errors = vtkStringOutputWindow()
+vtkOutputWindow.SetInstance(errors)
+display.AOStrength = 5.0
+frame("strength-refused")
+vtkOutputWindow.SetInstance(previous)
+refused = json.loads(mapper.GetLastFrameReport())
+display.AOStrength = 1.0
+frame("strength-back")
+back = json.loads(mapper.GetLastFrameReport())
+check("AOStrength" in refused.get("error", "") and "categories" not in refused and
+      refused.get("frame") == drawn + 1 and mapper.GetFrameCount() == drawn + 1 and
+      "AOStrength" not in back.get("error", "") and back.get("frame") == drawn + 1,
+      "a refused setting's frame reports its error and no categories (%s); the next frame is drawn, "
+      "without it (%s; %d frames drawn before)" % (refused, back, drawn))
 print("%d failure(s)" % len(failures))
 sys.stdout.flush()
 os._exit(1 if failures else 0)  # (teardown under Xvfb: see TestSameLook.py)

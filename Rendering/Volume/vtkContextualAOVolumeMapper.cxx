@@ -96,6 +96,7 @@ struct FrameReport
   std::int64_t aoSampleVoxels = 0; // the ray caster's AO samples remade (RayCaster)
   int redrawn = 0; // draws of this frame copied from kept ones (KeepDraws)
   double keyMs = 0.0; // host ms of the kept draws' keys (read-backs, hashing)
+  std::string error; // why the frame failed, or what it could not do (the volume drawn unclipped)
 
   std::string Json() const
   {
@@ -118,7 +119,15 @@ struct FrameReport
       << ", \"interactive\": " << (interactive ? "true" : "false") << ", \"redrawn\": " << redrawn
       << ", \"kept_key_ms\": " << keyMs
       << ", \"context\": \"" << backend
-      << "\", \"depth_peeling\": \"" << peel[peelStage & 3] << "\"}";
+      << "\", \"depth_peeling\": \"" << peel[peelStage & 3] << "\"";
+    if (!error.empty())
+    {
+      o << ", \"error\": \"";
+      for (char c : error)
+        o << (c == '"' || c == '\\' ? std::string("\\") + c : c == '\n' ? std::string(" ") : std::string(1, c));
+      o << "\"";
+    }
+    o << "}";
     return o.str();
   }
 };
@@ -319,6 +328,8 @@ struct vtkContextualAOVolumeMapper::Internals
   };
   std::map<vtkPolyData*, MeshCheck> MeshChecks;
   std::string SkippedShapes;
+  std::string MapsError; ///< the last depth maps' failure, said once
+  bool HaveFailure = false; ///< the last frame failed: Last is its report
   // What the ray cast covers and at which image sample distance; what the
   // ray cast cost per ray in the frames before (ms), and this frame's sum
   // over its peeling stages and its rays (one stage's).
@@ -636,7 +647,7 @@ void vtkContextualAOVolumeMapper::ReleaseGraphicsResources(vtkWindow*)
 //------------------------------------------------------------------------------
 std::string vtkContextualAOVolumeMapper::GetLastFrameReport() const
 {
-  return this->FrameCount > 0 ? this->Internal->Last.Json() : std::string();
+  return this->FrameCount > 0 || this->Internal->HaveFailure ? this->Internal->Last.Json() : std::string();
 }
 
 std::string vtkContextualAOVolumeMapper::GetLastFrameStages() const
@@ -1458,6 +1469,8 @@ bool vtkContextualAOVolumeMapper::Internals::GatherClipParts(
       vtkWarningWithObjectMacro(self, << skipped);
   }
   this->SkippedShapes = skipped;
+  if (!skipped.empty()) // (in the frame report too, each frame it holds)
+    f.report.error = skipped + (parts.empty() ? " The volume is drawn unclipped." : "");
   if (parts.size() == 1)
     this->Unstretch(parts[0]);
   else
@@ -1537,7 +1550,21 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateClip(
   vtkNew<vtkMatrix4x4> identity;
   vtkMatrix4x4* pose = parts.size() == 1 ? parts[0].pose.GetPointer() : identity.GetPointer();
   if (!this->UpdateMaps(self, f, parts, pose))
-    return false;
+  {
+    // Maps that cannot be made (a limit they state): as for a shape that
+    // cannot clip, the volume is drawn unclipped and the error says why
+    // (once per distinct error, and in the frame report).
+    const std::string why = f.why + " The volume is drawn unclipped.";
+    if (why != this->MapsError)
+      vtkErrorWithObjectMacro(self, << why);
+    this->MapsError = why;
+    f.report.error = why;
+    f.why.clear();
+    f.clipping = false;
+    this->PoseKey.clear();
+    return true;
+  }
+  this->MapsError.clear();
   std::string error;
   vtkCAO::ClipMaps clipMaps;
   if (!vtkCAO::ReadClipMaps(this->ClipDepthMaps->GetOutput(), parts[0].mode, clipMaps, error))
@@ -2181,9 +2208,20 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     if (!f.why.empty() && f.why != in.LastError)
       vtkErrorMacro(<< f.why);
     if (!f.why.empty())
+    {
       in.LastError = f.why;
+      // The report says the failure (not the last good frame's work): the
+      // frame it would have been, its error, no categories. (An abort
+      // leaves it as it was.)
+      in.Last = FrameReport();
+      in.Last.frame = this->FrameCount + 1;
+      in.Last.backend = f.report.backend;
+      in.Last.error = f.why;
+      in.HaveFailure = true;
+    }
     return;
   }
+  in.HaveFailure = false;
   const double castMs = in.Caster->LastMilliseconds();
   ++in.FrameDraws;
   f.report.keyMs = in.Caster->LastKeyMilliseconds();

@@ -496,7 +496,11 @@ public:
    * stages that ran with milliseconds each (and the timer used), the voxels recomputed, the
    * ray caster's AO samples remade (`ao_sample_voxels`, stage `ao_samples`: only where
    * the AO or the clip state changed), the category counts and why AO work was done.
-   * Empty before the first frame.
+   * Empty before the first frame. A frame that failed reports its
+   * "error" and no categories (GetFrameCount counts the frames drawn); a
+   * frame drawn without some of its work (a clip shape left out, depth
+   * maps that could not be made: the volume drawn unclipped) reports the
+   * "error" beside its stages.
    */
   std::string GetLastFrameReport() const;
   /// Stage names of the last frame, comma-separated (e.g.

@@ -920,6 +920,22 @@ void BadInput(const Options& o)
       errors.empty() ? "no error" : errors.back().c_str());
   }
   s.clip->SetScale(1.0);
+  // Depth maps that cannot be made (pixels so small that the dilation would
+  // pass its limit): the volume is drawn unclipped with the maps' error,
+  // in the frame report too. Control: it drew nothing before.
+  m->SetClipMapPixelSize(1e-3);
+  {
+    errors.clear();
+    const int before = m->GetFrameCount();
+    s.window->Render();
+    const std::string report = m->GetLastFrameReport();
+    CAO_EXPECT(!errors.empty() && errors.back().find("depth maps could not be made") != std::string::npos &&
+        errors.back().find("drawn unclipped") != std::string::npos && m->GetFrameCount() == before + 1 &&
+        report.find("\"error\": \"The clip mesh's depth maps") != std::string::npos,
+      "maps that cannot be made: the volume drawn unclipped, the error said and reported (%s; %s)",
+      errors.empty() ? "no error" : errors.back().c_str(), report.c_str());
+  }
+  m->SetClipMapPixelSize(0.0);
   // A setting out of range after a good frame (everything cached) is still
   // refused, whether or not it changes what is cached.
   m->SetQuality(7);
