@@ -740,6 +740,40 @@ void TrianglesOf(vtkPolyData* mesh, std::vector<double>& points, std::vector<std
       tris.insert(tris.end(), { ids[0], ids[1], ids[2] });
 }
 
+bool CheckPoseDistances(const std::vector<Pose>& poses, vtkImageData* volume, std::string& error)
+{
+  if (!volume)
+    return true;
+  double b[6], spacing[3];
+  volume->GetBounds(b);
+  volume->GetSpacing(spacing);
+  const double voxel = std::min({ std::fabs(spacing[0]), std::fabs(spacing[1]), std::fabs(spacing[2]) });
+  if (!(voxel > 0.0) || !std::isfinite(voxel))
+    return true; // (the volume's own checks report it)
+  const double limit = 0.5 * MaxClipVoxels * voxel;
+  for (std::size_t i = 0; i < poses.size(); ++i)
+  {
+    double out[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      const double x = poses[i].translation[k];
+      out[k] = x < b[2 * k] ? b[2 * k] - x : x > b[2 * k + 1] ? x - b[2 * k + 1] : 0.0;
+    }
+    const double d = std::hypot(std::hypot(out[0], out[1]), out[2]); // (no overflow at 1e300)
+    if (d <= limit)
+      continue;
+    char text[400];
+    std::snprintf(text, sizeof text,
+      "pose %zu: the clip shape's centre lies %g world units (%g voxels) from the volume; beyond "
+      "2^22 voxels (%g world units here) the depth maps' float32 coordinates cannot place a voxel, "
+      "and a shape that far clips nothing: move it nearer or leave the clip out",
+      i, d, d / voxel, limit);
+    error = text;
+    return false;
+  }
+  return true;
+}
+
 bool CheckPoseScales(const std::vector<Pose>& poses, vtkPolyData* mesh, vtkImageData* volume,
   std::string& error, bool largestOnly)
 {

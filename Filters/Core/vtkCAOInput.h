@@ -105,6 +105,14 @@ CAOFILTERSCORE_EXPORT double PlaneSlabSize(vtkImageData* volume, const double sh
 CAOFILTERSCORE_EXPORT bool CheckPoseScales(const std::vector<Pose>& poses, vtkPolyData* mesh,
   vtkImageData* volume, std::string& error, bool largestOnly = false);
 constexpr double MaxClipVoxels = 8388608.0; // 2^23
+/// Whether every pose's origin lies within MaxClipVoxels / 2 voxels (the
+/// smallest spacing) of the volume's bounds: farther, the depth maps' and
+/// the classification's float32 coordinates cannot place a voxel (a
+/// plane's slab, which reaches across the volume from the pose, would be
+/// larger than MaxClipVoxels), and a shape that far clips nothing anyway.
+/// False with one line naming the pose, its distance and the limit.
+CAOFILTERSCORE_EXPORT bool CheckPoseDistances(
+  const std::vector<Pose>& poses, vtkImageData* volume, std::string& error);
 }
 
 #endif

@@ -448,6 +448,8 @@ int MakePoses(const Options& o, vtkImageData* volume, CarveSetup& s)
   volume->GetBounds(bounds);
   if (s.poses.empty())
     s.poses = vtkCAO::DefaultPath(bounds, o.clipping.path);
+  if (!vtkCAO::CheckPoseDistances(s.poses, volume, error))
+    return Fail(2, "--pose/--poses: " + error);
   // The maps are made for each pose scale of the path (pixels of half a
   // voxel and the dilation of the reach, in the world, at that scale),
   // over the region the volume occupies in the mesh's frame at the poses

@@ -393,6 +393,8 @@ int Render(RenderOptions& o, const CLI::App* app)
       return Fail(2, error);
     if (poses.empty())
       poses = DefaultPath(bounds, o.clipping.path);
+    if (!vtkCAO::CheckPoseDistances(poses, volume, error))
+      return Fail(2, "--pose/--poses: " + error);
     const double size = o.clipping.shape == "plane" ? vtkCAO::PlaneSlabSize(volume, poses)
       : o.clipping.size > 0.0                       ? o.clipping.size
                                                     : vtkCAO::DefaultShapeSize(volume);

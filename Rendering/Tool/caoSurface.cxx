@@ -32,6 +32,7 @@
 
 #include "vtkCAOBackend.h"
 #include "vtkCAOInput.h"
+#include "vtkClipDepthMaps.h"
 #include "vtkCAOSceneGPU.h"
 #include "vtkCAOSurfaceTechnique.h"
 #include "vtkCAOSceneVolume.h"
@@ -816,6 +817,8 @@ bool LoadOccludingVolume(
     }
     else if (!vtkCAO::ParsePose(o.pose, pose, error))
       return error = "--pose: " + error, false;
+    if (!vtkCAO::CheckPoseDistances({ pose }, image, error))
+      return error = "--pose: " + error, false;
     // A plane is a half-space: its slab covers the volume at the pose.
     const double size = o.shape == "plane" ? vtkCAO::PlaneSlabSize(image, { pose })
       : o.size > 0                         ? o.size
@@ -824,6 +827,14 @@ bool LoadOccludingVolume(
                                                            : vtkCAO::ReadMesh(o.clipMesh, error);
     if (!mesh)
       return false;
+    // A mesh that cannot clip (open, NaN points, too few polygons) or a
+    // scale the maps cannot resolve is bad input, refused as cao carve and
+    // cao render refuse it (the mapper would leave the clip out).
+    const std::string what = o.clipMesh.empty() ? std::string("the clip shape") : "--mesh '" + o.clipMesh + "'";
+    if (!vtkClipDepthMaps::CheckMesh(mesh, error))
+      return error = what + ": " + error, false;
+    if (!vtkCAO::CheckPoseScales({ pose }, mesh, image, error))
+      return error = "--pose: " + error, false;
     vtkNew<vtkTransform> t;
     vtkCAO::PoseToTransform(pose, t);
     clipMapper->SetInputData(mesh);

@@ -901,9 +901,21 @@ for command in (["carve", neghip], ["render", neghip, "-o", frame]):
         check(rc == 2 and len(lines) == 1 and words in err and "the scale must lie in" in err and
               "ERR|" not in err and "WARN|" not in err,
               f"{command[0]} --pose scale {scale}: one clear line: rc={rc} {err.strip()[:300]!r}")
-# The control: a scale inside the range carves.
+# A pose far from the volume (a trial's 1e20 said "the clipping camera has
+# zero area", a plane's "the shape size must be positive"): one line with
+# its distance and the limit, from carve, render and a plane alike.
+for command in (["carve", neghip], ["render", neghip, "-o", frame], ["carve", neghip, "--shape", "plane"]):
+    for far in ("1e20 0 0", "1e300 0 0"):
+        rc, out, err = run(*command, "--pose", far)
+        lines = [l for l in err.splitlines() if l.strip()]
+        check(rc == 2 and len(lines) == 1 and "from the volume; beyond 2^22 voxels" in err and "inf" not in err,
+              f"{' '.join(command[:1] + command[2:3])} --pose {far}: one clear line: rc={rc} {err.strip()[:300]!r}")
+# The control: a scale inside the range carves, and so does a pose just
+# outside the volume (it clips nothing).
 rc, out, err = run("carve", neghip, "--pose", "30 30 30 0 0 0 2", "--rays", "6")
 check(rc == 0, f"carve --pose scale 2 runs: rc={rc} {err.strip()[:200]!r}")
+rc, out, err = run("carve", neghip, "--pose", "300 30 30", "--rays", "6")
+check(rc == 0, f"carve --pose outside the volume runs: rc={rc} {err.strip()[:200]!r}")
 const = write_volume("constant.vti", (16, 16, 16), value=7)
 rc, out, err = run("lao", const, "--json")
 check(rc == 0 and "warning" in err and "constant" in err,

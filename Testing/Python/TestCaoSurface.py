@@ -421,6 +421,14 @@ for path, far in ((far_vti, True), (block_vti, False)):
     check(rc == 0 and ("occludes nothing" in se) == far,
           "--volume %s the meshes: %s (rc=%d %s)" % ("far from" if far else "beside", "warned" if far else "no warning",
                                                      rc, se.strip()[:200]))
+# A clip that cannot clip is refused as cao carve refuses it (it was left
+# out without a word, the picture the unclipped one's): an open --mesh (the
+# square itself), a pose 1e20 away. The control: the cube below carves.
+for extra, words in ((["--mesh", square], "clipping needs a closed surface"),
+                     (["--shape", "sphere", "--pose", "1e20 0 0"], "beyond 2^22 voxels")):
+    rc, so, se = run(square, "--radius", "0.5", "--volume", block_vti, "--preset", "grayscale", "--image", "64x48",
+                     *extra, "-o", os.path.join(tmp, "square-bad-clip.png"))
+    check(rc == 2 and words in se, "--volume with %s is refused: rc=%d %s" % (" ".join(extra[:1]), rc, se.strip()[:200]))
 vol = surface("square-volume", [square], "--radius", "0.5", "--volume", block_vti, "--preset", "grayscale")
 carved = surface("square-carved", [square], "--radius", "0.5", "--volume", block_vti, "--preset", "grayscale",
                  "--shape", "cube", "--size", "1.0", "--pose", "0.5 0 0.27")
