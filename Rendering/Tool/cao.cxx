@@ -707,6 +707,32 @@ void PrintCarveJson(const Options& o, vtkImageData* volume, const std::vector<Ru
   std::printf("]}\n");
 }
 
+/// A pose at which the clip shape reaches no voxel (subtraction: none
+/// clipped or affected; probing: every voxel clipped, none affected) is
+/// said once: a mesh in its own coordinates (a part in millimetres at 120,
+/// a volume at 0) carved nothing without a word.
+void NoteUnreachedPoses(const Options& o, vtkImageData* volume, const std::vector<RunResult>& runs)
+{
+  if (runs.empty())
+    return;
+  const double voxels = static_cast<double>(volume->GetNumberOfPoints());
+  const bool probe = o.clipping.mode == "probe";
+  std::string list;
+  int count = 0;
+  for (std::size_t j = 0; j < runs[0].poses.size(); ++j)
+  {
+    const double* c = runs[0].poses[j].counts;
+    if (c[1] == 0 && (probe ? c[0] == voxels : c[0] == 0))
+      list += (count++ < 8 ? (list.empty() ? "" : ", ") + std::to_string(j) : std::string());
+  }
+  if (count > 0)
+    std::fprintf(stderr,
+      "cao: note: at %d of %zu poses (%s%s) the clip shape reaches no voxel: %s; check the mesh's "
+      "coordinates against the volume's bounds and --pose\n",
+      count, runs[0].poses.size(), list.c_str(), count > 8 ? ", ..." : "",
+      probe ? "everything is clipped" : "nothing is clipped");
+}
+
 void PrintCarveTables(const Options& o, vtkImageData* volume, const std::vector<RunResult>& runs)
 {
   int dims[3];
@@ -820,6 +846,7 @@ int RunCarve(const Options& o, vtkImageData* volume)
         return rc;
       runs.push_back(run);
     }
+  NoteUnreachedPoses(o, volume, runs);
   if (o.json)
     PrintCarveJson(o, volume, runs);
   else

@@ -6,6 +6,7 @@
 #include "vtkCAOInput.h"
 #include "vtkLocalAmbientOcclusion.h"
 
+#include <limits>
 #include <cctype>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -435,12 +436,21 @@ CLI::Option* AddOpacity(
       const auto items = Split(v, ',');
       if (items.size() < 2 || items.size() % 2 != 0)
         return "'" + v + "' is not scalar,opacity pairs";
+      double previous = -std::numeric_limits<double>::infinity();
       for (std::size_t p = 1; p < items.size(); p += 2)
       {
-        double a = 0.0;
+        double a = 0.0, scalar = 0.0;
         ToDouble(items[p], a);
         if (!(a >= 0.0 && a <= 1.0))
           return "bad opacity " + items[p] + " in '" + v + "' (0 to 1)";
+        // A piecewise function keeps one opacity per scalar, in order: a
+        // scalar out of order was sorted and a repeated one collapsed,
+        // silently (a step is two scalars a little apart).
+        ToDouble(items[p - 1], scalar);
+        if (!(scalar > previous))
+          return "scalar " + items[p - 1] + " in '" + v +
+            "' is not above the one before it: give the points in increasing scalar order, each scalar once";
+        previous = scalar;
       }
       return "";
     }));
