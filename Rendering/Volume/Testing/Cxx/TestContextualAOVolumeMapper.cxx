@@ -46,6 +46,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <functional>
 #include <limits>
@@ -53,6 +54,10 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#ifdef __linux__
+#include <sys/resource.h>
+#endif
 
 namespace
 {
@@ -2438,6 +2443,51 @@ void Keep(const Options& o)
     CAO_EXPECT(redrawn() == 1, "back at %d x %d pixels the same frame again is not copied (%d)",
       Size, Size, redrawn());
   }
+#ifdef __linux__
+  // A kept target that cannot be made for want of memory (a real failure:
+  // the process's address space limited, RLIMIT_AS, to what it holds plus
+  // 48 MiB, under one of the target's two 64 MB textures at 2 000 x 2 000
+  // pixels): the frame is drawn directly, the same picture, with no error;
+  // with the limit lifted keeping resumes. The window's buffers are made
+  // at that size first, without keeping. (The check that nothing was
+  // copied fails if the limit left room for the target.)
+  {
+    s.window->SetSize(2000, 2000);
+    s.mapper->SetKeepDraws(vtkContextualAOVolumeMapper::NEVER_KEEP_DRAWS);
+    const caotest::Image direct = s.Frame();
+    s.mapper->SetKeepDraws(vtkContextualAOVolumeMapper::ALWAYS_KEEP_DRAWS);
+    long held = -1; // kB of address space the process holds now
+    if (std::FILE* status = std::fopen("/proc/self/status", "r"))
+    {
+      char line[256];
+      while (std::fgets(line, sizeof line, status))
+        if (std::sscanf(line, "VmSize: %ld kB", &held) == 1)
+          break;
+      std::fclose(status);
+    }
+    rlimit before{};
+    getrlimit(RLIMIT_AS, &before);
+    rlimit limited = before;
+    limited.rlim_cur = static_cast<rlim_t>(held + 48 * 1024) * 1024;
+    const bool set = held > 0 && setrlimit(RLIMIT_AS, &limited) == 0;
+    const caotest::Image first = s.Frame();
+    const caotest::Image again = s.Frame();
+    const int copied = redrawn();
+    setrlimit(RLIMIT_AS, &before);
+    std::printf("kept target out of memory (2000 x 2000, address space limited to %ld MiB, set: %d): "
+                "%d draw(s) copied when drawn again; %ld and %ld pixel(s) differ from the direct draw\n",
+      held / 1024 + 48, set ? 1 : 0, copied, caotest::DifferingPixels(direct, first),
+      caotest::DifferingPixels(direct, again));
+    CAO_EXPECT(set, "the address-space limit could not be set (%ld kB held)", held);
+    CAO_EXPECT(copied == 0, "out of memory for the kept target, a draw was copied (%d)", copied);
+    CAO_EXPECT(caotest::DifferingPixels(direct, first) == 0 && caotest::DifferingPixels(direct, again) == 0,
+      "out of memory for the kept target, the frame is not the direct draw's");
+    s.Frame();
+    s.Frame();
+    CAO_EXPECT(redrawn() == 1, "the limit lifted, the same frame again is not copied (%d)", redrawn());
+    s.window->SetSize(Size, Size);
+  }
+#endif
   CAO_EXPECT(log.errors.empty(), "the mapper reported: %s",
     log.errors.empty() ? "" : log.errors[0].c_str());
   s.mapper->SetKeepDraws(vtkContextualAOVolumeMapper::AUTOMATIC_KEEP_DRAWS);
