@@ -826,9 +826,13 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
     << (this->GBuffer == GBUFFER_AUTO ? " (auto)" : "") << "\", \"frame_on_gpu\": "
     << (this->Internal->gpuFrame ? "true" : "false") << ", ";
   stages();
-  o << ", \"triangles\": " << p.triangles << ", \"bvh\": " << (p.bvh.NumberOfTriangles() > 0 ? "true" : "false")
-    << ", \"open_meshes\": " << p.open
-    << ", \"occluding_volumes\": " << p.opacity.size() << ", \"radius\": " << p.radius
+  // What this frame held: with no surfaces (all hidden or deleted) the
+  // scene kept for their return is not reported as this frame's.
+  const bool surfaces = !p.pieces.empty();
+  o << ", \"triangles\": " << (surfaces ? p.triangles : 0) << ", \"bvh\": "
+    << (surfaces && p.bvh.NumberOfTriangles() > 0 ? "true" : "false")
+    << ", \"open_meshes\": " << (surfaces ? p.open : 0)
+    << ", \"occluding_volumes\": " << (surfaces ? p.opacity.size() : 0) << ", \"radius\": " << p.radius
     << ", \"slices\": " << p.grid.slices << ", \"covered_pixels\": " << p.frame.covered
     << ", \"combined_pixels\": " << p.combined << ", \"hidden_pixels\": " << p.hidden
     << ", \"backend\": \"" << (p.onGPU ? p.gpu.Description() : std::string("CPU")) << "\"";

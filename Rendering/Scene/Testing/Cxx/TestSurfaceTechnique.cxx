@@ -26,6 +26,7 @@
 #include "vtkContextualAOPass.h"
 
 #include "vtkActor.h"
+#include "vtkActorCollection.h"
 #include "vtkCamera.h"
 #include "vtkContextualAOEGLWindow.h"
 #include "vtkCubeSource.h"
@@ -291,5 +292,23 @@ int TestSurfaceTechnique(int, char*[])
   pass->SetGBuffer(vtkContextualAOPass::RAY_CAST);
   pass->SetMethod(77);
   Check(pass->GetMethod() == 44, "SetMethod(77) leaves the Method at 44 (an error lists the registered ones)");
+
+  // With every surface hidden the report says what this frame held: no
+  // triangles (a trial deleted everything and read the last scene's 2 572).
+  // Control: the frame before, with the surfaces, reports theirs.
+  pass->SetMethod(vtkContextualAOPass::HBAO);
+  window->Render();
+  const std::string shown = pass->GetLastFrameReport();
+  vtkActorCollection* actors = renderer->GetActors();
+  actors->InitTraversal();
+  while (vtkActor* a = actors->GetNextActor())
+    a->SetVisibility(0);
+  window->Render();
+  const std::string hidden = pass->GetLastFrameReport();
+  Check(shown.find("\"triangles\": 0,") == std::string::npos &&
+      hidden.find("\"triangles\": 0,") != std::string::npos &&
+      hidden.find("\"occluding_volumes\": 0,") != std::string::npos &&
+      hidden.find("\"covered_pixels\": 0,") != std::string::npos,
+    "every surface hidden, the report holds none: " + hidden);
   return failures ? 1 : 0;
 }
