@@ -143,6 +143,17 @@ try:
     reselect(reader)
     Render(view)
     check(box_shown(view), "the box comes back with a shape")
+    # The volume hidden (the eye in the Pipeline Browser): no box over the
+    # empty view; shown again, the box is back. (Control: the box shown
+    # just above, with the same shape.)
+    Hide(reader, view)
+    reselect(reader)
+    Render(view)
+    gone = not box_shown(view)
+    Show(reader, view)
+    reselect(reader)
+    Render(view)
+    check(gone and box_shown(view), "the box is hidden with the volume (%s) and back with it" % gone)
 except Exception as e:  # noqa: BLE001  (reported as a failure)
     check(False, "exception: %r" % (e,))
 finally:
