@@ -1802,9 +1802,33 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
   std::copy(pixels.ndcToWorld, pixels.ndcToWorld + 16, this->ndcToWorld);
   pixels.width = width;
   pixels.height = height;
-  // The G-buffer: of the scene (serial), viewport, camera and source.
+  // The G-buffer: of the scene (serial), viewport, camera and source. Ray
+  // cast, of the pixels' rays alone (the view matrix and the projection's
+  // x, y and w rows), not of the depth range: a prop shown or hidden makes
+  // ParaView move the near and far planes, which moves no hit. (The drawn
+  // depth's encoding depends on them: that source keeps the whole matrix.)
   std::vector<double> primary{ key[0], key[2], key[3] };
-  primary.insert(primary.end(), key.begin() + 8, key.end());
+  if (this->gbuffer == RAY_CAST)
+  {
+    vtkCamera* camera = ren->GetActiveCamera();
+    vtkMatrix4x4* view = camera->GetViewTransformMatrix();
+    for (int i = 0; i < 16; ++i)
+      primary.push_back(view->GetElement(i / 4, i % 4));
+    vtkMatrix4x4* projection = camera->GetProjectionTransformMatrix(
+      width > 0 && height > 0 ? double(width) / height : 1.0, -1, 1);
+    // (Rounded to 40 bits: VTK computes them through the near plane, so a
+    // new range changes their last bits, and the rays by under 2^-40.)
+    for (int row : { 0, 1, 3 })
+      for (int c = 0; c < 4; ++c)
+      {
+        int exponent = 0;
+        const double mantissa = std::frexp(projection->GetElement(row, c), &exponent);
+        primary.push_back(std::ldexp(std::round(std::ldexp(mantissa, 40)), exponent - 40));
+      }
+    primary.insert(primary.end(), key.begin() + 24, key.end()); // (G-buffer source, where, mask)
+  }
+  else
+    primary.insert(primary.end(), key.begin() + 8, key.end());
   const std::size_t count = static_cast<std::size_t>(width) * height;
   const bool keep = primary == this->primaryKey && this->frame.width == width &&
     this->frame.height == height && this->frame.position.size() == 3 * count &&

@@ -43,6 +43,7 @@
 #include "caoSurfaceReference.h"
 #include "caoTestSkip.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -292,6 +293,46 @@ int TestSurfaceTechnique(int, char*[])
   pass->SetGBuffer(vtkContextualAOPass::RAY_CAST);
   pass->SetMethod(77);
   Check(pass->GetMethod() == 44, "SetMethod(77) leaves the Method at 44 (an error lists the registered ones)");
+
+  // A new depth range alone (ParaView moves the near and far planes when a
+  // prop is shown or hidden) keeps the ray-cast G-buffer: the trace runs
+  // again, the primary rays do not, and the AO is the one a new G-buffer
+  // gives. Control: the former key (the whole projection) cast it again.
+  pass->SetMethod(vtkContextualAOPass::HBAO);
+  pass->SetGBuffer(vtkContextualAOPass::RAY_CAST);
+  window->Render();
+  double range[2];
+  camera->GetClippingRange(range);
+  camera->SetClippingRange(0.5 * range[0], 2.0 * range[1]);
+  window->Render();
+  const std::string ranged = pass->GetLastFrameStages();
+  auto aoImage = [&]() {
+    std::vector<double> ao;
+    for (int y = 0; y < 120; y += 4)
+      for (int x = 0; x < 160; x += 4)
+        ao.push_back(pass->GetPixelAO(x, y));
+    return ao;
+  };
+  const std::vector<double> keptAO = aoImage();
+  pass->SetGBuffer(vtkContextualAOPass::DEPTH_BUFFER); // (another source: cast anew below)
+  window->Render();
+  pass->SetGBuffer(vtkContextualAOPass::RAY_CAST);
+  window->Render();
+  const std::string recast = pass->GetLastFrameStages();
+  const std::vector<double> castAO = aoImage();
+  double largest = 0.0, darkest = 1.0;
+  for (std::size_t i = 0; i < castAO.size(); ++i)
+  {
+    largest = std::max(largest, std::fabs(castAO[i] - keptAO[i]));
+    if (castAO[i] >= 0.0)
+      darkest = std::min(darkest, castAO[i]);
+  }
+  Check(ranged.find("trace") != std::string::npos && ranged.find("primary") == std::string::npos &&
+      recast.find("primary") != std::string::npos && largest < 1e-9 && darkest < 0.8,
+    "a new depth range keeps the ray-cast G-buffer (" + ranged + "; cast anew: " + recast +
+      "), its AO the new G-buffer's (largest difference " + std::to_string(largest) + " over " +
+      std::to_string(castAO.size()) + " pixels, darkest " + std::to_string(darkest) + ")");
+  camera->SetClippingRange(range);
 
   // With every surface hidden the report says what this frame held: no
   // triangles (a trial deleted everything and read the last scene's 2 572).
