@@ -161,6 +161,21 @@ display.ClipMeshes = []
 display.ClipMeshModes = []
 display.ClipMode = "Subtraction"
 display.ClipShape = "Cube"
+# A volume scaled unequally (the display's Scale 1 1 3): a clip of one
+# scale turned inside it keeps its maps, as before the squashed box's fix
+# (its stretch is the clip's own, not the pose's). Control: split from the
+# pose (volume and clip together), every turn remade them.
+display.Scale = [1.0, 1.0, 3.0]
+display.ClipScale = [40.0, 40.0, 40.0]
+frame("scaled-volume")
+turns = []
+for rotation in ([10.0, 20.0, 0.0], [30.0, 40.0, 10.0]):
+    display.ClipOrientation = rotation
+    frame("scaled-volume-turned")
+    turns.append(mapper.GetLastFrameStages())
+check(all("depth_maps" not in t and "classify" in t for t in turns),
+      "a clip of one scale turned in a volume scaled 1 1 3 keeps its maps (%s)" % "; ".join(turns))
+display.Scale = [1.0, 1.0, 1.0]
 display.ClipPosition = [centre[0] + 10.0, centre[1] - 70.0, centre[2] + 5.0]
 display.ClipOrientation = [25.0, 40.0, 15.0]
 display.ClipScale = [50.0, 30.0, 40.0]

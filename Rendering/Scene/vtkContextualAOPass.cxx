@@ -56,6 +56,7 @@
 #include "caoSceneGrid.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <limits>
 #include <chrono>
@@ -1825,6 +1826,22 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
         const double mantissa = std::frexp(projection->GetElement(row, c), &exponent);
         primary.push_back(std::ldexp(std::round(std::ldexp(mantissa, 40)), exponent - 40));
       }
+    // ... unless a surface crosses the near or far plane (the primary
+    // rays keep the hits between them): then the range is in the key too.
+    double range[2];
+    camera->GetClippingRange(range);
+    const std::array<double, 6>& b = this->bvh.Bounds();
+    bool inside = true;
+    for (int corner = 0; corner < 8 && inside; ++corner)
+    {
+      const double point[4] = { b[corner & 1], b[2 + ((corner >> 1) & 1)], b[4 + ((corner >> 2) & 1)], 1.0 };
+      double eye[4];
+      view->MultiplyPoint(point, eye);
+      inside = -eye[2] >= range[0] && -eye[2] <= range[1];
+    }
+    primary.push_back(inside ? 0.0 : 1.0);
+    if (!inside)
+      primary.insert(primary.end(), { range[0], range[1] });
     primary.insert(primary.end(), key.begin() + 24, key.end()); // (G-buffer source, where, mask)
   }
   else

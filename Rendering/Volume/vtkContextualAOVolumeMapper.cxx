@@ -407,13 +407,16 @@ struct vtkContextualAOVolumeMapper::Internals
     int mode = 0;
   };
   bool GatherClipParts(vtkContextualAOVolumeMapper* self, Frame& f, std::vector<ClipPart>& parts);
-  /// A shape whose pose scales its axes unequally (a clip box squashed
-  /// along one) gets a mesh with that stretch in it (vtkCAO::SplitStretch)
-  /// and the pose's rotation and translation: the depth maps then serve
-  /// its drags and turns at the cost of a uniform scale. The stretched mesh
-  /// is kept while the stretch stays within 1e-9 of it (a turn changes its
-  /// rounding), so that moving the shape keeps the maps.
-  void Unstretch(ClipPart& part);
+  /// A shape whose own matrix (the prop's, not the volume's) scales its
+  /// axes unequally (a clip box squashed along one) gets a mesh with that
+  /// stretch in it (vtkCAO::SplitStretch) and keeps the matrix's rotation
+  /// and translation: the depth maps then serve its drags and turns at the
+  /// cost of a uniform scale. The stretched mesh is kept while the stretch
+  /// stays within 1e-9 of it (a turn changes its rounding), so that moving
+  /// the shape keeps the maps. (A volume scaled unequally stays in the
+  /// pose, as before: split from the pose, its stretch would turn with the
+  /// shape and remake the maps at every turn.)
+  void Unstretch(ClipPart& part, vtkMatrix4x4* shapeMatrix, vtkMatrix4x4* worldToVolume);
   struct Stretched
   {
     vtkPolyData* source = nullptr;
@@ -1472,19 +1475,20 @@ bool vtkContextualAOVolumeMapper::Internals::GatherClipParts(
   if (!skipped.empty()) // (in the frame report too, each frame it holds)
     f.report.error = skipped + (parts.empty() ? " The volume is drawn unclipped." : "");
   if (parts.size() == 1)
-    this->Unstretch(parts[0]);
+    this->Unstretch(parts[0], self->GetClipShapeAt(0)->GetMatrix(), worldToVolume);
   else
     this->Stretch = Stretched();
   return true;
 }
 
 //------------------------------------------------------------------------------
-void vtkContextualAOVolumeMapper::Internals::Unstretch(ClipPart& part)
+void vtkContextualAOVolumeMapper::Internals::Unstretch(
+  ClipPart& part, vtkMatrix4x4* shapeMatrix, vtkMatrix4x4* worldToVolume)
 {
   double stretch[3][3];
   vtkNew<vtkMatrix4x4> rigid;
   // (Within 1%: the maps' pose-scale range takes it as it is.)
-  if (!vtkCAO::SplitStretch(part.pose, 1.01, stretch, rigid))
+  if (!vtkCAO::SplitStretch(shapeMatrix, 1.01, stretch, rigid))
   {
     this->Stretch = Stretched();
     return;
@@ -1516,15 +1520,16 @@ void vtkContextualAOVolumeMapper::Internals::Unstretch(ClipPart& part)
     kept.time = part.mesh->GetMTime();
     std::copy(&stretch[0][0], &stretch[0][0] + 9, &kept.stretch[0][0]);
   }
-  // The pose without the kept stretch: pose * stretch^-1.
+  // The pose without the kept stretch: worldToVolume * shape * stretch^-1.
   double inverse[3][3];
   vtkMath::Invert3x3(kept.stretch, inverse);
-  vtkNew<vtkMatrix4x4> unstretch;
+  vtkNew<vtkMatrix4x4> unstretch, shape;
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c)
       unstretch->SetElement(r, c, inverse[r][c]);
+  vtkMatrix4x4::Multiply4x4(shapeMatrix, unstretch, shape);
   auto posed = vtkSmartPointer<vtkMatrix4x4>::New();
-  vtkMatrix4x4::Multiply4x4(part.pose, unstretch, posed);
+  vtkMatrix4x4::Multiply4x4(worldToVolume, shape, posed);
   part.pose = posed;
   part.mesh = kept.mesh;
 }
