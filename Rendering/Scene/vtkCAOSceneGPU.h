@@ -1,7 +1,8 @@
 /**
  * vtkCAOSceneGPU — private: vtkContextualAOPass's GPU path, in the render
  * window's own OpenGL context (the pass runs inside the window's render,
- * its context current): voxel cone tracing's grid and cones
+ * its context current), or in a headless context of its own for a caller
+ * that renders nothing itself (`cao surface`: ResolveHeadless): voxel cone tracing's grid and cones
  * (cao::gl::VCTEngine) and the screen-space methods' estimators
  * (cao::gl::ScreenAOEngine) and line AO's prism sampling
  * (cao::gl::LineAOEngine) of the VTK-free GL layer, whose state guard
