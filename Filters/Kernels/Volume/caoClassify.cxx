@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <numeric>
 
 namespace cao
 {
@@ -88,6 +89,14 @@ inline void FillOutside(const layout::ClipParams& p, const float* opacity, float
 }
 
 constexpr float PosInfinity = std::numeric_limits<float>::infinity();
+
+/// Appends begin, begin + 1, ..., end - 1.
+inline void AppendRange(std::vector<std::int64_t>& list, std::int64_t begin, std::int64_t end)
+{
+  const std::size_t at = list.size();
+  list.resize(at + static_cast<std::size_t>(end - begin));
+  std::iota(list.begin() + static_cast<std::ptrdiff_t>(at), list.end(), begin);
+}
 
 inline std::uint32_t Bits(float f)
 {
@@ -724,8 +733,7 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
     {
       std::fill(category + begin, category + end,
         static_cast<std::uint8_t>(layout::CAO_CATEGORY_AFFECTED));
-      for (std::int64_t v = begin; v < end; ++v)
-        affected.push_back(v);
+      AppendRange(affected, begin, end);
       counts.affected += n;
     }
     else
@@ -805,8 +813,15 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
       while (i <= bx1)
       {
         const int bx = (i - bx0) / BrickSize;
-        const int iEnd = std::min(bx1, bx0 + (bx + 1) * BrickSize - 1);
+        int iEnd = std::min(bx1, bx0 + (bx + 1) * BrickSize - 1);
         const std::uint8_t held = brickRow ? brickRow[bx] : std::uint8_t(BrickMixed);
+        if ((held & ~BrickUnchanged) != BrickMixed && (held & BrickClipUniform) == 0)
+        {
+          // A decided brick: the row's next bricks decided the same way
+          // join it in one run (the same writes in fewer, longer calls).
+          for (int next = bx + 1; next < nbx && brickRow[next] == held; ++next)
+            iEnd = std::min(bx1, bx0 + (next + 1) * BrickSize - 1);
+        }
         if (held & BrickUnchanged)
         {
           // Its voxels hold this category already: count, list, no writes.
@@ -823,8 +838,7 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
               break;
             default:
               counts.affected += n;
-              for (std::int64_t v = row + i; v <= row + iEnd; ++v)
-                affected.push_back(v);
+              AppendRange(affected, row + i, row + iEnd + 1);
           }
           i = iEnd + 1;
           continue;
