@@ -1,5 +1,7 @@
 #include "vtkContextualAOPass.h"
 
+#include "caoJson.h"
+
 #include "caoAORadius.h"
 
 #include "vtkActor.h"
@@ -192,16 +194,6 @@ std::vector<LineLight> LineLights(vtkRenderer* ren)
     lights.push_back(l);
   }
   return lights;
-}
-
-/// `text` fit for a JSON string of the frame report (quotes, backslashes
-/// and control characters become apostrophes).
-std::string JsonText(std::string text)
-{
-  for (char& c : text)
-    if (c == '"' || c == '\\' || static_cast<unsigned char>(c) < 0x20)
-      c = '\'';
-  return text;
 }
 
 /// Pixel i of a flat line lit by `lights` (vtkContextualAOPass::LineShading):
@@ -799,7 +791,7 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
       o << (i ? ", " : "") << "\"" << p.stages[i] << "\": " << p.ms[i];
     o << "}, \"reasons\": [";
     for (std::size_t i = 0; i < p.reasons.size(); ++i)
-      o << (i ? ", " : "") << "\"" << p.reasons[i] << "\"";
+      o << (i ? ", " : "") << "\"" << cao::JsonEscape(p.reasons[i]) << "\"";
     o << "]";
   };
   if (this->Method == NONE)
@@ -808,9 +800,9 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
     o << "{\"frame\": " << this->FrameCount << ", \"method\": \"none\", \"note\": \"Method None: the "
       << "surfaces as the renderer draws them, occluding the lines\", ";
     stages();
-    o << ", \"backend\": \"" << (p.onGPU ? p.gpu.Description() : std::string("CPU")) << "\"";
+    o << ", \"backend\": \"" << cao::JsonEscape(p.onGPU ? p.gpu.Description() : std::string("CPU")) << "\"";
     if (!p.backendNote.empty())
-      o << ", \"backend_note\": \"" << p.backendNote << "\"";
+      o << ", \"backend_note\": \"" << cao::JsonEscape(p.backendNote) << "\"";
     if (p.frameProcesses > 1)
       o << ", \"processes\": " << p.frameProcesses;
     this->WriteLinesReport(o);
@@ -818,7 +810,7 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
     return o.str();
   }
   o << "{\"frame\": " << this->FrameCount << ", \"method\": \""
-    << (Internals::Technique(this) ? Internals::Technique(this)->name : std::string("none"))
+    << cao::JsonEscape(Internals::Technique(this) ? Internals::Technique(this)->name : std::string("none"))
     << "\", \"apply_to\": \""
     << (this->ApplyTo == AMBIENT_TERM ? "ambient" : "whole colour") << "\", \"grid\": \""
     << (this->Grid == EYE_GRID ? "eye" : this->Grid == FRUSTUM_GRID ? "frustum" : "world") << "\", \"occupancy\": \""
@@ -836,9 +828,9 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
     << ", \"occluding_volumes\": " << (surfaces ? p.opacity.size() : 0) << ", \"radius\": " << p.radius
     << ", \"slices\": " << p.grid.slices << ", \"covered_pixels\": " << p.frame.covered
     << ", \"combined_pixels\": " << p.combined << ", \"hidden_pixels\": " << p.hidden
-    << ", \"backend\": \"" << (p.onGPU ? p.gpu.Description() : std::string("CPU")) << "\"";
+    << ", \"backend\": \"" << cao::JsonEscape(p.onGPU ? p.gpu.Description() : std::string("CPU")) << "\"";
   if (!p.backendNote.empty())
-    o << ", \"backend_note\": \"" << p.backendNote << "\"";
+    o << ", \"backend_note\": \"" << cao::JsonEscape(p.backendNote) << "\"";
   if (p.frameProcesses > 1) // parallel rendering: does the grid hold every process's pieces
     o << ", \"processes\": " << p.frameProcesses << ", \"grid_of_all_processes\": "
       << (Internals::ReadsGrid(this) && this->Grid != FRUSTUM_GRID && p.sharedError.empty() && !p.sharedGrid.bits.empty()
@@ -857,7 +849,7 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
   {
     o << ", \"skipped_volumes\": [";
     for (std::size_t i = 0; i < p.skippedVolumes.size(); ++i)
-      o << (i ? ", " : "") << "\"" << p.skippedVolumes[i] << "\"";
+      o << (i ? ", " : "") << "\"" << cao::JsonEscape(p.skippedVolumes[i]) << "\"";
     o << "]";
   }
   this->WriteLinesReport(o);
@@ -869,7 +861,7 @@ void vtkContextualAOPass::WriteLinesReport(std::ostream& o) const
 {
   const Internals& p = *this->Internal;
   if (p.linesOn)
-    o << ", \"lines\": {\"method\": \"" << JsonText(p.lineMethodName)
+    o << ", \"lines\": {\"method\": \"" << cao::JsonEscape(p.lineMethodName)
       << "\", \"actors\": " << p.lines.NumberOfActors() << ", \"segments\": "
       << p.lines.NumberOfSegments() << ", \"radius\": " << p.lines.Radius() << ", \"pixels\": "
       << p.lines.Frame().covered << ", \"combined_pixels\": " << p.lineCombined
@@ -892,9 +884,9 @@ void vtkContextualAOPass::WriteLinesReport(std::ostream& o) const
              : "false")
       << "}";
   if (!p.linesNote.empty())
-    o << ", \"lines_note\": \"" << JsonText(p.linesNote) << "\"";
+    o << ", \"lines_note\": \"" << cao::JsonEscape(p.linesNote) << "\"";
   if (!p.error.empty())
-    o << ", \"error\": \"" << p.error << "\"";
+    o << ", \"error\": \"" << cao::JsonEscape(p.error) << "\"";
 }
 
 void vtkContextualAOPass::Render(const vtkRenderState* s)
@@ -1930,7 +1922,7 @@ bool vtkContextualAOPass::Internals::UpdateLines(vtkContextualAOPass* self, vtkR
   // A technique without a GPU step runs on the CPU, its grid included.
   const bool onGPU = this->onGPU && technique->gpu;
   if (this->onGPU && !technique->gpu)
-    this->backendNote += (this->backendNote.empty() ? "" : "; ") + JsonText(technique->label) +
+    this->backendNote += (this->backendNote.empty() ? "" : "; ") + technique->label +
       " has no GPU step: the lines' grid, G-buffer and AO run on the CPU";
   this->lineMethodName = technique->name;
   std::string error;
@@ -1940,7 +1932,7 @@ bool vtkContextualAOPass::Internals::UpdateLines(vtkContextualAOPass* self, vtkR
         error, self->InteractiveFrames))
     return skipLines(error);
   if (!this->lines.GBufferNote().empty())
-    this->backendNote += (this->backendNote.empty() ? "" : "; ") + JsonText(this->lines.GBufferNote());
+    this->backendNote += (this->backendNote.empty() ? "" : "; ") + this->lines.GBufferNote();
   this->saidLines.clear();
   return true;
 }
@@ -2198,7 +2190,7 @@ int vtkContextualAOPass::Internals::CombineLinesOnGPU(vtkContextualAOPass* self,
   if (!this->gpu.FrameCombineAO(ao, self->Strength, this->target, this->rect, error))
   {
     // The CPU's combine still can: it runs, and the report says why.
-    this->backendNote = "the lines' combine on the GPU failed (" + JsonText(error) + "): the CPU's ran";
+    this->backendNote = "the lines' combine on the GPU failed (" + error + "): the CPU's ran";
     return 0;
   }
   this->lineCombined = combined;

@@ -12,6 +12,7 @@
  * 2 bad arguments or unreadable input, 3 `--verify` found a difference.
  */
 #include "caoBench.h"
+#include "caoJson.h"
 #include "caoCommandLine.h"
 #include "vtkCAOInput.h"
 #include "vtkCAOLAOSettings.h"
@@ -230,17 +231,7 @@ std::string ContextOf(const std::string& backend)
   return colon == std::string::npos ? "?" : backend.substr(8, colon - 8);
 }
 
-std::string JsonEscape(const std::string& text)
-{
-  std::string out;
-  for (char c : text)
-  {
-    if (c == '"' || c == '\\')
-      out += '\\';
-    out += c;
-  }
-  return out;
-}
+using cao::JsonEscape;
 
 /// The settings an LAO output was computed with (its LAOSettings field
 /// array, after any quality level), as a JSON fragment or as text: the ray

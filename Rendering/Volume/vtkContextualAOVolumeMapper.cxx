@@ -1,5 +1,7 @@
 #include "vtkContextualAOVolumeMapper.h"
 
+#include "caoJson.h"
+
 #include "vtkActor.h"
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataSet.h"
@@ -104,28 +106,25 @@ struct FrameReport
     o.precision(6);
     o << "{\"frame\": " << frame << ", \"stages\": [";
     for (std::size_t i = 0; i < stages.size(); ++i)
-      o << (i ? ", " : "") << "{\"name\": \"" << stages[i].name << "\", \"ms\": "
-        << stages[i].ms << ", \"timer\": \"" << stages[i].timer << "\"}";
+      o << (i ? ", " : "") << "{\"name\": \"" << cao::JsonEscape(stages[i].name) << "\", \"ms\": "
+        << stages[i].ms << ", \"timer\": \"" << cao::JsonEscape(stages[i].timer) << "\"}";
     o << "], \"recomputed_voxels\": " << recomputed << ", \"ao_sample_voxels\": " << aoSampleVoxels;
     if (clipped >= 0)
       o << ", \"categories\": {\"clipped\": " << clipped << ", \"affected\": " << affected
         << ", \"unaffected\": " << unaffected << "}";
     o << ", \"reasons\": [";
     for (std::size_t i = 0; i < reasons.size(); ++i)
-      o << (i ? ", " : "") << "\"" << reasons[i] << "\"";
+      o << (i ? ", " : "") << "\"" << cao::JsonEscape(reasons[i]) << "\"";
     static const char* const peel[4] = { "off", "outside", "layer", "remainder" };
     o << "], \"sample_distance\": " << sampleDistance
       << ", \"image_sample_distance\": " << imageSampleDistance
       << ", \"interactive\": " << (interactive ? "true" : "false") << ", \"redrawn\": " << redrawn
       << ", \"kept_key_ms\": " << keyMs
-      << ", \"context\": \"" << backend
+      << ", \"context\": \"" << cao::JsonEscape(backend)
       << "\", \"depth_peeling\": \"" << peel[peelStage & 3] << "\"";
     if (!error.empty())
     {
-      o << ", \"error\": \"";
-      for (char c : error)
-        o << (c == '"' || c == '\\' ? std::string("\\") + c : c == '\n' ? std::string(" ") : std::string(1, c));
-      o << "\"";
+      o << ", \"error\": \"" << cao::JsonEscape(error) << "\"";
     }
     o << "}";
     return o.str();
