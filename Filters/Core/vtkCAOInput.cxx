@@ -373,7 +373,13 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, std::string& erro
     return nullptr;
   }
   if (!Run(reader.Get(), path, error))
+  {
+    // VTK's XML reader words an empty mesh (a vtkPolyData with no points,
+    // as VTK itself writes one) as a damaged file.
+    if (error.find("No Points element") != std::string::npos)
+      error = "'" + path + "' holds no points: an empty mesh, nothing to draw or clip";
     return nullptr;
+  }
   vtkDataObject* read = reader->GetOutputDataObject(0);
   if (read && !vtkPolyData::SafeDownCast(read))
   {
@@ -384,7 +390,7 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, std::string& erro
   auto* mesh = vtkPolyData::SafeDownCast(read);
   if (!mesh || mesh->GetNumberOfPoints() < 1)
   {
-    error = "cannot read '" + path + "': no geometry";
+    error = "'" + path + "' holds no points: an empty mesh, nothing to draw or clip";
     return nullptr;
   }
   // Cells that name points the file does not hold (readers take the ids as

@@ -195,10 +195,19 @@ expect_error(["lao", os.path.join(tmp, "missing.vti")], 2, "cannot open", "missi
 empty_vti = os.path.join(tmp, "empty.vti")
 open(empty_vti, "w").close()
 os.makedirs(os.path.join(tmp, "folder.vti"), exist_ok=True)
+empty_vtp = os.path.join(tmp, "empty.vtp")
+wv.SetInputData(vtkPolyData())
+wv.SetFileName(empty_vtp)
+wv.Write()
 for args, words, what in ((["lao", empty_vti], "empty (0 bytes)", "an empty .vti"),
                           (["lao", os.path.join(tmp, "folder.vti")], "is a directory", "a directory"),
                           (["carve", neghip, "--mesh", empty_vti.replace(".vti", ".stl")], "no such file",
-                           "a missing mesh")):
+                           "a missing mesh"),
+                          # A mesh with no points, as VTK writes one: its
+                          # reader's "No Points element" is not the user's.
+                          (["carve", neghip, "--mesh", empty_vtp], "holds no points", "an empty .vtp mesh"),
+                          (["surface", empty_vtp, "-o", os.path.join(tmp, "e.png")], "holds no points",
+                           "an empty .vtp surface")):
     rc, out, err = run(*args)
     check(rc == 2 and words in err and "ERR|" not in err and "XML" not in err,
           f"{what}: one clear line, no VTK output: rc={rc} {err.strip()[:200]!r}")
