@@ -101,7 +101,7 @@ double MaximumScale(vtkMatrix4x4* pose)
   return std::isfinite(s) ? s : HUGE_VAL;
 }
 
-bool SplitStretch(vtkMatrix4x4* pose, double ratio, double stretch[3][3], vtkMatrix4x4* rigid)
+bool SplitStretch(vtkMatrix4x4* pose, double ratio, double stretch[3][3])
 {
   if (!pose)
     return false;
@@ -110,29 +110,21 @@ bool SplitStretch(vtkMatrix4x4* pose, double ratio, double stretch[3][3], vtkMat
     for (int c = 0; c < 3; ++c)
       linear[r][c] = pose->GetElement(r, c);
   // linear = U W V^T (U, V rotations; a mirror shows as a negative W) =
-  // (U sign(W) V^T) (V |W| V^T).
+  // (U sign(W) V^T) (V |W| V^T): the stretch is V |W| V^T.
   double U[3][3], W[3], VT[3][3];
   vtkMath::SingularValueDecomposition3x3(linear, U, W, VT);
   const double lo = std::min({ std::fabs(W[0]), std::fabs(W[1]), std::fabs(W[2]) });
   const double hi = std::max({ std::fabs(W[0]), std::fabs(W[1]), std::fabs(W[2]) });
   if (!(lo > 0.0) || !std::isfinite(hi) || !(hi > ratio * lo))
     return false;
-  rigid->Identity();
   for (int r = 0; r < 3; ++r)
-  {
     for (int c = 0; c < 3; ++c)
     {
-      double s = 0.0, q = 0.0;
+      double s = 0.0;
       for (int k = 0; k < 3; ++k)
-      {
         s += VT[k][r] * std::fabs(W[k]) * VT[k][c];
-        q += U[r][k] * (W[k] < 0.0 ? -1.0 : 1.0) * VT[k][c];
-      }
       stretch[r][c] = s;
-      rigid->SetElement(r, c, q);
     }
-    rigid->SetElement(r, 3, pose->GetElement(r, 3));
-  }
   return true;
 }
 

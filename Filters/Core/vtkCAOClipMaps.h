@@ -95,15 +95,15 @@ CAOFILTERSCORE_EXPORT double MaximumScale(vtkMatrix4x4* pose);
  * A pose whose scale differs between axes by more than `ratio` (its largest
  * singular value over its smallest), split as pose = rigid * stretch:
  * `stretch`, symmetric and positive (the mesh's local frame squashed or
- * stretched), goes into the mesh, and `rigid` keeps the rotation (or a
- * mirror) and the translation at scale 1. Depth maps serve poses whose
+ * stretched), goes into the mesh, and the rigid part (pose * stretch^-1)
+ * keeps the rotation (or a mirror) and the translation at scale 1. Depth
+ * maps serve poses whose
  * scales lie in one range, and dilate by the reach over the smallest at
  * pixels of the largest, so a clip box squashed 10 times along an axis
  * would cost 100 times the dilation work. False (nothing written) when the
  * pose is within `ratio`, or not invertible.
  */
-CAOFILTERSCORE_EXPORT bool SplitStretch(
-  vtkMatrix4x4* pose, double ratio, double stretch[3][3], vtkMatrix4x4* rigid);
+CAOFILTERSCORE_EXPORT bool SplitStretch(vtkMatrix4x4* pose, double ratio, double stretch[3][3]);
 }
 
 #endif

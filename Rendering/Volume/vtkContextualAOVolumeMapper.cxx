@@ -1485,9 +1485,8 @@ void vtkContextualAOVolumeMapper::Internals::Unstretch(
   ClipPart& part, vtkMatrix4x4* shapeMatrix, vtkMatrix4x4* worldToVolume)
 {
   double stretch[3][3];
-  vtkNew<vtkMatrix4x4> rigid;
   // (Within 1%: the maps' pose-scale range takes it as it is.)
-  if (!vtkCAO::SplitStretch(shapeMatrix, 1.01, stretch, rigid))
+  if (!vtkCAO::SplitStretch(shapeMatrix, 1.01, stretch))
   {
     this->Stretch = Stretched();
     return;
