@@ -1,5 +1,7 @@
 #include "caoCommandLine.h"
 
+#include <chrono>
+
 #include <algorithm>
 
 #include "vtkAlgorithm.h"
@@ -182,6 +184,22 @@ void DefaultOpacityRamp(const double range[2], vtkPiecewiseFunction* tf)
   tf->AddPoint(hi, 0.8);
 }
 
+std::string RemainingText(double seconds)
+{
+  char text[48];
+  if (!(seconds < 1e9))
+    return "a very long time";
+  if (seconds < 90.0)
+    std::snprintf(text, sizeof(text), "about %.0f s", std::max(1.0, seconds));
+  else if (seconds < 90.0 * 60.0)
+    std::snprintf(text, sizeof(text), "about %.0f min", seconds / 60.0);
+  else if (seconds < 48.0 * 3600.0)
+    std::snprintf(text, sizeof(text), "about %.1f h", seconds / 3600.0);
+  else
+    std::snprintf(text, sizeof(text), "about %.0f days", seconds / 86400.0);
+  return text;
+}
+
 Progress::Progress(bool disabled)
   : Enabled(!disabled && isatty(2))
 {
@@ -189,9 +207,15 @@ Progress::Progress(bool disabled)
   this->Callback->SetCallback([](vtkObject*, unsigned long, void* self, void* data) {
     auto* p = static_cast<Progress*>(self);
     const double f = data ? *static_cast<double*>(data) : 0.0;
-    char text[64];
+    char text[96];
     std::snprintf(text, sizeof(text), ": %3.0f%%", 100.0 * f);
-    p->Show(p->Label + text);
+    std::string line = p->Label + text;
+    // The time left, from the rate so far, once there is a rate to read
+    // (a long run says how long it will take, not just that it runs).
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - p->Started).count();
+    if (f > 0.01 && f < 1.0 && elapsed > 2.0)
+      line += " (" + RemainingText(elapsed * (1.0 - f) / f) + " left)";
+    p->Show(line);
   });
 }
 
@@ -203,13 +227,21 @@ Progress::~Progress()
 void Progress::Watch(vtkObject* algorithm, const std::string& label)
 {
   this->Label = label;
+  this->Started = std::chrono::steady_clock::now();
   if (this->Enabled)
     algorithm->AddObserver(vtkCommand::ProgressEvent, this->Callback);
 }
 
 void Progress::Step(const std::string& label, std::size_t i, std::size_t n)
 {
-  this->Show(label + " " + std::to_string(i + 1) + "/" + std::to_string(n));
+  if (i == 0)
+    this->StepStarted = std::chrono::steady_clock::now();
+  std::string line = label + " " + std::to_string(i + 1) + "/" + std::to_string(n);
+  const double elapsed =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - this->StepStarted).count();
+  if (i > 0 && i < n && elapsed > 2.0)
+    line += " (" + RemainingText(elapsed / static_cast<double>(i) * static_cast<double>(n - i)) + " left)";
+  this->Show(line);
 }
 
 void Progress::Show(const std::string& text)

@@ -15,6 +15,7 @@
 
 #include <array>
 #include <cstdint>
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -77,9 +78,14 @@ struct ErrorLog
 void InstallOutputWindow();
 
 
+/// A time left as a user reads it: "about 40 s", "about 12 min",
+/// "about 2.5 h", "about 3 days".
+std::string RemainingText(double seconds);
+
 /**
  * Progress of long runs on stderr, when stderr is a terminal (never in
  * logs or pipes): a percentage for a watched filter, a count for a loop,
+ * each with the time left at the rate so far once it can be read,
  * overwritten in place and cleared when done.
  */
 class Progress
@@ -99,6 +105,8 @@ private:
   bool Enabled;
   bool Shown = false;
   std::string Label;
+  std::chrono::steady_clock::time_point Started = std::chrono::steady_clock::now();
+  std::chrono::steady_clock::time_point StepStarted = std::chrono::steady_clock::now();
   vtkNew<vtkCallbackCommand> Callback;
 };
 

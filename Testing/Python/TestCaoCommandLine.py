@@ -680,24 +680,45 @@ check(rc == 0 and json.loads(out)["pattern"] == "rubiks54" and json.loads(out)["
       "backend_detail" in json.loads(out),
       f"lao --rays rubiks54 --json reports the pattern, the backend and the context: {out.strip()[:300]}")
 
-# Progress on stderr when it is a terminal (a pty here), never in a pipe.
+# Progress on stderr when it is a terminal (a pty here), never in a pipe;
+# a run longer than 2 s also says the time it has left, at the rate so far
+# (the LAO's percentage, the carve path's pose count).
 import pty  # noqa: E402
-master, slave = pty.openpty()
-p = subprocess.run([tool, "lao", neghip, "--rays", "fib:200"], stdout=subprocess.PIPE,
-                   stderr=slave, timeout=600)
-os.close(slave)
-shown = b""
-try:
-    while True:
-        chunk = os.read(master, 4096)
-        if not chunk:
-            break
-        shown += chunk
-except OSError:
-    pass
-os.close(master)
-check(p.returncode == 0 and b"LAO:" in shown and b"%" in shown,
-      f"a terminal shows the LAO's progress: {shown[-200:]!r}")
+import threading  # noqa: E402
+
+
+def on_terminal(*args):
+    master, slave = pty.openpty()
+    shown = []
+
+    def read():
+        try:
+            while True:
+                chunk = os.read(master, 4096)
+                if not chunk:
+                    break
+                shown.append(chunk)
+        except OSError:
+            pass
+    reader = threading.Thread(target=read)
+    reader.start()
+    p = subprocess.run([tool, *args], stdout=subprocess.PIPE, stderr=slave, timeout=600)
+    os.close(slave)
+    reader.join(timeout=10)
+    os.close(master)
+    return p.returncode, b"".join(shown).decode(errors="replace").replace("\r", "\n")
+
+
+rc, shown = on_terminal("lao", neghip, "--rays", "fib:200")
+check(rc == 0 and "LAO:" in shown and "%" in shown, f"a terminal shows the LAO's progress: {shown[-200:]!r}")
+left = re.compile(r"\(about [0-9.]+ (s|min|h|days) left\)")
+for what, args in (("the LAO", ["lao", neghip, "--rays", "fib:200", "--samples", "64", "--threads", "1"]),
+                   ("the carve path", ["carve", neghip, "--rays", "fib:200", "--verify", "--path", "8",
+                                       "--threads", "1"])):
+    rc, shown = on_terminal(*args)
+    lines = [line.strip() for line in shown.splitlines() if line.strip()]
+    check(rc == 0 and any(left.search(line) for line in lines),
+          f"{what}, longer than 2 s on a terminal, says the time it has left: rc={rc} {lines[-4:]}")
 rc, out, err = run("lao", neghip, "--rays", "fib:200")
 check(rc == 0 and "LAO:" not in err, "a pipe gets no progress line")
 
