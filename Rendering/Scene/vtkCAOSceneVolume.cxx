@@ -77,6 +77,8 @@ void AppendVolumeOpacityKey(vtkVolume* volume, std::vector<double>& key)
     // Whether it is drawn (a bad setting leaves it out of the frame).
     std::string why;
     key.push_back(mapper->CanDraw(input, why) ? 1.0 : 0.0);
+    // Whether its clip maps could be made (if not, it is drawn unclipped).
+    key.push_back(mapper->GetClipMapsError().empty() ? 1.0 : 0.0);
     for (int i = 0; i < mapper->GetNumberOfClipShapes(); ++i)
     {
       vtkPolyData* mesh = mapper->GetClipShapeMeshAt(i);
@@ -175,7 +177,9 @@ bool VolumeOpacity(vtkVolume* volume, cao::OpacityVolume& out, std::string& erro
   }
   // The clip: the voxels the mapper's shapes remove.
   auto* mapper = vtkContextualAOVolumeMapper::SafeDownCast(volume->GetMapper());
-  const int shapes = mapper ? mapper->GetNumberOfClipShapes() : 0;
+  // (Maps the mapper could not make leave the volume drawn unclipped: the
+  // last frame's, as this frame's volume is drawn after the surfaces' AO.)
+  const int shapes = mapper && mapper->GetClipMapsError().empty() ? mapper->GetNumberOfClipShapes() : 0;
   std::vector<std::uint8_t> probeKeeps, subtracts, inside;
   for (int s = 0; s < shapes; ++s)
   {

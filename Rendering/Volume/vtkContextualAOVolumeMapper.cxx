@@ -1374,6 +1374,12 @@ bool vtkContextualAOVolumeMapper::Internals::EditLAO(
 }
 
 //------------------------------------------------------------------------------
+std::string vtkContextualAOVolumeMapper::GetClipMapsError() const
+{
+  return this->Internal->MapsError;
+}
+
+//------------------------------------------------------------------------------
 std::string vtkContextualAOVolumeMapper::ClipShapeProblem(
   int i, vtkImageData* input, vtkMatrix4x4* volumeMatrix)
 {
@@ -1545,6 +1551,7 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateClip(
   if (!f.clipping)
   {
     this->PoseKey.clear(); // a clip shape set again is a new pose
+    this->MapsError.clear(); // (no maps asked for)
     return true;
   }
   const bool ao = self->AmbientOcclusion;

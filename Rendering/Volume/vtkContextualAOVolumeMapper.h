@@ -539,6 +539,14 @@ public:
   /// which the volume occludes the surfaces, so both see the same volume.
   std::string ClipShapeProblem(int i, vtkImageData* input, vtkMatrix4x4* volumeMatrix);
 
+  /// Why the last frame's clip depth maps could not be made (a limit they
+  /// state, such as a ClipMapPixelSize too small for the clip's size), or
+  /// "" when they were made or no clip was asked for. While it is set the
+  /// volume is drawn unclipped, and the render pass, which builds the
+  /// volume's occluding opacity before the volume is drawn, leaves the clip
+  /// out of it from the next frame on.
+  std::string GetClipMapsError() const;
+
 protected:
   vtkContextualAOVolumeMapper();
   ~vtkContextualAOVolumeMapper() override;

@@ -1028,6 +1028,24 @@ int TestContextualAOPass(int, char*[])
     Check(pass->GetLastFrameStages().find("volumes") == 0 && carved == alone,
       "carving the whole block away gives the slab's own AO exactly: " + std::to_string(carved) + " (" +
         pass->GetLastFrameStages() + ")");
+    // Clip maps the mapper cannot make (pixels far too small for the box:
+    // too many of them) leave the volume drawn unclipped, and from the
+    // next frame on (the volume is drawn after the surfaces' AO) the block
+    // occludes unclipped too; maps made again carve it away again.
+    mapper->SetClipMapPixelSize(1e-4);
+    window->Render();
+    window->Render();
+    const double noMaps = pass->GetPixelAO(bx, by);
+    const std::string mapsError = mapper->GetClipMapsError();
+    mapper->SetClipMapPixelSize(0.0);
+    window->Render();
+    window->Render();
+    const double mapsAgain = pass->GetPixelAO(bx, by);
+    Check(mapsError.find("too many pixels") != std::string::npos && noMaps == under && mapsAgain == alone &&
+        mapper->GetClipMapsError().empty(),
+      "clip maps that cannot be made: the volume drawn unclipped occludes unclipped: AO " + std::to_string(noMaps) +
+        " (unclipped " + std::to_string(under) + "), maps again " + std::to_string(mapsAgain) + " (carved " +
+        std::to_string(alone) + "): " + mapsError);
     // Half carved (x < 0 removed): between the two; then probing that box
     // keeps only that half.
     clip->SetPosition(-1.5, 0, 0);
