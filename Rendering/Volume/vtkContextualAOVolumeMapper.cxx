@@ -1848,8 +1848,14 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateMaps(vtkContextualAOVolumeMap
   if (!remake)
     return true;
   this->HaveMesh = false;
-  const double pixel =
-    self->ClipMapPixelSize > 0.0 ? self->ClipMapPixelSize : 0.5 * f.minSpacing / smax;
+  // ClipMapPixelSize 0: half a voxel in the world at the largest pose scale,
+  // of the smallest spacing, but no finer than an eighth of the largest
+  // (a spacing of 1 1 0.1 would otherwise map at a twentieth of the
+  // in-plane voxel, across a dilation radius of eight whole ones: 40 times
+  // the maps' work, and past their limits at 1 1 0.05).
+  const double pixel = self->ClipMapPixelSize > 0.0
+    ? self->ClipMapPixelSize
+    : 0.5 * std::max(f.minSpacing, 0.25 * std::max({ f.spacing[0], f.spacing[1], f.spacing[2] })) / smax;
   // A mesh much larger than the volume: maps only where the volume is, with
   // room to move half the volume's size before new ones.
   double bounds[6], region[6];
@@ -1886,8 +1892,14 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateMaps(vtkContextualAOVolumeMap
   maps->Update();
   vtkCAO::ClipMaps check;
   if (!this->DepthMapsError.empty() || !vtkCAO::ReadClipMaps(maps->GetOutput(), mode, check, error))
-    return f.Fail("The clip mesh's depth maps could not be made: " +
-      (this->DepthMapsError.empty() ? error : this->DepthMapsError));
+  {
+    // (The maps' own name for the pixel size is this mapper's ClipMapPixelSize.)
+    std::string why = this->DepthMapsError.empty() ? error : this->DepthMapsError;
+    for (std::size_t at = why.find("a larger PixelSize"); at != std::string::npos;
+         at = why.find("a larger PixelSize", at + 1))
+      why.replace(at, 18, "a larger ClipMapPixelSize (0: derived from the voxel spacing)");
+    return f.Fail("The clip mesh's depth maps could not be made: " + why);
+  }
   f.report.stages.push_back({ "depth_maps", vtkCAO::MillisecondsSince(start), "host" });
   f.report.reasons.emplace_back(remake);
   ++self->DepthMapsCount;

@@ -935,11 +935,37 @@ void BadInput(const Options& o)
     const std::string report = m->GetLastFrameReport();
     CAO_EXPECT(!errors.empty() && errors.back().find("depth maps could not be made") != std::string::npos &&
         errors.back().find("drawn unclipped") != std::string::npos && m->GetFrameCount() == before + 1 &&
-        report.find("\"error\": \"The clip mesh's depth maps") != std::string::npos,
-      "maps that cannot be made: the volume drawn unclipped, the error said and reported (%s; %s)",
+        report.find("\"error\": \"The clip mesh's depth maps") != std::string::npos &&
+        errors.back().find("ClipMapPixelSize") != std::string::npos && !m->GetClipMapsError().empty(),
+      "maps that cannot be made: the volume drawn unclipped, the error said (naming ClipMapPixelSize) and "
+      "reported (%s; %s)",
       errors.empty() ? "no error" : errors.back().c_str(), report.c_str());
   }
   m->SetClipMapPixelSize(0.0);
+  // A volume whose slices lie 20 times closer together than its rows
+  // (spacing 1 1 0.05, as a thin-sliced scan): the maps' pixel is an eighth
+  // of the largest voxel, not half the smallest (a fortieth of the largest,
+  // across a dilation of eight whole voxels: refused as too many pixels to
+  // dilate, the volume drawn unclipped; at 1 1 0.1, 20 s of maps). The
+  // sphere carves, with no error.
+  {
+    double spacing[3], position[3], b[6];
+    s.image->GetSpacing(spacing);
+    s.clip->GetPosition(position);
+    s.image->SetSpacing(1.0, 1.0, 0.05);
+    s.image->GetBounds(b);
+    s.clip->SetPosition(0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]));
+    errors.clear();
+    s.window->Render();
+    const std::string report = m->GetLastFrameReport();
+    CAO_EXPECT(errors.empty() && m->GetClipMapsError().empty() &&
+        report.find("\"categories\": {\"clipped\": ") != std::string::npos &&
+        report.find("\"categories\": {\"clipped\": 0,") == std::string::npos,
+      "spacing 1 1 0.05: the clip sphere's maps are made and it carves (%s; %s)",
+      errors.empty() ? "no error" : errors.back().c_str(), report.c_str());
+    s.image->SetSpacing(spacing);
+    s.clip->SetPosition(position);
+  }
   // A setting out of range after a good frame (everything cached) is still
   // refused, whether or not it changes what is cached.
   m->SetQuality(7);
