@@ -65,8 +65,8 @@ bool ComputeOpacity(vtkAlgorithm* self, vtkDataArray* scalars, int component,
   {
     // No function: a ramp from 0 at the smallest scalar to 1 at the largest.
     double r[2];
-    scalars->GetRange(r, component);
-    if (!std::isfinite(r[0]) || !std::isfinite(r[1]))
+    scalars->GetFiniteRange(r, component); // (an infinite voxel is transparent, as NaN)
+    if (!std::isfinite(r[0]) || !std::isfinite(r[1]) || r[0] > r[1])
     {
       r[0] = 0.0;
       r[1] = 1.0;

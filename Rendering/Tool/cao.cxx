@@ -207,8 +207,10 @@ void BuildTransferFunction(const Options& o, vtkImageData* volume, vtkPiecewiseF
   vtkDataArray* s = o.arrayName.empty() ? volume->GetPointData()->GetScalars()
                                         : volume->GetPointData()->GetArray(o.arrayName.c_str());
   double range[2] = { 0.0, 1.0 };
+  // Over the finite values: one infinite voxel (made transparent, as NaN)
+  // would stretch the ramp to infinity and leave every voxel at 0.
   if (s)
-    s->GetRange(range, std::max(0, o.component));
+    s->GetFiniteRange(range, std::max(0, o.component));
   if (s && range[0] == range[1])
     std::cerr << "cao: warning: '" << o.volume << "' is constant (every voxel " << range[0]
               << "): the default opacity map makes it transparent and every AO 1; give --opacity\n";

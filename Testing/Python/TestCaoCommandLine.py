@@ -791,6 +791,24 @@ rc, out, err = run("tf", os.path.join(tmp, "nan.vti"), "--from", "0,0,255,0.8", 
                    "--rays", "6", "--verify")
 check(rc == 0 and err.count("NaN or Inf") == 1 and "72 NaN or Inf scalar value(s)" in err,
       f"tf on NaN scalars warns once, with the count: rc={rc} {err.strip()[:400]!r}")
+# One infinite voxel is transparent, as a NaN one, and no more: the default
+# opacity ramp spans the finite values (over [min, inf] it left every voxel
+# at opacity 0: AO 1 everywhere). Control: the same volume without it.
+inf_a = nan_a.copy()
+inf_a[np.isnan(inf_a)] = 0.0
+ao_min = {}
+for name, value in (("finite.vti", None), ("inf.vti", np.inf), ("neginf.vti", -np.inf)):
+    nan_a[:] = inf_a
+    if value is not None:
+        nan_a[123] = value
+    nan_im.GetPointData().GetScalars().Modified()
+    nan_w.SetFileName(os.path.join(tmp, name))
+    nan_w.Write()
+    rc, out, err = run("lao", os.path.join(tmp, name), "--rays", "6", "--json")
+    ao_min[name] = json.loads(out)["ao_range"][0] if rc == 0 else None
+check(ao_min["finite.vti"] is not None and ao_min["finite.vti"] < 0.9 and
+      all(ao_min[n] is not None and abs(ao_min[n] - ao_min["finite.vti"]) < 0.05 for n in ("inf.vti", "neginf.vti")),
+      f"one infinite voxel leaves the default opacity map as it is: AO minimum {ao_min}")
 
 # bench accuracy on an 8^3 volume: its clip sphere (radius 1.75 voxels) is
 # narrower than the default depth-map pixels of 4 and 2 voxels; those rows
