@@ -157,6 +157,34 @@ print("%s: the Plane clip cuts: %d voxels recomputed, mean grey %.1f against %.1
 if not ok:
     failures.append("plane")
 
+# Shade on with ParaView's default material (Ambient 0): the AO, which
+# scales the ambient term, changes nothing on the screen, and the frame
+# report says so and how to see it; with some ambient light the AO shows and
+# the report says nothing of it (the control).
+import json  # noqa: E402
+shown.ClipShape = "None"
+shown.AOCalibration = "Half-space (open faces stay lit)"
+shown.Shade = 1
+shown.Ambient = 0.0
+shown.AmbientOcclusion = 0
+shaded_off, _ = grey("shade-ambient0-ao-off")
+shown.AmbientOcclusion = 1
+shaded_on, _ = grey("shade-ambient0-ao-on")
+note = json.loads(mapper.GetLastFrameReport()).get("note", "")
+shown.Ambient = 0.3
+lit_on, _ = grey("shade-ambient03-ao-on")
+lit_note = json.loads(mapper.GetLastFrameReport()).get("note", "")
+shown.AmbientOcclusion = 0
+lit_off, _ = grey("shade-ambient03-ao-off")
+ok = (shaded_on == shaded_off and "Ambient 0" in note and "raise Ambient" in note and not lit_note and
+      abs(lit_on - lit_off) > 0.5)
+print("%s: Shade on, Ambient 0: AO on %.2f = off %.2f and the report says why (%r); Ambient 0.3: "
+      "AO on %.2f against off %.2f, no note (%r)"
+      % ("ok" if ok else "FAIL", shaded_on, shaded_off, note, lit_on, lit_off, lit_note))
+if not ok:
+    failures.append("ambient-note")
+shown.Shade = 0
+
 print("%d failure(s)" % len(failures))
 sys.stdout.flush()
 # Leave without the interpreter's teardown: Debian's ParaView 5.11 under

@@ -88,6 +88,7 @@ struct FrameReport
   int frame = 0;
   std::vector<Stage> stages;
   std::vector<std::string> reasons;
+  std::string note; ///< what the picture will not show, and why (not an error)
   vtkIdType recomputed = 0;
   std::int64_t clipped = -1, affected = -1, unaffected = -1;
   std::string backend;
@@ -122,6 +123,8 @@ struct FrameReport
       << ", \"kept_key_ms\": " << keyMs
       << ", \"context\": \"" << cao::JsonEscape(backend)
       << "\", \"depth_peeling\": \"" << peel[peelStage & 3] << "\"";
+    if (!note.empty())
+      o << ", \"note\": \"" << cao::JsonEscape(note) << "\"";
     if (!error.empty())
     {
       o << ", \"error\": \"" << cao::JsonEscape(error) << "\"";
@@ -2281,6 +2284,11 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     in.Last.keyMs += f.report.keyMs;
     return;
   }
+  // The AO scales the ambient term: shaded with no ambient light (ParaView's
+  // default material, Ambient 0), it changes nothing on the screen.
+  if (this->AmbientOcclusion && f.property && f.property->GetShade(0) && !(f.property->GetAmbient(0) > 0.0))
+    f.report.note = "Shade is on with Ambient 0: the AO darkens the ambient term alone, which is 0 here, so "
+                    "the picture does not show it; raise Ambient (0.2 to 0.4) to see it";
   in.Last = f.report;
   ++this->FrameCount;
 }
