@@ -562,6 +562,9 @@ CLI::Option* AddOutputFile(CLI::App* app, std::string& output, const std::string
         c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
       if (tail != extension)
         return "bad value '" + v + "' (a " + extension + " file)";
+      struct stat info;
+      if (::stat(v.c_str(), &info) == 0 && S_ISDIR(info.st_mode))
+        return "cannot write '" + v + "': it is a folder";
       const std::string folder = UnwritableFolder(v);
       return folder.empty() ? "" : "cannot write '" + v + "': " + folder;
     }));

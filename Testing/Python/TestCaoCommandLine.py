@@ -207,7 +207,11 @@ for args, words, what in ((["lao", empty_vti], "empty (0 bytes)", "an empty .vti
                           # reader's "No Points element" is not the user's.
                           (["carve", neghip, "--mesh", empty_vtp], "holds no points", "an empty .vtp mesh"),
                           (["surface", empty_vtp, "-o", os.path.join(tmp, "e.png")], "holds no points",
-                           "an empty .vtp surface")):
+                           "an empty .vtp surface"),
+                          # -o naming a folder: refused before the work (it
+                          # printed the run's JSON, then failed to write).
+                          (["lao", neghip, "--json", "-o", os.path.join(tmp, "folder.vti")], "it is a folder",
+                           "-o naming a folder")):
     rc, out, err = run(*args)
     check(rc == 2 and words in err and "ERR|" not in err and "XML" not in err,
           f"{what}: one clear line, no VTK output: rc={rc} {err.strip()[:200]!r}")
