@@ -355,7 +355,8 @@ struct vtkContextualAOVolumeMapper::Internals
   double BuiltPoseScales[2] = { 0.0, 0.0 }; ///< the pose scales the maps serve
   int PrecomputeGeneration = 0, MapsGeneration = 0;
   double ScalarRange[2] = { 0, 1 };
-  double TexelScale = 1.0; // texel value -> scalar value
+  double TexelScale = 1.0;  // texel value -> scalar value: texel * TexelScale + TexelOffset
+  double TexelOffset = 0.0;
   FrameReport Last;
   std::string LastError;
 
@@ -1074,14 +1075,28 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
     vtkCAO::MakeVolumeUpload(f.scalars, 0, opacity.data(), f.dims, packed);
   if (!engine.SetVolume(upload, error))
     return f.Fail("The volume upload failed: " + error + ".");
+  this->TexelOffset = 0.0;
   if (upload.source == cao::gl::OpacitySource::Float32)
   {
+    // Floating-point scalars go to the GPU as 32-bit floats, as they are,
+    // unless single precision cannot hold them: far from 0 against their
+    // range (1e12 + [0, 255]: every value the same float), or a range so
+    // wide or so narrow that the gradient's squares overflow or vanish
+    // (x 1e20: a black silhouette). Those are sent as (s - min) / range, in
+    // double before the rounding, as 8-bit volumes are read (0 to 1).
+    const double lo = f.range[0], width = f.range[1] > f.range[0] ? f.range[1] - f.range[0] : 1.0;
+    const bool normalize = !(std::max(std::fabs(lo), std::fabs(f.range[1])) <= 1e4 * width) ||
+      !(width <= 1e15) || !(width >= 1e-6);
     std::vector<float> values(static_cast<std::size_t>(f.voxels));
     for (std::int64_t v = 0; v < f.voxels; ++v)
-      values[static_cast<std::size_t>(v)] = static_cast<float>(f.scalars->GetComponent(v, 0));
+    {
+      const double value = f.scalars->GetComponent(v, 0);
+      values[static_cast<std::size_t>(v)] = static_cast<float>(normalize ? (value - lo) / width : value);
+    }
     if (!this->Caster->SetScalars(values.data(), f.dims, error))
       return f.Fail("The scalar upload failed: " + error + ".");
-    this->TexelScale = 1.0;
+    this->TexelScale = normalize ? width : 1.0;
+    this->TexelOffset = normalize ? lo : 0.0;
   }
   else
     this->TexelScale = upload.source == cao::gl::OpacitySource::Scalars8 ? 255.0 : 65535.0;
@@ -2035,7 +2050,7 @@ void vtkContextualAOVolumeMapper::Internals::MakeRenderParams(vtkContextualAOVol
   const double n = TableEntries;
   params.sampling = { static_cast<float>(step),
     static_cast<float>(this->TexelScale / (hi - lo) * (n - 1) / n),
-    static_cast<float>((-lo / (hi - lo) * (n - 1) + 0.5) / n),
+    static_cast<float>(((this->TexelOffset - lo) / (hi - lo) * (n - 1) + 0.5) / n),
     static_cast<float>(self->AOStrength) };
   const int* dims = f.dims;
   params.invDims = { 1.0f / dims[0], 1.0f / dims[1], 1.0f / dims[2], 0.0f };

@@ -10,7 +10,7 @@ import sys
 import tempfile
 
 import numpy as np
-from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import vtkPolyData
 from vtkmodules.vtkFiltersSources import vtkSphereSource
 from vtkmodules.vtkIOGeometry import vtkSTLWriter
@@ -985,6 +985,40 @@ open(bad_dir, "w").close()
 rc, out, err = run("bench", "surface", os.path.join(data, "Bunny.vtp"), "--image", "32x32", "-o", bad_dir)
 check(rc != 0 and "cannot write" in err and "wrote" not in out,
       f"bench surface -o to a place it cannot write: an error, no 'wrote': rc={rc} {err.strip()[:200]}")
+
+# Floating-point scalars that single precision cannot hold as they are (far
+# from 0 against their range, or a range of 1e20) are drawn as the same
+# block is at its own values: they were a black silhouette (x 1e20) or a
+# blank frame (+ 1e12, x 1e38). Control: the block itself.
+from vtkmodules.vtkIOImage import vtkPNGReader  # noqa: E402
+block = np.zeros((24, 24, 24))
+block[6:18, 6:18, 4:20] = 200.0
+block[10:14, 10:14, 14:20] = 0.0  # a slot
+frames = {}
+for name, values in (("block", block), ("block_1e20", block * 1e20), ("block_offset", block + 1e12),
+                     ("block_1e38", block * 1e36)):
+    im = vtkImageData()
+    im.SetDimensions(24, 24, 24)
+    a = numpy_to_vtk(values.ravel(), deep=1)
+    a.SetName("s")
+    im.GetPointData().SetScalars(a)
+    w = vtkXMLImageDataWriter()
+    w.SetInputData(im)
+    w.SetFileName(os.path.join(tmp, name + ".vti"))
+    w.Write()
+    rc, out, err = run("render", os.path.join(tmp, name + ".vti"), "--no-clip", "--window", "egl", "--image",
+                       "96x96", "-o", os.path.join(tmp, name + "_%d.png"))
+    png = vtkPNGReader()
+    png.SetFileName(os.path.join(tmp, name + "_0.png"))
+    png.Update()
+    frames[name] = (vtk_to_numpy(png.GetOutput().GetPointData().GetScalars()).astype(float)[:, :3]
+                    if rc == 0 else None)
+base = frames["block"]
+for name in ("block_1e20", "block_offset", "block_1e38"):
+    f = frames[name]
+    diff = float(np.abs(f - base).mean()) if f is not None and base is not None else None
+    check(diff is not None and diff < 1.0 and float(np.abs(base - base[0]).sum(1).max()) > 50,
+          f"{name}: drawn as the block at its own values (mean difference {diff} of 255)")
 
 print(f"{passed} passed, {len(failures)} failed")
 sys.exit(1 if failures else 0)
