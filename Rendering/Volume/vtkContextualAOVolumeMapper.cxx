@@ -678,6 +678,26 @@ vtkIdType vtkContextualAOVolumeMapper::GetLastFrameRecomputedVoxels() const
 }
 
 //------------------------------------------------------------------------------
+std::string vtkContextualAOVolumeMapper::ClipSettingsProblem() const
+{
+  // The settings of the clip alone: out of range, the clip is left out and
+  // the volume drawn unclipped (as for a shape that cannot clip), not the
+  // whole volume refused. (ParaView's names first: its panel's labels.)
+  std::ostringstream bad;
+  auto outside = [&bad](const char* name, double v, const char* range) {
+    bad << name << " must be " << range << "; got " << v << ".";
+  };
+  if (this->Mode != SUBTRACTION && this->Mode != PROBING)
+    outside("Clip Mode (Mode)", this->Mode, "0 (subtraction) or 1 (probing)");
+  else if (this->NumberOfClipLayers < 1 || this->NumberOfClipLayers > 16)
+    outside("Clip Layers (NumberOfClipLayers)", this->NumberOfClipLayers, "1 to 16");
+  else if (!(this->ClipMapPixelSize >= 0.0) || !std::isfinite(this->ClipMapPixelSize))
+    outside("ClipMapPixelSize", this->ClipMapPixelSize, "0 (derived) or a positive length");
+  else if (this->AntiAliasingSamples < 0 || this->AntiAliasingSamples > 32)
+    outside("AntiAliasingSamples", this->AntiAliasingSamples, "0 to 32");
+  return bad.str();
+}
+
 bool vtkContextualAOVolumeMapper::CheckSettings(std::string& why) const
 {
   // The mapper's own settings (the LAO settings are checked with the plan).
@@ -693,14 +713,6 @@ bool vtkContextualAOVolumeMapper::CheckSettings(std::string& why) const
     outside("AOCalibration", this->AOCalibration, "0 (None) or 1 (HalfSpace)");
   else if (quality < CUSTOM || quality > HIGH)
     outside("Quality", quality, "0 (Custom) to 3 (High)");
-  else if (this->Mode != SUBTRACTION && this->Mode != PROBING)
-    outside("Mode", this->Mode, "0 (subtraction) or 1 (probing)");
-  else if (this->NumberOfClipLayers < 1 || this->NumberOfClipLayers > 16)
-    outside("NumberOfClipLayers", this->NumberOfClipLayers, "1 to 16");
-  else if (!(this->ClipMapPixelSize >= 0.0) || !std::isfinite(this->ClipMapPixelSize))
-    outside("ClipMapPixelSize", this->ClipMapPixelSize, "0 (derived) or a positive length");
-  else if (this->AntiAliasingSamples < 0 || this->AntiAliasingSamples > 32)
-    outside("AntiAliasingSamples", this->AntiAliasingSamples, "0 to 32");
   else if (this->AOUpdate != CONTEXTUAL && this->AOUpdate != FULL_RECOMPUTE)
     outside("AOUpdate", this->AOUpdate, "0 (contextual) or 1 (full recompute)");
   else if (!(this->SampleDistance >= 0.0) || !std::isfinite(this->SampleDistance))
@@ -1461,7 +1473,10 @@ bool vtkContextualAOVolumeMapper::Internals::GatherClipParts(
   vtkNew<vtkMatrix4x4> worldToVolume;
   vtkMatrix4x4::Invert(f.volume->GetMatrix(), worldToVolume);
   std::string skipped;
-  for (int i = 0; i < shapes; ++i)
+  const std::string settings = shapes > 0 ? self->ClipSettingsProblem() : std::string();
+  if (!settings.empty())
+    skipped = settings + " No clip shape can clip.";
+  for (int i = 0; i < shapes && settings.empty(); ++i)
   {
     // A shape that cannot clip (no mesh, an open surface, a NaN pose, a
     // size the maps cannot resolve) is left out and the others carve; with
@@ -1489,7 +1504,7 @@ bool vtkContextualAOVolumeMapper::Internals::GatherClipParts(
   if (skipped != this->SkippedShapes && !skipped.empty())
   {
     if (parts.empty())
-      vtkErrorWithObjectMacro(self, << skipped << (shapes == 1 ? "" : " No clip shape can clip.")
+      vtkErrorWithObjectMacro(self, << skipped << (shapes == 1 || !settings.empty() ? "" : " No clip shape can clip.")
                                     << " The volume is drawn unclipped.");
     else
       vtkWarningWithObjectMacro(self, << skipped);

@@ -547,6 +547,11 @@ public:
   /// out of it from the next frame on.
   std::string GetClipMapsError() const;
 
+  /// Why the clip settings (Mode, NumberOfClipLayers, ClipMapPixelSize,
+  /// AntiAliasingSamples) cannot be used, or "": Render then leaves every
+  /// clip shape out and draws the volume unclipped, saying why.
+  std::string ClipSettingsProblem() const;
+
 protected:
   vtkContextualAOVolumeMapper();
   ~vtkContextualAOVolumeMapper() override;

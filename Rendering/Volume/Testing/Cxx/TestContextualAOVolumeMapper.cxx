@@ -942,6 +942,24 @@ void BadInput(const Options& o)
       errors.empty() ? "no error" : errors.back().c_str(), report.c_str());
   }
   m->SetClipMapPixelSize(0.0);
+  // A clip setting out of range (Clip Layers 0) leaves the clip out and the
+  // volume drawn unclipped, the error naming the panel's label (before, the
+  // whole volume was refused: no frame, "NumberOfClipLayers must be ...").
+  {
+    const int layers = m->GetNumberOfClipLayers();
+    m->SetNumberOfClipLayers(0);
+    errors.clear();
+    const int before = m->GetFrameCount();
+    s.window->Render();
+    const std::string report = m->GetLastFrameReport();
+    CAO_EXPECT(!errors.empty() && errors.back().find("Clip Layers (NumberOfClipLayers) must be 1 to 16") !=
+          std::string::npos && errors.back().find("drawn unclipped") != std::string::npos &&
+        m->GetFrameCount() == before + 1 && report.find("\"error\": \"Clip Layers") != std::string::npos &&
+        report.find("\"categories\"") == std::string::npos,
+      "Clip Layers 0: the clip left out, the volume drawn unclipped, said and reported (%s; %s)",
+      errors.empty() ? "no error" : errors.back().c_str(), report.c_str());
+    m->SetNumberOfClipLayers(layers);
+  }
   // A volume whose slices lie 20 times closer together than its rows
   // (spacing 1 1 0.05, as a thin-sliced scan): the maps' pixel is an eighth
   // of the largest voxel, not half the smallest (a fortieth of the largest,
