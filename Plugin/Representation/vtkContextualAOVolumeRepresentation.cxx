@@ -22,6 +22,7 @@
 #include "vtkPointData.h"
 
 #include <algorithm>
+#include <sstream>
 #include <cmath>
 #include <string>
 
@@ -290,6 +291,7 @@ void vtkContextualAOVolumeRepresentation::GetClipShapeMatrix(double matrix[16])
 void vtkContextualAOVolumeRepresentation::UpdateBuiltInShape(vtkImageData* data)
 {
   vtkContextualAOVolumeMapper* mapper = this->GetAOMapper();
+  mapper->SetHostClipError(std::string());
   if (this->ClipShape == NONE)
   {
     mapper->SetClipShape(nullptr);
@@ -308,20 +310,21 @@ void vtkContextualAOVolumeRepresentation::UpdateBuiltInShape(vtkImageData* data)
   const double* r = this->ClipOrientation;
   const bool poseOk = std::all_of(p, p + 3, [](double v) { return std::isfinite(v); }) &&
     std::all_of(r, r + 3, [](double v) { return std::isfinite(v); });
-  if (!poseOk)
+  if (!poseOk || !boundsOk || !scaleOk)
   {
-    vtkErrorMacro("The clip box's Clip Position (" << p[0] << " " << p[1] << " " << p[2]
-      << ") or Clip Rotation (" << r[0] << " " << r[1] << " " << r[2]
-      << ") is not finite: nothing is clipped, the volume is drawn unclipped.");
-    mapper->SetClipShape(nullptr);
-    return;
-  }
-  if (!boundsOk || !scaleOk)
-  {
-    vtkErrorMacro("The clip box is empty or not finite (Clip Scale "
-      << s[0] << " " << s[1] << " " << s[2] << ", each axis non-zero and finite; reference bounds "
-      << b[0] << " " << b[1] << " " << b[2] << " " << b[3] << " " << b[4] << " " << b[5]
-      << ", each max above its min): nothing is clipped.");
+    // Said once in the log and in every frame's report while it holds.
+    std::ostringstream why;
+    if (!poseOk)
+      why << "The clip box's Clip Position (" << p[0] << " " << p[1] << " " << p[2]
+          << ") or Clip Rotation (" << r[0] << " " << r[1] << " " << r[2]
+          << ") is not finite: nothing is clipped, the volume is drawn unclipped.";
+    else
+      why << "The clip box is empty or not finite (Clip Scale " << s[0] << " " << s[1] << " " << s[2]
+          << ", each axis non-zero and finite; reference bounds " << b[0] << " " << b[1] << " " << b[2]
+          << " " << b[3] << " " << b[4] << " " << b[5]
+          << ", each max above its min): nothing is clipped, the volume is drawn unclipped.";
+    vtkErrorMacro(<< why.str());
+    mapper->SetHostClipError(why.str());
     mapper->SetClipShape(nullptr);
     return;
   }

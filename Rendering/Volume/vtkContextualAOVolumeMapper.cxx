@@ -2319,6 +2319,8 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   if (this->AmbientOcclusion && f.property && f.property->GetShade(0) && !(f.property->GetAmbient(0) > 0.0))
     f.report.note = "Shade is on with Ambient 0: the AO darkens the ambient term alone, which is 0 here, so "
                     "the picture does not show it; raise Ambient (0.2 to 0.4) to see it";
+  if (!this->HostClipError.empty())
+    f.report.error = this->HostClipError + (f.report.error.empty() ? "" : " " + f.report.error);
   in.Last = f.report;
   ++this->FrameCount;
 }

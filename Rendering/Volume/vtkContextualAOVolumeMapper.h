@@ -552,6 +552,12 @@ public:
   /// clip shape out and draws the volume unclipped, saying why.
   std::string ClipSettingsProblem() const;
 
+  /// Why the application that owns this mapper left the clip out (ParaView's
+  /// representation: a clip box with a zero or non-finite scale or pose), or
+  /// "": each frame's report says it as its `error` while it is set.
+  void SetHostClipError(const std::string& why) { this->HostClipError = why; }
+  const std::string& GetHostClipError() const { return this->HostClipError; }
+
 protected:
   vtkContextualAOVolumeMapper();
   ~vtkContextualAOVolumeMapper() override;
@@ -581,6 +587,7 @@ protected:
   bool SmoothClipSurface = true;
   bool SampleAtClipSurface = true;
   int FrameCount = 0;
+  std::string HostClipError;
   int PrecomputeCount = 0;
   int DepthMapsCount = 0;
   int ClassifyCount = 0;
