@@ -355,10 +355,11 @@ bool vtkClipDepthMaps::BuildMaps(const cao::ClipCameraPlan& plan, const cao::Tri
   dilated.Allocate(cam.width, cam.height, cam.layers);
   eroded.Allocate(cam.width, cam.height, cam.layers);
   bool ok = true;
+  cao::DilationPlan dilation;
+  cao::PrepareDilation(raw, cam, plan.radius, dilation);
   vtkCAO::WithThreads(this->NumberOfThreads, [&] {
     ok = vtkCAO::ParallelFor(this, cam.height, 1, 0.2, 1.0, [&](std::int64_t b, std::int64_t e) {
-      cao::DilateErodeRows(
-        raw, cam, plan.radius, dilated, eroded, static_cast<int>(b), static_cast<int>(e));
+      cao::DilateErodeRows(raw, dilation, dilated, eroded, static_cast<int>(b), static_cast<int>(e));
     });
   });
   aborted = !ok;

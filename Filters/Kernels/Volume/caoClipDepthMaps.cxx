@@ -235,7 +235,10 @@ bool RasterizeDepthLayers(
           }
           else
           {
-            const double z = (w0 * a.z + w1 * b.z + w2 * c.z) / (w0 + w1 + w2);
+            // (a triangle at one depth, a flat face seen head on: that
+            // depth exactly; the weighted mean's rounding scattered it over
+            // two floats, which left the dilation no uniform window)
+            const double z = a.z == b.z && b.z == c.z ? a.z : (w0 * a.z + w1 * b.z + w2 * c.z) / (w0 + w1 + w2);
             hits[fill[p]++] = Hit{ z, winding };
           }
         }
@@ -296,54 +299,124 @@ bool RasterizeDepthLayers(
   return true;
 }
 
-void DilateErodeRows(const ClipDepthMaps& in, const ClipCamera& cam, double radius,
-  ClipDepthMaps& dil, ClipDepthMaps& ero, int rowBegin, int rowEnd)
+void PrepareDilation(const ClipDepthMaps& in, const ClipCamera& cam, double radius, DilationPlan& plan)
 {
-  int rx = 0, ry = 0;
-  const std::vector<DilationOffset> window = DilationWindow(cam, radius, rx, ry);
-  const double inf = std::numeric_limits<double>::infinity();
+  plan.window = DilationWindow(cam, radius, plan.rx, plan.ry);
+  plan.hMax = 0.0;
+  for (const DilationOffset& o : plan.window)
+    plan.hMax = std::max(plan.hMax, o.h);
+  const int rx = plan.rx, ry = plan.ry, wide = 2 * rx + 1, tall = 2 * ry + 1;
+  plan.boxes.assign(4 * static_cast<std::size_t>(in.layers), 0);
+  plan.uniform.assign(in.front.size(), 0);
+  std::vector<int> rowRun(static_cast<std::size_t>(in.width));
+  // (per pixel of one layer: its row segment [x - rx, x + rx] holds one
+  // interval; then how many such segments of that interval run down from it)
+  std::vector<unsigned char> segment(static_cast<std::size_t>(in.width) * in.height);
+  std::vector<int> columnRun(segment.size());
   for (int l = 0; l < in.layers; ++l)
   {
     // Bounding box of the layer's covered pixels: outside it grown by the
     // window, both results are empty and need no window scan.
-    int bx0 = in.width, bx1 = -1, by0 = in.height, by1 = -1;
+    int* box = plan.boxes.data() + 4 * l;
+    box[0] = in.width;
+    box[1] = -1;
+    box[2] = in.height;
+    box[3] = -1;
     for (int y = 0; y < in.height; ++y)
       for (int x = 0; x < in.width; ++x)
       {
         const std::size_t s = in.Index(l, x, y);
         if (in.front[s] <= in.back[s])
         {
-          bx0 = std::min(bx0, x);
-          bx1 = std::max(bx1, x);
-          by0 = std::min(by0, y);
-          by1 = std::max(by1, y);
+          box[0] = std::min(box[0], x);
+          box[1] = std::max(box[1], x);
+          box[2] = std::min(box[2], y);
+          box[3] = std::max(box[3], y);
         }
       }
-    for (int y = std::max(rowBegin, by0 - ry); y < std::min(rowEnd, by1 + ry + 1); ++y)
+    if (wide > in.width || tall > in.height)
+      continue;
+    const auto same = [&](std::size_t i, std::size_t j) {
+      return in.front[i] == in.front[j] && in.back[i] == in.back[j];
+    };
+    std::fill(segment.begin(), segment.end(), 0);
+    for (int y = 0; y < in.height; ++y)
     {
-      for (int x = std::max(0, bx0 - rx); x < std::min(in.width, bx1 + rx + 1); ++x)
+      for (int x = in.width - 1; x >= 0; --x)
+      {
+        const std::size_t s = in.Index(l, x, y);
+        rowRun[x] = !(in.front[s] <= in.back[s]) ? 0
+          : x + 1 < in.width && rowRun[x + 1] > 0 && same(s, in.Index(l, x + 1, y)) ? rowRun[x + 1] + 1
+                                                                                  : 1;
+      }
+      for (int x = rx; x + rx < in.width; ++x)
+        segment[static_cast<std::size_t>(y) * in.width + x] = rowRun[x - rx] >= wide;
+    }
+    for (int y = in.height - 1; y >= 0; --y)
+      for (int x = 0; x < in.width; ++x)
+      {
+        const std::size_t k = static_cast<std::size_t>(y) * in.width + x;
+        columnRun[k] = !segment[k] ? 0
+          : y + 1 < in.height && columnRun[k + in.width] > 0 &&
+              same(in.Index(l, x, y), in.Index(l, x, y + 1))
+          ? columnRun[k + in.width] + 1
+          : 1;
+        // the window centred tall / 2 rows below: every pixel one interval
+        if (y + tall <= in.height && columnRun[k] >= tall)
+          plan.uniform[in.Index(l, x, y + ry)] = 1;
+      }
+  }
+}
+
+void DilateErodeRows(const ClipDepthMaps& in, const DilationPlan& plan, ClipDepthMaps& dil,
+  ClipDepthMaps& ero, int rowBegin, int rowEnd)
+{
+  const double inf = std::numeric_limits<double>::infinity(), hMax = plan.hMax;
+  const int rx = plan.rx, ry = plan.ry;
+  for (int l = 0; l < in.layers; ++l)
+  {
+    const int* box = plan.boxes.data() + 4 * l;
+    for (int y = std::max(rowBegin, box[2] - ry); y < std::min(rowEnd, box[3] + ry + 1); ++y)
+    {
+      for (int x = std::max(0, box[0] - rx); x < std::min(in.width, box[1] + rx + 1); ++x)
       {
         double dFront = inf, dBack = -inf, eFront = -inf, eBack = inf;
         bool erodedEmpty = false;
-        for (const DilationOffset& o : window)
+        const std::size_t c = in.Index(l, x, y);
+        if (plan.uniform[c])
         {
-          const int sx = x + o.dx, sy = y + o.dy;
-          if (sx < 0 || sy < 0 || sx >= in.width || sy >= in.height)
+          // Every pixel of the window holds [f, b] (a flat face seen head
+          // on in the shape's frame: a plane's slab or a cube's faces cover
+          // most of their maps so): min(f - h) = f - max(h), rounding being
+          // monotone, and so for the other three.
+          const double f = in.front[c], b = in.back[c];
+          dFront = f - hMax;
+          dBack = b + hMax;
+          eFront = f + hMax;
+          eBack = b - hMax;
+        }
+        else
+        {
+          for (const DilationOffset& o : plan.window)
           {
-            erodedEmpty = true;
-            continue;
+            const int sx = x + o.dx, sy = y + o.dy;
+            if (sx < 0 || sy < 0 || sx >= in.width || sy >= in.height)
+            {
+              erodedEmpty = true;
+              continue;
+            }
+            const std::size_t s = in.Index(l, sx, sy);
+            const float f = in.front[s], b = in.back[s];
+            if (!(f <= b))
+            {
+              erodedEmpty = true;
+              continue;
+            }
+            dFront = std::min(dFront, f - o.h);
+            dBack = std::max(dBack, b + o.h);
+            eFront = std::max(eFront, f + o.h);
+            eBack = std::min(eBack, b - o.h);
           }
-          const std::size_t s = in.Index(l, sx, sy);
-          const float f = in.front[s], b = in.back[s];
-          if (!(f <= b))
-          {
-            erodedEmpty = true;
-            continue;
-          }
-          dFront = std::min(dFront, f - o.h);
-          dBack = std::max(dBack, b + o.h);
-          eFront = std::max(eFront, f + o.h);
-          eBack = std::min(eBack, b - o.h);
         }
         const std::size_t i = dil.Index(l, x, y);
         if (dFront <= dBack)
@@ -363,6 +436,14 @@ void DilateErodeRows(const ClipDepthMaps& in, const ClipCamera& cam, double radi
       }
     }
   }
+}
+
+void DilateErodeRows(const ClipDepthMaps& in, const ClipCamera& cam, double radius,
+  ClipDepthMaps& dil, ClipDepthMaps& ero, int rowBegin, int rowEnd)
+{
+  DilationPlan plan;
+  PrepareDilation(in, cam, radius, plan);
+  DilateErodeRows(in, plan, dil, ero, rowBegin, rowEnd);
 }
 
 void DilatedRegionBounds(const ClipDepthMaps& maps, double b[6])

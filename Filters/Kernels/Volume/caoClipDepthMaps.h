@@ -152,6 +152,25 @@ bool RasterizeDepthLayers(
 void DilateErodeRows(const ClipDepthMaps& in, const ClipCamera& camera, double radius,
   ClipDepthMaps& dilated, ClipDepthMaps& eroded, int rowBegin, int rowEnd);
 
+/// What DilateErodeRows needs beyond the maps, made once for all rows (a
+/// threaded caller's row blocks share it): the window, each layer's
+/// covered box, and the pixels whose whole window holds one interval.
+/// Those take the closed form (f - max h, b + max h; f + max h, b - max h):
+/// a flat face seen head on in the shape's frame (a plane's slab, a cube's
+/// faces) fills most of its maps so, and its windows need no scan.
+struct DilationPlan
+{
+  std::vector<DilationOffset> window;
+  int rx = 0, ry = 0;
+  double hMax = 0.0;                  ///< the window's largest slack
+  std::vector<int> boxes;             ///< per layer: x0, x1, y0, y1 of its covered pixels
+  std::vector<unsigned char> uniform; ///< per map entry (ClipDepthMaps::Index)
+};
+void PrepareDilation(const ClipDepthMaps& in, const ClipCamera& camera, double radius, DilationPlan& plan);
+/// DilateErodeRows for rows [rowBegin, rowEnd) with a plan made for `in`.
+void DilateErodeRows(const ClipDepthMaps& in, const DilationPlan& plan, ClipDepthMaps& dilated,
+  ClipDepthMaps& eroded, int rowBegin, int rowEnd);
+
 /// The camera-space bounds of every non-empty interval of `maps`: pixels
 /// [x0, x1) x [y0, y1) and depths [z0, z1] as (x0, x1, y0, y1, z0, z1); an
 /// empty map gives (+max, -max, ...). For the dilated maps: the region a

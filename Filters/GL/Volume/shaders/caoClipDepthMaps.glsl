@@ -229,7 +229,13 @@ void main()
   const uint slot = uint(atomicAdd(stats[CAO_DM_STAT_HITS], 1));
   if (slot >= hitCapacity)
     return; // cannot happen: pass 0 counted the same fragments
-  precise double z = ((w0 * t.z[0] + w1 * t.z[1]) + w2 * t.z[2]) / ((w0 + w1) + w2);
+  // (a triangle at one depth, as a flat face seen head on: that depth
+  // exactly, as the CPU's RasterizeDepthLayers; the weighted mean's
+  // rounding would scatter it over two floats and break the dilation's
+  // uniform windows)
+  precise double z = t.z[0] == t.z[1] && t.z[1] == t.z[2]
+    ? t.z[0]
+    : ((w0 * t.z[0] + w1 * t.z[1]) + w2 * t.z[2]) / ((w0 + w1) + w2);
   DMHit hit;
   hit.z = z;
   hit.winding = t.ids.w;
