@@ -505,6 +505,18 @@ vtkSmartPointer<vtkPolyData> MakeShape(const std::string& name, double size, std
     error = "the shape size must be positive";
     return nullptr;
   }
+  // VTK's shape sources, and the depth maps made from them, hold float32
+  // coordinates: a shape sized from a volume 1e38 world units across or
+  // more would have infinite points.
+  if (size > 1e36)
+  {
+    std::ostringstream why;
+    why << "the " << name << " would reach " << size << " world units from its centre, beyond the float32 "
+        << "coordinates of VTK's shape sources and of the clip's depth maps (at most 1e36); scale "
+           "the volume's spacing down, or draw it without a clip";
+    error = why.str();
+    return nullptr;
+  }
   auto out = vtkSmartPointer<vtkPolyData>::New();
   if (name == "sphere")
   {

@@ -443,10 +443,16 @@ int MakePoses(const Options& o, vtkImageData* volume, CarveSetup& s)
     s.poses = vtkCAO::DefaultPath(bounds, o.clipping.path);
   if (!vtkCAO::CheckPoseDistances(s.poses, volume, error))
     return Fail(2, "--pose/--poses: " + error);
-  // The maps are made for each pose scale of the path (pixels of half a
-  // voxel and the dilation of the reach, in the world, at that scale),
-  // over the region the volume occupies in the mesh's frame at the poses
-  // of that scale (all of the mesh unless it is larger than that).
+  return 0;
+}
+
+/// The maps are made for each pose scale of the path (pixels of half a
+/// voxel and the dilation of the reach, in the world, at that scale),
+/// over the region the volume occupies in the mesh's frame at the poses
+/// of that scale (all of the mesh unless it is larger than that). After
+/// CheckPoseScales, which states the scales' limits.
+int MakeRegions(vtkImageData* volume, CarveSetup& s)
+{
   for (const auto& p : s.poses)
   {
     vtkNew<vtkTransform> t;
@@ -824,6 +830,8 @@ int RunCarve(const Options& o, vtkImageData* volume)
                                ? "the path's poses (--path): "
                                : "--pose/--poses: ") +
         scaleError);
+  if (const int rc = MakeRegions(volume, setup))
+    return rc;
   vtkNew<vtkPiecewiseFunction> tf;
   BuildTransferFunction(o, volume, tf);
   std::vector<RunResult> runs;

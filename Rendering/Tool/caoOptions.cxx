@@ -820,6 +820,11 @@ int Run(CLI::App& cao, const std::vector<Command>& commands, int argc, char* arg
     return Fail(2, Message(cao, e));
   }
   const CLI::App* parsed = Deepest(&cao);
+  // A flag given twice (`--json --json`) is refused as an option given
+  // twice is (CLI11 takes a flag's last occurrence without a word).
+  for (const CLI::Option* option : parsed->get_options())
+    if (option->get_expected_min() == 0 && option->count() > 1)
+      return Fail(2, "option " + option->get_name() + " is given more than once");
   for (const Command& c : commands)
     if (c.app == parsed)
       return c.run();

@@ -495,10 +495,14 @@ int Render(RenderOptions& o, const CLI::App* app)
       std::printf("frame %3zu  %8.1f ms  recomputed %9lld voxels  [%s]  %s\n", f, ms,
         static_cast<long long>(mapper->GetLastFrameRecomputedVoxels()),
         mapper->GetLastFrameStages().c_str(), name.c_str());
-      if (backgroundOnly)
+      if (backgroundOnly && o.clip)
         std::printf("          note: this frame shows only the background: the clip leaves "
                     "nothing visible at this pose, or the opacity map makes what is left "
                     "transparent (--json gives the voxels clipped, affected and unaffected)\n");
+      else if (backgroundOnly)
+        std::printf("          note: this frame shows only the background: the opacity map makes "
+                    "the volume transparent (see --preset, --unit-distance), or the camera "
+                    "(--azimuth, --elevation, --zoom) leaves it out of view\n");
     }
   }
   if (o.json)

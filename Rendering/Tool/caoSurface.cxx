@@ -48,6 +48,8 @@
 #include "caoPresets.h"
 #include "caoSurfaceLines.h"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
@@ -879,6 +881,13 @@ namespace
 /// `cao surface` after the parse: the checks between options, then the run.
 int Run(SurfaceOptions& o, const CLI::App* app)
 {
+  // A missing input first: the run could not start whatever -o says.
+  for (const std::string& mesh : o.meshes)
+  {
+    struct stat info;
+    if (::stat(mesh.c_str(), &info) != 0)
+      return Fail(2, "cannot open '" + mesh + "': no such file");
+  }
   if (o.output.empty())
     return Fail(2, "give the output picture with -o out.png");
   // Line options without --method: the lines' default, lineao.

@@ -208,6 +208,10 @@ for args, words, what in ((["lao", empty_vti], "empty (0 bytes)", "an empty .vti
                           (["carve", neghip, "--mesh", empty_vtp], "holds no points", "an empty .vtp mesh"),
                           (["surface", empty_vtp, "-o", os.path.join(tmp, "e.png")], "holds no points",
                            "an empty .vtp surface"),
+                          # A missing mesh and no -o: the missing file first
+                          # (it asked for -o, then, given one, for the file).
+                          (["surface", os.path.join(tmp, "none.vtp")], "no such file",
+                           "a missing surface mesh without -o"),
                           # -o naming a folder: refused before the work (it
                           # printed the run's JSON, then failed to write).
                           (["lao", neghip, "--json", "-o", os.path.join(tmp, "folder.vti")], "it is a folder",
@@ -242,6 +246,10 @@ expect_error(["carve", neghip, "--shape", "cube", "--mesh", open_mesh], 2, "--sh
              "--shape and --mesh together")
 expect_error(["lao", neghip, "--reach", "2", "--reach", "3"], 2, "--reach is given more than once",
              "a repeated option")
+# A flag too (CLI11 took its last occurrence without a word).
+expect_error(["lao", neghip, "--json", "--json"], 2, "--json is given more than once", "a repeated flag")
+expect_error(["render", neghip, "--no-clip", "--no-clip", "-o", os.path.join(tmp, "f_%d.png")], 2,
+             "--no-clip is given more than once", "a repeated flag callback")
 # What the new user's trial found: each refused in one line, before any work.
 for args, words, what in (
         (["lao", neghip, "--samples", "0x10"], "--samples: bad value '0x10'", "a hexadecimal integer"),
@@ -465,6 +473,13 @@ else:
                        "--window", "egl", "--rays", "6", "--json", "-o", os.path.join(tmp, "plane_%d.png"))
     flags = [r.get("background_only") for r in json.loads(out)] if rc == 0 else []
     check(flags == [True, False, False, False], "render --json: background_only per frame: %s" % flags)
+    # With --no-clip the note names the opacity and the camera, not the clip
+    # (it said "the clip leaves nothing visible").
+    rc, out, err = run("render", neghip, "--image", "48x48", "--no-clip", "--window", "egl", "--rays", "6",
+                       "--unit-distance", "1e9", "-o", os.path.join(tmp, "clear_%d.png"))
+    said = [line for line in out.splitlines() if "only the background" in line]
+    check(rc == 0 and len(said) == 1 and "the opacity map" in said[0] and "clip" not in said[0],
+          "render --no-clip of a transparent volume: the note leaves the clip out: %r" % said)
 expect_error(["render", neghip, "--preset", "nope", "-o", os.path.join(tmp, "x_%d.png")], 2,
              "no preset named", "unknown preset")
 expect_error(["render", neghip, "--preset-file", os.path.join(tmp, "none.json"), "-o",
@@ -520,6 +535,19 @@ for args, words, what in (
     rc, out, err = run("render", *args, "--image", "32x32", "-o", os.path.join(tmp, "bad_%d.png"))
     check(rc == 2 and words in err and out == "" and not os.path.exists(os.path.join(tmp, "bad_0.png")),
           "%s: exit 2, said before any output (rc %d, stdout %r, stderr %r)" % (what, rc, out[:80], err.strip()[:160]))
+# A volume 1e60 world units across: the default clip shape would have
+# infinite float32 points; refused naming the size and the limit (it blamed
+# "the clip mesh" for a NaN or infinite coordinate); at 1e30 it carves.
+huge = small_volume("huge.vti", spacing=(1e60, 1e60, 1e60))
+for command in ("render", "carve"):
+    expect_error([command, huge, "--path", "1", "--rays", "6"] + (["-o", os.path.join(tmp, "huge_%d.png")] if command == "render" else []),
+                 2, "beyond the float32 coordinates", f"{command} of a volume at spacing 1e60")
+rc, out, err = run("carve", small_volume("big.vti", spacing=(1e30, 1e30, 1e30)), "--path", "1", "--rays", "6")
+check(rc == 0, f"the control: carve at spacing 1e30 (rc {rc}, {err.strip()[:160]!r})")
+# A pose scale of 1e200 in carve names the scale's limits (it said "must be
+# an invertible transform").
+expect_error(["carve", good_vol, "--pose", "4 4 4 0 0 0 1e200", "--rays", "6"], 2,
+             "the scale must lie in", "carve with a pose scale of 1e200")
 # A NaN voxel draws as empty space, as the LAO takes it, said once (it was
 # refused: no frame).
 rc, out, err = run("render", small_volume("nan.vti", nan=True), "--no-clip", "--image", "32x32", "-o",
@@ -641,6 +669,29 @@ with open(cut_vti, "wb") as f:
 rc, out, err = run("lao", full_vti, "--rays", "6")
 check(rc == 0, f"an appended-raw .vti reads: rc={rc} {err.strip()[:200]}")
 expect_error(["lao", cut_vti, "--rays", "6"], 2, "the file is short", "a .vti cut at 80%")
+# An ASCII legacy .vtk cut in its values or in its header: the values it
+# needs and holds (VTK's own messages were "Error reading ascii data" and
+# "Cannot read scalar header!"); the whole file reads.
+from vtkmodules.vtkIOLegacy import vtkDataSetWriter  # noqa: E402
+ascii_vtk = os.path.join(tmp, "ascii.vtk")
+asc_reader = vtkXMLImageDataReader()
+asc_reader.SetFileName(small_volume("asc.vti"))
+asc_reader.Update()
+wl = vtkDataSetWriter()
+wl.SetInputData(asc_reader.GetOutput())
+wl.SetFileName(ascii_vtk)
+wl.SetFileTypeToASCII()
+wl.Write()
+text = open(ascii_vtk, "rb").read()
+head = text[:text.index(b"LOOKUP_TABLE")]
+for cut, what in ((len(text) * 2 // 3, "in its values"), (len(head) - 3, "in its SCALARS line")):
+    short_vtk = os.path.join(tmp, "short.vtk")
+    with open(short_vtk, "wb") as f:
+        f.write(text[:cut])
+    expect_error(["lao", short_vtk, "--rays", "6"], 2, "ASCII values but the file holds",
+                 f"an ASCII legacy .vtk cut {what}")
+rc, out, err = run("lao", ascii_vtk, "--rays", "6")
+check(rc == 0, f"the control: the whole ASCII legacy .vtk reads: rc={rc} {err.strip()[:200]}")
 expect_error(["carve", neghip, "--path", "1000000000"], 2, "1 to 100000", "--path 1e9")
 expect_error(["lao", neghip, "--samples", "1000000000"], 2, "2 to 65536", "--samples 1000000000")
 expect_error(["lao", neghip, "--samples", "1e9"], 2, "2 to 65536", "--samples 1e9")

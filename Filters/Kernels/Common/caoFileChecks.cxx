@@ -820,7 +820,8 @@ bool CheckLegacyVTKFile(const std::string& path, std::string& error)
   std::string line;
   bool binary = false;
   long long points = -1;
-  for (int n = 0; n < 200 && std::getline(in, line); ++n)
+  int n = 0;
+  for (; n < 200 && std::getline(in, line); ++n)
   {
     std::istringstream words(line);
     std::string key;
@@ -830,7 +831,7 @@ bool CheckLegacyVTKFile(const std::string& path, std::string& error)
       binary = binary || key == "binary";
     if (key == "point_data")
       words >> points;
-    if (!binary || points < 0)
+    if (points < 0)
       continue;
     int components = 0, size = 0;
     std::string name, type;
@@ -861,7 +862,7 @@ bool CheckLegacyVTKFile(const std::string& path, std::string& error)
     for (const auto& t : sizes)
       if (Lower(type) == t.first)
         size = t.second;
-    if (size == 0)
+    if (size == 0 && binary)
       return true; // bits and unknown types: left to the reader
     long long start = static_cast<long long>(in.tellg());
     if (key == "scalars")
@@ -876,6 +877,35 @@ bool CheckLegacyVTKFile(const std::string& path, std::string& error)
         in.clear();
         in.seekg(before);
       }
+    }
+    if (!binary)
+    {
+      // ASCII: the values, one token each, up to the next keyword (VTK's
+      // reader said only "Error reading ascii data" for a short array).
+      const double neededValues = static_cast<double>(points) * components;
+      in.clear();
+      in.seekg(start);
+      double count = 0.0;
+      std::string token;
+      while (count < neededValues && in >> token)
+      {
+        char* end = nullptr;
+        std::strtod(token.c_str(), &end);
+        if (end == token.c_str() || *end != '\0')
+          break; // a keyword: the array ended
+        count += 1.0;
+      }
+      if (count < neededValues)
+      {
+        std::ostringstream msg;
+        msg.precision(15);
+        msg << "cannot read " << Quoted(path) << ": the file is short: point array '" << name
+            << "' needs " << neededValues << " ASCII values but the file holds " << count
+            << " (a truncated copy?)";
+        error = msg.str();
+        return false;
+      }
+      return true;
     }
     // (in double: a header's counts may overflow any integer)
     const double needed = static_cast<double>(points) * components * size;
