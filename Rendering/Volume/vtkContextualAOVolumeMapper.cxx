@@ -100,6 +100,9 @@ struct FrameReport
   int redrawn = 0; // draws of this frame copied from kept ones (KeepDraws)
   double keyMs = 0.0; // host ms of the kept draws' keys (read-backs, hashing)
   std::string error; // why the frame failed, or what it could not do (the volume drawn unclipped)
+  /// A frame that only drew: the report of the last frame that did more
+  /// (ParaView's first Render draws twice, the precompute in the first).
+  std::string lastWork;
 
   std::string Json() const
   {
@@ -129,6 +132,8 @@ struct FrameReport
     {
       o << ", \"error\": \"" << cao::JsonEscape(error) << "\"";
     }
+    if (!lastWork.empty())
+      o << ", \"last_work\": " << lastWork;
     o << "}";
     return o.str();
   }
@@ -200,6 +205,13 @@ struct VolumeKey
       givenAOTime == o.givenAOTime && occluders == o.occluders;
   }
   bool operator!=(const VolumeKey& o) const { return !(*this == o); }
+  /// Whether `o` holds the same volume (data and scalars, whatever the AO
+  /// settings): an AO-on volume then serves an AO-off frame as it is.
+  bool SameVolume(const VolumeKey& o) const
+  {
+    return input == o.input && inputTime == o.inputTime && scalars == o.scalars &&
+      scalarsTime == o.scalarsTime && scalarMode == o.scalarMode && arrayId == o.arrayId;
+  }
   /// Whether `o` differs from this key in the opacity alone (its function
   /// or the unit distance): the LAO can then be edited (caoOpacityEdit).
   bool OpacityOnlyChange(const VolumeKey& o) const
@@ -352,12 +364,16 @@ struct vtkContextualAOVolumeMapper::Internals
   ::MeshKey Mesh;
   bool HaveMesh = false;
   std::vector<double> MapsUploadKey, PoseKey, TableKey; // numbers only
+  /// The pose whose clip parameters the engine holds (PoseKey: the pose its
+  /// AO was last updated for; an AO-off or deferred frame moves only these).
+  std::vector<double> ParamsKey;
   double BuiltPoseScales[2] = { 0.0, 0.0 }; ///< the pose scales the maps serve
   int PrecomputeGeneration = 0, MapsGeneration = 0;
   double ScalarRange[2] = { 0, 1 };
   double TexelScale = 1.0;  // texel value -> scalar value: texel * TexelScale + TexelOffset
   double TexelOffset = 0.0;
   FrameReport Last;
+  std::string LastWork; ///< the JSON of the last frame that did more than draw
   std::string LastError;
 
   void ForgetGPU()
@@ -373,6 +389,7 @@ struct vtkContextualAOVolumeMapper::Internals
     this->EditNsPerVoxel = this->PrecomputeNsPerVoxel = 0.0;
     this->MapsUploadKey.clear();
     this->PoseKey.clear();
+    this->ParamsKey.clear();
     this->TableKey.clear();
   }
 
@@ -957,6 +974,11 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateVolume(
   }
   if (this->HaveVolume && key == this->Volume && (!ao || f.engine->HasPrecomputed()))
     return true;
+  // The AO turned off, the volume as it was: the AO-on volume and its LAO
+  // stay as they are (the ray cast reads no AO), so that the AO turned on
+  // again with nothing else changed draws at once instead of precomputing.
+  if (this->HaveVolume && !ao && this->Volume.ao && key.SameVolume(this->Volume))
+    return true;
   this->OpacityEdit = this->HaveVolume && f.engine->HasPrecomputed() &&
     key.OpacityOnlyChange(this->Volume);
   this->HaveVolume = false;
@@ -970,6 +992,7 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateVolume(
     return false;
   ++this->PrecomputeGeneration;
   this->PoseKey.clear();
+  this->ParamsKey.clear();
   this->Volume = key;
   this->HaveVolume = true;
   return true;
@@ -1584,6 +1607,7 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateClip(
   if (!f.clipping)
   {
     this->PoseKey.clear(); // a clip shape set again is a new pose
+    this->ParamsKey.clear();
     this->MapsError.clear(); // (no maps asked for)
     return true;
   }
@@ -1605,6 +1629,7 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateClip(
     f.why.clear();
     f.clipping = false;
     this->PoseKey.clear();
+    this->ParamsKey.clear();
     return true;
   }
   this->MapsError.clear();
@@ -1624,6 +1649,7 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateClip(
       return f.Fail("The depth-map upload failed: " + error + ".");
     this->MapsUploadKey = uploadKey;
     this->PoseKey.clear();
+    this->ParamsKey.clear();
   }
   cao::layout::ClipParams clip{};
   if (!vtkCAO::MakeClipParams(f.input, clipMaps, pose, this->Plan.reach, mode,
@@ -1632,10 +1658,18 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateClip(
   std::vector<double> poseKey = ClipParamsKey(clip);
   poseKey.insert(poseKey.end(), { static_cast<double>(mode),
     static_cast<double>(self->AntiAliasingSamples), static_cast<double>(self->AOUpdate),
-    static_cast<double>(this->MapsGeneration), static_cast<double>(this->PrecomputeGeneration),
-    static_cast<double>(ao) });
-  if (poseKey == this->PoseKey)
+    static_cast<double>(this->MapsGeneration), static_cast<double>(this->PrecomputeGeneration) });
+  // Only the ray cast's clip test needs the pose: with the AO off (no
+  // classification, no AO: its AO stays at PoseKey's pose for the AO turned
+  // on again), or at the pose the AO was last updated for.
+  const auto paramsOnly = [&]() {
+    if (poseKey != this->ParamsKey && !engine.SetClipParams(clip, error))
+      return f.Fail("The clip parameters upload failed: " + error + ".");
+    this->ParamsKey = poseKey;
     return true;
+  };
+  if (!ao || poseKey == this->PoseKey)
+    return paramsOnly();
   // An interactive frame whose AO update would not fit it draws the new
   // clip with the AO last updated; the still frame updates it (PoseKey is
   // left as it was).
@@ -1645,8 +1679,8 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateClip(
       (self->InteractiveAOUpdate == AUTOMATIC_AO_UPDATE && this->ClipUpdateMs > frameMs));
   if (defer)
   {
-    if (!engine.SetClipParams(clip, error))
-      return f.Fail("The clip parameters upload failed: " + error + ".");
+    if (!paramsOnly())
+      return false;
     std::ostringstream why;
     why << "AO update left to the still frame (";
     if (self->InteractiveAOUpdate == STILL_AO_UPDATE)
@@ -1657,14 +1691,6 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateClip(
     f.report.reasons.push_back(why.str());
     return true;
   }
-  if (!ao)
-  {
-    // Only the shadow test needs the pose: no classification, no AO.
-    if (!engine.SetClipParams(clip, error))
-      return f.Fail("The clip parameters upload failed: " + error + ".");
-    this->PoseKey = poseKey;
-    return true;
-  }
   if (self->AOUpdate != FULL_RECOMPUTE)
   {
     bool done = false;
@@ -1672,7 +1698,7 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateClip(
       return false;
     if (done)
     {
-      this->PoseKey = poseKey;
+      this->PoseKey = this->ParamsKey = poseKey;
       ++self->ClassifyCount;
       return true;
     }
@@ -1697,7 +1723,7 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateClip(
   f.report.affected = stats.affected;
   f.report.unaffected = stats.unaffected;
   ++self->ClassifyCount;
-  this->PoseKey = poseKey;
+  this->PoseKey = this->ParamsKey = poseKey;
   return true;
 }
 
@@ -2321,6 +2347,12 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
                     "the picture does not show it; raise Ambient (0.2 to 0.4) to see it";
   if (!this->HostClipError.empty())
     f.report.error = this->HostClipError + (f.report.error.empty() ? "" : " " + f.report.error);
+  const bool drewOnly = std::all_of(f.report.stages.begin(), f.report.stages.end(),
+    [](const Stage& stage) { return stage.name == "raycast"; });
+  if (drewOnly)
+    f.report.lastWork = in.LastWork;
+  else
+    in.LastWork = f.report.Json();
   in.Last = f.report;
   ++this->FrameCount;
 }

@@ -656,6 +656,55 @@ void Report(const Options& o)
   st = frame("AO turned on again");
   CAO_EXPECT(Has(st, "precompute") && Has(st, "classify") && !Has(st, "depth_maps"), "%s",
     Join(st).c_str());
+  const caotest::Image aoOn = caotest::Capture(s.window);
+  const int workFrame = m->GetFrameCount();
+  // Off and on again with nothing else changed: the LAO and the pose's AO
+  // are kept (a user comparing AO off and on waits for no precompute), and
+  // the picture is the same.
+  m->AmbientOcclusionOff();
+  st = frame("AO off again");
+  CAO_EXPECT(st == onlyRaycast, "%s", Join(st).c_str());
+  const caotest::Image aoOff = caotest::Capture(s.window);
+  m->AmbientOcclusionOn();
+  st = frame("AO on again, nothing else changed");
+  CAO_EXPECT(st == onlyRaycast, "%s", Join(st).c_str());
+  // A frame that only draws carries the last frame that did more (as
+  // ParaView's first Render, which draws twice, needs).
+  {
+    const std::string report = m->GetLastFrameReport();
+    const std::string want = "\"last_work\": {\"frame\": " + std::to_string(workFrame) + ", ";
+    const std::size_t at = report.find(want);
+    CAO_EXPECT(at != std::string::npos && report.find("precompute", at) != std::string::npos,
+      "no last_work of frame %d with its precompute: %s", workFrame, report.c_str());
+  }
+  const long offOn = caotest::DifferingPixels(aoOn, aoOff);
+  const long onOn = caotest::DifferingPixels(aoOn, caotest::Capture(s.window));
+  std::printf("AO on, off, on again: %ld pixels differ between on and off, %ld between on and on\n",
+    offOn, onOn);
+  CAO_EXPECT(offOn > 0 && onOn == 0, "AO on against off: %ld pixels differ; on against on again: %ld",
+    offOn, onOn);
+  // Off, the clip moved, on: the pose's update, not the precompute.
+  m->AmbientOcclusionOff();
+  s.clip->SetPosition(30.0, 30.0, 38.0);
+  st = frame("AO off, clip pose moved again");
+  CAO_EXPECT(st == onlyRaycast, "%s", Join(st).c_str());
+  m->AmbientOcclusionOn();
+  st = frame("AO on again at the moved pose");
+  CAO_EXPECT(Has(st, "classify") && !Has(st, "precompute") && !Has(st, "depth_maps"), "%s",
+    Join(st).c_str());
+  const caotest::Image moved = caotest::Capture(s.window);
+  // The clip moved away and back while the AO is off: the clip drawn is
+  // the pose's, and the AO needs no update.
+  m->AmbientOcclusionOff();
+  s.clip->SetPosition(20.0, 30.0, 38.0);
+  frame("AO off, clip moved away");
+  s.clip->SetPosition(30.0, 30.0, 38.0);
+  frame("AO off, clip moved back");
+  m->AmbientOcclusionOn();
+  st = frame("AO on again, the pose of its last update");
+  CAO_EXPECT(st == onlyRaycast, "%s", Join(st).c_str());
+  const long back = caotest::DifferingPixels(moved, caotest::Capture(s.window));
+  CAO_EXPECT(back == 0, "the clip moved away and back with the AO off: %ld pixels differ", back);
 
   // The clip shape removed: the precomputed AO, no clip work (the ray
   // caster's AO samples are remade once, from the unclipped AO).
