@@ -374,6 +374,7 @@ struct vtkContextualAOVolumeMapper::Internals
   double TexelOffset = 0.0;
   FrameReport Last;
   std::string LastWork; ///< the JSON of the last frame that did more than draw
+  int Reports = 0;      ///< frames reported, drawn or failed (the report's "frame")
   std::string LastError;
 
   void ForgetGPU()
@@ -927,7 +928,7 @@ bool vtkContextualAOVolumeMapper::Internals::AcquireContext(
   // rasteriser (whose timestamps do not bracket the work) with the host
   // clock around glFinish.
   f.glTimer = f.engine->GetContext().UsesHostClock() ? "host_glfinish" : "gl_timestamp";
-  f.report.frame = self->FrameCount + 1;
+  f.report.frame = this->Reports + 1;
   f.report.backend = this->GPU.Description();
   return true;
 }
@@ -2295,7 +2296,7 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       // frame it would have been, its error, no categories. (An abort
       // leaves it as it was.)
       in.Last = FrameReport();
-      in.Last.frame = this->FrameCount + 1;
+      in.Last.frame = ++in.Reports; // (its own number: the next frame has the next)
       in.Last.backend = f.report.backend;
       in.Last.error = f.why;
       in.HaveFailure = true;
@@ -2354,6 +2355,7 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   else
     in.LastWork = f.report.Json();
   in.Last = f.report;
+  ++in.Reports;
   ++this->FrameCount;
 }
 

@@ -492,7 +492,8 @@ public:
 
   ///@{
   /**
-   * The last rendered frame's work report, as JSON: frame number, the
+   * The last rendered frame's work report, as JSON: frame number (every
+   * frame the mapper was asked to draw, a failed one included), the
    * stages that ran with milliseconds each (and the timer used), the voxels recomputed, the
    * ray caster's AO samples remade (`ao_sample_voxels`, stage `ao_samples`: only where
    * the AO or the clip state changed), the category counts and why AO work was done.
