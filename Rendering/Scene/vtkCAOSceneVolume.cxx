@@ -77,9 +77,8 @@ void AppendVolumeOpacityKey(vtkVolume* volume, std::vector<double>& key)
     // Whether it is drawn (a bad setting leaves it out of the frame).
     std::string why;
     key.push_back(mapper->CanDraw(input, why) ? 1.0 : 0.0);
-    // Whether its clip maps could be made (if not, it is drawn unclipped).
-    key.push_back(mapper->GetClipMapsError().empty() ? 1.0 : 0.0);
-    key.push_back(mapper->ClipSettingsProblem().empty() ? 1.0 : 0.0);
+    // Whether its clip carves (if not, it is drawn unclipped).
+    key.push_back(mapper->ClipsCarve() ? 1.0 : 0.0);
     for (int i = 0; i < mapper->GetNumberOfClipShapes(); ++i)
     {
       vtkPolyData* mesh = mapper->GetClipShapeMeshAt(i);
@@ -180,9 +179,7 @@ bool VolumeOpacity(vtkVolume* volume, cao::OpacityVolume& out, std::string& erro
   auto* mapper = vtkContextualAOVolumeMapper::SafeDownCast(volume->GetMapper());
   // (Maps the mapper could not make leave the volume drawn unclipped: the
   // last frame's, as this frame's volume is drawn after the surfaces' AO.)
-  const int shapes = mapper && mapper->GetClipMapsError().empty() && mapper->ClipSettingsProblem().empty()
-    ? mapper->GetNumberOfClipShapes()
-    : 0;
+  const int shapes = mapper && mapper->ClipsCarve() ? mapper->GetNumberOfClipShapes() : 0;
   std::vector<std::uint8_t> probeKeeps, subtracts, inside;
   for (int s = 0; s < shapes; ++s)
   {

@@ -553,6 +553,12 @@ public:
   /// clip shape out and draws the volume unclipped, saying why.
   std::string ClipSettingsProblem() const;
 
+  /// Whether the clip shapes carve the volume as drawn: no clip settings
+  /// out of range (ClipSettingsProblem) and maps that could be made
+  /// (GetClipMapsError, the last frame's). When false the volume is drawn
+  /// unclipped.
+  bool ClipsCarve() const { return this->ClipSettingsProblem().empty() && this->GetClipMapsError().empty(); }
+
   /// Why the application that owns this mapper left the clip out (ParaView's
   /// representation: a clip box with a zero or non-finite scale or pose), or
   /// "": each frame's report says it as its `error` while it is set.
