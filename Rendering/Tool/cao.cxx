@@ -730,6 +730,24 @@ void NoteUnreachedPoses(const Options& o, vtkImageData* volume, const std::vecto
       "coordinates against the volume's bounds and --pose\n",
       count, runs[0].poses.size(), list.c_str(), count > 8 ? ", ..." : "",
       probe ? "everything is clipped" : "nothing is clipped");
+  // Subtraction removing no whole voxel at any pose, though it reaches
+  // some (a shape thinner than a voxel: the default size on a volume whose
+  // voxels are long along one axis): the run carved nothing visible.
+  bool removedNone = !probe && count < static_cast<int>(runs[0].poses.size());
+  for (const auto& pose : runs[0].poses)
+    removedNone = removedNone && pose.counts[0] == 0;
+  if (removedNone)
+  {
+    double spacing[3];
+    volume->GetSpacing(spacing);
+    std::fprintf(stderr,
+      "cao: note: the clip shape removes no whole voxel at any pose (only partial coverage): it is "
+      "about as small as a voxel (voxels %g x %g x %g world units%s); give --size or a --pose scale\n",
+      spacing[0], spacing[1], spacing[2],
+      o.clipping.size > 0.0 || !o.clipping.mesh.empty() ? ""
+                                                        : "; the default --size is a quarter of the "
+                                                          "volume's smallest extent");
+  }
 }
 
 void PrintCarveTables(const Options& o, vtkImageData* volume, const std::vector<RunResult>& runs)

@@ -499,6 +499,10 @@ int Render(RenderOptions& o, const CLI::App* app)
         std::printf("          note: this frame shows only the background: the clip leaves "
                     "nothing visible at this pose, or the opacity map makes what is left "
                     "transparent (--json gives the voxels clipped, affected and unaffected)\n");
+      else if (!backgroundOnly && o.clip && o.clipping.mode != "probe" &&
+        mapper->GetLastFrameClippedVoxels() == 0)
+        std::printf("          note: the clip removes no whole voxel at this pose: it lies outside "
+                    "the volume or is about as small as a voxel (see --pose, --size)\n");
       else if (backgroundOnly)
         std::printf("          note: this frame shows only the background: the opacity map makes "
                     "the volume transparent (see --preset, --unit-distance), or the camera "

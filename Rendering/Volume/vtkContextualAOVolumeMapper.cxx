@@ -695,6 +695,11 @@ vtkIdType vtkContextualAOVolumeMapper::GetLastFrameRecomputedVoxels() const
   return this->Internal->Last.recomputed;
 }
 
+vtkIdType vtkContextualAOVolumeMapper::GetLastFrameClippedVoxels() const
+{
+  return static_cast<vtkIdType>(this->Internal->Last.clipped);
+}
+
 //------------------------------------------------------------------------------
 std::string vtkContextualAOVolumeMapper::ClipSettingsProblem() const
 {

@@ -511,6 +511,9 @@ public:
   double GetLastFrameStageMilliseconds(const char* stage) const;
   /// Voxels whose AO was computed in the last frame (0: none).
   vtkIdType GetLastFrameRecomputedVoxels() const;
+  /// Voxels the clip removed whole (category a) in the last frame whose
+  /// clip pose was classified; -1 when the last frame classified none.
+  vtkIdType GetLastFrameClippedVoxels() const;
   /// Frames rendered so far (Render calls that drew).
   vtkGetMacro(FrameCount, int);
   /// Times each AO stage ran, over the mapper's life.

@@ -473,6 +473,16 @@ else:
                        "--window", "egl", "--rays", "6", "--json", "-o", os.path.join(tmp, "plane_%d.png"))
     flags = [r.get("background_only") for r in json.loads(out)] if rc == 0 else []
     check(flags == [True, False, False, False], "render --json: background_only per frame: %s" % flags)
+    # A frame whose clip removes no whole voxel says so (the path's two end
+    # poses lie outside the volume); frames that carve do not.
+    rc, out, err = run("render", neghip, "--image", "48x48", "--path", "2", "--window", "egl", "--rays", "6",
+                       "-o", os.path.join(tmp, "miss_%d.png"))
+    check(rc == 0 and out.count("the clip removes no whole voxel") == 2,
+          "render --path 2: both frames noted: %r" % out.strip()[-400:])
+    rc, out, err = run("render", neghip, "--image", "48x48", "--path", "4", "--window", "egl", "--rays", "6",
+                       "-o", os.path.join(tmp, "hit_%d.png"))
+    check(rc == 0 and out.count("the clip removes no whole voxel") == 2,
+          "render --path 4: the two end frames noted, the middle ones not: %r" % out.strip()[-600:])
     # With --no-clip the note names the opacity and the camera, not the clip
     # (it said "the clip leaves nothing visible").
     rc, out, err = run("render", neghip, "--image", "48x48", "--no-clip", "--window", "egl", "--rays", "6",
@@ -544,6 +554,15 @@ for command in ("render", "carve"):
                  2, "beyond the float32 coordinates", f"{command} of a volume at spacing 1e60")
 rc, out, err = run("carve", small_volume("big.vti", spacing=(1e30, 1e30, 1e30)), "--path", "1", "--rays", "6")
 check(rc == 0, f"the control: carve at spacing 1e30 (rc {rc}, {err.strip()[:160]!r})")
+# A clip that removes no whole voxel is said: carve's default shape on
+# voxels 7 units long (a quarter of the smallest extent, 3.5) at every pose
+# (it printed nothing); the control, neghip's default path, carves.
+aniso = small_volume("aniso.vti", spacing=(0.3, 2.5, 7.0))
+rc, out, err = run("carve", aniso, "--path", "4", "--rays", "6")
+check(rc == 0 and "removes no whole voxel at any pose" in err,
+      f"carve whose clip removes no whole voxel says so: rc={rc} {err.strip()[-300:]!r}")
+rc, out, err = run("carve", neghip, "--path", "4", "--rays", "6")
+check(rc == 0 and "removes no whole voxel" not in err, f"the control: neghip's path carves without the note: {err.strip()[-200:]!r}")
 # A pose scale of 1e200 in carve names the scale's limits (it said "must be
 # an invertible transform").
 expect_error(["carve", good_vol, "--pose", "4 4 4 0 0 0 1e200", "--rays", "6"], 2,
