@@ -100,15 +100,15 @@ struct FrameReport
   int redrawn = 0; // draws of this frame copied from kept ones (KeepDraws)
   double keyMs = 0.0; // host ms of the kept draws' keys (read-backs, hashing)
   std::string error; // why the frame failed, or what it could not do (the volume drawn unclipped)
-  /// A frame that only drew: the report of the last frame that did more
-  /// (ParaView's first Render draws twice, the precompute in the first).
+  /// A frame that only drew: the work of the last frame that did more
+  /// (WorkJson; ParaView's first Render draws twice, the precompute in the first).
   std::string lastWork;
 
-  std::string Json() const
+  /// The frame's work: its number, stages, voxels, categories and reasons
+  /// (the report's first fields, and the whole of a later frame's last_work).
+  void WorkJson(std::ostringstream& o) const
   {
-    std::ostringstream o;
-    o.precision(6);
-    o << "{\"frame\": " << frame << ", \"stages\": [";
+    o << "\"frame\": " << frame << ", \"stages\": [";
     for (std::size_t i = 0; i < stages.size(); ++i)
       o << (i ? ", " : "") << "{\"name\": \"" << cao::JsonEscape(stages[i].name) << "\", \"ms\": "
         << stages[i].ms << ", \"timer\": \"" << cao::JsonEscape(stages[i].timer) << "\"}";
@@ -119,8 +119,27 @@ struct FrameReport
     o << ", \"reasons\": [";
     for (std::size_t i = 0; i < reasons.size(); ++i)
       o << (i ? ", " : "") << "\"" << cao::JsonEscape(reasons[i]) << "\"";
+    o << "]";
+  }
+
+  std::string WorkJson() const
+  {
+    std::ostringstream o;
+    o.precision(6);
+    o << "{";
+    this->WorkJson(o);
+    o << "}";
+    return o.str();
+  }
+
+  std::string Json() const
+  {
+    std::ostringstream o;
+    o.precision(6);
+    o << "{";
+    this->WorkJson(o);
     static const char* const peel[4] = { "off", "outside", "layer", "remainder" };
-    o << "], \"sample_distance\": " << sampleDistance
+    o << ", \"sample_distance\": " << sampleDistance
       << ", \"image_sample_distance\": " << imageSampleDistance
       << ", \"interactive\": " << (interactive ? "true" : "false") << ", \"redrawn\": " << redrawn
       << ", \"kept_key_ms\": " << keyMs
@@ -373,7 +392,7 @@ struct vtkContextualAOVolumeMapper::Internals
   double TexelScale = 1.0;  // texel value -> scalar value: texel * TexelScale + TexelOffset
   double TexelOffset = 0.0;
   FrameReport Last;
-  std::string LastWork; ///< the JSON of the last frame that did more than draw
+  std::string LastWork; ///< the work (WorkJson) of the last frame that did more than draw
   int Reports = 0;      ///< frames reported, drawn or failed (the report's "frame")
   std::string LastError;
 
@@ -2358,7 +2377,7 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   if (drewOnly)
     f.report.lastWork = in.LastWork;
   else
-    in.LastWork = f.report.Json();
+    in.LastWork = f.report.WorkJson();
   in.Last = f.report;
   ++in.Reports;
   ++this->FrameCount;
