@@ -144,6 +144,15 @@ def box_point(u):
     return [sum(pose[4 * r + c] * (list(u) + [1.0])[c] for c in range(4)) for r in range(3)]
 
 
+# One interactive frame before the drags, as a user's first look around
+# would draw: on a software rasteriser its programs (the interactive ray
+# cast's and the upsampling's) compile for seconds, on a server longer
+# (Plugin.GUI.ClipDragRemote once saw no frame at all during the first
+# drag while they compiled, and the GUI logged nothing, so the driver's
+# wait for quiet ended early).
+view.SMProxy.InteractiveRender()
+view.SMProxy.StillRender()
+
 targets = {"centre": to_display(view, box_point([0, 0, 0])),
            "face": to_display(view, box_point([0.5, 0, 1])),
            "size": list(view.GetRenderWindow().GetSize()),

@@ -2437,9 +2437,11 @@ void Keep(const Options& o)
     const caotest::Image kept = s.Frame();
     const int n = redrawn();
     const std::string report = s.mapper->GetLastFrameReport();
+    // (the frame's own stages: the report's last_work holds an earlier
+    // frame's, ray casts included)
+    const std::string stages = s.mapper->GetLastFrameStages();
     int draws = 0;
-    for (std::size_t at = report.find("\"raycast\""); at != std::string::npos;
-         at = report.find("\"raycast\"", at + 1))
+    for (std::size_t at = stages.find("raycast"); at != std::string::npos; at = stages.find("raycast", at + 1))
       ++draws;
     s.color->Modified();
     const caotest::Image cast = s.Frame();
