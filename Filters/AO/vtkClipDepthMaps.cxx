@@ -302,6 +302,7 @@ cao::ClipCameraRequest vtkClipDepthMaps::MakeCameraRequest() const
   std::copy(this->CameraExtent, this->CameraExtent + 4, request.cameraExtent);
   request.margin = this->Margin;
   request.pixelSize = this->PixelSize;
+  request.pixelSizeName = this->PixelSizeName;
   std::copy(this->Resolution, this->Resolution + 2, request.resolution);
   request.layers = this->NumberOfLayers;
   std::copy(this->VoxelSpacing, this->VoxelSpacing + 3, request.voxelSpacing);

@@ -146,6 +146,16 @@ public:
   ///@}
 
   ///@{
+  /**
+   * What the users of the caller call PixelSize, in the errors that ask for
+   * a larger one (default "PixelSize"; the volume mapper names its
+   * ClipMapPixelSize, `cao` its --pixel-size). Only the messages change.
+   */
+  void SetPixelSizeName(const std::string& name) { this->PixelSizeName = name; }
+  std::string GetPixelSizeName() const { return this->PixelSizeName; }
+  ///@}
+
+  ///@{
   /// Pixels per axis; (0, 0) (default) derives them from PixelSize.
   vtkSetVector2Macro(Resolution, int);
   vtkGetVector2Macro(Resolution, int);
@@ -268,6 +278,7 @@ protected:
   double CameraExtent[4] = { 0.0, 0.0, 0.0, 0.0 };
   double Margin = -1.0;
   double PixelSize = 0.0;
+  std::string PixelSizeName = "PixelSize";
   int Resolution[2] = { 0, 0 };
   int NumberOfLayers = 2;
   double Reach = 0.0;

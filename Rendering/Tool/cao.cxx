@@ -508,6 +508,7 @@ int CarveRun(const Options& o, vtkImageData* volume, vtkPiecewiseFunction* tf,
   maps->SetVoxelSpacing(volume->GetSpacing());
   maps->SetNumberOfLayers(o.clipping.layers);
   maps->SetPixelSize(o.pixelSize);
+  maps->SetPixelSizeName("--pixel-size");
   maps->SetDirection(o.direction.data());
   maps->SetNumberOfThreads(o.threads);
   maps->SetBackend(backend);

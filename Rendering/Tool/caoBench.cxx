@@ -931,6 +931,7 @@ int Bench::ContextualRow(int backend, vtkLocalAmbientOcclusion* lao, vtkPolyData
   maps->SetReach(reach);
   maps->SetVoxelSpacing(spacing[0], spacing[1], spacing[2]);
   maps->SetPixelSize(pixel * h);
+  maps->SetPixelSizeName("--map-pixels");
   maps->SetNumberOfThreads(o.threads);
   maps->SetBackend(backend);
   const auto t0 = std::chrono::steady_clock::now();

@@ -529,6 +529,7 @@ vtkContextualAOVolumeMapper::vtkContextualAOVolumeMapper()
 {
   Internals& in = *this->Internal;
   in.ClipDepthMaps = vtkSmartPointer<vtkClipDepthMaps>::New();
+  in.ClipDepthMaps->SetPixelSizeName("ClipMapPixelSize (0: derived from the voxel spacing)");
   in.DepthMapsErrors->SetClientData(&in.DepthMapsError);
   in.DepthMapsErrors->SetCallback([](vtkObject*, unsigned long, void* out, void* text) {
     std::string m = text ? static_cast<const char*>(text) : "";
@@ -1977,11 +1978,7 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateMaps(vtkContextualAOVolumeMap
   vtkCAO::ClipMaps check;
   if (!this->DepthMapsError.empty() || !vtkCAO::ReadClipMaps(maps->GetOutput(), mode, check, error))
   {
-    // (The maps' own name for the pixel size is this mapper's ClipMapPixelSize.)
-    std::string why = this->DepthMapsError.empty() ? error : this->DepthMapsError;
-    for (std::size_t at = why.find("a larger PixelSize"); at != std::string::npos;
-         at = why.find("a larger PixelSize", at + 1))
-      why.replace(at, 18, "a larger ClipMapPixelSize (0: derived from the voxel spacing)");
+    const std::string& why = this->DepthMapsError.empty() ? error : this->DepthMapsError;
     return f.Fail("The clip mesh's depth maps could not be made: " + why);
   }
   f.report.stages.push_back({ "depth_maps", vtkCAO::MillisecondsSince(start), "host" });

@@ -235,6 +235,10 @@ expect_error(["carve", neghip, "--ao-format", "half"], 2, "--ao-format: bad valu
 expect_error(["carve", neghip, "--shape", "teapot"], 2, "--shape: bad value 'teapot' (expected sphere",
              "unknown shape")
 expect_error(["carve", neghip, "--poses", os.path.join(tmp, "nope.txt")], 2, "cannot open", "missing pose file")
+# Maps too fine to make: the error names the option that sets their pixel
+# size (it named the filter's property PixelSize, which cao has not).
+expect_error(["carve", neghip, "--pixel-size", "0.001", "--path", "2"], 2, "set a larger --pixel-size",
+             "maps too fine name --pixel-size")
 rc, out, err = run("--help")
 check(rc == 0 and all(re.search(r"^  %s " % c, out, re.M) for c in ("lao", "carve", "tf", "render", "surface", "bench")),
       "--help lists the commands")

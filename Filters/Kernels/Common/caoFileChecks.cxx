@@ -820,8 +820,7 @@ bool CheckLegacyVTKFile(const std::string& path, std::string& error)
   std::string line;
   bool binary = false;
   long long points = -1;
-  int n = 0;
-  for (; n < 200 && std::getline(in, line); ++n)
+  for (int n = 0; n < 200 && std::getline(in, line); ++n)
   {
     std::istringstream words(line);
     std::string key;

@@ -137,7 +137,7 @@ bool PlanClipCamera(
   else if (!(r.dilationScale >= 0.0) || !std::isfinite(r.dilationScale))
     error = "DilationScale must be non-negative and finite";
   else if (!(r.pixelSize >= 0.0) || !std::isfinite(r.pixelSize))
-    error = "PixelSize must be 0 (derived) or a positive, finite length; got " + Text(r.pixelSize);
+    error = r.pixelSizeName + " must be 0 (derived) or a positive, finite length; got " + Text(r.pixelSize);
   else if (!std::isfinite(r.margin))
     error = "Margin must be finite (negative: derived)";
   else if (!Finite(r.cameraExtent, 4) || !Finite(r.direction, 3) || !Finite(r.viewUp, 3))
@@ -293,9 +293,9 @@ bool PlanClipCamera(
       const double w = std::ceil((eu1 - eu0) / pw), hh = std::ceil((ev1 - ev0) / ph);
       if (!(w * hh * r.layers <= static_cast<double>(ClipMapLimits::MaxPixelLayers)))
       {
-        error = "too many pixels: CameraExtent at pixel size " + Text(pw) + " needs " + Text(w) + " x " + Text(hh) +
+        error = "too many pixels: the camera extent at pixel size " + Text(pw) + " needs " + Text(w) + " x " + Text(hh) +
           " pixels x " + std::to_string(r.layers) + " layers, above the limit of " +
-          std::to_string(ClipMapLimits::MaxPixelLayers) + "; set a larger PixelSize";
+          std::to_string(ClipMapLimits::MaxPixelLayers) + "; set a larger " + r.pixelSizeName;
         return false;
       }
       width = static_cast<int>(w);
@@ -404,7 +404,7 @@ bool PlanClipCamera(
     error = "too many pixels: the clipping camera would need " + std::to_string(width) + " x " +
       std::to_string(height) + " pixels x " + std::to_string(r.layers) +
       " layers, above the limit of " + std::to_string(ClipMapLimits::MaxPixelLayers) +
-      " (1.5 GiB of maps); set a larger PixelSize (it is " + Text(pw) + ")";
+      " (1.5 GiB of maps); set a larger " + r.pixelSizeName + " (it is " + Text(pw) + ")";
     return false;
   }
   // The dilation visits (2 r + 3)^2 window pixels per pixel, r = radius / pixel.
@@ -414,7 +414,7 @@ bool PlanClipCamera(
     error = "too many pixels to dilate: the dilation radius " + Text(radius) + " spans " + Text(std::ceil(radius / pw)) +
       " pixels of size " + Text(pw) + ": " + Text(pixelLayers) + " pixel-layers x a window of " +
       Text(window) + " is above the limit of " + Text(ClipMapLimits::MaxDilationWork) +
-      "; set a larger PixelSize";
+      "; set a larger " + r.pixelSizeName;
     return false;
   }
   cam.pixelSize[0] = pw;

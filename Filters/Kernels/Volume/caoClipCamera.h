@@ -52,6 +52,9 @@ struct ClipCameraRequest
   double cameraExtent[4] = { 0, 0, 0, 0 }; ///< (umin, umax, vmin, vmax); all 0: derived
   double margin = -1.0;                    ///< around the projected mesh; < 0: derived
   double pixelSize = 0.0;                  ///< 0: derived (see the file comment)
+  /// What the caller's users call pixelSize, in the errors that ask for a
+  /// larger one (a property, a command-line option).
+  std::string pixelSizeName = "the pixel size";
   int resolution[2] = { 0, 0 };            ///< (0, 0): from the pixel size
   int layers = 2;
   double reach = 0.0;                      ///< world units, > 0

@@ -247,8 +247,13 @@ int TestClipGeometry(int, char*[])
     { "reach NaN", [](cao::ClipCameraRequest& r) { r.reach = std::nan(""); }, "positive and finite" },
     { "max scale below min", [](cao::ClipCameraRequest& r) { r.maximumPoseScale = 0.5; },
       "at least MinimumPoseScale" },
-    { "pixel NaN", [](cao::ClipCameraRequest& r) { r.pixelSize = std::nan(""); }, "PixelSize must" },
+    { "pixel NaN", [](cao::ClipCameraRequest& r) { r.pixelSize = std::nan(""); }, "pixel size must" },
     { "tiny pixel", [](cao::ClipCameraRequest& r) { r.pixelSize = 1e-4; }, "too many" },
+    // The errors name the pixel size as the caller's users know it.
+    { "tiny pixel, named", [](cao::ClipCameraRequest& r) { r.pixelSize = 1e-4; r.pixelSizeName = "--pixel-size"; },
+      "set a larger --pixel-size" },
+    { "pixel NaN, named", [](cao::ClipCameraRequest& r) { r.pixelSize = std::nan(""); r.pixelSizeName = "PixelSize"; },
+      "PixelSize must" },
   };
   for (const Bad& b : bad)
   {

@@ -2212,12 +2212,19 @@ void Interactive(const Options& o)
   interactive(0, 1e6);
   const int fastest = number("image_sample_distance");
   still(); // (the cost per ray at full resolution: a k = 4 frame's includes the spread)
+  // A second a frame fits the full resolution when the still frame's rays
+  // took well under it; on a machine loaded beyond that (a parallel test
+  // run) the rays take longer, and the second then asks only for fewer rays
+  // than the microsecond did.
+  const double stillCast = s.mapper->GetLastFrameStageMilliseconds("raycast");
   interactive(0, 1.0001);
   const int slow = number("image_sample_distance");
   std::printf("automatic image sample distance: %d then %d for a microsecond a frame, %d for a "
-              "second\n", fast, fastest, slow);
-  CAO_EXPECT(fastest == vtkContextualAOVolumeMapper::MaximumAutomaticImageSampleDistance && slow == 1,
-    "automatic k: %d for a microsecond, %d for a second", fastest, slow);
+              "second (the still frame's rays: %.0f ms)\n", fast, fastest, slow, stillCast);
+  CAO_EXPECT(fastest == vtkContextualAOVolumeMapper::MaximumAutomaticImageSampleDistance &&
+      (stillCast < 900.0 ? slow == 1 : slow >= 1 && slow < fastest),
+    "automatic k: %d for a microsecond, %d for a second (the still frame's rays took %.0f ms)",
+    fastest, slow, stillCast);
   // The latest pose wins: five poses between two frames, one update.
   still();
   const int updates = s.mapper->GetClassifyCount();
