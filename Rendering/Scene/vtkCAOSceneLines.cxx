@@ -318,6 +318,11 @@ bool SceneLines::SettingsOf(const cao::PixelCamera& camera, const Extent& extent
         std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
   }
   settings.tubeRadius = std::min(tubeRadius, extent.diagonal);
+  // The default reaches at least a tube's width beyond the tube: lines
+  // drawn wider than the default radius (60 pixels on kitchen's
+  // streamlines) had their half balls inside their own tubes, and no AO.
+  if (!(aoRadius > 0.0))
+    settings.radius = std::max(settings.radius, cao::LineDefaultRadiusFloor(settings.tubeRadius));
   settings.samples = samples;
   settings.slices = slices;
   error = settings.Validate();
@@ -522,6 +527,7 @@ bool SceneLines::Update(const LineTechnique& technique, const cao::PixelCamera& 
   else if (!SettingsOf(camera, this->extent, this->widest, aoRadius, samples, slices, settings, error))
     return false;
   this->radius = settings.radius;
+  this->tubeRadius = settings.tubeRadius;
   const double tubeRadius = settings.tubeRadius;
   // The grid: of the lines and meshes, the camera's orientation, the settings.
   std::vector<double> key = this->shared ? this->sharedKey : this->sceneKey;

@@ -144,6 +144,9 @@ public:
   std::int64_t NumberOfSegments() const { return this->lines.NumberOfSegments(); }
   int NumberOfActors() const { return this->actors; }
   double Radius() const { return this->radius; }
+  /// The lines' tube radius (world units) in the last AO: drawn as tubes,
+  /// or as wide as drawn.
+  double TubeRadius() const { return this->tubeRadius; }
   /// The AO radius in voxels of the lines' grid (0 before a grid).
   double RadiusVoxels() const { return this->grid.voxel > 0.0 ? this->radius / this->grid.voxel : 0.0; }
   int Voxelizations() const { return this->voxelizations; }
@@ -179,6 +182,7 @@ private:
   cao::CapsuleBVH nearest; ///< the segments, for the pixels' nearest axis (the CPU's G-buffer)
   Extent extent;
   double radius = 0.0;
+  double tubeRadius = 0.0;
   // Parallel rendering: every process's segments (each its own two
   // points), their extent and widest width, and the grid made of them.
   bool shared = false;

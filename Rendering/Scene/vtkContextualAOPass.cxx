@@ -56,6 +56,7 @@
 #include "caoScreenSpaceAO.h"
 #include "caoSurfaceReference.h"
 #include "caoSceneGrid.h"
+#include "caoVoxelConeTracing.h"
 
 #include <algorithm>
 #include <array>
@@ -65,6 +66,7 @@
 #include <cstring>
 #include <cmath>
 #include <functional>
+#include <map>
 #include <sstream>
 #include <vector>
 
@@ -433,8 +435,20 @@ struct vtkContextualAOPass::Internals
   std::vector<double> volumeKey;
   std::vector<cao::OpacityVolume> opacity;
   std::vector<std::string> skippedVolumes; ///< why a volume does not occlude
+  /// The surface pieces left out of the AO scene, and why (a NaN or
+  /// infinite point): the others keep their AO. Said in the log once.
+  std::vector<std::string> skippedMeshes;
+  std::string saidSkippedMeshes;
+  /// The surface pieces that also hold lines while lines get line AO: their
+  /// lines are drawn as the surface's (feature edges), without line AO.
+  std::vector<std::string> linesAmongPolygons;
+  /// Per piece seen last frame: its MTime and its first non-finite point
+  /// (-1: none), so that the check runs once per change.
+  std::map<vtkPolyData*, std::pair<vtkMTimeType, vtkIdType>> finitePoints;
+  vtkIdType FirstNonFinite(vtkPolyData* data, std::map<vtkPolyData*, std::pair<vtkMTimeType, vtkIdType>>& seen);
   int volumeSerial = 0;
   std::vector<double> failedSceneKey; ///< a scene the grid failed on (not retried)
+  std::string failedSceneError;       ///< why it failed (said again each frame)
   // What the AO image was made for: camera, viewport, settings, grid, volumes.
   std::vector<double> viewKey;
   // What the CPU path's G-buffer (`frame` but its AO) was made for: the
@@ -522,6 +536,31 @@ struct vtkContextualAOPass::Internals
     return false;
   }
   std::string said; ///< the error last logged
+  /// Why the method cannot resolve the radius on this grid (Voxel Cones
+  /// under a voxel: no AO), or empty; said in the log once.
+  std::string RadiusNote(const vtkContextualAOPass* self) const
+  {
+    const vtkCAO::SurfaceTechnique* technique = Technique(self);
+    return technique && technique->name == "vct" && this->grid.slices > 0
+      ? cao::VCTUnresolvedRadius(this->radius, this->grid)
+      : std::string();
+  }
+  void SayRadius(vtkContextualAOPass* self)
+  {
+    const std::string note = this->RadiusNote(self);
+    if (!note.empty() && note != this->saidRadius)
+      vtkWarningWithObjectMacro(self, << "Surface AO: " << note);
+    this->saidRadius = note;
+  }
+  std::string saidRadius;
+  /// Fail for the scene itself: not retried, and said again each frame,
+  /// until the scene changes.
+  bool FailScene(vtkContextualAOPass* self, const std::string& what)
+  {
+    this->failedSceneKey = this->frameSceneKey;
+    this->failedSceneError = what;
+    return this->Fail(self, what);
+  }
   void RunAO(vtkContextualAOPass* self, const vtkRenderState* s);
   void Collect(vtkContextualAOPass* self, vtkRenderer* ren);
   bool ResolveBackend(vtkContextualAOPass* self, vtkRenderer* ren);
@@ -727,6 +766,81 @@ std::string vtkContextualAOPass::GetLastFrameStages() const
   return s;
 }
 
+namespace
+{
+/// An enumerated setting: `value` outside [lo, hi] is refused with the
+/// range, and `field` stays; true when it changed.
+bool SetEnumerated(vtkObject* self, const char* name, int& field, int value, int lo, int hi)
+{
+  if (value < lo || value > hi)
+  {
+    vtkErrorWithObjectMacro(self, << name << " must be " << lo << " to " << hi << "; got " << value
+                                  << "; it stays " << field);
+    return false;
+  }
+  if (field == value)
+    return false;
+  field = value;
+  return true;
+}
+}
+
+void vtkContextualAOPass::SetApplyTo(int value)
+{
+  if (SetEnumerated(this, "ApplyTo", this->ApplyTo, value, AMBIENT_TERM, WHOLE_COLOR))
+    this->Modified();
+}
+
+void vtkContextualAOPass::SetGBuffer(int value)
+{
+  if (SetEnumerated(this, "GBuffer", this->GBuffer, value, RAY_CAST, GBUFFER_AUTO))
+    this->Modified();
+}
+
+void vtkContextualAOPass::SetGrid(int value)
+{
+  if (SetEnumerated(this, "Grid", this->Grid, value, WORLD_GRID, FRUSTUM_GRID))
+    this->Modified();
+}
+
+void vtkContextualAOPass::SetQuality(int value)
+{
+  if (SetEnumerated(this, "Quality", this->Quality, value, 1, 3))
+    this->Modified();
+}
+
+void vtkContextualAOPass::SetOccupancy(int value)
+{
+  if (SetEnumerated(this, "Occupancy", this->Occupancy, value, RAYS, VOLUME))
+    this->Modified();
+}
+
+void vtkContextualAOPass::SetBackend(int value)
+{
+  if (SetEnumerated(this, "Backend", this->Backend, value, BACKEND_AUTO, BACKEND_OPENGL))
+    this->Modified();
+}
+
+void vtkContextualAOPass::SetLineShading(int value)
+{
+  if (SetEnumerated(this, "LineShading", this->LineShading, value, LINE_SHADING_AS_DRAWN, LINE_SHADING_MALLO_BANKS))
+    this->Modified();
+}
+
+namespace
+{
+/// `, "key": ["...", ...]` when `items` holds any.
+void WriteList(std::ostream& o, const char* key, const std::vector<std::string>& items)
+{
+  if (items.empty())
+    return;
+  o << ", \"" << key << "\": [";
+  for (std::size_t i = 0; i < items.size(); ++i)
+    o << (i ? ", " : "") << "\"" << cao::JsonEscape(items[i]) << "\"";
+  o << "]";
+}
+}
+
 void vtkContextualAOPass::SetMethod(int method)
 {
   if (method != NONE && !vtkCAO::FindSurfaceTechnique(method))
@@ -845,13 +959,11 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
     o << ", \"volumes\": \"not seen: the technique reads only the G-buffer of the opaque depth, drawn before the volumes\"";
   if (Internals::Technique(this) && Internals::Technique(this)->indirect)
     o << ", \"indirect_light\": " << (this->IndirectLight ? "true" : "false");
-  if (!p.skippedVolumes.empty())
-  {
-    o << ", \"skipped_volumes\": [";
-    for (std::size_t i = 0; i < p.skippedVolumes.size(); ++i)
-      o << (i ? ", " : "") << "\"" << cao::JsonEscape(p.skippedVolumes[i]) << "\"";
-    o << "]";
-  }
+  if (!p.pieces.empty() && !p.RadiusNote(this).empty())
+    o << ", \"radius_note\": \"" << cao::JsonEscape(p.RadiusNote(this)) << "\"";
+  WriteList(o, "lines_among_polygons", p.linesAmongPolygons);
+  WriteList(o, "skipped_meshes", p.skippedMeshes);
+  WriteList(o, "skipped_volumes", p.skippedVolumes);
   this->WriteLinesReport(o);
   o << "}";
   return o.str();
@@ -863,7 +975,8 @@ void vtkContextualAOPass::WriteLinesReport(std::ostream& o) const
   if (p.linesOn)
     o << ", \"lines\": {\"method\": \"" << cao::JsonEscape(p.lineMethodName)
       << "\", \"actors\": " << p.lines.NumberOfActors() << ", \"segments\": "
-      << p.lines.NumberOfSegments() << ", \"radius\": " << p.lines.Radius() << ", \"pixels\": "
+      << p.lines.NumberOfSegments() << ", \"radius\": " << p.lines.Radius()
+      << ", \"tube_radius\": " << p.lines.TubeRadius() << ", \"pixels\": "
       << p.lines.Frame().covered << ", \"combined_pixels\": " << p.lineCombined
       << ", \"voxelizations\": " << p.lines.Voxelizations() << ", \"radius_voxels\": " << p.lines.RadiusVoxels()
       << ", \"gbuffer\": \"" << (p.lines.GBufferOnGPU() ? "OpenGL" : "CPU") << "\""
@@ -874,10 +987,13 @@ void vtkContextualAOPass::WriteLinesReport(std::ostream& o) const
       << p.lines.GPUMilliseconds()[1] << ", \"ao\": " << p.lines.GPUMilliseconds()[2] << "}"
       << (p.lines.KeptGrid() ? ", \"grid_kept\": \"an interactive frame: the grid of an earlier camera\"" : "")
       << ", \"segments_of_all_processes\": " << p.lines.NumberOfGridSegments()
-      << (p.lines.RadiusVoxels() < 2.0
+      << (!cao::LineRadiusWithinTubes(p.lines.Radius(), p.lines.TubeRadius()).empty()
+             ? ", \"radius_note\": \"" +
+               cao::JsonEscape(cao::LineRadiusWithinTubes(p.lines.Radius(), p.lines.TubeRadius())) + "\""
+             : p.lines.RadiusVoxels() < 2.0
              ? ", \"radius_note\": \"the AO radius spans under 2 voxels of the lines' grid: the half balls hold "
                "too few to see the neighbours (raise the Radius or LineSlices)\""
-             : "")
+             : std::string())
       << ", \"occlude_surfaces\": "
       << (Internals::ReadsGrid(this) && this->Grid != FRUSTUM_GRID && p.linesOccludeSurfaces && !p.pieces.empty()
              ? "true"
@@ -1070,6 +1186,37 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
     this->said.clear();
 }
 
+vtkIdType vtkContextualAOPass::Internals::FirstNonFinite(
+  vtkPolyData* data, std::map<vtkPolyData*, std::pair<vtkMTimeType, vtkIdType>>& seen)
+{
+  const auto last = this->finitePoints.find(data);
+  if (last != this->finitePoints.end() && last->second.first == data->GetMTime())
+    return (seen[data] = last->second).second;
+  vtkIdType bad = -1;
+  if (vtkPoints* points = data->GetPoints())
+  {
+    vtkDataArray* a = points->GetData();
+    const vtkIdType n = points->GetNumberOfPoints();
+    if (auto* f = vtkFloatArray::SafeDownCast(a))
+    {
+      const float* v = f->GetPointer(0);
+      for (vtkIdType i = 0; i < 3 * n && bad < 0; ++i)
+        if (!std::isfinite(v[i]))
+          bad = i / 3;
+    }
+    else
+      for (vtkIdType i = 0; i < n && bad < 0; ++i)
+      {
+        double x[3];
+        a->GetTuple(i, x);
+        if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
+          bad = i;
+      }
+  }
+  seen[data] = { data->GetMTime(), bad };
+  return bad;
+}
+
 void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRenderer* ren)
 {
   // The visible opaque polygonal actors, and what the grid depends on.
@@ -1094,6 +1241,8 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
   double position = 0.0; // an actor's place among the renderer's actors
   std::vector<std::pair<vtkActor*, vtkPolyData*>> linePieces;
   std::vector<double> geometry; // the surfaces' pieces and poses
+  std::map<vtkPolyData*, std::pair<vtkMTimeType, vtkIdType>> finite; // this frame's pieces
+  std::vector<std::string> skipped, among;
   for (vtkActor* actor : SceneActors(ren))
   {
     position += 1.0;
@@ -1112,6 +1261,18 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
     this->actorSignature = std::fmod(this->actorSignature * 31.0 + position, 1000000007.0); // which actors, by place
     for (vtkPolyData* data : Pieces(actor->GetMapper()))
     {
+      const vtkIdType bad = this->FirstNonFinite(data, finite);
+      if (bad >= 0)
+      {
+        skipped.push_back("actor " + std::to_string(static_cast<int>(position)) + ": point " +
+          std::to_string(bad) + " has a NaN or infinite coordinate: the mesh is left out of the "
+          "AO (it gets none and occludes nothing)");
+        continue;
+      }
+      if (LineTechniqueOf(self) && data->GetNumberOfLines() > 0)
+        among.push_back("actor " + std::to_string(static_cast<int>(position)) + ": " +
+          std::to_string(data->GetNumberOfLines()) + " line cells among its polygons are drawn as the "
+          "surface's, without line AO (give the lines a dataset of their own: Extract Cells By Type)");
       const std::size_t from = key.size();
       this->pieces.emplace_back(actor, data);
       this->pieceActor.push_back(index);
@@ -1125,6 +1286,15 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
     }
   }
   this->meshGeometry = geometry;
+  this->finitePoints.swap(finite);
+  this->skippedMeshes.swap(skipped);
+  this->linesAmongPolygons.swap(among);
+  std::string said;
+  for (const std::string& why : this->skippedMeshes)
+    said += (said.empty() ? "" : "; ") + why;
+  if (!said.empty() && said != this->saidSkippedMeshes)
+    vtkWarningWithObjectMacro(self, << "Surface AO: " << said);
+  this->saidSkippedMeshes = said;
   this->lines.Collect(linePieces);
   this->linesOn = !linePieces.empty();
   // The lines occlude the surfaces through the world or eye grid: the grid
@@ -1446,7 +1616,7 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
     return true;
   if (this->frameSceneKey == this->failedSceneKey && !this->rebuild)
   {
-    this->error = "the scene could not be voxelized (said once; change it to try again)";
+    this->error = this->failedSceneError + " (said once; change the scene to try again)";
     return false;
   }
   const bool distributed = this->Distributed();
@@ -1475,16 +1645,14 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
   {
     if (!this->bvh.Build(all, allTris, error) || this->bvh.NumberOfTriangles() == 0)
     {
-      this->failedSceneKey = this->frameSceneKey;
-      return this->Fail(self, "Cannot build the scene: " +
+      return this->FailScene(self, "Cannot build the scene: " +
           (error.empty() ? std::string("the actors have no triangle with an area") : error));
     }
     b = this->bvh.Bounds();
   }
   else if (!PointBounds(all, b))
   {
-    this->failedSceneKey = this->frameSceneKey;
-    return this->Fail(self, "Cannot build the scene: the mesh has a NaN or infinite coordinate");
+    return this->FailScene(self, "Cannot build the scene: the mesh has a NaN or infinite coordinate");
   }
   if (distributed) // the radius and the world grid of every process's pieces
     b = this->exchange.Bounds();
@@ -1492,8 +1660,7 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
     (b[3] - b[2]) * (b[3] - b[2]) + (b[5] - b[4]) * (b[5] - b[4]));
   if (!std::isfinite(diagonal) || (!(diagonal > 0.0) && !(self->Radius > 0)))
   {
-    this->failedSceneKey = this->frameSceneKey;
-    return this->Fail(self, "Cannot build the scene: its bounds are empty or not finite");
+    return this->FailScene(self, "Cannot build the scene: its bounds are empty or not finite");
   }
   // The default radius's area: every process's when distributed.
   const auto area = [&]() {
@@ -1584,8 +1751,7 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
   }
   if (!ok)
   {
-    this->failedSceneKey = this->frameSceneKey;
-    return this->Fail(self, "Cannot voxelize the scene: " + error);
+    return this->FailScene(self, "Cannot voxelize the scene: " + error);
   }
   this->tolerance = std::max(0.5 * this->grid.voxel, 1e-9);
   for (std::int64_t e : this->grid.openEdges)
@@ -1701,6 +1867,7 @@ bool vtkContextualAOPass::Internals::RunGPUFrame(vtkContextualAOPass* self, cons
     if ((readsGrid && !this->UploadVolumes(error)) ||
       !technique->gpuFrame(this->gpu, pixels, this->SettingsOf(self, volumes), error))
       return this->Fail(self, error);
+    this->SayRadius(self);
     this->Stage("trace", start);
     this->frame = cao::SurfaceFrame();
     this->frame.width = rect[2];
@@ -1862,6 +2029,7 @@ bool vtkContextualAOPass::Internals::UpdateAO(vtkContextualAOPass* self, vtkRend
     (this->onGPU && technique->gpu ? !technique->gpu(this->gpu, pixels, settings, this->frame, error)
                                    : !technique->cpu(pixels, settings, this->frame, error)))
     return this->Fail(self, error);
+  this->SayRadius(self);
   this->viewKey = key;
   ++self->TraceCount;
   this->Stage("trace", start);

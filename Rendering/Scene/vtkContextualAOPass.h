@@ -174,7 +174,9 @@ public:
 
   ///@{
   /// AMBIENT_TERM (default) or WHOLE_COLOR.
-  vtkSetClampMacro(ApplyTo, int, AMBIENT_TERM, WHOLE_COLOR);
+  /// Outside AMBIENT_TERM to WHOLE_COLOR: refused with an error naming the range (the
+  /// setting stays; it was clamped without a word).
+  virtual void SetApplyTo(int value);
   vtkGetMacro(ApplyTo, int);
   ///@}
 
@@ -189,13 +191,17 @@ public:
   /// combine, nothing read back), or GBUFFER_AUTO (default): DEPTH_BUFFER
   /// where the AO runs on the GPU (Backend), RAY_CAST on the CPU. The
   /// report's "gbuffer" says which one a frame used.
-  vtkSetClampMacro(GBuffer, int, RAY_CAST, GBUFFER_AUTO);
+  /// Outside RAY_CAST to GBUFFER_AUTO: refused with an error naming the range (the
+  /// setting stays; it was clamped without a word).
+  virtual void SetGBuffer(int value);
   vtkGetMacro(GBuffer, int);
   ///@}
 
   ///@{
   /// WORLD_GRID (default), EYE_GRID or FRUSTUM_GRID.
-  vtkSetClampMacro(Grid, int, WORLD_GRID, FRUSTUM_GRID);
+  /// Outside WORLD_GRID to FRUSTUM_GRID: refused with an error naming the range (the
+  /// setting stays; it was clamped without a word).
+  virtual void SetGrid(int value);
   vtkGetMacro(Grid, int);
   ///@}
 
@@ -272,7 +278,9 @@ public:
   /// (cao::VCTSettings); HBAO directions / steps / normal rays 6/9/0
   /// (linear attenuation), 7/12/1, 18/25/2 (cao::HBAOSettings); Volumetric AO 8, 16,
   /// 32 samples per pixel (cao::VolumetricAOSettings).
-  vtkSetClampMacro(Quality, int, 1, 3);
+  /// Outside 1 to 3: refused with an error naming the range (the
+  /// setting stays; it was clamped without a word).
+  virtual void SetQuality(int value);
   vtkGetMacro(Quality, int);
   ///@}
 
@@ -294,7 +302,9 @@ public:
   /// VCT's occupancy (cao::VCTSettings::occupancy): RAYS (default) or
   /// VOLUME (the paper's, 4 to 8 times cheaper, and lighter than the
   /// reference behind thin walls).
-  vtkSetClampMacro(Occupancy, int, RAYS, VOLUME);
+  /// Outside RAYS to VOLUME: refused with an error naming the range (the
+  /// setting stays; it was clamped without a word).
+  virtual void SetOccupancy(int value);
   vtkGetMacro(Occupancy, int);
   ///@}
 
@@ -315,7 +325,9 @@ public:
   /// runs on the CPU); with the ray cast, the G-buffer, blur and filter run
   /// on the CPU. The report's "backend" says what ran, "frame_on_gpu"
   /// whether the pixels stayed there, and "backend_note" why not the GPU.
-  vtkSetClampMacro(Backend, int, BACKEND_AUTO, BACKEND_OPENGL);
+  /// Outside BACKEND_AUTO to BACKEND_OPENGL: refused with an error naming the range (the
+  /// setting stays; it was clamped without a word).
+  virtual void SetBackend(int value);
   vtkGetMacro(Backend, int);
   ///@}
 
@@ -386,7 +398,9 @@ public:
     LINE_SHADING_AS_DRAWN = 0,
     LINE_SHADING_MALLO_BANKS = 1
   };
-  vtkSetClampMacro(LineShading, int, LINE_SHADING_AS_DRAWN, LINE_SHADING_MALLO_BANKS);
+  /// Outside LINE_SHADING_AS_DRAWN to LINE_SHADING_MALLO_BANKS: refused with an error naming the range (the
+  /// setting stays; it was clamped without a word).
+  virtual void SetLineShading(int value);
   vtkGetMacro(LineShading, int);
   ///@}
 

@@ -636,6 +636,10 @@ bool SurfaceScene::Set(const std::vector<std::string>& files,
       std::cerr << "cao: warning: '" << path << "' has " << mesh->GetNumberOfLines()
                 << " line cells among its polygons: they are ignored (give lines in a file of their own "
                    "to give them line AO)\n";
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (!std::isfinite(p[i]))
+        return error = "'" + path + "': point " + std::to_string(i / 3) +
+                 " has a NaN or infinite coordinate", false;
     if (t.empty())
     {
       error = "'" + path + "' has no triangles (polygons or strips)" +
@@ -1135,6 +1139,12 @@ int Run(SurfaceOptions& o, const CLI::App* app)
       settings.grid = &grid;
       settings.slices = grid.slices;
       settings.volumes = &volumes;
+      if (o.method == "vct")
+      {
+        const std::string why = cao::VCTUnresolvedRadius(radius, grid);
+        if (!why.empty())
+          std::cerr << "cao: warning: " << why << " (--radius, --slices)\n";
+      }
     }
     else
     {

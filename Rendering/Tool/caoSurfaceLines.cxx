@@ -283,8 +283,13 @@ int RunSurfaceLines(LineJob& job, const std::vector<std::string>& files,
     if (!error.empty())
       return Fail(2, "--radius: " + error);
   }
-  const double radius = job.radius > 0.0 ? job.radius : defaultRadius;
-  if (job.method == "lineao" && radius > 3.0 * defaultRadius)
+  const double radius = job.radius > 0.0
+    ? job.radius
+    : std::max(defaultRadius, cao::LineDefaultRadiusFloor(scene.tubeRadius));
+  if (job.method == "lineao" && !cao::LineRadiusWithinTubes(radius, scene.tubeRadius).empty())
+    std::cerr << "cao: warning: " << cao::LineRadiusWithinTubes(radius, scene.tubeRadius)
+              << " (--radius, --tube-radius)\n";
+  if (job.method == "lineao" && job.radius > 0.0 && radius > 3.0 * defaultRadius)
     std::cerr << "cao: warning: --radius " << radius << " is " << radius / defaultRadius
               << " times the default (" << defaultRadius
               << "): line AO's occupancy is calibrated near the default and grows lighter than the reference "

@@ -296,6 +296,17 @@ for args, words, what in (
 rc, out, err = run("surface", os.path.join(data, "Bunny.vtp"), "--slices", "64.0",
                    "-o", os.path.join(tmp, "slices.png"))
 check(rc == 0, f"surface --slices 64.0 is 64, as --samples 1e1 is 10: rc={rc} {err.strip()[:200]!r}")
+# Voxel cones at a radius under a voxel of the grid read the surface they
+# start from (a trial saw black speckle, mean AO 0.86 where the reference
+# gives 1.000): no AO, and a warning; at the default radius neither.
+for radius, silent in (("0.00001", False), (None, True)):
+    extra = ["--radius", radius] if radius else []
+    rc, out, err = run("surface", os.path.join(data, "Bunny.vtp"), "--image", "120x90", "--ao-only", "--json",
+                       *extra, "-o", os.path.join(tmp, "vct_radius.png"))
+    mean = json.loads(out)["mean_ao"] if rc == 0 else None
+    said = "is under a voxel of the grid" in err
+    check(rc == 0 and said != silent and (mean < 1.0 if silent else mean == 1.0),
+          f"vct radius {radius}: mean AO {mean}, warned {said}: rc={rc} {err.strip()[:200]!r}")
 rc, out, err = run("carve", neghip, "--pose", "30 30 30", "--pose", "20 20 20", "--rays", "6", "--json")
 check(rc == 0 and len(json.loads(out)["runs"][0]["poses"]) == 2,
       f"--pose twice gives two poses: rc={rc} {err.strip()[:200]!r}")
@@ -736,6 +747,10 @@ wv.SetFileName(nan_mesh)
 wv.Write()
 expect_error(["carve", neghip, "--mesh", nan_mesh], 2, "NaN or infinite coordinate",
              "a NaN vertex is not 'mesh is open'")
+# cao surface names the file and the point (it said only "the mesh has a
+# NaN or infinite coordinate", with several meshes given).
+expect_error(["surface", os.path.join(data, "Bunny.vtp"), nan_mesh, "-o", os.path.join(tmp, "n.png")], 2,
+             "nan.vtp': point 5 has a NaN or infinite coordinate", "surface names the mesh with a NaN point")
 # A clip sphere 10^4 across around a 66^3 volume: maps only where the volume
 # is (held-out: 2 min and 1.66 GB for a 4096^2 map, and a wrong message at 10^3).
 import time  # noqa: E402

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <sstream>
 
 namespace cao
 {
@@ -267,6 +268,17 @@ std::string CheckVoxelizeLines(const LineSegments& lines, double tubeRadius, con
       " voxels of the grid); at most " + std::to_string(static_cast<long long>(MaximumVoxelVisits)) +
       ": use a smaller tube radius or fewer slices";
   return std::string();
+}
+
+std::string LineRadiusWithinTubes(double radius, double tubeRadius)
+{
+  if (!(tubeRadius > 0.0) || !(radius <= tubeRadius))
+    return std::string();
+  std::ostringstream o;
+  o << "the AO radius " << radius << " is within the lines' tubes (radius " << tubeRadius
+    << "): the half balls around a line hold only its own tube, so the lines get no AO; raise the "
+       "radius above " << LineDefaultRadiusFloor(tubeRadius) << " or draw the lines thinner";
+  return o.str();
 }
 
 bool VoxelizeLines(const LineSegments& lines, double tubeRadius, BitGrid& grid, std::string& error)

@@ -125,6 +125,20 @@ bool PlanLineGrid(const LineSegments& lines, const double right[3], const double
 /// Refused when its pieces' boxes would visit more than MaximumVoxelVisits
 /// voxels (a tube radius far above the voxel), with the reason.
 bool VoxelizeLines(const LineSegments& lines, double tubeRadius, BitGrid& grid, std::string& error);
+
+/// The least default AO radius for lines of tube radius `tubeRadius` (a
+/// flat line's: half its drawn width): 3 tube radii from the axis, so that
+/// a neighbour touching the tube lies whole in the half ball. The half
+/// balls are centred on the axis and a line's own tube never occludes it:
+/// with a radius under the tube's they hold nothing else, and the lines get
+/// no AO (a trial's streamlines drawn 60 pixels wide).
+inline double LineDefaultRadiusFloor(double tubeRadius)
+{
+  return 3.0 * tubeRadius;
+}
+/// Why `radius` gives lines of tube radius `tubeRadius` no AO (it is at
+/// most the tube's), or empty.
+std::string LineRadiusWithinTubes(double radius, double tubeRadius);
 /// What VoxelizeLines refuses (bad lines, a grid not planned, a bad tube
 /// radius, more than MaximumVoxelVisits visits), its GPU twin too; empty
 /// when it can run.

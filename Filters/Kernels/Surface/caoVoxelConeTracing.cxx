@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <sstream>
 #include <thread>
 
 namespace cao
@@ -86,6 +87,17 @@ bool ParseVCTOccupancy(const std::string& text, VCTOccupancy& occupancy)
       return true;
     }
   return false;
+}
+
+std::string VCTUnresolvedRadius(double radius, const BitGrid& grid)
+{
+  if (!(grid.voxel > 0.0) || !(radius < grid.voxel))
+    return std::string();
+  std::ostringstream o;
+  o << "the AO radius " << radius << " is under a voxel of the grid (" << grid.voxel
+    << "): the cones would read only the surface they start from, so Voxel Cones gives no AO; "
+       "raise the radius or the slices";
+  return o.str();
 }
 
 bool BuildVCTPlan(const VCTSettings& settings, const BitGrid& grid, VCTPlan& plan,

@@ -10,6 +10,9 @@
 #include "caoVoxelConeTracing.h"
 #include "vtkCAOSceneGPU.h"
 
+#include <limits>
+#include <vector>
+
 namespace vtkCAO
 {
 bool RegisterBuiltIn(const SurfaceTechnique& technique);
@@ -41,6 +44,22 @@ bool PlanOf(const SurfaceTechniqueSettings& s, cao::VCTPlan& plan, std::string& 
       plan.volumes.push_back(volume);
   return true;
 }
+
+/// A radius under the grid's voxel (cao::VCTUnresolvedRadius): no AO.
+bool Unresolved(const SurfaceTechniqueSettings& s)
+{
+  const auto* own = std::any_cast<cao::VCTSettings>(&s.own);
+  return s.grid && !cao::VCTUnresolvedRadius(own ? own->radius : s.radius, *s.grid).empty();
+}
+
+/// No AO (1) on the covered pixels.
+void NoAO(cao::SurfaceFrame& frame)
+{
+  frame.ao.resize(frame.triangle.size(), std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t i = 0; i < frame.triangle.size(); ++i)
+    if (frame.triangle[i] >= 0)
+      frame.ao[i] = 1.0;
+}
 }
 
 void RegisterVoxelConesTechnique()
@@ -52,18 +71,26 @@ void RegisterVoxelConesTechnique()
   t.readsGrid = true;
   t.cpu = [](const cao::PixelCamera&, const SurfaceTechniqueSettings& s, cao::SurfaceFrame& frame,
             std::string& error) {
+    if (Unresolved(s))
+      return NoAO(frame), true;
     cao::VCTPlan plan;
     return PlanOf(s, plan, error) && cao::VCTFrame(*s.grid, plan, frame, s.threads, error);
   };
   t.gpu = [](SceneGPU& gpu, const cao::PixelCamera&, const SurfaceTechniqueSettings& s, cao::SurfaceFrame& frame,
             std::string& error) {
     // On the grid voxelized (or uploaded) last, the volumes uploaded.
+    if (Unresolved(s))
+      return NoAO(frame), true;
     cao::VCTPlan plan;
     cao::gl::VCTEngine* cones = gpu.Cones(error);
     double ms = 0.0;
     return cones && PlanOf(s, plan, error) && cones->TraceFrame(*s.grid, plan, frame, ms, error);
   };
   t.gpuFrame = [](SceneGPU& gpu, const cao::PixelCamera&, const SurfaceTechniqueSettings& s, std::string& error) {
+    if (Unresolved(s))
+      return gpu.FrameAOStep(nullptr, [](cao::gl::FrameEngine& f, std::string& e) {
+        return f.SetAO(std::vector<float>(static_cast<std::size_t>(f.Pixels()), 1.0f), e);
+      }, error);
     cao::VCTPlan plan;
     cao::gl::VCTEngine* cones = gpu.Cones(error);
     return cones && PlanOf(s, plan, error) &&

@@ -118,6 +118,11 @@ int TestVoxelConeTracing(int, char*[])
       "%s", error.c_str());
     CAO_CHECK(grid.voxel == 1.0 / 16 && grid.nx == 32 && grid.origin[0] == -1.0, "grid h %g nx %d origin %g",
       grid.voxel, grid.nx, grid.origin[0]);
+    // A radius under the voxel cannot be resolved by the cones (they read
+    // the surface they start from): said; at one voxel and above, not.
+    CAO_CHECK(!cao::VCTUnresolvedRadius(0.99 / 16, grid).empty() &&
+        cao::VCTUnresolvedRadius(1.0 / 16, grid).empty() && cao::VCTUnresolvedRadius(0.5, grid).empty(),
+      "the unresolved radius is the one under a voxel");
     std::printf("cube with vertices on column centres: %lld voxels set (15^3 = 3375), open edges %lld\n",
       static_cast<long long>(grid.CountAll()), static_cast<long long>(grid.openEdges[0]));
     CAO_CHECK(grid.CountAll() == 3375 && grid.openEdges[0] == 0, "%lld", static_cast<long long>(grid.CountAll()));

@@ -874,6 +874,33 @@ int TestContextualAOPass(int, char*[])
   Check(pass->GetLastFrameReport().find("multiple of 32") != std::string::npos,
     "Slices 100 is refused with the reason");
   pass->SetSlices(256);
+  {
+    // Enumerated settings out of range are refused with an error, and stay
+    // (they were clamped without a word: Grid 5 became the frustum grid).
+    int errors = 0;
+    vtkNew<vtkCallbackCommand> count;
+    count->SetClientData(&errors);
+    count->SetCallback([](vtkObject*, unsigned long, void* data, void*) { ++*static_cast<int*>(data); });
+    const unsigned long tag = pass->AddObserver(vtkCommand::ErrorEvent, count);
+    const int before[7] = { pass->GetGrid(), pass->GetBackend(), pass->GetGBuffer(), pass->GetOccupancy(),
+      pass->GetQuality(), pass->GetApplyTo(), pass->GetLineShading() };
+    pass->SetGrid(5);
+    pass->SetBackend(9);
+    pass->SetGBuffer(7);
+    pass->SetOccupancy(4);
+    pass->SetQuality(99);
+    pass->SetQuality(0);
+    pass->SetApplyTo(-1);
+    pass->SetLineShading(3);
+    const int after[7] = { pass->GetGrid(), pass->GetBackend(), pass->GetGBuffer(), pass->GetOccupancy(),
+      pass->GetQuality(), pass->GetApplyTo(), pass->GetLineShading() };
+    const int refused = errors;
+    pass->SetGrid(before[0]); // (in range: no error)
+    pass->RemoveObserver(tag);
+    Check(refused == 8 && errors == 8 && std::equal(before, before + 7, after),
+      "enumerated settings out of range: " + std::to_string(refused) + " of 8 refused, the settings " +
+        (std::equal(before, before + 7, after) ? "kept" : "changed"));
+  }
   // A NaN, and values out of range (taken silently before: a Strength of
   // 2 as 1, of -1 as 0, a Radius of -1 as the default), are refused with
   // the range, and nothing runs.
@@ -913,6 +940,90 @@ int TestContextualAOPass(int, char*[])
     Check(without == 1 && warnings == 0,
       "no ambient term on any surface: one warning over two frames (" + std::to_string(without) +
         "), none with one (" + std::to_string(warnings) + ")");
+  }
+  {
+    // A mesh with a NaN point is left out of the AO scene, said in the
+    // report and once in the log: the other meshes keep their AO (it
+    // turned the AO off for every mesh, and a later frame said only "the
+    // scene could not be voxelized", also for the methods without a grid).
+    const int method = pass->GetMethod();
+    window->Render();
+    const long long alone = ReportField(pass->GetLastFrameReport(), "triangles");
+    vtkNew<vtkPolyData> broken;
+    broken->DeepCopy(sphere->GetOutput());
+    broken->GetPoints()->SetPoint(3, std::nan(""), 0.0, 0.0);
+    vtkNew<vtkPolyDataMapper> brokenMapper;
+    brokenMapper->SetInputData(broken);
+    vtkNew<vtkActor> brokenActor;
+    brokenActor->SetMapper(brokenMapper);
+    brokenActor->SetPosition(-0.6, 0.0, 0.0);
+    renderer->AddActor(brokenActor);
+    int warnings = 0;
+    vtkNew<vtkCallbackCommand> count;
+    count->SetClientData(&warnings);
+    count->SetCallback([](vtkObject*, unsigned long, void* data, void*) { ++*static_cast<int*>(data); });
+    const unsigned long tag = pass->AddObserver(vtkCommand::WarningEvent, count);
+    for (int m : { static_cast<int>(vtkContextualAOPass::VCT), static_cast<int>(vtkContextualAOPass::HBAO) })
+    {
+      pass->SetMethod(m);
+      warnings = 0;
+      window->Render();
+      window->Render();
+      const std::string r = pass->GetLastFrameReport();
+      Check(r.find("\"skipped_meshes\"") != std::string::npos && r.find("point 3 has a NaN") != std::string::npos &&
+          r.find("\"error\"") == std::string::npos && ReportField(r, "triangles") == alone && alone > 0 &&
+          warnings <= 1,
+        "method " + std::to_string(m) + ": a mesh with a NaN point is left out, said (" +
+          std::to_string(warnings) + " warning(s) over two frames), and the other keeps its AO: " + r);
+    }
+    pass->RemoveObserver(tag);
+    renderer->RemoveActor(brokenActor);
+    window->Render();
+    Check(pass->GetLastFrameReport().find("skipped_meshes") == std::string::npos,
+      "without the NaN mesh nothing is skipped");
+    pass->SetMethod(method);
+  }
+  {
+    // Voxel Cones at a radius under the grid's voxel read the surface they
+    // start from as an occluder (speckle, darker the smaller the radius):
+    // no AO instead, said in the report and once in the log; at the
+    // default radius the sphere's AO is not 1 (the control).
+    const int method = pass->GetMethod();
+    pass->SetMethod(vtkContextualAOPass::VCT);
+    renderer->AddActor(slabActor); // (the sphere over it: AO where they meet)
+    int warnings = 0;
+    vtkNew<vtkCallbackCommand> count;
+    count->SetClientData(&warnings);
+    count->SetCallback([](vtkObject*, unsigned long, void* data, void*) { ++*static_cast<int*>(data); });
+    const unsigned long tag = pass->AddObserver(vtkCommand::WarningEvent, count);
+    const int* size = window->GetSize();
+    auto darkest = [&]() {
+      double least = 2.0;
+      for (double v : PixelAOs(pass, size[0], size[1]))
+        if (v >= 0.0)
+          least = std::min(least, v);
+      return least;
+    };
+    pass->SetRadius(1e-4);
+    window->Render();
+    window->Render();
+    const std::string tiny = pass->GetLastFrameReport();
+    const double tinyLeast = darkest();
+    const int tinyWarnings = warnings;
+    pass->SetRadius(0.0);
+    warnings = 0;
+    window->Render();
+    const std::string normal = pass->GetLastFrameReport();
+    const double normalLeast = darkest();
+    pass->RemoveObserver(tag);
+    Check(tiny.find("\"radius_note\": \"the AO radius") != std::string::npos && tinyLeast == 1.0 &&
+        tinyWarnings == 1 && normal.find("radius_note") == std::string::npos && normalLeast < 0.99 &&
+        warnings == 0,
+      "Voxel Cones under a voxel: no AO (darkest " + std::to_string(tinyLeast) + "), said (" +
+        std::to_string(tinyWarnings) + " warning(s) over two frames); at the default radius darkest " +
+        std::to_string(normalLeast) + ", no note: " + tiny);
+    renderer->RemoveActor(slabActor);
+    pass->SetMethod(method);
   }
   pass->SetStrength(1.0);
   // The volume occludes the surfaces, and carving it lightens them: a slab

@@ -296,6 +296,54 @@ int TestLinesInPass(int, char*[])
   Check(tubeCentre.ao >= 0.0 && tubeAlone.ao > 0.95 && tubeCentre.ao < tubeAlone.ao - 0.15,
     "tubes: the bundle's centre is darker than the isolated tube");
 
+  // 4b: flat lines drawn wider than the default radius (40 pixels here:
+  // tubes of about 0.32 in the world) keep their AO: the default radius
+  // reaches 3 tube radii (it stayed at the lines' extent's default, inside
+  // their own tubes, and every line pixel had AO 1). The isolated line then
+  // sees the bundle 1 away (their tubes apart; the bundle's own tubes merge
+  // into one set of voxels, which a line's base plane moves past: no AO
+  // between them); a radius given under the tubes' is said in the report.
+  lines->GetProperty()->SetRenderLinesAsTubes(false);
+  lines->GetProperty()->SetLineWidth(40.0);
+  pass->SetRadius(0.0);
+  window->Render();
+  report = pass->GetLastFrameReport();
+  const Pixel wideAlone = LinePixel(renderer, pass, 0.5, 1.0, 0.0);
+  std::printf("lines 40 pixels wide: isolated %.3f, radius %g, tube radius %g\n", wideAlone.ao,
+    Field(report, "radius"), Field(report, "tube_radius"));
+  Check(wideAlone.ao >= 0.0 && wideAlone.ao < 0.98 && Field(report, "tube_radius") > 0.25 &&
+      Field(report, "radius") >= 3.0 * Field(report, "tube_radius") - 1e-9 &&
+      report.find("radius_note") == std::string::npos,
+    "flat lines 40 pixels wide keep their AO at the default radius: " + report);
+  pass->SetRadius(0.2);
+  window->Render();
+  report = pass->GetLastFrameReport();
+  Check(report.find("\"radius_note\": \"the AO radius 0.2 is within the lines' tubes") != std::string::npos,
+    "a radius under the lines' drawn half width is said: " + report);
+  pass->SetRadius(0.5);
+  {
+    // Lines in a piece that has polygons too are the surface's (feature
+    // edges): drawn without line AO, and the report says so (it did not).
+    vtkNew<vtkPolyData> mixed;
+    mixed->DeepCopy(Lines({ { 0.0, -0.8 }, { 0.2, -0.8 } }));
+    const vtkIdType corner[3] = { 0, 1, 2 };
+    vtkNew<vtkCellArray> polys;
+    polys->InsertNextCell(3, corner);
+    mixed->SetPolys(polys);
+    vtkNew<vtkPolyDataMapper> mixedMapper;
+    mixedMapper->SetInputData(mixed);
+    vtkNew<vtkActor> mixedActor;
+    mixedActor->SetMapper(mixedMapper);
+    renderer->AddActor(mixedActor);
+    window->Render();
+    const std::string withMixed = pass->GetLastFrameReport();
+    renderer->RemoveActor(mixedActor);
+    window->Render();
+    Check(withMixed.find("\"lines_among_polygons\": [\"actor 2: 2 line cells among its polygons") != std::string::npos &&
+        pass->GetLastFrameReport().find("lines_among_polygons") == std::string::npos,
+      "lines among a piece's polygons are said (and not without that piece): " + withMixed);
+  }
+
   // 5: the lines occlude a surface: a plane under the bundle (z = -0.3),
   // read beside the bundle's projection; control: LineMethod None.
   lines->GetProperty()->SetRenderLinesAsTubes(false);
