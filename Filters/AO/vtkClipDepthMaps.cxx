@@ -258,9 +258,9 @@ bool CheckRawMaps(vtkClipDepthMaps* self, const cao::ClipDepthMaps& raw,
       "The clip mesh covers no depth-map pixel: it is smaller than one pixel of "
         << cam.pixelSize[0] << " x " << cam.pixelSize[1] << " local units ("
         << (self->GetPixelSize() > 0.0
-               ? "PixelSize: set a smaller one, or scale the mesh up"
-               : "half a voxel at MaximumPoseScale, or the dilation radius / 32; "
-                 "a mesh this small clips nothing")
+               ? self->GetPixelSizeName() + ": set a smaller one, or scale the mesh up"
+               : std::string("half a voxel at MaximumPoseScale, or the dilation radius / 32; "
+                             "a mesh this small clips nothing"))
         << ").");
     return false;
   }

@@ -536,12 +536,17 @@ bool SceneLines::Update(const LineTechnique& technique, const cao::PixelCamera& 
   if (!this->shared)
   {
     key.insert(key.end(), this->meshKey.begin(), this->meshKey.end());
-    key.insert(key.end(), { this->radius, static_cast<double>(slices) });
+    // The default radius held at 3 tube radii follows the tube radius, so
+    // the zoom, as it does (in the camera's part: an interactive frame keeps
+    // the grid as the user zooms).
+    const bool followsZoom = !(aoRadius > 0.0) && this->radius <= cao::LineDefaultRadiusFloor(tubeRadius);
+    key.insert(key.end(), { followsZoom ? -1.0 : this->radius, static_cast<double>(slices) });
     // Where the grid's bits are (the GPU's engine: a new one holds none).
     key.insert(key.end(), { gpu ? 1.0 : 0.0, gpu ? static_cast<double>(gpu->Generation()) : 0.0 });
     // The camera's: its orientation, and its zoom through the tube radius.
     cameraPart = key.size();
     key.push_back(tubeRadius);
+    key.push_back(followsZoom ? this->radius : 0.0);
     for (int d = 0; d < 3; ++d)
       key.insert(key.end(), { std::round(right[d] * 1e9) * 1e-9, std::round(up[d] * 1e9) * 1e-9 });
   }

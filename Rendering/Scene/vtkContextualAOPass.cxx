@@ -961,8 +961,6 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
     o << ", \"indirect_light\": " << (this->IndirectLight ? "true" : "false");
   if (!p.pieces.empty() && !p.RadiusNote(this).empty())
     o << ", \"radius_note\": \"" << cao::JsonEscape(p.RadiusNote(this)) << "\"";
-  WriteList(o, "lines_among_polygons", p.linesAmongPolygons);
-  WriteList(o, "skipped_meshes", p.skippedMeshes);
   WriteList(o, "skipped_volumes", p.skippedVolumes);
   this->WriteLinesReport(o);
   o << "}";
@@ -1001,6 +999,9 @@ void vtkContextualAOPass::WriteLinesReport(std::ostream& o) const
       << "}";
   if (!p.linesNote.empty())
     o << ", \"lines_note\": \"" << cao::JsonEscape(p.linesNote) << "\"";
+  // (with Method None too: the meshes occlude the lines)
+  WriteList(o, "lines_among_polygons", p.linesAmongPolygons);
+  WriteList(o, "skipped_meshes", p.skippedMeshes);
   if (!p.error.empty())
     o << ", \"error\": \"" << cao::JsonEscape(p.error) << "\"";
 }
@@ -1266,7 +1267,7 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
       {
         skipped.push_back("actor " + std::to_string(static_cast<int>(position)) + ": point " +
           std::to_string(bad) + " has a NaN or infinite coordinate: the mesh is left out of the "
-          "AO (it gets none and occludes nothing)");
+          "AO scene (it occludes nothing, and gets AO only where a technique reads the drawn depth)");
         continue;
       }
       if (LineTechniqueOf(self) && data->GetNumberOfLines() > 0)

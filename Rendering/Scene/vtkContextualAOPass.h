@@ -363,7 +363,8 @@ public:
   /// actor's drawn half width (plus a pixel) of a segment
   /// (cao::LineFrameFromDepth); their AO scales their whole colour
   /// (1 - Strength (1 - AO)), the Radius as the surfaces' (0: the default
-  /// of the lines' extent). The report's "lines" says what ran.
+  /// of the lines' extent, at least 3 tube radii: cao::LineDefaultRadiusFloor).
+  /// The report's "lines" says what ran.
   virtual void SetLineMethod(int method);
   vtkGetMacro(LineMethod, int);
   ///@}

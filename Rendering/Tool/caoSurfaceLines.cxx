@@ -187,7 +187,7 @@ bool LineScene::MakeTubes(std::string& error)
 
 double LineScene::DefaultRadius() const
 {
-  return cao::DefaultAORadius(this->bounds, this->TubeArea());
+  return std::max(cao::DefaultAORadius(this->bounds, this->TubeArea()), cao::LineDefaultRadiusFloor(this->tubeRadius));
 }
 
 double LineScene::TubeArea() const
@@ -286,7 +286,9 @@ int RunSurfaceLines(LineJob& job, const std::vector<std::string>& files,
   const double radius = job.radius > 0.0
     ? job.radius
     : std::max(defaultRadius, cao::LineDefaultRadiusFloor(scene.tubeRadius));
-  if (job.method == "lineao" && !cao::LineRadiusWithinTubes(radius, scene.tubeRadius).empty())
+  // (line AO runs for lineao, and for the lines beside meshes under the mesh methods)
+  if (job.method != "reference" && job.method != "ssao" && job.method != "none" &&
+    !cao::LineRadiusWithinTubes(radius, scene.tubeRadius).empty())
     std::cerr << "cao: warning: " << cao::LineRadiusWithinTubes(radius, scene.tubeRadius)
               << " (--radius, --tube-radius)\n";
   if (job.method == "lineao" && job.radius > 0.0 && radius > 3.0 * defaultRadius)

@@ -529,7 +529,7 @@ vtkContextualAOVolumeMapper::vtkContextualAOVolumeMapper()
 {
   Internals& in = *this->Internal;
   in.ClipDepthMaps = vtkSmartPointer<vtkClipDepthMaps>::New();
-  in.ClipDepthMaps->SetPixelSizeName("ClipMapPixelSize (0: derived from the voxel spacing)");
+  in.ClipDepthMaps->SetPixelSizeName("ClipMapPixelSize");
   in.DepthMapsErrors->SetClientData(&in.DepthMapsError);
   in.DepthMapsErrors->SetCallback([](vtkObject*, unsigned long, void* out, void* text) {
     std::string m = text ? static_cast<const char*>(text) : "";

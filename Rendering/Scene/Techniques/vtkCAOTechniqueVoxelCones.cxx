@@ -87,13 +87,13 @@ void RegisterVoxelConesTechnique()
     return cones && PlanOf(s, plan, error) && cones->TraceFrame(*s.grid, plan, frame, ms, error);
   };
   t.gpuFrame = [](SceneGPU& gpu, const cao::PixelCamera&, const SurfaceTechniqueSettings& s, std::string& error) {
-    if (Unresolved(s))
-      return gpu.FrameAOStep(nullptr, [](cao::gl::FrameEngine& f, std::string& e) {
-        return f.SetAO(std::vector<float>(static_cast<std::size_t>(f.Pixels()), 1.0f), e);
-      }, error);
     cao::VCTPlan plan;
     cao::gl::VCTEngine* cones = gpu.Cones(error);
-    return cones && PlanOf(s, plan, error) &&
+    if (!cones || !PlanOf(s, plan, error))
+      return false;
+    if (Unresolved(s))
+      plan.spheres.clear(); // (no sphere: the shader gives the covered pixels no AO, 1)
+    return
       gpu.FrameAOStep(nullptr, [&](cao::gl::FrameEngine& f, std::string& e) {
         double ms = 0.0;
         return cones->TracePixels(

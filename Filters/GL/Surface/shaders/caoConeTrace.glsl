@@ -247,6 +247,11 @@ void main()
     ao[index] = uintBitsToFloat(0x7fc00000u);
     return;
   }
+  if (vct.counts.y == 0) // no sphere: a radius under the voxel (cao::VCTUnresolvedRadius), no AO
+  {
+    ao[index] = 1.0;
+    return;
+  }
   vec3 p = points[index].xyz, n = normals[index].xyz;
   float invH = vct.origin.w;
   vec3 tx, ty;
