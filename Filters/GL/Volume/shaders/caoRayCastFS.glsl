@@ -189,6 +189,39 @@ float VoxelAO(vec3 p, bool calibrated, float inMatter, out float depth)
   return range > 1e-6 ? clamp(1.0 - (open - ao) / range, 0.0, 1.0) : 1.0;
 }
 
+/// CastRay's depth chain (see InMatter) after a sample the colour map
+/// leaves empty; after a cut the chain restarts from 0 (a cut face is open).
+#define CAO_DEPTH_AFTER_EMPTY -1.0
+
+/// The share of the voxels around index-space point p that hold matter, of
+/// those the clip leaves (0 where it leaves none): VoxelAO's depth in a
+/// face's layer.
+float MatterShare(vec3 p)
+{
+  vec4 sums = texture(aoSamplesTexture, (clamp(p, vec3(0.0), rp.boxMax.xyz) + 0.5) * rp.invDims.xyz);
+  return sums.g > 0.0 ? sums.a / sums.g : 0.0;
+}
+
+/// The depth into the matter (voxels) of a sample whose 8 voxels all hold
+/// matter, from the sample a step before it (at `pBefore`, depth `before`,
+/// optical depth per step `muBefore`; this one's: `mu`): the depth before
+/// plus a step, the part past the face's layer converted to this sample's
+/// matter by the ratio of optical depths (so that clear matter in front of
+/// dense matter counts for little), at least the face layer's 1. After an
+/// empty sample the depth before is where that sample lay in the face's
+/// layer: the colour map leaves a sample empty wherever the interpolated
+/// scalar is under its opacity ramp, which on a sharp face is most of the
+/// layer, and counting from 0 there put the next sample, a step deeper in
+/// the matter, back at the layer's end (a plate's face head on, perspective,
+/// no jitter: rings where the lattice first lands past the layer, 0.84 of
+/// the light where an open face has 1).
+float InMatter(float before, float muBefore, float mu, vec3 pBefore, float stepVoxels)
+{
+  float start = before == CAO_DEPTH_AFTER_EMPTY ? MatterShare(pBefore) : min(before, 1.0);
+  float past = max(before - 1.0, 0.0) * muBefore / mu;
+  return max(1.0, start + past + stepVoxels);
+}
+
 /// The program is specialised per variant (RayCaster): without
 /// CAO_WITH_AO or CAO_WITH_AO_CALIBRATION the code that only those frames
 /// run is not compiled (a constant false removes it), so a frame with AO
@@ -256,12 +289,11 @@ void DepthBefore(float k0, int flags, float stepVoxels, out float depth, out flo
         rp.sampling.z, 0.5));
     if (c.a <= 0.0 || (clipped && Removed(p, flags)))
     {
-      depth = 0.0;
+      depth = c.a <= 0.0 ? CAO_DEPTH_AFTER_EMPTY : 0.0;
       continue;
     }
     float m = -log(max(1.0 - c.a, 1e-6));
-    float inMatter = max(1.0, min(depth, 1.0) + max(depth - 1.0, 0.0) * mu / m + stepVoxels);
-    VoxelAO(p, true, inMatter, depth);
+    VoxelAO(p, true, InMatter(depth, mu, m, p - step * g_dir, stepVoxels), depth);
     mu = m;
   }
 }
@@ -281,12 +313,10 @@ vec4 CastRay(float tFrom, float tTo, bool inclusive)
     rp.normalToWorld[2].xyz);
   vec3 texel = rp.invDims.xyz;
   vec4 sum = vec4(0.0);
-  // CAO_RENDER_AO_CALIBRATED (see VoxelAO): the previous sample's depth
-  // into the matter (voxels; 0 after empty space or a cut) and its optical
-  // depth per step. Where a sample's voxels all hold matter its depth is
-  // the previous one's plus a step, the part past the face's layer first
-  // converted to this sample's matter by the ratio of optical depths (so
-  // that clear matter in front of dense matter counts for little).
+  // CAO_RENDER_AO_CALIBRATED (see VoxelAO, InMatter): the previous
+  // sample's depth into the matter (voxels; 0 after a cut,
+  // CAO_DEPTH_AFTER_EMPTY after an empty sample) and its optical depth per
+  // step.
   float depthBefore = 0.0, muBefore = 1.0;
   float stepVoxels = step * length(dir);
   if (CAO_CALIBRATION_COMPILED && (flags & (CAO_RENDER_AO | CAO_RENDER_AO_CALIBRATED)) ==
@@ -325,7 +355,7 @@ vec4 CastRay(float tFrom, float tTo, bool inclusive)
     vec4 c = isnan(s) ? vec4(0.0) : texture(tableTexture, vec2(s * rp.sampling.y + rp.sampling.z, 0.5));
     if (c.a <= 0.0)
     {
-      depthBefore = 0.0;
+      depthBefore = CAO_DEPTH_AFTER_EMPTY;
       continue;
     }
     if ((flags & CAO_RENDER_CLIP) != 0)
@@ -371,14 +401,13 @@ vec4 CastRay(float tFrom, float tTo, bool inclusive)
       bool clipped = (flags & CAO_RENDER_CLIP) != 0;
       bool calibrated = CAO_CALIBRATION_COMPILED && (flags & CAO_RENDER_AO_CALIBRATED) != 0;
       float mu = -log(max(1.0 - c.a, 1e-6));
-      float past = max(depthBefore - 1.0, 0.0) * muBefore / mu;
-      float inMatter = max(1.0, min(depthBefore, 1.0) + past + stepVoxels);
-      float depth;
+      float depth = 0.0;
       // (the first sample's AO at the box's face: aoAtFace, above)
-      bool atFace = aoAtFace && i == 0 && depthBefore == 0.0;
+      bool atFace = aoAtFace && i == 0 && depthBefore <= 0.0;
       vec3 pAO = atFace ? face : p, tcAO = atFace ? tcFace : tc;
-      float ao = clipped || calibrated ? VoxelAO(pAO, calibrated, inMatter, depth)
-                                       : texture(aoTexture, tcAO).r;
+      float ao = clipped || calibrated ?
+        VoxelAO(pAO, calibrated, InMatter(depthBefore, muBefore, mu, p - step * dir, stepVoxels), depth)
+        : texture(aoTexture, tcAO).r;
       ambient = 1.0 - rp.sampling.w * (1.0 - ao);
       depthBefore = depth;
       muBefore = mu;
