@@ -226,11 +226,19 @@ void vtkContextualAOVolumeRepresentation::RemoveAllClipMeshSources()
 
 void vtkContextualAOVolumeRepresentation::SetClipMeshMode(int index, int mode)
 {
-  if (index < 0 || index >= vtkContextualAOVolumeMapper::MAX_CLIP_SHAPES || (mode != 0 && mode != 1))
+  // (the panel's "Clip Mesh Modes": one mode per clip mesh, in order)
+  if (index < 0 || index >= vtkContextualAOVolumeMapper::MAX_CLIP_SHAPES)
   {
-    vtkErrorMacro("SetClipMeshMode: mesh " << index << " must be 0 to "
-                                           << vtkContextualAOVolumeMapper::MAX_CLIP_SHAPES - 1 << " and mode " << mode
-                                           << " 0 (subtraction) or 1 (probing).");
+    vtkErrorMacro("Clip Mesh Modes: a volume takes at most "
+      << vtkContextualAOVolumeMapper::MAX_CLIP_SHAPES << " clip meshes; mode " << index + 1
+      << " is past them and is ignored.");
+    return;
+  }
+  if (mode != 0 && mode != 1)
+  {
+    vtkErrorMacro("Clip Mesh Modes: the mode of clip mesh " << index + 1
+      << " must be 0 (subtraction) or 1 (probing); got " << mode
+      << ". That mesh carves with the Clip Mode instead.");
     return;
   }
   if (this->MeshModes.size() <= static_cast<std::size_t>(index))

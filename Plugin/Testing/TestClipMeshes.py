@@ -159,6 +159,19 @@ check(0 < both < min(first, second) - 100,
 display.ClipMeshModes = [1, 0]  # the second now subtracts from the first
 less = volume_pixels(frame("probe-less"))
 check(0 < less < first - 100, "a probe less a subtracting mesh: %d pixels (%d probe alone)" % (less, first))
+# A mode other than 0 or 1 is an error that names the panel's property and
+# the mesh (it said "SetClipMeshMode: mesh 0 must be 0 to 31 and mode 2 0
+# (subtraction) or 1 (probing)."), and that mesh carves with the Clip Mode.
+errors = vtkStringOutputWindow()
+previous = vtkOutputWindow.GetInstance()
+vtkOutputWindow.SetInstance(errors)
+display.ClipMeshModes = [2, 0]
+frame("mode-2")
+vtkOutputWindow.SetInstance(previous)
+said = " ".join(errors.GetOutput().split())
+check("Clip Mesh Modes: the mode of clip mesh 1 must be 0 (subtraction) or 1 (probing); got 2" in said,
+      "a mode of 2: %s" % said[:300])
+display.ClipMeshModes = [1, 0]
 
 # The built-in shape is the one inscribed in the box widget's box: the
 # reference box posed by Clip Position, Rotation and Scale as vtkPVBox

@@ -195,6 +195,36 @@ std::vector<double> ClipParamsKey(const cao::layout::ClipParams& clip)
   return key;
 }
 
+/// The number of words UpdateClip appends to ClipParamsKey: the mode, the
+/// anti-aliasing samples, the AO update mode, and the maps' and the
+/// precompute's generations, in that order.
+constexpr std::size_t PoseKeyTail = 5;
+
+/// Why the AO follows the clip at this frame, for the report: what differs
+/// between the pose key of the last update (`last`; empty: none since the
+/// clip was set) and this one.
+std::string ClipUpdateReason(const std::vector<double>& last, const std::vector<double>& now)
+{
+  if (last.size() != now.size() || now.size() < PoseKeyTail)
+    return "clip shape set";
+  const std::size_t n = now.size() - PoseKeyTail;
+  std::string why;
+  const auto add = [&](const char* what) { why += (why.empty() ? "" : "; ") + std::string(what); };
+  if (!std::equal(now.begin(), now.begin() + static_cast<std::ptrdiff_t>(n), last.begin()))
+    add("clip pose changed");
+  if (now[n] != last[n])
+    add("clip mode changed");
+  if (now[n + 1] != last[n + 1])
+    add("clip anti-aliasing samples changed");
+  if (now[n + 2] != last[n + 2])
+    add("AO update mode changed");
+  if (now[n + 3] != last[n + 3])
+    add("clip depth maps made again (a clip mesh changed, or with several shapes a pose)");
+  if (now[n + 4] != last[n + 4])
+    add("the precomputed AO was made again (opacity map, LAO settings or volume): the clip applied to it");
+  return why.empty() ? "clip applied again (graphics resources made again)" : why;
+}
+
 /// What the volume on the GPU was made from: a different one re-uploads it
 /// (and re-runs the LAO precompute when the AO is on).
 struct VolumeKey
@@ -325,6 +355,14 @@ struct vtkContextualAOVolumeMapper::Internals
   const void* CellSource = nullptr;
   vtkMTimeType CellSourceTime = 0;
   vtkImageData* CellsAsVoxels(vtkImageData* input);
+  // Scalars of several components: the one the colour map draws (its
+  // vector mode: a component, or the magnitude), as ParaView's Volume
+  // draws them; remade only when the array or the choice changes.
+  vtkSmartPointer<vtkDataArray> Component;
+  const void* ComponentSource = nullptr;
+  vtkMTimeType ComponentSourceTime = 0;
+  int ComponentChoice = -2;
+  vtkDataArray* OneComponent(vtkDataArray* scalars, vtkVolumeProperty* property, std::string& error);
   // For an edit of the opacity alone: the opacity the precomputed AO was
   // made from, and that AO as the engine stores it (read back at the
   // first edit), and what an edit and a GPU precompute cost per voxel here.
@@ -343,7 +381,8 @@ struct vtkContextualAOVolumeMapper::Internals
   bool CPUInputs = false;
   int CPUBox[6] = { 0, -1, 0, -1, 0, -1 };
   bool UpdateClipOnCPU(vtkContextualAOVolumeMapper* self, Frame& f,
-    const cao::layout::ClipParams& clip, const vtkCAO::ClipMaps& maps, bool& done);
+    const cao::layout::ClipParams& clip, const vtkCAO::ClipMaps& maps, const std::string& reason,
+    bool& done);
   /// Kept between edits so that their pages stay mapped: the opacity before
   /// the last (written again by the next upload) and the edit's scratch.
   std::vector<float> SpareOpacity;
@@ -383,6 +422,10 @@ struct vtkContextualAOVolumeMapper::Internals
   ::MeshKey Mesh;
   bool HaveMesh = false;
   std::vector<double> MapsUploadKey, PoseKey, TableKey; // numbers only
+  /// The pose key of the last AO update for the clip, kept while a clip
+  /// stays (PoseKey is cleared whenever the AO must follow again): what the
+  /// report's reason compares with (ClipUpdateReason).
+  std::vector<double> UpdatedPoseKey;
   /// The pose whose clip parameters the engine holds (PoseKey: the pose its
   /// AO was last updated for; an AO-off or deferred frame moves only these).
   std::vector<double> ParamsKey;
@@ -809,6 +852,77 @@ bool vtkContextualAOVolumeMapper::CanDraw(vtkImageData* input, std::string& why)
 }
 
 //------------------------------------------------------------------------------
+vtkDataArray* vtkContextualAOVolumeMapper::Internals::OneComponent(
+  vtkDataArray* scalars, vtkVolumeProperty* property, std::string& error)
+{
+  const int n = scalars->GetNumberOfComponents();
+  if (!property->GetIndependentComponents())
+  {
+    // (vtkVolumeProperty: dependent components colour by the first and
+    // take the opacity from the last)
+    error = n == 2
+      ? "The scalars have 2 dependent components (a colour and an opacity: ParaView's \"Use "
+        "Separate Opacity Array\" makes them). The Contextual AO Volume takes its opacity from "
+        "the colour array's opacity map, which its AO is computed from: turn \"Use Separate "
+        "Opacity Array\" off, or colour by the opacity array."
+      : "The scalars have " + std::to_string(n) +
+        " dependent components (colours drawn as they are: \"Map Scalars\" off, or \"Multi "
+        "Components Mapping\" on). The Contextual AO Volume draws one component through the "
+        "colour and opacity maps: turn \"Map Scalars\" on and \"Multi Components Mapping\" off.";
+    return nullptr;
+  }
+  vtkColorTransferFunction* colors = property->GetRGBTransferFunction(0);
+  const int mode = colors ? colors->GetVectorMode() : vtkScalarsToColors::COMPONENT;
+  const int component = colors ? colors->GetVectorComponent() : 0;
+  int choice = -1; // the magnitude
+  if (mode == vtkScalarsToColors::COMPONENT)
+  {
+    if (component < 0 || component >= n)
+    {
+      error = "The colour map draws component " + std::to_string(component) + " of scalars with " +
+        std::to_string(n) + " components (0 to " + std::to_string(n - 1) + ").";
+      return nullptr;
+    }
+    choice = component;
+  }
+  else if (mode != vtkScalarsToColors::MAGNITUDE)
+  {
+    error = "The colour map draws the scalars' " + std::to_string(n) +
+      " components as colours; the Contextual AO Volume draws one component or the magnitude.";
+    return nullptr;
+  }
+  if (this->Component && this->ComponentSource == scalars &&
+    this->ComponentSourceTime == scalars->GetMTime() && this->ComponentChoice == choice)
+    return this->Component;
+  vtkSmartPointer<vtkDataArray> one;
+  one.TakeReference(choice >= 0 ? scalars->NewInstance() : vtkDataArray::CreateDataArray(VTK_DOUBLE));
+  one->SetNumberOfComponents(1);
+  one->SetNumberOfTuples(scalars->GetNumberOfTuples());
+  one->SetName(scalars->GetName());
+  if (choice >= 0)
+    one->CopyComponent(0, scalars, choice);
+  else
+    vtkSMPTools::For(0, scalars->GetNumberOfTuples(), [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType t = begin; t < end; ++t)
+      {
+        double sum = 0.0;
+        for (int c = 0; c < n; ++c)
+        {
+          const double v = scalars->GetComponent(t, c);
+          sum += v * v;
+        }
+        one->SetComponent(t, 0, std::sqrt(sum));
+      }
+    });
+  // (a new array object each time: the volume's key sees another array)
+  this->Component = one;
+  this->ComponentSource = scalars;
+  this->ComponentSourceTime = scalars->GetMTime();
+  this->ComponentChoice = choice;
+  return this->Component;
+}
+
+//------------------------------------------------------------------------------
 vtkImageData* vtkContextualAOVolumeMapper::Internals::CellsAsVoxels(vtkImageData* input)
 {
   // vtkCAO::CellsAsVoxels, remade only when the input changes, so that the
@@ -870,8 +984,14 @@ bool vtkContextualAOVolumeMapper::Internals::GatherInput(
   if (f.voxels > cao::MaxVoxels)
     return f.Fail("The input has more voxels than the GPU kernels index (2^31 - 1).");
   if (f.scalars->GetNumberOfComponents() != 1)
-    return f.Fail("The scalars must have 1 component (they have " +
-      std::to_string(f.scalars->GetNumberOfComponents()) + ").");
+  {
+    // (the volume's property, as below: the colour map's vector mode picks
+    // the component)
+    std::string error;
+    f.scalars = this->OneComponent(f.scalars, f.volume->GetProperty(), error);
+    if (!f.scalars)
+      return f.Fail(error);
+  }
   f.scalars->GetRange(f.range, 0);
   if (!std::isfinite(f.range[0]) || !std::isfinite(f.range[1]))
     return f.Fail("The scalars contain infinite values (NaN ones draw as empty space; an "
@@ -1634,6 +1754,7 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateClip(
   {
     this->PoseKey.clear(); // a clip shape set again is a new pose
     this->ParamsKey.clear();
+    this->UpdatedPoseKey.clear();
     this->MapsError.clear(); // (no maps asked for)
     return true;
   }
@@ -1685,6 +1806,7 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateClip(
   poseKey.insert(poseKey.end(), { static_cast<double>(mode),
     static_cast<double>(self->AntiAliasingSamples), static_cast<double>(self->AOUpdate),
     static_cast<double>(this->MapsGeneration), static_cast<double>(this->PrecomputeGeneration) });
+  static_assert(PoseKeyTail == 5, "the words appended above");
   // Only the ray cast's clip test needs the pose: with the AO off (no
   // classification, no AO: its AO stays at PoseKey's pose for the AO turned
   // on again), or at the pose the AO was last updated for.
@@ -1717,14 +1839,15 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateClip(
     f.report.reasons.push_back(why.str());
     return true;
   }
+  const std::string reason = ClipUpdateReason(this->UpdatedPoseKey, poseKey);
   if (self->AOUpdate != FULL_RECOMPUTE)
   {
     bool done = false;
-    if (!this->UpdateClipOnCPU(self, f, clip, clipMaps, done))
+    if (!this->UpdateClipOnCPU(self, f, clip, clipMaps, reason, done))
       return false;
     if (done)
     {
-      this->PoseKey = this->ParamsKey = poseKey;
+      this->PoseKey = this->ParamsKey = this->UpdatedPoseKey = poseKey;
       ++self->ClassifyCount;
       return true;
     }
@@ -1743,19 +1866,20 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateClip(
   f.report.stages.push_back({ "classify", t.classify, f.glTimer });
   f.report.stages.push_back({ "copy", t.copy, f.glTimer });
   f.report.stages.push_back({ full ? "full_recompute" : "recompute", t.recompute, f.glTimer });
-  f.report.reasons.emplace_back(this->PoseKey.empty() ? "clip shape set" : "clip pose changed");
+  f.report.reasons.push_back(reason);
   f.report.recomputed += full ? stats.affected + stats.unaffected : stats.affected;
   f.report.clipped = stats.clipped;
   f.report.affected = stats.affected;
   f.report.unaffected = stats.unaffected;
   ++self->ClassifyCount;
-  this->PoseKey = this->ParamsKey = poseKey;
+  this->PoseKey = this->ParamsKey = this->UpdatedPoseKey = poseKey;
   return true;
 }
 
 //------------------------------------------------------------------------------
 bool vtkContextualAOVolumeMapper::Internals::UpdateClipOnCPU(vtkContextualAOVolumeMapper* self,
-  Frame& f, const cao::layout::ClipParams& clip, const vtkCAO::ClipMaps& maps, bool& done)
+  Frame& f, const cao::layout::ClipParams& clip, const vtkCAO::ClipMaps& maps,
+  const std::string& reason, bool& done)
 {
   // On a software rasteriser the GL update's compute shaders run 20-50
   // times slower than the CPU's contextual update of the same pose
@@ -1867,7 +1991,7 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateClipOnCPU(vtkContextualAOVolu
   f.report.stages.push_back({ "recompute", stats.recomputeMs, "host" });
   f.report.stages.push_back({ "upload", uploadMs, "host" });
   this->ClipUpdateMs = stats.classifyMs + stats.narrowMs + stats.copyMs + stats.recomputeMs + uploadMs;
-  f.report.reasons.emplace_back(this->PoseKey.empty() ? "clip shape set" : "clip pose changed");
+  f.report.reasons.push_back(reason);
   f.report.reasons.emplace_back("AO update on the CPU (" + std::to_string(threads) +
     " threads; the render window's OpenGL is a software rasteriser)");
   f.report.recomputed += stats.recomputedVoxels;

@@ -16,6 +16,7 @@
 #include "vtkCallbackCommand.h"
 #include "vtkFloatArray.h"
 #include "vtkUnsignedCharArray.h"
+#include "vtkDoubleArray.h"
 #include "vtkCamera.h"
 #include "vtkCommand.h"
 #include "vtkColorTransferFunction.h"
@@ -519,6 +520,13 @@ void Report(const Options& o)
   st = frame("clip pose moved");
   CAO_EXPECT(st == (std::set<std::string>{ "classify", "copy", "recompute", "ao_samples", "raycast" }), "%s",
     Join(st).c_str());
+  // The report's reason says what changed (a new user saw "clip shape set"
+  // at every opacity edit, and "clip pose changed" for the AO update mode).
+  const auto reasonSays = [m](const char* words) {
+    return m->GetLastFrameReport().find(words) != std::string::npos;
+  };
+  CAO_EXPECT(reasonSays("\"clip pose changed\"") && !reasonSays("clip shape set"), "%s",
+    m->GetLastFrameReport().c_str());
   CAO_EXPECT(m->GetLastFrameRecomputedVoxels() > 0 &&
       m->GetLastFrameRecomputedVoxels() < 66 * 66 * 66 / 2,
     "%lld", static_cast<long long>(m->GetLastFrameRecomputedVoxels()));
@@ -595,6 +603,17 @@ void Report(const Options& o)
   st = frame("opacity transfer function edited a little");
   CAO_EXPECT(Has(st, "opacity_edit") && !Has(st, "precompute") && Has(st, "classify"), "%s",
     Join(st).c_str());
+  CAO_EXPECT(reasonSays("the precomputed AO was made again") && !reasonSays("clip shape set") &&
+      !reasonSays("clip pose changed"),
+    "an opacity edit under a clip: %s", m->GetLastFrameReport().c_str());
+  // The AO update mode, full recompute and back: the mode is the reason.
+  m->SetAOUpdate(vtkContextualAOVolumeMapper::FULL_RECOMPUTE);
+  st = frame("AO update: full recompute");
+  m->SetAOUpdate(vtkContextualAOVolumeMapper::CONTEXTUAL);
+  st = frame("AO update: contextual again");
+  CAO_EXPECT(Has(st, "classify") && reasonSays("AO update mode changed") &&
+      !reasonSays("clip pose changed") && !reasonSays("clip shape set"),
+    "the AO update mode changed: %s", m->GetLastFrameReport().c_str());
   // The scalars: the full LAO too.
   s.image->GetPointData()->GetScalars()->Modified();
   st = frame("scalars modified");
@@ -838,8 +857,70 @@ void BadInput(const Options& o)
     s.property->SetScalarOpacity(kept);
     m->RemoveObserver(tag);
   }
+  // Scalars of several components draw the one the colour map picks (its
+  // vector mode), as ParaView's Volume does when a vector is coloured by a
+  // component or its magnitude (they were refused: "The scalars must have
+  // 1 component"): neghip as the second of 3 components draws neghip's
+  // frame exactly; as the magnitude of (v, 0, 0), neghip's as doubles; control:
+  // the first component (255 - v) draws another.
+  {
+    vtkDataArray* bytes = s.image->GetPointData()->GetScalars();
+    auto vector = [&](bool magnitude) {
+      auto image = vtkSmartPointer<vtkImageData>::New();
+      image->CopyStructure(s.image);
+      vtkNew<vtkUnsignedCharArray> a;
+      a->SetName("v");
+      a->SetNumberOfComponents(3);
+      a->SetNumberOfTuples(bytes->GetNumberOfTuples());
+      for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+      {
+        const double v = bytes->GetComponent(i, 0);
+        a->SetComponent(i, 0, magnitude ? v : 255.0 - v);
+        a->SetComponent(i, 1, magnitude ? 0.0 : v);
+        a->SetComponent(i, 2, magnitude ? 0.0 : 17.0);
+      }
+      image->GetPointData()->SetScalars(a);
+      return image;
+    };
+    m->SetInputData(s.image);
+    const caotest::Image plain = s.Frame();
+    m->SetInputData(vector(false));
+    s.color->SetVectorModeToComponent();
+    s.color->SetVectorComponent(1);
+    errors.clear();
+    const caotest::Image second = s.Frame();
+    s.color->SetVectorComponent(0);
+    const caotest::Image first = s.Frame();
+    // (the magnitude is a double array: against neghip as doubles)
+    auto asDouble = vtkSmartPointer<vtkImageData>::New();
+    asDouble->CopyStructure(s.image);
+    vtkNew<vtkDoubleArray> d;
+    d->DeepCopy(bytes);
+    asDouble->GetPointData()->SetScalars(d);
+    m->SetInputData(asDouble);
+    const caotest::Image plainDouble = s.Frame();
+    m->SetInputData(vector(true));
+    s.color->SetVectorModeToMagnitude();
+    const caotest::Image magnitude = s.Frame();
+    std::printf("3-component scalars: component 1 (neghip) %s neghip's frame, the magnitude of "
+                "(neghip, 0, 0) %s it (as doubles), component 0 (255 - neghip) %s it; %zu error(s)\n",
+      second == plain ? "equals" : "DIFFERS from", magnitude == plainDouble ? "equals" : "DIFFERS from",
+      first == plain ? "EQUALS" : "differs from", errors.size());
+    CAO_EXPECT(errors.empty() && second == plain && magnitude == plainDouble && !(first == plain),
+      "a component of a vector: %zu error(s) (%s)", errors.size(),
+      errors.empty() ? "" : errors.back().c_str());
+    m->SetInputData(vector(false));
+    s.color->SetVectorModeToComponent();
+    s.color->SetVectorComponent(3);
+    expect("component 3 of 3", "component 3 of scalars with 3 components");
+    s.color->SetVectorComponent(0);
+  }
+  // Two dependent components, as ParaView's "Use Separate Opacity Array"
+  // makes them (colour, then opacity): refused, naming that setting.
   m->SetInputData(Small(8, 8, 8, 2, false));
-  expect("two-component scalars", "1 component");
+  s.property->IndependentComponentsOff();
+  expect("two dependent components", "\"Use Separate Opacity Array\"");
+  s.property->IndependentComponentsOn();
   {
     vtkSmartPointer<vtkImageData> infinite = Small(8, 8, 8, 1, true);
     infinite->GetPointData()->GetScalars()->SetComponent(5, 0, std::numeric_limits<double>::infinity());
