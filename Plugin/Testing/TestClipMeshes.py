@@ -344,9 +344,9 @@ check("is left out" in text and "cannot clip" in text and changed(alone, withOpe
 with_open_report = mapper.GetLastFrameReport()
 # The frame report says what a frame could not do, not the last good
 # frame's work: a shape left out (the report's "error"), the only shape
-# refused (no categories: nothing clipped), a
-# setting refused (the frame not drawn: its number, the error, no
-# categories), then a drawn frame again, with the next number (it had the
+# refused (no categories: nothing clipped), an AO
+# setting refused (the frame drawn without AO: its number, the error, no
+# categories), then a frame with the AO again, with the next number (it had the
 # refused frame's). Negative control: before, a
 # refused setting left the last good frame's report (categories, no error).
 import json  # noqa: E402
@@ -364,11 +364,13 @@ refused = json.loads(mapper.GetLastFrameReport())
 display.AOStrength = 1.0
 frame("strength-back")
 back = json.loads(mapper.GetLastFrameReport())
-check("AOStrength" in refused.get("error", "") and "categories" not in refused and
-      mapper.GetFrameCount() == drawn + 1 and
+check("AOStrength must be in [0, 1]; got 5" in refused.get("error", "") and
+      "drawn without AO" in refused.get("error", "") and "categories" not in refused and
+      mapper.GetFrameCount() == drawn + 2 and
       "AOStrength" not in back.get("error", "") and back.get("frame") == refused.get("frame", -9) + 1,
-      "a refused setting's frame reports its error and no categories (%s); the next frame is drawn, "
-      "without it (%s; %d frames drawn before)" % (refused, back, drawn))
+      "an AO setting out of range: its frame is drawn without AO and reports the error, no "
+      "categories (%s); the next frame, the AO back, without it (%s; %d frames drawn before)"
+      % (refused, back, drawn))
 # The representation's own refusals reach the frame report too: a Clip
 # Scale with a zero axis, a NaN Clip Position (the volume drawn unclipped,
 # the error in the report while it holds; before, only in the log).

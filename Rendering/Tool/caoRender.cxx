@@ -448,7 +448,7 @@ int Render(RenderOptions& o, const CLI::App* app)
   // resolve): bad input, before the first line of output.
   {
     std::string why;
-    if (!mapper->CanDraw(drawn, why))
+    if (!mapper->CanDraw(drawn, why) || !mapper->CanComputeAO(drawn, why))
       return Fail(2, why);
   }
   const std::string aoSummary = AOSummary(o, parsed, fib, volume->GetSpacing());

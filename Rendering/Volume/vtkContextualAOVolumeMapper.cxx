@@ -459,6 +459,12 @@ struct vtkContextualAOVolumeMapper::Internals
   // The frame's steps, in order; each returns false with f.why set (or
   // empty after an abort) when the frame cannot be drawn.
   bool GatherInput(vtkContextualAOVolumeMapper* self, Frame& f);
+  /// CanDraw's LAO plan check ("" when the AO is off or given, or plans).
+  std::string PlanProblem(const vtkContextualAOVolumeMapper* self, vtkImageData* input);
+  /// Turns the AO off for this frame where its settings cannot be used
+  /// (`suspended`: Render turns it on again); always true.
+  bool SuspendAO(vtkContextualAOVolumeMapper* self, Frame& f, bool& suspended);
+  std::string AOSettingsError; ///< the last SuspendAO reason logged
   bool AcquireContext(vtkContextualAOVolumeMapper* self, Frame& f);
   bool UpdateVolume(vtkContextualAOVolumeMapper* self, Frame& f);
   bool UploadVolume(vtkContextualAOVolumeMapper* self, Frame& f, vtkDataArray* givenAO);
@@ -784,9 +790,8 @@ std::string vtkContextualAOVolumeMapper::ClipSettingsProblem() const
   return bad.str();
 }
 
-bool vtkContextualAOVolumeMapper::CheckSettings(std::string& why) const
+bool vtkContextualAOVolumeMapper::CheckAOSettings(std::string& why) const
 {
-  // The mapper's own settings (the LAO settings are checked with the plan).
   std::ostringstream bad;
   auto outside = [&bad](const char* name, double v, const char* range) {
     bad << name << " must be " << range << "; got " << v << ".";
@@ -801,7 +806,25 @@ bool vtkContextualAOVolumeMapper::CheckSettings(std::string& why) const
     outside("Quality", quality, "0 (Custom) to 3 (High)");
   else if (this->AOUpdate != CONTEXTUAL && this->AOUpdate != FULL_RECOMPUTE)
     outside("AOUpdate", this->AOUpdate, "0 (contextual) or 1 (full recompute)");
-  else if (!(this->SampleDistance >= 0.0) || !std::isfinite(this->SampleDistance))
+  why = bad.str();
+  return why.empty();
+}
+
+//------------------------------------------------------------------------------
+bool vtkContextualAOVolumeMapper::CheckSettings(std::string& why) const
+{
+  // The mapper's own settings (the LAO settings are checked with the plan).
+  return this->CheckAOSettings(why) && this->CheckDrawSettings(why);
+}
+
+//------------------------------------------------------------------------------
+bool vtkContextualAOVolumeMapper::CheckDrawSettings(std::string& why) const
+{
+  std::ostringstream bad;
+  auto outside = [&bad](const char* name, double v, const char* range) {
+    bad << name << " must be " << range << "; got " << v << ".";
+  };
+  if (!(this->SampleDistance >= 0.0) || !std::isfinite(this->SampleDistance))
     outside("SampleDistance", this->SampleDistance, "0 (derived) or a positive length");
   else if (!(this->InteractiveSampleDistance >= 0.0) ||
     !std::isfinite(this->InteractiveSampleDistance))
@@ -818,9 +841,8 @@ bool vtkContextualAOVolumeMapper::CheckSettings(std::string& why) const
 //------------------------------------------------------------------------------
 bool vtkContextualAOVolumeMapper::CanDraw(vtkImageData* input, std::string& why) const
 {
-  // Render's refusals that do not need the GPU, cheaply (the LAO plan is
-  // checked again only when the mapper or the input changed).
-  if (!this->CheckSettings(why))
+  // Render's refusals that do not need the GPU, cheaply.
+  if (!this->CheckDrawSettings(why))
     return false;
   if (!input)
     return why = "the volume has no image data", false;
@@ -828,26 +850,70 @@ bool vtkContextualAOVolumeMapper::CanDraw(vtkImageData* input, std::string& why)
   input->GetDimensions(dims);
   if (dims[0] < 2 || dims[1] < 2 || dims[2] < 2)
     return why = "The input must have at least 2 voxels along each axis.", false;
-  auto* self = const_cast<vtkContextualAOVolumeMapper*>(this);
-  if (this->AmbientOcclusion && !(this->AmbientOcclusionArrayName && *this->AmbientOcclusionArrayName))
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkContextualAOVolumeMapper::CanComputeAO(vtkImageData* input, std::string& why) const
+{
+  // (the LAO plan is checked again only when the mapper or the input changed)
+  why.clear();
+  if (!this->AmbientOcclusion)
+    return true;
+  if (!this->CheckAOSettings(why))
+    return false;
+  if (input)
+    why = this->Internal->PlanProblem(this, input);
+  return why.empty();
+}
+
+//------------------------------------------------------------------------------
+std::string vtkContextualAOVolumeMapper::Internals::PlanProblem(
+  const vtkContextualAOVolumeMapper* mapper, vtkImageData* input)
+{
+  auto* self = const_cast<vtkContextualAOVolumeMapper*>(mapper);
+  if (!self->AmbientOcclusion || (self->AmbientOcclusionArrayName && *self->AmbientOcclusionArrayName))
+    return std::string();
+  if (this->planCheckSource != input || this->planCheckInput != input->GetMTime() ||
+    this->planCheckMapper != self->GetMTime())
   {
-    Internals& in = *this->Internal;
-    if (in.planCheckSource != input || in.planCheckInput != input->GetMTime() ||
-      in.planCheckMapper != self->GetMTime())
-    {
-      // (counting the taps would do; a plan at the settings' limit is built once per change)
-      cao::LAOPlan plan;
-      std::string error;
-      in.planCheckError = cao::BuildLAOPlan(vtkCAO::GeometryOf(input), in.Settings, plan, error)
-        ? std::string()
-        : "Cannot plan the LAO: " + error + ".";
-      in.planCheckSource = input;
-      in.planCheckInput = input->GetMTime();
-      in.planCheckMapper = self->GetMTime();
-    }
-    if (!in.planCheckError.empty())
-      return why = in.planCheckError, false;
+    // (counting the taps would do; a plan at the settings' limit is built once per change)
+    cao::LAOPlan plan;
+    std::string error;
+    this->planCheckError = cao::BuildLAOPlan(vtkCAO::GeometryOf(input), this->Settings, plan, error)
+      ? std::string()
+      : "Cannot plan the LAO: " + error + ".";
+    this->planCheckSource = input;
+    this->planCheckInput = input->GetMTime();
+    this->planCheckMapper = self->GetMTime();
   }
+  return this->planCheckError;
+}
+
+//------------------------------------------------------------------------------
+bool vtkContextualAOVolumeMapper::Internals::SuspendAO(
+  vtkContextualAOVolumeMapper* self, Frame& f, bool& suspended)
+{
+  // An AO setting out of range, or an LAO that cannot be planned: the
+  // volume is drawn without AO (the reason in the log once, and in the
+  // report), as a clip shape that cannot clip is left out; the AO comes
+  // back, with what it kept, when the setting does. (It drew nothing.)
+  if (!self->AmbientOcclusion)
+    return true;
+  std::string why;
+  if (self->CheckAOSettings(why))
+    why = this->PlanProblem(self, f.input);
+  if (why.empty())
+  {
+    this->AOSettingsError.clear();
+    return true;
+  }
+  why += " The volume is drawn without AO.";
+  if (why != this->AOSettingsError)
+    vtkErrorWithObjectMacro(self, << why);
+  this->AOSettingsError = why; // (the report's error: Render, at the frame's end)
+  self->AmbientOcclusion = false;
+  suspended = true;
   return true;
 }
 
@@ -2404,9 +2470,20 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     return;
   f.peelStage = peel.stage;
   in.PeelDrawn = false;
-  ok = ok && this->CheckSettings(f.why) && in.GatherInput(this, f) &&
-    in.AcquireContext(this, f) && in.UpdateVolume(this, f) && in.UpdateClip(this, f) &&
-    in.UpdateTable(this, f, step);
+  // (SuspendAO may turn the AO off for this frame: on again on every return)
+  bool suspended = false;
+  struct Resume
+  {
+    bool& suspended;
+    bool& ao;
+    ~Resume()
+    {
+      if (suspended)
+        ao = true;
+    }
+  } resume{ suspended, this->AmbientOcclusion };
+  ok = ok && this->CheckDrawSettings(f.why) && in.GatherInput(this, f) && in.SuspendAO(this, f, suspended) && in.AcquireContext(this, f) &&
+    in.UpdateVolume(this, f) && in.UpdateClip(this, f) && in.UpdateTable(this, f, step);
   if (ok)
   {
     // Draw over what the opaque geometry left.
@@ -2493,6 +2570,8 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
                     "the picture does not show it; raise Ambient (0.2 to 0.4) to see it";
   if (!this->HostClipError.empty())
     f.report.error = this->HostClipError + (f.report.error.empty() ? "" : " " + f.report.error);
+  if (suspended)
+    f.report.error = in.AOSettingsError + (f.report.error.empty() ? "" : " " + f.report.error);
   const bool drewOnly = std::all_of(f.report.stages.begin(), f.report.stages.end(),
     [](const Stage& stage) { return stage.name == "raycast"; });
   if (drewOnly)

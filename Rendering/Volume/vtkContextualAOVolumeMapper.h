@@ -525,13 +525,19 @@ public:
   void Render(vtkRenderer* ren, vtkVolume* vol) override;
   void ReleaseGraphicsResources(vtkWindow* window) override;
 
-  /// Whether Render would draw `input` with the present settings: the
-  /// mapper's own and, with the AO on and no AO array given, the LAO plan
-  /// on this input's grid; `why` says what Render would refuse. The render
-  /// pass asks it before a volume occludes the surfaces: a volume that is
-  /// not drawn does not occlude them. A clip shape that cannot clip does
-  /// not stop the drawing (ClipShapeProblem).
+  /// Whether Render would draw `input` with the present settings (the
+  /// mapper's own, the input's grid); `why` says what Render would refuse.
+  /// The render pass asks it before a volume occludes the surfaces: a
+  /// volume that is not drawn does not occlude them. A clip shape that
+  /// cannot clip does not stop the drawing (ClipShapeProblem), nor does an
+  /// AO that cannot be computed (CanComputeAO: drawn without AO).
   bool CanDraw(vtkImageData* input, std::string& why) const;
+
+  /// Whether Render would give `input` its AO: the AO's settings and, with
+  /// the AO on and no AO array given, the LAO plan on this input's grid;
+  /// `why` says why not (Render then draws the volume without AO and says
+  /// so). True with the AO off.
+  bool CanComputeAO(vtkImageData* input, std::string& why) const;
 
   /// Why clip shape i of GetNumberOfClipShapes() cannot clip `input` drawn
   /// by a vtkVolume whose matrix is `volumeMatrix` (null: identity), or ""
@@ -575,6 +581,11 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   /// Whether the mapper's own settings are in range; `why` says which is not.
   bool CheckSettings(std::string& why) const;
+  /// The AO's own settings (strength, calibration, quality, update mode):
+  /// out of range, Render draws the volume without AO and says why.
+  bool CheckAOSettings(std::string& why) const;
+  /// The others (the sample distances): out of range, no frame.
+  bool CheckDrawSettings(std::string& why) const;
 
   bool AmbientOcclusion = true;
   double AOStrength = 1.0;

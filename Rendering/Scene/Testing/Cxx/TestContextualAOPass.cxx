@@ -1101,14 +1101,22 @@ int TestContextualAOPass(int, char*[])
         under < alone - 0.2,
       "the block darkens the slab under it: AO " + std::to_string(under) + " against " + std::to_string(alone) +
         " without it (" + pass->GetLastFrameStages() + ")");
-    // A volume its mapper does not draw (AOStrength 5: refused) occludes
-    // nothing: the slab's own AO, the report saying why; back in range,
-    // the block darkens it again.
+    // A volume its mapper does not draw (SampleDistance -1: refused)
+    // occludes nothing: the slab's own AO, the report saying why; back in
+    // range, the block darkens it again. (An AO setting out of range, AO
+    // Strength 5, no longer stops the drawing: drawn without its AO, the
+    // volume still occludes.)
     mapper->SetAOStrength(5.0);
+    window->Render();
+    const double withoutItsAO = pass->GetPixelAO(bx, by);
+    mapper->SetAOStrength(1.0);
+    Check(withoutItsAO == under, "a volume drawn without its AO (AO Strength 5) still occludes: AO " +
+      std::to_string(withoutItsAO) + " (" + std::to_string(under) + ")");
+    mapper->SetSampleDistance(-1.0);
     window->Render();
     const double undrawn = pass->GetPixelAO(bx, by);
     const std::string undrawnReport = pass->GetLastFrameReport();
-    mapper->SetAOStrength(1.0);
+    mapper->SetSampleDistance(0.0);
     // A clip shape the depth maps cannot resolve (scale 1e9): the mapper
     // leaves it out and draws the volume unclipped, so the volume occludes
     // as it does with no clip (it was refused and occluded nothing; the
@@ -1126,7 +1134,7 @@ int TestContextualAOPass(int, char*[])
     mapper->SetClipShape(nullptr);
     window->Render();
     const double redrawn = pass->GetPixelAO(bx, by);
-    Check(undrawn == alone && undrawnReport.find("not drawn: AOStrength must be in [0, 1]") != std::string::npos &&
+    Check(undrawn == alone && undrawnReport.find("not drawn: SampleDistance must be") != std::string::npos &&
         redrawn == under,
       "a volume its mapper refuses to draw occludes nothing: AO " + std::to_string(undrawn) + " (alone " +
         std::to_string(alone) + "), back in range " + std::to_string(redrawn) + " (" + std::to_string(under) + ")");

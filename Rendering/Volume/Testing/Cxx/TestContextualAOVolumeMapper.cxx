@@ -1114,16 +1114,44 @@ void BadInput(const Options& o)
     s.image->SetSpacing(spacing);
     s.clip->SetPosition(position);
   }
-  // A setting out of range after a good frame (everything cached) is still
-  // refused, whether or not it changes what is cached.
-  m->SetQuality(7);
-  expect("quality 7 after a good frame", "Quality");
-  m->SetQuality(vtkContextualAOVolumeMapper::CUSTOM);
-  // A bad reach is refused with its limit while the AO is on; with the AO
-  // off no LAO is planned, so it does not matter and the volume draws (it
-  // vanished with an error before: the plan was built either way).
-  m->SetReach(-5.0);
-  expect("a negative reach, AO on", "reach must be a positive");
+  // An AO setting out of range after a good frame (everything cached), or
+  // an LAO that cannot be planned, is an error that states the limit, and
+  // the volume is drawn without AO: the frame of the AO turned off (it drew
+  // nothing before: a new user saw the volume vanish at AO Strength 5).
+  // With the AO off a bad reach does not matter and is not said.
+  {
+    m->AmbientOcclusionOff();
+    const caotest::Image noAO = s.Frame();
+    m->AmbientOcclusionOn();
+    const caotest::Image withAO = s.Frame();
+    const auto withoutAO = [&](const char* what, const char* words) {
+      errors.clear();
+      const int before = m->GetFrameCount();
+      const caotest::Image drawn = s.Frame();
+      bool found = false;
+      for (const auto& e : errors)
+        found = found || (e.find(words) != std::string::npos && e.find("drawn without AO") != std::string::npos);
+      const std::string report = m->GetLastFrameReport();
+      std::printf("%-28s -> %s; %s the AO-off frame\n", what, errors.empty() ? "(no error)" : errors.back().c_str(),
+        drawn == noAO ? "equal to" : "NOT equal to");
+      CAO_EXPECT(found && m->GetFrameCount() == before + 1 && drawn == noAO &&
+          report.find("drawn without AO") != std::string::npos,
+        "%s: an error naming '%s' and the volume drawn without AO (%zu errors, %d frames, %s)", what,
+        words, errors.size(), m->GetFrameCount() - before, drawn == noAO ? "AO-off frame" : "another frame");
+    };
+    CAO_EXPECT(!(withAO == noAO), "the AO changes nothing in this frame: the checks below cannot fail");
+    m->SetQuality(7);
+    withoutAO("quality 7 after a good frame", "Quality must be");
+    m->SetQuality(vtkContextualAOVolumeMapper::CUSTOM);
+    m->SetAOStrength(5.0);
+    withoutAO("AO strength 5", "AOStrength must be in [0, 1]; got 5");
+    m->SetAOStrength(1.0);
+    const caotest::Image back = s.Frame();
+    CAO_EXPECT(back == withAO && m->GetLastFrameReport().find("drawn without AO") == std::string::npos,
+      "the AO back after the setting: %s", back == withAO ? "its report still says the error" : "another frame");
+    m->SetReach(-5.0);
+    withoutAO("a negative reach, AO on", "reach must be a positive");
+  }
   m->AmbientOcclusionOff();
   {
     errors.clear();
@@ -1741,13 +1769,15 @@ void Calibration(const Options& o)
       agree);
   }
   // One sample per ray would make every LAO 1 (its only sample is never
-  // occluded): refused with the reason, nothing drawn.
+  // occluded): the AO is refused with the reason, the volume drawn without it.
   p.s.mapper->SetQualityToCustom();
   p.s.mapper->SetNumberOfSamples(1);
   {
-    std::string why;
-    CAO_EXPECT(!p.s.mapper->CanDraw(p.s.image, why) && why.find("one sees no occluder") != std::string::npos,
-      "one sample per ray is refused with the reason: %s", why.c_str());
+    std::string why, drawWhy;
+    CAO_EXPECT(!p.s.mapper->CanComputeAO(p.s.image, why) &&
+        why.find("one sees no occluder") != std::string::npos && p.s.mapper->CanDraw(p.s.image, drawWhy),
+      "one sample per ray: the AO is refused with the reason (%s), the volume drawn (%s)", why.c_str(),
+      drawWhy.c_str());
   }
   p.s.mapper->SetNumberOfSamples(0);
   // The three frames side by side, for the eye.
