@@ -1,6 +1,7 @@
 #include "vtkCAOSceneVolume.h"
 
 #include "vtkAbstractVolumeMapper.h"
+#include "vtkColorTransferFunction.h"
 #include "vtkContextualAOVolumeMapper.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
@@ -71,6 +72,16 @@ void AppendVolumeOpacityKey(vtkVolume* volume, std::vector<double>& key)
   vtkVolumeProperty* property = volume->GetProperty();
   key.push_back(static_cast<double>(property->GetScalarOpacity(0)->GetMTime()));
   key.push_back(property->GetScalarOpacityUnitDistance(0));
+  if (scalars && scalars->GetNumberOfComponents() > 1)
+  {
+    // Which component is drawn (DrawnComponent): the colour function's
+    // vector mode and component, not its colours.
+    key.push_back(property->GetIndependentComponents());
+    vtkColorTransferFunction* colors =
+      property->GetColorChannels(0) == 3 ? property->GetRGBTransferFunction(0) : nullptr;
+    key.push_back(colors ? colors->GetVectorMode() : -1.0);
+    key.push_back(colors ? colors->GetVectorComponent() : -1.0);
+  }
   AppendMatrix(volume->GetMatrix(), key);
   if (auto* mapper = vtkContextualAOVolumeMapper::SafeDownCast(volume->GetMapper()))
   {
@@ -124,10 +135,18 @@ bool VolumeOpacity(vtkVolume* volume, cao::OpacityVolume& out, std::string& erro
     error = "the volume's drawn array has a value count other than its voxels'";
     return false;
   }
-  // A volume its mapper does not draw (a bad setting) occludes nothing.
+  // A volume its mapper does not draw (a bad setting) occludes nothing; of
+  // several components, the one it draws occludes.
   std::string why;
   auto* drawer = vtkContextualAOVolumeMapper::SafeDownCast(volume->GetMapper());
   if (drawer && !drawer->CanDraw(input, why))
+  {
+    error = "it is not drawn: " + why;
+    return false;
+  }
+  if (drawer)
+    scalars = drawer->DrawnComponent(input, scalars, volume->GetProperty(), why);
+  if (!scalars)
   {
     error = "it is not drawn: " + why;
     return false;

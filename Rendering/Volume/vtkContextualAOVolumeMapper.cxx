@@ -360,9 +360,10 @@ struct vtkContextualAOVolumeMapper::Internals
   // draws them; remade only when the array or the choice changes.
   vtkSmartPointer<vtkDataArray> Component;
   const void* ComponentSource = nullptr;
-  vtkMTimeType ComponentSourceTime = 0;
+  vtkMTimeType ComponentSourceTime = 0, ComponentInputTime = 0;
   int ComponentChoice = -2;
-  vtkDataArray* OneComponent(vtkDataArray* scalars, vtkVolumeProperty* property, std::string& error);
+  vtkDataArray* OneComponent(
+    vtkImageData* input, vtkDataArray* scalars, vtkVolumeProperty* property, std::string& error);
   // For an edit of the opacity alone: the opacity the precomputed AO was
   // made from, and that AO as the engine stores it (read back at the
   // first edit), and what an edit and a GPU precompute cost per voxel here.
@@ -898,9 +899,12 @@ bool vtkContextualAOVolumeMapper::Internals::SuspendAO(
   // volume is drawn without AO (the reason in the log once, and in the
   // report), as a clip shape that cannot clip is left out; the AO comes
   // back, with what it kept, when the setting does. (It drew nothing.)
-  if (!self->AmbientOcclusion)
-    return true;
   std::string why;
+  if (!self->AmbientOcclusion)
+  {
+    this->AOSettingsError.clear(); // (said again when the AO is turned on with it)
+    return true;
+  }
   if (self->CheckAOSettings(why))
     why = this->PlanProblem(self, f.input);
   if (why.empty())
@@ -918,8 +922,17 @@ bool vtkContextualAOVolumeMapper::Internals::SuspendAO(
 }
 
 //------------------------------------------------------------------------------
+vtkDataArray* vtkContextualAOVolumeMapper::DrawnComponent(
+  vtkImageData* input, vtkDataArray* scalars, vtkVolumeProperty* property, std::string& why)
+{
+  return scalars->GetNumberOfComponents() == 1
+    ? scalars
+    : this->Internal->OneComponent(input, scalars, property, why);
+}
+
+//------------------------------------------------------------------------------
 vtkDataArray* vtkContextualAOVolumeMapper::Internals::OneComponent(
-  vtkDataArray* scalars, vtkVolumeProperty* property, std::string& error)
+  vtkImageData* input, vtkDataArray* scalars, vtkVolumeProperty* property, std::string& error)
 {
   const int n = scalars->GetNumberOfComponents();
   if (!property->GetIndependentComponents())
@@ -927,17 +940,21 @@ vtkDataArray* vtkContextualAOVolumeMapper::Internals::OneComponent(
     // (vtkVolumeProperty: dependent components colour by the first and
     // take the opacity from the last)
     error = n == 2
-      ? "The scalars have 2 dependent components (a colour and an opacity: ParaView's \"Use "
-        "Separate Opacity Array\" makes them). The Contextual AO Volume takes its opacity from "
-        "the colour array's opacity map, which its AO is computed from: turn \"Use Separate "
-        "Opacity Array\" off, or colour by the opacity array."
+      ? "The scalars have 2 dependent components (a colour and an opacity, as ParaView's \"Use "
+        "Separate Opacity Array\" makes them; or \"Map Scalars\" is off). The Contextual AO "
+        "Volume takes its opacity from the colour array's opacity map, which its AO is computed "
+        "from: turn \"Use Separate Opacity Array\" off (or \"Map Scalars\" on), or colour by "
+        "the opacity array."
       : "The scalars have " + std::to_string(n) +
         " dependent components (colours drawn as they are: \"Map Scalars\" off, or \"Multi "
         "Components Mapping\" on). The Contextual AO Volume draws one component through the "
         "colour and opacity maps: turn \"Map Scalars\" on and \"Multi Components Mapping\" off.";
     return nullptr;
   }
-  vtkColorTransferFunction* colors = property->GetRGBTransferFunction(0);
+  // (a grey property has no colour function to ask: asking would create
+  // one and switch the property to colour)
+  vtkColorTransferFunction* colors =
+    property->GetColorChannels(0) == 3 ? property->GetRGBTransferFunction(0) : nullptr;
   const int mode = colors ? colors->GetVectorMode() : vtkScalarsToColors::COMPONENT;
   const int component = colors ? colors->GetVectorComponent() : 0;
   int choice = -1; // the magnitude
@@ -957,8 +974,12 @@ vtkDataArray* vtkContextualAOVolumeMapper::Internals::OneComponent(
       " components as colours; the Contextual AO Volume draws one component or the magnitude.";
     return nullptr;
   }
+  // (the input's time too: values changed in place with only the image
+  // marked modified, as the volume's key sees them)
+  const vtkMTimeType inputTime = input ? input->GetMTime() : 0;
   if (this->Component && this->ComponentSource == scalars &&
-    this->ComponentSourceTime == scalars->GetMTime() && this->ComponentChoice == choice)
+    this->ComponentSourceTime == scalars->GetMTime() && this->ComponentInputTime == inputTime &&
+    this->ComponentChoice == choice)
     return this->Component;
   vtkSmartPointer<vtkDataArray> one;
   one.TakeReference(choice >= 0 ? scalars->NewInstance() : vtkDataArray::CreateDataArray(VTK_DOUBLE));
@@ -984,6 +1005,7 @@ vtkDataArray* vtkContextualAOVolumeMapper::Internals::OneComponent(
   this->Component = one;
   this->ComponentSource = scalars;
   this->ComponentSourceTime = scalars->GetMTime();
+  this->ComponentInputTime = inputTime;
   this->ComponentChoice = choice;
   return this->Component;
 }
@@ -1054,7 +1076,7 @@ bool vtkContextualAOVolumeMapper::Internals::GatherInput(
     // (the volume's property, as below: the colour map's vector mode picks
     // the component)
     std::string error;
-    f.scalars = this->OneComponent(f.scalars, f.volume->GetProperty(), error);
+    f.scalars = this->OneComponent(f.input, f.scalars, f.volume->GetProperty(), error);
     if (!f.scalars)
       return f.Fail(error);
   }

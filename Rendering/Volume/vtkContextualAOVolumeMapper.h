@@ -5,7 +5,9 @@
  * A vtkVolumeMapper with its own GLSL ray caster (OpenGL 4.3) that draws a
  * vtkImageData with:
  *  - the colour and scalar-opacity transfer functions and the opacity unit
- *    distance of the vtkVolumeProperty (component 0);
+ *    distance of the vtkVolumeProperty (transfer functions 0), applied to
+ *    one component: of several, the one the colour function's vector mode
+ *    picks (a component or the magnitude; DrawnComponent);
  *  - local ambient occlusion (Hernell et al.) scaling the ambient term, by
  *    AOStrength; AmbientOcclusionOff() draws the plain ("solid colour")
  *    image of the CAO paper's comparison;
@@ -49,8 +51,10 @@
 #include <memory> // For the private state
 #include <string> // For the report
 
+class vtkDataArray;
 class vtkPolyData;
 class vtkProp3D;
+class vtkVolumeProperty;
 
 class CAORENDERINGVOLUME_EXPORT vtkContextualAOVolumeMapper : public vtkVolumeMapper
 {
@@ -86,7 +90,10 @@ public:
   ///
   /// Every numeric setting of this mapper is taken as given and checked when
   /// it renders: a value outside its stated range is an error (reported
-  /// once, nothing drawn), never clamped or replaced silently.
+  /// once), never clamped or replaced silently. An AO setting out of range
+  /// (this one, the calibration, Quality, AOUpdate, or LAO settings that
+  /// cannot be planned) draws the volume without AO; a clip setting, without
+  /// the clip; another setting draws nothing.
   vtkSetMacro(AOStrength, double);
   vtkGetMacro(AOStrength, double);
   ///@}
@@ -159,7 +166,8 @@ public:
   ///@}
 
   ///@{
-  /// Samples per LAO ray M, 2 to 65536 (one sees no occluder: refused); 0 (default) means
+  /// Samples per LAO ray M, 2 to 65536 (one sees no occluder: the AO refused, the volume drawn
+  /// without it); 0 (default) means
   /// SampleDensity per smallest spacing.
   virtual void SetNumberOfSamples(int value);
   virtual int GetNumberOfSamples();
@@ -538,6 +546,17 @@ public:
   /// `why` says why not (Render then draws the volume without AO and says
   /// so). True with the AO off.
   bool CanComputeAO(vtkImageData* input, std::string& why) const;
+
+  /// The one-component array drawn for `scalars` (one of `input`'s) under
+  /// `property`: `scalars` itself when it has one component; of several,
+  /// the component the colour function's vector mode picks, or the
+  /// magnitude (a copy, kept until the array, the input or the choice
+  /// changes); nullptr with `why` for dependent components (ParaView's
+  /// "Use Separate Opacity Array", Map Scalars off), a component past the
+  /// array's or colours drawn as they are. The render pass's volume
+  /// occlusion reads the same array.
+  vtkDataArray* DrawnComponent(
+    vtkImageData* input, vtkDataArray* scalars, vtkVolumeProperty* property, std::string& why);
 
   /// Why clip shape i of GetNumberOfClipShapes() cannot clip `input` drawn
   /// by a vtkVolume whose matrix is `volumeMatrix` (null: identity), or ""

@@ -190,8 +190,9 @@ float VoxelAO(vec3 p, bool calibrated, float inMatter, out float depth)
 }
 
 /// CastRay's depth chain (see InMatter) after a sample the colour map
-/// leaves empty; after a cut the chain restarts from 0 (a cut face is open).
-#define CAO_DEPTH_AFTER_EMPTY -1.0
+/// leaves empty; after one the clip removes (and holds matter) it restarts
+/// from 0 (a cut face is open).
+#define CAO_DEPTH_AFTER_EMPTY (-1.0)
 
 /// The share of the voxels around index-space point p that hold matter, of
 /// those the clip leaves (0 where it leaves none): VoxelAO's depth in a
@@ -275,11 +276,14 @@ float DepthToT(float z)
 /// whole ray would be, so that the segments add up to the ray.
 void DepthBefore(float k0, int flags, float stepVoxels, out float depth, out float mu)
 {
-  depth = 0.0;
   mu = 1.0;
   float step = rp.sampling.x;
   float first = max(0.0, ceil((g_tEnter - g_first) / step));
   float from = max(first, k0 - ceil(float(CAO_HALF_SPACE_LAYERS + 1) / max(stepVoxels, 1e-6)));
+  // (a window that starts after the ray's first sample starts as after an
+  // empty one: exact where that was empty, the depth read from the voxels
+  // where it held matter)
+  depth = from > first ? CAO_DEPTH_AFTER_EMPTY : 0.0;
   bool clipped = (flags & CAO_RENDER_CLIP) != 0;
   for (float k = from; k < k0; k += 1.0)
   {

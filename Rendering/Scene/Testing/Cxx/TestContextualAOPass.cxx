@@ -64,6 +64,8 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkCamera.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkFloatArray.h"
 #include "vtkContextualAOEGLWindow.h"
 #include "vtkCellArray.h"
 #include "vtkCubeSource.h"
@@ -1157,6 +1159,42 @@ int TestContextualAOPass(int, char*[])
     Check(std::fabs(withNaN - under) < 0.02 && nanReport.find("not drawn") == std::string::npos,
       "a volume with a NaN voxel still occludes: AO " + std::to_string(withNaN) + " (without the NaN " +
         std::to_string(under) + ", alone " + std::to_string(alone) + ")");
+    // A vector array occludes by the component the mapper draws (the one
+    // its colour function picks): (0, 1, 0) everywhere coloured by
+    // component 1 is the block, by component 0 empty space (the pass read
+    // component 0 whatever was drawn).
+    {
+      vtkNew<vtkFloatArray> vectors;
+      vectors->SetNumberOfComponents(3);
+      vectors->SetNumberOfTuples(block->GetNumberOfPoints());
+      for (vtkIdType i = 0; i < vectors->GetNumberOfTuples(); ++i)
+        vectors->SetTuple3(i, 0.0, 1.0, 0.0);
+      vtkNew<vtkImageData> vectorBlock;
+      vectorBlock->CopyStructure(block);
+      vectorBlock->GetPointData()->SetScalars(vectors);
+      vtkNew<vtkColorTransferFunction> colors;
+      colors->AddRGBPoint(0.0, 1.0, 1.0, 1.0);
+      colors->AddRGBPoint(1.0, 1.0, 1.0, 1.0);
+      colors->SetVectorModeToComponent();
+      colors->SetVectorComponent(1);
+      property->SetColor(colors);
+      mapper->SetInputData(vectorBlock);
+      window->Render();
+      const double second = pass->GetPixelAO(bx, by);
+      colors->SetVectorComponent(0);
+      window->Render();
+      const double first = pass->GetPixelAO(bx, by);
+      vtkNew<vtkPiecewiseFunction> grey;
+      grey->AddPoint(0.0, 1.0);
+      grey->AddPoint(1.0, 1.0);
+      property->SetColor(grey);
+      mapper->SetInputData(block);
+      window->Render();
+      Check(second == under && first == alone,
+        "a vector volume occludes by its drawn component: AO " + std::to_string(second) + " by component 1 (the "
+          "block's " + std::to_string(under) + "), " + std::to_string(first) + " by component 0 (alone " +
+          std::to_string(alone) + ")");
+    }
     camera->Azimuth(10);
     renderer->ResetCameraClippingRange();
     window->Render();

@@ -914,6 +914,27 @@ void BadInput(const Options& o)
     s.color->SetVectorComponent(3);
     expect("component 3 of 3", "component 3 of scalars with 3 components");
     s.color->SetVectorComponent(0);
+    // A grey property (one that never had a colour function) has none to
+    // ask for its vector mode: component 0 is drawn and the property stays
+    // grey (asking would have made it a colour one, black to white over
+    // 0-1024).
+    vtkNew<vtkPiecewiseFunction> grey;
+    grey->AddPoint(0.0, 0.2);
+    grey->AddPoint(255.0, 1.0);
+    vtkNew<vtkVolumeProperty> greyProperty;
+    greyProperty->SetColor(grey);
+    greyProperty->SetScalarOpacity(s.property->GetScalarOpacity());
+    greyProperty->SetScalarOpacityUnitDistance(s.property->GetScalarOpacityUnitDistance());
+    s.volume->SetProperty(greyProperty);
+    errors.clear();
+    const int before = m->GetFrameCount();
+    s.window->Render();
+    const int channels = greyProperty->GetColorChannels(0);
+    std::printf("3-component scalars, a grey property: %d frame(s), %zu error(s), %d colour channel(s)\n",
+      m->GetFrameCount() - before, errors.size(), channels);
+    CAO_EXPECT(errors.empty() && m->GetFrameCount() == before + 1 && channels == 1,
+      "a grey property with a vector: %zu error(s), %d colour channel(s)", errors.size(), channels);
+    s.volume->SetProperty(s.property);
   }
   // Two dependent components, as ParaView's "Use Separate Opacity Array"
   // makes them (colour, then opacity): refused, naming that setting.
