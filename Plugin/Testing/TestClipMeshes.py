@@ -325,6 +325,20 @@ text = errors.GetOutput()
 check("open" in text and "closed" in text and "drawn unclipped" in text and changed(plain, opened) == 0,
       "an open mesh is refused with the reason and the volume drawn unclipped (%d pixels differ from "
       "the unclipped frame; it drew nothing before): %s" % (changed(plain, opened), " ".join(text.split())[:300]))
+# An image given as a clip mesh from Python (the panel's domain takes
+# surfaces only) is refused naming what it is and what a clip mesh must be,
+# the volume drawn unclipped (before: "The clip shape has no mesh: give it
+# a vtkPolyDataMapper input", a developer's wording).
+errors = vtkStringOutputWindow()
+vtkOutputWindow.SetInstance(errors)
+display.ClipMeshes = [Wavelet()]
+imaged = frame("image-as-mesh")
+vtkOutputWindow.SetInstance(previous)
+text = " ".join(errors.GetOutput().split())
+check("vtkImageData" in text and "closed surface" in text and "vtkPolyDataMapper" not in text and
+      changed(plain, imaged) == 0,
+      "an image as a clip mesh is refused with what it is (%d pixels differ from the unclipped "
+      "frame): %s" % (changed(plain, imaged), text[:300]))
 # Beside a closed mesh, an open one is left out with a warning that says
 # why, and the closed one still carves: the frame is the closed one's alone.
 # (Negative control: the open mesh alone, above, carves nothing.)

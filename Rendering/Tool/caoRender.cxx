@@ -116,8 +116,9 @@ Command AddRenderCommand(CLI::App& cao)
   app->add_flag_callback(
     "--no-shade", [o] { o->shade = false; }, Wrap("no gradient shading (ambient only)"));
   AddNumber(app, "--sample-distance", o->sampleDistance, 0.0, HUGE_VAL, true,
-    "a positive length in world units; omit it for half a voxel",
-    "ray-cast sample distance, world units (default half a voxel)")
+    "a positive length in world units; omit it for the derived one",
+    "ray-cast sample distance, world units (default half a voxel, or for a volume under 32 "
+    "voxels across, 1/64 of its largest side)")
     ->type_name("D");
   AddUnitDistance(app, o->unitDistance);
   AddChoice(app, "--window", o->window, { "auto", "egl", "x" },

@@ -1673,8 +1673,20 @@ std::string vtkContextualAOVolumeMapper::ClipShapeProblem(
   vtkPolyData* mesh = i >= 0 && i < this->GetNumberOfClipShapes() ? this->GetClipShapeMeshAt(i) : nullptr;
   vtkProp3D* shape = mesh ? this->GetClipShapeAt(i) : nullptr;
   if (!mesh || !shape)
+  {
+    // A mapper given another kind of data (an image as a ParaView Clip
+    // Mesh from Python, where the panel's domain is not checked): say what
+    // it was given and what a clip mesh must be.
+    vtkActor* actor = vtkActor::SafeDownCast(this->GetClipShapeAt(i));
+    vtkMapper* m = actor ? actor->GetMapper() : nullptr;
+    vtkDataObject* given = m ? m->GetInputDataObject(0, 0) : nullptr;
+    if (given && !vtkPolyData::SafeDownCast(given))
+      return std::string("The clip mesh is a ") + given->GetClassName() +
+        ": a clip mesh must be a closed surface (vtkPolyData), such as a Sphere or Box source, "
+        "or the surface of a dataset (Extract Surface, or Contour of an image).";
     return std::string("The clip shape has no mesh: give it a vtkPolyDataMapper input") +
       (i == 0 && this->ClipShape ? " or set ClipMesh." : ".");
+  }
   if (!input)
     return "There is no input image to clip.";
   {
@@ -2205,11 +2217,23 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateMaps(vtkContextualAOVolumeMap
 }
 
 //------------------------------------------------------------------------------
+double vtkContextualAOVolumeMapper::DerivedSampleDistance(const double spacing[3], const int dims[3])
+{
+  const double smallest = std::min({ spacing[0], spacing[1], spacing[2] });
+  double side = smallest;
+  for (int a = 0; a < 3; ++a)
+    side = std::max(side, (dims[a] - 1) * spacing[a]);
+  return std::min(0.5 * smallest, side / MinimumSamplesAcross);
+}
+
+//------------------------------------------------------------------------------
 bool vtkContextualAOVolumeMapper::Internals::UpdateTable(
   vtkContextualAOVolumeMapper* self, Frame& f, double& step)
 {
   // The transfer-function table: colour and opacity, step-corrected.
-  step = self->SampleDistance > 0.0 ? self->SampleDistance : 0.5 * f.minSpacing;
+  step = self->SampleDistance > 0.0 ? self->SampleDistance
+                                    : vtkContextualAOVolumeMapper::DerivedSampleDistance(
+                                        f.spacing, f.dims);
   if (f.interactive)
     step = self->InteractiveSampleDistance > 0.0 ? self->InteractiveSampleDistance : 2.0 * step;
   f.report.sampleDistance = step;
