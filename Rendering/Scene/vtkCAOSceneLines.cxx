@@ -598,7 +598,7 @@ bool SceneLines::Update(const LineTechnique& technique, const cao::PixelCamera& 
   view.insert(view.end(), this->drawKey.begin(), this->drawKey.end()); // the pixels' search
   view.insert(view.end(), camera.ndcToWorld, camera.ndcToWorld + 16);
   view.insert(view.end(), { static_cast<double>(camera.width), static_cast<double>(camera.height),
-                            static_cast<double>(samples), gpu ? 1.0 : 0.0, this->fullGBuffer ? 1.0 : 0.0,
+                            static_cast<double>(samples), gpu ? 1.0 : 0.0,
                             static_cast<double>(technique.method) });
   // (FNV-1a of each row's depths, the skipped as all ones, on the CPU's
   // threads; then of the rows' hashes.)
@@ -623,8 +623,28 @@ bool SceneLines::Update(const LineTechnique& technique, const cao::PixelCamera& 
     hash = (hash ^ h) * 1099511628211ull;
   view.push_back(static_cast<double>(hash >> 11));
   if (view == this->aoKey)
+  {
+    // The AO holds. The line shading asked for the whole G-buffer after a
+    // frame on the GPU's, which holds the segments and the AO alone: the
+    // rest written from the segments, the AO kept (the shading is not the
+    // AO's: a shading change neither searches nor estimates again).
+    if (!this->fullGBuffer || this->frameFull)
+      return true;
+    std::vector<double> ao;
+    ao.swap(this->frame.ao);
+    const std::vector<std::int64_t> chosen = this->frame.segment;
+    const bool written = cao::LineFrameOfSegments(this->lines.points, this->lines.segments, camera, depth,
+      this->drawings, this->segmentDrawing, chosen, this->frame, error);
+    this->frame.ao.swap(ao);
+    if (!written)
+      return false;
+    this->frameFull = true;
+    stages.push_back("line_gbuffer");
+    ms.push_back(Since(start));
     return true;
+  }
   this->aoKey.clear();
+  this->frameFull = false;
   // The G-buffer (each actor's drawn half width and raster slack, and tube
   // mode): on the GPU where the prisms run there, else (or when the GPU's
   // fails: the note says why) on the CPU.
@@ -652,6 +672,7 @@ bool SceneLines::Update(const LineTechnique& technique, const cao::PixelCamera& 
     if (!cao::LineFrameFromDepth(this->nearest, camera, depth, 1.0, false, skip, this->frame, error,
           &this->drawings, &this->segmentDrawing))
       return false;
+    this->frameFull = true;
   }
   stages.push_back("line_gbuffer");
   ms.push_back(Since(start));
@@ -681,6 +702,7 @@ bool SceneLines::Update(const LineTechnique& technique, const cao::PixelCamera& 
             this->segmentDrawing, chosen, this->frame, error))
         return false;
       this->frame.ao.swap(ao);
+      this->frameFull = true;
     }
   }
   else if (gpu ? !technique.gpu(*gpu, given, this->frame, error) : !technique.cpu(given, this->frame, error))

@@ -203,6 +203,9 @@ private:
   bool onGPU = false;
   bool gridOnGPU = false;
   bool gbufferOnGPU = false, fullGBuffer = false;
+  /// Whether `frame` holds every G-buffer array (the CPU's G-buffer, or
+  /// the GPU's completed for the line shading), not only segments and AO.
+  bool frameFull = false;
   std::string gbufferNote;
   std::array<double, 3> gpuMs{ { 0.0, 0.0, 0.0 } };
   std::uint64_t linesVersion = 0; ///< names `lines` for the GPU's copy (new each UpdateScene)

@@ -1084,10 +1084,17 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
   {
     // (Out of range they were taken silently: a radius of -1 as the
     // default, a strength of 2 as 1 and of -1 as 0.)
+    // Each setting out of range named alone, with the panel's label.
     this->linesOn = false;
-    this->Fail(self, "Radius must be 0 (the default: from the scene) or more, in world units, and "
-                     "Strength within [0, 1] (they are " + std::to_string(self->Radius) + " and " +
-                     std::to_string(self->Strength) + ")");
+    std::string why;
+    if (!(self->Radius >= 0.0) || !std::isfinite(self->Radius))
+      why = "Radius must be 0 (the default: from the scene) or more, in world units, and finite "
+            "(the view's Surface AO Radius); it is " + std::to_string(self->Radius);
+    if (!(self->Strength >= 0.0) || !(self->Strength <= 1.0))
+      why += (why.empty() ? "" : "; ") +
+        std::string("Strength must be within [0, 1] (the view's Surface AO Strength); it is ") +
+        std::to_string(self->Strength);
+    this->Fail(self, why);
     return;
   }
   {

@@ -912,10 +912,15 @@ int TestContextualAOPass(int, char*[])
     pass->SetRadius(bad.first);
     pass->SetStrength(bad.second);
     window->Render();
-    Check(pass->GetLastFrameReport().find("Strength within [0, 1]") != std::string::npos &&
-        pass->GetLastFrameStages().empty(),
+    // Only the setting out of range is named (a trial saw both named
+    // whichever was wrong).
+    const std::string said = pass->GetLastFrameReport();
+    const bool badRadius = bad.first < 0.0, badStrength = !(bad.second >= 0.0 && bad.second <= 1.0);
+    Check((said.find("Strength must be within [0, 1]") != std::string::npos) == badStrength &&
+        (said.find("Radius must be 0") != std::string::npos) == badRadius &&
+        said.find("Surface AO") != std::string::npos && pass->GetLastFrameStages().empty(),
       "Radius " + std::to_string(bad.first) + ", Strength " + std::to_string(bad.second) +
-        ": refused with the range, and nothing runs");
+        ": the one out of range refused with its range, and nothing runs: " + said.substr(0, 300));
   }
   pass->SetRadius(0.0);
   {

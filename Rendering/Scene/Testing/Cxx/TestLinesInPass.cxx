@@ -597,6 +597,11 @@ int TestLinesInPass(int, char*[])
     double drawn[2], lit[2], shiny[2], tubesDrawn[2], tubesLit[2];
     look(vtkContextualAOPass::LINE_SHADING_AS_DRAWN, 0.0, false, drawn);
     look(vtkContextualAOPass::LINE_SHADING_MALLO_BANKS, 0.0, false, lit);
+    // The shading is not the AO's: switching it only combines (before, the
+    // lines' G-buffer and AO ran again: 0.14-0.58 s a switch in a trial's
+    // view on the CPU).
+    const std::string switched = shading->GetLastFrameStages();
+    Check(switched == "combine", "a line shading change only combines (" + switched + ")");
     look(vtkContextualAOPass::LINE_SHADING_MALLO_BANKS, 0.5, false, shiny);
     look(vtkContextualAOPass::LINE_SHADING_AS_DRAWN, 0.0, true, tubesDrawn);
     look(vtkContextualAOPass::LINE_SHADING_MALLO_BANKS, 0.0, true, tubesLit);
@@ -622,9 +627,16 @@ int TestLinesInPass(int, char*[])
     // picture within a level (control: as drawn is far off on the tilted
     // line).
     shading->SetBackend(vtkContextualAOPass::BACKEND_OPENGL);
-    double glShiny[2];
+    double glShiny[2], glDrawn[2];
+    look(vtkContextualAOPass::LINE_SHADING_AS_DRAWN, 0.5, false, glDrawn);
     look(vtkContextualAOPass::LINE_SHADING_MALLO_BANKS, 0.5, false, glShiny);
     const std::string glShading = shading->GetLastFrameReport();
+    // After a frame as drawn on the GPU's G-buffer (segments and AO only),
+    // the shading reads the rest of it, written then: no search, no AO.
+    const std::string glSwitched = shading->GetLastFrameStages();
+    Check(glShading.find("\"gbuffer\": \"OpenGL\"") == std::string::npos ||
+        glSwitched.find("line_ao") == std::string::npos,
+      "a line shading change on OpenGL estimates no AO again (" + glSwitched + ")");
     std::printf("Mallo-Banks, Specular 0.5 on OpenGL: %.1f / %.1f (CPU %.1f / %.1f)\n", glShiny[0], glShiny[1],
       shiny[0], shiny[1]);
     Check(glShading.find("\"gbuffer\": \"OpenGL\"") != std::string::npos && std::fabs(glShiny[0] - shiny[0]) <= 1 &&
