@@ -499,6 +499,10 @@ struct vtkContextualAOPass::Internals
   vtkCAO::SceneLines lines;
   bool linesOn = false;   ///< this frame has lines that get line AO
   int lineActors = 0;     ///< actors with lines (whatever the LineMethod): GetNumberOfLineActors
+  /// Visible actors drawn translucent only (Opacity under 1): the AO runs
+  /// between the opaque and translucent steps, so they get none and
+  /// occlude nothing (the report's translucent_actors, with a note).
+  int translucentActors = 0;
   std::string lineMethodName; ///< the line technique the last frame ran (the report)
   bool linesOccludeSurfaces = false; ///< the surfaces' grid holds the lines' voxels
   std::string linesNote;  ///< why lines in view get none
@@ -541,9 +545,40 @@ struct vtkContextualAOPass::Internals
   std::string RadiusNote(const vtkContextualAOPass* self) const
   {
     const vtkCAO::SurfaceTechnique* technique = Technique(self);
-    return technique && technique->name == "vct" && this->grid.slices > 0
-      ? cao::VCTUnresolvedRadius(this->radius, this->grid)
-      : std::string();
+    if (technique && technique->name == "vct" && this->grid.slices > 0)
+      return cao::VCTUnresolvedRadius(this->radius, this->grid);
+    // A technique of the G-buffer alone reads the screen's pixels: a
+    // radius under a pixel leaves it no neighbour (as `cao surface` warns).
+    const double pixel = technique && !technique->readsGrid ? this->PixelAtCentre() : 0.0;
+    if (pixel > 0.0 && this->radius < pixel)
+      return "the AO radius " + std::to_string(this->radius) + " is under a pixel at the scene's centre (about " +
+        std::to_string(pixel) + "): " + technique->label +
+        " reads the screen's pixels and sees no neighbour within it, so it gives almost no AO; raise the "
+        "radius or zoom in";
+    return std::string();
+  }
+  std::array<double, 3> sceneCentre{ { 0.0, 0.0, 0.0 } }; ///< the scene's bounds' centre
+  /// One pixel's width in the world at the scene's centre, by the traced
+  /// camera (0: unknown).
+  double PixelAtCentre() const
+  {
+    if (this->pixels.width <= 0)
+      return 0.0;
+    double toNDC[16], c[4] = { this->sceneCentre[0], this->sceneCentre[1], this->sceneCentre[2], 1.0 }, n[4], w[4];
+    vtkMatrix4x4::Invert(this->ndcToWorld, toNDC);
+    vtkMatrix4x4::MultiplyPoint(toNDC, c, n);
+    if (!(n[3] != 0.0))
+      return 0.0;
+    n[0] = n[0] / n[3] + 2.0 / this->pixels.width;
+    n[1] /= n[3];
+    n[2] /= n[3];
+    n[3] = 1.0;
+    vtkMatrix4x4::MultiplyPoint(this->ndcToWorld, n, w);
+    if (!(w[3] != 0.0))
+      return 0.0;
+    const double d = std::sqrt((w[0] / w[3] - c[0]) * (w[0] / w[3] - c[0]) +
+      (w[1] / w[3] - c[1]) * (w[1] / w[3] - c[1]) + (w[2] / w[3] - c[2]) * (w[2] / w[3] - c[2]));
+    return std::isfinite(d) ? d : 0.0;
   }
   void SayRadius(vtkContextualAOPass* self)
   {
@@ -961,6 +996,12 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
     o << ", \"indirect_light\": " << (this->IndirectLight ? "true" : "false");
   if (!p.pieces.empty() && !p.RadiusNote(this).empty())
     o << ", \"radius_note\": \"" << cao::JsonEscape(p.RadiusNote(this)) << "\"";
+  if (p.translucentActors > 0)
+    o << ", \"translucent_actors\": " << p.translucentActors
+      << ", \"translucent_note\": \"" << p.translucentActors
+      << (p.translucentActors == 1 ? " actor is" : " actors are")
+      << " drawn translucent (Opacity under 1): the AO runs between the opaque and the translucent "
+         "geometry, so translucent surfaces get no AO and occlude nothing; set Opacity 1 for AO\"";
   WriteList(o, "skipped_volumes", p.skippedVolumes);
   this->WriteLinesReport(o);
   o << "}";
@@ -1232,6 +1273,7 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
   this->pieceActor.clear();
   this->surfaceActors = 0;
   this->lineActors = 0;
+  this->translucentActors = 0;
   this->actorSignature = 0.0;
   this->volumes.clear();
   std::vector<double>& key = this->frameSceneKey;
@@ -1255,7 +1297,10 @@ void vtkContextualAOPass::Internals::Collect(vtkContextualAOPass* self, vtkRende
   {
     position += 1.0;
     if (!actor->GetVisibility() || !actor->HasOpaqueGeometry())
+    {
+      this->translucentActors += actor->GetVisibility() && actor->HasTranslucentPolygonalGeometry();
       continue;
+    }
     // Lines get line AO; counted with LineMethod None too (the view shows
     // the line settings).
     const std::vector<vtkPolyData*> withLines = LinePieces(actor);
@@ -1664,6 +1709,7 @@ bool vtkContextualAOPass::Internals::UpdateGrid(vtkContextualAOPass* self)
   }
   if (distributed) // the radius and the world grid of every process's pieces
     b = this->exchange.Bounds();
+  this->sceneCentre = { { 0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]) } };
   const double diagonal = b[1] < b[0] ? 0.0 : std::sqrt((b[1] - b[0]) * (b[1] - b[0]) +
     (b[3] - b[2]) * (b[3] - b[2]) + (b[5] - b[4]) * (b[5] - b[4]));
   if (!std::isfinite(diagonal) || (!(diagonal > 0.0) && !(self->Radius > 0)))
