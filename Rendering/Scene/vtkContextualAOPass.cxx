@@ -549,13 +549,9 @@ struct vtkContextualAOPass::Internals
       return cao::VCTUnresolvedRadius(this->radius, this->grid);
     // A technique of the G-buffer alone reads the screen's pixels: a
     // radius under a pixel leaves it no neighbour (as `cao surface` warns).
-    const double pixel = technique && !technique->readsGrid ? this->PixelAtCentre() : 0.0;
-    if (pixel > 0.0 && this->radius < pixel)
-      return "the AO radius " + std::to_string(this->radius) + " is under a pixel at the scene's centre (about " +
-        std::to_string(pixel) + "): " + technique->label +
-        " reads the screen's pixels and sees no neighbour within it, so it gives almost no AO; raise the "
-        "radius or zoom in";
-    return std::string();
+    return technique && !technique->readsGrid
+      ? cao::ScreenSpaceUnresolvedRadius(this->radius, this->PixelAtCentre(), technique->label)
+      : std::string();
   }
   std::array<double, 3> sceneCentre{ { 0.0, 0.0, 0.0 } }; ///< the scene's bounds' centre
   /// One pixel's width in the world at the scene's centre, by the traced
@@ -582,12 +578,15 @@ struct vtkContextualAOPass::Internals
   }
   void SayRadius(vtkContextualAOPass* self)
   {
+    // Once per method and radius (a screen-space note's pixel changes with
+    // every zoom: said at each frame of one, it would flood the log).
     const std::string note = this->RadiusNote(self);
-    if (!note.empty() && note != this->saidRadius)
+    const std::pair<int, double> what(self->GetMethod(), note.empty() ? -1.0 : this->radius);
+    if (!note.empty() && what != this->saidRadius)
       vtkWarningWithObjectMacro(self, << "Surface AO: " << note);
-    this->saidRadius = note;
+    this->saidRadius = what;
   }
-  std::string saidRadius;
+  std::pair<int, double> saidRadius{ -1, -1.0 }; ///< the method and radius last said (radius -1: none)
   /// Fail for the scene itself: not retried, and said again each frame,
   /// until the scene changes.
   bool FailScene(vtkContextualAOPass* self, const std::string& what)
@@ -1000,8 +999,8 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
     o << ", \"translucent_actors\": " << p.translucentActors
       << ", \"translucent_note\": \"" << p.translucentActors
       << (p.translucentActors == 1 ? " actor is" : " actors are")
-      << " drawn translucent (Opacity under 1): the AO runs between the opaque and the translucent "
-         "geometry, so translucent surfaces get no AO and occlude nothing; set Opacity 1 for AO\"";
+      << " drawn translucent (an Opacity under 1, or colours or a texture with alpha): the AO runs between "
+         "the opaque and the translucent geometry, so translucent surfaces get no AO and occlude nothing\"";
   WriteList(o, "skipped_volumes", p.skippedVolumes);
   this->WriteLinesReport(o);
   o << "}";

@@ -117,8 +117,8 @@ Command AddRenderCommand(CLI::App& cao)
     "--no-shade", [o] { o->shade = false; }, Wrap("no gradient shading (ambient only)"));
   AddNumber(app, "--sample-distance", o->sampleDistance, 0.0, HUGE_VAL, true,
     "a positive length in world units; omit it for the derived one",
-    "ray-cast sample distance, world units (default half a voxel, or for a volume under 32 "
-    "voxels across, 1/64 of its largest side)")
+    "ray-cast sample distance, world units (default: half the smallest spacing, or for a tiny "
+    "volume 1/64 of its largest side; docs/volumes.md)")
     ->type_name("D");
   AddUnitDistance(app, o->unitDistance);
   AddChoice(app, "--window", o->window, { "auto", "egl", "x" },

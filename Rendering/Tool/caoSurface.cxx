@@ -1154,10 +1154,9 @@ int Run(SurfaceOptions& o, const CLI::App* app)
       const double diagonal = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
         (b[5] - b[4]) * (b[5] - b[4]));
       const double pixel = diagonal / (o.view.zoom * std::min(o.view.width, o.view.height));
-      if (radius < pixel)
-        std::cerr << "cao: warning: the AO radius " << radius << " is under a pixel at the scene's centre (about "
-                  << pixel << "): " << o.method << " reads the screen's pixels and sees no neighbour within it "
-                  << "(its AO is then not the reference's); raise --radius or --image\n";
+      const std::string why = cao::ScreenSpaceUnresolvedRadius(radius, pixel, o.method);
+      if (!why.empty())
+        std::cerr << "cao: warning: " << why << " (--radius, --image, --zoom)\n";
     }
     start = std::chrono::steady_clock::now();
     if (useGL ? !technique->gpu(gpu, pixels, settings, frame, error) : !technique->cpu(pixels, settings, frame, error))

@@ -2219,11 +2219,7 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateMaps(vtkContextualAOVolumeMap
 //------------------------------------------------------------------------------
 double vtkContextualAOVolumeMapper::DerivedSampleDistance(const double spacing[3], const int dims[3])
 {
-  const double smallest = std::min({ spacing[0], spacing[1], spacing[2] });
-  double side = smallest;
-  for (int a = 0; a < 3; ++a)
-    side = std::max(side, (dims[a] - 1) * spacing[a]);
-  return std::min(0.5 * smallest, side / MinimumSamplesAcross);
+  return cao::gl::RayCaster::DerivedSampleDistance(spacing, dims);
 }
 
 //------------------------------------------------------------------------------

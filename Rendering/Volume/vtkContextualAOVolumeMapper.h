@@ -351,17 +351,12 @@ public:
   vtkGetMacro(SampleDistance, double);
   ///@}
 
-  /// The rays' fewest samples across a volume's largest side at the derived
-  /// sample distance.
-  static constexpr double MinimumSamplesAcross = 64.0;
   /**
    * The derived sample distance (SampleDistance 0) of a volume of `dims`
-   * voxels at `spacing`: half the smallest spacing, or, for a volume under
-   * 32 spacings across its largest side, that side / MinimumSamplesAcross.
-   * A few half-voxel steps across a tiny volume drawn over many pixels
-   * show the rays' jitter as speckle (a 4^3 volume: 3.3 grey levels of
-   * pixel-to-pixel noise at half a voxel, 0.4 at 1/64 of its side); a
-   * larger volume keeps half a voxel.
+   * points at `spacing`: half the smallest spacing, or for a volume whose
+   * largest side is under 32 smallest spacings, 1/64 of that side (tiny
+   * volumes drawn over many pixels: no speckle from the rays' jitter). The
+   * ray caster's rule (cao::gl::RayCaster::DerivedSampleDistance).
    */
   static double DerivedSampleDistance(const double spacing[3], const int dims[3]);
 

@@ -1039,5 +1039,13 @@ void RayCaster::AbandonGraphicsResources()
   std::fill(p.scalarDims, p.scalarDims + 3, 0);
   p.timed = false;
 }
+double RayCaster::DerivedSampleDistance(const double spacing[3], const int dims[3])
+{
+  const double smallest = std::min({ spacing[0], spacing[1], spacing[2] });
+  double side = smallest;
+  for (int a = 0; a < 3; ++a)
+    side = std::max(side, (dims[a] - 1) * spacing[a]);
+  return std::min(0.5 * smallest, side / MinimumSamplesAcross);
+}
 }
 }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 
 namespace cao
 {
@@ -59,5 +60,16 @@ std::string CheckAORadius(double radius, double diagonal)
     "the AO radius %g is outside %g to %g (1e-6 to 1e3 times the scene's bounding-box diagonal, %g)", radius,
     AORadiusLeast * diagonal, AORadiusMost * diagonal, diagonal);
   return text;
+}
+
+std::string ScreenSpaceUnresolvedRadius(double radius, double pixel, const std::string& label)
+{
+  if (!(pixel > 0.0) || !std::isfinite(pixel) || !(radius < pixel))
+    return std::string();
+  std::ostringstream o;
+  o << "the AO radius " << radius << " is under a pixel at the scene's centre (about " << pixel << "): " << label
+    << " reads the screen's pixels and sees no neighbour within it, so it gives almost no AO; raise the "
+       "radius, the image size or the zoom";
+  return o.str();
 }
 }

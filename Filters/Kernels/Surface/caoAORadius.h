@@ -47,6 +47,13 @@ constexpr double DefaultAORadiusMost = 0.1, DefaultAORadiusLeast = 0.025;
 /// scene's own error), else the reason with the limits.
 std::string CheckAORadius(double radius, double diagonal);
 constexpr double AORadiusLeast = 1e-6, AORadiusMost = 1e3;
+
+/// Why a technique that reads the screen's pixels (`label`: "HBAO") cannot
+/// resolve `radius` when a pixel is about `pixel` wide at the scene's
+/// centre (the same units): under a pixel it sees no neighbour within the
+/// radius and gives almost no AO. "" when the radius is a pixel or more, or
+/// `pixel` is not positive and finite.
+std::string ScreenSpaceUnresolvedRadius(double radius, double pixel, const std::string& label);
 }
 
 #endif

@@ -921,7 +921,8 @@ int TestContextualAOPass(int, char*[])
   // 2 as 1, of -1 as 0, a Radius of -1 as the default), are refused with
   // the range, and nothing runs.
   for (const std::pair<double, double>& bad : std::vector<std::pair<double, double>>{
-         { 0.0, std::nan("") }, { 0.0, 2.0 }, { 0.0, -1.0 }, { -1.0, 1.0 } })
+         { 0.0, std::nan("") }, { 0.0, 2.0 }, { 0.0, -1.0 }, { -1.0, 1.0 }, { -1.0, 2.0 },
+         { std::numeric_limits<double>::infinity(), 0.5 } })
   {
     pass->SetRadius(bad.first);
     pass->SetStrength(bad.second);
@@ -929,7 +930,8 @@ int TestContextualAOPass(int, char*[])
     // Only the setting out of range is named (a trial saw both named
     // whichever was wrong).
     const std::string said = pass->GetLastFrameReport();
-    const bool badRadius = bad.first < 0.0, badStrength = !(bad.second >= 0.0 && bad.second <= 1.0);
+    const bool badRadius = !(bad.first >= 0.0) || !std::isfinite(bad.first);
+    const bool badStrength = !(bad.second >= 0.0 && bad.second <= 1.0);
     Check((said.find("Strength must be within [0, 1]") != std::string::npos) == badStrength &&
         (said.find("Radius must be 0") != std::string::npos) == badRadius &&
         said.find("Surface AO") != std::string::npos && pass->GetLastFrameStages().empty(),

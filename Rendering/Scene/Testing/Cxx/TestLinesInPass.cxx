@@ -637,6 +637,26 @@ int TestLinesInPass(int, char*[])
     Check(glShading.find("\"gbuffer\": \"OpenGL\"") == std::string::npos ||
         glSwitched.find("line_ao") == std::string::npos,
       "a line shading change on OpenGL estimates no AO again (" + glSwitched + ")");
+    // And back: as drawn again, the whole picture is the first as-drawn
+    // frame's (the G-buffer written from the segments for the shading
+    // keeps every pixel the GPU's held).
+    const auto picture = [&]() {
+      vtkNew<vtkUnsignedCharArray> c;
+      vtkRenderWindow* rw = w;
+      rw->GetPixelData(0, 0, rw->GetSize()[0] - 1, rw->GetSize()[1] - 1, 0, c);
+      return std::vector<unsigned char>(c->GetPointer(0), c->GetPointer(0) + c->GetNumberOfValues());
+    };
+    look(vtkContextualAOPass::LINE_SHADING_AS_DRAWN, 0.5, false, glDrawn);
+    const std::vector<unsigned char> drawnFirst = picture();
+    look(vtkContextualAOPass::LINE_SHADING_MALLO_BANKS, 0.5, false, glShiny);
+    look(vtkContextualAOPass::LINE_SHADING_AS_DRAWN, 0.5, false, glDrawn);
+    long apart = 0;
+    const std::vector<unsigned char> drawnAgain = picture();
+    for (std::size_t i = 0; i < drawnFirst.size() && i < drawnAgain.size(); ++i)
+      apart += drawnFirst[i] != drawnAgain[i];
+    Check(!drawnFirst.empty() && drawnFirst.size() == drawnAgain.size() && apart == 0,
+      "as drawn, then Mallo-Banks, then as drawn on OpenGL: the first picture again (" + std::to_string(apart) +
+        " values apart)");
     std::printf("Mallo-Banks, Specular 0.5 on OpenGL: %.1f / %.1f (CPU %.1f / %.1f)\n", glShiny[0], glShiny[1],
       shiny[0], shiny[1]);
     Check(glShading.find("\"gbuffer\": \"OpenGL\"") != std::string::npos && std::fabs(glShiny[0] - shiny[0]) <= 1 &&

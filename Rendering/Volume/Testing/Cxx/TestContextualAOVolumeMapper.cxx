@@ -1712,7 +1712,7 @@ void PlateFace(const Options& o)
 /// a fine one (1/512 of its side, the jitter's floor). Half a voxel, the
 /// former derived distance for every volume, gives a few half-voxel steps
 /// across it, and the rays' jitter shows as speckle (a new user's 2^3 to
-/// 4^3 volumes; 3.3 grey levels here against 0.3): the negative control.
+/// 4^3 volumes; 3.10 grey levels here against 0.28): the negative control.
 void TinyVolume(const Options& o)
 {
   Scene s;
@@ -1787,7 +1787,7 @@ void TinyVolume(const Options& o)
   CAO_EXPECT(std::fabs(derivedStep - (N - 1) / 64.0) < 1e-9,
     "a 4^3 volume's derived sample distance should be 3/64: %g", derivedStep);
   // (0.5 grey level over the fine frame's: the derived distance measured
-  // 0.13 over it; half a voxel 3.0)
+  // 0.11 over it; half a voxel 2.82 over it)
   CAO_EXPECT(nFine >= 0.0 && nDerived <= nFine + 0.5,
     "speckle on a tiny volume: pixel noise %.2f at the derived sample distance, %.2f fine",
     nDerived, nFine);
@@ -1795,16 +1795,17 @@ void TinyVolume(const Options& o)
     "the measure should see half-voxel steps' speckle: %.2f against %.2f fine", nHalf, nFine);
   WriteSideBySide({ &halfVoxel, &derived, &fine }, o.output + "/tiny-volume-" + o.window + ".png",
     "half a voxel | the derived sample distance | 1/512 of the side");
-  // A volume 32 voxels or more across keeps half a voxel.
-  const int big[3] = { 40, 8, 8 }, small[3] = { 31, 31, 31 };
+  // A volume whose largest side is 32 smallest spacings or more keeps half
+  // of one; under, 1/64 of that side (32 points: a side of 31).
+  const int big[3] = { 40, 8, 8 }, at32[3] = { 32, 32, 32 }, at33[3] = { 33, 2, 2 };
   const double unit[3] = { 1.0, 1.0, 1.0 }, aniso[3] = { 2.0, 0.5, 1.0 };
-  CAO_EXPECT(vtkContextualAOVolumeMapper::DerivedSampleDistance(unit, big) == 0.5,
-    "40 x 8 x 8 voxels: %g", vtkContextualAOVolumeMapper::DerivedSampleDistance(unit, big));
-  CAO_EXPECT(vtkContextualAOVolumeMapper::DerivedSampleDistance(unit, small) == 30.0 / 64.0,
-    "31^3 voxels: %g", vtkContextualAOVolumeMapper::DerivedSampleDistance(unit, small));
-  CAO_EXPECT(vtkContextualAOVolumeMapper::DerivedSampleDistance(aniso, big) == 0.25,
-    "40 x 8 x 8 voxels at spacing 2, 0.5, 1: %g",
-    vtkContextualAOVolumeMapper::DerivedSampleDistance(aniso, big));
+  const auto derivedOf = [](const double* spacing, const int* dims) {
+    return vtkContextualAOVolumeMapper::DerivedSampleDistance(spacing, dims);
+  };
+  CAO_EXPECT(derivedOf(unit, big) == 0.5, "40 x 8 x 8 points: %g", derivedOf(unit, big));
+  CAO_EXPECT(derivedOf(unit, at32) == 31.0 / 64.0, "32^3 points: %g", derivedOf(unit, at32));
+  CAO_EXPECT(derivedOf(unit, at33) == 0.5, "33 x 2 x 2 points: %g", derivedOf(unit, at33));
+  CAO_EXPECT(derivedOf(aniso, big) == 0.25, "40 x 8 x 8 points at spacing 2, 0.5, 1: %g", derivedOf(aniso, big));
 }
 
 void Calibration(const Options& o)
