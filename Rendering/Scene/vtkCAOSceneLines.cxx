@@ -490,6 +490,21 @@ bool SceneLines::ShareGrid(vtkMultiProcessController* controller, const cao::Pix
   return true;
 }
 
+bool SceneLines::CompleteFrame(const cao::PixelCamera& camera, const std::vector<float>& depth, std::string& error)
+{
+  // The rest of a GPU G-buffer (segments and AO) where the line shading
+  // reads it, written from the segments; the AO kept.
+  std::vector<double> ao;
+  ao.swap(this->frame.ao);
+  const std::vector<std::int64_t> chosen = this->frame.segment;
+  const bool written = cao::LineFrameOfSegments(this->lines.points, this->lines.segments, camera, depth,
+    this->drawings, this->segmentDrawing, chosen, this->frame, error);
+  this->frame.ao.swap(ao);
+  if (written)
+    this->frameFull = true;
+  return written;
+}
+
 bool SceneLines::Update(const LineTechnique& technique, const cao::PixelCamera& camera, const double right[3],
   const double up[3], const std::vector<float>& depth, const std::vector<unsigned char>* skip, double aoRadius,
   int samples, int slices, SceneGPU* gpu, std::vector<std::string>& stages, std::vector<double>& ms,
@@ -630,15 +645,8 @@ bool SceneLines::Update(const LineTechnique& technique, const cao::PixelCamera& 
     // AO's: a shading change neither searches nor estimates again).
     if (!this->fullGBuffer || this->frameFull)
       return true;
-    std::vector<double> ao;
-    ao.swap(this->frame.ao);
-    const std::vector<std::int64_t> chosen = this->frame.segment;
-    const bool written = cao::LineFrameOfSegments(this->lines.points, this->lines.segments, camera, depth,
-      this->drawings, this->segmentDrawing, chosen, this->frame, error);
-    this->frame.ao.swap(ao);
-    if (!written)
+    if (!this->CompleteFrame(camera, depth, error))
       return false;
-    this->frameFull = true;
     stages.push_back("line_gbuffer");
     ms.push_back(Since(start));
     return true;
@@ -693,17 +701,8 @@ bool SceneLines::Update(const LineTechnique& technique, const cao::PixelCamera& 
     if (!technique.gpuOfGBuffer(*gpu, given, this->frame, error))
       return failed("GPU");
     // The rest of the G-buffer where the line shading reads it (the AO kept).
-    if (this->fullGBuffer)
-    {
-      std::vector<double> ao;
-      ao.swap(this->frame.ao);
-      const std::vector<std::int64_t> chosen = this->frame.segment;
-      if (!cao::LineFrameOfSegments(this->lines.points, this->lines.segments, camera, depth, this->drawings,
-            this->segmentDrawing, chosen, this->frame, error))
-        return false;
-      this->frame.ao.swap(ao);
-      this->frameFull = true;
-    }
+    if (this->fullGBuffer && !this->CompleteFrame(camera, depth, error))
+      return false;
   }
   else if (gpu ? !technique.gpu(*gpu, given, this->frame, error) : !technique.cpu(given, this->frame, error))
     return failed(gpu ? "GPU" : "CPU");

@@ -206,6 +206,9 @@ private:
   /// Whether `frame` holds every G-buffer array (the CPU's G-buffer, or
   /// the GPU's completed for the line shading), not only segments and AO.
   bool frameFull = false;
+  /// Writes the rest of a GPU G-buffer (segments and AO only) from its
+  /// segments, keeping the AO; sets frameFull.
+  bool CompleteFrame(const cao::PixelCamera& camera, const std::vector<float>& depth, std::string& error);
   std::string gbufferNote;
   std::array<double, 3> gpuMs{ { 0.0, 0.0, 0.0 } };
   std::uint64_t linesVersion = 0; ///< names `lines` for the GPU's copy (new each UpdateScene)

@@ -499,7 +499,8 @@ struct vtkContextualAOPass::Internals
   vtkCAO::SceneLines lines;
   bool linesOn = false;   ///< this frame has lines that get line AO
   int lineActors = 0;     ///< actors with lines (whatever the LineMethod): GetNumberOfLineActors
-  /// Visible actors drawn translucent only (Opacity under 1): the AO runs
+  /// Visible actors drawn translucent only (an Opacity under 1, colours or
+  /// a texture with alpha): the AO runs
   /// between the opaque and translucent steps, so they get none and
   /// occlude nothing (the report's translucent_actors, with a note).
   int translucentActors = 0;
@@ -1119,18 +1120,19 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
     this->Exchange(self);
     this->ShareLineGrid(self, ren);
   }
-  if (!(self->Radius >= 0.0) || !std::isfinite(self->Radius) || !(self->Strength >= 0.0) ||
-    !(self->Strength <= 1.0))
+  const bool badRadius = !(self->Radius >= 0.0) || !std::isfinite(self->Radius);
+  const bool badStrength = !(self->Strength >= 0.0) || !(self->Strength <= 1.0);
+  if (badRadius || badStrength)
   {
     // (Out of range they were taken silently: a radius of -1 as the
-    // default, a strength of 2 as 1 and of -1 as 0.)
-    // Each setting out of range named alone, with the panel's label.
+    // default, a strength of 2 as 1 and of -1 as 0.) Each setting out of
+    // range named alone, with the panel's label.
     this->linesOn = false;
     std::string why;
-    if (!(self->Radius >= 0.0) || !std::isfinite(self->Radius))
+    if (badRadius)
       why = "Radius must be 0 (the default: from the scene) or more, in world units, and finite "
             "(the view's Surface AO Radius); it is " + std::to_string(self->Radius);
-    if (!(self->Strength >= 0.0) || !(self->Strength <= 1.0))
+    if (badStrength)
       why += (why.empty() ? "" : "; ") +
         std::string("Strength must be within [0, 1] (the view's Surface AO Strength); it is ") +
         std::to_string(self->Strength);
