@@ -36,6 +36,61 @@ inline Projection Project(const layout::ClipParams& p, float x, float y, float z
   return out;
 }
 
+/// Project's terms for the points of one row (y and z fixed): the row's
+/// products formed once, so that ProjectRun does for each x the same float
+/// operations in the same order as Project (the same bits).
+struct RowProjector
+{
+  float ax[3], ty[3], tz[3], tw[3];
+  float width, height;
+  int lastX, lastY;
+  std::size_t mapX;
+  RowProjector(const layout::ClipParams& p, float y, float z)
+  {
+    const layout::vec4* r = p.toCamera;
+    for (int a = 0; a < 3; ++a)
+    {
+      ax[a] = r[a].x;
+      ty[a] = r[a].y * y;
+      tz[a] = r[a].z * z;
+      tw[a] = r[a].w;
+    }
+    width = static_cast<float>(p.map.x);
+    height = static_cast<float>(p.map.y);
+    lastX = p.map.x - 1;
+    lastY = p.map.y - 1;
+    mapX = static_cast<std::size_t>(p.map.x);
+  }
+};
+
+/// The centres of voxels x0 .. x0 + n - 1 of a row: pixel[q] (-1 off the
+/// map) and depth[q], the bits Project gives, computed without branches.
+inline void ProjectRun(
+  const RowProjector& rp, int x0, int n, std::int64_t* __restrict pixel, float* __restrict depth)
+{
+  // Locals, so that the stores cannot alias them.
+  const float a0 = rp.ax[0], a1 = rp.ax[1], a2 = rp.ax[2];
+  const float y0 = rp.ty[0], y1 = rp.ty[1], y2 = rp.ty[2];
+  const float z0 = rp.tz[0], z1 = rp.tz[1], z2 = rp.tz[2];
+  const float w0 = rp.tw[0], w1 = rp.tw[1], w2 = rp.tw[2];
+  const float width = rp.width, height = rp.height;
+  const int lastX = rp.lastX, lastY = rp.lastY;
+  const std::int64_t mapX = static_cast<std::int64_t>(rp.mapX);
+  for (int q = 0; q < n; ++q)
+  {
+    const float x = static_cast<float>(x0 + q);
+    const float u = ((a0 * x + y0) + z0) + w0;
+    const float v = ((a1 * x + y1) + z1) + w1;
+    const float d = ((a2 * x + y2) + z2) + w2;
+    const bool in = (u >= 0.0f) & (v >= 0.0f) & (u < width) & (v < height);
+    // Off the map (NaN included) the conversion reads 0, never out of range.
+    const int px = std::min(static_cast<int>(in ? u : 0.0f), lastX);
+    const int py = std::min(static_cast<int>(in ? v : 0.0f), lastY);
+    pixel[q] = in ? py * mapX + px : -1;
+    depth[q] = d;
+  }
+}
+
 inline bool InLayers(
   const layout::ClipParams& p, const float* front, const float* back, const Projection& q)
 {
@@ -62,11 +117,42 @@ struct LayerSet
   std::size_t pixelStride = 0, layerStride = 1;
 };
 
+/// InSet of a point in pixel `pixel` (< 0: off the map) at `depth`.
+inline bool InSetAt(const LayerSet& s, int layers, std::int64_t pixel, float depth)
+{
+  if (pixel < 0)
+    return false;
+  const std::size_t base = static_cast<std::size_t>(pixel) * s.pixelStride;
+  if (layers == 2)
+  {
+    // Without branches: which of a pixel's intervals holds a voxel varies
+    // from voxel to voxel, and mispredicted branches cost more than the
+    // four loads.
+    const std::size_t second = base + s.layerStride;
+    const float f0 = s.front[base], b0 = s.back[base], f1 = s.front[second],
+                b1 = s.back[second];
+    return static_cast<bool>(((f0 <= depth) & (depth <= b0)) | ((f1 <= depth) & (depth <= b1)));
+  }
+  for (int l = 0; l < layers; ++l)
+  {
+    const std::size_t i = base + l * s.layerStride;
+    if (s.front[i] <= depth && depth <= s.back[i])
+      return true;
+  }
+  return false;
+}
+
 inline bool InSet(const LayerSet& s, int layers, const Projection& q)
 {
   if (!q.inMap)
     return false;
   const std::size_t base = q.pixel * s.pixelStride;
+  if (layers == 2)
+  {
+    const std::size_t second = base + s.layerStride;
+    return (s.front[base] <= q.depth && q.depth <= s.back[base]) |
+      (s.front[second] <= q.depth && q.depth <= s.back[second]);
+  }
   for (int l = 0; l < layers; ++l)
   {
     const std::size_t i = base + l * s.layerStride;
@@ -645,6 +731,23 @@ std::uint8_t ClassifyBrick(const layout::ClipParams& p, const ClipMapsTiles& til
   return BrickOf(p, clip, [&] { return BoxCoverage(p, tiles, 1, clo, chi); });
 }
 
+/// ClassifyBrick for a brick whose clip coverage is already proven uniform
+/// and unclipped (none of its samples in the clip in subtraction, all of
+/// them in probing: a block around it proved it): only the candidate query.
+std::uint8_t ClassifyBrickCandidate(const layout::ClipParams& p, const ClipMapsTiles& tiles,
+  int i0, int i1, int j0, int j1, int k0, int k1)
+{
+  const bool subtract = p.map.w == layout::CAO_MODE_SUBTRACT;
+  const double clo[3] = { double(i0), double(j0), double(k0) }, chi[3] = { double(i1), double(j1),
+    double(k1) };
+  return BrickOf(p, subtract ? ClipMapsTiles::None : ClipMapsTiles::All,
+    [&] { return BoxCoverage(p, tiles, 1, clo, chi); });
+}
+
+/// The side, in bricks, of the blocks ClassifyRegion queries before their
+/// bricks.
+constexpr int BlockBricks = 4;
+
 /// Set on a brick of the layer (with its category) when `memory` says its
 /// voxels already hold that category: nothing to write.
 constexpr std::uint8_t BrickUnchanged = 0x80;
@@ -652,9 +755,11 @@ constexpr std::uint8_t BrickUnchanged = 0x80;
 
 void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMapsView& maps,
   const float* opacity, float* clipped, std::uint8_t* category, const int region[6], int zBegin,
-  int zEnd, std::vector<std::int64_t>* affectedBySlice, CategoryCounts& counts,
+  int zEnd, std::vector<std::int64_t>* affectedBySlice, CategoryCounts& countsOut,
   const ClipMapsTiles* tiles, BrickMemory* memory, const ProofMaps::View* proof)
 {
+  // Counted in a local, added at the end (kept in registers).
+  CategoryCounts counts;
   for (int k = zBegin; k < zEnd; ++k)
     affectedBySlice[k - zBegin].clear();
   std::vector<std::int64_t>* list = affectedBySlice; // the current slice's
@@ -686,6 +791,11 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
       erodedSet = { r + 6, r + 7, 8 * pz, 8 };
     }
   }
+  // The centres of a row's Mixed bricks, projected a run at a time.
+  std::vector<std::int64_t> centrePixel(static_cast<std::size_t>(std::max(0, bx1 - bx0 + 1)));
+  std::vector<float> centreDepth(centrePixel.size());
+  std::vector<std::int64_t> runAffected(centrePixel.size()); // a run's b voxels
+  std::vector<std::uint8_t> runDiffers(centrePixel.size());  // and which differ
   // Corner planes below and above the slice, filled as needed (2: not yet
   // evaluated), so that bricks decided at once cost no corner tests.
   constexpr std::uint8_t Unknown = 2;
@@ -765,23 +875,43 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
     {
       brickLayer = (k - bz0) / BrickSize;
       const int k0 = bz0 + brickLayer * BrickSize, k1 = std::min(bz1, k0 + BrickSize - 1);
-      for (int by = 0; by < nby; ++by)
-        for (int bx = 0; bx < nbx; ++bx)
+      // Blocks of BlockBricks x BlockBricks bricks first: a block proven
+      // uniform gives each of its bricks its category at once, and a block
+      // whose clip coverage is proven uniform leaves its bricks only the
+      // candidate query. (What a block proves holds for every voxel in it,
+      // so the bricks get what their own queries would have proven, or
+      // more; the voxels' results are the same either way.)
+      for (int gy = 0; gy < nby; gy += BlockBricks)
+        for (int gx = 0; gx < nbx; gx += BlockBricks)
         {
-          const int i0 = bx0 + bx * BrickSize, j0 = by0 + by * BrickSize;
-          std::uint8_t state = ClassifyBrick(p, *tiles, i0, std::min(bx1, i0 + BrickSize - 1),
-            j0, std::min(by1, j0 + BrickSize - 1), k0, k1);
-          if (memory)
-          {
-            std::uint8_t& held = memory->category[memory->Index(
-              i0 / BrickSize, j0 / BrickSize, k0 / BrickSize)];
-            const std::uint8_t decided = state & ~BrickClipUniform;
-            const bool same = decided != BrickMixed && held == decided;
-            held = decided;
-            if (same)
-              state |= BrickUnchanged;
-          }
-          bricks[static_cast<std::size_t>(by) * nbx + bx] = state;
+          const int gx1 = std::min(nbx, gx + BlockBricks), gy1 = std::min(nby, gy + BlockBricks);
+          std::uint8_t block = BrickMixed;
+          if (gx1 - gx > 1 || gy1 - gy > 1)
+            block = ClassifyBrick(p, *tiles, bx0 + gx * BrickSize,
+              std::min(bx1, bx0 + gx1 * BrickSize - 1), by0 + gy * BrickSize,
+              std::min(by1, by0 + gy1 * BrickSize - 1), k0, k1);
+          for (int by = gy; by < gy1; ++by)
+            for (int bx = gx; bx < gx1; ++bx)
+            {
+              const int i0 = bx0 + bx * BrickSize, j0 = by0 + by * BrickSize;
+              const int i1 = std::min(bx1, i0 + BrickSize - 1), j1 = std::min(by1, j0 + BrickSize - 1);
+              std::uint8_t state = block;
+              if (block == (BrickMixed | BrickClipUniform))
+                state = ClassifyBrickCandidate(p, *tiles, i0, i1, j0, j1, k0, k1);
+              else if (block == BrickMixed)
+                state = ClassifyBrick(p, *tiles, i0, i1, j0, j1, k0, k1);
+              if (memory)
+              {
+                std::uint8_t& held = memory->category[memory->Index(
+                  i0 / BrickSize, j0 / BrickSize, k0 / BrickSize)];
+                const std::uint8_t decided = state & ~BrickClipUniform;
+                const bool same = decided != BrickMixed && held == decided;
+                held = decided;
+                if (same)
+                  state |= BrickUnchanged;
+              }
+              bricks[static_cast<std::size_t>(by) * nbx + bx] = state;
+            }
         }
     }
     if (memory && (k - bz0) / BrickSize != memoryLayer)
@@ -809,6 +939,8 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
       const std::size_t c1 = c0 + cw;
       const int cy0 = j - by0, cy1 = cy0 + 1;
       const std::uint8_t* brickRow = tiles ? &bricks[static_cast<std::size_t>(cy0 / BrickSize) * nbx] : nullptr;
+      const RowProjector rowProjector(p, static_cast<float>(j), static_cast<float>(k));
+      int projected = bx0 - 1; // the centres projected: [bx0, projected] at most
       int i = bx0;
       while (i <= bx1)
       {
@@ -845,52 +977,87 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
         }
         const BrickState state = static_cast<BrickState>(held & ~BrickClipUniform);
         const bool clipUniform = (held & BrickClipUniform) != 0;
-        std::uint8_t* mixedDiffers = memory
-          ? &memory->differs[memory->Index(i / BrickSize, j / BrickSize, k / BrickSize)]
-          : nullptr;
         if (state != BrickMixed)
         {
           fillBrick(state, row + i, row + iEnd + 1);
           i = iEnd + 1;
           continue;
         }
+        if (i > projected)
+        {
+          // Project the centres of this brick and of the row's next Mixed
+          // bricks (either kind) at once.
+          int runEnd = iEnd;
+          for (int next = bx + 1; brickRow && next < nbx &&
+               (brickRow[next] & ~BrickClipUniform) == BrickMixed;
+               ++next)
+            runEnd = std::min(bx1, bx0 + (next + 1) * BrickSize - 1);
+          if (!brickRow)
+            runEnd = bx1;
+          ProjectRun(rowProjector, i, runEnd + 1 - i, centrePixel.data() + (i - bx0),
+            centreDepth.data() + (i - bx0));
+          projected = runEnd;
+        }
+        if (clipUniform)
+        {
+          // Every sample of these bricks (and of the row's next ones of the
+          // same kind) proven out of the clip (subtraction) or in it
+          // (probing): the factor is 1, no voxel is clipped, and the
+          // candidate test alone decides b or c. Without branches (the
+          // test's outcome flips along a row where the candidate layers'
+          // surface crosses it); the b voxels are gathered, then appended.
+          for (int next = bx + 1; next < nbx && brickRow[next] == held; ++next)
+            iEnd = std::min(bx1, bx0 + (next + 1) * BrickSize - 1);
+          const std::int64_t v0 = row + i, n = iEnd + 1 - i;
+          std::copy(opacity + v0, opacity + v0 + n, clipped + v0);
+          const std::int64_t* pix = centrePixel.data() + (i - bx0);
+          const float* dep = centreDepth.data() + (i - bx0);
+          const std::uint8_t inCand = static_cast<std::uint8_t>(
+            subtract ? layout::CAO_CATEGORY_AFFECTED : layout::CAO_CATEGORY_UNAFFECTED);
+          const std::uint8_t outCand = static_cast<std::uint8_t>(
+            subtract ? layout::CAO_CATEGORY_UNAFFECTED : layout::CAO_CATEGORY_AFFECTED);
+          std::int64_t* gathered = runAffected.data();
+          std::int64_t nb = 0;
+          for (std::int64_t q = 0; q < n; ++q)
+          {
+            const bool candidate = InSetAt(candSet, layers, pix[q], dep[q]);
+            category[v0 + q] = candidate ? inCand : outCand;
+            gathered[nb] = v0 + q;
+            nb += (subtract == candidate);
+          }
+          affected.insert(affected.end(), gathered, gathered + nb);
+          counts.affected += nb;
+          counts.unaffected += n - nb;
+          i = iEnd + 1;
+          continue;
+        }
+        // The row's next bricks of the same kind join the run (without
+        // tiles, the whole row: one Mixed run).
+        for (int next = bx + 1; brickRow && next < nbx && brickRow[next] == held; ++next)
+          iEnd = std::min(bx1, bx0 + (next + 1) * BrickSize - 1);
+        if (!brickRow)
+          iEnd = bx1;
+        const int iBegin = i;
+        const std::int64_t v0 = row + iBegin;
+        std::int64_t* gathered = runAffected.data();
+        std::uint8_t* differs = runDiffers.data();
+        std::int64_t nb = 0, nClipped = 0;
         for (; i <= iEnd; ++i)
         {
           const std::int64_t v = row + i;
           const int cx = i - bx0;
           const std::size_t ci = static_cast<std::size_t>(cx);
-          const Projection centre =
-            Project(p, static_cast<float>(i), static_cast<float>(j), static_cast<float>(k));
-          const bool candidate = InSet(candSet, layers, centre);
-          if (clipUniform)
-          {
-            // Every sample proven out of the clip (subtraction) or in it
-            // (probing): the factor is 1, the voxel is not clipped.
-            clipped[v] = opacity[v];
-            std::uint8_t cat;
-            if (subtract == candidate)
-            {
-              cat = layout::CAO_CATEGORY_AFFECTED;
-              ++counts.affected;
-              affected.push_back(v);
-            }
-            else
-            {
-              cat = layout::CAO_CATEGORY_UNAFFECTED;
-              ++counts.unaffected;
-            }
-            category[v] = cat;
-            continue;
-          }
+          const std::int64_t pixel = centrePixel[ci];
+          const float depth = centreDepth[ci];
+          const bool candidate = InSetAt(candSet, layers, pixel, depth);
           float coverage;
-          if (proof && centre.inMap && !InSet(dilatedSet, layers, centre))
+          if (proof && pixel >= 0 && !InSetAt(dilatedSet, layers, pixel, depth))
           {
             // Outside the clip grown by the samples' reach: none is in it.
             coverage = 0.0f;
             ++counts.byCentre;
           }
-          else if (proof && centre.inMap &&
-            InSet(erodedSet, layers, centre))
+          else if (proof && pixel >= 0 && InSetAt(erodedSet, layers, pixel, depth))
           {
             // Inside it shrunk by that reach: every sample is in it.
             coverage = 1.0f;
@@ -898,7 +1065,7 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
           }
           else
           {
-            int inside = InSet(clipSet, layers, centre) +
+            int inside = InSetAt(clipSet, layers, pixel, depth) +
               corner(lower, c0 + ci, cx, cy0, zLower) + corner(lower, c0 + ci + 1, cx + 1, cy0, zLower) +
               corner(lower, c1 + ci, cx, cy1, zLower) + corner(lower, c1 + ci + 1, cx + 1, cy1, zLower) +
               corner(upper, c0 + ci, cx, cy0, zUpper) + corner(upper, c0 + ci + 1, cx + 1, cy0, zUpper) +
@@ -928,51 +1095,38 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
               coverage = static_cast<float>(inside) / total;
             }
           }
-          std::uint8_t cat;
-          if (subtract)
-          {
-            if (coverage == 1.0f)
-            {
-              cat = layout::CAO_CATEGORY_CLIPPED;
-              clipped[v] = 0.0f;
-            }
-            else
-            {
-              cat = candidate ? layout::CAO_CATEGORY_AFFECTED : layout::CAO_CATEGORY_UNAFFECTED;
-              clipped[v] = opacity[v] * (1.0f - coverage);
-            }
-          }
-          else
-          {
-            if (coverage == 0.0f)
-            {
-              cat = layout::CAO_CATEGORY_CLIPPED;
-              clipped[v] = 0.0f;
-            }
-            else
-            {
-              cat = candidate ? layout::CAO_CATEGORY_UNAFFECTED : layout::CAO_CATEGORY_AFFECTED;
-              clipped[v] = opacity[v] * coverage;
-            }
-          }
-          category[v] = cat;
-          if (mixedDiffers && Bits(clipped[v]) != Bits(opacity[v]))
-            *mixedDiffers = 1;
-          if (cat == layout::CAO_CATEGORY_CLIPPED)
-            ++counts.clipped;
-          else if (cat == layout::CAO_CATEGORY_AFFECTED)
-          {
-            ++counts.affected;
-            affected.push_back(v);
-          }
-          else
-            ++counts.unaffected;
+          // From the coverage, without branches (the category flips where
+          // the clip's and the candidate layers' surfaces cross the row):
+          // a when fully clipped (coverage 1 subtracting, 0 probing, the
+          // clipped opacity 0), else b or c by the candidate test with the
+          // opacity times 1 - c (subtraction) or c (probing).
+          const bool full = subtract ? coverage == 1.0f : coverage == 0.0f;
+          const float factor = subtract ? 1.0f - coverage : coverage;
+          const float value = full ? 0.0f : opacity[v] * factor;
+          const bool isB = !full && candidate == subtract;
+          clipped[v] = value;
+          category[v] = static_cast<std::uint8_t>(full ? layout::CAO_CATEGORY_CLIPPED
+              : (isB ? layout::CAO_CATEGORY_AFFECTED : layout::CAO_CATEGORY_UNAFFECTED));
+          differs[i - iBegin] = Bits(value) != Bits(opacity[v]);
+          gathered[nb] = v;
+          nb += isB;
+          nClipped += full;
         }
+        const std::int64_t n = iEnd + 1 - iBegin;
+        counts.clipped += nClipped;
+        counts.affected += nb;
+        counts.unaffected += n - nb - nClipped;
+        affected.insert(affected.end(), gathered, gathered + nb);
+        if (memory)
+          for (int q = 0; q < n; ++q)
+            if (differs[q])
+              memory->differs[memory->Index((iBegin + q) / BrickSize, j / BrickSize, k / BrickSize)] = 1;
       }
       FillOutside(p, opacity, clipped, category, row + bx1 + 1, row + rx1 + 1, counts);
     }
     fillRows(slice, by1 + 1, ry1, rx0, rx1);
     std::swap(lower, upper);
   }
+  countsOut.Add(counts);
 }
 }

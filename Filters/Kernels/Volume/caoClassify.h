@@ -79,7 +79,8 @@ struct CategoryCounts
  * when every sample of every voxel in it (centre, corners, anti-aliasing
  * samples: all within half a voxel of the centres) provably gives the same
  * answer as the per-sample test would; a brick it cannot prove uniform goes
- * sample by sample. The result is therefore bit for bit the same with and
+ * sample by sample. It queries blocks of 4 x 4 bricks of a brick layer
+ * first, and a brick only where its block is not proven uniform. The result is therefore bit for bit the same with and
  * without the tiles; only the work differs.
  */
 class ClipMapsTiles

@@ -1,5 +1,7 @@
 // The classification's shortcuts give the bits of testing every sample of
-// every voxel (ClassifySlices), in subtraction and probing, for a sphere
+// every voxel (ClassifySlices: each voxel's category and clipped opacity,
+// the b voxels' list in order, the counts), in subtraction and probing,
+// for a sphere
 // turned about the maps' view axis and moved through, across and out of a
 // volume:
 //  1. the candidate box narrowed to the depth maps' contents
@@ -9,9 +11,11 @@
 //     side it does not share with the volume changes the classification
 //     (the comparison sees a box that is too small, and the narrowed box is
 //     within those few voxels of the least box that is right);
-//  2. bricks decided by the tiles, voxels decided from their centre by the
-//     proof maps (ClassifyRegion with ClipMapsTiles and ProofMaps, read
-//     through the packed record and apart). Negative controls: the voxels
+//  2. bricks decided by the tiles (blocks of bricks first), voxels decided
+//     from their centre by the proof maps, runs of bricks whose clip is
+//     proven uniform by the candidate test alone (ClassifyRegion with
+//     ClipMapsTiles and ProofMaps, read through the packed record and
+//     apart). Negative controls: the voxels
 //     proven with the clip layers themselves (radius 0), and the packed
 //     record with its dilated and eroded intervals swapped, change the
 //     classification;
@@ -33,6 +37,7 @@ struct Result
 {
   std::vector<float> clipped;
   std::vector<std::uint8_t> category;
+  std::vector<std::int64_t> affected; ///< the b voxels as listed, in order
   cao::CategoryCounts counts;
 };
 
@@ -42,18 +47,27 @@ Result Classify(const cao::layout::ClipParams& clip, const int dims[3],
   Result r;
   r.clipped.assign(opacity.size(), -1.0f);
   r.category.assign(opacity.size(), 255);
-  std::vector<std::int64_t> affected;
   cao::ClassifySlices(clip, dims, view, opacity.data(), r.clipped.data(), r.category.data(), 0,
-    dims[2], affected, r.counts);
+    dims[2], r.affected, r.counts);
   return r;
 }
 
+/// Voxels whose category or clipped opacity differ, plus the b voxels
+/// listed by one and not the other (or out of order), plus the category
+/// counts that differ.
 std::int64_t Differences(const Result& a, const Result& b)
 {
   std::int64_t n = 0;
   for (std::size_t v = 0; v < a.category.size(); ++v)
     n += a.category[v] != b.category[v] ||
       std::memcmp(&a.clipped[v], &b.clipped[v], sizeof(float)) != 0;
+  std::size_t common = 0;
+  while (common < a.affected.size() && common < b.affected.size() &&
+    a.affected[common] == b.affected[common])
+    ++common;
+  n += static_cast<std::int64_t>(a.affected.size() + b.affected.size() - 2 * common);
+  n += (a.counts.clipped != b.counts.clipped) + (a.counts.affected != b.counts.affected) +
+    (a.counts.unaffected != b.counts.unaffected);
   return n;
 }
 
@@ -171,6 +185,8 @@ int TestClassifyShortcuts(int, char*[])
         std::vector<std::vector<std::int64_t>> lists(static_cast<std::size_t>(dims[2]));
         cao::ClassifyRegion(clip, dims, view, opacity.data(), r.clipped.data(),
           r.category.data(), whole, 0, dims[2], lists.data(), r.counts, &tiles, nullptr, maps);
+        for (const auto& l : lists)
+          r.affected.insert(r.affected.end(), l.begin(), l.end());
         return r;
       };
       const Result fast = shortcut(&pv);
@@ -251,11 +267,19 @@ int TestClassifyShortcuts(int, char*[])
                 {
                   r.category[v] = cao::layout::CAO_CATEGORY_CLIPPED;
                   r.clipped[v] = 0.0f;
+                  ++r.counts.clipped;
                   continue;
                 }
                 r.category[v] = (subtract == candidate) ? cao::layout::CAO_CATEGORY_AFFECTED
                                                         : cao::layout::CAO_CATEGORY_UNAFFECTED;
                 r.clipped[v] = holes[v] * (subtract ? 1.0f - coverage : coverage);
+                if (subtract == candidate)
+                {
+                  r.affected.push_back(static_cast<std::int64_t>(v));
+                  ++r.counts.affected;
+                }
+                else
+                  ++r.counts.unaffected;
               }
           return r;
         };
