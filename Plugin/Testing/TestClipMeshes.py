@@ -378,7 +378,7 @@ refused = json.loads(mapper.GetLastFrameReport())
 display.AOStrength = 1.0
 frame("strength-back")
 back = json.loads(mapper.GetLastFrameReport())
-check("AOStrength must be in [0, 1]; got 5" in refused.get("error", "") and
+check("AO Strength (AOStrength) must be in [0, 1]; got 5" in refused.get("error", "") and
       "drawn without AO" in refused.get("error", "") and "categories" not in refused and
       mapper.GetFrameCount() == drawn + 2 and
       "AOStrength" not in back.get("error", "") and back.get("frame") == refused.get("frame", -9) + 1,

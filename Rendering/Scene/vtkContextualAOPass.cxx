@@ -426,6 +426,7 @@ struct vtkContextualAOPass::Internals
   std::vector<std::vector<std::int64_t>> meshTriangles;
   std::vector<std::int64_t> meshOpenEdges;
   double radius = 0.0;
+  bool refusedRadius = false; ///< this frame refused the Radius setting (the report names it)
   /// Every process's pieces' area together (SceneExchange::CommonArea),
   /// exchanged when a scene changes; the default radius's A when distributed.
   double commonArea = 0.0;
@@ -974,7 +975,13 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
   o << ", \"triangles\": " << (surfaces ? p.triangles : 0) << ", \"bvh\": "
     << (surfaces && p.bvh.NumberOfTriangles() > 0 ? "true" : "false")
     << ", \"open_meshes\": " << (surfaces ? p.open : 0)
-    << ", \"occluding_volumes\": " << (surfaces ? p.opacity.size() : 0) << ", \"radius\": " << p.radius
+    << ", \"occluding_volumes\": " << (surfaces ? p.opacity.size() : 0) << ", \"radius\": ";
+  const double reported = p.refusedRadius ? this->Radius : p.radius;
+  if (std::isfinite(reported))
+    o << reported;
+  else
+    o << "null"; // a refused NaN or infinite radius (JSON has no NaN)
+  o
     << ", \"slices\": " << p.grid.slices << ", \"covered_pixels\": " << p.frame.covered
     << ", \"combined_pixels\": " << p.combined << ", \"hidden_pixels\": " << p.hidden
     << ", \"backend\": \"" << cao::JsonEscape(p.onGPU ? p.gpu.Description() : std::string("CPU")) << "\"";
@@ -1121,6 +1128,9 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
     this->ShareLineGrid(self, ren);
   }
   const bool badRadius = !(self->Radius >= 0.0) || !std::isfinite(self->Radius);
+  // The report names a radius refused here (the resolved one is kept for
+  // the scene's next frame).
+  this->refusedRadius = badRadius;
   const bool badStrength = !(self->Strength >= 0.0) || !(self->Strength <= 1.0);
   if (badRadius || badStrength)
   {

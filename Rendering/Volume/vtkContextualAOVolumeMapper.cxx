@@ -793,18 +793,20 @@ std::string vtkContextualAOVolumeMapper::ClipSettingsProblem() const
 
 bool vtkContextualAOVolumeMapper::CheckAOSettings(std::string& why) const
 {
+  // ParaView's panel labels first, where the representation shows the
+  // setting, then the mapper's own name.
   std::ostringstream bad;
   auto outside = [&bad](const char* name, double v, const char* range) {
     bad << name << " must be " << range << "; got " << v << ".";
   };
   const int quality = static_cast<int>(this->Internal->Settings.quality);
   if (!(this->AOStrength >= 0.0 && this->AOStrength <= 1.0))
-    outside("AOStrength", this->AOStrength, "in [0, 1]");
+    outside("AO Strength (AOStrength)", this->AOStrength, "in [0, 1]");
   else if (this->AOCalibration != AO_CALIBRATION_NONE &&
     this->AOCalibration != AO_CALIBRATION_HALF_SPACE)
-    outside("AOCalibration", this->AOCalibration, "0 (None) or 1 (HalfSpace)");
+    outside("AO Calibration (AOCalibration)", this->AOCalibration, "0 (None) or 1 (HalfSpace)");
   else if (quality < CUSTOM || quality > HIGH)
-    outside("Quality", quality, "0 (Custom) to 3 (High)");
+    outside("AO Quality (Quality)", quality, "0 (Custom) to 3 (High)");
   else if (this->AOUpdate != CONTEXTUAL && this->AOUpdate != FULL_RECOMPUTE)
     outside("AOUpdate", this->AOUpdate, "0 (contextual) or 1 (full recompute)");
   why = bad.str();

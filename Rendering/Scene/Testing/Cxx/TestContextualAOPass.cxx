@@ -922,7 +922,7 @@ int TestContextualAOPass(int, char*[])
   // the range, and nothing runs.
   for (const std::pair<double, double>& bad : std::vector<std::pair<double, double>>{
          { 0.0, std::nan("") }, { 0.0, 2.0 }, { 0.0, -1.0 }, { -1.0, 1.0 }, { -1.0, 2.0 },
-         { std::numeric_limits<double>::infinity(), 0.5 } })
+         { std::numeric_limits<double>::infinity(), 0.5 }, { std::nan(""), 0.5 } })
   {
     pass->SetRadius(bad.first);
     pass->SetStrength(bad.second);
@@ -937,6 +937,18 @@ int TestContextualAOPass(int, char*[])
         said.find("Surface AO") != std::string::npos && pass->GetLastFrameStages().empty(),
       "Radius " + std::to_string(bad.first) + ", Strength " + std::to_string(bad.second) +
         ": the one out of range refused with its range, and nothing runs: " + said.substr(0, 300));
+    // The report's radius is the one refused (NaN and infinity as null;
+    // a trial saw the last radius used after a NaN), else the one resolved.
+    const std::size_t at = said.find("\"radius\": ");
+    const std::string radiusField =
+      at == std::string::npos ? "" : said.substr(at + 10, said.find_first_of(",}", at) - at - 10);
+    const std::string expected = !badRadius ? ""
+      : std::isfinite(bad.first)            ? "-1"
+                                            : "null";
+    Check(badRadius ? radiusField == expected
+                    : (!radiusField.empty() && radiusField != "null" && radiusField[0] != '-'),
+      "Radius " + std::to_string(bad.first) + ": the report's radius is '" + radiusField + "'" +
+        (badRadius ? " (the refused one: '" + expected + "')" : " (resolved)"));
   }
   pass->SetRadius(0.0);
   {

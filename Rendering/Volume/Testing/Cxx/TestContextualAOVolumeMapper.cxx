@@ -1162,10 +1162,10 @@ void BadInput(const Options& o)
     };
     CAO_EXPECT(!(withAO == noAO), "the AO changes nothing in this frame: the checks below cannot fail");
     m->SetQuality(7);
-    withoutAO("quality 7 after a good frame", "Quality must be");
+    withoutAO("quality 7 after a good frame", "AO Quality (Quality) must be");
     m->SetQuality(vtkContextualAOVolumeMapper::CUSTOM);
     m->SetAOStrength(5.0);
-    withoutAO("AO strength 5", "AOStrength must be in [0, 1]; got 5");
+    withoutAO("AO strength 5", "AO Strength (AOStrength) must be in [0, 1]; got 5");
     m->SetAOStrength(1.0);
     const caotest::Image back = s.Frame();
     CAO_EXPECT(back == withAO && m->GetLastFrameReport().find("drawn without AO") == std::string::npos,
