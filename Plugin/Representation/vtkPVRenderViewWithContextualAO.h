@@ -81,6 +81,7 @@ private:
   vtkPVRenderViewWithContextualAO(const vtkPVRenderViewWithContextualAO&) = delete;
   void operator=(const vtkPVRenderViewWithContextualAO&) = delete;
   vtkNew<vtkContextualAOPass> Pass;
+  bool SaidSSAOSetAside = false; ///< the note on ParaView's own AO set aside was logged
   bool WarnedParallel = false;
 };
 

@@ -32,6 +32,7 @@ import os
 import sys
 
 from paraview.simple import *  # noqa: F401,F403
+from vtkmodules.vtkCommonCore import vtkOutputWindow, vtkStringOutputWindow
 from vtkmodules.vtkIOImage import vtkPNGReader
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
@@ -92,10 +93,22 @@ check(darker.min() >= -3 and 300 < changed < 0.5 * darker.size,
       "than 10 grey levels" % (-darker.min(), changed, darker.size))
 # ParaView's own screen-space AO (Use Ambient Occlusion) applies only while
 # the method is None: with a method it would darken the surfaces twice.
+# Set aside, it is said once (a trial saw it change nothing, silently);
+# with Method None, where it applies, nothing is said (the control).
+said = vtkStringOutputWindow()
+previousWindow = vtkOutputWindow.GetInstance()
+vtkOutputWindow.SetInstance(said)
 view.UseAmbientOcclusion = 1
 ssaoOff = shot("view-ssao-method-none")
+saidWithNone = said.GetOutput()
 view.SurfaceAOMethod = "Horizon Based"
 ssaoOn = shot("view-ssao-hbao")
+shot("view-ssao-hbao-again")  # (not Render(): paraview.simple's first Render resets the camera)
+vtkOutputWindow.SetInstance(previousWindow)
+note = "Use Ambient Occlusion (ParaView's screen-space AO) is not applied"
+check(note not in saidWithNone and said.GetOutput().count(note) == 1,
+      "ParaView's own AO set aside is said once over two frames, and not while it applies: %r"
+      % said.GetOutput()[-400:])
 view.UseAmbientOcclusion = 0
 hbao = shot("view-hbao")
 check(abs(ssaoOff - off).max() > 30 and abs(ssaoOn - hbao).max() == 0,
