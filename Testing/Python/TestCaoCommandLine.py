@@ -307,6 +307,18 @@ for radius, silent in (("0.00001", False), (None, True)):
     said = "is under a voxel of the grid" in err
     check(rc == 0 and said != silent and (mean < 1.0 if silent else mean == 1.0),
           f"vct radius {radius}: mean AO {mean}, warned {said}: rc={rc} {err.strip()[:200]!r}")
+# --radius 0 is the default, as the view's Surface AO Radius 0 is (a trial
+# saw the CLI refuse the value the view takes); a negative one is refused.
+radii = []
+for extra in (["--radius", "0"], []):
+    rc, out, err = run("surface", os.path.join(data, "Bunny.vtp"), "--image", "80x60", "--json", *extra,
+                       "-o", os.path.join(tmp, "radius_default.png"))
+    radii.append(json.loads(out)["radius"] if rc == 0 else None)
+rc, out, err = run("surface", os.path.join(data, "Bunny.vtp"), "--radius", "-1", "-o",
+                   os.path.join(tmp, "radius_negative.png"))
+check(radii[0] is not None and radii[0] == radii[1] and radii[0] > 0 and rc == 2 and
+      "or 0 for the default" in err,
+      f"surface --radius 0 is the default radius ({radii}); -1 refused: rc={rc} {err.strip()[:200]!r}")
 rc, out, err = run("carve", neghip, "--pose", "30 30 30", "--pose", "20 20 20", "--rays", "6", "--json")
 check(rc == 0 and len(json.loads(out)["runs"][0]["poses"]) == 2,
       f"--pose twice gives two poses: rc={rc} {err.strip()[:200]!r}")
