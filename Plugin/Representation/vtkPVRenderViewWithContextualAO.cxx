@@ -84,14 +84,16 @@ void vtkPVRenderViewWithContextualAO::Render(bool interactive, bool skip_renderi
   // Occlusion") would darken the surfaces or lines a second time: it
   // applies only while Surface AO Method is None and no lines get Line AO.
   const bool ssao = this->UseSSAO;
-  const bool ssaoSetAside = ssao && (surfaceAO || lineAO);
-  if (ssaoSetAside && !this->SaidSSAOSetAside)
+  // Set aside, it is said once per cause (from the first process alone).
+  const int setAside = !ssao ? 0 : (surfaceAO ? 1 : (lineAO ? 2 : 0));
+  if (setAside && setAside != this->SaidSSAOSetAside &&
+    (!controller || controller->GetLocalProcessId() == 0))
     vtkWarningMacro("Use Ambient Occlusion (ParaView's screen-space AO) is not applied in this "
                     "view while "
-      << (surfaceAO ? "Surface AO Method is not None" : "lines get Line AO")
+      << (setAside == 1 ? "Surface AO Method is not None" : "lines get Line AO")
       << ": the view's own AO replaces it (both would darken the same pixels). Set Surface AO "
          "Method to None (and Line AO Method to None for lines) to use ParaView's.");
-  this->SaidSSAOSetAside = ssaoSetAside; // said again only after it applied or was switched off
+  this->SaidSSAOSetAside = setAside; // said again when its cause changes
   if (surfaceAO || lineAO)
     this->UseSSAO = false;
   this->Pass->SetInteractiveFrames(interactive); // (a drag keeps the lines' grid of its start)

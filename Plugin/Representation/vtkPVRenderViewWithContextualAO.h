@@ -81,7 +81,9 @@ private:
   vtkPVRenderViewWithContextualAO(const vtkPVRenderViewWithContextualAO&) = delete;
   void operator=(const vtkPVRenderViewWithContextualAO&) = delete;
   vtkNew<vtkContextualAOPass> Pass;
-  bool SaidSSAOSetAside = false; ///< the note on ParaView's own AO set aside was logged
+  /// Why ParaView's own AO was last said to be set aside: 0 not said, 1
+  /// Surface AO on, 2 Line AO on.
+  int SaidSSAOSetAside = 0;
   bool WarnedParallel = false;
 };
 

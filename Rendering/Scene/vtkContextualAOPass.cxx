@@ -427,6 +427,7 @@ struct vtkContextualAOPass::Internals
   std::vector<std::int64_t> meshOpenEdges;
   double radius = 0.0;
   bool refusedRadius = false; ///< this frame refused the Radius setting (the report names it)
+  double refusedRadiusValue = 0.0; ///< the Radius refused
   /// Every process's pieces' area together (SceneExchange::CommonArea),
   /// exchanged when a scene changes; the default radius's A when distributed.
   double commonArea = 0.0;
@@ -976,7 +977,7 @@ std::string vtkContextualAOPass::GetLastFrameReport() const
     << (surfaces && p.bvh.NumberOfTriangles() > 0 ? "true" : "false")
     << ", \"open_meshes\": " << (surfaces ? p.open : 0)
     << ", \"occluding_volumes\": " << (surfaces ? p.opacity.size() : 0) << ", \"radius\": ";
-  const double reported = p.refusedRadius ? this->Radius : p.radius;
+  const double reported = p.refusedRadius ? p.refusedRadiusValue : p.radius;
   if (std::isfinite(reported))
     o << reported;
   else
@@ -1062,6 +1063,7 @@ void vtkContextualAOPass::Render(const vtkRenderState* s)
   p.reasons.clear();
   p.ms.clear();
   p.error.clear();
+  p.refusedRadius = false; // (set by RunAO when it refuses the Radius setting)
   p.combined = p.hidden = p.lineCombined = 0;
   p.lineCombineOnGPU = false;
   // A selection render draws ids through the renderer's own path; every
@@ -1131,6 +1133,7 @@ void vtkContextualAOPass::Internals::RunAO(vtkContextualAOPass* self, const vtkR
   // The report names a radius refused here (the resolved one is kept for
   // the scene's next frame).
   this->refusedRadius = badRadius;
+  this->refusedRadiusValue = self->Radius;
   const bool badStrength = !(self->Strength >= 0.0) || !(self->Strength <= 1.0);
   if (badRadius || badStrength)
   {

@@ -314,8 +314,7 @@ Command AddBenchLinesCommand(CLI::App& bench)
   AddLength(app, "--tube-radius", o->tubeRadius,
     "the tubes' radius, world units (default: 1/200 of each scene's diagonal)")
     ->type_name("R");
-  AddLength(app, "--radius", o->radius, "the AO radius, world units (default: each scene's, as cao surface)")
-    ->type_name("R");
+  AddAORadius(app, o->radius, "the AO radius, world units (default, or 0: each scene's, as cao surface)");
   AddInteger(app, "--rays", o->rays, 16, 65536, "directions per pixel of the reference, 16 to 65536 (default 256)");
   AddIntegerList(app, "--samples", o->samples, 1, cao::LineAOSettings::MaximumSamples,
     "line AO prisms per pixel (default 16,64,150; the thesis' 150)");

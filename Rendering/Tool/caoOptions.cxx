@@ -126,6 +126,13 @@ CLI::Option* AddLength(
     ->type_name("L");
 }
 
+CLI::Option* AddAORadius(CLI::App* app, double& target, const std::string& help)
+{
+  return AddNumber(app, "--radius", target, 0.0, HUGE_VAL, false,
+    "a length in world units, or 0 for the default", help)
+    ->type_name("R");
+}
+
 CLI::Option* AddInteger(
   CLI::App* app, const std::string& name, int& target, int lo, int hi, const std::string& help)
 {

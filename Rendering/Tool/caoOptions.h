@@ -42,6 +42,9 @@ std::string Wrap(const std::string& text);
 /// "bad value 'V' (`limit`)".
 CLI::Option* AddNumber(CLI::App* app, const std::string& name, double& target, double lo,
   double hi, bool openLow, const std::string& limit, const std::string& help);
+/// --radius, the surfaces' and lines' AO radius: a length, or 0 for the
+/// scene's default (as the view's Surface AO Radius 0 is).
+CLI::Option* AddAORadius(CLI::App* app, double& target, const std::string& help);
 /// A positive length (> 0, finite): --reach, --size, --unit-distance, ...
 CLI::Option* AddLength(
   CLI::App* app, const std::string& name, double& target, const std::string& help);

@@ -1295,13 +1295,10 @@ Command AddSurfaceCommand(CLI::App& cao)
     "Line inputs (files with lines: polylines, streamlines) take lineao, reference, ssao or none; "
     "each line is a tube of --tube-radius",
     { { "vao", "volumetric" } });
-  // 0 is the default, as the view's Surface AO Radius 0 is.
-  AddNumber(app, "--radius", o->radius, 0.0, HUGE_VAL, false,
-    "a length in world units, or 0 for the default",
+  AddAORadius(app, o->radius,
     "world units (default, or 0: half the mean free path between the meshes' surfaces, 2V/A "
     "over their bounding box V and area A, between a fortieth and a tenth of the box's "
-    "diagonal; a radius given must be 1e-6 to 1e3 times the scene's diagonal)")
-    ->type_name("R");
+    "diagonal; a radius given must be 1e-6 to 1e3 times the scene's diagonal)");
   AddSurfaceQuality(app, o->quality, true,
     "vct: low|medium|high, the paper's presets (spheres 3/5/7, prisms 3/6/12; default medium);\n"
     "hbao: low|medium|high, directions/steps/normal rays 6/9/0 with linear attenuation, 7/12/1, "

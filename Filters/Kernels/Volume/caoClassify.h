@@ -80,7 +80,8 @@ struct CategoryCounts
  * samples: all within half a voxel of the centres) provably gives the same
  * answer as the per-sample test would; a brick it cannot prove uniform goes
  * sample by sample. It queries blocks of 4 x 4 bricks of a brick layer
- * first, and a brick only where its block is not proven uniform. The result is therefore bit for bit the same with and
+ * first, and a brick only where its block is not proven uniform (where the
+ * block's clip is proven uniform, the brick's candidate query alone). The result is therefore bit for bit the same with and
  * without the tiles; only the work differs.
  */
 class ClipMapsTiles

@@ -938,10 +938,14 @@ int TestContextualAOPass(int, char*[])
       "Radius " + std::to_string(bad.first) + ", Strength " + std::to_string(bad.second) +
         ": the one out of range refused with its range, and nothing runs: " + said.substr(0, 300));
     // The report's radius is the one refused (NaN and infinity as null;
-    // a trial saw the last radius used after a NaN), else the one resolved.
-    const std::size_t at = said.find("\"radius\": ");
+    // a trial saw the last radius used after a NaN), else the one resolved;
+    // read after the setting changed again, as the frame's report must not
+    // follow the setting.
+    pass->SetRadius(0.25);
+    const std::string later = pass->GetLastFrameReport();
+    const std::size_t at = later.find("\"radius\": ");
     const std::string radiusField =
-      at == std::string::npos ? "" : said.substr(at + 10, said.find_first_of(",}", at) - at - 10);
+      at == std::string::npos ? "" : later.substr(at + 10, later.find_first_of(",}", at) - at - 10);
     const std::string expected = !badRadius ? ""
       : std::isfinite(bad.first)            ? "-1"
                                             : "null";
