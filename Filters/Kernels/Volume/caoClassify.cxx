@@ -36,46 +36,23 @@ inline Projection Project(const layout::ClipParams& p, float x, float y, float z
   return out;
 }
 
-/// Project's terms for the points of one row (y and z fixed): the row's
-/// products formed once, so that ProjectRun does for each x the same float
-/// operations in the same order as Project (the same bits).
-struct RowProjector
+/// The centres of voxels x0 .. x0 + n - 1 of row (j, k): pixel[q] (-1 off
+/// the map) and depth[q], the bits Project gives (the row's products formed
+/// once, then the same float operations in the same order), computed
+/// without branches.
+inline void ProjectRun(const layout::ClipParams& p, int j, int k, int x0, int n,
+  std::int64_t* __restrict pixel, float* __restrict depth)
 {
-  float ax[3], ty[3], tz[3], tw[3];
-  float width, height;
-  int lastX, lastY;
-  std::size_t mapX;
-  RowProjector(const layout::ClipParams& p, float y, float z)
-  {
-    const layout::vec4* r = p.toCamera;
-    for (int a = 0; a < 3; ++a)
-    {
-      ax[a] = r[a].x;
-      ty[a] = r[a].y * y;
-      tz[a] = r[a].z * z;
-      tw[a] = r[a].w;
-    }
-    width = static_cast<float>(p.map.x);
-    height = static_cast<float>(p.map.y);
-    lastX = p.map.x - 1;
-    lastY = p.map.y - 1;
-    mapX = static_cast<std::size_t>(p.map.x);
-  }
-};
-
-/// The centres of voxels x0 .. x0 + n - 1 of a row: pixel[q] (-1 off the
-/// map) and depth[q], the bits Project gives, computed without branches.
-inline void ProjectRun(
-  const RowProjector& rp, int x0, int n, std::int64_t* __restrict pixel, float* __restrict depth)
-{
+  const layout::vec4* r = p.toCamera;
+  const float y = static_cast<float>(j), z = static_cast<float>(k);
   // Locals, so that the stores cannot alias them.
-  const float a0 = rp.ax[0], a1 = rp.ax[1], a2 = rp.ax[2];
-  const float y0 = rp.ty[0], y1 = rp.ty[1], y2 = rp.ty[2];
-  const float z0 = rp.tz[0], z1 = rp.tz[1], z2 = rp.tz[2];
-  const float w0 = rp.tw[0], w1 = rp.tw[1], w2 = rp.tw[2];
-  const float width = rp.width, height = rp.height;
-  const int lastX = rp.lastX, lastY = rp.lastY;
-  const std::int64_t mapX = static_cast<std::int64_t>(rp.mapX);
+  const float a0 = r[0].x, a1 = r[1].x, a2 = r[2].x;
+  const float y0 = r[0].y * y, y1 = r[1].y * y, y2 = r[2].y * y;
+  const float z0 = r[0].z * z, z1 = r[1].z * z, z2 = r[2].z * z;
+  const float w0 = r[0].w, w1 = r[1].w, w2 = r[2].w;
+  const float width = static_cast<float>(p.map.x), height = static_cast<float>(p.map.y);
+  const int lastX = p.map.x - 1, lastY = p.map.y - 1;
+  const std::int64_t mapX = p.map.x;
   for (int q = 0; q < n; ++q)
   {
     const float x = static_cast<float>(x0 + q);
@@ -89,21 +66,6 @@ inline void ProjectRun(
     pixel[q] = in ? py * mapX + px : -1;
     depth[q] = d;
   }
-}
-
-inline bool InLayers(
-  const layout::ClipParams& p, const float* front, const float* back, const Projection& q)
-{
-  if (!q.inMap)
-    return false;
-  const std::size_t base = q.pixel * p.map.z;
-  for (int l = 0; l < p.map.z; ++l)
-  {
-    const std::size_t i = base + l;
-    if (front[i] <= q.depth && q.depth <= back[i])
-      return true;
-  }
-  return false;
 }
 
 /// One set of layer maps as the per-voxel tests read it: pixel `pixel`'s
@@ -144,22 +106,7 @@ inline bool InSetAt(const LayerSet& s, int layers, std::int64_t pixel, float dep
 
 inline bool InSet(const LayerSet& s, int layers, const Projection& q)
 {
-  if (!q.inMap)
-    return false;
-  const std::size_t base = q.pixel * s.pixelStride;
-  if (layers == 2)
-  {
-    const std::size_t second = base + s.layerStride;
-    return (s.front[base] <= q.depth && q.depth <= s.back[base]) |
-      (s.front[second] <= q.depth && q.depth <= s.back[second]);
-  }
-  for (int l = 0; l < layers; ++l)
-  {
-    const std::size_t i = base + l * s.layerStride;
-    if (s.front[i] <= q.depth && q.depth <= s.back[i])
-      return true;
-  }
-  return false;
+  return q.inMap && InSetAt(s, layers, static_cast<std::int64_t>(q.pixel), q.depth);
 }
 
 inline void FillOutside(const layout::ClipParams& p, const float* opacity, float* clipped,
@@ -499,7 +446,8 @@ bool ProofMaps::Prepare(const layout::ClipParams& clip, const ClipMapsView& maps
 bool InsideClip(const layout::ClipParams& p, const float* front, const float* back, float x,
   float y, float z)
 {
-  return InLayers(p, front, back, Project(p, x, y, z));
+  const std::size_t layers = static_cast<std::size_t>(p.map.z);
+  return InSet(LayerSet{ front, back, layers, 1 }, p.map.z, Project(p, x, y, z));
 }
 
 void ClassifySlices(const layout::ClipParams& p, const int dims[3], const ClipMapsView& maps,
@@ -720,28 +668,20 @@ std::uint8_t BrickOf(
 /// candidate test is undecided). Clip samples lie within half a voxel of
 /// the centres; the candidate test reads the centres only.
 std::uint8_t ClassifyBrick(const layout::ClipParams& p, const ClipMapsTiles& tiles, int i0, int i1,
-  int j0, int j1, int k0, int k1)
+  int j0, int j1, int k0, int k1, bool clipUniformKnown = false)
 {
+  // clipUniformKnown: a block around the brick proved its clip coverage
+  // uniform and unclipped (none of its samples in the clip in subtraction,
+  // all of them in probing): only the candidate query is left.
   const double slo[3] = { i0 - 0.5, j0 - 0.5, k0 - 0.5 }, shi[3] = { i1 + 0.5, j1 + 0.5, k1 + 0.5 };
-  const ClipMapsTiles::Coverage clip = BoxCoverage(p, tiles, 0, slo, shi);
+  const ClipMapsTiles::Coverage clip = clipUniformKnown
+    ? (p.map.w == layout::CAO_MODE_SUBTRACT ? ClipMapsTiles::None : ClipMapsTiles::All)
+    : BoxCoverage(p, tiles, 0, slo, shi);
   if (clip == ClipMapsTiles::Mixed)
     return BrickMixed;
   const double clo[3] = { double(i0), double(j0), double(k0) }, chi[3] = { double(i1), double(j1),
     double(k1) };
   return BrickOf(p, clip, [&] { return BoxCoverage(p, tiles, 1, clo, chi); });
-}
-
-/// ClassifyBrick for a brick whose clip coverage is already proven uniform
-/// and unclipped (none of its samples in the clip in subtraction, all of
-/// them in probing: a block around it proved it): only the candidate query.
-std::uint8_t ClassifyBrickCandidate(const layout::ClipParams& p, const ClipMapsTiles& tiles,
-  int i0, int i1, int j0, int j1, int k0, int k1)
-{
-  const bool subtract = p.map.w == layout::CAO_MODE_SUBTRACT;
-  const double clo[3] = { double(i0), double(j0), double(k0) }, chi[3] = { double(i1), double(j1),
-    double(k1) };
-  return BrickOf(p, subtract ? ClipMapsTiles::None : ClipMapsTiles::All,
-    [&] { return BoxCoverage(p, tiles, 1, clo, chi); });
 }
 
 /// The side, in bricks, of the blocks ClassifyRegion queries before their
@@ -895,11 +835,10 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
             {
               const int i0 = bx0 + bx * BrickSize, j0 = by0 + by * BrickSize;
               const int i1 = std::min(bx1, i0 + BrickSize - 1), j1 = std::min(by1, j0 + BrickSize - 1);
-              std::uint8_t state = block;
-              if (block == (BrickMixed | BrickClipUniform))
-                state = ClassifyBrickCandidate(p, *tiles, i0, i1, j0, j1, k0, k1);
-              else if (block == BrickMixed)
-                state = ClassifyBrick(p, *tiles, i0, i1, j0, j1, k0, k1);
+              const bool clipUniform = block == (BrickMixed | BrickClipUniform);
+              std::uint8_t state = block == BrickMixed || clipUniform
+                ? ClassifyBrick(p, *tiles, i0, i1, j0, j1, k0, k1, clipUniform)
+                : block;
               if (memory)
               {
                 std::uint8_t& held = memory->category[memory->Index(
@@ -939,7 +878,6 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
       const std::size_t c1 = c0 + cw;
       const int cy0 = j - by0, cy1 = cy0 + 1;
       const std::uint8_t* brickRow = tiles ? &bricks[static_cast<std::size_t>(cy0 / BrickSize) * nbx] : nullptr;
-      const RowProjector rowProjector(p, static_cast<float>(j), static_cast<float>(k));
       int projected = bx0 - 1; // the centres projected: [bx0, projected] at most
       int i = bx0;
       while (i <= bx1)
@@ -994,7 +932,7 @@ void ClassifyRegion(const layout::ClipParams& p, const int dims[3], const ClipMa
             runEnd = std::min(bx1, bx0 + (next + 1) * BrickSize - 1);
           if (!brickRow)
             runEnd = bx1;
-          ProjectRun(rowProjector, i, runEnd + 1 - i, centrePixel.data() + (i - bx0),
+          ProjectRun(p, j, k, i, runEnd + 1 - i, centrePixel.data() + (i - bx0),
             centreDepth.data() + (i - bx0));
           projected = runEnd;
         }
