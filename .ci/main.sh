@@ -13,9 +13,9 @@ bash .ci/setup.sh
 build="${BUILD_DIR:-build}"
 out="$build/frames"
 mkdir -p "$out"
-"$build/bin/cao" render Data/neghip.slc --poses Data/neghip-main.poses --image 512x512 \
+"$build/bin/cao" render Data/neghip.slc --poses Data/neghip-main.poses --image 512x512 --zoom 1.4 \
   --window egl -o "$out/neghip_%03d.png" --json >"$out/report.json"
-"$build/bin/cao" render Data/neghip.slc --poses Data/neghip-main.poses --image 512x512 \
+"$build/bin/cao" render Data/neghip.slc --poses Data/neghip-main.poses --image 512x512 --zoom 1.4 \
   --window egl --no-ao -o "$out/neghip_noao_%03d.png" >/dev/null
 /usr/bin/python3 - "$out" <<'PY'
 import sys

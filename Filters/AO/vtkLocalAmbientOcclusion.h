@@ -270,18 +270,21 @@ public:
   ///@{
   /**
    * Opaque meshes that occlude the volume (input port 1, optional, any
-   * number): closed vtkPolyData surfaces in the volume's physical
-   * coordinates. Every voxel whose centre lies inside one is opaque
-   * (opacity 1) for the LAO, as an isosurface or a solid part placed in
-   * the volume blocks its light. Lines (vtkPolyData with lines and no
+   * number): vtkPolyData surfaces in the volume's physical coordinates.
+   * Every voxel whose centre lies inside a closed one is opaque (opacity
+   * 1) for the LAO, as an isosurface or a solid part placed in the volume
+   * blocks its light; an open one (an isosurface cut by the volume's box,
+   * vtkTubeFilter's tubes, whose caps share no points with the sides)
+   * makes the voxels its surface passes through opaque. Lines (vtkPolyData with lines and no
    * polygons: streamlines) occlude by the voxels their segments pass
    * through (their supercover in the volume's voxels). When an occluder moves or changes (its
    * data change), a CPU run is an opacity edit: only the voxels within
    * the rays' reach of a voxel whose opacity changed are recomputed, bit
    * for bit as a full run (field "LAOUpdate"; "LAOOccludedVoxels" counts
    * the voxels inside the occluders, of the input read: a piece's with its
-   * ghost margin). On the OpenGL backend every voxel is recomputed. An
-   * open surface is an error that names it; an empty one occludes nothing.
+   * ghost margin). On the OpenGL backend every voxel is recomputed. A mesh
+   * of points alone is an error that names it; an empty one occludes
+   * nothing.
    * The output's opacity ("AmbientOcclusionOpacity") includes the
    * occluders, so vtkContextualAmbientOcclusion downstream continues
    * this LAO; a clip there removes the occluders' voxels with the volume's

@@ -793,7 +793,7 @@ bool CheckPoseDistances(const std::vector<Pose>& poses, vtkImageData* volume, st
 }
 
 bool CheckPoseScales(const std::vector<Pose>& poses, vtkPolyData* mesh, vtkImageData* volume,
-  std::string& error, bool largestOnly)
+  std::string& error, bool largestOnly, double* scales)
 {
   if (!mesh || !volume || mesh->GetNumberOfPoints() == 0)
     return true; // the mesh's own checks report it
@@ -806,6 +806,11 @@ bool CheckPoseScales(const std::vector<Pose>& poses, vtkPolyData* mesh, vtkImage
   if (!(size > 0.0) || !std::isfinite(size) || !(voxel > 0.0))
     return true;
   const double lo = 0.5 * voxel / size, hi = MaxClipVoxels * voxel / size;
+  if (scales)
+  {
+    scales[0] = lo;
+    scales[1] = hi;
+  }
   for (std::size_t i = 0; i < poses.size(); ++i)
   {
     const double s = poses[i].scale, across = s * size / voxel;

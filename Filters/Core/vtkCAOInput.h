@@ -101,9 +101,12 @@ CAOFILTERSCORE_EXPORT double PlaneSlabSize(vtkImageData* volume, const double sh
 /// depth maps hold float32 depths, which resolve one voxel only up to 2^23
 /// of them). False with one line naming the pose, its scale, the size it
 /// gives and the scales allowed. `largestOnly`: only the upper limit (the
-/// volume mapper draws a shape under half a voxel unclipped).
+/// volume mapper draws a shape under half a voxel unclipped). `scales`,
+/// when given, receives the scales allowed (lower, upper; unset when the
+/// mesh or volume gives none), so that a caller can state them in its own
+/// terms (`cao carve --size`).
 CAOFILTERSCORE_EXPORT bool CheckPoseScales(const std::vector<Pose>& poses, vtkPolyData* mesh,
-  vtkImageData* volume, std::string& error, bool largestOnly = false);
+  vtkImageData* volume, std::string& error, bool largestOnly = false, double* scales = nullptr);
 constexpr double MaxClipVoxels = 8388608.0; // 2^23
 /// Whether every pose's origin lies within MaxClipVoxels / 2 voxels (the
 /// smallest spacing) of the volume's bounds: farther, the depth maps' and

@@ -221,9 +221,12 @@ bool LineVoxels(vtkPolyData* mesh, const int dims[3], const std::array<double, 1
 }
 
 bool OccludeOpacity(vtkImageData* grid, const std::vector<vtkPolyData*>& meshes, float* opacity,
-  std::int64_t& occupied, std::string& error, const std::vector<vtkMatrix4x4*>& poses)
+  std::int64_t& occupied, std::string& error, const std::vector<vtkMatrix4x4*>& poses,
+  int* surfaces)
 {
   occupied = 0;
+  if (surfaces)
+    *surfaces = 0;
   if (meshes.empty())
     return true;
   int dims[3];
@@ -267,14 +270,23 @@ bool OccludeOpacity(vtkImageData* grid, const std::vector<vtkPolyData*>& meshes,
         }
     if (why.empty() && lines && !LineVoxels(meshes[m], dims, toIndex, inside, why))
       why = why.empty() ? "its voxels could not be found" : why;
-    if (why.empty() && !lines && !cao::InsideMask({ &points, &triangles }, dims, toIndex, inside, why))
+    // A closed surface fills its inside; an open one (an isosurface cut by
+    // the volume's box, ParaView's tubes with their separate caps) occludes
+    // by the voxels its surface passes through.
+    const bool open = why.empty() && !lines && cao::OpenEdges({ &points, &triangles }) > 0;
+    if (why.empty() && !lines && !open &&
+      !cao::InsideMask({ &points, &triangles }, dims, toIndex, inside, why))
       why = why.empty() ? "its inside could not be found" : why;
+    if (why.empty() && open && !cao::ShellMask({ &points, &triangles }, dims, toIndex, inside, why))
+      why = why.empty() ? "its surface's voxels could not be found" : why;
     if (!why.empty())
     {
       error = "occluder mesh " + std::to_string(m) + " of " + std::to_string(meshes.size()) +
-        ": " + why + (lines ? "" : " (an occluder must be a closed surface or lines)");
+        ": " + why;
       return false;
     }
+    if (open && surfaces)
+      ++*surfaces;
     if (all.empty())
       all.swap(inside);
     else

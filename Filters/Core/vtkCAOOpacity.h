@@ -62,20 +62,23 @@ private:
  * lies inside one of `meshes` (closed triangle meshes, polygons
  * triangulated, in the grid's physical coordinates) gets opacity 1, an
  * opaque solid at any sample step (the voxelizer's parity along the grid's
- * k axis: cao::InsideMask); a mesh with lines and no polygons
- * (streamlines) makes opaque the voxels its segments pass through (their
- * supercover: cao::VoxelizeLines on the volume's voxels). `occupied`
- * counts those voxels (each once).
+ * k axis: cao::InsideMask); an open triangle mesh (an isosurface cut by the
+ * volume's box; ParaView's tubes, whose caps share no points with their
+ * sides) makes opaque the voxels its surface passes through (its shell
+ * along the three axes: cao::ShellMask), counted in `surfaces` when given;
+ * a mesh with lines and no polygons (streamlines) makes opaque the voxels
+ * its segments pass through (their supercover: cao::VoxelizeLines on the
+ * volume's voxels). `occupied` counts those voxels (each once).
  * A mesh with no points (an isosurface whose value leaves the data's
  * range) occludes nothing. False with the reason, naming the mesh, when a
- * mesh is open, has points but no polygons nor lines, or has non-finite points, or the grid's index-to-physical
+ * mesh has points but no polygons nor lines, or has non-finite points, or the grid's index-to-physical
  * matrix is singular; `opacity` is then unchanged. `poses[m]`, when given
  * and not null, maps mesh m's points to the grid's physical coordinates
  * (no copy of the mesh is made).
  */
 CAOFILTERSCORE_EXPORT bool OccludeOpacity(vtkImageData* grid, const std::vector<vtkPolyData*>& meshes,
   float* opacity, std::int64_t& occupied, std::string& error,
-  const std::vector<vtkMatrix4x4*>& poses = {});
+  const std::vector<vtkMatrix4x4*>& poses = {}, int* surfaces = nullptr);
 }
 
 #endif

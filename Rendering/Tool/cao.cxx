@@ -711,7 +711,8 @@ void PrintCarveJson(const Options& o, vtkImageData* volume, const std::vector<Ru
 /// clipped or affected; probing: every voxel clipped, none affected) is
 /// said once: a mesh in its own coordinates (a part in millimetres at 120,
 /// a volume at 0) carved nothing without a word.
-void NoteUnreachedPoses(const Options& o, vtkImageData* volume, const std::vector<RunResult>& runs)
+void NoteUnreachedPoses(const Options& o, vtkImageData* volume, const CarveSetup& setup,
+  const std::vector<RunResult>& runs)
 {
   if (runs.empty())
     return;
@@ -727,17 +728,47 @@ void NoteUnreachedPoses(const Options& o, vtkImageData* volume, const std::vecto
   }
   if (count > 0)
     std::fprintf(stderr,
-      "cao: note: at %d of %zu poses (%s%s) the clip shape reaches no voxel: %s; check the mesh's "
-      "coordinates against the volume's bounds and --pose\n",
+      "cao: note: at %d of %zu poses (%s%s) the clip shape reaches no voxel: %s; %s\n",
       count, runs[0].poses.size(), list.c_str(), count > 8 ? ", ..." : "",
-      probe ? "everything is clipped" : "nothing is clipped");
+      probe ? "everything is clipped" : "nothing is clipped",
+      o.clipping.poseTexts.empty() && o.clipping.posesFile.empty() && o.clipping.mesh.empty()
+        ? "the default path (--path) starts and ends outside the volume"
+        : "check the mesh's coordinates against the volume's bounds and --pose");
   // Subtraction removing no whole voxel at any pose, though it reaches
   // some (a shape thinner than a voxel: the default size on a volume whose
   // voxels are long along one axis): the run carved nothing visible.
   bool removedNone = !probe && count < static_cast<int>(runs[0].poses.size());
   for (const auto& pose : runs[0].poses)
     removedNone = removedNone && pose.counts[0] == 0;
-  if (removedNone)
+  // The shape's size in voxels at its smallest pose: a shape of a few
+  // voxels or more that removed none lay outside the volume (or grazed it)
+  // at every pose, which the note says instead of blaming its size.
+  double across = 0.0;
+  if (setup.mesh && setup.mesh->GetNumberOfPoints() > 0)
+  {
+    double m[6], spacing[3];
+    setup.mesh->GetBounds(m);
+    volume->GetSpacing(spacing);
+    const double voxel = std::min({ std::fabs(spacing[0]), std::fabs(spacing[1]), std::fabs(spacing[2]) });
+    const double size = std::max({ m[1] - m[0], m[3] - m[2], m[5] - m[4] });
+    across = VTK_DOUBLE_MAX;
+    for (const auto& p : setup.poses)
+      across = std::min(across, p.scale * size / voxel);
+  }
+  if (removedNone && across >= 3.0)
+  {
+    double b[6];
+    volume->GetBounds(b);
+    std::fprintf(stderr,
+      "cao: note: the clip shape (%.3g voxels across) removes no whole voxel at any pose: it lies "
+      "outside the volume, or only grazes it, at every pose (the volume's bounds are [%g, %g] x "
+      "[%g, %g] x [%g, %g]; --json lists the poses)%s\n",
+      across, b[0], b[1], b[2], b[3], b[4], b[5],
+      o.clipping.poseTexts.empty() && o.clipping.posesFile.empty()
+        ? "; the default path starts and ends outside the volume: give --path 3 or more"
+        : "; check --pose/--poses against those bounds");
+  }
+  else if (removedNone)
   {
     double spacing[3];
     volume->GetSpacing(spacing);
@@ -844,11 +875,31 @@ int RunCarve(const Options& o, vtkImageData* volume)
   if (const int rc = MakeClip(o, volume, setup))
     return rc;
   std::string scaleError;
-  if (!vtkCAO::CheckPoseScales(setup.poses, setup.mesh, volume, scaleError))
+  double scales[2] = { 0.0, 0.0 };
+  if (!vtkCAO::CheckPoseScales(setup.poses, setup.mesh, volume, scaleError, false, scales))
+  {
+    // A built-in shape whose --size is out of range at the path's poses
+    // (scale 1): the limit said as sizes, as the user gave it.
+    const bool unitScales = std::all_of(setup.poses.begin(), setup.poses.end(),
+      [](const vtkCAO::Pose& p) { return p.scale == 1.0; });
+    if (o.clipping.size > 0.0 && o.clipping.mesh.empty() && o.clipping.shape != "plane" &&
+      unitScales && scales[1] > 0.0)
+    {
+      char text[300];
+      std::snprintf(text, sizeof text,
+        "--size %g: %s; for a %s on this volume --size must lie in [%g, %g] world units",
+        o.clipping.size,
+        scales[0] > 1.0
+          ? "the shape would be under half a voxel across, which covers no depth-map pixel and clips nothing"
+          : "the shape would be over 2^23 voxels across, where the depth maps' float32 depths cannot resolve a voxel",
+        o.clipping.shape.c_str(), scales[0] * o.clipping.size, scales[1] * o.clipping.size);
+      return Fail(2, text);
+    }
     return Fail(2, std::string(o.clipping.poseTexts.empty() && o.clipping.posesFile.empty()
                                ? "the path's poses (--path): "
                                : "--pose/--poses: ") +
         scaleError);
+  }
   if (const int rc = MakeRegions(volume, setup))
     return rc;
   vtkNew<vtkPiecewiseFunction> tf;
@@ -866,7 +917,7 @@ int RunCarve(const Options& o, vtkImageData* volume)
         return rc;
       runs.push_back(run);
     }
-  NoteUnreachedPoses(o, volume, runs);
+  NoteUnreachedPoses(o, volume, setup, runs);
   if (o.json)
     PrintCarveJson(o, volume, runs);
   else

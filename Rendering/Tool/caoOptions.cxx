@@ -150,18 +150,25 @@ CLI::Option* AddInteger(
 
 CLI::Option* AddChoice(CLI::App* app, const std::string& name, std::string& target,
   const std::vector<std::string>& choices, const std::string& help,
-  const std::vector<std::pair<std::string, std::string>>& renamed)
+  const std::vector<std::pair<std::string, std::string>>& renamed,
+  const std::vector<std::pair<std::string, std::string>>& aliases)
 {
   std::string type;
   for (const std::string& c : choices)
     type += (type.empty() ? "" : "|") + c;
   return app->add_option(name, target, Wrap(help))
     ->type_name(type)
-    ->check(Check([=](std::string& v) -> std::string {
+    ->transform(Check([=](std::string& v) -> std::string {
       for (const std::string& c : choices)
         if (v == c)
           return "";
       const std::string lower = Lower(v);
+      for (const auto& a : aliases)
+        if (lower == a.first)
+        {
+          v = a.second;
+          return "";
+        }
       for (const std::string& c : choices)
         if (lower == c)
           return "bad value '" + v + "' (the names are lower case: '" + lower + "')";
@@ -629,7 +636,9 @@ void AddClipOptions(CLI::App* app, ClipOptions& clip, int maxLayers)
     "--poses)")
     ->excludes(app->get_option("--pose"))
     ->excludes(poses);
-  AddChoice(app, "--mode", clip.mode, { "subtract", "probe" }, "subtract (default) or probe");
+  AddChoice(app, "--mode", clip.mode, { "subtract", "probe" },
+    "subtract (default) or probe (ParaView's Subtraction and Probing; those names are taken too)", {},
+    { { "subtraction", "subtract" }, { "probing", "probe" } });
   AddInteger(app, "--layers", clip.layers, 1, maxLayers,
     "depth-peel layers, 1 to " + std::to_string(maxLayers) + " (default 2)")
     ->type_name("L");

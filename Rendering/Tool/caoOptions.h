@@ -55,10 +55,12 @@ CLI::Option* AddInteger(
 /// One of `choices`, refused as "bad value 'V' (expected a, b or c)", or
 /// as "(the names are lower case: 'v')" when V in lower case is a choice.
 /// `renamed` lists former names with the choice each became ("'vao' is now
-/// 'volumetric'").
+/// 'volumetric'"). `aliases` lists other names taken as a choice (any case):
+/// "probing" for probe, as ParaView's panel names the mode.
 CLI::Option* AddChoice(CLI::App* app, const std::string& name, std::string& target,
   const std::vector<std::string>& choices, const std::string& help,
-  const std::vector<std::pair<std::string, std::string>>& renamed = {});
+  const std::vector<std::pair<std::string, std::string>>& renamed = {},
+  const std::vector<std::pair<std::string, std::string>>& aliases = {});
 /// Why `v` is not a quality level ("" when it is): low, medium, high, and
 /// custom where `custom`; a name in the wrong case or a former LAO level
 /// ("Balanced" is now "medium") says so.

@@ -71,7 +71,8 @@ struct RenderOptions
 const char* RenderFooter = R"(One frame per pose of the clip, written to -o's pattern; the clip options
 are carve's, with --path 12 by default, and --no-clip renders one frame of the
 unclipped volume. The camera is reset to the volume, then turned by --azimuth
-and --elevation and zoomed by --zoom. --preset picks the colours; it is not
+and --elevation and zoomed by --zoom (by default 1.4, or as much as keeps the
+volume's box in the frame). --preset picks the colours; it is not
 to be confused with --quality, the LAO's settings.)";
 
 int Render(RenderOptions& o, const CLI::App* app);
@@ -91,7 +92,8 @@ Command AddRenderCommand(CLI::App& cao)
     "camera elevation, degrees, -90 to 90 (default 20)")
     ->type_name("E");
   AddNumber(app, "--zoom", o->zoom, 1e-3, 1e3, false, "from 0.001 to 1000",
-    "camera zoom, 0.001 to 1000 (default 1.4)")
+    "camera zoom, 0.001 to 1000 (default 1.4, or less where the volume's box would leave the "
+    "frame)")
     ->type_name("Z");
   AddText(app, "--preset", o->preset, "NAME",
     "built-in transfer function: warm (default), bone, cool, grayscale; with --preset-file, a "
@@ -178,6 +180,23 @@ std::string AOSummary(const RenderOptions& o, cao::RayPattern pattern, int fibon
     voxel > 0.0 ? s.reach / voxel : 0.0, s.reach, s.startOffset,
     cao::RayVariationName(s.variation), o.strength, o.calibration.c_str());
   return text;
+}
+
+/// The zoom at which the box `b`'s corners, seen by the renderer's camera,
+/// reach `margin` of the viewport's half extent on its longer side (the
+/// projected extent scales as the zoom: exactly for a parallel camera, to
+/// within a few percent at a perspective camera's 30 degrees).
+double FittingZoom(vtkRenderer* renderer, const double b[6], double margin)
+{
+  double extent = 0.0;
+  for (int c = 0; c < 8; ++c)
+  {
+    renderer->SetWorldPoint(b[c & 1], b[2 + ((c >> 1) & 1)], b[4 + ((c >> 2) & 1)], 1.0);
+    renderer->WorldToView();
+    const double* v = renderer->GetViewPoint();
+    extent = std::max({ extent, std::fabs(v[0]), std::fabs(v[1]) });
+  }
+  return extent > 0.0 && std::isfinite(extent) ? margin / extent : 1.0;
 }
 
 int Render(RenderOptions& o, const CLI::App* app)
@@ -434,7 +453,13 @@ int Render(RenderOptions& o, const CLI::App* app)
   camera->Azimuth(o.azimuth);
   camera->Elevation(o.elevation);
   camera->OrthogonalizeViewUp();
-  camera->Zoom(o.zoom);
+  // The default zoom (1.4) frames a cube; a volume long along one axis (a
+  // trial's carotid, 76 x 49 x 45) ran off the frame's edges with it. Without
+  // --zoom, the zoom is at most what keeps the volume's box in the frame.
+  double zoom = o.zoom;
+  if (app->count("--zoom") == 0)
+    zoom = std::min(zoom, FittingZoom(renderer, prop->GetBounds(), 0.95));
+  camera->Zoom(zoom);
   renderer->ResetCameraClippingRange();
 
   vtkNew<vtkWindowToImageFilter> grab;

@@ -170,6 +170,14 @@ void Columns(vtkMatrix4x4* m, cao::layout::vec4* out, int columns, int rows = 4)
   }
 }
 
+/// "21 x 21 x 1 (a 2-D image)": an input's dimensions, as its refusal says them.
+std::string DimsText(const int d[3])
+{
+  const int flat = (d[0] < 2) + (d[1] < 2) + (d[2] < 2);
+  return std::to_string(d[0]) + " x " + std::to_string(d[1]) + " x " + std::to_string(d[2]) +
+    (flat == 1 ? " (a 2-D image)" : flat == 2 ? " (a line of voxels)" : flat == 3 ? " (one voxel)" : "");
+}
+
 std::vector<double> MatrixKey(vtkMatrix4x4* m)
 {
   return std::vector<double>(m->GetData(), m->GetData() + 16);
@@ -391,6 +399,9 @@ struct vtkContextualAOVolumeMapper::Internals
   double EditNsPerVoxel = 0.0, PrecomputeNsPerVoxel = 0.0;
   bool OpacityEdit = false; ///< this upload follows a change of the opacity alone
   bool PeelDrawn = false;   ///< the last draw was a peeling stage that drew
+  /// The AO was hidden (Shade on, Ambient 0) at the last frame: warned once
+  /// on entering that state, not at every frame.
+  bool AOHidden = false;
   // Whether each clip mesh can clip (several shapes: the others carve
   // without one that cannot), per mesh version; what was left out last.
   struct MeshCheck
@@ -852,7 +863,8 @@ bool vtkContextualAOVolumeMapper::CanDraw(vtkImageData* input, std::string& why)
   int dims[3];
   input->GetDimensions(dims);
   if (dims[0] < 2 || dims[1] < 2 || dims[2] < 2)
-    return why = "The input must have at least 2 voxels along each axis.", false;
+    return why = "The input must have at least 2 voxels along each axis; it has " + DimsText(dims) +
+      ".", false;
   return true;
 }
 
@@ -1070,7 +1082,8 @@ bool vtkContextualAOVolumeMapper::Internals::GatherInput(
   f.voxels = std::int64_t(f.dims[0]) * f.dims[1] * f.dims[2];
   if (f.dims[0] < 2 || f.dims[1] < 2 || f.dims[2] < 2)
     return f.Fail(std::string("The input must have at least 2 voxels along each axis") +
-      (cellFlag == 1 ? " (cell scalars: 2 cells, 3 points)." : "."));
+      (cellFlag == 1 ? " (cell scalars: 2 cells, 3 points)" : "") + "; it has " + DimsText(f.dims) +
+      ".");
   if (f.voxels > cao::MaxVoxels)
     return f.Fail("The input has more voxels than the GPU kernels index (2^31 - 1).");
   if (f.scalars->GetNumberOfComponents() != 1)
@@ -1308,15 +1321,17 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
   if (self->AmbientOcclusion && !givenAO && !this->OccluderMeshes.empty())
   {
     std::int64_t inside = 0;
+    int surfaces = 0;
     for (std::size_t m = 0; m < this->OccluderMeshes.size(); ++m)
     {
       // One at a time: a mesh that cannot occlude is left out, the others occlude.
       std::int64_t occupied = 0;
+      int surface = 0;
       std::string why = this->OccluderMeshes[m] ? ""
                                                 : "it is not a vtkActor with a vtkPolyData mapper input";
       if (why.empty() &&
         !vtkCAO::OccludeOpacity(f.input, { this->OccluderMeshes[m] }, opacity.data(), occupied, why,
-          { this->OccluderPoses[m].Get() }))
+          { this->OccluderPoses[m].Get() }, &surface))
       {
         const std::string prefix = "occluder mesh 0 of 1: "; // (one mesh at a time here)
         if (why.compare(0, prefix.size(), prefix) == 0)
@@ -1330,10 +1345,14 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
         said = why;
         continue;
       }
+      this->OccluderWarnings[m].clear();
       inside += occupied;
+      surfaces += surface;
     }
     f.report.reasons.emplace_back(std::to_string(inside) + " voxels inside " +
-      std::to_string(this->OccluderMeshes.size()) + " occluder(s)");
+      std::to_string(this->OccluderMeshes.size()) + " occluder(s)" +
+      (surfaces > 0 ? " (" + std::to_string(surfaces) + " open: the voxels their surface passes through)"
+                    : std::string()));
   }
   // An edit of the opacity alone keeps the engine's AO: read it back before
   // the new volume replaces it (once; the edits keep the copy after).
@@ -1730,6 +1749,13 @@ std::string vtkContextualAOVolumeMapper::ClipShapeProblem(
   std::string why;
   if (!vtkCAO::CheckPoseScales({ largest, smallest }, mesh, input, why, false))
     return "The clip shape's " + why.substr(why.find(": ") + 2) + " (its clip scale).";
+  // So far from the volume that the maps' float32 coordinates cannot place
+  // a voxel (a trial's Clip Position 1e20 failed in the maps' filter with
+  // "the clipping camera has zero area"): said with the limit.
+  vtkCAO::Pose at;
+  at.translation = { pose->GetElement(0, 3), pose->GetElement(1, 3), pose->GetElement(2, 3) };
+  if (!vtkCAO::CheckPoseDistances({ at }, input, why))
+    return "The " + why.substr(why.find("clip shape's centre")) + " (its clip position).";
   return std::string();
 }
 
@@ -2609,9 +2635,19 @@ void vtkContextualAOVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
   // The AO scales the ambient term: shaded with no ambient light (ParaView's
   // default material, Ambient 0), it changes nothing on the screen.
-  if (this->AmbientOcclusion && f.property && f.property->GetShade(0) && !(f.property->GetAmbient(0) > 0.0))
+  // Said once as a warning on entering that state (a trial saw AO Strength,
+  // Quality and the rays change nothing once Shade was on, and only the
+  // report said why), and in every such frame's report.
+  const bool hidden = this->AmbientOcclusion && f.property && f.property->GetShade(0) &&
+    !(f.property->GetAmbient(0) > 0.0);
+  if (hidden)
+  {
     f.report.note = "Shade is on with Ambient 0: the AO darkens the ambient term alone, which is 0 here, so "
                     "the picture does not show it; raise Ambient (0.2 to 0.4) to see it";
+    if (!in.AOHidden)
+      vtkWarningMacro(<< f.report.note << " (the Lighting group's Ambient, or vtkVolumeProperty::SetAmbient).");
+  }
+  in.AOHidden = hidden;
   if (!this->HostClipError.empty())
     f.report.error = this->HostClipError + (f.report.error.empty() ? "" : " " + f.report.error);
   if (suspended)

@@ -276,7 +276,9 @@ public:
    * voxels its segments pass through opaque. When an occluder moves or its mesh changes,
    * only the voxels within the rays' reach of a voxel whose opacity changed
    * are recomputed (the opacity edit), exactly as a full precompute. An
-   * occluder that is open or has no mesh is left out with a warning that
+   * open surface (an isosurface cut by the volume's box, ParaView's tubes)
+   * makes the voxels its surface passes through opaque. An occluder that
+   * has no mesh, or no polygons nor lines, is left out with a warning that
    * says why. The mapper does not draw the occluders: add them to the
    * renderer. A clip removes their voxels inside it with the volume's.
    */

@@ -176,6 +176,15 @@ for mesh in (vtp, stl):
 rc, out, err = run("carve", os.path.join(data, "neghip.slc"), "--shape", "cube", "--pose", "30 30 30 45 0 0",
                    "--pose", "10,10,10", "--rays", "6,26", "--mode", "probe", "--verify")
 check(rc == 0 and "| 6 |" in out and "| 26 |" in out, f"carve --pose, two ray sets, probe: rc={rc}")
+# ParaView's panel names the modes Subtraction and Probing: those names are
+# taken too, as the same runs (a trial's --mode probing was refused).
+rc2, out2, err2 = run("carve", os.path.join(data, "neghip.slc"), "--shape", "cube", "--pose", "30 30 30 45 0 0",
+                      "--rays", "6", "--mode", "Probing", "--json")
+rc3, out3, err3 = run("carve", os.path.join(data, "neghip.slc"), "--shape", "cube", "--pose", "30 30 30 45 0 0",
+                      "--rays", "6", "--mode", "probe", "--json")
+counts = lambda text: [p["counts"] for p in json.loads(text)["runs"][0]["poses"]] if text.strip() else None
+check(rc2 == 0 and rc3 == 0 and json.loads(out2)["mode"] == "probe" and counts(out2) == counts(out3),
+      f"carve --mode Probing is --mode probe: rc={rc2} {err2.strip()[:200]}")
 
 # Errors: clear message, non-zero exit, no crash.
 garbage = os.path.join(tmp, "garbage.slc")
@@ -1059,6 +1068,25 @@ for command in (["carve", neghip], ["render", neghip, "-o", frame]):
         check(rc == 2 and len(lines) == 1 and words in err and "the scale must lie in" in err and
               "ERR|" not in err and "WARN|" not in err,
               f"{command[0]} --pose scale {scale}: one clear line: rc={rc} {err.strip()[:300]!r}")
+# --size out of range is said as a size (a trial's --size 1e30 was told
+# "scale 1 ... the scale must lie in [2.5e-31, 4.1943e-24]", a scale it
+# never gave); the control: a size inside the stated range carves.
+for size, words in (("1e30", "over 2^23 voxels"), ("0.1", "under half a voxel")):
+    rc, out, err = run("carve", neghip, "--shape", "cube", "--size", size, "--path", "3", "--rays", "6")
+    lines = [l for l in err.splitlines() if l.strip()]
+    check(rc == 2 and len(lines) == 1 and words in err and "--size must lie in [0.25, " in err and
+          "scale" not in err, f"carve --size {size}: one line in terms of --size: rc={rc} {err.strip()[:300]!r}")
+rc, out, err = run("carve", neghip, "--shape", "cube", "--size", "0.3", "--path", "3", "--rays", "6")
+check(rc == 0, f"carve --size 0.3 (inside the stated range) runs: rc={rc} {err.strip()[:200]!r}")
+# The default path of 2 poses starts and ends outside the volume: the note
+# says so (a trial was told the 16-voxel sphere was "about as small as a
+# voxel"); at 8 poses it carves and there is no such note (the control).
+rc, out, err = run("carve", neghip, "--path", "2", "--rays", "6")
+check(rc == 0 and "lies outside the volume, or only grazes it" in err and "as small as a voxel" not in err,
+      f"carve --path 2: the note says the shape lies outside: rc={rc} {err.strip()[:300]!r}")
+rc, out, err = run("carve", neghip, "--path", "8", "--rays", "6")
+check(rc == 0 and "outside the volume" not in err and "as small as a voxel" not in err,
+      f"carve --path 8 carves without that note: rc={rc} {err.strip()[:300]!r}")
 # A pose far from the volume (a trial's 1e20 said "the clipping camera has
 # zero area", a plane's "the shape size must be positive"): one line with
 # its distance and the limit, from carve, render and a plane alike.

@@ -729,8 +729,12 @@ bool ParityClosed(const BitGrid& grid, const std::vector<std::uint32_t>& parity)
   return true;
 }
 
-bool InsideMask(const MeshView& mesh, const int dims[3], const std::array<double, 12>& worldToIndex,
-  std::vector<std::uint8_t>& inside, std::string& error)
+namespace
+{
+/// A regular grid's size and a mesh checked for InsideMask and ShellMask,
+/// the mesh's points mapped to continuous voxel indices by `worldToIndex`.
+bool MeshInIndexSpace(const MeshView& mesh, const int dims[3],
+  const std::array<double, 12>& worldToIndex, std::vector<double>& index, std::string& error)
 {
   if (dims[0] < 1 || dims[1] < 1 || dims[2] < 1 ||
     static_cast<double>(dims[0]) * dims[1] * dims[2] > 2147483648.0)
@@ -743,6 +747,36 @@ bool InsideMask(const MeshView& mesh, const int dims[3], const std::array<double
     error = "a mesh needs 3 coordinates per point and 3 ids per triangle";
     return false;
   }
+  const std::vector<double>& p = *mesh.points;
+  const std::int64_t numPoints = static_cast<std::int64_t>(p.size() / 3);
+  for (std::int64_t id : *mesh.triangles)
+    if (id < 0 || id >= numPoints)
+    {
+      error = "a triangle refers to point " + std::to_string(id) + " of " + std::to_string(numPoints);
+      return false;
+    }
+  index.resize(p.size());
+  const double* m = worldToIndex.data();
+  for (std::size_t i = 0; i + 2 < p.size(); i += 3)
+    for (int r = 0; r < 3; ++r)
+    {
+      index[i + r] = m[4 * r] * p[i] + m[4 * r + 1] * p[i + 1] + m[4 * r + 2] * p[i + 2] + m[4 * r + 3];
+      if (!std::isfinite(index[i + r]))
+      {
+        error = "a point of the mesh is not finite in the volume's index space";
+        return false;
+      }
+    }
+  return true;
+}
+}
+
+bool InsideMask(const MeshView& mesh, const int dims[3], const std::array<double, 12>& worldToIndex,
+  std::vector<std::uint8_t>& inside, std::string& error)
+{
+  std::vector<double> index;
+  if (!MeshInIndexSpace(mesh, dims, worldToIndex, index, error))
+    return false;
   const std::int64_t open = OpenEdges(mesh);
   if (open > 0)
   {
@@ -750,12 +784,6 @@ bool InsideMask(const MeshView& mesh, const int dims[3], const std::array<double
       " boundary edges): its inside is not defined";
     return false;
   }
-  std::vector<double> index(mesh.points->size());
-  const std::vector<double>& p = *mesh.points;
-  const double* m = worldToIndex.data();
-  for (std::size_t i = 0; i + 2 < p.size(); i += 3)
-    for (int r = 0; r < 3; ++r)
-      index[i + r] = m[4 * r] * p[i] + m[4 * r + 1] * p[i + 1] + m[4 * r + 2] * p[i + 2] + m[4 * r + 3];
   // A grid whose voxel centres are the volume's: slice k's centre at index k.
   BitGrid grid;
   grid.nx = dims[0];
@@ -773,6 +801,49 @@ bool InsideMask(const MeshView& mesh, const int dims[3], const std::array<double
       for (int k = 0; k < dims[2]; ++k)
         if (grid.Bit(i, j, k))
           inside[i + static_cast<std::size_t>(dims[0]) * (j + static_cast<std::size_t>(dims[1]) * k)] = 1;
+  return true;
+}
+
+bool ShellMask(const MeshView& mesh, const int dims[3], const std::array<double, 12>& worldToIndex,
+  std::vector<std::uint8_t>& mask, std::string& error)
+{
+  std::vector<double> index;
+  if (!MeshInIndexSpace(mesh, dims, worldToIndex, index, error))
+    return false;
+  mask.assign(static_cast<std::size_t>(dims[0]) * dims[1] * dims[2], 0);
+  const std::size_t stride[3] = { 1, static_cast<std::size_t>(dims[0]),
+    static_cast<std::size_t>(dims[0]) * dims[1] };
+  std::vector<double> g(index.size());
+  std::vector<std::uint32_t> shell;
+  for (int a = 0; a < 3; ++a)
+  {
+    // Columns along axis a: the grid's x and y are the next two axes
+    // (cyclic, so the triangles keep their handedness), its slices axis a,
+    // voxel centres at integers (the grid's cells from -0.5).
+    const int u = (a + 1) % 3, v = (a + 2) % 3;
+    BitGrid grid;
+    grid.nx = dims[u];
+    grid.ny = dims[v];
+    grid.words = (dims[a] + 31) / 32;
+    grid.slices = 32 * grid.words;
+    for (std::size_t i = 0; i + 2 < index.size(); i += 3)
+    {
+      g[i] = index[i + u] + 0.5;
+      g[i + 1] = index[i + v] + 0.5;
+      g[i + 2] = index[i + a] + 0.5;
+    }
+    shell.assign(static_cast<std::size_t>(grid.nx) * grid.ny * grid.words, 0u);
+    RasterizeColumns(grid, g, *mesh.triangles, nullptr, nullptr, shell.data());
+    for (int j = 0; j < grid.ny; ++j)
+      for (int i = 0; i < grid.nx; ++i)
+      {
+        const std::uint32_t* column =
+          &shell[(static_cast<std::size_t>(j) * grid.nx + i) * grid.words];
+        for (int k = 0; k < dims[a]; ++k)
+          if (column[k >> 5] & (1u << (k & 31)))
+            mask[i * stride[u] + j * stride[v] + k * stride[a]] = 1;
+      }
+  }
   return true;
 }
 

@@ -136,6 +136,17 @@ bool FrustumScreenTriangles(const BitGrid& grid, const MeshView& mesh, std::vect
 bool InsideMask(const MeshView& mesh, const int dims[3], const std::array<double, 12>& worldToIndex,
   std::vector<std::uint8_t>& inside, std::string& error);
 
+/// Which voxels of a regular grid an open surface passes through: the
+/// union of its shells (RasterizeColumns' open-mesh shell: at each column
+/// crossing the slices the triangle's plane spans over a column's width)
+/// along each of the grid's three axes, so that every triangle is
+/// rasterized along the axis it faces most and a wall edge-on to one axis
+/// is still voxelized. mask[i + dims0 * (j + dims1 * k)] = 1, as InsideMask.
+/// For occluders that enclose no inside (an isosurface cut by the volume's
+/// box, ParaView's tubes, whose caps share no points with the sides).
+bool ShellMask(const MeshView& mesh, const int dims[3], const std::array<double, 12>& worldToIndex,
+  std::vector<std::uint8_t>& mask, std::string& error);
+
 /// A volume's opacity as the cones read it (the volume occludes surfaces):
 /// per voxel the opacity of `unitDistance` world units of it (VTK's scalar
 /// opacity and its unit distance), clipped voxels 0. Along a cone, a

@@ -500,6 +500,40 @@ int TestVoxelConeTracing(int, char*[])
     std::vector<std::int64_t> openT(st.begin(), st.end() - 3); // one triangle less: open
     CAO_CHECK(!cao::InsideMask({ &sp, &openT }, dims, toIndex, inside, error) &&
         error.find("open") != std::string::npos, "%s", error.c_str());
+    // ShellMask, the same open sphere: every voxel it sets lies within a
+    // voxel's diagonal (plus the sagitta) of the sphere (the shell spreads
+    // each crossing over the slices its plane spans across a column's
+    // width, then rounds to whole slices), and every
+    // voxel the sphere passes through (its centre within 0.3 of a voxel of
+    // the surface, away from the missing triangle) is set: a shell with no
+    // gap, one voxel thick.
+    std::vector<std::uint8_t> shell;
+    CAO_CHECK(cao::ShellMask({ &sp, &openT }, dims, toIndex, shell, error), "%s", error.c_str());
+    const double h[3] = { 0.035, 0.05, 0.02 };
+    std::int64_t far = 0, missed = 0, set = 0;
+    double farthest = 0.0;
+    for (int k = 0; k < dims[2]; ++k)
+      for (int j = 0; j < dims[1]; ++j)
+        for (int i = 0; i < dims[0]; ++i)
+        {
+          const double x = (i - 19.3) * h[0], y = (j - 14.6) * h[1], z = (k - 35.2) * h[2];
+          const double r = std::sqrt(x * x + y * y + z * z);
+          const bool on = shell[i + dims[0] * (j + dims[1] * k)] != 0;
+          set += on;
+          // Distance to the surface in voxels along the radial direction.
+          const double per = std::sqrt(x * x / (h[0] * h[0]) + y * y / (h[1] * h[1]) +
+                                 z * z / (h[2] * h[2])) / std::max(r, 1e-12);
+          const double voxels = std::fabs(r - 0.6) * per;
+          far += on && voxels > std::sqrt(3.0) + sagitta * per + 1e-9;
+          if (on)
+            farthest = std::max(farthest, voxels);
+          missed += !on && voxels < 0.3 && z < 0.5; // (the missing triangle is at the top pole)
+        }
+    std::printf("ShellMask, the open sphere: %lld voxels set, the farthest %.2f voxels from it, %lld "
+                "farther than a diagonal, %lld on the surface missed\n",
+      static_cast<long long>(set), farthest, static_cast<long long>(far), static_cast<long long>(missed));
+    CAO_CHECK(far == 0 && missed == 0 && set > 1000, "far %lld, missed %lld", static_cast<long long>(far),
+      static_cast<long long>(missed));
   }
   // The volume occludes: a homogeneous medium, no voxel near the point.
   {

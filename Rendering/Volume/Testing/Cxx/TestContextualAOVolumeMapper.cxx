@@ -955,7 +955,9 @@ void BadInput(const Options& o)
   }
   expect("nothing but NaN", "Every scalar is NaN");
   m->SetInputData(Small(8, 8, 1, 1, false));
-  expect("one voxel thick", "at least 2 voxels");
+  // (and its dimensions, named for what they make: a trial's 21 x 21 x 1
+  // Wavelet was told the rule alone)
+  expect("one voxel thick", "at least 2 voxels along each axis; it has 8 x 8 x 1 (a 2-D image)");
   m->SetInputData(s.image);
   // A clip shape that cannot clip is left out with its reason and the
   // volume drawn unclipped, as an empty clip box is (a trial saw a blank
@@ -1075,6 +1077,32 @@ void BadInput(const Options& o)
       errors.empty() ? "no error" : errors.back().c_str());
   }
   s.clip->SetScale(1.0);
+  // A clip so far from the volume that the maps' float32 coordinates
+  // cannot place a voxel (a trial's Clip Position 1e20 at Clip Scale 15
+  // failed inside the maps' filter: "the clipping camera has zero area",
+  // after a pipeline dump): its distance and the limit are said, and the
+  // volume is drawn unclipped; back at 1e5 (within the limit) it draws with
+  // no error (the control: the check is about the distance).
+  s.clip->SetScale(15.0);
+  s.clip->SetPosition(1e20, 0.0, 0.0);
+  {
+    errors.clear();
+    const int before = m->GetFrameCount();
+    s.window->Render();
+    CAO_EXPECT(!errors.empty() && errors.back().find("clip shape's centre lies 1e+20 world units") != std::string::npos &&
+        errors.back().find("(its clip position)") != std::string::npos &&
+        errors.back().find("zero area") == std::string::npos &&
+        errors.back().find("drawn unclipped") != std::string::npos && m->GetFrameCount() == before + 1,
+      "clip position 1e20: the distance and the limit said, the volume drawn unclipped (%s)",
+      errors.empty() ? "no error" : errors.back().c_str());
+    s.clip->SetPosition(1e5, 0.0, 0.0);
+    errors.clear();
+    s.window->Render();
+    CAO_EXPECT(errors.empty() && m->GetFrameCount() == before + 2,
+      "clip position 1e5: no error (%s)", errors.empty() ? "none" : errors.back().c_str());
+  }
+  s.clip->SetScale(1.0);
+  s.clip->SetPosition(33.0, 30.0, 40.0);
   // Depth maps that cannot be made (pixels so small that the dilation would
   // pass its limit): the volume is drawn unclipped with the maps' error,
   // in the frame report too. Control: it drew nothing before.
