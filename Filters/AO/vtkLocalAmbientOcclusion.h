@@ -281,7 +281,7 @@ public:
    * data change), a CPU run is an opacity edit: only the voxels within
    * the rays' reach of a voxel whose opacity changed are recomputed, bit
    * for bit as a full run (field "LAOUpdate"; "LAOOccludedVoxels" counts
-   * the voxels inside the occluders, of the input read: a piece's with its
+   * the voxels the occluders make opaque, of the input read: a piece's with its
    * ghost margin). On the OpenGL backend every voxel is recomputed. A mesh
    * of points alone is an error that names it; an empty one occludes
    * nothing.

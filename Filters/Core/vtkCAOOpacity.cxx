@@ -169,35 +169,23 @@ bool ComputeOpacity(vtkAlgorithm* self, vtkDataArray* scalars, int component,
 //------------------------------------------------------------------------------
 namespace
 {
-/// The voxels (one byte each, x fastest) that `mesh`'s line segments pass
-/// through, its points mapped to continuous index by `toIndex` (3 x 4, row
-/// major): the lines' supercover, as the render pass voxelizes them into
-/// the surfaces' grid (cao::VoxelizeLines with no tube radius, on a grid
-/// whose voxels are the volume's).
-bool LineVoxels(vtkPolyData* mesh, const int dims[3], const std::array<double, 12>& toIndex,
-  std::vector<std::uint8_t>& inside, std::string& error)
+/// The voxels (one byte each, x fastest) that the segments (pairs of ids
+/// into `points`, xyz in the mesh's frame) pass through, the points mapped
+/// to continuous index by `toIndex` (3 x 4, row major): their supercover,
+/// as the render pass voxelizes lines into the surfaces' grid
+/// (cao::VoxelizeLines with no tube radius, on a grid whose voxels are the
+/// volume's).
+bool SegmentVoxels(const std::vector<double>& points, std::vector<std::int64_t> segments,
+  const int dims[3], const std::array<double, 12>& toIndex, std::vector<std::uint8_t>& inside,
+  std::string& error)
 {
   cao::LineSegments lines;
-  lines.points.resize(3 * static_cast<std::size_t>(mesh->GetNumberOfPoints()));
-  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
-  {
-    double x[3];
-    mesh->GetPoint(p, x);
+  lines.points.resize(points.size());
+  for (std::size_t p = 0; p + 2 < points.size(); p += 3)
     for (int r = 0; r < 3; ++r)
-      lines.points[3 * static_cast<std::size_t>(p) + r] =
-        toIndex[4 * r] * x[0] + toIndex[4 * r + 1] * x[1] + toIndex[4 * r + 2] * x[2] + toIndex[4 * r + 3];
-  }
-  vtkCellArray* cells = mesh->GetLines();
-  vtkIdType n = 0;
-  const vtkIdType* ids = nullptr;
-  for (cells->InitTraversal(); cells->GetNextCell(n, ids);)
-    for (vtkIdType k = 0; k + 1 < n; ++k)
-      lines.segments.insert(lines.segments.end(), { ids[k], ids[k + 1] });
-  if (lines.segments.empty())
-  {
-    error = "its lines have no segment (no line with two points or more)";
-    return false;
-  }
+      lines.points[p + r] = toIndex[4 * r] * points[p] + toIndex[4 * r + 1] * points[p + 1] +
+        toIndex[4 * r + 2] * points[p + 2] + toIndex[4 * r + 3];
+  lines.segments = std::move(segments);
   // The volume's voxels as a world grid in index space (voxel centres at
   // integers, cubes of side 1), its slices the volume's k rounded up to words.
   cao::BitGrid grid;
@@ -216,6 +204,49 @@ bool LineVoxels(vtkPolyData* mesh, const int dims[3], const std::array<double, 1
       for (int k = 0; k < dims[2]; ++k)
         if (grid.Bit(i, j, k))
           inside[static_cast<std::size_t>(k) * sliceSize + static_cast<std::size_t>(j) * dims[0] + i] = 1;
+  return true;
+}
+
+/// The segments of `mesh`'s lines, pairs of point ids.
+std::vector<std::int64_t> LineSegmentsOf(vtkPolyData* mesh)
+{
+  std::vector<std::int64_t> segments;
+  vtkCellArray* cells = mesh->GetLines();
+  vtkIdType n = 0;
+  const vtkIdType* ids = nullptr;
+  for (cells->InitTraversal(); cells->GetNextCell(n, ids);)
+    for (vtkIdType k = 0; k + 1 < n; ++k)
+      segments.insert(segments.end(), { ids[k], ids[k + 1] });
+  return segments;
+}
+
+/// The voxels an open surface passes through: its shell along the three
+/// axes (cao::ShellMask, at the columns its triangles cover) and the
+/// supercover of its edges, so that a strip or tube thinner than a voxel,
+/// which covers no column centre, still occludes as the lines it was made
+/// from would.
+bool OpenSurfaceVoxels(const std::vector<double>& points, const std::vector<std::int64_t>& triangles,
+  const int dims[3], const std::array<double, 12>& toIndex, std::vector<std::uint8_t>& inside,
+  std::string& error)
+{
+  if (!cao::ShellMask({ &points, &triangles }, dims, toIndex, inside, error))
+    return false;
+  std::vector<std::int64_t> edges;
+  edges.reserve(2 * triangles.size());
+  for (std::size_t t = 0; t + 2 < triangles.size(); t += 3)
+    for (int e = 0; e < 3; ++e)
+    {
+      // (each edge once where two triangles share it in the same order of
+      // ids: the lower id first)
+      const std::int64_t a = triangles[t + e], b = triangles[t + (e + 1) % 3];
+      edges.push_back(std::min(a, b));
+      edges.push_back(std::max(a, b));
+    }
+  std::vector<std::uint8_t> edgeVoxels;
+  if (!SegmentVoxels(points, std::move(edges), dims, toIndex, edgeVoxels, error))
+    return false;
+  for (std::size_t v = 0; v < inside.size(); ++v)
+    inside[v] |= edgeVoxels[v];
   return true;
 }
 }
@@ -268,16 +299,27 @@ bool OccludeOpacity(vtkImageData* grid, const std::vector<vtkPolyData*>& meshes,
           why = "it has a NaN or infinite point coordinate";
           break;
         }
-    if (why.empty() && lines && !LineVoxels(meshes[m], dims, toIndex, inside, why))
-      why = why.empty() ? "its voxels could not be found" : why;
+    if (why.empty() && lines)
+    {
+      // (the mesh's own points: its lines' ids refer to them)
+      std::vector<double> linePoints(3 * static_cast<std::size_t>(meshes[m]->GetNumberOfPoints()));
+      for (vtkIdType p = 0; p < meshes[m]->GetNumberOfPoints(); ++p)
+        meshes[m]->GetPoint(p, &linePoints[3 * static_cast<std::size_t>(p)]);
+      std::vector<std::int64_t> segments = LineSegmentsOf(meshes[m]);
+      if (segments.empty())
+        why = "its lines have no segment (no line with two points or more)";
+      else if (!SegmentVoxels(linePoints, std::move(segments), dims, toIndex, inside, why))
+        why = why.empty() ? "its voxels could not be found" : why;
+    }
     // A closed surface fills its inside; an open one (an isosurface cut by
     // the volume's box, ParaView's tubes with their separate caps) occludes
     // by the voxels its surface passes through.
-    const bool open = why.empty() && !lines && cao::OpenEdges({ &points, &triangles }) > 0;
+    const std::int64_t openEdges = why.empty() && !lines ? cao::OpenEdges({ &points, &triangles }) : 0;
+    const bool open = openEdges > 0;
     if (why.empty() && !lines && !open &&
-      !cao::InsideMask({ &points, &triangles }, dims, toIndex, inside, why))
+      !cao::InsideMask({ &points, &triangles, openEdges }, dims, toIndex, inside, why))
       why = why.empty() ? "its inside could not be found" : why;
-    if (why.empty() && open && !cao::ShellMask({ &points, &triangles }, dims, toIndex, inside, why))
+    if (why.empty() && open && !OpenSurfaceVoxels(points, triangles, dims, toIndex, inside, why))
       why = why.empty() ? "its surface's voxels could not be found" : why;
     if (!why.empty())
     {

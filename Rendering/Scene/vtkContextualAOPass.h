@@ -236,13 +236,13 @@ public:
   /// volumes drawn by vtkContextualAOVolumeMapper (default off): at each
   /// frame, before the volumes are drawn, the pass makes the renderer's
   /// visible opaque actors those mappers' occluders
-  /// (vtkContextualAOVolumeMapper::AddOccluder: a closed surface's inside
-  /// and a line's voxels become opaque for the volume's LAO; when one moves
+  /// (vtkContextualAOVolumeMapper::AddOccluder: a closed surface's inside,
+  /// and the voxels an open surface or a line passes through, become opaque
+  /// for the volume's LAO; when one moves
   /// or changes, the mapper recomputes only the voxels within reach, bit for
   /// bit as a full precompute; a camera or colour change recomputes
   /// nothing). Every visible opaque actor drawn as a surface counts (glyphs
-  /// and outlines too: an outline is lines). An open surface is left out
-  /// with the mapper's warning. The pass sets only occluder lists that are
+  /// and outlines too: an outline is lines). The pass sets only occluder lists that are
   /// empty or that it set itself: a mapper given occluders by the
   /// application keeps them. Off (or the volume gone from the renderer):
   /// the lists it set are emptied.

@@ -740,30 +740,48 @@ void NoteUnreachedPoses(const Options& o, vtkImageData* volume, const CarveSetup
   bool removedNone = !probe && count < static_cast<int>(runs[0].poses.size());
   for (const auto& pose : runs[0].poses)
     removedNone = removedNone && pose.counts[0] == 0;
-  // The shape's size in voxels at its smallest pose: a shape of a few
-  // voxels or more that removed none lay outside the volume (or grazed it)
-  // at every pose, which the note says instead of blaming its size.
-  double across = 0.0;
-  if (setup.mesh && setup.mesh->GetNumberOfPoints() > 0)
-  {
-    double m[6], spacing[3];
-    setup.mesh->GetBounds(m);
+  // Whether the posed shape's bounds (its points posed) overlap the
+  // volume's along every axis at some pose (by more than the margin below): a
+  // shape that removed nothing and met the volume at no pose lay outside it
+  // (or grazed it), which the note says instead of blaming its size.
+  const auto meets = [&](const vtkCAO::Pose& pose) {
+    double v[6], spacing[3];
+    volume->GetBounds(v);
     volume->GetSpacing(spacing);
-    const double voxel = std::min({ std::fabs(spacing[0]), std::fabs(spacing[1]), std::fabs(spacing[2]) });
-    const double size = std::max({ m[1] - m[0], m[3] - m[2], m[5] - m[4] });
-    across = VTK_DOUBLE_MAX;
-    for (const auto& p : setup.poses)
-      across = std::min(across, p.scale * size / voxel);
-  }
-  if (removedNone && across >= 3.0)
+    vtkNew<vtkTransform> t;
+    vtkCAO::PoseToTransform(pose, t);
+    double lo[3] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, VTK_DOUBLE_MAX };
+    double hi[3] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+    for (vtkIdType c = 0; c < setup.mesh->GetNumberOfPoints(); ++c)
+    {
+      double p[3];
+      setup.mesh->GetPoint(c, p);
+      t->TransformPoint(p, p);
+      for (int d = 0; d < 3; ++d)
+      {
+        lo[d] = std::min(lo[d], p[d]);
+        hi[d] = std::max(hi[d], p[d]);
+      }
+    }
+    // (half a voxel, or a quarter of the shape where it is thinner than
+    // two voxels: a shape as thin as a voxel inside the volume meets it)
+    for (int d = 0; d < 3; ++d)
+      if (std::min(hi[d], v[2 * d + 1]) - std::max(lo[d], v[2 * d]) <=
+        std::min(0.5 * std::fabs(spacing[d]), 0.25 * (hi[d] - lo[d])))
+        return false;
+    return true;
+  };
+  const bool outside = removedNone && setup.mesh && setup.mesh->GetNumberOfPoints() > 0 &&
+    std::none_of(setup.poses.begin(), setup.poses.end(), meets);
+  if (outside)
   {
     double b[6];
     volume->GetBounds(b);
     std::fprintf(stderr,
-      "cao: note: the clip shape (%.3g voxels across) removes no whole voxel at any pose: it lies "
-      "outside the volume, or only grazes it, at every pose (the volume's bounds are [%g, %g] x "
-      "[%g, %g] x [%g, %g]; --json lists the poses)%s\n",
-      across, b[0], b[1], b[2], b[3], b[4], b[5],
+      "cao: note: the clip shape removes no whole voxel: it lies outside the volume, or only "
+      "grazes it, at every pose (the volume's bounds are [%g, %g] x [%g, %g] x [%g, %g]; --json "
+      "lists the poses)%s\n",
+      b[0], b[1], b[2], b[3], b[4], b[5],
       o.clipping.poseTexts.empty() && o.clipping.posesFile.empty()
         ? "; the default path starts and ends outside the volume: give --path 3 or more"
         : "; check --pose/--poses against those bounds");

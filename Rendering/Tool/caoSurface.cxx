@@ -1417,7 +1417,9 @@ Command AddSurfaceCommand(CLI::App& cao)
     "the clip's pose, \"tx ty tz [rx ry rz [s]]\", rotation in degrees (default: the volume's "
     "centre)")
     ->group(volume);
-  AddChoice(app, "--mode", o->mode, { "subtract", "probe" }, "the clip's mode (default subtract)")
+  AddChoice(app, "--mode", o->mode, { "subtract", "probe" },
+    "the clip's mode (default subtract; ParaView's Subtraction and Probing are taken too)", {},
+    { { "subtraction", "subtract" }, { "probing", "probe" } })
     ->group(volume);
   app->footer(SurfaceFooter);
   return { app, [o, app] { return Run(*o, app); } };

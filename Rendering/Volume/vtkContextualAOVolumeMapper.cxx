@@ -1349,7 +1349,7 @@ bool vtkContextualAOVolumeMapper::Internals::UploadVolume(
       inside += occupied;
       surfaces += surface;
     }
-    f.report.reasons.emplace_back(std::to_string(inside) + " voxels inside " +
+    f.report.reasons.emplace_back(std::to_string(inside) + " voxels made opaque by " +
       std::to_string(this->OccluderMeshes.size()) + " occluder(s)" +
       (surfaces > 0 ? " (" + std::to_string(surfaces) + " open: the voxels their surface passes through)"
                     : std::string()));
@@ -1752,8 +1752,15 @@ std::string vtkContextualAOVolumeMapper::ClipShapeProblem(
   // So far from the volume that the maps' float32 coordinates cannot place
   // a voxel (a trial's Clip Position 1e20 failed in the maps' filter with
   // "the clipping camera has zero area"): said with the limit.
+  // (the centre of the mesh's bounds, posed: a mesh whose points lie far
+  // from its own origin is placed by them)
+  double mb[6];
+  mesh->GetBounds(mb);
+  const double local[4] = { 0.5 * (mb[0] + mb[1]), 0.5 * (mb[2] + mb[3]), 0.5 * (mb[4] + mb[5]), 1.0 };
+  double posed[4];
+  pose->MultiplyPoint(local, posed);
   vtkCAO::Pose at;
-  at.translation = { pose->GetElement(0, 3), pose->GetElement(1, 3), pose->GetElement(2, 3) };
+  at.translation = { posed[0] / posed[3], posed[1] / posed[3], posed[2] / posed[3] };
   if (!vtkCAO::CheckPoseDistances({ at }, input, why))
     return "The " + why.substr(why.find("clip shape's centre")) + " (its clip position).";
   return std::string();

@@ -269,9 +269,9 @@ public:
   ///@{
   /**
    * Opaque surfaces that occlude the volume's AO: each prop's mesh (its
-   * vtkPolyDataMapper's input: a closed surface such as an isosurface),
+   * vtkPolyDataMapper's input: a surface such as an isosurface, or lines),
    * posed by the prop's matrix, makes the voxels whose centre lies inside
-   * it opaque for the LAO (as vtkLocalAmbientOcclusion's occluders), so the
+   * a closed one opaque for the LAO (as vtkLocalAmbientOcclusion's occluders), so the
    * volume around it darkens; a mesh of lines (streamlines) makes the
    * voxels its segments pass through opaque. When an occluder moves or its mesh changes,
    * only the voxels within the rays' reach of a voxel whose opacity changed

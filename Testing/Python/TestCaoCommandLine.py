@@ -1149,5 +1149,27 @@ for name in ("block_1e20", "block_offset", "block_1e38"):
     check(diff is not None and diff < 1.0 and float(np.abs(base - base[0]).sum(1).max()) > 50,
           f"{name}: drawn as the block at its own values (mean difference {diff} of 255)")
 
+# The default camera keeps a volume's box in the frame (a trial's carotid,
+# 76 x 49 x 45 and matter to its edges, ran off three edges at the former
+# fixed zoom 1.4): the frame's outer 2 pixels are background at the
+# default, and an explicit --zoom 1.4 (the former default) is left alone and
+# crosses them (the control).
+filled = write_volume("filled.vti", (76, 49, 45))
+edge_frames = {}
+for label, extra in (("default", ()), ("zoom14", ("--zoom", "1.4"))):
+    png = os.path.join(tmp, "filled_" + label + "_%d.png")
+    rc, out, err = run("render", filled, "--no-clip", "--window", "egl", "--image", "120x120", *extra, "-o", png)
+    edge_frames[label] = grey(png % 0)[:, :3].reshape(120, 120, 3) if rc == 0 else None
+def border_hits(f):
+    if f is None:
+        return -1
+    background = f[0, 0]
+    ring = np.ones((120, 120), bool)
+    ring[2:-2, 2:-2] = False
+    return int((np.abs(f - background).max(axis=2)[ring] > 10).sum())
+check(border_hits(edge_frames["default"]) == 0 and border_hits(edge_frames["zoom14"]) > 0,
+      "render's default zoom keeps a 76 x 49 x 45 volume's box in the frame (%d border pixels drawn; "
+      "%d at --zoom 1.4)" % (border_hits(edge_frames["default"]), border_hits(edge_frames["zoom14"])))
+
 print(f"{passed} passed, {len(failures)} failed")
 sys.exit(1 if failures else 0)

@@ -77,7 +77,7 @@ ball.SetPhiResolution(16)
 window, renderer, mapper, actor = scene(ball, (30, 34, 33))
 first = frame(window)
 report = json.loads(mapper.GetLastFrameReport())
-check(any("voxels inside 1 occluder" in r for r in report["reasons"]),
+check(any("voxels made opaque by 1 occluder" in r for r in report["reasons"]),
       "the first frame makes the ball's voxels opaque (%s)" % report["reasons"])
 actor.SetPosition(32, 36, 33)
 moved = frame(window)

@@ -6,7 +6,7 @@ streamline-like lines and a ball inside it, in the project's EGL window.
 - Off (the default): the volume's frame is a mapper's without occluders,
   pixel for pixel (the pass adds nothing).
 - On: the pass makes the visible opaque actors the mapper's occluders (the
-  mapper's report counts the voxels inside 2 occluders), and the frame
+  mapper's report counts the voxels made opaque by 2 occluders), and the frame
   equals, pixel for pixel, that of the same scene whose mapper was given
   the two actors by hand (AddOccluder): the pass adds no effect of its own.
   The lines and the ball darken the volume (against the frame with the
@@ -106,7 +106,7 @@ scene = Scene(wired=True)
 wiredFrame = scene.frame()
 report = scene.report()
 check(scene.mapper.GetNumberOfOccluders() == 2 and
-      any("inside 2 occluder(s)" in r for r in report["reasons"]),
+      any("made opaque by 2 occluder(s)" in r for r in report["reasons"]),
       "on: the lines and the ball are the mapper's occluders (%s)" % report["reasons"])
 hand = Scene(by_hand=True)
 handFrame = hand.frame()

@@ -777,7 +777,7 @@ bool InsideMask(const MeshView& mesh, const int dims[3], const std::array<double
   std::vector<double> index;
   if (!MeshInIndexSpace(mesh, dims, worldToIndex, index, error))
     return false;
-  const std::int64_t open = OpenEdges(mesh);
+  const std::int64_t open = mesh.openEdges >= 0 ? mesh.openEdges : OpenEdges(mesh);
   if (open > 0)
   {
     error = "the mesh is open (" + std::to_string(open) +
