@@ -17,11 +17,13 @@
 #include "caoLineAO.h"
 #include "caoSceneGrid.h"
 
+#include <algorithm>
 #include <array>
 
 #include <cstring>
 #include <atomic>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 namespace vtkCAO
@@ -231,17 +233,22 @@ bool OpenSurfaceVoxels(const std::vector<double>& points, const std::vector<std:
 {
   if (!cao::ShellMask({ &points, &triangles }, dims, toIndex, inside, error))
     return false;
-  std::vector<std::int64_t> edges;
-  edges.reserve(2 * triangles.size());
+  // Each edge once (two triangles share most of them): lower id first,
+  // sorted, the repeats dropped.
+  std::vector<std::pair<std::int64_t, std::int64_t>> pairs;
+  pairs.reserve(triangles.size());
   for (std::size_t t = 0; t + 2 < triangles.size(); t += 3)
     for (int e = 0; e < 3; ++e)
     {
-      // (each edge once where two triangles share it in the same order of
-      // ids: the lower id first)
       const std::int64_t a = triangles[t + e], b = triangles[t + (e + 1) % 3];
-      edges.push_back(std::min(a, b));
-      edges.push_back(std::max(a, b));
+      pairs.emplace_back(std::min(a, b), std::max(a, b));
     }
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  std::vector<std::int64_t> edges;
+  edges.reserve(2 * pairs.size());
+  for (const auto& e : pairs)
+    edges.insert(edges.end(), { e.first, e.second });
   std::vector<std::uint8_t> edgeVoxels;
   if (!SegmentVoxels(points, std::move(edges), dims, toIndex, edgeVoxels, error))
     return false;
