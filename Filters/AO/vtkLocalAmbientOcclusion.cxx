@@ -522,7 +522,13 @@ int vtkLocalAmbientOcclusion::RequestData(
         this, plan, scalars, component, geometry, settings, opacity, ao, reason, edit);
   });
   if (in.NonFinite.Changed(scalars, component, nonFinite))
-    vtkWarningMacro(<< nonFinite << " NaN or Inf scalar value(s) treated as transparent.");
+  {
+    if (nonFinite > 0 && nonFinite == scalars->GetNumberOfTuples())
+      vtkWarningMacro(<< "Every scalar value (" << nonFinite
+                      << ") is NaN or Inf: the volume is transparent, and its AO 1 everywhere.");
+    else
+      vtkWarningMacro(<< nonFinite << " NaN or Inf scalar value(s) treated as transparent.");
+  }
   if (occluderFailed)
   {
     vtkErrorMacro("Cannot compute LAO: " << error << ".");

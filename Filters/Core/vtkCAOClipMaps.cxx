@@ -32,6 +32,13 @@ bool FieldTuple(vtkFieldData* fd, const char* name, int components, double* out)
 
 bool ReadClipMaps(vtkImageData* maps, int mode, ClipMaps& out, std::string& error)
 {
+  if (maps && maps->GetNumberOfPoints() == 0 && maps->GetFieldData()->GetNumberOfArrays() == 0)
+  {
+    // (The maps' own filter failed, and said why: not a wiring mistake.)
+    error = "Input 1, the clip depth maps, is empty: no depth maps were made (where vtkClipDepthMaps "
+            "makes them, its own error says why).";
+    return false;
+  }
   if (!maps || !FieldTuple(maps->GetFieldData(), "ClipCamera", 17, out.camera) ||
     !FieldTuple(maps->GetFieldData(), "DilationRadius", 5, out.dilation) ||
     !FieldTuple(maps->GetFieldData(), "ClipRegionBounds", 6, out.region))
@@ -205,6 +212,13 @@ bool MakeClipParams(vtkImageData* volume, const ClipMaps& maps, vtkMatrix4x4* po
   vtkNew<vtkMatrix4x4> pose;
   if (poseIn)
     pose->DeepCopy(poseIn);
+  for (int e = 0; e < 16; ++e)
+    if (!std::isfinite(pose->GetElement(e / 4, e % 4)))
+    {
+      error = "The clip pose is not finite (a NaN or infinite entry): give a finite translation, rotation "
+              "and scale.";
+      return false;
+    }
   const double sigmaMin = MinimumScale(pose);
   if (!(sigmaMin > 0.0) || pose->GetElement(3, 0) != 0.0 || pose->GetElement(3, 1) != 0.0 ||
     pose->GetElement(3, 2) != 0.0 || pose->GetElement(3, 3) != 1.0)

@@ -216,6 +216,10 @@ bool Run(Reader* reader, const std::string& path, std::string& error)
   if (!first.empty())
   {
     error = "cannot read '" + path + "': " + OneLine(first);
+    // VTK's words for a body shorter than its header promises.
+    if (first.find("Error reading") != std::string::npos || first.find("Premature EOF") != std::string::npos ||
+      first.find("Unable to read") != std::string::npos)
+      error += " (the file ends before the data its header announces: a truncated copy?)";
     return false;
   }
   return true;

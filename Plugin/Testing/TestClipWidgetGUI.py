@@ -154,6 +154,17 @@ try:
     reselect(reader)
     Render(view)
     check(gone and box_shown(view), "the box is hidden with the volume (%s) and back with it" % gone)
+    # Drawn as another representation (Outline): no box, the clip being
+    # this one's; back to Contextual AO Volume, the box is back. (Control:
+    # the box shown just above.)
+    display.SetRepresentationType("Outline")
+    reselect(reader)
+    Render(view)
+    other = not box_shown(view)
+    display.SetRepresentationType("Contextual AO Volume")
+    reselect(reader)
+    Render(view)
+    check(other and box_shown(view), "the box is hidden as Outline (%s) and back as Contextual AO Volume" % other)
 except Exception as e:  # noqa: BLE001  (reported as a failure)
     check(False, "exception: %r" % (e,))
 finally:

@@ -162,6 +162,41 @@ check(lines_registered and wrong is None,
 check(method_mismatch(lines_offered, lines_registered + [(40, "half")]) is not None,
       "negative control: a line technique the list lacks is caught")
 
+
+# The representation's groups in the panel only with "Contextual AO
+# Volume" (as ParaView's own groups are shown only with theirs): every
+# PropertyGroup the Extension exposes holds a visibility decorator on
+# Representation with that value. (Negative control: the same check on a
+# copy with one decorator removed.)
+def groups_without_decorator(root):
+    missing = []
+    for extension in root.iter("Extension"):
+        for group in extension.iter("PropertyGroup"):
+            found = any(d.get("property") == "Representation" and d.get("value") == "Contextual AO Volume"
+                        for d in group.iter("PropertyWidgetDecorator"))
+            if not found:
+                missing.append(group.get("label"))
+    return missing
+
+
+import copy  # noqa: E402
+import os  # noqa: E402
+import xml.etree.ElementTree as ET  # noqa: E402
+
+xml_root = ET.parse(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..",
+                                 "ContextualAORepresentation.xml")).getroot()
+missing = groups_without_decorator(xml_root)
+groups = [g.get("label") for e in xml_root.iter("Extension") for g in e.iter("PropertyGroup")]
+check(len(groups) >= 4 and not missing,
+      "each exposed group (%s) is shown only with Contextual AO Volume%s"
+      % (groups, (": not " + ", ".join(missing)) if missing else ""))
+control = copy.deepcopy(xml_root)
+first = next(g for e in control.iter("Extension") for g in e.iter("PropertyGroup"))
+for hints in first.findall("Hints"):
+    first.remove(hints)
+check(groups_without_decorator(control) == [first.get("label")],
+      "negative control: a group without the decorator is caught")
+
 if failures:
     print("%d check(s) failed" % len(failures))
     sys.exit(1)

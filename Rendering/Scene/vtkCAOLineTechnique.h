@@ -9,7 +9,7 @@
  * (Method): a frame runs one technique per kind of geometry.
  *
  * Each built-in is registered from Techniques/, in its own file (line
- * voxelization and prism sampling, value 1). A new technique is its own
+ * voxelization read by rays or prisms, value 1). A new technique is its own
  * files and one RegisterLineTechnique call (and, for ParaView, an entry in
  * the view's Line AO Method list), with no edit to the pass:
  * RenderingScene.TestLineTechnique registers one from the test's own file.

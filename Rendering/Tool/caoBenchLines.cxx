@@ -32,7 +32,7 @@ struct Options
   double tubeRadius = 0.0, radius = 0.0, orbit = 0.5;
   int rays = 256, repeats = 3, threads = 0;
   std::vector<int> samples{ 16, 64, 150 }, slices{ 128, 256 }, kernels{ 16, 32, 64 };
-  std::vector<std::string> hemispheres{ "normal", "camera" }, backends{ "cpu" };
+  std::vector<std::string> hemispheres{ "normal", "camera" }, backends{ "cpu" }, estimators{ "rays", "prisms" };
   std::string window = "auto", output = "lines-bench";
 };
 
@@ -102,8 +102,10 @@ int Run(Options& o, const CLI::App*)
   std::string error;
   std::vector<Row> rows;
   std::vector<PlotPoint> points;
-  const std::vector<std::string> series{ "line AO, normal half ball", "line AO, camera-facing (the thesis')",
-    "vtkSSAOPass on tubes", "line AO on OpenGL, normal half ball", "line AO on OpenGL, camera-facing" };
+  const std::vector<std::string> series{ "line AO prisms, normal half ball", "line AO prisms, camera-facing (the thesis')",
+    "vtkSSAOPass on tubes", "line AO prisms on OpenGL, normal half ball", "line AO prisms on OpenGL, camera-facing",
+    "line AO rays, normal half ball", "line AO rays, camera-facing", "line AO rays on OpenGL, normal half ball",
+    "line AO rays on OpenGL, camera-facing" };
   // --backends gl: one headless OpenGL context for every scene.
   SurfaceGPU gpu;
   std::string glName;
@@ -170,8 +172,9 @@ int Run(Options& o, const CLI::App*)
       if (plotSeries >= 0 && row.ms > 0 && row.rmse > 0)
         points.push_back({ row.ms, row.rmse, row.configuration, plotSeries });
     };
-    // Line AO: each backend, half ball, sample count and slice count.
+    // Line AO: each backend, estimator, half ball, sample count and slice count.
     for (const std::string& backend : o.backends)
+    for (const std::string& estimator : o.estimators)
     for (const std::string& hemisphere : o.hemispheres)
       for (int samples : o.samples)
         for (int slices : o.slices)
@@ -179,6 +182,7 @@ int Run(Options& o, const CLI::App*)
           const bool gl = backend == "gl";
           cao::LineAOSettings s;
           cao::ParseLineAOHemisphere(hemisphere, s.hemisphere);
+          cao::ParseLineAOEstimator(estimator, s.estimator);
           s.samples = samples;
           s.slices = slices;
           s.radius = radius;
@@ -208,10 +212,12 @@ int Run(Options& o, const CLI::App*)
           Row row;
           row.method = gl ? "lineao-gl" : "lineao";
           row.backend = gl ? glName : "CPU";
-          row.configuration = std::string(gl ? "lineao-gl " : "lineao ") + hemisphere + " " +
+          row.configuration = std::string(gl ? "lineao-gl " : "lineao ") + estimator + " " + hemisphere + " " +
             std::to_string(samples) + "s " + std::to_string(slices) + "z";
           row.ms = Median(times);
-          add(row, ao[0], ao[1], (hemisphere == "normal" ? 0 : 1) + (gl ? 3 : 0));
+          const bool rays = s.estimator == cao::LineAOEstimator::Rays;
+          add(row, ao[0], ao[1], rays ? 5 + (hemisphere == "normal" ? 0 : 1) + (gl ? 2 : 0)
+                                      : (hemisphere == "normal" ? 0 : 1) + (gl ? 3 : 0));
         }
     // vtkSSAOPass on the tubes as vtkTubeFilter draws them.
     if (!o.kernels.empty())
@@ -317,7 +323,14 @@ Command AddBenchLinesCommand(CLI::App& bench)
   AddAORadius(app, o->radius, "the AO radius, world units (default, or 0: each scene's, as cao surface)");
   AddInteger(app, "--rays", o->rays, 16, 65536, "directions per pixel of the reference, 16 to 65536 (default 256)");
   AddIntegerList(app, "--samples", o->samples, 1, cao::LineAOSettings::MaximumSamples,
-    "line AO prisms per pixel (default 16,64,150; the thesis' 150)");
+    "line AO rays or prisms per pixel (default 16,64,150; the thesis' 150 prisms)");
+  AddList(app, "--estimators", "LIST", "line AO estimators: rays, prisms (default both)",
+    [](const std::string& item) {
+      cao::LineAOEstimator e;
+      return cao::ParseLineAOEstimator(item, e) ? std::string()
+                                                : "bad value '" + item + "' (expected rays or prisms)";
+    },
+    [o](const std::vector<std::string>& items) { o->estimators = items; });
   AddSurfaceSlices(app, o->slices, "line AO grid depth slices, each 32 to 1024, a multiple of 32 (default 128,256)");
   AddList(app, "--hemispheres", "LIST", "line AO half balls: normal, camera (default both)",
     [](const std::string& item) {

@@ -121,16 +121,20 @@ bool LoadPreset(const std::string& file, const std::string& name, const double r
       " (presets: " + known + ")";
     return false;
   }
+  // (Without a name the file's first preset is taken: errors name it.)
+  const std::string shown = !name.empty() ? name
+    : preset->contains("Name") && (*preset)["Name"].is_string() ? (*preset)["Name"].get<std::string>()
+                                                               : std::string("the first");
   std::vector<double> rgb, points;
   if (!Numbers(*preset, "RGBPoints", 4, rgb, error) ||
     !Numbers(*preset, "Points", 4, points, error))
   {
-    error = "preset '" + name + "': " + error;
+    error = "preset '" + shown + "': " + error;
     return false;
   }
   if (rgb.empty())
   {
-    error = "preset '" + name + "' has no \"RGBPoints\"";
+    error = "preset '" + shown + "' has no \"RGBPoints\"";
     return false;
   }
   // The preset's own range: its colour points' first and last x.

@@ -236,6 +236,7 @@ int Render(RenderOptions& o, const CLI::App* app)
         "--component)");
   double range[2];
   scalars->GetRange(range, 0);
+  long long nanValues = 0; // (named by the background-only note)
   {
     // NaN values draw as empty space (the mapper says how many); an
     // infinite one, or nothing but NaN, has no place on the colour map.
@@ -254,6 +255,7 @@ int Render(RenderOptions& o, const CLI::App* app)
           " infinite value(s) (NaN ones draw as empty space)");
     if (n > 0 && nan == n)
       return Fail(2, "every scalar of '" + o.volume + "' is NaN: nothing to draw");
+    nanValues = nan;
     const double* sp = volume->GetSpacing();
     for (int d = 0; d < 3; ++d)
       if (!(sp[d] > 0.0) || !std::isfinite(sp[d]))
@@ -529,6 +531,12 @@ int Render(RenderOptions& o, const CLI::App* app)
         mapper->GetLastFrameClippedVoxels() == 0)
         std::printf("          note: the clip removes no whole voxel at this pose: it lies outside "
                     "the volume or is about as small as a voxel (see --pose, --size)\n");
+      else if (backgroundOnly && nanValues > 0)
+        std::printf("          note: this frame shows only the background: the volume's %lld NaN "
+                    "value(s) blank every cell with a NaN corner (most cells when they are spread "
+                    "through it), or the opacity map makes the rest transparent (see --preset, "
+                    "--unit-distance), or the camera leaves it out of view\n",
+          nanValues);
       else if (backgroundOnly)
         std::printf("          note: this frame shows only the background: the opacity map makes "
                     "the volume transparent (see --preset, --unit-distance), or the camera "

@@ -87,7 +87,7 @@ struct SurfaceOptions
   // Lines (caoSurfaceLines).
   double tubeRadius = 0.0;
   cao::LineAOSettings lineAO;
-  std::string lineWeights, lineHemisphere;
+  std::string lineWeights, lineHemisphere, lineEstimator;
 };
 
 /// "a number in [lo, hi]" ("(lo, hi]" when `openLow`), as the limit of a
@@ -897,7 +897,7 @@ int Run(SurfaceOptions& o, const CLI::App* app)
   // Line options without --method: the lines' default, lineao.
   const bool methodGiven = app->count("--method") > 0;
   if (!methodGiven)
-    for (const char* name : { "--line-samples", "--line-weights", "--line-hemisphere", "--strength" })
+    for (const char* name : { "--line-samples", "--line-weights", "--line-hemisphere", "--line-estimator", "--strength" })
       if (app->count(name) > 0)
         o.method = "lineao";
   // --march and --samples are for hbao or volumetric, --filter for vct, hbao or
@@ -923,6 +923,7 @@ int Run(SurfaceOptions& o, const CLI::App* app)
     { "--falloff", { "reference" } }, { "--weighting", { "reference" } },
     { "--window", { "ssao" } }, { "--kernel", { "ssao" } }, { "--line-samples", { "lineao", "vct" } },
     { "--line-weights", { "lineao", "vct" } }, { "--line-hemisphere", { "lineao", "vct" } },
+    { "--line-estimator", { "lineao", "vct" } },
     { "--strength", { "lineao", "vct" } }
   };
   // (lineao: with meshes in the frame, their voxel cones take vct's
@@ -1016,6 +1017,12 @@ int Run(SurfaceOptions& o, const CLI::App* app)
     job.lineAO = o.lineAO;
     if (app->count("--slices") > 0)
       job.lineAO.slices = o.vct.slices; // else line AO's default
+    if (!o.lineEstimator.empty())
+      cao::ParseLineAOEstimator(o.lineEstimator, job.lineAO.estimator);
+    else if (!o.lineWeights.empty())
+      job.lineAO.estimator = cao::LineAOEstimator::Prisms; // the weights are the prisms'
+    if (!o.lineWeights.empty() && job.lineAO.estimator != cao::LineAOEstimator::Prisms)
+      return Fail(2, "--line-weights weighs the prisms: it is for --line-estimator prisms (got rays)");
     if (!o.lineWeights.empty())
       cao::ParseLineAOWeights(o.lineWeights, job.lineAO.weights);
     if (!o.lineHemisphere.empty())
@@ -1029,7 +1036,8 @@ int Run(SurfaceOptions& o, const CLI::App* app)
     job.json = o.json;
     return RunSurfaceLines(job, o.meshes, read);
   }
-  for (const char* name : { "--tube-radius", "--line-samples", "--line-weights", "--line-hemisphere", "--strength" })
+  for (const char* name :
+    { "--tube-radius", "--line-samples", "--line-weights", "--line-hemisphere", "--line-estimator", "--strength" })
     if (app->count(name) > 0)
       return Fail(2, std::string(name) + " is for line inputs; the inputs hold no lines");
   if (o.method == "lineao")
@@ -1344,8 +1352,12 @@ Command AddSurfaceCommand(CLI::App& cao)
     "lines: the tubes' radius, world units (default: 1/200 of the lines' bounding-box diagonal)")
     ->type_name("R");
   AddInteger(app, "--line-samples", o->lineAO.samples, 1, cao::LineAOSettings::MaximumSamples,
-    "lineao: prisms per pixel, 1 to " + std::to_string(cao::LineAOSettings::MaximumSamples) +
-      " (default 64; the paper's 150)");
+    "lineao: rays or prisms per pixel, 1 to " + std::to_string(cao::LineAOSettings::MaximumSamples) +
+      " (default 64; the paper's 150 prisms)");
+  AddChoice(app, "--line-estimator", o->lineEstimator, { "rays", "prisms" },
+    "lineao: how the half ball is read (default rays: cosine-distributed rays marched through the line grid, "
+    "as the reference's; prisms: the thesis' prisms along the view axis, their occupancy calibrated; "
+    "--line-weights implies prisms)");
   AddChoice(app, "--line-weights", o->lineWeights, { "normalized", "paper" },
     "lineao: the prisms' weights (default normalized: a/(dm/R)^2, a the cosine to the normal, independent of the "
     "scene's scale; paper: the thesis' 1/dm^2 in world units times its AO factor 4)");
@@ -1353,8 +1365,9 @@ Command AddSurfaceCommand(CLI::App& cao)
     "lineao: the half ball sampled (default normal: at the tube's surface, facing its normal, the "
     "reference's definition; camera: the thesis', at the axis, facing the camera)");
   AddNumber(app, "--strength", o->lineAO.strength, 0.0, 100.0, false, Interval(0.0, 100.0),
-    "lineao: scales the calibrated occlusion, 0 to 100 (default 1; AO = exp(-strength x s x "
-    "occupancy), s from the radius, the tube radius and the voxel)")
+    "lineao: scales the occlusion, 0 to 100 (default 1; rays: each line voxel crossed for a length l "
+    "passes exp(-strength x sigma x l); prisms: AO = exp(-strength x s x occupancy), s from the radius, "
+    "the tube radius and the voxel)")
     ->type_name("S");
   AddInteger(app, "--rays", o->reference.rays, 1, cao::AOReferenceSettings::MaximumRays,
     "reference: directions per pixel (default 1024, at most 1048576)");

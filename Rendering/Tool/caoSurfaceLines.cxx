@@ -491,7 +491,8 @@ int RunSurfaceLines(LineJob& job, const std::vector<std::string>& files,
                 << ", \"mesh_pixels\": " << covered[1]
                 << ", \"mean_ao_meshes\": " << MeanText(covered[1], sum[1], "null");
     if (job.method == "lineao" || job.method == "vct")
-      std::cout << ", \"lineao\": {\"samples\": " << job.lineAO.samples << ", \"slices\": " << grid.slices
+      std::cout << ", \"lineao\": {\"estimator\": \"" << cao::LineAOEstimatorName(job.lineAO.estimator)
+                << "\", \"samples\": " << job.lineAO.samples << ", \"slices\": " << grid.slices
                 << ", \"weights\": \"" << cao::LineAOWeightsName(job.lineAO.weights) << "\", \"hemisphere\": \""
                 << cao::LineAOHemisphereName(job.lineAO.hemisphere) << "\", \"strength\": " << job.lineAO.strength
                 << ", \"grid\": \"eye\", \"columns\": [" << grid.nx << ", " << grid.ny << "], \"voxel\": "

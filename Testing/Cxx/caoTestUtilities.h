@@ -3,6 +3,7 @@
 #define caoTestUtilities_h
 #include "caoLAOSettings.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -62,6 +63,26 @@ inline void UVSphere(double r, int n, std::vector<double>& points, std::vector<s
       tris.insert(tris.end(), { id(i, j), id(i + 1, j), id(i + 1, j + 1) });
       tris.insert(tris.end(), { id(i, j), id(i + 1, j + 1), id(i, j + 1) });
     }
+}
+
+
+/// The distance from x to the segment [a, b] (a point when a == b), by
+/// hand: the tests' independent check of the kernels' geometry.
+inline double SegmentDistance(const double x[3], const double a[3], const double b[3])
+{
+  double ab[3], ax[3], l2 = 0.0, along = 0.0;
+  for (int d = 0; d < 3; ++d)
+  {
+    ab[d] = b[d] - a[d];
+    ax[d] = x[d] - a[d];
+    l2 += ab[d] * ab[d];
+    along += ax[d] * ab[d];
+  }
+  const double s = l2 > 0.0 ? std::min(1.0, std::max(0.0, along / l2)) : 0.0;
+  double d2 = 0.0;
+  for (int d = 0; d < 3; ++d)
+    d2 += (ax[d] - s * ab[d]) * (ax[d] - s * ab[d]);
+  return std::sqrt(d2);
 }
 
 }

@@ -530,6 +530,15 @@ expect_error(["render", neghip, "--preset", "nope", "-o", os.path.join(tmp, "x_%
              "no preset named", "unknown preset")
 expect_error(["render", neghip, "--preset-file", os.path.join(tmp, "none.json"), "-o",
               os.path.join(tmp, "x_%d.png")], 2, "cannot read the preset", "missing preset file")
+# A file's preset taken without --preset: its errors name it (they said
+# "preset ''"); the control: the same error with --preset gives its name too.
+bad_preset = os.path.join(tmp, "bad_preset.json")
+with open(bad_preset, "w") as f:
+    json.dump([{"Name": "Bad", "RGBPoints": [0, 0, 0]}], f)
+expect_error(["render", neghip, "--preset-file", bad_preset, "-o", os.path.join(tmp, "x_%d.png")], 2,
+             "preset 'Bad': \"RGBPoints\" must be a list of 4-tuples", "a bad preset named without --preset")
+expect_error(["render", neghip, "--preset-file", bad_preset, "--preset", "Bad", "-o", os.path.join(tmp, "x_%d.png")],
+             2, "preset 'Bad'", "a bad preset named by --preset")
 expect_error(["render", neghip, "-o", os.path.join(tmp, "x.png")], 2, "frame-number conversion",
              "output without a frame pattern")
 # Bad input to render is exit 2, said before its first line of output
@@ -610,6 +619,30 @@ rc, out, err = run("render", small_volume("nan.vti", nan=True), "--no-clip", "--
 check(rc == 0 and os.path.exists(os.path.join(tmp, "nan_0.png")) and
       err.count("1 NaN value(s): drawn as empty space") == 1,
       "render of a NaN voxel: drawn, one warning (rc %d, %r)" % (rc, err.strip()[:200]))
+# NaN voxels spread through the volume (every other one) blank every cell:
+# the background-only note names them (it blamed the opacity map or the
+# camera only).
+spread = _Img()
+spread.SetDimensions(12, 12, 12)
+spread.AllocateScalars(10, 1)
+spread_a = vtk_to_numpy(spread.GetPointData().GetScalars())
+spread_a[:] = 100.0
+spread_a[::2] = np.nan
+spread_path = os.path.join(tmp, "spread_nan.vti")
+iw = _IW()
+iw.SetInputData(spread)
+iw.SetFileName(spread_path)
+iw.Write()
+rc, out, err = run("render", spread_path, "--no-clip", "--image", "32x32", "-o", os.path.join(tmp, "spread_%d.png"))
+said = [line for line in out.splitlines() if "only the background" in line]
+check(rc == 0 and len(said) == 1 and "NaN value(s) blank every cell with a NaN corner" in said[0],
+      "render of spread NaN voxels: the note names them (rc %d, %r)" % (rc, said))
+# The control: a volume without NaN, transparent at the default preset,
+# gets the note without them.
+rc, out, err = run("render", good_vol, "--no-clip", "--image", "32x32", "-o", os.path.join(tmp, "clear_good_%d.png"))
+said = [line for line in out.splitlines() if "only the background" in line]
+check(rc == 0 and len(said) == 1 and "NaN" not in said[0] and "the opacity map" in said[0],
+      "the control: no NaN, the note names the opacity map alone (rc %d, %r)" % (rc, said))
 rc, out, err = run("render", good_vol, "--shape", "sphere", "--path", "1", "--image", "32x32", "-o",
                    os.path.join(tmp, "good_%d.png"))
 check(rc == 0 and os.path.exists(os.path.join(tmp, "good_0.png")),

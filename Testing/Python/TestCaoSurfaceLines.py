@@ -314,19 +314,24 @@ if p.returncode == 0:
     print(p.stdout)
     rows = json.load(open(os.path.join(bench, "lines.json")))
     names = [r["configuration"] for r in rows]
-    check(names == ["lineao normal 16s 128z", "lineao normal 64s 128z", "lineao camera 16s 128z",
-                    "lineao camera 64s 128z", "ssao k32", "none"], "a row per configuration: %s" % names)
+    check(names == ["lineao %s %s %ds 128z" % (e, h, n) for e in ("rays", "prisms") for h in ("normal", "camera")
+                    for n in (16, 64)] + ["ssao k32", "none"], "a row per configuration: %s" % names)
     by = {r["configuration"]: r for r in rows}
-    check(all(by[n]["rmse"] < by["none"]["rmse"] for n in names[:5]),
+    check(all(by[n]["rmse"] < by["none"]["rmse"] for n in names[:-1]),
           "every method beats no AO (the control) against the reference: %s"
           % {n: round(by[n]["rmse"], 4) for n in names})
-    check(by["lineao normal 64s 128z"]["rank_correlation"] > 0.5 and by["lineao normal 64s 128z"]["lines"] >= 10,
-          "line AO ranks the bundle's lines as the reference does: %.3f over %d lines"
-          % (by["lineao normal 64s 128z"]["rank_correlation"], by["lineao normal 64s 128z"]["lines"]))
-    check(all(r["ms"] > 0 for r in rows[:5]) and os.path.getsize(os.path.join(bench, "lines.png")) > 1000 and
-          open(os.path.join(bench, "lines.csv")).read().count("\n") == 7,
+    for e in ("rays", "prisms"):
+        n = "lineao %s normal 64s 128z" % e
+        check(by[n]["rank_correlation"] > 0.5 and by[n]["lines"] >= 10,
+              "line AO (%s) ranks the bundle's lines as the reference does: %.3f over %d lines"
+              % (e, by[n]["rank_correlation"], by[n]["lines"]))
+    check(by["lineao rays normal 64s 128z"]["rmse"] < by["lineao prisms normal 64s 128z"]["rmse"],
+          "the rays (the default) are nearer the reference than the prisms: RMSE %.4f against %.4f"
+          % (by["lineao rays normal 64s 128z"]["rmse"], by["lineao prisms normal 64s 128z"]["rmse"]))
+    check(all(r["ms"] > 0 for r in rows[:-1]) and os.path.getsize(os.path.join(bench, "lines.png")) > 1000 and
+          open(os.path.join(bench, "lines.csv")).read().count("\n") == len(names) + 1,
           "times, the plot and the csv are written")
-    check(all(by[n]["backend"] == "CPU" for n in names[:4]) and by["none"]["backend"] == "-",
+    check(all(by[n]["backend"] == "CPU" for n in names[:-2]) and by["none"]["backend"] == "-",
           "each row names where it ran: %s" % [r["backend"] for r in rows])
 
 # cao bench lines --backends cpu,gl: line AO on a headless OpenGL too, each
@@ -345,13 +350,14 @@ else:
         rows = json.load(open(os.path.join(bench_gl, "lines.json")))
         by = {r["configuration"]: r for r in rows}
         names = [r["configuration"] for r in rows]
-        gap = max(abs(by["lineao-gl normal %ds 128z" % n]["rmse"] - by["lineao normal %ds 128z" % n]["rmse"])
-                  for n in (16, 64)) if "lineao-gl normal 64s 128z" in by else 1.0
-        control = abs(by["lineao normal 16s 128z"]["rmse"] - by["lineao normal 64s 128z"]["rmse"])
-        check(names == ["lineao normal 16s 128z", "lineao normal 64s 128z", "lineao-gl normal 16s 128z",
-                        "lineao-gl normal 64s 128z", "ssao k32", "none"] and gap < 1e-3 and control > gap and
-              by["lineao-gl normal 64s 128z"]["backend"].startswith("OpenGL (") and
-              by["lineao-gl normal 64s 128z"]["ms"] > 0,
+        gap = max(abs(by["lineao-gl %s normal %ds 128z" % (e, n)]["rmse"] - by["lineao %s normal %ds 128z" % (e, n)]["rmse"])
+                  for e in ("rays", "prisms") for n in (16, 64)) if "lineao-gl rays normal 64s 128z" in by else 1.0
+        control = min(abs(by["lineao %s normal 16s 128z" % e]["rmse"] - by["lineao %s normal 64s 128z" % e]["rmse"])
+                      for e in ("rays", "prisms"))
+        check(names == ["lineao%s %s normal %ds 128z" % (b, e, n) for b in ("", "-gl") for e in ("rays", "prisms")
+                        for n in (16, 64)] + ["ssao k32", "none"] and gap < 1e-3 and control > gap and
+              by["lineao-gl rays normal 64s 128z"]["backend"].startswith("OpenGL (") and
+              by["lineao-gl rays normal 64s 128z"]["ms"] > 0,
               "--backends cpu,gl: a GPU row per configuration, its RMSE the CPU row's within 1e-3 (%.2e; control, "
               "16 against 64 samples: %.2e): %s" % (gap, control, names))
 
@@ -420,6 +426,10 @@ for args, words in [(["--method", "vct", path], "--method lineao, reference, ssa
                     (["--tube-radius", "0", path], "--tube-radius"),
                     (["--method", "lineao", "--line-samples", "5000", path], "--line-samples"),
                     (["--method", "reference", "--line-samples", "8", path], "--line-samples is for --method lineao"),
+                    (["--line-estimator", "rays", "--line-weights", "paper", path],
+                     "--line-weights weighs the prisms: it is for --line-estimator prisms"),
+                    (["--line-estimator", "cones", path], "--line-estimator"),
+                    (["--line-estimator", "rays", mesh], "--line-estimator is for line inputs"),
                     (["--method", "reference", "--backend", "gl", path], "--backend is for --method")]:
     rc, so, se = run(*args, "-o", os.path.join(tmp, "x.png"))
     check(rc == 2 and words in se and "Segmentation" not in se,
@@ -427,8 +437,12 @@ for args, words in [(["--method", "vct", path], "--method lineao, reference, ssa
 
 # Line options without --method take the lines' default, lineao.
 rc, so, se = run(path, "--line-samples", "16", "--image", "64x48", "--json", "-o", os.path.join(tmp, "default.png"))
-check(rc == 0 and json.loads(so)["method"] == "lineao" and json.loads(so)["lineao"]["samples"] == 16,
-      "--line-samples without --method runs line AO: rc %d %s" % (rc, se.strip()[:160]))
+check(rc == 0 and json.loads(so)["method"] == "lineao" and json.loads(so)["lineao"]["samples"] == 16 and
+      json.loads(so)["lineao"]["estimator"] == "rays",
+      "--line-samples without --method runs line AO, by rays: rc %d %s" % (rc, se.strip()[:160]))
+rc, so, se = run(path, "--line-weights", "paper", "--image", "64x48", "--json", "-o", os.path.join(tmp, "paper.png"))
+check(rc == 0 and json.loads(so)["lineao"]["estimator"] == "prisms",
+      "--line-weights alone takes the prisms: rc %d %s" % (rc, se.strip()[:160]))
 # cao bench lines refuses a picture with nothing to measure.
 p = subprocess.run([tool, "bench", "lines", path, "--image", "32x24", "--tube-radius", "1e-9", "--rays", "16",
                     "--samples", "16", "--slices", "128", "--kernels", "16", "--repeats", "1", "-o",

@@ -372,10 +372,13 @@ bool LineAOEngine::Impl::Prisms(const BitGrid& grid, const LineAOSettings& setti
   layout::LineAOParams block{};
   block.grid = { grid.nx, grid.ny, grid.slices, grid.words };
   block.counts = { settings.samples, static_cast<std::int32_t>(count),
-    (settings.weights == LineAOWeights::Paper ? 1 : 0) | (solids ? 2 : 0), 0 };
+    (settings.weights == LineAOWeights::Paper ? 1 : 0) | (solids ? 2 : 0) |
+      (settings.estimator == LineAOEstimator::Rays ? 4 : 0),
+    0 };
   block.scalars = { static_cast<float>(settings.radius / grid.voxel), static_cast<float>(grid.voxel),
     static_cast<float>(LineOcclusionScale(settings, grid.voxel)), static_cast<float>(settings.strength) };
-  block.paper = { static_cast<float>(settings.aoFactor), 0.0f, 0.0f, 0.0f };
+  block.paper = { static_cast<float>(settings.aoFactor),
+    static_cast<float>(settings.strength * LineVoxelExtinction(settings.tubeRadius / grid.voxel)), 0.0f, 0.0f };
   const double gridBytes = static_cast<double>(grid.nx) * grid.ny * grid.words * sizeof(std::uint32_t);
   const double limit = P.LargestBlock();
   if (gridBytes > limit)

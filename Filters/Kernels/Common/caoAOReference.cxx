@@ -25,6 +25,8 @@ double Unit(std::uint64_t bits)
   return static_cast<double>(bits >> 11) * (1.0 / 9007199254740992.0); // [0, 1)
 }
 
+}
+
 double RadicalInverse2(std::uint32_t i)
 {
   i = (i << 16) | (i >> 16);
@@ -35,6 +37,27 @@ double RadicalInverse2(std::uint32_t i)
   return static_cast<double>(i) * (1.0 / 4294967296.0);
 }
 
+void HemisphereDirection(int k, int count, double shift1, double shift2, bool cosine, double local[3])
+{
+  double u1 = (k + 0.5) / count + shift1;
+  u1 -= std::floor(u1);
+  double u2 = RadicalInverse2(static_cast<std::uint32_t>(k)) + shift2;
+  u2 -= std::floor(u2);
+  const double phi = 2.0 * Pi * u2;
+  if (cosine)
+  {
+    const double r = std::sqrt(u1);
+    local[0] = r * std::cos(phi);
+    local[1] = r * std::sin(phi);
+    local[2] = std::sqrt(std::max(0.0, 1.0 - u1));
+  }
+  else
+  {
+    const double r = std::sqrt(std::max(0.0, 1.0 - u1 * u1));
+    local[0] = r * std::cos(phi);
+    local[1] = r * std::sin(phi);
+    local[2] = u1;
+  }
 }
 
 std::string AOReferenceSettings::Validate() const
@@ -161,26 +184,9 @@ bool ReferenceAO(const RayOccluders& scene, const double* points, const double* 
     double sum = 0.0;
     for (int k = 0; k < rays; ++k)
     {
-      double u1 = (k + 0.5) / rays + shift1;
-      u1 -= std::floor(u1);
-      double u2 = RadicalInverse2(static_cast<std::uint32_t>(k)) + shift2;
-      u2 -= std::floor(u2);
-      double x, y, z;
-      const double phi = 2.0 * Pi * u2;
-      if (cosine)
-      {
-        const double r = std::sqrt(u1);
-        x = r * std::cos(phi);
-        y = r * std::sin(phi);
-        z = std::sqrt(std::max(0.0, 1.0 - u1));
-      }
-      else
-      {
-        z = u1;
-        const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-        x = r * std::cos(phi);
-        y = r * std::sin(phi);
-      }
+      double local[3];
+      HemisphereDirection(k, rays, shift1, shift2, cosine, local);
+      const double x = local[0], y = local[1], z = local[2];
       const double d[3] = { x * t[0] + y * s[0] + z * n[0], x * t[1] + y * s[1] + z * n[1],
         x * t[2] + y * s[2] + z * n[2] };
       if (step)

@@ -65,6 +65,15 @@ const char* WeightingName(AOWeighting weighting);
 bool ParseFalloff(const std::string& text, AOFalloff& falloff);
 bool ParseWeighting(const std::string& text, AOWeighting& weighting);
 
+/// The base-2 radical inverse of i, in [0, 1).
+double RadicalInverse2(std::uint32_t i);
+/// Direction k of `count` of the reference's sets, in the frame of the
+/// normal (+z): the Hammersley point ((k + 1/2) / count, RadicalInverse2(k))
+/// shifted by (shift1, shift2) modulo 1 (Cranley-Patterson), mapped to the
+/// hemisphere cosine-distributed (Malley) or uniformly. Line AO's rays walk
+/// the same sets.
+void HemisphereDirection(int k, int count, double shift1, double shift2, bool cosine, double local[3]);
+
 /// The falloff mu at distance d (infinity: no hit).
 double FalloffValue(AOFalloff falloff, double distance, double radius);
 

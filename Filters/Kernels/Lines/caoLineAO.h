@@ -1,9 +1,9 @@
-// caoLineAO.h - ambient occlusion for lines by line voxelization and prism
-// sampling (Benevides 2015), the CPU twin: the lines are
-// voxelized into a bit grid with OR (lines are not solids), and each
-// pixel's AO comes from the occupancy of a half ball of radius R at its
-// line (facing the tube's normal, or the camera as the paper's), sampled by
-// prisms parallel to the view axis.
+// caoLineAO.h - ambient occlusion for lines by line voxelization (Benevides
+// 2015), the CPU twin: the lines are voxelized into a bit grid with OR
+// (lines are not solids), and each pixel's AO is read from a half ball of
+// radius R at its line (facing the tube's normal, or the camera as the
+// paper's): by default by rays marched through the grid (LineRaysOf), or by
+// the paper's prisms parallel to the view axis and their occupancy.
 //
 // Choices the paper leaves open, and why (docs/lines.md measures them):
 // - The grid is an eye grid (Common/caoBitGrid.h: a world grid turned to
@@ -25,6 +25,14 @@
 //   Prisms run through the voxel centres of the column nearest each sample,
 //   so which voxels they count is exact, and a line's own voxels never
 //   occlude it (the base plane is moved past them).
+// - Rays, not the paper's prisms, by default: the prisms give the half
+//   ball's occupancy, not which directions are blocked, and one calibrated
+//   constant turns it into AO; the rays compute the reference's definition
+//   (cosine weighting, step falloff) on the voxels, each line voxel passing
+//   a fraction of a ray set by the tube's radius in voxels
+//   (LineVoxelExtinction: a voxelized tube is wider than the tube), and
+//   measured against the reference were about twice as accurate
+//   (docs/lines.md). The prisms' choices follow.
 // - Weights: normalized and scale-free, w = a / (dm / R)^2 (the design
 //   notes' proposal; dm: the prism ends' mean distance; a: the cosine to
 //   the normal, or the paper's sine to the tangent); the paper's own,
@@ -63,6 +71,15 @@ enum class LineAOHemisphere
 /// docs/lines.md how it was measured).
 constexpr double OcclusionCalibration = 0.54;
 
+/// How a pixel's half ball is read. Rays are the default: measured against
+/// the ray-traced reference they are about twice as accurate as the
+/// paper's prisms (docs/lines.md, "Rays through the grid").
+enum class LineAOEstimator
+{
+  Rays = 0,  ///< cosine-distributed rays marched through the grid's voxels, each voxel of a line attenuating by LineVoxelExtinction
+  Prisms = 1 ///< the paper's prisms along the view axis, their weighted occupancy turned into AO by OcclusionCalibration
+};
+
 enum class LineAOWeights
 {
   Normalized = 0, ///< a / (dm / R)^2 (a: the cosine to the normal, or the paper's sine to the tangent), normalized: scale-free
@@ -75,8 +92,9 @@ struct LineAOSettings
 {
   double radius = 1.0;      ///< R, the half ball's radius in world units (> 0)
   double tubeRadius = 0.0;  ///< the lines' radius in world units (0: lines drawn as lines)
-  int samples = 64;         ///< prisms per pixel, 1..MaximumSamples (the paper: 150)
+  int samples = 64;         ///< rays or prisms per pixel, 1..MaximumSamples (the paper: 150 prisms)
   int slices = 128;         ///< grid slices along the view axis, 32..1024, a multiple of 32 (the paper's)
+  LineAOEstimator estimator = LineAOEstimator::Rays;
   LineAOWeights weights = LineAOWeights::Normalized;
   LineAOHemisphere hemisphere = LineAOHemisphere::Normal;
   double strength = 1.0;    ///< scales the calibrated occlusion, 0..100 (1: calibrated)
@@ -92,6 +110,9 @@ struct LineAOSettings
 const char* LineAOWeightsName(LineAOWeights weights);
 /// "normalized" / "paper"; false when unknown.
 bool ParseLineAOWeights(const std::string& text, LineAOWeights& weights);
+const char* LineAOEstimatorName(LineAOEstimator estimator);
+/// "rays" / "prisms"; false when unknown.
+bool ParseLineAOEstimator(const std::string& text, LineAOEstimator& estimator);
 const char* LineAOHemisphereName(LineAOHemisphere hemisphere);
 /// "normal" / "camera"; false when unknown.
 bool ParseLineAOHemisphere(const std::string& text, LineAOHemisphere& hemisphere);
@@ -197,6 +218,25 @@ double LineOccupancyAt(const BitGrid& grid, const LineAOSettings& settings, cons
   const double axisPoint[3], const double tangent[3], const double view[3],
   const double* surface = nullptr, const double* normal = nullptr, const BitGrid* solids = nullptr,
   double* solidOccupancy = nullptr);
+/// The extinction (per voxel length) that makes a voxelized tube of
+/// radius `rho` voxels (VoxelizeLines' voxels; 0: a line drawn as a line,
+/// counted as a tube of the supercover's cross-section) block as many rays,
+/// on average over rays of every direction and offset, as the exact tube
+/// does: the staircase of whole voxels is wider than the tube, so a ray that
+/// only clips a corner must mostly pass. Tabulated from a Monte Carlo of
+/// random tubes and rays (Rendering/Tool/Benchmark/line_extinction.py;
+/// docs/lines.md), linear in between, the last value beyond.
+double LineVoxelExtinction(double rho);
+/// The AO (1 = open) of `ball` by rays: settings.samples cosine-distributed
+/// directions about the half ball's normal (a Hammersley set turned by the
+/// pixel's disk sample set), each marched from the half ball's centre to
+/// R through the grid, the voxels past the base plane counted (a line's
+/// own voxels never occlude it, as for the prisms): each line voxel the ray
+/// crosses for a length l lets exp(-strength sigma l) through (sigma:
+/// LineVoxelExtinction of the tube), a solid voxel nothing. The step
+/// falloff and cosine weighting of the reference (Common/caoAOReference.h).
+double LineRaysOf(const BitGrid& grid, const LineAOSettings& settings, const double* samples,
+  const LineHalfBall& ball, const BitGrid* solids = nullptr);
 /// s in AO = exp(-strength s occupancy) for a grid of voxel size `voxel`.
 /// Lines drawn as lines (tubeRadius 0) count as tubes as wide as their
 /// supercover (0.69 voxel), so their AO depends on the slices.
@@ -204,7 +244,8 @@ double LineOcclusionScale(const LineAOSettings& settings, double voxel);
 /// The AO (1 = open) of an occupancy: exp(-strength s occupancy), or with
 /// Paper weights the paper's 1 - clamp(aoFactor occupancy).
 double LineAOFromOccupancy(const LineAOSettings& settings, double voxel, double occupancy);
-/// LineAOFromOccupancy of LineOccupancyAt.
+/// The AO of a line's pixel as LineAOFrame gives it: LineRaysOf, or with
+/// Prisms LineAOFromOccupancy of LineOccupancyAt.
 double LineAOAt(const BitGrid& grid, const LineAOSettings& settings, const double* samples,
   const double axisPoint[3], const double tangent[3], const double view[3],
   const double* surface = nullptr, const double* normal = nullptr);

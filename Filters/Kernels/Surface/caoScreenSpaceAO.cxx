@@ -1,5 +1,6 @@
 #include "caoScreenSpaceAO.h"
 
+#include "caoAOReference.h"
 #include "caoParallelFor.h"
 #include "caoVectorMath.h"
 
@@ -31,15 +32,6 @@ double Hash01(std::uint64_t seed, std::uint64_t index)
   z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
   z ^= z >> 31;
   return (z >> 11) * (1.0 / 9007199254740992.0);
-}
-
-double RadicalInverse2(std::uint64_t i)
-{
-  double r = 0.0, f = 0.5;
-  for (; i; i >>= 1, f *= 0.5)
-    if (i & 1u)
-      r += f;
-  return r;
 }
 
 /// The screen both methods read: the frame, its camera both ways, and per
@@ -148,7 +140,7 @@ void DiskSamplesOf(const VolumetricAOSettings& settings, std::vector<double>& di
     for (int q = 0; q < n; ++q)
     {
       const double rho = R * std::sqrt((q + (set + 0.5) / sets) / n);
-      const double phi = 2.0 * Pi * (RadicalInverse2(static_cast<std::uint64_t>(q)) + turn);
+      const double phi = 2.0 * Pi * (RadicalInverse2(static_cast<std::uint32_t>(q)) + turn);
       diskX[set + sets * q] = rho * std::cos(phi);
       diskY[set + sets * q] = rho * std::sin(phi);
     }

@@ -40,9 +40,13 @@ view.ResetCamera()
 GetActiveCamera().Dolly(1.25)  # (the reset fits the bounding sphere: the lines fill more of the frame)
 panels = vtkImageAppend()
 with tempfile.TemporaryDirectory() as tmp:
-    for name, method, shading in (("off", "None", "As Drawn"), ("ao", "Voxel Cones", "As Drawn"),
-                                  ("shaded", "Voxel Cones", "Mallo-Banks")):
+    # (Surface AO Method None leaves the lines their Line AO: one technique
+    # per kind of geometry. AO off is both None.)
+    for name, method, lines, shading in (("off", "None", "None", "As Drawn"),
+                                         ("ao", "Voxel Cones", "Voxelized Lines", "As Drawn"),
+                                         ("shaded", "Voxel Cones", "Voxelized Lines", "Mallo-Banks")):
         view.SurfaceAOMethod = method
+        view.LineAOMethod = lines
         view.LineShading = shading
         path = os.path.join(tmp, name + ".png")
         SaveScreenshot(path, view, ImageResolution=[480, 400])

@@ -11,8 +11,11 @@
 #include "vtkFloatArray.h"
 #include "vtkLocalAmbientOcclusion.h"
 #include "vtkPoints.h"
+#include "vtkImageData.h"
 #include "vtkPolyData.h"
 #include "vtkTransform.h"
+
+#include <cmath>
 
 namespace
 {
@@ -204,6 +207,20 @@ int TestAmbientOcclusionBadInput(int, char*[])
     cao->Update();
     CAO_CHECK(events.errors == 0, "after MinimumPoseScale 0.5 the pose must work: %s",
       events.lastError.c_str());
+    // A NaN pose says so (it said "invertible", after vtkMath's Jacobi
+    // warnings).
+    pose->Identity();
+    pose->Translate(std::nan(""), 0, 0);
+    if (ExpectError(cao, "not finite", "NaN pose"))
+      return 1;
+    pose->Identity();
+    // Empty depth maps (in ParaView, what a vtkClipDepthMaps whose mesh was
+    // refused leaves downstream): not a wiring mistake (it said "not the
+    // output of vtkClipDepthMaps"); the control is the plain image above.
+    vtkNew<vtkImageData> empty;
+    cao->SetInputData(1, empty);
+    if (ExpectError(cao, "no depth maps were made", "empty depth maps"))
+      return 1;
   }
   return 0;
 }

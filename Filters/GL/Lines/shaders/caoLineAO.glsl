@@ -1,9 +1,9 @@
 // caoLineAO.glsl - the GPU side of cao::LineAOFrame (caoLineAO.cxx), in
-// float, one invocation per covered pixel: the prisms of the pixel's half
-// ball (set up by the host in double: caoGPULayout.h's LineAOPixel) counted
-// in the lines' bit grid (and the solids'), weighted as
-// cao::LineOccupancyOf weights them, and turned into AO as
-// cao::LineFrameAO does.
+// float, one invocation per covered pixel of the pixel's half ball (set up
+// by the host in double: caoGPULayout.h's LineAOPixel): with flag 4 the
+// rays of cao::LineRaysOf marched through the lines' bit grid (and the
+// solids'); else the prisms counted in it, weighted as cao::LineOccupancyOf
+// weights them, and turned into AO as cao::LineFrameAO does.
 layout(local_size_x = 64) in;
 
 layout(std140, binding = CAO_BINDING_LA_PARAMS) uniform LineAOBlock
@@ -60,6 +60,68 @@ int Index(float v, int n)
   return int(min(float(n), max(-1.0, v)));
 }
 
+/// Bit (i, j, k) of the lines' grid (solid: the solids'); false outside.
+bool Bit(bool solid, ivec3 c)
+{
+  if (any(lessThan(c, ivec3(0))) || any(greaterThanEqual(c, la.grid.xyz)))
+    return false;
+  int word = (c.y * la.grid.x + c.x) * la.grid.w + (c.z >> 5);
+  return (((solid ? solids[word] : bits[word]) >> uint(c.z & 31)) & 1u) != 0u;
+}
+
+/// cao::LineRaysOf: cosine-distributed rays from the centre to R, each line
+/// voxel past the base plane passing exp(-sigma l), a solid one nothing.
+float Rays(vec3 o, vec3 w, float base, int first, bool withSolids)
+{
+  const float R = la.scalars.x, sigma = la.paper.y;
+  const int count = la.counts.x;
+  vec3 t1 = normalize(cross(w, abs(w.x) < 0.6 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0)));
+  vec3 t2 = cross(w, t1);
+  vec2 shift = 0.5 * (disk[first].xy + 1.0);
+  float sum = 0.0;
+  for (int n = 0; n < count; ++n)
+  {
+    // cao::HemisphereDirection: Hammersley, turned by the pixel's set.
+    float u = fract((float(n) + 0.5) / float(count) + shift.x);
+    float v = fract(float(bitfieldReverse(uint(n))) * 2.3283064365386963e-10 + shift.y);
+    float r = sqrt(u), phi = 6.283185307179586 * v;
+    vec3 d = r * cos(phi) * t1 + r * sin(phi) * t2 + sqrt(max(0.0, 1.0 - u)) * w;
+    ivec3 cell = ivec3(floor(o));
+    ivec3 stepDir = ivec3(d.x > 0.0 ? 1 : -1, d.y > 0.0 ? 1 : -1, d.z > 0.0 ? 1 : -1);
+    vec3 magnitude = abs(d);
+    vec3 delta, next;
+    for (int c = 0; c < 3; ++c)
+    {
+      bool moves = magnitude[c] > 1e-12;
+      delta[c] = moves ? 1.0 / magnitude[c] : 1e30;
+      next[c] = moves ? (d[c] > 0.0 ? float(cell[c]) + 1.0 - o[c] : o[c] - float(cell[c])) / magnitude[c] : 1e30;
+    }
+    float t = 0.0, depth = 0.0;
+    bool blocked = false;
+    while (t < R)
+    {
+      int c = next.x <= next.y && next.x <= next.z ? 0 : next.y <= next.z ? 1 : 2;
+      float leave = min(next[c], R);
+      if (dot(vec3(cell) + 0.5 - o, w) >= base)
+      {
+        if (withSolids && Bit(true, cell))
+        {
+          blocked = true;
+          break;
+        }
+        if (Bit(false, cell))
+          depth += leave - t;
+      }
+      t = leave;
+      next[c] += delta[c];
+      cell[c] += stepDir[c];
+    }
+    if (!blocked)
+      sum += exp(-sigma * depth);
+  }
+  return sum / float(count);
+}
+
 void main()
 {
   int k = int(gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x + gl_GlobalInvocationID.x);
@@ -77,6 +139,11 @@ void main()
   const bool paper = (la.counts.z & 1) != 0, withSolids = (la.counts.z & 2) != 0;
   const float R = la.scalars.x, h = la.scalars.y;
   const int samples = la.counts.x, first = ball.pixel.z * samples;
+  if ((la.counts.z & 4) != 0)
+  {
+    ao[k] = Rays(centre, w, base, first, withSolids);
+    return;
+  }
   float sum = 0.0, solidSum = 0.0, weights = 0.0;
   for (int n = 0; n < samples; ++n)
   {

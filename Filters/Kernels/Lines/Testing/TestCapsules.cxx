@@ -68,23 +68,7 @@ cao::CapsuleBVH Build(const std::vector<double>& points, const std::vector<std::
   return bvh;
 }
 
-/// The distance from x to the segment [a, b] (a point when a == b).
-double SegmentDistance(const double x[3], const double a[3], const double b[3])
-{
-  double ab[3], ax[3], l2 = 0.0, along = 0.0;
-  for (int d = 0; d < 3; ++d)
-  {
-    ab[d] = b[d] - a[d];
-    ax[d] = x[d] - a[d];
-    l2 += ab[d] * ab[d];
-    along += ax[d] * ab[d];
-  }
-  const double s = l2 > 0.0 ? std::min(1.0, std::max(0.0, along / l2)) : 0.0;
-  double d2 = 0.0;
-  for (int d = 0; d < 3; ++d)
-    d2 += (ax[d] - s * ab[d]) * (ax[d] - s * ab[d]);
-  return std::sqrt(d2);
-}
+using caotest::SegmentDistance;
 
 /// The brute force's view of one capsule: f(t) = distance(o + t d, [a, b])
 /// - r is convex in t; its minimum on [tMin, tMax] by ternary search; a
