@@ -77,7 +77,7 @@ struct LineTechnique
 
 /// Register `technique`; false, saying why in `error`, when its method is
 /// not 1 or more (0 is None) or is taken, or it has no name or no `cpu`
-/// step, or a `gpuOfGBuffer` step without a `gpu` step. The built-in (line voxelization and prism sampling, 1) is
+/// step, or a `gpuOfGBuffer` step without a `gpu` step. The built-in (line voxelization read by rays, 1) is
 /// registered first.
 CAORENDERINGSCENE_EXPORT bool RegisterLineTechnique(const LineTechnique& technique, std::string* error = nullptr);
 

@@ -4,7 +4,7 @@
  * its context current), or in a headless context of its own for a caller
  * that renders nothing itself (`cao surface`: ResolveHeadless): voxel cone tracing's grid and cones
  * (cao::gl::VCTEngine) and the screen-space methods' estimators
- * (cao::gl::ScreenAOEngine) and line AO's prism sampling
+ * (cao::gl::ScreenAOEngine) and line AO's rays or prisms
  * (cao::gl::LineAOEngine) of the VTK-free GL layer, whose state guard
  * gives VTK's GL state back as it was. Backend choice as the filters'
  * (vtkCAOGPUSession.h): CPU never touches OpenGL; OpenGL needs the window's

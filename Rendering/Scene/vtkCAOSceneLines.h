@@ -1,7 +1,7 @@
 /**
  * vtkCAOSceneLines — the lines of a scene as the render pass gives them
- * ambient occlusion: line voxelization and prism sampling (Benevides 2015,
- * Filters/Kernels/Lines) on the CPU, the prisms on the window's OpenGL
+ * ambient occlusion: line voxelization (Benevides 2015) read by rays
+ * (Filters/Kernels/Lines) on the CPU, or on the window's OpenGL
  * when the pass's backend resolves there (Filters/GL/Lines). Private to
  * vtkContextualAOPass.
  *

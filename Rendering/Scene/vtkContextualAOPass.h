@@ -345,7 +345,7 @@ public:
   enum LineMethods
   {
     LINE_NONE = 0,  ///< the lines as drawn, no AO
-    LINE_PRISMS = 1 ///< line voxelization and prism sampling (Benevides 2015)
+    LINE_PRISMS = 1 ///< line voxelization (Benevides 2015), read by rays (cao::LineAOSettings' default estimator)
   };
 
   ///@{
@@ -374,7 +374,7 @@ public:
   static std::string GetRegisteredLineMethods();
 
   ///@{
-  /// Line AO's prisms per pixel (cao::LineAOSettings::samples: 1..1024,
+  /// Line AO's rays per pixel (cao::LineAOSettings::samples: 1..1024,
   /// default 64) and its eye grid's slices (32..1024, a multiple of 32,
   /// default 128, the seed's); other values are refused at render time.
   vtkSetMacro(LineSamples, int);

@@ -295,7 +295,7 @@ int Run(Options& o, const CLI::App*)
 
 const char* Footer = R"(Times: line AO is the voxelization and the estimate, wall clock, on the
 CPU or (--backends gl) on a headless OpenGL with the bits left on the GPU
-for the prisms as in the pass, each pixel's half ball set up on the CPU
+for the rays or prisms as in the pass, each pixel's half ball set up on the CPU
 and the AO read back (the G-buffer, a ray cast of the capsules,
 excluded); vtkSSAOPass is a whole offscreen frame of the tubes with the
 pass, read back. The backend column names where each row ran. The reference is the

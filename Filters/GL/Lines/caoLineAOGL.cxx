@@ -386,7 +386,9 @@ bool LineAOEngine::Impl::Prisms(const BitGrid& grid, const LineAOSettings& setti
     error = "the lines' grid (" + BlockBytes(gridBytes) + ") exceeds " + P.LargestBlockText() + ": use fewer slices";
     return false;
   }
-  if (!P.program.Valid() && !P.program.BuildCompute(gl, { caoLineAO_glsl }, {}, error))
+  if (!P.program.Valid() &&
+    !P.program.BuildCompute(gl, { caoLineAO_glsl },
+      { { "CAO_LINE_SOLID_OFFSET", std::to_string(LineSolidOffset) } }, error))
     return false;
   P.timer.Allocate(gl, P.Ctx.UsesHostClock());
   P.Upload(0, GL_UNIFORM_BUFFER, sizeof(block), &block);

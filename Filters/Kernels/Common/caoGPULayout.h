@@ -358,8 +358,8 @@ struct ScreenAOParams
                                       covered; the frame's AO buffer on the GPU frame) */
 
 /* Line AO (Kernels/Lines/caoLineAO.h, GL/Lines/shaders/caoLineAO.glsl): the
- * prisms of each covered pixel's half ball, counted in the lines' bit grid
- * (and the solids', planned alike). The host sets each half ball up in
+ * rays (flag 4) or the prisms of each covered pixel's half ball, through the
+ * lines' bit grid (and the solids', planned alike). The host sets each half ball up in
  * double (cao::LineHalfBallOfPixel) and packs it as a LineAOPixel. */
 struct LineAOParams
 {

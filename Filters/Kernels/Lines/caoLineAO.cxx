@@ -85,6 +85,8 @@ void SetBit(BitGrid& grid, int i, int j, int k)
 
 std::string LineAOSettings::Validate() const
 {
+  if (this->weights == LineAOWeights::Paper && this->estimator != LineAOEstimator::Prisms)
+    return "the paper's weights weigh the prisms: they need the prisms estimator (got rays)";
   if (!(this->radius > 0.0) || !std::isfinite(this->radius))
     return "the line AO radius must be finite and positive (got " + std::to_string(this->radius) + ")";
   if (!(this->tubeRadius >= 0.0) || !std::isfinite(this->tubeRadius))
@@ -577,6 +579,14 @@ double LineRaysOf(const BitGrid& grid, const LineAOSettings& settings, const dou
   const double shiftU = 0.5 * (samples[0] + 1.0), shiftV = 0.5 * (samples[1] + 1.0);
   const int count = settings.samples;
   const int dims[3] = { grid.nx, grid.ny, grid.slices };
+  // A centre outside the grid padded by R sees nothing (and a NaN or huge
+  // one would overflow the cell indices).
+  for (int c = 0; c < 3; ++c)
+    if (!(o[c] > -R - 1.0 && o[c] < dims[c] + R + 1.0))
+      return 1.0;
+  // A walk visits at most this many cells inside the grid (it stops once
+  // outside and moving away): the work is bounded by the grid, not R.
+  const int cells = dims[0] + dims[1] + dims[2] + 3;
   double sum = 0.0;
   for (int n = 0; n < count; ++n)
   {
@@ -597,15 +607,23 @@ double LineRaysOf(const BitGrid& grid, const LineAOSettings& settings, const dou
     }
     double t = 0.0, depth = 0.0;
     bool blocked = false;
-    while (t < R)
+    for (int visited = 0; t < R && visited < cells; ++visited)
     {
       const int c = next[0] <= next[1] && next[0] <= next[2] ? 0 : next[1] <= next[2] ? 1 : 2;
       const double exit = std::min(next[c], R);
+      bool away = false;
+      for (int a = 0; a < 3; ++a)
+        away = away || (cell[a] < 0 && step[a] < 0) || (cell[a] >= dims[a] && step[a] > 0);
+      if (away)
+        break; // (outside, leaving: the rest of the ray is empty)
       if (cell[0] >= 0 && cell[1] >= 0 && cell[2] >= 0 && cell[0] < dims[0] && cell[1] < dims[1] &&
         cell[2] < dims[2] &&
         glm::dot(Vec3(cell[0] + 0.5, cell[1] + 0.5, cell[2] + 0.5) - o, w) >= ball.base)
       {
-        if (solids && solids->Bit(cell[0], cell[1], cell[2]))
+        // A mesh's voxels overhang its surface by up to a voxel: a solid
+        // stops the ray from LineSolidOffset on (a line beside a wall
+        // would have every ray stopped at once).
+        if (solids && t >= LineSolidOffset && solids->Bit(cell[0], cell[1], cell[2]))
         {
           blocked = true;
           break;

@@ -227,14 +227,20 @@ double LineOccupancyAt(const BitGrid& grid, const LineAOSettings& settings, cons
 /// random tubes and rays (Rendering/Tool/Benchmark/line_extinction.py;
 /// docs/lines.md), linear in between, the last value beyond.
 double LineVoxelExtinction(double rho);
+/// Where along a ray (voxels) a solid voxel starts to stop it: a mesh's
+/// voxels overhang its surface by up to a voxel, as the voxel cones' apex
+/// offset (Surface's default 1) allows for.
+constexpr double LineSolidOffset = 1.0;
 /// The AO (1 = open) of `ball` by rays: settings.samples cosine-distributed
 /// directions about the half ball's normal (a Hammersley set turned by the
 /// pixel's disk sample set), each marched from the half ball's centre to
 /// R through the grid, the voxels past the base plane counted (a line's
 /// own voxels never occlude it, as for the prisms): each line voxel the ray
 /// crosses for a length l lets exp(-strength sigma l) through (sigma:
-/// LineVoxelExtinction of the tube), a solid voxel nothing. The step
-/// falloff and cosine weighting of the reference (Common/caoAOReference.h).
+/// LineVoxelExtinction of the tube), a solid voxel entered from
+/// LineSolidOffset on nothing. The step falloff and cosine weighting of the
+/// reference (Common/caoAOReference.h). The walk stops where it leaves the
+/// grid (outside is empty), so its work is bounded by the grid, not R.
 double LineRaysOf(const BitGrid& grid, const LineAOSettings& settings, const double* samples,
   const LineHalfBall& ball, const BitGrid* solids = nullptr);
 /// s in AO = exp(-strength s occupancy) for a grid of voxel size `voxel`.

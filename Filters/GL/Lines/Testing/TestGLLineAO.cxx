@@ -271,18 +271,27 @@ int TestGLLineAO(int argc, char* argv[])
     cao::LineAOWeights weights;
     int slices;
     bool solids;
+    cao::LineAOEstimator estimator;
   };
-  const Case cases[] = { { "tubes", false, cao::LineAOWeights::Normalized, 128, false },
-    { "lines drawn flat", true, cao::LineAOWeights::Normalized, 128, false },
-    { "the seed's weights", false, cao::LineAOWeights::Paper, 128, false },
-    { "256 slices", false, cao::LineAOWeights::Normalized, 256, false },
-    { "solids beside the lines", false, cao::LineAOWeights::Normalized, 128, true } };
+  constexpr auto Rays = cao::LineAOEstimator::Rays, Prisms = cao::LineAOEstimator::Prisms;
+  constexpr auto Normalized = cao::LineAOWeights::Normalized;
+  // Both estimators, each in its own cases (the rays are the default).
+  const Case cases[] = { { "tubes, rays", false, Normalized, 128, false, Rays },
+    { "tubes, prisms", false, Normalized, 128, false, Prisms },
+    { "lines drawn flat, rays", true, Normalized, 128, false, Rays },
+    { "lines drawn flat, prisms", true, Normalized, 128, false, Prisms },
+    { "the seed's weights (prisms)", false, cao::LineAOWeights::Paper, 128, false, Prisms },
+    { "256 slices, rays", false, Normalized, 256, false, Rays },
+    { "256 slices, prisms", false, Normalized, 256, false, Prisms },
+    { "solids beside the lines, rays", false, Normalized, 128, true, Rays },
+    { "solids beside the lines, prisms", false, Normalized, 128, true, Prisms } };
   for (const Case& c : cases)
   {
     cao::LineAOSettings settings;
     settings.radius = 0.15;
     settings.tubeRadius = c.flat ? 0.0 : scene.radius;
     settings.weights = c.weights;
+    settings.estimator = c.estimator;
     settings.slices = c.slices;
     settings.samples = 64;
     cao::BitGrid grid;

@@ -78,6 +78,13 @@ float Rays(vec3 o, vec3 w, float base, int first, bool withSolids)
   vec3 t1 = normalize(cross(w, abs(w.x) < 0.6 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0)));
   vec3 t2 = cross(w, t1);
   vec2 shift = 0.5 * (disk[first].xy + 1.0);
+  // (cao::LineRaysOf: a centre outside the grid padded by R sees nothing;
+  // a walk stops once outside and leaving, and visits at most the grid's
+  // cells.)
+  if (any(lessThanEqual(o, vec3(-R - 1.0))) || any(greaterThanEqual(o, vec3(la.grid.xyz) + R + 1.0)) ||
+    any(isnan(o)))
+    return 1.0;
+  const int cells = la.grid.x + la.grid.y + la.grid.z + 3;
   float sum = 0.0;
   for (int n = 0; n < count; ++n)
   {
@@ -98,13 +105,19 @@ float Rays(vec3 o, vec3 w, float base, int first, bool withSolids)
     }
     float t = 0.0, depth = 0.0;
     bool blocked = false;
-    while (t < R)
+    for (int visited = 0; t < R && visited < cells; ++visited)
     {
       int c = next.x <= next.y && next.x <= next.z ? 0 : next.y <= next.z ? 1 : 2;
       float leave = min(next[c], R);
+      bool away = false;
+      for (int a = 0; a < 3; ++a)
+        away = away || (cell[a] < 0 && stepDir[a] < 0) || (cell[a] >= la.grid[a] && stepDir[a] > 0);
+      if (away)
+        break; // (outside, leaving: the rest of the ray is empty)
       if (dot(vec3(cell) + 0.5 - o, w) >= base)
       {
-        if (withSolids && Bit(true, cell))
+        // (cao::LineSolidOffset: a mesh's voxels overhang its surface.)
+        if (withSolids && t >= CAO_LINE_SOLID_OFFSET && Bit(true, cell))
         {
           blocked = true;
           break;
