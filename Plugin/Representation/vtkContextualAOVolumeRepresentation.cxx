@@ -234,12 +234,12 @@ void vtkContextualAOVolumeRepresentation::SetClipMeshMode(int index, int mode)
       << " is past them and is ignored.");
     return;
   }
-  if (mode != 0 && mode != 1)
+  if (mode < -1 || mode > 1)
   {
     vtkErrorMacro("Clip Mesh Modes: the mode of clip mesh " << index + 1
-      << " must be 0 (subtraction) or 1 (probing); got " << mode
+      << " must be 0 (subtraction), 1 (probing) or -1 (as Clip Mode); got " << mode
       << ". That mesh carves with the Clip Mode instead.");
-    return;
+    mode = -1;
   }
   if (this->MeshModes.size() <= static_cast<std::size_t>(index))
     this->MeshModes.resize(index + 1, -1);

@@ -124,8 +124,8 @@ public:
    * further clip shapes, in their world coordinates, beside the built-in
    * shape: the clip is their combination (vtkContextualAOVolumeMapper::
    * AddClipShape). The first output of each algorithm is the mesh. Mode i
-   * is that mesh's (0 subtraction, 1 probing); unset, the representation's
-   * Mode. At most 32 shapes in all (vtkContextualAOVolumeMapper::MAX_CLIP_SHAPES). The algorithms
+   * is that mesh's (0 subtraction, 1 probing); unset or -1, the
+   * representation's Mode. At most 32 shapes in all (vtkContextualAOVolumeMapper::MAX_CLIP_SHAPES). The algorithms
    * are updated in the process that renders, as a whole: builtin sessions
    * (the GUI, pvpython, pvbatch) and a single-process pvserver; on several
    * ranks each would see a piece of the mesh, which is open, and refused.

@@ -153,12 +153,24 @@ first = volume_pixels(frame("probe-a"))
 display.ClipMeshes = [other]
 second = volume_pixels(frame("probe-b"))
 display.ClipMeshes = [big, other]
-both = volume_pixels(frame("probe-ab"))
+both_frame = frame("probe-ab")
+both = volume_pixels(both_frame)
 check(0 < both < min(first, second) - 100,
       "two probes keep their intersection: %d volume pixels, %d and %d for each" % (both, first, second))
 display.ClipMeshModes = [1, 0]  # the second now subtracts from the first
-less = volume_pixels(frame("probe-less"))
+less_frame = frame("probe-less")
+less = volume_pixels(less_frame)
 check(0 < less < first - 100, "a probe less a subtracting mesh: %d pixels (%d probe alone)" % (less, first))
+# The modes by the panel's names: the same frame; "As Clip Mode" (-1) for
+# the second follows Clip Mode (Probing here), as no mode at all does.
+display.ClipMeshModes = ["Probing", "Subtraction"]
+check(changed(frame("probe-less-named"), less_frame) == 0, "modes by name (Probing, Subtraction) equal [1, 0]")
+display.ClipMeshModes = ["Probing", "As Clip Mode"]
+as_clip_mode = frame("as-clip-mode")
+check(changed(as_clip_mode, both_frame) == 0 and changed(as_clip_mode, less_frame) > 100,
+      "As Clip Mode follows Clip Mode (Probing: the two probes' frame), not Subtraction (%d, %d pixels differ)"
+      % (changed(as_clip_mode, both_frame), changed(as_clip_mode, less_frame)))
+display.ClipMeshModes = [1, 0]
 # A mode other than 0 or 1 is an error that names the panel's property and
 # the mesh (it said "SetClipMeshMode: mesh 0 must be 0 to 31 and mode 2 0
 # (subtraction) or 1 (probing)."), and that mesh carves with the Clip Mode.
@@ -169,7 +181,7 @@ display.ClipMeshModes = [2, 0]
 frame("mode-2")
 vtkOutputWindow.SetInstance(previous)
 said = " ".join(errors.GetOutput().split())
-check("Clip Mesh Modes: the mode of clip mesh 1 must be 0 (subtraction) or 1 (probing); got 2" in said,
+check("Clip Mesh Modes: the mode of clip mesh 1 must be 0 (subtraction), 1 (probing) or -1 (as Clip Mode); got 2" in said,
       "a mode of 2: %s" % said[:300])
 display.ClipMeshModes = [1, 0]
 

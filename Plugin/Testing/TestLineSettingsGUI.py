@@ -20,17 +20,12 @@ sphere alone (the first check failed).
 Writes CAO_RESULT (ok/FAIL lines, then PASSED, FAILED or SKIPPED)."""
 import os
 
-from gui_scene import Result, contextual_ao_view
+from gui_scene import Result, contextual_ao_view, pyqt5
 
 result = Result()
 check = result.check
 LINE_SETTINGS = ("LineAOMethod", "LineAOSamples", "LineAOSlices", "LineShading")
-
-try:
-    from PyQt5 import QtCore, QtWidgets
-except ImportError as e:
-    result.finish(skipped="PyQt5 is needed to read the Properties panel's widgets (%s); "
-                  "install Debian's python3-pyqt5 (.ci/setup.sh does)" % e)
+QtCore, _, QtWidgets = pyqt5(result, "to read the Properties panel's widgets")
 
 try:
     from paraview.simple import *  # noqa: F401,F403

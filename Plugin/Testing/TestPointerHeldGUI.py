@@ -23,16 +23,11 @@ import json
 import os
 import time
 
-from gui_scene import Result
+from gui_scene import Result, pyqt5
 
 result = Result()
 check = result.check
-
-try:
-    from PyQt5 import QtCore, QtGui, QtWidgets
-except ImportError as e:
-    result.finish(skipped="PyQt5 is needed to send the mouse events to the view's widget (%s); "
-                  "install Debian's python3-pyqt5 (.ci/setup.sh does)" % e)
+QtCore, QtGui, QtWidgets = pyqt5(result, "to send the mouse events to the view's widget")
 
 HELD = "interactive: a pointer button is held"
 

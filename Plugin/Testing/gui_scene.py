@@ -31,6 +31,17 @@ class Result:
         os._exit(0)
 
 
+def pyqt5(result, why):
+    """PyQt5's QtCore, QtGui and QtWidgets, for reading and using the GUI's
+    own widgets; without PyQt5 the script skips, saying `why` it needs it."""
+    try:
+        from PyQt5 import QtCore, QtGui, QtWidgets
+    except ImportError as e:
+        result.finish(skipped="PyQt5 is needed %s (%s); install Debian's python3-pyqt5 "
+                      "(.ci/setup.sh does)" % (why, e))
+    return QtCore, QtGui, QtWidgets
+
+
 def contextual_ao_view():
     """The GUI's Render View replaced by a Render View (Contextual AO) in its
     place in the layout, made active; returns (view, layout)."""
