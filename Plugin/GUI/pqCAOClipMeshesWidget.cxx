@@ -14,7 +14,9 @@
 #include <QComboBox>
 #include <QFrame>
 #include <QHeaderView>
+#include <QEvent>
 #include <QLabel>
+#include <QScrollArea>
 #include <QTableWidget>
 #include <QVBoxLayout>
 
@@ -168,7 +170,7 @@ void pqCAOClipMeshesWidget::refresh()
   this->Note->setText(this->Sources.empty()
       ? "No polygonal source in the pipeline yet: add one (a Sphere, an STL reader, a Contour), "
         "apply it, and tick it here to clip the volume with it."
-      : "Ticked meshes clip the volume with Clip Shape; each must be closed.");
+      : "Ticked meshes clip too, beside Clip Shape; each must be closed.");
   this->Refreshing = false;
 }
 
@@ -234,6 +236,34 @@ void pqCAOClipMeshesWidget::apply()
     this->Applying = false;
   }
   this->Superclass::apply();
+}
+
+void pqCAOClipMeshesWidget::showEvent(QShowEvent* event)
+{
+  this->Superclass::showEvent(event);
+  if (!this->Panel)
+  {
+    for (QWidget* w = this->parentWidget(); w && !this->Panel; w = w->parentWidget())
+      this->Panel = qobject_cast<QScrollArea*>(w);
+    if (this->Panel)
+      this->Panel->viewport()->installEventFilter(this);
+  }
+  this->fitToPanel();
+}
+
+bool pqCAOClipMeshesWidget::eventFilter(QObject* watched, QEvent* event)
+{
+  if (this->Panel && watched == this->Panel->viewport() && event->type() == QEvent::Resize)
+    this->fitToPanel();
+  return this->Superclass::eventFilter(watched, event);
+}
+
+void pqCAOClipMeshesWidget::fitToPanel()
+{
+  if (!this->Panel || !this->Panel->widget())
+    return;
+  const int left = this->mapTo(this->Panel->widget(), QPoint(0, 0)).x();
+  this->setMaximumWidth(std::max(160, this->Panel->viewport()->width() - left - 4));
 }
 
 void pqCAOClipMeshesWidget::reset()

@@ -18,10 +18,13 @@
 
 #include "vtkWeakPointer.h" // For the rows' sources
 
+#include <QPointer>
+
 #include <vector>
 
 class QComboBox;
 class QLabel;
+class QScrollArea;
 class QTableWidget;
 class vtkSMPropertyGroup;
 
@@ -39,6 +42,11 @@ public:
   /// Rows from the properties again.
   void reset() override;
 
+protected:
+  /// Fits the rows to the panel's visible width (below).
+  void showEvent(QShowEvent* event) override;
+  bool eventFilter(QObject* watched, QEvent* event) override;
+
 private Q_SLOTS:
   /// The rows made again from the pipeline and the properties.
   void refresh();
@@ -50,7 +58,13 @@ private:
   /// The rows as the user left them: the sources to clip with, in order, and their modes.
   void rowsToLists(std::vector<vtkSMProxy*>& meshes, std::vector<int>& modes) const;
 
+  /// At most as wide as the panel shows: ParaView's own colour editor
+  /// makes the panel's contents wider than its default dock, and a row's
+  /// mode, at the right, was then scrolled out of sight.
+  void fitToPanel();
+
   QTableWidget* Table;
+  QPointer<QScrollArea> Panel; ///< the Properties panel's scroll area
   QLabel* Note;
   std::vector<vtkWeakPointer<vtkSMProxy>> Sources; ///< one per row
   std::vector<vtkWeakPointer<vtkSMProxy>> Order;   ///< the ticked sources, in the order they clip

@@ -13,15 +13,62 @@
 #include "vtkSMPVRepresentationProxy.h"
 #include "vtkSMProperty.h"
 #include "vtkSMPropertyHelper.h"
+#include "vtkSMIntVectorProperty.h"
+#include "vtkSMProxyManager.h"
+#include "vtkSMProxyProperty.h"
 #include "vtkSMSession.h"
+#include "vtkSMSessionProxyManager.h"
 #include "vtkSMSourceProxy.h"
 #include "vtkSMStringVectorProperty.h"
+#include "vtkStringList.h"
 
 #include <algorithm>
 #include <cstring>
 #include <set>
 
 vtkStandardNewMacro(vtkSMCAOVolumeRepresentationProxy);
+
+namespace
+{
+/// The clip meshes' consumer in place of the representation (see the
+/// class comment): an internal proxy, in no pipeline group, that passes a
+/// mesh's changes on to its owner.
+class vtkSMCAOClipMeshRelay : public vtkSMProxy
+{
+public:
+  static vtkSMCAOClipMeshRelay* New();
+  vtkTypeMacro(vtkSMCAOClipMeshRelay, vtkSMProxy);
+  vtkWeakPointer<vtkSMCAOVolumeRepresentationProxy> Owner;
+
+protected:
+  vtkSMCAOClipMeshRelay()
+  {
+    // (ParaView compares a consumer's group with its own when it deletes a source)
+    this->SetXMLGroup("contextual_ao_internal");
+    this->SetXMLName("ClipMeshRelay");
+  }
+  void MarkDirtyFromProducer(vtkSMProxy* modifiedProxy, vtkSMProxy* producer, vtkSMProperty* property) override
+  {
+    if (this->Owner)
+      this->Owner->ClipMeshModified(modifiedProxy, producer, property);
+  }
+};
+vtkStandardNewMacro(vtkSMCAOClipMeshRelay);
+
+/// A producer's consumer links (protected in vtkSMProxy, where the proxy
+/// properties make them), named through a subclass that is never made.
+struct ConsumerLinks : vtkSMProxy
+{
+  static void Add(vtkSMProxy* producer, vtkSMProperty* property, vtkSMProxy* consumer)
+  {
+    (producer->*(&ConsumerLinks::AddConsumer))(property, consumer);
+  }
+  static void Remove(vtkSMProxy* producer, vtkSMProperty* property, vtkSMProxy* consumer)
+  {
+    (producer->*(&ConsumerLinks::RemoveConsumer))(property, consumer);
+  }
+};
+}
 
 namespace
 {
@@ -46,6 +93,84 @@ vtkSMCAOVolumeRepresentationProxy::~vtkSMCAOVolumeRepresentationProxy()
   all.erase(std::remove(all.begin(), all.end(), this), all.end());
   if (this->Watched)
     this->Watched->RemoveObserver(this->Observer);
+  if (this->WatchedManager)
+    this->WatchedManager->RemoveObserver(this->ManagerObserver);
+  vtkSMProperty* meshes = this->GetProperty("ClipMeshes");
+  for (const auto& mesh : this->RelayedMeshes)
+    if (mesh && meshes)
+      ConsumerLinks::Remove(mesh, meshes, this->ClipMeshRelay);
+}
+
+//------------------------------------------------------------------------------
+void vtkSMCAOVolumeRepresentationProxy::ClipMeshModified(
+  vtkSMProxy* modifiedProxy, vtkSMProxy* producer, vtkSMProperty* property)
+{
+  this->MarkDirtyFromProducer(modifiedProxy, producer, property);
+}
+
+void vtkSMCAOVolumeRepresentationProxy::SetPropertyModifiedFlag(const char* name, int flag)
+{
+  this->Superclass::SetPropertyModifiedFlag(name, flag);
+  if (name && std::strcmp(name, "ClipMeshes") == 0)
+    this->RelinkClipMeshes();
+}
+
+void vtkSMCAOVolumeRepresentationProxy::RelinkClipMeshes()
+{
+  auto* meshes = vtkSMProxyProperty::SafeDownCast(this->GetProperty("ClipMeshes"));
+  if (!meshes)
+    return;
+  if (!this->ClipMeshRelay)
+  {
+    auto relay = vtkSmartPointer<vtkSMCAOClipMeshRelay>::New();
+    relay->Owner = this;
+    this->ClipMeshRelay = relay;
+  }
+  // The property linked each new mesh to this proxy as its consumer.
+  std::vector<vtkWeakPointer<vtkSMProxy>> now;
+  for (unsigned int i = 0; i < meshes->GetNumberOfProxies(); ++i)
+    if (vtkSMProxy* mesh = meshes->GetProxy(i))
+    {
+      ConsumerLinks::Remove(mesh, meshes, this);
+      ConsumerLinks::Add(mesh, meshes, this->ClipMeshRelay);
+      now.emplace_back(mesh);
+    }
+  for (const auto& mesh : this->RelayedMeshes)
+    if (mesh && std::find(now.begin(), now.end(), mesh) == now.end())
+      ConsumerLinks::Remove(mesh, meshes, this->ClipMeshRelay);
+  this->RelayedMeshes = now;
+}
+
+void vtkSMCAOVolumeRepresentationProxy::ProxyUnRegistered(vtkObject*, unsigned long, void* callData)
+{
+  const auto* info = static_cast<vtkSMProxyManager::RegisteredProxyInformation*>(callData);
+  auto* meshes = vtkSMProxyProperty::SafeDownCast(this->GetProperty("ClipMeshes"));
+  if (!info || info->Type != vtkSMProxyManager::RegisteredProxyInformation::PROXY || !info->Proxy ||
+    !info->GroupName || std::strcmp(info->GroupName, "sources") != 0 || !meshes || !this->WatchedManager)
+    return;
+  unsigned int index = 0;
+  while (index < meshes->GetNumberOfProxies() && meshes->GetProxy(index) != info->Proxy)
+    ++index;
+  if (index == meshes->GetNumberOfProxies())
+    return;
+  // Still in the pipeline under another name (a rename registers the new
+  // name, then unregisters the old).
+  vtkNew<vtkStringList> names;
+  this->WatchedManager->GetProxyNames("sources", info->Proxy, names);
+  for (int i = 0; i < names->GetNumberOfStrings(); ++i)
+    if (!info->ProxyName || std::strcmp(names->GetString(i), info->ProxyName) != 0)
+      return;
+  meshes->RemoveProxy(info->Proxy);
+  if (auto* modes = vtkSMIntVectorProperty::SafeDownCast(this->GetProperty("ClipMeshModes")))
+    if (index < modes->GetNumberOfElements())
+    {
+      std::vector<int> values(modes->GetElements(), modes->GetElements() + modes->GetNumberOfElements());
+      values.erase(values.begin() + index);
+      modes->SetNumberOfElements(static_cast<unsigned int>(values.size()));
+      if (!values.empty())
+        modes->SetElements(values.data());
+    }
+  this->UpdateVTKObjects();
 }
 
 //------------------------------------------------------------------------------
@@ -111,6 +236,14 @@ void vtkSMCAOVolumeRepresentationProxy::CreateVTKObjects()
     this->Observer = representation->AddObserver(
       vtkCommand::ModifiedEvent, this, &vtkSMCAOVolumeRepresentationProxy::RepresentationChanged);
   }
+  vtkSMSessionProxyManager* manager = this->GetSessionProxyManager();
+  if (manager && !this->WatchedManager)
+  {
+    this->WatchedManager = manager;
+    this->ManagerObserver = manager->AddObserver(
+      vtkCommand::UnRegisterEvent, this, &vtkSMCAOVolumeRepresentationProxy::ProxyUnRegistered);
+  }
+  this->RelinkClipMeshes();
 }
 
 //------------------------------------------------------------------------------

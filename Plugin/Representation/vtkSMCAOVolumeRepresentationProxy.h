@@ -12,17 +12,29 @@
  * array) of the Coloring list and fits its maps to the data range, as
  * ParaView does for its own Volume. A colouring the user or a state file
  * chose is kept. Client-side glue only (server manager, no Qt).
+ *
+ * Clip Meshes keeps the display when a mesh is deleted. ParaView deletes
+ * every representation that consumes a deleted source (its own displays
+ * consume it through Input), and a proxy property makes its proxy a
+ * consumer: deleting a ticked clip mesh deleted the whole volume display.
+ * So the clip meshes' consumer is a relay (an internal proxy that is no
+ * representation) which passes their changes on to this proxy, as the
+ * consumer link did (an upstream edit re-carves); and when a clip mesh is
+ * unregistered from the pipeline it is taken out of Clip Meshes (and its
+ * mode out of Clip Mesh Modes).
  */
 #ifndef vtkSMCAOVolumeRepresentationProxy_h
 #define vtkSMCAOVolumeRepresentationProxy_h
 
 #include "caoParaViewRepresentationModule.h" // For export macro
 #include "vtkSMRepresentationProxy.h"
-#include "vtkWeakPointer.h" // For the watched property
+#include "vtkSmartPointer.h" // For the clip meshes' relay
+#include "vtkWeakPointer.h"  // For the watched property
 
 #include <vector> // For ShownInRemoteSessions
 
 class vtkSMProperty;
+class vtkSMSessionProxyManager;
 
 class CAOPARAVIEWREPRESENTATION_EXPORT vtkSMCAOVolumeRepresentationProxy
   : public vtkSMRepresentationProxy
@@ -52,6 +64,10 @@ public:
   /// a session connected to a server (not builtin): one per session.
   static std::vector<vtkSMCAOVolumeRepresentationProxy*> ShownInRemoteSessions();
 
+  /// A clip mesh (or a proxy upstream of it) changed: the relay's call, as
+  /// a consumer's MarkDirtyFromProducer.
+  void ClipMeshModified(vtkSMProxy* modifiedProxy, vtkSMProxy* producer, vtkSMProperty* property);
+
 protected:
   vtkSMCAOVolumeRepresentationProxy();
   ~vtkSMCAOVolumeRepresentationProxy() override;
@@ -64,10 +80,20 @@ protected:
   /// The parent's Representation changed: colour by an array if it is ours
   /// and nothing is coloured.
   void RepresentationChanged();
+  /// A property's value changed (ClipMeshes: the relay links made again).
+  void SetPropertyModifiedFlag(const char* name, int flag) override;
+  /// The clip meshes consumed by the relay instead of this proxy.
+  void RelinkClipMeshes();
+  /// The proxy manager's UnRegisterEvent: a deleted clip mesh leaves Clip Meshes.
+  void ProxyUnRegistered(vtkObject* caller, unsigned long event, void* callData);
 
   vtkWeakPointer<vtkSMProperty> Watched; ///< the parent's Representation
   unsigned long Observer = 0;
   bool Choosing = false; ///< inside RepresentationChanged (no re-entry)
+  vtkSmartPointer<vtkSMProxy> ClipMeshRelay;               ///< the clip meshes' consumer
+  std::vector<vtkWeakPointer<vtkSMProxy>> RelayedMeshes;   ///< the meshes it consumes
+  vtkWeakPointer<vtkSMSessionProxyManager> WatchedManager; ///< for UnRegisterEvent
+  unsigned long ManagerObserver = 0;
 
 private:
   vtkSMCAOVolumeRepresentationProxy(const vtkSMCAOVolumeRepresentationProxy&) = delete;

@@ -12,7 +12,8 @@ own QApplication; without PyQt5 the test skips (125).
   its row gives [Sphere1, Box1] and [As Clip Mode, Probing], and the
   mapper two shapes.
 - A change from Python (Box1 alone, Subtraction) shows in the rows.
-- A source added and applied gets a row; deleted, its row goes.
+- A source added and applied gets a row; deleted, its row goes; a ticked
+  one deleted leaves the volume's display in place.
 - The group is hidden with the representation Outline.
 Negative control: before this widget the panel had one input selector and
 a bare list of numbers (the table is not found: the first check fails).
@@ -109,6 +110,16 @@ try:
     del cone
     SetActiveSource(volume)
     check([r[0] for r in rows()] == ["Sphere1", "Box1"], "a deleted source's row goes: %s" % rows())
+
+    # A ticked mesh deleted: the volume's display stays (ParaView deleted it
+    # with the mesh before), and its row goes.
+    Delete(box)
+    del box
+    SetActiveSource(volume)
+    kept = GetDisplayProperties(volume, view)
+    check(kept.SMProxy is display.SMProxy and kept.Representation == "Contextual AO Volume"
+          and list(display.ClipMeshes) == [] and [r[0] for r in rows()] == ["Sphere1"],
+          "deleting the ticked Box1 keeps the display and drops its row: %s" % rows())
 
     display.SetRepresentationType("Outline")
     settle()

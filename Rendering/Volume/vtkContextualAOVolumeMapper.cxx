@@ -60,6 +60,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <set>
 #include <sstream>
 #include <utility>
 #include <vector>
@@ -348,6 +349,9 @@ struct vtkContextualAOVolumeMapper::Internals
   vtkSmartPointer<vtkClipDepthMaps> ClipDepthMaps;
   vtkNew<vtkCallbackCommand> DepthMapsErrors; // keeps the filter's errors of one update
   std::string DepthMapsError;
+  vtkNew<vtkCallbackCommand> DepthMapsWarnings; // and its warnings, said again with the clip's terms
+  std::string DepthMapsWarning;
+  std::set<std::string> WarnedDepthMaps; ///< what the user was warned of (once each)
   // The window whose context holds our objects; weak, so that a window
   // destroyed first is noticed (its objects are then forgotten, not deleted).
   vtkWeakPointer<vtkRenderWindow> Window;
@@ -528,6 +532,9 @@ struct vtkContextualAOVolumeMapper::Internals
   /// `pose`: the maps' pose (the shape's for one, identity for several).
   bool UpdateMaps(vtkContextualAOVolumeMapper* self, Frame& f, const std::vector<ClipPart>& parts,
     vtkMatrix4x4* pose);
+  /// The depth-map filter's warnings of this update, said in the clip's
+  /// terms (Clip Layers), once each, and in the frame report.
+  void WarnOfDepthMaps(vtkContextualAOVolumeMapper* self, Frame& f, int layers, std::size_t shapes);
   std::vector<std::pair<vtkSmartPointer<vtkProp3D>, int>> AddedShapes;
   /// AddOccluder's props, and per occluder the last reason warned.
   std::vector<vtkSmartPointer<vtkProp3D>> Occluders;
@@ -592,18 +599,22 @@ vtkContextualAOVolumeMapper::vtkContextualAOVolumeMapper()
   in.ClipDepthMaps = vtkSmartPointer<vtkClipDepthMaps>::New();
   in.ClipDepthMaps->SetPixelSizeName("ClipMapPixelSize");
   in.DepthMapsErrors->SetClientData(&in.DepthMapsError);
-  in.DepthMapsErrors->SetCallback([](vtkObject*, unsigned long, void* out, void* text) {
+  // Every error (warning) of the update, in order: the reason, then which shape.
+  auto collect = [](vtkObject*, unsigned long, void* out, void* text) {
     std::string m = text ? static_cast<const char*>(text) : "";
     const std::size_t colon = m.find("): "); // drop VTK's "vtkClass (0x...): " prefix
     if (colon != std::string::npos)
       m = m.substr(colon + 3);
     while (!m.empty() && (m.back() == '\n' || m.back() == ' '))
       m.pop_back();
-    // Every error of the update, in order: the reason, then which shape.
     std::string& all = *static_cast<std::string*>(out);
     all += (all.empty() ? "" : " ") + m;
-  });
+  };
+  in.DepthMapsErrors->SetCallback(collect);
   in.ClipDepthMaps->AddObserver(vtkCommand::ErrorEvent, in.DepthMapsErrors);
+  in.DepthMapsWarnings->SetClientData(&in.DepthMapsWarning);
+  in.DepthMapsWarnings->SetCallback(collect);
+  in.ClipDepthMaps->AddObserver(vtkCommand::WarningEvent, in.DepthMapsWarnings);
 }
 
 //------------------------------------------------------------------------------
@@ -2233,6 +2244,7 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateMaps(vtkContextualAOVolumeMap
   maps->SetBackend(vtkClipDepthMaps::AUTO);
   const auto start = std::chrono::steady_clock::now();
   this->DepthMapsError.clear();
+  this->DepthMapsWarning.clear();
   maps->Update();
   vtkCAO::ClipMaps check;
   if (!this->DepthMapsError.empty() || !vtkCAO::ReadClipMaps(maps->GetOutput(), mode, check, error))
@@ -2240,6 +2252,8 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateMaps(vtkContextualAOVolumeMap
     const std::string& why = this->DepthMapsError.empty() ? error : this->DepthMapsError;
     return f.Fail("The clip mesh's depth maps could not be made: " + why);
   }
+  if (!this->DepthMapsWarning.empty())
+    this->WarnOfDepthMaps(self, f, key.layers, parts.size());
   f.report.stages.push_back({ "depth_maps", vtkCAO::MillisecondsSince(start), "host" });
   f.report.reasons.emplace_back(remake);
   ++self->DepthMapsCount;
@@ -2249,6 +2263,38 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateMaps(vtkContextualAOVolumeMap
   this->Mesh = key;
   this->HaveMesh = true;
   return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkContextualAOVolumeMapper::Internals::WarnOfDepthMaps(
+  vtkContextualAOVolumeMapper* self, Frame& f, int layers, std::size_t shapes)
+{
+  // The filter's warnings in the mapper's terms. More inside intervals than
+  // layers: the filter's layer count is Clip Layers, or one more than the
+  // shapes when several combine, and its hint names every tool's setting.
+  std::string text = this->DepthMapsWarning;
+  const bool layersShort = text.find("inside intervals") != std::string::npos;
+  if (layersShort)
+  {
+    const std::size_t hint = text.find(" Increase the layers");
+    if (hint != std::string::npos)
+      text.erase(hint);
+    std::ostringstream why;
+    why << "Clip Layers: " << text << " There the clip also removes what lies between the extra "
+        << "intervals. Clip Layers is " << self->NumberOfClipLayers;
+    if (layers != self->NumberOfClipLayers)
+      why << ", and the " << shapes << " clip shapes combined need " << layers << " layers";
+    why << "; raise it (up to 16) to clip such a mesh exactly.";
+    text = why.str();
+  }
+  else
+    text = "Clip mesh: " + text;
+  f.report.reasons.push_back(text);
+  // Said once (each Clip Layers value, each other warning), not at every
+  // remade map: the frame report keeps it.
+  const std::string key = layersShort ? "layers " + std::to_string(layers) : text;
+  if (this->WarnedDepthMaps.insert(key).second)
+    vtkWarningWithObjectMacro(self, << text);
 }
 
 //------------------------------------------------------------------------------
