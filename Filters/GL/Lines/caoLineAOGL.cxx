@@ -378,7 +378,8 @@ bool LineAOEngine::Impl::Prisms(const BitGrid& grid, const LineAOSettings& setti
   block.scalars = { static_cast<float>(settings.radius / grid.voxel), static_cast<float>(grid.voxel),
     static_cast<float>(LineOcclusionScale(settings, grid.voxel)), static_cast<float>(settings.strength) };
   block.paper = { static_cast<float>(settings.aoFactor),
-    static_cast<float>(settings.strength * LineVoxelExtinction(settings.tubeRadius / grid.voxel)), 0.0f, 0.0f };
+    static_cast<float>(settings.strength * LineVoxelExtinction(settings.tubeRadius / grid.voxel)),
+    static_cast<float>(settings.voxelOffset), 0.0f };
   const double gridBytes = static_cast<double>(grid.nx) * grid.ny * grid.words * sizeof(std::uint32_t);
   const double limit = P.LargestBlock();
   if (gridBytes > limit)

@@ -366,7 +366,8 @@ struct LineAOParams
   ivec4 grid;    /* x: nx, y: ny, z: slices, w: 32-bit words per column */
   ivec4 counts;  /* x: samples per set, y: half balls (pixels), z: flags (1 paper weights, 2 solids, 4 rays), w: 0 */
   vec4 scalars;  /* x: R (voxels), y: voxel (world), z: occlusion scale s (cao::LineOcclusionScale), w: strength */
-  vec4 paper;    /* x: the paper's AO factor; y: the rays' extinction per voxel, strength x cao::LineVoxelExtinction; zw: 0 */
+  vec4 paper;    /* x: the paper's AO factor; y: the rays' extinction per voxel, strength x cao::LineVoxelExtinction;
+                    z: where along a ray a line voxel starts to dim it (voxels, LineAOSettings::voxelOffset); w: 0 */
 };
 struct LineAOPixel
 {

@@ -101,6 +101,8 @@ std::string LineAOSettings::Validate() const
     return "the line AO strength must be 0..100 (1: calibrated; got " + std::to_string(this->strength) + ")";
   if (!(this->aoFactor >= 0.0) || !std::isfinite(this->aoFactor))
     return "the AO factor must be finite and not negative";
+  if (!(this->voxelOffset >= 0.0 && this->voxelOffset <= 2.0))
+    return "the line voxels' offset along a ray must be 0..2 voxels (got " + std::to_string(this->voxelOffset) + ")";
   if (static_cast<int>(this->weights) < 0 || static_cast<int>(this->weights) > 1)
     return "unknown line AO weights";
   if (static_cast<int>(this->hemisphere) < 0 || static_cast<int>(this->hemisphere) > 1)
@@ -628,8 +630,10 @@ double LineRaysOf(const BitGrid& grid, const LineAOSettings& settings, const dou
           blocked = true;
           break;
         }
-        if (grid.Bit(cell[0], cell[1], cell[2]))
-          depth += exit - t;
+        // A line voxel dims the ray from voxelOffset on: a tube's voxels
+        // overhang its surface too.
+        if (grid.Bit(cell[0], cell[1], cell[2]) && exit > settings.voxelOffset)
+          depth += exit - std::max(t, settings.voxelOffset);
       }
       t = exit;
       next[c] += delta[c];

@@ -73,7 +73,7 @@ bool Bit(bool solid, ivec3 c)
 /// voxel past the base plane passing exp(-sigma l), a solid one nothing.
 float Rays(vec3 o, vec3 w, float base, int first, bool withSolids)
 {
-  const float R = la.scalars.x, sigma = la.paper.y;
+  const float R = la.scalars.x, sigma = la.paper.y, offset = la.paper.z;
   const int count = la.counts.x;
   vec3 t1 = normalize(cross(w, abs(w.x) < 0.6 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0)));
   vec3 t2 = cross(w, t1);
@@ -122,8 +122,9 @@ float Rays(vec3 o, vec3 w, float base, int first, bool withSolids)
           blocked = true;
           break;
         }
-        if (Bit(false, cell))
-          depth += leave - t;
+        // (LineAOSettings::voxelOffset: a tube's voxels overhang its surface too.)
+        if (Bit(false, cell) && leave > offset)
+          depth += leave - max(t, offset);
       }
       t = leave;
       next[c] += delta[c];
