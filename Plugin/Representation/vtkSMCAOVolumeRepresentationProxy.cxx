@@ -39,6 +39,13 @@ public:
   static vtkSMCAOClipMeshRelay* New();
   vtkTypeMacro(vtkSMCAOClipMeshRelay, vtkSMProxy);
   vtkWeakPointer<vtkSMCAOVolumeRepresentationProxy> Owner;
+  /// ParaView updates a changed property's consumers (File > Change File
+  /// swaps a reader in Clip Meshes, then updates its consumer): the owner's.
+  void UpdateVTKObjects() override
+  {
+    if (this->Owner)
+      this->Owner->UpdateVTKObjects();
+  }
 
 protected:
   vtkSMCAOClipMeshRelay()
@@ -148,10 +155,11 @@ void vtkSMCAOVolumeRepresentationProxy::ProxyUnRegistered(vtkObject*, unsigned l
   if (!info || info->Type != vtkSMProxyManager::RegisteredProxyInformation::PROXY || !info->Proxy ||
     !info->GroupName || std::strcmp(info->GroupName, "sources") != 0 || !meshes || !this->WatchedManager)
     return;
-  unsigned int index = 0;
-  while (index < meshes->GetNumberOfProxies() && meshes->GetProxy(index) != info->Proxy)
-    ++index;
-  if (index == meshes->GetNumberOfProxies())
+  std::vector<unsigned int> listed; // (a mesh may be listed more than once)
+  for (unsigned int i = 0; i < meshes->GetNumberOfProxies(); ++i)
+    if (meshes->GetProxy(i) == info->Proxy)
+      listed.push_back(i);
+  if (listed.empty())
     return;
   // Still in the pipeline under another name (a rename registers the new
   // name, then unregisters the old).
@@ -160,16 +168,21 @@ void vtkSMCAOVolumeRepresentationProxy::ProxyUnRegistered(vtkObject*, unsigned l
   for (int i = 0; i < names->GetNumberOfStrings(); ++i)
     if (!info->ProxyName || std::strcmp(names->GetString(i), info->ProxyName) != 0)
       return;
-  meshes->RemoveProxy(info->Proxy);
+  for (std::size_t i = 0; i < listed.size(); ++i)
+    meshes->RemoveProxy(info->Proxy); // (the first left each time)
   if (auto* modes = vtkSMIntVectorProperty::SafeDownCast(this->GetProperty("ClipMeshModes")))
-    if (index < modes->GetNumberOfElements())
+  {
+    std::vector<int> values(modes->GetElements(), modes->GetElements() + modes->GetNumberOfElements());
+    for (auto i = listed.rbegin(); i != listed.rend(); ++i)
+      if (*i < values.size())
+        values.erase(values.begin() + *i);
+    if (values.size() != modes->GetNumberOfElements())
     {
-      std::vector<int> values(modes->GetElements(), modes->GetElements() + modes->GetNumberOfElements());
-      values.erase(values.begin() + index);
       modes->SetNumberOfElements(static_cast<unsigned int>(values.size()));
       if (!values.empty())
         modes->SetElements(values.data());
     }
+  }
   this->UpdateVTKObjects();
 }
 

@@ -208,6 +208,45 @@ check(kept.SMProxy is display.SMProxy and kept.Representation == "Contextual AO 
       "deleting a clip mesh keeps the display (%s, %s), drops the mesh and its mode (%s)"
       % (kept.SMProxy is display.SMProxy, kept.Representation, list(display.ClipMeshModes)))
 check(changed(frame("probe-a-after-delete"), first_frame) == 0, "then the remaining probe clips alone")
+# The same mesh listed twice and deleted: no copy outlives it.
+twice = Sphere(Center=[centre[0] + 25.0, centre[1], centre[2]], Radius=70.0)
+display.ClipMeshes = [big, twice, twice]
+display.ClipMeshModes = ["Probing", "Subtraction", "Subtraction"]
+Delete(twice)
+del twice
+check(list(display.ClipMeshes) == [big] and list(display.ClipMeshModes) == ["Probing"],
+      "a mesh listed twice leaves Clip Meshes whole when deleted (%d left)" % len(display.ClipMeshes))
+# File > Change File on a clip mesh's reader (ParaView swaps the reader in
+# Clip Meshes and updates the property's consumer, now the relay): the new
+# file carves, as the same file given directly does (a review found the old
+# mesh still carving).
+from vtkmodules.vtkFiltersSources import vtkSphereSource  # noqa: E402
+from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter  # noqa: E402
+mesh_files = []
+for k, dx in enumerate((-25.0, 25.0)):
+    ball = vtkSphereSource()
+    ball.SetCenter(centre[0] + dx, centre[1], centre[2])
+    ball.SetRadius(70.0)
+    ball.SetThetaResolution(48)
+    ball.SetPhiResolution(48)
+    writer = vtkXMLPolyDataWriter()
+    writer.SetFileName(os.path.join(out, "clip-mesh-%d.vtp" % k))
+    writer.SetInputConnection(ball.GetOutputPort())
+    writer.Write()
+    mesh_files.append(writer.GetFileName())
+mesh_reader = XMLPolyDataReader(FileName=[mesh_files[1]])
+display.ClipMeshes = [mesh_reader]
+display.ClipMeshModes = []
+direct_b = frame("file-b-direct")
+Delete(mesh_reader)
+mesh_reader = XMLPolyDataReader(FileName=[mesh_files[0]])
+display.ClipMeshes = [mesh_reader]
+file_a = frame("file-a")
+ReplaceReaderFileName(mesh_reader, [mesh_files[1]], "FileName")
+file_b = frame("file-a-changed-to-b")
+check(changed(file_b, direct_b) == 0 and changed(file_a, direct_b) > 100,
+      "Change File on a clip mesh's reader carves with the new file (%d pixels differ from it given directly; "
+      "%d between the two files)" % (changed(file_b, direct_b), changed(file_a, direct_b)))
 display.ClipMeshes = [big, other]
 display.ClipMeshModes = [1, 0]
 

@@ -897,7 +897,8 @@ int Run(SurfaceOptions& o, const CLI::App* app)
   // Line options without --method: the lines' default, lineao.
   const bool methodGiven = app->count("--method") > 0;
   if (!methodGiven)
-    for (const char* name : { "--line-samples", "--line-weights", "--line-hemisphere", "--line-estimator", "--strength" })
+    for (const char* name :
+      { "--line-samples", "--line-weights", "--line-hemisphere", "--line-estimator", "--line-voxel-offset", "--strength" })
       if (app->count(name) > 0)
         o.method = "lineao";
   // --march and --samples are for hbao or volumetric, --filter for vct, hbao or
@@ -923,7 +924,7 @@ int Run(SurfaceOptions& o, const CLI::App* app)
     { "--falloff", { "reference" } }, { "--weighting", { "reference" } },
     { "--window", { "ssao" } }, { "--kernel", { "ssao" } }, { "--line-samples", { "lineao", "vct" } },
     { "--line-weights", { "lineao", "vct" } }, { "--line-hemisphere", { "lineao", "vct" } },
-    { "--line-estimator", { "lineao", "vct" } },
+    { "--line-estimator", { "lineao", "vct" } }, { "--line-voxel-offset", { "lineao", "vct" } },
     { "--strength", { "lineao", "vct" } }
   };
   // (lineao: with meshes in the frame, their voxel cones take vct's
@@ -1036,8 +1037,8 @@ int Run(SurfaceOptions& o, const CLI::App* app)
     job.json = o.json;
     return RunSurfaceLines(job, o.meshes, read);
   }
-  for (const char* name :
-    { "--tube-radius", "--line-samples", "--line-weights", "--line-hemisphere", "--line-estimator", "--strength" })
+  for (const char* name : { "--tube-radius", "--line-samples", "--line-weights", "--line-hemisphere",
+         "--line-estimator", "--line-voxel-offset", "--strength" })
     if (app->count(name) > 0)
       return Fail(2, std::string(name) + " is for line inputs; the inputs hold no lines");
   if (o.method == "lineao")
@@ -1359,6 +1360,10 @@ Command AddSurfaceCommand(CLI::App& cao)
     "lineao: how the half ball is read (default rays: cosine-distributed rays marched through the line grid, "
     "as the reference's; prisms: the thesis' prisms along the view axis, their occupancy calibrated; "
     "--line-weights implies prisms)");
+  AddNumber(app, "--line-voxel-offset", o->lineAO.voxelOffset, 0.0, 2.0, false, Interval(0.0, 2.0),
+    "lineao, rays: where along a ray a line voxel starts to dim it, voxels, 0 to 2 (default 0.5: a tube's "
+    "voxels overhang its surface)")
+    ->type_name("V");
   AddChoice(app, "--line-weights", o->lineWeights, { "normalized", "paper" },
     "lineao: the prisms' weights (default normalized: a/(dm/R)^2, a the cosine to the normal, independent of the "
     "scene's scale; paper: the thesis' 1/dm^2 in world units times its AO factor 4)");

@@ -350,7 +350,7 @@ struct vtkContextualAOVolumeMapper::Internals
   vtkNew<vtkCallbackCommand> DepthMapsErrors; // keeps the filter's errors of one update
   std::string DepthMapsError;
   vtkNew<vtkCallbackCommand> DepthMapsWarnings; // and its warnings, said again with the clip's terms
-  std::string DepthMapsWarning;
+  std::vector<std::string> DepthMapsWarning;
   std::set<std::string> WarnedDepthMaps; ///< what the user was warned of (once each)
   // The window whose context holds our objects; weak, so that a window
   // destroyed first is noticed (its objects are then forgotten, not deleted).
@@ -534,7 +534,8 @@ struct vtkContextualAOVolumeMapper::Internals
     vtkMatrix4x4* pose);
   /// The depth-map filter's warnings of this update, said in the clip's
   /// terms (Clip Layers), once each, and in the frame report.
-  void WarnOfDepthMaps(vtkContextualAOVolumeMapper* self, Frame& f, int layers, std::size_t shapes);
+  void WarnOfDepthMaps(
+    vtkContextualAOVolumeMapper* self, Frame& f, const std::string& warning, int layers, std::size_t shapes);
   std::vector<std::pair<vtkSmartPointer<vtkProp3D>, int>> AddedShapes;
   /// AddOccluder's props, and per occluder the last reason warned.
   std::vector<vtkSmartPointer<vtkProp3D>> Occluders;
@@ -600,7 +601,7 @@ vtkContextualAOVolumeMapper::vtkContextualAOVolumeMapper()
   in.ClipDepthMaps->SetPixelSizeName("ClipMapPixelSize");
   in.DepthMapsErrors->SetClientData(&in.DepthMapsError);
   // Every error (warning) of the update, in order: the reason, then which shape.
-  auto collect = [](vtkObject*, unsigned long, void* out, void* text) {
+  static auto collect = [](vtkObject*, unsigned long, void* out, void* text) {
     std::string m = text ? static_cast<const char*>(text) : "";
     const std::size_t colon = m.find("): "); // drop VTK's "vtkClass (0x...): " prefix
     if (colon != std::string::npos)
@@ -612,8 +613,13 @@ vtkContextualAOVolumeMapper::vtkContextualAOVolumeMapper()
   };
   in.DepthMapsErrors->SetCallback(collect);
   in.ClipDepthMaps->AddObserver(vtkCommand::ErrorEvent, in.DepthMapsErrors);
+  // The warnings one by one (each is said in the clip's terms, once).
   in.DepthMapsWarnings->SetClientData(&in.DepthMapsWarning);
-  in.DepthMapsWarnings->SetCallback(collect);
+  in.DepthMapsWarnings->SetCallback([](vtkObject*, unsigned long, void* out, void* text) {
+    std::string one;
+    collect(nullptr, 0, &one, text);
+    static_cast<std::vector<std::string>*>(out)->push_back(one);
+  });
   in.ClipDepthMaps->AddObserver(vtkCommand::WarningEvent, in.DepthMapsWarnings);
 }
 
@@ -2252,8 +2258,8 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateMaps(vtkContextualAOVolumeMap
     const std::string& why = this->DepthMapsError.empty() ? error : this->DepthMapsError;
     return f.Fail("The clip mesh's depth maps could not be made: " + why);
   }
-  if (!this->DepthMapsWarning.empty())
-    this->WarnOfDepthMaps(self, f, key.layers, parts.size());
+  for (const std::string& warning : this->DepthMapsWarning)
+    this->WarnOfDepthMaps(self, f, warning, key.layers, parts.size());
   f.report.stages.push_back({ "depth_maps", vtkCAO::MillisecondsSince(start), "host" });
   f.report.reasons.emplace_back(remake);
   ++self->DepthMapsCount;
@@ -2267,12 +2273,12 @@ bool vtkContextualAOVolumeMapper::Internals::UpdateMaps(vtkContextualAOVolumeMap
 
 //------------------------------------------------------------------------------
 void vtkContextualAOVolumeMapper::Internals::WarnOfDepthMaps(
-  vtkContextualAOVolumeMapper* self, Frame& f, int layers, std::size_t shapes)
+  vtkContextualAOVolumeMapper* self, Frame& f, const std::string& warning, int layers, std::size_t shapes)
 {
-  // The filter's warnings in the mapper's terms. More inside intervals than
+  // The filter's warning in the mapper's terms. More inside intervals than
   // layers: the filter's layer count is Clip Layers, or one more than the
   // shapes when several combine, and its hint names every tool's setting.
-  std::string text = this->DepthMapsWarning;
+  std::string text = warning;
   const bool layersShort = text.find("inside intervals") != std::string::npos;
   if (layersShort)
   {
@@ -2290,9 +2296,11 @@ void vtkContextualAOVolumeMapper::Internals::WarnOfDepthMaps(
   else
     text = "Clip mesh: " + text;
   f.report.reasons.push_back(text);
-  // Said once (each Clip Layers value, each other warning), not at every
-  // remade map: the frame report keeps it.
-  const std::string key = layersShort ? "layers " + std::to_string(layers) : text;
+  // Said once (each Clip Layers value, each other warning whatever its
+  // counts), not at every remade map: the frame report keeps it.
+  std::string key = layersShort ? "layers " + std::to_string(layers) : text;
+  if (!layersShort)
+    key.erase(std::remove_if(key.begin(), key.end(), [](char c) { return c >= '0' && c <= '9'; }), key.end());
   if (this->WarnedDepthMaps.insert(key).second)
     vtkWarningWithObjectMacro(self, << text);
 }

@@ -173,17 +173,21 @@ for method in ("lineao", "reference"):
 # point there and overhang the tube's surface; line voxels dim a ray from
 # half a voxel on (cao::LineAOSettings::voxelOffset), and line AO's darkest
 # pixel is then within 0.06 of the reference's (0.043 measured). Negative
-# control, run by hand with the offset 0: 0.814 against 0.962, off by 0.148.
+# control: --line-voxel-offset 0 (counted from the ray's start) misses it
+# (0.814 against 0.962).
 bend = write_lines(os.path.join(tmp, "bend.vtp"), [[(x, 0.4 * np.sin(3 * x), 0) for x in np.linspace(-1, 1, 60)]])
 darkest = {}
-for method in ("lineao", "reference"):
-    a, cov, _ = lines_ao("bend-" + method, bend, "--method", method, "--tube-radius", "0.05", "--radius", "0.5")
+for name, options in (("lineao", ("--method", "lineao")), ("reference", ("--method", "reference")),
+                      ("offset 0", ("--method", "lineao", "--line-voxel-offset", "0"))):
+    a, cov, _ = lines_ao("bend-" + name.replace(" ", "-"), bend, *options, "--tube-radius", "0.05", "--radius", "0.5")
     if a is not None and cov.sum() > 100:
-        darkest[method] = float(a[cov].min())
-if len(darkest) == 2:
+        darkest[name] = float(a[cov].min())
+if len(darkest) == 3:
     check(darkest["reference"] < 0.99 and abs(darkest["lineao"] - darkest["reference"]) < 0.06,
           "a tight bend's darkest pixel: line AO %.4f, the reference %.4f (within 0.06 wanted)"
           % (darkest["lineao"], darkest["reference"]))
+    check(not abs(darkest["offset 0"] - darkest["reference"]) < 0.06,
+          "negative control: line voxels counted from the ray's start miss it (%.4f)" % darkest["offset 0"])
 else:
     check(False, "the bend's frames were made: %s" % sorted(darkest))
 
