@@ -3,6 +3,7 @@
 #include "pqApplicationCore.h"
 #include "pqPipelineSource.h"
 #include "pqServerManagerModel.h"
+#include "pqUndoStack.h"
 #include "vtkCommand.h"
 #include "vtkSMDataTypeDomain.h"
 #include "vtkSMIntVectorProperty.h"
@@ -227,6 +228,9 @@ void pqCAOClipMeshesWidget::apply()
     std::vector<vtkSMProxy*> meshList;
     std::vector<int> modeList;
     this->rowsToLists(meshList, modeList);
+    // One undo step named for what changed (Edit > Undo Change Clip
+    // Meshes), not for the proxy's class.
+    SCOPED_UNDO_SET(tr("Change Clip Meshes"));
     this->Applying = true;
     meshes->SetProxies(static_cast<unsigned int>(meshList.size()), meshList.data());
     modes->SetNumberOfElements(static_cast<unsigned int>(modeList.size()));

@@ -11,6 +11,10 @@ own QApplication; without PyQt5 the test skips (125).
   the mapper holds one clip shape; ticking Box1 too and picking Probing in
   its row gives [Sphere1, Box1] and [As Clip Mode, Probing], and the
   mapper two shapes.
+- Edit > Undo ("Undo Change Clip Meshes") unticks it and the view is
+  redrawn without the clip; Redo ticks it again (negative control, by
+  hand: without the widget's own undo step the action read "Undo Changed
+  'vtkSMCAOVolumeRepresentationProxy'" and the first undo check failed).
 - A change from Python (Box1 alone, Subtraction) shows in the rows.
 - A source added and applied gets a row; deleted, its row goes; a ticked
   one deleted leaves the volume's display in place.
@@ -19,6 +23,7 @@ Negative control: before this widget the panel had one input selector and
 a bare list of numbers (the table is not found: the first check fails).
 Writes CAO_RESULT (ok/FAIL lines, then PASSED, FAILED or SKIPPED)."""
 import os
+import time
 
 from gui_scene import Result, pyqt5
 
@@ -84,6 +89,39 @@ try:
           "ticking Sphere1: Clip Meshes [Sphere1], modes %s" % list(display.ClipMeshModes))
     check(mapper.GetNumberOfClipShapes() == 1, "the mapper holds 1 shape (%d)" % mapper.GetNumberOfClipShapes())
     check(rows()[row_of("Sphere1")][3], "Sphere1's mode is enabled once ticked")
+
+    # Edit > Undo and Redo, as the GUI's own actions: one step named for the
+    # change; the undo stack's render draws the restored clip (no other
+    # property change needed), and the rows follow.
+    actions = {}
+    for w in app.topLevelWidgets():
+        actions.update({a.objectName(): a for a in w.findChildren(QtWidgets.QAction)
+                        if a.objectName() in ("actionEditUndo", "actionEditRedo")})
+    renders = []
+    observer = view.GetRenderWindow().AddObserver("EndEvent", lambda obj, event: renders.append(1))
+
+    def edit(name):
+        del renders[:]
+        actions[name].trigger()
+        for _ in range(50):  # (the view renders on a timer)
+            settle()
+            if renders:
+                break
+            time.sleep(0.02)
+
+    check("actionEditUndo" in actions and actions["actionEditUndo"].text() == "&Undo Change Clip Meshes",
+          "Edit > Undo names the change: %s" % (actions["actionEditUndo"].text() if "actionEditUndo" in actions
+                                                 else "no undo action"))
+    edit("actionEditUndo")
+    check(list(display.ClipMeshes) == [] and mapper.GetNumberOfClipShapes() == 0 and renders
+          and not rows()[row_of("Sphere1")][1],
+          "Undo: no clip mesh, the view redrawn with none (%d shapes), the row unticked: %s"
+          % (mapper.GetNumberOfClipShapes(), rows()))
+    edit("actionEditRedo")
+    check(list(display.ClipMeshes) == [sphere] and mapper.GetNumberOfClipShapes() == 1 and renders
+          and rows()[row_of("Sphere1")][1],
+          "Redo: Sphere1 clips again (%d shape), the row ticked: %s" % (mapper.GetNumberOfClipShapes(), rows()))
+    view.GetRenderWindow().RemoveObserver(observer)
 
     t.item(row_of("Box1"), 0).setCheckState(QtCore.Qt.Checked)
     settle()
