@@ -110,11 +110,20 @@ long long VolumeVoxels(vtkVolume* volume)
   return static_cast<long long>(dims[0]) * dims[1] * dims[2];
 }
 
-bool VolumeOpacity(vtkVolume* volume, cao::OpacityVolume& out, std::string& error)
+bool VolumeOpacity(vtkVolume* volume, cao::OpacityVolume& out, std::string& error, bool* noData)
 {
   vtkImageData* input = InputOf(volume);
   bool cells = false;
   vtkDataArray* scalars = DrawnScalars(volume, input, cells);
+  vtkAbstractVolumeMapper* volumeMapper = volume ? volume->GetMapper() : nullptr;
+  vtkDataSet* given = volumeMapper ? volumeMapper->GetDataSetInput() : nullptr;
+  if (!given || (input && input->GetNumberOfPoints() == 0))
+  {
+    if (noData)
+      *noData = true;
+    error = given ? "the volume's image has no voxels yet" : "the volume has no data yet";
+    return false;
+  }
   if (!input)
   {
     error = "the volume's input is not image data";

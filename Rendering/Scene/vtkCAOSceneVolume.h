@@ -27,9 +27,12 @@ constexpr long long MaximumOccludingVoxels = 134217728LL;
 
 /// `volume`'s clipped opacity in world space. False with the reason when
 /// its input is not image data with scalars, it is too large, or a clip
-/// mesh is missing or open.
+/// mesh is missing or open; false with `noData` set (and the reason) when
+/// it has no data yet: no input, or an image without voxels (ParaView
+/// renders a state file's views before their data arrive), which occludes
+/// nothing and is no error.
 CAORENDERINGSCENE_EXPORT bool VolumeOpacity(vtkVolume* volume, cao::OpacityVolume& opacity,
-  std::string& error);
+  std::string& error, bool* noData = nullptr);
 
 /// The voxels of `volume`'s image data (0: none), as VolumeOpacity reads it.
 CAORENDERINGSCENE_EXPORT long long VolumeVoxels(vtkVolume* volume);

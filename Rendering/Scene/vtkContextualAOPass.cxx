@@ -1862,8 +1862,11 @@ bool vtkContextualAOPass::Internals::UpdateVolumes(vtkContextualAOPass* self)
     // and in the report; the others and the surfaces keep their AO.
     cao::OpacityVolume volume;
     std::string error;
-    if (vtkCAO::VolumeOpacity(this->volumes[i], volume, error))
+    bool noData = false;
+    if (vtkCAO::VolumeOpacity(this->volumes[i], volume, error, &noData))
       this->opacity.push_back(std::move(volume));
+    else if (noData)
+      this->skippedVolumes.push_back("volume " + std::to_string(i) + ": " + error); // (no warning)
     else
     {
       this->skippedVolumes.push_back("volume " + std::to_string(i) + ": " + error);

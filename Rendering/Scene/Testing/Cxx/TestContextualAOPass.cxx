@@ -1495,8 +1495,32 @@ int TestContextualAOPass(int, char*[])
     ugVolume->SetProperty(ugProperty);
     renderer->AddVolume(ugVolume);
     pass->SetMethod(vtkContextualAOPass::VCT);
+    // A Contextual AO volume with no data yet (ParaView renders a state
+    // file's views before their data arrive): left out without a warning,
+    // while the unstructured volume is warned of (the control). Before,
+    // both said "the volume's input is not image data" (a trial's GUI
+    // state load showed the first over the view).
+    vtkNew<vtkContextualAOVolumeMapper> emptyMapper;
+    vtkNew<vtkVolume> emptyVolume;
+    emptyVolume->SetMapper(emptyMapper);
+    vtkNew<vtkVolumeProperty> emptyProperty;
+    emptyVolume->SetProperty(emptyProperty);
+    renderer->AddVolume(emptyVolume);
+    std::vector<std::string> said;
+    vtkNew<vtkCallbackCommand> collect;
+    collect->SetClientData(&said);
+    collect->SetCallback([](vtkObject*, unsigned long, void* data, void* text) {
+      static_cast<std::vector<std::string>*>(data)->push_back(text ? static_cast<const char*>(text) : "");
+    });
+    const unsigned long warned = pass->AddObserver(vtkCommand::WarningEvent, collect);
     window->Render();
+    pass->RemoveObserver(warned);
     const std::string withBoth = pass->GetLastFrameReport();
+    Check(said.size() == 1 && said[0].find("Volume 0 does not occlude the surfaces: the volume's input is not image data") !=
+          std::string::npos && withBoth.find("volume 1: the volume has no data yet") != std::string::npos,
+      "a volume with no data yet is left out without a warning (in the report), the unstructured one is warned of: " +
+        std::to_string(said.size()) + " warning(s)" + (said.empty() ? std::string() : ": " + said[0]));
+    renderer->RemoveVolume(emptyVolume);
     Check(withBoth.find("\"error\"") == std::string::npos &&
         withBoth.find("skipped_volumes") != std::string::npos && pass->GetPixelAO(cx, cy) < 0.9,
       "an outline and an unstructured volume are left out, said in the report, the slab keeps its AO (" +
