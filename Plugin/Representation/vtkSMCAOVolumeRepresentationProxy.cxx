@@ -51,8 +51,10 @@ protected:
   vtkSMCAOClipMeshRelay()
   {
     // (ParaView compares a consumer's group with its own when it deletes a source)
+    // (its definition in ContextualAORepresentation.xml, which Python looks up)
     this->SetXMLGroup("contextual_ao_internal");
     this->SetXMLName("ClipMeshRelay");
+    this->SetXMLLabel("Clip Mesh Relay");
   }
   void MarkDirtyFromProducer(vtkSMProxy* modifiedProxy, vtkSMProxy* producer, vtkSMProperty* property) override
   {
@@ -131,6 +133,9 @@ void vtkSMCAOVolumeRepresentationProxy::RelinkClipMeshes()
   {
     auto relay = vtkSmartPointer<vtkSMCAOClipMeshRelay>::New();
     relay->Owner = this;
+    // (Python asks a consumer for its session's proxy manager when it saves
+    // a state; the relay is registered in none of its groups)
+    relay->SetSession(this->GetSession());
     this->ClipMeshRelay = relay;
   }
   // The property linked each new mesh to this proxy as its consumer.
