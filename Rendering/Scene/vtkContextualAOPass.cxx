@@ -1859,19 +1859,19 @@ bool vtkContextualAOPass::Internals::UpdateVolumes(vtkContextualAOPass* self)
   {
     // A volume that cannot occlude (not image data, cell scalars, too
     // large, an open clip mesh) is left out, said once (until it changes)
-    // and in the report; the others and the surfaces keep their AO.
+    // and in the report; the others and the surfaces keep their AO. One
+    // with no data yet is in the report only.
     cao::OpacityVolume volume;
     std::string error;
     bool noData = false;
     if (vtkCAO::VolumeOpacity(this->volumes[i], volume, error, &noData))
-      this->opacity.push_back(std::move(volume));
-    else if (noData)
-      this->skippedVolumes.push_back("volume " + std::to_string(i) + ": " + error); // (no warning)
-    else
     {
-      this->skippedVolumes.push_back("volume " + std::to_string(i) + ": " + error);
-      vtkWarningWithObjectMacro(self, << "Volume " << i << " does not occlude the surfaces: " << error);
+      this->opacity.push_back(std::move(volume));
+      continue;
     }
+    this->skippedVolumes.push_back("volume " + std::to_string(i) + ": " + error);
+    if (!noData)
+      vtkWarningWithObjectMacro(self, << "Volume " << i << " does not occlude the surfaces: " << error);
   }
   ++self->VolumeCount;
   this->Stage("volumes", start);
