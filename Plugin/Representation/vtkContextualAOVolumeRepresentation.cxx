@@ -292,6 +292,13 @@ void vtkContextualAOVolumeRepresentation::GetClipShapeMatrix(double matrix[16])
   t->Scale(this->ClipScale);
   t->Translate(0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]));
   t->Scale(0.5 * (b[1] - b[0]), 0.5 * (b[3] - b[2]), 0.5 * (b[5] - b[4]));
+  if (this->ClipShape == PLANE)
+  {
+    // The plane of the box's -z face, the half-space that holds the box:
+    // through the centre, at the default pose (the data's +z face) it
+    // removed nothing, and picking Plane changed nothing on the screen.
+    t->Translate(0.0, 0.0, -1.0);
+  }
   vtkMatrix4x4::DeepCopy(matrix, t->GetMatrix());
 }
 

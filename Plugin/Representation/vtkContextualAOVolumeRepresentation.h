@@ -65,15 +65,18 @@ public:
     SPHERE = 1,
     CUBE = 2,
     TORUS = 3,
-    PLANE = 4 ///< the half-space z >= 0 of the pose's frame (position and orientation)
+    PLANE = 4 ///< the half-space that holds the box, bounded by the plane of its -z face
   };
 
   ///@{
   /// The clip shape, inscribed in the clip box: NONE (default), SPHERE (the
   /// ellipsoid touching the box's faces), CUBE (the box), TORUS (ring in
   /// the box's xy mid-plane, outer radius to the box's x and y faces, tube
-  /// a quarter of that) or PLANE (the half-space z >= 0 of the box's frame,
-  /// through its centre; it covers the data whatever the box's size).
+  /// a quarter of that) or PLANE (the half-space that holds the box,
+  /// bounded by the plane of the box's -z face, as far as the data reaches
+  /// whatever the box's x and y size: at the default pose it removes the
+  /// data's top quarter in z, where a plane through the box's centre, on
+  /// the data's +z face, removed nothing).
   vtkSetClampMacro(ClipShape, int, NONE, PLANE);
   vtkGetMacro(ClipShape, int);
   ///@}
@@ -106,7 +109,9 @@ public:
   ///@}
 
   /// The clip shape's matrix (the shape of half-extent 1 centred on the
-  /// origin to world coordinates), as handed to the mapper.
+  /// origin to world coordinates), as handed to the mapper. For PLANE the
+  /// origin is the centre of the box's -z face (the half-space z >= 0 in
+  /// that frame holds the box).
   void GetClipShapeMatrix(double matrix[16]);
 
   ///@{

@@ -19,7 +19,8 @@ pvpython:
   - the built-in shape is inscribed in the box widget's box: a Cube equals
     a Transform of a unit Box with the same Translate, Rotate and Scale
     (negative control: turned further, it differs); without reference
-    bounds the box is [0,1]^3; a Plane's half-space ignores the box's size;
+    bounds the box is [0,1]^3; a Plane's half-space holds the box, bounded
+    by its -z face (the box's x and y size do not move it);
     an empty reference box clips nothing and says why.
 Also the representation's own LAO precompute reports progress to ParaView's
 progress handler (the GUI's status bar) while it renders; a
@@ -33,6 +34,7 @@ import sys
 from paraview.simple import *  # noqa: F401,F403
 from paraview import servermanager
 from vtkmodules.vtkCommonCore import vtkOutputWindow, vtkStringOutputWindow
+from vtkmodules.vtkCommonTransforms import vtkTransform
 from vtkmodules.vtkIOImage import vtkPNGReader
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
@@ -352,17 +354,34 @@ display.ClipReferenceBounds = [0.0, 1.0, 0.0, 1.0, 0.0, 1.0]
 check(changed(corner, frame("box-reference-unit")) == 0 and changed(corner, builtin) > 100,
       "without reference bounds the box is [0,1]^3, as the widget draws it (%d pixels moved)"
       % changed(corner, builtin))
-# A plane's half-space does not depend on the box's size.
+# A plane's half-space holds the box and is bounded by the plane of its -z
+# face: the box's x and y size do not move it, its z size does, and the
+# plane at z size 30 is the one at z size 10 moved 20 along the box's -z
+# axis (turned as the box: Z, then X, then Y).
 display.ClipReferenceBounds = [-1.0, 1.0, -1.0, 1.0, -1.0, 1.0]
 display.ClipShape = "Plane"
-display.ClipScale = [100.0, 100.0, 100.0]
+display.ClipScale = [100.0, 100.0, 30.0]
 big = frame("plane-big")
-display.ClipScale = [0.01, 0.02, 0.01]
+display.ClipScale = [0.01, 0.02, 30.0]
 small = frame("plane-small")
+turn = vtkTransform()
+turn.RotateZ(15.0)
+turn.RotateX(25.0)
+turn.RotateY(40.0)
+down = turn.TransformVector(0.0, 0.0, -20.0)
+at = list(display.ClipPosition)
+display.ClipScale = [0.01, 0.02, 10.0]
+display.ClipPosition = [at[i] + down[i] for i in range(3)]
+moved = frame("plane-moved")
+display.ClipPosition = at
+display.ClipScale = [0.01, 0.02, 1e-3]
+centred = frame("plane-centred")
 display.ClipOrientation = [25.0, 70.0, 15.0]
-check(changed(big, small) == 0 and changed(plain, big) > 300 and changed(small, frame("plane-turned")) > 100,
-      "a plane cuts the same half-space in a large and a tiny box (%d pixels differ); turned, it differs"
-      % changed(big, small))
+check(changed(big, small) == 0 and changed(small, moved) == 0 and changed(plain, big) > 300 and
+      changed(small, centred) > 100 and changed(centred, frame("plane-turned")) > 100,
+      "a plane cuts at the box's -z face: the same half-space in a large and a tiny box (%d pixels "
+      "differ) and moved by the box's z size (%d; through the centre: %d differ); turned, it differs"
+      % (changed(big, small), changed(small, moved), changed(small, centred)))
 # An empty reference box clips nothing and says why.
 errors = vtkStringOutputWindow()
 previous = vtkOutputWindow.GetInstance()

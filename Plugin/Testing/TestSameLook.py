@@ -140,13 +140,25 @@ print("%s: the LAO filter follows the displayed opacity map (%s), an edit of the
 if not ok:
     failures.append("follow")
 
-# The Plane clip: the half-space on the +z side of the pose, at the data's
-# centre by default; it cuts (voxels recomputed), and its removal restores
-# the unclipped image.
+# The Plane clip: the half-space that holds the clip box, bounded by its -z
+# face. At the default pose (the box on the data's +z face, a quarter of
+# the data's extent) it cuts the top quarter off: picking Plane changes the
+# picture (through the box's centre it removed nothing: a new user saw no
+# change). Turned, it cuts (voxels recomputed), and its removal restores the
+# unclipped image.
 shown.ClipShape = "None"
 Render(view)
-unclipped, _ = grey("plane-none")
+unclipped, covered = grey("plane-none")
 shown.ClipShape = "Plane"
+Render(view)
+recomputed = mapper.GetLastFrameRecomputedVoxels()
+picked, picked_covered = grey("plane-default")
+ok = recomputed > 0 and (abs(picked - unclipped) > 1.0 or abs(picked_covered - covered) > 100)
+print("%s: Plane picked at the default pose cuts: %d voxels recomputed, mean grey %.1f (%d px) "
+      "against %.1f (%d px) unclipped" % ("ok" if ok else "FAIL", recomputed, picked,
+                                           picked_covered, unclipped, covered))
+if not ok:
+    failures.append("plane default pose")
 shown.ClipOrientation = [60.0, 0.0, 0.0]
 Render(view)
 recomputed = mapper.GetLastFrameRecomputedVoxels()
