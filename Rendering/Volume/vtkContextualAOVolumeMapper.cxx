@@ -2561,7 +2561,10 @@ void vtkContextualAOVolumeMapper::Internals::SetDrawOptions(
   this->Options.imageSampleDistance = k;
   // Kept: still frames only, and only when the last frame's draws (one per
   // peeling stage) all fit (else each would replace another: no copies,
-  // only read-backs).
+  // only read-backs). Automatic: also the first still frame, before any
+  // cast was timed (a script's first Render is followed by the same frame
+  // for its screenshot, which a new user's trial saw cast again in full:
+  // 400-750 ms on a software rasteriser).
   int size[2], origin[2];
   f.renderer->GetTiledSizeAndOrigin(&size[0], &size[1], &origin[0], &origin[1]);
   const bool room =
@@ -2569,7 +2572,7 @@ void vtkContextualAOVolumeMapper::Internals::SetDrawOptions(
   this->Options.keepDraws = k == 1 && !f.interactive && room &&
     (self->KeepDraws == ALWAYS_KEEP_DRAWS ||
       (self->KeepDraws == AUTOMATIC_KEEP_DRAWS &&
-        this->StillCastMs >= KeepDrawsAboveMilliseconds));
+        !(this->StillCastMs >= 0.0 && this->StillCastMs < KeepDrawsAboveMilliseconds)));
   if (f.dragging && first)
     f.report.reasons.push_back("interactive: a pointer button is held");
   this->Options.prepareInteractive = f.window->GetInteractor() != nullptr;

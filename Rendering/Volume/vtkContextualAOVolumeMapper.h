@@ -449,7 +449,8 @@ public:
   {
     /// Keep it when the last still frame's ray cast took at least
     /// KeepDrawsAboveMilliseconds (a software rasteriser: seconds for a
-    /// 256^3 volume; a GPU: milliseconds, where a copy gains nothing).
+    /// 256^3 volume; a GPU: milliseconds, where a copy gains nothing), and
+    /// the first still frame, before any ray cast was timed.
     AUTOMATIC_KEEP_DRAWS = 0,
     ALWAYS_KEEP_DRAWS = 1,
     NEVER_KEEP_DRAWS = 2
