@@ -19,6 +19,9 @@ own QApplication; without PyQt5 the test skips (125).
 - A source added and applied gets a row; deleted, its row goes; a ticked
   one deleted leaves the volume's display in place.
 - The group is hidden with the representation Outline.
+- The clip box's group (pqCAOClipBoxWidget) shows Position, Rotation,
+  Scale and Reset Using Data Bounds, and not the reference bounds' fields
+  and tick (negative control, run: ParaView's InteractiveBox shows them).
 Negative control: before this widget the panel had one input selector and
 a bare list of numbers (the table is not found: the first check fails).
 Writes CAO_RESULT (ok/FAIL lines, then PASSED, FAILED or SKIPPED)."""
@@ -166,6 +169,29 @@ try:
     SetActiveSource(None)
     SetActiveSource(volume)
     check(table().isVisible(), "shown again as Contextual AO Volume")
+
+    # The clip box's group: ParaView's box widget (Position, Rotation,
+    # Scale, Reset Using Data Bounds) without the reference bounds' six
+    # fields and tick, which ParaView's own InteractiveBox shows to every
+    # user (the representation poses the shapes in [-1,1]^3).
+    display.ClipShape = "Sphere"
+    SetActiveSource(None)
+    SetActiveSource(volume)
+    settle()
+
+    def shown(name):
+        # (the one in a shown box group: the panel keeps hidden ones of
+        # other proxies)
+        found = [w for w in app.allWidgets() if w.objectName() == name and w.parentWidget() is not None
+                 and w.parentWidget().isVisible()]
+        return len(found) == 1 and found[0].isVisible()
+
+    box_fields = {n: shown(n) for n in ("translateX", "rotateX", "scaleX", "resetBounds",
+                                         "useReferenceBounds", "xmin", "zmax")}
+    check(all(box_fields[n] for n in ("translateX", "rotateX", "scaleX", "resetBounds")) and
+          not any(box_fields[n] for n in ("useReferenceBounds", "xmin", "zmax")),
+          "the clip box's group shows the pose and Reset Using Data Bounds, not the reference "
+          "bounds: %s" % box_fields)
 except Exception:  # noqa: BLE001  (reported in the result)
     import traceback
     check(False, "the script ran: %s" % traceback.format_exc())
