@@ -1809,7 +1809,7 @@ bool vtkContextualAOVolumeMapper::Internals::GatherClipParts(
     {
       skipped += (skipped.empty() ? "" : " ") +
         (shapes == 1 ? std::string()
-                     : std::string("Clip shape ") + std::to_string(i) + " of " +
+                     : std::string("Clip shape ") + std::to_string(i + 1) + " of " +
                std::to_string(shapes) + " is left out: ") +
         why;
       continue;
