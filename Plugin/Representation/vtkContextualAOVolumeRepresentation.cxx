@@ -309,6 +309,7 @@ void vtkContextualAOVolumeRepresentation::UpdateBuiltInShape(vtkImageData* data)
   mapper->SetHostClipError(std::string());
   if (this->ClipShape == NONE)
   {
+    this->LoggedClipError.clear();
     mapper->SetClipShape(nullptr);
     return;
   }
@@ -338,11 +339,16 @@ void vtkContextualAOVolumeRepresentation::UpdateBuiltInShape(vtkImageData* data)
           << ", each axis non-zero and finite; reference bounds " << b[0] << " " << b[1] << " " << b[2]
           << " " << b[3] << " " << b[4] << " " << b[5]
           << ", each max above its min): nothing is clipped, the volume is drawn unclipped.";
-    vtkErrorMacro(<< why.str());
+    // (this runs at every update of the representation: a GUI edit gave
+    // the same error four times)
+    if (why.str() != this->LoggedClipError)
+      vtkErrorMacro(<< why.str());
+    this->LoggedClipError = why.str();
     mapper->SetHostClipError(why.str());
     mapper->SetClipShape(nullptr);
     return;
   }
+  this->LoggedClipError.clear();
   static const char* names[] = { "", "sphere", "cube", "torus", "plane" };
   // Half-extent 1: the torus' ring radius 3/4 (tube 1/4) reaches the box's
   // faces. A plane's slab must cover the data from the pose

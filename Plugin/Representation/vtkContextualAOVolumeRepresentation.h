@@ -179,6 +179,7 @@ protected:
   bool ClipUseReferenceBounds = true;
   int BuiltShape = -1;
   double BuiltSize = 0.0;
+  std::string LoggedClipError; ///< the clip box's error last logged (logged once while it holds)
   vtkNew<vtkActor> ClipActor;
   vtkNew<vtkPolyDataMapper> ClipMapper;
   // The pipeline's clip meshes: an actor each (identity pose), and modes.

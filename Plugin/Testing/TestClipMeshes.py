@@ -515,9 +515,22 @@ check("AO Strength (AOStrength) must be in [0, 1]; got 5" in refused.get("error"
 shape_was, scale_was, position_was = display.ClipShape, list(display.ClipScale), list(display.ClipPosition)
 display.ClipShape = "Sphere"
 vtkOutputWindow.SetInstance(errors)
+logged_before = errors.GetOutput().count("The clip box is empty")
 display.ClipScale = [0.0, scale_was[1] or 20.0, scale_was[2] or 20.0]
 frame("scale-zero")
 zero = json.loads(mapper.GetLastFrameReport())
+# Logged once while it holds, however often the representation updates (a
+# GUI edit of Clip Scale logged it four times): a second frame, a turned
+# camera and the view updated again add nothing to the log, and the report
+# keeps it.
+frame("scale-zero-again")
+view.GetActiveCamera().Azimuth(10.0)
+frame("scale-zero-turned")
+view.GetActiveCamera().Azimuth(-10.0)
+view.Update()
+frame("scale-zero-updated")
+logged_zero = errors.GetOutput().count("The clip box is empty") - logged_before
+zero_later = json.loads(mapper.GetLastFrameReport())
 display.ClipScale = scale_was
 display.ClipPosition = [float("nan"), position_was[1], position_was[2]]
 frame("position-nan")
@@ -527,6 +540,9 @@ frame("pose-back")
 back_pose = json.loads(mapper.GetLastFrameReport())
 vtkOutputWindow.SetInstance(previous)
 display.ClipShape = shape_was
+check(logged_zero == 1 and "Clip Scale 0" in zero_later.get("error", ""),
+      "the clip box's error is logged once over four frames while it holds (%d), and stays in "
+      "the report" % logged_zero)
 check("Clip Scale 0" in zero.get("error", "") and "not finite" in nan_pose.get("error", "") and
       "clip box" not in back_pose.get("error", "") and "categories" in back_pose,
       "the representation's refusals (Clip Scale 0, a NaN Clip Position) are in the frame report, and go "
